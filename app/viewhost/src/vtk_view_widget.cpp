@@ -1,0 +1,268 @@
+#include "ffdkit/app/vtk_view_widget.h"
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QOpenGLContext>
+#include <QWheelEvent>
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkGenericRenderWindowInteractor.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkNew.h>
+#include <vtkRenderer.h>
+
+namespace ffdkit::app {
+namespace {
+
+// VTK key symbols (X11 keysym names) for the keys interactor styles listen to.
+const char* keySymbol(int key) {
+  switch (key) {
+    case Qt::Key_Left: return "Left";
+    case Qt::Key_Right: return "Right";
+    case Qt::Key_Up: return "Up";
+    case Qt::Key_Down: return "Down";
+    case Qt::Key_Return: return "Return";
+    case Qt::Key_Enter: return "KP_Enter";
+    case Qt::Key_Escape: return "Escape";
+    case Qt::Key_Delete: return "Delete";
+    case Qt::Key_Backspace: return "BackSpace";
+    case Qt::Key_Tab: return "Tab";
+    case Qt::Key_Space: return "space";
+    case Qt::Key_Home: return "Home";
+    case Qt::Key_End: return "End";
+    case Qt::Key_PageUp: return "Prior";
+    case Qt::Key_PageDown: return "Next";
+    case Qt::Key_Shift: return "Shift_L";
+    case Qt::Key_Control: return "Control_L";
+    case Qt::Key_Alt: return "Alt_L";
+    case Qt::Key_Plus: return "plus";
+    case Qt::Key_Minus: return "minus";
+    default: return nullptr;
+  }
+}
+
+}  // namespace
+
+struct VtkViewWidget::Impl {
+  vtkNew<vtkGenericOpenGLRenderWindow> window;
+  vtkNew<vtkGenericRenderWindowInteractor> interactor;
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  vtkNew<vtkCallbackCommand> makeCurrent;
+  vtkNew<vtkCallbackCommand> isCurrent;
+  vtkNew<vtkCallbackCommand> renderRequest;
+  bool initialized = false;
+};
+
+VtkViewWidget::VtkViewWidget(QWidget* parent) : QOpenGLWidget(parent), impl_(std::make_unique<Impl>()) {
+  setFocusPolicy(Qt::StrongFocus);
+  setMouseTracking(true);  // VTK styles hover-highlight on plain moves
+  setUpdateBehavior(QOpenGLWidget::NoPartialUpdate);
+
+  auto& d = *impl_;
+  d.window->AddRenderer(d.renderer);
+  d.window->SetMultiSamples(0);  // Qt owns the framebuffer format
+  d.window->SetReadyForRendering(false);
+  d.interactor->SetRenderWindow(d.window);
+  d.interactor->SetInteractorStyle(d.style);
+  // The interactor asks for renders while handling events; route them through Qt's paint cycle.
+  d.interactor->EnableRenderOff();
+
+  d.makeCurrent->SetClientData(this);
+  d.makeCurrent->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+    static_cast<VtkViewWidget*>(self)->makeCurrent();
+  });
+  d.window->AddObserver(vtkCommand::WindowMakeCurrentEvent, d.makeCurrent);
+
+  d.isCurrent->SetClientData(this);
+  d.isCurrent->SetCallback([](vtkObject*, unsigned long, void* self, void* callData) {
+    auto* widget = static_cast<VtkViewWidget*>(self);
+    *static_cast<bool*>(callData) =
+        widget->context() != nullptr && QOpenGLContext::currentContext() == widget->context();
+  });
+  d.window->AddObserver(vtkCommand::WindowIsCurrentEvent, d.isCurrent);
+
+  d.renderRequest->SetClientData(this);
+  d.renderRequest->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+    static_cast<VtkViewWidget*>(self)->requestRender();
+  });
+  d.interactor->AddObserver(vtkCommand::RenderEvent, d.renderRequest);
+}
+
+VtkViewWidget::~VtkViewWidget() {
+  // Release VTK's GPU resources while our context still exists.
+  if (impl_->initialized && context() != nullptr) {
+    makeCurrent();
+    impl_->window->Finalize();
+    doneCurrent();
+  }
+}
+
+QSurfaceFormat VtkViewWidget::defaultFormat() {
+  QSurfaceFormat format;
+  format.setRenderableType(QSurfaceFormat::OpenGL);
+  format.setVersion(3, 2);
+  format.setProfile(QSurfaceFormat::CoreProfile);
+  format.setSwapBehavior(QSurfaceFormat::DoubleBuffer);
+  format.setRedBufferSize(8);
+  format.setGreenBufferSize(8);
+  format.setBlueBufferSize(8);
+  format.setAlphaBufferSize(8);
+  format.setDepthBufferSize(24);
+  format.setStencilBufferSize(8);
+  format.setSamples(0);
+  return format;
+}
+
+vtkGenericOpenGLRenderWindow* VtkViewWidget::renderWindow() const { return impl_->window; }
+vtkRenderWindowInteractor* VtkViewWidget::interactor() const { return impl_->interactor; }
+vtkRenderer* VtkViewWidget::renderer() const { return impl_->renderer; }
+
+void VtkViewWidget::requestRender() { update(); }
+
+void VtkViewWidget::initializeGL() {
+  auto& d = *impl_;
+  // Qt created the context and made it current: VTK must use it, not make its own.
+  d.window->SetOwnContext(false);
+  d.window->SetFrameBlitModeToBlitToCurrent();
+  d.window->SetIsCurrent(true);
+  d.window->OpenGLInitContext();
+  d.interactor->Initialize();
+  d.initialized = true;
+}
+
+void VtkViewWidget::resizeGL(int, int) {
+  // Qt gives logical pixels; VTK works in device pixels.
+  const double ratio = devicePixelRatioF();
+  const int w = static_cast<int>(width() * ratio + 0.5);
+  const int h = static_cast<int>(height() * ratio + 0.5);
+  impl_->window->SetSize(w, h);
+  impl_->interactor->UpdateSize(w, h);
+  impl_->interactor->InvokeEvent(vtkCommand::ConfigureEvent, nullptr);
+}
+
+void VtkViewWidget::paintGL() {
+  auto& d = *impl_;
+  // A screen change may have changed the device pixel ratio without a resize.
+  const double ratio = devicePixelRatioF();
+  const int w = static_cast<int>(width() * ratio + 0.5);
+  const int h = static_cast<int>(height() * ratio + 0.5);
+  if (d.window->GetSize()[0] != w || d.window->GetSize()[1] != h) resizeGL(width(), height());
+
+  d.window->SetReadyForRendering(true);
+  d.window->Render();
+  d.window->SetReadyForRendering(false);
+}
+
+namespace {
+
+void setMouseInfo(vtkRenderWindowInteractor* interactor, const QWidget* widget, const QPointF& position,
+                  Qt::KeyboardModifiers modifiers, int repeatCount) {
+  const double ratio = widget->devicePixelRatioF();
+  interactor->SetEventInformationFlipY(static_cast<int>(position.x() * ratio + 0.5),
+                                       static_cast<int>(position.y() * ratio + 0.5),
+                                       (modifiers & Qt::ControlModifier) ? 1 : 0,
+                                       (modifiers & Qt::ShiftModifier) ? 1 : 0, 0, repeatCount);
+  interactor->SetAltKey((modifiers & Qt::AltModifier) ? 1 : 0);
+}
+
+unsigned long pressEventFor(Qt::MouseButton button) {
+  switch (button) {
+    case Qt::LeftButton: return vtkCommand::LeftButtonPressEvent;
+    case Qt::RightButton: return vtkCommand::RightButtonPressEvent;
+    case Qt::MiddleButton: return vtkCommand::MiddleButtonPressEvent;
+    default: return vtkCommand::NoEvent;
+  }
+}
+
+unsigned long releaseEventFor(Qt::MouseButton button) {
+  switch (button) {
+    case Qt::LeftButton: return vtkCommand::LeftButtonReleaseEvent;
+    case Qt::RightButton: return vtkCommand::RightButtonReleaseEvent;
+    case Qt::MiddleButton: return vtkCommand::MiddleButtonReleaseEvent;
+    default: return vtkCommand::NoEvent;
+  }
+}
+
+}  // namespace
+
+void VtkViewWidget::mousePressEvent(QMouseEvent* event) {
+  setMouseInfo(impl_->interactor, this, event->position(), event->modifiers(), 0);
+  if (auto id = pressEventFor(event->button()); id != vtkCommand::NoEvent) impl_->interactor->InvokeEvent(id);
+  event->accept();
+}
+
+void VtkViewWidget::mouseDoubleClickEvent(QMouseEvent* event) {
+  // VTK reports a double click as a press whose repeat count is 1.
+  setMouseInfo(impl_->interactor, this, event->position(), event->modifiers(), 1);
+  if (auto id = pressEventFor(event->button()); id != vtkCommand::NoEvent) impl_->interactor->InvokeEvent(id);
+  event->accept();
+}
+
+void VtkViewWidget::mouseMoveEvent(QMouseEvent* event) {
+  setMouseInfo(impl_->interactor, this, event->position(), event->modifiers(), 0);
+  impl_->interactor->InvokeEvent(vtkCommand::MouseMoveEvent);
+  event->accept();
+}
+
+void VtkViewWidget::mouseReleaseEvent(QMouseEvent* event) {
+  setMouseInfo(impl_->interactor, this, event->position(), event->modifiers(), 0);
+  if (auto id = releaseEventFor(event->button()); id != vtkCommand::NoEvent) impl_->interactor->InvokeEvent(id);
+  event->accept();
+}
+
+void VtkViewWidget::wheelEvent(QWheelEvent* event) {
+  setMouseInfo(impl_->interactor, this, event->position(), event->modifiers(), 0);
+  const QPoint delta = event->angleDelta();
+  if (delta.y() > 0) impl_->interactor->InvokeEvent(vtkCommand::MouseWheelForwardEvent);
+  if (delta.y() < 0) impl_->interactor->InvokeEvent(vtkCommand::MouseWheelBackwardEvent);
+  if (delta.x() > 0) impl_->interactor->InvokeEvent(vtkCommand::MouseWheelLeftEvent);
+  if (delta.x() < 0) impl_->interactor->InvokeEvent(vtkCommand::MouseWheelRightEvent);
+  event->accept();
+}
+
+namespace {
+
+void setKeyInfo(vtkRenderWindowInteractor* interactor, const QKeyEvent* event) {
+  const QString text = event->text();
+  const char keyCode = (text.size() == 1 && text[0].unicode() < 128) ? static_cast<char>(text[0].unicode()) : 0;
+  const char* symbol = keySymbol(event->key());
+  const QByteArray fallback = text.toLatin1();
+  const Qt::KeyboardModifiers modifiers = event->modifiers();
+  interactor->SetKeyEventInformation((modifiers & Qt::ControlModifier) ? 1 : 0,
+                                     (modifiers & Qt::ShiftModifier) ? 1 : 0, keyCode,
+                                     event->isAutoRepeat() ? 1 : 0,
+                                     symbol != nullptr ? symbol : fallback.constData());
+  interactor->SetAltKey((modifiers & Qt::AltModifier) ? 1 : 0);
+}
+
+}  // namespace
+
+void VtkViewWidget::keyPressEvent(QKeyEvent* event) {
+  setKeyInfo(impl_->interactor, event);
+  impl_->interactor->InvokeEvent(vtkCommand::KeyPressEvent);
+  // Interactor styles act on CharEvent ('r' resets the camera, 'w' wireframe, ...).
+  impl_->interactor->InvokeEvent(vtkCommand::CharEvent);
+  event->accept();
+}
+
+void VtkViewWidget::keyReleaseEvent(QKeyEvent* event) {
+  setKeyInfo(impl_->interactor, event);
+  impl_->interactor->InvokeEvent(vtkCommand::KeyReleaseEvent);
+  event->accept();
+}
+
+void VtkViewWidget::enterEvent(QEnterEvent* event) {
+  setMouseInfo(impl_->interactor, this, event->position(), event->modifiers(), 0);
+  impl_->interactor->InvokeEvent(vtkCommand::EnterEvent);
+  event->accept();
+}
+
+void VtkViewWidget::leaveEvent(QEvent* event) {
+  impl_->interactor->InvokeEvent(vtkCommand::LeaveEvent);
+  event->accept();
+}
+
+}  // namespace ffdkit::app

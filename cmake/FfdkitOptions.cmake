@@ -1,0 +1,31 @@
+# Project-wide compile settings, applied per target so that VTK and Qt headers
+# (found as SYSTEM include directories) do not flood the build with warnings.
+
+if(FFDKIT_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
+find_program(FFDKIT_CCACHE ccache)
+if(FFDKIT_CCACHE)
+  set(CMAKE_C_COMPILER_LAUNCHER "${FFDKIT_CCACHE}")
+  set(CMAKE_CXX_COMPILER_LAUNCHER "${FFDKIT_CCACHE}")
+endif()
+
+# ffdkit_target_defaults(target): warnings on for project code.
+function(ffdkit_target_defaults target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local
+                         -Wno-unused-parameter)
+endfunction()
+
+# ffdkit_add_library(NAME module SOURCES ... DEPS ...): one library target per module,
+# exported as ffdkit::<module>, public headers under <module>/include/ffdkit/<module>/.
+function(ffdkit_add_module_library module)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(ffdkit_${module} ${ARG_SOURCES})
+  add_library(ffdkit::${module} ALIAS ffdkit_${module})
+  target_include_directories(ffdkit_${module} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>)
+  target_link_libraries(ffdkit_${module} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  ffdkit_target_defaults(ffdkit_${module})
+endfunction()
