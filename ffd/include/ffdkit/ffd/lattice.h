@@ -1,0 +1,136 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "ffdkit/ffd/axis_basis.h"
+#include "ffdkit/ffd/box_lattice_options.h"
+#include "ffdkit/ffd/lattice_error.h"
+#include "ffdkit/ffd/outside_policy.h"
+
+namespace ffdkit::ffd {
+
+/// An FFD lattice: l x m x n control points P_ijk (seed 001 l.2343-2351), a basis per axis, the
+/// rest lattice Pbar (the control points before any edit, eq. (6.2)), a frame placing the
+/// lattice-local coordinates in the world, and the outside-point policy.
+///
+/// Layout: control points are stored one per row of a pointCount x 3 matrix in lattice-LOCAL
+/// coordinates, flat index = i + l*(j + m*k) (i fastest). World = frame() * local.
+/// Value semantics: copyable, comparable by revision only through revision()/restRevision().
+/// Revisions are process-wide unique counters, so a copy that is edited never collides with
+/// the original's revision.
+class Lattice {
+ public:
+  /// A user-shaped lattice.
+  /// @param counts     (l, m, n), each >= 2.
+  /// @param bases      per-axis basis (resolved for the count of that axis).
+  /// @param restPoints l*m*n x 3, lattice-local, i fastest. Becomes both Pbar and P.
+  /// @param frame      world = frame * local; must be invertible and finite.
+  /// @throws LatticeError on counts < 2, a bad basis (degree, knots), wrong row count,
+  ///         non-finite points or frame, or a degenerate (zero-volume) rest lattice.
+  Lattice(const Eigen::Vector3i& counts, const std::array<AxisBasis, 3>& bases,
+          const Eigen::Ref<const Eigen::MatrixX3d>& restPoints,
+          const Eigen::Affine3d& frame = Eigen::Affine3d::Identity());
+
+  Eigen::Vector3i counts() const { return counts_; }
+  Eigen::Index pointCount() const { return static_cast<Eigen::Index>(counts_.prod()); }
+  /// Flat index = i + l*(j + m*k). No range check (use gridIndex / setControlPoint for checked access).
+  Eigen::Index index(int i, int j, int k) const {
+    return i + static_cast<Eigen::Index>(counts_[0]) * (j + static_cast<Eigen::Index>(counts_[1]) * k);
+  }
+  /// Inverse of index(). @throws LatticeError if flat is out of [0, pointCount()).
+  Eigen::Vector3i gridIndex(Eigen::Index flat) const;
+
+  /// Per-axis basis, as given and as resolved (knots, cells, Greville abscissae).
+  const AxisBasis& basis(int axis) const { return axes_[axis].basis(); }
+  const AxisSpline& axis(int axis) const { return axes_[axis]; }
+  /// Parameter box: per axis [domainMin, domainMax] ([0, 1] for default bases).
+  Eigen::Vector3d parameterMin() const;
+  Eigen::Vector3d parameterMax() const;
+
+  /// Current control points P, pointCount x 3, lattice-local.
+  const Eigen::MatrixX3d& controlPoints() const { return control_; }
+  /// Rest control points Pbar, same layout.
+  const Eigen::MatrixX3d& restPoints() const { return rest_; }
+  /// @throws LatticeError on a wrong row count or non-finite values. Bumps revision().
+  void setControlPoints(const Eigen::Ref<const Eigen::MatrixX3d>& points);
+  /// @throws LatticeError on flat out of range or non-finite p. Bumps revision().
+  void setControlPoint(Eigen::Index flat, const Eigen::Vector3d& p);
+  /// P = Pbar. Bumps revision().
+  void resetToRest();
+  /// Replaces the rest lattice (and resets P to it): the "points moved before attaching" case.
+  /// @throws LatticeError like the constructor. Bumps revision() and restRevision().
+  void setRestPoints(const Eigen::Ref<const Eigen::MatrixX3d>& restPoints);
+
+  /// World placement of the lattice: world = frame * local.
+  const Eigen::Affine3d& frame() const { return frame_; }
+  /// Moves the whole lattice (rest and current) in the world; local coordinates are unchanged.
+  /// @throws LatticeError on a non-finite or singular frame. Bumps restRevision().
+  void setFrame(const Eigen::Affine3d& frame);
+
+  const OutsidePolicy& outsidePolicy() const { return policy_; }
+  /// @throws LatticeError for Falloff with distance <= 0 or non-finite. Bumps restRevision()
+  /// (embeddings carry the policy's precomputed data).
+  void setOutsidePolicy(const OutsidePolicy& policy);
+
+  /// Changes on every control-point change (setControlPoint(s), resetToRest, setRestPoints).
+  std::uint64_t revision() const { return revision_; }
+  /// Changes when the rest lattice, the frame or the outside policy changes: embeddings built
+  /// for an older restRevision are stale.
+  std::uint64_t restRevision() const { return restRevision_; }
+
+  /// X(u,v,w) = sum_ijk B_i(u) B_j(v) B_k(w) P_ijk, lattice-local (seed 001 eq. (6.1)).
+  /// Parameters outside the box evaluate the end polynomial pieces; periodic axes wrap.
+  Eigen::Vector3d evaluate(const Eigen::Vector3d& uvw) const;
+  /// Xbar(u,v,w): eq. (6.1) on the rest lattice (the left side of eq. (6.2)).
+  Eigen::Vector3d evaluateRest(const Eigen::Vector3d& uvw) const;
+  /// dX/d(u,v,w) (column a = derivative along parameter a) and, optionally, X itself.
+  Eigen::Matrix3d jacobian(const Eigen::Vector3d& uvw, Eigen::Vector3d* value = nullptr) const;
+  /// dXbar/d(u,v,w) on the rest lattice and, optionally, Xbar itself (used by Newton embedding).
+  Eigen::Matrix3d restJacobian(const Eigen::Vector3d& uvw, Eigen::Vector3d* value = nullptr) const;
+
+  /// True when Xbar is an affine function of (u,v,w): Xbar = A*uvw + b (box lattices on the
+  /// Greville grid). Then embedding is the closed form A^-1 (Q - b).
+  bool restIsAffine() const { return restAffine_; }
+  /// A and b of the affine rest map (meaningful only if restIsAffine()).
+  const Eigen::Matrix3d& restAffineLinear() const { return restA_; }
+  const Eigen::Vector3d& restAffineOffset() const { return restB_; }
+  /// Diagonal of the rest lattice's bounding box (> 0): the length scale for tolerances.
+  double restSize() const { return restSize_; }
+
+ private:
+  Eigen::Vector3d evaluateOn(const Eigen::MatrixX3d& points, const Eigen::Vector3d& uvw,
+                             Eigen::Matrix3d* jac) const;
+  void setRestInternal(const Eigen::Ref<const Eigen::MatrixX3d>& restPoints);
+
+  Eigen::Vector3i counts_;
+  std::array<AxisSpline, 3> axes_;
+  Eigen::MatrixX3d control_;
+  Eigen::MatrixX3d rest_;
+  Eigen::Affine3d frame_ = Eigen::Affine3d::Identity();
+  OutsidePolicy policy_{};
+  std::uint64_t revision_ = 0;
+  std::uint64_t restRevision_ = 0;
+  bool restAffine_ = false;
+  Eigen::Matrix3d restA_ = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d restB_ = Eigen::Vector3d::Zero();
+  double restSize_ = 1.0;
+};
+
+/// Default box lattice: rest points fill the local box [boxMin, boxMax] (unit box by default)
+/// at the Greville abscissae of each axis (a regular grid for Bernstein and clamped uniform
+/// B-splines of degree 1 and of degree count-1; otherwise the points next to each face sit closer to it),
+/// so that the rest map is affine and embedding is closed form (spec §2). frame = options.frame.
+/// @throws LatticeError on counts < 2, bad bases, boxMax <= boxMin on an axis, non-finite input,
+///         or a periodic axis (use makeCylindricalLattice for closed axes).
+Lattice makeBoxLattice(const BoxLatticeOptions& options = {});
+
+/// A user-shaped lattice, same as the Lattice constructor (for symmetry with makeBoxLattice).
+Lattice makeLattice(const Eigen::Vector3i& counts, const std::array<AxisBasis, 3>& bases,
+                    const Eigen::Ref<const Eigen::MatrixX3d>& restPoints,
+                    const Eigen::Affine3d& frame = Eigen::Affine3d::Identity());
+
+}  // namespace ffdkit::ffd
