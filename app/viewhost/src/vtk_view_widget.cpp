@@ -11,10 +11,17 @@
 #include <vtkGenericRenderWindowInteractor.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
+#include <vtkOpenGLState.h>
 #include <vtkRenderer.h>
 
 namespace ffdkit::app {
 namespace {
+
+// OpenGL capability enums (from GL/gl.h, which cannot be included beside VTK's GLEW header).
+constexpr unsigned int kGlBlend = 0x0BE2;
+constexpr unsigned int kGlDepthTest = 0x0B71;
+constexpr unsigned int kGlScissorTest = 0x0C11;
+constexpr unsigned int kGlCullFace = 0x0B44;
 
 // VTK key symbols (X11 keysym names) for the keys interactor styles listen to.
 const char* keySymbol(int key) {
@@ -71,8 +78,12 @@ VtkViewWidget::VtkViewWidget(QWidget* parent) : QOpenGLWidget(parent), impl_(std
   d.interactor->EnableRenderOff();
 
   d.makeCurrent->SetClientData(this);
+  // QOpenGLContext::makeCurrent, not QOpenGLWidget::makeCurrent: the widget's version also
+  // binds its framebuffer, behind the back of VTK's GL state cache, and VTK calls MakeCurrent
+  // in the middle of setting up its own framebuffers.
   d.makeCurrent->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
-    static_cast<VtkViewWidget*>(self)->makeCurrent();
+    QOpenGLContext* context = static_cast<VtkViewWidget*>(self)->context();
+    if (context != nullptr && QOpenGLContext::currentContext() != context) context->makeCurrent(context->surface());
   });
   d.window->AddObserver(vtkCommand::WindowMakeCurrentEvent, d.makeCurrent);
 
@@ -151,6 +162,22 @@ void VtkViewWidget::paintGL() {
   const int h = static_cast<int>(height() * ratio + 0.5);
   if (d.window->GetSize()[0] != w || d.window->GetSize()[1] != h) resizeGL(width(), height());
 
+  // Qt bound its own framebuffer and may have changed other GL state since the last frame:
+  // VTK caches GL state, so let it read the real state before rendering, so that it blits
+  // its image into the framebuffer Qt has bound (BlitToCurrent).
+  vtkOpenGLState* state = d.window->GetState();
+  state->ResetFramebufferBindings();
+  state->ResetGLViewportState();
+  state->ResetGLScissorState();
+  state->ResetGLClearColorState();
+  state->ResetGLDepthFuncState();
+  state->ResetGLDepthMaskState();
+  state->ResetGLColorMaskState();
+  state->ResetGLBlendFuncState();
+  state->ResetGLBlendEquationState();
+  state->ResetGLCullFaceState();
+  for (unsigned int capability : {kGlBlend, kGlDepthTest, kGlScissorTest, kGlCullFace})
+    state->ResetEnumState(capability);
   d.window->SetReadyForRendering(true);
   d.window->Render();
   d.window->SetReadyForRendering(false);

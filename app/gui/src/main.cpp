@@ -1,0 +1,51 @@
+// ffdkit: the desktop application. main() only parses arguments and maps errors to exit codes.
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QSurfaceFormat>
+#include <QTimer>
+
+#include <cstdio>
+#include <exception>
+
+#include "ffdkit/app/main_window.h"
+#include "ffdkit/app/vtk_view_widget.h"
+
+int main(int argc, char** argv) {
+  QSurfaceFormat::setDefaultFormat(ffdkit::app::VtkViewWidget::defaultFormat());
+  QApplication app(argc, argv);
+  QApplication::setApplicationName("ffdkit");
+
+  QCommandLineParser parser;
+  parser.setApplicationDescription("Direct-manipulation free-form deformation with 3D widgets.");
+  parser.addHelpOption();
+  parser.addPositionalArgument("scene", "Scene file or sample-scene folder to open.");
+  QCommandLineOption screenshot("screenshot", "Render the scene, save the window's 3D view as PNG and exit.", "png");
+  parser.addOption(screenshot);
+  parser.process(app);
+
+  try {
+    ffdkit::app::MainWindow window;
+    if (!parser.positionalArguments().isEmpty()) window.openScene(parser.positionalArguments().first().toStdString());
+    window.show();
+    if (parser.isSet(screenshot)) {
+      const QString png = parser.value(screenshot);
+      int status = 0;
+      QTimer::singleShot(200, [&] {
+        const QImage image = window.view()->grabFramebuffer();
+        if (image.isNull() || !image.save(png, "PNG")) {
+          std::fprintf(stderr, "ffdkit: cannot save screenshot to %s\n", qPrintable(png));
+          status = 1;
+        } else {
+          std::printf("ffdkit: screenshot saved to %s\n", qPrintable(png));
+        }
+        QApplication::quit();
+      });
+      const int rc = QApplication::exec();
+      return status != 0 ? status : rc;
+    }
+    return QApplication::exec();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ffdkit: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,32 @@
+#pragma once
+
+#include <memory>
+
+#include "ffdkit/scenes/scene.h"
+
+class vtkRenderer;
+
+namespace ffdkit::app {
+
+/// Draws a scene into a VTK renderer: shaded objects, lattice points and edges.
+/// The actors rebuild themselves from the scene; they hold no state of their own.
+class SceneView {
+ public:
+  /// Draws into `renderer` (not owned; must outlive the view).
+  explicit SceneView(vtkRenderer* renderer);
+  ~SceneView();
+  SceneView(const SceneView&) = delete;
+  SceneView& operator=(const SceneView&) = delete;
+
+  /// Replaces what is drawn with `scene`, and sets background and camera from it.
+  void show(const scenes::Scene& scene);
+
+  /// Sets the renderer's camera from `camera` (clipping range reset to the scene).
+  void applyCamera(const scenes::Camera& camera);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ffdkit::app
