@@ -1,0 +1,47 @@
+#pragma once
+
+#include <array>
+
+#include <Eigen/Core>
+
+#include "ffdkit/geometry/polyhedron/rational_quartic_triangle.h"
+
+namespace ffdkit::geometry::polyhedron {
+
+/// Bicubic tensor-product Bezier net P[i][j] (i along u, j along w):
+/// S(u, w) = sum P_ij B^3_i(u) B^3_j(w).
+using BicubicNet = std::array<std::array<Eigen::Vector3d, 4>, 4>;
+
+/// The triangle points next to a shared boundary that make a rational quartic triangle G1 to
+/// a bicubic patch along the bicubic's row w = 0 and the triangle's edge w = 0 (seed 001
+/// §3.11, eq. (4.20), l.1604-1643; spec §3.11 and §7-A8). The edge is shared as
+/// D_{i,4-i,0} = i/4 P_{i-1,0} + (1 - i/4) P_{i,0}, so D_040 = P_00 (triangle corner B) and
+/// D_400 = P_30 (corner A). The tangent-plane multiplier is lambda = l1 v + l2 u (l1 at the
+/// P_00 end), as the printed formulas expand (§7-A8).
+struct TriangleJoinRow {
+  Eigen::Vector3d d031, d301;    ///< boundary points of the triangle's other two edges
+  Eigen::Vector3d dw121, dw211;  ///< the w-edge sub-points
+};
+
+/// Given the bicubic net and l1, l2 (any reals; 0 makes the cross legs opposite), the
+/// triangle row of eq. (4.20).
+TriangleJoinRow triangleRowFromBicubic(const BicubicNet& net, double l1, double l2);
+
+/// Writes the shared boundary (degree-elevated row P_i0) and triangleRowFromBicubic into
+/// `triangle`, leaving its other control points as they are.
+void joinTriangleToBicubic(RationalQuarticTriangle& triangle, const BicubicNet& net, double l1, double l2);
+
+/// The other direction (l.1641): given the triangle (its w = 0 edge must be the elevated
+/// P_00..P_30, which is taken from `row0`) compute the bicubic's second row P_01..P_31.
+/// Always solvable.
+std::array<Eigen::Vector3d, 4> bicubicSecondRowFromTriangle(const RationalQuarticTriangle& triangle,
+                                                           const std::array<Eigen::Vector3d, 4>& row0, double l1,
+                                                           double l2);
+
+/// S(u, w) and its partials d/du, d/dw.
+struct BicubicPoint {
+  Eigen::Vector3d point, du, dw;
+};
+BicubicPoint evaluateBicubic(const BicubicNet& net, double u, double w);
+
+}  // namespace ffdkit::geometry::polyhedron

@@ -1,0 +1,186 @@
+#include "ffdkit/geometry/polyhedron/patch_surface.h"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "ffdkit/geometry/polyhedron/polyhedron_error.h"
+#include "ffdkit/geometry/polyhedron/ring_targets.h"
+
+namespace ffdkit::geometry::polyhedron {
+namespace {
+
+Eigen::Vector3d& subPointSlot(RationalQuarticTriangle& patch, int corner, int other) {
+  const int a = corner == patch.corners[0] ? 0 : corner == patch.corners[1] ? 1 : 2;
+  const int b = other == patch.corners[0] ? 0 : other == patch.corners[1] ? 1 : 2;
+  // D^s belongs to edge s = 0: AB is w = 0, AC is v = 0, BC is u = 0 (eq. (4.18)).
+  if (a == 0) return b == 1 ? patch.dw211 : patch.dv211;
+  if (a == 1) return b == 0 ? patch.dw121 : patch.du121;
+  return b == 0 ? patch.dv112 : patch.du112;
+}
+
+double boundaryKappa(int valence) {
+  // Boundary edges need no G1; the mirrored ring of size M = 2 (N - 1) gives the regular value
+  // (spec §3.10).
+  return 0.75 * std::cos(2.0 * std::numbers::pi / (2.0 * (valence - 1)));
+}
+
+}  // namespace
+
+std::array<Eigen::Vector3d, 4> PatchSurface::curve(int a, int b) const {
+  const MeshTopology& topo = triangulated_.topology;
+  const int he = topo.findHalfEdge(a, b);
+  if (he < 0) {
+    throw PolyhedronError("network curve (" + std::to_string(a) + ", " + std::to_string(b) +
+                          "): the triangulated network has no such edge");
+  }
+  const Eigen::Vector3d pa = triangulated_.points.row(a).transpose(), pb = triangulated_.points.row(b).transpose();
+  return {pa, pa + triangulated_.legs.row(he).transpose(), pb + triangulated_.legs.row(topo.twin(he)).transpose(), pb};
+}
+
+PatchSurface PatchSurface::build(const PolygonMesh& mesh, const Tensions& tensions, const PatchSurfaceOptions& options) {
+  PatchSurface s;
+  s.mesh_ = mesh;
+  s.topology_ = validatePolygonMesh(mesh);
+  s.tensions_ = resolveTensions(tensions, s.topology_);
+  s.network_ = solveCurveNetwork(mesh, s.topology_, s.tensions_, options.network);
+  if (!s.network_.converged) throw PolyhedronError(s.network_.message);
+  s.triangulated_ = splitFaces(mesh, s.topology_, s.network_, options.splitRule);
+  for (int f = 0; f < s.topology_.faceCount(); ++f) {
+    if (!s.triangulated_.splitPointInside[f]) {
+      s.warnings_.push_back("face " + std::to_string(f) +
+                            ": split point lies outside the face (concave face?); split it into convex faces "
+                            "for an intuitive shape (seed 001 l.1667)");
+    }
+  }
+  const TriangulatedNetwork& net = s.triangulated_;
+  const MeshTopology& topo = net.topology;
+
+  // Boundary control points: degree-elevated network cubics (eq. (4.12)).
+  const int patchCount = static_cast<int>(net.triangles.rows());
+  s.patches_.resize(patchCount);
+  for (int t = 0; t < patchCount; ++t) {
+    RationalQuarticTriangle& p = s.patches_[t];
+    const int a = net.triangles(t, 0), b = net.triangles(t, 1), c = net.triangles(t, 2);
+    p.corners = {a, b, c};
+    const auto ab = elevateCubic(s.curve(a, b));
+    const auto ac = elevateCubic(s.curve(a, c));
+    const auto bc = elevateCubic(s.curve(b, c));
+    for (int j = 0; j <= 4; ++j) {
+      p.d[RationalQuarticTriangle::index(4 - j, j)] = ab[j];
+      p.d[RationalQuarticTriangle::index(4 - j, 0)] = ac[j];
+      p.d[RationalQuarticTriangle::index(0, 4 - j)] = bc[j];
+    }
+  }
+
+  // G1 scalars per half-edge (spec §3.6; default per-edge rule, §7-A1).
+  s.g1_.assign(topo.halfEdgeCount(), {});
+  for (int he = 0; he < topo.halfEdgeCount(); ++he) {
+    const int p = topo.from(he);
+    const int n = topo.valence(p);
+    const bool boundaryEdge = topo.face(he) < 0 || topo.face(topo.twin(he)) < 0;
+    EdgeG1Scalars& g = s.g1_[he];
+    if (boundaryEdge) {
+      g = {0.5, boundaryKappa(n)};
+      continue;
+    }
+    if (options.g1Scalars == G1Scalars::ThesisConstants) {
+      const int ringSize = topo.isBoundaryVertex(p) ? 2 * (n - 1) : n;
+      g = {0.5, 0.75 * std::cos(2.0 * std::numbers::pi / ringSize)};
+      continue;
+    }
+    const auto& ring = topo.ringHalfEdges(p);
+    const int i = topo.ringIndex(he);
+    const Eigen::Vector3d ti = net.legs.row(he).transpose();
+    const Eigen::Vector3d prev = net.legs.row(ring[(i + n - 1) % n]).transpose();
+    const Eigen::Vector3d next = net.legs.row(ring[(i + 1) % n]).transpose();
+    Eigen::Matrix<double, 3, 2> m;
+    m.col(0) = next - prev;
+    m.col(1) = -ti;
+    const Eigen::Vector2d x = m.colPivHouseholderQr().solve(-prev);
+    const double residual = (m * x + prev).norm();
+    if (!x.allFinite() || !(residual <= options.legFitTolerance * ti.norm()) || !(x[0] > 0.0 && x[0] < 1.0)) {
+      throw PolyhedronError("G1 scalars at network vertex " + std::to_string(p) + ", edge to " +
+                            std::to_string(topo.to(he)) + ": expected coplanar legs with 0 < omega < 1, got omega " +
+                            std::to_string(x[0]) + ", residual " + std::to_string(residual));
+    }
+    g = {x[0], 0.75 * x[1]};
+  }
+  if (options.g1Scalars == G1Scalars::PerEdge) {
+    for (int he = 0; he < topo.halfEdgeCount(); ++he) {
+      const double sum = s.g1_[he].omega + s.g1_[topo.twin(he)].omega;
+      if (std::abs(sum - 1.0) > 1e-8) {
+        throw PolyhedronError("G1 weight of network edge (" + std::to_string(topo.from(he)) + ", " +
+                              std::to_string(topo.to(he)) + "): the two ends disagree (omega + omega' = " +
+                              std::to_string(sum) + ", expected 1)");
+      }
+    }
+  }
+
+  // rho_{P,e} of eq. (4.15) for the half-edge P -> P'.
+  auto rho = [&](int he) -> Eigen::Vector3d {
+    const auto v = s.curve(topo.from(he), topo.to(he));
+    const double kp = s.g1_[he].kappa, kq = s.g1_[topo.twin(he)].kappa;
+    return 2.0 / 3.0 * ((1.0 - kp) * v[1] + kp * v[2]) + 1.0 / 3.0 * (kq * v[0] + (1.0 - kq) * v[1]);
+  };
+
+  // Ring solves (spec §3.7-3.10): minimum-norm targets, then the per-edge projection (4.19).
+  std::vector<int> assigned(patchCount, 0);
+  for (int p = 0; p < topo.vertexCount(); ++p) {
+    const auto& ring = topo.ringHalfEdges(p);
+    const int n = static_cast<int>(ring.size());
+    Eigen::MatrixX3d r(n, 3);
+    for (int i = 0; i < n; ++i) r.row(i) = 2.0 * rho(ring[i]).transpose();
+    int ringSize = n;
+    Eigen::MatrixX3d targets;
+    if (!topo.isBoundaryVertex(p)) {
+      targets = ringTargets(r);
+    } else {
+      // Reflect the ring in the plane through P spanned by the boundary tangent and the
+      // tangent-plane normal, and solve it as a closed ring of size 2 (N - 1) (spec §3.10).
+      ringSize = 2 * (n - 1);
+      const Eigen::Vector3d origin = net.points.row(p).transpose();
+      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+      for (int i = 0; i + 1 < n; ++i) normal += net.legs.row(ring[i]).cross(net.legs.row(ring[i + 1])).transpose();
+      const Eigen::Vector3d mirror = net.legs.row(ring[0]).transpose().cross(normal).normalized();
+      Eigen::MatrixX3d virtualRing(ringSize, 3);
+      virtualRing.topRows(n) = r;
+      for (int k = 1; k <= n - 2; ++k) {
+        const Eigen::Vector3d x = r.row(n - 1 - k).transpose();
+        virtualRing.row(n - 1 + k) = (x - 2.0 * (x - origin).dot(mirror) * mirror).transpose();
+      }
+      targets = ringTargets(virtualRing);
+    }
+    for (int i = 0; i < n; ++i) {
+      const int he = ring[i];
+      const double omega = s.g1_[he].omega;
+      const Eigen::Vector3d gi = targets.row(i).transpose();
+      const Eigen::Vector3d gPrev = targets.row((i + ringSize - 1) % ringSize).transpose();
+      const Eigen::Vector3d lambda =
+          (0.5 * r.row(i).transpose() - omega * gi - (1.0 - omega) * gPrev) / (omega * omega + (1.0 - omega) * (1.0 - omega));
+      if (topo.face(he) >= 0) {
+        subPointSlot(s.patches_[topo.face(he)], p, topo.to(he)) = gi + omega * lambda;
+        ++assigned[topo.face(he)];
+      }
+      const int before = topo.face(topo.twin(he));
+      if (before >= 0) {
+        subPointSlot(s.patches_[before], p, topo.to(he)) = gPrev + (1.0 - omega) * lambda;
+        ++assigned[before];
+      }
+    }
+  }
+  for (int t = 0; t < patchCount; ++t) {
+    const auto& q = s.patches_[t];
+    const bool finite = q.dw211.allFinite() && q.dv211.allFinite() && q.dw121.allFinite() && q.du121.allFinite() &&
+                        q.dv112.allFinite() && q.du112.allFinite();
+    if (assigned[t] != 6 || !finite) {
+      throw PolyhedronError("patch " + std::to_string(t) + ": expected 6 finite sub-points from the ring solves, got " +
+                            std::to_string(assigned[t]) + (finite ? "" : " (non-finite values)"));
+    }
+  }
+  return s;
+}
+
+}  // namespace ffdkit::geometry::polyhedron
