@@ -1,0 +1,57 @@
+#pragma once
+
+#include <Eigen/Core>
+
+#include "ffdkit/geometry/cardinal/s_spline_basis.h"
+
+namespace ffdkit::geometry::cardinal {
+
+/// How an S-spline supplies the data beyond its ends (seed 001 l.975-998).
+enum class SSplineEnd {
+  Open,     ///< P_i = P_0 for i < 0, P_i = P_s for i > s
+  Closed,   ///< P_i = P_{i mod s}; the input holds s distinct points (P_s := P_0)
+  Tangent,  ///< P_i = P_{-i} - dP_0 (i < 0), P_i = P_{2s-i} + dP_s (i > s)
+};
+
+struct SSplineCurveOptions {
+  double beta2 = 0.0;  ///< tension (>= 0); 0 gives the uniform cubic B-spline version
+  int halfWidth = 4;   ///< truncation half-width w (the thesis's n); support is 2w spans
+  SSplineEnd end = SSplineEnd::Open;
+  Eigen::Vector3d startTangent = Eigen::Vector3d::Zero();  ///< dP_0 for SSplineEnd::Tangent
+  Eigen::Vector3d endTangent = Eigen::Vector3d::Zero();    ///< dP_s for SSplineEnd::Tangent
+  /// Divide the tangents by lambda_w so that they set the end derivative up to the
+  /// truncation residue (spec §7 item 6). false is the thesis behaviour.
+  bool scaleTangent = false;
+};
+
+/// S-spline curve Q(x) = sum_i P_i S_i(x), x in [0, s] (open) or [0, s) periodic (closed);
+/// data point P_k sits at x = k. Interpolates exactly: Q(k) = P_k.
+/// @see seed 001 eq. (3.11), l.969-1008; spec §2.6.
+class SSplineCurve {
+ public:
+  /// points: #P x 3. Open/tangent need >= 2 points (s >= 1); closed needs >= 3 distinct points.
+  /// @throws CardinalSplineError on too few points or invalid options.
+  SSplineCurve(const Eigen::MatrixX3d& points, const SSplineCurveOptions& options = {});
+
+  /// Parameter range end s (open: #P - 1; closed: #P).
+  double parameterEnd() const { return static_cast<double>(span_); }
+  bool closed() const { return options_.end == SSplineEnd::Closed; }
+  const SSplineBasis& basis() const { return basis_; }
+  const Eigen::MatrixX3d& points() const { return points_; }
+
+  /// Extended data P_i for any integer i (end rule applied).
+  Eigen::Vector3d extendedPoint(int i) const;
+
+  /// Q^(deriv)(x) in knot-index units. Closed curves wrap x; open curves evaluate the
+  /// extension outside [0, s]. deriv in 0..3; see SSplineBasis::evaluate for `side`.
+  Eigen::Vector3d evaluate(double x, int deriv = 0, Limit side = Limit::Value) const;
+
+ private:
+  Eigen::MatrixX3d points_;
+  SSplineCurveOptions options_;
+  SSplineBasis basis_;
+  int span_ = 0;
+  Eigen::Vector3d startTangent_, endTangent_;
+};
+
+}  // namespace ffdkit::geometry::cardinal
