@@ -111,6 +111,7 @@ void Lattice::resetToRest() {
 
 void Lattice::setRestPoints(const Eigen::Ref<const Eigen::MatrixX3d>& restPoints) {
   setRestInternal(restPoints);
+  cylinder_.reset();
   revision_ = nextRevision();
   restRevision_ = nextRevision();
 }

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -10,6 +11,7 @@
 #include "ffdkit/ffd/box_lattice_options.h"
 #include "ffdkit/ffd/lattice_error.h"
 #include "ffdkit/ffd/outside_policy.h"
+#include "ffdkit/ffd/rest_shape.h"
 
 namespace ffdkit::ffd {
 
@@ -101,6 +103,11 @@ class Lattice {
   /// Diagonal of the rest lattice's bounding box (> 0): the length scale for tolerances.
   double restSize() const { return restSize_; }
 
+  /// Set by makeCylindricalLattice: the cylinder the rest lattice was built from, used only as the
+  /// Newton initial guess. Cleared by setRestPoints(). Does not change restRevision().
+  const std::optional<CylinderRestShape>& cylinderRestShape() const { return cylinder_; }
+  void setCylinderRestShape(const std::optional<CylinderRestShape>& shape) { cylinder_ = shape; }
+
  private:
   Eigen::Vector3d evaluateOn(const Eigen::MatrixX3d& points, const Eigen::Vector3d& uvw,
                              Eigen::Matrix3d* jac) const;
@@ -118,6 +125,7 @@ class Lattice {
   Eigen::Matrix3d restA_ = Eigen::Matrix3d::Identity();
   Eigen::Vector3d restB_ = Eigen::Vector3d::Zero();
   double restSize_ = 1.0;
+  std::optional<CylinderRestShape> cylinder_;
 };
 
 /// Default box lattice: rest points fill the local box [boxMin, boxMax] (unit box by default)

@@ -1,0 +1,113 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ffdkit/ffd/lattice.h"
+#include "ffdkit/ffd/outside_policy.h"
+
+namespace ffdkit::ffd {
+
+/// Per-point result of embedding (seed 001 eq. (6.2)).
+enum class PointStatus : std::uint8_t {
+  Inside,   ///< Xbar(u,v,w) = Q with (u,v,w) in the parameter box (epsilon-inclusive).
+  Outside,  ///< outside the rest lattice; handled by the lattice's OutsidePolicy.
+  Failed    ///< Newton did not converge; the point is left unchanged (like Identity).
+};
+
+/// Options for embed().
+struct EmbedOptions {
+  double tolerance = 1e-13;       ///< Newton stops when |Xbar(uvw) - Q| <= tolerance * lattice.restSize().
+  int maxIterations = 40;         ///< Newton iteration cap per point (after the initial guess).
+  double boundaryEpsilon = 1e-9;  ///< inside test: uvw within the box grown by this fraction of its size.
+  bool parallel = true;           ///< use all threads (OpenMP) over points.
+};
+
+/// The (u,v,w) parameters of a set of object points in one lattice's rest lattice: the
+/// precompute half of FFD (seed 001 l.2359-2367: computed once when the object is attached,
+/// again only when the rest lattice moves relative to the object; editing never re-embeds).
+///
+/// Internally the points are grouped by lattice cell so that deformation streams the same
+/// control points over many points (see docs/ffd-engine.md). Memory: 29 bytes per point
+/// (3 doubles, a 32-bit index, a status byte) + 8 bytes per point blended by ClampEdge/Falloff.
+class Embedding {
+ public:
+  Embedding() = default;
+
+  Eigen::Index pointCount() const { return static_cast<Eigen::Index>(status_.size()); }
+  /// Status of point `point` (original order). @throws LatticeError on a bad index.
+  PointStatus status(Eigen::Index point) const;
+  const std::vector<PointStatus>& statuses() const { return status_; }
+  Eigen::Index insideCount() const { return inside_; }
+  Eigen::Index outsideCount() const { return outside_; }
+  Eigen::Index failedCount() const { return failed_; }
+
+  /// Parameters used to evaluate each point, pointCount x 3, original order: the Newton / closed-form
+  /// solution for inside points and Extrapolate; the clamped solution for ClampEdge / Falloff;
+  /// the unclamped solution (or the last iterate, for Failed) for points left unchanged.
+  Eigen::MatrixX3d parameters() const;
+
+  /// The lattice state this embedding was built for.
+  std::uint64_t restRevision() const { return restRevision_; }
+  Eigen::Vector3i latticeCounts() const { return counts_; }
+  const OutsidePolicy& outsidePolicy() const { return policy_; }
+  /// @throws LatticeError if `lattice` is not the one (same counts, same restRevision) this embedding
+  /// was built for: "embedding is stale: built for rest revision 12, lattice is at 15; re-embed".
+  void checkLattice(const Lattice& lattice) const;
+
+  /// Heap bytes held (for the memory budget of the benchmarks).
+  std::size_t memoryBytes() const;
+
+  // Layout shared with Deformer (not for other callers): points sorted by (class, cell).
+  struct Block {
+    int cell[3];         ///< cell index per axis
+    std::uint32_t begin;  ///< sorted positions [begin, end)
+    std::uint32_t end;
+    bool blended;         ///< points carry a weight s in blendWeight_ (ClampEdge / Falloff)
+  };
+  const std::vector<Block>& blocks() const { return blocks_; }
+  const std::vector<double>& sortedU() const { return u_; }
+  const std::vector<double>& sortedV() const { return v_; }
+  const std::vector<double>& sortedW() const { return w_; }
+  /// Original index of sorted position q; empty when the sorted order is the original order.
+  const std::vector<std::uint32_t>& order() const { return order_; }
+  /// Weight of blended points: sorted position q >= blendBegin() has weight blendWeight()[q - blendBegin()].
+  const std::vector<double>& blendWeight() const { return blend_; }
+  std::uint32_t blendBegin() const { return blendBegin_; }
+  /// Sorted positions >= frozenBegin() are left unchanged (Identity outside, Failed, beyond Falloff).
+  std::uint32_t frozenBegin() const { return frozenBegin_; }
+
+ private:
+  friend Embedding embed(const Lattice&, const Eigen::Ref<const Eigen::MatrixX3d>&, const EmbedOptions&);
+
+  std::vector<PointStatus> status_;
+  Eigen::Index inside_ = 0;
+  Eigen::Index outside_ = 0;
+  Eigen::Index failed_ = 0;
+  std::uint64_t restRevision_ = 0;
+  Eigen::Vector3i counts_ = Eigen::Vector3i::Zero();
+  OutsidePolicy policy_{};
+  std::vector<Block> blocks_;
+  std::vector<double> u_, v_, w_;
+  std::vector<std::uint32_t> order_;
+  std::vector<double> blend_;
+  std::uint32_t blendBegin_ = 0;
+  std::uint32_t frozenBegin_ = 0;
+};
+
+/// Embeds object points into the lattice's rest lattice: for each Q find (u,v,w) with
+/// Xbar(u,v,w) = Q (seed 001 eq. (6.2)).
+/// - Affine rest map (box lattices, Lattice::restIsAffine()): closed form A^-1 (Q - b).
+/// - Otherwise damped Newton on Xbar(uvw) - Q with the analytic Jacobian, starting from the
+///   cylindrical coordinates (cylindrical lattices) or the least-squares affine fit of the rest
+///   lattice, restarting from the nearest sample of a coarse grid when that fails; near-singular
+///   Jacobians (the axis of a solid cylinder) fall back to a Levenberg-Marquardt step.
+/// The lattice's OutsidePolicy decides what outside points will do.
+/// @param points  #points x 3, WORLD coordinates (lattice.frame() maps local to world), finite.
+/// @throws LatticeError on non-finite points or more than 2^32-1 points.
+Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points,
+                const EmbedOptions& options = {});
+
+}  // namespace ffdkit::ffd

@@ -1,0 +1,381 @@
+#include "ffdkit/ffd/embedding.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include <Eigen/LU>
+
+namespace ffdkit::ffd {
+namespace {
+
+constexpr int kMaxBasis = 33;
+constexpr std::uint32_t kBlockSize = 1024;
+
+// Evaluates Xbar and its Jacobian on the rest lattice; one per thread-safe call, no allocation.
+class RestSolver {
+ public:
+  RestSolver(const Lattice& lattice, const EmbedOptions& options)
+      : lattice_(lattice), rest_(lattice.restPoints()), options_(options) {
+    for (int a = 0; a < 3; ++a) {
+      axis_[a] = &lattice.axis(a);
+      lo_[a] = axis_[a]->domainMin();
+      hi_[a] = axis_[a]->domainMax();
+    }
+    range_ = hi_ - lo_;
+    tol_ = options.tolerance * lattice.restSize();
+    affineInverse_ = lattice.restAffineLinear().inverse();
+    if (!affineInverse_.allFinite()) affineInverse_ = Eigen::Matrix3d::Identity();
+    cylinder_ = lattice.cylinderRestShape();
+    if (!lattice.restIsAffine()) buildSamples();
+  }
+
+  Eigen::Vector3d evaluate(const Eigen::Vector3d& uvw, Eigen::Matrix3d& J) const {
+    double N[3][kMaxBasis];
+    double D[3][kMaxBasis];
+    int cell[3];
+    for (int a = 0; a < 3; ++a) {
+      cell[a] = axis_[a]->cellOf(uvw[a]);
+      axis_[a]->basis(cell[a], uvw[a], N[a], D[a]);
+    }
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    J.setZero();
+    const int pu = axis_[0]->degree();
+    const int pv = axis_[1]->degree();
+    const int pw = axis_[2]->degree();
+    for (int c = 0; c <= pw; ++c) {
+      const int k = axis_[2]->controlIndex(cell[2], c);
+      for (int b = 0; b <= pv; ++b) {
+        const int j = axis_[1]->controlIndex(cell[1], b);
+        Eigen::Vector3d s = Eigen::Vector3d::Zero();
+        Eigen::Vector3d su = Eigen::Vector3d::Zero();
+        for (int a = 0; a <= pu; ++a) {
+          const Eigen::Vector3d p = rest_.row(lattice_.index(axis_[0]->controlIndex(cell[0], a), j, k)).transpose();
+          s += N[0][a] * p;
+          su += D[0][a] * p;
+        }
+        const double nn = N[1][b] * N[2][c];
+        x += nn * s;
+        J.col(0) += nn * su;
+        J.col(1) += (D[1][b] * N[2][c]) * s;
+        J.col(2) += (N[1][b] * D[2][c]) * s;
+      }
+    }
+    return x;
+  }
+
+  // Wraps periodic axes, reflects through the axis of a solid cylinder, keeps iterates bounded.
+  void normalize(Eigen::Vector3d& uvw) const {
+    if (cylinder_ && cylinder_->innerRadius == 0.0 && uvw[0] < lo_[0]) {
+      if (lattice_.counts()[1] % 2 == 0) {
+        // Xbar(lo - d, v) == Xbar(lo + d, v + 1/2) when the ring of control points is point-symmetric.
+        uvw[0] = 2.0 * lo_[0] - uvw[0];
+        uvw[1] += 0.5;
+      } else {
+        uvw[0] = lo_[0];
+      }
+    }
+    for (int a = 0; a < 3; ++a) {
+      if (axis_[a]->periodic()) {
+        uvw[a] = axis_[a]->wrap(uvw[a]);
+      } else {
+        uvw[a] = std::clamp(uvw[a], lo_[a] - 2.0 * range_[a], hi_[a] + 2.0 * range_[a]);
+      }
+    }
+  }
+
+  Eigen::Vector3d initialGuess(const Eigen::Vector3d& q) const {
+    Eigen::Vector3d uvw;
+    if (cylinder_) {
+      const double r = std::hypot(q.x(), q.y());
+      const double angle = r > 0.0 ? std::atan2(q.y(), q.x()) : 0.0;
+      uvw[0] = lo_[0] + range_[0] * (r - cylinder_->innerRadius) / (cylinder_->outerRadius - cylinder_->innerRadius);
+      uvw[1] = angle / (2.0 * std::numbers::pi);
+      uvw[2] = lo_[2] + range_[2] * (q.z() - cylinder_->zMin) / (cylinder_->zMax - cylinder_->zMin);
+    } else {
+      uvw = affineInverse_ * (q - lattice_.restAffineOffset());
+    }
+    for (int a = 0; a < 3; ++a) {
+      if (!std::isfinite(uvw[a])) uvw[a] = 0.5 * (lo_[a] + hi_[a]);
+      if (!axis_[a]->periodic()) uvw[a] = std::clamp(uvw[a], lo_[a] - 0.5 * range_[a], hi_[a] + 0.5 * range_[a]);
+    }
+    normalize(uvw);
+    return uvw;
+  }
+
+  // Damped Newton; returns true on convergence. uvw: initial guess in, last iterate out.
+  bool newton(const Eigen::Vector3d& q, Eigen::Vector3d& uvw) const {
+    Eigen::Matrix3d J;
+    Eigen::Vector3d F = evaluate(uvw, J) - q;
+    double f = F.norm();
+    for (int it = 0; it < options_.maxIterations; ++it) {
+      if (f <= tol_) return true;
+      Eigen::Vector3d delta;
+      const double det = J.determinant();
+      const double scale = J.norm();
+      if (std::abs(det) > 1e-10 * scale * scale * scale) {
+        delta = -(J.inverse() * F);
+      } else {
+        // Levenberg-Marquardt step where the Jacobian is (nearly) singular, e.g. on a cylinder's axis.
+        const Eigen::Matrix3d JtJ = J.transpose() * J;
+        const double mu = 1e-8 * JtJ.trace() + std::numeric_limits<double>::min();
+        delta = -(JtJ + mu * Eigen::Matrix3d::Identity()).ldlt().solve(J.transpose() * F);
+      }
+      if (!delta.allFinite()) return false;
+      bool accepted = false;
+      double step = 1.0;
+      for (int halving = 0; halving < 30; ++halving, step *= 0.5) {
+        Eigen::Vector3d trial = uvw + step * delta;
+        normalize(trial);
+        Eigen::Matrix3d Jt;
+        const Eigen::Vector3d Ft = evaluate(trial, Jt) - q;
+        const double ft = Ft.norm();
+        if (ft < f || ft <= tol_) {
+          uvw = trial;
+          F = Ft;
+          f = ft;
+          J = Jt;
+          accepted = true;
+          break;
+        }
+      }
+      if (!accepted) return f <= tol_;
+    }
+    return f <= tol_;
+  }
+
+  // Nearest sample of a coarse parameter grid: the restart point when Newton from the first guess fails.
+  Eigen::Vector3d nearestSample(const Eigen::Vector3d& q) const {
+    double best = std::numeric_limits<double>::infinity();
+    Eigen::Vector3d uvw = 0.5 * (lo_ + hi_);
+    for (std::size_t s = 0; s < sampleX_.size(); ++s) {
+      const double d = (sampleX_[s] - q).squaredNorm();
+      if (d < best) {
+        best = d;
+        uvw = sampleUvw_[s];
+      }
+    }
+    return uvw;
+  }
+
+  bool insideBox(const Eigen::Vector3d& uvw) const {
+    for (int a = 0; a < 3; ++a) {
+      if (axis_[a]->periodic()) continue;
+      const double eps = options_.boundaryEpsilon * range_[a];
+      if (uvw[a] < lo_[a] - eps || uvw[a] > hi_[a] + eps) return false;
+    }
+    return true;
+  }
+
+  Eigen::Vector3d clampToBox(Eigen::Vector3d uvw) const {
+    for (int a = 0; a < 3; ++a) {
+      if (!axis_[a]->periodic()) uvw[a] = std::clamp(uvw[a], lo_[a], hi_[a]);
+    }
+    return uvw;
+  }
+
+  const Eigen::Vector3d& lo() const { return lo_; }
+  const Eigen::Vector3d& hi() const { return hi_; }
+
+ private:
+  void buildSamples() {
+    int n[3];
+    for (int a = 0; a < 3; ++a) n[a] = std::min(2 * axis_[a]->cellCount() + 1, 12) + (axis_[a]->periodic() ? 0 : 1);
+    Eigen::Matrix3d J;
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i) {
+          const int idx[3] = {i, j, k};
+          Eigen::Vector3d uvw;
+          for (int a = 0; a < 3; ++a) {
+            const double t = axis_[a]->periodic() ? double(idx[a]) / n[a] : double(idx[a]) / (n[a] - 1);
+            uvw[a] = lo_[a] + range_[a] * t;
+          }
+          sampleUvw_.push_back(uvw);
+          sampleX_.push_back(evaluate(uvw, J));
+        }
+  }
+
+  const Lattice& lattice_;
+  const Eigen::MatrixX3d& rest_;
+  EmbedOptions options_;
+  const AxisSpline* axis_[3];
+  Eigen::Vector3d lo_, hi_, range_;
+  double tol_;
+  Eigen::Matrix3d affineInverse_;
+  std::optional<CylinderRestShape> cylinder_;
+  std::vector<Eigen::Vector3d> sampleUvw_;
+  std::vector<Eigen::Vector3d> sampleX_;
+};
+
+enum class PointClass : std::uint8_t { Evaluated = 0, Blended = 1, Frozen = 2 };
+
+}  // namespace
+
+PointStatus Embedding::status(Eigen::Index point) const {
+  if (point < 0 || point >= pointCount()) {
+    throw LatticeError("embedding point index " + std::to_string(point) + " out of range [0, " +
+                       std::to_string(pointCount()) + ")");
+  }
+  return status_[static_cast<std::size_t>(point)];
+}
+
+Eigen::MatrixX3d Embedding::parameters() const {
+  Eigen::MatrixX3d uvw(pointCount(), 3);
+  for (std::size_t q = 0; q < u_.size(); ++q) {
+    const Eigen::Index p = order_.empty() ? static_cast<Eigen::Index>(q) : order_[q];
+    uvw.row(p) << u_[q], v_[q], w_[q];
+  }
+  return uvw;
+}
+
+void Embedding::checkLattice(const Lattice& lattice) const {
+  if (lattice.counts() != counts_ || lattice.restRevision() != restRevision_) {
+    throw LatticeError("embedding is stale: built for rest revision " + std::to_string(restRevision_) +
+                       " of a (" + std::to_string(counts_[0]) + ", " + std::to_string(counts_[1]) + ", " +
+                       std::to_string(counts_[2]) + ") lattice, lattice is at rest revision " +
+                       std::to_string(lattice.restRevision()) + "; re-embed");
+  }
+}
+
+std::size_t Embedding::memoryBytes() const {
+  return status_.capacity() * sizeof(PointStatus) + (u_.capacity() + v_.capacity() + w_.capacity()) * sizeof(double) +
+         order_.capacity() * sizeof(std::uint32_t) + blend_.capacity() * sizeof(double) +
+         blocks_.capacity() * sizeof(Block);
+}
+
+Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points, const EmbedOptions& options) {
+  const Eigen::Index n = points.rows();
+  if (n >= static_cast<Eigen::Index>(std::numeric_limits<std::uint32_t>::max())) {
+    throw LatticeError("embed: at most 2^32-2 points, got " + std::to_string(n));
+  }
+  if (!points.allFinite()) {
+    for (Eigen::Index r = 0; r < n; ++r) {
+      if (!points.row(r).allFinite()) throw LatticeError("embed: point " + std::to_string(r) + " is not finite");
+    }
+  }
+  const RestSolver solver(lattice, options);
+  const Eigen::Affine3d toLocal = lattice.frame().inverse();
+  const OutsidePolicy policy = lattice.outsidePolicy();
+  const AxisSpline* axes[3] = {&lattice.axis(0), &lattice.axis(1), &lattice.axis(2)};
+  const int cells[3] = {axes[0]->cellCount(), axes[1]->cellCount(), axes[2]->cellCount()};
+  const std::int64_t cellTotal = std::int64_t(cells[0]) * cells[1] * cells[2];
+
+  Embedding e;
+  e.restRevision_ = lattice.restRevision();
+  e.counts_ = lattice.counts();
+  e.policy_ = policy;
+  e.status_.resize(static_cast<std::size_t>(n));
+  std::vector<double> u(n), v(n), w(n), weight(n);
+  std::vector<std::uint32_t> key(n);
+  const bool affine = lattice.restIsAffine();
+  const Eigen::Matrix3d Ainv = lattice.restAffineLinear().inverse();
+  const Eigen::Vector3d b = lattice.restAffineOffset();
+
+#pragma omp parallel for schedule(dynamic, 4096) if (options.parallel)
+  for (Eigen::Index p = 0; p < n; ++p) {
+    const Eigen::Vector3d q = toLocal * points.row(p).transpose();
+    Eigen::Vector3d uvw;
+    bool converged = true;
+    if (affine) {
+      uvw = Ainv * (q - b);
+    } else {
+      uvw = solver.initialGuess(q);
+      converged = solver.newton(q, uvw);
+      if (!converged) {
+        Eigen::Vector3d restart = solver.nearestSample(q);
+        if (solver.newton(q, restart)) {
+          uvw = restart;
+          converged = true;
+        }
+      }
+    }
+    PointStatus status = PointStatus::Inside;
+    PointClass cls = PointClass::Evaluated;
+    double s = 1.0;
+    if (!converged) {
+      status = PointStatus::Failed;
+      cls = PointClass::Frozen;
+      uvw = solver.clampToBox(uvw);
+    } else if (!solver.insideBox(uvw)) {
+      status = PointStatus::Outside;
+      switch (policy.kind) {
+        case OutsidePolicy::Kind::Identity:
+          cls = PointClass::Frozen;
+          break;
+        case OutsidePolicy::Kind::Extrapolate:
+          break;
+        case OutsidePolicy::Kind::ClampEdge:
+          cls = PointClass::Blended;
+          uvw = solver.clampToBox(uvw);
+          break;
+        case OutsidePolicy::Kind::Falloff: {
+          uvw = solver.clampToBox(uvw);
+          Eigen::Matrix3d J;
+          const double x = (solver.evaluate(uvw, J) - q).norm() / policy.distance;
+          if (x >= 1.0) {
+            cls = PointClass::Frozen;
+          } else {
+            cls = PointClass::Blended;
+            s = 1.0 - x * x * (3.0 - 2.0 * x);  // smoothstep from 1 at the boundary to 0 at `distance`
+          }
+          break;
+        }
+      }
+    }
+    for (int a = 0; a < 3; ++a) uvw[a] = axes[a]->wrap(uvw[a]);
+    u[p] = uvw[0];
+    v[p] = uvw[1];
+    w[p] = uvw[2];
+    weight[p] = s;
+    e.status_[p] = status;
+    const std::int64_t cell = axes[0]->cellOf(uvw[0]) + cells[0] * (axes[1]->cellOf(uvw[1]) + std::int64_t(cells[1]) * axes[2]->cellOf(uvw[2]));
+    key[p] = static_cast<std::uint32_t>(static_cast<std::int64_t>(cls) * cellTotal + cell);
+  }
+
+  // Counting sort by (class, cell): stable, so a single-cell lattice keeps the original order.
+  const std::size_t keyCount = static_cast<std::size_t>(3 * cellTotal);
+  std::vector<std::uint32_t> start(keyCount + 1, 0);
+  for (Eigen::Index p = 0; p < n; ++p) ++start[key[p] + 1];
+  for (std::size_t k = 0; k < keyCount; ++k) start[k + 1] += start[k];
+  std::vector<std::uint32_t> order(n);
+  {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (Eigen::Index p = 0; p < n; ++p) order[next[key[p]]++] = static_cast<std::uint32_t>(p);
+  }
+  e.u_.resize(n);
+  e.v_.resize(n);
+  e.w_.resize(n);
+  bool identity = true;
+  for (Eigen::Index q = 0; q < n; ++q) {
+    const std::uint32_t p = order[q];
+    identity = identity && p == static_cast<std::uint32_t>(q);
+    e.u_[q] = u[p];
+    e.v_[q] = v[p];
+    e.w_[q] = w[p];
+  }
+  e.blendBegin_ = start[static_cast<std::size_t>(cellTotal)];
+  e.frozenBegin_ = start[static_cast<std::size_t>(2 * cellTotal)];
+  e.blend_.resize(e.frozenBegin_ - e.blendBegin_);
+  for (std::uint32_t q = e.blendBegin_; q < e.frozenBegin_; ++q) e.blend_[q - e.blendBegin_] = weight[order[q]];
+  if (!identity) e.order_ = std::move(order);
+  for (std::size_t k = 0; k < static_cast<std::size_t>(2 * cellTotal); ++k) {
+    const std::int64_t cell = static_cast<std::int64_t>(k) % cellTotal;
+    const int c0 = static_cast<int>(cell % cells[0]);
+    const int c1 = static_cast<int>((cell / cells[0]) % cells[1]);
+    const int c2 = static_cast<int>(cell / (std::int64_t(cells[0]) * cells[1]));
+    for (std::uint32_t begin = start[k]; begin < start[k + 1]; begin += kBlockSize) {
+      e.blocks_.push_back({{c0, c1, c2}, begin, std::min(begin + kBlockSize, start[k + 1]), k >= std::size_t(cellTotal)});
+    }
+  }
+  for (const PointStatus s : e.status_) {
+    if (s == PointStatus::Inside) ++e.inside_;
+    else if (s == PointStatus::Outside) ++e.outside_;
+    else ++e.failed_;
+  }
+  return e;
+}
+
+}  // namespace ffdkit::ffd

@@ -1,0 +1,259 @@
+#include "ffdkit/ffd/deformer.h"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "ffdkit/ffd/cylindrical_lattice.h"
+#include "reference_ffd.h"
+#include "test_lattices.h"
+
+namespace ffdkit::ffd {
+namespace {
+
+reference::Axis referenceAxis(const AxisSpline& axis) {
+  reference::Axis r;
+  r.count = axis.count();
+  r.degree = axis.degree();
+  switch (axis.basis().kind) {
+    case AxisBasis::Kind::Bernstein:
+      r.kind = reference::Axis::Kind::Bernstein;
+      break;
+    case AxisBasis::Kind::BSpline:
+      r.kind = reference::Axis::Kind::BSpline;
+      r.knots = axis.basis().knots.size() ? std::vector<double>(axis.basis().knots.data(), axis.basis().knots.data() + axis.basis().knots.size())
+                                          : reference::clampedUniform(axis.count(), axis.degree());
+      break;
+    case AxisBasis::Kind::PeriodicBSpline:
+      r.kind = reference::Axis::Kind::Periodic;
+      r.knots = reference::periodicUniform(axis.count(), axis.degree());
+      break;
+  }
+  return r;
+}
+
+Eigen::MatrixX3d randomMove(const Lattice& lattice, double amount, std::mt19937& rng) {
+  std::uniform_real_distribution<double> U(-amount, amount);
+  Eigen::MatrixX3d P = lattice.controlPoints();
+  for (Eigen::Index r = 0; r < P.rows(); ++r)
+    for (int c = 0; c < 3; ++c) P(r, c) += U(rng);
+  return P;
+}
+
+double maxRowError(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) {
+  return (a - b).rowwise().norm().maxCoeff();
+}
+
+TEST(Deformer, RestLatticeReproducesEveryPointThroughEquation61) {
+  std::mt19937 rng(1);
+  std::vector<Lattice> lattices;
+  for (int t = 0; t < 10; ++t) lattices.push_back(testing::randomLattice(rng, t % 2 ? 0.2 : 0.0));
+  lattices.push_back(makeCylindricalLattice());
+  for (const Lattice& lattice : lattices) {
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 200, rng));
+    Deformer deformer(embed(lattice, Q));
+    const Eigen::MatrixX3d out = deformer.deform(lattice, Q);
+    // X(embed(Q)) with X evaluated from scratch by eq. (6.1) on the (unmoved) control points.
+    const Eigen::MatrixX3d uvw = deformer.embedding().parameters();
+    const double size = lattice.restSize() * lattice.frame().linear().norm();
+    for (Eigen::Index r = 0; r < Q.rows(); ++r) {
+      const Eigen::Vector3d x = lattice.frame() * lattice.evaluate(uvw.row(r).transpose());
+      EXPECT_LT((x - Q.row(r).transpose()).norm(), 1e-12 * size);
+    }
+    EXPECT_LT(maxRowError(out, Q), 1e-12 * size);
+  }
+}
+
+TEST(Deformer, AffineChangeOfAllControlPointsMovesEveryPointByTheSameMap) {
+  std::mt19937 rng(2);
+  for (int t = 0; t < 10; ++t) {
+    Lattice lattice = t == 9 ? makeCylindricalLattice() : testing::randomLattice(rng, t % 2 ? 0.2 : 0.0);
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 200, rng));
+    Deformer deformer(embed(lattice, Q));
+    Eigen::Affine3d T = testing::randomFrame(rng);  // in lattice-local coordinates
+    lattice.setControlPoints((lattice.restPoints() * T.linear().transpose()).rowwise() + T.translation().transpose());
+    const Eigen::MatrixX3d out = deformer.deform(lattice, Q);
+    const Eigen::Affine3d world = lattice.frame() * T * lattice.frame().inverse();
+    const Eigen::MatrixX3d expected = (Q * world.linear().transpose()).rowwise() + world.translation().transpose();
+    EXPECT_LT(maxRowError(out, expected), 1e-12 * (1.0 + expected.cwiseAbs().maxCoeff())) << "trial " << t;
+  }
+}
+
+TEST(Deformer, MatchesReferenceEvaluatorOnRandomLattices) {
+  std::mt19937 rng(3);
+  for (int t = 0; t < 20; ++t) {
+    Lattice lattice = t == 19 ? makeCylindricalLattice() : testing::randomLattice(rng, t % 2 ? 0.2 : 0.0, 7);
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 100, rng));
+    Deformer deformer(embed(lattice, Q));
+    lattice.setControlPoints(randomMove(lattice, 0.3, rng));
+    const Eigen::MatrixX3d out = deformer.deform(lattice, Q);
+    const reference::Axis axes[3] = {referenceAxis(lattice.axis(0)), referenceAxis(lattice.axis(1)),
+                                     referenceAxis(lattice.axis(2))};
+    const Eigen::MatrixX3d uvw = deformer.embedding().parameters();
+    for (Eigen::Index r = 0; r < Q.rows(); ++r) {
+      const Eigen::Vector3d expected = lattice.frame() * reference::evaluate(axes, lattice.controlPoints(), uvw.row(r).transpose());
+      EXPECT_LT((out.row(r).transpose() - expected).norm(), 1e-12 * (1.0 + expected.norm())) << "trial " << t;
+    }
+  }
+}
+
+TEST(Deformer, IncrementalUpdateEqualsFullEvaluation) {
+  std::mt19937 rng(4);
+  for (int t = 0; t < 12; ++t) {
+    Lattice lattice = t == 11 ? makeCylindricalLattice() : testing::randomLattice(rng, t % 3 == 0 ? 0.2 : 0.0, 9);
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 3000, rng));
+    Deformer incremental(embed(lattice, Q));
+    Deformer full(embed(lattice, Q));
+    incremental.deform(lattice, Q);
+    for (int step = 0; step < 6; ++step) {
+      Eigen::MatrixX3d P = lattice.controlPoints();
+      std::uniform_int_distribution<Eigen::Index> pick(0, P.rows() - 1);
+      // 1 point, a few points, then every point.
+      const int moves = step < 2 ? 1 : step < 5 ? 4 : static_cast<int>(P.rows());
+      for (int m = 0; m < moves; ++m) {
+        const Eigen::Index f = step == 5 ? m : pick(rng);
+        P.row(f) += Eigen::RowVector3d::Random() * 0.2;
+      }
+      lattice.setControlPoints(P);
+      const Eigen::MatrixX3d inc = incremental.update(lattice);
+      EXPECT_FALSE(incremental.lastStats().full);
+      EXPECT_GT(incremental.lastStats().changedControlPoints, 0);
+      const Eigen::MatrixX3d ref = full.deform(lattice, Q);
+      const double scale = 1.0 + ref.cwiseAbs().maxCoeff();
+      EXPECT_LT(maxRowError(inc, ref), 1e-12 * scale) << "trial " << t << " step " << step;
+    }
+  }
+}
+
+TEST(Deformer, IncrementalUpdateTouchesOnlyInfluencedPoints) {
+  BoxLatticeOptions options;
+  options.counts = {8, 8, 8};
+  Lattice lattice = makeBoxLattice(options);
+  std::mt19937 rng(5);
+  const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 20000, rng));
+  Deformer deformer(embed(lattice, Q));
+  deformer.deform(lattice, Q);
+  lattice.setControlPoint(lattice.index(0, 0, 0), Eigen::Vector3d(-0.1, -0.1, -0.1));
+  deformer.update(lattice);
+  // The corner point's support is the first of 5 cells per axis: about 1/125 of the points.
+  EXPECT_GT(deformer.lastStats().evaluatedPoints, 0);
+  EXPECT_LT(deformer.lastStats().evaluatedPoints, 20000 / 50);
+  deformer.update(lattice);
+  EXPECT_EQ(deformer.lastStats().changedControlPoints, 0);
+  EXPECT_EQ(deformer.lastStats().evaluatedPoints, 0);
+}
+
+TEST(Deformer, RequiresDeformBeforeUpdateAndAFreshEmbedding) {
+  Lattice lattice = makeBoxLattice();
+  const Eigen::MatrixX3d Q = Eigen::MatrixX3d::Constant(5, 3, 0.5);
+  Deformer deformer(embed(lattice, Q));
+  EXPECT_THROW(deformer.update(lattice), LatticeError);
+  EXPECT_THROW(deformer.deform(lattice, Eigen::MatrixX3d::Zero(4, 3)), LatticeError);
+  deformer.deform(lattice, Q);
+  Eigen::Affine3d moved = Eigen::Affine3d::Identity();
+  moved.translate(Eigen::Vector3d(1, 0, 0));
+  lattice.setFrame(moved);
+  EXPECT_THROW(deformer.deform(lattice, Q), LatticeError);
+  EXPECT_THROW(deformer.update(lattice), LatticeError);
+}
+
+TEST(Deformer, ParallelAndSerialRunsAgree) {
+  std::mt19937 rng(6);
+  BoxLatticeOptions options;
+  options.counts = {6, 5, 7};
+  Lattice lattice = makeBoxLattice(options);
+  const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 50000, rng));
+  Deformer parallel(embed(lattice, Q));
+  Deformer serial(embed(lattice, Q, EmbedOptions{.parallel = false}));
+  serial.setParallel(false);
+  lattice.setControlPoints(randomMove(lattice, 0.2, rng));
+  EXPECT_EQ(maxRowError(parallel.deform(lattice, Q), serial.deform(lattice, Q)), 0.0);
+}
+
+// --- outside policies ---------------------------------------------------------------
+
+struct OutsideCase {
+  Lattice lattice;
+  Eigen::MatrixX3d Q;
+};
+
+OutsideCase outsideCase(OutsidePolicy policy, AxisBasis basis) {
+  BoxLatticeOptions options;
+  options.counts = {4, 4, 4};
+  options.bases = {basis, basis, basis};
+  options.outsidePolicy = policy;
+  OutsideCase c{makeBoxLattice(options), Eigen::MatrixX3d(4, 3)};
+  c.Q << 0.5, 0.5, 0.5,  // inside
+      1.2, 0.5, 0.5,     // 0.2 beyond the +x face
+      0.5, -0.05, 0.5,   // 0.05 beyond the -y face
+      3.0, 3.0, 3.0;     // far away
+  Eigen::MatrixX3d P = c.lattice.restPoints();
+  P.col(1).array() += 0.1 * P.col(0).array().square();  // a bend that moves the +x face by 0.1 in y
+  c.lattice.setControlPoints(P);
+  return c;
+}
+
+// The ClampEdge image: X(clamp(uvw)) + (Q - Xbar(clamp(uvw))), evaluated through Lattice::evaluate.
+Eigen::Vector3d clampEdgeImage(const Lattice& lattice, const Eigen::Vector3d& q) {
+  const Eigen::Vector3d uc = q.cwiseMax(0.0).cwiseMin(1.0);  // unit box, identity frame
+  return lattice.evaluate(uc) + (q - lattice.evaluateRest(uc));
+}
+
+TEST(Deformer, IdentityPolicyLeavesOutsidePointsUnchanged) {
+  OutsideCase c = outsideCase(OutsidePolicy::identity(), AxisBasis::bspline(3));
+  Deformer deformer(embed(c.lattice, c.Q));
+  const Eigen::MatrixX3d out = deformer.deform(c.lattice, c.Q);
+  EXPECT_EQ(deformer.embedding().outsideCount(), 3);
+  for (int r = 1; r < 4; ++r) EXPECT_EQ(out.row(r), c.Q.row(r));
+  EXPECT_LT((out.row(0).transpose() - c.lattice.evaluate(Eigen::Vector3d(0.5, 0.5, 0.5))).norm(), 1e-12);
+}
+
+TEST(Deformer, ClampEdgeKeepsTheOffsetFromTheClampedSurfacePoint) {
+  OutsideCase c = outsideCase(OutsidePolicy::clampEdge(), AxisBasis::bspline(3));
+  Deformer deformer(embed(c.lattice, c.Q));
+  const Eigen::MatrixX3d out = deformer.deform(c.lattice, c.Q);
+  for (int r = 0; r < 4; ++r) {
+    EXPECT_LT((out.row(r).transpose() - clampEdgeImage(c.lattice, c.Q.row(r).transpose())).norm(), 1e-12) << r;
+  }
+  EXPECT_NEAR(out(1, 1), 0.5 + 0.1, 1e-12);  // follows the bent +x face
+}
+
+TEST(Deformer, ExtrapolateEvaluatesTheBernsteinPolynomialBeyondTheBox) {
+  OutsideCase c = outsideCase(OutsidePolicy::extrapolate(), AxisBasis::bernstein());
+  Deformer deformer(embed(c.lattice, c.Q));
+  const Eigen::MatrixX3d out = deformer.deform(c.lattice, c.Q);
+  for (int r = 0; r < 4; ++r) {
+    const Eigen::Vector3d q = c.Q.row(r).transpose();
+    const Eigen::Vector3d expected = c.lattice.evaluate(q);  // unit box: uvw == Q
+    EXPECT_LT((out.row(r).transpose() - expected).norm(), 1e-12 * (1.0 + expected.norm())) << r;
+  }
+  // Control points (i/3)^2 give the cubic u^2 + u (1 - u) / 3, continued beyond u = 1.
+  EXPECT_NEAR(out(1, 1), 0.5 + 0.1 * (1.2 * 1.2 + 1.2 * (1.0 - 1.2) / 3.0), 1e-12);
+}
+
+TEST(Deformer, FalloffBlendsFromClampEdgeToIdentity) {
+  OutsideCase c = outsideCase(OutsidePolicy::falloff(0.4), AxisBasis::bspline(3));
+  Deformer deformer(embed(c.lattice, c.Q));
+  const Eigen::MatrixX3d out = deformer.deform(c.lattice, c.Q);
+  // Far point: identity. Point 0.2 beyond +x: half way, smoothstep weight 0.5.
+  EXPECT_EQ(out.row(3), c.Q.row(3));
+  const Eigen::Vector3d clamp = clampEdgeImage(c.lattice, c.Q.row(1).transpose());
+  const Eigen::Vector3d expected = c.Q.row(1).transpose() + 0.5 * (clamp - c.Q.row(1).transpose());
+  EXPECT_LT((out.row(1).transpose() - expected).norm(), 1e-12);
+  // Point 0.05 beyond -y: x = 0.125, weight 1 - x^2 (3 - 2x).
+  const double x = 0.125;
+  const double s = 1.0 - x * x * (3.0 - 2.0 * x);
+  const Eigen::Vector3d clamp2 = clampEdgeImage(c.lattice, c.Q.row(2).transpose());
+  EXPECT_LT((out.row(2).transpose() - (c.Q.row(2).transpose() + s * (clamp2 - c.Q.row(2).transpose()))).norm(), 1e-12);
+  // Incremental updates respect the blend weights.
+  Eigen::MatrixX3d P = c.lattice.controlPoints();
+  P.row(c.lattice.index(3, 1, 1)) += Eigen::RowVector3d(0.0, 0.3, 0.1);
+  c.lattice.setControlPoints(P);
+  const Eigen::MatrixX3d inc = deformer.update(c.lattice);
+  Deformer fresh(embed(c.lattice, c.Q));
+  EXPECT_LT(maxRowError(inc, fresh.deform(c.lattice, c.Q)), 1e-12);
+}
+
+}  // namespace
+}  // namespace ffdkit::ffd
