@@ -3,6 +3,7 @@
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
+#include <QOpenGLFunctions>
 #include <QWheelEvent>
 
 #include <vtkCallbackCommand.h>
@@ -17,11 +18,6 @@
 namespace ffdkit::app {
 namespace {
 
-// OpenGL capability enums (from GL/gl.h, which cannot be included beside VTK's GLEW header).
-constexpr unsigned int kGlBlend = 0x0BE2;
-constexpr unsigned int kGlDepthTest = 0x0B71;
-constexpr unsigned int kGlScissorTest = 0x0C11;
-constexpr unsigned int kGlCullFace = 0x0B44;
 
 // VTK key symbols (X11 keysym names) for the keys interactor styles listen to.
 const char* keySymbol(int key) {
@@ -176,11 +172,24 @@ void VtkViewWidget::paintGL() {
   state->ResetGLBlendFuncState();
   state->ResetGLBlendEquationState();
   state->ResetGLCullFaceState();
-  for (unsigned int capability : {kGlBlend, kGlDepthTest, kGlScissorTest, kGlCullFace})
+  for (unsigned int capability : {GL_BLEND, GL_DEPTH_TEST, GL_SCISSOR_TEST, GL_CULL_FACE})
     state->ResetEnumState(capability);
   d.window->SetReadyForRendering(true);
   d.window->Render();
   d.window->SetReadyForRendering(false);
+
+  // VTK leaves alpha < 1 where the background shows; Qt would then blend the view with what
+  // lies behind the window (Mesa), and screenshots come out transparent. Force alpha to 1.
+  QOpenGLFunctions* gl = context()->functions();
+  GLboolean colourMask[4];
+  gl->glGetBooleanv(GL_COLOR_WRITEMASK, colourMask);
+  GLfloat clearColour[4];
+  gl->glGetFloatv(GL_COLOR_CLEAR_VALUE, clearColour);
+  gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+  gl->glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  gl->glClear(GL_COLOR_BUFFER_BIT);
+  gl->glColorMask(colourMask[0], colourMask[1], colourMask[2], colourMask[3]);
+  gl->glClearColor(clearColour[0], clearColour[1], clearColour[2], clearColour[3]);
 }
 
 namespace {
