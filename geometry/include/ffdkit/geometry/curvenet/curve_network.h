@@ -1,0 +1,169 @@
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ffdkit/geometry/curvenet/network_curve.h"
+
+namespace ffdkit::geometry::curvenet {
+
+/// One input curve of a network, plain data (what a scene file holds; JSON shape in
+/// docs/geometry-curvenet.md).
+struct CurveDescription {
+  enum class Kind { Polyline, BSpline };
+  std::string name;                   ///< for messages; "" -> "curve <index>"
+  Kind kind = Kind::Polyline;         ///< Polyline: C^2 cubic spline through `points`
+  Eigen::MatrixX3d points;            ///< Polyline: points to interpolate; BSpline: control points
+  bool closed = false;                ///< closed (periodic) curve; do not repeat the first point
+  KnotSpacing spacing = KnotSpacing::ChordLength;  ///< Polyline only
+  int degree = 3;                     ///< BSpline only
+  std::vector<double> knots;          ///< BSpline only, see bsplineCurve()
+  std::optional<Plane> plane;         ///< drawing plane; default: fitted if the curve is planar
+  double influence = 1.0;             ///< w_c > 0 of the sweep weights g (l.1759-1761)
+};
+
+/// A whole network, plain data.
+struct CurveNetworkDescription {
+  std::vector<CurveDescription> curves;
+};
+
+/// Options of network construction (spec §4.3-4.6).
+struct CurveNetworkOptions {
+  /// tau: two curves closer than this intersect. 0 -> 0.01 x bounding-box diagonal (spec §4.3).
+  double intersectionTolerance = 0.0;
+  /// Crossing angle below which two curves count as tangent / near-coincident (error), degrees.
+  double minimumCrossingAngleDegrees = 2.0;
+  /// epsilon_s of the face tracing: turns within this of straight are "straight on", degrees.
+  double straightAngleDegrees = 5.0;
+  /// Orientation used only for a connected part where no vertex normal is determined by the
+  /// thesis' rule N.1-N.4 (e.g. a sheet of straight curves): normals get n . hint >= 0 there.
+  Eigen::Vector3d orientationHint = Eigen::Vector3d::UnitZ();
+};
+
+/// A network input error: which curve(s), where, and what was expected.
+class CurveNetworkError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A parameter on a curve of the network.
+struct CurvePoint {
+  int curve = -1;
+  double parameter = 0.0;
+};
+
+struct NetworkVertex {
+  enum class Kind {
+    Crossing,   ///< two curves cross
+    TJunction,  ///< an open curve ends on a curve passing through
+    Multiple,   ///< >= 3 curves (spec §3.7 a)
+    FreeEnd     ///< the free end of an open curve (not an intersection)
+  };
+  Kind kind = Kind::Crossing;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< tangent-plane normal, §4.5
+  bool normalFromRule = false;  ///< true: N.1-N.4; false: propagated or from the hint
+  std::vector<CurvePoint> curves;  ///< one entry per curve through or ending at the vertex
+};
+
+/// A half-edge: the piece of `curve` from vertex `from` (parameter tFrom) to `to` (tTo),
+/// traversed with sign = +1 (increasing t) or -1. For sign +1, tTo > tFrom (may exceed the
+/// period of a closed curve: evaluate periodically).
+struct HalfEdge {
+  int curve = -1;
+  int from = -1, to = -1;
+  double tFrom = 0.0, tTo = 0.0;
+  int sign = 1;
+  int twin = -1;
+  int next = -1;   ///< deterministic next (§4.6), -1 at a dead end
+  int face = -1;   ///< -1: not on a face (dangling, or on an open chain)
+  int run = -1;    ///< the run of its edge, -1 for dangling pieces
+  bool dangling = false;
+};
+
+/// The curves at one end of a run used as transversal (several: the average of rule (a)).
+/// member k contributes K_k(parameter + direction * s) - X for s > 0 on the left of the run.
+struct Transversal {
+  int vertex = -1;
+  std::vector<CurvePoint> members;
+  std::vector<int> directions;  ///< +-1 per member
+  double influence = 1.0;       ///< mean influence of the members (w of g, l.1761)
+};
+
+/// A run (spec §4.7): the maximal piece of one curve between vertices where another curve
+/// passes through (or the curve ends). It carries the sweep shared by the faces on both sides.
+struct Run {
+  int curve = -1;
+  double tStart = 0.0, tEnd = 0.0;  ///< tEnd > tStart, increasing curve parameter
+  int vertexStart = -1, vertexEnd = -1;
+  std::vector<int> edges;           ///< half-edges with sign +1, in order
+  Transversal atStart, atEnd;
+  double delta() const { return tEnd - tStart; }
+};
+
+/// One side of a face: the fraction [rho0, rho1] of a run, traversed forward (increasing t)
+/// or backward. rho0 = 0 and rho1 = 1 for a plain side; a proper sub-range on the stem side of
+/// a T-junction (rule b) and for the halves of a two-curve region (rule d).
+struct FaceSide {
+  int run = -1;
+  double rho0 = 0.0, rho1 = 1.0;
+  bool forward = true;
+  int startVertex = -1;  ///< network vertex at the side's start, -1 for a two-curve midpoint
+  double delta = 0.0;    ///< parameter length Delta of the side
+};
+
+struct Face {
+  std::vector<int> halfEdges;  ///< the traced cycle, CCW seen from the outward normal
+  std::vector<FaceSide> sides; ///< the patch sides (>= 3)
+  bool twoCurveRegion = false; ///< built from 2 sides by rule (d)
+};
+
+/// A traced orbit of `next` that ends at a free end or a dead end: an open region (rule (c) is
+/// not implemented, the region stays empty) reported with its curves and where it ends.
+struct OpenChain {
+  std::vector<int> halfEdges;
+  std::string description;
+};
+
+/// A curve network after intersection, correction and topology inference.
+struct CurveNetwork {
+  std::vector<NetworkCurve> curves;         ///< corrected curves
+  std::vector<std::string> curveNames;
+  std::vector<double> influence;
+  std::vector<std::optional<Plane>> planes;
+  std::vector<NetworkVertex> vertices;
+  std::vector<HalfEdge> halfEdges;
+  std::vector<Run> runs;
+  std::vector<Face> faces;
+  std::vector<OpenChain> openChains;
+  std::vector<std::string> notes;           ///< non-fatal findings, human readable
+  double tolerance = 0.0;                   ///< tau actually used
+  double scale = 1.0;                       ///< bounding-box diagonal L
+  double correctionResidual = 0.0;          ///< max |K_c(t_c) - X_v| after correction
+
+  /// Edges (pairs of twin half-edges) that are not dangling.
+  int edgeCount() const;
+};
+
+/// Builds the network: curves from the description, pairwise intersections with tolerance tau
+/// (closest points of the two curves, refined by Newton, projected onto the drawing planes),
+/// clusters of >= 3 curves into multiple points, curve correction by minimum-norm displacement
+/// splines that stay in the drawing planes, half-edges, vertex normals N.1-N.4 with
+/// propagation, deterministic face tracing (largest left turn), runs and face sides with the
+/// T-junction and two-curve rules.
+/// @see seed 001 l.2127-2173, spec §4.3-4.7.
+/// @throws CurveInputError for a curve that cannot be built; CurveNetworkError naming the
+///   curve(s) and the place for: a curve meeting no other curve (with its nearest miss), two
+///   curves that are tangent or nearly coincident, a correction that cannot meet the
+///   intersections, a face with one side.
+CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
+                               const CurveNetworkOptions& options = {});
+
+/// "name" or "curve <index>", for messages.
+std::string curveLabel(const CurveNetwork& network, int curve);
+
+}  // namespace ffdkit::geometry::curvenet

@@ -1,0 +1,91 @@
+#include "ffdkit/geometry/curvenet/multisided_patch.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace ffdkit::geometry::curvenet {
+namespace {
+
+// C^(v) = mean_k K_k(t_k + dir_k v) - X: the transversal (rule (a) average for >= 2 members).
+VectorJet transversal(const CurveNetwork& net, const Transversal& tr, const Jet& v) {
+  VectorJet sum;
+  const double weight = 1.0 / static_cast<double>(tr.members.size());
+  for (std::size_t k = 0; k < tr.members.size(); ++k) {
+    const NetworkCurve& curve = net.curves[tr.members[k].curve];
+    const double dir = tr.directions[k];
+    const Jet t = tr.members[k].parameter + dir * v;
+    sum = sum + weight * compose(curve.evaluate(t.v), curve.evaluate(t.v, 1), curve.evaluate(t.v, 2), t);
+  }
+  sum.v -= net.vertices[tr.vertex].position;
+  return sum;
+}
+
+}  // namespace
+
+VectorJet runSweep(const CurveNetwork& net, int runId, const Jet& ut, const Jet& v) {
+  const Run& run = net.runs[runId];
+  const NetworkCurve& guide = net.curves[run.curve];
+  const Jet t = run.tStart + run.delta() * ut;
+  const VectorJet c = compose(guide.evaluate(t.v), guide.evaluate(t.v, 1), guide.evaluate(t.v, 2), t);
+  // g of l.1761 with the influence weights of the physical transversal curves.
+  const double wm = run.atStart.influence, wp = run.atEnd.influence;
+  const Jet denom = wm * (1.0 - ut) + wp * ut;
+  const Jet gm = (wm * (1.0 - ut)) / denom;
+  const Jet gp = (wp * ut) / denom;
+  return gm * transversal(net, run.atStart, v) + gp * transversal(net, run.atEnd, v) + c;
+}
+
+VectorJet evaluatePatch(const CurveNetwork& net, int faceId, const NGonDomain& domain,
+                        const Eigen::Vector2d& p, const PatchOptions& options) {
+  const Face& face = net.faces.at(faceId);
+  const int n = static_cast<int>(face.sides.size());
+  if (domain.sides() != n) {
+    throw std::invalid_argument("patch of face " + std::to_string(faceId) + " has " +
+                                std::to_string(n) + " sides, got a domain with " +
+                                std::to_string(domain.sides()));
+  }
+  if (options.blendingExponent < 1) {
+    throw std::invalid_argument("blending exponent must be >= 1, got " +
+                                std::to_string(options.blendingExponent));
+  }
+  const int corner = domain.vertexAt(p);
+  if (corner >= 0) {
+    VectorJet q;
+    const FaceSide& s = face.sides[corner];
+    if (s.startVertex >= 0) {
+      q.v = net.vertices[s.startVertex].position;
+    } else {
+      const Run& run = net.runs[s.run];
+      q.v = net.curves[run.curve].evaluate(run.tStart + run.delta() * (s.forward ? s.rho0 : s.rho1));
+    }
+    return q;
+  }
+  const std::vector<Jet> b = domain.barycentric(p);
+  const std::vector<Jet> blend = domain.blend(b, options.blendingExponent);
+  VectorJet q;
+  for (int i = 0; i < n; ++i) {
+    if (blend[i].v == 0.0 && blend[i].x == 0.0 && blend[i].y == 0.0 && blend[i].xx == 0.0 &&
+        blend[i].xy == 0.0 && blend[i].yy == 0.0) {
+      continue;
+    }
+    const FaceSide& side = face.sides[i];
+    const double dPrev = face.sides[(i - 1 + n) % n].delta;
+    const double dNext = face.sides[(i + 1) % n].delta;
+    const Jet ut = domain.uTilde(i, b);
+    const Jet d = domain.distance(i, b);
+    const Jet v = (dPrev * (1.0 - ut) + dNext * ut) * d;
+    const double span = side.rho1 - side.rho0;
+    const Jet utRun = side.forward ? side.rho0 + span * ut : side.rho1 - span * ut;
+    const VectorJet s = runSweep(net, side.run, utRun, side.forward ? v : -v);
+    q = q + blend[i] * s;
+  }
+  return q;
+}
+
+Eigen::Vector3d patchNormal(const VectorJet& q) {
+  const Eigen::Vector3d n = q.x.cross(q.y);
+  const double len = n.norm();
+  return len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+}
+
+}  // namespace ffdkit::geometry::curvenet
