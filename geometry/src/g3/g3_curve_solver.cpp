@@ -6,6 +6,7 @@
 #include <numbers>
 #include <sstream>
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -283,12 +284,17 @@ NewtonOutcome newton(const System& sys, Eigen::VectorXd v, const Eigen::VectorXd
   if (!f.allFinite()) return finish(G3SolveStatus::NonFinite);
   const int maxIt = opt.paperMode ? 4 : opt.maxIterations;
   if (!opt.paperMode && scaled.cwiseAbs().maxCoeff() <= opt.tolerance) return finish(G3SolveStatus::Converged);
+  double mu = -1.0;  // Levenberg-Marquardt damping, set from the first Jacobian
+  double nu = 2.0;
   for (int it = 1; it <= maxIt; ++it) {
     out.iterations = it;
     sys.evaluate(v, panels, offset, f, &jac);
     const Eigen::MatrixXd scaledJac = scales.cwiseInverse().asDiagonal() * jac;
+    const bool levenbergMarquardt = !opt.paperMode && opt.globalization == Globalization::LevenbergMarquardt;
     Eigen::VectorXd step;
-    if (square && !opt.paperMode) {
+    if (levenbergMarquardt) {
+      // computed below, per damping value
+    } else if (square && !opt.paperMode) {
       Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaledJac);
       if (qr.rank() < sys.cols()) return finish(G3SolveStatus::SingularJacobian);
       step = -qr.solve(scaled);
@@ -298,11 +304,12 @@ NewtonOutcome newton(const System& sys, Eigen::VectorXd v, const Eigen::VectorXd
       if (cod.rank() < std::min(sys.rows(), sys.cols())) return finish(G3SolveStatus::SingularJacobian);
       step = -cod.solve(scaled);
     }
-    if (!step.allFinite()) return finish(G3SolveStatus::NonFinite);
+    if (!levenbergMarquardt && !step.allFinite()) return finish(G3SolveStatus::NonFinite);
 
     Eigen::VectorXd trial;
     Eigen::VectorXd trialF;
-    if (opt.paperMode || !opt.lineSearch) {
+    const double merit2 = scaled.squaredNorm();
+    if (opt.paperMode || opt.globalization == Globalization::None) {
       trial = v + step;
       if (!trial.allFinite()) return finish(G3SolveStatus::NonFinite);
       if ((trial.head(n).array() <= 0.0).any()) {
@@ -311,21 +318,49 @@ NewtonOutcome newton(const System& sys, Eigen::VectorXd v, const Eigen::VectorXd
       }
       sys.evaluate(trial, panels, offset, trialF, nullptr);
     } else {
-      // Armijo backtracking on ||scaled f||^2 (spec sec. 3.6).
-      const double merit2 = scaled.squaredNorm();
-      double lambda = 1.0;
       bool accepted = false;
-      while (lambda >= opt.lineSearchFloor) {
-        trial = v + lambda * step;
-        if (spanLengthsPositive(trial, n)) {
-          sys.evaluate(trial, panels, offset, trialF, nullptr);
-          if (trialF.allFinite() &&
-              trialF.cwiseQuotient(scales).squaredNorm() <= (1.0 - 2e-4 * lambda) * merit2) {
-            accepted = true;
-            break;
+      if (levenbergMarquardt) {
+        // Nielsen's damping update; the m x m form keeps the step minimum-norm when m < n.
+        const Eigen::MatrixXd normal =
+            over ? Eigen::MatrixXd(scaledJac.transpose() * scaledJac) : Eigen::MatrixXd(scaledJac * scaledJac.transpose());
+        if (mu < 0.0) mu = 1e-8 * normal.diagonal().maxCoeff();
+        for (int attempt = 0; attempt < 60 && !accepted; ++attempt) {
+          Eigen::MatrixXd damped = normal;
+          damped.diagonal().array() += mu;
+          const Eigen::LDLT<Eigen::MatrixXd> ldlt(damped);
+          const Eigen::VectorXd lmStep = over ? Eigen::VectorXd(-ldlt.solve(scaledJac.transpose() * scaled))
+                                              : Eigen::VectorXd(-scaledJac.transpose() * ldlt.solve(scaled));
+          trial = v + lmStep;
+          if (lmStep.allFinite() && spanLengthsPositive(trial, n)) {
+            sys.evaluate(trial, panels, offset, trialF, nullptr);
+            const double actual = merit2 - trialF.cwiseQuotient(scales).squaredNorm();
+            const double predicted = merit2 - (scaled + scaledJac * lmStep).squaredNorm();
+            if (trialF.allFinite() && predicted > 0.0 && actual > 1e-4 * predicted) {
+              const double rho = actual / predicted;
+              mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
+              nu = 2.0;
+              accepted = true;
+              break;
+            }
           }
+          mu *= nu;
+          nu *= 2.0;
         }
-        lambda *= 0.5;
+      } else {
+        // Armijo backtracking on ||scaled f||^2 (spec sec. 3.6).
+        double lambda = 1.0;
+        while (lambda >= opt.lineSearchFloor) {
+          trial = v + lambda * step;
+          if (spanLengthsPositive(trial, n)) {
+            sys.evaluate(trial, panels, offset, trialF, nullptr);
+            if (trialF.allFinite() &&
+                trialF.cwiseQuotient(scales).squaredNorm() <= (1.0 - 2e-4 * lambda) * merit2) {
+              accepted = true;
+              break;
+            }
+          }
+          lambda *= 0.5;
+        }
       }
       if (!accepted) {
         // At the rounding floor no step can decrease the residual any more.

@@ -382,6 +382,28 @@ TEST(G3CurveSolver, AcceptsACustomCondition) {
   EXPECT_NEAR(r.curve->length(), 31.882869227, 1e-7);
 }
 
+TEST(G3CurveSolver, LevenbergMarquardtReachesTheSameCurvesAndFailsOnFigure2d) {
+  G3SolverOptions lm;
+  lm.globalization = Globalization::LevenbergMarquardt;
+  const G3SolveResult t1 = solveG3Curve(testdata::figure2Points(), t1Conditions(), lm);
+  ASSERT_TRUE(t1.converged) << t1.message;
+  EXPECT_NEAR(t1.curve->length(), 31.944481581, 1e-7);
+  EXPECT_LE(t1.iterations, 8);
+  const G3SolveResult t6 = solveG3Curve(
+      testdata::figure5Points(), {Condition::curvature(0, 0.0), Condition::curvature(kLast, 0.0), Condition::tangentAngle(0, 1.95)},
+      lm);
+  ASSERT_TRUE(t6.converged) << t6.message;
+  EXPECT_NEAR(t6.curve->length(), 74.607140760, 1e-7);
+  const G3SolveResult b10 = solveG3Curve(testdata::figure2Points(), {Condition::naturalEnds()}, lm);
+  ASSERT_TRUE(b10.converged) << b10.message;
+  EXPECT_NEAR(b10.curve->length(), 31.8834, 2e-3 * 31.8834);
+  const G3SolveResult d = solveG3Curve(
+      testdata::figure2Points(),
+      {Condition::curvature(0, 0.0), Condition::curvature(kLast, 0.0), Condition::totalLength(31.724017364)}, lm);
+  EXPECT_FALSE(d.converged);
+  EXPECT_FALSE(d.curve.has_value());
+}
+
 TEST(G3CurveSolver, RejectsInvalidInput) {
   const Eigen::MatrixX2d p = testdata::figure2Points();
   EXPECT_THROW(solveG3Curve(p, {Condition::curvature(9, 0.0)}), G3InputError);

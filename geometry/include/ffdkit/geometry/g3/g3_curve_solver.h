@@ -24,11 +24,18 @@ enum class ContinuationMode {
   Always,     ///< continuation from the start
 };
 
+/// How a Newton step is safeguarded far from the solution (spec sec. 3.4, 3.6).
+enum class Globalization {
+  None,                ///< full steps (paper mode always uses full steps)
+  LineSearch,          ///< Armijo backtracking on the scaled residual 2-norm, step halving
+  LevenbergMarquardt,  ///< J^T (J J^T + mu I)^{-1} f, adaptive mu; -> min-norm step as mu -> 0
+};
+
 struct G3SolverOptions {
   int maxIterations = 30;          ///< Newton iterations per solve (per continuation stage)
   double tolerance = 1e-12;        ///< max scaled residual: interpolation rows and lengths / h,
                                    ///< curvatures * h, angles in rad (spec sec. 3.7)
-  bool lineSearch = true;          ///< Armijo backtracking on the scaled residual 2-norm
+  Globalization globalization = Globalization::LineSearch;
   double lineSearchFloor = 1e-6;   ///< smallest step fraction before reporting failure
   bool paperMode = false;          ///< exactly 4 undamped pseudo-inverse steps (l.283, spec A9)
   ContinuationMode continuation = ContinuationMode::OnFailure;
@@ -44,7 +51,7 @@ enum class G3SolveStatus {
   Converged,
   MaxIterations,         ///< tolerance not reached within maxIterations (or the 4 paper steps)
   Stalled,               ///< residual did not drop by 0.9 over 5 iterations (infeasible?)
-  LineSearchFailed,      ///< no acceptable step above lineSearchFloor
+  LineSearchFailed,      ///< no acceptable step (line search floor / LM damping exhausted)
   SingularJacobian,      ///< rank-deficient Jacobian at the last iterate
   NonFinite,             ///< a NaN or infinity appeared
   NonPositiveSpanLength, ///< an undamped step made some Delta s_i <= 0 (paper mode)
