@@ -18,7 +18,12 @@ double bernstein(int degree, int i, double t) {
   if (i < 0 || i > degree) {
     return 0.0;
   }
-  return binomial(degree, i) * std::pow(t, i) * std::pow(1.0 - t, degree - i);
+  // Repeated products instead of std::pow: this sits in the innermost loop of every fit.
+  double v = binomial(degree, i);
+  for (int j = 0; j < i; ++j) v *= t;
+  const double s = 1.0 - t;
+  for (int j = i; j < degree; ++j) v *= s;
+  return v;
 }
 
 double cumulativeBernstein(int degree, int i, double t) {

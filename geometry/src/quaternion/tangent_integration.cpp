@@ -9,6 +9,21 @@
 
 namespace ffdkit::geometry::quaternion {
 
+namespace {
+// Rules are rebuilt by Newton iteration; optimisers integrate thousands of times per fit.
+const GaussLegendreRule& cachedRule(int order) {
+  thread_local std::vector<GaussLegendreRule> cache;
+  if (order <= 64) {
+    if (cache.empty()) cache.resize(65);
+    if (cache[order].nodes.size() != order) cache[order] = gaussLegendreRule(order);
+    return cache[order];
+  }
+  thread_local GaussLegendreRule big;
+  big = gaussLegendreRule(order);
+  return big;
+}
+}  // namespace
+
 Eigen::Vector3d integrateSimpson(const TangentFunction& f, double a, double b, int intervals) {
   if (intervals <= 0 || intervals % 2 != 0) {
     std::ostringstream msg;
@@ -37,7 +52,7 @@ Eigen::MatrixX3d cumulativeGaussLegendre(const TangentFunction& f, const Eigen::
       throw QuaternionCurveError(msg.str());
     }
   }
-  const GaussLegendreRule rule = gaussLegendreRule(order);
+  const GaussLegendreRule& rule = cachedRule(order);
   std::vector<double> breaks(params.data(), params.data() + params.size());
   for (int p = 0; p <= minPanels; ++p) {
     breaks.push_back(static_cast<double>(p) / minPanels);
@@ -61,7 +76,12 @@ Eigen::MatrixX3d cumulativeGaussLegendre(const TangentFunction& f, const Eigen::
 }
 
 Eigen::Vector3d integrateGaussLegendrePanels(const TangentFunction& f, int order, int panels) {
-  const GaussLegendreRule rule = gaussLegendreRule(order);
+  if (order < 1 || panels < 1) {
+    std::ostringstream msg;
+    msg << "integrateGaussLegendrePanels: expected order >= 1 and panels >= 1, got " << order << " and " << panels;
+    throw QuaternionCurveError(msg.str());
+  }
+  const GaussLegendreRule& rule = cachedRule(order);
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (int p = 0; p < panels; ++p) {
     sum += integrateGaussLegendre(rule, static_cast<double>(p) / panels, static_cast<double>(p + 1) / panels, f);

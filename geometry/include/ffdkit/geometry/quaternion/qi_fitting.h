@@ -1,0 +1,97 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ffdkit/geometry/quaternion/qi_chain.h"
+#include "ffdkit/geometry/quaternion/uniform_bspline.h"
+
+namespace ffdkit::geometry::quaternion {
+
+/// Which initial curve seeds the QI fit (seed 003 spec §3.6).
+enum class FitInitialCurve {
+  LeastSquaresCubic,  ///< LSQ uniform cubic at the same breaks and u_i (default; spec [rec] (b))
+};
+
+/// How the chain's start tangent (q_00) is chosen (seed 003 spec §3.4, §7 A9).
+enum class StartTangentMode {
+  FromInitialCurve,  ///< fixed to the initial curve's tangent at u = 0 (the paper's implicit choice)
+  Given,             ///< fixed to FitOptions::givenStartTangent
+  Free,              ///< optimised (+2 variables, planar +1), starting from the initial curve
+};
+
+/// Planar or spatial parameterisation (seed 003 spec §3.4).
+enum class FitDimension {
+  Auto,     ///< Planar when all points share one z, Spatial otherwise
+  Planar,   ///< w_ij = phi_ij e_z: planar result, exactly linear curvature per segment for k = 2
+  Spatial,  ///< full 3-vectors w_ij
+};
+
+struct FitOptions {
+  int degree = 2;                                        ///< k, degree of each segment's quaternion curve
+  FitDimension dimension = FitDimension::Auto;
+  ProductForm form = ProductForm::Global;                ///< form A (spec §7 A1)
+  StartTangentMode startTangent = StartTangentMode::FromInitialCurve;
+  Eigen::Vector3d givenStartTangent = Eigen::Vector3d::UnitX();  ///< Given mode only
+  FitInitialCurve initialCurve = FitInitialCurve::LeastSquaresCubic;
+  QiQuadrature quadrature;                               ///< GL-8 on >= 8 panels per segment
+  double functionTolerance = 1e-12;                      ///< relative reduction of R
+  double stepTolerance = 1e-12;                          ///< relative step size
+  double gradientTolerance = 1e-12;                      ///< |J^T r|_inf relative to R
+  int maxIterations = 500;                               ///< LM iterations
+  int maxFunctionEvaluations = 50000;
+};
+
+struct FitResult {
+  FitResult(QiChain c, UniformCubicBSpline init) : curve(std::move(c)), initialCurve(std::move(init)) {}
+  QiChain curve;                       ///< the fitted G1 chain, world units
+  Eigen::VectorXd parameters;          ///< u_i used, in [0, M]
+  Eigen::VectorXd pointErrors;         ///< e_i = |C(u_i) - P_i|
+  double rms = 0.0;
+  double maxError = 0.0;
+  double rmsPercent = 0.0;             ///< 100 rms / L (seed 003 Table 1)
+  double maxPercent = 0.0;
+  double initialRms = 0.0;             ///< rms of the initial guess
+  bool converged = false;              ///< an LM stopping test was met (not the evaluation cap)
+  int iterations = 0;
+  int functionEvaluations = 0;
+  std::vector<double> objectiveHistory;  ///< accepted R = sum e_i^2, non-increasing
+  UniformCubicBSpline initialCurve;    ///< the LSQ cubic that seeded the fit (also the baseline)
+  std::string message;                 ///< which stopping test fired, or why it failed
+};
+
+/// Chord-length parameters within segments: u_{b_j} = j, linear in cumulative chord between
+/// breaks. @see seed 003 eqs. (9)-(10), corrected per spec §7 A6-A7.
+/// @throws QuaternionCurveError if breaks are not 0 = b_0 < ... < b_M = #P - 1.
+Eigen::VectorXd chordLengthParameters(const Eigen::MatrixX3d& points, const std::vector<int>& breaks);
+
+/// Fits a G1 chain of M = breaks.size() - 1 Bezier-type QI segments to the points by
+/// Levenberg-Marquardt on R = sum |C(u_i) - P_i|^2 with fixed u_i (chord length or `userParameters`).
+/// The start point is fixed to P_0; lengths are l = exp(lambda) so they stay positive.
+/// points: #P x 3; breaks: data indices 0 = b_0 < b_1 < ... < b_M = #P - 1 (a break point belongs to
+/// both segments; at least 2 points per segment). userParameters: optional #P sorted values with
+/// u_{b_j} = j.
+/// @return the chain and the fit record; an LM run stopped by the evaluation cap has converged = false.
+/// @throws QuaternionCurveError on invalid input (breaks, sizes, degree < 1, Planar with non-planar data).
+/// @see seed 003 eqs. (4)-(19) l.53-217; spec §3.
+FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& breaks, const FitOptions& options = {},
+                     const Eigen::VectorXd* userParameters = nullptr);
+
+/// Curvature fairness of a sampled curvature profile made of pieces of `samplesPerPiece` samples
+/// each (segments or spans, both ends included): total variation sum |d kappa| over all consecutive
+/// samples, the same within pieces only, and the number of interior local extrema within pieces.
+struct CurvatureFairness {
+  double totalVariation = 0.0;
+  double intraVariation = 0.0;
+  int interiorExtrema = 0;
+};
+CurvatureFairness curvatureFairness(const Eigen::VectorXd& kappa, int samplesPerPiece);
+
+/// Curvature of a fitted chain sampled per segment (samplesPerSegment each, ends included), signed
+/// for planar data (z constant) and unsigned otherwise; and the same per span for a B-spline.
+Eigen::VectorXd sampledChainCurvature(const QiChain& chain, int samplesPerSegment, bool signedPlanar);
+Eigen::VectorXd sampledBSplineCurvature(const UniformCubicBSpline& spline, int samplesPerSpan, bool signedPlanar);
+
+}  // namespace ffdkit::geometry::quaternion
