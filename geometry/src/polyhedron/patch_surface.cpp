@@ -13,12 +13,7 @@ namespace ffdkit::geometry::polyhedron {
 namespace {
 
 Eigen::Vector3d& subPointSlot(RationalQuarticTriangle& patch, int corner, int other) {
-  const int a = corner == patch.corners[0] ? 0 : corner == patch.corners[1] ? 1 : 2;
-  const int b = other == patch.corners[0] ? 0 : other == patch.corners[1] ? 1 : 2;
-  // D^s belongs to edge s = 0: AB is w = 0, AC is v = 0, BC is u = 0 (eq. (4.18)).
-  if (a == 0) return b == 1 ? patch.dw211 : patch.dv211;
-  if (a == 1) return b == 0 ? patch.dw121 : patch.du121;
-  return b == 0 ? patch.dv112 : patch.du112;
+  return patch.subPoint(patch.cornerSlot(corner), patch.cornerSlot(other));
 }
 
 double boundaryKappa(int valence) {

@@ -1,6 +1,8 @@
 #include "ffdkit/geometry/polyhedron/rational_quartic_triangle.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include <Eigen/Geometry>
 
@@ -70,6 +72,28 @@ PatchDerivatives RationalQuarticTriangle::evaluateWithPartials(double u, double 
   out.du += 12.0 * w * w * c.dx;
   out.dv += 12.0 * w * w * c.dy;
   return out;
+}
+
+Eigen::Vector3d& RationalQuarticTriangle::subPoint(int corner, int other) {
+  if (corner < 0 || corner > 2 || other < 0 || other > 2 || corner == other) {
+    throw std::invalid_argument("RationalQuarticTriangle::subPoint: expected two distinct corner slots in 0..2, got (" +
+                                std::to_string(corner) + ", " + std::to_string(other) + ")");
+  }
+  // D^s belongs to edge s = 0: AB is w = 0, AC is v = 0, BC is u = 0 (eq. (4.18)).
+  if (corner == 0) return other == 1 ? dw211 : dv211;
+  if (corner == 1) return other == 0 ? dw121 : du121;
+  return other == 0 ? dv112 : du112;
+}
+
+const Eigen::Vector3d& RationalQuarticTriangle::subPoint(int corner, int other) const {
+  return const_cast<RationalQuarticTriangle*>(this)->subPoint(corner, other);
+}
+
+int RationalQuarticTriangle::cornerSlot(int vertex) const {
+  for (int k = 0; k < 3; ++k) {
+    if (corners[k] == vertex) return k;
+  }
+  return -1;
 }
 
 Eigen::Vector3d RationalQuarticTriangle::evaluate(double u, double v, double w) const {

@@ -14,10 +14,12 @@ namespace {
 bool projectsInside(const std::vector<Eigen::Vector3d>& polygon, const Eigen::Vector3d& point) {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   for (std::size_t k = 0; k < polygon.size(); ++k) normal += polygon[k].cross(polygon[(k + 1) % polygon.size()]);
+  const Eigen::Vector3d unit = normal.normalized();
+  auto inPlane = [&](const Eigen::Vector3d& x) -> Eigen::Vector3d { return x - x.dot(unit) * unit; };
   double angle = 0.0;
   for (std::size_t k = 0; k < polygon.size(); ++k) {
-    const Eigen::Vector3d a = polygon[k] - point, b = polygon[(k + 1) % polygon.size()] - point;
-    angle += std::atan2(a.cross(b).dot(normal.normalized()), a.dot(b));
+    const Eigen::Vector3d a = inPlane(polygon[k] - point), b = inPlane(polygon[(k + 1) % polygon.size()] - point);
+    angle += std::atan2(a.cross(b).dot(unit), a.dot(b));
   }
   return std::abs(angle) > std::numbers::pi;
 }

@@ -33,6 +33,14 @@ struct RationalQuarticTriangle {
   /// Slot of D_ijk (k = 4 - i - j) in `d`.
   static constexpr int index(int i, int j) { return 5 * i - i * (i - 1) / 2 + j; }
 
+  /// Sub-point at corner slot `corner` (0 = A, 1 = B, 2 = C) belonging to the edge towards
+  /// corner slot `other` (e.g. (0, 1) -> D^w_211, (2, 1) -> D^u_112).
+  /// @throws std::invalid_argument unless corner, other are distinct slots in 0..2.
+  Eigen::Vector3d& subPoint(int corner, int other);
+  const Eigen::Vector3d& subPoint(int corner, int other) const;
+  /// Slot (0, 1, 2) of network vertex `vertex` among `corners`, or -1.
+  int cornerSlot(int vertex) const;
+
   /// Q(u, v, w) (spec §3.8 evaluation form).
   Eigen::Vector3d evaluate(double u, double v, double w) const;
   /// Q and its homogeneous partials; the blends use the analytic partials of
