@@ -124,6 +124,28 @@ TEST(SSplineCurve, TangentEndConditionGivesLambdaTimesTangentPlusEdgeTerm) {
   EXPECT_LT((2.0 * d1 - d2 - expected).norm(), 1e-6);
 }
 
+TEST(SSplineCurve, SecondDerivativeJumpsAtKnotsByTruncationTerm) {
+  // spec §2.4: the S-spline is only approximately C2. At knot x the cut terms k = x -+ w leave
+  // Q''(x+) - Q''(x-) = S_0''(w-) (P_{x+w} - P_{x-w}) with the closed form
+  // S_0''(w-) = c_{w-1} B''(1) + c_w B''(0) = -0.051178 (beta2 = 0, w = 4). The spec's column C
+  // prints -5.28e-2 (3 % off; columns A and B agree, see SSplineBasis tests).
+  const Eigen::MatrixX3d p = randomPoints(20, 6);
+  const SSplineCurve c(p);
+  const double cut = c.basis().evaluate(4.0, 2, Limit::FromLeft);
+  const Eigen::VectorXd coeff = c.basis().coefficients();
+  EXPECT_NEAR(cut, coeff[3] * 1.0 + coeff[4] * -2.0, 1e-15);
+  EXPECT_NEAR(cut, -0.051178, 5e-7);
+  for (int x = 5; x <= 14; ++x) {
+    const Eigen::Vector3d jump = c.evaluate(x, 2, Limit::FromRight) - c.evaluate(x, 2, Limit::FromLeft);
+    const Eigen::Vector3d expected = cut * (p.row(x + 4) - p.row(x - 4)).transpose();
+    EXPECT_LT((jump - expected).norm(), 1e-13) << x;
+    // S_0' is odd, so the slope jumps by -S_0'(w-) (P_{x+w} + P_{x-w}): only approximately C1.
+    const Eigen::Vector3d slopeJump = c.evaluate(x, 1, Limit::FromRight) - c.evaluate(x, 1, Limit::FromLeft);
+    const double b = c.basis().evaluate(4.0, 1, Limit::FromLeft);
+    EXPECT_LT((slopeJump + b * (p.row(x - 4) + p.row(x + 4)).transpose()).norm(), 1e-13) << x;
+  }
+}
+
 TEST(SSplineCurve, ReversingTheDataReversesTheCurve) {
   const Eigen::MatrixX3d p = randomPoints(9, 5);
   const Eigen::MatrixX3d r = p.colwise().reverse();
