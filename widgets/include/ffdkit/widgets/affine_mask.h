@@ -1,0 +1,29 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace ffdkit::widgets {
+
+/// Which affine components (translation, rotation, scale) a binding carries: the 拘束条件 of
+/// seed 001 l.2282. For an attachment it says which components of the cell's motion the
+/// affine widget follows; for a cell <-> cell binding which components are copied.
+struct AffineMask {
+  bool translate = true;
+  bool rotate = true;
+  bool scale = false;
+
+  static constexpr AffineMask none() { return {false, false, false}; }
+  static constexpr AffineMask t() { return {true, false, false}; }
+  static constexpr AffineMask tr() { return {true, true, false}; }
+  static constexpr AffineMask trs() { return {true, true, true}; }
+  friend constexpr bool operator==(const AffineMask&, const AffineMask&) = default;
+};
+
+/// "TRS", "TR", "T", "RS", ... in that letter order; "" for none.
+std::string maskString(AffineMask mask);
+/// Inverse of maskString (letters T, R, S each at most once, in any order); nullopt otherwise.
+std::optional<AffineMask> parseMask(std::string_view text);
+
+}  // namespace ffdkit::widgets

@@ -1,0 +1,81 @@
+#pragma once
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "ffdkit/widgets/affine_mask.h"
+
+namespace ffdkit::widgets {
+
+/// Cell kinds (幾何胞体, seed 001 l.2258): Point, Edge and Face of the thesis, plus Slab (all
+/// points of one index plane), Box (the 8 corners of one grid hexahedron) and Custom (any list).
+enum class CellKind { Point, Edge, Face, Slab, Box, Custom };
+
+/// Stable lower-case name used in files and the UI ("point", "edge", "face", ...).
+std::string_view cellKindName(CellKind kind);
+std::optional<CellKind> parseCellKind(std::string_view name);
+
+/// Default attachment mask per cell kind (spec §4, seed 001 l.2280):
+/// Point {T}; Edge, Face, Slab, Box {T, R}; Custom {T}.
+AffineMask defaultAttachmentMask(CellKind kind);
+
+/// Which lattice points a cell groups. Grid indices are (i, j, k), flat = i + l*(j + m*k).
+struct CellSpec {
+  CellKind kind = CellKind::Point;
+  /// Point: the point. Edge: its lower end. Face, Box: the lower corner.
+  /// Slab: only base[axis] is used (the index of the plane).
+  Eigen::Vector3i base = Eigen::Vector3i::Zero();
+  /// Edge: the axis it runs along. Face, Slab: the normal axis. Unused otherwise.
+  int axis = 0;
+  /// Custom: flat point indices, at least one, no duplicates.
+  std::vector<Eigen::Index> indices;
+
+  static CellSpec point(int i, int j, int k);
+  static CellSpec edge(int i, int j, int k, int alongAxis);
+  static CellSpec face(int i, int j, int k, int normalAxis);
+  static CellSpec slab(int normalAxis, int planeIndex);
+  static CellSpec box(int i, int j, int k);
+  static CellSpec custom(std::vector<Eigen::Index> flatIndices);
+
+  friend bool operator==(const CellSpec&, const CellSpec&) = default;
+};
+
+/// Flat indices of the cell's points in a lattice of `counts` points per axis, in a fixed
+/// order: Edge (lower, upper); Face the quad loop p00, p10, p11, p01 over its grid directions
+/// (a, b) = (normal+1, normal+2) mod 3; Slab and Box with a (resp. i) fastest; Custom as given.
+/// @throws WidgetError (InvalidArgument) for indices outside the grid, bad axes, empty or
+///         duplicate custom indices.
+std::vector<Eigen::Index> cellPointIndices(const Eigen::Vector3i& counts, const CellSpec& spec);
+
+/// Rest frame of a cell (spec §3): origin at the centroid of `restPoints` (#cell x 3, in the
+/// order of cellPointIndices); axes: Point and Custom the lattice axes; Edge x along the edge;
+/// Face, Slab x along the first grid direction and z along the normal; Box x, y along the
+/// first two grid directions. `spec` supplies the grid layout; `counts` the lattice counts.
+Eigen::Isometry3d cellRestFrame(const CellSpec& spec, const Eigen::Vector3i& counts,
+                                const Eigen::Ref<const Eigen::MatrixX3d>& restPoints);
+
+/// Current affine elements of a cell against its rest points (spec §3):
+///   A = Translate(c̄ + translation) * rotation * E diag(scale) E^T * Translate(-c̄),
+/// with c̄ the rest centroid and E the rest frame's rotation. Scale is per cell axis.
+struct CellAffine {
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+
+  /// The masked matrix mask(A) about the rest frame (components left out are identity).
+  Eigen::Affine3d matrix(const Eigen::Isometry3d& restFrame, AffineMask mask = AffineMask::trs()) const;
+};
+
+/// Fits CellAffine from the current points (#cell x 3) against the rest points (spec §3):
+/// Point: translation only. Edge: centroid translation, minimal rotation of the edge direction,
+/// scale = (length ratio, 1, 1). Face/Slab/Box/Custom: centroid translation, Kabsch rotation
+/// (Kabsch 1976), per-axis least-squares scale in the cell's own axes (1 on a degenerate axis).
+CellAffine fitCellAffine(const CellSpec& spec, const Eigen::Isometry3d& restFrame,
+                         const Eigen::Ref<const Eigen::MatrixX3d>& restPoints,
+                         const Eigen::Ref<const Eigen::MatrixX3d>& currentPoints);
+
+}  // namespace ffdkit::widgets

@@ -1,0 +1,33 @@
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+#include "ffdkit/ffd/axis_basis.h"
+#include "ffdkit/ffd/outside_policy.h"
+
+namespace ffdkit::widgets {
+
+/// How often lattices other than the dragged one are re-embedded (spec §6, seed 001 l.2377).
+enum class ReembedKind { Immediate, EveryN, OnRelease };
+struct ReembedPolicy {
+  ReembedKind kind = ReembedKind::Immediate;
+  int everyN = 1;  ///< EveryN only: >= 1
+  friend bool operator==(const ReembedPolicy&, const ReembedPolicy&) = default;
+};
+
+std::string_view reembedKindName(ReembedKind kind);  // "immediate", "every-n", "on-release"
+std::optional<ReembedKind> parseReembedKind(std::string_view name);
+
+/// Per-lattice FFD settings that a widget file carries (spec §2, §6, §8), in the FFD engine's
+/// own types: the model stores them and WidgetModel::ffdLattice hands them to ffd::Lattice.
+struct LatticeSettings {
+  /// Per axis (u, v, w). Bernstein by default (Sederberg & Parry FFD): valid for any count.
+  std::array<ffd::AxisBasis, 3> basis{ffd::AxisBasis::bernstein(), ffd::AxisBasis::bernstein(),
+                                      ffd::AxisBasis::bernstein()};
+  ffd::OutsidePolicy outside{};
+  ReembedPolicy reembed{};
+};
+
+}  // namespace ffdkit::widgets

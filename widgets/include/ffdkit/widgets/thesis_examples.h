@@ -1,0 +1,52 @@
+#pragma once
+
+#include <optional>
+
+#include "ffdkit/widgets/widget_model.h"
+
+namespace ffdkit::widgets {
+
+/// The deformation tools of seed 001 ch. 6's figures (spec §9), built with the scripting API.
+/// Tests reproduce the figures from them, widgets/examples/*.json hold them as widget files,
+/// and the app can offer them as starting points. Each returns the model and the ids a script
+/// needs.
+
+/// Fig. 6-2: a 3x3x3 lattice in the unit box with a rotate widget on the face (0,0,2)/normal z,
+/// a translate widget (+x) on the edge (0,2,0)/x and a translate widget (+z) on the point (2,2,0).
+struct Fig62 {
+  WidgetModel model;
+  WidgetId lattice, face, edge, point, faceRotate, edgeTranslate, pointTranslate;
+};
+Fig62 buildFig62();
+
+/// Fig. 6-8: a 2x3x2 lattice; on the two faces with normal y (j = 0 and j = 2) translate widgets
+/// pointing outwards and rotate widgets about +y; on the edges (0,0,1)/x and (0,2,1)/x translate
+/// widgets pointing outwards. Each pair is bound with gain 1: mirror symmetry about y = 0.5.
+struct Fig68 {
+  WidgetModel model;
+  WidgetId lattice, faceA, faceB, edgeA, edgeB;
+  WidgetId faceTranslateA, faceTranslateB, faceRotateA, faceRotateB, edgeTranslateA, edgeTranslateB;
+};
+Fig68 buildFig68();
+
+/// Fig. 6-9: a 2x2x2 parent lattice whose top face carries a 2x2x2 child lattice (the box
+/// [0.25, 0.75]^2 x [1, 1.5]); a translate widget (+z) lifts the face; translate widgets on
+/// the points (0,0,0) (-x) and (1,0,0) (+x) are bound; a translate widget (+y) on the parent's
+/// edge (0,1,0)/x is bound to one (+y) on the child's edge (0,0,0)/x.
+struct Fig69 {
+  WidgetModel model;
+  WidgetId parent, child, topFace, faceLift, pointA, pointB, parentEdge, childEdge;
+};
+Fig69 buildFig69();
+
+/// Fig. 6-10: a press. A 2x2x2 lattice with a translate widget pointing down (-z) on its top
+/// face and a free rotate widget (the handle, at (0.5, 0.5, 1.5)) bound to it by a screw rule:
+/// one turn lowers the face by `pitch`; `clamp` bounds the press's variation.
+struct Fig610 {
+  WidgetModel model;
+  WidgetId lattice, topFace, press, handle;
+  BindingId screw;
+};
+Fig610 buildFig610(double pitch = 0.1, std::optional<VariationRange> clamp = std::nullopt);
+
+}  // namespace ffdkit::widgets

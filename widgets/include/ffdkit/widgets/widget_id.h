@@ -1,0 +1,42 @@
+#pragma once
+
+#include <compare>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace ffdkit::widgets {
+
+/// Stable handle of a widget (lattice, cell or affine widget) inside one WidgetModel.
+/// Ids are never reused within a model; files write them as "w<N>".
+struct WidgetId {
+  static constexpr std::uint32_t kInvalid = std::numeric_limits<std::uint32_t>::max();
+  std::uint32_t value = kInvalid;
+
+  constexpr bool valid() const { return value != kInvalid; }
+  friend constexpr auto operator<=>(const WidgetId&, const WidgetId&) = default;
+};
+
+/// Stable handle of a binding inside one WidgetModel; files write it as "b<N>".
+struct BindingId {
+  static constexpr std::uint32_t kInvalid = std::numeric_limits<std::uint32_t>::max();
+  std::uint32_t value = kInvalid;
+
+  constexpr bool valid() const { return value != kInvalid; }
+  friend constexpr auto operator<=>(const BindingId&, const BindingId&) = default;
+};
+
+/// "w12" / "b3"; "none" for an invalid id.
+std::string toString(WidgetId id);
+std::string toString(BindingId id);
+/// Inverse of toString; std::nullopt unless the text is "w<digits>" / "b<digits>".
+std::optional<WidgetId> parseWidgetId(std::string_view text);
+std::optional<BindingId> parseBindingId(std::string_view text);
+
+/// The three widget families of seed 001 ch. 6 (l.2260, l.2314).
+enum class WidgetType { Lattice, Cell, Affine };
+std::string_view widgetTypeName(WidgetType type);
+
+}  // namespace ffdkit::widgets

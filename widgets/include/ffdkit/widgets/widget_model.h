@@ -1,0 +1,248 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "ffdkit/ffd/lattice.h"
+#include "ffdkit/widgets/affine_kind.h"
+#include "ffdkit/widgets/binding.h"
+#include "ffdkit/widgets/cell.h"
+#include "ffdkit/widgets/lattice_settings.h"
+#include "ffdkit/widgets/ray.h"
+#include "ffdkit/widgets/widget_data.h"
+#include "ffdkit/widgets/widget_error.h"
+#include "ffdkit/widgets/widget_id.h"
+
+namespace ffdkit::widgets {
+
+struct LatticeOptions {
+  std::string name;                                          ///< unique; "" -> "lattice<N>"
+  Eigen::Vector3i counts = Eigen::Vector3i::Constant(2);     ///< (l, m, n), each >= 2
+  Eigen::Affine3d frame = Eigen::Affine3d::Identity();       ///< world = frame * local
+  /// pointCount x 3 lattice-local rest points; empty -> the regular grid of the unit box [0,1]^3.
+  Eigen::MatrixX3d restPoints;
+  LatticeSettings settings;
+};
+
+struct AffineOptions {
+  std::string name;  ///< unique; "" -> "<kind><N>"
+  /// Relative to the cell's rest frame (origin at the cell centroid, axes of spec §3): a
+  /// translate widget moves along placement's x, a rotate widget turns about its z. For a
+  /// free widget (no cell) this is its world frame.
+  Eigen::Affine3d placement = Eigen::Affine3d::Identity();
+  std::optional<AffineMask> mask;  ///< attachment mask; default by cell kind
+  std::optional<Glyph> glyph;      ///< default: arrow / ring / cube of size 0.2
+};
+
+/// A rigid world frame plus a size: what a renderer needs to draw a glyph or a cell axis triad.
+struct WidgetFrame {
+  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+  double size = 1.0;  ///< glyph size in world units (glyph.size times the frame's scale)
+};
+
+struct PickOptions {
+  double tolerance = 0.02;  ///< world units: how far from a thin glyph a ray may pass
+  bool affines = true;
+  bool cells = true;
+  bool lattices = false;    ///< the lattice's world bounding box
+};
+
+struct PickResult {
+  WidgetId id;
+  double t = 0.0;                           ///< along the unit ray direction
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< world hit point
+};
+
+/// The mutable part of a model, for undo: control points, variations, lattice frames.
+/// Cheap to copy; valid for restoreState only on a model with the same widgets.
+struct WidgetModelState {
+  std::vector<std::pair<WidgetId, Eigen::MatrixX3d>> controlPoints;
+  std::vector<std::pair<WidgetId, Eigen::Affine3d>> latticeFrames;  ///< root frame / child placement
+  std::vector<std::pair<WidgetId, double>> variations;
+};
+
+/// The headless widget model of seed 001 ch. 6 (spec §3-§6): lattice widgets that own their
+/// lattice's control points, cell widgets on them, affine widgets attached to cells, bindings,
+/// and gestures propagated breadth-first. A regular value type: copy it to snapshot everything.
+///
+/// Frames. A lattice's control points are lattice-local; world = latticeFrame(lattice) * local.
+/// An attached affine widget's frame is F = L * mask(A_cell) * C0 * O (spec §4): L the lattice
+/// frame, A_cell the cell's fitted affine elements, C0 the cell's rest frame, O the placement.
+/// Motions use F's rigid part (polar decomposition), so distances and angles are world-true.
+///
+/// Every throwing member throws WidgetError and leaves the model unchanged.
+class WidgetModel {
+ public:
+  WidgetModel();
+  ~WidgetModel();
+  WidgetModel(const WidgetModel&);
+  WidgetModel& operator=(const WidgetModel&);
+  WidgetModel(WidgetModel&&) noexcept;
+  WidgetModel& operator=(WidgetModel&&) noexcept;
+
+  // ---- building -------------------------------------------------------------------------
+  /// A root lattice widget. @throws InvalidArgument for counts < 2, a rest matrix of the wrong
+  /// shape or non-finite values, a duplicate name.
+  WidgetId addLattice(const LatticeOptions& options = {});
+  /// Shorthand: a root lattice of `counts` points in the unit box at the world origin.
+  WidgetId addLattice(std::string name, const Eigen::Vector3i& counts);
+  /// A cell of `lattice`. @throws UnknownWidget, InvalidArgument (see cellPointIndices).
+  WidgetId addCell(WidgetId lattice, const CellSpec& spec, std::string name = {});
+  /// An affine widget attached to `cell` (creates the Attachment binding).
+  WidgetId addAffine(WidgetId cell, AffineKind kind, const AffineOptions& options = {});
+  /// Shorthand: named, at `placement` relative to the cell's rest frame, default mask and glyph.
+  WidgetId addAffine(WidgetId cell, AffineKind kind, std::string name,
+                     const Eigen::Affine3d& placement = Eigen::Affine3d::Identity());
+  /// A free affine widget (no cell; e.g. a press handle): placement is its world frame.
+  WidgetId addFreeAffine(AffineKind kind, const AffineOptions& options = {});
+
+  /// Binds two widgets; the kind follows from their types (cell+affine -> Attachment,
+  /// affine+affine -> Variation, cell+cell -> CellMotion, cell+lattice -> Hierarchy; the
+  /// order of the arguments is kept as from/to where the kind allows either).
+  /// A Hierarchy binding keeps the child's current world frame.
+  /// @throws UnknownWidget; InvalidBinding for a self binding, an unsupported pair, a second
+  ///   attachment of one affine widget, a duplicate binding, a hierarchy cycle; InvalidArgument
+  ///   for a zero / non-finite gain or an empty clamp range; InconsistentLoop when the binding
+  ///   closes a loop whose gains do not multiply to 1 or whose masks differ (the message names
+  ///   the loop).
+  BindingId bind(WidgetId a, WidgetId b, const BindingOptions& options = {});
+  /// Shorthand: an affine <-> affine binding with this conversion rule (two-way).
+  BindingId bind(WidgetId a, WidgetId b, const ConversionRule& rule);
+  /// Shorthand: a binding with this mask (attachment, cell <-> cell, hierarchy; two-way).
+  BindingId bind(WidgetId a, WidgetId b, AffineMask mask);
+  void unbind(BindingId binding);
+  /// Removes a widget and its bindings. A lattice takes its cells and their attached affine
+  /// widgets along; its child lattices become roots at their current world frame. A cell's
+  /// attached widgets become free at their current world frame.
+  void remove(WidgetId id);
+
+  void rename(WidgetId id, std::string name);
+  void setPlacement(WidgetId affine, const Eigen::Affine3d& placement);
+  void setGlyph(WidgetId affine, const Glyph& glyph);
+  void setMask(BindingId binding, AffineMask mask);
+  void setRule(BindingId binding, const ConversionRule& rule);
+  void setOneWay(BindingId binding, bool oneWay);
+  void setLatticeSettings(WidgetId lattice, const LatticeSettings& settings);
+  /// Root lattice: sets its world frame. @throws InvalidArgument for a child lattice.
+  void setLatticeFrame(WidgetId lattice, const Eigen::Affine3d& frame);
+  /// Moves a lattice to `position` among its siblings (roots or children of one parent).
+  void setSiblingPosition(WidgetId lattice, std::size_t position);
+  /// Sets every control point of a lattice (pointCount x 3, local).
+  void setControlPoints(WidgetId lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points);
+  /// Back to rest: control points = rest points, variations of the lattice's widgets = 0.
+  void resetLattice(WidgetId lattice);
+
+  // ---- queries --------------------------------------------------------------------------
+  bool contains(WidgetId id) const;
+  WidgetType type(WidgetId id) const;
+  const std::string& name(WidgetId id) const;
+  /// The widget of that name. @throws UnknownWidget naming the known names.
+  WidgetId find(std::string_view name) const;
+  std::vector<WidgetId> widgets() const;                   ///< all, in id order
+  std::vector<WidgetId> widgets(WidgetType type) const;
+  std::vector<BindingId> bindings() const;                 ///< in id order
+  std::vector<BindingId> bindingsOf(WidgetId id) const;
+  const Binding& binding(BindingId id) const;
+  std::uint64_t revision() const;  ///< grows with every change (renderers compare it)
+
+  // lattices
+  Eigen::Vector3i counts(WidgetId lattice) const;
+  const Eigen::MatrixX3d& controlPoints(WidgetId lattice) const;  ///< local, pointCount x 3
+  const Eigen::MatrixX3d& restPoints(WidgetId lattice) const;     ///< local, pointCount x 3
+  Eigen::MatrixX3d worldControlPoints(WidgetId lattice) const;
+  Eigen::MatrixX3d worldRestPoints(WidgetId lattice) const;       ///< rest shape at the current frame
+  /// world = latticeFrame * local. Root: its frame. Child: parentFrame * mask(A_cell) * C0 * placement.
+  Eigen::Affine3d latticeFrame(WidgetId lattice) const;
+  const LatticeSettings& latticeSettings(WidgetId lattice) const;
+  /// The FFD engine's lattice for a lattice widget: counts, bases, outside policy, rest and
+  /// current control points, and its current world frame (what the FFD pipeline deforms with).
+  ffd::Lattice ffdLattice(WidgetId lattice) const;
+  std::optional<WidgetId> parentCell(WidgetId lattice) const;
+  std::optional<WidgetId> parentLattice(WidgetId lattice) const;
+  std::vector<WidgetId> children(WidgetId lattice) const;  ///< sibling order
+  std::vector<WidgetId> roots() const;                     ///< sibling order
+  /// The lattices in pre-order (parent before children, siblings in order): the order in which
+  /// the FFD pipeline deforms (spec §6, seed 001 l.2375).
+  std::vector<WidgetId> pipelineOrder() const;
+  std::vector<WidgetId> cellsOf(WidgetId lattice) const;
+
+  // cells
+  WidgetId latticeOf(WidgetId cellOrAffine) const;  ///< invalid for a free affine widget
+  const CellSpec& cellSpec(WidgetId cell) const;
+  const std::vector<Eigen::Index>& cellIndices(WidgetId cell) const;
+  Eigen::MatrixX3d cellWorldPoints(WidgetId cell) const;
+  Eigen::Isometry3d cellRestFrame(WidgetId cell) const;   ///< lattice-local
+  CellAffine cellAffine(WidgetId cell) const;             ///< lattice-local fit (spec §3)
+  /// The cell's current frame in the world (rigid) with its mean scale as size.
+  WidgetFrame cellFrame(WidgetId cell) const;
+  std::vector<WidgetId> affinesOf(WidgetId cell) const;
+
+  // affine widgets
+  AffineKind affineKind(WidgetId affine) const;
+  std::optional<WidgetId> attachedCell(WidgetId affine) const;
+  const Eigen::Affine3d& placement(WidgetId affine) const;
+  double variation(WidgetId affine) const;
+  const Glyph& glyph(WidgetId affine) const;
+  /// World frame (rigid) and glyph size of an affine widget (spec §4).
+  WidgetFrame affineFrame(WidgetId affine) const;
+
+  // ---- gestures (spec §4, §5) -------------------------------------------------------------
+  /// Starts a gesture on a widget: records the gesture-start state and the breadth-first
+  /// visiting order over the bindings. @throws GestureState if one is active; UnknownWidget.
+  void beginGesture(WidgetId id);
+  /// Affine widget: the variation change since the start (distance, rad, log scale).
+  /// Every update resets the affected points to their gesture-start positions and re-applies
+  /// the motions in visiting order: no drift. @throws GestureState.
+  void updateGesture(double variationDelta);
+  /// Cell or lattice widget: its world motion since the start (an affine map of world space).
+  void updateGesture(const Eigen::Affine3d& worldMotion);
+  void endGesture();
+  /// Restores the gesture-start state.
+  void cancelGesture();
+  bool gestureActive() const;
+  std::optional<WidgetId> gestureWidget() const;
+  /// Widgets that the active gesture visits, in visiting order (for highlighting).
+  std::vector<WidgetId> gestureVisitOrder() const;
+
+  // ---- ray interaction (STYLE 9): rays in, semantic gestures out -------------------------
+  /// Nearest widget glyph hit by the ray (affine glyphs: arrow segment, ring, cube; cells:
+  /// points as spheres of radius tolerance, edges as segments, faces as quads); nullopt on a miss.
+  std::optional<PickResult> pick(const Ray& ray, const PickOptions& options = {}) const;
+  /// Begins a drag of `id` grabbed by `ray`: translate along the axis line, rotate in the
+  /// widget's xy plane, scale by the distance ratio from the origin in the view plane; cells and
+  /// lattices translate in the view plane through the grab point.
+  void beginDrag(WidgetId id, const Ray& ray);
+  /// Updates the active drag from the current mouse ray. Rays parallel to the drag line or plane
+  /// keep the last value.
+  void dragTo(const Ray& ray);
+
+  // ---- scripting conveniences (one whole gesture each) -----------------------------------
+  /// begin + update(delta) + end on an affine widget.
+  void applyVariation(WidgetId affine, double delta);
+  /// Sets the variation of an affine widget to `value` through a gesture (bindings follow).
+  void setVariation(WidgetId affine, double value);
+  /// begin + update(worldMotion) + end on a cell or a lattice.
+  void applyMotion(WidgetId id, const Eigen::Affine3d& worldMotion);
+
+  // ---- state and data ---------------------------------------------------------------------
+  WidgetModelState captureState() const;
+  /// @throws InvalidArgument if the state names other widgets or shapes than this model holds.
+  void restoreState(const WidgetModelState& state);
+  WidgetModelData toData() const;
+  /// Builds a model from data, validating ids, references, names, shapes and every binding as
+  /// bind() would. Errors carry a location ("/bindings/2/to").
+  static WidgetModel fromData(const WidgetModelData& data);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ffdkit::widgets
