@@ -9,7 +9,6 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <Eigen/QR>
-#include <Eigen/SVD>
 
 #include "ffdkit/geometry/g3/bohm_conversion.h"
 #include "ffdkit/geometry/g3/cubic_spline_initial_guess.h"
@@ -511,11 +510,19 @@ G3SolveResult solveG3Curve(const Eigen::Ref<const Eigen::MatrixX2d>& points, con
     Eigen::MatrixXd jac;
     sys.evaluate(outcome.v, sys.panels(outcome.v), zero, f, &jac);
     const Eigen::MatrixXd scaledJac = sys.scales().cwiseInverse().asDiagonal() * jac;
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaledJac);
-    const auto& sv = svd.singularValues();
-    const double smin = sv[sv.size() - 1];
-    result.jacobianConditionNumber = smin > 0.0 ? sv[0] / smin : std::numeric_limits<double>::infinity();
-    if (result.status == G3SolveStatus::Converged && smin < options.singularThreshold * sv[0]) {
+    // 1-norm reciprocal condition estimates: an SVD would cost more than the whole solve.
+    double rcond = 0.0;
+    if (scaledJac.rows() == scaledJac.cols()) {
+      rcond = Eigen::PartialPivLU<Eigen::MatrixXd>(scaledJac).rcond();
+    } else {
+      const Eigen::MatrixXd normal = scaledJac.rows() < scaledJac.cols()
+                                         ? Eigen::MatrixXd(scaledJac * scaledJac.transpose())
+                                         : Eigen::MatrixXd(scaledJac.transpose() * scaledJac);
+      const Eigen::LLT<Eigen::MatrixXd> llt(normal);
+      rcond = llt.info() == Eigen::Success ? std::sqrt(std::max(0.0, llt.rcond())) : 0.0;
+    }
+    result.jacobianConditionNumber = rcond > 0.0 ? 1.0 / rcond : std::numeric_limits<double>::infinity();
+    if (result.status == G3SolveStatus::Converged && !(rcond >= options.singularThreshold)) {
       result.status = G3SolveStatus::SingularJacobian;
     }
   }

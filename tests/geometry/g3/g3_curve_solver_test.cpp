@@ -404,6 +404,18 @@ TEST(G3CurveSolver, LevenbergMarquardtReachesTheSameCurvesAndFailsOnFigure2d) {
   EXPECT_FALSE(d.curve.has_value());
 }
 
+TEST(G3CurveSolver, ReportsASingularSystemAsAFailure) {
+  // a_3 = 0 twice on span 0: three rows, but only two independent ones.
+  const G3SolveResult r =
+      solveG3Curve(testdata::figure2Points(), {Condition::clothoidSpan(0), Condition::circularArcSpan(0)});
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.status, G3SolveStatus::SingularJacobian);
+  EXPECT_FALSE(r.curve.has_value());
+  const G3SolveResult ok = solveG3Curve(testdata::figure2Points(), t1Conditions());
+  EXPECT_GT(ok.jacobianConditionNumber, 1.0);
+  EXPECT_LT(ok.jacobianConditionNumber, 1e8);
+}
+
 TEST(G3CurveSolver, RejectsInvalidInput) {
   const Eigen::MatrixX2d p = testdata::figure2Points();
   EXPECT_THROW(solveG3Curve(p, {Condition::curvature(9, 0.0)}), G3InputError);

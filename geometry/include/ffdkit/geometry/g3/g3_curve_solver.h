@@ -44,7 +44,7 @@ struct G3SolverOptions {
   double maxTurnPerPanel = 1.0;    ///< rad of turning per quadrature panel
   UnderdeterminedPolicy underdetermined = UnderdeterminedPolicy::MinimumNormFromInitialGuess;
   bool allowOverdetermined = false;  ///< > 3 condition rows: least squares if true, else throw
-  double singularThreshold = 1e-13;  ///< sigma_min / sigma_max below this: singular (failure)
+  double singularThreshold = 1e-13;  ///< reciprocal condition estimate below this: singular (failure)
 };
 
 enum class G3SolveStatus {
@@ -69,7 +69,8 @@ struct G3SolveResult {
   double residualNorm = 0.0;      ///< ||f||_2, unscaled, at the last iterate
   double scaledResidualInf = 0.0; ///< max scaled residual at the last iterate (vs tolerance)
   std::vector<double> residualHistory;  ///< ||f||_2 unscaled, from the initial guess on
-  double jacobianConditionNumber = 0.0; ///< sigma_max / sigma_min at the last iterate
+  double jacobianConditionNumber = 0.0; ///< 1-norm condition estimate of the row-scaled Jacobian
+                                        ///< at the last iterate (via J J^T when not square)
   int conditionRows = 0;          ///< rows the conditions added (3 makes the system square)
   bool underdetermined = false;   ///< fewer than 3 rows: the answer depends on the guess (sec. 3.8)
   std::string message;            ///< what happened, in words
