@@ -1,0 +1,64 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ffdkit/geometry/quaternion/tangent_integral_curve.h"
+
+namespace ffdkit::geometry::quaternion {
+
+/// End conditions of one tangent-integral segment (seed 004 l.583-654), world frame.
+struct SphereTangentSegmentSpec {
+  Eigen::Vector3d startPoint = Eigen::Vector3d::Zero();      ///< P_a
+  Eigen::Vector3d startTangent = Eigen::Vector3d::UnitX();   ///< V_a, any non-zero length
+  Eigen::Vector3d endPoint = Eigen::Vector3d(1.0, 1.0, 0.0); ///< P_c != P_a
+  Eigen::Vector3d endTangent = Eigen::Vector3d::UnitY();     ///< V_c, any non-zero length
+  int degree = 2;                                            ///< 2 (paper default) or 3 (Fig. 17)
+  std::optional<Eigen::Vector3d> fixedSecondControl;         ///< cubic: V_2 in the world frame
+                                                             ///< (default slerp(V_a, V_c; 2/3))
+  SphereCurveKind kind = SphereCurveKind::KimPure;
+};
+
+/// Downhill simplex settings (seed 004 l.654; spec §3 step 5: absolute tolerances, NOT NR's relative one).
+struct NelderMeadOptions {
+  double initialStep = 0.2;         ///< simplex edge in (theta, phi), radians
+  double functionTolerance = 1e-24; ///< on f_max - f_min
+  double simplexTolerance = 1e-12;  ///< on the simplex diameter
+  double successThreshold = 1e-20;  ///< f <= this counts as solved (angle error ~1.4e-10 rad)
+  int maxIterations = 5000;
+  int stallIterations = 300;        ///< stop when the best f has not decreased for this many iterations
+  std::optional<Eigen::Vector2d> initialThetaPhi;  ///< default: the great-arc midpoint of V_a, V_c
+  TangentQuadrature quadrature;     ///< fixed rule so f stays smooth for the simplex
+};
+
+struct SphereTangentFitResult {
+  bool converged = false;      ///< f <= successThreshold
+  double objective = 2.0;      ///< f = 1/2 |P_e/|P_e| - V_s|^2 at the best vertex
+  int iterations = 0;
+  int evaluations = 0;
+  Eigen::Vector2d thetaPhi = Eigen::Vector2d::Zero();  ///< chart coordinates of V_1 (canonical frame, eq. (18))
+  std::vector<Eigen::Vector3d> controlsWorld;          ///< V_0..V_n, world frame
+  double length = 0.0;                                 ///< L* = |P_c| / |P_e| (canonical frame)
+  double endPositionError = 0.0;                       ///< |C(L*) - P_c|
+  double endTangentAngle = 0.0;                        ///< angle(T(1), V_c), radians
+  std::optional<TangentIntegralCurve> curve;           ///< only when converged
+  std::string message;                                 ///< why it failed, empty on success
+};
+
+/// The chart p(theta, phi) = (cos theta cos phi, sin theta, cos theta sin phi), p(0, 0) = e_x
+/// (seed 004 eq. (18) l.593-595, letters rebuilt per spec §7 A6).
+Eigen::Vector3d polarPoint(double theta, double phi);
+
+/// Finds the free middle control V_1 (chart angles) so that the segment from P_a with tangent V_a
+/// ends at P_c with tangent V_c: canonical frame (P_a = 0, V_a = e_x), f(theta, phi) =
+/// 1/2 |P_e/|P_e| - P_c/|P_c||^2 minimised by Nelder-Mead, then uniform scaling to L* = |P_c|/|P_e|.
+/// @return converged = false with a message (and no curve) when no solution was found, e.g. when
+///   the simplex is pulled to antipodal controls (spec O5); never a silently wrong curve.
+/// @throws QuaternionCurveError on invalid input: P_c = P_a, zero tangents, degree not 2 or 3.
+/// @see seed 004 l.583-690; spec §3.
+SphereTangentFitResult fitSphereTangentSegment(const SphereTangentSegmentSpec& spec, const NelderMeadOptions& options = {});
+
+}  // namespace ffdkit::geometry::quaternion

@@ -1,0 +1,73 @@
+#pragma once
+
+#include <functional>
+
+#include <Eigen/Core>
+
+#include "ffdkit/geometry/quaternion/arc_length_curve.h"
+#include "ffdkit/geometry/quaternion/cumulative_bezier_quaternion.h"
+#include "ffdkit/geometry/quaternion/sphere_bezier_tangent.h"
+
+namespace ffdkit::geometry::quaternion {
+
+/// Composite Gauss-Legendre used for tangent integral curves (seed 004 spec §4: 64 panels x 8).
+struct TangentQuadrature {
+  int panels = 64;
+  int order = 8;
+};
+
+/// Tangent integral curve C(s) = P0 + int_0^s T(u / L) du, s in [0, L], from a unit-tangent path on
+/// S^2 (seed 004 eq. (17) l.472-493, with the denominator read as the total length L, spec §7 A2).
+/// kappa = |T_t| / L, tau = det(T, T_t, T_tt) / (L |T_t|^2) (spec §2.7).
+class TangentIntegralCurve : public ArcLengthCurve {
+ public:
+  /// @throws QuaternionCurveError if length <= 0.
+  TangentIntegralCurve(SphereBezierTangent tangentPath, double length, const Eigen::Vector3d& start = Eigen::Vector3d::Zero(),
+                       TangentQuadrature quadrature = {});
+
+  const SphereBezierTangent& tangentPath() const { return path_; }
+  const Eigen::Vector3d& start() const { return start_; }
+
+  double length() const override { return length_; }
+  Eigen::Vector3d position(double s) const override;
+  Eigen::Vector3d tangent(double s) const override;
+  double curvature(double s) const override;
+  double torsion(double s) const override;
+  Eigen::Vector3d curvatureVector(double s) const override;
+  Eigen::MatrixX3d samplePositions(int count) const override;
+  /// C(L).
+  Eigen::Vector3d endPoint() const { return position(length_); }
+
+ private:
+  SphereBezierTangent path_;
+  double length_;
+  Eigen::Vector3d start_;
+  TangentQuadrature quadrature_;
+};
+
+/// Miura's unit quaternion integral curve, the baseline of seed 004 (eq. (16) l.349-407):
+/// tangent R_{q(t)} v for a cumulative Bezier quaternion q with general controls and a fixed unit v.
+class QuaternionIntegralCurve : public ArcLengthCurve {
+ public:
+  /// @throws QuaternionCurveError if length <= 0 or v = 0.
+  QuaternionIntegralCurve(CumulativeBezierQuaternion rotation, const Eigen::Vector3d& v, double length,
+                          const Eigen::Vector3d& start = Eigen::Vector3d::Zero(), TangentQuadrature quadrature = {});
+
+  double length() const override { return length_; }
+  Eigen::Vector3d position(double s) const override;
+  Eigen::Vector3d tangent(double s) const override;
+  double curvature(double s) const override;
+  double torsion(double s) const override;
+  Eigen::Vector3d curvatureVector(double s) const override;
+
+ private:
+  Eigen::Vector3d tangentAt(double t) const;
+  Eigen::Vector3d tangentDtAt(double t) const;
+  CumulativeBezierQuaternion rotation_;
+  Eigen::Vector3d v_;
+  double length_;
+  Eigen::Vector3d start_;
+  TangentQuadrature quadrature_;
+};
+
+}  // namespace ffdkit::geometry::quaternion
