@@ -29,7 +29,7 @@ struct PairHit {
 struct NearMiss {
   double distance = std::numeric_limits<double>::infinity();
   int other = -1;
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  double tSelf = 0.0, tOther = 0.0;  ///< sampled start, refined only for the report
 };
 
 double clampParameter(const NetworkCurve& c, double t) {
@@ -65,6 +65,32 @@ void refineClosestPoints(const NetworkCurve& ca, const NetworkCurve& cb, double&
   }
   s = ca.wrap(s);
   t = cb.wrap(t);
+}
+
+bool snapToEnd(const NetworkCurve& c, double& t, double tau) {
+  if (c.closed()) return false;
+  for (double end : {c.tMin(), c.tMax()}) {
+    if (t != end && (c.evaluate(t) - c.evaluate(end)).norm() < tau) {
+      t = end;
+      return true;
+    }
+  }
+  return false;
+}
+
+// Closest point of curve c to the fixed point x, by Newton from t.
+void refineOnOneCurve(const Eigen::Vector3d& x, const NetworkCurve& c, double& t) {
+  for (int it = 0; it < 50; ++it) {
+    const Eigen::Vector3d r = c.evaluate(t) - x;
+    const Eigen::Vector3d d1 = c.evaluate(t, 1), d2 = c.evaluate(t, 2);
+    double h = d1.dot(d1) + r.dot(d2);
+    if (!(h > 0.0)) h = d1.dot(d1);
+    const double t1 = clampParameter(c, t - r.dot(d1) / h);
+    const double moved = std::abs(t1 - t);
+    t = t1;
+    if (moved < 1e-15 * (1.0 + c.period())) break;
+  }
+  t = c.wrap(t);
 }
 
 // The point nearest to x on all the given planes (least squares, minimum-norm correction).
@@ -184,9 +210,8 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
       }
       Eigen::Index mi = 0, mj = 0;
       const double dmin = dist.minCoeff(&mi, &mj);
-      const Eigen::Vector3d mid = 0.5 * (pa.row(mi) + pb.row(mj)).transpose();
-      if (dmin < nearest[a].distance) nearest[a] = {dmin, b, mid};
-      if (dmin < nearest[b].distance) nearest[b] = {dmin, a, mid};
+      if (dmin < nearest[a].distance) nearest[a] = {dmin, b, params[a][mi], params[b][mj]};
+      if (dmin < nearest[b].distance) nearest[b] = {dmin, a, params[b][mj], params[a][mi]};
       double stepA = 0.0, stepB = 0.0;
       for (Eigen::Index i = 1; i < na; ++i) stepA = std::max(stepA, (pa.row(i) - pa.row(i - 1)).norm());
       for (Eigen::Index j = 1; j < nb; ++j) stepB = std::max(stepB, (pb.row(j) - pb.row(j - 1)).norm());
@@ -215,6 +240,9 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
           if (!isMin) continue;
           double s = params[a][i], t = params[b][j];
           refineClosestPoints(net.curves[a], net.curves[b], s, t);
+          // T-detection (§4.3): an open end within tau of the other curve is the cut point.
+          if (snapToEnd(net.curves[a], s, tau)) refineOnOneCurve(net.curves[a].evaluate(s), net.curves[b], t);
+          if (snapToEnd(net.curves[b], t, tau)) refineOnOneCurve(net.curves[b].evaluate(t), net.curves[a], s);
           const Eigen::Vector3d xa = net.curves[a].evaluate(s), xb = net.curves[b].evaluate(t);
           const double d = (xa - xb).norm();
           if (d >= tau) continue;
@@ -307,8 +335,11 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
     std::ostringstream msg;
     msg << curveLabel(net, c) << " meets no other curve within tolerance " << tau;
     if (nearest[c].other >= 0) {
+      double ts = nearest[c].tSelf, to = nearest[c].tOther;
+      refineClosestPoints(net.curves[c], net.curves[nearest[c].other], ts, to);
+      const Eigen::Vector3d ps = net.curves[c].evaluate(ts), po = net.curves[nearest[c].other].evaluate(to);
       msg << ": nearest is " << curveLabel(net, nearest[c].other) << " at distance "
-          << nearest[c].distance << " near " << fmt(nearest[c].point)
+          << (ps - po).norm() << " near " << fmt(0.5 * (ps + po)) << " (t = " << ts << ")"
           << "; move the curves together or raise the intersection tolerance";
     }
     throw CurveNetworkError(msg.str());
@@ -628,9 +659,8 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
       visited[cur] = 1;
       chain.push_back(cur);
     }
-    bool real = false;
-    for (int c : chain) real = real || !net.halfEdges[c].dangling;
-    if (real) net.openChains.push_back({chain, describeChain(chain)});
+    // A single dangling piece bounds nothing; a chain that turns at a vertex bounds an open region.
+    if (chain.size() >= 2) net.openChains.push_back({chain, describeChain(chain)});
   }
   for (int h = 0; h < nhe; ++h) {
     if (visited[h]) continue;

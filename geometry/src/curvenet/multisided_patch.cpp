@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <Eigen/Geometry>
+
 namespace ffdkit::geometry::curvenet {
 namespace {
 

@@ -1,0 +1,226 @@
+#include "ffdkit/geometry/curvenet/multisided_patch.h"
+
+#include <cmath>
+#include <iostream>
+#include <numbers>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "continuity_check.h"
+#include "ffdkit/geometry/curvenet/example_networks.h"
+
+namespace ffdkit::geometry::curvenet {
+namespace {
+
+using testing::sharedEdgeMismatch;
+
+void expectG2(const testing::EdgeMismatch& m, double scale, int pairs) {
+  EXPECT_EQ(m.pairs, pairs);
+  EXPECT_LE(m.boundary, 1e-12 * scale) << "P1 boundary interpolation";
+  EXPECT_LE(m.position, 1e-12 * scale) << "P4 shared boundary";
+  EXPECT_LE(m.angle, 1e-9) << "P5 G1";
+  EXPECT_LE(m.curvature, 1e-8) << "P6 G2";
+}
+
+TEST(MultisidedPatch, SphereOctantsInterpolateAndJoinG2OnAllTwelveEdges) {  // F3, P1, P4-P6
+  const CurveNetwork net = buildCurveNetwork(sphereOctantNetwork());
+  const auto m = sharedEdgeMismatch(net);
+  expectG2(m, net.scale, 12);
+  double farthest = 0.0;
+  for (int f = 0; f < 8; ++f) {
+    const NGonDomain d(3);
+    for (double x = -0.4; x <= 0.4; x += 0.1) {
+      for (double y = -0.4; y <= 0.4; y += 0.1) {
+        farthest = std::max(farthest, std::abs(evaluatePatch(net, f, d, {x, y}).v.norm() - 1.0));
+      }
+    }
+  }
+  ::testing::Test::RecordProperty("max_distance_from_unit_sphere", std::to_string(farthest));
+  std::cout << "F3 max distance from the unit sphere: " << farthest << "\n";
+  EXPECT_LT(farthest, 0.05);
+}
+
+TEST(MultisidedPatch, HeightGridJoinsG2AndExponentOneLosesG2) {  // P6, P7
+  const CurveNetwork net = buildCurveNetwork(heightGridNetwork(4));
+  expectG2(sharedEdgeMismatch(net), net.scale, 12);
+  PatchOptions m1;
+  m1.blendingExponent = 1;
+  const auto bad = sharedEdgeMismatch(net, m1);
+  EXPECT_LE(bad.angle, 1e-9) << "m = 1 is still G1";
+  EXPECT_GT(bad.curvature, 1e-2) << "m = 1 must fail G2 (negative control)";
+}
+
+TEST(MultisidedPatch, MultiplePointsJoinG2AwayFromThePoles) {  // F9, rule (a)
+  const CurveNetwork net = buildCurveNetwork(meridianNetwork());
+  expectG2(sharedEdgeMismatch(net, {}, 1e-3), net.scale, 18);
+  // Normal spread near the poles (vertex enclosure, reported only).
+  double spread = 0.0;
+  for (int f = 0; f < 12; ++f) {
+    const NGonDomain d(3);
+    for (int k = 0; k < 3; ++k) {
+      const int v = net.faces[f].sides[k].startVertex;
+      if (net.vertices[v].kind != NetworkVertex::Kind::Multiple) continue;
+      const Eigen::Vector2d p = (1 - 1e-3) * d.vertex(k);
+      const Eigen::Vector3d n = patchNormal(evaluatePatch(net, f, d, p));
+      spread = std::max(spread, std::acos(std::clamp(n.dot(net.vertices[v].normal), -1.0, 1.0)));
+    }
+  }
+  std::cout << "F9 normal spread at 1e-3 from the poles: " << spread << " rad\n";
+  EXPECT_LT(spread, 0.1);
+}
+
+TEST(MultisidedPatch, WithoutAveragingAMultiplePointBreaksG1) {  // P7 negative control
+  // Without rule (a) the faces on the two sides of a meridian take different single curves
+  // as transversal at the pole: model that with one network per side.
+  const CurveNetwork net = buildCurveNetwork(meridianNetwork());
+  CurveNetwork first = net, second = net;
+  for (int r = 0; r < static_cast<int>(net.runs.size()); ++r) {
+    for (int end = 0; end < 2; ++end) {
+      Transversal& a = end == 0 ? first.runs[r].atStart : first.runs[r].atEnd;
+      Transversal& b = end == 0 ? second.runs[r].atStart : second.runs[r].atEnd;
+      if (a.members.size() < 2) continue;
+      a.members = {a.members[0]};
+      a.directions = {a.directions[0]};
+      b.members = {b.members[1]};
+      b.directions = {b.directions[1]};
+    }
+  }
+  EXPECT_GT(sharedEdgeMismatch(first, {}, 1e-3, &second).angle, 1e-3);
+  EXPECT_LE(sharedEdgeMismatch(net, {}, 1e-3).angle, 1e-9);
+}
+
+TEST(MultisidedPatch, SpecialRulesNeedExponentThreeForG2) {  // spec §3.6 (iii), A12, P7
+  PatchOptions m2;
+  m2.blendingExponent = 2;
+  const CurveNetwork tee = buildCurveNetwork(tJunctionNetwork());
+  const auto t2 = sharedEdgeMismatch(tee, m2);
+  EXPECT_LE(t2.angle, 1e-9) << "G1 with m = 2";
+  EXPECT_GT(t2.curvature, 1e-2) << "but not G2";
+  const CurveNetwork lens = buildCurveNetwork(lensNetwork());
+  const auto l2 = sharedEdgeMismatch(lens, m2);
+  EXPECT_LE(l2.angle, 1e-9);
+  EXPECT_GT(l2.curvature, 1e-2);
+}
+
+TEST(MultisidedPatch, TJunctionJoinsG2OnTheThroughCurveAndTheStem) {  // F8, rule (b)
+  const CurveNetwork net = buildCurveNetwork(tJunctionNetwork());
+  const auto m = sharedEdgeMismatch(net);
+  expectG2(m, net.scale, 3);
+}
+
+TEST(MultisidedPatch, LensJoinsG2WithTheRegionAbove) {  // F11, rule (d)
+  const CurveNetwork net = buildCurveNetwork(lensNetwork());
+  expectG2(sharedEdgeMismatch(net), net.scale, 2);
+}
+
+TEST(MultisidedPatch, SubSurfaceMatchesTheNeighbourCurvesOnAdjacentEdges) {  // P3
+  const CurveNetwork net = buildCurveNetwork(sphereOctantNetwork());
+  const Face& face = net.faces[0];
+  for (int i = 0; i < 3; ++i) {
+    const FaceSide& side = face.sides[i];
+    const FaceSide& prev = face.sides[(i + 2) % 3];
+    const curvenet::Run& prevRun = net.runs[prev.run];
+    for (double s : {0.2, 0.5, 0.9}) {
+      const double v = s * prev.delta;
+      const Jet u = Jet::constant(side.forward ? 0.0 : 1.0);
+      const VectorJet sub = runSweep(net, side.run, u, Jet::constant(side.forward ? v : -v));
+      // The previous side, v back from its end P_i.
+      const double local = 1.0 - s;
+      const double ur = prev.forward ? local : 1.0 - local;
+      const Eigen::Vector3d expected = net.curves[prevRun.curve].evaluate(prevRun.tStart + prevRun.delta() * ur);
+      EXPECT_LE((sub.v - expected).norm(), 1e-12 * net.scale);
+    }
+  }
+}
+
+TEST(MultisidedPatch, TranslationalNetworkIsReproducedForFourSides) {  // P9
+  const CurveNetwork net = buildCurveNetwork(translationalNetwork());
+  ASSERT_EQ(net.faces.size(), 1u);
+  const Face& face = net.faces[0];
+  ASSERT_EQ(face.sides.size(), 4u);
+  const NGonDomain d(4);
+  auto sidePointAt = [&](const FaceSide& s, double local) {
+    const curvenet::Run& r = net.runs[s.run];
+    const double u = s.forward ? local : 1.0 - local;
+    return net.curves[r.curve].evaluate(r.tStart + r.delta() * u);
+  };
+  const Eigen::Vector3d p0 = net.vertices[face.sides[0].startVertex].position;
+  double worst = 0.0;
+  for (double x = -0.65; x <= 0.65; x += 0.13) {
+    for (double y = -0.65; y <= 0.65; y += 0.13) {
+      const Eigen::Vector2d p(x, y);
+      const auto b = d.barycentric(p);
+      const double ut = d.uTilde(0, b).v, dist = d.distance(0, b).v;
+      // C_1(u) + C^_4(v): v = Delta_4 d_1 measured back along side 3 from P_0.
+      const Eigen::Vector3d expected = sidePointAt(face.sides[0], ut) +
+                                       (sidePointAt(face.sides[3], 1.0 - dist) - p0);
+      worst = std::max(worst, (evaluatePatch(net, 0, d, p).v - expected).norm());
+    }
+  }
+  EXPECT_LE(worst, 1e-12 * net.scale);
+}
+
+TEST(MultisidedPatch, CornerNormalConvergesToTheCurveTangentsNormal) {  // P8
+  const CurveNetwork net = buildCurveNetwork(heightGridNetwork(3));
+  const NGonDomain d(4);
+  for (int k = 0; k < 4; ++k) {
+    const int v = net.faces[0].sides[k].startVertex;
+    const Eigen::Vector3d expected = net.vertices[v].normal;
+    double previous = -1.0;
+    for (double eps : {1e-2, 1e-3, 1e-4}) {
+      const Eigen::Vector2d p = (1.0 - eps) * d.vertex(k);
+      const double err = (patchNormal(evaluatePatch(net, 0, d, p)) - expected).norm();
+      if (previous > 1e-10) {
+        EXPECT_LE(err / previous, 0.2) << "eps " << eps;
+      }
+      previous = err;
+    }
+  }
+}
+
+TEST(MultisidedPatch, CyclicRelabellingWithRotatedDomainGivesTheSameSurface) {  // P10
+  const CurveNetwork net = buildCurveNetwork(lensNetwork());
+  CurveNetwork rotated = net;
+  for (int f = 0; f < static_cast<int>(net.faces.size()); ++f) {
+    auto& sides = rotated.faces[f].sides;
+    std::rotate(sides.begin(), sides.begin() + 1, sides.end());
+    const int n = static_cast<int>(sides.size());
+    const NGonDomain d(n);
+    const double th = -2 * std::numbers::pi / n;
+    const Eigen::Matrix2d rot{{std::cos(th), -std::sin(th)}, {std::sin(th), std::cos(th)}};
+    for (double x = -0.5; x <= 0.5; x += 0.25) {
+      for (double y = -0.5; y <= 0.5; y += 0.25) {
+        const Eigen::Vector2d p(x, y);
+        EXPECT_LE((evaluatePatch(rotated, f, d, rot * p).v - evaluatePatch(net, f, d, p).v).norm(), 1e-12 * net.scale);
+      }
+    }
+  }
+}
+
+TEST(MultisidedPatch, JetDerivativesMatchFiniteDifferences) {
+  const CurveNetwork net = buildCurveNetwork(tJunctionNetwork());
+  const Eigen::Vector2d p(0.1, -0.2), hx(1e-6, 0), hy(0, 1e-6);
+  for (int f = 0; f < static_cast<int>(net.faces.size()); ++f) {
+    const NGonDomain d(static_cast<int>(net.faces[f].sides.size()));
+    const VectorJet q = evaluatePatch(net, f, d, p);
+    const VectorJet qx1 = evaluatePatch(net, f, d, p + hx), qx0 = evaluatePatch(net, f, d, p - hx);
+    const VectorJet qy1 = evaluatePatch(net, f, d, p + hy), qy0 = evaluatePatch(net, f, d, p - hy);
+    EXPECT_LE((q.x - (qx1.v - qx0.v) / 2e-6).norm(), 1e-6);
+    EXPECT_LE((q.y - (qy1.v - qy0.v) / 2e-6).norm(), 1e-6);
+    EXPECT_LE((q.xx - (qx1.x - qx0.x) / 2e-6).norm(), 1e-5);
+    EXPECT_LE((q.xy - (qy1.x - qy0.x) / 2e-6).norm(), 1e-5);
+    EXPECT_LE((q.yy - (qy1.y - qy0.y) / 2e-6).norm(), 1e-5);
+  }
+}
+
+TEST(MultisidedPatch, RejectsAMismatchedDomainAndExponent) {
+  const CurveNetwork net = buildCurveNetwork(sphereOctantNetwork());
+  EXPECT_THROW(evaluatePatch(net, 0, NGonDomain(4), {0, 0}), std::invalid_argument);
+  PatchOptions o;
+  o.blendingExponent = 0;
+  EXPECT_THROW(evaluatePatch(net, 0, NGonDomain(3), {0, 0}, o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ffdkit::geometry::curvenet
