@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 #include <algorithm>
 
 #include "ffdkit/geometry/cardinal/cardinal_error.h"
@@ -82,6 +83,66 @@ Eigen::Vector3d SSplineSurface::evaluate(double u, double v, int du, int dv) con
     sum += bu * rowSum;
   }
   return sum;
+}
+
+SSplineSurface::GridSamples SSplineSurface::sampleGrid(const Eigen::VectorXd& us,
+                                                      const Eigen::VectorXd& vs) const {
+  const int wU = options_.halfWidthU, wV = options_.halfWidthV;
+  const int nU = 2 * wU + 2, nV = 2 * wV + 2;
+  const auto prepare = [](double x, bool closed, int span) {
+    if (closed) return wrap(x, span);
+    return std::clamp(x, 0.0, static_cast<double>(span));
+  };
+  // Basis values (and first derivatives) of every sample along v, once.
+  const auto countV = static_cast<int>(vs.size());
+  Eigen::MatrixXd bv(countV, nV), dbv(countV, nV);
+  std::vector<int> vLo(static_cast<std::size_t>(countV));
+  for (int b = 0; b < countV; ++b) {
+    const double v = prepare(vs[b], options_.closedV, vSpan_);
+    vLo[static_cast<std::size_t>(b)] = static_cast<int>(std::floor(v)) - wV;
+    for (int l = 0; l < nV; ++l) {
+      bv(b, l) = basisV_.evaluate(v - (vLo[static_cast<std::size_t>(b)] + l), 0, Limit::Value);
+      dbv(b, l) = basisV_.evaluate(v - (vLo[static_cast<std::size_t>(b)] + l), 1, Limit::Value);
+    }
+  }
+  GridSamples out;
+  const Eigen::Index total = us.size() * vs.size();
+  out.points.resize(total, 3);
+  out.du.resize(total, 3);
+  out.dv.resize(total, 3);
+  // Per u sample: the u-combinations of all extended columns, then short sums along v.
+  Eigen::MatrixX3d row(extended_.cols, 3), drow(extended_.cols, 3);
+  for (Eigen::Index a = 0; a < us.size(); ++a) {
+    const double u = prepare(us[a], options_.closedU, uSpan_);
+    const int uLo = static_cast<int>(std::floor(u)) - wU;
+    row.setZero();
+    drow.setZero();
+    for (int k = 0; k < nU; ++k) {
+      const double bu = basisU_.evaluate(u - (uLo + k), 0, Limit::Value);
+      const double dbu = basisU_.evaluate(u - (uLo + k), 1, Limit::Value);
+      if (bu == 0.0 && dbu == 0.0) continue;
+      const int ei = uLo + k + wU + 1;
+      for (int j = 0; j < extended_.cols; ++j) {
+        const Eigen::RowVector3d e = extended_(ei, j).transpose();
+        row.row(j) += bu * e;
+        drow.row(j) += dbu * e;
+      }
+    }
+    for (int b = 0; b < countV; ++b) {
+      Eigen::RowVector3d p = Eigen::RowVector3d::Zero(), pu = p, pv = p;
+      const int base = vLo[static_cast<std::size_t>(b)] + wV + 1;
+      for (int l = 0; l < nV; ++l) {
+        p += bv(b, l) * row.row(base + l);
+        pv += dbv(b, l) * row.row(base + l);
+        pu += bv(b, l) * drow.row(base + l);
+      }
+      const Eigen::Index r = a * countV + b;
+      out.points.row(r) = p;
+      out.du.row(r) = pu;
+      out.dv.row(r) = pv;
+    }
+  }
+  return out;
 }
 
 }  // namespace ffdkit::geometry::cardinal

@@ -79,8 +79,17 @@ TEST(SurfaceTessellation, OpenSigmaPatchHasBoundaryRowsAndInterpolates) {
 TEST(SurfaceTessellation, SSplineTorusIsWeldedAndOriented) {
   SSplineSurfaceOptions o;
   o.closedU = o.closedV = true;
+  o.beta2U = 5.0;
   const SSplineSurface s(torusGrid(8, 6), o);
-  expectConsistentMesh(tessellate(s, {3, 3}), 24 * 18, 2 * 24 * 18);
+  const SurfaceTessellation t = tessellate(s, {3, 3});
+  expectConsistentMesh(t, 24 * 18, 2 * 24 * 18);
+  // The shared-basis grid sampling equals pointwise evaluation.
+  for (Eigen::Index v = 0; v < t.mesh.vertices.rows(); ++v) {
+    const double u = t.parameters(v, 0), w = t.parameters(v, 1);
+    EXPECT_LT((t.mesh.vertices.row(v).transpose() - s.evaluate(u, w)).norm(), 1e-13);
+    const Eigen::Vector3d n = s.evaluate(u, w, 1, 0).cross(s.evaluate(u, w, 0, 1)).normalized();
+    EXPECT_LT((t.normals.row(v).transpose() - n).norm(), 1e-12);
+  }
 }
 
 TEST(SurfaceTessellation, RejectsZeroSampling) {

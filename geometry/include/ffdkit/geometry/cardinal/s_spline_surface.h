@@ -33,6 +33,14 @@ class SSplineSurface {
   /// right-hand limits at knots and truncation edges. Closed directions wrap.
   Eigen::Vector3d evaluate(double u, double v, int du = 0, int dv = 0) const;
 
+  /// Q, Q_u and Q_v on the tensor grid us x vs (same conventions as evaluate), each
+  /// #us*#vs x 3 with row iu * #vs + iv. Shares the basis values along each axis, so it costs
+  /// O(#us * #vs * 2w) instead of O(#us * #vs * (2w)^2) for repeated evaluate() calls.
+  struct GridSamples {
+    Eigen::MatrixX3d points, du, dv;
+  };
+  GridSamples sampleGrid(const Eigen::VectorXd& us, const Eigen::VectorXd& vs) const;
+
  private:
   SSplineSurfaceOptions options_;
   SSplineBasis basisU_, basisV_;
