@@ -11,12 +11,18 @@
 #else
 #define FFDKIT_VECTOR_CLONES
 #endif
+// Helpers are forced inline so that they are compiled for the target of the clone that calls them.
+#define FFDKIT_INLINE [[gnu::always_inline]] inline
 
 namespace ffdkit::ffd {
 namespace detail {
 
 constexpr int kLanes = 8;
 constexpr int kMaxBasis = 33;
+
+// Eight lanes of doubles: one AVX-512 register, two AVX2 registers, or four SSE2 registers,
+// depending on the clone. GCC vector extensions keep the lane structure explicit.
+typedef double Lane __attribute__((vector_size(kLanes * sizeof(double))));
 
 // Everything a block kernel needs, flattened into plain arrays.
 struct AxisView {
@@ -33,104 +39,141 @@ struct KernelInput {
   const std::uint32_t* order;  // null: identity
   const double* blend;         // indexed by q - blendBegin
   std::uint32_t blendBegin;
-  const double* qx;  // input columns (original order), may be null for updates
+  const double* qx;  // input columns (original order), null for updates
   const double* qy;
   const double* qz;
-  Eigen::Index qStride;  // column stride of the input
-  double* ox;            // output columns
+  double* ox;  // output columns
   double* oy;
   double* oz;
 };
 
-// The degree+1 basis values of `lanes` parameters on one span (Cox-de Boor, The NURBS Book A2.2),
-// vectorised across lanes: the knots are the same for every lane of a cell.
-inline void basisLanes(const AxisView& axis, int cell, const double* t, double (*N)[kLanes]) {
-  const int p = axis.degree;
+FFDKIT_INLINE Lane splat(double x) { return Lane{} + x; }
+
+// The degree+1 basis values of eight parameters on one span (Cox-de Boor, The NURBS Book A2.2),
+// vectorised across lanes: the knots are the same for every lane of a cell. P >= 0 fixes the
+// degree at compile time (full unrolling); P < 0 reads it from the axis.
+template <int P>
+FFDKIT_INLINE void basisLanes(const AxisView& axis, int cell, Lane t, Lane* N) {
+  const int p = P >= 0 ? P : axis.degree;
   const int s = axis.cellSpan[cell];
   const double* U = axis.knots;
-  double left[kMaxBasis][kLanes];
-  double right[kMaxBasis][kLanes];
-  for (int l = 0; l < kLanes; ++l) N[0][l] = 1.0;
+  Lane left[kMaxBasis];
+  Lane right[kMaxBasis];
+  N[0] = splat(1.0);
   for (int j = 1; j <= p; ++j) {
-    const double kl = U[s + 1 - j];
-    const double kr = U[s + j];
-    for (int l = 0; l < kLanes; ++l) {
-      left[j][l] = t[l] - kl;
-      right[j][l] = kr - t[l];
-    }
-    double saved[kLanes] = {};
+    left[j] = t - U[s + 1 - j];
+    right[j] = U[s + j] - t;
+    Lane saved = splat(0.0);
     for (int r = 0; r < j; ++r) {
-      const double inv = 1.0 / (U[s + r + 1] - U[s + 1 - j + r]);
-      for (int l = 0; l < kLanes; ++l) {
-        const double temp = N[r][l] * inv;
-        N[r][l] = saved[l] + right[r + 1][l] * temp;
-        saved[l] = left[j - r][l] * temp;
-      }
+      const Lane temp = N[r] * (1.0 / (U[s + r + 1] - U[s + 1 - j + r]));
+      N[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
     }
-    for (int l = 0; l < kLanes; ++l) N[j][l] = saved[l];
+    N[j] = saved;
   }
 }
 
-inline void loadLanes(const double* src, std::uint32_t q, int count, double* dst) {
-  for (int l = 0; l < kLanes; ++l) dst[l] = src[q + std::min(l, count - 1)];
+FFDKIT_INLINE Lane loadLanes(const double* src, std::uint32_t q, int count) {
+  Lane x;
+  if (count == kLanes) {
+    __builtin_memcpy(&x, src + q, sizeof(Lane));
+  } else {
+    for (int l = 0; l < kLanes; ++l) x[l] = src[q + std::min(l, count - 1)];
+  }
+  return x;
 }
 
-// Dense block: d = sum_abc Bu Bv Bw W_abc over the cell window W (world displacement or its change).
-// mode 0: out = Q + s d;  mode 1: out += s d.
-FFDKIT_VECTOR_CLONES
-void denseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
-                const double* Wx, const double* Wy, const double* Wz, int mode) {
-  const int nu = in.axis[0].degree + 1;
-  const int nv = in.axis[1].degree + 1;
-  const int nw = in.axis[2].degree + 1;
-  double bu[kMaxBasis][kLanes];
-  double bv[kMaxBasis][kLanes];
-  double bw[kMaxBasis][kLanes];
-  double t[kLanes];
+FFDKIT_INLINE void storeLanes(const KernelInput& in, std::uint32_t q0, int count, bool blended, Lane dx, Lane dy, Lane dz,
+                       bool accumulate) {
+  if (blended) {
+    Lane s;
+    for (int l = 0; l < kLanes; ++l) s[l] = in.blend[q0 + std::min(l, count - 1) - in.blendBegin];
+    dx *= s;
+    dy *= s;
+    dz *= s;
+  }
+  if (!in.order && count == kLanes) {
+    // Identity order: contiguous vector loads and stores.
+    Lane x, y, z;
+    if (accumulate) {
+      __builtin_memcpy(&x, in.ox + q0, sizeof(Lane));
+      __builtin_memcpy(&y, in.oy + q0, sizeof(Lane));
+      __builtin_memcpy(&z, in.oz + q0, sizeof(Lane));
+    } else {
+      __builtin_memcpy(&x, in.qx + q0, sizeof(Lane));
+      __builtin_memcpy(&y, in.qy + q0, sizeof(Lane));
+      __builtin_memcpy(&z, in.qz + q0, sizeof(Lane));
+    }
+    x += dx;
+    y += dy;
+    z += dz;
+    __builtin_memcpy(in.ox + q0, &x, sizeof(Lane));
+    __builtin_memcpy(in.oy + q0, &y, sizeof(Lane));
+    __builtin_memcpy(in.oz + q0, &z, sizeof(Lane));
+    return;
+  }
+  for (int l = 0; l < count; ++l) {
+    const std::uint32_t q = q0 + l;
+    const std::size_t p = in.order ? in.order[q] : q;
+    if (accumulate) {
+      in.ox[p] += dx[l];
+      in.oy[p] += dy[l];
+      in.oz[p] += dz[l];
+    } else {
+      in.ox[p] = in.qx[p] + dx[l];
+      in.oy[p] = in.qy[p] + dy[l];
+      in.oz[p] = in.qz[p] + dz[l];
+    }
+  }
+}
+
+// Dense block: d = sum_abc Bu_a Bv_b Bw_c W_abc over the cell window W (world displacements, or
+// their change); accumulate = false: out = Q + s d, true: out += s d.
+template <int P>
+FFDKIT_INLINE void denseBlockT(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
+                        const double* Wx, const double* Wy, const double* Wz, bool accumulate) {
+  const int nu = (P >= 0 ? P : in.axis[0].degree) + 1;
+  const int nv = (P >= 0 ? P : in.axis[1].degree) + 1;
+  const int nw = (P >= 0 ? P : in.axis[2].degree) + 1;
+  Lane bu[kMaxBasis], bv[kMaxBasis], bw[kMaxBasis];
   for (std::uint32_t q0 = begin; q0 < end; q0 += kLanes) {
     const int count = static_cast<int>(std::min<std::uint32_t>(kLanes, end - q0));
-    loadLanes(in.u, q0, count, t);
-    basisLanes(in.axis[0], cell[0], t, bu);
-    loadLanes(in.v, q0, count, t);
-    basisLanes(in.axis[1], cell[1], t, bv);
-    loadLanes(in.w, q0, count, t);
-    basisLanes(in.axis[2], cell[2], t, bw);
-    double dx[kLanes] = {}, dy[kLanes] = {}, dz[kLanes] = {};
+    basisLanes<P>(in.axis[0], cell[0], loadLanes(in.u, q0, count), bu);
+    basisLanes<P>(in.axis[1], cell[1], loadLanes(in.v, q0, count), bv);
+    basisLanes<P>(in.axis[2], cell[2], loadLanes(in.w, q0, count), bw);
+    Lane dx = splat(0.0), dy = splat(0.0), dz = splat(0.0);
     int wi = 0;
     for (int c = 0; c < nw; ++c) {
       for (int b = 0; b < nv; ++b) {
-        double sx[kLanes] = {}, sy[kLanes] = {}, sz[kLanes] = {};
+        Lane sx = splat(0.0), sy = splat(0.0), sz = splat(0.0);
         for (int a = 0; a < nu; ++a, ++wi) {
-          const double px = Wx[wi], py = Wy[wi], pz = Wz[wi];
-          for (int l = 0; l < kLanes; ++l) {
-            sx[l] += bu[a][l] * px;
-            sy[l] += bu[a][l] * py;
-            sz[l] += bu[a][l] * pz;
-          }
+          sx += bu[a] * Wx[wi];
+          sy += bu[a] * Wy[wi];
+          sz += bu[a] * Wz[wi];
         }
-        for (int l = 0; l < kLanes; ++l) {
-          const double nn = bv[b][l] * bw[c][l];
-          dx[l] += nn * sx[l];
-          dy[l] += nn * sy[l];
-          dz[l] += nn * sz[l];
-        }
+        const Lane nn = bv[b] * bw[c];
+        dx += nn * sx;
+        dy += nn * sy;
+        dz += nn * sz;
       }
     }
-    for (int l = 0; l < count; ++l) {
-      const std::uint32_t q = q0 + l;
-      const Eigen::Index p = in.order ? in.order[q] : q;
-      const double s = blended ? in.blend[q - in.blendBegin] : 1.0;
-      if (mode == 0) {
-        in.ox[p] = in.qx[p] + s * dx[l];
-        in.oy[p] = in.qy[p] + s * dy[l];
-        in.oz[p] = in.qz[p] + s * dz[l];
-      } else {
-        in.ox[p] += s * dx[l];
-        in.oy[p] += s * dy[l];
-        in.oz[p] += s * dz[l];
-      }
+    storeLanes(in, q0, count, blended, dx, dy, dz, accumulate);
+  }
+}
+
+FFDKIT_VECTOR_CLONES
+void denseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
+                const double* Wx, const double* Wy, const double* Wz, bool accumulate) {
+  const int p = in.axis[0].degree;
+  if (p == in.axis[1].degree && p == in.axis[2].degree) {
+    switch (p) {
+      case 1: return denseBlockT<1>(in, cell, begin, end, blended, Wx, Wy, Wz, accumulate);
+      case 2: return denseBlockT<2>(in, cell, begin, end, blended, Wx, Wy, Wz, accumulate);
+      case 3: return denseBlockT<3>(in, cell, begin, end, blended, Wx, Wy, Wz, accumulate);
+      default: break;
     }
   }
+  denseBlockT<-1>(in, cell, begin, end, blended, Wx, Wy, Wz, accumulate);
 }
 
 struct SparseTerm {
@@ -142,42 +185,30 @@ struct SparseTerm {
 FFDKIT_VECTOR_CLONES
 void sparseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
                  const SparseTerm* terms, int termCount) {
-  double bu[kMaxBasis][kLanes];
-  double bv[kMaxBasis][kLanes];
-  double bw[kMaxBasis][kLanes];
-  double t[kLanes];
+  Lane bu[kMaxBasis], bv[kMaxBasis], bw[kMaxBasis];
   for (std::uint32_t q0 = begin; q0 < end; q0 += kLanes) {
     const int count = static_cast<int>(std::min<std::uint32_t>(kLanes, end - q0));
-    loadLanes(in.u, q0, count, t);
-    basisLanes(in.axis[0], cell[0], t, bu);
-    loadLanes(in.v, q0, count, t);
-    basisLanes(in.axis[1], cell[1], t, bv);
-    loadLanes(in.w, q0, count, t);
-    basisLanes(in.axis[2], cell[2], t, bw);
-    double dx[kLanes] = {}, dy[kLanes] = {}, dz[kLanes] = {};
+    basisLanes<-1>(in.axis[0], cell[0], loadLanes(in.u, q0, count), bu);
+    basisLanes<-1>(in.axis[1], cell[1], loadLanes(in.v, q0, count), bv);
+    basisLanes<-1>(in.axis[2], cell[2], loadLanes(in.w, q0, count), bw);
+    Lane dx = splat(0.0), dy = splat(0.0), dz = splat(0.0);
     for (int i = 0; i < termCount; ++i) {
       const SparseTerm& term = terms[i];
-      for (int l = 0; l < kLanes; ++l) {
-        const double weight = bu[term.a][l] * bv[term.b][l] * bw[term.c][l];
-        dx[l] += weight * term.dx;
-        dy[l] += weight * term.dy;
-        dz[l] += weight * term.dz;
-      }
+      const Lane weight = bu[term.a] * bv[term.b] * bw[term.c];
+      dx += weight * term.dx;
+      dy += weight * term.dy;
+      dz += weight * term.dz;
     }
-    for (int l = 0; l < count; ++l) {
-      const std::uint32_t q = q0 + l;
-      const Eigen::Index p = in.order ? in.order[q] : q;
-      const double s = blended ? in.blend[q - in.blendBegin] : 1.0;
-      in.ox[p] += s * dx[l];
-      in.oy[p] += s * dy[l];
-      in.oz[p] += s * dz[l];
-    }
+    storeLanes(in, q0, count, blended, dx, dy, dz, true);
   }
 }
 
 }  // namespace detail
 
 namespace {
+
+// Below this many points a parallel region costs more than it saves (thread wake-up, barriers).
+constexpr Eigen::Index kParallelPoints = 16384;
 
 detail::KernelInput makeInput(const Lattice& lattice, const Embedding& e, Eigen::MatrixX3d& out) {
   detail::KernelInput in{};
@@ -244,6 +275,11 @@ Deformer::Deformer(Embedding embedding) : embedding_(std::move(embedding)) {}
 
 const Eigen::MatrixX3d& Deformer::deform(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input) {
   embedding_.checkLattice(lattice);
+  return deformStale(lattice, input);
+}
+
+const Eigen::MatrixX3d& Deformer::deformStale(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input) {
+  if (lattice.counts() != embedding_.latticeCounts()) embedding_.checkLattice(lattice);  // throws with the details
   const Eigen::Index n = embedding_.pointCount();
   if (input.rows() != n) {
     throw LatticeError("Deformer::deform: expected " + std::to_string(n) + " x 3 input points (the embedded ones), got " +
@@ -260,7 +296,7 @@ const Eigen::MatrixX3d& Deformer::deform(const Lattice& lattice, const Eigen::Re
   in.qz = input.col(2).data();
   const auto& blocks = embedding_.blocks();
   const std::int64_t blockCount = static_cast<std::int64_t>(blocks.size());
-  const bool parallel = parallel_;
+  const bool parallel = parallel_ && n >= kParallelPoints;
 #pragma omp parallel if (parallel)
   {
     std::vector<double> W;
@@ -274,7 +310,7 @@ const Eigen::MatrixX3d& Deformer::deform(const Lattice& lattice, const Eigen::Re
       }
       const std::size_t size = W.size() / 3;
       detail::denseBlock(in, block.cell, block.begin, block.end, block.blended, W.data(), W.data() + size,
-                         W.data() + 2 * size, 0);
+                         W.data() + 2 * size, false);
     }
     // Frozen points (Identity outside, Failed, beyond Falloff) are the input unchanged.
 #pragma omp for schedule(static)
@@ -322,7 +358,7 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
   const auto& blocks = embedding_.blocks();
   const std::int64_t blockCount = static_cast<std::int64_t>(blocks.size());
   Eigen::Index evaluated = 0;
-  const bool parallel = parallel_;
+  const bool parallel = parallel_ && embedding_.pointCount() >= kParallelPoints;
 #pragma omp parallel if (parallel) reduction(+ : evaluated)
   {
     std::vector<detail::SparseTerm> terms;
@@ -352,7 +388,7 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
       if (!W.empty()) {
         const std::size_t size = W.size() / 3;
         detail::denseBlock(in, block.cell, block.begin, block.end, block.blended, W.data(), W.data() + size,
-                           W.data() + 2 * size, 1);
+                           W.data() + 2 * size, true);
       } else {
         detail::sparseBlock(in, block.cell, block.begin, block.end, block.blended, terms.data(),
                             static_cast<int>(terms.size()));

@@ -13,6 +13,8 @@ namespace {
 
 constexpr int kMaxBasis = 33;
 constexpr std::uint32_t kBlockSize = 1024;
+// Below this many points a parallel region costs more than it saves (thread wake-up, barriers).
+constexpr Eigen::Index kParallelPoints = 16384;
 
 // Evaluates Xbar and its Jacobian on the rest lattice; one per thread-safe call, no allocation.
 class RestSolver {
@@ -274,7 +276,7 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
   const Eigen::Matrix3d Ainv = lattice.restAffineLinear().inverse();
   const Eigen::Vector3d b = lattice.restAffineOffset();
 
-#pragma omp parallel for schedule(dynamic, 4096) if (options.parallel)
+#pragma omp parallel for schedule(dynamic, 1024) if (options.parallel && n >= kParallelPoints)
   for (Eigen::Index p = 0; p < n; ++p) {
     const Eigen::Vector3d q = toLocal * points.row(p).transpose();
     Eigen::Vector3d uvw;

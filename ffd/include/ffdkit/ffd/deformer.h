@@ -43,6 +43,13 @@ class Deformer {
   /// @throws LatticeError if the embedding is stale for `lattice` or input has the wrong size.
   const Eigen::MatrixX3d& deform(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input);
 
+  /// Full evaluation with an embedding whose rest lattice has moved since (lattice.restRevision()
+  /// differs; the counts must match): out = input + s * F.linear() * sum B (P - Pbar) with the old
+  /// (u,v,w). This is the throttled-re-embedding approximation of seed 001 l.2377, used by
+  /// Pipeline for lattices other than the one being edited; exact when the embedding is fresh.
+  /// @throws LatticeError if the lattice counts differ from the embedding's or input has the wrong size.
+  const Eigen::MatrixX3d& deformStale(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input);
+
   /// Incremental evaluation: only the points influenced by control points that changed since the
   /// last deform()/update() are touched, by adding B_ijk(u,v,w) * dP for each changed control
   /// point (or the dense window of changes when most of a cell's control points moved).

@@ -1,0 +1,180 @@
+// FFD engine benchmarks (issue 3). Names carry their sizes so results compare across commits.
+// Run: bench_ffd --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// Each benchmark checks its result against the reference path once before timing.
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "ffdkit/ffd/cylindrical_lattice.h"
+#include "ffdkit/ffd/deformer.h"
+#include "ffdkit/ffd/embedding.h"
+#include "ffdkit/ffd/lattice.h"
+
+using namespace ffdkit::ffd;
+
+namespace {
+
+Lattice boxLattice(int count, AxisBasis basis) {
+  BoxLatticeOptions options;
+  options.counts = {count, count, count};
+  options.bases = {basis, basis, basis};
+  return makeBoxLattice(options);
+}
+
+// Uniform random points in the unit box, in random order (the worst case for the cell grouping).
+Eigen::MatrixX3d randomPoints(Eigen::Index n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  Eigen::MatrixX3d Q(n, 3);
+  for (Eigen::Index r = 0; r < n; ++r) Q.row(r) << U(rng), U(rng), U(rng);
+  return Q;
+}
+
+Eigen::MatrixX3d moved(const Lattice& lattice, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-0.1, 0.1);
+  Eigen::MatrixX3d P = lattice.controlPoints();
+  for (Eigen::Index r = 0; r < P.rows(); ++r)
+    for (int c = 0; c < 3; ++c) P(r, c) += U(rng);
+  return P;
+}
+
+// Spot check of the fast path against Lattice::evaluate (eq. (6.1) from scratch).
+void check(const Lattice& lattice, const Deformer& deformer, benchmark::State& state) {
+  const Eigen::MatrixX3d uvw = deformer.embedding().parameters();
+  const Eigen::Index n = uvw.rows();
+  for (Eigen::Index r = 0; r < n; r += std::max<Eigen::Index>(1, n / 997)) {
+    const Eigen::Vector3d x = lattice.frame() * lattice.evaluate(uvw.row(r).transpose());
+    if ((x - deformer.points().row(r).transpose()).norm() > 1e-12 * (1.0 + x.norm())) {
+      state.SkipWithError("deformed point disagrees with Lattice::evaluate");
+      return;
+    }
+  }
+}
+
+struct DeformCase {
+  Lattice lattice;
+  Eigen::MatrixX3d Q;
+  std::unique_ptr<Deformer> deformer;
+};
+
+DeformCase& deformCase(const std::string& key, int count, AxisBasis basis, Eigen::Index n) {
+  static std::map<std::string, std::unique_ptr<DeformCase>> cache;
+  auto& slot = cache[key];
+  if (!slot) {
+    cache.clear();  // keep one big case in memory at a time
+    auto c = std::make_unique<DeformCase>(DeformCase{boxLattice(count, basis), randomPoints(n, 1), nullptr});
+    c->deformer = std::make_unique<Deformer>(embed(c->lattice, c->Q));
+    c->lattice.setControlPoints(moved(c->lattice, 2));
+    cache[key] = std::move(c);
+  }
+  return *cache[key];
+}
+
+void BM_Deform(benchmark::State& state, int count, AxisBasis basis, Eigen::Index n, std::string key) {
+  DeformCase& c = deformCase(key, count, basis, n);
+  c.deformer->deform(c.lattice, c.Q);
+  check(c.lattice, *c.deformer, state);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(c.deformer->deform(c.lattice, c.Q).data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * n);
+  state.counters["embed_bytes_per_point"] = double(c.deformer->embedding().memoryBytes()) / double(n);
+}
+
+void BM_Update(benchmark::State& state, Eigen::Vector3i control, Eigen::Index n, std::string key) {
+  DeformCase& c = deformCase(key, 8, AxisBasis::bspline(3), n);
+  const Eigen::Index flat = c.lattice.index(control[0], control[1], control[2]);
+  const Eigen::Vector3d base = c.lattice.controlPoints().row(flat).transpose();
+  c.deformer->deform(c.lattice, c.Q);
+  double step = 0.0;
+  Eigen::Index evaluated = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    step += 1e-3;
+    c.lattice.setControlPoint(flat, base + Eigen::Vector3d(step, -step, step));
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(c.deformer->update(c.lattice).data());
+    evaluated = c.deformer->lastStats().evaluatedPoints;
+  }
+  // The incremental result must still match a full evaluation.
+  const Eigen::MatrixX3d incremental = c.deformer->points();
+  Deformer full(embed(c.lattice, c.Q));
+  if ((full.deform(c.lattice, c.Q) - incremental).rowwise().norm().maxCoeff() > 1e-12) {
+    state.SkipWithError("incremental update disagrees with full evaluation");
+  }
+  state.counters["points_touched"] = double(evaluated);
+}
+
+// Newton embedding into a non-affine lattice.
+void BM_EmbedNewton(benchmark::State& state, bool cylindrical, Eigen::Index n) {
+  Lattice lattice = makeBoxLattice();
+  if (cylindrical) {
+    lattice = makeCylindricalLattice(CylindricalLatticeOptions{});
+  } else {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> U(-0.06, 0.06);
+    Eigen::MatrixX3d rest = lattice.restPoints();
+    for (Eigen::Index r = 0; r < rest.rows(); ++r)
+      for (int c = 0; c < 3; ++c) rest(r, c) += U(rng);
+    lattice.setRestPoints(rest);
+  }
+  // Points inside the rest lattice: images of random parameters.
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  Eigen::MatrixX3d Q(n, 3);
+  for (Eigen::Index r = 0; r < n; ++r) Q.row(r) = lattice.evaluateRest(Eigen::Vector3d(U(rng), U(rng), U(rng))).transpose();
+  Eigen::Index failed = 0, inside = 0;
+  double bytes = 0;
+  for (auto _ : state) {
+    Embedding e = embed(lattice, Q);
+    failed = e.failedCount();
+    inside = e.insideCount();
+    bytes = double(e.memoryBytes()) / double(n);
+    benchmark::DoNotOptimize(e.sortedU().data());
+  }
+  if (failed != 0) state.SkipWithError("Newton failed on some points");
+  state.counters["inside"] = double(inside);
+  state.counters["embed_bytes_per_point"] = bytes;
+  state.SetItemsProcessed(state.iterations() * n);
+}
+
+const bool registered = [] {
+  auto name = [](const char* what, Eigen::Index n, const std::string& lattice) {
+    return std::string(what) + "/points:" + std::to_string(n) + "/lattice:" + lattice;
+  };
+  for (Eigen::Index n = 1000; n <= 10000000; n *= 10) {
+    const std::string key = name("BM_Deform", n, "4x4x4/basis:bspline3");
+    benchmark::RegisterBenchmark(key.c_str(), BM_Deform, 4, AxisBasis::bspline(3), n, key)
+        ->Unit(benchmark::kMillisecond)->UseRealTime();
+  }
+  const Eigen::Index million = 1000000;
+  for (auto [count, basis, label] : {std::tuple{4, AxisBasis::bernstein(), "4x4x4/basis:bernstein"},
+                                     std::tuple{10, AxisBasis::bspline(3), "10x10x10/basis:bspline3"},
+                                     std::tuple{8, AxisBasis::bspline(3), "8x8x8/basis:bspline3"}}) {
+    const std::string key = name("BM_Deform", million, label);
+    benchmark::RegisterBenchmark(key.c_str(), BM_Deform, count, basis, million, key)
+        ->Unit(benchmark::kMillisecond)->UseRealTime();
+  }
+  const std::string updateKey = name("BM_Deform", million, "8x8x8/basis:bspline3");
+  for (auto [control, label] : {std::pair{Eigen::Vector3i(0, 0, 0), "corner(0,0,0)"},
+                                std::pair{Eigen::Vector3i(1, 1, 1), "(1,1,1)"},
+                                std::pair{Eigen::Vector3i(3, 3, 3), "interior(3,3,3)"}}) {
+    benchmark::RegisterBenchmark((name("BM_Update", million, "8x8x8/basis:bspline3") + "/moved:" + label).c_str(),
+                                 BM_Update, control, million, updateKey)
+        ->Unit(benchmark::kMillisecond)->UseRealTime();
+  }
+  benchmark::RegisterBenchmark(name("BM_EmbedNewton", million, "4x4x4/rest:user").c_str(), BM_EmbedNewton, false, million)
+      ->Unit(benchmark::kMillisecond)->UseRealTime();
+  benchmark::RegisterBenchmark(name("BM_EmbedNewton", million, "3x8x4/rest:cylindrical").c_str(), BM_EmbedNewton, true, million)
+      ->Unit(benchmark::kMillisecond)->UseRealTime();
+  return true;
+}();
+
+}  // namespace

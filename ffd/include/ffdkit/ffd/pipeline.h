@@ -1,0 +1,127 @@
+#pragma once
+
+#include <compare>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ffdkit/ffd/deformer.h"
+#include "ffdkit/ffd/embedding.h"
+#include "ffdkit/ffd/lattice.h"
+
+namespace ffdkit::ffd {
+
+/// Typed handle of a lattice in a Pipeline.
+struct LatticeId {
+  int value = -1;
+  auto operator<=>(const LatticeId&) const = default;
+};
+
+/// When lattices other than the one being edited are re-embedded after their input points or
+/// their rest lattice moved (seed 001 l.2377). Between re-embeddings such a lattice deforms its
+/// new input with its old (u,v,w) (Deformer::deformStale), which is exact while it is at rest.
+struct ReembedThrottle {
+  enum class Kind {
+    Immediate,  ///< re-embed on every update (exact, slowest)
+    EveryN,     ///< re-embed on every n-th update that finds the lattice stale
+    OnDemand    ///< re-embed only in reembedAll() (e.g. on gesture release)
+  };
+  Kind kind = Kind::Immediate;
+  int n = 1;  ///< EveryN only, >= 1
+
+  static ReembedThrottle immediate() { return {Kind::Immediate, 1}; }
+  static ReembedThrottle everyN(int n) { return {Kind::EveryN, n}; }
+  static ReembedThrottle onDemand() { return {Kind::OnDemand, 1}; }
+};
+
+/// What one lattice did in the last update().
+struct StageReport {
+  LatticeId id;
+  bool reembedded = false;     ///< a new embedding was computed
+  bool approximate = false;    ///< deformed with a stale embedding (throttled)
+  bool outputChanged = false;  ///< its output points differ from the previous update
+};
+
+/// The FFD pipeline of one object (seed 001 l.2373-2377, Fig. 6-7): a tree of lattices
+/// evaluated in pre-order (parent before children, siblings by ascending priority, then by
+/// insertion), the output points of one lattice being the input points of the next.
+/// Owns its lattices (value semantics); edit them through lattice(id) or setLattice(id, ...).
+class Pipeline {
+ public:
+  /// @param points #points x 3 WORLD object points (the input of the first lattice).
+  /// @throws LatticeError on non-finite points.
+  explicit Pipeline(const Eigen::Ref<const Eigen::MatrixX3d>& points, const EmbedOptions& options = {});
+
+  /// Adds a lattice as a root (no parent) or as the last-by-priority child of `parent`.
+  /// @throws LatticeError on an unknown parent.
+  LatticeId addLattice(Lattice lattice, std::optional<LatticeId> parent = std::nullopt, int priority = 0);
+  /// Removes a lattice and its whole subtree. @throws LatticeError on an unknown id.
+  void removeLattice(LatticeId id);
+  /// Sibling order: lower priority runs first. @throws LatticeError on an unknown id.
+  void setPriority(LatticeId id, int priority);
+
+  /// @throws LatticeError on an unknown id.
+  Lattice& lattice(LatticeId id);
+  const Lattice& lattice(LatticeId id) const;
+  void setLattice(LatticeId id, const Lattice& lattice) { this->lattice(id) = lattice; }
+  std::optional<LatticeId> parent(LatticeId id) const;
+
+  /// The lattices in evaluation (pre-)order.
+  std::vector<LatticeId> order() const;
+
+  /// Replaces the object points (same or different count): every lattice re-embeds on the next update.
+  void setPoints(const Eigen::Ref<const Eigen::MatrixX3d>& points);
+
+  /// The lattice being edited is always re-embedded immediately; the others follow the throttle.
+  void setActiveLattice(std::optional<LatticeId> id) { active_ = id; }
+  void setThrottle(const ReembedThrottle& throttle);
+  const ReembedThrottle& throttle() const { return throttle_; }
+
+  /// Runs the pipeline: stages whose embedding is fresh and whose input did not change are updated
+  /// incrementally; stale stages are re-embedded or deformed approximately per the throttle.
+  /// @return #points x 3 deformed WORLD points.
+  const Eigen::MatrixX3d& update();
+  /// Re-embeds every stale lattice, then updates: the exact result (call on gesture release).
+  const Eigen::MatrixX3d& reembedAll();
+
+  /// Output of the last update() (the object points before the first update()).
+  const Eigen::MatrixX3d& points() const;
+  /// Input object points.
+  const Eigen::MatrixX3d& inputPoints() const { return input_; }
+  /// Embedding of a lattice's input (null before its first update). @throws LatticeError on an unknown id.
+  const Embedding* embedding(LatticeId id) const;
+  const std::vector<StageReport>& lastReport() const { return report_; }
+
+ private:
+  struct Node {
+    Lattice lattice;
+    std::optional<LatticeId> parent;
+    int priority = 0;
+    int serial = 0;
+    std::unique_ptr<Deformer> deformer;
+    std::uint64_t embeddedRest = 0;
+    std::uint64_t embeddedInput = 0;
+    std::uint64_t outputVersion = 0;
+    int pending = 0;
+  };
+  Node& node(LatticeId id);
+  const Node& node(LatticeId id) const;
+  const Eigen::MatrixX3d& run(bool forceEmbed);
+
+  Eigen::MatrixX3d input_;
+  EmbedOptions options_;
+  std::map<LatticeId, Node> nodes_;
+  int nextId_ = 0;
+  std::uint64_t inputVersion_ = 1;
+  std::uint64_t versionCounter_ = 1;
+  std::optional<LatticeId> active_;
+  ReembedThrottle throttle_;
+  std::vector<StageReport> report_;
+  const Eigen::MatrixX3d* output_ = nullptr;
+};
+
+}  // namespace ffdkit::ffd
