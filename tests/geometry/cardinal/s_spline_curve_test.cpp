@@ -146,6 +146,19 @@ TEST(SSplineCurve, SecondDerivativeJumpsAtKnotsByTruncationTerm) {
   }
 }
 
+TEST(SSplineCurve, ScaledTangentSetsTheEndDerivativeUpToTheEdgeTerm) {
+  // spec §7 item 6: scaleTangent pre-divides dP0 by lambda_w.
+  const Eigen::MatrixX3d p = randomPoints(10, 7);
+  SSplineCurveOptions o;
+  o.end = SSplineEnd::Tangent;
+  o.scaleTangent = true;
+  o.startTangent = Eigen::Vector3d(1.0, -2.0, 0.5);
+  const SSplineCurve c(p, o);
+  const double edge = c.basis().evaluate(-4.0, 1, Limit::FromRight);
+  EXPECT_LT((c.evaluate(0.0, 1, Limit::FromRight) - (o.startTangent + edge * p.row(4).transpose())).norm(),
+            1e-12);
+}
+
 TEST(SSplineCurve, ReversingTheDataReversesTheCurve) {
   const Eigen::MatrixX3d p = randomPoints(9, 5);
   const Eigen::MatrixX3d r = p.colwise().reverse();

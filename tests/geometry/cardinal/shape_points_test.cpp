@@ -74,6 +74,48 @@ TEST(HeuristicShapePoints, MovingAPointChangesOnlyNearbyShapePoints) {
   }
 }
 
+TEST(HeuristicShapePoints, CurveChangesOnlyWithinThreeIntervals) {
+  // P7, heuristic default: moving P_k changes the curve only on [t_{k-3}, t_{k+3}].
+  std::srand(40);
+  const Eigen::MatrixX3d p = Eigen::MatrixX3d::Random(13, 3);
+  const SigmaKnots k = SigmaKnots::uniform(12);
+  Eigen::MatrixX3d q = p;
+  q.row(6) += Eigen::RowVector3d(0.2, 0.4, -0.1);
+  const SigmaCurve a = interpolateSigmaCurve(k, p, ShapeMode::Heuristic);
+  const SigmaCurve b = interpolateSigmaCurve(k, q, ShapeMode::Heuristic);
+  for (int step = 0; step <= 96; ++step) {
+    const double x = step / 8.0;
+    if (x <= 3.0 || x >= 9.0) {
+      EXPECT_EQ((a.evaluate(x) - b.evaluate(x)).norm(), 0.0) << x;
+    }
+  }
+}
+
+TEST(CubicShapePoints, MovingOneShapePointMakesOnlyNearbyIntervalsQuartic) {
+  // T13: moving Phat_i of a cubic-mode curve changes it only on (t_{i-1}, t_{i+2}), and only
+  // those intervals stop being cubic.
+  std::srand(43);
+  const SigmaKnots k = nonUniformKnots();
+  const SigmaCurve c = interpolateSigmaCurve(k, Eigen::MatrixX3d::Random(7, 3));
+  Eigen::MatrixX3d s = c.shapePoints();
+  const int i = 3;
+  s.row(i - k.shapeFirst()) += Eigen::RowVector3d(0.5, 0.5, 0.5);
+  const SigmaCurve moved(k, c.points(), s);
+  for (int interval = 0; interval < k.last(); ++interval) {
+    const QuarticBezier b = moved.bezier(interval);
+    const double fourth = (b[0] - 4 * b[1] + 6 * b[2] - 4 * b[3] + b[4]).norm();
+    if (interval >= i - 1 && interval <= i + 1) {
+      EXPECT_GT(fourth, 1e-3) << interval;
+    } else {
+      EXPECT_LT(fourth, 1e-12) << interval;
+      for (int step = 0; step <= 10; ++step) {
+        const double x = k.knot(interval) + k.delta(interval) * step / 10.0;
+        EXPECT_EQ((moved.evaluate(x) - c.evaluate(x)).norm(), 0.0) << x;
+      }
+    }
+  }
+}
+
 TEST(CubicShapePoints, MatchSpecT11AndTheClampedSpline) {
   const Eigen::MatrixX3d p = planar({{0, 0}, {1, 1}, {2, 0}, {3, -1}, {4, 0}});
   EndSlopes e;

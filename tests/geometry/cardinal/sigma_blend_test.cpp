@@ -135,6 +135,20 @@ TEST(SigmaBlend, NonUniformGapsStillReproduceAndAreC2) {
   }
 }
 
+TEST(SigmaBlend, WarnsWhenTensionsDifferAtASharedUKnot) {
+  // spec §7 item 17: surface 2 has tension at a u-knot that surface 1 lacks.
+  const SigmaSurface a = circle(0, 1);
+  SigmaSurface b = star(3, 4);
+  Eigen::VectorXd beta2 = Eigen::VectorXd::Zero(10);
+  beta2[1] = 5.0;
+  b.knotsU = SigmaKnots(b.knotsU.knots(), beta2, b.knotsU.options());
+  const BlendResult r = blendSurfaces(a, b);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("u = 4"), std::string::npos) << r.warnings[0];
+  // Surface 1 is still reproduced exactly.
+  for (int k = 0; k < 40; ++k) EXPECT_LT((r.composite.evaluate(k, 3.0) - a.evaluate(k, 3.0)).norm(), 1e-12);
+}
+
 TEST(SigmaBlend, RejectsMismatchedSurfaces) {
   const SigmaSurface a = circle(0, 1);
   // u range [0, 20] vs [0, 40].

@@ -88,6 +88,20 @@ TEST(SigmaBasis, CardinalAtKnotsAndPartitionOfUnity) {
   }
 }
 
+TEST(SigmaBasis, UniformCardinalBasisIgnoresTension) {
+  // P17: on uniform knots sigma_i does not depend on beta2 (C_{i,0} = C_{i,1} = 1).
+  Eigen::VectorXd beta2(8);
+  beta2 << 3, 0, 50, 7, 0, 1, 9, 0;
+  const SigmaKnots plain = SigmaKnots::uniform(7);
+  const SigmaKnots tense(plain.knots(), beta2);
+  for (int i = 0; i <= 7; ++i) {
+    for (int step = 0; step <= 70; ++step) {
+      const double x = step / 10.0;
+      EXPECT_NEAR(sigmaBasis(plain, i, x, false), sigmaBasis(tense, i, x, false), 1e-14);
+    }
+  }
+}
+
 TEST(SigmaCurve, InterpolatesWhateverTheShapePoints) {
   for (bool closed : {false, true}) {
     const SigmaCurve c = randomCurve(mixedKnots(closed), 21);
