@@ -42,6 +42,25 @@ PatchSurface PatchSurface::build(const PolygonMesh& mesh, const Tensions& tensio
   s.tensions_ = resolveTensions(tensions, s.topology_);
   s.network_ = solveCurveNetwork(mesh, s.topology_, s.tensions_, options.network);
   if (!s.network_.converged) throw PolyhedronError(s.network_.message);
+  for (int v = 0; v < s.topology_.vertexCount(); ++v) {
+    // t(theta) turns from T^c (theta = 0) to T^s (pi/2) counter-clockwise about the outward
+    // normal, so T^c x T^s points out; compare with the area-weighted normal of the faces at v.
+    Eigen::Vector3d faceNormal = Eigen::Vector3d::Zero();
+    for (int he : s.topology_.ringHalfEdges(v)) {
+      const int f = s.topology_.face(he);
+      if (f < 0) continue;
+      const auto& c = s.topology_.faceVertices(f);
+      for (std::size_t k = 0; k < c.size(); ++k) {
+        faceNormal += mesh.vertices.row(c[k]).cross(mesh.vertices.row(c[(k + 1) % c.size()])).transpose();
+      }
+    }
+    const Frame& frame = s.network_.frames[v];
+    if (frame.tc.cross(frame.ts).dot(faceNormal) < 0.0) {
+      s.warnings_.push_back("vertex " + std::to_string(v) +
+                            ": the tangent plane of the network faces against the polyhedron there (fold); "
+                            "check the tensions or the vertex position");
+    }
+  }
   s.triangulated_ = splitFaces(mesh, s.topology_, s.network_, options.splitRule);
   for (int f = 0; f < s.topology_.faceCount(); ++f) {
     if (!s.triangulated_.splitPointInside[f]) {

@@ -101,7 +101,10 @@ Eigen::Vector3d RationalQuarticTriangle::evaluate(double u, double v, double w) 
 }
 
 Eigen::Vector3d RationalQuarticTriangle::normal(double u, double v, double w) const {
-  const PatchDerivatives p = evaluateWithPartials(u, v, w);
+  return unitNormal(evaluateWithPartials(u, v, w));
+}
+
+Eigen::Vector3d unitNormal(const PatchDerivatives& p) {
   const Eigen::Vector3d n = (p.du - p.dw).cross(p.dv - p.dw);
   const double length = n.norm();
   if (!(length > 0.0) || !std::isfinite(length)) return Eigen::Vector3d::Zero();

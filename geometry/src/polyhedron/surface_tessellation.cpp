@@ -55,11 +55,12 @@ TessellatedSurface tessellate(const PatchSurface& surface, int samplesPerPatchSi
         }
         local[localIndex(i, j)] = id;
         const double u = static_cast<double>(i) / n, v = static_cast<double>(j) / n, w = static_cast<double>(k) / n;
+        const PatchDerivatives d = patch.evaluateWithPartials(u, v, w);
         if (!placed[id]) {
-          out.mesh.vertices.row(id) = patch.evaluate(u, v, w).transpose();
+          out.mesh.vertices.row(id) = d.point.transpose();
           placed[id] = true;
         }
-        out.normals.row(id) += patch.normal(u, v, w).transpose();
+        out.normals.row(id) += unitNormal(d).transpose();
       }
     }
     for (int i = 0; i < n; ++i) {

@@ -377,3 +377,35 @@ TEST(PatchSurface, RejectsBadInputWithPolyhedronError) {
 
 }  // namespace
 }  // namespace ffdkit::geometry::polyhedron
+
+namespace ffdkit::geometry::polyhedron {
+namespace {
+
+TEST(PatchSurface, ThousandFaceTorusOfTheBenchmarkIsG1) {
+  const PatchSurface s = PatchSurface::build(torusMesh(40, 25));
+  EXPECT_EQ(s.patches().size(), 4000u);
+  const NormalJumpReport jump = maxNormalJump(s, 20);
+  EXPECT_LE(jump.maxAngle, 1e-9);
+  EXPECT_GT(jump.minCosine, 0.0);
+  EXPECT_LE(maxBoundaryDeviation(s, 8), 1e-12 * boundingBoxDiagonal(s.mesh().vertices));
+}
+
+}  // namespace
+}  // namespace ffdkit::geometry::polyhedron
+
+namespace ffdkit::geometry::polyhedron {
+namespace {
+
+TEST(PatchSurface, WarnsAboutFoldsOnlyWhereTheTangentPlaneOpposesTheFaces) {
+  EXPECT_TRUE(PatchSurface::build(cubeMesh()).warnings().empty());
+  EXPECT_TRUE(PatchSurface::build(openHexagonalPrismMesh()).warnings().empty());
+  PolygonMesh dented = cubeMesh();
+  dented.vertices.row(7) << -0.9, -0.9, -0.9;  // corner (1,1,1) pushed through the centre
+  const PatchSurface s = PatchSurface::build(dented);
+  int folds = 0;
+  for (const auto& w : s.warnings()) folds += w.find("fold") != std::string::npos;
+  EXPECT_EQ(folds, 3);
+}
+
+}  // namespace
+}  // namespace ffdkit::geometry::polyhedron

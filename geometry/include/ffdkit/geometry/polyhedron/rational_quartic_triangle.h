@@ -51,6 +51,9 @@ struct RationalQuarticTriangle {
   Eigen::Vector3d normal(double u, double v, double w) const;
 };
 
+/// Unit normal (du - dw) x (dv - dw) of evaluated partials; the zero vector where it vanishes.
+Eigen::Vector3d unitNormal(const PatchDerivatives& derivatives);
+
 /// Degree elevation of a cubic V0..V3 to quartic points E0..E4 (eq. (4.12)):
 /// E_i = i/4 V_{i-1} + (1 - i/4) V_i.
 std::array<Eigen::Vector3d, 5> elevateCubic(const std::array<Eigen::Vector3d, 4>& cubic);
