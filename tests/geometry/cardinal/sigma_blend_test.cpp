@@ -135,6 +135,30 @@ TEST(SigmaBlend, NonUniformGapsStillReproduceAndAreC2) {
   }
 }
 
+TEST(SigmaBlend, JunctionTensionKeepsOriginalsAndGivesG2Beta) {
+  // With beta2 != 0 at v_n and v_{n+2} the composite still reproduces both originals and obeys
+  // Q_vv(v+) = Q_vv(v-) + beta2 Q_v(v-) there (G2, not C2).
+  BlendOptions o;
+  o.junctionBeta2 = {2.0, 0.5, 3.0};
+  const SigmaSurface a = circle(0, 1), b = star(3, 4);
+  const BlendResult r = blendSurfaces(a, b, o);
+  const int n = a.knotsV.last();
+  for (int k = 0; k < 40; ++k) {
+    EXPECT_LT((r.composite.evaluate(k, 4.0) - a.evaluate(k, 4.0)).norm(), 1e-12);
+    EXPECT_LT((r.composite.evaluate(k, 6.0 + r.surface2VOffset) - b.evaluate(k, 6.0)).norm(), 1e-12);
+    for (int m = 0; m < 2; ++m) {
+      const int j = n + 2 * m;
+      const double beta2 = o.junctionBeta2[static_cast<std::size_t>(2 * m)];
+      const auto [left, right] = secondDerivativeAcross(r.composite, k, j);
+      double su = 0.0;
+      const int i = r.composite.knotsU.locate(k, su);
+      const Eigen::Vector3d slope =
+          evaluateQuarticPatch(r.composite.patch(i, j - 1), su, 1.0, 0, 1) / r.composite.knotsV.delta(j - 1);
+      EXPECT_LT((right - left - beta2 * slope).norm(), 1e-10);
+    }
+  }
+}
+
 TEST(SigmaBlend, WarnsWhenTensionsDifferAtASharedUKnot) {
   // spec §7 item 17: surface 2 has tension at a u-knot that surface 1 lacks.
   const SigmaSurface a = circle(0, 1);
