@@ -409,3 +409,27 @@ TEST(PatchSurface, WarnsAboutFoldsOnlyWhereTheTangentPlaneOpposesTheFaces) {
 
 }  // namespace
 }  // namespace ffdkit::geometry::polyhedron
+
+namespace ffdkit::geometry::polyhedron {
+namespace {
+
+TEST(PatchSurface, PerEdgeWeightIsTheRatioOfSplitLegFactors) {
+  // Spec §3.6: omega = s_a / (s_a + s_b) on an original edge between faces a, b, 1/2 on split
+  // edges; a is the face across the edge: omega s_Q = (1 - omega) s_Q' keeps the split legs'
+  // components off t_i in balance.
+  const PatchSurface s = PatchSurface::build(hexagonalPrismMesh());
+  const auto& net = s.triangulated();
+  const MeshTopology& topo = net.topology;
+  auto factor = [&](int triangle) {
+    const double m = static_cast<double>(s.topology().faceVertices(net.triangleFace[triangle]).size());
+    return 1.0 / (2.0 * (1.0 - std::cos(2.0 * std::numbers::pi / m)));
+  };
+  for (int he = 0; he < topo.halfEdgeCount(); ++he) {
+    const bool original = topo.from(he) < net.originalVertexCount && topo.to(he) < net.originalVertexCount;
+    const double sa = factor(topo.face(he)), sb = factor(topo.face(topo.twin(he)));
+    EXPECT_NEAR(s.g1Scalars()[he].omega, original ? sb / (sa + sb) : 0.5, 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace ffdkit::geometry::polyhedron
