@@ -1,5 +1,10 @@
 #include "ffdkit/geometry/polyhedron/bicubic_join.h"
 
+#include <stdexcept>
+#include <string>
+
+#include "ffdkit/geometry/polyhedron/polyhedron_error.h"
+
 namespace ffdkit::geometry::polyhedron {
 namespace {
 
@@ -57,6 +62,51 @@ std::array<Eigen::Vector3d, 4> bicubicSecondRowFromTriangle(const RationalQuarti
           p[1] + (4.0 * (d130 - t.dw121) - l2 * (p[1] - p[0]) - 2.0 * l1 * (p[2] - p[1])) / 3.0,
           p[2] + (4.0 * (d220 - t.dw211) - l1 * (p[3] - p[2]) - 2.0 * l2 * (p[2] - p[1])) / 3.0,
           p[3] + 4.0 / 3.0 * (d310 - d301) - l2 * (p[3] - p[2])};
+}
+
+RationalQuarticTriangle relabelled(const RationalQuarticTriangle& patch, const std::array<int, 3>& order) {
+  const bool permutation = order[0] != order[1] && order[1] != order[2] && order[0] != order[2] &&
+                           order[0] >= 0 && order[1] >= 0 && order[2] >= 0 && order[0] < 3 && order[1] < 3 && order[2] < 3;
+  if (!permutation) throw std::invalid_argument("relabelled: expected a permutation of {0, 1, 2}");
+  RationalQuarticTriangle out;
+  for (int s = 0; s < 3; ++s) out.corners[s] = patch.corners[order[s]];
+  for (int i = 0; i <= 4; ++i) {
+    for (int j = 0; i + j <= 4; ++j) {
+      const int exponents[3] = {i, j, 4 - i - j};
+      int old[3];
+      for (int s = 0; s < 3; ++s) old[order[s]] = exponents[s];
+      out.d[T::index(i, j)] = patch.d[T::index(old[0], old[1])];
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    for (int o = 0; o < 3; ++o) {
+      if (c != o) out.subPoint(c, o) = patch.subPoint(order[c], order[o]);
+    }
+  }
+  return out;
+}
+
+RationalQuarticTriangle boundaryPatchForJoin(const PatchSurface& surface, int a, int b) {
+  const MeshTopology& topo = surface.triangulated().topology;
+  const int he = topo.findHalfEdge(a, b);
+  if (he < 0 || !topo.isBoundaryEdge(topo.edge(he))) {
+    throw PolyhedronError("bicubic join: (" + std::to_string(a) + ", " + std::to_string(b) +
+                          ") is not a boundary curve of the surface");
+  }
+  const int face = topo.face(he) >= 0 ? topo.face(he) : topo.face(topo.twin(he));
+  const RationalQuarticTriangle& patch = surface.patches()[face];
+  const int sa = patch.cornerSlot(a), sb = patch.cornerSlot(b);
+  return relabelled(patch, {sb, sa, 3 - sa - sb});
+}
+
+BicubicNet bicubicAcrossBoundary(const PatchSurface& surface, int a, int b, const std::array<Eigen::Vector3d, 4>& row2,
+                                 const std::array<Eigen::Vector3d, 4>& row3, double l1, double l2) {
+  const RationalQuarticTriangle triangle = boundaryPatchForJoin(surface, a, b);
+  const std::array<Eigen::Vector3d, 4> row0 = surface.curve(a, b);
+  const std::array<Eigen::Vector3d, 4> row1 = bicubicSecondRowFromTriangle(triangle, row0, l1, l2);
+  BicubicNet net;
+  for (int i = 0; i < 4; ++i) net[i] = {row0[i], row1[i], row2[i], row3[i]};
+  return net;
 }
 
 BicubicPoint evaluateBicubic(const BicubicNet& net, double u, double w) {

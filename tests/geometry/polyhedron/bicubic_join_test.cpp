@@ -89,3 +89,48 @@ TEST(BicubicJoin, TwoDirectionsAreInverse) {
 
 }  // namespace
 }  // namespace ffdkit::geometry::polyhedron
+
+#include "ffdkit/geometry/polyhedron/builtin_meshes.h"
+#include "ffdkit/geometry/polyhedron/polyhedron_error.h"
+
+namespace ffdkit::geometry::polyhedron {
+namespace {
+
+TEST(BicubicJoin, RelabellingKeepsTheSurface) {
+  const PatchSurface s = PatchSurface::build(cubeMesh());
+  const RationalQuarticTriangle& p = s.patches()[5];
+  const RationalQuarticTriangle q = relabelled(p, {2, 0, 1});
+  EXPECT_EQ(q.corners[0], p.corners[2]);
+  // Slot s of q is slot order[s] of p, so q(x0, x1, x2) = p(x1, x2, x0).
+  EXPECT_LE((q.evaluate(0.2, 0.3, 0.5) - p.evaluate(0.3, 0.5, 0.2)).norm(), 1e-14);
+  EXPECT_THROW(relabelled(p, {0, 0, 1}), std::invalid_argument);
+}
+
+TEST(BicubicJoin, BicubicAcrossAnOpenBoundaryIsG1) {
+  const PatchSurface s = PatchSurface::build(openHexagonalPrismMesh());
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> uniform(-0.1, 0.1);
+  for (int k = 0; k < 6; ++k) {
+    const int a = 6 + (k + 1) % 6, b = 6 + k;  // rim curve, boundary on the open top
+    const auto row0 = s.curve(a, b);
+    std::array<Eigen::Vector3d, 4> row2, row3;
+    for (int i = 0; i < 4; ++i) {
+      row2[i] = row0[i] + Eigen::Vector3d(uniform(random), uniform(random), 0.6);
+      row3[i] = row0[i] + Eigen::Vector3d(uniform(random), uniform(random), 1.0);
+    }
+    for (const auto& [l1, l2] : {std::pair{0.0, 0.0}, std::pair{0.7, -1.3}}) {
+      Fixture f;
+      f.net = bicubicAcrossBoundary(s, a, b, row2, row3, l1, l2);
+      f.triangle = boundaryPatchForJoin(s, a, b);
+      f.l1 = l1;
+      f.l2 = l2;
+      const auto [residual, angle] = joinDefect(f);
+      EXPECT_LE(residual, 1e-10) << k;
+      EXPECT_LE(angle, 1e-9) << k;
+    }
+  }
+  EXPECT_THROW(bicubicAcrossBoundary(s, 0, 1, {}, {}), PolyhedronError);  // bottom rim is interior
+}
+
+}  // namespace
+}  // namespace ffdkit::geometry::polyhedron

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include "ffdkit/geometry/polyhedron/patch_surface.h"
 #include "ffdkit/geometry/polyhedron/rational_quartic_triangle.h"
 
 namespace ffdkit::geometry::polyhedron {
@@ -37,6 +38,24 @@ void joinTriangleToBicubic(RationalQuarticTriangle& triangle, const BicubicNet& 
 std::array<Eigen::Vector3d, 4> bicubicSecondRowFromTriangle(const RationalQuarticTriangle& triangle,
                                                            const std::array<Eigen::Vector3d, 4>& row0, double l1,
                                                            double l2);
+
+/// The same patch with its corners relabelled: slot s of the result is slot order[s] of
+/// `patch` (control points and sub-points move with their corners; the surface is unchanged).
+/// @throws std::invalid_argument unless order is a permutation of {0, 1, 2}.
+RationalQuarticTriangle relabelled(const RationalQuarticTriangle& patch, const std::array<int, 3>& order);
+
+/// A bicubic patch joined G1 to an open patch surface across its boundary curve from network
+/// vertex a to b (l.1641, "given the triangle, compute the second row"): row 0 is the network
+/// cubic (P_00 = a, P_30 = b), row 1 comes from bicubicSecondRowFromTriangle with the triangle
+/// relabelled so that the curve is its w = 0 edge, rows 2 and 3 are the caller's (they do not
+/// affect G1). lambda = l1 v + l2 u as in eq. (4.20).
+/// @throws PolyhedronError if (a, b) is not a boundary curve of the surface.
+BicubicNet bicubicAcrossBoundary(const PatchSurface& surface, int a, int b, const std::array<Eigen::Vector3d, 4>& row2,
+                                 const std::array<Eigen::Vector3d, 4>& row3, double l1 = 0.0, double l2 = 0.0);
+
+/// The surface patch next to boundary curve (a, b), relabelled as bicubicAcrossBoundary uses it
+/// (B = a, A = b, the curve is its w = 0 edge).
+RationalQuarticTriangle boundaryPatchForJoin(const PatchSurface& surface, int a, int b);
 
 /// S(u, w) and its partials d/du, d/dw.
 struct BicubicPoint {
