@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 
 namespace ffdkit::geometry::curvenet {
 namespace {
@@ -198,26 +199,55 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
 
   // --- pairwise intersections (closest points), §4.3 steps 1-2 ------------------------------
   std::vector<PairHit> hits;
-  std::vector<NearMiss> nearest(nc);
+  // Per-segment sample boxes: only segment pairs whose boxes come within the gate are compared.
+  std::vector<double> step(nc, 0.0);
+  std::vector<std::vector<Eigen::AlignedBox3d>> boxes(nc);
+  for (int c = 0; c < nc; ++c) {
+    const Eigen::MatrixX3d& p = samples[c];
+    const Eigen::Index n = p.rows();
+    for (Eigen::Index i = 1; i < n; ++i) step[c] = std::max(step[c], (p.row(i) - p.row(i - 1)).norm());
+    if (net.curves[c].closed()) step[c] = std::max(step[c], (p.row(0) - p.row(n - 1)).norm());
+    const int segs = static_cast<int>(net.curves[c].segments().size());
+    for (int k = 0; k < segs; ++k) {
+      Eigen::AlignedBox3d box;
+      for (int q = 0; q <= kSamples; ++q) {
+        const Eigen::Index idx = net.curves[c].closed() ? (k * kSamples + q) % n : std::min<Eigen::Index>(k * kSamples + q, n - 1);
+        box.extend(p.row(idx).transpose());
+      }
+      boxes[c].push_back(box);
+    }
+  }
   for (int a = 0; a < nc; ++a) {
     for (int b = a + 1; b < nc; ++b) {
-      const Eigen::MatrixX3d& pa = samples[a];
-      const Eigen::MatrixX3d& pb = samples[b];
+      const double gate = tau + step[a] + step[b];
+      Eigen::Index r0 = std::numeric_limits<Eigen::Index>::max(), r1 = -1, c0 = r0, c1 = -1;
+      for (int ka = 0; ka < static_cast<int>(boxes[a].size()); ++ka) {
+        Eigen::AlignedBox3d grown = boxes[a][ka];
+        grown.min().array() -= gate;
+        grown.max().array() += gate;
+        for (int kb = 0; kb < static_cast<int>(boxes[b].size()); ++kb) {
+          if (!grown.intersects(boxes[b][kb])) continue;
+          r0 = std::min<Eigen::Index>(r0, ka * kSamples);
+          r1 = std::max<Eigen::Index>(r1, (ka + 1) * kSamples);
+          c0 = std::min<Eigen::Index>(c0, kb * kSamples);
+          c1 = std::max<Eigen::Index>(c1, (kb + 1) * kSamples);
+        }
+      }
+      if (r1 < 0) continue;
+      const Eigen::Index naAll = samples[a].rows(), nbAll = samples[b].rows();
+      r1 = std::min(r1, naAll - 1);
+      c1 = std::min(c1, nbAll - 1);
+      // Wrap-around neighbours only when the window is the whole closed curve.
+      const bool wrapA = net.curves[a].closed() && r0 == 0 && r1 == naAll - 1;
+      const bool wrapB = net.curves[b].closed() && c0 == 0 && c1 == nbAll - 1;
+      const Eigen::MatrixX3d pa = samples[a].middleRows(r0, r1 - r0 + 1);
+      const Eigen::MatrixX3d pb = samples[b].middleRows(c0, c1 - c0 + 1);
       const Eigen::Index na = pa.rows(), nb = pb.rows();
       Eigen::MatrixXd dist(na, nb);
       for (Eigen::Index i = 0; i < na; ++i) {
         dist.row(i) = (pb.rowwise() - pa.row(i)).rowwise().norm().transpose();
       }
-      Eigen::Index mi = 0, mj = 0;
-      const double dmin = dist.minCoeff(&mi, &mj);
-      if (dmin < nearest[a].distance) nearest[a] = {dmin, b, params[a][mi], params[b][mj]};
-      if (dmin < nearest[b].distance) nearest[b] = {dmin, a, params[b][mj], params[a][mi]};
-      double stepA = 0.0, stepB = 0.0;
-      for (Eigen::Index i = 1; i < na; ++i) stepA = std::max(stepA, (pa.row(i) - pa.row(i - 1)).norm());
-      for (Eigen::Index j = 1; j < nb; ++j) stepB = std::max(stepB, (pb.row(j) - pb.row(j - 1)).norm());
-      const double gate = tau + stepA + stepB;
-      if (dmin > gate) continue;
-      const bool wrapA = net.curves[a].closed(), wrapB = net.curves[b].closed();
+      if (dist.minCoeff() > gate) continue;
       std::vector<PairHit> pairHits;
       for (Eigen::Index i = 0; i < na; ++i) {
         for (Eigen::Index j = 0; j < nb; ++j) {
@@ -238,7 +268,7 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
             }
           }
           if (!isMin) continue;
-          double s = params[a][i], t = params[b][j];
+          double s = params[a][r0 + i], t = params[b][c0 + j];
           refineClosestPoints(net.curves[a], net.curves[b], s, t);
           // T-detection (§4.3): an open end within tau of the other curve is the cut point.
           if (snapToEnd(net.curves[a], s, tau)) refineOnOneCurve(net.curves[a].evaluate(s), net.curves[b], t);
@@ -332,13 +362,23 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
   }
   for (int c = 0; c < nc; ++c) {
     if (!onCurve[c].empty()) continue;
+    // The nearest miss, only computed for the report.
+    NearMiss miss;
+    for (int o = 0; o < nc; ++o) {
+      if (o == c) continue;
+      for (Eigen::Index i = 0; i < samples[c].rows(); ++i) {
+        Eigen::Index j = 0;
+        const double d = (samples[o].rowwise() - samples[c].row(i)).rowwise().norm().minCoeff(&j);
+        if (d < miss.distance) miss = {d, o, params[c][i], params[o][j]};
+      }
+    }
     std::ostringstream msg;
     msg << curveLabel(net, c) << " meets no other curve within tolerance " << tau;
-    if (nearest[c].other >= 0) {
-      double ts = nearest[c].tSelf, to = nearest[c].tOther;
-      refineClosestPoints(net.curves[c], net.curves[nearest[c].other], ts, to);
-      const Eigen::Vector3d ps = net.curves[c].evaluate(ts), po = net.curves[nearest[c].other].evaluate(to);
-      msg << ": nearest is " << curveLabel(net, nearest[c].other) << " at distance "
+    if (miss.other >= 0) {
+      double ts = miss.tSelf, to = miss.tOther;
+      refineClosestPoints(net.curves[c], net.curves[miss.other], ts, to);
+      const Eigen::Vector3d ps = net.curves[c].evaluate(ts), po = net.curves[miss.other].evaluate(to);
+      msg << ": nearest is " << curveLabel(net, miss.other) << " at distance "
           << (ps - po).norm() << " near " << fmt(0.5 * (ps + po)) << " (t = " << ts << ")"
           << "; move the curves together or raise the intersection tolerance";
     }
