@@ -8,6 +8,7 @@
 #include <Eigen/Cholesky>
 
 #include "ffdkit/geometry/gauss_legendre.h"
+#include "ffdkit/geometry/quaternion/bernstein.h"
 #include "ffdkit/geometry/quaternion/quaternion_error.h"
 #include "ffdkit/geometry/quaternion/tangent_integration.h"
 #include "ffdkit/geometry/quaternion/unit_quaternion.h"
@@ -67,6 +68,49 @@ Eigen::Vector3d halfAngleOmega(const Eigen::Vector3d& a, const Eigen::Vector3d& 
   }
   if (planar) w = Eigen::Vector3d(0.0, 0.0, w.z());
   return w;
+}
+
+// Left Jacobian of SO(3) at the rotation vector theta: Exp(theta + d) = Exp(J_l d) Exp(theta).
+Eigen::Matrix3d leftJacobian(const Eigen::Vector3d& theta) {
+  const double a = theta.norm();
+  Eigen::Matrix3d k;
+  k << 0, -theta.z(), theta.y(), theta.z(), 0, -theta.x(), -theta.y(), theta.x(), 0;
+  if (a < 1e-6) return Eigen::Matrix3d::Identity() + 0.5 * k + (1.0 / 6.0) * k * k;
+  return Eigen::Matrix3d::Identity() + ((1.0 - std::cos(a)) / (a * a)) * k + ((a - std::sin(a)) / (a * a * a)) * k * k;
+}
+
+// Cumulative composite Gauss-Legendre of a 3 x cols matrix function, with the same panels as
+// cumulativeGaussLegendre (union of the parameters and a uniform grid).
+template <class F>
+std::vector<Eigen::MatrixXd> cumulativeMatrixIntegral(F&& f, const Eigen::VectorXd& params, int cols, int order,
+                                                      int minPanels) {
+  thread_local std::vector<GaussLegendreRule> rules(65);
+  if (rules[order].nodes.size() != order) rules[order] = gaussLegendreRule(order);
+  const GaussLegendreRule& rule = rules[order];
+  std::vector<double> breaks(params.data(), params.data() + params.size());
+  for (int p = 0; p <= minPanels; ++p) breaks.push_back(static_cast<double>(p) / minPanels);
+  std::sort(breaks.begin(), breaks.end());
+  std::vector<Eigen::MatrixXd> out;
+  out.reserve(params.size());
+  Eigen::MatrixXd running = Eigen::MatrixXd::Zero(3, cols);
+  Eigen::Matrix<double, 3, Eigen::Dynamic> m(3, cols);
+  double at = 0.0;
+  std::size_t b = 0;
+  for (Eigen::Index k = 0; k < params.size(); ++k) {
+    while (b < breaks.size() && breaks[b] <= params[k]) {
+      if (breaks[b] > at) {
+        const double half = 0.5 * (breaks[b] - at), mid = 0.5 * (breaks[b] + at);
+        for (Eigen::Index g = 0; g < rule.nodes.size(); ++g) {
+          f(mid + half * rule.nodes[g], m);
+          running += (rule.weights[g] * half) * m;
+        }
+        at = breaks[b];
+      }
+      ++b;
+    }
+    out.push_back(running);
+  }
+  return out;
 }
 
 // The optimisation problem: design vector layout, residual with per-segment restart.
@@ -138,6 +182,122 @@ struct Problem {
     Eigen::VectorXd r(3 * points.rows());
     evaluateFrom(x, 0, st, r);
     return r;
+  }
+
+
+  // Analytic Jacobian from one sweep per segment. A perturbation of w_j is a world rotation
+  // dPhi = W_j J_l(2 b_j w_j) 2 b_j dw of the frame (W_j = R(E_k..E_{j+1}) in form A,
+  // R(q_0 E_1..E_{j-1}) in form B), so dt = dPhi x t; upstream variables reach a segment as a
+  // start translation dP and a start rotation dPhi that the segment turns by R(E_k..E_1) (form A)
+  // or carries unchanged (form B). Integrals use the residual's quadrature nodes.
+  void analyticJacobian(const Eigen::VectorXd& x, const State& st, Eigen::MatrixXd& j) const {
+    const int nv = size();
+    j.setZero(3 * points.rows(), nv);
+    Eigen::MatrixXd dp = Eigen::MatrixXd::Zero(3, nv);
+    Eigen::MatrixXd dphi = Eigen::MatrixXd::Zero(3, nv);
+    if (startVars > 0) {
+      const Eigen::Vector3d eta = startVars == 1 ? Eigen::Vector3d(x[0] * freeAxis1)
+                                                 : Eigen::Vector3d(x[0] * freeAxis1 + x[1] * freeAxis2);
+      const Eigen::Matrix3d jl = leftJacobian(2.0 * eta);
+      dphi.col(0) = 2.0 * jl * freeAxis1;
+      if (startVars == 2) dphi.col(1) = 2.0 * jl * freeAxis2;
+    }
+    const int cols = 3 * degree + 4;  // [A_1 .. A_k | G | t]
+    for (int seg = 0; seg < segments; ++seg) {
+      const std::vector<Eigen::Vector3d> w = omegas(x, seg);
+      const double l = length(x, seg);
+      const Eigen::Quaterniond q0 = st.q[seg];
+      const auto integrand = [&](double t, Eigen::Matrix<double, 3, Eigen::Dynamic>& m) {
+        std::vector<Eigen::Quaterniond> e(degree + 1);
+        std::vector<double> b(degree + 1);
+        for (int jj = 1; jj <= degree; ++jj) {
+          b[jj] = cumulativeBernstein(degree, jj, t);
+          e[jj] = quaternionExp(w[jj - 1] * b[jj]);
+        }
+        Eigen::Quaterniond full = Eigen::Quaterniond::Identity();  // E_k..E_1 (A) or E_1..E_k (B)
+        std::vector<Eigen::Quaterniond> frame(degree + 1);         // W_j as quaternions
+        if (form == ProductForm::Global) {
+          Eigen::Quaterniond suffix = Eigen::Quaterniond::Identity();
+          for (int jj = degree; jj >= 1; --jj) {
+            frame[jj] = suffix;
+            suffix = suffix * e[jj];
+          }
+          full = suffix;
+        } else {
+          Eigen::Quaterniond prefix = q0;
+          for (int jj = 1; jj <= degree; ++jj) {
+            frame[jj] = prefix;
+            prefix = prefix * e[jj];
+          }
+          full = q0.conjugate() * prefix;
+        }
+        const Eigen::Quaterniond q = form == ProductForm::Global ? Eigen::Quaterniond(full * q0) : Eigen::Quaterniond(q0 * full);
+        const Eigen::Vector3d tan = rotateFixedVector(q.normalized(), Eigen::Vector3d::UnitX());
+        Eigen::Matrix3d cross;
+        cross << 0, tan.z(), -tan.y(), -tan.z(), 0, tan.x(), tan.y(), -tan.x(), 0;  // -[t]x
+        for (int jj = 1; jj <= degree; ++jj) {
+          m.block<3, 3>(0, 3 * (jj - 1)) =
+              cross * frame[jj].normalized().toRotationMatrix() * leftJacobian(2.0 * b[jj] * w[jj - 1]) * (2.0 * b[jj]);
+        }
+        m.block<3, 3>(0, 3 * degree) =
+            form == ProductForm::Global ? Eigen::Matrix3d(cross * full.normalized().toRotationMatrix()) : cross;
+        m.col(3 * degree + 3) = tan;
+      };
+      const int lo = firstPoint(seg), hi = lastPoint(seg);
+      Eigen::VectorXd params(hi - lo + 2);
+      for (int i = lo; i <= hi; ++i) params[i - lo] = std::clamp(u[i] - seg, 0.0, 1.0);
+      params[hi - lo + 1] = 1.0;
+      const std::vector<Eigen::MatrixXd> cum = cumulativeMatrixIntegral(integrand, params, cols, quadrature.order,
+                                                                        quadrature.minPanels);
+      const int off = offset(seg);
+      const auto own = [&](const Eigen::MatrixXd& c, Eigen::Block<Eigen::MatrixXd> target) {
+        for (int jj = 0; jj < degree; ++jj) {
+          const Eigen::Matrix3d a = l * c.block(0, 3 * jj, 3, 3);
+          if (planar) {
+            target.col(off + jj) = a.col(2);
+          } else {
+            target.block(0, off + 3 * jj, 3, 3) = a;
+          }
+        }
+        target.col(off + segmentVars() - 1) = l * c.col(3 * degree + 3);
+      };
+      for (int i = lo; i <= hi; ++i) {
+        const Eigen::MatrixXd& c = cum[i - lo];
+        auto rows = j.middleRows(3 * i, 3);
+        rows = dp + l * c.block(0, 3 * degree, 3, 3) * dphi;
+        own(c, rows);
+      }
+      const Eigen::MatrixXd& end = cum.back();
+      dp += l * end.block(0, 3 * degree, 3, 3) * dphi;
+      auto dpBlock = dp.middleRows(0, 3);
+      own(end, dpBlock);
+      if (form == ProductForm::Global) {
+        Eigen::Quaterniond f1 = Eigen::Quaterniond::Identity();
+        for (int jj = 1; jj <= degree; ++jj) f1 = quaternionExp(w[jj - 1]) * f1;
+        dphi = f1.normalized().toRotationMatrix() * dphi;
+        Eigen::Quaterniond suffix = Eigen::Quaterniond::Identity();
+        for (int jj = degree; jj >= 1; --jj) {
+          const Eigen::Matrix3d d = suffix.normalized().toRotationMatrix() * leftJacobian(2.0 * w[jj - 1]) * 2.0;
+          if (planar) {
+            dphi.col(off + jj - 1) = d.col(2);
+          } else {
+            dphi.block(0, off + 3 * (jj - 1), 3, 3) = d;
+          }
+          suffix = suffix * quaternionExp(w[jj - 1]);
+        }
+      } else {
+        Eigen::Quaterniond prefix = q0;
+        for (int jj = 1; jj <= degree; ++jj) {
+          const Eigen::Matrix3d d = prefix.normalized().toRotationMatrix() * leftJacobian(2.0 * w[jj - 1]) * 2.0;
+          if (planar) {
+            dphi.col(off + jj - 1) = d.col(2);
+          } else {
+            dphi.block(0, off + 3 * (jj - 1), 3, 3) = d;
+          }
+          prefix = prefix * quaternionExp(w[jj - 1]);
+        }
+      }
+    }
   }
 
   // Forward-difference Jacobian; a column of segment seg only recomputes segments >= seg
@@ -264,7 +424,14 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
   bool converged = false;
   std::string message;
   Eigen::MatrixXd jac;
-  evaluations += pb.jacobian(x, r, st, jac);
+  const auto updateJacobian = [&] {
+    if (options.jacobian == FitJacobian::Analytic) {
+      pb.analyticJacobian(x, st, jac);
+    } else {
+      evaluations += pb.jacobian(x, r, st, jac);
+    }
+  };
+  updateJacobian();
   double mu = -1.0;
   double nu = 2.0;
   while (true) {
@@ -348,7 +515,7 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
       }
     }
     if (stop) break;
-    evaluations += pb.jacobian(x, r, st, jac);
+    updateJacobian();
   }
 
   QiChain chain = buildChain(pb, x);

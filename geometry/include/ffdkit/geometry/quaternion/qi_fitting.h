@@ -29,6 +29,12 @@ enum class FitDimension {
   Spatial,  ///< full 3-vectors w_ij
 };
 
+/// How the LM Jacobian is computed.
+enum class FitJacobian {
+  Analytic,           ///< exact derivatives through the frame rotations, one sweep (default)
+  ForwardDifference,  ///< sqrt(eps) forward differences, recomputing segments >= the perturbed one
+};
+
 struct FitOptions {
   int degree = 2;                                        ///< k, degree of each segment's quaternion curve
   FitDimension dimension = FitDimension::Auto;
@@ -37,6 +43,7 @@ struct FitOptions {
   Eigen::Vector3d givenStartTangent = Eigen::Vector3d::UnitX();  ///< Given mode only
   FitInitialCurve initialCurve = FitInitialCurve::LeastSquaresCubic;
   QiQuadrature quadrature;                               ///< GL-8 on >= 8 panels per segment
+  FitJacobian jacobian = FitJacobian::Analytic;
   double functionTolerance = 1e-12;                      ///< relative reduction of R
   double stepTolerance = 1e-12;                          ///< relative step size
   double gradientTolerance = 1e-12;                      ///< |J^T r|_inf relative to R
@@ -56,7 +63,7 @@ struct FitResult {
   double initialRms = 0.0;             ///< rms of the initial guess
   bool converged = false;              ///< an LM stopping test was met (not the evaluation cap)
   int iterations = 0;
-  int functionEvaluations = 0;
+  int functionEvaluations = 0;         ///< residual evaluations (forward-difference columns included)
   std::vector<double> objectiveHistory;  ///< accepted R = sum e_i^2, non-increasing
   UniformCubicBSpline initialCurve;    ///< the LSQ cubic that seeded the fit (also the baseline)
   std::string message;                 ///< which stopping test fired, or why it failed
