@@ -37,7 +37,7 @@ struct KernelInput {
   const double* v;
   const double* w;
   const std::uint32_t* order;  // null: identity
-  const double* blend;         // indexed by q - blendBegin
+  const double* blend;         // weights of the current Blended block, indexed by q - blendBegin
   std::uint32_t blendBegin;
   const double* qx;  // input columns (original order), null for updates
   const double* qy;
@@ -221,8 +221,6 @@ detail::KernelInput makeInput(const Lattice& lattice, const Embedding& e, Eigen:
   in.v = e.sortedV().data();
   in.w = e.sortedW().data();
   in.order = e.order().empty() ? nullptr : e.order().data();
-  in.blend = e.blendWeight().data();
-  in.blendBegin = e.blendBegin();
   in.ox = out.col(0).data();
   in.oy = out.col(1).data();
   in.oz = out.col(2).data();
@@ -295,28 +293,39 @@ const Eigen::MatrixX3d& Deformer::deformStale(const Lattice& lattice, const Eige
   in.qy = input.col(1).data();
   in.qz = input.col(2).data();
   const auto& blocks = embedding_.blocks();
-  const std::int64_t blockCount = static_cast<std::int64_t>(blocks.size());
+  const auto& tiles = embedding_.tileBlocks();
+  const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
   const bool parallel = parallel_ && n >= kParallelPoints;
 #pragma omp parallel if (parallel)
   {
     std::vector<double> W;
     int lastCell[3] = {-1, -1, -1};
-#pragma omp for schedule(dynamic, 2) nowait
-    for (std::int64_t bi = 0; bi < blockCount; ++bi) {
-      const Embedding::Block& block = blocks[bi];
-      if (!std::equal(block.cell, block.cell + 3, lastCell)) {
-        gatherWindow(lattice, tables, block.cell, D, W);
-        std::copy(block.cell, block.cell + 3, lastCell);
+    detail::KernelInput local = in;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t t = 0; t < tileCount; ++t) {
+      for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
+        const Embedding::Block& block = blocks[bi];
+        if (block.kind == Embedding::BlockKind::Frozen) {
+          // Identity outside, Failed, beyond Falloff: the input unchanged.
+          for (std::uint32_t q = block.begin; q < block.end; ++q) {
+            const Eigen::Index p = in.order ? in.order[q] : q;
+            output_.row(p) = input.row(p);
+          }
+          continue;
+        }
+        if (!std::equal(block.cell, block.cell + 3, lastCell)) {
+          gatherWindow(lattice, tables, block.cell, D, W);
+          std::copy(block.cell, block.cell + 3, lastCell);
+        }
+        const bool blended = block.kind == Embedding::BlockKind::Blended;
+        if (blended) {
+          local.blend = embedding_.blendWeight().data() + block.blendOffset;
+          local.blendBegin = block.begin;
+        }
+        const std::size_t size = W.size() / 3;
+        detail::denseBlock(local, block.cell, block.begin, block.end, blended, W.data(), W.data() + size,
+                           W.data() + 2 * size, false);
       }
-      const std::size_t size = W.size() / 3;
-      detail::denseBlock(in, block.cell, block.begin, block.end, block.blended, W.data(), W.data() + size,
-                         W.data() + 2 * size, false);
-    }
-    // Frozen points (Identity outside, Failed, beyond Falloff) are the input unchanged.
-#pragma omp for schedule(static)
-    for (std::int64_t q = embedding_.frozenBegin(); q < n; ++q) {
-      const Eigen::Index p = in.order ? in.order[q] : q;
-      output_.row(p) = input.row(p);
     }
   }
   lastControl_ = lattice.controlPoints();
@@ -337,61 +346,77 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
   if (changed.empty()) return output_;
   const Eigen::MatrixX3d D = (P - lastControl_) * lattice.frame().linear().transpose();
 
-  // Position of each changed control point in each cell's window, per axis (-1: not in the window).
+  // For every cell touched by a changed control point: the list of (window position, change),
+  // or, when most of its window changed, the dense window of changes.
   const AxisTables tables = makeTables(lattice);
-  int np[3];
-  std::vector<int> position[3];
+  int np[3], cells[3];
   for (int a = 0; a < 3; ++a) {
     np[a] = lattice.axis(a).degree() + 1;
-    const int cells = lattice.axis(a).cellCount();
-    position[a].assign(static_cast<std::size_t>(cells) * lattice.counts()[a], -1);
-    for (int c = 0; c < cells; ++c) {
-      for (int r = 0; r < np[a]; ++r) position[a][c * lattice.counts()[a] + tables.window[a][c * np[a] + r]] = r;
+    cells[a] = lattice.axis(a).cellCount();
+  }
+  // cellsOf[a][i] = (cell, r) pairs whose window holds control index i on axis a.
+  std::vector<std::vector<std::pair<int, int>>> cellsOf[3];
+  for (int a = 0; a < 3; ++a) {
+    cellsOf[a].resize(lattice.counts()[a]);
+    for (int c = 0; c < cells[a]; ++c)
+      for (int r = 0; r < np[a]; ++r) cellsOf[a][tables.window[a][c * np[a] + r]].push_back({c, r});
+  }
+  const int windowSize = np[0] * np[1] * np[2];
+  const std::size_t cellTotal = static_cast<std::size_t>(cells[0]) * cells[1] * cells[2];
+  std::vector<std::vector<detail::SparseTerm>> terms(cellTotal);
+  for (Eigen::Index f : changed) {
+    const Eigen::Vector3i g = lattice.gridIndex(f);
+    for (const auto& [cw, rw] : cellsOf[2][g[2]])
+      for (const auto& [cv, rv] : cellsOf[1][g[1]])
+        for (const auto& [cu, ru] : cellsOf[0][g[0]]) {
+          terms[cu + cells[0] * (cv + static_cast<std::size_t>(cells[1]) * cw)].push_back(
+              {ru, rv, rw, D(f, 0), D(f, 1), D(f, 2)});
+        }
+  }
+  std::vector<std::vector<double>> dense(cellTotal);
+  for (std::size_t cell = 0; cell < cellTotal; ++cell) {
+    // Most of the window moved: the dense contraction is cheaper than one term per point.
+    if (3 * terms[cell].size() > static_cast<std::size_t>(windowSize)) {
+      const int c[3] = {static_cast<int>(cell % cells[0]), static_cast<int>((cell / cells[0]) % cells[1]),
+                        static_cast<int>(cell / (static_cast<std::size_t>(cells[0]) * cells[1]))};
+      gatherWindow(lattice, tables, c, D, dense[cell]);
     }
   }
-  std::vector<Eigen::Vector3i> grid;
-  for (Eigen::Index f : changed) grid.push_back(lattice.gridIndex(f));
-  const int windowSize = np[0] * np[1] * np[2];
 
   detail::KernelInput in = makeInput(lattice, embedding_, output_);
   for (int a = 0; a < 3; ++a) in.axis[a].cellSpan = tables.span[a].data();
   const auto& blocks = embedding_.blocks();
-  const std::int64_t blockCount = static_cast<std::int64_t>(blocks.size());
+  const auto& tiles = embedding_.tileBlocks();
+  const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
   Eigen::Index evaluated = 0;
   const bool parallel = parallel_ && embedding_.pointCount() >= kParallelPoints;
 #pragma omp parallel if (parallel) reduction(+ : evaluated)
   {
-    std::vector<detail::SparseTerm> terms;
-    std::vector<double> W;
-    int lastCell[3] = {-1, -1, -1};
-#pragma omp for schedule(dynamic, 2)
-    for (std::int64_t bi = 0; bi < blockCount; ++bi) {
-      const Embedding::Block& block = blocks[bi];
-      if (!std::equal(block.cell, block.cell + 3, lastCell)) {
-        terms.clear();
-        W.clear();
-        for (std::size_t i = 0; i < changed.size(); ++i) {
-          int r[3];
-          bool inWindow = true;
-          for (int a = 0; a < 3 && inWindow; ++a) {
-            r[a] = position[a][block.cell[a] * lattice.counts()[a] + grid[i][a]];
-            inWindow = r[a] >= 0;
-          }
-          if (inWindow) terms.push_back({r[0], r[1], r[2], D(changed[i], 0), D(changed[i], 1), D(changed[i], 2)});
+    detail::KernelInput local = in;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t t = 0; t < tileCount; ++t) {
+      for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
+        const Embedding::Block& block = blocks[bi];
+        if (block.kind == Embedding::BlockKind::Frozen) continue;
+        const std::size_t cell =
+            block.cell[0] + cells[0] * (block.cell[1] + static_cast<std::size_t>(cells[1]) * block.cell[2]);
+        const auto& cellTerms = terms[cell];
+        if (cellTerms.empty()) continue;
+        evaluated += block.end - block.begin;
+        const bool blended = block.kind == Embedding::BlockKind::Blended;
+        if (blended) {
+          local.blend = embedding_.blendWeight().data() + block.blendOffset;
+          local.blendBegin = block.begin;
         }
-        // Most of the window moved: the dense contraction is cheaper than one term per point.
-        if (3 * terms.size() > static_cast<std::size_t>(windowSize)) gatherWindow(lattice, tables, block.cell, D, W);
-        std::copy(block.cell, block.cell + 3, lastCell);
-      }
-      if (terms.empty()) continue;
-      evaluated += block.end - block.begin;
-      if (!W.empty()) {
-        const std::size_t size = W.size() / 3;
-        detail::denseBlock(in, block.cell, block.begin, block.end, block.blended, W.data(), W.data() + size,
-                           W.data() + 2 * size, true);
-      } else {
-        detail::sparseBlock(in, block.cell, block.begin, block.end, block.blended, terms.data(),
-                            static_cast<int>(terms.size()));
+        const std::vector<double>& W = dense[cell];
+        if (!W.empty()) {
+          const std::size_t size = W.size() / 3;
+          detail::denseBlock(local, block.cell, block.begin, block.end, blended, W.data(), W.data() + size,
+                             W.data() + 2 * size, true);
+        } else {
+          detail::sparseBlock(local, block.cell, block.begin, block.end, blended, cellTerms.data(),
+                              static_cast<int>(cellTerms.size()));
+        }
       }
     }
   }

@@ -12,7 +12,6 @@ namespace ffdkit::ffd {
 namespace {
 
 constexpr int kMaxBasis = 33;
-constexpr std::uint32_t kBlockSize = 1024;
 // Below this many points a parallel region costs more than it saves (thread wake-up, barriers).
 constexpr Eigen::Index kParallelPoints = 16384;
 
@@ -31,6 +30,7 @@ class RestSolver {
     affineInverse_ = lattice.restAffineLinear().inverse();
     if (!affineInverse_.allFinite()) affineInverse_ = Eigen::Matrix3d::Identity();
     cylinder_ = lattice.cylinderRestShape();
+    buildWindows();
     if (!lattice.restIsAffine()) buildSamples();
   }
 
@@ -42,30 +42,34 @@ class RestSolver {
       cell[a] = axis_[a]->cellOf(uvw[a]);
       axis_[a]->basis(cell[a], uvw[a], N[a], D[a]);
     }
-    Eigen::Vector3d x = Eigen::Vector3d::Zero();
-    J.setZero();
-    const int pu = axis_[0]->degree();
-    const int pv = axis_[1]->degree();
-    const int pw = axis_[2]->degree();
-    for (int c = 0; c <= pw; ++c) {
-      const int k = axis_[2]->controlIndex(cell[2], c);
-      for (int b = 0; b <= pv; ++b) {
-        const int j = axis_[1]->controlIndex(cell[1], b);
-        Eigen::Vector3d s = Eigen::Vector3d::Zero();
-        Eigen::Vector3d su = Eigen::Vector3d::Zero();
-        for (int a = 0; a <= pu; ++a) {
-          const Eigen::Vector3d p = rest_.row(lattice_.index(axis_[0]->controlIndex(cell[0], a), j, k)).transpose();
-          s += N[0][a] * p;
-          su += D[0][a] * p;
+    const int nu = axis_[0]->degree() + 1;
+    const int nv = axis_[1]->degree() + 1;
+    const int nw = axis_[2]->degree() + 1;
+    const double* W = windows_.data() +
+                      3 * windowSize_ * (cell[0] + cells_[0] * (cell[1] + static_cast<std::size_t>(cells_[1]) * cell[2]));
+    double x[3] = {0, 0, 0}, ju[3] = {0, 0, 0}, jv[3] = {0, 0, 0}, jw[3] = {0, 0, 0};
+    for (int c = 0; c < nw; ++c) {
+      for (int b = 0; b < nv; ++b) {
+        double s[3] = {0, 0, 0}, su[3] = {0, 0, 0};
+        for (int a = 0; a < nu; ++a, W += 3) {
+          for (int d = 0; d < 3; ++d) {
+            s[d] += N[0][a] * W[d];
+            su[d] += D[0][a] * W[d];
+          }
         }
         const double nn = N[1][b] * N[2][c];
-        x += nn * s;
-        J.col(0) += nn * su;
-        J.col(1) += (D[1][b] * N[2][c]) * s;
-        J.col(2) += (N[1][b] * D[2][c]) * s;
+        const double dn = D[1][b] * N[2][c];
+        const double nd = N[1][b] * D[2][c];
+        for (int d = 0; d < 3; ++d) {
+          x[d] += nn * s[d];
+          ju[d] += nn * su[d];
+          jv[d] += dn * s[d];
+          jw[d] += nd * s[d];
+        }
       }
     }
-    return x;
+    J << ju[0], jv[0], jw[0], ju[1], jv[1], jw[1], ju[2], jv[2], jw[2];
+    return Eigen::Vector3d(x[0], x[1], x[2]);
   }
 
   // Wraps periodic axes, reflects through the axis of a solid cylinder, keeps iterates bounded.
@@ -182,6 +186,27 @@ class RestSolver {
   const Eigen::Vector3d& hi() const { return hi_; }
 
  private:
+  // Each cell's rest control points, contiguous (x, y, z per point, a fastest): Newton evaluates
+  // Xbar many times per point, and gathering through the lattice's index map dominated it.
+  void buildWindows() {
+    const int nu = axis_[0]->degree() + 1;
+    const int nv = axis_[1]->degree() + 1;
+    const int nw = axis_[2]->degree() + 1;
+    windowSize_ = static_cast<std::size_t>(nu) * nv * nw;
+    for (int a = 0; a < 3; ++a) cells_[a] = axis_[a]->cellCount();
+    windows_.reserve(3 * windowSize_ * cells_[0] * cells_[1] * cells_[2]);
+    for (int cw = 0; cw < cells_[2]; ++cw)
+      for (int cv = 0; cv < cells_[1]; ++cv)
+        for (int cu = 0; cu < cells_[0]; ++cu)
+          for (int c = 0; c < nw; ++c)
+            for (int b = 0; b < nv; ++b)
+              for (int a = 0; a < nu; ++a) {
+                const Eigen::Index f = lattice_.index(axis_[0]->controlIndex(cu, a), axis_[1]->controlIndex(cv, b),
+                                                      axis_[2]->controlIndex(cw, c));
+                for (int d = 0; d < 3; ++d) windows_.push_back(rest_(f, d));
+              }
+  }
+
   void buildSamples() {
     int n[3];
     for (int a = 0; a < 3; ++a) n[a] = std::min(2 * axis_[a]->cellCount() + 1, 12) + (axis_[a]->periodic() ? 0 : 1);
@@ -208,6 +233,9 @@ class RestSolver {
   double tol_;
   Eigen::Matrix3d affineInverse_;
   std::optional<CylinderRestShape> cylinder_;
+  std::vector<double> windows_;
+  std::size_t windowSize_ = 0;
+  int cells_[3] = {0, 0, 0};
   std::vector<Eigen::Vector3d> sampleUvw_;
   std::vector<Eigen::Vector3d> sampleX_;
 };
@@ -245,7 +273,7 @@ void Embedding::checkLattice(const Lattice& lattice) const {
 std::size_t Embedding::memoryBytes() const {
   return status_.capacity() * sizeof(PointStatus) + (u_.capacity() + v_.capacity() + w_.capacity()) * sizeof(double) +
          order_.capacity() * sizeof(std::uint32_t) + blend_.capacity() * sizeof(double) +
-         blocks_.capacity() * sizeof(Block);
+         blocks_.capacity() * sizeof(Block) + tileBlocks_.capacity() * sizeof(std::uint32_t);
 }
 
 Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points, const EmbedOptions& options) {
@@ -337,15 +365,47 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
     key[p] = static_cast<std::uint32_t>(static_cast<std::int64_t>(cls) * cellTotal + cell);
   }
 
-  // Counting sort by (class, cell): stable, so a single-cell lattice keeps the original order.
+  // Per tile of consecutive points, a counting sort by (class, cell): stable, so a single-cell
+  // lattice keeps the original order, and reads/writes in original order stay within the tile.
   const std::size_t keyCount = static_cast<std::size_t>(3 * cellTotal);
-  std::vector<std::uint32_t> start(keyCount + 1, 0);
-  for (Eigen::Index p = 0; p < n; ++p) ++start[key[p] + 1];
-  for (std::size_t k = 0; k < keyCount; ++k) start[k + 1] += start[k];
   std::vector<std::uint32_t> order(n);
-  {
-    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for (Eigen::Index p = 0; p < n; ++p) order[next[key[p]]++] = static_cast<std::uint32_t>(p);
+  std::vector<std::uint32_t> start(keyCount + 1);
+  const bool counting = keyCount <= 4 * Embedding::kTileSize;
+  for (Eigen::Index tileBegin = 0; tileBegin < n; tileBegin += Embedding::kTileSize) {
+    const Eigen::Index tileEnd = std::min<Eigen::Index>(n, tileBegin + Embedding::kTileSize);
+    std::uint32_t* tileOrder = order.data() + tileBegin;
+    for (Eigen::Index p = tileBegin; p < tileEnd; ++p) tileOrder[p - tileBegin] = static_cast<std::uint32_t>(p);
+    if (counting) {
+      std::fill(start.begin(), start.end(), 0u);
+      for (Eigen::Index p = tileBegin; p < tileEnd; ++p) ++start[key[p] + 1];
+      for (std::size_t k = 0; k < keyCount; ++k) start[k + 1] += start[k];
+      for (Eigen::Index p = tileBegin; p < tileEnd; ++p) tileOrder[start[key[p]]++] = static_cast<std::uint32_t>(p);
+    } else {
+      std::stable_sort(tileOrder, tileOrder + (tileEnd - tileBegin),
+                       [&key](std::uint32_t lhs, std::uint32_t rhs) { return key[lhs] < key[rhs]; });
+    }
+    // Runs of equal key become blocks.
+    for (Eigen::Index q = tileBegin; q < tileEnd;) {
+      const std::uint32_t k = key[order[q]];
+      Eigen::Index runEnd = q + 1;
+      while (runEnd < tileEnd && key[order[runEnd]] == k) ++runEnd;
+      const std::int64_t cls = k / cellTotal;
+      const std::int64_t cell = k % cellTotal;
+      Embedding::Block block{};
+      block.cell[0] = static_cast<int>(cell % cells[0]);
+      block.cell[1] = static_cast<int>((cell / cells[0]) % cells[1]);
+      block.cell[2] = static_cast<int>(cell / (std::int64_t(cells[0]) * cells[1]));
+      block.begin = static_cast<std::uint32_t>(q);
+      block.end = static_cast<std::uint32_t>(runEnd);
+      block.kind = static_cast<Embedding::BlockKind>(cls);
+      block.blendOffset = static_cast<std::uint32_t>(e.blend_.size());
+      if (block.kind == Embedding::BlockKind::Blended) {
+        for (Eigen::Index r = q; r < runEnd; ++r) e.blend_.push_back(weight[order[r]]);
+      }
+      e.blocks_.push_back(block);
+      q = runEnd;
+    }
+    e.tileBlocks_.push_back(static_cast<std::uint32_t>(e.blocks_.size()));
   }
   e.u_.resize(n);
   e.v_.resize(n);
@@ -358,20 +418,8 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
     e.v_[q] = v[p];
     e.w_[q] = w[p];
   }
-  e.blendBegin_ = start[static_cast<std::size_t>(cellTotal)];
-  e.frozenBegin_ = start[static_cast<std::size_t>(2 * cellTotal)];
-  e.blend_.resize(e.frozenBegin_ - e.blendBegin_);
-  for (std::uint32_t q = e.blendBegin_; q < e.frozenBegin_; ++q) e.blend_[q - e.blendBegin_] = weight[order[q]];
   if (!identity) e.order_ = std::move(order);
-  for (std::size_t k = 0; k < static_cast<std::size_t>(2 * cellTotal); ++k) {
-    const std::int64_t cell = static_cast<std::int64_t>(k) % cellTotal;
-    const int c0 = static_cast<int>(cell % cells[0]);
-    const int c1 = static_cast<int>((cell / cells[0]) % cells[1]);
-    const int c2 = static_cast<int>(cell / (std::int64_t(cells[0]) * cells[1]));
-    for (std::uint32_t begin = start[k]; begin < start[k + 1]; begin += kBlockSize) {
-      e.blocks_.push_back({{c0, c1, c2}, begin, std::min(begin + kBlockSize, start[k + 1]), k >= std::size_t(cellTotal)});
-    }
-  }
+  e.blend_.shrink_to_fit();
   for (const PointStatus s : e.status_) {
     if (s == PointStatus::Inside) ++e.inside_;
     else if (s == PointStatus::Outside) ++e.outside_;

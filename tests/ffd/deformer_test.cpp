@@ -171,6 +171,31 @@ TEST(Deformer, ParallelAndSerialRunsAgree) {
   EXPECT_EQ(maxRowError(parallel.deform(lattice, Q), serial.deform(lattice, Q)), 0.0);
 }
 
+TEST(Deformer, ManyPointsAndManyCellsMatchLatticeEvaluate) {
+  std::mt19937 rng(7);
+  for (auto [count, degree] : {std::pair{7, 3}, std::pair{30, 1}}) {  // 64 cells; 24389 cells (sorted by std::sort)
+    BoxLatticeOptions options;
+    options.counts = {count, count, count};
+    options.bases = {AxisBasis::bspline(degree), AxisBasis::bspline(degree), AxisBasis::bspline(degree)};
+    options.frame = testing::randomFrame(rng);
+    Lattice lattice = makeBoxLattice(options);
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 40000, rng));
+    Deformer deformer(embed(lattice, Q));
+    EXPECT_FALSE(deformer.embedding().order().empty());
+    lattice.setControlPoints(randomMove(lattice, 0.05, rng));
+    const Eigen::MatrixX3d out = deformer.deform(lattice, Q);
+    const Eigen::MatrixX3d uvw = deformer.embedding().parameters();
+    for (Eigen::Index r = 0; r < Q.rows(); r += 7) {
+      const Eigen::Vector3d expected = lattice.frame() * lattice.evaluate(uvw.row(r).transpose());
+      ASSERT_LT((out.row(r).transpose() - expected).norm(), 1e-12 * (1.0 + expected.norm())) << r;
+    }
+    lattice.setControlPoint(lattice.index(count / 2, count / 2, count / 2), Eigen::Vector3d(0.5, 0.5, 0.5));
+    const Eigen::MatrixX3d inc = deformer.update(lattice);
+    Deformer full(embed(lattice, Q));
+    EXPECT_LT(maxRowError(inc, full.deform(lattice, Q)), 1e-12 * (1.0 + Q.cwiseAbs().maxCoeff()));
+  }
+}
+
 // --- outside policies ---------------------------------------------------------------
 
 struct OutsideCase {

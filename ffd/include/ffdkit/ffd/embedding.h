@@ -60,24 +60,32 @@ class Embedding {
   /// Heap bytes held (for the memory budget of the benchmarks).
   std::size_t memoryBytes() const;
 
-  // Layout shared with Deformer (not for other callers): points sorted by (class, cell).
+  // Layout shared with Deformer (not for other callers). The points are cut into tiles of
+  // kTileSize consecutive points (original order); inside a tile they are sorted by
+  // (kind, lattice cell) into blocks, so that a block streams one cell's control points over
+  // its points while reads and writes in original order stay within the tile (cache-local).
+  static constexpr std::uint32_t kTileSize = 4096;
+  enum class BlockKind : std::uint8_t {
+    Evaluated,  ///< inside points, and Extrapolate outside points
+    Blended,    ///< ClampEdge / Falloff outside points: weight blendWeight()[blendOffset + q - begin]
+    Frozen      ///< left unchanged: Identity outside, Failed, beyond the Falloff distance
+  };
   struct Block {
-    int cell[3];         ///< cell index per axis
-    std::uint32_t begin;  ///< sorted positions [begin, end)
+    int cell[3];               ///< cell index per axis
+    std::uint32_t begin;       ///< sorted positions [begin, end)
     std::uint32_t end;
-    bool blended;         ///< points carry a weight s in blendWeight_ (ClampEdge / Falloff)
+    BlockKind kind;
+    std::uint32_t blendOffset;  ///< Blended only
   };
   const std::vector<Block>& blocks() const { return blocks_; }
+  /// Blocks of tile t: [tileBlocks()[t], tileBlocks()[t+1]).
+  const std::vector<std::uint32_t>& tileBlocks() const { return tileBlocks_; }
   const std::vector<double>& sortedU() const { return u_; }
   const std::vector<double>& sortedV() const { return v_; }
   const std::vector<double>& sortedW() const { return w_; }
   /// Original index of sorted position q; empty when the sorted order is the original order.
   const std::vector<std::uint32_t>& order() const { return order_; }
-  /// Weight of blended points: sorted position q >= blendBegin() has weight blendWeight()[q - blendBegin()].
   const std::vector<double>& blendWeight() const { return blend_; }
-  std::uint32_t blendBegin() const { return blendBegin_; }
-  /// Sorted positions >= frozenBegin() are left unchanged (Identity outside, Failed, beyond Falloff).
-  std::uint32_t frozenBegin() const { return frozenBegin_; }
 
  private:
   friend Embedding embed(const Lattice&, const Eigen::Ref<const Eigen::MatrixX3d>&, const EmbedOptions&);
@@ -90,11 +98,10 @@ class Embedding {
   Eigen::Vector3i counts_ = Eigen::Vector3i::Zero();
   OutsidePolicy policy_{};
   std::vector<Block> blocks_;
+  std::vector<std::uint32_t> tileBlocks_{0};
   std::vector<double> u_, v_, w_;
   std::vector<std::uint32_t> order_;
   std::vector<double> blend_;
-  std::uint32_t blendBegin_ = 0;
-  std::uint32_t frozenBegin_ = 0;
 };
 
 /// Embeds object points into the lattice's rest lattice: for each Q find (u,v,w) with
