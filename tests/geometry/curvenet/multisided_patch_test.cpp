@@ -41,6 +41,21 @@ TEST(MultisidedPatch, SphereOctantsInterpolateAndJoinG2OnAllTwelveEdges) {  // F
   EXPECT_LT(farthest, 0.05);
 }
 
+TEST(MultisidedPatch, BSplineCurveWithAGapIsCorrectedAndStillJoinsG2) {  // §4.3 step 3
+  CurveNetworkDescription d = sphereOctantNetwork();
+  // A periodic uniform cubic B-spline passes through (P_{k-1} + 4 P_k + P_{k+1}) / 6 at its
+  // knots: scale its control circle so it misses the other two curves by 0.003.
+  const double radius = 1.003 * 6.0 / (4.0 + 2.0 * std::cos(std::numbers::pi / 4));
+  CurveDescription& c = d.curves[0];
+  c.kind = CurveDescription::Kind::BSpline;
+  c.points *= radius;
+  c.knots = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+  const CurveNetwork net = buildCurveNetwork(d);
+  ASSERT_EQ(net.faces.size(), 8u);
+  EXPECT_LE(net.correctionResidual, 1e-9 * net.scale);
+  expectG2(sharedEdgeMismatch(net), net.scale, 12);
+}
+
 TEST(MultisidedPatch, HeightGridJoinsG2AndExponentOneLosesG2) {  // P6, P7
   const CurveNetwork net = buildCurveNetwork(heightGridNetwork(4));
   expectG2(sharedEdgeMismatch(net), net.scale, 12);
@@ -49,6 +64,13 @@ TEST(MultisidedPatch, HeightGridJoinsG2AndExponentOneLosesG2) {  // P6, P7
   const auto bad = sharedEdgeMismatch(net, m1);
   EXPECT_LE(bad.angle, 1e-9) << "m = 1 is still G1";
   EXPECT_GT(bad.curvature, 1e-2) << "m = 1 must fail G2 (negative control)";
+}
+
+TEST(MultisidedPatch, BenchmarkGridOfFiftyCurvesHas576QuadsJoiningG2) {  // bench input
+  const CurveNetwork net = buildCurveNetwork(heightGridNetwork(25));
+  ASSERT_EQ(net.faces.size(), 576u);
+  for (const Face& f : net.faces) EXPECT_EQ(f.sides.size(), 4u);
+  expectG2(sharedEdgeMismatch(net), net.scale, 2 * 24 * 23);
 }
 
 TEST(MultisidedPatch, MultiplePointsJoinG2AwayFromThePoles) {  // F9, rule (a)
