@@ -292,7 +292,7 @@ ClothoidSplineResult solveClothoidSpline(const Eigen::Ref<const Eigen::MatrixX2d
       lambda *= 0.5;
     }
     if (!accepted) {
-      result.status = scaled.cwiseAbs().maxCoeff() <= 1e3 * options.tolerance ? G3SolveStatus::Converged
+      result.status = scaled.cwiseAbs().maxCoeff() <= 1e2 * options.tolerance ? G3SolveStatus::Converged
                                                                                : G3SolveStatus::LineSearchFailed;
       break;
     }

@@ -363,7 +363,7 @@ NewtonOutcome newton(const System& sys, Eigen::VectorXd v, const Eigen::VectorXd
       }
       if (!accepted) {
         // At the rounding floor no step can decrease the residual any more.
-        if (scaled.cwiseAbs().maxCoeff() <= 1e3 * opt.tolerance) return finish(G3SolveStatus::Converged);
+        if (scaled.cwiseAbs().maxCoeff() <= 1e2 * opt.tolerance) return finish(G3SolveStatus::Converged);
         return finish(G3SolveStatus::LineSearchFailed);
       }
     }
@@ -384,7 +384,7 @@ NewtonOutcome newton(const System& sys, Eigen::VectorXd v, const Eigen::VectorXd
     const double scaledInf = scaled.cwiseAbs().maxCoeff();
     const bool tinyStep = stepInf <= 1e-13 * (1.0 + v.cwiseAbs().maxCoeff());
     if (scaledInf <= opt.tolerance && !over) return finish(G3SolveStatus::Converged);
-    if (tinyStep && (over || scaledInf <= 1e3 * opt.tolerance)) return finish(G3SolveStatus::Converged);
+    if (tinyStep && (over || scaledInf <= 1e2 * opt.tolerance)) return finish(G3SolveStatus::Converged);
     const size_t k = merits.size();
     if (k > 5 && merits[k - 1] > 0.9 * merits[k - 6]) return finish(G3SolveStatus::Stalled);
   }
@@ -448,15 +448,27 @@ G3SolveResult solveG3Curve(const Eigen::Ref<const Eigen::MatrixX2d>& points, con
   }
   const bool continuation = !options.paperMode && (options.continuation == ContinuationMode::Always ||
                                                    (options.continuation == ContinuationMode::OnFailure &&
-                                                    outcome.status != G3SolveStatus::Converged));
+                                                    outcome.status != G3SolveStatus::Converged &&
+                                                    // a rank-deficient system stays so along any path
+                                                    outcome.status != G3SolveStatus::SingularJacobian));
   if (continuation) {
-    // Targets move from their values at v0 to the requested ones: g(v) - (1 - lambda) g(v0).
+    // Start from a curve that interpolates (min-norm Newton on the interpolation rows alone),
+    // so that the lambda = 0 problem is feasible; the guess itself may carry targets no
+    // interpolating curve reaches (e.g. the cubic's length, shorter than any G3 curve's).
+    // Targets then move from their values there to the requested ones:
+    // g(v) - (1 - lambda) g(v_start) (spec sec. 3.6).
+    const System bare(points, {}, options);
+    G3SolverOptions bareOptions = options;
+    bareOptions.globalization = Globalization::LineSearch;
+    const NewtonOutcome start = newton(bare, v0, Eigen::VectorXd::Zero(bare.rows()), bareOptions);
+    result.iterations += start.iterations;
+    const Eigen::VectorXd vStart = start.status == G3SolveStatus::Converged ? start.v : v0;
     Eigen::VectorXd f0;
-    sys.evaluate(v0, sys.panels(v0), zero, f0, nullptr);
+    sys.evaluate(vStart, sys.panels(vStart), zero, f0, nullptr);
     Eigen::VectorXd g0 = f0;
     g0.head(2 * n).setZero();
     const G3SolveStatus directStatus = outcome.status;
-    Eigen::VectorXd v = v0;
+    Eigen::VectorXd v = vStart;
     double lambda = 0.0;
     double step = 0.25;
     int successes = 0;
@@ -509,6 +521,9 @@ G3SolveResult solveG3Curve(const Eigen::Ref<const Eigen::MatrixX2d>& points, con
     Eigen::VectorXd f;
     Eigen::MatrixXd jac;
     sys.evaluate(outcome.v, sys.panels(outcome.v), zero, f, &jac);
+    // Report the residual of the requested problem, not of a continuation stage.
+    result.residualNorm = f.norm();
+    result.scaledResidualInf = f.cwiseQuotient(sys.scales()).cwiseAbs().maxCoeff();
     const Eigen::MatrixXd scaledJac = sys.scales().cwiseInverse().asDiagonal() * jac;
     // 1-norm reciprocal condition estimates: an SVD would cost more than the whole solve.
     double rcond = 0.0;

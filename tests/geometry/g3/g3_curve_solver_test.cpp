@@ -281,6 +281,20 @@ TEST(G3CurveSolver, ReportsFigure2dAsInfeasible) {
   EXPECT_NEAR(rd.residualNorm, 0.0673, 0.01);  // where the damped solver stalls ([P])
 }
 
+TEST(G3CurveSolver, ContinuationReachesFeasibleTargetsAndFlagsFigure2dAsLikelyInfeasible) {
+  G3SolverOptions always;
+  always.continuation = ContinuationMode::Always;
+  const G3SolveResult t1 = solveG3Curve(testdata::figure2Points(), t1Conditions(), always);
+  ASSERT_TRUE(t1.converged) << t1.message;
+  EXPECT_GT(t1.continuationStages, 1);
+  EXPECT_NEAR(t1.curve->length(), 31.944481581, 1e-7);
+  const G3SolveResult d = solveG3Curve(
+      testdata::figure2Points(),
+      {Condition::curvature(0, 0.0), Condition::curvature(kLast, 0.0), Condition::totalLength(31.724017364)}, always);
+  EXPECT_FALSE(d.converged);
+  EXPECT_EQ(d.status, G3SolveStatus::LikelyInfeasible) << d.message;
+}
+
 // A feasible length (the T3 curve's length) with the same end curvatures solves.
 TEST(G3CurveSolver, SolvesAFeasibleTotalLengthCondition) {
   const G3SolveResult r = solveG3Curve(testdata::figure2Points(), {Condition::curvature(0, 0.0),
