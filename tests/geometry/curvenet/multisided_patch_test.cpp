@@ -56,6 +56,48 @@ TEST(MultisidedPatch, BSplineCurveWithAGapIsCorrectedAndStillJoinsG2) {  // §4.
   expectG2(sharedEdgeMismatch(net), net.scale, 12);
 }
 
+// F6: pentagon (0,0)(2,0)(2,1.5)(1.5,2)(0,2) cut by x + y = 3.5, the triangle beyond the cut
+// and the quad [0,2] x [-2,0], lifted onto the prototype height field.
+CurveNetworkDescription pentagonNetwork(double influenceOnX2) {
+  auto lifted = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, int n) {
+    Eigen::MatrixX3d p(n, 3);
+    for (int k = 0; k < n; ++k) {
+      const Eigen::Vector2d q = a + (b - a) * k / (n - 1.0);
+      p.row(k) << q.x(), q.y(), prototypeHeight(q.x(), q.y());
+    }
+    return p;
+  };
+  CurveNetworkDescription d;
+  auto add = [&](const std::string& name, Eigen::Vector2d a, Eigen::Vector2d b, int n) {
+    CurveDescription c;
+    c.name = name;
+    c.points = lifted(a, b, n);
+    d.curves.push_back(c);
+  };
+  add("y=-2", {-0.3, -2}, {2.3, -2}, 11);
+  add("y=0", {-0.3, 0}, {2.3, 0}, 11);
+  add("y=2", {-0.3, 2}, {2.3, 2}, 11);
+  add("x=0", {0, -2.3}, {0, 2.3}, 15);
+  add("x=2", {2, -2.3}, {2, 2.3}, 15);
+  add("x+y=3.5", {1.2, 2.3}, {2.3, 1.2}, 7);
+  d.curves[4].influence = influenceOnX2;
+  return d;
+}
+
+TEST(MultisidedPatch, PentagonTriangleAndQuadJoinG2ForAnyInfluenceWeight) {  // F6
+  for (double w : {1.0, 3.0}) {
+    const CurveNetwork net = buildCurveNetwork(pentagonNetwork(w));
+    std::vector<int> sides;
+    for (const Face& f : net.faces) sides.push_back(static_cast<int>(f.sides.size()));
+    std::sort(sides.begin(), sides.end());
+    ASSERT_EQ(sides, (std::vector<int>{3, 4, 5})) << "w = " << w;
+    expectG2(sharedEdgeMismatch(net), net.scale, 2);
+    PatchOptions m1;
+    m1.blendingExponent = 1;
+    EXPECT_GT(sharedEdgeMismatch(net, m1).curvature, 1e-2) << "m = 1 negative control, w = " << w;
+  }
+}
+
 TEST(MultisidedPatch, HeightGridJoinsG2AndExponentOneLosesG2) {  // P6, P7
   const CurveNetwork net = buildCurveNetwork(heightGridNetwork(4));
   expectG2(sharedEdgeMismatch(net), net.scale, 12);
