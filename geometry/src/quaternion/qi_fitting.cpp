@@ -113,6 +113,29 @@ std::vector<Eigen::MatrixXd> cumulativeMatrixIntegral(F&& f, const Eigen::Vector
   return out;
 }
 
+// Uniform cubic B-spline interpolating the points at x = 0..N-1 with the paper's end condition
+// Q_0 = Q_1, Q_{N+1} = Q_N (seed 003 eqs. (11)-(12)), solved directly instead of by Gauss-Seidel
+// (eqs. (14)-(16) converge to the same controls; spec §7 A14).
+UniformCubicBSpline interpolatingCubicBSpline(const Eigen::MatrixX3d& points) {
+  const int n = static_cast<int>(points.rows());
+  Eigen::VectorXd lower = Eigen::VectorXd::Constant(n, 1.0), diag = Eigen::VectorXd::Constant(n, 4.0),
+                  upper = Eigen::VectorXd::Constant(n, 1.0);
+  Eigen::MatrixX3d rhs = 6.0 * points;
+  diag[0] += 1.0;         // Q_0 = Q_1
+  diag[n - 1] += 1.0;     // Q_{N+1} = Q_N
+  for (int i = 1; i < n; ++i) {
+    const double w = lower[i] / diag[i - 1];
+    diag[i] -= w * upper[i - 1];
+    rhs.row(i) -= w * rhs.row(i - 1);
+  }
+  Eigen::MatrixX3d q(n + 2, 3);
+  q.row(n) = rhs.row(n - 1) / diag[n - 1];
+  for (int i = n - 2; i >= 0; --i) q.row(i + 1) = (rhs.row(i) - upper[i] * q.row(i + 2)) / diag[i];
+  q.row(0) = q.row(1);
+  q.row(n + 1) = q.row(n);
+  return UniformCubicBSpline(q);
+}
+
 // The optimisation problem: design vector layout, residual with per-segment restart.
 struct Problem {
   const Eigen::MatrixX3d& points;
@@ -367,11 +390,23 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
   }
   const bool planar = options.dimension == FitDimension::Planar || (options.dimension == FitDimension::Auto && flat);
 
-  // Initial guess from the least-squares cubic at the same breaks and u_i (spec §3.6 (b)).
-  UniformCubicBSpline init = fitLeastSquaresCubicBSpline(points, u, segments);
+  // The baseline: least-squares cubic at the same breaks and u_i (spec §3.7). It is also the default
+  // initial curve (spec §3.6 (b)); the paper preset interpolates instead (§3.6 (a)).
+  UniformCubicBSpline baseline = fitLeastSquaresCubicBSpline(points, u, segments);
+  const bool interpolating = options.initialCurve == FitInitialCurve::InterpolatingCubic;
+  const UniformCubicBSpline init = interpolating ? interpolatingCubicBSpline(points) : baseline;
+  // Initial-curve parameter x of the QI global parameter: x = u for the LSQ cubic; piecewise linear
+  // in the data parameters for the interpolating cubic, whose data point m sits at x = m.
+  const auto toInit = [&](double g) {
+    if (!interpolating) return g;
+    const Eigen::Index n = u.size();
+    Eigen::Index m = std::upper_bound(u.data(), u.data() + n, g) - u.data() - 1;
+    m = std::clamp<Eigen::Index>(m, 0, n - 2);
+    return static_cast<double>(m) + (g - u[m]) / (u[m + 1] - u[m]);
+  };
   const int k = options.degree;
-  const auto direction = [&](double x) {
-    Eigen::Vector3d d = init.derivative(x, 1);
+  const auto direction = [&](double g) {
+    Eigen::Vector3d d = init.derivative(toInit(g), 1);
     if (planar) d.z() = 0.0;
     return d.normalized();
   };
@@ -405,9 +440,12 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
       }
       prev = next;
     }
+    // Eq. (18) read as the arc length of the initial curve over the segment (spec §7 A12).
     double l = 0.0;
-    for (int p = 0; p < 4; ++p) {
-      l += integrateGaussLegendre(rule, seg + p / 4.0, seg + (p + 1) / 4.0,
+    const double a = toInit(seg), b = toInit(seg + 1.0);
+    const int panels = std::max(4, static_cast<int>(std::ceil(b - a)) * 2);
+    for (int p = 0; p < panels; ++p) {
+      l += integrateGaussLegendre(rule, a + (b - a) * p / panels, a + (b - a) * (p + 1) / panels,
                                   [&](double xx) { return init.derivative(xx, 1).norm(); });
     }
     x[pb.offset(seg + 1) - 1] = std::log(l);
@@ -519,7 +557,7 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
   }
 
   QiChain chain = buildChain(pb, x);
-  FitResult result(std::move(chain), std::move(init));
+  FitResult result(std::move(chain), std::move(baseline));
   result.parameters = u;
   result.pointErrors.resize(points.rows());
   for (Eigen::Index i = 0; i < points.rows(); ++i) result.pointErrors[i] = r.segment<3>(3 * i).norm();

@@ -18,7 +18,7 @@ using testdata::FitDataset;
 Eigen::VectorXd baselineErrors(const FitDataset& d, const FitResult& r) {
   Eigen::VectorXd e(d.points.rows());
   for (Eigen::Index i = 0; i < d.points.rows(); ++i) {
-    e[i] = (r.initialCurve.point(r.parameters[i]) - d.points.row(i).transpose()).norm();
+    e[i] = (r.baseline.point(r.parameters[i]) - d.points.row(i).transpose()).norm();
   }
   return e;
 }
@@ -108,6 +108,28 @@ TEST(QiFitting, SpatialFitIsEquivariantUnderRigidMotion) {
   EXPECT_NEAR(moved.curve.length(), base.curve.length(), 1e-8 * base.curve.length());
 }
 
+TEST(QiFitting, PaperPresetReproducesReferenceRows) {
+  // Spec 003 §5.3 "paper" preset (interpolating cubic, Q_0 = Q_1, fixed start from it; LM):
+  // D-SINE B1 0.07811, B2 0.14427, D-CHAIN2D (chord u) 0.03092, D-HELIX M = 3 0.1400.
+  FitOptions paper;
+  paper.initialCurve = FitInitialCurve::InterpolatingCubic;
+  const struct {
+    FitDataset d;
+    double rms;
+  } rows[] = {{testdata::sine({0, 6, 15, 24, 30}), 0.07811},
+              {testdata::sine({0, 7, 15, 23, 30}), 0.14427},
+              {testdata::chain2d(), 0.03092},
+              {testdata::helix(), 0.1400}};
+  for (const auto& row : rows) {
+    const FitResult r = fitQiChain(row.d.points, row.d.breaks, paper);
+    EXPECT_TRUE(r.converged) << r.message;
+    EXPECT_NEAR(r.rms, row.rms, 0.01 * row.rms);
+  }
+  // B-spline baseline of Table 1 row (1) on D-SINE B1 / B2: 2.00717 / 1.20778.
+  const FitDataset b1 = testdata::sine({0, 6, 15, 24, 30});
+  EXPECT_NEAR(rmsOf(baselineErrors(b1, fitQiChain(b1.points, b1.breaks, paper))), 2.00717, 1e-4);
+}
+
 TEST(QiFitting, ObjectiveNeverIncreasesAndEndsBelowStart) {
   const FitDataset c2 = testdata::chain2dNoisy();
   const FitResult r = fitQiChain(c2.points, c2.breaks);
@@ -177,7 +199,7 @@ Comparison compare(const char* name, const FitDataset& d, bool planar) {
   const FitResult r = fitQiChain(d.points, d.breaks);
   EXPECT_TRUE(r.converged) << name << ": " << r.message;
   const Eigen::VectorXd be = baselineErrors(d, r);
-  const double bsLength = r.initialCurve.length();
+  const double bsLength = r.baseline.length();
   Comparison c{r.rms,
                r.rmsPercent,
                r.maxPercent,
@@ -185,7 +207,7 @@ Comparison compare(const char* name, const FitDataset& d, bool planar) {
                100.0 * rmsOf(be) / bsLength,
                100.0 * be.maxCoeff() / bsLength,
                curvatureFairness(sampledChainCurvature(r.curve, 400, planar), 400),
-               curvatureFairness(sampledBSplineCurvature(r.initialCurve, 400, planar), 400)};
+               curvatureFairness(sampledBSplineCurvature(r.baseline, 400, planar), 400)};
   std::printf(
       "[table] %-14s QI rms %.5f (%.4f%% / max %.4f%%) TV %.4f (intra %.4f) extrema %d | BS rms %.5f (%.4f%% / max "
       "%.4f%%) TV %.4f extrema %d\n",

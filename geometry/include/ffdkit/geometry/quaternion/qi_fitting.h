@@ -12,7 +12,9 @@ namespace ffdkit::geometry::quaternion {
 
 /// Which initial curve seeds the QI fit (seed 003 spec §3.6).
 enum class FitInitialCurve {
-  LeastSquaresCubic,  ///< LSQ uniform cubic at the same breaks and u_i (default; spec [rec] (b))
+  LeastSquaresCubic,   ///< LSQ uniform cubic at the same breaks and u_i (default; spec [rec] (b))
+  InterpolatingCubic,  ///< the paper's interpolating uniform cubic with Q_0 = Q_1 (eqs. (11)-(16));
+                       ///< with StartTangentMode::FromInitialCurve this is the "paper" preset
 };
 
 /// How the chain's start tangent (q_00) is chosen (seed 003 spec §3.4, §7 A9).
@@ -52,7 +54,7 @@ struct FitOptions {
 };
 
 struct FitResult {
-  FitResult(QiChain c, UniformCubicBSpline init) : curve(std::move(c)), initialCurve(std::move(init)) {}
+  FitResult(QiChain c, UniformCubicBSpline b) : curve(std::move(c)), baseline(std::move(b)) {}
   QiChain curve;                       ///< the fitted G1 chain, world units
   Eigen::VectorXd parameters;          ///< u_i used, in [0, M]
   Eigen::VectorXd pointErrors;         ///< e_i = |C(u_i) - P_i|
@@ -65,7 +67,7 @@ struct FitResult {
   int iterations = 0;
   int functionEvaluations = 0;         ///< residual evaluations (forward-difference columns included)
   std::vector<double> objectiveHistory;  ///< accepted R = sum e_i^2, non-increasing
-  UniformCubicBSpline initialCurve;    ///< the LSQ cubic that seeded the fit (also the baseline)
+  UniformCubicBSpline baseline;        ///< LSQ cubic B-spline, same spans and u_i (seed 003's comparison)
   std::string message;                 ///< which stopping test fired, or why it failed
 };
 
