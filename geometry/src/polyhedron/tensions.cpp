@@ -42,6 +42,20 @@ ResolvedTensions resolveTensions(const Tensions& tensions, const MeshTopology& t
     seen[e] = true;
     out.beta[e] = value;
   }
+  if (!tensions.endBeta.empty()) {
+    Eigen::VectorXd start = out.beta, end = out.beta;  // the ends at from(edgeHalfEdge) and to(...)
+    for (const auto& [ends, value] : tensions.endBeta) {
+      const std::string where =
+          "end tension beta of edge (" + std::to_string(ends.first) + ", " + std::to_string(ends.second) + ") at vertex " +
+          std::to_string(ends.first);
+      const int he = topology.findHalfEdge(ends.first, ends.second);
+      if (he < 0) throw PolyhedronError(where + ": the mesh has no such edge");
+      requireTension(value, where);
+      const int e = topology.edge(he);
+      (topology.edgeHalfEdge(e) == he ? start : end)[e] = value;
+    }
+    out.beta = 0.5 * (start + end);
+  }
   for (int v = 0; v < topology.vertexCount(); ++v) {
     if (out.alpha[v] > 0.0) continue;
     bool anyBeta = false;

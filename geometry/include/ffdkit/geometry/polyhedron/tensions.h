@@ -18,7 +18,11 @@ struct Tensions {
   double defaultAlpha = 0.0;                      ///< alpha_v of vertices not in vertexAlpha
   double defaultBeta = 1.0;                       ///< beta_e of edges not in edgeBeta
   std::map<int, double> vertexAlpha;              ///< vertex index -> alpha_v
-  std::map<std::pair<int, int>, double> edgeBeta;  ///< (a, b) in either order -> beta_e (spec §7-A4)
+  std::map<std::pair<int, int>, double> edgeBeta;  ///< (a, b) in either order -> beta_e
+  /// Thesis per-end tensions beta^v_i (l.1414): (v, w) -> the tension of edge {v, w} at v's end.
+  /// The edge gets the mean of its two ends, the exact minimiser of (4.3) (spec §7-A4); an end
+  /// not listed keeps the edge's value from edgeBeta / defaultBeta.
+  std::map<std::pair<int, int>, double> endBeta;
 };
 
 /// Tensions resolved to one value per vertex and per undirected edge of a topology.
@@ -29,7 +33,7 @@ struct ResolvedTensions {
 
 /// Resolves defaults and overrides.
 /// @throws PolyhedronError for a negative or non-finite tension, an override naming a vertex
-///   or an edge the mesh does not have, an edge given twice (as (a,b) and (b,a)), or a vertex
+///   or an edge the mesh does not have, an edge given twice in edgeBeta (as (a,b) and (b,a)), or a vertex
 ///   where alpha_v = 0 and every beta of its edges is 0 (the network system would be singular).
 ResolvedTensions resolveTensions(const Tensions& tensions, const MeshTopology& topology);
 
