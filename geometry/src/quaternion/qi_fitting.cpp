@@ -230,15 +230,15 @@ struct Problem {
       const std::vector<Eigen::Vector3d> w = omegas(x, seg);
       const double l = length(x, seg);
       const Eigen::Quaterniond q0 = st.q[seg];
+      // Scratch reused by every quadrature node.
+      std::vector<Eigen::Quaterniond> e(degree + 1), frame(degree + 1);
+      std::vector<double> b(degree + 1);
       const auto integrand = [&](double t, Eigen::Matrix<double, 3, Eigen::Dynamic>& m) {
-        std::vector<Eigen::Quaterniond> e(degree + 1);
-        std::vector<double> b(degree + 1);
         for (int jj = 1; jj <= degree; ++jj) {
           b[jj] = cumulativeBernstein(degree, jj, t);
           e[jj] = quaternionExp(w[jj - 1] * b[jj]);
         }
-        Eigen::Quaterniond full = Eigen::Quaterniond::Identity();  // E_k..E_1 (A) or E_1..E_k (B)
-        std::vector<Eigen::Quaterniond> frame(degree + 1);         // W_j as quaternions
+        Eigen::Quaterniond full = Eigen::Quaterniond::Identity();  // E_k..E_1 (A) or E_1..E_k (B); W_j in frame
         if (form == ProductForm::Global) {
           Eigen::Quaterniond suffix = Eigen::Quaterniond::Identity();
           for (int jj = degree; jj >= 1; --jj) {
