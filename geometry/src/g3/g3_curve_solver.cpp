@@ -304,6 +304,10 @@ NewtonOutcome newton(const System& sys, Eigen::VectorXd v, const Eigen::VectorXd
       step = -cod.solve(scaled);
     }
     if (!levenbergMarquardt && !step.allFinite()) return finish(G3SolveStatus::NonFinite);
+    // Least squares: stationary when the Gauss-Newton step vanishes (the residual need not).
+    if (over && !levenbergMarquardt && step.cwiseAbs().maxCoeff() <= 1e-11 * (1.0 + v.cwiseAbs().maxCoeff())) {
+      return finish(G3SolveStatus::Converged);
+    }
 
     Eigen::VectorXd trial;
     Eigen::VectorXd trialF;

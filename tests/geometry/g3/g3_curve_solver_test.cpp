@@ -430,6 +430,18 @@ TEST(G3CurveSolver, ReportsASingularSystemAsAFailure) {
   EXPECT_LT(ok.jacobianConditionNumber, 1e8);
 }
 
+TEST(G3CurveSolver, FitsMoreThanThreeConditionsByLeastSquaresWhenAllowed) {
+  // T1 plus its own (7-digit) interior curvature: nearly consistent, so the fit lands next to T1.
+  std::vector<Condition> conditions = t1Conditions();
+  conditions.push_back(Condition::curvature(1, -0.2855481));
+  G3SolverOptions over;
+  over.allowOverdetermined = true;
+  const G3SolveResult r = solveG3Curve(testdata::figure2Points(), conditions, over);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_NEAR(r.curve->length(), 31.944481581, 1e-5);
+  EXPECT_LT(r.scaledResidualInf, 1e-5);
+}
+
 TEST(G3CurveSolver, RejectsInvalidInput) {
   const Eigen::MatrixX2d p = testdata::figure2Points();
   EXPECT_THROW(solveG3Curve(p, {Condition::curvature(9, 0.0)}), G3InputError);
