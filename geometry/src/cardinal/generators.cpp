@@ -106,7 +106,7 @@ Eigen::VectorXd sampleParameters(const SigmaKnots& knots, int perSpan) {
 
 void SSplineCurveParams::validate() const {
   checkPoints(points, options.end == SSplineEnd::Closed ? 3 : 2, "SSplineCurveParams");
-  SSplineBasis(options.beta2, options.halfWidth);  // throws on bad tension / width
+  SSplineBasis(options.beta2, options.halfWidth, options.degree);  // throws on bad tension/width/degree
 }
 
 Polyline generateSSplineCurve(const SSplineCurveParams& params, const CurveSampling& sampling) {
@@ -135,8 +135,8 @@ CurvatureSamples sSplineCurveCurvature(const SSplineCurveParams& params,
 
 void SSplineSurfaceParams::validate() const {
   checkGrid(points, options.closedU ? 3 : 2, options.closedV ? 3 : 2, "SSplineSurfaceParams");
-  SSplineBasis(options.beta2U, options.halfWidthU);
-  SSplineBasis(options.beta2V, options.halfWidthV);
+  SSplineBasis(options.beta2U, options.halfWidthU, options.degreeU);
+  SSplineBasis(options.beta2V, options.halfWidthV, options.degreeV);
 }
 
 TriangleMesh generateSSplineSurface(const SSplineSurfaceParams& params,

@@ -14,7 +14,7 @@ int floorMod(int a, int m) { return ((a % m) + m) % m; }
 }  // namespace
 
 SSplineCurve::SSplineCurve(const Eigen::MatrixX3d& points, const SSplineCurveOptions& options)
-    : points_(points), options_(options), basis_(options.beta2, options.halfWidth) {
+    : points_(points), options_(options), basis_(options.beta2, options.halfWidth, options.degree) {
   const auto count = static_cast<int>(points.rows());
   if (options.end == SSplineEnd::Closed) {
     if (count < 3) {

@@ -26,8 +26,8 @@ double wrap(double x, int span) {
 
 SSplineSurface::SSplineSurface(const PointGrid& grid, const SSplineSurfaceOptions& options)
     : options_(options),
-      basisU_(options.beta2U, options.halfWidthU),
-      basisV_(options.beta2V, options.halfWidthV) {
+      basisU_(options.beta2U, options.halfWidthU, options.degreeU),
+      basisV_(options.beta2V, options.halfWidthV, options.degreeV) {
   const int minU = options.closedU ? 3 : 2;
   const int minV = options.closedV ? 3 : 2;
   if (grid.rows < minU || grid.cols < minV) {

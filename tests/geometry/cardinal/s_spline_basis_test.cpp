@@ -102,6 +102,33 @@ TEST(SSplineBasis, TruncationJumpsMatchSpecTable) {
   }
 }
 
+TEST(SSplineCoefficientsOddDegree, CubicAgreesWithClosedForm) {
+  const Eigen::VectorXd a = sSplineCoefficientsOddDegree(3, 6);
+  const Eigen::VectorXd b = sSplineCoefficients(0.0, 6);
+  EXPECT_LT((a - b).cwiseAbs().maxCoeff(), 1e-14);
+}
+
+TEST(SSplineCoefficientsOddDegree, QuinticMatchesSpec) {
+  // spec §2.2 [D]: c_0..c_4 = 2.842171, -1.321729, 0.573326, -0.247042, 0.106378.
+  const Eigen::VectorXd c = sSplineCoefficientsOddDegree(5, 4);
+  const double expected[5] = {2.842171, -1.321729, 0.573326, -0.247042, 0.106378};
+  for (int i = 0; i < 5; ++i) EXPECT_NEAR(c[i], expected[i], 5e-7) << i;
+  // Knot values of the quintic B-spline: (1, 26, 66, 26, 1) / 120.
+  const double v[5] = {1, 26, 66, 26, 1};
+  for (int j = 1; j <= 5; ++j) EXPECT_NEAR(centredBSpline(j - 3.0, 5), v[j - 1] / 120.0, 1e-15);
+}
+
+TEST(SSplineBasis, QuinticIsCardinalAndSmoothInside) {
+  const SSplineBasis s(0.0, 8, 5);
+  for (int j = -10; j <= 10; ++j) EXPECT_NEAR(s.evaluate(j), j == 0 ? 1.0 : 0.0, 1e-13) << j;
+  // Inside the support the quintic basis is C4: left and right second/third derivatives agree.
+  for (int j = -6; j <= 6; ++j) {
+    EXPECT_NEAR(s.evaluate(j, 3, Limit::FromLeft), s.evaluate(j, 3, Limit::FromRight), 1e-12) << j;
+  }
+  EXPECT_THROW(SSplineBasis(1.0, 4, 5), CardinalSplineError);
+  EXPECT_THROW(SSplineBasis(0.0, 4, 4), CardinalSplineError);
+}
+
 TEST(SSplineBasis, IsEven) {
   const SSplineBasis s(25.0, 3);
   for (double x = 0.0; x < 3.0; x += 0.0625) EXPECT_NEAR(s.evaluate(x), s.evaluate(-x), 1e-14);

@@ -56,7 +56,10 @@ TEST(SSplineCurve, ClosedHexagonRadiusMatchesSpec) {
   const int w[4] = {4, 4, 3, 2};
   const double radius[4] = {0.996692, 0.952686, 0.902986, 0.878058};
   for (int r = 0; r < 4; ++r) {
-    SSplineCurveOptions o{beta2[r], w[r], SSplineEnd::Closed};
+    SSplineCurveOptions o;
+    o.beta2 = beta2[r];
+    o.halfWidth = w[r];
+    o.end = SSplineEnd::Closed;
     EXPECT_NEAR(SSplineCurve(p, o).evaluate(0.5).norm(), radius[r], 5e-7);
   }
 }
@@ -143,6 +146,25 @@ TEST(SSplineCurve, SecondDerivativeJumpsAtKnotsByTruncationTerm) {
     const Eigen::Vector3d slopeJump = c.evaluate(x, 1, Limit::FromRight) - c.evaluate(x, 1, Limit::FromLeft);
     const double b = c.basis().evaluate(4.0, 1, Limit::FromLeft);
     EXPECT_LT((slopeJump + b * (p.row(x - 4) + p.row(x + 4)).transpose()).norm(), 1e-13) << x;
+  }
+}
+
+TEST(SSplineCurve, QuinticVersionInterpolatesAndIsSmootherWithWiderSupport) {
+  const Eigen::MatrixX3d p = randomPoints(20, 8);
+  SSplineCurveOptions o;
+  o.degree = 5;
+  o.halfWidth = 8;
+  const SSplineCurve c(p, o);
+  for (int k = 0; k < 20; ++k) EXPECT_LT((c.evaluate(k) - p.row(k).transpose()).norm(), 1e-13) << k;
+  // Moving P_10 changes only (10 - w, 10 + w).
+  Eigen::MatrixX3d q = p;
+  q.row(10) += Eigen::RowVector3d(1, 0, 0);
+  const SSplineCurve d(q, o);
+  for (int step = 0; step <= 19 * 4; ++step) {
+    const double x = step / 4.0;
+    if (x <= 2.0 || x >= 18.0) {
+      EXPECT_EQ((c.evaluate(x) - d.evaluate(x)).norm(), 0.0) << x;
+    }
   }
 }
 

@@ -20,6 +20,21 @@ enum class Limit {
 /// @throws CardinalSplineError if beta2 < 0 or deriv not in 0..3.
 double beta2SplineBasis(double x, double beta2, int deriv = 0, Limit side = Limit::Value);
 
+/// Centred uniform B-spline M_m(x) of odd degree m in 3..9 (knots at the integers, support
+/// [-(m+1)/2, (m+1)/2]) and its derivatives of order deriv in 0..min(3, m-1), from the
+/// truncated-power form of eq. (3.5), evaluated on the half nearer its left end (symmetry) to
+/// limit cancellation.
+/// @throws CardinalSplineError on an even or out-of-range degree or derivative order.
+double centredBSpline(double x, int degree, int deriv = 0);
+
+/// Coefficients c_0..c_w of the S-spline of odd degree m (beta2 = 0): c_i = sum_p kappa_p
+/// xi_p^i over the k-1 roots xi_p in (-1, 0) of V_1 xi^{m-1} + ... + V_m = 0 (eq. 3.9, corrected
+/// exponent; V_j = N_0^m(j), eq. 3.6), kappa from the k-1 equations (3.7), m = 2k-1.
+/// degree 3 agrees with the closed form of sSplineCoefficients(0, w).
+/// @see seed 001 eq. (3.4)-(3.9), l.876-922; spec §2.2.
+/// @throws CardinalSplineError on an even or out-of-range degree, or halfWidth < 1.
+Eigen::VectorXd sSplineCoefficientsOddDegree(int degree, int halfWidth);
+
 /// Coefficients c_0..c_w of the beta2 S-spline: c_i = sqrt((b+12)/(b+4)) xi0^i with
 /// xi0 = (-(b+8) + sqrt((b+12)(b+4))) / 4. beta2 = 0 gives sqrt(3)(-2+sqrt(3))^i.
 /// @see seed 001 l.918, l.955-965, Table 3-1 (l.946-953).
@@ -28,14 +43,21 @@ Eigen::VectorXd sSplineCoefficients(double beta2, int halfWidth);
 
 /// The truncated local cardinal basis S_0(x) = sum_{|i|<=w} c_|i| B(x - i; beta2) for |x| < w,
 /// 0 otherwise (open support interval: exact interpolation, spec §7 item 4). S_k(x) = S_0(x-k).
+/// For odd degree m = 2k-1 > 3 the sum runs to |i| <= w + k - 2, since M_m does not vanish at
+/// its inner knots; this keeps S_0(j) = delta_0j exactly for all integers (an extension: the
+/// thesis only writes the cubic case out).
 /// @see seed 001 eq. (3.3), (3.10).
 class SSplineBasis {
  public:
-  /// @throws CardinalSplineError if beta2 < 0 or halfWidth < 1.
-  explicit SSplineBasis(double beta2 = 0.0, int halfWidth = 4);
+  /// degree 3 uses the beta2-spline B(x; beta2); odd degrees 5..9 use the B-spline M_m and
+  /// need beta2 = 0 (the thesis's beta2 extension is cubic only).
+  /// @throws CardinalSplineError if beta2 < 0, halfWidth < 1, or the degree is unsupported.
+  explicit SSplineBasis(double beta2 = 0.0, int halfWidth = 4, int degree = 3);
 
   double beta2() const { return beta2_; }
+  int degree() const { return degree_; }
   int halfWidth() const { return halfWidth_; }
+  /// c_0..c_w (degree 3) or c_0..c_{w+k-2} (degree m = 2k-1 > 3, see evaluate).
   const Eigen::VectorXd& coefficients() const { return c_; }
 
   /// S_0^(deriv)(x), x in knot-index units. With Limit::Value and deriv = 0 the open-support
@@ -51,6 +73,7 @@ class SSplineBasis {
  private:
   double beta2_;
   int halfWidth_;
+  int degree_;
   Eigen::VectorXd c_;
 };
 

@@ -22,6 +22,7 @@ struct SSplineCurveOptions {
   /// Divide the tangents by lambda_w so that they set the end derivative up to the
   /// truncation residue (spec §7 item 6). false is the thesis behaviour.
   bool scaleTangent = false;
+  int degree = 3;      ///< odd B-spline degree; 5..9 need beta2 = 0 (spec §2.2)
 };
 
 /// S-spline curve Q(x) = sum_i P_i S_i(x), x in [0, s] (open) or [0, s) periodic (closed);

@@ -12,6 +12,8 @@ struct SSplineSurfaceOptions {
   double beta2V = 0.0;   ///< tension along v (columns)
   int halfWidthU = 4;    ///< truncation half-width along u
   int halfWidthV = 4;    ///< truncation half-width along v
+  int degreeU = 3;       ///< odd B-spline degree along u (5..9 need beta2U = 0)
+  int degreeV = 3;       ///< odd B-spline degree along v
   bool closedU = false;  ///< u periodic: the grid rows are distinct, row s := row 0
   bool closedV = false;  ///< v periodic
 };
