@@ -87,6 +87,10 @@ AxisSpline::AxisSpline(const AxisBasis& basis, int count, const char* axisName) 
     }
   }
   breaks_.push_back(hi_);
+  for (const int span : cellSpan_) {
+    for (int j = 1; j <= degree_; ++j)
+      for (int r = 0; r < j; ++r) inverses_.push_back(1.0 / (knots_[span + r + 1] - knots_[span + 1 - j + r]));
+  }
   greville_ = grevilleAbscissae(knots, count, degree_);
   if (periodic_) {
     for (int i = 0; i < count; ++i) greville_[i] = wrap(greville_[i]);
@@ -110,7 +114,40 @@ int AxisSpline::cellOf(double t) const {
 }
 
 void AxisSpline::basis(int cell, double t, double* values, double* derivatives) const {
-  bsplineBasisOnSpan(knots_.data(), cellSpan_[cell], degree_, wrap(t), values, derivatives);
+  // Cox-de Boor (The NURBS Book A2.2 / A2.3) with the cell's precomputed reciprocals.
+  const int p = degree_;
+  const int s = cellSpan_[cell];
+  const double* U = knots_.data();
+  const double* inv = inverses_.data() + static_cast<std::size_t>(cell) * p * (p + 1) / 2;
+  t = wrap(t);
+  double left[34];
+  double right[34];
+  double lower[34];
+  values[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    if (j == p && derivatives != nullptr) {
+      for (int r = 0; r < p; ++r) lower[r] = values[r];
+    }
+    left[j] = t - U[s + 1 - j];
+    right[j] = U[s + j] - t;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r, ++inv) {
+      const double temp = values[r] * *inv;
+      values[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    values[j] = saved;
+  }
+  if (derivatives == nullptr) return;
+  // dN_(s-p+r) = p (lower[r-1] / (U[s+r] - U[s-p+r]) - lower[r] / (U[s+r+1] - U[s-p+r+1])); these are
+  // the reciprocals of the last row (j = p), which `inv` has just walked past.
+  const double* last = inv - p;
+  for (int r = 0; r <= p; ++r) {
+    double d = 0.0;
+    if (r >= 1) d += lower[r - 1] * last[r - 1];
+    if (r < p) d -= lower[r] * last[r];
+    derivatives[r] = p * d;
+  }
 }
 
 }  // namespace ffdkit::ffd

@@ -79,6 +79,9 @@ class AxisSpline {
   std::vector<double> knots_;
   std::vector<int> cellSpan_;
   std::vector<double> breaks_;  // cell boundaries, cellCount()+1 values
+  // Per cell, the reciprocals of the Cox-de Boor denominators (degree*(degree+1)/2 values):
+  // divisions dominated Newton embedding, and the knots of a cell never change.
+  std::vector<double> inverses_;
   Eigen::VectorXd greville_;
 };
 
