@@ -1,5 +1,6 @@
 #include "ffdkit/widgets/thesis_examples.h"
 
+#include <cmath>
 #include <numbers>
 
 namespace ffdkit::widgets {
@@ -7,10 +8,15 @@ namespace {
 
 using std::numbers::pi;
 
-// A placement that turns the widget's local x onto `direction` (given in the cell's axes).
+// A placement that turns the widget's local x onto the unit `direction` (given in the cell's
+// axes); built from cross products so that axis directions give exact matrices.
 Eigen::Affine3d pointing(const Eigen::Vector3d& direction) {
+  const Eigen::Vector3d x = direction.normalized();
+  const Eigen::Vector3d up = std::abs(x.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitY();
   Eigen::Affine3d a = Eigen::Affine3d::Identity();
-  a.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), direction).toRotationMatrix();
+  a.linear().col(0) = x;
+  a.linear().col(1) = up.cross(x).normalized();
+  a.linear().col(2) = x.cross(a.linear().col(1));
   return a;
 }
 

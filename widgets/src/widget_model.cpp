@@ -1510,7 +1510,7 @@ WidgetModel WidgetModel::fromData(const WidgetModelData& data) {
       node.settings = l.settings;
     }
     for (std::size_t i = 0; i < data.lattices.size(); ++i) {
-      at("/lattices/" + std::to_string(i) + "/settings");
+      at("/lattices/" + std::to_string(i));
       model.setLatticeSettings(data.lattices[i].id, data.lattices[i].settings);
     }
     for (std::size_t i = 0; i < data.cells.size(); ++i) {
