@@ -1,0 +1,634 @@
+#include "ffdkit/scenes/widget_file.h"
+
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "ffdkit/ffd/lattice.h"
+#include "ffdkit/scenes/atomic_write.h"
+
+namespace ffdkit::scenes {
+namespace {
+
+using Json = nlohmann::ordered_json;
+using namespace ffdkit::widgets;
+
+constexpr const char* kFormatName = "ffdkit-widgets";
+
+std::string lineColumn(const std::string& text, std::size_t byte) {
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return std::to_string(line) + ":" + std::to_string(column);
+}
+
+// A JSON-pointer location in the file being read, for error messages.
+struct Location {
+  const std::string* source;
+  std::string pointer;
+
+  Location operator/(const std::string& key) const { return {source, pointer + "/" + key}; }
+  Location operator/(std::size_t index) const { return {source, pointer + "/" + std::to_string(index)}; }
+  [[noreturn]] void fail(const std::string& message) const {
+    throw WidgetFileError(*source + " " + (pointer.empty() ? "/" : pointer) + ": " + message);
+  }
+};
+
+std::string typeName(const Json& j) { return j.type_name(); }
+
+const Json& member(const Json& object, const char* key, const Location& at) {
+  if (!object.contains(key)) at.fail(std::string("missing key '") + key + "'");
+  return object[key];
+}
+
+void checkObject(const Json& j, const Location& at) {
+  if (!j.is_object()) at.fail("expected an object, got " + typeName(j));
+}
+void checkArray(const Json& j, const Location& at) {
+  if (!j.is_array()) at.fail("expected an array, got " + typeName(j));
+}
+
+void checkKeys(const Json& object, std::initializer_list<const char*> allowed, const Location& at) {
+  for (const auto& [key, value] : object.items()) {
+    bool known = false;
+    for (const char* a : allowed) known = known || key == a;
+    if (!known) {
+      std::string list;
+      for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      (at / key).fail("unknown key '" + key + "' (known: " + list + ")");
+    }
+  }
+}
+
+double number(const Json& j, const Location& at) {
+  if (!j.is_number()) at.fail("expected a number, got " + typeName(j));
+  const double v = j.get<double>();
+  if (!std::isfinite(v)) at.fail("expected a finite number");
+  return v;
+}
+
+int integer(const Json& j, const Location& at) {
+  if (!j.is_number_integer()) at.fail("expected an integer, got " + typeName(j));
+  const auto v = j.get<std::int64_t>();
+  if (v < -1'000'000'000 || v > 1'000'000'000) at.fail("integer out of range");
+  return static_cast<int>(v);
+}
+
+std::string text(const Json& j, const Location& at) {
+  if (!j.is_string()) at.fail("expected a string, got " + typeName(j));
+  return j.get<std::string>();
+}
+
+bool boolean(const Json& j, const Location& at) {
+  if (!j.is_boolean()) at.fail("expected true or false, got " + typeName(j));
+  return j.get<bool>();
+}
+
+WidgetId widgetId(const Json& j, const Location& at) {
+  const std::string s = text(j, at);
+  auto id = parseWidgetId(s);
+  if (!id) at.fail("expected a widget id like 'w3', got '" + s + "'");
+  return *id;
+}
+
+BindingId bindingId(const Json& j, const Location& at) {
+  const std::string s = text(j, at);
+  auto id = parseBindingId(s);
+  if (!id) at.fail("expected a binding id like 'b3', got '" + s + "'");
+  return *id;
+}
+
+Eigen::Vector3i vector3i(const Json& j, const Location& at) {
+  checkArray(j, at);
+  if (j.size() != 3) at.fail("expected 3 integers, got " + std::to_string(j.size()) + " values");
+  return {integer(j[0], at / 0), integer(j[1], at / 1), integer(j[2], at / 2)};
+}
+
+Eigen::MatrixX3d points(const Json& j, const Location& at) {
+  checkArray(j, at);
+  Eigen::MatrixX3d p(static_cast<Eigen::Index>(j.size()), 3);
+  for (std::size_t r = 0; r < j.size(); ++r) {
+    const Location ar = at / r;
+    checkArray(j[r], ar);
+    if (j[r].size() != 3) ar.fail("expected a point [x, y, z], got " + std::to_string(j[r].size()) + " values");
+    for (std::size_t c = 0; c < 3; ++c) p(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = number(j[r][c], ar / c);
+  }
+  return p;
+}
+
+// An affine map as its top three rows [[r00, r01, r02, t0], ...].
+Eigen::Affine3d affine(const Json& j, const Location& at) {
+  checkArray(j, at);
+  if (j.size() != 3) at.fail("expected 3 rows [r0, r1, r2, t] of an affine map, got " + std::to_string(j.size()));
+  Eigen::Affine3d a = Eigen::Affine3d::Identity();
+  for (std::size_t r = 0; r < 3; ++r) {
+    const Location ar = at / r;
+    checkArray(j[r], ar);
+    if (j[r].size() != 4) ar.fail("expected 4 numbers per row, got " + std::to_string(j[r].size()));
+    for (std::size_t c = 0; c < 4; ++c) a.matrix()(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = number(j[r][c], ar / c);
+  }
+  return a;
+}
+
+template <class T>
+T named(const std::optional<T>& parsed, const std::string& name, const char* what, const char* known, const Location& at) {
+  if (!parsed) at.fail(std::string("unknown ") + what + " '" + name + "' (known: " + known + ")");
+  return *parsed;
+}
+
+std::string_view basisKindName(ffd::AxisBasis::Kind kind) {
+  switch (kind) {
+    case ffd::AxisBasis::Kind::Bernstein: return "bernstein";
+    case ffd::AxisBasis::Kind::BSpline: return "bspline";
+    case ffd::AxisBasis::Kind::PeriodicBSpline: return "periodic-bspline";
+  }
+  return "unknown";
+}
+
+std::string_view outsideKindName(ffd::OutsidePolicy::Kind kind) {
+  switch (kind) {
+    case ffd::OutsidePolicy::Kind::Identity: return "identity";
+    case ffd::OutsidePolicy::Kind::ClampEdge: return "clamp-edge";
+    case ffd::OutsidePolicy::Kind::Extrapolate: return "extrapolate";
+    case ffd::OutsidePolicy::Kind::Falloff: return "falloff";
+  }
+  return "unknown";
+}
+
+ffd::AxisBasis readBasis(const Json& j, const Location& at) {
+  checkObject(j, at);
+  checkKeys(j, {"kind", "degree", "knots"}, at);
+  const std::string kind = text(member(j, "kind", at), at / "kind");
+  ffd::AxisBasis b = ffd::AxisBasis::bernstein();
+  if (kind == "bernstein") {
+    if (j.contains("degree") || j.contains("knots")) at.fail("a Bernstein basis takes no degree or knots");
+    return b;
+  }
+  if (kind == "bspline") b = ffd::AxisBasis::bspline(integer(member(j, "degree", at), at / "degree"));
+  else if (kind == "periodic-bspline") b = ffd::AxisBasis::periodic(integer(member(j, "degree", at), at / "degree"));
+  else (at / "kind").fail("unknown basis '" + kind + "' (known: bernstein, bspline, periodic-bspline)");
+  if (j.contains("knots")) {
+    if (kind != "bspline") (at / "knots").fail("only a bspline basis takes explicit knots");
+    const Json& k = j["knots"];
+    checkArray(k, at / "knots");
+    b.knots.resize(static_cast<Eigen::Index>(k.size()));
+    for (std::size_t i = 0; i < k.size(); ++i) b.knots[static_cast<Eigen::Index>(i)] = number(k[i], at / "knots" / i);
+  }
+  return b;
+}
+
+CellSpec readCellSpec(const Json& j, CellKind kind, const Location& at) {
+  CellSpec s;
+  s.kind = kind;
+  switch (kind) {
+    case CellKind::Point:
+    case CellKind::Box: s.base = vector3i(member(j, "base", at), at / "base"); break;
+    case CellKind::Edge:
+    case CellKind::Face:
+      s.base = vector3i(member(j, "base", at), at / "base");
+      s.axis = integer(member(j, "axis", at), at / "axis");
+      break;
+    case CellKind::Slab: {
+      s.axis = integer(member(j, "axis", at), at / "axis");
+      if (s.axis < 0 || s.axis > 2) (at / "axis").fail("axis must be 0, 1 or 2, got " + std::to_string(s.axis));
+      s.base[s.axis] = integer(member(j, "plane", at), at / "plane");
+      break;
+    }
+    case CellKind::Custom: {
+      const Json& idx = member(j, "indices", at);
+      checkArray(idx, at / "indices");
+      for (std::size_t i = 0; i < idx.size(); ++i) s.indices.push_back(integer(idx[i], at / "indices" / i));
+      break;
+    }
+  }
+  return s;
+}
+
+WidgetModelData readData(const Json& root, const Location& at) {
+  checkObject(root, at);
+  checkKeys(root, {"format", "version", "lattices", "rootOrder", "cells", "affines", "bindings"}, at);
+  const std::string format = text(member(root, "format", at), at / "format");
+  if (format != kFormatName) (at / "format").fail("expected '" + std::string(kFormatName) + "', got '" + format + "'");
+  const int version = integer(member(root, "version", at), at / "version");
+  if (version > kWidgetFileVersion)
+    (at / "version").fail("widget file version " + std::to_string(version) + " is newer than this build reads (" +
+                          std::to_string(kWidgetFileVersion) + "); update ffdkit");
+  if (version < 1) (at / "version").fail("unknown widget file version " + std::to_string(version));
+
+  WidgetModelData d;
+  auto list = [&](const char* key) -> const Json& {
+    static const Json empty = Json::array();
+    if (!root.contains(key)) return empty;
+    checkArray(root[key], at / key);
+    return root[key];
+  };
+  const Json& lattices = list("lattices");
+  for (std::size_t i = 0; i < lattices.size(); ++i) {
+    const Json& j = lattices[i];
+    const Location li = at / "lattices" / i;
+    checkObject(j, li);
+    checkKeys(j, {"id", "name", "counts", "basis", "outside", "reembed", "frame", "children", "rest", "points"}, li);
+    LatticeData l;
+    l.id = widgetId(member(j, "id", li), li / "id");
+    l.name = text(member(j, "name", li), li / "name");
+    l.counts = vector3i(member(j, "counts", li), li / "counts");
+    if (j.contains("basis")) {
+      const Json& b = j["basis"];
+      checkArray(b, li / "basis");
+      if (b.size() != 3) (li / "basis").fail("expected one basis per axis (3), got " + std::to_string(b.size()));
+      for (std::size_t a = 0; a < 3; ++a) l.settings.basis[a] = readBasis(b[a], li / "basis" / a);
+    }
+    if (j.contains("outside")) {
+      const Json& o = j["outside"];
+      const Location lo = li / "outside";
+      checkObject(o, lo);
+      checkKeys(o, {"policy", "distance"}, lo);
+      const std::string policy = text(member(o, "policy", lo), lo / "policy");
+      using K = ffd::OutsidePolicy::Kind;
+      bool found = false;
+      for (K k : {K::Identity, K::ClampEdge, K::Extrapolate, K::Falloff}) {
+        if (outsideKindName(k) == policy) {
+          l.settings.outside.kind = k;
+          found = true;
+        }
+      }
+      if (!found) (lo / "policy").fail("unknown outside policy '" + policy + "' (known: identity, clamp-edge, extrapolate, falloff)");
+      if (l.settings.outside.kind == K::Falloff) l.settings.outside.distance = number(member(o, "distance", lo), lo / "distance");
+      else if (o.contains("distance")) (lo / "distance").fail("only the falloff policy takes a distance");
+    }
+    if (j.contains("reembed")) {
+      const Json& r = j["reembed"];
+      const Location lr = li / "reembed";
+      checkObject(r, lr);
+      checkKeys(r, {"policy", "n"}, lr);
+      const std::string policy = text(member(r, "policy", lr), lr / "policy");
+      l.settings.reembed.kind = named(parseReembedKind(policy), policy, "re-embed policy", "immediate, every-n, on-release", lr / "policy");
+      if (l.settings.reembed.kind == ReembedKind::EveryN) l.settings.reembed.everyN = integer(member(r, "n", lr), lr / "n");
+      else if (r.contains("n")) (lr / "n").fail("only the every-n policy takes n");
+    }
+    if (j.contains("frame")) l.frame = affine(j["frame"], li / "frame");
+    if (j.contains("children")) {
+      const Json& c = j["children"];
+      checkArray(c, li / "children");
+      for (std::size_t k = 0; k < c.size(); ++k) l.children.push_back(widgetId(c[k], li / "children" / k));
+    }
+    if (j.contains("rest")) {
+      l.restPoints = points(j["rest"], li / "rest");
+    } else {
+      // The default box lattice of these bases (Greville abscissae for B-splines).
+      if ((l.counts.array() < 2).any()) (li / "counts").fail("lattice needs >= 2 points per axis");
+      ffd::BoxLatticeOptions box;
+      box.counts = l.counts;
+      box.bases = l.settings.basis;
+      box.capDegreeToCount = false;
+      try {
+        l.restPoints = ffd::makeBoxLattice(box).restPoints();
+      } catch (const std::invalid_argument& e) {
+        (li / "basis").fail(e.what());
+      }
+    }
+    l.controlPoints = j.contains("points") ? points(j["points"], li / "points") : l.restPoints;
+    d.lattices.push_back(std::move(l));
+  }
+
+  const Json& cells = list("cells");
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const Json& j = cells[i];
+    const Location ci = at / "cells" / i;
+    checkObject(j, ci);
+    CellData c;
+    c.id = widgetId(member(j, "id", ci), ci / "id");
+    c.name = text(member(j, "name", ci), ci / "name");
+    c.lattice = widgetId(member(j, "lattice", ci), ci / "lattice");
+    const std::string kind = text(member(j, "kind", ci), ci / "kind");
+    const CellKind k = named(parseCellKind(kind), kind, "cell kind", "point, edge, face, slab, box, custom", ci / "kind");
+    switch (k) {
+      case CellKind::Point:
+      case CellKind::Box: checkKeys(j, {"id", "name", "lattice", "kind", "base"}, ci); break;
+      case CellKind::Edge:
+      case CellKind::Face: checkKeys(j, {"id", "name", "lattice", "kind", "base", "axis"}, ci); break;
+      case CellKind::Slab: checkKeys(j, {"id", "name", "lattice", "kind", "axis", "plane"}, ci); break;
+      case CellKind::Custom: checkKeys(j, {"id", "name", "lattice", "kind", "indices"}, ci); break;
+    }
+    c.spec = readCellSpec(j, k, ci);
+    d.cells.push_back(std::move(c));
+  }
+
+  const Json& affines = list("affines");
+  for (std::size_t i = 0; i < affines.size(); ++i) {
+    const Json& j = affines[i];
+    const Location ai = at / "affines" / i;
+    checkObject(j, ai);
+    checkKeys(j, {"id", "name", "kind", "placement", "variation", "glyph"}, ai);
+    AffineData a;
+    a.id = widgetId(member(j, "id", ai), ai / "id");
+    a.name = text(member(j, "name", ai), ai / "name");
+    const std::string kind = text(member(j, "kind", ai), ai / "kind");
+    a.kind = named(parseAffineKind(kind), kind, "affine widget kind", "translate, rotate, scale", ai / "kind");
+    if (j.contains("placement")) a.placement = affine(j["placement"], ai / "placement");
+    if (j.contains("variation")) a.variation = number(j["variation"], ai / "variation");
+    a.glyph.shape = a.kind == AffineKind::Translate ? "arrow" : a.kind == AffineKind::Rotate ? "ring" : "cube";
+    if (j.contains("glyph")) {
+      const Json& g = j["glyph"];
+      const Location ag = ai / "glyph";
+      checkObject(g, ag);
+      checkKeys(g, {"shape", "size", "placement"}, ag);
+      if (g.contains("shape")) a.glyph.shape = text(g["shape"], ag / "shape");
+      if (g.contains("size")) a.glyph.size = number(g["size"], ag / "size");
+      if (g.contains("placement")) a.glyph.partPlacement = affine(g["placement"], ag / "placement");
+    }
+    d.affines.push_back(std::move(a));
+  }
+
+  const Json& bindings = list("bindings");
+  for (std::size_t i = 0; i < bindings.size(); ++i) {
+    const Json& j = bindings[i];
+    const Location bi = at / "bindings" / i;
+    checkObject(j, bi);
+    Binding b;
+    b.id = bindingId(member(j, "id", bi), bi / "id");
+    const std::string kind = text(member(j, "kind", bi), bi / "kind");
+    b.kind = named(parseBindingKind(kind), kind, "binding kind", "attachment, variation, cell-motion, hierarchy", bi / "kind");
+    if (b.kind == BindingKind::Variation) {
+      checkKeys(j, {"id", "kind", "from", "to", "gain", "clamp", "oneWay"}, bi);
+      b.mask = AffineMask::none();
+      b.rule.gain = j.contains("gain") ? number(j["gain"], bi / "gain") : 1.0;
+      if (j.contains("clamp")) {
+        const Json& c = j["clamp"];
+        checkArray(c, bi / "clamp");
+        if (c.size() != 2) (bi / "clamp").fail("expected [min, max]");
+        b.rule.clamp = VariationRange{number(c[0], bi / "clamp" / 0), number(c[1], bi / "clamp" / 1)};
+      }
+    } else {
+      checkKeys(j, {"id", "kind", "from", "to", "mask", "oneWay"}, bi);
+      const std::string mask = text(member(j, "mask", bi), bi / "mask");
+      b.mask = named(parseMask(mask), mask, "mask", "letters T, R, S, e.g. \"TR\"", bi / "mask");
+    }
+    b.from = widgetId(member(j, "from", bi), bi / "from");
+    b.to = widgetId(member(j, "to", bi), bi / "to");
+    if (j.contains("oneWay")) b.oneWay = boolean(j["oneWay"], bi / "oneWay");
+    d.bindings.push_back(b);
+  }
+
+  // Optional tree order: by default roots in file order, children in binding order.
+  if (root.contains("rootOrder")) {
+    const Json& r = root["rootOrder"];
+    checkArray(r, at / "rootOrder");
+    for (std::size_t k = 0; k < r.size(); ++k) d.rootOrder.push_back(widgetId(r[k], at / "rootOrder" / k));
+  } else {
+    for (const LatticeData& l : d.lattices) {
+      bool child = false;
+      for (const Binding& b : d.bindings) child = child || (b.kind == BindingKind::Hierarchy && b.to == l.id);
+      if (!child) d.rootOrder.push_back(l.id);
+    }
+  }
+  for (std::size_t i = 0; i < d.lattices.size(); ++i) {
+    if (lattices[i].contains("children")) continue;
+    for (const Binding& b : d.bindings) {
+      if (b.kind != BindingKind::Hierarchy) continue;
+      for (const CellData& c : d.cells)
+        if (c.id == b.from && c.lattice == d.lattices[i].id) d.lattices[i].children.push_back(b.to);
+    }
+  }
+  return d;
+}
+
+// ---- writing ------------------------------------------------------------------------------
+
+Json row(const Eigen::Ref<const Eigen::RowVectorXd>& r) {
+  Json a = Json::array();
+  for (Eigen::Index i = 0; i < r.size(); ++i) a.push_back(r[i]);
+  return a;
+}
+
+Json affineJson(const Eigen::Affine3d& a) {
+  Json rows = Json::array();
+  for (int r = 0; r < 3; ++r) rows.push_back(row(a.matrix().row(r)));
+  return rows;
+}
+
+Json pointsJson(const Eigen::MatrixX3d& p) {
+  Json rows = Json::array();
+  for (Eigen::Index r = 0; r < p.rows(); ++r) rows.push_back(row(p.row(r)));
+  return rows;
+}
+
+Json ids(const std::vector<WidgetId>& list) {
+  Json a = Json::array();
+  for (WidgetId id : list) a.push_back(toString(id));
+  return a;
+}
+
+Json toJson(const WidgetModelData& d) {
+  Json root;
+  root["format"] = kFormatName;
+  root["version"] = kWidgetFileVersion;
+  Json lattices = Json::array();
+  for (const LatticeData& l : d.lattices) {
+    Json j;
+    j["id"] = toString(l.id);
+    j["name"] = l.name;
+    j["counts"] = {l.counts.x(), l.counts.y(), l.counts.z()};
+    Json basis = Json::array();
+    for (const ffd::AxisBasis& b : l.settings.basis) {
+      Json jb;
+      jb["kind"] = std::string(basisKindName(b.kind));
+      if (b.kind != ffd::AxisBasis::Kind::Bernstein) jb["degree"] = b.degree;
+      if (b.kind == ffd::AxisBasis::Kind::BSpline && b.knots.size() > 0) jb["knots"] = row(b.knots.transpose());
+      basis.push_back(jb);
+    }
+    j["basis"] = basis;
+    Json outside;
+    outside["policy"] = std::string(outsideKindName(l.settings.outside.kind));
+    if (l.settings.outside.kind == ffd::OutsidePolicy::Kind::Falloff) outside["distance"] = l.settings.outside.distance;
+    j["outside"] = outside;
+    Json reembed;
+    reembed["policy"] = std::string(reembedKindName(l.settings.reembed.kind));
+    if (l.settings.reembed.kind == ReembedKind::EveryN) reembed["n"] = l.settings.reembed.everyN;
+    j["reembed"] = reembed;
+    j["frame"] = affineJson(l.frame);
+    j["children"] = ids(l.children);
+    j["rest"] = pointsJson(l.restPoints);
+    j["points"] = pointsJson(l.controlPoints);
+    lattices.push_back(j);
+  }
+  root["lattices"] = lattices;
+  root["rootOrder"] = ids(d.rootOrder);
+  Json cells = Json::array();
+  for (const CellData& c : d.cells) {
+    Json j;
+    j["id"] = toString(c.id);
+    j["name"] = c.name;
+    j["lattice"] = toString(c.lattice);
+    j["kind"] = std::string(cellKindName(c.spec.kind));
+    const Eigen::Vector3i& b = c.spec.base;
+    switch (c.spec.kind) {
+      case CellKind::Point:
+      case CellKind::Box: j["base"] = {b.x(), b.y(), b.z()}; break;
+      case CellKind::Edge:
+      case CellKind::Face:
+        j["base"] = {b.x(), b.y(), b.z()};
+        j["axis"] = c.spec.axis;
+        break;
+      case CellKind::Slab:
+        j["axis"] = c.spec.axis;
+        j["plane"] = b[c.spec.axis];
+        break;
+      case CellKind::Custom: {
+        Json idx = Json::array();
+        for (Eigen::Index i : c.spec.indices) idx.push_back(i);
+        j["indices"] = idx;
+        break;
+      }
+    }
+    cells.push_back(j);
+  }
+  root["cells"] = cells;
+  Json affines = Json::array();
+  for (const AffineData& a : d.affines) {
+    Json j;
+    j["id"] = toString(a.id);
+    j["name"] = a.name;
+    j["kind"] = std::string(affineKindName(a.kind));
+    j["placement"] = affineJson(a.placement);
+    j["variation"] = a.variation;
+    Json g;
+    g["shape"] = a.glyph.shape;
+    g["size"] = a.glyph.size;
+    g["placement"] = affineJson(a.glyph.partPlacement);
+    j["glyph"] = g;
+    affines.push_back(j);
+  }
+  root["affines"] = affines;
+  Json bindings = Json::array();
+  for (const Binding& b : d.bindings) {
+    Json j;
+    j["id"] = toString(b.id);
+    j["kind"] = std::string(bindingKindName(b.kind));
+    j["from"] = toString(b.from);
+    j["to"] = toString(b.to);
+    if (b.kind == BindingKind::Variation) {
+      j["gain"] = b.rule.gain;
+      if (b.rule.clamp) j["clamp"] = {b.rule.clamp->min, b.rule.clamp->max};
+    } else {
+      j["mask"] = maskString(b.mask);
+    }
+    j["oneWay"] = b.oneWay;
+    bindings.push_back(j);
+  }
+  root["bindings"] = bindings;
+  return root;
+}
+
+bool isFlatArray(const Json& j) {
+  if (!j.is_array()) return false;
+  for (const Json& e : j)
+    if (e.is_structured()) return false;
+  return true;
+}
+
+// Pretty printer: objects and nested arrays one entry per line; arrays of scalars (points,
+// matrix rows, id lists) and objects of at most three such values on one line. Scalars use nlohmann's dump (shortest round-trip numbers).
+bool isSmallObject(const Json& j) {
+  if (!j.is_object() || j.size() > 3) return false;
+  for (const auto& [key, value] : j.items())
+    if (value.is_object() || (value.is_array() && !isFlatArray(value))) return false;
+  return true;
+}
+
+void print(std::string& out, const Json& j, int indent) {
+  const std::string pad(static_cast<std::size_t>(indent) + 2, ' ');
+  if (isSmallObject(j) && !j.empty()) {
+    out += "{";
+    std::size_t k = 0;
+    for (const auto& [key, value] : j.items()) {
+      out += (k++ ? ", " : "") + Json(key).dump() + ": ";
+      print(out, value, indent + 2);
+    }
+    out += "}";
+  } else if (j.is_object()) {
+    if (j.empty()) {
+      out += "{}";
+      return;
+    }
+    out += "{\n";
+    std::size_t k = 0;
+    for (const auto& [key, value] : j.items()) {
+      out += pad + Json(key).dump() + ": ";
+      print(out, value, indent + 2);
+      out += ++k < j.size() ? ",\n" : "\n";
+    }
+    out += std::string(static_cast<std::size_t>(indent), ' ') + "}";
+  } else if (isFlatArray(j)) {
+    out += "[";
+    for (std::size_t i = 0; i < j.size(); ++i) out += (i ? ", " : "") + j[i].dump();
+    out += "]";
+  } else if (j.is_array()) {
+    out += "[\n";
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      out += pad;
+      print(out, j[i], indent + 2);
+      out += i + 1 < j.size() ? ",\n" : "\n";
+    }
+    out += std::string(static_cast<std::size_t>(indent), ' ') + "]";
+  } else {
+    out += j.dump();
+  }
+}
+
+}  // namespace
+
+WidgetModel readWidgetFile(std::istream& in, const std::string& sourceName) {
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  const std::string content = buffer.str();
+  Json root;
+  try {
+    root = Json::parse(content);
+  } catch (const Json::parse_error& e) {
+    std::string message = e.what();
+    // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line ..."; keep its tail.
+    if (auto pos = message.find("syntax error"); pos != std::string::npos) message = message.substr(pos);
+    throw WidgetFileError(sourceName + ":" + lineColumn(content, e.byte == 0 ? 0 : e.byte - 1) + ": " + message);
+  }
+  const Location at{&sourceName, ""};
+  const WidgetModelData data = readData(root, at);
+  try {
+    return WidgetModel::fromData(data);
+  } catch (const WidgetError& e) {
+    throw WidgetFileError(sourceName + " " + (e.where().empty() ? "/" : e.where()) + ": " + e.message());
+  }
+}
+
+WidgetModel readWidgetFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw WidgetFileError(path.string() + ": cannot open the widget file for reading");
+  return readWidgetFile(in, path.string());
+}
+
+std::string widgetFileText(const WidgetModel& model) {
+  std::string out;
+  print(out, toJson(model.toData()), 0);
+  out += "\n";
+  return out;
+}
+
+void writeWidgetFile(std::ostream& out, const WidgetModel& model) { out << widgetFileText(model); }
+
+void writeWidgetFile(const std::filesystem::path& path, const WidgetModel& model) {
+  try {
+    writeFileAtomically(path, widgetFileText(model));
+  } catch (const std::exception& e) {
+    throw WidgetFileError(path.string() + ": cannot write the widget file: " + e.what());
+  }
+}
+
+}  // namespace ffdkit::scenes
