@@ -2,6 +2,7 @@
 // Run: bench_ffd --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // Each benchmark checks its result against the reference path once before timing.
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -35,6 +36,17 @@ Eigen::MatrixX3d randomPoints(Eigen::Index n, unsigned seed) {
   return Q;
 }
 
+// Points on a regular 100 x 100 x 100 grid in x-fastest order: the spatially coherent order of a
+// real mesh or volume, for comparison with the random order above.
+Eigen::MatrixX3d gridPoints(Eigen::Index n) {
+  const Eigen::Index side = static_cast<Eigen::Index>(std::llround(std::cbrt(double(n))));
+  Eigen::MatrixX3d Q(side * side * side, 3);
+  for (Eigen::Index r = 0; r < Q.rows(); ++r) {
+    Q.row(r) << (r % side + 0.5) / side, ((r / side) % side + 0.5) / side, (r / (side * side) + 0.5) / side;
+  }
+  return Q;
+}
+
 Eigen::MatrixX3d moved(const Lattice& lattice, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(-0.1, 0.1);
@@ -64,11 +76,13 @@ struct DeformCase {
 };
 
 DeformCase& deformCase(const std::string& key, int count, AxisBasis basis, Eigen::Index n) {
+  const bool grid = key.find("order:grid") != std::string::npos;
   static std::map<std::string, std::unique_ptr<DeformCase>> cache;
   auto& slot = cache[key];
   if (!slot) {
     cache.clear();  // keep one big case in memory at a time
-    auto c = std::make_unique<DeformCase>(DeformCase{boxLattice(count, basis), randomPoints(n, 1), nullptr});
+    auto c = std::make_unique<DeformCase>(
+        DeformCase{boxLattice(count, basis), grid ? gridPoints(n) : randomPoints(n, 1), nullptr});
     c->deformer = std::make_unique<Deformer>(embed(c->lattice, c->Q));
     c->lattice.setControlPoints(moved(c->lattice, 2));
     cache[key] = std::move(c);
@@ -157,18 +171,21 @@ const bool registered = [] {
   const Eigen::Index million = 1000000;
   for (auto [count, basis, label] : {std::tuple{4, AxisBasis::bernstein(), "4x4x4/basis:bernstein"},
                                      std::tuple{10, AxisBasis::bspline(3), "10x10x10/basis:bspline3"},
+                                     std::tuple{10, AxisBasis::bspline(3), "10x10x10/basis:bspline3/order:grid"},
                                      std::tuple{8, AxisBasis::bspline(3), "8x8x8/basis:bspline3"}}) {
     const std::string key = name("BM_Deform", million, label);
     benchmark::RegisterBenchmark(key.c_str(), BM_Deform, count, basis, million, key)
         ->Unit(benchmark::kMillisecond)->UseRealTime();
   }
-  const std::string updateKey = name("BM_Deform", million, "8x8x8/basis:bspline3");
-  for (auto [control, label] : {std::pair{Eigen::Vector3i(0, 0, 0), "corner(0,0,0)"},
-                                std::pair{Eigen::Vector3i(1, 1, 1), "(1,1,1)"},
-                                std::pair{Eigen::Vector3i(3, 3, 3), "interior(3,3,3)"}}) {
-    benchmark::RegisterBenchmark((name("BM_Update", million, "8x8x8/basis:bspline3") + "/moved:" + label).c_str(),
-                                 BM_Update, control, million, updateKey)
-        ->Unit(benchmark::kMillisecond)->UseRealTime();
+  for (const char* order : {"", "/order:grid"}) {
+    for (auto [control, label] : {std::pair{Eigen::Vector3i(0, 0, 0), "corner(0,0,0)"},
+                                  std::pair{Eigen::Vector3i(1, 1, 1), "(1,1,1)"},
+                                  std::pair{Eigen::Vector3i(3, 3, 3), "interior(3,3,3)"}}) {
+      const std::string lattice = std::string("8x8x8/basis:bspline3") + order;
+      benchmark::RegisterBenchmark((name("BM_Update", million, lattice) + "/moved:" + label).c_str(), BM_Update, control,
+                                   million, name("BM_Deform", million, lattice))
+          ->Unit(benchmark::kMillisecond)->UseRealTime();
+    }
   }
   benchmark::RegisterBenchmark(name("BM_EmbedNewton", million, "4x4x4/rest:user").c_str(), BM_EmbedNewton, false, million)
       ->Unit(benchmark::kMillisecond)->UseRealTime();
