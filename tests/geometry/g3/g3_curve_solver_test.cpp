@@ -453,6 +453,22 @@ TEST(G3CurveSolver, FitsMoreThanThreeConditionsByLeastSquaresWhenAllowed) {
   EXPECT_LT(r.scaledResidualInf, 1e-5);
 }
 
+TEST(G3CurveSolver, SolvesOneAndTwoSpanCurves) {
+  Eigen::MatrixX2d two(2, 2);
+  two << 0, 0, 3, 4;
+  const G3SolveResult line = solveG3Curve(two, {Condition::naturalEnds(), Condition::tangentAngle(0, std::atan2(4.0, 3.0))});
+  ASSERT_TRUE(line.converged) << line.message;
+  EXPECT_NEAR(line.curve->length(), 5.0, 1e-13);
+  // Three points on a circle of radius 2 (centre (0, 2)), with the circle's end curvatures and start tangent.
+  Eigen::MatrixX2d three(3, 2);
+  three << 0, 0, 2 * std::sin(0.8), 2 * (1 - std::cos(0.8)), 2 * std::sin(2.0), 2 * (1 - std::cos(2.0));
+  const G3SolveResult arc =
+      solveG3Curve(three, {Condition::curvature(0, 0.5), Condition::curvature(kLast, 0.5), Condition::tangentAngle(0, 0.0)});
+  ASSERT_TRUE(arc.converged) << arc.message;
+  EXPECT_NEAR(arc.curve->spanLength(0), 1.6, 1e-12);
+  EXPECT_NEAR(arc.curve->spanLength(1), 2.4, 1e-12);
+}
+
 TEST(G3CurveSolver, RejectsInvalidInput) {
   const Eigen::MatrixX2d p = testdata::figure2Points();
   EXPECT_THROW(solveG3Curve(p, {Condition::curvature(9, 0.0)}), G3InputError);
