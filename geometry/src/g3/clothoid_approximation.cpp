@@ -10,15 +10,22 @@
 namespace ffdkit::geometry::g3 {
 namespace {
 
+double segmentDistance2(const Eigen::Vector2d& q, const Eigen::MatrixX2d& line, Eigen::Index k) {
+  const Eigen::Vector2d a = line.row(k).transpose();
+  const Eigen::Vector2d d = line.row(k + 1).transpose() - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((q - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * d - q).squaredNorm();
+}
+
+// Distance from q to a densely sampled smooth polyline: the nearest vertex, then its two
+// segments. Along a smooth curve the distance to q is unimodal around its minimum, so the
+// nearest point of the polyline lies on a segment at the nearest vertex.
 double pointToPolyline(const Eigen::Vector2d& q, const Eigen::MatrixX2d& line) {
-  double best = (line.row(0).transpose() - q).squaredNorm();
-  for (Eigen::Index k = 0; k + 1 < line.rows(); ++k) {
-    const Eigen::Vector2d a = line.row(k).transpose();
-    const Eigen::Vector2d d = line.row(k + 1).transpose() - a;
-    const double len2 = d.squaredNorm();
-    const double t = len2 > 0.0 ? std::clamp((q - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, (a + t * d - q).squaredNorm());
-  }
+  Eigen::Index k = 0;
+  double best = (line.rowwise() - q.transpose()).rowwise().squaredNorm().minCoeff(&k);
+  if (k > 0) best = std::min(best, segmentDistance2(q, line, k - 1));
+  if (k + 1 < line.rows()) best = std::min(best, segmentDistance2(q, line, k));
   return std::sqrt(best);
 }
 
