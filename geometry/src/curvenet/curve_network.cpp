@@ -247,7 +247,8 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
       for (Eigen::Index i = 0; i < na; ++i) {
         dist.row(i) = (pb.rowwise() - pa.row(i)).rowwise().norm().transpose();
       }
-      if (dist.minCoeff() > gate) continue;
+      Eigen::Index mi = 0, mj = 0;
+      if (dist.minCoeff(&mi, &mj) > gate) continue;
       std::vector<PairHit> pairHits;
       for (Eigen::Index i = 0; i < na; ++i) {
         for (Eigen::Index j = 0; j < nb; ++j) {
@@ -285,6 +286,20 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
             }
           }
           if (!duplicate) pairHits.push_back(hit);
+        }
+      }
+      if (pairHits.empty()) {
+        // A near miss is the usual symptom of a crossing the designer meant: say where.
+        double s = params[a][r0 + mi], t = params[b][c0 + mj];
+        refineClosestPoints(net.curves[a], net.curves[b], s, t);
+        const Eigen::Vector3d xa = net.curves[a].evaluate(s), xb = net.curves[b].evaluate(t);
+        const double d = (xa - xb).norm();
+        if (d < 3.0 * tau) {
+          std::ostringstream msg;
+          msg << curveLabel(net, a) << " and " << curveLabel(net, b) << " pass within " << d
+              << " of each other near " << fmt(0.5 * (xa + xb)) << " without meeting (tolerance "
+              << tau << "); raise the tolerance or move them if they should cross";
+          net.notes.push_back(msg.str());
         }
       }
       for (const PairHit& hit : pairHits) {

@@ -196,6 +196,15 @@ TEST(CurveNetwork, GapOfTwiceTheToleranceIsReportedWithCurveAndPlace) {  // P12,
   EXPECT_NE(msg.find("at distance 0.1 near ("), std::string::npos) << msg;
 }
 
+TEST(CurveNetwork, NearMissesBetweenOtherwiseConnectedCurvesAreNoted) {  // bad input
+  // 4 points per curve: the splines of x = 0 and y = 0 miss each other by more than tau.
+  const CurveNetwork net = buildCurveNetwork(heightGridNetwork(2, 4));
+  EXPECT_TRUE(net.faces.empty());
+  bool noted = false;
+  for (const std::string& n : net.notes) noted = noted || n.find("without meeting") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
 TEST(CurveNetwork, NearCoincidentCurvesAreReported) {  // bad input
   CurveNetworkDescription d;
   d.curves.push_back(arcInPlane("first", 2, 0.0, 0.3));
