@@ -491,6 +491,8 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
       message = "gradient tolerance";
       break;
     }
+    // Marquardt scaling by the current diagonal (the MINPACK running maximum doubled the
+    // iterations on the spiral and D-CHAIN3D-N).
     Eigen::VectorXd diag = a.diagonal();
     const double dmax = diag.maxCoeff();
     diag = diag.cwiseMax(1e-12 * std::max(dmax, 1e-300));

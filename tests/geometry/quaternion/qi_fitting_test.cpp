@@ -272,6 +272,17 @@ TEST(QiFitting, ConversionToBSplineKeepsShapeAndCurvature) {
   EXPECT_NEAR(kb.maxCoeff() - kb.minCoeff(), rangeQ, 0.05 * rangeQ);
 }
 
+TEST(QiFitting, ReportsAnIterationCapAsNotConverged) {
+  const FitDataset d = testdata::chain3dNoisy();
+  FitOptions o;
+  o.maxIterations = 3;
+  const FitResult r = fitQiChain(d.points, d.breaks, o);
+  EXPECT_FALSE(r.converged);
+  EXPECT_FALSE(r.message.empty());
+  EXPECT_TRUE(std::isfinite(r.rms));
+  EXPECT_LT(r.rms, r.initialRms);
+}
+
 TEST(QiFitting, ChordLengthParametersHitBreaksAtIntegers) {
   const FitDataset d = testdata::chain2d();
   const Eigen::VectorXd u = chordLengthParameters(d.points, d.breaks);

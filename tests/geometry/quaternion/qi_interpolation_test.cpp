@@ -312,6 +312,16 @@ TEST(QiInterpolation, SinglePairWithUserTangentsConverges) {
   EXPECT_LE((r.curve.segments()[0].point(1.0) - p.row(1).transpose()).norm(), 1e-10);
 }
 
+TEST(QiInterpolation, ReportsNonConvergenceWithAFiniteLastIterate) {
+  InterpolationOptions o = withRule(EndTangentRule::Circle3);
+  o.maxIterations = 1;
+  const InterpolationResult r = interpolateQi(p7(), o);
+  EXPECT_FALSE(r.converged);
+  EXPECT_FALSE(r.message.empty());
+  EXPECT_EQ(r.iterations, 1);
+  EXPECT_TRUE(r.curve.samplePositions(20).allFinite());
+}
+
 TEST(QiInterpolation, RejectsDegenerateInput) {
   Eigen::MatrixX3d dup(3, 3);
   dup << 0, 0, 0, 1, 0, 0, 1, 0, 0;
