@@ -98,6 +98,70 @@ TEST(MultisidedPatch, PentagonTriangleAndQuadJoinG2ForAnyInfluenceWeight) {  // 
   }
 }
 
+// The reading the spec warns against (A8): each transversal normalised separately,
+// C^-(Delta_{i-1} d) and C^+(Delta_{i+1} d), instead of one shared v.
+VectorJet separatelyNormalisedPatch(const CurveNetwork& net, int f, const NGonDomain& d, const Eigen::Vector2d& p) {
+  const Face& face = net.faces[f];
+  const int n = d.sides();
+  const auto b = d.barycentric(p);
+  const auto blend = d.blend(b, 3);
+  auto transversal = [&](const Transversal& tr, const Jet& v) {
+    VectorJet sum;
+    for (std::size_t k = 0; k < tr.members.size(); ++k) {
+      const NetworkCurve& c = net.curves[tr.members[k].curve];
+      const Jet t = tr.members[k].parameter + tr.directions[k] * v;
+      sum = sum + (1.0 / tr.members.size()) * compose(c.evaluate(t.v), c.evaluate(t.v, 1), c.evaluate(t.v, 2), t);
+    }
+    sum.v -= net.vertices[tr.vertex].position;
+    return sum;
+  };
+  VectorJet q;
+  for (int i = 0; i < n; ++i) {
+    const FaceSide& side = face.sides[i];
+    const curvenet::Run& run = net.runs[side.run];
+    const double dPrev = face.sides[(i - 1 + n) % n].delta, dNext = face.sides[(i + 1) % n].delta;
+    const Jet ut = d.uTilde(i, b), dist = d.distance(i, b);
+    const Jet utRun = side.forward ? ut : 1.0 - ut;
+    const double sign = side.forward ? 1.0 : -1.0;
+    const Jet vStart = sign * (side.forward ? dPrev : dNext) * dist;
+    const Jet vEnd = sign * (side.forward ? dNext : dPrev) * dist;
+    const Jet tGuide = run.tStart + run.delta() * utRun;
+    const NetworkCurve& g = net.curves[run.curve];
+    const VectorJet guide = compose(g.evaluate(tGuide.v), g.evaluate(tGuide.v, 1), g.evaluate(tGuide.v, 2), tGuide);
+    const VectorJet sub = (1.0 - utRun) * transversal(run.atStart, vStart) + utRun * transversal(run.atEnd, vEnd) + guide;
+    q = q + blend[i] * sub;
+  }
+  return q;
+}
+
+TEST(MultisidedPatch, SeparatelyNormalisedTransversalsBreakG1) {  // P7, A8 negative control
+  const CurveNetwork net = buildCurveNetwork(pentagonNetwork(1.0));
+  double worstAngle = 0.0, worstBoundary = 0.0;
+  for (int f = 0; f < static_cast<int>(net.faces.size()); ++f) {
+    const NGonDomain df(static_cast<int>(net.faces[f].sides.size()));
+    for (int i = 0; i < df.sides(); ++i) {
+      const FaceSide& a = net.faces[f].sides[i];
+      for (int g = f + 1; g < static_cast<int>(net.faces.size()); ++g) {
+        const NGonDomain dg(static_cast<int>(net.faces[g].sides.size()));
+        for (int j = 0; j < dg.sides(); ++j) {
+          const FaceSide& b = net.faces[g].sides[j];
+          if (b.run != a.run) continue;
+          for (double u : {0.2, 0.5, 0.8}) {
+            const double sa = a.forward ? u : 1 - u, sb = b.forward ? u : 1 - u;
+            const VectorJet qa = separatelyNormalisedPatch(net, f, df, testing::sidePoint(df, i, sa));
+            const VectorJet qb = separatelyNormalisedPatch(net, g, dg, testing::sidePoint(dg, j, sb));
+            worstBoundary = std::max(worstBoundary, (qa.v - qb.v).norm());
+            const Eigen::Vector3d na = patchNormal(qa), nb = patchNormal(qb);
+            worstAngle = std::max(worstAngle, std::atan2(na.cross(nb).norm(), na.dot(nb)));
+          }
+        }
+      }
+    }
+  }
+  EXPECT_LE(worstBoundary, 1e-12 * net.scale) << "still interpolates the shared curves";
+  EXPECT_GT(worstAngle, 1e-4) << "but the tangent planes no longer match";
+}
+
 TEST(MultisidedPatch, HeightGridJoinsG2AndExponentOneLosesG2) {  // P6, P7
   const CurveNetwork net = buildCurveNetwork(heightGridNetwork(4));
   expectG2(sharedEdgeMismatch(net), net.scale, 12);
