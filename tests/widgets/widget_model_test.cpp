@@ -1,5 +1,6 @@
 #include "ffdkit/widgets/widget_model.h"
 
+#include <cmath>
 #include <numbers>
 #include <random>
 
@@ -242,6 +243,55 @@ TEST(WidgetModel, RayDragTurnsARing) {
   m.endGesture();
   EXPECT_NEAR(m.variation(ring), 2.5 * pi, 1e-12);
   EXPECT_TRUE(m.controlPoints(lat).row(4).isApprox(Eigen::RowVector3d(1, 0, 1), 1e-12));  // (0,0,1) turned 90 deg
+}
+
+TEST(WidgetModel, RootLatticeDragMovesItsFrameNotItsPoints) {
+  Fig62 fig = buildFig62();
+  WidgetModel& m = fig.model;
+  const Eigen::Affine3d motion(Eigen::Translation3d(1, 2, 3) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()));
+  m.applyMotion(fig.lattice, motion);
+  EXPECT_TRUE(m.latticeFrame(fig.lattice).isApprox(motion, 1e-15));
+  EXPECT_EQ(m.controlPoints(fig.lattice), m.restPoints(fig.lattice));
+  // Widgets ride along; a translate still moves its cell by world-true distances.
+  m.applyVariation(fig.edgeTranslate, 0.5);
+  const Eigen::MatrixX3d w = m.worldControlPoints(fig.lattice);
+  EXPECT_TRUE(Eigen::Vector3d(w.row(6).transpose()).isApprox(motion * Eigen::Vector3d(0.5, 1.0, 0.0), 1e-14));
+}
+
+TEST(WidgetModel, ChangingAMaskKeepsTheWidgetInPlace) {
+  Fig62 fig = buildFig62();
+  WidgetModel& m = fig.model;
+  m.applyVariation(fig.faceRotate, 0.5);
+  const WidgetFrame before = m.affineFrame(fig.faceRotate);
+  const BindingId attachment = m.bindingsOf(fig.faceRotate).front();
+  m.setMask(attachment, AffineMask::t());
+  EXPECT_TRUE(m.affineFrame(fig.faceRotate).frame.isApprox(before.frame, 1e-14));
+  EXPECT_EQ(m.binding(attachment).mask, AffineMask::t());
+  // Now the ring no longer turns with its face: turning it again keeps its axes... and its
+  // frame's x stays where the placement put it.
+  m.applyVariation(fig.faceRotate, 0.25);
+  EXPECT_TRUE(m.affineFrame(fig.faceRotate).frame.linear().isApprox(before.frame.linear(), 1e-14));
+}
+
+TEST(WidgetModel, RayDragsCellsInTheViewPlaneAndScalesRadially) {
+  WidgetModel m;
+  const WidgetId lat = m.addLattice("box", Eigen::Vector3i(2, 2, 2));
+  const WidgetId corner = m.addCell(lat, CellSpec::point(1, 1, 1), "corner");
+  const Ray grab{{1.0, 1.0, 5.0}, {0, 0, -1}};
+  ASSERT_EQ(m.pick(grab)->id, corner);
+  m.beginDrag(corner, grab);
+  m.dragTo(Ray{{1.2, 0.9, 5.0}, {0, 0, -1}});
+  m.endGesture();
+  EXPECT_TRUE(m.controlPoints(lat).row(7).isApprox(Eigen::RowVector3d(1.2, 0.9, 1.0), 1e-14));
+
+  const WidgetId bottom = m.addCell(lat, CellSpec::face(0, 0, 0, 2), "bottom");
+  const WidgetId scale = m.addAffine(bottom, AffineKind::Scale, "grow");  // at (0.5, 0.5, 0)
+  // Parallel (orthographic) rays: the view plane through the widget is z = 0.
+  m.beginDrag(scale, Ray{{0.6, 0.5, -3.0}, {0, 0, 1}});
+  m.dragTo(Ray{{0.7, 0.5, -3.0}, {0, 0, 1}});
+  m.endGesture();
+  EXPECT_NEAR(m.variation(scale), std::log(2.0), 1e-14);
+  EXPECT_TRUE(m.controlPoints(lat).row(0).isApprox(Eigen::RowVector3d(-0.5, -0.5, 0.0), 1e-14));
 }
 
 TEST(WidgetModel, SnapshotRestoreAndCopy) {

@@ -70,7 +70,8 @@ struct WidgetModelState {
 
 /// The headless widget model of seed 001 ch. 6 (spec §3-§6): lattice widgets that own their
 /// lattice's control points, cell widgets on them, affine widgets attached to cells, bindings,
-/// and gestures propagated breadth-first. A regular value type: copy it to snapshot everything.
+/// and gestures propagated breadth-first. A regular value type: copy it to snapshot everything
+/// (a copy does not carry an active gesture; its points are those of the moment it was taken).
 ///
 /// Frames. A lattice's control points are lattice-local; world = latticeFrame(lattice) * local.
 /// An attached affine widget's frame is F = L * mask(A_cell) * C0 * O (spec §4): L the lattice
