@@ -287,11 +287,13 @@ struct Problem {
       for (int i = lo; i <= hi; ++i) {
         const Eigen::MatrixXd& c = cum[i - lo];
         auto rows = j.middleRows(3 * i, 3);
-        rows = dp + l * c.block(0, 3 * degree, 3, 3) * dphi;
+        const Eigen::Matrix3d g = l * c.block<3, 3>(0, 3 * degree);
+        rows = dp + g.lazyProduct(dphi);  // 3 x 3 times 3 x nv: a plain loop beats GEMM here
         own(c, rows);
       }
       const Eigen::MatrixXd& end = cum.back();
-      dp += l * end.block(0, 3 * degree, 3, 3) * dphi;
+      const Eigen::Matrix3d gEnd = l * end.block<3, 3>(0, 3 * degree);
+      dp += gEnd.lazyProduct(dphi);
       auto dpBlock = dp.middleRows(0, 3);
       own(end, dpBlock);
       if (form == ProductForm::Global) {
@@ -478,7 +480,9 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
       message = "exact fit";
       break;
     }
-    const Eigen::MatrixXd a = jac.transpose() * jac;
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(jac.cols(), jac.cols());
+    a.selfadjointView<Eigen::Lower>().rankUpdate(jac.transpose());
+    a.triangularView<Eigen::StrictlyUpper>() = a.transpose();
     const Eigen::VectorXd g = jac.transpose() * r;
     double cosine = 0.0;
     const double rn = std::sqrt(objective);
