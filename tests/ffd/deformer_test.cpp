@@ -196,6 +196,15 @@ TEST(Deformer, ManyPointsAndManyCellsMatchLatticeEvaluate) {
   }
 }
 
+TEST(Deformer, HandlesAnEmptyPointSet) {
+  Lattice lattice = makeBoxLattice();
+  const Eigen::MatrixX3d none(0, 3);
+  Deformer deformer(embed(lattice, none));
+  EXPECT_EQ(deformer.deform(lattice, none).rows(), 0);
+  lattice.setControlPoint(0, Eigen::Vector3d(-1, -1, -1));
+  EXPECT_EQ(deformer.update(lattice).rows(), 0);
+}
+
 // --- outside policies ---------------------------------------------------------------
 
 struct OutsideCase {
