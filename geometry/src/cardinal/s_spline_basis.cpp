@@ -188,8 +188,8 @@ Eigen::VectorXd sSplineCoefficientsOddDegree(int degree, int halfWidth) {
   return c;
 }
 
-SSplineBasis::SSplineBasis(double beta2, int halfWidth, int degree)
-    : beta2_(beta2), halfWidth_(halfWidth), degree_(degree) {
+SSplineBasis::SSplineBasis(double beta2, int halfWidth, int degree, bool clipped)
+    : beta2_(beta2), halfWidth_(halfWidth), degree_(degree), clipped_(clipped) {
   checkOddDegree(degree, "SSplineBasis");
   if (degree != 3 && beta2 != 0.0) {
     throw CardinalSplineError("SSplineBasis: beta2 must be 0 for degree " +
@@ -203,12 +203,17 @@ SSplineBasis::SSplineBasis(double beta2, int halfWidth, int degree)
                    : sSplineCoefficientsOddDegree(degree, halfWidth + (degree + 1) / 2 - 2);
 }
 
+double SSplineBasis::supportRadius() const {
+  if (clipped_) return halfWidth_;
+  return static_cast<double>(c_.size() - 1) + 0.5 * (degree_ + 1);
+}
+
 double SSplineBasis::evaluate(double x, int deriv, Limit side) const {
   if (deriv < 0 || deriv > 3) {
     throw CardinalSplineError("SSplineBasis::evaluate: deriv must be in 0..3, got " +
                               std::to_string(deriv));
   }
-  const double w = halfWidth_;
+  const double w = supportRadius();
   Limit effective = side;
   if (deriv > 0 && side == Limit::Value) effective = Limit::FromRight;
   // Open support |x| < w (spec §7 item 4); one-sided limits look just inside/outside the cut.
@@ -236,7 +241,9 @@ double SSplineBasis::evaluate(double x, int deriv, Limit side) const {
 
 double SSplineBasis::tangentFactor() const {
   double lambda = 0.0;
-  for (int j = 1; j < halfWidth_; ++j) lambda -= evaluate(static_cast<double>(j), 1);
+  // Clipped: the pair at j = w is cut (its right-hand term is the edge residue P_w).
+  const int last = clipped_ ? halfWidth_ - 1 : static_cast<int>(std::ceil(supportRadius()));
+  for (int j = 1; j <= last; ++j) lambda -= evaluate(static_cast<double>(j), 1);
   return lambda;
 }
 

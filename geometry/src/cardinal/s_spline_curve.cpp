@@ -14,7 +14,7 @@ int floorMod(int a, int m) { return ((a % m) + m) % m; }
 }  // namespace
 
 SSplineCurve::SSplineCurve(const Eigen::MatrixX3d& points, const SSplineCurveOptions& options)
-    : points_(points), options_(options), basis_(options.beta2, options.halfWidth, options.degree) {
+    : points_(points), options_(options), basis_(options.beta2, options.halfWidth, options.degree, options.clipped) {
   const auto count = static_cast<int>(points.rows());
   if (options.end == SSplineEnd::Closed) {
     if (count < 3) {
@@ -61,7 +61,7 @@ Eigen::Vector3d SSplineCurve::evaluate(double x, int deriv, Limit side) const {
     x -= span_ * std::floor(x / span_);
     if (x >= span_) x = 0.0;
   }
-  const int w = basis_.halfWidth();
+  const int w = static_cast<int>(std::ceil(basis_.supportRadius()));
   const int lo = static_cast<int>(std::floor(x)) - w;
   const int hi = static_cast<int>(std::ceil(x)) + w;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();

@@ -129,6 +129,25 @@ TEST(SSplineBasis, QuinticIsCardinalAndSmoothInside) {
   EXPECT_THROW(SSplineBasis(0.0, 4, 4), CardinalSplineError);
 }
 
+TEST(SSplineBasis, CoefficientSumsAndUnclippedInterpolationErrorMatchSpecTable) {
+  // spec §2.4 columns D (sum of c_i over |i| <= w) and F (worst knot-interpolation error of
+  // the unclipped variant).
+  struct Row { double beta2; int w; double d, f; };
+  const Row rows[] = {{0, 4, 1.003774, 1.5e-3}, {5, 4, 1.000231, 1.0e-4}, {25, 3, 0.999971, 1.4e-5},
+                      {100, 2, 1.000013, 6.4e-6}, {0, 3, 0.985917, 5.6e-3}};
+  for (const Row& r : rows) {
+    const Eigen::VectorXd c = sSplineCoefficients(r.beta2, r.w);
+    const double d = c[0] + 2.0 * c.tail(r.w).sum();
+    EXPECT_NEAR(d, r.d, 5e-7) << r.beta2;
+    const SSplineBasis unclipped(r.beta2, r.w, 3, false);
+    double f = 0.0;
+    for (int j = -r.w - 3; j <= r.w + 3; ++j) f = std::max(f, std::abs(unclipped.evaluate(j) - (j == 0)));
+    EXPECT_NEAR(f, r.f, 0.05 * r.f) << r.beta2;
+    // Unclipped: exactly C1 and G2-beta (no jumps at the former cut).
+    EXPECT_NEAR(unclipped.evaluate(r.w, 1, Limit::FromLeft), unclipped.evaluate(r.w, 1, Limit::FromRight), 1e-15);
+  }
+}
+
 TEST(SSplineBasis, IsEven) {
   const SSplineBasis s(25.0, 3);
   for (double x = 0.0; x < 3.0; x += 0.0625) EXPECT_NEAR(s.evaluate(x), s.evaluate(-x), 1e-14);

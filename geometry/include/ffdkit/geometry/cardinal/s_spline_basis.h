@@ -52,10 +52,17 @@ class SSplineBasis {
   /// degree 3 uses the beta2-spline B(x; beta2); odd degrees 5..9 use the B-spline M_m and
   /// need beta2 = 0 (the thesis's beta2 extension is cubic only).
   /// @throws CardinalSplineError if beta2 < 0, halfWidth < 1, or the degree is unsupported.
-  explicit SSplineBasis(double beta2 = 0.0, int halfWidth = 4, int degree = 3);
+  /// clipped = false gives the unclipped variant of spec §2.5: no cut at |x| = w, so the
+  /// curve is an ordinary uniform spline (exactly C2 / G2-beta) that interpolates only
+  /// approximately (spec §2.4 column F).
+  explicit SSplineBasis(double beta2 = 0.0, int halfWidth = 4, int degree = 3,
+                        bool clipped = true);
 
   double beta2() const { return beta2_; }
   int degree() const { return degree_; }
+  bool clipped() const { return clipped_; }
+  /// S_0 vanishes for |x| >= supportRadius(): w when clipped, else w + k - 1 + (m+1)/2.
+  double supportRadius() const;
   int halfWidth() const { return halfWidth_; }
   /// c_0..c_w (degree 3) or c_0..c_{w+k-2} (degree m = 2k-1 > 3, see evaluate).
   const Eigen::VectorXd& coefficients() const { return c_; }
@@ -68,12 +75,14 @@ class SSplineBasis {
   /// lambda_w of the tangent end condition: Q'(0+) = lambda_w * dP0 + S_0'(-w+) * P_w
   /// (spec §2.6, §7 item 6): lambda_w = -sum_{j=1}^{w-1} S_0'(j), since the mirrored data
   /// terms cancel in pairs (S_0' is odd) and only the truncation-edge term P_w is left.
+  /// Unclipped: the sum runs over the whole support and there is no edge term.
   double tangentFactor() const;
 
  private:
   double beta2_;
   int halfWidth_;
   int degree_;
+  bool clipped_;
   Eigen::VectorXd c_;
 };
 

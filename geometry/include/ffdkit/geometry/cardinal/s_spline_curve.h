@@ -23,6 +23,8 @@ struct SSplineCurveOptions {
   /// truncation residue (spec §7 item 6). false is the thesis behaviour.
   bool scaleTangent = false;
   int degree = 3;      ///< odd B-spline degree; 5..9 need beta2 = 0 (spec §2.2)
+  /// false: the unclipped variant of spec §2.5 (exactly C2 / G2-beta, approximate interpolation).
+  bool clipped = true;
 };
 
 /// S-spline curve Q(x) = sum_i P_i S_i(x), x in [0, s] (open) or [0, s) periodic (closed);
