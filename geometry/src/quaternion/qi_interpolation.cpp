@@ -178,6 +178,19 @@ bool lengthsPositive(const Layout& lay, const Eigen::VectorXd& x) {
 
 }  // namespace
 
+QiInterpolationSystem qiInterpolationSystem(const Eigen::MatrixX3d& points, const Eigen::VectorXd& unknowns,
+                                            QiAngles start, QiAngles end, int simpsonIntervals) {
+  const int n = static_cast<int>(points.rows()) - 1;
+  if (n < 1 || unknowns.size() != 5 * n - 2 || simpsonIntervals <= 0 || simpsonIntervals % 2 != 0) {
+    std::ostringstream msg;
+    msg << "qiInterpolationSystem: expected >= 2 points, 5n-2 = " << 5 * n - 2 << " unknowns and an even Simpson count, got "
+        << points.rows() << " points, " << unknowns.size() << " unknowns, " << simpsonIntervals << " intervals";
+    throw QuaternionCurveError(msg.str());
+  }
+  System sys = evaluate(Layout{n}, unknowns, start, end, points, simpsonIntervals, true);
+  return {std::move(sys.f), std::move(sys.jacobian)};
+}
+
 InterpolationResult interpolateQi(const Eigen::MatrixX3d& points, const InterpolationOptions& options) {
   const int count = static_cast<int>(points.rows());
   const int n = count - 1;

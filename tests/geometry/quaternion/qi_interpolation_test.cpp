@@ -130,6 +130,26 @@ TEST(QiInterpolation, InterpolatesPointsWithPrescribedEndTangentsAndG2Joints) {
   }
 }
 
+TEST(QiInterpolation, AnalyticJacobianMatchesCentralDifferences) {
+  // Spec 000 §6.16 at a generic (non-solution) point of P7's unknowns.
+  const Eigen::MatrixX3d p = p7();
+  const int n = 6;
+  Eigen::VectorXd x(5 * n - 2);
+  for (int k = 0; k < x.size(); ++k) x[k] = 0.3 + 0.1 * std::sin(1.7 * k);
+  x.tail(n) = Eigen::VectorXd::LinSpaced(n, 0.9, 1.3);
+  const QiAngles start{0.2, 0.6}, end{-0.4, 0.9};
+  const QiInterpolationSystem sys = qiInterpolationSystem(p, x, start, end);
+  const double h = 1e-6;
+  for (int c = 0; c < x.size(); ++c) {
+    Eigen::VectorXd xp = x, xm = x;
+    xp[c] += h;
+    xm[c] -= h;
+    const Eigen::VectorXd fd =
+        (qiInterpolationSystem(p, xp, start, end).residual - qiInterpolationSystem(p, xm, start, end).residual) / (2 * h);
+    EXPECT_LE((sys.jacobian.col(c) - fd).norm(), 1e-6 * std::max(1.0, fd.norm())) << "column " << c;
+  }
+}
+
 TEST(QiInterpolation, ChainedAndAnchoredPlacementsAgree) {
   const InterpolationResult r = interpolateQi(p7(), withRule(EndTangentRule::Circle3));
   const QiSpline chained(r.curve.segments(), SegmentPlacement::Chained);

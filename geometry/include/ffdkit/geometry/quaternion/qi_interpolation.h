@@ -61,6 +61,18 @@ struct InterpolationResult {
 /// @see seed 000 eqs. (40)-(62) l.227-347.
 InterpolationResult interpolateQi(const Eigen::MatrixX3d& points, const InterpolationOptions& options = {});
 
+/// The Newton system of interpolateQi (seed 000 eqs. (60)-(62)) at an arbitrary unknown vector, for
+/// tests and diagnostics. points: #P x 3 (n = #P - 1 segments); unknowns: 5n - 2 values in the order
+/// [a01, b01, (ai0, bi0, ai1, bi1)_{i=1..n-1}, l_0..l_{n-1}]; start / end: the fixed end angles.
+/// @return f (3n position rows, then G_i, H_i interleaved) and its analytic Jacobian (5n-2 square).
+/// @throws QuaternionCurveError if the sizes do not match or simpsonIntervals is not positive and even.
+struct QiInterpolationSystem {
+  Eigen::VectorXd residual;
+  Eigen::MatrixXd jacobian;
+};
+QiInterpolationSystem qiInterpolationSystem(const Eigen::MatrixX3d& points, const Eigen::VectorXd& unknowns,
+                                            QiAngles start, QiAngles end, int simpsonIntervals = 100);
+
 /// Unit tangent at P_0 of the circle through a, b, c (the line direction when collinear):
 /// proportional to |c-a|^2 (b-a) - |b-a|^2 (c-a). @see spec §3.2.
 Eigen::Vector3d circleTangentAtFirst(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
