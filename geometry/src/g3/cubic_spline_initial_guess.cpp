@@ -151,8 +151,7 @@ CubicSplineInitialGuess initialGuessFromCubicSpline(const Eigen::Ref<const Eigen
   guess.tangentAtPoints[n] = tableAngle[rows - 1];
   guess.length = s;
 
-  // The table's span lengths came from 64 panels of 16 nodes; the spec asks 16 x 16, which
-  // 64 x 16 over-satisfies.
+  // Span lengths came from the table's 64 panels of 16 nodes, finer than the spec's 16 x 16.
   Eigen::VectorXd knots(n + 1);
   knots[0] = 0.0;
   for (int i = 0; i < n; ++i) knots[i + 1] = knots[i] + guess.spanLengths[i];

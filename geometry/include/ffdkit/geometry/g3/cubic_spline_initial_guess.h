@@ -9,7 +9,7 @@ namespace ffdkit::geometry::g3 {
 /// for 2), as the paper does at l.133 with the choices of spec sec. 3.5 / A7.
 struct CubicSplineInitialGuess {
   Eigen::VectorXd unknowns;     ///< 2n+3: (Delta s_0..Delta s_{n-1}, d_{-1}..d_{n+1})
-  Eigen::VectorXd spanLengths;  ///< n: arc lengths of the cubic's spans (16x16 Gauss-Legendre)
+  Eigen::VectorXd spanLengths;  ///< n: arc lengths of the cubic's spans (64 panels x 16 Gauss-Legendre nodes)
   Eigen::VectorXd deBoor;       ///< n+3: unwrapped cubic tangent angle at the Greville abscissae
   Eigen::VectorXd curvatureAtPoints;  ///< n+1: the cubic's curvature at p_0..p_n
   Eigen::VectorXd tangentAtPoints;    ///< n+1: the cubic's unwrapped tangent angle at p_0..p_n

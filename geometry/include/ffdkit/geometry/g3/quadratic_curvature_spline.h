@@ -53,7 +53,8 @@ class QuadraticCurvatureSpline {
 
   /// kappa on span i as c0 + c1*sigma + c2*sigma^2 with sigma = s - s_i in [0, Delta s_i].
   Eigen::Vector3d curvatureQuadratic(int span) const;
-  /// The span holding s (the left one at an interior knot... except s = 0 -> 0, s = L -> n-1).
+  /// The span holding s: span i for s_i <= s < s_{i+1} (the right one at an interior knot), the
+  /// last span for s >= s_{n-1}. s is not range-checked here.
   int spanAt(double s) const;
 
   /// Evaluations at arc length s in [0, length()] (a tolerance of 1e-12 L is clamped).
