@@ -99,68 +99,92 @@ SphereTangentFitResult fitSphereTangentSegment(const SphereTangentSegmentSpec& s
   }
   if (options.initialThetaPhi) x0 = *options.initialThetaPhi;
 
-  // Nelder-Mead, coefficients 1 / 2 / 0.5 / 0.5 (spec §3 step 5).
+  // Nelder-Mead, coefficients 1 / 2 / 0.5 / 0.5 (spec §3 step 5), from one or several starts
+  // (spec §3 step 6); the first start that solves the problem wins, else the lowest f.
   SphereTangentFitResult result;
-  std::array<Eigen::Vector2d, 3> xs = {x0, x0 + Eigen::Vector2d(options.initialStep, 0.0),
-                                       x0 + Eigen::Vector2d(0.0, options.initialStep)};
-  std::array<double, 3> fs{};
   const auto f = [&](const Eigen::Vector2d& x) {
     ++result.evaluations;
     return objective(c, x, spec.kind, options.quadrature);
   };
-  for (int i = 0; i < 3; ++i) fs[i] = f(xs[i]);
-  double bestSoFar = *std::min_element(fs.begin(), fs.end());
-  int lastImprovement = 0;
   bool stalled = false;
-  while (true) {
-    std::array<int, 3> order = {0, 1, 2};
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return fs[a] < fs[b]; });
-    const Eigen::Vector2d best = xs[order[0]], mid = xs[order[1]], worst = xs[order[2]];
-    const double fb = fs[order[0]], fm = fs[order[1]], fw = fs[order[2]];
-    const double diameter = std::max({(best - mid).norm(), (best - worst).norm(), (mid - worst).norm()});
-    if ((fw - fb <= options.functionTolerance && diameter <= options.simplexTolerance) ||
-        result.iterations >= options.maxIterations) {
-      break;
-    }
-    if (fb < bestSoFar) {
-      bestSoFar = fb;
-      lastImprovement = result.iterations;
-    } else if (result.iterations - lastImprovement >= options.stallIterations) {
-      // Pinned against the infeasible (antipodal) boundary or a non-zero minimum: no progress left.
-      stalled = true;
-      break;
-    }
-    ++result.iterations;
-    const Eigen::Vector2d centroid = 0.5 * (best + mid);
-    const Eigen::Vector2d xr = centroid + (centroid - worst);
-    const double fr = f(xr);
-    if (fr < fb) {
-      const Eigen::Vector2d xe = centroid + 2.0 * (xr - centroid);
-      const double fe = f(xe);
-      xs[order[2]] = fe < fr ? xe : xr;
-      fs[order[2]] = std::min(fe, fr);
-    } else if (fr < fm) {
-      xs[order[2]] = xr;
-      fs[order[2]] = fr;
-    } else {
-      const bool outside = fr < fw;
-      const Eigen::Vector2d xc = outside ? Eigen::Vector2d(centroid + 0.5 * (xr - centroid))
-                                         : Eigen::Vector2d(centroid + 0.5 * (worst - centroid));
-      const double fc = f(xc);
-      if ((outside && fc <= fr) || (!outside && fc < fw)) {
-        xs[order[2]] = xc;
-        fs[order[2]] = fc;
+  const auto simplex = [&](const Eigen::Vector2d& start, Eigen::Vector2d& xBest) {
+    std::array<Eigen::Vector2d, 3> xs = {start, start + Eigen::Vector2d(options.initialStep, 0.0),
+                                         start + Eigen::Vector2d(0.0, options.initialStep)};
+    std::array<double, 3> fs{};
+    for (int i = 0; i < 3; ++i) fs[i] = f(xs[i]);
+    double bestSoFar = *std::min_element(fs.begin(), fs.end());
+    int iterations = 0, lastImprovement = 0;
+    stalled = false;
+    while (true) {
+      std::array<int, 3> order = {0, 1, 2};
+      std::sort(order.begin(), order.end(), [&](int i, int j) { return fs[i] < fs[j]; });
+      const Eigen::Vector2d best = xs[order[0]], mid = xs[order[1]], worst = xs[order[2]];
+      const double fb = fs[order[0]], fm = fs[order[1]], fw = fs[order[2]];
+      const double diameter = std::max({(best - mid).norm(), (best - worst).norm(), (mid - worst).norm()});
+      if ((fw - fb <= options.functionTolerance && diameter <= options.simplexTolerance) ||
+          iterations >= options.maxIterations) {
+        break;
+      }
+      if (fb < bestSoFar) {
+        bestSoFar = fb;
+        lastImprovement = iterations;
+      } else if (iterations - lastImprovement >= options.stallIterations) {
+        // Pinned against the infeasible (antipodal) boundary or a non-zero minimum: no progress left.
+        stalled = true;
+        break;
+      }
+      ++iterations;
+      ++result.iterations;
+      const Eigen::Vector2d centroid = 0.5 * (best + mid);
+      const Eigen::Vector2d xr = centroid + (centroid - worst);
+      const double fr = f(xr);
+      if (fr < fb) {
+        const Eigen::Vector2d xe = centroid + 2.0 * (xr - centroid);
+        const double fe = f(xe);
+        xs[order[2]] = fe < fr ? xe : xr;
+        fs[order[2]] = std::min(fe, fr);
+      } else if (fr < fm) {
+        xs[order[2]] = xr;
+        fs[order[2]] = fr;
       } else {
-        for (int k : {order[1], order[2]}) {
-          xs[k] = best + 0.5 * (xs[k] - best);
-          fs[k] = f(xs[k]);
+        const bool outside = fr < fw;
+        const Eigen::Vector2d xc = outside ? Eigen::Vector2d(centroid + 0.5 * (xr - centroid))
+                                           : Eigen::Vector2d(centroid + 0.5 * (worst - centroid));
+        const double fc = f(xc);
+        if ((outside && fc <= fr) || (!outside && fc < fw)) {
+          xs[order[2]] = xc;
+          fs[order[2]] = fc;
+        } else {
+          for (int k : {order[1], order[2]}) {
+            xs[k] = best + 0.5 * (xs[k] - best);
+            fs[k] = f(xs[k]);
+          }
         }
       }
     }
+    const int ib = static_cast<int>(std::min_element(fs.begin(), fs.end()) - fs.begin());
+    xBest = xs[ib];
+    return fs[ib];
+  };
+  // Further starts: other points of the great arc V_a -> V_c, then +-0.5 rad chart offsets.
+  std::vector<Eigen::Vector2d> starts = {x0};
+  for (double t : {0.25, 0.75}) starts.push_back(chartOf(arcPoint(c.endTangent, t)));
+  for (const Eigen::Vector2d& d : {Eigen::Vector2d(0.5, 0.0), Eigen::Vector2d(-0.5, 0.0), Eigen::Vector2d(0.0, 0.5),
+                                   Eigen::Vector2d(0.0, -0.5)}) {
+    starts.push_back(x0 + d);
   }
-  const int ib = static_cast<int>(std::min_element(fs.begin(), fs.end()) - fs.begin());
-  result.thetaPhi = xs[ib];
-  result.objective = fs[ib];
+  const int startCount = std::clamp(options.multiStarts, 1, static_cast<int>(starts.size()));
+  double bestF = INFINITY;
+  for (int sIdx = 0; sIdx < startCount; ++sIdx) {
+    Eigen::Vector2d x;
+    const double fx = simplex(starts[sIdx], x);
+    if (fx < bestF) {
+      bestF = fx;
+      result.thetaPhi = x;
+    }
+    if (bestF <= options.successThreshold) break;
+  }
+  result.objective = bestF;
   const std::vector<Eigen::Vector3d> canonical = controlsOf(c, result.thetaPhi);
   for (const auto& v : canonical) result.controlsWorld.push_back(c.toCanonical.conjugate() * v);
   Eigen::Vector3d pe = Eigen::Vector3d::Zero();
@@ -168,7 +192,8 @@ SphereTangentFitResult fitSphereTangentSegment(const SphereTangentSegmentSpec& s
   if (fBest >= kPenalty || !(fBest <= options.successThreshold)) {
     std::ostringstream msg;
     msg << "no control direction aligns the end point: f = " << fBest << " > " << options.successThreshold << " after "
-        << result.iterations << " simplex iterations" << (stalled ? " (stalled)" : "")
+        << result.iterations << " simplex iterations from " << startCount << " start(s)"
+        << (stalled ? " (stalled)" : "")
         << (fBest >= kPenalty ? " (the simplex was pulled to antipodal controls)" : "");
     result.message = msg.str();
     return result;

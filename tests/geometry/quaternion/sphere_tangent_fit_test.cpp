@@ -84,6 +84,26 @@ TEST(SphereTangentFit, ReportsFailureWhenNoSolutionExists) {
   EXPECT_FALSE(r.message.empty());
 }
 
+TEST(SphereTangentFit, MultiStartKeepsSolutionsAndStillReportsFailure) {
+  // Every start on a 9 x 13 chart grid solves O2 and O3 (probed), so extra starts must not change
+  // a solved result; on O5 all seven starts fail and the failure is still reported.
+  NelderMeadOptions multi;
+  multi.multiStarts = 7;
+  const SphereTangentSegmentSpec o2 = canonicalSpec({1, 1, 1}, {0, 0, 1});
+  expectSolved("O2 multi-start", o2, fitSphereTangentSegment(o2, multi),
+               {0.182728588760, 0.966033397818, 0.182728588760}, 2.037009282320);
+  const SphereTangentSegmentSpec o5 = canonicalSpec({1, 0.5, 0.5}, {0, -1, 0});
+  multi.stallIterations = 100;  // keeps the seven failing runs short
+  NelderMeadOptions one = multi;
+  one.multiStarts = 1;
+  const SphereTangentFitResult single = fitSphereTangentSegment(o5, one);
+  const SphereTangentFitResult r = fitSphereTangentSegment(o5, multi);
+  EXPECT_FALSE(r.converged);
+  EXPECT_FALSE(r.curve.has_value());
+  EXPECT_GT(r.evaluations, single.evaluations);
+  EXPECT_NE(r.message.find("7 start(s)"), std::string::npos) << r.message;
+}
+
 TEST(SphereTangentFit, WorldFrameResultIsTheRigidMotionOfTheCanonicalOne) {
   const SphereTangentSegmentSpec o2 = canonicalSpec({1, 1, 1}, {0, 0, 1});
   const SphereTangentFitResult base = fitSphereTangentSegment(o2);

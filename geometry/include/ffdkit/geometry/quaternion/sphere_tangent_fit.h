@@ -31,6 +31,8 @@ struct NelderMeadOptions {
   int maxIterations = 5000;
   int stallIterations = 300;        ///< stop when the best f has not decreased for this many iterations
   std::optional<Eigen::Vector2d> initialThetaPhi;  ///< default: the great-arc midpoint of V_a, V_c
+  int multiStarts = 1;              ///< 1..7 starts (the guess, arc points at 1/4 and 3/4, +-0.5 rad
+                                    ///< offsets); stops at the first success, else keeps the lowest f
   TangentQuadrature quadrature;     ///< fixed rule so f stays smooth for the simplex
 };
 
