@@ -157,6 +157,28 @@ TEST(WidgetModel, LoopCheck) {
   expectError(WidgetErrorCode::InconsistentLoop, [&] { m.bind(ea, ec); });
 }
 
+TEST(WidgetModel, LoopCheckExaminesEveryRouteNotOnlyTheShortestLoop) {
+  WidgetModel m;
+  const WidgetId lat = m.addLattice("box", Eigen::Vector3i(3, 3, 3));
+  const WidgetId f1 = m.addCell(lat, CellSpec::face(0, 0, 0, 2));
+  const WidgetId f2 = m.addCell(lat, CellSpec::face(1, 1, 2, 2));
+  const WidgetId a1 = m.addAffine(f1, AffineKind::Translate, "a1");
+  const WidgetId b1 = m.addAffine(f1, AffineKind::Rotate, "b1");
+  const WidgetId a2 = m.addAffine(f2, AffineKind::Translate, "a2");
+  const WidgetId b2 = m.addAffine(f2, AffineKind::Rotate, "b2");
+  m.bind(b1, b2);  // the faces' rings turn together
+  // A chain of free widgets from a2 back to a1 whose gains multiply to 1/2.
+  std::vector<WidgetId> c;
+  for (int i = 0; i < 5; ++i) c.push_back(m.addFreeAffine(AffineKind::Translate));
+  m.bind(a2, c[0], ConversionRule(2.0));
+  for (int i = 0; i + 1 < 5; ++i) m.bind(c[i], c[i + 1]);
+  m.bind(c[4], a1);  // harmless: the only loop meets at the two faces
+  // a1 <-> a2: the shortest loop (through the faces) is harmless, the one through the chain is not.
+  auto e = expectError(WidgetErrorCode::InconsistentLoop, [&] { m.bind(a1, a2); });
+  EXPECT_NE(std::string(e.what()).find("two routes that disagree"), std::string::npos) << e.what();
+  m.bind(a1, a2, ConversionRule(0.5));  // consistent with the chain
+}
+
 TEST(WidgetModel, CellBindingCopiesTheMaskedMotion) {
   WidgetModel m;
   const WidgetId lat = m.addLattice("", Eigen::Vector3i(3, 3, 3));

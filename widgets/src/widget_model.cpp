@@ -429,7 +429,10 @@ struct WidgetModel::Impl {
       while (backward < n && drives(*edges[(s + n - 1 - backward) % n], v[(s + n - backward) % n])) ++backward;
       reachTwice = forward + backward >= n;
     }
-    if (!reachTwice) return;
+    if (!reachTwice) {
+      checkRoutes(nb);
+      return;
+    }
     std::string loop;
     for (WidgetId w : v) loop += toString(w) + " -> ";
     loop += toString(v.front());
@@ -453,6 +456,98 @@ struct WidgetModel::Impl {
     } else {
       fail(WidgetErrorCode::InconsistentLoop,
            head + " through bindings of different kinds, along which one gesture would move a widget twice");
+    }
+    checkRoutes(nb);
+  }
+
+  // The exhaustive form of the loop rule for components of moderate size: with `nb` added, a
+  // gesture started anywhere must not reach a widget along two routes that disagree (different
+  // kinds, gain products or masks). The cycle test above examines one loop; this one all of
+  // them, at O(V (V + E)) per binding, so it is skipped for components above kMaxRouteCheck.
+  void checkRoutes(const Binding& nb) const {
+    constexpr std::size_t kMaxRouteCheck = 256;
+    auto incident = [&](WidgetId w, auto&& visit) {
+      for (BindingId bid : nodes[w.value].bindings) visit(*bindings[bid.value]);
+      if (nb.from == w || nb.to == w) visit(nb);
+    };
+    std::vector<WidgetId> component{nb.from};
+    std::vector<char> inComponent(nodes.size(), 0);
+    inComponent[nb.from.value] = 1;
+    for (std::size_t q = 0; q < component.size(); ++q) {
+      if (component.size() > kMaxRouteCheck) return;
+      incident(component[q], [&](const Binding& e) {
+        const WidgetId o = e.from == component[q] ? e.to : e.from;
+        if (!inComponent[o.value]) {
+          inComponent[o.value] = 1;
+          component.push_back(o);
+        }
+      });
+    }
+    struct Visit {
+      int parent = -1;
+      const Binding* via = nullptr;
+      int depth = 0;
+    };
+    std::vector<int> slot(nodes.size(), -1);
+    for (WidgetId start : component) {
+      std::vector<WidgetId> order{start};
+      std::vector<Visit> visit(1);
+      std::fill(slot.begin(), slot.end(), -1);
+      slot[start.value] = 0;
+      for (std::size_t q = 0; q < order.size(); ++q) {
+        const WidgetId u = order[q];
+        incident(u, [&](const Binding& e) {
+          if (!drives(e, u) || &e == visit[q].via) return;
+          const WidgetId v = e.from == u ? e.to : e.from;
+          if (slot[v.value] < 0) {
+            slot[v.value] = static_cast<int>(order.size());
+            order.push_back(v);
+            visit.push_back({static_cast<int>(q), &e, visit[q].depth + 1});
+            return;
+          }
+          // Second arrival at v: compare the route along the tree with the one through u.
+          auto route = [&](int from, int to) {  // tree edges from ancestor `to` down to `from`
+            std::vector<std::pair<int, const Binding*>> r;
+            for (int x = from; x != to; x = visit[static_cast<std::size_t>(x)].parent) r.emplace_back(x, visit[static_cast<std::size_t>(x)].via);
+            return r;
+          };
+          int a = slot[v.value], b = static_cast<int>(q);
+          while (visit[static_cast<std::size_t>(a)].depth > visit[static_cast<std::size_t>(b)].depth) a = visit[static_cast<std::size_t>(a)].parent;
+          while (visit[static_cast<std::size_t>(b)].depth > visit[static_cast<std::size_t>(a)].depth) b = visit[static_cast<std::size_t>(b)].parent;
+          while (a != b) {
+            a = visit[static_cast<std::size_t>(a)].parent;
+            b = visit[static_cast<std::size_t>(b)].parent;
+          }
+          const auto first = route(slot[v.value], a);
+          auto second = route(static_cast<int>(q), a);
+          bool allVariation = e.kind == BindingKind::Variation, allCell = e.kind == BindingKind::CellMotion;
+          bool masksEqual = true;
+          double gainFirst = 1.0, gainSecond = e.kind == BindingKind::Variation ? (e.from == u ? e.rule.gain : 1.0 / e.rule.gain) : 1.0;
+          auto account = [&](const std::vector<std::pair<int, const Binding*>>& r, double& gain) {
+            for (const auto& [x, edge] : r) {
+              const WidgetId to = order[static_cast<std::size_t>(x)];
+              allVariation = allVariation && edge->kind == BindingKind::Variation;
+              allCell = allCell && edge->kind == BindingKind::CellMotion;
+              masksEqual = masksEqual && edge->mask == e.mask;
+              if (edge->kind == BindingKind::Variation) gain *= edge->to == to ? edge->rule.gain : 1.0 / edge->rule.gain;
+            }
+          };
+          account(first, gainFirst);
+          account(second, gainSecond);
+          const bool consistent = (allVariation && std::abs(gainFirst - gainSecond) <= 1e-12 * std::abs(gainFirst)) ||
+                                  (allCell && masksEqual);
+          if (consistent) return;
+          auto describe = [&](const std::vector<std::pair<int, const Binding*>>& r, const std::string& tail) {
+            std::string text = toString(order[static_cast<std::size_t>(a)]);
+            for (auto it = r.rbegin(); it != r.rend(); ++it) text += " -> " + toString(order[static_cast<std::size_t>(it->first)]);
+            return text + tail;
+          };
+          fail(WidgetErrorCode::InconsistentLoop,
+               "binding '" + label(nb.from) + " <-> '" + label(nb.to) + " closes a loop: a gesture on '" + label(start) +
+                   " would reach '" + label(v) + " along two routes that disagree (" + describe(first, "") + " and " +
+                   describe(second, " -> " + toString(v)) + ")");
+        });
+      }
     }
   }
 
