@@ -135,6 +135,15 @@ Eigen::MatrixXd CubicShapeSolver::solve(const Eigen::MatrixXd& values,
   if (lu_.info() != Eigen::Success || !x.allFinite()) {
     throw CardinalSplineError("CubicShapeSolver::solve: solving the cubic-mode system failed");
   }
+  // A direct solve: check the residual rather than trust it, so an ill-conditioned knot
+  // vector is reported instead of returning a wrong shape.
+  const double residual = (matrix_ * x - rhs).cwiseAbs().maxCoeff();
+  const double scale = 1.0 + rhs.cwiseAbs().maxCoeff() + x.cwiseAbs().maxCoeff();
+  if (!(residual <= 1e-9 * scale)) {
+    throw CardinalSplineError("CubicShapeSolver::solve: residual " + std::to_string(residual) +
+                              " exceeds 1e-9 * " + std::to_string(scale) +
+                              " (ill-conditioned knot spacing?)");
+  }
   return x;
 }
 

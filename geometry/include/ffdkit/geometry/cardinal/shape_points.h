@@ -36,6 +36,8 @@ class CubicShapeSolver {
 
   /// Shape values for data Y (pointCount x k, any k columns) and local end slopes
   /// (1 x k each; ignored when closed). Returns shapeCount x k.
+  /// @throws CardinalSplineError on size mismatch, or if the residual max|A x - b| exceeds
+  /// 1e-9 (1 + max|b| + max|x|) (never a silently wrong result).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& values, const Eigen::MatrixXd& startSlope,
                         const Eigen::MatrixXd& endSlope) const;
 
