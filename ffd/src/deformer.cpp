@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-// The hot loops are compiled twice, for baseline x86-64 and for AVX2 + FMA, and picked at load
+// The hot loops are compiled for baseline x86-64, AVX2 + FMA and AVX-512, and picked at load
 // time (GCC function multiversioning), so the library stays portable without -march flags.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define FFDKIT_VECTOR_CLONES __attribute__((target_clones("default", "arch=x86-64-v3")))
+#define FFDKIT_VECTOR_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 #else
 #define FFDKIT_VECTOR_CLONES
 #endif
@@ -86,7 +86,7 @@ FFDKIT_INLINE Lane loadLanes(const double* src, std::uint32_t q, int count) {
 FFDKIT_INLINE void storeLanes(const KernelInput& in, std::uint32_t q0, int count, bool blended, Lane dx, Lane dy, Lane dz,
                        bool accumulate) {
   if (blended) {
-    Lane s;
+    Lane s = splat(1.0);
     for (int l = 0; l < kLanes; ++l) s[l] = in.blend[q0 + std::min(l, count - 1) - in.blendBegin];
     dx *= s;
     dy *= s;

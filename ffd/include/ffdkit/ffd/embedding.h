@@ -31,7 +31,8 @@ struct EmbedOptions {
 ///
 /// Internally the points are grouped by lattice cell so that deformation streams the same
 /// control points over many points (see docs/ffd-engine.md). Memory: 29 bytes per point
-/// (3 doubles, a 32-bit index, a status byte) + 8 bytes per point blended by ClampEdge/Falloff.
+/// (3 doubles, a 32-bit index, a status byte), a 28-byte record per block (about 3 bytes per
+/// point for many-cell lattices in random point order), + 8 bytes per ClampEdge/Falloff point.
 class Embedding {
  public:
   Embedding() = default;
@@ -46,7 +47,8 @@ class Embedding {
 
   /// Parameters used to evaluate each point, pointCount x 3, original order: the Newton / closed-form
   /// solution for inside points and Extrapolate; the clamped solution for ClampEdge / Falloff;
-  /// the unclamped solution (or the last iterate, for Failed) for points left unchanged.
+  /// the unclamped solution for Identity outside points; the last Newton iterate clamped into the
+  /// box for Failed points. Periodic parameters are wrapped into [0, 1).
   Eigen::MatrixX3d parameters() const;
 
   /// The lattice state this embedding was built for.
