@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ffdkit/app/offscreen_render.h"
+#include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
 
 namespace {
@@ -29,13 +30,20 @@ int info(const std::vector<std::string>& args) {
   std::printf("scene: %s\n", args[0].c_str());
   if (!scene.description.empty()) std::printf("description: %s\n", scene.description.c_str());
   for (const auto& object : scene.objects) {
-    std::printf("object %s: %lld vertices, %lld triangles\n", object.name.c_str(),
-                static_cast<long long>(object.mesh.vertices.rows()), static_cast<long long>(object.mesh.triangles.rows()));
+    std::printf("object %s: %lld points, %lld triangles, %lld segments\n", object.name.c_str(),
+                static_cast<long long>(object.mesh.points.rows()), static_cast<long long>(object.mesh.triangles.rows()),
+                static_cast<long long>(object.mesh.segments.rows()));
   }
-  for (const auto& lattice : scene.lattices) {
-    std::printf("lattice %s: %dx%dx%d control points\n", lattice.name.c_str(), lattice.counts.x(), lattice.counts.y(),
-                lattice.counts.z());
+  for (auto lattice : scene.widgets.widgets(ffdkit::widgets::WidgetType::Lattice)) {
+    const Eigen::Vector3i n = scene.widgets.counts(lattice);
+    std::printf("lattice %s: %dx%dx%d control points\n", scene.widgets.name(lattice).c_str(), n.x(), n.y(), n.z());
   }
+  ffdkit::scenes::SceneDeformer deformer;
+  deformer.update(scene);
+  const auto& stats = deformer.lastStats();
+  std::printf("deformed %lld points in %.1f ms (%lld outside their lattice, %lld failed to embed)\n",
+              static_cast<long long>(stats.deformedPoints), 1e3 * stats.seconds,
+              static_cast<long long>(stats.outsidePoints), static_cast<long long>(stats.failedPoints));
   return 0;
 }
 

@@ -1,8 +1,26 @@
 #include "ffdkit/scenes/scene.h"
 
+#include <algorithm>
+#include <set>
 #include <stdexcept>
 
 namespace ffdkit::scenes {
+namespace {
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
+
+std::string knownObjects(const Scene& scene) {
+  std::string list;
+  for (const auto& o : scene.objects) list += (list.empty() ? "" : ", ") + o.name;
+  return list.empty() ? "none" : list;
+}
+
+}  // namespace
 
 const SceneObject* Scene::findObject(const std::string& name) const {
   for (const auto& object : objects)
@@ -10,34 +28,107 @@ const SceneObject* Scene::findObject(const std::string& name) const {
   return nullptr;
 }
 
-Eigen::AlignedBox3d latticeRestBox(const Scene& scene, const SceneLattice& lattice) {
-  Eigen::AlignedBox3d box;
-  for (const auto& name : lattice.objects) {
-    const SceneObject* object = scene.findObject(name);
-    if (object == nullptr) {
-      throw std::invalid_argument("lattice '" + lattice.name + "': unknown object '" + name + "'");
-    }
-    for (Eigen::Index i = 0; i < object->mesh.vertices.rows(); ++i)
-      box.extend(Eigen::Vector3d(object->mesh.vertices.row(i)));
-  }
-  if (box.isEmpty()) throw std::invalid_argument("lattice '" + lattice.name + "': its objects have no points");
-  const double margin = std::max(lattice.padding * box.diagonal().norm(), 1e-6);
-  box.min().array() -= margin;
-  box.max().array() += margin;
-  return box;
+SceneObject* Scene::findObject(const std::string& name) {
+  return const_cast<SceneObject*>(static_cast<const Scene&>(*this).findObject(name));
 }
 
-Eigen::MatrixX3d latticeRestPoints(const Scene& scene, const SceneLattice& lattice) {
-  const Eigen::AlignedBox3d box = latticeRestBox(scene, lattice);
-  const Eigen::Vector3i& n = lattice.counts;
-  Eigen::MatrixX3d points(static_cast<Eigen::Index>(n.prod()), 3);
-  for (int k = 0; k < n.z(); ++k)
-    for (int j = 0; j < n.y(); ++j)
-      for (int i = 0; i < n.x(); ++i) {
-        const Eigen::Array3d t(double(i) / (n.x() - 1), double(j) / (n.y() - 1), double(k) / (n.z() - 1));
-        points.row(i + n.x() * (j + n.y() * k)) = (box.min().array() + t * box.sizes().array()).matrix().transpose();
-      }
-  return points;
+std::vector<widgets::WidgetId> Scene::latticesDeforming(const std::string& object) const {
+  std::vector<widgets::WidgetId> result;
+  for (const auto& attachment : attachments)
+    if (std::find(attachment.objects.begin(), attachment.objects.end(), object) != attachment.objects.end())
+      result.push_back(widgets.find(attachment.lattice));
+  return result;
+}
+
+MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path& baseDirectory,
+                         const GeneratorRegistry& generators) {
+  return std::visit(Overloaded{
+                        [](const PrimitiveOptions& primitive) {
+                          const geometry::TriangleMesh mesh = makePrimitive(primitive);
+                          return MeshData{mesh.vertices, mesh.triangles, {}, false};
+                        },
+                        [&](const MeshFileSource& file) {
+                          const std::filesystem::path path(file.path);
+                          return readMesh(path.is_absolute() ? path : baseDirectory / path);
+                        },
+                        [&](const GeneratedSource& generated) {
+                          return generators.generate(generated.generator, generated.parameters, generated.density);
+                        }},
+                    source);
+}
+
+widgets::WidgetId attachNewLattice(Scene& scene, const std::vector<std::string>& objects, const AttachOptions& options) {
+  if (objects.empty()) throw std::invalid_argument("attach: name at least one object");
+  Eigen::AlignedBox3d box;
+  for (const auto& name : objects) {
+    const SceneObject* object = scene.findObject(name);
+    if (object == nullptr)
+      throw std::invalid_argument("attach: unknown object '" + name + "' (known: " + knownObjects(scene) + ")");
+    for (Eigen::Index i = 0; i < object->mesh.points.rows(); ++i) box.extend(Eigen::Vector3d(object->mesh.points.row(i)));
+  }
+  if (box.isEmpty()) throw std::invalid_argument("attach: the objects have no points");
+  // Pad by a fraction of the diagonal; give flat (or point-like) boxes a minimum thickness so
+  // that the lattice has volume and the embedding is well posed.
+  const double diagonal = box.diagonal().norm();
+  const double margin = options.padding * diagonal;
+  const double minimumSize = std::max(1e-3 * diagonal, 1e-6);
+  Eigen::Vector3d lower = box.min().array() - margin;
+  Eigen::Vector3d size = (box.sizes().array() + 2.0 * margin).matrix();
+  for (int a = 0; a < 3; ++a) {
+    if (size[a] < minimumSize) {
+      lower[a] -= 0.5 * (minimumSize - size[a]);
+      size[a] = minimumSize;
+    }
+  }
+  widgets::LatticeOptions lattice;
+  lattice.name = options.latticeName;
+  lattice.counts = options.counts;
+  lattice.frame = Eigen::Translation3d(lower) * Eigen::Scaling(size);
+  lattice.settings = options.settings;
+  const widgets::WidgetId id = scene.widgets.addLattice(lattice);
+  scene.attachments.push_back(Attachment{scene.widgets.name(id), objects});
+  return id;
+}
+
+void detachLattice(Scene& scene, const std::string& lattice, const std::string& object) {
+  for (auto it = scene.attachments.begin(); it != scene.attachments.end(); ++it) {
+    if (it->lattice != lattice) continue;
+    auto o = std::find(it->objects.begin(), it->objects.end(), object);
+    if (o == it->objects.end()) continue;
+    it->objects.erase(o);
+    if (it->objects.empty()) scene.attachments.erase(it);
+    return;
+  }
+  throw std::invalid_argument("detach: lattice '" + lattice + "' does not deform object '" + object + "'");
+}
+
+void validateScene(const Scene& scene) {
+  std::set<std::string> names;
+  for (const auto& object : scene.objects) {
+    if (object.name.empty()) throw std::invalid_argument("scene: an object has an empty name");
+    if (!names.insert(object.name).second) throw std::invalid_argument("scene: duplicate object name '" + object.name + "'");
+  }
+  std::set<std::pair<std::string, std::string>> pairs;
+  for (const auto& attachment : scene.attachments) {
+    widgets::WidgetId id;
+    try {
+      id = scene.widgets.find(attachment.lattice);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument("scene: attachment of '" + attachment.lattice + "': " + e.what());
+    }
+    if (scene.widgets.type(id) != widgets::WidgetType::Lattice)
+      throw std::invalid_argument("scene: attachment names '" + attachment.lattice + "', which is not a lattice widget");
+    if (scene.widgets.parentCell(id).has_value())
+      throw std::invalid_argument("scene: attachment names '" + attachment.lattice +
+                                  "', a child lattice: attach its root (children deform through it)");
+    for (const auto& object : attachment.objects) {
+      if (names.count(object) == 0)
+        throw std::invalid_argument("scene: lattice '" + attachment.lattice + "' is attached to unknown object '" +
+                                    object + "' (known: " + knownObjects(scene) + ")");
+      if (!pairs.insert({attachment.lattice, object}).second)
+        throw std::invalid_argument("scene: lattice '" + attachment.lattice + "' is attached to '" + object + "' twice");
+    }
+  }
 }
 
 }  // namespace ffdkit::scenes

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "ffdkit/scenes/atomic_write.h"
+#include "ffdkit/scenes/widget_file.h"
+#include "json_text.h"
 
 namespace ffdkit::scenes {
 namespace {
@@ -21,23 +23,9 @@ struct Location {
 
   Location operator/(const std::string& key) const { return {source, pointer + "/" + key}; }
   Location operator/(std::size_t index) const { return {source, pointer + "/" + std::to_string(index)}; }
-  [[noreturn]] void fail(const std::string& message) const {
-    throw SceneFileError(source + " " + (pointer.empty() ? "/" : pointer) + ": " + message);
-  }
+  std::string where() const { return source + " " + (pointer.empty() ? "/" : pointer); }
+  [[noreturn]] void fail(const std::string& message) const { throw SceneFileError(where() + ": " + message); }
 };
-
-std::string lineColumn(const std::string& text, std::size_t byte) {
-  std::size_t line = 1, column = 1;
-  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(column);
-}
 
 const Json& member(const Json& object, const char* key, const Location& at) {
   if (!object.is_object()) at.fail("expected an object");
@@ -84,11 +72,11 @@ void checkKeys(const Json& object, std::initializer_list<const char*> known, con
 }
 
 PrimitiveOptions readPrimitive(const Json& j, const Location& at) {
-  checkKeys(j, {"kind", "resolution", "size"}, at);
+  checkKeys(j, {"kind", "resolution", "size", "placement"}, at);
   PrimitiveOptions options;
   const std::string kind = text(member(j, "kind", at), at / "kind");
   auto parsed = parsePrimitiveKind(kind);
-  if (!parsed) at.fail("unknown primitive '" + kind + "' (known: sphere, cylinder, cube, cone, torus, plane)");
+  if (!parsed) (at / "kind").fail("unknown primitive '" + kind + "' (known: sphere, cylinder, cube, cone, torus, plane)");
   options.kind = *parsed;
   if (j.contains("resolution")) {
     const Json& r = j["resolution"];
@@ -100,15 +88,79 @@ PrimitiveOptions readPrimitive(const Json& j, const Location& at) {
     options.size = number(j["size"], at / "size");
     if (options.size <= 0.0) (at / "size").fail("size must be positive");
   }
+  if (j.contains("placement")) {
+    const Json& p = j["placement"];
+    const Location pat = at / "placement";
+    if (!p.is_array() || p.size() != 3) pat.fail("expected 3 rows of 4 numbers (a 3x4 affine matrix)");
+    for (std::size_t r = 0; r < 3; ++r) {
+      if (!p[r].is_array() || p[r].size() != 4) (pat / r).fail("expected 4 numbers");
+      for (std::size_t c = 0; c < 4; ++c) options.placement.matrix()(Eigen::Index(r), Eigen::Index(c)) = number(p[r][c], pat / r / c);
+    }
+    if (std::abs(options.placement.linear().determinant()) < 1e-12) pat.fail("the placement is singular");
+  }
   return options;
 }
 
-SceneObject readObject(const Json& j, const Location& at) {
-  checkKeys(j, {"name", "primitive", "display"}, at);
+ParameterValue readParameter(const Json& v, const Location& at) {
+  if (v.is_boolean()) return v.get<bool>();
+  if (v.is_number()) return number(v, at);
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_array()) {
+    if (v.empty() || v[0].is_number()) {
+      std::vector<double> list;
+      for (std::size_t i = 0; i < v.size(); ++i) list.push_back(number(v[i], at / i));
+      return list;
+    }
+    std::vector<std::vector<double>> rows;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (!v[i].is_array()) (at / i).fail("expected a row of numbers like its siblings");
+      std::vector<double> row;
+      for (std::size_t k = 0; k < v[i].size(); ++k) row.push_back(number(v[i][k], at / i / k));
+      rows.push_back(std::move(row));
+    }
+    return rows;
+  }
+  at.fail("expected a flag, a number, a string, a list of numbers or a list of rows");
+}
+
+Json writeParameter(const ParameterValue& value) {
+  return std::visit([](const auto& v) { return Json(v); }, value);
+}
+
+SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions& options,
+                       const GeneratorRegistry& generators) {
+  checkKeys(j, {"name", "primitive", "mesh", "generator", "display"}, at);
   SceneObject object;
   object.name = text(member(j, "name", at), at / "name");
   if (object.name.empty()) (at / "name").fail("object names must not be empty");
-  object.primitive = readPrimitive(member(j, "primitive", at), at / "primitive");
+  const int sources = int(j.contains("primitive")) + int(j.contains("mesh")) + int(j.contains("generator"));
+  if (sources != 1) at.fail("an object needs exactly one of 'primitive', 'mesh', 'generator'");
+  if (j.contains("primitive")) {
+    object.source = readPrimitive(j["primitive"], at / "primitive");
+  } else if (j.contains("mesh")) {
+    const Json& m = j["mesh"];
+    checkKeys(m, {"path"}, at / "mesh");
+    object.source = MeshFileSource{text(member(m, "path", at / "mesh"), at / "mesh" / "path")};
+  } else {
+    const Json& g = j["generator"];
+    const Location gat = at / "generator";
+    checkKeys(g, {"name", "parameters", "density"}, gat);
+    GeneratedSource generated;
+    generated.generator = text(member(g, "name", gat), gat / "name");
+    if (!generators.contains(generated.generator)) {
+      std::string list;
+      for (const auto& n : generators.names()) list += (list.empty() ? "" : ", ") + n;
+      (gat / "name").fail("unknown generator '" + generated.generator + "' (known: " + list + ")");
+    }
+    if (g.contains("parameters")) {
+      const Json& params = g["parameters"];
+      if (!params.is_object()) (gat / "parameters").fail("expected an object");
+      for (const auto& item : params.items())
+        generated.parameters.set(item.key(), readParameter(item.value(), gat / "parameters" / item.key()));
+    }
+    if (g.contains("density")) generated.density = number(g["density"], gat / "density");
+    object.source = std::move(generated);
+  }
   if (j.contains("display")) {
     const Json& d = j["display"];
     const Location dat = at / "display";
@@ -124,46 +176,19 @@ SceneObject readObject(const Json& j, const Location& at) {
     }
   }
   try {
-    object.mesh = makePrimitive(*object.primitive);
-  } catch (const std::invalid_argument& e) {
-    (at / "primitive").fail(e.what());
+    object.mesh = buildObjectMesh(object.source, options.baseDirectory, generators);
+  } catch (const std::exception& e) {
+    at.fail("object '" + object.name + "': " + e.what());
   }
   return object;
 }
 
-SceneLattice readLattice(const Json& j, const Location& at, const Scene& scene) {
-  checkKeys(j, {"name", "objects", "counts", "padding"}, at);
-  SceneLattice lattice;
-  lattice.name = text(member(j, "name", at), at / "name");
-  const Json& objects = member(j, "objects", at);
-  if (!objects.is_array() || objects.empty()) (at / "objects").fail("expected a non-empty array of object names");
-  for (std::size_t i = 0; i < objects.size(); ++i) {
-    std::string name = text(objects[i], at / "objects" / i);
-    if (scene.findObject(name) == nullptr) {
-      std::string known;
-      for (const auto& o : scene.objects) known += (known.empty() ? "" : ", ") + o.name;
-      (at / "objects" / i).fail("unknown object '" + name + "' (known: " + known + ")");
-    }
-    lattice.objects.push_back(std::move(name));
-  }
-  const Json& counts = member(j, "counts", at);
-  if (!counts.is_array() || counts.size() != 3) (at / "counts").fail("expected 3 integers");
-  for (int a = 0; a < 3; ++a) {
-    const Json& c = counts[static_cast<std::size_t>(a)];
-    if (!c.is_number_integer() || c.get<long long>() < 2 || c.get<long long>() > 64)
-      (at / "counts" / static_cast<std::size_t>(a)).fail("lattice needs 2..64 points per axis, got " + c.dump());
-    lattice.counts[a] = c.get<int>();
-  }
-  if (j.contains("padding")) {
-    lattice.padding = number(j["padding"], at / "padding");
-    if (lattice.padding < 0.0) (at / "padding").fail("padding must be >= 0");
-  }
-  return lattice;
-}
-
-Scene readSceneJson(const Json& root, const std::string& source) {
+Scene readSceneJson(const Json& root, const std::string& source, const SceneReadOptions& options) {
+  const GeneratorRegistry& generators = options.generators != nullptr ? *options.generators : builtinGenerators();
   const Location at{source, ""};
-  checkKeys(root, {"format", "version", "description", "background", "objects", "lattices", "camera"}, at);
+  checkKeys(root, {"format", "version", "description", "background", "objects", "widgets", "widgetFile",
+                   "attachments", "camera"},
+            at);
   if (text(member(root, "format", at), at / "format") != "ffdkit-scene")
     (at / "format").fail("not an ffdkit scene (expected \"ffdkit-scene\")");
   const Json& version = member(root, "version", at);
@@ -178,16 +203,38 @@ Scene readSceneJson(const Json& root, const std::string& source) {
   const Json& objects = member(root, "objects", at);
   if (!objects.is_array()) (at / "objects").fail("expected an array");
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    SceneObject object = readObject(objects[i], at / "objects" / i);
+    SceneObject object = readObject(objects[i], at / "objects" / i, options, generators);
     if (scene.findObject(object.name) != nullptr)
       (at / "objects" / i / "name").fail("duplicate object name '" + object.name + "'");
     scene.objects.push_back(std::move(object));
   }
-  if (root.contains("lattices")) {
-    const Json& lattices = root["lattices"];
-    if (!lattices.is_array()) (at / "lattices").fail("expected an array");
-    for (std::size_t i = 0; i < lattices.size(); ++i)
-      scene.lattices.push_back(readLattice(lattices[i], at / "lattices" / i, scene));
+  if (root.contains("widgets") && root.contains("widgetFile"))
+    at.fail("give the widgets inline ('widgets') or by reference ('widgetFile'), not both");
+  try {
+    if (root.contains("widgets")) {
+      std::istringstream widgetText(root["widgets"].dump());
+      scene.widgets = readWidgetFile(widgetText, (at / "widgets").where());
+    } else if (root.contains("widgetFile")) {
+      scene.widgetFile = text(root["widgetFile"], at / "widgetFile");
+      const std::filesystem::path file(*scene.widgetFile);
+      scene.widgets = readWidgetFile(file.is_absolute() ? file : options.baseDirectory / file);
+    }
+  } catch (const WidgetFileError& e) {
+    throw SceneFileError(std::string(e.what()) + (root.contains("widgetFile") ? " (widget file of " + source + ")" : ""));
+  }
+  if (root.contains("attachments")) {
+    const Json& list = root["attachments"];
+    if (!list.is_array()) (at / "attachments").fail("expected an array");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Location aat = at / "attachments" / i;
+      checkKeys(list[i], {"lattice", "objects"}, aat);
+      Attachment attachment;
+      attachment.lattice = text(member(list[i], "lattice", aat), aat / "lattice");
+      const Json& names = member(list[i], "objects", aat);
+      if (!names.is_array() || names.empty()) (aat / "objects").fail("expected a non-empty array of object names");
+      for (std::size_t k = 0; k < names.size(); ++k) attachment.objects.push_back(text(names[k], aat / "objects" / k));
+      scene.attachments.push_back(std::move(attachment));
+    }
   }
   if (root.contains("camera")) {
     const Json& c = root["camera"];
@@ -199,39 +246,22 @@ Scene readSceneJson(const Json& root, const std::string& source) {
     if (c.contains("viewAngle")) scene.camera.viewAngleDegrees = number(c["viewAngle"], cat / "viewAngle");
     if ((scene.camera.position - scene.camera.focalPoint).norm() == 0.0)
       cat.fail("camera position and focal point coincide");
-    if (scene.camera.viewUp.norm() == 0.0) (cat / "viewUp").fail("view-up must be non-zero");
+    if (scene.camera.viewUp.cross(scene.camera.focalPoint - scene.camera.position).norm() == 0.0)
+      (cat / "viewUp").fail("view-up must be non-zero and not along the view direction");
     if (scene.camera.viewAngleDegrees <= 0.0 || scene.camera.viewAngleDegrees >= 180.0)
       (cat / "viewAngle").fail("view angle must be in (0, 180) degrees");
+  }
+  try {
+    validateScene(scene);
+  } catch (const std::invalid_argument& e) {
+    (at / "attachments").fail(e.what());
   }
   return scene;
 }
 
 Json array3(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
-}  // namespace
-
-Scene readScene(std::istream& in, const std::string& sourceName) {
-  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  Json root;
-  try {
-    root = Json::parse(content);
-  } catch (const Json::parse_error& e) {
-    // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line ..."; keep its tail.
-    std::string message = e.what();
-    if (auto colon = message.find("syntax error"); colon != std::string::npos) message = message.substr(colon);
-    throw SceneFileError(sourceName + ":" + lineColumn(content, e.byte == 0 ? 0 : e.byte - 1) + ": " + message);
-  }
-  return readSceneJson(root, sourceName);
-}
-
-Scene readScene(const std::filesystem::path& path) {
-  const std::filesystem::path file = std::filesystem::is_directory(path) ? path / "scene.json" : path;
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneFileError(file.string() + ": cannot open scene file");
-  return readScene(in, file.string());
-}
-
-void writeScene(std::ostream& out, const Scene& scene) {
+Json sceneJson(const Scene& scene) {
   Json root;
   root["format"] = "ffdkit-scene";
   root["version"] = kSceneFormatVersion;
@@ -241,10 +271,27 @@ void writeScene(std::ostream& out, const Scene& scene) {
   for (const auto& object : scene.objects) {
     Json o;
     o["name"] = object.name;
-    if (object.primitive) {
-      o["primitive"] = {{"kind", std::string(primitiveKindName(object.primitive->kind))},
-                        {"resolution", object.primitive->resolution},
-                        {"size", object.primitive->size}};
+    if (const auto* primitive = std::get_if<PrimitiveOptions>(&object.source)) {
+      Json p = {{"kind", std::string(primitiveKindName(primitive->kind))},
+                {"resolution", primitive->resolution},
+                {"size", primitive->size}};
+      if (!primitive->placement.isApprox(Eigen::Affine3d::Identity(), 0.0)) {
+        Json rows = Json::array();
+        for (int r = 0; r < 3; ++r) {
+          Json row = Json::array();
+          for (int c = 0; c < 4; ++c) row.push_back(primitive->placement.matrix()(r, c));
+          rows.push_back(row);
+        }
+        p["placement"] = rows;
+      }
+      o["primitive"] = p;
+    } else if (const auto* file = std::get_if<MeshFileSource>(&object.source)) {
+      o["mesh"] = {{"path", file->path}};
+    } else {
+      const auto& generated = std::get<GeneratedSource>(object.source);
+      Json parameters = Json::object();
+      for (const auto& [name, value] : generated.parameters.values()) parameters[name] = writeParameter(value);
+      o["generator"] = {{"name", generated.generator}, {"parameters", parameters}, {"density", generated.density}};
     }
     o["display"] = {{"color", array3(object.display.color)},
                     {"opacity", object.display.opacity},
@@ -252,26 +299,59 @@ void writeScene(std::ostream& out, const Scene& scene) {
     objects.push_back(std::move(o));
   }
   root["objects"] = std::move(objects);
-  Json lattices = Json::array();
-  for (const auto& lattice : scene.lattices) {
-    lattices.push_back({{"name", lattice.name},
-                        {"objects", lattice.objects},
-                        {"counts", Json::array({lattice.counts.x(), lattice.counts.y(), lattice.counts.z()})},
-                        {"padding", lattice.padding}});
+  if (scene.widgetFile) {
+    root["widgetFile"] = *scene.widgetFile;
+  } else {
+    root["widgets"] = Json::parse(widgetFileText(scene.widgets));
   }
-  root["lattices"] = std::move(lattices);
+  Json attachments = Json::array();
+  for (const auto& a : scene.attachments) attachments.push_back({{"lattice", a.lattice}, {"objects", a.objects}});
+  root["attachments"] = std::move(attachments);
   root["camera"] = {{"position", array3(scene.camera.position)},
                     {"focalPoint", array3(scene.camera.focalPoint)},
                     {"viewUp", array3(scene.camera.viewUp)},
                     {"viewAngle", scene.camera.viewAngleDegrees}};
-  out << root.dump(2) << '\n';
+  return root;
 }
 
-void writeScene(const std::filesystem::path& path, const Scene& scene) {
-  std::ostringstream text;
-  writeScene(text, scene);
+}  // namespace
+
+Scene readScene(std::istream& in, const std::string& sourceName, const SceneReadOptions& options) {
+  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Json root;
   try {
-    writeFileAtomically(path, text.str());
+    root = Json::parse(content);
+  } catch (const Json::parse_error& e) {
+    // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line ..."; keep its tail.
+    std::string message = e.what();
+    if (auto pos = message.find("syntax error"); pos != std::string::npos) message = message.substr(pos);
+    throw SceneFileError(sourceName + ":" + detail::lineColumn(content, e.byte == 0 ? 0 : e.byte - 1) + ": " + message);
+  }
+  return readSceneJson(root, sourceName, options);
+}
+
+Scene readScene(const std::filesystem::path& path) {
+  const std::filesystem::path file = std::filesystem::is_directory(path) ? path / "scene.json" : path;
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SceneFileError(file.string() + ": cannot open scene file");
+  SceneReadOptions options;
+  options.baseDirectory = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
+  return readScene(in, file.string(), options);
+}
+
+std::string sceneFileText(const Scene& scene) { return detail::canonicalJsonText(sceneJson(scene)); }
+
+void writeScene(std::ostream& out, const Scene& scene) { out << sceneFileText(scene); }
+
+void writeScene(const std::filesystem::path& path, const Scene& scene) {
+  const std::string text = sceneFileText(scene);  // before touching any file: nothing half-written
+  try {
+    if (scene.widgetFile) {
+      const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+      const std::filesystem::path widgetPath(*scene.widgetFile);
+      writeWidgetFile(widgetPath.is_absolute() ? widgetPath : folder / widgetPath, scene.widgets);
+    }
+    writeFileAtomically(path, text);
   } catch (const std::exception& e) {
     throw SceneFileError(e.what());
   }

@@ -16,6 +16,7 @@ struct MainWindow::Impl {
   VtkViewWidget* view = nullptr;
   std::unique_ptr<SceneView> sceneView;
   scenes::Scene scene;
+  scenes::SceneDeformer deformer;
 };
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_unique<Impl>()) {
@@ -44,9 +45,12 @@ void MainWindow::openScene(const std::filesystem::path& path) {
 
 void MainWindow::setScene(scenes::Scene scene) {
   impl_->scene = std::move(scene);
-  impl_->sceneView->show(impl_->scene);
-  statusBar()->showMessage(
-      tr("%1 objects, %2 lattices").arg(impl_->scene.objects.size()).arg(impl_->scene.lattices.size()));
+  impl_->deformer.reset();
+  impl_->deformer.update(impl_->scene);
+  impl_->sceneView->show(impl_->scene, impl_->deformer);
+  statusBar()->showMessage(tr("%1 objects, %2 lattices")
+                               .arg(impl_->scene.objects.size())
+                               .arg(impl_->scene.widgets.widgets(widgets::WidgetType::Lattice).size()));
   impl_->view->requestRender();
 }
 

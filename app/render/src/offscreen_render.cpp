@@ -26,7 +26,10 @@ void renderSceneToPng(const scenes::Scene& scene, const std::filesystem::path& p
   window->SetSize(options.width, options.height);
   window->AddRenderer(renderer);
   SceneView view(renderer);
-  view.show(scene);
+  scenes::SceneDeformer deformed;
+  deformed.update(scene);
+  deformed.finishGesture(scene);
+  view.show(scene, deformed);
   window->Render();
 
   vtkNew<vtkWindowToImageFilter> grab;

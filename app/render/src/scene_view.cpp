@@ -17,20 +17,30 @@
 namespace ffdkit::app {
 namespace {
 
-vtkSmartPointer<vtkPolyData> toPolyData(const geometry::TriangleMesh& mesh) {
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(mesh.vertices.rows());
-  for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i)
-    points->SetPoint(i, mesh.vertices(i, 0), mesh.vertices(i, 1), mesh.vertices(i, 2));
+vtkSmartPointer<vtkPolyData> toPolyData(const scenes::MeshData& mesh, const Eigen::MatrixX3d& points) {
+  vtkNew<vtkPoints> vtkPts;
+  vtkPts->SetDataTypeToDouble();
+  vtkPts->SetNumberOfPoints(points.rows());
+  for (Eigen::Index i = 0; i < points.rows(); ++i) vtkPts->SetPoint(i, points(i, 0), points(i, 1), points(i, 2));
+  auto polyData = vtkSmartPointer<vtkPolyData>::New();
+  polyData->SetPoints(vtkPts);
   vtkNew<vtkCellArray> triangles;
   for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
     const vtkIdType ids[3] = {mesh.triangles(t, 0), mesh.triangles(t, 1), mesh.triangles(t, 2)};
     triangles->InsertNextCell(3, ids);
   }
-  auto polyData = vtkSmartPointer<vtkPolyData>::New();
-  polyData->SetPoints(points);
   polyData->SetPolys(triangles);
+  vtkNew<vtkCellArray> lines;
+  for (Eigen::Index s = 0; s < mesh.segments.rows(); ++s) {
+    const vtkIdType ids[2] = {mesh.segments(s, 0), mesh.segments(s, 1)};
+    lines->InsertNextCell(2, ids);
+  }
+  polyData->SetLines(lines);
+  if (mesh.triangles.rows() == 0 && mesh.segments.rows() == 0) {
+    vtkNew<vtkCellArray> vertices;  // a point cloud
+    for (vtkIdType i = 0; i < points.rows(); ++i) vertices->InsertNextCell(1, &i);
+    polyData->SetVerts(vertices);
+  }
   return polyData;
 }
 
@@ -75,18 +85,25 @@ SceneView::~SceneView() {
   for (auto& actor : impl_->actors) impl_->renderer->RemoveActor(actor);
 }
 
-void SceneView::show(const scenes::Scene& scene) {
+void SceneView::show(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
   for (auto& actor : impl_->actors) impl_->renderer->RemoveActor(actor);
   impl_->actors.clear();
 
   for (const auto& object : scene.objects) {
     if (!object.display.visible) continue;
-    vtkNew<vtkPolyDataNormals> normals;  // smooth shading
-    normals->SetInputData(toPolyData(object.mesh));
-    normals->SetSplitting(false);
+    auto polyData = toPolyData(object.mesh, deformed.points(object.name));
     vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputConnection(normals->GetOutputPort());
+    if (object.mesh.triangles.rows() > 0) {
+      vtkNew<vtkPolyDataNormals> normals;  // smooth shading of the deformed surface
+      normals->SetInputData(polyData);
+      normals->SetSplitting(false);
+      mapper->SetInputConnection(normals->GetOutputPort());
+    } else {
+      mapper->SetInputData(polyData);
+    }
     auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->GetProperty()->SetLineWidth(3.0);
+    actor->GetProperty()->SetPointSize(4.0);
     actor->SetMapper(mapper);
     actor->GetProperty()->SetColor(object.display.color.x(), object.display.color.y(), object.display.color.z());
     actor->GetProperty()->SetOpacity(object.display.opacity);
@@ -94,9 +111,9 @@ void SceneView::show(const scenes::Scene& scene) {
     actor->GetProperty()->SetSpecularPower(30);
     impl_->actors.push_back(actor);
   }
-  for (const auto& lattice : scene.lattices) {
+  for (widgets::WidgetId lattice : scene.widgets.widgets(widgets::WidgetType::Lattice)) {
     vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputData(latticePolyData(scenes::latticeRestPoints(scene, lattice), lattice.counts));
+    mapper->SetInputData(latticePolyData(scene.widgets.worldControlPoints(lattice), scene.widgets.counts(lattice)));
     auto actor = vtkSmartPointer<vtkActor>::New();
     actor->SetMapper(mapper);
     actor->GetProperty()->SetColor(0.55, 0.8, 1.0);

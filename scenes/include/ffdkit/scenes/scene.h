@@ -1,15 +1,35 @@
 #pragma once
 
+#include <filesystem>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <Eigen/Geometry>
 
-#include "ffdkit/geometry/tessellation.h"
+#include "ffdkit/scenes/generator.h"
+#include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/primitive.h"
+#include "ffdkit/widgets/widget_model.h"
 
 namespace ffdkit::scenes {
+
+/// An object read from a mesh or point file (seed 001 l.2385).
+struct MeshFileSource {
+  std::string path;  ///< as written in the scene file: relative to the scene file's folder, or absolute
+};
+
+/// An object made by a named generator (curves and surfaces of the geometry topics); it keeps
+/// its parameters so that it can be regenerated at another sampling density.
+struct GeneratedSource {
+  std::string generator;  ///< a name in the generator registry, e.g. "qi-interpolate"
+  GeneratorParameters parameters;
+  double density = 1.0;   ///< sampling relative to the generator's default, (0, 64]
+};
+
+/// Where an object's own (undeformed) points come from.
+using ObjectSource = std::variant<PrimitiveOptions, MeshFileSource, GeneratedSource>;
 
 /// How an object looks in the 3D view.
 struct DisplaySettings {
@@ -18,21 +38,19 @@ struct DisplaySettings {
   bool visible = true;
 };
 
-/// A deformable object: where its points come from and how it is shown.
+/// A deformable object: its source, its own points (built from the source on load), its look.
 struct SceneObject {
-  std::string name;                     ///< unique within the scene
-  std::optional<PrimitiveOptions> primitive;
+  std::string name;  ///< unique within the scene
+  ObjectSource source;
   DisplaySettings display;
-  geometry::TriangleMesh mesh;          ///< the object's own (undeformed) points, built on load
+  MeshData mesh;     ///< the object's own points; the widget trees deform copies of them
 };
 
-/// A box lattice fitted to the bounding box of the objects it deforms (provisional: the
-/// widget tree of the widget model replaces it).
-struct SceneLattice {
-  std::string name;
-  std::vector<std::string> objects;     ///< names of the objects it deforms
-  Eigen::Vector3i counts{3, 3, 3};      ///< control points per axis, each >= 2
-  double padding = 0.05;                ///< added around the bounding box, relative to its diagonal
+/// A root lattice widget (with its whole subtree of child lattices) deforming some objects:
+/// for each object the lattices run in pre-order (spec §6, seed 001 l.2375).
+struct Attachment {
+  std::string lattice;               ///< name of a ROOT lattice widget
+  std::vector<std::string> objects;  ///< names of the objects it deforms
 };
 
 /// The view's camera, in world coordinates.
@@ -43,25 +61,52 @@ struct Camera {
   double viewAngleDegrees = 30.0;
 };
 
-/// A document: objects, the lattices that deform them, a camera.
+/// A document: objects, the widget model whose lattices deform them, attachments, a camera.
 struct Scene {
   std::string description;
   std::vector<SceneObject> objects;
-  std::vector<SceneLattice> lattices;
+  widgets::WidgetModel widgets;
+  std::vector<Attachment> attachments;
   Camera camera;
   Eigen::Vector3d background{0.13, 0.15, 0.18};  ///< RGB in [0, 1]
+  /// When set, the widget model lives in this widget file (relative to the scene's folder)
+  /// and the scene file references it instead of holding the widgets inline.
+  std::optional<std::string> widgetFile;
 
   /// The object with this name, or nullptr.
   const SceneObject* findObject(const std::string& name) const;
+  SceneObject* findObject(const std::string& name);
+  /// Root lattices deforming `object`, in attachment order.
+  std::vector<widgets::WidgetId> latticesDeforming(const std::string& object) const;
 };
 
-/// The rest box of a lattice: the bounding box of its objects' points, grown by
-/// `padding` times the box diagonal on every side (a flat object still gets a solid box).
-/// @throws std::invalid_argument if the lattice names an unknown object or has no points.
-Eigen::AlignedBox3d latticeRestBox(const Scene& scene, const SceneLattice& lattice);
+/// Builds an object's own points from its source. Mesh paths resolve against `baseDirectory`.
+/// @throws MeshIoError / GeneratorError / std::invalid_argument naming the object.
+MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path& baseDirectory,
+                         const GeneratorRegistry& generators = builtinGenerators());
 
-/// Rest control points of a lattice on the regular grid of its rest box:
-/// #points x 3, flat index i + l*(j + m*k).
-Eigen::MatrixX3d latticeRestPoints(const Scene& scene, const SceneLattice& lattice);
+struct AttachOptions {
+  std::string latticeName;                           ///< "" -> "lattice<N>"
+  Eigen::Vector3i counts = Eigen::Vector3i::Constant(3);
+  widgets::LatticeSettings settings;                 ///< bases, outside policy, re-embed policy
+  /// Grown around the objects' bounding box on every side, relative to its diagonal.
+  double padding = 0.05;
+};
+
+/// Attach (spec §7): adds a root lattice whose frame maps the local unit box onto the
+/// bounding box of the named objects (padded; a flat or degenerate box gets a minimum
+/// thickness), and attaches it to them.
+/// @return the new lattice. @throws std::invalid_argument for unknown objects or no points.
+widgets::WidgetId attachNewLattice(Scene& scene, const std::vector<std::string>& objects,
+                                   const AttachOptions& options = {});
+
+/// Detach: the lattice stops deforming `object` (the object shows its own points again).
+/// @throws std::invalid_argument if it was not attached.
+void detachLattice(Scene& scene, const std::string& lattice, const std::string& object);
+
+/// Checks names and references: unique object names, attachments naming existing root
+/// lattices and objects, each object deformed at most once by a given lattice.
+/// @throws std::invalid_argument naming the first problem.
+void validateScene(const Scene& scene);
 
 }  // namespace ffdkit::scenes

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "ffdkit/scenes/generator.h"
 #include "ffdkit/scenes/scene.h"
 
 namespace ffdkit::scenes {
@@ -14,27 +15,36 @@ inline constexpr int kSceneFormatVersion = 1;
 
 /// A scene file that cannot be read. what() says where: `scene.json:14:9: ...` for syntax
 /// errors, `scene.json /objects/2/primitive/kind: unknown primitive 'teapot' (known: ...)`
-/// for content errors.
+/// for content errors, and names a missing mesh file with the scene that references it.
 class SceneFileError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
-/// Reads a scene from JSON text. `sourceName` names the text in error messages.
-/// @throws SceneFileError on malformed JSON, an unknown or future format version, unknown
-///         names, out-of-range values; nothing is returned half-read.
-Scene readScene(std::istream& in, const std::string& sourceName = "<stream>");
+struct SceneReadOptions {
+  /// Folder that relative mesh and widget-file paths resolve against (readScene(path) uses
+  /// the scene file's folder).
+  std::filesystem::path baseDirectory = ".";
+  const GeneratorRegistry* generators = nullptr;  ///< nullptr: builtinGenerators()
+};
+
+/// Reads a scene from JSON text; builds every object's points (primitives, mesh files,
+/// generators) and the widget model. `sourceName` names the text in error messages.
+/// @throws SceneFileError; nothing is returned half-read.
+Scene readScene(std::istream& in, const std::string& sourceName = "<stream>", const SceneReadOptions& options = {});
 
 /// Reads `path`, or `path/scene.json` when `path` is a directory (sample scenes are folders).
 Scene readScene(const std::filesystem::path& path);
 
-/// Writes the scene as JSON (stable key order, 2-space indent, trailing newline), so that
-/// reading then writing gives the same bytes.
+/// The canonical JSON text of a scene: fixed key order, 2-space indent, short arrays on one
+/// line, shortest round-trip numbers, trailing newline; reading it and writing again gives
+/// the same bytes. Widgets are inline unless `scene.widgetFile` is set.
+std::string sceneFileText(const Scene& scene);
 void writeScene(std::ostream& out, const Scene& scene);
 
-/// Writes atomically: to a temporary file beside `path`, then renamed over it, so that a
-/// failure never leaves a truncated or damaged file.
-/// @throws SceneFileError if the file cannot be written.
+/// Writes atomically (temporary file + rename); when `scene.widgetFile` is set, also writes
+/// that widget file (resolved against the scene file's folder), atomically.
+/// @throws SceneFileError if a file cannot be written.
 void writeScene(const std::filesystem::path& path, const Scene& scene);
 
 }  // namespace ffdkit::scenes

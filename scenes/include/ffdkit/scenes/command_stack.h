@@ -1,0 +1,69 @@
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ffdkit::scenes {
+
+/// One undoable change: a short description for menus ("Drag translate1", "Bind rotate1 ->
+/// translate2") and the two ways to get from one state to the other.
+struct Command {
+  std::string description;
+  std::function<void()> undo;  ///< puts the document back as it was before the change
+  std::function<void()> redo;  ///< applies the change again
+};
+
+/// Undo / redo for every change to a document (ParaView-style: the stack lives outside the
+/// GUI and is passed explicitly; there is no global instance). A change is applied by the
+/// caller and then pushed; one drag gesture is one command.
+class CommandStack {
+ public:
+  /// `limit`: the most commands kept; the oldest are dropped first. >= 1.
+  explicit CommandStack(std::size_t limit = 1000);
+
+  /// Records a change the caller has already applied. Drops everything that could be redone.
+  /// @throws std::invalid_argument if `undo` or `redo` is empty.
+  void push(Command command);
+
+  /// Records a change as two snapshots of a state and the function that restores one:
+  /// undo = restore(before), redo = restore(after).
+  template <class State, class Restore>
+  void pushSnapshots(std::string description, State before, State after, Restore restore) {
+    push(Command{std::move(description), [restore, before] { restore(before); },
+                 [restore, after] { restore(after); }});
+  }
+
+  bool canUndo() const { return position_ > 0; }
+  bool canRedo() const { return position_ < commands_.size(); }
+  /// Undoes the last applied command. @throws std::logic_error if there is none.
+  void undo();
+  /// Redoes the last undone command. @throws std::logic_error if there is none.
+  void redo();
+
+  /// Description of what undo() / redo() would do; empty if nothing.
+  std::string undoDescription() const;
+  std::string redoDescription() const;
+
+  std::size_t size() const { return commands_.size(); }
+  /// Commands applied (and so undoable): the stack's position.
+  std::size_t position() const { return position_; }
+  /// True when the document differs from the last markClean() (e.g. the last save).
+  bool isDirty() const { return cleanPosition_ != position_; }
+  void markClean() { cleanPosition_ = position_; }
+  void clear();
+
+  /// Called after every push, undo, redo and clear (the GUI refreshes its menus).
+  std::function<void()> onChanged;
+
+ private:
+  void changed() const;
+
+  std::vector<Command> commands_;
+  std::size_t position_ = 0;
+  std::size_t cleanPosition_ = 0;  ///< SIZE_MAX when the clean state was dropped
+  std::size_t limit_;
+};
+
+}  // namespace ffdkit::scenes

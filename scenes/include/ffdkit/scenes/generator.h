@@ -1,0 +1,86 @@
+#pragma once
+
+#include <functional>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ffdkit/scenes/mesh_io.h"
+
+namespace ffdkit::scenes {
+
+/// One generator parameter as it stands in a scene file: a flag, a number, a name, a list of
+/// numbers, or a list of rows of numbers (points, a grid, per-vertex values).
+using ParameterValue = std::variant<bool, double, std::string, std::vector<double>, std::vector<std::vector<double>>>;
+
+/// A generator's parameters by name, with typed accessors whose errors name the parameter.
+class GeneratorParameters {
+ public:
+  GeneratorParameters() = default;
+  explicit GeneratorParameters(std::map<std::string, ParameterValue> values) : values_(std::move(values)) {}
+
+  bool has(const std::string& name) const { return values_.count(name) != 0; }
+  void set(const std::string& name, ParameterValue value) { values_[name] = std::move(value); }
+  const std::map<std::string, ParameterValue>& values() const { return values_; }
+
+  /// The value, or `fallback` when absent. @throws GeneratorError when present with another type.
+  double number(const std::string& name, double fallback) const;
+  int integer(const std::string& name, int fallback) const;  ///< a number with no fraction
+  bool flag(const std::string& name, bool fallback) const;
+  std::string text(const std::string& name, const std::string& fallback) const;
+  std::vector<double> numbers(const std::string& name, std::vector<double> fallback = {}) const;
+  /// Rows of `columns` numbers as a #rows x columns matrix (e.g. points, columns = 3).
+  /// @throws GeneratorError when absent and `required`, or a row has another length.
+  Eigen::MatrixXd rows(const std::string& name, int columns, bool required = true) const;
+
+  /// Names present but not in `known`: a typo must not be silently ignored.
+  /// @throws GeneratorError naming the unknown parameter and the known ones.
+  void checkKnown(const std::vector<std::string>& known) const;
+
+ private:
+  std::map<std::string, ParameterValue> values_;
+};
+
+/// A generator that cannot run with the given parameters; what() names generator and parameter.
+class GeneratorError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A named curve or surface generator (a geometry topic plugged into scenes). A generated
+/// object keeps its parameters; `density` scales its sampling, so that it can be regenerated
+/// finer or coarser (1 = the generator's default sampling).
+struct Generator {
+  std::string name;     ///< as used in scene files, e.g. "qi-interpolate"
+  std::string summary;  ///< one line for `ffdkit-cli info` and the GUI
+  std::vector<std::string> parameterNames;
+  std::function<MeshData(const GeneratorParameters&, double density)> generate;
+};
+
+/// Generators by name. Not a singleton: builtinGenerators() builds the registry of every
+/// geometry topic, and callers pass a registry where it is needed.
+class GeneratorRegistry {
+ public:
+  /// @throws std::invalid_argument for an empty or duplicate name or a missing function.
+  void add(Generator generator);
+  /// @throws GeneratorError naming the unknown generator and the known ones.
+  const Generator& get(const std::string& name) const;
+  bool contains(const std::string& name) const { return generators_.count(name) != 0; }
+  std::vector<std::string> names() const;
+
+  /// Runs a generator: checks parameter names, runs it, validates the mesh (finite points,
+  /// indices in range, not empty). @throws GeneratorError naming the generator.
+  MeshData generate(const std::string& name, const GeneratorParameters& parameters, double density = 1.0) const;
+
+ private:
+  std::map<std::string, Generator> generators_;
+};
+
+/// The registry with every generator of the geometry topics.
+const GeneratorRegistry& builtinGenerators();
+
+}  // namespace ffdkit::scenes

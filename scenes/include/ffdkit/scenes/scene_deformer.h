@@ -1,0 +1,64 @@
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ffdkit/scenes/scene.h"
+
+namespace ffdkit::scenes {
+
+/// Timing and work of the last SceneDeformer::update(), for the status bar and the CLI.
+struct SceneDeformStats {
+  double seconds = 0.0;           ///< wall time of the update
+  int reembeddedStages = 0;       ///< lattice stages that (re)computed their embedding
+  Eigen::Index deformedPoints = 0;
+  Eigen::Index outsidePoints = 0; ///< object points outside their first lattice
+  Eigen::Index failedPoints = 0;  ///< points whose Newton embedding failed (left unchanged)
+};
+
+/// Evaluates a scene: for each object, its attached lattice trees in pre-order (spec §6,
+/// seed 001 l.2373-2377), on the FFD engine's pipeline. Precompute apart from per-frame work:
+/// embeddings are built on the first update and again only when a lattice's rest shape or
+/// frame moves; an edit of control points is an incremental update.
+///
+/// Keep one SceneDeformer per open scene and call update() after every model change; it
+/// notices new objects and lattices, changed attachments and sources (call reset() after
+/// replacing an object's mesh).
+class SceneDeformer {
+ public:
+  SceneDeformer();
+  ~SceneDeformer();
+  SceneDeformer(SceneDeformer&&) noexcept;
+  SceneDeformer& operator=(SceneDeformer&&) noexcept;
+
+  /// Brings every object's deformed points up to date with `scene`.
+  /// `activeLattice`: the lattice being dragged (always re-embedded at once; the others follow
+  /// their re-embed policy). @throws ffd::LatticeError for a degenerate lattice.
+  void update(const Scene& scene, std::optional<widgets::WidgetId> activeLattice = std::nullopt);
+
+  /// Re-embeds every lattice that was throttled (call on gesture release): the exact result.
+  void finishGesture(const Scene& scene);
+
+  /// Deformed points of an object (its own points if no lattice deforms it), #points x 3.
+  /// @throws std::invalid_argument for an object update() has not seen.
+  const Eigen::MatrixX3d& points(const std::string& object) const;
+
+  const SceneDeformStats& lastStats() const { return stats_; }
+
+  /// Forgets every embedding (after an object's mesh was replaced).
+  void reset();
+
+ private:
+  struct ObjectPipeline;
+  std::map<std::string, std::unique_ptr<ObjectPipeline>> objects_;
+  SceneDeformStats stats_;
+};
+
+/// One-shot evaluation: the deformed points of every object, by name.
+std::map<std::string, Eigen::MatrixX3d> deformScene(const Scene& scene);
+
+}  // namespace ffdkit::scenes

@@ -1,0 +1,151 @@
+#include "ffdkit/scenes/scene_deformer.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "ffdkit/ffd/pipeline.h"
+
+namespace ffdkit::scenes {
+namespace {
+
+bool sameBasis(const ffd::AxisBasis& a, const ffd::AxisBasis& b) {
+  return a.kind == b.kind && a.degree == b.degree && a.knots.size() == b.knots.size() && a.knots == b.knots;
+}
+
+// True when `a` and `b` have the same rest lattice in the world (counts, frame, rest points,
+// bases, outside policy): then an edit of control points needs no new embedding.
+bool sameRestLattice(const ffd::Lattice& a, const ffd::Lattice& b) {
+  if (a.counts() != b.counts() || a.frame().matrix() != b.frame().matrix() || a.restPoints() != b.restPoints() ||
+      !(a.outsidePolicy() == b.outsidePolicy()))
+    return false;
+  for (int axis = 0; axis < 3; ++axis)
+    if (!sameBasis(a.basis(axis), b.basis(axis))) return false;
+  return true;
+}
+
+ffd::ReembedThrottle throttleFor(const widgets::LatticeSettings& settings) {
+  switch (settings.reembed.kind) {
+    case widgets::ReembedKind::Immediate: return ffd::ReembedThrottle::immediate();
+    case widgets::ReembedKind::EveryN: return ffd::ReembedThrottle::everyN(settings.reembed.everyN);
+    case widgets::ReembedKind::OnRelease: return ffd::ReembedThrottle::onDemand();
+  }
+  return ffd::ReembedThrottle::immediate();
+}
+
+// The lattices deforming one object, in pipeline order, with their parents: the object's
+// attached roots in attachment order, each followed by its subtree in pre-order.
+struct Stage {
+  widgets::WidgetId lattice;
+  std::optional<widgets::WidgetId> parent;
+  int priority = 0;
+  bool operator==(const Stage&) const = default;
+};
+
+std::vector<Stage> stagesFor(const Scene& scene, const std::string& object) {
+  std::vector<Stage> stages;
+  int rootPriority = 0;
+  for (widgets::WidgetId root : scene.latticesDeforming(object)) {
+    std::vector<Stage> stack{{root, std::nullopt, rootPriority++}};
+    while (!stack.empty()) {
+      Stage stage = stack.back();
+      stack.pop_back();
+      stages.push_back(stage);
+      const auto children = scene.widgets.children(stage.lattice);
+      for (int c = static_cast<int>(children.size()) - 1; c >= 0; --c)
+        stack.push_back({children[std::size_t(c)], stage.lattice, c});
+    }
+  }
+  return stages;
+}
+
+}  // namespace
+
+struct SceneDeformer::ObjectPipeline {
+  Eigen::MatrixX3d input;  // the object's own points when the pipeline was built
+  std::vector<Stage> stages;
+  std::unique_ptr<ffd::Pipeline> pipeline;
+  std::map<widgets::WidgetId, ffd::LatticeId> ids;
+};
+
+SceneDeformer::SceneDeformer() = default;
+SceneDeformer::~SceneDeformer() = default;
+SceneDeformer::SceneDeformer(SceneDeformer&&) noexcept = default;
+SceneDeformer& SceneDeformer::operator=(SceneDeformer&&) noexcept = default;
+
+void SceneDeformer::reset() { objects_.clear(); }
+
+void SceneDeformer::update(const Scene& scene, std::optional<widgets::WidgetId> activeLattice) {
+  const auto start = std::chrono::steady_clock::now();
+  SceneDeformStats stats;
+  std::map<std::string, std::unique_ptr<ObjectPipeline>> next;
+  for (const auto& object : scene.objects) {
+    auto found = objects_.find(object.name);
+    std::unique_ptr<ObjectPipeline> p =
+        found != objects_.end() ? std::move(found->second) : std::make_unique<ObjectPipeline>();
+    std::vector<Stage> stages = stagesFor(scene, object.name);
+    const bool inputChanged = p->input.rows() != object.mesh.points.rows() || p->input != object.mesh.points;
+    if (!p->pipeline || inputChanged || stages != p->stages) {
+      // New object, new points or a new lattice tree: rebuild (embeddings follow on update).
+      p->input = object.mesh.points;
+      p->stages = stages;
+      p->pipeline = std::make_unique<ffd::Pipeline>(p->input);
+      p->ids.clear();
+      for (const Stage& stage : stages) {
+        std::optional<ffd::LatticeId> parent;
+        if (stage.parent) parent = p->ids.at(*stage.parent);
+        p->ids[stage.lattice] = p->pipeline->addLattice(scene.widgets.ffdLattice(stage.lattice), parent, stage.priority);
+      }
+    } else {
+      for (const Stage& stage : stages) {
+        ffd::Lattice fresh = scene.widgets.ffdLattice(stage.lattice);
+        ffd::Lattice& current = p->pipeline->lattice(p->ids.at(stage.lattice));
+        if (!sameRestLattice(fresh, current)) {
+          current = std::move(fresh);  // its rest lattice moved: re-embed (per the throttle)
+        } else if (fresh.controlPoints() != current.controlPoints()) {
+          current.setControlPoints(fresh.controlPoints());  // an edit: incremental update
+        }
+      }
+    }
+    if (!stages.empty()) {
+      p->pipeline->setThrottle(throttleFor(scene.widgets.latticeSettings(stages.front().lattice)));
+      std::optional<ffd::LatticeId> active;
+      if (activeLattice && p->ids.count(*activeLattice)) active = p->ids.at(*activeLattice);
+      p->pipeline->setActiveLattice(active);
+      p->pipeline->update();
+      for (const auto& report : p->pipeline->lastReport()) stats.reembeddedStages += report.reembedded ? 1 : 0;
+      if (const ffd::Embedding* first = p->pipeline->embedding(p->ids.at(stages.front().lattice))) {
+        stats.outsidePoints += first->outsideCount();
+        stats.failedPoints += first->failedCount();
+      }
+      stats.deformedPoints += p->input.rows();
+    }
+    next[object.name] = std::move(p);
+  }
+  objects_ = std::move(next);
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_ = stats;
+}
+
+void SceneDeformer::finishGesture(const Scene& scene) {
+  update(scene);
+  for (auto& [name, p] : objects_)
+    if (!p->stages.empty()) p->pipeline->reembedAll();
+}
+
+const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const {
+  auto it = objects_.find(object);
+  if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
+  const ObjectPipeline& p = *it->second;
+  return p.stages.empty() ? p.input : p.pipeline->points();
+}
+
+std::map<std::string, Eigen::MatrixX3d> deformScene(const Scene& scene) {
+  SceneDeformer deformer;
+  deformer.update(scene);
+  deformer.finishGesture(scene);
+  std::map<std::string, Eigen::MatrixX3d> result;
+  for (const auto& object : scene.objects) result[object.name] = deformer.points(object.name);
+  return result;
+}
+
+}  // namespace ffdkit::scenes

@@ -1,0 +1,123 @@
+#include "ffdkit/scenes/scene_file.h"
+
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+namespace ffdkit::scenes {
+namespace {
+
+const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
+constexpr const char* kSamples[] = {"default", "press", "vise", "mirror", "hierarchy", "cylinder-twist"};
+
+std::string fileText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Message of the SceneFileError that reading `text` raises ("" if none).
+std::string errorOf(const std::string& text) {
+  std::istringstream in(text);
+  try {
+    readScene(in, "scene.json");
+  } catch (const SceneFileError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SceneFile, EverySampleRoundTripsByteForByte) {
+  for (const char* name : kSamples) {
+    SCOPED_TRACE(name);
+    const auto path = kExamples / name / "scene.json";
+    const Scene scene = readScene(kExamples / name);
+    EXPECT_EQ(sceneFileText(scene), fileText(path));
+  }
+}
+
+TEST(SceneFile, LoadingReproducesControlPointsAndObjects) {
+  for (const char* name : kSamples) {
+    SCOPED_TRACE(name);
+    const Scene scene = readScene(kExamples / name);
+    std::istringstream again(sceneFileText(scene));
+    const Scene copy = readScene(again, "copy", {.baseDirectory = kExamples / name});
+    ASSERT_EQ(copy.objects.size(), scene.objects.size());
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) EXPECT_EQ(copy.objects[o].mesh.points, scene.objects[o].mesh.points);
+    for (auto lattice : scene.widgets.widgets(widgets::WidgetType::Lattice))
+      EXPECT_EQ(copy.widgets.worldControlPoints(copy.widgets.find(scene.widgets.name(lattice))),
+                scene.widgets.worldControlPoints(lattice));
+  }
+}
+
+TEST(SceneFile, MeshFilesAndWidgetFilesResolveNextToTheScene) {
+  const auto dir = std::filesystem::temp_directory_path() / "ffdkit-scene-file-test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "meshes");
+  std::ofstream(dir / "meshes" / "cloud.xyz") << "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  Scene scene = readScene(kExamples / "default");
+  SceneObject cloud;
+  cloud.name = "cloud";
+  cloud.source = MeshFileSource{"meshes/cloud.xyz"};
+  cloud.mesh = buildObjectMesh(cloud.source, dir);
+  scene.objects.push_back(cloud);
+  scene.widgetFile = "tool.widgets.json";
+  writeScene(dir / "scene.json", scene);
+  EXPECT_TRUE(std::filesystem::exists(dir / "tool.widgets.json"));
+  const Scene back = readScene(dir / "scene.json");
+  EXPECT_EQ(back.findObject("cloud")->mesh.points.rows(), 4);
+  EXPECT_EQ(sceneFileText(back), fileText(dir / "scene.json"));
+
+  // A missing mesh file is named, with the scene that references it.
+  std::filesystem::remove(dir / "meshes" / "cloud.xyz");
+  try {
+    readScene(dir / "scene.json");
+    FAIL() << "expected an error";
+  } catch (const SceneFileError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("scene.json /objects/1"), std::string::npos) << message;
+    EXPECT_NE(message.find("cloud.xyz: no such file"), std::string::npos) << message;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SceneFile, BadInputGetsLocatedErrors) {
+  const std::string base = fileText(kExamples / "default" / "scene.json");
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string text = base;
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  };
+  EXPECT_NE(errorOf("{\n  \"format\": \"ffdkit-scene\",\n  \"version\": 1,,\n}").find("scene.json:3:"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"version\": 1", "\"version\": 7")).find("/version: format version 7 is not supported"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"kind\": \"sphere\"", "\"kind\": \"teapot\"")).find("/objects/0/primitive/kind: unknown primitive 'teapot'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"resolution\": 48", "\"resolution\": 100000")).find("/objects/0/primitive/resolution"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"size\": 1.0", "\"size\": 1.0, \"colour\": 3")).find("unknown key 'colour'"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"lattice\": \"lattice\"", "\"lattice\": \"nope\"")).find("/attachments"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"objects\": [\"sphere\"]", "\"objects\": [\"moon\"]")).find("unknown object 'moon'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"primitive\": {", "\"generator\": {\"name\": \"nope\"}, \"primitive\": {")).find("exactly one"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"counts\": [3, 3, 3]", "\"counts\": [1, 3, 3]")).find("/widgets"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"position\": [2.4, -3.0, 2.0]", "\"position\": [0.0, 0.0, 0.0]")).find("/camera"),
+            std::string::npos);
+}
+
+TEST(SceneFile, AFailedWriteLeavesTheOldFile) {
+  const auto dir = std::filesystem::temp_directory_path() / "ffdkit-scene-write-test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const Scene scene = readScene(kExamples / "default");
+  writeScene(dir / "scene.json", scene);
+  const std::string before = fileText(dir / "scene.json");
+  EXPECT_THROW(writeScene(dir / "missing-folder" / "scene.json", scene), SceneFileError);
+  EXPECT_EQ(fileText(dir / "scene.json"), before);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ffdkit::scenes
