@@ -610,16 +610,16 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
       }
       return false;
     };
-    std::vector<int> edges;
-    for (int h : curveEdges[c]) {
-      if (!net.halfEdges[h].dangling) edges.push_back(h);
-    }
+    // Dangling pieces are runs of their own (they end at a free end, a break): they carry
+    // the single sweeps of open regions (rule (c)).
+    const std::vector<int>& edges = curveEdges[c];
     if (edges.empty()) continue;
     // Rotate a closed curve so that a run starts at its first edge.
+    std::vector<int> ordered = edges;
     if (curve.closed()) {
       std::size_t first = 0;
-      while (first < edges.size() && !isBreak(net.halfEdges[edges[first]].from)) ++first;
-      if (first < edges.size()) std::rotate(edges.begin(), edges.begin() + first, edges.end());
+      while (first < ordered.size() && !isBreak(net.halfEdges[ordered[first]].from)) ++first;
+      if (first < ordered.size()) std::rotate(ordered.begin(), ordered.begin() + first, ordered.end());
     }
     Run run;
     auto finish = [&]() {
@@ -627,8 +627,8 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
       net.runs.push_back(run);
       run = Run{};
     };
-    for (std::size_t k = 0; k < edges.size(); ++k) {
-      const HalfEdge& he = net.halfEdges[edges[k]];
+    for (std::size_t k = 0; k < ordered.size(); ++k) {
+      const HalfEdge& he = net.halfEdges[ordered[k]];
       if (!run.edges.empty() && (isBreak(he.from) || he.from != net.halfEdges[run.edges.back()].to)) finish();
       if (run.edges.empty()) {
         run.curve = c;
@@ -636,7 +636,7 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
         run.tEnd = he.tFrom;
         run.vertexStart = he.from;
       }
-      run.edges.push_back(edges[k]);
+      run.edges.push_back(ordered[k]);
       run.tEnd += he.tTo - he.tFrom;
       run.vertexEnd = he.to;
     }
@@ -679,7 +679,7 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
         w += net.influence[cp.curve];
       }
       tr.influence = tr.members.empty() ? 1.0 : w / tr.members.size();
-      if (tr.members.empty()) {
+      if (tr.members.empty() && !isFree(vi)) {
         throw CurveNetworkError(curveLabel(net, run.curve) + ": run end at " + fmt(v.position) +
                                 " has no transversal curve");
       }
@@ -688,7 +688,35 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
   }
 
   // --- orbits of next: faces (cycles) and open chains ----------------------------------------
+  // The side made of loop[q..e) (one run, consecutive edges), as a fraction of its run.
+  auto makeSide = [&](const std::vector<int>& loop, int q, int e) {
+    const HalfEdge& first = net.halfEdges[loop[q]];
+    const auto [runId, kFirst] = edgeRun[loop[q]];
+    const int kLast = edgeRun[loop[e - 1]].second;
+    const Run& run = net.runs[runId];
+    FaceSide side;
+    side.run = runId;
+    side.forward = first.sign > 0;
+    side.startVertex = first.from;
+    const int kLo = std::min(kFirst, kLast), kHi = std::max(kFirst, kLast);
+    auto offset = [&](int k) {
+      double sum = 0.0;
+      for (int j = 0; j < k; ++j) sum += net.halfEdges[run.edges[j]].tTo - net.halfEdges[run.edges[j]].tFrom;
+      return sum;
+    };
+    const int runLen = static_cast<int>(run.edges.size());
+    side.rho0 = kLo == 0 ? 0.0 : offset(kLo) / run.delta();
+    side.rho1 = kHi == runLen - 1 ? 1.0 : offset(kHi + 1) / run.delta();
+    side.delta = (kLo == 0 && kHi == runLen - 1) ? run.delta() : (side.rho1 - side.rho0) * run.delta();
+    return side;
+  };
+  auto isCorner = [&](int prev, int cur) {
+    const bool same = net.halfEdges[prev].curve == net.halfEdges[cur].curve &&
+                      net.halfEdges[prev].run == net.halfEdges[cur].run;
+    return !(same && std::abs(turnAngle(prev, cur)) < epsS);
+  };
   std::vector<char> visited(nhe, 0);
+  std::vector<std::vector<int>> openFaces;
   auto describeChain = [&](const std::vector<int>& chain) {
     std::ostringstream s;
     s << "open region (not filled) along";
@@ -715,7 +743,13 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
       chain.push_back(cur);
     }
     // A single dangling piece bounds nothing; a chain that turns at a vertex bounds an open region.
-    if (chain.size() >= 2) net.openChains.push_back({chain, describeChain(chain)});
+    if (chain.size() < 2) continue;
+    const bool freeToFree = isFree(net.halfEdges[chain.front()].from) && isFree(net.halfEdges[chain.back()].to);
+    if (options.fillOpenRegions && freeToFree) {
+      openFaces.push_back(chain);
+    } else {
+      net.openChains.push_back({chain, describeChain(chain)});
+    }
   }
   for (int h = 0; h < nhe; ++h) {
     if (visited[h]) continue;
@@ -728,10 +762,7 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
     const int len = static_cast<int>(cycle.size());
     std::vector<char> corner(len, 0);
     for (int q = 0; q < len; ++q) {
-      const int prev = cycle[(q - 1 + len) % len], cur = cycle[q];
-      const bool same = net.halfEdges[prev].curve == net.halfEdges[cur].curve &&
-                        net.halfEdges[prev].run == net.halfEdges[cur].run;
-      corner[q] = !(same && std::abs(turnAngle(prev, cur)) < epsS);
+      corner[q] = isCorner(cycle[(q - 1 + len) % len], cycle[q]);
     }
     const int firstCorner = static_cast<int>(std::find(corner.begin(), corner.end(), 1) - corner.begin());
     if (firstCorner == len) {
@@ -748,25 +779,7 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
     for (int q = 0; q < len;) {
       int e = q + 1;
       while (e < len && !corner[e]) ++e;
-      const HalfEdge& first = net.halfEdges[cycle[q]];
-      const auto [runId, kFirst] = edgeRun[cycle[q]];
-      const int kLast = edgeRun[cycle[e - 1]].second;
-      const Run& run = net.runs[runId];
-      FaceSide side;
-      side.run = runId;
-      side.forward = first.sign > 0;
-      side.startVertex = first.from;
-      const int kLo = std::min(kFirst, kLast), kHi = std::max(kFirst, kLast);
-      auto offset = [&](int k) {
-        double s = 0.0;
-        for (int j = 0; j < k; ++j) s += net.halfEdges[run.edges[j]].tTo - net.halfEdges[run.edges[j]].tFrom;
-        return s;
-      };
-      const int runLen = static_cast<int>(run.edges.size());
-      side.rho0 = kLo == 0 ? 0.0 : offset(kLo) / run.delta();
-      side.rho1 = kHi == runLen - 1 ? 1.0 : offset(kHi + 1) / run.delta();
-      side.delta = (kLo == 0 && kHi == runLen - 1) ? run.delta() : (side.rho1 - side.rho0) * run.delta();
-      face.sides.push_back(side);
+      face.sides.push_back(makeSide(cycle, q, e));
       q = e;
     }
     if (face.sides.size() == 1) {
@@ -798,6 +811,31 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
       face.twoCurveRegion = true;
     }
     for (int hh : cycle) net.halfEdges[hh].face = faceId;
+    net.faces.push_back(face);
+  }
+  // Rule (c): an open chain between two free ends closed by a virtual side (opt-in, §4.7 item 4).
+  for (const std::vector<int>& chain : openFaces) {
+    Face face;
+    face.halfEdges = chain;
+    face.openRegion = true;
+    const int len = static_cast<int>(chain.size());
+    for (int q = 0; q < len;) {
+      int e = q + 1;
+      while (e < len && !isCorner(chain[e - 1], chain[e])) ++e;
+      face.sides.push_back(makeSide(chain, q, e));
+      q = e;
+    }
+    if (face.sides.size() < 2) {
+      net.notes.push_back("open region along " + curveLabel(net, net.halfEdges[chain[0]].curve) +
+                          " alone is not filled (needs >= 2 real sides)");
+      continue;
+    }
+    FaceSide virtualSide;
+    virtualSide.run = -1;
+    virtualSide.startVertex = net.halfEdges[chain.back()].to;
+    face.sides.push_back(virtualSide);
+    const int faceId = static_cast<int>(net.faces.size());
+    for (int hh : chain) net.halfEdges[hh].face = faceId;
     net.faces.push_back(face);
   }
   for (const OpenChain& chain : net.openChains) net.notes.push_back(chain.description);

@@ -30,6 +30,9 @@ VectorJet runSweep(const CurveNetwork& net, int runId, const Jet& ut, const Jet&
   const Jet t = run.tStart + run.delta() * ut;
   const VectorJet c = compose(guide.evaluate(t.v), guide.evaluate(t.v, 1), guide.evaluate(t.v, 2), t);
   // g of l.1761 with the influence weights of the physical transversal curves.
+  // A free end has no transversal: the single sweep of the other end (rule (c), l.2001-2003).
+  if (run.atStart.members.empty()) return transversal(net, run.atEnd, v) + c;
+  if (run.atEnd.members.empty()) return transversal(net, run.atStart, v) + c;
   const double wm = run.atStart.influence, wp = run.atEnd.influence;
   const Jet denom = wm * (1.0 - ut) + wp * ut;
   const Jet gm = (wm * (1.0 - ut)) / denom;
@@ -63,7 +66,15 @@ VectorJet evaluatePatch(const CurveNetwork& net, int faceId, const NGonDomain& d
     return q;
   }
   const std::vector<Jet> b = domain.barycentric(p);
-  const std::vector<Jet> blend = domain.blend(b, options.blendingExponent);
+  std::vector<Jet> blend = domain.blend(b, options.blendingExponent);
+  if (face.openRegion) {
+    // Rule (c), l.2005 (A13): the virtual side's weight goes to the first and the last real
+    // side, split by u~ of the virtual side, so the real weights still sum to 1.
+    const Jet ut = domain.uTilde(n - 1, b);
+    blend[0] = blend[0] + ut * blend[n - 1];
+    blend[n - 2] = blend[n - 2] + (1.0 - ut) * blend[n - 1];
+    blend[n - 1] = Jet::constant(0.0);
+  }
   VectorJet q;
   for (int i = 0; i < n; ++i) {
     if (blend[i].v == 0.0 && blend[i].x == 0.0 && blend[i].y == 0.0 && blend[i].xx == 0.0 &&
@@ -71,11 +82,17 @@ VectorJet evaluatePatch(const CurveNetwork& net, int faceId, const NGonDomain& d
       continue;
     }
     const FaceSide& side = face.sides[i];
+    if (side.run < 0) continue;
     const double dPrev = face.sides[(i - 1 + n) % n].delta;
     const double dNext = face.sides[(i + 1) % n].delta;
     const Jet ut = domain.uTilde(i, b);
     const Jet d = domain.distance(i, b);
-    const Jet v = (dPrev * (1.0 - ut) + dNext * ut) * d;
+    // Open region: the single sweeps next to the virtual side take F = Delta of their one
+    // transversal side (spec §3.7 c).
+    Jet f = dPrev * (1.0 - ut) + dNext * ut;
+    if (face.openRegion && i == 0) f = Jet::constant(dNext);
+    if (face.openRegion && i == n - 2) f = Jet::constant(dPrev);
+    const Jet v = f * d;
     const double span = side.rho1 - side.rho0;
     const Jet utRun = side.forward ? side.rho0 + span * ut : side.rho1 - span * ut;
     const VectorJet s = runSweep(net, side.run, utRun, side.forward ? v : -v);

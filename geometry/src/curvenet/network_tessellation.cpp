@@ -101,6 +101,19 @@ NetworkMesh tessellateNetwork(const CurveNetwork& net, int pitch, const PatchOpt
     auto patchAt = [&](const Eigen::Vector2d& p) { return evaluatePatch(net, f, domain, p, options); };
     for (int k = 0; k < n; ++k) {
       const FaceSide& side = face.sides[k];
+      if (side.run < 0) {
+        // Virtual side of an open region: a free boundary of this face only.
+        for (int j = 0; j < pitch; ++j) {
+          const int row = latticeIndex(n, pitch, k, j);
+          const Eigen::Vector2d p = lattice.points.row(row).transpose();
+          const Key key = j == 0 ? Key{0, side.startVertex, 0, 0, 0} : Key{4, f, k, 0, j};
+          map[row] = addVertex(key, [&](Eigen::Vector3d& pos, Eigen::Vector3d& nrm) {
+            pos = j == 0 ? net.vertices[side.startVertex].position : patchAt(p).v;
+            nrm = patchNormal(patchAt(j == 0 ? Eigen::Vector2d(p * (1.0 - 1e-6)) : p));
+          });
+        }
+        continue;
+      }
       const Run& run = net.runs[side.run];
       const bool full = side.rho0 == 0.0 && side.rho1 == 1.0;
       const double span = side.rho1 - side.rho0;
@@ -126,6 +139,10 @@ NetworkMesh tessellateNetwork(const CurveNetwork& net, int pitch, const PatchOpt
           if (j == 0 && side.startVertex >= 0) {
             pos = net.vertices[side.startVertex].position;
             nrm = net.vertices[side.startVertex].normal;
+            // Free ends (open-region corners) have no tangent plane: take it just inside.
+            if (net.vertices[side.startVertex].kind == NetworkVertex::Kind::FreeEnd) {
+              nrm = patchNormal(patchAt(p * (1.0 - 1e-6)));
+            }
             return;
           }
           pos = net.curves[run.curve].evaluate(run.tStart + run.delta() * u);
@@ -140,7 +157,7 @@ NetworkMesh tessellateNetwork(const CurveNetwork& net, int pitch, const PatchOpt
         registerOnRun(side.run, u, id);
         if (j == 0) {
           const FaceSide& prev = face.sides[(k - 1 + n) % n];
-          registerOnRun(prev.run, prev.forward ? prev.rho1 : prev.rho0, id);
+          if (prev.run >= 0) registerOnRun(prev.run, prev.forward ? prev.rho1 : prev.rho0, id);
         }
       }
     }

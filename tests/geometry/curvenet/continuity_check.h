@@ -47,6 +47,7 @@ inline EdgeMismatch sharedEdgeMismatch(const CurveNetwork& net, const PatchOptio
     const NGonDomain df(static_cast<int>(net.faces[f].sides.size()));
     for (int i = 0; i < df.sides(); ++i) {
       const FaceSide& a = net.faces[f].sides[i];
+      if (a.run < 0) continue;  // virtual side of an open region
       const curvenet::Run& run = net.runs[a.run];
       // P1 along this side
       for (int q = 1; q < 8; ++q) {

@@ -162,6 +162,51 @@ TEST(MultisidedPatch, SeparatelyNormalisedTransversalsBreakG1) {  // P7, A8 nega
   EXPECT_GT(worstAngle, 1e-4) << "but the tangent planes no longer match";
 }
 
+// F10: two open curves crossing like a '+', lifted by `lift` (z offset + height field scale).
+CurveNetworkDescription crossNetwork(double zOffset, double heightScale) {
+  CurveNetworkDescription d;
+  auto add = [&](const std::string& name, Eigen::Vector2d a, Eigen::Vector2d b) {
+    CurveDescription c;
+    c.name = name;
+    c.points.resize(9, 3);
+    for (int k = 0; k < 9; ++k) {
+      const Eigen::Vector2d q = a + (b - a) * k / 8.0;
+      c.points.row(k) << q.x(), q.y(), zOffset + heightScale * prototypeHeight(q.x(), q.y());
+    }
+    d.curves.push_back(c);
+  };
+  add("y=0", {-1.0, 0.0}, {1.5, 0.0});
+  add("x=0", {0.0, -1.0}, {0.0, 1.2});
+  return d;
+}
+
+TEST(MultisidedPatch, OpenRegionsAreFilledOnRequestWithVirtualSides) {  // F10, rule (c)
+  CurveNetworkOptions fill;
+  fill.fillOpenRegions = true;
+  EXPECT_TRUE(buildCurveNetwork(crossNetwork(0.0, 1.0)).faces.empty()) << "not filled by default";
+  const CurveNetwork net = buildCurveNetwork(crossNetwork(0.0, 1.0), fill);
+  ASSERT_EQ(net.faces.size(), 4u);
+  for (const Face& f : net.faces) {
+    EXPECT_TRUE(f.openRegion);
+    ASSERT_EQ(f.sides.size(), 3u);
+    EXPECT_EQ(f.sides[2].run, -1);
+  }
+  // The two real sides are interpolated and the quadrants join G2 across the dangling pieces.
+  expectG2(sharedEdgeMismatch(net), net.scale, 4);
+  // Sum of the modified weights is 1: a planar network off the origin stays in its plane,
+  // the virtual edge included.
+  const CurveNetwork flat = buildCurveNetwork(crossNetwork(1.0, 0.0), fill);
+  ASSERT_EQ(flat.faces.size(), 4u);
+  const NGonDomain d(3);
+  for (int f = 0; f < 4; ++f) {
+    for (double s : {0.1, 0.5, 0.9}) {
+      const Eigen::Vector2d onVirtual = (1 - s) * d.vertex(2) + s * d.vertex(0);
+      EXPECT_NEAR(evaluatePatch(flat, f, d, onVirtual).v.z(), 1.0, 1e-12);
+      EXPECT_NEAR(evaluatePatch(flat, f, d, 0.5 * onVirtual).v.z(), 1.0, 1e-12);
+    }
+  }
+}
+
 TEST(MultisidedPatch, HeightGridJoinsG2AndExponentOneLosesG2) {  // P6, P7
   const CurveNetwork net = buildCurveNetwork(heightGridNetwork(4));
   expectG2(sharedEdgeMismatch(net), net.scale, 12);

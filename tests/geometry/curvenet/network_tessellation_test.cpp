@@ -108,6 +108,28 @@ TEST(NetworkTessellation, HeightGridCountsAndWelding) {  // P13 on an open sheet
   }
 }
 
+TEST(NetworkTessellation, FilledOpenRegionsExtendTheSheetWithoutCracks) {  // rule (c)
+  CurveNetworkOptions fill;
+  fill.fillOpenRegions = true;
+  const CurveNetwork net = buildCurveNetwork(heightGridNetwork(4), fill);
+  int open = 0;
+  for (const Face& f : net.faces) open += f.openRegion ? 1 : 0;
+  EXPECT_EQ(open, 16) << "4 corner regions, 12 regions along the sides";
+  EXPECT_TRUE(net.openChains.empty());
+  const NetworkMesh m = tessellateNetwork(net, 4);
+  EXPECT_TRUE(m.mesh.vertices.allFinite());
+  EXPECT_TRUE(m.normals.allFinite());
+  const auto edges = directedEdges(m.mesh);
+  for (const auto& [e, count] : edges) EXPECT_EQ(count, 1);
+  // The sheet's border is now made of the virtual sides only: its vertices lie outside the
+  // square [0, 2]^2 spanned by the curves' crossings.
+  for (const auto& [e, count] : edges) {
+    if (edges.count({e.second, e.first})) continue;
+    const Eigen::Vector3d p = m.mesh.vertices.row(e.first);
+    EXPECT_TRUE(p.x() < -1e-2 || p.x() > 2.01 || p.y() < -1e-2 || p.y() > 2.01) << p.transpose();
+  }
+}
+
 TEST(NetworkTessellation, LensMeshIsStitchedWithoutCracks) {  // F11
   const CurveNetwork net = buildCurveNetwork(lensNetwork());
   const NetworkMesh m = tessellateNetwork(net, 4);

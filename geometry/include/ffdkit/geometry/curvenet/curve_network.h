@@ -42,6 +42,9 @@ struct CurveNetworkOptions {
   /// Orientation used only for a connected part where no vertex normal is determined by the
   /// thesis' rule N.1-N.4 (e.g. a sheet of straight curves): normals get n . hint >= 0 there.
   Eigen::Vector3d orientationHint = Eigen::Vector3d::UnitZ();
+  /// Rule (c): fill every open chain that runs from a free end to a free end, closed by a
+  /// virtual side (spec §3.7 c, §4.7 item 4: only when the user asks). false: report them.
+  bool fillOpenRegions = false;
 };
 
 /// A network input error: which curve(s), where, and what was expected.
@@ -81,11 +84,12 @@ struct HalfEdge {
   int twin = -1;
   int next = -1;   ///< deterministic next (§4.6), -1 at a dead end
   int face = -1;   ///< -1: not on a face (dangling, or on an open chain)
-  int run = -1;    ///< the run of its edge, -1 for dangling pieces
+  int run = -1;    ///< the run of its edge (a dangling piece is a run of its own)
   bool dangling = false;
 };
 
-/// The curves at one end of a run used as transversal (several: the average of rule (a)).
+/// The curves at one end of a run used as transversal (several: the average of rule (a);
+/// none at a free end, where the sweep is the single sweep of the other end, rule (c)).
 /// member k contributes K_k(parameter + direction * s) - X for s > 0 on the left of the run.
 struct Transversal {
   int vertex = -1;
@@ -109,7 +113,7 @@ struct Run {
 /// or backward. rho0 = 0 and rho1 = 1 for a plain side; a proper sub-range on the stem side of
 /// a T-junction (rule b) and for the halves of a two-curve region (rule d).
 struct FaceSide {
-  int run = -1;
+  int run = -1;          ///< -1: the virtual side of an open region (rule (c))
   double rho0 = 0.0, rho1 = 1.0;
   bool forward = true;
   int startVertex = -1;  ///< network vertex at the side's start, -1 for a two-curve midpoint
@@ -120,10 +124,11 @@ struct Face {
   std::vector<int> halfEdges;  ///< the traced cycle, CCW seen from the outward normal
   std::vector<FaceSide> sides; ///< the patch sides (>= 3)
   bool twoCurveRegion = false; ///< built from 2 sides by rule (d)
+  bool openRegion = false;     ///< rule (c): the last side is virtual, halfEdges is a chain
 };
 
-/// A traced orbit of `next` that ends at a free end or a dead end: an open region (rule (c) is
-/// not implemented, the region stays empty) reported with its curves and where it ends.
+/// A traced orbit of `next` that ends at a free end or a dead end: an open region left empty
+/// (see CurveNetworkOptions::fillOpenRegions), reported with its curves and where it ends.
 struct OpenChain {
   std::vector<int> halfEdges;
   std::string description;
