@@ -176,6 +176,11 @@ ClothoidApproximation approximateByClothoids(const QuadraticCurvatureSpline& cur
             std::max(err.maxCurvatureDeviation, std::abs(spanArcs[a].curvature(sigma) - view.curvature(tau)));
       }
     }
+    if (std::abs(err.lengthDeviation) > 0.02) {
+      std::ostringstream msg;
+      msg << "span " << i << ": clothoid arcs differ in length from the span by " << 100.0 * err.lengthDeviation << " %";
+      out.warnings.push_back(msg.str());
+    }
     out.converged = out.converged && err.converged;
     out.maxHausdorff = std::max(out.maxHausdorff, err.hausdorff);
     out.maxCurvatureDeviation = std::max(out.maxCurvatureDeviation, err.maxCurvatureDeviation);

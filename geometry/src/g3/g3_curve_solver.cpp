@@ -441,6 +441,18 @@ G3SolveResult solveG3Curve(const Eigen::Ref<const Eigen::MatrixX2d>& points, con
   G3SolveResult result;
   result.conditionRows = sys.conditionRows();
   result.underdetermined = sys.conditionRows() < 3;
+  if (result.underdetermined) {
+    std::ostringstream msg;
+    msg << sys.conditionRows() << " condition row(s) < 3: the curve is the minimum-norm member of a "
+        << 3 - sys.conditionRows() << "-parameter family and depends on the initial guess (spec 3.8)";
+    result.warnings.push_back(msg.str());
+  }
+  if (sys.conditionRows() > 3) {
+    std::ostringstream msg;
+    msg << sys.conditionRows() << " condition rows > 3: solved as least squares; conditions hold only as "
+        << "well as scaledResidualInf says";
+    result.warnings.push_back(msg.str());
+  }
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(sys.rows());
 
   NewtonOutcome outcome;

@@ -71,6 +71,7 @@ TEST(ClothoidApproximation, MeetsTheReferenceErrorsOfFigure5) {
   double maxLengthDeviation = 0.0;  // [P]: 1.5 % at span 1, under the 2 % warning level
   for (const auto& span : bi.spans) maxLengthDeviation = std::max(maxLengthDeviation, std::abs(span.lengthDeviation));
   EXPECT_NEAR(maxLengthDeviation, 0.015, 0.002);
+  EXPECT_TRUE(bi.warnings.empty());
   expectG2Chain(bi, 7.5);
   expectG2Chain(quad, 7.5);
 }

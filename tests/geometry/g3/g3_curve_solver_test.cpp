@@ -109,6 +109,7 @@ TEST(G3CurveSolver, SolvesReferenceCaseT1Figure2c) {
   expectQuadraticConvergence(r);
   EXPECT_LE(r.scaledResidualInf, 1e-10);  // property 6 for the condition rows too
   EXPECT_FALSE(r.underdetermined);
+  EXPECT_TRUE(r.warnings.empty());
 }
 
 TEST(G3CurveSolver, SolvesReferenceCaseT3WithNaturalEndsAndStartTangent) {
@@ -347,6 +348,7 @@ TEST(G3CurveSolver, SolvesTheTwoConditionFiguresWithMinimumNormSteps) {
     const G3SolveResult r = solveG3Curve(c.points, c.conditions);
     ASSERT_TRUE(r.converged) << c.name << ": " << r.message;
     EXPECT_TRUE(r.underdetermined);
+    EXPECT_EQ(r.warnings.size(), 1u) << c.name;
     EXPECT_LE(r.iterations, 8) << c.name;
     EXPECT_NEAR(r.curve->length(), c.length, 2e-3 * c.length) << c.name;
     if (!std::isnan(c.startAngle)) {
@@ -451,6 +453,7 @@ TEST(G3CurveSolver, FitsMoreThanThreeConditionsByLeastSquaresWhenAllowed) {
   ASSERT_TRUE(r.converged) << r.message;
   EXPECT_NEAR(r.curve->length(), 31.944481581, 1e-5);
   EXPECT_LT(r.scaledResidualInf, 1e-5);
+  EXPECT_EQ(r.warnings.size(), 1u);
 }
 
 TEST(G3CurveSolver, SolvesOneAndTwoSpanCurves) {

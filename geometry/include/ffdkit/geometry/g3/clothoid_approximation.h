@@ -1,5 +1,6 @@
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -37,6 +38,9 @@ struct ClothoidApproximation {
   bool converged = true;
   double maxHausdorff = 0.0;
   double maxCurvatureDeviation = 0.0;
+  /// Spans whose arcs are more than 2 % longer or shorter than the span (spec sec. 7 item 11
+  /// treats that as a warning, not a failure).
+  std::vector<std::string> warnings;
 };
 
 /// Replaces each span of a G3 curve by clothoid arcs (seed 002 l.190-220, spec sec. 4):

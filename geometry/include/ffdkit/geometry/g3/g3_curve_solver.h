@@ -74,6 +74,7 @@ struct G3SolveResult {
   int conditionRows = 0;          ///< rows the conditions added (3 makes the system square)
   bool underdetermined = false;   ///< fewer than 3 rows: the answer depends on the guess (sec. 3.8)
   std::string message;            ///< what happened, in words
+  std::vector<std::string> warnings;  ///< e.g. underdetermined (guess-dependent) or least-squares fits
   Eigen::VectorXd unknowns;       ///< last iterate v (2n+3), also on failure (diagnostics only)
   std::optional<QuadraticCurvatureSpline> curve;  ///< set only when converged
 };
