@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -78,7 +79,7 @@ inline EdgeMismatch sharedEdgeMismatch(const CurveNetwork& net, const PatchOptio
             const Eigen::Vector3d e1 = net.curves[run.curve].evaluate(run.tStart + run.delta() * u, 1).normalized();
             const Eigen::Vector3d e2 = na.cross(e1).normalized();
             for (int k = 0; k < 6; ++k) {
-              const double phi = M_PI * k / 6.0 + 0.1;
+              const double phi = std::numbers::pi * k / 6.0 + 0.1;
               const Eigen::Vector3d w = std::cos(phi) * e1 + std::sin(phi) * e2;
               const double ka = normalCurvature(qa, na, w), kb = normalCurvature(qb, na, w);
               out.curvature = std::max(out.curvature, std::abs(ka - kb) * length / (1.0 + std::abs(ka) * length));

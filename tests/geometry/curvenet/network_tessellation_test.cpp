@@ -1,6 +1,8 @@
 #include "ffdkit/geometry/curvenet/network_tessellation.h"
 
 #include <cmath>
+#include <numbers>
+#include <functional>
 #include <map>
 #include <utility>
 
@@ -25,7 +27,7 @@ std::map<std::pair<int, int>, int> directedEdges(const TriangleMesh& m) {
 TEST(NetworkTessellation, LatticeHasSpecCountsAndCoversTheNGonCounterClockwise) {  // P13
   for (int n = 3; n <= 6; ++n) {
     const NGonDomain d(n);
-    const double polygonArea = 0.5 * n * std::sin(2 * M_PI / n);
+    const double polygonArea = 0.5 * n * std::sin(2 * std::numbers::pi / n);
     for (int pitch = 1; pitch <= 5; ++pitch) {
       const NGonLattice l = ngonLattice(d, pitch);
       EXPECT_EQ(l.points.rows(), 1 + n * pitch * (pitch + 1) / 2);
