@@ -131,4 +131,18 @@ MeshData GeneratorRegistry::generate(const std::string& name, const GeneratorPar
   }
 }
 
+CurvatureProfile GeneratorRegistry::profile(const std::string& name, const GeneratorParameters& parameters,
+                                            double density) const {
+  const Generator& generator = get(name);
+  if (!generator.profile) throw GeneratorError("generator '" + name + "' makes a surface: it has no curvature profile");
+  try {
+    parameters.checkKnown(generator.parameterNames);
+    return generator.profile(parameters, density);
+  } catch (const GeneratorError& e) {
+    throw GeneratorError("generator '" + name + "': " + e.what());
+  } catch (const std::exception& e) {
+    throw GeneratorError("generator '" + name + "': " + e.what());
+  }
+}
+
 }  // namespace ffdkit::scenes

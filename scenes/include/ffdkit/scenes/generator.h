@@ -51,6 +51,15 @@ class GeneratorError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Curvature (and torsion) of a generated curve against arc length, for plots and combs.
+struct CurvatureProfile {
+  Eigen::VectorXd arcLength;  ///< #samples, ascending, from 0
+  Eigen::VectorXd curvature;  ///< #samples, 1/length units (signed for planar curves)
+  Eigen::VectorXd torsion;    ///< #samples, or empty for planar curves
+  Eigen::MatrixX3d points;    ///< #samples x 3: where each sample lies
+  Eigen::MatrixX3d normals;   ///< #samples x 3: unit principal normals (curvature comb direction)
+};
+
 /// A named curve or surface generator (a geometry topic plugged into scenes). A generated
 /// object keeps its parameters; `density` scales its sampling, so that it can be regenerated
 /// finer or coarser (1 = the generator's default sampling).
@@ -59,6 +68,8 @@ struct Generator {
   std::string summary;  ///< one line for `ffdkit-cli info` and the GUI
   std::vector<std::string> parameterNames;
   std::function<MeshData(const GeneratorParameters&, double density)> generate;
+  /// Curves only (empty for surfaces): the curvature profile at the same sampling.
+  std::function<CurvatureProfile(const GeneratorParameters&, double density)> profile;
 };
 
 /// Generators by name. Not a singleton: builtinGenerators() builds the registry of every
@@ -75,6 +86,10 @@ class GeneratorRegistry {
   /// Runs a generator: checks parameter names, runs it, validates the mesh (finite points,
   /// indices in range, not empty). @throws GeneratorError naming the generator.
   MeshData generate(const std::string& name, const GeneratorParameters& parameters, double density = 1.0) const;
+
+  /// The curvature profile of a curve generator. @throws GeneratorError for a surface
+  /// generator or bad parameters, naming the generator.
+  CurvatureProfile profile(const std::string& name, const GeneratorParameters& parameters, double density = 1.0) const;
 
  private:
   std::map<std::string, Generator> generators_;
