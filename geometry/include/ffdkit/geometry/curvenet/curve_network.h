@@ -155,12 +155,15 @@ struct CurveNetwork {
 };
 
 /// Builds the network: curves from the description, pairwise intersections with tolerance tau
-/// (closest points of the two curves, refined by Newton, projected onto the drawing planes),
-/// clusters of >= 3 curves into multiple points, curve correction by minimum-norm displacement
-/// splines that stay in the drawing planes, half-edges, vertex normals N.1-N.4 with
-/// propagation, deterministic face tracing (largest left turn), runs and face sides with the
-/// T-junction and two-curve rules.
-/// @see seed 001 l.2127-2173, spec §4.3-4.7.
+/// (closest points of the two curves, refined by Newton, projected onto the drawing planes;
+/// an open end within tau of a curve is a T-junction), clusters of >= 3 curves into multiple
+/// points, curve correction by minimum-norm displacement splines that stay in the drawing
+/// planes, half-edges, vertex normals N.1-N.4 with propagation, deterministic face tracing
+/// (largest left turn), runs and face sides with the T-junction and two-curve rules, and on
+/// request open regions closed by a virtual side (rule (c)).
+/// Non-fatal findings go to CurveNetwork::notes: near misses (two curves within 3 tau that do
+/// not meet), open regions left empty, orientations taken from the hint, ambiguous turns.
+/// @see seed 001 l.2127-2173 (IF3D a.1-a.4, L.1-L.8, N.1-N.4), l.1946-2028, spec §3.7, §4.3-4.7.
 /// @throws CurveInputError for a curve that cannot be built; CurveNetworkError naming the
 ///   curve(s) and the place for: a curve meeting no other curve (with its nearest miss), two
 ///   curves that are tangent or nearly coincident, a correction that cannot meet the

@@ -34,7 +34,9 @@ struct NetworkMesh {
 /// differently (the stem side of a T-junction, two-curve regions), the triangles of the coarser
 /// side are split at the other side's boundary vertices, so the mesh has no T-vertices.
 /// Boundary vertices are evaluated on the curve itself; their normals come from the patch,
-/// corner normals from the network vertex (A6).
+/// corner normals from the network vertex (A6; at free ends and two-curve midpoints from the
+/// patch just inside). The virtual side of an open region is a free boundary of its face.
+/// @see seed 001 l.2177-2181 (b.1-b.5), spec §5.
 /// @throws std::invalid_argument if pitch < 1.
 NetworkMesh tessellateNetwork(const CurveNetwork& network, int pitch,
                               const PatchOptions& options = {});
