@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 
 namespace ffdkit::geometry::curvenet {
 namespace {
@@ -199,30 +201,38 @@ NetworkCurve interpolateCubicSpline(const Eigen::MatrixX3d& points, bool closed,
       h[k] = chord;
     }
   }
-  // Tangent system (2.3), l.463-477: rows for interior (or all, periodic) points.
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+  // Tangent system (2.3), l.463-477: rows for interior (or all, periodic) points. Tridiagonal
+  // (cyclic when closed), so sparse: pen strokes can have many points.
+  std::vector<Eigen::Triplet<double>> a;
   Eigen::MatrixX3d rhs(n, 3);
   for (int i = 0; i < n; ++i) {
     const bool first = !closed && i == 0, last = !closed && i == n - 1;
     if (first) {
-      a(0, 0) = 2.0;
-      a(0, 1) = 1.0;
+      a.emplace_back(0, 0, 2.0);
+      a.emplace_back(0, 1, 1.0);
       rhs.row(0) = 3.0 * (point(1) - point(0)).transpose() / h[0];
     } else if (last) {
-      a(i, i - 1) = 1.0;
-      a(i, i) = 2.0;
+      a.emplace_back(i, i - 1, 1.0);
+      a.emplace_back(i, i, 2.0);
       rhs.row(i) = 3.0 * (point(i) - point(i - 1)).transpose() / h[i - 1];
     } else {
       const double hp = h[(i - 1 + segs) % segs], hc = h[i % segs];
-      a(i, (i - 1 + n) % n) += hc;
-      a(i, i) += 2.0 * (hp + hc);
-      a(i, (i + 1) % n) += hp;
+      a.emplace_back(i, (i - 1 + n) % n, hc);  // duplicates (n = 2 wraps) are summed
+      a.emplace_back(i, i, 2.0 * (hp + hc));
+      a.emplace_back(i, (i + 1) % n, hp);
       rhs.row(i) = 3.0 * ((hc / hp) * (point(i) - point(i - 1)) +
                           (hp / hc) * (point(i + 1) - point(i)))
                              .transpose();
     }
   }
-  const Eigen::MatrixX3d tangents = a.partialPivLu().solve(rhs);
+  Eigen::SparseMatrix<double> system(n, n);
+  system.setFromTriplets(a.begin(), a.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(system);
+  if (lu.info() != Eigen::Success) {
+    throw CurveInputError("cubic spline interpolation: the tangent system is singular (" +
+                          std::to_string(n) + " points)");
+  }
+  const Eigen::MatrixX3d tangents = lu.solve(rhs);
   std::vector<CurveSegment> segments;
   double t = 0.0;
   for (int k = 0; k < segs; ++k) {

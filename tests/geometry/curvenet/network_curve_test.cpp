@@ -54,6 +54,14 @@ TEST(NetworkCurve, CubicSplineInterpolatesItsPointsAtChordLengthKnots) {
   EXPECT_NEAR(c.tMax(), t, 1e-13);
 }
 
+TEST(NetworkCurve, LongPenStrokeInterpolatesEveryPoint) {
+  Eigen::MatrixX3d p(2000, 3);
+  for (int k = 0; k < 2000; ++k) p.row(k) << std::cos(0.01 * k), std::sin(0.013 * k), 0.001 * k;
+  const NetworkCurve c = interpolateCubicSpline(p, false);
+  EXPECT_EQ(c.segments().size(), 1999u);
+  for (int k = 0; k < 1999; k += 97) EXPECT_LE((c.evaluate(c.segments()[k].t0) - p.row(k).transpose()).norm(), 1e-12);
+}
+
 TEST(NetworkCurve, CubicSplineIsC2AtBreakpoints) {
   for (KnotSpacing s : {KnotSpacing::ChordLength, KnotSpacing::Centripetal, KnotSpacing::AffineInvariant}) {
     const NetworkCurve c = interpolateCubicSpline(wavyPoints(8), false, s);
