@@ -284,6 +284,16 @@ const Eigen::MatrixX3d& Deformer::deformStale(const Lattice& lattice, const Eige
                        std::to_string(input.rows()) + " x 3");
   }
   output_.resize(n, 3);
+  evaluateBlocks(lattice, input, nullptr);
+  lastControl_ = lattice.controlPoints();
+  deformed_ = true;
+  stats_ = DeformStats{true, 0, n};
+  return output_;
+}
+
+Eigen::Index Deformer::evaluateBlocks(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input,
+                                      const std::vector<char>* cellFilter) {
+  const Eigen::Index n = embedding_.pointCount();
   // World displacement of every control point: F.linear * (P - Pbar).
   const Eigen::MatrixX3d D = (lattice.controlPoints() - lattice.restPoints()) * lattice.frame().linear().transpose();
   const AxisTables tables = makeTables(lattice);
@@ -292,11 +302,13 @@ const Eigen::MatrixX3d& Deformer::deformStale(const Lattice& lattice, const Eige
   in.qx = input.col(0).data();
   in.qy = input.col(1).data();
   in.qz = input.col(2).data();
+  const int cells[2] = {lattice.axis(0).cellCount(), lattice.axis(1).cellCount()};
   const auto& blocks = embedding_.blocks();
   const auto& tiles = embedding_.tileBlocks();
   const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
   const bool parallel = parallel_ && n >= kParallelPoints;
-#pragma omp parallel if (parallel)
+  Eigen::Index evaluated = 0;
+#pragma omp parallel if (parallel) reduction(+ : evaluated)
   {
     std::vector<double> W;
     int lastCell[3] = {-1, -1, -1};
@@ -305,6 +317,10 @@ const Eigen::MatrixX3d& Deformer::deformStale(const Lattice& lattice, const Eige
     for (std::int64_t t = 0; t < tileCount; ++t) {
       for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
         const Embedding::Block& block = blocks[bi];
+        if (cellFilter &&
+            !(*cellFilter)[block.cell[0] + cells[0] * (block.cell[1] + static_cast<std::size_t>(cells[1]) * block.cell[2])]) {
+          continue;
+        }
         if (block.kind == Embedding::BlockKind::Frozen) {
           // Identity outside, Failed, beyond Falloff: the input unchanged.
           for (std::uint32_t q = block.begin; q < block.end; ++q) {
@@ -322,15 +338,50 @@ const Eigen::MatrixX3d& Deformer::deformStale(const Lattice& lattice, const Eige
           local.blend = embedding_.blendWeight().data() + block.blendOffset;
           local.blendBegin = block.begin;
         }
+        evaluated += block.end - block.begin;
         const std::size_t size = W.size() / 3;
         detail::denseBlock(local, block.cell, block.begin, block.end, blended, W.data(), W.data() + size,
                            W.data() + 2 * size, false);
       }
     }
   }
-  lastControl_ = lattice.controlPoints();
-  deformed_ = true;
-  stats_ = DeformStats{true, 0, n};
+  return evaluated;
+}
+
+const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input) {
+  embedding_.checkLattice(lattice);
+  if (!deformed_) throw LatticeError("Deformer::update: call deform() once before incremental updates");
+  if (input.rows() != embedding_.pointCount()) {
+    throw LatticeError("Deformer::update: expected " + std::to_string(embedding_.pointCount()) +
+                       " x 3 input points (the embedded ones), got " + std::to_string(input.rows()) + " x 3");
+  }
+  const Eigen::MatrixX3d& P = lattice.controlPoints();
+  // Cells whose window holds a control point that moved since the last call.
+  int np[3], cells[3];
+  for (int a = 0; a < 3; ++a) {
+    np[a] = lattice.axis(a).degree() + 1;
+    cells[a] = lattice.axis(a).cellCount();
+  }
+  std::vector<std::vector<int>> cellsOf[3];  // cellsOf[a][i]: cells whose window holds index i on axis a
+  for (int a = 0; a < 3; ++a) {
+    cellsOf[a].resize(lattice.counts()[a]);
+    for (int c = 0; c < cells[a]; ++c)
+      for (int r = 0; r < np[a]; ++r) cellsOf[a][lattice.axis(a).controlIndex(c, r)].push_back(c);
+  }
+  std::vector<char> touched(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2], 0);
+  Eigen::Index changed = 0;
+  for (Eigen::Index f = 0; f < P.rows(); ++f) {
+    if (P.row(f) == lastControl_.row(f)) continue;
+    ++changed;
+    const Eigen::Vector3i g = lattice.gridIndex(f);
+    for (int cw : cellsOf[2][g[2]])
+      for (int cv : cellsOf[1][g[1]])
+        for (int cu : cellsOf[0][g[0]]) touched[cu + cells[0] * (cv + static_cast<std::size_t>(cells[1]) * cw)] = 1;
+  }
+  stats_ = DeformStats{false, changed, 0};
+  if (changed == 0) return output_;
+  stats_.evaluatedPoints = evaluateBlocks(lattice, input, &touched);
+  lastControl_ = P;
   return output_;
 }
 

@@ -119,7 +119,7 @@ const Eigen::MatrixX3d& Pipeline::run(bool forceEmbed) {
     StageReport report{id};
     const bool fresh = n.deformer && n.embeddedRest == n.lattice.restRevision() && n.embeddedInput == inputVersion;
     if (fresh) {
-      n.deformer->update(n.lattice);
+      n.deformer->update(n.lattice, *input);
       report.outputChanged = n.deformer->lastStats().changedControlPoints > 0;
     } else {
       const bool compatible = n.deformer && n.deformer->embedding().latticeCounts() == n.lattice.counts() &&

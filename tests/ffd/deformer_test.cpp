@@ -104,8 +104,10 @@ TEST(Deformer, IncrementalUpdateEqualsFullEvaluation) {
     Lattice lattice = t == 11 ? makeCylindricalLattice() : testing::randomLattice(rng, t % 3 == 0 ? 0.2 : 0.0, 9);
     const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 3000, rng));
     Deformer incremental(embed(lattice, Q));
+    Deformer exact(embed(lattice, Q));
     Deformer full(embed(lattice, Q));
     incremental.deform(lattice, Q);
+    exact.deform(lattice, Q);
     for (int step = 0; step < 6; ++step) {
       Eigen::MatrixX3d P = lattice.controlPoints();
       std::uniform_int_distribution<Eigen::Index> pick(0, P.rows() - 1);
@@ -122,6 +124,8 @@ TEST(Deformer, IncrementalUpdateEqualsFullEvaluation) {
       const Eigen::MatrixX3d ref = full.deform(lattice, Q);
       const double scale = 1.0 + ref.cwiseAbs().maxCoeff();
       EXPECT_LT(maxRowError(inc, ref), 1e-12 * scale) << "trial " << t << " step " << step;
+      // The exact variant re-evaluates the touched cells with the full-evaluation code: bit-identical.
+      EXPECT_EQ(maxRowError(exact.update(lattice, Q), ref), 0.0) << "trial " << t << " step " << step;
     }
   }
 }
@@ -134,14 +138,36 @@ TEST(Deformer, IncrementalUpdateTouchesOnlyInfluencedPoints) {
   const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 20000, rng));
   Deformer deformer(embed(lattice, Q));
   deformer.deform(lattice, Q);
+  Deformer exact(embed(lattice, Q));
+  exact.deform(lattice, Q);
   lattice.setControlPoint(lattice.index(0, 0, 0), Eigen::Vector3d(-0.1, -0.1, -0.1));
   deformer.update(lattice);
+  exact.update(lattice, Q);
   // The corner point's support is the first of 5 cells per axis: about 1/125 of the points.
-  EXPECT_GT(deformer.lastStats().evaluatedPoints, 0);
-  EXPECT_LT(deformer.lastStats().evaluatedPoints, 20000 / 50);
+  for (const Deformer* d : {&deformer, &exact}) {
+    EXPECT_GT(d->lastStats().evaluatedPoints, 0);
+    EXPECT_LT(d->lastStats().evaluatedPoints, 20000 / 50);
+  }
   deformer.update(lattice);
   EXPECT_EQ(deformer.lastStats().changedControlPoints, 0);
   EXPECT_EQ(deformer.lastStats().evaluatedPoints, 0);
+}
+
+TEST(Deformer, ExactUpdatesDoNotDriftOverManySteps) {
+  BoxLatticeOptions options;
+  options.counts = {6, 6, 6};
+  Lattice lattice = makeBoxLattice(options);
+  std::mt19937 rng(8);
+  const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 2000, rng));
+  Deformer exact(embed(lattice, Q));
+  exact.deform(lattice, Q);
+  const Eigen::Index flat = lattice.index(2, 3, 1);
+  for (int step = 1; step <= 3000; ++step) {
+    lattice.setControlPoint(flat, lattice.restPoints().row(flat).transpose() + Eigen::Vector3d(1e-3, -2e-3, 1e-3) * step);
+    exact.update(lattice, Q);
+  }
+  Deformer full(embed(lattice, Q));
+  EXPECT_EQ(maxRowError(exact.points(), full.deform(lattice, Q)), 0.0);
 }
 
 TEST(Deformer, RequiresDeformBeforeUpdateAndAFreshEmbedding) {
@@ -149,8 +175,10 @@ TEST(Deformer, RequiresDeformBeforeUpdateAndAFreshEmbedding) {
   const Eigen::MatrixX3d Q = Eigen::MatrixX3d::Constant(5, 3, 0.5);
   Deformer deformer(embed(lattice, Q));
   EXPECT_THROW(deformer.update(lattice), LatticeError);
+  EXPECT_THROW(deformer.update(lattice, Q), LatticeError);
   EXPECT_THROW(deformer.deform(lattice, Eigen::MatrixX3d::Zero(4, 3)), LatticeError);
   deformer.deform(lattice, Q);
+  EXPECT_THROW(deformer.update(lattice, Eigen::MatrixX3d::Zero(4, 3)), LatticeError);
   Eigen::Affine3d moved = Eigen::Affine3d::Identity();
   moved.translate(Eigen::Vector3d(1, 0, 0));
   lattice.setFrame(moved);
