@@ -207,6 +207,49 @@ TEST(MultisidedPatch, OpenRegionsAreFilledOnRequestWithVirtualSides) {  // F10, 
   }
 }
 
+// F5: the L-shaped region (0,0)(2,0)(2,1)(1,1)(1,2)(0,2) on the height field; `split` runs
+// x = 1 through the whole L, which cuts it into two quads.
+CurveNetworkDescription lShapeNetwork(bool split) {
+  CurveNetworkDescription d;
+  auto add = [&](const std::string& name, Eigen::Vector2d a, Eigen::Vector2d b) {
+    CurveDescription c;
+    c.name = name;
+    c.points.resize(9, 3);
+    for (int k = 0; k < 9; ++k) {
+      const Eigen::Vector2d q = a + (b - a) * k / 8.0;
+      c.points.row(k) << q.x(), q.y(), prototypeHeight(q.x(), q.y());
+    }
+    d.curves.push_back(c);
+  };
+  add("y=0", {-0.3, 0}, {2.3, 0});
+  add("x=2", {2, -0.3}, {2, 1.3});
+  add("y=1", {split ? 1.0 : 0.7, 1}, {2.3, 1});  // split: a T-junction on x = 1
+  add("x=1", {1, split ? -0.3 : 0.7}, {1, 2.3});
+  add("y=2", {-0.3, 2}, {1.3, 2});
+  add("x=0", {0, -0.3}, {0, 2.3});
+  return d;
+}
+
+TEST(MultisidedPatch, ConcaveRegionIsReportedAndSplittingItGivesUnfoldedQuads) {  // F5
+  const CurveNetwork concave = buildCurveNetwork(lShapeNetwork(false));
+  EXPECT_TRUE(concave.faces.empty()) << "a reflex corner is never traced (§4.6)";
+  EXPECT_FALSE(concave.openChains.empty());
+  const CurveNetwork split = buildCurveNetwork(lShapeNetwork(true));
+  ASSERT_EQ(split.faces.size(), 2u);
+  expectG2(sharedEdgeMismatch(split), split.scale, 1);
+  // Fold diagnostic: (Q_x x Q_y) . n_ref keeps its sign over each patch.
+  for (int f = 0; f < 2; ++f) {
+    const NGonDomain d(4);
+    const Eigen::Vector3d ref = patchNormal(evaluatePatch(split, f, d, Eigen::Vector2d::Zero()));
+    for (double x = -0.68; x <= 0.68; x += 0.085) {
+      for (double y = -0.68; y <= 0.68; y += 0.085) {
+        const VectorJet q = evaluatePatch(split, f, d, {x, y});
+        EXPECT_GT(q.x.cross(q.y).dot(ref), 0.0);
+      }
+    }
+  }
+}
+
 TEST(MultisidedPatch, HeightGridJoinsG2AndExponentOneLosesG2) {  // P6, P7
   const CurveNetwork net = buildCurveNetwork(heightGridNetwork(4));
   expectG2(sharedEdgeMismatch(net), net.scale, 12);
