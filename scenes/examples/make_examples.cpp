@@ -150,6 +150,7 @@ Scene makeCylinderTwist() {
   options.counts = cylinder.counts;
   options.restPoints = rest.restPoints();
   options.settings.basis = cylinder.bases;
+  options.settings.cylinder = rest.cylinderRestShape();
   const auto lattice = model.addLattice(options);
   const auto top = model.addCell(lattice, CellSpec::slab(2, 3), "top-ring");
   widgets::AffineOptions twistOptions;

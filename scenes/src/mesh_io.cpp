@@ -116,8 +116,22 @@ MeshData fromPolyData(vtkPolyData* input, const std::filesystem::path& path) {
   return mesh;
 }
 
+// VTK's pipeline prints its own error report to stderr when a reader fails; we report the
+// failure ourselves, with the file name, so silence VTK while reading.
+class QuietVtk {
+ public:
+  QuietVtk() : previous_(vtkObject::GetGlobalWarningDisplay()) { vtkObject::GlobalWarningDisplayOff(); }
+  ~QuietVtk() { vtkObject::SetGlobalWarningDisplay(previous_); }
+  QuietVtk(const QuietVtk&) = delete;
+  QuietVtk& operator=(const QuietVtk&) = delete;
+
+ private:
+  int previous_;
+};
+
 template <class Reader>
 MeshData readWith(const std::filesystem::path& path) {
+  QuietVtk quiet;
   vtkNew<Reader> reader;
   VtkErrorCollector errors(reader);
   reader->SetFileName(path.c_str());
@@ -128,6 +142,7 @@ MeshData readWith(const std::filesystem::path& path) {
 }
 
 MeshData readGltf(const std::filesystem::path& path) {
+  QuietVtk quiet;
   vtkNew<vtkGLTFReader> reader;
   VtkErrorCollector errors(reader);
   reader->SetFileName(path.c_str());
@@ -283,8 +298,11 @@ void writeMesh(const std::filesystem::path& path, const MeshData& mesh) {
   // which some writers look at), then rename it over the target.
   static std::atomic<unsigned> counter{0};
   const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  const std::filesystem::path temporary = folder / ("." + path.stem().string() + ".tmp-" + std::to_string(::getpid()) +
-                                                    "-" + std::to_string(counter.fetch_add(1)) + ext);
+  // Built by appending: GCC 12 warns falsely (-Wrestrict, bug 105329) on a "." + string chain.
+  std::string name = ".";
+  name.append(path.stem().string()).append(".tmp-").append(std::to_string(::getpid()));
+  name.append("-").append(std::to_string(counter.fetch_add(1))).append(ext);
+  const std::filesystem::path temporary = folder / name;
   try {
     vtkSmartPointer<vtkPolyData> poly = toPolyData(mesh);
     if (ext == ".obj") {

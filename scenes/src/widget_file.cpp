@@ -235,7 +235,7 @@ WidgetModelData readData(const Json& root, const Location& at) {
     const Json& j = lattices[i];
     const Location li = at / "lattices" / i;
     checkObject(j, li);
-    checkKeys(j, {"id", "name", "counts", "basis", "outside", "reembed", "frame", "children", "rest", "points"}, li);
+    checkKeys(j, {"id", "name", "counts", "basis", "outside", "reembed", "cylinder", "frame", "children", "rest", "points"}, li);
     LatticeData l;
     l.id = widgetId(member(j, "id", li), li / "id");
     l.name = text(member(j, "name", li), li / "name");
@@ -273,6 +273,19 @@ WidgetModelData readData(const Json& root, const Location& at) {
       l.settings.reembed.kind = named(parseReembedKind(policy), policy, "re-embed policy", "immediate, every-n, on-release", lr / "policy");
       if (l.settings.reembed.kind == ReembedKind::EveryN) l.settings.reembed.everyN = integer(member(r, "n", lr), lr / "n");
       else if (r.contains("n")) (lr / "n").fail("only the every-n policy takes n");
+    }
+    if (j.contains("cylinder")) {
+      const Json& c = j["cylinder"];
+      const Location lc = li / "cylinder";
+      checkKeys(c, {"innerRadius", "outerRadius", "zMin", "zMax"}, lc);
+      ffd::CylinderRestShape shape;
+      shape.innerRadius = number(member(c, "innerRadius", lc), lc / "innerRadius");
+      shape.outerRadius = number(member(c, "outerRadius", lc), lc / "outerRadius");
+      shape.zMin = number(member(c, "zMin", lc), lc / "zMin");
+      shape.zMax = number(member(c, "zMax", lc), lc / "zMax");
+      if (shape.innerRadius < 0.0 || shape.outerRadius <= shape.innerRadius || shape.zMax <= shape.zMin)
+        lc.fail("expected 0 <= innerRadius < outerRadius and zMin < zMax");
+      l.settings.cylinder = shape;
     }
     if (j.contains("frame")) l.frame = affine(j["frame"], li / "frame");
     if (j.contains("children")) {
@@ -454,6 +467,10 @@ Json toJson(const WidgetModelData& d) {
     reembed["policy"] = std::string(reembedKindName(l.settings.reembed.kind));
     if (l.settings.reembed.kind == ReembedKind::EveryN) reembed["n"] = l.settings.reembed.everyN;
     j["reembed"] = reembed;
+    if (l.settings.cylinder) {
+      const ffd::CylinderRestShape& c = *l.settings.cylinder;
+      j["cylinder"] = {{"innerRadius", c.innerRadius}, {"outerRadius", c.outerRadius}, {"zMin", c.zMin}, {"zMax", c.zMax}};
+    }
     j["frame"] = affineJson(l.frame);
     j["children"] = ids(l.children);
     j["rest"] = pointsJson(l.restPoints);

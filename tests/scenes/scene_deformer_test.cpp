@@ -92,6 +92,22 @@ TEST(SceneDeformer, HierarchyRunsParentThenChild) {
   }
 }
 
+TEST(SceneDeformer, CylindricalLatticeEmbedsTheWholeCylinderIncludingItsAxis) {
+  // EFFD (Fig. 6-11): the cylinder lies inside its cylindrical lattice, caps and axis included.
+  const Scene scene = readScene(kExamples / "cylinder-twist");
+  SceneDeformer deformer;
+  deformer.update(scene);
+  EXPECT_EQ(deformer.lastStats().outsidePoints, 0);
+  EXPECT_EQ(deformer.lastStats().failedPoints, 0);
+  // The top cap is turned by the twist: its rim points moved, its centre stays on the axis.
+  const SceneObject& cylinder = scene.objects.at(0);
+  const Eigen::MatrixX3d& out = deformer.points(cylinder.name);
+  for (Eigen::Index i = 0; i < out.rows(); ++i) {
+    const Eigen::Vector3d q = cylinder.mesh.points.row(i);
+    if (q.head<2>().norm() < 1e-12) EXPECT_LE(Eigen::Vector2d(out(i, 0), out(i, 1)).norm(), 1e-9) << "axis point " << i;
+  }
+}
+
 TEST(SceneDeformer, EverySampleSceneDeformsToFinitePoints) {
   for (const char* name : {"default", "press", "vise", "mirror", "hierarchy", "cylinder-twist"}) {
     SCOPED_TRACE(name);

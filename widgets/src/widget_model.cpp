@@ -277,6 +277,7 @@ struct WidgetModel::Impl {
     try {
       ffd::Lattice l(counts, settings.basis, rest, frame);
       l.setOutsidePolicy(settings.outside);
+      l.setCylinderRestShape(settings.cylinder);
       l.setControlPoints(control);
       return l;
     } catch (const std::invalid_argument& e) {

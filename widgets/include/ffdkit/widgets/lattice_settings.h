@@ -6,6 +6,7 @@
 
 #include "ffdkit/ffd/axis_basis.h"
 #include "ffdkit/ffd/outside_policy.h"
+#include "ffdkit/ffd/rest_shape.h"
 
 namespace ffdkit::widgets {
 
@@ -28,6 +29,10 @@ struct LatticeSettings {
                                       ffd::AxisBasis::bernstein()};
   ffd::OutsidePolicy outside{};
   ReembedPolicy reembed{};
+  /// Set for a cylindrical (EFFD) rest lattice (seed 001 Fig. 6-11): the analytic cylinder its
+  /// rest points sample, which gives Newton embedding its initial guess (radius, angle,
+  /// height). Without it, points near the axis can converge to the mirrored angle.
+  std::optional<ffd::CylinderRestShape> cylinder;
 };
 
 }  // namespace ffdkit::widgets
