@@ -1,5 +1,7 @@
 // ffdkit: the desktop application. main() only parses arguments and maps errors to exit codes.
 #include <QApplication>
+#include <QDockWidget>
+#include <QToolBar>
 #include <QCommandLineParser>
 #include <QSurfaceFormat>
 #include <QTimer>
@@ -26,6 +28,12 @@ int main(int argc, char** argv) {
   try {
     ffdkit::app::MainWindow window;
     if (!parser.positionalArguments().isEmpty()) window.openScene(parser.positionalArguments().first().toStdString());
+    if (parser.isSet(screenshot)) {
+      // Only the 3D view, at the size of the off-screen renderer.
+      for (auto* dock : window.findChildren<QDockWidget*>()) dock->hide();
+      for (auto* bar : window.findChildren<QToolBar*>()) bar->hide();
+      window.resize(1024, 768);
+    }
     window.show();
     if (parser.isSet(screenshot)) {
       const QString png = parser.value(screenshot);

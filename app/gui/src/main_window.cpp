@@ -1,72 +1,607 @@
 #include "ffdkit/app/main_window.h"
 
+#include <algorithm>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
 #include <QAction>
+#include <QActionGroup>
+#include <QApplication>
+#include <QCheckBox>
+#include <QCloseEvent>
+#include <QComboBox>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDockWidget>
+#include <QDragEnterEvent>
+#include <QDropEvent>
 #include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QMimeData>
+#include <QMouseEvent>
+#include <QScrollArea>
+#include <QSettings>
+#include <QSpinBox>
 #include <QStatusBar>
+#include <QToolBar>
 
+#include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/app/scene_view.h"
 #include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene_file.h"
+#include "ffdkit/scenes/widget_file.h"
+#include "outliner.h"
+#include "property_panel.h"
 
 namespace ffdkit::app {
+namespace {
+
+constexpr int kMaxRecent = 8;
+constexpr double kPickPixels = 7.0;  // pick tolerance on screen
+
+QString qs(const std::string& s) { return QString::fromStdString(s); }
+
+bool isMeshFile(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".vtp" || ext == ".vtk" || ext == ".gltf" ||
+         ext == ".glb" || ext == ".xyz";
+}
+
+// A widget file says "format": "ffdkit-widgets" near its top; a scene says "ffdkit-scene".
+bool isWidgetFile(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string head(512, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  const auto widgetsAt = head.find("\"ffdkit-widgets\"");
+  const auto sceneAt = head.find("\"ffdkit-scene\"");
+  return widgetsAt != std::string::npos && (sceneAt == std::string::npos || widgetsAt < sceneAt);
+}
+
+}  // namespace
 
 struct MainWindow::Impl {
   VtkViewWidget* view = nullptr;
   std::unique_ptr<SceneView> sceneView;
   scenes::Scene scene;
   scenes::SceneDeformer deformer;
+  scenes::CommandStack commands;
+  std::unique_ptr<InteractionController> controller;
+  Outliner* outliner = nullptr;
+  PropertyPanel* properties = nullptr;
+  QLabel* deformStatus = nullptr;
+  QMenu* recentMenu = nullptr;
+  QAction* undo = nullptr;
+  QAction* redo = nullptr;
+  std::filesystem::path scenePath;
+  std::vector<std::string> selectedObjects;
+  std::optional<widgets::BindingId> selectedBinding;
+  // Pointer state of the 3D view.
+  QPoint pressAt;
+  bool pressOnEmpty = false;
+  bool showingScene = false;
+
+  widgets::Ray rayAt(const QPoint& p) const {
+    const double ratio = view->devicePixelRatioF();
+    const double h = view->height() * ratio;
+    return sceneView->rayAt(p.x() * ratio, h - p.y() * ratio - 1.0);
+  }
+  double tolerance() const { return kPickPixels * view->devicePixelRatioF() * sceneView->pixelSize(); }
+
+  std::vector<OutlinerEntry> entries() const {
+    std::vector<OutlinerEntry> out;
+    for (const auto& o : selectedObjects) out.push_back({OutlinerEntry::Kind::Object, o, {}, {}});
+    for (widgets::WidgetId w : controller->selection()) out.push_back({OutlinerEntry::Kind::Widget, {}, w, {}});
+    if (selectedBinding) out.push_back({OutlinerEntry::Kind::Binding, {}, {}, *selectedBinding});
+    return out;
+  }
 };
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_unique<Impl>()) {
+  Impl& d = *impl_;
   setWindowTitle("ffdkit");
-  impl_->view = new VtkViewWidget(this);
-  setCentralWidget(impl_->view);
-  impl_->sceneView = std::make_unique<SceneView>(impl_->view->renderer());
+  setAcceptDrops(true);
+  d.view = new VtkViewWidget(this);
+  d.view->setObjectName("view");
+  d.view->setMouseTracking(true);
+  d.view->installEventFilter(this);
+  setCentralWidget(d.view);
+  d.sceneView = std::make_unique<SceneView>(d.view->renderer());
+  d.controller = std::make_unique<InteractionController>(d.scene, d.deformer, d.commands);
+
+  // Outliner and property panel.
+  d.outliner = new Outliner;
+  auto* outlinerDock = new QDockWidget(tr("Outliner"), this);
+  outlinerDock->setObjectName("outlinerDock");
+  outlinerDock->setWidget(d.outliner);
+  addDockWidget(Qt::LeftDockWidgetArea, outlinerDock);
+  d.properties = new PropertyPanel(*d.controller, d.scene);
+  auto* scroll = new QScrollArea;
+  scroll->setWidgetResizable(true);
+  scroll->setWidget(d.properties);
+  auto* propertiesDock = new QDockWidget(tr("Properties"), this);
+  propertiesDock->setObjectName("propertiesDock");
+  propertiesDock->setWidget(scroll);
+  addDockWidget(Qt::RightDockWidgetArea, propertiesDock);
+  connect(d.properties, &PropertyPanel::error, this, [this](const QString& m) { statusBar()->showMessage(m, 8000); });
+
+  auto refreshPanel = [this] { impl_->properties->showSelection(impl_->entries()); };
+  connect(d.outliner, &Outliner::selectionEdited, this, [this, refreshPanel] {
+    Impl& s = *impl_;
+    s.selectedObjects.clear();
+    s.selectedBinding.reset();
+    std::vector<widgets::WidgetId> widgets;
+    for (const auto& e : s.outliner->selection()) {
+      if (e.kind == OutlinerEntry::Kind::Object) s.selectedObjects.push_back(e.object);
+      if (e.kind == OutlinerEntry::Kind::Widget) widgets.push_back(e.widget);
+      if (e.kind == OutlinerEntry::Kind::Binding) s.selectedBinding = e.binding;
+    }
+    s.controller->setSelection(widgets);
+    refreshPanel();
+  });
+  connect(d.outliner, &Outliner::siblingMoveRequested, this, [this](widgets::WidgetId lattice, int position) {
+    try {
+      impl_->controller->setSiblingPosition(lattice, static_cast<std::size_t>(position));
+    } catch (const std::exception& e) {
+      statusBar()->showMessage(qs(e.what()), 8000);
+    }
+  });
+
+  // Model -> view.
+  d.deformStatus = new QLabel;
+  d.deformStatus->setObjectName("deformStatus");
+  statusBar()->addPermanentWidget(d.deformStatus);
+  d.controller->onChanged = [this] {
+    Impl& s = *impl_;
+    if (!s.showingScene) return;
+    s.sceneView->setHighlights(s.controller->highlights());
+    s.sceneView->refresh(s.scene, s.deformer);
+    const auto& stats = s.deformer.lastStats();
+    s.deformStatus->setText(tr("deform %1 ms, %2 points").arg(stats.seconds * 1e3, 0, 'f', 2).arg(stats.deformedPoints));
+    s.view->requestRender();
+  };
+  d.controller->onStructureChanged = [this, refreshPanel] {
+    impl_->outliner->rebuild(impl_->scene);
+    refreshPanel();
+  };
+  d.commands.onChanged = [this, refreshPanel] {
+    Impl& s = *impl_;
+    s.undo->setEnabled(s.commands.canUndo());
+    s.redo->setEnabled(s.commands.canRedo());
+    s.undo->setText(s.commands.canUndo() ? tr("&Undo %1").arg(qs(s.commands.undoDescription())) : tr("&Undo"));
+    s.redo->setText(s.commands.canRedo() ? tr("&Redo %1").arg(qs(s.commands.redoDescription())) : tr("&Redo"));
+    setWindowModified(s.commands.isDirty());
+    if (s.selectedBinding && !s.scene.widgets.bindings().empty()) {
+      const auto all = s.scene.widgets.bindings();
+      if (std::find(all.begin(), all.end(), *s.selectedBinding) == all.end()) s.selectedBinding.reset();
+    }
+    s.outliner->select(s.entries());
+    refreshPanel();
+  };
+
+  // Helpers for actions.
+  auto action = [this](QMenu* menu, const QString& text, const char* name, auto slot) {
+    QAction* a = menu->addAction(text);
+    a->setObjectName(name);
+    connect(a, &QAction::triggered, this, [this, slot] {
+      try {
+        slot();
+      } catch (const std::exception& e) {
+        statusBar()->showMessage(qs(e.what()), 8000);
+        QApplication::beep();
+      }
+    });
+    return a;
+  };
+  auto fileAction = [this, action](QMenu* menu, const QString& text, const char* name, bool save, const QString& filter,
+                                   auto apply) {
+    return action(menu, text, name, [this, text, save, filter, apply] {
+      const QString path = save ? QFileDialog::getSaveFileName(this, text, QString(), filter)
+                                : QFileDialog::getOpenFileName(this, text, QString(), filter);
+      if (path.isEmpty()) return;
+      try {
+        apply(std::filesystem::path(path.toStdString()));
+      } catch (const std::exception& e) {
+        QMessageBox::critical(this, text, qs(e.what()));
+      }
+    });
+  };
+
+  const QString sceneFilter = tr("ffdkit scenes (*.json);;All files (*)");
+  const QString widgetFilter = tr("ffdkit widget files (*.json);;All files (*)");
+  const QString meshFilter = tr("Meshes (*.obj *.ply *.stl *.vtp *.vtk *.gltf *.glb *.xyz);;All files (*)");
 
   QMenu* file = menuBar()->addMenu(tr("&File"));
-  QAction* open = file->addAction(tr("&Open Scene..."), this, &MainWindow::openSceneDialog);
-  open->setShortcut(QKeySequence::Open);
+  fileAction(file, tr("&Open Scene..."), "actionOpenScene", false, sceneFilter,
+             [this](const std::filesystem::path& p) { openScene(p); })
+      ->setShortcut(QKeySequence::Open);
+  d.recentMenu = file->addMenu(tr("Open &Recent"));
+  action(file, tr("&Save Scene"), "actionSaveScene", [this] {
+    if (impl_->scenePath.empty()) {
+      const QString path = QFileDialog::getSaveFileName(this, tr("Save Scene"), QString(), tr("ffdkit scenes (*.json)"));
+      if (!path.isEmpty()) saveScene(path.toStdString());
+    } else {
+      saveScene(impl_->scenePath);
+    }
+  })->setShortcut(QKeySequence::Save);
+  fileAction(file, tr("Save Scene &As..."), "actionSaveSceneAs", true, sceneFilter,
+             [this](const std::filesystem::path& p) { saveScene(p); });
   file->addSeparator();
-  QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
-  quit->setShortcut(QKeySequence::Quit);
+  fileAction(file, tr("Open &Widget File..."), "actionOpenWidgetFile", false, widgetFilter,
+             [this](const std::filesystem::path& p) { openWidgetFile(p); });
+  fileAction(file, tr("Save W&idget File..."), "actionSaveWidgetFile", true, widgetFilter,
+             [this](const std::filesystem::path& p) { saveWidgetFile(p); });
+  file->addSeparator();
+  fileAction(file, tr("&Import Mesh..."), "actionImportMesh", false, meshFilter,
+             [this](const std::filesystem::path& p) { importMesh(p); });
+  fileAction(file, tr("&Export Deformed Mesh..."), "actionExportMesh", true, meshFilter,
+             [this](const std::filesystem::path& p) { exportMesh(p); });
+  file->addSeparator();
+  action(file, tr("&Quit"), "actionQuit", [this] { close(); })->setShortcut(QKeySequence::Quit);
 
+  QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+  d.undo = action(edit, tr("&Undo"), "actionUndo", [this] { impl_->commands.undo(); });
+  d.undo->setShortcut(QKeySequence::Undo);
+  d.redo = action(edit, tr("&Redo"), "actionRedo", [this] { impl_->commands.redo(); });
+  d.redo->setShortcut(QKeySequence::Redo);
+  d.undo->setEnabled(false);
+  d.redo->setEnabled(false);
+  edit->addSeparator();
+  action(edit, tr("&Delete Widget"), "actionRemove", [this] {
+    const auto sel = impl_->controller->selection();
+    if (impl_->selectedBinding) {
+      impl_->controller->unbind(*impl_->selectedBinding);
+      impl_->selectedBinding.reset();
+    } else if (!sel.empty()) {
+      impl_->controller->removeWidget(sel.front());
+    }
+  })->setShortcut(QKeySequence::Delete);
+
+  // The thesis operations (seed 001 §6.4).
+  QMenu* widgetsMenu = menuBar()->addMenu(tr("&Widgets"));
+  QAction* newLattice = action(widgetsMenu, tr("New &Lattice..."), "actionNewLattice", [this] {
+    QDialog dialog(this);
+    dialog.setObjectName("newLatticeDialog");
+    dialog.setWindowTitle(tr("New Lattice"));
+    auto* form = new QFormLayout(&dialog);
+    QSpinBox* counts[3];
+    QComboBox* bases[3];
+    for (int a = 0; a < 3; ++a) {
+      counts[a] = new QSpinBox;
+      counts[a]->setObjectName(QString("count%1").arg("uvw"[a]));
+      counts[a]->setRange(2, 32);
+      counts[a]->setValue(3);
+      bases[a] = new QComboBox;
+      bases[a]->setObjectName(QString("basis%1").arg("uvw"[a]));
+      bases[a]->addItems({tr("Bernstein"), tr("B-spline cubic"), tr("B-spline quadratic"), tr("B-spline linear")});
+      form->addRow(tr("Points along %1").arg("uvw"[a]), counts[a]);
+      form->addRow(tr("Basis along %1").arg("uvw"[a]), bases[a]);
+    }
+    auto* cylindrical = new QCheckBox(tr("cylindrical (radius, angle, height)"));
+    cylindrical->setObjectName("cylindrical");
+    form->addRow(tr("Shape"), cylindrical);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    form->addRow(buttons);
+    if (dialog.exec() != QDialog::Accepted) return;
+    NewLatticeOptions options;
+    for (int a = 0; a < 3; ++a) {
+      options.counts[a] = counts[a]->value();
+      const int degree = std::min(counts[a]->value() - 1, 4 - bases[a]->currentIndex());
+      options.basis[static_cast<std::size_t>(a)] =
+          bases[a]->currentIndex() == 0 ? ffd::AxisBasis::bernstein() : ffd::AxisBasis::bspline(degree);
+    }
+    options.cylindrical = cylindrical->isChecked();
+    impl_->controller->newLattice(options);
+    statusBar()->showMessage(tr("New lattice: click one of its points, then add a widget"), 5000);
+  });
+  widgetsMenu->addSeparator();
+  const std::pair<const char*, widgets::AffineKind> kinds[] = {{"actionAddTranslate", widgets::AffineKind::Translate},
+                                                               {"actionAddRotate", widgets::AffineKind::Rotate},
+                                                               {"actionAddScale", widgets::AffineKind::Scale}};
+  QAction* addActions[3];
+  int k = 0;
+  for (const auto& [name, kind] : kinds) {
+    const widgets::AffineKind kindCopy = kind;
+    addActions[k++] = action(widgetsMenu,
+                             tr("Add %1 Widget").arg(qs(std::string(widgets::affineKindName(kind)))), name,
+                             [this, kindCopy] {
+                               Impl& s = *impl_;
+                               if (const auto point = s.controller->pickedPoint()) {
+                                 s.controller->addAffineAtPoint(*point, kindCopy);
+                                 return;
+                               }
+                               for (widgets::WidgetId w : s.controller->selection())
+                                 if (s.scene.widgets.type(w) == widgets::WidgetType::Cell) {
+                                   s.controller->addAffine(w, kindCopy);
+                                   return;
+                                 }
+                               throw std::invalid_argument("pick a lattice point or select a cell first");
+                             });
+  }
+  QAction* bind = action(widgetsMenu, tr("&Bind Two Widgets"), "actionBind", [this] {
+    const auto sel = impl_->controller->selection();
+    if (sel.size() != 2) throw std::invalid_argument("select exactly two widgets to bind (Ctrl+click)");
+    impl_->controller->bind(sel[0], sel[1]);
+  });
+  widgetsMenu->addSeparator();
+  auto selectedLattice = [this]() -> widgets::WidgetId {
+    for (widgets::WidgetId w : impl_->controller->selection())
+      if (impl_->scene.widgets.type(w) == widgets::WidgetType::Lattice) return w;
+    const auto roots = impl_->scene.widgets.roots();
+    if (roots.size() == 1) return roots.front();
+    throw std::invalid_argument("select a lattice");
+  };
+  auto selectedObject = [this]() -> std::string {
+    if (!impl_->selectedObjects.empty()) return impl_->selectedObjects.front();
+    if (impl_->scene.objects.size() == 1) return impl_->scene.objects.front().name;
+    throw std::invalid_argument("select an object in the outliner");
+  };
+  QAction* attach = action(widgetsMenu, tr("&Attach Lattice to Object"), "actionAttach",
+                           [this, selectedLattice, selectedObject] {
+                             impl_->controller->attachLattice(selectedLattice(), selectedObject());
+                           });
+  action(widgetsMenu, tr("&Detach Lattice from Object"), "actionDetach", [this, selectedLattice, selectedObject] {
+    impl_->controller->detachLattice(selectedLattice(), selectedObject());
+  });
+  widgetsMenu->addSeparator();
+  QAction* primitive = action(widgetsMenu, tr("Add &Primitive..."), "actionAddPrimitive", [this] {
+    QDialog dialog(this);
+    dialog.setObjectName("addPrimitiveDialog");
+    dialog.setWindowTitle(tr("Add Primitive"));
+    auto* form = new QFormLayout(&dialog);
+    auto* kind = new QComboBox;
+    kind->setObjectName("primitiveKind");
+    for (auto k2 : {scenes::PrimitiveKind::Sphere, scenes::PrimitiveKind::Cylinder, scenes::PrimitiveKind::Cube,
+                    scenes::PrimitiveKind::Cone, scenes::PrimitiveKind::Torus, scenes::PrimitiveKind::Plane})
+      kind->addItem(qs(std::string(scenes::primitiveKindName(k2))), static_cast<int>(k2));
+    auto* axis = new QComboBox;
+    axis->setObjectName("primitiveAxis");
+    axis->addItems({tr("+z"), tr("+x"), tr("+y")});
+    auto* resolution = new QSpinBox;
+    resolution->setObjectName("primitiveResolution");
+    resolution->setRange(3, 512);
+    resolution->setValue(32);
+    form->addRow(tr("Type"), kind);
+    form->addRow(tr("Axis"), axis);
+    form->addRow(tr("Resolution"), resolution);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    form->addRow(buttons);
+    if (dialog.exec() != QDialog::Accepted) return;
+    scenes::PrimitiveOptions options;
+    options.kind = static_cast<scenes::PrimitiveKind>(kind->currentData().toInt());
+    options.resolution = resolution->value();
+    if (axis->currentIndex() == 1) options.placement = Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitY());
+    if (axis->currentIndex() == 2) options.placement = Eigen::AngleAxisd(-std::numbers::pi / 2, Eigen::Vector3d::UnitX());
+    const std::string name = impl_->controller->addPrimitive(options);
+    impl_->selectedObjects = {name};
+    impl_->outliner->select(impl_->entries());
+  });
+
+  QMenu* viewMenu = menuBar()->addMenu(tr("&View"));
+  action(viewMenu, tr("&Reset Camera"), "actionResetCamera", [this] {
+    impl_->sceneView->applyCamera(impl_->scene.camera);
+    impl_->view->requestRender();
+  });
+  viewMenu->addAction(outlinerDock->toggleViewAction());
+  viewMenu->addAction(propertiesDock->toggleViewAction());
+
+  QToolBar* toolbar = addToolBar(tr("Operations"));
+  toolbar->setObjectName("operationsToolbar");
+  toolbar->addAction(d.undo);
+  toolbar->addAction(d.redo);
+  toolbar->addSeparator();
+  toolbar->addAction(primitive);
+  toolbar->addAction(newLattice);
+  for (QAction* a : addActions) toolbar->addAction(a);
+  toolbar->addAction(bind);
+  toolbar->addAction(attach);
+
+  QSettings settings;
+  const QStringList recent = settings.value("recentFiles").toStringList();
+  for (const QString& path : recent.mid(0, kMaxRecent)) {
+    d.recentMenu->addAction(path, this, [this, path] {
+      try {
+        openAny(path.toStdString());
+      } catch (const std::exception& e) {
+        QMessageBox::critical(this, tr("Cannot open"), qs(e.what()));
+      }
+    });
+  }
+
+  setScene({});
   statusBar()->showMessage(tr("Ready"));
-  resize(1024, 768);
+  resize(1280, 800);
 }
 
 MainWindow::~MainWindow() = default;
 
 void MainWindow::openScene(const std::filesystem::path& path) {
   setScene(scenes::readScene(path));
-  setWindowTitle(QString("ffdkit - %1").arg(QString::fromStdString(path.string())));
+  impl_->scenePath = std::filesystem::is_directory(path) ? path / "scene.json" : path;
+  setWindowTitle(QString("ffdkit - %1[*]").arg(qs(path.string())));
+  QSettings settings;
+  QStringList recent = settings.value("recentFiles").toStringList();
+  recent.removeAll(qs(path.string()));
+  recent.prepend(qs(path.string()));
+  settings.setValue("recentFiles", recent.mid(0, kMaxRecent));
+}
+
+void MainWindow::saveScene(const std::filesystem::path& path) {
+  scenes::Scene copy = impl_->scene;
+  copy.camera = impl_->sceneView->camera();
+  copy.widgetFile.reset();
+  scenes::writeScene(path, copy);
+  impl_->scenePath = path;
+  impl_->commands.markClean();
+  setWindowModified(false);
+  statusBar()->showMessage(tr("Saved %1").arg(qs(path.string())), 5000);
+}
+
+void MainWindow::openWidgetFile(const std::filesystem::path& path) {
+  impl_->controller->replaceWidgets(scenes::readWidgetFile(path));
+  statusBar()->showMessage(tr("Opened widget file %1").arg(qs(path.string())), 5000);
+}
+
+void MainWindow::saveWidgetFile(const std::filesystem::path& path) {
+  scenes::writeWidgetFile(path, impl_->scene.widgets);
+  statusBar()->showMessage(tr("Saved widget file %1").arg(qs(path.string())), 5000);
+}
+
+void MainWindow::importMesh(const std::filesystem::path& path) {
+  scenes::SceneObject object;
+  object.mesh = scenes::readMesh(path);
+  object.source = scenes::MeshFileSource{std::filesystem::absolute(path).string()};
+  std::string base = path.stem().string();
+  object.name = base;
+  for (int n = 2; impl_->scene.findObject(object.name) != nullptr; ++n) object.name = base + std::to_string(n);
+  impl_->controller->addObject(std::move(object));
+}
+
+void MainWindow::exportMesh(const std::filesystem::path& path) {
+  const auto& objects = impl_->scene.objects;
+  if (objects.empty()) throw std::invalid_argument("the scene has no object to export");
+  const std::string name = impl_->selectedObjects.empty() ? objects.front().name : impl_->selectedObjects.front();
+  scenes::MeshData mesh = impl_->scene.findObject(name)->mesh;
+  mesh.points = impl_->deformer.points(name);
+  scenes::writeMesh(path, mesh);
+  statusBar()->showMessage(tr("Exported %1 to %2").arg(qs(name), qs(path.string())), 5000);
+}
+
+void MainWindow::openAny(const std::filesystem::path& path) {
+  if (isMeshFile(path)) {
+    importMesh(path);
+  } else if (!std::filesystem::is_directory(path) && isWidgetFile(path)) {
+    openWidgetFile(path);
+  } else {
+    openScene(path);
+  }
 }
 
 void MainWindow::setScene(scenes::Scene scene) {
-  impl_->scene = std::move(scene);
-  impl_->deformer.reset();
-  impl_->deformer.update(impl_->scene);
-  impl_->sceneView->show(impl_->scene, impl_->deformer);
+  Impl& d = *impl_;
+  d.showingScene = false;
+  d.controller->cancel();
+  d.controller->clearSelection();
+  d.scene = std::move(scene);
+  d.selectedObjects.clear();
+  d.selectedBinding.reset();
+  d.commands.clear();
+  d.deformer.reset();
+  d.deformer.update(d.scene);
+  d.deformer.finishGesture(d.scene);
+  d.sceneView->setHighlights(d.controller->highlights());
+  d.sceneView->show(d.scene, d.deformer);
+  d.showingScene = true;
+  d.outliner->rebuild(d.scene);
+  d.properties->showSelection({});
   statusBar()->showMessage(tr("%1 objects, %2 lattices")
-                               .arg(impl_->scene.objects.size())
-                               .arg(impl_->scene.widgets.widgets(widgets::WidgetType::Lattice).size()));
-  impl_->view->requestRender();
+                               .arg(d.scene.objects.size())
+                               .arg(d.scene.widgets.widgets(widgets::WidgetType::Lattice).size()));
+  d.controller->refresh();
+  d.view->requestRender();
 }
 
 const scenes::Scene& MainWindow::scene() const { return impl_->scene; }
-
+const scenes::SceneDeformer& MainWindow::deformer() const { return impl_->deformer; }
+scenes::CommandStack& MainWindow::commands() const { return impl_->commands; }
+InteractionController& MainWindow::controller() const { return *impl_->controller; }
+SceneView& MainWindow::sceneView() const { return *impl_->sceneView; }
+QTreeWidget* MainWindow::outliner() const { return impl_->outliner; }
 VtkViewWidget* MainWindow::view() const { return impl_->view; }
 
-void MainWindow::openSceneDialog() {
-  const QString path =
-      QFileDialog::getOpenFileName(this, tr("Open Scene"), QString(), tr("ffdkit scenes (*.json);;All files (*)"));
-  if (path.isEmpty()) return;
+bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
+  Impl& d = *impl_;
+  if (watched != d.view) return QMainWindow::eventFilter(watched, event);
   try {
-    openScene(path.toStdString());
+    switch (event->type()) {
+      case QEvent::MouseButtonPress: {
+        auto* e = static_cast<QMouseEvent*>(event);
+        if (e->button() != Qt::LeftButton) break;
+        d.pressAt = e->position().toPoint();
+        const bool extend = (e->modifiers() & (Qt::ControlModifier | Qt::ShiftModifier)) != 0;
+        const auto hit = d.controller->press(d.rayAt(d.pressAt), d.tolerance(), extend);
+        d.pressOnEmpty = hit == InteractionController::PressResult::Nothing;
+        if (hit != InteractionController::PressResult::Nothing) {
+          d.selectedObjects.clear();
+          d.selectedBinding.reset();
+          d.outliner->select(d.entries());
+          d.properties->showSelection(d.entries());
+        }
+        if (hit == InteractionController::PressResult::Widget) return true;  // no camera orbit
+        break;
+      }
+      case QEvent::MouseMove: {
+        auto* e = static_cast<QMouseEvent*>(event);
+        if (d.controller->dragging()) {
+          d.controller->drag(d.rayAt(e->position().toPoint()));
+          return true;
+        }
+        if (e->buttons() == Qt::NoButton) d.controller->hover(d.rayAt(e->position().toPoint()), d.tolerance());
+        break;
+      }
+      case QEvent::MouseButtonRelease: {
+        auto* e = static_cast<QMouseEvent*>(event);
+        if (e->button() != Qt::LeftButton) break;
+        if (d.controller->dragging()) {
+          d.controller->release();
+          return true;
+        }
+        if (d.pressOnEmpty && (e->position().toPoint() - d.pressAt).manhattanLength() < 4) {
+          // A click on empty space dismisses the selection (and its manipulator).
+          d.controller->clearSelection();
+          d.selectedObjects.clear();
+          d.selectedBinding.reset();
+          d.outliner->select({});
+          d.properties->showSelection({});
+        }
+        d.pressOnEmpty = false;
+        break;
+      }
+      case QEvent::KeyPress:
+        if (static_cast<QKeyEvent*>(event)->key() == Qt::Key_Escape && d.controller->dragging()) {
+          d.controller->cancel();
+          return true;
+        }
+        break;
+      default: break;
+    }
   } catch (const std::exception& e) {
-    QMessageBox::critical(this, tr("Cannot open scene"), QString::fromStdString(e.what()));
+    statusBar()->showMessage(qs(e.what()), 8000);
+    return true;
   }
+  return QMainWindow::eventFilter(watched, event);
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+  if (event->mimeData()->hasUrls()) event->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+  for (const QUrl& url : event->mimeData()->urls()) {
+    if (!url.isLocalFile()) continue;
+    try {
+      openAny(url.toLocalFile().toStdString());
+    } catch (const std::exception& e) {
+      QMessageBox::critical(this, tr("Cannot open"), qs(e.what()));
+    }
+  }
+  event->acceptProposedAction();
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  impl_->controller->cancel();
+  event->accept();
 }
 
 }  // namespace ffdkit::app

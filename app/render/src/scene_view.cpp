@@ -1,27 +1,54 @@
 #include "ffdkit/app/scene_view.h"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
 #include <vector>
 
 #include <vtkActor.h>
+#include <vtkArrowSource.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
+#include <vtkCubeSource.h>
+#include <vtkDoubleArray.h>
 #include <vtkNew.h>
+#include <vtkParametricFunctionSource.h>
+#include <vtkParametricTorus.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
+#include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
+#include <vtkTransform.h>
+
+#include "ffdkit/app/parts.h"
+#include "ffdkit/widgets/widget_model.h"
 
 namespace ffdkit::app {
 namespace {
 
+using widgets::AffineKind;
+using widgets::WidgetId;
+
+void setPoints(vtkPoints* vtkPts, const Eigen::MatrixX3d& points) {
+  vtkPts->SetNumberOfPoints(points.rows());
+  auto* data = static_cast<double*>(vtkPts->GetVoidPointer(0));
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    data[3 * i] = points(i, 0);
+    data[3 * i + 1] = points(i, 1);
+    data[3 * i + 2] = points(i, 2);
+  }
+  vtkPts->Modified();
+}
+
 vtkSmartPointer<vtkPolyData> toPolyData(const scenes::MeshData& mesh, const Eigen::MatrixX3d& points) {
   vtkNew<vtkPoints> vtkPts;
   vtkPts->SetDataTypeToDouble();
-  vtkPts->SetNumberOfPoints(points.rows());
-  for (Eigen::Index i = 0; i < points.rows(); ++i) vtkPts->SetPoint(i, points(i, 0), points(i, 1), points(i, 2));
+  setPoints(vtkPts, points);
   auto polyData = vtkSmartPointer<vtkPolyData>::New();
   polyData->SetPoints(vtkPts);
   vtkNew<vtkCellArray> triangles;
@@ -48,7 +75,7 @@ vtkSmartPointer<vtkPolyData> toPolyData(const scenes::MeshData& mesh, const Eige
 vtkSmartPointer<vtkPolyData> latticePolyData(const Eigen::MatrixX3d& points, const Eigen::Vector3i& n) {
   vtkNew<vtkPoints> vtkPts;
   vtkPts->SetDataTypeToDouble();
-  for (Eigen::Index i = 0; i < points.rows(); ++i) vtkPts->InsertNextPoint(points(i, 0), points(i, 1), points(i, 2));
+  setPoints(vtkPts, points);
   vtkNew<vtkCellArray> vertices;
   for (vtkIdType i = 0; i < points.rows(); ++i) vertices->InsertNextCell(1, &i);
   vtkNew<vtkCellArray> lines;
@@ -72,61 +99,225 @@ vtkSmartPointer<vtkPolyData> latticePolyData(const Eigen::MatrixX3d& points, con
   return polyData;
 }
 
+vtkSmartPointer<vtkPolyData> pointsPolyData(const Eigen::MatrixX3d& points) {
+  vtkNew<vtkPoints> vtkPts;
+  vtkPts->SetDataTypeToDouble();
+  setPoints(vtkPts, points);
+  vtkNew<vtkCellArray> vertices;
+  for (vtkIdType i = 0; i < points.rows(); ++i) vertices->InsertNextCell(1, &i);
+  auto polyData = vtkSmartPointer<vtkPolyData>::New();
+  polyData->SetPoints(vtkPts);
+  polyData->SetVerts(vertices);
+  return polyData;
+}
+
+// The glyph shapes in the widget frame, at size 1, matching WidgetModel::pick: the arrow runs
+// from the origin along +x for one size, the ring has radius one size about z, the cube has
+// half-width 0.15 sizes.
+vtkSmartPointer<vtkPolyData> glyphShape(const widgets::Glyph& glyph, AffineKind kind) {
+  if (auto part = partMesh(glyph.shape)) {
+    scenes::MeshData mesh;
+    mesh.triangles = part->triangles;
+    Eigen::MatrixX3d points = part->vertices;
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+      points.row(i) = (glyph.partPlacement * Eigen::Vector3d(points.row(i).transpose())).transpose();
+    return toPolyData(mesh, points);
+  }
+  const std::string shape = glyph.shape.empty() ? std::string(widgets::affineKindName(kind)) : glyph.shape;
+  if (shape == "ring" || (shape == "rotate")) {
+    vtkNew<vtkParametricTorus> torus;
+    torus->SetRingRadius(1.0);
+    torus->SetCrossSectionRadius(0.05);
+    vtkNew<vtkParametricFunctionSource> source;
+    source->SetParametricFunction(torus);
+    source->SetUResolution(48);
+    source->SetVResolution(8);
+    source->Update();
+    return source->GetOutput();
+  }
+  if (shape == "cube" || shape == "scale") {
+    vtkNew<vtkCubeSource> cube;
+    cube->SetXLength(0.3);
+    cube->SetYLength(0.3);
+    cube->SetZLength(0.3);
+    cube->Update();
+    return cube->GetOutput();
+  }
+  vtkNew<vtkArrowSource> arrow;
+  arrow->SetShaftRadius(0.04);
+  arrow->SetTipRadius(0.1);
+  arrow->SetTipLength(0.25);
+  arrow->SetShaftResolution(16);
+  arrow->SetTipResolution(24);
+  arrow->Update();
+  return arrow->GetOutput();
+}
+
+Eigen::Vector3d kindColour(AffineKind kind) {
+  switch (kind) {
+    case AffineKind::Translate: return {0.95, 0.30, 0.30};
+    case AffineKind::Rotate: return {0.30, 0.85, 0.40};
+    case AffineKind::Scale: return {0.35, 0.55, 1.00};
+  }
+  return {1.0, 1.0, 1.0};
+}
+
+const Eigen::Vector3d kSelected{1.0, 0.9, 0.2};
+const Eigen::Vector3d kVisited{1.0, 0.45, 1.0};
+
+bool contains(const std::vector<WidgetId>& ids, WidgetId id) { return std::find(ids.begin(), ids.end(), id) != ids.end(); }
+
 }  // namespace
 
 struct SceneView::Impl {
+  struct ObjectActor {
+    std::string name;
+    Eigen::Index pointCount = 0;
+    vtkSmartPointer<vtkPolyData> polyData;
+    vtkSmartPointer<vtkActor> actor;
+  };
   vtkRenderer* renderer = nullptr;
-  std::vector<vtkSmartPointer<vtkActor>> actors;
+  std::vector<ObjectActor> objects;
+  std::vector<vtkSmartPointer<vtkActor>> widgetActors;
+  ViewHighlights highlights;
+
+  Eigen::Vector3d emphasis(WidgetId id, const Eigen::Vector3d& base) const {
+    if (contains(highlights.selected, id)) return kSelected;
+    if (contains(highlights.visited, id)) return kVisited;
+    if (highlights.hovered == id) return 0.45 * base + 0.55 * Eigen::Vector3d::Ones();
+    return base;
+  }
+
+  vtkSmartPointer<vtkActor> addWidgetActor(vtkPolyData* polyData, const Eigen::Vector3d& colour) {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(polyData);
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
+    actor->GetProperty()->SetColor(colour.x(), colour.y(), colour.z());
+    renderer->AddActor(actor);
+    widgetActors.push_back(actor);
+    return actor;
+  }
+
+  void clearObjects() {
+    for (auto& o : objects) renderer->RemoveActor(o.actor);
+    objects.clear();
+  }
+
+  void buildObjects(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
+    clearObjects();
+    for (const auto& object : scene.objects) {
+      if (!object.display.visible) continue;
+      ObjectActor entry;
+      entry.name = object.name;
+      const Eigen::MatrixX3d& points = deformed.points(object.name);
+      entry.pointCount = points.rows();
+      entry.polyData = toPolyData(object.mesh, points);
+      vtkNew<vtkPolyDataMapper> mapper;
+      if (object.mesh.triangles.rows() > 0) {
+        vtkNew<vtkPolyDataNormals> normals;  // smooth shading of the deformed surface
+        normals->SetInputData(entry.polyData);
+        normals->SetSplitting(false);
+        normals->ConsistencyOff();
+        mapper->SetInputConnection(normals->GetOutputPort());
+      } else {
+        mapper->SetInputData(entry.polyData);
+      }
+      entry.actor = vtkSmartPointer<vtkActor>::New();
+      entry.actor->GetProperty()->SetLineWidth(3.0);
+      entry.actor->GetProperty()->SetPointSize(4.0);
+      entry.actor->SetMapper(mapper);
+      entry.actor->GetProperty()->SetColor(object.display.color.x(), object.display.color.y(), object.display.color.z());
+      entry.actor->GetProperty()->SetOpacity(object.display.opacity);
+      entry.actor->GetProperty()->SetSpecular(0.2);
+      entry.actor->GetProperty()->SetSpecularPower(30);
+      renderer->AddActor(entry.actor);
+      objects.push_back(std::move(entry));
+    }
+  }
+
+  // True when the drawn objects are the scene's visible objects with the same point counts.
+  bool sameObjects(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) const {
+    std::size_t n = 0;
+    for (const auto& object : scene.objects) {
+      if (!object.display.visible) continue;
+      if (n >= objects.size() || objects[n].name != object.name ||
+          objects[n].pointCount != deformed.points(object.name).rows())
+        return false;
+      ++n;
+    }
+    return n == objects.size();
+  }
+
+  void buildWidgets(const widgets::WidgetModel& model) {
+    for (auto& actor : widgetActors) renderer->RemoveActor(actor);
+    widgetActors.clear();
+    for (WidgetId lattice : model.widgets(widgets::WidgetType::Lattice)) {
+      const Eigen::MatrixX3d points = model.worldControlPoints(lattice);
+      auto actor = addWidgetActor(latticePolyData(points, model.counts(lattice)),
+                                  emphasis(lattice, {0.55, 0.8, 1.0}));
+      actor->GetProperty()->SetLineWidth(contains(highlights.selected, lattice) ? 3.0 : 1.5);
+      actor->GetProperty()->SetPointSize(9.0);
+      actor->GetProperty()->SetRenderPointsAsSpheres(true);
+      actor->GetProperty()->SetLighting(false);
+      if (highlights.point && highlights.point->lattice == lattice && highlights.point->index < points.rows()) {
+        auto marker = addWidgetActor(pointsPolyData(points.row(highlights.point->index)), kSelected);
+        marker->GetProperty()->SetPointSize(18.0);
+        marker->GetProperty()->SetRenderPointsAsSpheres(true);
+        marker->GetProperty()->SetLighting(false);
+      }
+    }
+    for (WidgetId cell : model.widgets(widgets::WidgetType::Cell)) {
+      auto actor = addWidgetActor(pointsPolyData(model.cellWorldPoints(cell)), emphasis(cell, {1.0, 0.65, 0.2}));
+      actor->GetProperty()->SetPointSize(14.0);
+      actor->GetProperty()->SetRenderPointsAsSpheres(true);
+      actor->GetProperty()->SetLighting(false);
+    }
+    for (WidgetId affine : model.widgets(widgets::WidgetType::Affine)) {
+      const widgets::WidgetFrame frame = model.affineFrame(affine);
+      vtkNew<vtkTransform> transform;
+      Eigen::Matrix4d m = frame.frame.matrix();
+      m.topLeftCorner<3, 3>() *= frame.size;
+      Eigen::Matrix<double, 4, 4, Eigen::RowMajor> rowMajor = m;
+      transform->SetMatrix(rowMajor.data());
+      const AffineKind kind = model.affineKind(affine);
+      auto actor = addWidgetActor(glyphShape(model.glyph(affine), kind), emphasis(affine, kindColour(kind)));
+      actor->SetUserTransform(transform);
+      actor->GetProperty()->SetSpecular(0.4);
+      actor->GetProperty()->SetSpecularPower(40);
+    }
+  }
 };
 
 SceneView::SceneView(vtkRenderer* renderer) : impl_(std::make_unique<Impl>()) { impl_->renderer = renderer; }
 
 SceneView::~SceneView() {
-  for (auto& actor : impl_->actors) impl_->renderer->RemoveActor(actor);
+  impl_->clearObjects();
+  for (auto& actor : impl_->widgetActors) impl_->renderer->RemoveActor(actor);
 }
 
 void SceneView::show(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
-  for (auto& actor : impl_->actors) impl_->renderer->RemoveActor(actor);
-  impl_->actors.clear();
-
-  for (const auto& object : scene.objects) {
-    if (!object.display.visible) continue;
-    auto polyData = toPolyData(object.mesh, deformed.points(object.name));
-    vtkNew<vtkPolyDataMapper> mapper;
-    if (object.mesh.triangles.rows() > 0) {
-      vtkNew<vtkPolyDataNormals> normals;  // smooth shading of the deformed surface
-      normals->SetInputData(polyData);
-      normals->SetSplitting(false);
-      mapper->SetInputConnection(normals->GetOutputPort());
-    } else {
-      mapper->SetInputData(polyData);
-    }
-    auto actor = vtkSmartPointer<vtkActor>::New();
-    actor->GetProperty()->SetLineWidth(3.0);
-    actor->GetProperty()->SetPointSize(4.0);
-    actor->SetMapper(mapper);
-    actor->GetProperty()->SetColor(object.display.color.x(), object.display.color.y(), object.display.color.z());
-    actor->GetProperty()->SetOpacity(object.display.opacity);
-    actor->GetProperty()->SetSpecular(0.2);
-    actor->GetProperty()->SetSpecularPower(30);
-    impl_->actors.push_back(actor);
-  }
-  for (widgets::WidgetId lattice : scene.widgets.widgets(widgets::WidgetType::Lattice)) {
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputData(latticePolyData(scene.widgets.worldControlPoints(lattice), scene.widgets.counts(lattice)));
-    auto actor = vtkSmartPointer<vtkActor>::New();
-    actor->SetMapper(mapper);
-    actor->GetProperty()->SetColor(0.55, 0.8, 1.0);
-    actor->GetProperty()->SetLineWidth(2.0);
-    actor->GetProperty()->SetPointSize(10.0);
-    actor->GetProperty()->SetRenderPointsAsSpheres(true);
-    actor->GetProperty()->SetLighting(false);
-    impl_->actors.push_back(actor);
-  }
-  for (auto& actor : impl_->actors) impl_->renderer->AddActor(actor);
+  impl_->buildObjects(scene, deformed);
+  impl_->buildWidgets(scene.widgets);
   impl_->renderer->SetBackground(scene.background.x(), scene.background.y(), scene.background.z());
   applyCamera(scene.camera);
 }
+
+void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
+  if (impl_->sameObjects(scene, deformed)) {
+    for (auto& entry : impl_->objects) {
+      setPoints(entry.polyData->GetPoints(), deformed.points(entry.name));
+      entry.polyData->Modified();
+    }
+  } else {
+    impl_->buildObjects(scene, deformed);
+  }
+  impl_->buildWidgets(scene.widgets);
+  impl_->renderer->SetBackground(scene.background.x(), scene.background.y(), scene.background.z());
+  impl_->renderer->ResetCameraClippingRange();
+}
+
+void SceneView::setHighlights(const ViewHighlights& highlights) { impl_->highlights = highlights; }
 
 void SceneView::applyCamera(const scenes::Camera& camera) {
   vtkCamera* c = impl_->renderer->GetActiveCamera();
@@ -136,6 +327,47 @@ void SceneView::applyCamera(const scenes::Camera& camera) {
   c->SetViewAngle(camera.viewAngleDegrees);
   c->OrthogonalizeViewUp();
   impl_->renderer->ResetCameraClippingRange();
+}
+
+scenes::Camera SceneView::camera() const {
+  vtkCamera* c = impl_->renderer->GetActiveCamera();
+  scenes::Camera camera;
+  c->GetPosition(camera.position.data());
+  c->GetFocalPoint(camera.focalPoint.data());
+  c->GetViewUp(camera.viewUp.data());
+  camera.viewAngleDegrees = c->GetViewAngle();
+  return camera;
+}
+
+widgets::Ray SceneView::rayAt(double x, double y) const {
+  vtkRenderer* r = impl_->renderer;
+  auto world = [&](double z) {
+    r->SetDisplayPoint(x, y, z);
+    r->DisplayToWorld();
+    double p[4];
+    r->GetWorldPoint(p);
+    return Eigen::Vector3d(p[0] / p[3], p[1] / p[3], p[2] / p[3]);
+  };
+  widgets::Ray ray;
+  ray.origin = world(0.0);
+  ray.direction = (world(1.0) - ray.origin).normalized();
+  return ray;
+}
+
+Eigen::Vector2d SceneView::displayPoint(const Eigen::Vector3d& p) const {
+  vtkRenderer* r = impl_->renderer;
+  r->SetWorldPoint(p.x(), p.y(), p.z(), 1.0);
+  r->WorldToDisplay();
+  double d[3];
+  r->GetDisplayPoint(d);
+  return {d[0], d[1]};
+}
+
+double SceneView::pixelSize() const {
+  vtkCamera* c = impl_->renderer->GetActiveCamera();
+  const int* size = impl_->renderer->GetSize();
+  const double height = std::max(1, size[1]);
+  return 2.0 * c->GetDistance() * std::tan(c->GetViewAngle() * std::numbers::pi / 360.0) / height;
 }
 
 }  // namespace ffdkit::app

@@ -5,13 +5,22 @@
 
 #include <QMainWindow>
 
+#include "ffdkit/scenes/command_stack.h"
 #include "ffdkit/scenes/scene.h"
+#include "ffdkit/scenes/scene_deformer.h"
+
+class QTreeWidget;
 
 namespace ffdkit::app {
 
 class VtkViewWidget;
+class InteractionController;
+class SceneView;
 
-/// The application window: the 3D view of the current scene, menus and a status bar.
+/// The application window: the 3D view, an outliner of objects / widget tree / bindings, a
+/// property panel for the selection, menus, toolbar, status bar (last deform time) and undo.
+/// Every model change goes through the InteractionController and so the command stack.
+/// Actions have object names ("actionNewLattice", "actionBind", ...) for tests and scripting.
 class MainWindow : public QMainWindow {
   Q_OBJECT
 
@@ -22,16 +31,37 @@ class MainWindow : public QMainWindow {
   /// Loads a scene file (or a sample-scene folder) and shows it.
   /// @throws scenes::SceneFileError if the file cannot be read; the current scene stays.
   void openScene(const std::filesystem::path& path);
+  /// Writes the scene (inline widgets). @throws scenes::SceneFileError.
+  void saveScene(const std::filesystem::path& path);
+  /// Replaces the widget model by a widget file's (undoable). @throws scenes::WidgetFileError.
+  void openWidgetFile(const std::filesystem::path& path);
+  /// @throws scenes::WidgetFileError.
+  void saveWidgetFile(const std::filesystem::path& path);
+  /// Adds a mesh file as an object (undoable). @throws scenes::MeshIoError.
+  void importMesh(const std::filesystem::path& path);
+  /// Writes the selected (else the first) object at its deformed points. @throws scenes::MeshIoError.
+  void exportMesh(const std::filesystem::path& path);
+  /// Opens whatever `path` is: scene, widget file (by its "format"), or mesh.
+  void openAny(const std::filesystem::path& path);
 
-  /// Shows `scene` (replacing the current one).
+  /// Shows `scene` (replacing the current one; clears undo).
   void setScene(scenes::Scene scene);
   const scenes::Scene& scene() const;
+  const scenes::SceneDeformer& deformer() const;
+  scenes::CommandStack& commands() const;
+  InteractionController& controller() const;
+  SceneView& sceneView() const;
+  QTreeWidget* outliner() const;
 
   VtkViewWidget* view() const;
 
- private:
-  void openSceneDialog();
+ protected:
+  bool eventFilter(QObject* watched, QEvent* event) override;
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
+  void closeEvent(QCloseEvent* event) override;
 
+ private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

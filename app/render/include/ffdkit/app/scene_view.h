@@ -1,16 +1,40 @@
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
+#include "ffdkit/widgets/ray.h"
+#include "ffdkit/widgets/widget_id.h"
 
 class vtkRenderer;
 
 namespace ffdkit::app {
 
-/// Draws a scene into a VTK renderer: shaded objects at their deformed points, lattice points
-/// and edges. The actors rebuild themselves from the model; they hold no state of their own.
+/// A lattice control point singled out by the user (a pick target for "add widget to cell").
+struct LatticePointRef {
+  widgets::WidgetId lattice;
+  Eigen::Index index = 0;  ///< flat index i + l*(j + m*k)
+  friend bool operator==(const LatticePointRef&, const LatticePointRef&) = default;
+};
+
+/// What the view emphasises; the model knows nothing about it.
+struct ViewHighlights {
+  std::optional<widgets::WidgetId> hovered;
+  std::vector<widgets::WidgetId> selected;
+  std::vector<widgets::WidgetId> visited;  ///< widgets the active gesture moves (spec §5)
+  std::optional<LatticePointRef> point;    ///< a picked lattice point
+};
+
+/// Draws a scene into a VTK renderer: shaded objects at their deformed points, curves as
+/// lines, lattice points and edges, cells as points, affine widgets as glyphs at their frames
+/// (arrow = translate, ring = rotate, cube = scale, or a part of the parts library), coloured
+/// by kind, with hover / selection / gesture highlights. The actors rebuild themselves from the
+/// model; they hold no state of their own.
 class SceneView {
  public:
   /// Draws into `renderer` (not owned; must outlive the view).
@@ -23,8 +47,25 @@ class SceneView {
   /// sets background and camera from it.
   void show(const scenes::Scene& scene, const scenes::SceneDeformer& deformed);
 
+  /// Like show() but keeps the camera; when the objects are the same as last time only their
+  /// points are replaced (a drag step).
+  void refresh(const scenes::Scene& scene, const scenes::SceneDeformer& deformed);
+
+  /// Highlights used by the next show() / refresh().
+  void setHighlights(const ViewHighlights& highlights);
+
   /// Sets the renderer's camera from `camera` (clipping range reset to the scene).
   void applyCamera(const scenes::Camera& camera);
+  /// The renderer's current camera.
+  scenes::Camera camera() const;
+
+  /// World ray from the camera through display pixel (x, y) (VTK display coordinates: device
+  /// pixels, origin at the bottom left). Needs the renderer to be in a sized render window.
+  widgets::Ray rayAt(double x, double y) const;
+  /// Display pixel (VTK display coordinates, as rayAt) where the world point `p` is drawn.
+  Eigen::Vector2d displayPoint(const Eigen::Vector3d& p) const;
+  /// World length of one pixel at the camera's focal distance (for pick tolerances).
+  double pixelSize() const;
 
  private:
   struct Impl;

@@ -1,0 +1,132 @@
+#pragma once
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ffdkit/app/scene_view.h"
+#include "ffdkit/scenes/command_stack.h"
+#include "ffdkit/scenes/primitive.h"
+#include "ffdkit/scenes/scene.h"
+#include "ffdkit/scenes/scene_deformer.h"
+#include "ffdkit/widgets/ray.h"
+#include "ffdkit/widgets/widget_model.h"
+
+namespace ffdkit::app {
+
+/// Options of InteractionController::newLattice (seed 001 l.2389): counts and bases per axis,
+/// box (unit box at the origin) or cylindrical (EFFD, axes radius / angle / height).
+struct NewLatticeOptions {
+  Eigen::Vector3i counts = Eigen::Vector3i::Constant(3);
+  std::array<ffd::AxisBasis, 3> basis{ffd::AxisBasis::bernstein(), ffd::AxisBasis::bernstein(),
+                                      ffd::AxisBasis::bernstein()};
+  bool cylindrical = false;  ///< counts (radial, angular, height); the angular basis is made periodic
+};
+
+/// The GUI-free heart of the application: turns world rays into model gestures (hover, pick,
+/// drag) and user operations into model edits, each one undoable command on `commands`, and
+/// keeps the deformed objects up to date. Views only convert pixels to rays and redraw when
+/// onChanged fires (STYLE 9-11: no lattice or widget math in a QWidget).
+///
+/// A drag is one gesture: press() begins it (WidgetModel::beginDrag), drag() moves it and
+/// re-deforms live (SceneDeformer::update with the dragged lattice active), release() ends it,
+/// re-embeds what was throttled (finishGesture) and pushes one command.
+class InteractionController {
+ public:
+  /// All three must outlive the controller.
+  InteractionController(scenes::Scene& scene, scenes::SceneDeformer& deformer, scenes::CommandStack& commands);
+
+  // ---- pointer -------------------------------------------------------------------------
+  /// Updates the hovered widget. `tolerance` in world units. @return true if it changed.
+  bool hover(const widgets::Ray& ray, double tolerance);
+  /// What a press hit.
+  enum class PressResult {
+    Nothing,  ///< empty space: the caller orbits the camera (and clears the selection on a click)
+    Point,    ///< a lattice control point became the picked point; the camera may still orbit
+    Widget    ///< a widget was selected and its drag began: the caller must not orbit
+  };
+  /// Picks under the ray: an affine glyph or a cell (WidgetModel::pick), else a lattice control
+  /// point within `tolerance` (world units). A widget becomes the selection (or is added to it
+  /// with `extend`) and starts a drag (WidgetModel::beginDrag).
+  PressResult press(const widgets::Ray& ray, double tolerance, bool extend = false);
+  void drag(const widgets::Ray& ray);
+  void release();
+  /// Abandons the active drag (the model returns to the gesture start; nothing is pushed).
+  void cancel();
+  bool dragging() const { return dragging_; }
+
+  // ---- selection -------------------------------------------------------------------------
+  const std::vector<widgets::WidgetId>& selection() const { return selection_; }
+  void setSelection(std::vector<widgets::WidgetId> selection);
+  const std::optional<LatticePointRef>& pickedPoint() const { return point_; }
+  void setPickedPoint(std::optional<LatticePointRef> point);
+  void clearSelection();
+  std::optional<widgets::WidgetId> hovered() const { return hovered_; }
+  /// What a view should emphasise now.
+  ViewHighlights highlights() const;
+
+  // ---- operations (each one undoable command; they throw the model's errors unchanged) ----
+  widgets::WidgetId newLattice(const NewLatticeOptions& options);
+  /// A translate / rotate / scale widget on `cell`.
+  widgets::WidgetId addAffine(widgets::WidgetId cell, widgets::AffineKind kind);
+  /// A widget on the point cell at `point` (made if the point has none yet).
+  widgets::WidgetId addAffineAtPoint(const LatticePointRef& point, widgets::AffineKind kind);
+  /// Binds two widgets; the kind follows from their types (a cell and a lattice: hierarchy).
+  widgets::BindingId bind(widgets::WidgetId a, widgets::WidgetId b);
+  void unbind(widgets::BindingId binding);
+  void removeWidget(widgets::WidgetId id);
+  /// Fits a root lattice's frame to the object's bounding box (padded by 5 % of its diagonal)
+  /// and attaches it to the object.
+  void attachLattice(widgets::WidgetId lattice, const std::string& object);
+  void detachLattice(widgets::WidgetId lattice, const std::string& object);
+  /// Adds a primitive object ("sphere1", ...). @return its name.
+  std::string addPrimitive(const scenes::PrimitiveOptions& options);
+  /// Adds an object (an imported mesh); its name must be unique.
+  void addObject(scenes::SceneObject object);
+  void setVariation(widgets::WidgetId affine, double value);
+  void setPlacement(widgets::WidgetId affine, const Eigen::Affine3d& placement);
+  void setGlyph(widgets::WidgetId affine, const widgets::Glyph& glyph);
+  void setMask(widgets::BindingId binding, widgets::AffineMask mask);
+  void setRule(widgets::BindingId binding, const widgets::ConversionRule& rule);
+  void setLatticeSettings(widgets::WidgetId lattice, const widgets::LatticeSettings& settings);
+  void setSiblingPosition(widgets::WidgetId lattice, std::size_t position);
+  /// Replaces the widget model (a widget file opened): attachments of lattices that no longer
+  /// exist are dropped.
+  void replaceWidgets(widgets::WidgetModel model);
+
+  /// Re-deforms every object (after undo/redo or a scene change) and notifies.
+  void refresh();
+
+  /// Called after every change of the scene, the selection or the hover (redraw, refresh panels).
+  std::function<void()> onChanged;
+  /// Called after a change of the widget tree or the objects (rebuild outliners).
+  std::function<void()> onStructureChanged;
+
+ private:
+  struct Snapshot {
+    widgets::WidgetModel widgets;
+    std::vector<scenes::Attachment> attachments;
+    std::optional<std::vector<scenes::SceneObject>> objects;  ///< only for edits of objects
+  };
+  Snapshot snapshot(bool withObjects) const;
+  void restore(const Snapshot& s);
+  /// Runs `change` on the scene and pushes it as one command (snapshots before and after).
+  template <class Change>
+  auto edit(const std::string& description, Change change, bool withObjects = false);
+  std::optional<widgets::WidgetId> activeLattice(widgets::WidgetId id) const;
+  void notify();
+
+  scenes::Scene& scene_;
+  scenes::SceneDeformer& deformer_;
+  scenes::CommandStack& commands_;
+  std::vector<widgets::WidgetId> selection_;
+  std::optional<LatticePointRef> point_;
+  std::optional<widgets::WidgetId> hovered_;
+  bool dragging_ = false;
+  std::optional<widgets::WidgetId> dragLattice_;
+  widgets::WidgetModelState dragStart_;
+};
+
+}  // namespace ffdkit::app

@@ -1,0 +1,380 @@
+#include "ffdkit/app/interaction_controller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <type_traits>
+
+#include "ffdkit/ffd/cylindrical_lattice.h"
+
+namespace ffdkit::app {
+
+using widgets::WidgetId;
+using widgets::WidgetType;
+
+InteractionController::InteractionController(scenes::Scene& scene, scenes::SceneDeformer& deformer,
+                                             scenes::CommandStack& commands)
+    : scene_(scene), deformer_(deformer), commands_(commands) {}
+
+// ---- pointer ---------------------------------------------------------------------------
+
+bool InteractionController::hover(const widgets::Ray& ray, double tolerance) {
+  if (dragging_) return false;
+  widgets::PickOptions options;
+  options.tolerance = tolerance;
+  const auto hit = scene_.widgets.pick(ray, options);
+  const std::optional<WidgetId> now = hit ? std::optional<WidgetId>(hit->id) : std::nullopt;
+  if (now == hovered_) return false;
+  hovered_ = now;
+  notify();
+  return true;
+}
+
+InteractionController::PressResult InteractionController::press(const widgets::Ray& ray, double tolerance, bool extend) {
+  if (dragging_) cancel();
+  widgets::PickOptions options;
+  options.tolerance = tolerance;
+  if (const auto hit = scene_.widgets.pick(ray, options)) {
+    if (!extend) selection_.clear();
+    if (std::find(selection_.begin(), selection_.end(), hit->id) == selection_.end()) selection_.push_back(hit->id);
+    point_.reset();
+    dragStart_ = scene_.widgets.captureState();
+    scene_.widgets.beginDrag(hit->id, ray);
+    dragging_ = true;
+    dragLattice_ = activeLattice(hit->id);
+    notify();
+    return PressResult::Widget;
+  }
+  // A lattice control point: the target of "add widget" (a point cell is made on demand).
+  const Eigen::Vector3d dir = ray.direction.normalized();
+  std::optional<LatticePointRef> best;
+  double bestT = std::numeric_limits<double>::infinity();
+  for (WidgetId lattice : scene_.widgets.widgets(WidgetType::Lattice)) {
+    const Eigen::MatrixX3d points = scene_.widgets.worldControlPoints(lattice);
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+      const Eigen::Vector3d v = points.row(i).transpose() - ray.origin;
+      const double t = v.dot(dir);
+      if (t < 0.0 || (v - t * dir).norm() > tolerance || t >= bestT) continue;
+      bestT = t;
+      best = LatticePointRef{lattice, i};
+    }
+  }
+  if (!best) return PressResult::Nothing;
+  point_ = best;
+  if (!extend) selection_.clear();
+  selection_.push_back(best->lattice);
+  notify();
+  return PressResult::Point;
+}
+
+void InteractionController::drag(const widgets::Ray& ray) {
+  if (!dragging_) return;
+  scene_.widgets.dragTo(ray);
+  deformer_.update(scene_, dragLattice_);
+  notify();
+}
+
+void InteractionController::release() {
+  if (!dragging_) return;
+  dragging_ = false;
+  const WidgetId target = *scene_.widgets.gestureWidget();
+  scene_.widgets.endGesture();
+  deformer_.update(scene_, dragLattice_);
+  deformer_.finishGesture(scene_);
+  const widgets::WidgetModelState end = scene_.widgets.captureState();
+  commands_.pushSnapshots("Drag " + scene_.widgets.name(target), dragStart_, end,
+                          [this](const widgets::WidgetModelState& state) {
+                            scene_.widgets.restoreState(state);
+                            refresh();
+                          });
+  notify();
+}
+
+void InteractionController::cancel() {
+  if (!dragging_) return;
+  dragging_ = false;
+  scene_.widgets.cancelGesture();
+  refresh();
+}
+
+std::optional<WidgetId> InteractionController::activeLattice(WidgetId id) const {
+  const auto& m = scene_.widgets;
+  switch (m.type(id)) {
+    case WidgetType::Lattice: return id;
+    case WidgetType::Cell: return m.latticeOf(id);
+    case WidgetType::Affine:
+      if (auto cell = m.attachedCell(id)) return m.latticeOf(*cell);
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+// ---- selection -------------------------------------------------------------------------
+
+void InteractionController::setSelection(std::vector<WidgetId> selection) {
+  selection_ = std::move(selection);
+  point_.reset();
+  notify();
+}
+
+void InteractionController::setPickedPoint(std::optional<LatticePointRef> point) {
+  point_ = point;
+  notify();
+}
+
+void InteractionController::clearSelection() {
+  if (selection_.empty() && !point_) return;
+  selection_.clear();
+  point_.reset();
+  notify();
+}
+
+ViewHighlights InteractionController::highlights() const {
+  ViewHighlights h;
+  h.hovered = hovered_;
+  h.selected = selection_;
+  h.visited = scene_.widgets.gestureVisitOrder();
+  h.point = point_;
+  return h;
+}
+
+// ---- operations --------------------------------------------------------------------------
+
+InteractionController::Snapshot InteractionController::snapshot(bool withObjects) const {
+  Snapshot s{scene_.widgets, scene_.attachments, std::nullopt};
+  if (withObjects) s.objects = scene_.objects;
+  return s;
+}
+
+void InteractionController::restore(const Snapshot& s) {
+  scene_.widgets = s.widgets;
+  scene_.attachments = s.attachments;
+  if (s.objects) scene_.objects = *s.objects;
+  // Selections may name widgets that no longer exist.
+  std::erase_if(selection_, [&](WidgetId id) { return !scene_.widgets.contains(id); });
+  if (point_ && !scene_.widgets.contains(point_->lattice)) point_.reset();
+  if (hovered_ && !scene_.widgets.contains(*hovered_)) hovered_.reset();
+  deformer_.reset();
+  refresh();
+  if (onStructureChanged) onStructureChanged();
+}
+
+template <class Change>
+auto InteractionController::edit(const std::string& description, Change change, bool withObjects) {
+  if (dragging_) cancel();
+  Snapshot before = snapshot(withObjects);
+  auto finish = [&] {
+    Snapshot after = snapshot(withObjects);
+    commands_.pushSnapshots(description, std::move(before), std::move(after),
+                            [this](const Snapshot& s) { restore(s); });
+    deformer_.update(scene_);
+    deformer_.finishGesture(scene_);
+    notify();
+    if (onStructureChanged) onStructureChanged();
+  };
+  try {
+    if constexpr (std::is_void_v<decltype(change())>) {
+      change();
+      finish();
+    } else {
+      auto result = change();
+      finish();
+      return result;
+    }
+  } catch (...) {
+    restore(before);  // a failed edit leaves no trace
+    throw;
+  }
+}
+
+WidgetId InteractionController::newLattice(const NewLatticeOptions& options) {
+  return edit("New lattice", [&] {
+    widgets::LatticeOptions lattice;
+    lattice.counts = options.counts;
+    lattice.settings.basis = options.basis;
+    if (options.cylindrical) {
+      ffd::CylindricalLatticeOptions cylinder;
+      cylinder.counts = options.counts;
+      cylinder.bases = options.basis;
+      if (cylinder.bases[1].kind != ffd::AxisBasis::Kind::PeriodicBSpline)
+        cylinder.bases[1] = ffd::AxisBasis::periodic(std::min(3, options.counts.y() - 1));
+      cylinder.outerRadius = 0.5;  // in the unit box like a box lattice
+      cylinder.zMin = 0.0;
+      cylinder.zMax = 1.0;
+      cylinder.frame = Eigen::Translation3d(0.5, 0.5, 0.0);
+      const ffd::Lattice rest = ffd::makeCylindricalLattice(cylinder);
+      lattice.restPoints = rest.restPoints();
+      lattice.settings.basis = cylinder.bases;
+      lattice.settings.cylinder = rest.cylinderRestShape();
+      lattice.frame = cylinder.frame;
+    }
+    const WidgetId id = scene_.widgets.addLattice(lattice);
+    selection_ = {id};
+    return id;
+  });
+}
+
+WidgetId InteractionController::addAffine(WidgetId cell, widgets::AffineKind kind) {
+  return edit("Add " + std::string(widgets::affineKindName(kind)) + " widget", [&] {
+    const WidgetId id = scene_.widgets.addAffine(cell, kind);
+    selection_ = {id};
+    return id;
+  });
+}
+
+WidgetId InteractionController::addAffineAtPoint(const LatticePointRef& point, widgets::AffineKind kind) {
+  return edit("Add " + std::string(widgets::affineKindName(kind)) + " widget", [&] {
+    auto& m = scene_.widgets;
+    std::optional<WidgetId> cell;
+    for (WidgetId c : m.cellsOf(point.lattice)) {
+      const auto& indices = m.cellIndices(c);
+      if (m.cellSpec(c).kind == widgets::CellKind::Point && indices.size() == 1 && indices.front() == point.index)
+        cell = c;
+    }
+    if (!cell) {
+      const Eigen::Vector3i n = m.counts(point.lattice);
+      const int i = static_cast<int>(point.index % n.x());
+      const int j = static_cast<int>((point.index / n.x()) % n.y());
+      const int k = static_cast<int>(point.index / (n.x() * n.y()));
+      cell = m.addCell(point.lattice, widgets::CellSpec::point(i, j, k));
+    }
+    const WidgetId id = m.addAffine(*cell, kind);
+    selection_ = {id};
+    point_.reset();
+    return id;
+  });
+}
+
+widgets::BindingId InteractionController::bind(WidgetId a, WidgetId b) {
+  return edit("Bind " + scene_.widgets.name(a) + " - " + scene_.widgets.name(b),
+              [&] { return scene_.widgets.bind(a, b); });
+}
+
+void InteractionController::unbind(widgets::BindingId binding) {
+  edit("Unbind", [&] { scene_.widgets.unbind(binding); });
+}
+
+void InteractionController::removeWidget(WidgetId id) {
+  edit("Remove " + scene_.widgets.name(id), [&] {
+    const std::string name = scene_.widgets.name(id);
+    scene_.widgets.remove(id);
+    std::erase_if(scene_.attachments, [&](const scenes::Attachment& a) { return a.lattice == name; });
+    selection_.clear();
+    point_.reset();
+  });
+}
+
+void InteractionController::attachLattice(WidgetId lattice, const std::string& objectName) {
+  edit("Attach " + scene_.widgets.name(lattice) + " to " + objectName, [&] {
+    const scenes::SceneObject* object = scene_.findObject(objectName);
+    if (object == nullptr) throw std::invalid_argument("no object '" + objectName + "'");
+    if (object->mesh.points.rows() == 0) throw std::invalid_argument("object '" + objectName + "' has no points");
+    if (scene_.widgets.parentCell(lattice))
+      throw std::invalid_argument("'" + scene_.widgets.name(lattice) + "' is a child lattice: attach its root");
+    // Fit the unit box onto the padded bounding box (the same rule as scenes::attachNewLattice).
+    const Eigen::Vector3d lo = object->mesh.points.colwise().minCoeff();
+    const Eigen::Vector3d hi = object->mesh.points.colwise().maxCoeff();
+    const double diagonal = (hi - lo).norm();
+    const double pad = 0.05 * diagonal;
+    const Eigen::Vector3d extent =
+        ((hi - lo).array() + 2.0 * pad).max(std::max(1e-3, 0.05 * diagonal)).matrix();
+    const Eigen::Vector3d origin = 0.5 * (lo + hi) - 0.5 * extent;
+    scene_.widgets.setLatticeFrame(lattice, Eigen::Translation3d(origin) * Eigen::Scaling(extent));
+    const std::string& name = scene_.widgets.name(lattice);
+    auto it = std::find_if(scene_.attachments.begin(), scene_.attachments.end(),
+                           [&](const scenes::Attachment& a) { return a.lattice == name; });
+    if (it == scene_.attachments.end()) {
+      scene_.attachments.push_back({name, {objectName}});
+    } else if (std::find(it->objects.begin(), it->objects.end(), objectName) == it->objects.end()) {
+      it->objects.push_back(objectName);
+    }
+    scenes::validateScene(scene_);
+  });
+}
+
+void InteractionController::detachLattice(WidgetId lattice, const std::string& object) {
+  edit("Detach " + scene_.widgets.name(lattice) + " from " + object,
+       [&] { scenes::detachLattice(scene_, scene_.widgets.name(lattice), object); });
+}
+
+std::string InteractionController::addPrimitive(const scenes::PrimitiveOptions& options) {
+  return edit(
+      "Add " + std::string(scenes::primitiveKindName(options.kind)),
+      [&] {
+        const std::string base(scenes::primitiveKindName(options.kind));
+        std::string name;
+        for (int n = 1; name.empty() || scene_.findObject(name) != nullptr; ++n) name = base + std::to_string(n);
+        scenes::SceneObject object;
+        object.name = name;
+        object.source = options;
+        object.mesh = scenes::buildObjectMesh(object.source, ".");
+        scene_.objects.push_back(std::move(object));
+        return name;
+      },
+      true);
+}
+
+void InteractionController::addObject(scenes::SceneObject object) {
+  edit(
+      "Import " + object.name,
+      [&] {
+        if (scene_.findObject(object.name) != nullptr) throw std::invalid_argument("object '" + object.name + "' exists");
+        scene_.objects.push_back(std::move(object));
+      },
+      true);
+}
+
+void InteractionController::setVariation(WidgetId affine, double value) {
+  edit("Set variation of " + scene_.widgets.name(affine), [&] { scene_.widgets.setVariation(affine, value); });
+}
+
+void InteractionController::setPlacement(WidgetId affine, const Eigen::Affine3d& placement) {
+  edit("Place " + scene_.widgets.name(affine), [&] { scene_.widgets.setPlacement(affine, placement); });
+}
+
+void InteractionController::setGlyph(WidgetId affine, const widgets::Glyph& glyph) {
+  edit("Glyph of " + scene_.widgets.name(affine), [&] { scene_.widgets.setGlyph(affine, glyph); });
+}
+
+void InteractionController::setMask(widgets::BindingId binding, widgets::AffineMask mask) {
+  edit("Set mask " + widgets::maskString(mask), [&] { scene_.widgets.setMask(binding, mask); });
+}
+
+void InteractionController::setRule(widgets::BindingId binding, const widgets::ConversionRule& rule) {
+  edit("Set conversion rule", [&] { scene_.widgets.setRule(binding, rule); });
+}
+
+void InteractionController::setLatticeSettings(WidgetId lattice, const widgets::LatticeSettings& settings) {
+  edit("Lattice settings of " + scene_.widgets.name(lattice),
+       [&] { scene_.widgets.setLatticeSettings(lattice, settings); });
+}
+
+void InteractionController::setSiblingPosition(WidgetId lattice, std::size_t position) {
+  edit("Reorder " + scene_.widgets.name(lattice), [&] { scene_.widgets.setSiblingPosition(lattice, position); });
+}
+
+void InteractionController::replaceWidgets(widgets::WidgetModel model) {
+  edit("Open widget file", [&] {
+    scene_.widgets = std::move(model);
+    std::erase_if(scene_.attachments, [&](const scenes::Attachment& a) {
+      const auto roots = scene_.widgets.roots();
+      return std::none_of(roots.begin(), roots.end(), [&](WidgetId r) { return scene_.widgets.name(r) == a.lattice; });
+    });
+    selection_.clear();
+    point_.reset();
+    hovered_.reset();
+  });
+}
+
+void InteractionController::refresh() {
+  deformer_.update(scene_);
+  deformer_.finishGesture(scene_);
+  notify();
+}
+
+void InteractionController::notify() {
+  if (onChanged) onChanged();
+}
+
+}  // namespace ffdkit::app

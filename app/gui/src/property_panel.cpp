@@ -1,0 +1,272 @@
+#include "property_panel.h"
+
+#include <cmath>
+#include <exception>
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QToolButton>
+
+#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/app/parts.h"
+
+namespace ffdkit::app {
+namespace {
+
+QString qs(const std::string& s) { return QString::fromStdString(s); }
+QString qs(std::string_view s) { return QString::fromStdString(std::string(s)); }
+
+QDoubleSpinBox* spin(const QString& name, double value, double lo, double hi, int decimals = 4) {
+  auto* box = new QDoubleSpinBox;
+  box->setObjectName(name);
+  box->setRange(lo, hi);
+  box->setDecimals(decimals);
+  box->setSingleStep(0.05);
+  box->setValue(value);
+  box->setKeyboardTracking(false);
+  return box;
+}
+
+QString basisName(const ffd::AxisBasis& b) {
+  switch (b.kind) {
+    case ffd::AxisBasis::Kind::Bernstein: return "Bernstein";
+    case ffd::AxisBasis::Kind::BSpline: return QString("B-spline deg %1").arg(b.degree);
+    case ffd::AxisBasis::Kind::PeriodicBSpline: return QString("periodic B-spline deg %1").arg(b.degree);
+  }
+  return "?";
+}
+
+}  // namespace
+
+PropertyPanel::PropertyPanel(InteractionController& controller, const scenes::Scene& scene, QWidget* parent)
+    : QWidget(parent), controller_(controller), scene_(scene) {
+  setObjectName("propertyPanel");
+  form_ = new QFormLayout(this);
+}
+
+template <class F>
+void PropertyPanel::guarded(F f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    emit error(QString::fromStdString(e.what()));
+  }
+}
+
+void PropertyPanel::clearRows() {
+  while (form_->rowCount() > 0) form_->removeRow(0);
+}
+
+void PropertyPanel::showSelection(const std::vector<OutlinerEntry>& selection) {
+  clearRows();
+  if (selection.empty()) {
+    form_->addRow(new QLabel(tr("Nothing selected. Click a glyph, a lattice point or a row of the outliner.")));
+    return;
+  }
+  if (selection.size() > 1) form_->addRow(tr("Selected"), new QLabel(tr("%1 items").arg(selection.size())));
+  const OutlinerEntry& e = selection.front();
+  const auto& m = scene_.widgets;
+  switch (e.kind) {
+    case OutlinerEntry::Kind::Object: showObject(e.object); break;
+    case OutlinerEntry::Kind::Binding:
+      if (e.binding.valid()) showBinding(e.binding);
+      break;
+    case OutlinerEntry::Kind::Widget:
+      if (!m.contains(e.widget)) break;
+      switch (m.type(e.widget)) {
+        case widgets::WidgetType::Affine: showAffine(e.widget); break;
+        case widgets::WidgetType::Lattice: showLattice(e.widget); break;
+        case widgets::WidgetType::Cell: showCell(e.widget); break;
+      }
+      break;
+  }
+}
+
+void PropertyPanel::showAffine(widgets::WidgetId id) {
+  const auto& m = scene_.widgets;
+  form_->addRow(tr("Name"), new QLabel(qs(m.name(id))));
+  const widgets::AffineKind kind = m.affineKind(id);
+  form_->addRow(tr("Kind"), new QLabel(qs(affineKindName(kind))));
+  const auto cell = m.attachedCell(id);
+  form_->addRow(tr("Cell"), new QLabel(cell ? qs(m.name(*cell)) : tr("(free)")));
+  const QString unit = kind == widgets::AffineKind::Translate ? tr("distance")
+                       : kind == widgets::AffineKind::Rotate  ? tr("radians")
+                                                              : tr("log scale");
+  auto* variation = spin("variation", m.variation(id), -1e6, 1e6);
+  connect(variation, &QDoubleSpinBox::valueChanged, this,
+          [this, id](double v) { guarded([&] { controller_.setVariation(id, v); }); });
+  form_->addRow(tr("Variation (%1)").arg(unit), variation);
+
+  // Placement: position in the cell's rest frame (orientation kept).
+  const Eigen::Affine3d placement = m.placement(id);
+  auto* position = new QWidget;
+  auto* row = new QHBoxLayout(position);
+  row->setContentsMargins(0, 0, 0, 0);
+  for (int axis = 0; axis < 3; ++axis) {
+    auto* box = spin(QString("placement%1").arg("xyz"[axis]), placement.translation()[axis], -1e3, 1e3, 3);
+    connect(box, &QDoubleSpinBox::valueChanged, this, [this, id, axis](double v) {
+      guarded([&] {
+        Eigen::Affine3d p = scene_.widgets.placement(id);
+        p.translation()[axis] = v;
+        controller_.setPlacement(id, p);
+      });
+    });
+    row->addWidget(box);
+  }
+  form_->addRow(tr("Position"), position);
+
+  // Glyph: the default shape of the kind or a part of the library, and its size.
+  const widgets::Glyph glyph = m.glyph(id);
+  auto* shape = new QComboBox;
+  shape->setObjectName("glyph");
+  shape->addItem(tr("default"), QString());
+  for (const auto& part : partNames()) shape->addItem(qs(part), qs(part));
+  const int current = shape->findData(partMesh(glyph.shape) ? qs(glyph.shape) : QString());
+  shape->setCurrentIndex(std::max(0, current));
+  connect(shape, &QComboBox::currentIndexChanged, this, [this, id, shape](int) {
+    guarded([&] {
+      widgets::Glyph g = scene_.widgets.glyph(id);
+      const QString part = shape->currentData().toString();
+      if (part.isEmpty()) {
+        g.shape = std::string(scene_.widgets.affineKind(id) == widgets::AffineKind::Translate ? "arrow"
+                              : scene_.widgets.affineKind(id) == widgets::AffineKind::Rotate  ? "ring"
+                                                                                               : "cube");
+      } else {
+        g.shape = part.toStdString();
+      }
+      controller_.setGlyph(id, g);
+    });
+  });
+  form_->addRow(tr("Glyph / part"), shape);
+  auto* size = spin("glyphSize", glyph.size, 0.001, 100.0, 3);
+  connect(size, &QDoubleSpinBox::valueChanged, this, [this, id](double v) {
+    guarded([&] {
+      widgets::Glyph g = scene_.widgets.glyph(id);
+      g.size = v;
+      controller_.setGlyph(id, g);
+    });
+  });
+  form_->addRow(tr("Glyph size"), size);
+}
+
+void PropertyPanel::showBinding(widgets::BindingId id) {
+  const auto& m = scene_.widgets;
+  const widgets::Binding& b = m.binding(id);
+  form_->addRow(tr("Binding"), new QLabel(qs(bindingKindName(b.kind))));
+  form_->addRow(tr("From"), new QLabel(qs(m.name(b.from))));
+  form_->addRow(tr("To"), new QLabel(qs(m.name(b.to))));
+  form_->addRow(tr("Direction"), new QLabel(b.oneWay ? tr("one way") : tr("two way")));
+  if (b.kind != widgets::BindingKind::Variation) {
+    auto* masks = new QWidget;
+    auto* row = new QHBoxLayout(masks);
+    row->setContentsMargins(0, 0, 0, 0);
+    const bool on[3] = {b.mask.translate, b.mask.rotate, b.mask.scale};
+    for (int c = 0; c < 3; ++c) {
+      auto* button = new QToolButton;
+      const QString letter = QString("TRS"[c]);
+      button->setObjectName("mask" + letter);
+      button->setText(letter);
+      button->setCheckable(true);
+      button->setChecked(on[c]);
+      button->setToolTip(QStringList{tr("translation"), tr("rotation"), tr("scale")}[c]);
+      connect(button, &QToolButton::toggled, this, [this, id, c](bool checked) {
+        guarded([&] {
+          widgets::AffineMask mask = scene_.widgets.binding(id).mask;
+          (c == 0 ? mask.translate : c == 1 ? mask.rotate : mask.scale) = checked;
+          controller_.setMask(id, mask);
+        });
+      });
+      row->addWidget(button);
+    }
+    row->addStretch();
+    form_->addRow(tr("Mask"), masks);
+    return;
+  }
+  auto* gain = spin("gain", b.rule.gain, -1e4, 1e4);
+  connect(gain, &QDoubleSpinBox::valueChanged, this, [this, id](double v) {
+    guarded([&] {
+      widgets::ConversionRule rule = scene_.widgets.binding(id).rule;
+      rule.gain = v;
+      controller_.setRule(id, rule);
+    });
+  });
+  form_->addRow(tr("Gain (to per from)"), gain);
+  auto* clamp = new QCheckBox(tr("clamp the 'to' variation"));
+  clamp->setObjectName("clamp");
+  clamp->setChecked(b.rule.clamp.has_value());
+  const widgets::VariationRange range = b.rule.clamp.value_or(widgets::VariationRange{-1.0, 1.0});
+  auto* lo = spin("clampMin", range.min, -1e6, 1e6);
+  auto* hi = spin("clampMax", range.max, -1e6, 1e6);
+  auto apply = [this, id, clamp, lo, hi] {
+    guarded([&] {
+      widgets::ConversionRule rule = scene_.widgets.binding(id).rule;
+      rule.clamp = clamp->isChecked() ? std::optional(widgets::VariationRange{lo->value(), hi->value()}) : std::nullopt;
+      controller_.setRule(id, rule);
+    });
+  };
+  connect(clamp, &QCheckBox::toggled, this, apply);
+  connect(lo, &QDoubleSpinBox::valueChanged, this, [clamp, apply] { if (clamp->isChecked()) apply(); });
+  connect(hi, &QDoubleSpinBox::valueChanged, this, [clamp, apply] { if (clamp->isChecked()) apply(); });
+  form_->addRow(tr("Clamp"), clamp);
+  form_->addRow(tr("Clamp min"), lo);
+  form_->addRow(tr("Clamp max"), hi);
+}
+
+void PropertyPanel::showLattice(widgets::WidgetId id) {
+  const auto& m = scene_.widgets;
+  form_->addRow(tr("Lattice"), new QLabel(qs(m.name(id))));
+  const Eigen::Vector3i n = m.counts(id);
+  form_->addRow(tr("Counts"), new QLabel(QString("%1 x %2 x %3").arg(n.x()).arg(n.y()).arg(n.z())));
+  const auto& settings = m.latticeSettings(id);
+  form_->addRow(tr("Shape"), new QLabel(settings.cylinder ? tr("cylindrical (EFFD)") : tr("box")));
+  for (int axis = 0; axis < 3; ++axis)
+    form_->addRow(tr("Basis %1").arg("uvw"[axis]), new QLabel(basisName(settings.basis[static_cast<std::size_t>(axis)])));
+  auto* outside = new QComboBox;
+  outside->setObjectName("outside");
+  outside->addItems({tr("identity"), tr("clamp edge"), tr("extrapolate"), tr("falloff")});
+  outside->setCurrentIndex(static_cast<int>(settings.outside.kind));
+  connect(outside, &QComboBox::currentIndexChanged, this, [this, id](int index) {
+    guarded([&] {
+      widgets::LatticeSettings s = scene_.widgets.latticeSettings(id);
+      s.outside.kind = static_cast<ffd::OutsidePolicy::Kind>(index);
+      if (s.outside.kind == ffd::OutsidePolicy::Kind::Falloff && !(s.outside.distance > 0.0)) s.outside.distance = 0.25;
+      controller_.setLatticeSettings(id, s);
+    });
+  });
+  form_->addRow(tr("Outside points"), outside);
+  form_->addRow(tr("Cells"), new QLabel(QString::number(m.cellsOf(id).size())));
+  const auto parent = m.parentCell(id);
+  form_->addRow(tr("Parent"), new QLabel(parent ? qs(m.name(*parent)) : tr("(root)")));
+  QStringList objects;
+  for (const auto& a : scene_.attachments)
+    if (a.lattice == m.name(id))
+      for (const auto& o : a.objects) objects << qs(o);
+  form_->addRow(tr("Deforms"), new QLabel(objects.isEmpty() ? tr("(nothing)") : objects.join(", ")));
+}
+
+void PropertyPanel::showCell(widgets::WidgetId id) {
+  const auto& m = scene_.widgets;
+  form_->addRow(tr("Cell"), new QLabel(qs(m.name(id))));
+  form_->addRow(tr("Kind"), new QLabel(qs(cellKindName(m.cellSpec(id).kind))));
+  form_->addRow(tr("Lattice"), new QLabel(qs(m.name(m.latticeOf(id)))));
+  form_->addRow(tr("Points"), new QLabel(QString::number(m.cellIndices(id).size())));
+  form_->addRow(tr("Widgets"), new QLabel(QString::number(m.affinesOf(id).size())));
+}
+
+void PropertyPanel::showObject(const std::string& name) {
+  const scenes::SceneObject* object = scene_.findObject(name);
+  if (object == nullptr) return;
+  form_->addRow(tr("Object"), new QLabel(qs(name)));
+  form_->addRow(tr("Points"), new QLabel(QString::number(object->mesh.points.rows())));
+  form_->addRow(tr("Triangles"), new QLabel(QString::number(object->mesh.triangles.rows())));
+  form_->addRow(tr("Segments"), new QLabel(QString::number(object->mesh.segments.rows())));
+  QStringList lattices;
+  for (widgets::WidgetId l : scene_.latticesDeforming(name)) lattices << qs(scene_.widgets.name(l));
+  form_->addRow(tr("Deformed by"), new QLabel(lattices.isEmpty() ? tr("(nothing)") : lattices.join(", ")));
+}
+
+}  // namespace ffdkit::app

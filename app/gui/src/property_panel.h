@@ -1,0 +1,46 @@
+#pragma once
+
+#include <vector>
+
+#include <QWidget>
+
+#include "outliner.h"
+
+class QFormLayout;
+
+namespace ffdkit::app {
+
+class InteractionController;
+
+/// Properties of the selection, generated from the model: an affine widget (kind, variation,
+/// placement, glyph or part), a binding (kind, mask as T/R/S toggle buttons, conversion rule
+/// gain and clamp range), a lattice (counts, basis per axis, outside policy), a cell, an object.
+/// Every edit goes through the controller (one undoable command); errors are reported with
+/// `error`.
+class PropertyPanel : public QWidget {
+  Q_OBJECT
+
+ public:
+  PropertyPanel(InteractionController& controller, const scenes::Scene& scene, QWidget* parent = nullptr);
+  /// Shows the properties of `selection` (the first entry; several entries just list them).
+  void showSelection(const std::vector<OutlinerEntry>& selection);
+
+ signals:
+  void error(const QString& message);
+
+ private:
+  void clearRows();
+  void showAffine(widgets::WidgetId id);
+  void showBinding(widgets::BindingId id);
+  void showLattice(widgets::WidgetId id);
+  void showCell(widgets::WidgetId id);
+  void showObject(const std::string& name);
+  template <class F>
+  void guarded(F f);
+
+  InteractionController& controller_;
+  const scenes::Scene& scene_;
+  QFormLayout* form_ = nullptr;
+};
+
+}  // namespace ffdkit::app
