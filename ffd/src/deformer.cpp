@@ -306,7 +306,18 @@ Eigen::Index Deformer::evaluateBlocks(const Lattice& lattice, const Eigen::Ref<c
   const auto& blocks = embedding_.blocks();
   const auto& tiles = embedding_.tileBlocks();
   const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
-  const bool parallel = parallel_ && n >= kParallelPoints;
+  auto inFilter = [&](const Embedding::Block& block) {
+    return !cellFilter ||
+           (*cellFilter)[block.cell[0] + cells[0] * (block.cell[1] + static_cast<std::size_t>(cells[1]) * block.cell[2])];
+  };
+  // Few points to evaluate (a small incremental update): stay on this thread; waking OpenMP
+  // workers costs more, and on a busy machine their spinning slows everything else down.
+  Eigen::Index work = n;
+  if (cellFilter) {
+    work = 0;
+    for (const Embedding::Block& block : blocks) work += inFilter(block) ? block.end - block.begin : 0;
+  }
+  const bool parallel = parallel_ && work >= kParallelPoints;
   Eigen::Index evaluated = 0;
 #pragma omp parallel if (parallel) reduction(+ : evaluated)
   {
@@ -317,10 +328,7 @@ Eigen::Index Deformer::evaluateBlocks(const Lattice& lattice, const Eigen::Ref<c
     for (std::int64_t t = 0; t < tileCount; ++t) {
       for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
         const Embedding::Block& block = blocks[bi];
-        if (cellFilter &&
-            !(*cellFilter)[block.cell[0] + cells[0] * (block.cell[1] + static_cast<std::size_t>(cells[1]) * block.cell[2])]) {
-          continue;
-        }
+        if (!inFilter(block)) continue;
         if (block.kind == Embedding::BlockKind::Frozen) {
           // Identity outside, Failed, beyond Falloff: the input unchanged.
           for (std::uint32_t q = block.begin; q < block.end; ++q) {
@@ -440,7 +448,12 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
   const auto& tiles = embedding_.tileBlocks();
   const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
   Eigen::Index evaluated = 0;
-  const bool parallel = parallel_ && embedding_.pointCount() >= kParallelPoints;
+  Eigen::Index work = 0;
+  for (const Embedding::Block& block : blocks) {
+    const std::size_t cell = block.cell[0] + cells[0] * (block.cell[1] + static_cast<std::size_t>(cells[1]) * block.cell[2]);
+    if (block.kind != Embedding::BlockKind::Frozen && !terms[cell].empty()) work += block.end - block.begin;
+  }
+  const bool parallel = parallel_ && work >= kParallelPoints;
 #pragma omp parallel if (parallel) reduction(+ : evaluated)
   {
     detail::KernelInput local = in;
