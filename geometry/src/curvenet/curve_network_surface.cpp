@@ -31,7 +31,8 @@ void CurveNetworkSurfaceParams::validate() const {
 NetworkMesh generateCurveNetworkSurfaceWithNormals(const CurveNetworkSurfaceParams& params, int pitch) {
   params.validate();
   if (pitch < 1) throw std::invalid_argument("curve-network-surface: pitch must be >= 1, got " + std::to_string(pitch));
-  const CurveNetwork network = buildCurveNetwork(params.network, params.networkOptions);
+  CurveNetwork network = buildCurveNetwork(params.network, params.networkOptions);
+  if (params.fairing) fairRunSweeps(network);
   return tessellateNetwork(network, pitch, params.patch);
 }
 

@@ -22,6 +22,12 @@ VectorJet transversal(const CurveNetwork& net, const Transversal& tr, const Jet&
   return sum;
 }
 
+// Row vector times matrix, derivative by derivative: (p^T c)_k = sum_j p_j c_jk.
+VectorJet transform(const Eigen::Matrix3d& c, const VectorJet& p) {
+  const Eigen::Matrix3d ct = c.transpose();
+  return {ct * p.v, ct * p.x, ct * p.y, ct * p.xx, ct * p.xy, ct * p.yy};
+}
+
 }  // namespace
 
 VectorJet runSweep(const CurveNetwork& net, int runId, const Jet& ut, const Jet& v) {
@@ -33,6 +39,12 @@ VectorJet runSweep(const CurveNetwork& net, int runId, const Jet& ut, const Jet&
   // A free end has no transversal: the single sweep of the other end (rule (c), l.2001-2003).
   if (run.atStart.members.empty()) return transversal(net, run.atEnd, v) + c;
   if (run.atEnd.members.empty()) return transversal(net, run.atStart, v) + c;
+  if (run.affine) {
+    // S = C^-(v) M^-(u) + C^+(v) M^+(u) + C(u), row vectors (l.1767-1775).
+    const VectorJet a = transversal(net, run.atStart, v), b = transversal(net, run.atEnd, v);
+    const Jet q = (run.delta() * run.delta()) * (ut * ut - ut);
+    return (1.0 - ut) * a + ut * b + c + q * transform(run.cStart, a) + q * transform(run.cEnd, b);
+  }
   const double wm = run.atStart.influence, wp = run.atEnd.influence;
   const Jet denom = wm * (1.0 - ut) + wp * ut;
   const Jet gm = (wm * (1.0 - ut)) / denom;

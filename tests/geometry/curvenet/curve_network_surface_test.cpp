@@ -30,6 +30,17 @@ TEST(CurveNetworkSurface, IsDeterministicAndRegeneratesAtAnotherDensity) {
   EXPECT_GT(generateCurveNetworkSurface(params, 8).triangles.rows(), a.triangles.rows());
 }
 
+TEST(CurveNetworkSurface, FairingKeepsTheBoundaryAndChangesTheInterior) {
+  CurveNetworkSurfaceParams params;
+  params.network = heightGridNetwork(3);
+  const NetworkMesh plain = generateCurveNetworkSurfaceWithNormals(params, 4);
+  params.fairing = true;
+  const NetworkMesh faired = generateCurveNetworkSurfaceWithNormals(params, 4);
+  ASSERT_EQ(plain.mesh.vertices.rows(), faired.mesh.vertices.rows());
+  EXPECT_EQ(plain.mesh.triangles, faired.mesh.triangles);
+  EXPECT_GT((plain.mesh.vertices - faired.mesh.vertices).norm(), 1e-6);
+}
+
 TEST(CurveNetworkSurface, ValidatesParameters) {
   CurveNetworkSurfaceParams params;
   EXPECT_THROW(params.validate(), std::invalid_argument);

@@ -106,6 +106,11 @@ struct Run {
   int vertexStart = -1, vertexEnd = -1;
   std::vector<int> edges;           ///< half-edges with sign +1, in order
   Transversal atStart, atEnd;
+  /// Affine-matrix variant (§3.4): M-+(u) = c-+ (u^2 - Delta u) + l-+(u) I, shared by both faces.
+  /// Off (parallel sweeps with influence weights, §3.3) unless set by fairRunSweeps().
+  bool affine = false;
+  Eigen::Matrix3d cStart = Eigen::Matrix3d::Zero();  ///< c_- (start transversal), row j col k
+  Eigen::Matrix3d cEnd = Eigen::Matrix3d::Zero();    ///< c_+ (end transversal)
   double delta() const { return tEnd - tStart; }
 };
 

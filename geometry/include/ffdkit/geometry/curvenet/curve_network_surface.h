@@ -3,6 +3,7 @@
 #include "ffdkit/geometry/curvenet/curve_network.h"
 #include "ffdkit/geometry/curvenet/multisided_patch.h"
 #include "ffdkit/geometry/curvenet/network_tessellation.h"
+#include "ffdkit/geometry/curvenet/run_fairing.h"
 #include "ffdkit/geometry/tessellation.h"
 
 namespace ffdkit::geometry::curvenet {
@@ -12,6 +13,7 @@ struct CurveNetworkSurfaceParams {
   CurveNetworkDescription network;   ///< the curves (>= 2)
   CurveNetworkOptions networkOptions;  ///< tolerance tau (0: 1% of the diagonal), angles, hint
   PatchOptions patch;                ///< blending exponent m (default 3)
+  bool fairing = false;              ///< affine-matrix sweeps with thin-plate fairing (§3.4)
 
   /// @throws std::invalid_argument naming the offending field.
   void validate() const;
