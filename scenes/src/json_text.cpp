@@ -1,76 +1,67 @@
 #include "json_text.h"
 
-#include <algorithm>
-
 namespace ffdkit::scenes::detail {
 namespace {
 
-using Json = nlohmann::ordered_json;
-
-constexpr std::size_t kLineWidth = 100;
-
-bool isScalar(const Json& v) { return !v.is_object() && !v.is_array(); }
-
-// Arrays that read best on one line: scalars, or arrays of scalars (a matrix row, a point).
-bool isCompact(const Json& v) {
-  if (!v.is_array()) return false;
-  for (const auto& e : v)
-    if (!isScalar(e) && !(e.is_array() && std::all_of(e.begin(), e.end(), isScalar))) return false;
+bool isFlatArray(const Json& j) {
+  if (!j.is_array()) return false;
+  for (const Json& e : j)
+    if (e.is_structured()) return false;
   return true;
 }
 
-void write(const Json& v, int indent, std::string& out) {
-  const std::string pad(std::size_t(indent), ' ');
-  const std::string inner(std::size_t(indent) + 2, ' ');
-  if (isScalar(v)) {
-    out += v.dump();
-    return;
-  }
-  if (v.empty()) {
-    out += v.is_array() ? "[]" : "{}";
-    return;
-  }
-  if (isCompact(v)) {
-    const std::string line = v.dump(-1, ' ', false);
-    // nlohmann's compact dump has no spaces; add one after commas for readability.
-    std::string spaced;
-    bool inString = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-      const char c = line[i];
-      if (c == '"' && (i == 0 || line[i - 1] != '\\')) inString = !inString;
-      spaced += c;
-      if (c == ',' && !inString) spaced += ' ';
+bool isSmallObject(const Json& j) {
+  if (!j.is_object() || j.empty() || j.size() > 3) return false;
+  for (const auto& item : j.items())
+    if (item.value().is_object() || (item.value().is_array() && !isFlatArray(item.value()))) return false;
+  return true;
+}
+
+void print(std::string& out, const Json& j, int indent) {
+  const std::string pad(static_cast<std::size_t>(indent) + 2, ' ');
+  if (isSmallObject(j)) {
+    out += "{";
+    std::size_t k = 0;
+    for (const auto& item : j.items()) {
+      out += (k++ ? ", " : "") + Json(item.key()).dump() + ": ";
+      print(out, item.value(), indent + 2);
     }
-    if (spaced.size() + std::size_t(indent) <= kLineWidth) {
-      out += spaced;
+    out += "}";
+  } else if (j.is_object()) {
+    if (j.empty()) {
+      out += "{}";
       return;
     }
-  }
-  out += v.is_array() ? "[\n" : "{\n";
-  bool first = true;
-  if (v.is_array()) {
-    for (const auto& e : v) {
-      if (!first) out += ",\n";
-      first = false;
-      out += inner;
-      write(e, indent + 2, out);
+    out += "{\n";
+    std::size_t k = 0;
+    for (const auto& item : j.items()) {
+      out += pad + Json(item.key()).dump() + ": ";
+      print(out, item.value(), indent + 2);
+      out += ++k < j.size() ? ",\n" : "\n";
     }
+    out += std::string(static_cast<std::size_t>(indent), ' ') + "}";
+  } else if (isFlatArray(j)) {
+    out += "[";
+    for (std::size_t i = 0; i < j.size(); ++i) out += (i ? ", " : "") + j[i].dump();
+    out += "]";
+  } else if (j.is_array()) {
+    out += "[\n";
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      out += pad;
+      print(out, j[i], indent + 2);
+      out += i + 1 < j.size() ? ",\n" : "\n";
+    }
+    out += std::string(static_cast<std::size_t>(indent), ' ') + "]";
   } else {
-    for (const auto& item : v.items()) {
-      if (!first) out += ",\n";
-      first = false;
-      out += inner + Json(item.key()).dump() + ": ";
-      write(item.value(), indent + 2, out);
-    }
+    out += j.dump();
   }
-  out += "\n" + pad + (v.is_array() ? "]" : "}");
 }
 
 }  // namespace
 
 std::string canonicalJsonText(const Json& value) {
   std::string out;
-  write(value, 0, out);
+  print(out, value, 0);
   out += '\n';
   return out;
 }

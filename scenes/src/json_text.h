@@ -1,19 +1,117 @@
 #pragma once
-// Private to scenes: canonical JSON text for the files ffdkit writes.
+// Private to scenes: reading and writing the JSON files ffdkit keeps (scenes, widget files).
 
+#include <cmath>
+#include <cstdint>
+#include <initializer_list>
 #include <string>
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 namespace ffdkit::scenes::detail {
 
-/// 2-space indentation, keys in insertion order, arrays of scalars (or of short arrays of
-/// scalars) on one line when they fit in ~100 columns, shortest round-trip numbers, and a
-/// trailing newline: human-readable, and deterministic, so that reading a file ffdkit wrote
-/// and writing it again gives the same bytes.
-std::string canonicalJsonText(const nlohmann::ordered_json& value);
+using Json = nlohmann::ordered_json;
+
+/// The canonical text of a document: keys in insertion order, 2-space indentation, arrays of
+/// scalars (points, matrix rows, id lists) and objects of at most three such values on one
+/// line, shortest round-trip numbers, a trailing newline. Human-readable and deterministic,
+/// so that reading a file ffdkit wrote and writing it again gives the same bytes.
+std::string canonicalJsonText(const Json& value);
 
 /// "line:column" (1-based) of byte offset `byte` in `text`, for parse-error messages.
 std::string lineColumn(const std::string& text, std::size_t byte);
+
+/// Parses `content`; a syntax error becomes `Error("<source>:<line>:<column>: syntax error ...")`.
+template <class Error>
+Json parseJson(const std::string& content, const std::string& sourceName) {
+  try {
+    return Json::parse(content);
+  } catch (const Json::parse_error& e) {
+    // nlohmann's message starts "[json.exception.parse_error.101] parse error at line ..."; keep its tail.
+    std::string message = e.what();
+    if (auto pos = message.find("syntax error"); pos != std::string::npos) message = message.substr(pos);
+    throw Error(sourceName + ":" + lineColumn(content, e.byte == 0 ? 0 : e.byte - 1) + ": " + message);
+  }
+}
+
+/// Where a value sits in the document being read (a JSON pointer), for error messages:
+/// `tool.json /bindings/2/to: unknown widget 'w7'`. Errors are thrown as `Error`.
+template <class Error>
+struct JsonLocation {
+  const std::string* source;
+  std::string pointer;
+
+  JsonLocation operator/(const std::string& key) const { return {source, pointer + "/" + key}; }
+  JsonLocation operator/(std::size_t index) const { return {source, pointer + "/" + std::to_string(index)}; }
+  std::string where() const { return *source + " " + (pointer.empty() ? "/" : pointer); }
+  [[noreturn]] void fail(const std::string& message) const { throw Error(where() + ": " + message); }
+};
+
+template <class E>
+const Json& member(const Json& object, const char* key, const JsonLocation<E>& at) {
+  if (!object.is_object()) at.fail(std::string("expected an object, got ") + object.type_name());
+  if (!object.contains(key)) at.fail(std::string("missing key '") + key + "'");
+  return object[key];
+}
+
+template <class E>
+void checkObject(const Json& j, const JsonLocation<E>& at) {
+  if (!j.is_object()) at.fail(std::string("expected an object, got ") + j.type_name());
+}
+
+template <class E>
+void checkArray(const Json& j, const JsonLocation<E>& at) {
+  if (!j.is_array()) at.fail(std::string("expected an array, got ") + j.type_name());
+}
+
+/// Every key of `object` must be in `allowed`: a typo is an error, not silently ignored.
+template <class E>
+void checkKeys(const Json& object, std::initializer_list<const char*> allowed, const JsonLocation<E>& at) {
+  checkObject(object, at);
+  for (const auto& item : object.items()) {
+    bool known = false;
+    for (const char* a : allowed) known = known || item.key() == a;
+    if (known) continue;
+    std::string list;
+    for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+    (at / item.key()).fail("unknown key '" + item.key() + "' (known: " + list + ")");
+  }
+}
+
+template <class E>
+double number(const Json& j, const JsonLocation<E>& at) {
+  if (!j.is_number()) at.fail(std::string("expected a number, got ") + j.type_name());
+  const double v = j.get<double>();
+  if (!std::isfinite(v)) at.fail("expected a finite number");
+  return v;
+}
+
+template <class E>
+int integer(const Json& j, const JsonLocation<E>& at) {
+  if (!j.is_number_integer()) at.fail(std::string("expected an integer, got ") + j.type_name());
+  const auto v = j.get<std::int64_t>();
+  if (v < -1'000'000'000 || v > 1'000'000'000) at.fail("integer out of range");
+  return static_cast<int>(v);
+}
+
+template <class E>
+std::string text(const Json& j, const JsonLocation<E>& at) {
+  if (!j.is_string()) at.fail(std::string("expected a string, got ") + j.type_name());
+  return j.get<std::string>();
+}
+
+template <class E>
+bool boolean(const Json& j, const JsonLocation<E>& at) {
+  if (!j.is_boolean()) at.fail(std::string("expected true or false, got ") + j.type_name());
+  return j.get<bool>();
+}
+
+template <class E>
+Eigen::Vector3d vector3(const Json& j, const JsonLocation<E>& at) {
+  checkArray(j, at);
+  if (j.size() != 3) at.fail("expected 3 numbers, got " + std::to_string(j.size()) + " values");
+  return {number(j[0], at / 0), number(j[1], at / 1), number(j[2], at / 2)};
+}
 
 }  // namespace ffdkit::scenes::detail

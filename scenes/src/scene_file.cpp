@@ -10,65 +10,24 @@
 #include "ffdkit/scenes/atomic_write.h"
 #include "ffdkit/scenes/widget_file.h"
 #include "json_text.h"
+#include "widget_json.h"
 
 namespace ffdkit::scenes {
 namespace {
 
-using Json = nlohmann::ordered_json;
+using detail::Json;
 
-// Where in the document a value sits, for error messages: "scene.json /objects/2/name".
-struct Location {
-  const std::string& source;
-  std::string pointer;
-
-  Location operator/(const std::string& key) const { return {source, pointer + "/" + key}; }
-  Location operator/(std::size_t index) const { return {source, pointer + "/" + std::to_string(index)}; }
-  std::string where() const { return source + " " + (pointer.empty() ? "/" : pointer); }
-  [[noreturn]] void fail(const std::string& message) const { throw SceneFileError(where() + ": " + message); }
-};
-
-const Json& member(const Json& object, const char* key, const Location& at) {
-  if (!object.is_object()) at.fail("expected an object");
-  auto it = object.find(key);
-  if (it == object.end()) at.fail(std::string("missing '") + key + "'");
-  return *it;
-}
-
-double number(const Json& value, const Location& at) {
-  if (!value.is_number()) at.fail("expected a number, got " + value.dump());
-  const double x = value.get<double>();
-  if (!std::isfinite(x)) at.fail("expected a finite number");
-  return x;
-}
-
-std::string text(const Json& value, const Location& at) {
-  if (!value.is_string()) at.fail("expected a string, got " + value.dump());
-  return value.get<std::string>();
-}
-
-Eigen::Vector3d vector3(const Json& value, const Location& at) {
-  if (!value.is_array() || value.size() != 3) at.fail("expected an array of 3 numbers, got " + value.dump());
-  return {number(value[0], at / 0), number(value[1], at / 1), number(value[2], at / 2)};
-}
+using Location = detail::JsonLocation<SceneFileError>;
+using detail::checkKeys;
+using detail::member;
+using detail::number;
+using detail::text;
+using detail::vector3;
 
 Eigen::Vector3d colour(const Json& value, const Location& at) {
   const Eigen::Vector3d c = vector3(value, at);
   if ((c.array() < 0.0).any() || (c.array() > 1.0).any()) at.fail("colour components must be in [0, 1]");
   return c;
-}
-
-// Keys of an object must be known: a typo should not be silently ignored.
-void checkKeys(const Json& object, std::initializer_list<const char*> known, const Location& at) {
-  if (!object.is_object()) at.fail("expected an object");
-  for (const auto& item : object.items()) {
-    bool found = false;
-    std::string list;
-    for (const char* k : known) {
-      found = found || item.key() == k;
-      list += (list.empty() ? "" : ", ") + std::string(k);
-    }
-    if (!found) at.fail("unknown key '" + item.key() + "' (known: " + list + ")");
-  }
 }
 
 PrimitiveOptions readPrimitive(const Json& j, const Location& at) {
@@ -185,7 +144,7 @@ SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions
 
 Scene readSceneJson(const Json& root, const std::string& source, const SceneReadOptions& options) {
   const GeneratorRegistry& generators = options.generators != nullptr ? *options.generators : builtinGenerators();
-  const Location at{source, ""};
+  const Location at{&source, ""};
   checkKeys(root, {"format", "version", "description", "background", "objects", "widgets", "widgetFile",
                    "attachments", "camera"},
             at);
@@ -212,8 +171,7 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
     at.fail("give the widgets inline ('widgets') or by reference ('widgetFile'), not both");
   try {
     if (root.contains("widgets")) {
-      std::istringstream widgetText(root["widgets"].dump());
-      scene.widgets = readWidgetFile(widgetText, (at / "widgets").where());
+      scene.widgets = detail::widgetModelFromJson(root["widgets"], source, "/widgets");
     } else if (root.contains("widgetFile")) {
       scene.widgetFile = text(root["widgetFile"], at / "widgetFile");
       const std::filesystem::path file(*scene.widgetFile);
@@ -302,7 +260,7 @@ Json sceneJson(const Scene& scene) {
   if (scene.widgetFile) {
     root["widgetFile"] = *scene.widgetFile;
   } else {
-    root["widgets"] = Json::parse(widgetFileText(scene.widgets));
+    root["widgets"] = detail::widgetModelToJson(scene.widgets);
   }
   Json attachments = Json::array();
   for (const auto& a : scene.attachments) attachments.push_back({{"lattice", a.lattice}, {"objects", a.objects}});
@@ -318,16 +276,7 @@ Json sceneJson(const Scene& scene) {
 
 Scene readScene(std::istream& in, const std::string& sourceName, const SceneReadOptions& options) {
   const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  Json root;
-  try {
-    root = Json::parse(content);
-  } catch (const Json::parse_error& e) {
-    // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line ..."; keep its tail.
-    std::string message = e.what();
-    if (auto pos = message.find("syntax error"); pos != std::string::npos) message = message.substr(pos);
-    throw SceneFileError(sourceName + ":" + detail::lineColumn(content, e.byte == 0 ? 0 : e.byte - 1) + ": " + message);
-  }
-  return readSceneJson(root, sourceName, options);
+  return readSceneJson(detail::parseJson<SceneFileError>(content, sourceName), sourceName, options);
 }
 
 Scene readScene(const std::filesystem::path& path) {

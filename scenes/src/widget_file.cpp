@@ -8,89 +8,26 @@
 
 #include "ffdkit/ffd/lattice.h"
 #include "ffdkit/scenes/atomic_write.h"
+#include "json_text.h"
+#include "widget_json.h"
 
 namespace ffdkit::scenes {
 namespace {
 
-using Json = nlohmann::ordered_json;
+using detail::Json;
 using namespace ffdkit::widgets;
 
 constexpr const char* kFormatName = "ffdkit-widgets";
 
-std::string lineColumn(const std::string& text, std::size_t byte) {
-  std::size_t line = 1, column = 1;
-  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(column);
-}
-
-// A JSON-pointer location in the file being read, for error messages.
-struct Location {
-  const std::string* source;
-  std::string pointer;
-
-  Location operator/(const std::string& key) const { return {source, pointer + "/" + key}; }
-  Location operator/(std::size_t index) const { return {source, pointer + "/" + std::to_string(index)}; }
-  [[noreturn]] void fail(const std::string& message) const {
-    throw WidgetFileError(*source + " " + (pointer.empty() ? "/" : pointer) + ": " + message);
-  }
-};
-
-std::string typeName(const Json& j) { return j.type_name(); }
-
-const Json& member(const Json& object, const char* key, const Location& at) {
-  if (!object.contains(key)) at.fail(std::string("missing key '") + key + "'");
-  return object[key];
-}
-
-void checkObject(const Json& j, const Location& at) {
-  if (!j.is_object()) at.fail("expected an object, got " + typeName(j));
-}
-void checkArray(const Json& j, const Location& at) {
-  if (!j.is_array()) at.fail("expected an array, got " + typeName(j));
-}
-
-void checkKeys(const Json& object, std::initializer_list<const char*> allowed, const Location& at) {
-  for (const auto& [key, value] : object.items()) {
-    bool known = false;
-    for (const char* a : allowed) known = known || key == a;
-    if (!known) {
-      std::string list;
-      for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      (at / key).fail("unknown key '" + key + "' (known: " + list + ")");
-    }
-  }
-}
-
-double number(const Json& j, const Location& at) {
-  if (!j.is_number()) at.fail("expected a number, got " + typeName(j));
-  const double v = j.get<double>();
-  if (!std::isfinite(v)) at.fail("expected a finite number");
-  return v;
-}
-
-int integer(const Json& j, const Location& at) {
-  if (!j.is_number_integer()) at.fail("expected an integer, got " + typeName(j));
-  const auto v = j.get<std::int64_t>();
-  if (v < -1'000'000'000 || v > 1'000'000'000) at.fail("integer out of range");
-  return static_cast<int>(v);
-}
-
-std::string text(const Json& j, const Location& at) {
-  if (!j.is_string()) at.fail("expected a string, got " + typeName(j));
-  return j.get<std::string>();
-}
-
-bool boolean(const Json& j, const Location& at) {
-  if (!j.is_boolean()) at.fail("expected true or false, got " + typeName(j));
-  return j.get<bool>();
-}
+using Location = detail::JsonLocation<WidgetFileError>;
+using detail::boolean;
+using detail::checkArray;
+using detail::checkKeys;
+using detail::checkObject;
+using detail::integer;
+using detail::member;
+using detail::number;
+using detail::text;
 
 WidgetId widgetId(const Json& j, const Location& at) {
   const std::string s = text(j, at);
@@ -545,84 +482,29 @@ Json toJson(const WidgetModelData& d) {
   return root;
 }
 
-bool isFlatArray(const Json& j) {
-  if (!j.is_array()) return false;
-  for (const Json& e : j)
-    if (e.is_structured()) return false;
-  return true;
-}
-
-// Pretty printer: objects and nested arrays one entry per line; arrays of scalars (points,
-// matrix rows, id lists) and objects of at most three such values on one line. Scalars use nlohmann's dump (shortest round-trip numbers).
-bool isSmallObject(const Json& j) {
-  if (!j.is_object() || j.size() > 3) return false;
-  for (const auto& [key, value] : j.items())
-    if (value.is_object() || (value.is_array() && !isFlatArray(value))) return false;
-  return true;
-}
-
-void print(std::string& out, const Json& j, int indent) {
-  const std::string pad(static_cast<std::size_t>(indent) + 2, ' ');
-  if (isSmallObject(j) && !j.empty()) {
-    out += "{";
-    std::size_t k = 0;
-    for (const auto& [key, value] : j.items()) {
-      out += (k++ ? ", " : "") + Json(key).dump() + ": ";
-      print(out, value, indent + 2);
-    }
-    out += "}";
-  } else if (j.is_object()) {
-    if (j.empty()) {
-      out += "{}";
-      return;
-    }
-    out += "{\n";
-    std::size_t k = 0;
-    for (const auto& [key, value] : j.items()) {
-      out += pad + Json(key).dump() + ": ";
-      print(out, value, indent + 2);
-      out += ++k < j.size() ? ",\n" : "\n";
-    }
-    out += std::string(static_cast<std::size_t>(indent), ' ') + "}";
-  } else if (isFlatArray(j)) {
-    out += "[";
-    for (std::size_t i = 0; i < j.size(); ++i) out += (i ? ", " : "") + j[i].dump();
-    out += "]";
-  } else if (j.is_array()) {
-    out += "[\n";
-    for (std::size_t i = 0; i < j.size(); ++i) {
-      out += pad;
-      print(out, j[i], indent + 2);
-      out += i + 1 < j.size() ? ",\n" : "\n";
-    }
-    out += std::string(static_cast<std::size_t>(indent), ' ') + "]";
-  } else {
-    out += j.dump();
-  }
-}
-
 }  // namespace
 
-WidgetModel readWidgetFile(std::istream& in, const std::string& sourceName) {
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string content = buffer.str();
-  Json root;
-  try {
-    root = Json::parse(content);
-  } catch (const Json::parse_error& e) {
-    std::string message = e.what();
-    // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line ..."; keep its tail.
-    if (auto pos = message.find("syntax error"); pos != std::string::npos) message = message.substr(pos);
-    throw WidgetFileError(sourceName + ":" + lineColumn(content, e.byte == 0 ? 0 : e.byte - 1) + ": " + message);
-  }
-  const Location at{&sourceName, ""};
+namespace detail {
+
+widgets::WidgetModel widgetModelFromJson(const Json& root, const std::string& sourceName, const std::string& pointer) {
+  const Location at{&sourceName, pointer};
   const WidgetModelData data = readData(root, at);
   try {
     return WidgetModel::fromData(data);
   } catch (const WidgetError& e) {
-    throw WidgetFileError(sourceName + " " + (e.where().empty() ? "/" : e.where()) + ": " + e.message());
+    throw WidgetFileError(sourceName + " " + pointer + (e.where().empty() ? (pointer.empty() ? "/" : "") : e.where()) + ": " +
+                          e.message());
   }
+}
+
+Json widgetModelToJson(const widgets::WidgetModel& model) { return toJson(model.toData()); }
+
+}  // namespace detail
+
+WidgetModel readWidgetFile(std::istream& in, const std::string& sourceName) {
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return detail::widgetModelFromJson(detail::parseJson<WidgetFileError>(buffer.str(), sourceName), sourceName, "");
 }
 
 WidgetModel readWidgetFile(const std::filesystem::path& path) {
@@ -631,12 +513,7 @@ WidgetModel readWidgetFile(const std::filesystem::path& path) {
   return readWidgetFile(in, path.string());
 }
 
-std::string widgetFileText(const WidgetModel& model) {
-  std::string out;
-  print(out, toJson(model.toData()), 0);
-  out += "\n";
-  return out;
-}
+std::string widgetFileText(const WidgetModel& model) { return detail::canonicalJsonText(detail::widgetModelToJson(model)); }
 
 void writeWidgetFile(std::ostream& out, const WidgetModel& model) { out << widgetFileText(model); }
 
