@@ -106,7 +106,7 @@ struct MainWindow::Impl {
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
-  setWindowTitle("ffdkit");
+  setWindowTitle("ffdkit[*]");
   setAcceptDrops(true);
   d.view = new VtkViewWidget(this);
   d.view->setObjectName("view");

@@ -10,6 +10,7 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QToolButton>
+#include <QVBoxLayout>
 
 #include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/app/parts.h"
@@ -45,7 +46,10 @@ QString basisName(const ffd::AxisBasis& b) {
 PropertyPanel::PropertyPanel(InteractionController& controller, const scenes::Scene& scene, QWidget* parent)
     : QWidget(parent), controller_(controller), scene_(scene) {
   setObjectName("propertyPanel");
-  form_ = new QFormLayout(this);
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  layout->addStretch();
+  clearRows();
 }
 
 template <class F>
@@ -58,7 +62,14 @@ void PropertyPanel::guarded(F f) {
 }
 
 void PropertyPanel::clearRows() {
-  while (form_->rowCount() > 0) form_->removeRow(0);
+  if (content_ != nullptr) {
+    layout()->removeWidget(content_);
+    content_->hide();
+    content_->deleteLater();
+  }
+  content_ = new QWidget;
+  form_ = new QFormLayout(content_);
+  static_cast<QVBoxLayout*>(layout())->insertWidget(0, content_);
 }
 
 void PropertyPanel::showSelection(const std::vector<OutlinerEntry>& selection) {

@@ -40,6 +40,7 @@ class PropertyPanel : public QWidget {
 
   InteractionController& controller_;
   const scenes::Scene& scene_;
+  QWidget* content_ = nullptr;  ///< replaced on every showSelection (deleted later: a row may be emitting)
   QFormLayout* form_ = nullptr;
 };
 

@@ -1,0 +1,309 @@
+// The application under a real window and real Qt events (Xvfb): the thesis operations through
+// actions, dialogs, the outliner and the property panel; glyph drags with the mouse; undo;
+// widget files; the sample scenes on screen.
+#include <QAction>
+#include <QApplication>
+#include <QDialog>
+#include <QFileDialog>
+#include <QMouseEvent>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QTimer>
+#include <QToolButton>
+#include <QTreeWidget>
+
+#include <cmath>
+#include <functional>
+
+#include <vtkCamera.h>
+#include <vtkRenderer.h>
+
+#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/app/main_window.h"
+#include "ffdkit/app/scene_view.h"
+#include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/scenes/scene_deformer.h"
+
+using namespace ffdkit;
+using app::MainWindow;
+using widgets::WidgetId;
+
+namespace {
+
+void sendMouse(QWidget* widget, QEvent::Type type, QPoint at, Qt::MouseButton button, Qt::MouseButtons buttons,
+               Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
+  QMouseEvent event(type, QPointF(at), widget->mapToGlobal(QPointF(at)), button, buttons, modifiers);
+  QApplication::sendEvent(widget, &event);
+}
+
+// Where the view draws world point p, in the view widget's (logical) coordinates.
+QPoint toWidget(MainWindow& w, const Eigen::Vector3d& p) {
+  const Eigen::Vector2d d = w.sceneView().displayPoint(p);
+  const double ratio = w.view()->devicePixelRatioF();
+  return QPoint(static_cast<int>(std::lround(d.x() / ratio)),
+                static_cast<int>(std::lround((w.view()->height() * ratio - 1.0 - d.y()) / ratio)));
+}
+
+void click(MainWindow& w, QPoint at, Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
+  sendMouse(w.view(), QEvent::MouseButtonPress, at, Qt::LeftButton, Qt::LeftButton, modifiers);
+  sendMouse(w.view(), QEvent::MouseButtonRelease, at, Qt::LeftButton, Qt::NoButton, modifiers);
+}
+
+// Drags the mouse in the view from world point `from` to world point `to` in ten steps.
+void dragWorld(MainWindow& w, const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+  const QPoint a = toWidget(w, from), b = toWidget(w, to);
+  sendMouse(w.view(), QEvent::MouseButtonPress, a, Qt::LeftButton, Qt::LeftButton);
+  for (int step = 1; step <= 10; ++step)
+    sendMouse(w.view(), QEvent::MouseMove, a + (b - a) * step / 10, Qt::NoButton, Qt::LeftButton);
+  sendMouse(w.view(), QEvent::MouseButtonRelease, b, Qt::LeftButton, Qt::NoButton);
+}
+
+// Drags a translate widget's arrow `distance` world units along its axis.
+void dragArrow(MainWindow& w, WidgetId affine, double distance) {
+  const widgets::WidgetFrame f = w.scene().widgets.affineFrame(affine);
+  const Eigen::Vector3d x = f.frame.linear().col(0);
+  const Eigen::Vector3d grab = f.frame.translation() + 0.6 * f.size * x;
+  dragWorld(w, grab, grab + distance * x);
+}
+
+QAction* action(MainWindow& w, const char* name) {
+  auto* a = w.findChild<QAction*>(name);
+  if (a == nullptr) qFatal("no action %s", name);
+  return a;
+}
+
+// Triggers an action that opens a modal dialog; `fill` sets its fields, then it is accepted.
+void triggerWithDialog(MainWindow& w, const char* name, std::function<void(QDialog*)> fill = {}) {
+  bool seen = false;
+  QTimer::singleShot(0, [&] {
+    auto* dialog = qobject_cast<QDialog*>(QApplication::activeModalWidget());
+    if (dialog == nullptr) return;
+    seen = true;
+    if (fill) fill(dialog);
+    dialog->accept();
+  });
+  action(w, name)->trigger();
+  QVERIFY2(seen, name);
+}
+
+// Triggers a File action whose file dialog is answered with `path`.
+void triggerWithFile(MainWindow& w, const char* name, const QString& path) {
+  triggerWithDialog(w, name, [&](QDialog* dialog) {
+    auto* files = qobject_cast<QFileDialog*>(dialog);
+    QVERIFY(files != nullptr);
+    files->selectFile(path);
+  });
+}
+
+// Clicks the outliner row named `text` (with modifiers, e.g. Ctrl to extend the selection).
+void clickRow(MainWindow& w, const QString& text, Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
+  QTreeWidget* tree = w.outliner();
+  const auto items = tree->findItems(text, Qt::MatchExactly | Qt::MatchRecursive);
+  QVERIFY2(!items.isEmpty(), qPrintable("no outliner row " + text));
+  tree->scrollToItem(items.front());
+  QTest::mouseClick(tree->viewport(), Qt::LeftButton, modifiers, tree->visualItemRect(items.front()).center());
+}
+
+double maxDifference(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) { return (a - b).cwiseAbs().maxCoeff(); }
+
+Eigen::Index flat(int i, int j, int k) { return i + 3 * (j + 3 * k); }
+
+// Through the UI: a sphere, a 3x3x3 lattice, a translate widget on each of the given lattice
+// points (picked with the mouse), the lattice attached to the sphere. Returns the widgets.
+std::vector<WidgetId> buildSphereWithWidgets(MainWindow& w, const std::vector<Eigen::Index>& points) {
+  std::vector<WidgetId> out;
+  triggerWithDialog(w, "actionAddPrimitive");
+  if (w.scene().objects.size() != 1) return out;
+  triggerWithDialog(w, "actionNewLattice");
+  const auto roots = w.scene().widgets.roots();
+  if (roots.size() != 1) return out;
+  for (Eigen::Index index : points) {
+    const Eigen::Vector3d p = w.scene().widgets.worldControlPoints(roots.front()).row(index);
+    click(w, toWidget(w, p));
+    const auto picked = w.controller().pickedPoint();
+    if (!picked || picked->index != index) return {};
+    action(w, "actionAddTranslate")->trigger();
+    out.push_back(w.scene().widgets.widgets(widgets::WidgetType::Affine).back());
+  }
+  action(w, "actionAttach")->trigger();
+  return out;
+}
+
+}  // namespace
+
+class MainWindowTest : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void init() {
+    window_ = std::make_unique<MainWindow>();
+    window_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
+    window_->view()->grabFramebuffer();  // a first frame sizes VTK's window
+  }
+  void cleanup() { window_.reset(); }
+
+  void draggingAGlyphDeformsTheSphereAsTheModelPredictsAndUndoRestores() {
+    MainWindow& w = *window_;
+    const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2)});
+    QCOMPARE(created.size(), std::size_t(1));
+    const WidgetId arrow = created.front();
+    const std::string sphere = w.scene().objects.front().name;
+    QCOMPARE(w.scene().latticesDeforming(sphere).size(), std::size_t(1));
+
+    const Eigen::MatrixX3d before = w.deformer().points(sphere);
+    scenes::Scene expected = w.scene();
+    double camera[3];
+    w.view()->renderer()->GetActiveCamera()->GetPosition(camera);
+
+    dragArrow(w, arrow, 0.3);
+    const double v = w.scene().widgets.variation(arrow);
+    QVERIFY2(std::abs(v - 0.3) < 0.02, qPrintable(QString("variation %1").arg(v)));
+    QVERIFY(maxDifference(w.deformer().points(sphere), before) > 0.05);
+    double cameraAfter[3];
+    w.view()->renderer()->GetActiveCamera()->GetPosition(cameraAfter);
+    QCOMPARE(cameraAfter[0], camera[0]);  // a drag on a glyph does not orbit
+
+    // The model with the same variation applied gives the same points.
+    expected.widgets.setVariation(arrow, v);
+    scenes::SceneDeformer model;
+    model.update(expected);
+    model.finishGesture(expected);
+    QVERIFY(maxDifference(w.deformer().points(sphere), model.points(sphere)) < 1e-9);
+
+    QVERIFY(action(w, "actionUndo")->isEnabled());
+    action(w, "actionUndo")->trigger();
+    QVERIFY(maxDifference(w.deformer().points(sphere), before) < 1e-12);
+    QCOMPARE(w.scene().widgets.variation(arrow), 0.0);
+  }
+
+  void boundWidgetsMoveTogether() {
+    MainWindow& w = *window_;
+    const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2), flat(1, 1, 0)});
+    QCOMPARE(created.size(), std::size_t(2));
+    const auto& m = w.scene().widgets;
+    clickRow(w, QString::fromStdString(m.name(created[0])));
+    clickRow(w, QString::fromStdString(m.name(created[1])), Qt::ControlModifier);
+    QCOMPARE(w.controller().selection().size(), std::size_t(2));
+    const std::size_t bindings = m.bindings().size();
+    action(w, "actionBind")->trigger();
+    QCOMPARE(m.bindings().size(), bindings + 1);
+    QCOMPARE(m.binding(m.bindings().back()).kind, widgets::BindingKind::Variation);
+
+    const WidgetId otherCell = *m.attachedCell(created[1]);
+    const Eigen::MatrixX3d otherBefore = m.cellWorldPoints(otherCell);
+    dragArrow(w, created[0], 0.2);
+    const double v0 = m.variation(created[0]), v1 = m.variation(created[1]);
+    QVERIFY2(std::abs(v0 - 0.2) < 0.02, qPrintable(QString("variation %1").arg(v0)));
+    QVERIFY(std::abs(v1 - v0) < 1e-12);
+    QVERIFY(maxDifference(m.cellWorldPoints(otherCell), otherBefore) > 0.15);
+  }
+
+  void editingACellMotionMaskChangesWhatFollows() {
+    MainWindow& w = *window_;
+    const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2)});
+    QCOMPARE(created.size(), std::size_t(1));
+    const auto& m = w.scene().widgets;
+    const WidgetId cellA = *m.attachedCell(created[0]);
+    // A second point cell, made by adding a scale widget on the bottom-centre point.
+    const WidgetId lattice = m.latticeOf(cellA);
+    click(w, toWidget(w, m.worldControlPoints(lattice).row(flat(1, 1, 0))));
+    action(w, "actionAddScale")->trigger();
+    const WidgetId cellB = *m.attachedCell(m.widgets(widgets::WidgetType::Affine).back());
+    clickRow(w, QString::fromStdString(m.name(cellA)));
+    clickRow(w, QString::fromStdString(m.name(cellB)), Qt::ControlModifier);
+    action(w, "actionBind")->trigger();
+    const widgets::BindingId motion = m.bindings().back();
+    QCOMPARE(m.binding(motion).kind, widgets::BindingKind::CellMotion);
+
+    const Eigen::MatrixX3d bBefore = m.cellWorldPoints(cellB);
+    dragArrow(w, created[0], 0.2);
+    QVERIFY2(maxDifference(m.cellWorldPoints(cellB), bBefore) > 0.15, "cell B follows with mask TR");
+    action(w, "actionUndo")->trigger();
+    QVERIFY(maxDifference(m.cellWorldPoints(cellB), bBefore) < 1e-12);
+
+    // Select the binding in the outliner and switch translation off with its T button.
+    clickRow(w, QString::fromStdString(m.name(m.binding(motion).from) + " <-> " + m.name(m.binding(motion).to)));
+    auto* maskT = w.findChild<QToolButton*>("maskT");
+    QVERIFY(maskT != nullptr && maskT->isChecked());
+    QTest::mouseClick(maskT, Qt::LeftButton);
+    QVERIFY(!m.binding(motion).mask.translate);
+    QVERIFY(m.binding(motion).mask.rotate);
+
+    const Eigen::MatrixX3d aBefore = m.cellWorldPoints(cellA);
+    dragArrow(w, created[0], 0.2);
+    QVERIFY(maxDifference(m.cellWorldPoints(cellA), aBefore) > 0.15);
+    QVERIFY2(maxDifference(m.cellWorldPoints(cellB), bBefore) < 1e-9, "translation no longer carried to cell B");
+  }
+
+  void aWidgetFileSavedThroughTheUiOpensWithTheSameControlPoints() {
+    MainWindow& w = *window_;
+    w.openScene(FFDKIT_SOURCE_DIR "/scenes/examples/default");
+    w.view()->grabFramebuffer();
+    const WidgetId pull = w.scene().widgets.find("pull");
+    dragArrow(w, pull, 0.15);
+    QVERIFY(std::abs(w.scene().widgets.variation(pull) - 0.65) < 0.02);
+
+    QTemporaryDir dir;
+    const QString path = dir.filePath("tool.json");
+    triggerWithFile(w, "actionSaveWidgetFile", path);
+    QVERIFY(QFileInfo::exists(path));
+
+    MainWindow other;
+    other.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&other));
+    triggerWithFile(other, "actionOpenWidgetFile", path);
+    const auto& a = w.scene().widgets;
+    const auto& b = other.scene().widgets;
+    QCOMPARE(b.widgets(widgets::WidgetType::Lattice).size(), a.widgets(widgets::WidgetType::Lattice).size());
+    for (WidgetId lattice : a.widgets(widgets::WidgetType::Lattice)) {
+      const WidgetId same = b.find(a.name(lattice));
+      QCOMPARE(b.worldControlPoints(same), a.worldControlPoints(lattice));
+    }
+    QCOMPARE(b.variation(b.find("pull")), a.variation(pull));
+  }
+
+  void eachSampleSceneShowsItsObject() {
+    MainWindow& w = *window_;
+    for (const char* name : {"default", "press", "vise", "mirror", "hierarchy", "cylinder-twist"}) {
+      w.openScene(std::string(FFDKIT_SOURCE_DIR "/scenes/examples/") + name);
+      const QImage shot = w.view()->grabFramebuffer();
+      QVERIFY(!shot.isNull());
+      // The same view without the objects: the pixels that differ are the objects'.
+      scenes::Scene hidden = w.scene();
+      const Eigen::Vector3d colour = hidden.objects.front().display.color;
+      for (auto& o : hidden.objects) o.display.visible = false;
+      w.setScene(hidden);
+      const QImage bare = w.view()->grabFramebuffer();
+      QCOMPARE(bare.size(), shot.size());
+      long differing = 0;
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (int y = 0; y < shot.height(); ++y)
+        for (int x = 0; x < shot.width(); ++x) {
+          const QColor a = shot.pixelColor(x, y), b = bare.pixelColor(x, y);
+          if (std::abs(a.red() - b.red()) + std::abs(a.green() - b.green()) + std::abs(a.blue() - b.blue()) < 30) continue;
+          ++differing;
+          sum += Eigen::Vector3d(a.redF(), a.greenF(), a.blueF());
+        }
+      const double share = double(differing) / (double(shot.width()) * shot.height());
+      QVERIFY2(share > 0.03, qPrintable(QString("%1: object covers only %2 of the view").arg(name).arg(share)));
+      // Shaded, but the object's hue: the mean colour points the way of its display colour.
+      const double cosine = sum.normalized().dot(colour.normalized());
+      QVERIFY2(cosine > 0.97, qPrintable(QString("%1: mean object pixel is off its colour (%2)").arg(name).arg(cosine)));
+    }
+  }
+
+ private:
+  std::unique_ptr<MainWindow> window_;
+};
+
+int main(int argc, char** argv) {
+  QSurfaceFormat::setDefaultFormat(ffdkit::app::VtkViewWidget::defaultFormat());
+  QApplication app(argc, argv);
+  QApplication::setOrganizationName("ffdkit-tests");  // recent files go to a test-only settings file
+  MainWindowTest test;
+  return QTest::qExec(&test, argc, argv);
+}
+
+#include "main_window_test.moc"
