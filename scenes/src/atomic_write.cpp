@@ -14,9 +14,11 @@ namespace ffdkit::scenes {
 void writeFileAtomically(const std::filesystem::path& path, std::string_view content) {
   static std::atomic<unsigned> counter{0};
   const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  const std::filesystem::path temporary =
-      folder / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                std::to_string(counter.fetch_add(1)));
+  // Built by appending: GCC 12 warns falsely (-Wrestrict, bug 105329) on a "." + string chain.
+  std::string name = ".";
+  name.append(path.filename().string()).append(".tmp-").append(std::to_string(::getpid()));
+  name.append("-").append(std::to_string(counter.fetch_add(1)));
+  const std::filesystem::path temporary = folder / name;
   auto fail = [&](const std::string& step) {
     const std::string reason = std::strerror(errno);
     std::error_code ignored;
