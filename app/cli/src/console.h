@@ -1,0 +1,40 @@
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ffdkit::cli {
+
+/// What a command tells the user: results on stdout (unless --quiet), progress of long steps on
+/// stderr (only when stderr is a terminal, or with --progress), and the --timings split.
+class Console {
+ public:
+  Console(bool quiet, bool progress, bool timings);
+
+  /// A result line on stdout; silent with --quiet.
+  void say(const std::string& line) const;
+  /// A warning on stderr; shown even with --quiet.
+  void warn(const std::string& line) const;
+
+  /// Starts a timed step of the --timings split (`phase`: "read", "embed", ...); `what` is the
+  /// progress text. Ends the previous step. Steps of one phase add up.
+  void begin(const std::string& phase, const std::string& what);
+  /// Ends the current step.
+  void end();
+  /// Prints the split on stdout (with --timings; also with --quiet: it was asked for).
+  void printTimings() const;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  bool quiet_;
+  bool progress_;
+  bool timings_;
+  Clock::time_point start_;
+  std::string phase_;
+  Clock::time_point stepStart_;
+  std::vector<std::pair<std::string, double>> split_;  ///< phase, milliseconds, in first-seen order
+};
+
+}  // namespace ffdkit::cli

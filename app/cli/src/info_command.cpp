@@ -1,0 +1,209 @@
+// ffdkit-cli info and validate: summarise and check scene, widget and mesh files.
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "commands.h"
+#include "console.h"
+#include "ffdkit/scenes/mesh_io.h"
+#include "ffdkit/scenes/scene.h"
+#include "ffdkit/scenes/scene_deformer.h"
+#include "ffdkit/scenes/scene_file.h"
+#include "ffdkit/scenes/widget_file.h"
+#include "input_mesh.h"
+
+namespace ffdkit::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string format(const char* fmt, auto... values) {
+  char line[1024];
+  std::snprintf(line, sizeof line, fmt, values...);
+  return line;
+}
+
+std::string boxText(const Eigen::MatrixX3d& points) {
+  if (points.rows() == 0) return "empty";
+  const Eigen::Vector3d lo = points.colwise().minCoeff();
+  const Eigen::Vector3d hi = points.colwise().maxCoeff();
+  return format("[%g, %g, %g] .. [%g, %g, %g]", lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z());
+}
+
+std::string meshText(const scenes::MeshData& mesh) {
+  return format("%lld points, %lld triangles, %lld segments%s, bounds %s", static_cast<long long>(mesh.points.rows()),
+                static_cast<long long>(mesh.triangles.rows()), static_cast<long long>(mesh.segments.rows()),
+                mesh.hasNormals ? ", normals" : "", boxText(mesh.points).c_str());
+}
+
+std::string sourceText(const scenes::ObjectSource& source) {
+  if (const auto* p = std::get_if<scenes::PrimitiveOptions>(&source))
+    return format("primitive %s (resolution %d)", std::string(scenes::primitiveKindName(p->kind)).c_str(), p->resolution);
+  if (const auto* m = std::get_if<scenes::MeshFileSource>(&source)) return "mesh file " + m->path;
+  const auto& g = std::get<scenes::GeneratedSource>(source);
+  return format("generator %s (density %g)", g.generator.c_str(), g.density);
+}
+
+void printWidgets(const widgets::WidgetModel& model) {
+  for (auto lattice : model.pipelineOrder()) {
+    const Eigen::Vector3i n = model.counts(lattice);
+    const auto parent = model.parentLattice(lattice);
+    std::printf("lattice %s: %dx%dx%d control points, %s, %zu cells\n", model.name(lattice).c_str(), n.x(), n.y(),
+                n.z(), parent ? ("child of " + model.name(*parent)).c_str() : "root", model.cellsOf(lattice).size());
+  }
+  for (auto affine : model.widgets(widgets::WidgetType::Affine)) {
+    const auto cell = model.attachedCell(affine);
+    std::printf("affine %s: %s, variation %g, %s\n", model.name(affine).c_str(),
+                std::string(widgets::affineKindName(model.affineKind(affine))).c_str(), model.variation(affine),
+                cell ? ("on cell " + model.name(*cell)).c_str() : "free");
+  }
+  std::printf("bindings: %zu\n", model.bindings().size());
+}
+
+void infoScene(const fs::path& path) {
+  const scenes::Scene scene = scenes::readScene(path);
+  std::printf("scene: %s\n", path.string().c_str());
+  if (!scene.description.empty()) std::printf("description: %s\n", scene.description.c_str());
+  if (scene.widgetFile) std::printf("widget file: %s\n", scene.widgetFile->c_str());
+  for (const auto& object : scene.objects)
+    std::printf("object %s: %s; %s\n", object.name.c_str(), sourceText(object.source).c_str(),
+                meshText(object.mesh).c_str());
+  printWidgets(scene.widgets);
+  for (const auto& a : scene.attachments) {
+    std::string objects;
+    for (const auto& o : a.objects) objects += (objects.empty() ? "" : ", ") + o;
+    std::printf("attachment: %s deforms %s\n", a.lattice.c_str(), objects.c_str());
+  }
+  scenes::SceneDeformer deformer;
+  deformer.update(scene);
+  deformer.finishGesture(scene);
+  const auto& stats = deformer.lastStats();
+  std::printf("evaluated: %lld points deformed (%lld outside their lattice, %lld failed to embed)\n",
+              static_cast<long long>(stats.deformedPoints), static_cast<long long>(stats.outsidePoints),
+              static_cast<long long>(stats.failedPoints));
+}
+
+void infoWidgets(const fs::path& path) {
+  const widgets::WidgetModel model = scenes::readWidgetFile(path);
+  std::printf("widget file: %s\n", path.string().c_str());
+  printWidgets(model);
+}
+
+void infoMesh(const fs::path& path) {
+  const scenes::MeshData mesh = readInputMesh(path);
+  std::printf("mesh: %s\n%s\n", path.string().c_str(), meshText(mesh).c_str());
+}
+
+int runInfo(const Args& args) {
+  if (args.flag("generators")) {
+    if (!args.positional().empty()) throw UsageError("--generators takes no FILE");
+    const auto& registry = scenes::builtinGenerators();
+    const auto names = registry.names();
+    if (names.empty()) std::printf("no generators registered\n");
+    for (const auto& name : names) {
+      const auto& g = registry.get(name);
+      std::string params;
+      for (const auto& p : g.parameterNames) params += (params.empty() ? "" : ", ") + p;
+      std::printf("%s (%s): %s; parameters: %s\n", name.c_str(), g.profile ? "curve" : "surface", g.summary.c_str(),
+                  params.c_str());
+    }
+    return 0;
+  }
+  if (args.positional().empty()) throw UsageError("info takes one or more FILEs (or --generators)");
+  bool first = true;
+  for (const auto& file : args.positional()) {
+    if (!first) std::printf("\n");
+    first = false;
+    switch (fileKind(file)) {
+      case FileKind::Scene: infoScene(file); break;
+      case FileKind::Widgets: infoWidgets(file); break;
+      case FileKind::Mesh: infoMesh(file); break;
+    }
+  }
+  return 0;
+}
+
+/// Checks one file completely: reads it, builds every object, validates references and meshes,
+/// and evaluates a scene (a degenerate lattice fails there). @throws on the first problem.
+std::string check(const fs::path& path) {
+  switch (fileKind(path)) {
+    case FileKind::Scene: {
+      const scenes::Scene scene = scenes::readScene(path);
+      scenes::validateScene(scene);
+      for (const auto& object : scene.objects)
+        scenes::validateMesh(object.mesh, path.string() + ": object '" + object.name + "'");
+      const auto deformed = scenes::deformScene(scene);
+      for (const auto& [name, points] : deformed) {
+        if (!points.allFinite())
+          throw std::runtime_error(path.string() + ": object '" + name + "' deforms to non-finite points");
+      }
+      return format("scene, %zu objects, %zu lattices", scene.objects.size(),
+                    scene.widgets.widgets(widgets::WidgetType::Lattice).size());
+    }
+    case FileKind::Widgets: {
+      const widgets::WidgetModel model = scenes::readWidgetFile(path);
+      for (auto lattice : model.widgets(widgets::WidgetType::Lattice)) (void)model.ffdLattice(lattice);
+      return format("widget file, %zu lattices, %zu affine widgets", model.widgets(widgets::WidgetType::Lattice).size(),
+                    model.widgets(widgets::WidgetType::Affine).size());
+    }
+    case FileKind::Mesh: {
+      const scenes::MeshData mesh = readInputMesh(path);
+      scenes::validateMesh(mesh, path.string());
+      return format("mesh, %lld points", static_cast<long long>(mesh.points.rows()));
+    }
+  }
+  return {};
+}
+
+int runValidate(const Args& args) {
+  if (args.positional().empty()) throw UsageError("validate takes one or more FILEs");
+  const Console console(args.flag("quiet"), false, false);
+  int broken = 0;
+  for (const auto& file : args.positional()) {
+    try {
+      const std::string summary = check(file);
+      console.say(file + ": ok (" + summary + ")");
+    } catch (const std::exception& e) {
+      std::fflush(stdout);
+      // Reader messages start with the file name; do not repeat it.
+      const std::string message = e.what();
+      if (message.rfind(file, 0) == 0 || message.find(fs::path(file).filename().string()) != std::string::npos)
+        std::fprintf(stderr, "%s\n", message.c_str());
+      else
+        std::fprintf(stderr, "%s: %s\n", file.c_str(), message.c_str());
+      ++broken;
+    }
+  }
+  if (broken > 0) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "%d of %zu files broken\n", broken, args.positional().size());
+  }
+  return broken == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+Command infoCommand() {
+  return {"info",
+          "summarise scene, widget and mesh files",
+          "ffdkit-cli info FILE...\n       ffdkit-cli info --generators",
+          "FILE: a scene (.json or a sample-scene folder), a widget file (.json with format\n"
+          "\"ffdkit-widgets\") or a mesh / point file. Lists objects, lattices, affine widgets (the\n"
+          "names --set takes) with their variations, attachments, and evaluates a scene.\n",
+          {{"generators", '\0', "", "list the registered curve and surface generators"}, quietOption()},
+          runInfo};
+}
+
+Command validateCommand() {
+  return {"validate",
+          "check scene, widget and mesh files; report every broken one",
+          "ffdkit-cli validate FILE...",
+          "Reads each file completely (a scene: its mesh files, generators, widgets and\n"
+          "attachments, then evaluates it) and prints 'FILE: ok' or the problem, with line and\n"
+          "column for malformed JSON. Exit status 1 when any file is broken. Writes nothing.\n",
+          {quietOption()},
+          runValidate};
+}
+
+}  // namespace ffdkit::cli

@@ -1,0 +1,153 @@
+// ffdkit-cli plot: curvature (and torsion) of a generated curve against arc length, as a PNG.
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "console.h"
+#include "ffdkit/app/curve_plot.h"
+#include "ffdkit/scenes/scene_file.h"
+
+namespace ffdkit::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+std::string lineColumn(const std::string& text, std::size_t byte) {
+  std::size_t line = 1;
+  std::size_t column = 1;
+  for (std::size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return std::to_string(line) + ":" + std::to_string(column);
+}
+
+scenes::ParameterValue parameterValue(const Json& j, const std::string& where) {
+  const auto fail = [&] {
+    return std::runtime_error(where + ": expected a flag, number, text, list of numbers or list of rows of numbers");
+  };
+  if (j.is_boolean()) return j.get<bool>();
+  if (j.is_number()) return j.get<double>();
+  if (j.is_string()) return j.get<std::string>();
+  if (!j.is_array()) throw fail();
+  if (!j.empty() && j.front().is_array()) {
+    std::vector<std::vector<double>> rows;
+    for (const auto& row : j) {
+      if (!row.is_array()) throw fail();
+      std::vector<double>& r = rows.emplace_back();
+      for (const auto& v : row) {
+        if (!v.is_number()) throw fail();
+        r.push_back(v.get<double>());
+      }
+    }
+    return rows;
+  }
+  std::vector<double> numbers;
+  for (const auto& v : j) {
+    if (!v.is_number()) throw fail();
+    numbers.push_back(v.get<double>());
+  }
+  return numbers;
+}
+
+/// A JSON object of generator parameters, as in a scene file's "parameters".
+scenes::GeneratorParameters readParameters(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path.string() + ": cannot open the parameter file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  Json j;
+  try {
+    j = Json::parse(text);
+  } catch (const Json::parse_error& e) {
+    throw std::runtime_error(path.string() + ":" + lineColumn(text, e.byte) + ": syntax error: " + e.what());
+  }
+  if (!j.is_object()) throw std::runtime_error(path.string() + ": expected a JSON object of parameters");
+  scenes::GeneratorParameters parameters;
+  for (const auto& [name, value] : j.items()) parameters.set(name, parameterValue(value, path.string() + " /" + name));
+  return parameters;
+}
+
+int runPlot(const Args& args) {
+  Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
+  const auto output = args.value("output");
+  if (!output) throw UsageError("missing --output (-o) PLOT.png");
+  app::CurvePlotOptions options;
+  if (auto size = args.value("size")) parseSize(*size, "--size", options.width, options.height);
+  double density = args.value("density") ? parseNumber(*args.value("density"), "--density") : 1.0;
+  if (!(density > 0.0 && density <= 64.0)) throw UsageError("--density must be in (0, 64]");
+  const auto generator = args.value("generator");
+  const auto object = args.value("object");
+  const auto& registry = scenes::builtinGenerators();
+
+  scenes::CurvatureProfile profile;
+  if (generator) {
+    if (object || args.positional().size() != 1)
+      throw UsageError("--generator NAME takes one PARAMETERS.json (a JSON object) and no --object");
+    console.begin("read", "reading " + args.positional()[0]);
+    const scenes::GeneratorParameters parameters = readParameters(args.positional()[0]);
+    console.begin("profile", "sampling " + *generator);
+    profile = registry.profile(*generator, parameters, density);
+    options.title = *generator;
+  } else {
+    if (!object || args.positional().size() != 1) throw UsageError("plot takes a SCENE and --object NAME (or --generator)");
+    console.begin("read", "reading " + args.positional()[0]);
+    const scenes::Scene scene = scenes::readScene(fs::path(args.positional()[0]));
+    const scenes::SceneObject* found = scene.findObject(*object);
+    if (!found) {
+      std::string known;
+      for (const auto& o : scene.objects) known += (known.empty() ? "" : ", ") + o.name;
+      throw std::runtime_error(args.positional()[0] + ": no object '" + *object + "' (objects: " + known + ")");
+    }
+    const auto* generated = std::get_if<scenes::GeneratedSource>(&found->source);
+    if (!generated)
+      throw std::runtime_error("object '" + *object + "' is " +
+                               (std::holds_alternative<scenes::PrimitiveOptions>(found->source) ? "a primitive"
+                                                                                                 : "read from a mesh file") +
+                               ", not a generated curve: only curve generators have a curvature profile");
+    console.begin("profile", "sampling " + generated->generator);
+    if (!args.value("density")) density = generated->density;
+    profile = registry.profile(generated->generator, generated->parameters, density);
+    options.title = *object + " (" + generated->generator + ")";
+  }
+  if (auto title = args.value("title")) options.title = *title;
+  console.begin("plot", "plotting");
+  app::plotCurvatureToPng(profile, *output, options);
+  console.end();
+  console.say("wrote " + *output + " (" + std::to_string(profile.arcLength.size()) + " samples" +
+              (profile.torsion.size() != 0 ? ", curvature and torsion)" : ", curvature)"));
+  console.printTimings();
+  return 0;
+}
+
+}  // namespace
+
+Command plotCommand() {
+  return {"plot",
+          "plot curvature (and torsion) against arc length of a generated curve to PNG",
+          "ffdkit-cli plot SCENE --object NAME -o PLOT.png [options]\n"
+          "       ffdkit-cli plot --generator NAME PARAMETERS.json -o PLOT.png [options]",
+          "The curve comes from a generated object of a scene (its generator, parameters and\n"
+          "density) or from a generator name and a JSON object of its parameters (as written in\n"
+          "a scene file's \"parameters\"). Curvature is orange; torsion, for space curves, blue.\n"
+          "ffdkit-cli info --generators lists the curve generators. Needs an X display (xvfb-run).\n",
+          {{"object", '\0', "NAME", "the generated curve object of SCENE"},
+           {"generator", 'g', "NAME", "a curve generator of the registry"},
+           {"output", 'o', "PLOT.png", "the PNG to write"},
+           {"density", '\0', "D", "sampling relative to the generator's default, (0, 64] (the object's, or 1)"},
+           {"size", '\0', "WxH", "image size in pixels (900x520)"},
+           {"title", '\0', "TEXT", "chart title (the object or generator name)"},
+           quietOption(), progressOption(), timingsOption()},
+          runPlot};
+}
+
+}  // namespace ffdkit::cli
