@@ -11,14 +11,18 @@
 
 namespace ffdkit::scenes {
 
-void writeFileAtomically(const std::filesystem::path& path, std::string_view content) {
+std::filesystem::path temporaryPathBeside(const std::filesystem::path& path) {
   static std::atomic<unsigned> counter{0};
   const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   // Built by appending: GCC 12 warns falsely (-Wrestrict, bug 105329) on a "." + string chain.
   std::string name = ".";
-  name.append(path.filename().string()).append(".tmp-").append(std::to_string(::getpid()));
-  name.append("-").append(std::to_string(counter.fetch_add(1)));
-  const std::filesystem::path temporary = folder / name;
+  name.append(path.stem().string()).append(".tmp-").append(std::to_string(::getpid()));
+  name.append("-").append(std::to_string(counter.fetch_add(1))).append(path.extension().string());
+  return folder / name;
+}
+
+void writeFileAtomically(const std::filesystem::path& path, std::string_view content) {
+  const std::filesystem::path temporary = temporaryPathBeside(path);
   auto fail = [&](const std::string& step) {
     const std::string reason = std::strerror(errno);
     std::error_code ignored;

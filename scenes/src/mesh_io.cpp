@@ -1,7 +1,6 @@
 #include "ffdkit/scenes/mesh_io.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -296,13 +295,7 @@ void writeMesh(const std::filesystem::path& path, const MeshData& mesh) {
 
   // VTK writers take a file name: write a temporary file beside the target (same extension,
   // which some writers look at), then rename it over the target.
-  static std::atomic<unsigned> counter{0};
-  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  // Built by appending: GCC 12 warns falsely (-Wrestrict, bug 105329) on a "." + string chain.
-  std::string name = ".";
-  name.append(path.stem().string()).append(".tmp-").append(std::to_string(::getpid()));
-  name.append("-").append(std::to_string(counter.fetch_add(1))).append(ext);
-  const std::filesystem::path temporary = folder / name;
+  const std::filesystem::path temporary = temporaryPathBeside(path);
   try {
     vtkSmartPointer<vtkPolyData> poly = toPolyData(mesh);
     if (ext == ".obj") {

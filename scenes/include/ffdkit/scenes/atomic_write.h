@@ -11,4 +11,8 @@ namespace ffdkit::scenes {
 /// @throws std::runtime_error naming the path and the reason.
 void writeFileAtomically(const std::filesystem::path& path, std::string_view content);
 
+/// A fresh hidden file name in `path`'s folder for writing `path` atomically:
+/// `.<stem>.tmp-<pid>-<n><extension>` (the extension kept, for writers that look at it).
+std::filesystem::path temporaryPathBeside(const std::filesystem::path& path);
+
 }  // namespace ffdkit::scenes
