@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build ccache pkg-config git
-  libeigen3-dev libtbb-dev
+  libeigen3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev
   libvtk9-dev

@@ -13,5 +13,7 @@ jobs="${FFDKIT_JOBS:-$(nproc)}"
 # software GL). XDG_RUNTIME_DIR keeps Qt from warning on every start.
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
 export QT_QPA_PLATFORM=xcb
+# OpenMP threads that spin while idle would starve the other tests running beside them.
+export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 xvfb-run -a -s "-screen 0 1280x1024x24" \
   ctest --test-dir "$build" --output-on-failure --parallel "$jobs" --timeout 600 "$@"
