@@ -1,16 +1,27 @@
 #!/usr/bin/env bash
-# Configures and builds ffdkit (Release) into build/. Used by run.sh and test.sh.
-#   scripts/build.sh [extra cmake -D options...]
+# Configures and builds ffdkit (Release) into build/ (or $FFDKIT_BUILD_DIR).
+#   scripts/build.sh [--target NAME]... [-DOPTION=VALUE]...
+# With no --target everything is built (libraries, app, CLI, tests, benchmarks).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${FFDKIT_BUILD_DIR:-$root/build}"
 jobs="${FFDKIT_JOBS:-$(nproc)}"
 
+targets=()
+options=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --target) targets+=(--target "$2"); shift 2 ;;
+    -D*) options+=("$1"); shift ;;
+    *) echo "build.sh: unknown argument '$1' (expected --target NAME or -DOPTION=VALUE)" >&2; exit 2 ;;
+  esac
+done
+
 generator=()
 if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
 if [ ! -f "$build/CMakeCache.txt" ]; then
-  cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "$@"
-elif [ $# -gt 0 ]; then
-  cmake -S "$root" -B "$build" "$@"
+  cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "${options[@]}"
+elif [ ${#options[@]} -gt 0 ]; then
+  cmake -S "$root" -B "$build" "${options[@]}"
 fi
-cmake --build "$build" --parallel "$jobs"
+cmake --build "$build" --parallel "$jobs" "${targets[@]}"

@@ -5,7 +5,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/setup-deps.sh"
-"$root/scripts/build.sh"
+"$root/scripts/build.sh" --target ffdkit
 build="${FFDKIT_BUILD_DIR:-$root/build}"
 scene="${1:-$root/scenes/examples/default}"
 
