@@ -24,6 +24,7 @@
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 #include <vtkTransform.h>
+#include <vtkTubeFilter.h>
 
 #include "ffdkit/app/parts.h"
 #include "ffdkit/widgets/widget_model.h"
@@ -220,6 +221,15 @@ struct SceneView::Impl {
         normals->SetSplitting(false);
         normals->ConsistencyOff();
         mapper->SetInputConnection(normals->GetOutputPort());
+      } else if (object.mesh.segments.rows() > 0) {
+        // Curves as shaded tubes, thick enough to read at any zoom of the object.
+        const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+        vtkNew<vtkTubeFilter> tubes;
+        tubes->SetInputData(entry.polyData);
+        tubes->SetRadius(std::max(1e-6, 0.006 * diagonal));
+        tubes->SetNumberOfSides(10);
+        tubes->CappingOn();
+        mapper->SetInputConnection(tubes->GetOutputPort());
       } else {
         mapper->SetInputData(entry.polyData);
       }

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Renders every sample scene with the ffdkit application (its --screenshot option: the window's
+# 3D view, glyphs and lattices included) into docs/images/<scene>.png, as shown in the README.
+# Runs under Xvfb when there is no display. Builds the application first unless
+# FFDKIT_NO_BUILD=1.
+#   scripts/screenshots.sh [scene-name ...]     (default: every folder of scenes/examples)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${FFDKIT_BUILD_DIR:-$root/build}"
+if [ "${FFDKIT_NO_BUILD:-0}" != 1 ]; then
+  cmake --build "$build" --target ffdkit
+fi
+app="$build/app/gui/ffdkit"
+[ -x "$app" ] || { echo "screenshots.sh: no application at $app (set FFDKIT_BUILD_DIR)" >&2; exit 1; }
+
+if [ "$#" -gt 0 ]; then
+  scenes=("$@")
+else
+  scenes=()
+  for dir in "$root"/scenes/examples/*/; do
+    [ -f "$dir/scene.json" ] && scenes+=("$(basename "$dir")")
+  done
+fi
+
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
+run=()
+if [ -z "${DISPLAY:-}" ]; then
+  export QT_QPA_PLATFORM=xcb
+  run=(xvfb-run -a -s "-screen 0 1280x1024x24")
+fi
+
+mkdir -p "$root/docs/images"
+for name in "${scenes[@]}"; do
+  "${run[@]}" "$app" "$root/scenes/examples/$name" --screenshot "$root/docs/images/$name.png"
+done
