@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ffdkit/ffd/cylindrical_lattice.h"
+#include "ffdkit/geometry/quaternion/curve_generators.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/widgets/thesis_examples.h"
 
@@ -41,7 +42,9 @@ Scene makeDefault() {
   scene.description = "A sphere with a 3x3x3 lattice attached; drag the arrow on top.";
   scene.objects.push_back(primitiveObject("sphere", {.kind = scenes::PrimitiveKind::Sphere, .resolution = 48},
                                           {0.85, 0.55, 0.30}));
-  const auto lattice = scenes::attachNewLattice(scene, {"sphere"}, {.latticeName = "lattice"});
+  scenes::AttachOptions attach;
+  attach.latticeName = "lattice";
+  const auto lattice = scenes::attachNewLattice(scene, {"sphere"}, attach);
   const auto top = scene.widgets.addCell(lattice, CellSpec::point(1, 1, 2), "top");
   widgets::AffineOptions up;
   up.name = "pull";
@@ -78,7 +81,10 @@ Scene makePress() {
 // mirror-wise, driven by a handle through a screw rule and stopped by a clamp range.
 Scene makeVise() {
   widgets::WidgetModel model;
-  const auto lattice = model.addLattice({.name = "vise", .counts = {3, 2, 2}});
+  widgets::LatticeOptions latticeOptions;
+  latticeOptions.name = "vise";
+  latticeOptions.counts = {3, 2, 2};
+  const auto lattice = model.addLattice(latticeOptions);
   const auto left = model.addCell(lattice, CellSpec::slab(0, 0), "left-face");
   const auto right = model.addCell(lattice, CellSpec::slab(0, 2), "right-face");
   widgets::AffineOptions inwardsLeft;
@@ -166,6 +172,192 @@ Scene makeCylinderTwist() {
   return scene;
 }
 
+
+// ---- Generated curves and surfaces (the geometry topics through the generator registry) ----
+
+using scenes::GeneratorParameters;
+using Rows = std::vector<std::vector<double>>;
+
+Rows rowsOf(const Eigen::MatrixXd& matrix) {
+  Rows rows;
+  for (Eigen::Index r = 0; r < matrix.rows(); ++r) {
+    std::vector<double> row;
+    for (Eigen::Index c = 0; c < matrix.cols(); ++c) row.push_back(matrix(r, c));
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+// One generated object with a 3x3x3 lattice fitted around it; the top face's centre point is
+// pulled up by a tenth of the object's size so that the deformation shows. The camera looks
+// at the object from the front-right, above.
+Scene generatedScene(std::string description, std::string objectName, std::string generator,
+                     GeneratorParameters parameters, Eigen::Vector3d colour, double density = 1.0) {
+  Scene scene;
+  scene.description = std::move(description);
+  scenes::SceneObject object;
+  object.name = std::move(objectName);
+  object.source = scenes::GeneratedSource{std::move(generator), std::move(parameters), density};
+  object.display.color = colour;
+  object.mesh = scenes::buildObjectMesh(object.source, ".");
+  const Eigen::Vector3d low = object.mesh.points.colwise().minCoeff();
+  const Eigen::Vector3d high = object.mesh.points.colwise().maxCoeff();
+  const double size = (high - low).norm();
+  scene.objects.push_back(std::move(object));
+  scenes::AttachOptions attach;
+  attach.latticeName = "lattice";
+  const auto lattice = scenes::attachNewLattice(scene, {scene.objects.front().name}, attach);
+  const auto top = scene.widgets.addCell(lattice, CellSpec::point(1, 1, 2), "top");
+  widgets::AffineOptions up;
+  up.name = "pull";
+  up.placement = Eigen::AngleAxisd(-std::numbers::pi / 2, Eigen::Vector3d::UnitY());  // local x -> world +z
+  const auto pull = scene.widgets.addAffine(top, AffineKind::Translate, up);
+  scene.widgets.setVariation(pull, std::round(100.0 * size) / 1000.0);
+  const Eigen::Vector3d centre = 0.5 * (low + high);
+  scene.camera.focalPoint = centre;
+  scene.camera.position = centre + size * Eigen::Vector3d(0.9, -1.6, 1.1);
+  return scene;
+}
+
+// Seed 000 Ex. 3 size: a G2 quaternion-integral curve through 7 points (docs/geometry-quaternion.md).
+Scene makeQiInterpolate() {
+  GeneratorParameters p;
+  p.set("points", rowsOf(geometry::quaternion::exampleQiInterpolateParams().points));
+  p.set("end-rule", std::string("circle3"));
+  return generatedScene("Seed 000: a G2 quaternion-integral curve through 7 points (Circle3 end tangents), in a lattice.",
+                        "qi-curve", "qi-interpolate", std::move(p), {0.85, 0.35, 0.25});
+}
+
+// Seed 003 Ex. 1: a noisy sine fitted by 4 quaternion-integral segments.
+Scene makeQiFit() {
+  const auto example = geometry::quaternion::exampleQiFitParams();
+  GeneratorParameters p;
+  p.set("points", rowsOf(example.points));
+  p.set("breaks", std::vector<double>(example.breaks.begin(), example.breaks.end()));
+  return generatedScene("Seed 003 Ex. 1: 31 noisy points of a sine fitted by a G1 chain of 4 quaternion-integral segments.",
+                        "fitted-sine", "qi-fit", std::move(p), {0.3, 0.55, 0.85});
+}
+
+// Seed 004 Fig. 15 analogue: one segment from (0,0,0) along x to (1,1,1) along z.
+Scene makeSphereTangent() {
+  GeneratorParameters p;
+  p.set("start-point", std::vector<double>{0, 0, 0});
+  p.set("start-tangent", std::vector<double>{1, 0, 0});
+  p.set("end-point", std::vector<double>{1, 1, 1});
+  p.set("end-tangent", std::vector<double>{0, 0, 1});
+  p.set("degree", 2.0);
+  return generatedScene("Seed 004: a tangent-integral curve from (0,0,0) along x to (1,1,1) along z (quadratic path on S^2).",
+                        "space-curve", "sphere-tangent", std::move(p), {0.55, 0.35, 0.8});
+}
+
+// Seed 002 Fig. 2(c): the G3 curve with both end curvatures and the start angle given.
+Scene makeG3Curve() {
+  GeneratorParameters p;
+  p.set("points", Rows{{0.6, 10.5}, {4, 11.2}, {7.2, 7.9}, {10.6, 5.7}, {13.9, 8.9}, {16.3, 14}, {19.8, 17.4}, {23.3, 16.6}});
+  p.set("curvatures", Rows{{0, -0.10923218}, {-1, -0.16584946}});
+  p.set("tangent-angles", Rows{{0, 0.546728}});
+  return generatedScene("Seed 002 Fig. 2(c): a G3 curve (piecewise quadratic curvature) through 8 points, length 31.944.",
+                        "g3-curve", "g3-curve", std::move(p), {0.2, 0.6, 0.45});
+}
+
+// Seed 001 Fig. 3-7: the closed S-spline through the corners of a square, tension 5.
+Scene makeSSplineCurve() {
+  GeneratorParameters p;
+  p.set("points", Rows{{1, 1, 0}, {-1, 1, 0}, {-1, -1, 0}, {1, -1, 0}});
+  p.set("end", std::string("closed"));
+  p.set("beta2", 5.0);
+  p.set("samples-per-span", 32.0);
+  return generatedScene("Seed 001 Fig. 3-7: a closed S-spline through the corners of a square, tension beta2 = 5.",
+                        "s-spline", "s-spline-curve", std::move(p), {0.8, 0.5, 0.2});
+}
+
+// Seed 001 Fig. 3-15: a sigma-spline with cubic shape points through 6 points.
+Scene makeSigmaSplineCurve() {
+  GeneratorParameters p;
+  p.set("points", Rows{{0, 0, 0}, {1, 1, 0}, {2, 0, 0}, {3, 1, 0}, {4, 0, 0}, {6, 2, 0}});
+  p.set("shape", std::string("cubic"));
+  p.set("samples-per-span", 32.0);
+  return generatedScene("Seed 001 Fig. 3-15: a sigma-spline curve with cubic shape points through 6 points.",
+                        "sigma-spline", "sigma-spline-curve", std::move(p), {0.25, 0.45, 0.8});
+}
+
+// A 9 x 9 wavy sheet interpolated by an S-spline surface.
+Scene makeSSplineSurface() {
+  Rows points;
+  for (int i = 0; i < 9; ++i)
+    for (int j = 0; j < 9; ++j) points.push_back({double(i), double(j), 0.6 * std::sin(0.8 * i) * std::cos(0.7 * j)});
+  GeneratorParameters p;
+  p.set("points", points);
+  p.set("columns", 9.0);
+  return generatedScene("Seed 001 ch. 3: an S-spline surface interpolating a 9 x 9 wavy grid.", "sheet", "s-spline-surface",
+                        std::move(p), {0.5, 0.75, 0.55});
+}
+
+// Seed 001 ch. 3: a bicubic sigma-spline torus, closed in u and v.
+Scene makeSigmaSplineSurface() {
+  Rows points;
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 6; ++j) {
+      const double a = 2 * std::numbers::pi * i / 8, b = 2 * std::numbers::pi * j / 6;
+      points.push_back({(2 + 0.5 * std::cos(b)) * std::cos(a), (2 + 0.5 * std::cos(b)) * std::sin(a), 0.5 * std::sin(b)});
+    }
+  GeneratorParameters p;
+  p.set("points", points);
+  p.set("columns", 6.0);
+  p.set("closed-u", true);
+  p.set("closed-v", true);
+  return generatedScene("Seed 001 ch. 3: a bicubic sigma-spline torus interpolating an 8 x 6 closed grid.", "torus",
+                        "sigma-spline-surface", std::move(p), {0.85, 0.65, 0.35});
+}
+
+// Seed 001 Fig. 3-18/3-19: a circle and a star joined by a C2 blend: a vase.
+Scene makeSplineBlend() {
+  Rows circle, star;
+  for (int i = 0; i < 4; ++i) {
+    const double a = 2 * std::numbers::pi * i / 4;
+    circle.push_back({std::cos(a), std::sin(a), 0});
+    circle.push_back({1.2 * std::cos(a), 1.2 * std::sin(a), 1});
+  }
+  for (int i = 0; i < 10; ++i) {
+    const double a = 2 * std::numbers::pi * i / 10, r = i % 2 == 0 ? 1.0 : 0.5;
+    star.push_back({r * std::cos(a), r * std::sin(a), 3});
+    star.push_back({1.2 * r * std::cos(a), 1.2 * r * std::sin(a), 4});
+  }
+  GeneratorParameters p;
+  p.set("first-points", circle);
+  p.set("first-columns", 2.0);
+  p.set("first-closed-u", true);
+  p.set("first-knots-u", std::vector<double>{0, 10, 20, 30, 40});
+  p.set("first-knots-v", std::vector<double>{0, 10});
+  p.set("second-points", star);
+  p.set("second-columns", 2.0);
+  p.set("second-closed-u", true);
+  p.set("second-knots-u", std::vector<double>{0, 4, 8, 12, 16, 20, 24, 28, 32, 36, 40});
+  p.set("second-knots-v", std::vector<double>{0, 10});
+  p.set("part", std::string("composite"));
+  return generatedScene("Seed 001 Fig. 3-19: a circle and a star (sigma-spline surfaces) joined by a C2 blend: a vase.",
+                        "vase", "spline-blend", std::move(p), {0.45, 0.6, 0.85});
+}
+
+// Seed 001 Fig. 4-13: the hexagonal prism's G1 patch surface, its top ring's edges tightened.
+Scene makePolyhedronSurface() {
+  GeneratorParameters p;
+  p.set("builtin-mesh", std::string("hexagonal-prism"));
+  p.set("edge-beta", Rows{{6, 7, 10}, {7, 8, 10}, {8, 9, 10}, {9, 10, 10}, {10, 11, 10}, {11, 6, 10}});
+  return generatedScene("Seed 001 Fig. 4-13: the G1 triangular-patch surface of a hexagonal prism, top edges at tension 10.",
+                        "prism-surface", "polyhedron-surface", std::move(p), {0.75, 0.45, 0.6});
+}
+
+// Seed 001 Fig. 5-4: three great circles cut the sphere into octants; each octant is a
+// three-sided patch of the curve-network surface.
+Scene makeCurveNetworkSurface() {
+  GeneratorParameters p;
+  p.set("network", std::string("sphere-octants"));
+  p.set("pitch", 8.0);
+  return generatedScene("Seed 001 Fig. 5-4: a surface interpolating three great circles (eight three-sided patches).",
+                        "octant-sphere", "curve-network-surface", std::move(p), {0.6, 0.7, 0.35});
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -177,6 +369,17 @@ int main(int argc, char** argv) {
   const std::vector<std::pair<const char*, std::function<Scene()>>> examples = {
       {"default", makeDefault}, {"press", makePress},         {"vise", makeVise},
       {"mirror", makeMirror},   {"hierarchy", makeHierarchy}, {"cylinder-twist", makeCylinderTwist},
+      {"qi-interpolate", makeQiInterpolate},
+      {"qi-fit", makeQiFit},
+      {"sphere-tangent", makeSphereTangent},
+      {"g3-curve", makeG3Curve},
+      {"s-spline-curve", makeSSplineCurve},
+      {"sigma-spline-curve", makeSigmaSplineCurve},
+      {"s-spline-surface", makeSSplineSurface},
+      {"sigma-spline-surface", makeSigmaSplineSurface},
+      {"spline-blend", makeSplineBlend},
+      {"polyhedron-surface", makePolyhedronSurface},
+      {"curve-network-surface", makeCurveNetworkSurface},
   };
   try {
     for (const auto& [name, make] : examples) {

@@ -1,0 +1,130 @@
+// qi-interpolate, qi-fit, sphere-tangent: the quaternion curves of seeds 000, 003, 004
+// (docs/geometry-quaternion.md) as scene generators.
+#include "ffdkit/geometry/quaternion/curve_generators.h"
+#include "generator_support.h"
+
+namespace ffdkit::scenes::generators {
+namespace {
+
+namespace q = geometry::quaternion;
+
+const std::vector<std::pair<std::string, q::EndTangentRule>> kEndRules = {
+    {"circle3", q::EndTangentRule::Circle3},
+    {"natural-spline", q::EndTangentRule::NaturalSpline},
+    {"user", q::EndTangentRule::User},
+};
+const std::vector<std::pair<std::string, q::StopMode>> kStopModes = {
+    {"strict", q::StopMode::Strict},
+    {"paper", q::StopMode::Paper},
+};
+const std::vector<std::pair<std::string, q::FitDimension>> kDimensions = {
+    {"auto", q::FitDimension::Auto},
+    {"planar", q::FitDimension::Planar},
+    {"spatial", q::FitDimension::Spatial},
+};
+const std::vector<std::pair<std::string, q::StartTangentMode>> kStartModes = {
+    {"from-initial-curve", q::StartTangentMode::FromInitialCurve},
+    {"given", q::StartTangentMode::Given},
+    {"free", q::StartTangentMode::Free},
+};
+const std::vector<std::pair<std::string, q::FitInitialCurve>> kInitialCurves = {
+    {"least-squares-cubic", q::FitInitialCurve::LeastSquaresCubic},
+    {"interpolating-cubic", q::FitInitialCurve::InterpolatingCubic},
+};
+const std::vector<std::pair<std::string, q::ProductForm>> kForms = {
+    {"global", q::ProductForm::Global},
+    {"local", q::ProductForm::Local},
+};
+
+q::CurveSampling sampling(const GeneratorParameters& p, double density) {
+  return {scaledCount(positiveInteger(p, "samples", q::CurveSampling{}.samples, 2), density, 2)};
+}
+
+CurvatureProfile toProfile(const q::CurveProfile& profile) {
+  return {profile.arcLength, profile.curvature, profile.torsion, profile.points, profile.normals};
+}
+
+q::QiInterpolateParams interpolateParams(const GeneratorParameters& p) {
+  q::QiInterpolateParams params;
+  params.points = points3(p, "points", 2);
+  auto& o = params.options;
+  o.endRule = choice(p, "end-rule", o.endRule, kEndRules);
+  o.startTangent = vector3(p, "start-tangent", o.startTangent);
+  o.endTangent = vector3(p, "end-tangent", o.endTangent);
+  if (o.endRule == q::EndTangentRule::User && (!p.has("start-tangent") || !p.has("end-tangent")))
+    throw GeneratorError("parameters 'start-tangent' and 'end-tangent' are required with end-rule 'user'");
+  o.stopMode = choice(p, "stop-mode", o.stopMode, kStopModes);
+  o.maxIterations = positiveInteger(p, "max-iterations", o.maxIterations);
+  return params;
+}
+
+q::QiFitParams fitParams(const GeneratorParameters& p) {
+  q::QiFitParams params;
+  params.points = points3(p, "points", 2);
+  params.breaks = integers(p, "breaks");
+  if (params.breaks.empty()) params.breaks = {0, static_cast<int>(params.points.rows()) - 1};
+  auto& o = params.options;
+  o.degree = positiveInteger(p, "degree", o.degree);
+  o.dimension = choice(p, "dimension", o.dimension, kDimensions);
+  o.form = choice(p, "form", o.form, kForms);
+  o.startTangent = choice(p, "start-tangent-mode", o.startTangent, kStartModes);
+  o.givenStartTangent = vector3(p, "start-tangent", o.givenStartTangent);
+  o.initialCurve = choice(p, "initial-curve", o.initialCurve, kInitialCurves);
+  o.maxIterations = positiveInteger(p, "max-iterations", o.maxIterations);
+  return params;
+}
+
+q::SphereTangentParams sphereTangentParams(const GeneratorParameters& p) {
+  q::SphereTangentParams params;
+  auto& s = params.segment;
+  s.startPoint = vector3(p, "start-point", s.startPoint);
+  s.startTangent = vector3(p, "start-tangent", s.startTangent);
+  s.endPoint = vector3(p, "end-point", s.endPoint);
+  s.endTangent = vector3(p, "end-tangent", s.endTangent);
+  s.degree = p.integer("degree", s.degree);
+  if (s.degree != 2 && s.degree != 3) throw GeneratorError("parameter 'degree': expected 2 or 3, got " + std::to_string(s.degree));
+  if (auto v = optionalVector3(p, "second-control")) {
+    if (s.degree != 3) throw GeneratorError("parameter 'second-control': only with degree 3");
+    s.fixedSecondControl = *v;
+  }
+  params.options.multiStarts = p.integer("multi-starts", params.options.multiStarts);
+  if (params.options.multiStarts < 1 || params.options.multiStarts > 7)
+    throw GeneratorError("parameter 'multi-starts': expected 1..7, got " + std::to_string(params.options.multiStarts));
+  return params;
+}
+
+}  // namespace
+
+void addQuaternionGenerators(GeneratorRegistry& registry) {
+  registry.add({
+      .name = "qi-interpolate",
+      .summary = "G2 curve through points by quadratic quaternion-integral segments (seed 000)",
+      .parameterNames = {"points", "end-rule", "start-tangent", "end-tangent", "stop-mode", "max-iterations", "samples"},
+      .generate = [](const GeneratorParameters& p,
+                     double density) { return polylineMesh(q::generateQiInterpolate(interpolateParams(p), sampling(p, density))); },
+      .profile = [](const GeneratorParameters& p,
+                    double density) { return toProfile(q::profileQiInterpolate(interpolateParams(p), sampling(p, density))); },
+  });
+  registry.add({
+      .name = "qi-fit",
+      .summary = "G1 chain of quaternion-integral segments fitted to (noisy) points (seed 003)",
+      .parameterNames = {"points", "breaks", "degree", "dimension", "form", "start-tangent-mode", "start-tangent",
+                         "initial-curve", "max-iterations", "samples"},
+      .generate = [](const GeneratorParameters& p,
+                     double density) { return polylineMesh(q::generateQiFit(fitParams(p), sampling(p, density))); },
+      .profile = [](const GeneratorParameters& p,
+                    double density) { return toProfile(q::profileQiFit(fitParams(p), sampling(p, density))); },
+  });
+  registry.add({
+      .name = "sphere-tangent",
+      .summary = "one tangent-integral segment between given end points and tangents (seed 004)",
+      .parameterNames = {"start-point", "start-tangent", "end-point", "end-tangent", "degree", "second-control",
+                         "multi-starts", "samples"},
+      .generate = [](const GeneratorParameters& p,
+                     double density) { return polylineMesh(q::generateSphereTangent(sphereTangentParams(p), sampling(p, density))); },
+      .profile = [](const GeneratorParameters& p,
+                    double density) { return toProfile(q::profileSphereTangent(sphereTangentParams(p), sampling(p, density))); },
+  });
+}
+
+}  // namespace ffdkit::scenes::generators
