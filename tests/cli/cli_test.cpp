@@ -213,6 +213,26 @@ TEST(CliDeform, SeveralInputsGoIntoAFolderAndAScenesObjectsToo) {
   EXPECT_LT(maxDifference(scenes::readMesh(dir / "press.vtp").points, expected.at(scene.objects.front().name)), 1e-12);
 }
 
+TEST(CliDeform, AScenesLatticesDeformInputFilesWhereTheyLie) {
+  TempDir dir;
+  MeshData cloud;
+  cloud.points = (Eigen::MatrixX3d::Random(300, 3).array() * 0.4 + 0.5).matrix();
+  scenes::writeMesh(dir / "cloud.xyz", cloud);
+  const fs::path hierarchy = kSource / "scenes" / "examples" / "hierarchy";
+  scenes::Scene scene = scenes::readScene(hierarchy);
+  const auto affines = scene.widgets.widgets(widgets::WidgetType::Affine);
+  ASSERT_FALSE(affines.empty());
+  const std::string name = scene.widgets.name(affines.front());
+  const CliResult r = runCli({"deform", "--scene", hierarchy.string(), (dir / "cloud.xyz").string(), "-o",
+                              (dir / "out.xyz").string(), "--set", name + "=0.15"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  scene.widgets.setVariation(affines.front(), 0.15);
+  const Eigen::MatrixX3d expected = libraryDeform(scene.widgets, cloud);
+  const Eigen::MatrixX3d written = scenes::readMesh(dir / "out.xyz").points;
+  EXPECT_LT(maxDifference(written, expected), 1e-12);
+  EXPECT_GT(maxDifference(written, cloud.points), 0.01);
+}
+
 TEST(CliDeform, BrokenInputFailsAndLeavesTheExistingOutputUntouched) {
   TempDir dir;
   {

@@ -10,6 +10,10 @@ Console::Console(bool quiet, bool progress, bool timings)
     : quiet_(quiet), progress_(!quiet && (progress || ::isatty(STDERR_FILENO) == 1)), timings_(timings),
       start_(Clock::now()) {}
 
+Console::~Console() {
+  if (progress_ && !phase_.empty()) std::fprintf(stderr, "failed\n");
+}
+
 void Console::say(const std::string& line) const {
   if (!quiet_) std::printf("%s\n", line.c_str());
 }

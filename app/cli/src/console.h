@@ -12,6 +12,10 @@ namespace ffdkit::cli {
 class Console {
  public:
   Console(bool quiet, bool progress, bool timings);
+  /// Closes an unfinished progress line (a step that threw) so the error starts on its own line.
+  ~Console();
+  Console(const Console&) = delete;
+  Console& operator=(const Console&) = delete;
 
   /// A result line on stdout; silent with --quiet.
   void say(const std::string& line) const;
