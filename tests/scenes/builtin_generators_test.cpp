@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <sstream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -333,6 +334,31 @@ TEST(BuiltinGenerators, CurvesHaveCurvatureProfilesAndSurfacesDoNot) {
   EXPECT_NEAR(g3.curvature(0), -0.10923218, 1e-7);
   EXPECT_NEAR(g3.curvature(g3.curvature.size() - 1), -0.16584946, 1e-7);
   EXPECT_NEAR(g3.arcLength(g3.arcLength.size() - 1), 31.944481581, 1e-6);
+}
+
+TEST(BuiltinGenerators, EveryGeneratorHasAWorkingExampleInItsDocumentation) {
+  // docs/generators.md: each generator's section ends with a ```json block holding the
+  // "generator" object of a scene object; each must load and generate.
+  const std::string doc = fileText(FFDKIT_SOURCE_DIR "/docs/generators.md");
+  std::vector<std::string> documented;
+  for (std::size_t at = doc.find("```json\n{\"name\": "); at != std::string::npos;
+       at = doc.find("```json\n{\"name\": ", at + 1)) {
+    const std::size_t begin = at + 8, end = doc.find("```", begin);
+    ASSERT_NE(end, std::string::npos);
+    const std::string generatorObject = doc.substr(begin, end - begin);
+    std::istringstream in(R"({"format": "ffdkit-scene", "version": 1, "objects": [{"name": "example", "generator": )" +
+                          generatorObject + "}]}");
+    try {
+      const Scene scene = readScene(in, "docs/generators.md");
+      const auto& source = std::get<GeneratedSource>(scene.objects.at(0).source);
+      documented.push_back(source.generator);
+      EXPECT_GT(scene.objects[0].mesh.points.rows(), 16) << source.generator;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << generatorObject << ": " << e.what();
+    }
+  }
+  std::sort(documented.begin(), documented.end());
+  EXPECT_EQ(documented, builtinGenerators().names());
 }
 
 TEST(BuiltinGenerators, EveryGeneratedSampleSceneLoadsDeformsAndRoundTrips) {
