@@ -301,6 +301,28 @@ TEST(BuiltinGenerators, AFailingSolveIsAnErrorNotAWrongMesh) {
   EXPECT_NE(sphere.find("no curve meets the end conditions"), std::string::npos) << sphere;
 }
 
+TEST(BuiltinGenerators, AFailingGeneratorMakesTheSceneFileErrorNameObjectAndParameter) {
+  const auto messageOf = [](const std::string& generatorObject) -> std::string {
+    std::istringstream in(R"({"format": "ffdkit-scene", "version": 1, "objects": [{"name": "bad", "generator": )" +
+                          generatorObject + "}]}");
+    try {
+      readScene(in, "scene.json");
+    } catch (const SceneFileError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string infeasible = messageOf(
+      R"({"name": "g3-curve", "parameters": {"points": [[0.6, 10.5], [4, 11.2], [7.2, 7.9], [10.6, 5.7], [13.9, 8.9],
+          [16.3, 14], [19.8, 17.4], [23.3, 16.6]], "curvatures": [[0, 0], [-1, 0]], "total-length": 31.724017364}})");
+  EXPECT_NE(infeasible.find("object 'bad'"), std::string::npos) << infeasible;
+  EXPECT_NE(infeasible.find("generator 'g3-curve'"), std::string::npos) << infeasible;
+  EXPECT_NE(infeasible.find("did not converge"), std::string::npos) << infeasible;
+  const std::string typo = messageOf(R"({"name": "polyhedron-surface", "parameters": {"builtin_mesh": "cube"}})");
+  EXPECT_NE(typo.find("object 'bad'"), std::string::npos) << typo;
+  EXPECT_NE(typo.find("unknown parameter 'builtin_mesh'"), std::string::npos) << typo;
+}
+
 TEST(BuiltinGenerators, CurvesHaveCurvatureProfilesAndSurfacesDoNot) {
   for (const auto& [folder, generator] : kGeneratedSamples) {
     SCOPED_TRACE(folder);

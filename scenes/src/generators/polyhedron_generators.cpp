@@ -67,8 +67,8 @@ ph::PolyhedronSurfaceParams surfaceParams(const GeneratorParameters& p) {
       }
     }
   }
-  const bool parametric = !params.mesh.has_value() || p.has("vertices") ? false
-                          : params.builtinMesh == "sphere" || params.builtinMesh == "torus";
+  const bool explicitPolyhedron = p.has("vertices") || p.has("faces");
+  const bool parametric = !explicitPolyhedron && (params.builtinMesh == "sphere" || params.builtinMesh == "torus");
   if (p.has("resolution") && !parametric)
     throw GeneratorError("parameter 'resolution': only with builtin-mesh 'sphere' or 'torus'");
 
