@@ -1,6 +1,8 @@
 // End-to-end tests of ffdkit-cli render and plot (need an X display: CTest label render).
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_runner.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "png_image.h"
@@ -68,6 +70,67 @@ TEST(CliPlot, ANonCurveObjectOrUnknownGeneratorIsAClearError) {
   EXPECT_EQ(malformed.exitCode, 1) << describe(malformed);
   EXPECT_NE(malformed.err.find("bad.json:2:"), std::string::npos) << malformed.err;
   EXPECT_FALSE(fs::exists(dir / "p.png"));
+}
+
+bool orange(const Eigen::Vector3i& c) { return c.x() > 180 && c.y() > 60 && c.y() < 160 && c.z() < 90; }
+bool blue(const Eigen::Vector3i& c) { return c.z() > 170 && c.x() < 100 && c.y() < 150; }
+int countPixels(const PngImage& image, bool (*match)(const Eigen::Vector3i&)) {
+  int n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) n += match(image.rgb(x, y)) ? 1 : 0;
+  return n;
+}
+
+TEST(CliPlot, PlotsEveryGeneratedCurveOfTheSampleScenesAndRefusesSurfaces) {
+  TempDir dir;
+  const auto& registry = scenes::builtinGenerators();
+  int curves = 0;
+  int surfaces = 0;
+  for (const auto& entry : fs::directory_iterator(kSource / "scenes" / "examples")) {
+    if (!entry.is_directory()) continue;
+    const scenes::Scene scene = scenes::readScene(entry.path());
+    for (const auto& object : scene.objects) {
+      const auto* generated = std::get_if<scenes::GeneratedSource>(&object.source);
+      if (!generated) continue;
+      const fs::path png = dir / (object.name + ".png");
+      const CliResult r = runCli({"plot", entry.path().string(), "--object", object.name, "-o", png.string(),
+                                  "--size", "300x200"});
+      if (!registry.get(generated->generator).profile) {
+        ++surfaces;
+        EXPECT_EQ(r.exitCode, 1) << describe(r);
+        EXPECT_NE(r.err.find("surface"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(png));
+        continue;
+      }
+      ++curves;
+      ASSERT_EQ(r.exitCode, 0) << entry.path() << describe(r);
+      const PngImage image = readPng(png);
+      EXPECT_EQ(image.width, 300);
+      EXPECT_GT(countPixels(image, orange), 100) << object.name;
+      const scenes::CurvatureProfile profile =
+          registry.profile(generated->generator, generated->parameters, generated->density);
+      const bool torsion = profile.torsion.size() != 0;
+      EXPECT_EQ(r.out.find("curvature and torsion") != std::string::npos, torsion) << r.out;
+      // A varying torsion is a blue line across the chart (a zero one may lie on the x axis).
+      if (torsion && profile.torsion.maxCoeff() - profile.torsion.minCoeff() > 1e-3) {
+        EXPECT_GT(countPixels(image, blue), 150) << object.name;
+      }
+    }
+  }
+  EXPECT_GE(curves, 1);
+  EXPECT_GE(surfaces, 1);
+}
+
+TEST(CliPlot, PlotsAGeneratorWithAParameterFile) {
+  TempDir dir;
+  const fs::path sceneFile = kSource / "scenes" / "examples" / "g3-curve" / "scene.json";
+  if (!fs::exists(sceneFile)) GTEST_SKIP() << "no g3-curve sample scene";
+  const nlohmann::json scene = nlohmann::json::parse(readText(sceneFile));
+  std::ofstream(dir / "g3.json") << scene["objects"][0]["generator"]["parameters"].dump(2);
+  const CliResult r = runCli({"plot", "--generator", "g3-curve", (dir / "g3.json").string(), "-o",
+                              (dir / "g3.png").string(), "--size", "300x200", "--title", "G3"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  EXPECT_GT(countPixels(readPng(dir / "g3.png"), orange), 100);
 }
 
 TEST(CliPlot, EveryRegisteredCurveGeneratorIsReachable) {
