@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -12,13 +13,14 @@
 #include <vtkCellArray.h>
 #include <vtkCubeSource.h>
 #include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
+#include <vtkPointData.h>
 #include <vtkNew.h>
 #include <vtkParametricFunctionSource.h>
 #include <vtkParametricTorus.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
-#include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -44,6 +46,61 @@ void setPoints(vtkPoints* vtkPts, const Eigen::MatrixX3d& points) {
     data[3 * i + 2] = points(i, 2);
   }
   vtkPts->Modified();
+}
+
+// Which triangles touch each vertex (compressed rows), built once per object: normals are
+// then gathered per vertex without write races, in parallel.
+struct VertexFaces {
+  std::vector<int> start;  ///< #points + 1
+  std::vector<int> faces;
+};
+
+VertexFaces vertexFaces(const Eigen::MatrixX3i& triangles, Eigen::Index pointCount) {
+  VertexFaces vf;
+  vf.start.assign(static_cast<std::size_t>(pointCount) + 1, 0);
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+    for (int c = 0; c < 3; ++c) ++vf.start[static_cast<std::size_t>(triangles(t, c)) + 1];
+  for (std::size_t i = 1; i < vf.start.size(); ++i) vf.start[i] += vf.start[i - 1];
+  vf.faces.resize(static_cast<std::size_t>(vf.start.back()));
+  std::vector<int> fill(vf.start.begin(), vf.start.end() - 1);
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+    for (int c = 0; c < 3; ++c) vf.faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(triangles(t, c))]++)] = static_cast<int>(t);
+  return vf;
+}
+
+// Area-weighted vertex normals of a triangle mesh into `normals` (#points x 3 floats).
+// Done here rather than with vtkPolyDataNormals, which costs ~0.4 s per frame on 1M vertices
+// (it rebuilds cell links every time); a drag step has to stay within the engine's budget.
+void updateNormals(vtkFloatArray* normals, const Eigen::MatrixX3i& triangles, const VertexFaces& vf,
+                   const Eigen::MatrixX3d& points, std::vector<Eigen::Vector3f>& faceNormals) {
+  const Eigen::Index n = points.rows();
+  const Eigen::Index m = triangles.rows();
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(n);
+  float* out = normals->GetPointer(0);
+  faceNormals.resize(static_cast<std::size_t>(m));
+  const double* x = points.data();  // column-major: x, y, z columns
+  const double* y = x + n;
+  const double* z = y + n;
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index t = 0; t < m; ++t) {
+    const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
+    const Eigen::Vector3d pa(x[a], y[a], z[a]);
+    const Eigen::Vector3d area = (Eigen::Vector3d(x[b], y[b], z[b]) - pa).cross(Eigen::Vector3d(x[c], y[c], z[c]) - pa);
+    faceNormals[static_cast<std::size_t>(t)] = area.cast<float>();
+  }
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+    for (int k = vf.start[static_cast<std::size_t>(i)]; k < vf.start[static_cast<std::size_t>(i) + 1]; ++k)
+      sum += faceNormals[static_cast<std::size_t>(vf.faces[static_cast<std::size_t>(k)])];
+    const float length = sum.norm();
+    const Eigen::Vector3f v = length > 0.0f ? Eigen::Vector3f(sum / length) : Eigen::Vector3f::UnitZ();
+    out[3 * i] = v.x();
+    out[3 * i + 1] = v.y();
+    out[3 * i + 2] = v.z();
+  }
+  normals->Modified();
 }
 
 vtkSmartPointer<vtkPolyData> toPolyData(const scenes::MeshData& mesh, const Eigen::MatrixX3d& points) {
@@ -174,6 +231,8 @@ struct SceneView::Impl {
   struct ObjectActor {
     std::string name;
     Eigen::Index pointCount = 0;
+    VertexFaces vertexFaces;                  ///< of the triangles, for the normals
+    std::vector<Eigen::Vector3f> faceNormals; ///< scratch
     vtkSmartPointer<vtkPolyData> polyData;
     vtkSmartPointer<vtkActor> actor;
   };
@@ -216,11 +275,11 @@ struct SceneView::Impl {
       entry.polyData = toPolyData(object.mesh, points);
       vtkNew<vtkPolyDataMapper> mapper;
       if (object.mesh.triangles.rows() > 0) {
-        vtkNew<vtkPolyDataNormals> normals;  // smooth shading of the deformed surface
-        normals->SetInputData(entry.polyData);
-        normals->SetSplitting(false);
-        normals->ConsistencyOff();
-        mapper->SetInputConnection(normals->GetOutputPort());
+        vtkNew<vtkFloatArray> normals;  // smooth shading of the deformed surface
+        entry.vertexFaces = vertexFaces(object.mesh.triangles, points.rows());
+        updateNormals(normals, object.mesh.triangles, entry.vertexFaces, points, entry.faceNormals);
+        entry.polyData->GetPointData()->SetNormals(normals);
+        mapper->SetInputData(entry.polyData);
       } else if (object.mesh.segments.rows() > 0) {
         // Curves as shaded tubes, thick enough to read at any zoom of the object.
         const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
@@ -316,7 +375,11 @@ void SceneView::show(const scenes::Scene& scene, const scenes::SceneDeformer& de
 void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
   if (impl_->sameObjects(scene, deformed)) {
     for (auto& entry : impl_->objects) {
-      setPoints(entry.polyData->GetPoints(), deformed.points(entry.name));
+      const Eigen::MatrixX3d& points = deformed.points(entry.name);
+      setPoints(entry.polyData->GetPoints(), points);
+      if (auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals()))
+        updateNormals(normals, scene.findObject(entry.name)->mesh.triangles, entry.vertexFaces, points,
+                      entry.faceNormals);
       entry.polyData->Modified();
     }
   } else {
@@ -324,7 +387,27 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
   }
   impl_->buildWidgets(scene.widgets);
   impl_->renderer->SetBackground(scene.background.x(), scene.background.y(), scene.background.z());
-  impl_->renderer->ResetCameraClippingRange();
+  // The clipping range from our own bounds: VTK's would visit every cell of a large mesh
+  // (~40 ms per frame at 1M vertices).
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  auto grow = [&](const Eigen::MatrixX3d& points) {
+    if (points.rows() == 0) return;
+    lo = lo.cwiseMin(points.colwise().minCoeff().transpose());
+    hi = hi.cwiseMax(points.colwise().maxCoeff().transpose());
+  };
+  for (const auto& entry : impl_->objects) grow(deformed.points(entry.name));
+  for (widgets::WidgetId lattice : scene.widgets.widgets(widgets::WidgetType::Lattice))
+    grow(scene.widgets.worldControlPoints(lattice));
+  if (lo.x() <= hi.x()) {
+    const Eigen::Vector3d margin = Eigen::Vector3d::Constant(0.5 * (hi - lo).norm() + 1e-6);  // glyphs stick out
+    lo -= margin;
+    hi += margin;
+    double bounds[6] = {lo.x(), hi.x(), lo.y(), hi.y(), lo.z(), hi.z()};
+    impl_->renderer->ResetCameraClippingRange(bounds);
+  } else {
+    impl_->renderer->ResetCameraClippingRange();
+  }
 }
 
 void SceneView::setHighlights(const ViewHighlights& highlights) { impl_->highlights = highlights; }
