@@ -262,6 +262,28 @@ TEST(CliDeform, TimingsAndProgressOnRequest) {
   EXPECT_TRUE(quiet.err.empty()) << quiet.err;
 }
 
+TEST(CliDeform, ShowsProgressWhenStderrIsATerminalUnlessQuiet) {
+  if (!fs::exists("/usr/bin/script")) GTEST_SKIP() << "needs util-linux script(1) for a pseudo-terminal";
+  TempDir dir;
+  scenes::writeMesh(dir / "s.vtp", sphere(8));
+  const auto onTerminal = [&](const std::string& extra) {
+    std::string cli = shellQuote(FFDKIT_CLI);
+    for (const std::string& arg : {std::string("deform"), std::string("-w"), (kWidgetExamples / "fig6-8.json").string(),
+                                  (dir / "s.vtp").string(), std::string("-o"), (dir / "o.vtp").string()})
+      cli.append(" ").append(shellQuote(arg));
+    cli.append(extra);
+    std::string command = "/usr/bin/script -qec ";
+    command.append(shellQuote(cli)).append(" /dev/null > ").append(shellQuote((dir / "tty.txt").string()));
+    EXPECT_EQ(std::system(command.c_str()), 0);
+    return readText(dir / "tty.txt");
+  };
+  const std::string shown = onTerminal("");
+  EXPECT_NE(shown.find("embedding " + std::to_string(sphere(8).points.rows()) + " points ... "), std::string::npos)
+      << shown;
+  EXPECT_NE(shown.find("wrote "), std::string::npos) << shown;
+  EXPECT_EQ(onTerminal(" --quiet").find_first_not_of("\r\n"), std::string::npos);
+}
+
 TEST(CliInfo, SummarisesSceneWidgetAndMeshFiles) {
   TempDir dir;
   scenes::writeMesh(dir / "s.ply", sphere(8));
