@@ -1,6 +1,7 @@
 // ffdkit-cli deform: applies a widget file or a scene's widget trees to meshes or point files.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <set>
 #include <stdexcept>
@@ -64,8 +65,9 @@ void fitRoots(scenes::Scene& scene, double padding) {
   for (auto root : scene.widgets.roots()) scene.widgets.setLatticeFrame(root, map * scene.widgets.latticeFrame(root));
 }
 
-std::string uniqueName(const std::string& wanted, std::set<std::string>& taken) {
-  std::string name = wanted.empty() ? "object" : wanted;
+std::string uniqueName(const std::string& stem, std::set<std::string>& taken) {
+  const std::string wanted = stem.empty() ? "object" : stem;
+  std::string name = wanted;
   for (int k = 2; taken.count(name) != 0; ++k) name = wanted + "-" + std::to_string(k);
   taken.insert(name);
   return name;
@@ -92,45 +94,66 @@ void writeAll(const std::vector<std::pair<fs::path, scenes::MeshData>>& outputs)
   }
 }
 
-int runDeform(const Args& args) {
-  Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
-  const auto widgetPath = args.value("widgets");
-  const auto scenePath = args.value("scene");
-  if (widgetPath.has_value() == scenePath.has_value()) throw UsageError("give exactly one of --widgets FILE and --scene FILE");
-  const auto outputArg = args.value("output");
-  if (!outputArg) throw UsageError("missing --output (-o) PATH");
-  const std::vector<std::string>& inputs = args.positional();
-  if (widgetPath && inputs.empty()) throw UsageError("--widgets needs at least one INPUT mesh or point file");
-  const bool fit = args.flag("fit");
-  if (fit && inputs.empty()) throw UsageError("--fit fits the lattices to INPUT files; a scene's objects need none");
-  const double padding = args.value("padding") ? parseNumber(*args.value("padding"), "--padding") : 0.05;
-  if (padding < 0.0) throw UsageError("--padding must be >= 0");
-  if (args.value("padding") && !fit) throw UsageError("--padding only applies with --fit");
-  const std::vector<VariationSetting> settings = parseSettings(args.values("set"));
-  const std::vector<std::string> selected = args.values("object");
-  if (!selected.empty() && !inputs.empty()) throw UsageError("--object selects objects of a scene without INPUT files");
-  std::optional<std::string> format;
-  if (auto f = args.value("format")) {
-    format = lower(*f);
-    if (!format->empty() && (*format)[0] == '.') format->erase(0, 1);
-    static const std::set<std::string> writable = {"obj", "ply", "stl", "vtp", "xyz"};
-    if (writable.count(*format) == 0) throw UsageError("--format must be one of obj, ply, stl, vtp, xyz; got '" + *f + "'");
-  }
+/// The command line of `deform`, checked.
+struct DeformRequest {
+  std::optional<fs::path> widgetFile;
+  std::optional<fs::path> sceneFile;
+  std::vector<std::string> inputs;
+  fs::path output;
+  bool fit = false;
+  double padding = 0.05;
+  std::vector<VariationSetting> settings;
+  std::vector<std::string> objects;  ///< --object: the scene objects to write ("" = all)
+  std::optional<std::string> format; ///< lower case, no dot
+};
 
-  // Read.
-  scenes::Scene scene;
-  if (widgetPath) {
-    console.begin("read", "reading " + *widgetPath);
-    scene.widgets = scenes::readWidgetFile(fs::path(*widgetPath));
-  } else {
-    console.begin("read", "reading " + *scenePath);
-    scene = scenes::readScene(fs::path(*scenePath));
+DeformRequest parseRequest(const Args& args) {
+  DeformRequest r;
+  if (auto w = args.value("widgets")) r.widgetFile = *w;
+  if (auto s = args.value("scene")) r.sceneFile = *s;
+  if (r.widgetFile.has_value() == r.sceneFile.has_value())
+    throw UsageError("give exactly one of --widgets FILE and --scene FILE");
+  const auto output = args.value("output");
+  if (!output) throw UsageError("missing --output (-o) PATH");
+  r.output = *output;
+  r.inputs = args.positional();
+  if (r.widgetFile && r.inputs.empty()) throw UsageError("--widgets needs at least one INPUT mesh or point file");
+  r.fit = args.flag("fit");
+  if (r.fit && r.inputs.empty()) throw UsageError("--fit fits the lattices to INPUT files; a scene's objects need none");
+  if (auto padding = args.value("padding")) {
+    if (!r.fit) throw UsageError("--padding only applies with --fit");
+    r.padding = parseNumber(*padding, "--padding");
+    if (r.padding < 0.0) throw UsageError("--padding must be >= 0");
   }
-  std::map<std::string, fs::path> sourceOf;  // object -> input file, for output names
-  if (!inputs.empty()) {
+  r.settings = parseSettings(args.values("set"));
+  r.objects = args.values("object");
+  if (!r.objects.empty() && !r.inputs.empty())
+    throw UsageError("--object selects objects of a scene without INPUT files");
+  if (auto f = args.value("format")) {
+    std::string format = lower(*f);
+    if (!format.empty() && format[0] == '.') format.erase(0, 1);
+    static const std::set<std::string> writable = {"obj", "ply", "stl", "vtp", "xyz"};
+    if (writable.count(format) == 0) throw UsageError("--format must be one of obj, ply, stl, vtp, xyz; got '" + *f + "'");
+    r.format = format;
+  }
+  return r;
+}
+
+/// Reads the tool or scene and the inputs, and builds the scene to evaluate: with INPUT files
+/// every root lattice deforms every input. `sourceOf` receives each input object's file.
+scenes::Scene loadScene(const DeformRequest& r, Console& console, std::map<std::string, fs::path>& sourceOf) {
+  scenes::Scene scene;
+  if (r.widgetFile) {
+    console.begin("read", "reading " + r.widgetFile->string());
+    scene.widgets = scenes::readWidgetFile(*r.widgetFile);
+  } else {
+    console.begin("read", "reading " + r.sceneFile->string());
+    scene = scenes::readScene(*r.sceneFile);
+  }
+  if (!r.inputs.empty()) {
     std::vector<scenes::SceneObject> objects;
     std::set<std::string> taken;
-    for (const auto& input : inputs) {
+    for (const auto& input : r.inputs) {
       console.begin("read", "reading " + input);
       scenes::SceneObject object;
       object.mesh = readInputMesh(fs::path(input));
@@ -142,9 +165,8 @@ int runDeform(const Args& args) {
     scene.objects = std::move(objects);
   }
 
-  // Build the scene to evaluate: with INPUT files every root lattice deforms every input.
   console.begin("build scene", "building the scene");
-  if (!inputs.empty()) {
+  if (!r.inputs.empty()) {
     scene.attachments.clear();
     for (auto root : scene.widgets.roots()) {
       scenes::Attachment attachment{scene.widgets.name(root), {}};
@@ -153,64 +175,82 @@ int runDeform(const Args& args) {
     }
     if (scene.attachments.empty()) console.warn("the widget model has no lattice: the output equals the input");
   }
-  if (fit) fitRoots(scene, padding);
-  applySettings(scene.widgets, settings);
+  if (r.fit) fitRoots(scene, r.padding);
+  applySettings(scene.widgets, r.settings);
   scenes::validateScene(scene);
-  std::vector<std::string> written = selected;
-  if (written.empty())
-    for (const auto& object : scene.objects) written.push_back(object.name);
-  for (const auto& name : written)
-    if (!scene.findObject(name)) throw std::runtime_error("--object: the scene has no object '" + name + "'");
-  if (written.empty()) throw std::runtime_error("nothing to deform: the scene has no objects");
+  return scene;
+}
 
-  // Output paths: -o is the file when there is one output, else (or when it is a folder) the
-  // folder that receives NAME.EXT per object.
-  const fs::path output(*outputArg);
-  const bool intoFolder = written.size() > 1 || fs::is_directory(output);
+/// Where each object goes: -o is the file when there is one output, else (or when it is an
+/// existing folder) the folder that receives NAME.EXT per object.
+std::vector<Output> plannedOutputs(const DeformRequest& r, const scenes::Scene& scene,
+                                   const std::map<std::string, fs::path>& sourceOf, bool& intoFolder) {
+  std::vector<std::string> names;
+  for (const auto& name : r.objects)
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  if (names.empty())
+    for (const auto& object : scene.objects) names.push_back(object.name);
+  for (const auto& name : names)
+    if (!scene.findObject(name)) throw std::runtime_error("--object: the scene has no object '" + name + "'");
+  if (names.empty()) throw std::runtime_error("nothing to deform: the scene has no objects");
+  intoFolder = names.size() > 1 || fs::is_directory(r.output);
   std::vector<Output> targets;
-  for (const auto& name : written) {
+  for (const auto& name : names) {
     if (!intoFolder) {
-      if (output.extension().empty()) throw UsageError("-o " + output.string() + ": no extension to pick a format by");
-      targets.push_back({name, output});
+      if (r.output.extension().empty())
+        throw UsageError("-o " + r.output.string() + ": no extension to pick a format by");
+      targets.push_back({name, r.output});
       continue;
     }
-    std::string ext = format.value_or("");
-    if (ext.empty() && sourceOf.count(name)) ext = lower(sourceOf[name].extension().string()).substr(1);
+    std::string ext = r.format.value_or("");
+    if (ext.empty() && sourceOf.count(name)) ext = lower(sourceOf.at(name).extension().string());
+    if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
     if (ext.empty() || ext == "gltf" || ext == "glb" || ext == "vtk")
       throw UsageError("give --format EXT for object '" + name + "' (its input format cannot be written)");
-    targets.push_back({name, output / (name + "." + ext)});
+    targets.push_back({name, r.output / (name + "." + ext)});
   }
+  return targets;
+}
 
-  // Embed: every lattice at rest, so that this step is the embedding (plus an identity pass).
+/// Evaluates in two timed steps with the same result as scenes::deformScene. "embed": one
+/// update with every lattice at rest (the embeddings, plus an identity pass). "deform": the
+/// edit from rest to the current control points, an incremental update (child lattices, whose
+/// input moved with their parent, re-embed here), then finishGesture for the exact result.
+void evaluate(scenes::Scene& scene, scenes::SceneDeformer& deformer, Console& console) {
   Eigen::Index pointCount = 0;
   for (const auto& object : scene.objects) pointCount += object.mesh.points.rows();
   console.begin("embed", "embedding " + std::to_string(pointCount) + " points");
-  scenes::SceneDeformer deformer;
-  {
-    const widgets::WidgetModelState current = scene.widgets.captureState();
-    for (auto lattice : scene.widgets.widgets(widgets::WidgetType::Lattice))
-      scene.widgets.setControlPoints(lattice, scene.widgets.restPoints(lattice));
-    deformer.update(scene);
-    deformer.finishGesture(scene);
-    scene.widgets.restoreState(current);
-  }
-  // Deform: the edit from rest to the current control points, an incremental update (child
-  // lattices, whose input moved with their parent, re-embed here).
+  const widgets::WidgetModelState current = scene.widgets.captureState();
+  for (auto lattice : scene.widgets.widgets(widgets::WidgetType::Lattice))
+    scene.widgets.setControlPoints(lattice, scene.widgets.restPoints(lattice));
+  deformer.update(scene);
+  deformer.finishGesture(scene);
+  scene.widgets.restoreState(current);
   console.begin("deform", "deforming " + std::to_string(pointCount) + " points");
   deformer.update(scene);
   deformer.finishGesture(scene);
+}
+
+int runDeform(const Args& args) {
+  Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
+  const DeformRequest request = parseRequest(args);
+  std::map<std::string, fs::path> sourceOf;
+  scenes::Scene scene = loadScene(request, console, sourceOf);
+  bool intoFolder = false;
+  const std::vector<Output> targets = plannedOutputs(request, scene, sourceOf, intoFolder);
+  scenes::SceneDeformer deformer;
+  evaluate(scene, deformer, console);
   const scenes::SceneDeformStats stats = deformer.lastStats();
 
   std::vector<std::pair<fs::path, scenes::MeshData>> meshes;
   for (const auto& target : targets) {
-    scenes::MeshData mesh = scene.findObject(target.object)->mesh;
+    scenes::MeshData mesh = std::move(scene.findObject(target.object)->mesh);  // the scene is done with
     mesh.points = deformer.points(target.object);
     scenes::validateMesh(mesh, "deformed object '" + target.object + "'");
     meshes.emplace_back(target.path, std::move(mesh));
   }
-
   console.begin("write", "writing " + std::to_string(meshes.size()) + " file(s)");
-  if (intoFolder) fs::create_directories(output);
+  if (intoFolder) fs::create_directories(request.output);
   writeAll(meshes);
   console.end();
 
