@@ -2,6 +2,7 @@
 // actions, dialogs, the outliner and the property panel; glyph drags with the mouse; undo;
 // widget files; the sample scenes on screen.
 #include <QAction>
+#include <QComboBox>
 #include <QApplication>
 #include <QDialog>
 #include <QFileDialog>
@@ -236,6 +237,44 @@ class MainWindowTest : public QObject {
     dragArrow(w, created[0], 0.2);
     QVERIFY(maxDifference(m.cellWorldPoints(cellA), aBefore) > 0.15);
     QVERIFY2(maxDifference(m.cellWorldPoints(cellB), bBefore) < 1e-9, "translation no longer carried to cell B");
+  }
+
+  void aGlyphIsReplacedByAPartFromThePropertyPanel() {
+    MainWindow& w = *window_;
+    const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2)});
+    QCOMPARE(created.size(), std::size_t(1));
+    clickRow(w, QString::fromStdString(w.scene().widgets.name(created[0])));
+    auto* glyph = w.findChild<QComboBox*>("glyph");
+    QVERIFY(glyph != nullptr);
+    const QImage before = w.view()->grabFramebuffer();
+    glyph->setCurrentIndex(glyph->findText("crank"));
+    QCOMPARE(w.scene().widgets.glyph(created[0]).shape, std::string("crank"));
+    QVERIFY(w.view()->grabFramebuffer() != before);  // the part is drawn instead of the arrow
+    action(w, "actionUndo")->trigger();
+    QVERIFY(w.scene().widgets.glyph(created[0]).shape != "crank");
+  }
+
+  void altDragSlidesTheLatticeOverTheObject() {
+    MainWindow& w = *window_;
+    QCOMPARE(buildSphereWithWidgets(w, {}).size(), std::size_t(0));
+    const std::string sphere = w.scene().objects.front().name;
+    const WidgetId lattice = w.scene().widgets.roots().front();
+    const Eigen::MatrixX3d before = w.deformer().points(sphere);
+    const Eigen::MatrixX3d latticeBefore = w.scene().widgets.worldControlPoints(lattice);
+    const QPoint a = toWidget(w, Eigen::Vector3d::Zero());
+    const QPoint b = a + QPoint(60, 0);
+    sendMouse(w.view(), QEvent::MouseButtonPress, a, Qt::LeftButton, Qt::LeftButton, Qt::AltModifier);
+    for (int step = 1; step <= 5; ++step)
+      sendMouse(w.view(), QEvent::MouseMove, a + (b - a) * step / 5, Qt::NoButton, Qt::LeftButton, Qt::AltModifier);
+    sendMouse(w.view(), QEvent::MouseButtonRelease, b, Qt::LeftButton, Qt::NoButton, Qt::AltModifier);
+    const Eigen::RowVector3d shift = w.scene().widgets.worldControlPoints(lattice).row(0) - latticeBefore.row(0);
+    QVERIFY(shift.norm() > 0.1);
+    QVERIFY(maxDifference(w.scene().widgets.worldControlPoints(lattice), latticeBefore.rowwise() + shift) < 1e-9);
+    // Moving a lattice's frame moves its rest lattice too (spec §6): the object is re-embedded
+    // and, with the control points at rest, stays where it was.
+    QVERIFY(maxDifference(w.deformer().points(sphere), before) < 1e-9);
+    action(w, "actionUndo")->trigger();
+    QVERIFY(maxDifference(w.scene().widgets.worldControlPoints(lattice), latticeBefore) < 1e-12);
   }
 
   void aWidgetFileSavedThroughTheUiOpensWithTheSameControlPoints() {

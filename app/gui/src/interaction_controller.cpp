@@ -31,10 +31,16 @@ bool InteractionController::hover(const widgets::Ray& ray, double tolerance) {
   return true;
 }
 
-InteractionController::PressResult InteractionController::press(const widgets::Ray& ray, double tolerance, bool extend) {
+InteractionController::PressResult InteractionController::press(const widgets::Ray& ray, double tolerance, bool extend,
+                                                                bool lattices) {
   if (dragging_) cancel();
   widgets::PickOptions options;
   options.tolerance = tolerance;
+  if (lattices) {
+    options.affines = false;
+    options.cells = false;
+    options.lattices = true;
+  }
   if (const auto hit = scene_.widgets.pick(ray, options)) {
     if (!extend) selection_.clear();
     if (std::find(selection_.begin(), selection_.end(), hit->id) == selection_.end()) selection_.push_back(hit->id);
@@ -348,6 +354,10 @@ void InteractionController::setRule(widgets::BindingId binding, const widgets::C
 void InteractionController::setLatticeSettings(WidgetId lattice, const widgets::LatticeSettings& settings) {
   edit("Lattice settings of " + scene_.widgets.name(lattice),
        [&] { scene_.widgets.setLatticeSettings(lattice, settings); });
+}
+
+void InteractionController::setLatticeFrame(WidgetId lattice, const Eigen::Affine3d& frame) {
+  edit("Place " + scene_.widgets.name(lattice), [&] { scene_.widgets.setLatticeFrame(lattice, frame); });
 }
 
 void InteractionController::setSiblingPosition(WidgetId lattice, std::size_t position) {

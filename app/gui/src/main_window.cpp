@@ -530,7 +530,8 @@ bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
         if (e->button() != Qt::LeftButton) break;
         d.pressAt = e->position().toPoint();
         const bool extend = (e->modifiers() & (Qt::ControlModifier | Qt::ShiftModifier)) != 0;
-        const auto hit = d.controller->press(d.rayAt(d.pressAt), d.tolerance(), extend);
+        const bool lattices = (e->modifiers() & Qt::AltModifier) != 0;
+        const auto hit = d.controller->press(d.rayAt(d.pressAt), d.tolerance(), extend, lattices);
         d.pressOnEmpty = hit == InteractionController::PressResult::Nothing;
         if (hit != InteractionController::PressResult::Nothing) {
           d.selectedObjects.clear();

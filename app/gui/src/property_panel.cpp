@@ -249,8 +249,42 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
     });
   });
   form_->addRow(tr("Outside points"), outside);
-  form_->addRow(tr("Cells"), new QLabel(QString::number(m.cellsOf(id).size())));
   const auto parent = m.parentCell(id);
+  if (!parent) {
+    // The transformer of a root lattice: position (its lower corner) and size per axis; the
+    // orientation is kept.
+    const Eigen::Affine3d frame = m.latticeFrame(id);
+    const Eigen::Matrix3d linear = frame.linear();
+    auto* placement = new QWidget;
+    auto* row = new QHBoxLayout(placement);
+    row->setContentsMargins(0, 0, 0, 0);
+    auto* sizes = new QWidget;
+    auto* sizeRow = new QHBoxLayout(sizes);
+    sizeRow->setContentsMargins(0, 0, 0, 0);
+    for (int axis = 0; axis < 3; ++axis) {
+      auto* position = spin(QString("latticePosition%1").arg("xyz"[axis]), frame.translation()[axis], -1e4, 1e4, 3);
+      connect(position, &QDoubleSpinBox::valueChanged, this, [this, id, axis](double v) {
+        guarded([&] {
+          Eigen::Affine3d f = scene_.widgets.latticeFrame(id);
+          f.translation()[axis] = v;
+          controller_.setLatticeFrame(id, f);
+        });
+      });
+      row->addWidget(position);
+      auto* size = spin(QString("latticeSize%1").arg("uvw"[axis]), linear.col(axis).norm(), 1e-4, 1e4, 3);
+      connect(size, &QDoubleSpinBox::valueChanged, this, [this, id, axis](double v) {
+        guarded([&] {
+          Eigen::Affine3d f = scene_.widgets.latticeFrame(id);
+          f.linear().col(axis) = f.linear().col(axis).normalized() * v;
+          controller_.setLatticeFrame(id, f);
+        });
+      });
+      sizeRow->addWidget(size);
+    }
+    form_->addRow(tr("Position"), placement);
+    form_->addRow(tr("Size"), sizes);
+  }
+  form_->addRow(tr("Cells"), new QLabel(QString::number(m.cellsOf(id).size())));
   form_->addRow(tr("Parent"), new QLabel(parent ? qs(m.name(*parent)) : tr("(root)")));
   QStringList objects;
   for (const auto& a : scene_.attachments)

@@ -50,7 +50,9 @@ class InteractionController {
   /// Picks under the ray: an affine glyph or a cell (WidgetModel::pick), else a lattice control
   /// point within `tolerance` (world units). A widget becomes the selection (or is added to it
   /// with `extend`) and starts a drag (WidgetModel::beginDrag).
-  PressResult press(const widgets::Ray& ray, double tolerance, bool extend = false);
+  /// With `lattices`, only lattice widgets are picked (by their world bounding box) and dragged
+  /// in the view plane; the application binds it to Alt+drag.
+  PressResult press(const widgets::Ray& ray, double tolerance, bool extend = false, bool lattices = false);
   void drag(const widgets::Ray& ray);
   void release();
   /// Abandons the active drag (the model returns to the gesture start; nothing is pushed).
@@ -91,6 +93,8 @@ class InteractionController {
   void setMask(widgets::BindingId binding, widgets::AffineMask mask);
   void setRule(widgets::BindingId binding, const widgets::ConversionRule& rule);
   void setLatticeSettings(widgets::WidgetId lattice, const widgets::LatticeSettings& settings);
+  /// A root lattice's world frame (its placement, orientation and size).
+  void setLatticeFrame(widgets::WidgetId lattice, const Eigen::Affine3d& frame);
   void setSiblingPosition(widgets::WidgetId lattice, std::size_t position);
   /// Replaces the widget model (a widget file opened): attachments of lattices that no longer
   /// exist are dropped.
