@@ -6,6 +6,7 @@
 #include <QApplication>
 #include <QDialog>
 #include <QFileDialog>
+#include <QMimeData>
 #include <QMouseEvent>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
@@ -25,7 +26,9 @@
 #include "ffdkit/app/main_window.h"
 #include "ffdkit/app/scene_view.h"
 #include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene_deformer.h"
+#include "ffdkit/scenes/widget_file.h"
 
 using namespace ffdkit;
 using app::MainWindow;
@@ -302,6 +305,43 @@ class MainWindowTest : public QObject {
       QCOMPARE(b.worldControlPoints(same), a.worldControlPoints(lattice));
     }
     QCOMPARE(b.variation(b.find("pull")), a.variation(pull));
+  }
+
+  void droppedFilesOpenByKind() {
+    MainWindow& w = *window_;
+    QTemporaryDir dir;
+    // A mesh file is imported as an object.
+    scenes::MeshData mesh;
+    mesh.points.resize(3, 3);
+    mesh.points << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+    mesh.triangles.resize(1, 3);
+    mesh.triangles << 0, 1, 2;
+    const QString obj = dir.filePath("triangle.obj");
+    scenes::writeMesh(obj.toStdString(), mesh);
+    auto drop = [&](const QString& path) {
+      QMimeData data;
+      data.setUrls({QUrl::fromLocalFile(path)});
+      const QPoint at(w.width() / 2, w.height() / 2);
+      QDragEnterEvent enter(at, Qt::CopyAction, &data, Qt::LeftButton, Qt::NoModifier);
+      QApplication::sendEvent(&w, &enter);
+      QVERIFY(enter.isAccepted());
+      QDropEvent dropped(QPointF(at), Qt::CopyAction, &data, Qt::LeftButton, Qt::NoModifier);
+      QApplication::sendEvent(&w, &dropped);
+    };
+    drop(obj);
+    QCOMPARE(w.scene().objects.size(), std::size_t(1));
+    QCOMPARE(w.scene().objects.front().name, std::string("triangle"));
+    QCOMPARE(w.scene().objects.front().mesh.points.rows(), Eigen::Index(3));
+    // A widget file replaces the widgets; a scene opens.
+    widgets::WidgetModel tool;
+    tool.addLattice("dropped", Eigen::Vector3i(2, 3, 4));
+    const QString json = dir.filePath("tool.json");
+    scenes::writeWidgetFile(json.toStdString(), tool);
+    drop(json);
+    QCOMPARE(w.scene().objects.size(), std::size_t(1));
+    QCOMPARE(w.scene().widgets.counts(w.scene().widgets.find("dropped")), Eigen::Vector3i(2, 3, 4));
+    drop(FFDKIT_SOURCE_DIR "/scenes/examples/vise/scene.json");
+    QVERIFY(w.scene().widgets.widgets(widgets::WidgetType::Affine).size() >= 2);
   }
 
   void eachSampleSceneShowsItsObject() {

@@ -1,6 +1,8 @@
 #include "property_panel.h"
 
+#include <array>
 #include <cmath>
+#include <numbers>
 #include <exception>
 
 #include <QCheckBox>
@@ -129,6 +131,33 @@ void PropertyPanel::showAffine(widgets::WidgetId id) {
     row->addWidget(box);
   }
   form_->addRow(tr("Position"), position);
+
+  // Orientation: Euler angles (degrees) about z, y', x'' of the placement (position kept).
+  const Eigen::Matrix3d rotation = placement.rotation();
+  const Eigen::Vector3d euler = rotation.eulerAngles(2, 1, 0) * (180.0 / std::numbers::pi);
+  auto* orientation = new QWidget;
+  auto* angles = new QHBoxLayout(orientation);
+  angles->setContentsMargins(0, 0, 0, 0);
+  std::array<QDoubleSpinBox*, 3> boxes{};
+  for (int i = 0; i < 3; ++i) {
+    boxes[static_cast<std::size_t>(i)] = spin(QString("orientation%1").arg("zyx"[i]), euler[i], -360.0, 360.0, 2);
+    angles->addWidget(boxes[static_cast<std::size_t>(i)]);
+  }
+  for (auto* box : boxes)
+    connect(box, &QDoubleSpinBox::valueChanged, this, [this, id, boxes](double) {
+      guarded([&] {
+        const double k = std::numbers::pi / 180.0;
+        Eigen::Affine3d p = scene_.widgets.placement(id);
+        const Eigen::Vector3d scale(p.linear().col(0).norm(), p.linear().col(1).norm(), p.linear().col(2).norm());
+        const Eigen::Matrix3d r = (Eigen::AngleAxisd(boxes[0]->value() * k, Eigen::Vector3d::UnitZ()) *
+                                   Eigen::AngleAxisd(boxes[1]->value() * k, Eigen::Vector3d::UnitY()) *
+                                   Eigen::AngleAxisd(boxes[2]->value() * k, Eigen::Vector3d::UnitX()))
+                                      .toRotationMatrix();
+        p.linear() = r * scale.asDiagonal();
+        controller_.setPlacement(id, p);
+      });
+    });
+  form_->addRow(tr("Orientation (z y x, deg)"), orientation);
 
   // Glyph: the default shape of the kind or a part of the library, and its size.
   const widgets::Glyph glyph = m.glyph(id);
