@@ -51,7 +51,9 @@ TEST_F(MeshIo, RoundTripsEveryWritableFormat) {
     }
     ASSERT_EQ(back.points.rows(), original.points.rows());
     EXPECT_LE((back.points - original.points).cwiseAbs().maxCoeff(), tolerance);
-    if (std::string(ext) != ".xyz") EXPECT_EQ(back.triangles, original.triangles);
+    if (std::string(ext) != ".xyz") {
+      EXPECT_EQ(back.triangles, original.triangles);
+    }
   }
 }
 
@@ -103,8 +105,10 @@ TEST_F(MeshIo, BadInputGetsClearErrorsAndWritesNothing) {
   } catch (const MeshIoError& e) {
     EXPECT_NE(std::string(e.what()).find("bad.xyz:2:"), std::string::npos) << e.what();
   }
-  std::ofstream(dir_ / "nan.xyz") << "1 2 nan\n";
-  EXPECT_THROW(readMesh(dir_ / "nan.xyz"), MeshIoError);
+  for (const char* bad : {"1 2 nan\n", "1e999 0 0\n", "0 0 0\nnan 0 0\n", "1 2\n", "1 2 3 4\n"}) {
+    std::ofstream(dir_ / "nan.xyz") << bad;
+    EXPECT_THROW(readMesh(dir_ / "nan.xyz"), MeshIoError) << bad;
+  }
   std::ofstream(dir_ / "empty.ply") << "";
   EXPECT_THROW(readMesh(dir_ / "empty.ply"), MeshIoError);
   EXPECT_THROW(readMesh(dir_ / "x.3ds"), MeshIoError);

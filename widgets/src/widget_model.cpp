@@ -758,7 +758,9 @@ WidgetId WidgetModel::addLattice(const LatticeOptions& options) {
   if ((c.array() < 2).any())
     fail(WidgetErrorCode::InvalidArgument, "lattice needs >= 2 points per axis, got (" + std::to_string(c.x()) + ", " +
                                                std::to_string(c.y()) + ", " + std::to_string(c.z()) + ")");
-  if (static_cast<double>(c.x()) * c.y() * c.z() > 1e8) fail(WidgetErrorCode::InvalidArgument, "lattice too large");
+  if (static_cast<double>(c.x()) * c.y() * c.z() > 1e8)
+    fail(WidgetErrorCode::InvalidArgument, "lattice has too many control points (at most 1e8): (" + std::to_string(c.x()) +
+                                               ", " + std::to_string(c.y()) + ", " + std::to_string(c.z()) + ")");
   const Eigen::Index n = static_cast<Eigen::Index>(c.prod());
   Eigen::MatrixX3d rest = options.restPoints;
   if (rest.rows() == 0) {
@@ -1584,9 +1586,12 @@ WidgetModel WidgetModel::fromData(const WidgetModelData& data) {
       const LatticeData& l = data.lattices[i];
       const std::string base = "/lattices/" + std::to_string(i);
       at(base + "/counts");
-      if ((l.counts.array() < 2).any() || static_cast<double>(l.counts.x()) * l.counts.y() * l.counts.z() > 1e8)
-        bad(WidgetErrorCode::InvalidArgument, "lattice needs >= 2 points per axis, got (" + std::to_string(l.counts.x()) + ", " +
-                                                  std::to_string(l.counts.y()) + ", " + std::to_string(l.counts.z()) + ")");
+      const std::string counts =
+          "(" + std::to_string(l.counts.x()) + ", " + std::to_string(l.counts.y()) + ", " + std::to_string(l.counts.z()) + ")";
+      if ((l.counts.array() < 2).any())
+        bad(WidgetErrorCode::InvalidArgument, "lattice needs >= 2 points per axis, got " + counts);
+      if (static_cast<double>(l.counts.x()) * l.counts.y() * l.counts.z() > 1e8)
+        bad(WidgetErrorCode::InvalidArgument, "lattice has too many control points (at most 1e8): " + counts);
       const Eigen::Index n = static_cast<Eigen::Index>(l.counts.prod());
       at(base + "/rest");
       if (l.restPoints.rows() != n || !finite(l.restPoints))
