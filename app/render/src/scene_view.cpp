@@ -157,6 +157,38 @@ vtkSmartPointer<vtkPolyData> latticePolyData(const Eigen::MatrixX3d& points, con
   return polyData;
 }
 
+// The six boundary sides of a lattice as quads between neighbouring grid points (drawn
+// translucent for a selected lattice).
+vtkSmartPointer<vtkPolyData> latticeFacesPolyData(const Eigen::MatrixX3d& points, const Eigen::Vector3i& n) {
+  vtkNew<vtkPoints> vtkPts;
+  vtkPts->SetDataTypeToDouble();
+  setPoints(vtkPts, points);
+  vtkNew<vtkCellArray> quads;
+  auto id = [&](const Eigen::Vector3i& g) -> vtkIdType { return g.x() + n.x() * (g.y() + n.y() * g.z()); };
+  for (int normal = 0; normal < 3; ++normal) {
+    const int a = (normal + 1) % 3, b = (normal + 2) % 3;
+    for (int side : {0, n[normal] - 1})
+      for (int i = 0; i + 1 < n[a]; ++i)
+        for (int j = 0; j + 1 < n[b]; ++j) {
+          Eigen::Vector3i g = Eigen::Vector3i::Zero();
+          g[normal] = side;
+          g[a] = i;
+          g[b] = j;
+          Eigen::Vector3i ga = g, gb = g, gab = g;
+          ga[a] += 1;
+          gb[b] += 1;
+          gab[a] += 1;
+          gab[b] += 1;
+          const vtkIdType ids[4] = {id(g), id(ga), id(gab), id(gb)};
+          quads->InsertNextCell(4, ids);
+        }
+  }
+  auto polyData = vtkSmartPointer<vtkPolyData>::New();
+  polyData->SetPoints(vtkPts);
+  polyData->SetPolys(quads);
+  return polyData;
+}
+
 vtkSmartPointer<vtkPolyData> pointsPolyData(const Eigen::MatrixX3d& points) {
   vtkNew<vtkPoints> vtkPts;
   vtkPts->SetDataTypeToDouble();
@@ -329,6 +361,11 @@ struct SceneView::Impl {
       actor->GetProperty()->SetPointSize(9.0);
       actor->GetProperty()->SetRenderPointsAsSpheres(true);
       actor->GetProperty()->SetLighting(false);
+      if (contains(highlights.selected, lattice)) {
+        auto faces = addWidgetActor(latticeFacesPolyData(points, model.counts(lattice)), {0.55, 0.8, 1.0});
+        faces->GetProperty()->SetOpacity(0.18);
+        faces->GetProperty()->SetLighting(false);
+      }
       if (highlights.point && highlights.point->lattice == lattice && highlights.point->index < points.rows()) {
         auto marker = addWidgetActor(pointsPolyData(points.row(highlights.point->index)), kSelected);
         marker->GetProperty()->SetPointSize(18.0);
