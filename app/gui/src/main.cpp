@@ -23,6 +23,9 @@ int main(int argc, char** argv) {
   parser.addPositionalArgument("scene", "Scene file or sample-scene folder to open.");
   QCommandLineOption screenshot("screenshot", "Render the scene, save the window's 3D view as PNG and exit.", "png");
   parser.addOption(screenshot);
+  QCommandLineOption windowShot("window-screenshot", "Like --screenshot, but the whole window (outliner, properties).",
+                                "png");
+  parser.addOption(windowShot);
   parser.process(app);
 
   try {
@@ -35,11 +38,12 @@ int main(int argc, char** argv) {
       window.resize(1024, 768);
     }
     window.show();
-    if (parser.isSet(screenshot)) {
-      const QString png = parser.value(screenshot);
+    if (parser.isSet(screenshot) || parser.isSet(windowShot)) {
+      const bool whole = parser.isSet(windowShot);
+      const QString png = parser.value(whole ? windowShot : screenshot);
       int status = 0;
       QTimer::singleShot(200, [&] {
-        const QImage image = window.view()->grabFramebuffer();
+        const QImage image = whole ? window.grab().toImage() : window.view()->grabFramebuffer();
         if (image.isNull() || !image.save(png, "PNG")) {
           std::fprintf(stderr, "ffdkit: cannot save screenshot to %s\n", qPrintable(png));
           status = 1;

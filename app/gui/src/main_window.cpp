@@ -164,7 +164,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     s.sceneView->setHighlights(s.controller->highlights());
     s.sceneView->refresh(s.scene, s.deformer);
     const auto& stats = s.deformer.lastStats();
-    s.deformStatus->setText(tr("deform %1 ms, %2 points").arg(stats.seconds * 1e3, 0, 'f', 2).arg(stats.deformedPoints));
+    // An update with nothing to do (a hover, a selection) keeps the last real deform time.
+    if (stats.seconds > 0.0 && stats.deformedPoints > 0 && (stats.seconds >= 1e-5 || stats.reembeddedStages > 0))
+      s.deformStatus->setText(tr("deform %1 ms, %2 points").arg(stats.seconds * 1e3, 0, 'f', 2).arg(stats.deformedPoints));
     s.view->requestRender();
   };
   d.controller->onStructureChanged = [this, refreshPanel] {
@@ -422,6 +424,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   setScene({});
   statusBar()->showMessage(tr("Ready"));
   resize(1280, 800);
+  resizeDocks({outlinerDock, propertiesDock}, {280, 300}, Qt::Horizontal);
 }
 
 MainWindow::~MainWindow() = default;
@@ -499,6 +502,9 @@ void MainWindow::setScene(scenes::Scene scene) {
   d.commands.clear();
   d.deformer.reset();
   d.deformer.update(d.scene);
+  d.deformStatus->setText(tr("deform %1 ms, %2 points")
+                              .arg(d.deformer.lastStats().seconds * 1e3, 0, 'f', 2)
+                              .arg(d.deformer.lastStats().deformedPoints));
   d.deformer.finishGesture(d.scene);
   d.sceneView->setHighlights(d.controller->highlights());
   d.sceneView->show(d.scene, d.deformer);

@@ -42,7 +42,9 @@ Outliner::Outliner(QWidget* parent) : QTreeWidget(parent) {
   setObjectName("outliner");
   setColumnCount(2);
   setHeaderLabels({tr("Name"), tr("Type")});
+  header()->setStretchLastSection(false);
   header()->setSectionResizeMode(0, QHeaderView::Stretch);
+  header()->setSectionResizeMode(1, QHeaderView::ResizeToContents);
   setSelectionMode(QAbstractItemView::ExtendedSelection);
   setDragDropMode(QAbstractItemView::InternalMove);
   connect(this, &QTreeWidget::itemSelectionChanged, this, [this] {

@@ -77,7 +77,9 @@ void PropertyPanel::clearRows() {
 void PropertyPanel::showSelection(const std::vector<OutlinerEntry>& selection) {
   clearRows();
   if (selection.empty()) {
-    form_->addRow(new QLabel(tr("Nothing selected. Click a glyph, a lattice point or a row of the outliner.")));
+    auto* hint = new QLabel(tr("Nothing selected. Click a glyph, a lattice point or a row of the outliner."));
+    hint->setWordWrap(true);
+    form_->addRow(hint);
     return;
   }
   if (selection.size() > 1) form_->addRow(tr("Selected"), new QLabel(tr("%1 items").arg(selection.size())));
