@@ -242,6 +242,35 @@ class MainWindowTest : public QObject {
     QVERIFY2(maxDifference(m.cellWorldPoints(cellB), bBefore) < 1e-9, "translation no longer carried to cell B");
   }
 
+  void aLargeObjectIsEmbeddedBehindAProgressDialog() {
+    MainWindow& w = *window_;
+    const long saved = MainWindow::backgroundEmbedPoints();
+    MainWindow::setBackgroundEmbedPoints(100);  // the test sphere counts as large
+    triggerWithDialog(w, "actionAddPrimitive");
+    triggerWithDialog(w, "actionNewLattice");
+    const std::string sphere = w.scene().objects.front().name;
+    const WidgetId lattice = w.scene().widgets.roots().front();
+    w.controller().addAffineAtPoint({lattice, flat(1, 1, 2)}, widgets::AffineKind::Translate);
+    w.controller().setVariation(w.scene().widgets.widgets(widgets::WidgetType::Affine).back(), 0.2);
+    bool sawProgress = false;
+    QTimer probe;
+    connect(&probe, &QTimer::timeout, [&] { sawProgress = sawProgress || w.findChild<QWidget*>("embedProgress") != nullptr; });
+    probe.start(0);
+    action(w, "actionAttach")->trigger();
+    probe.stop();
+    MainWindow::setBackgroundEmbedPoints(saved);
+    QVERIFY(sawProgress);
+    QCOMPARE(w.scene().latticesDeforming(sphere).size(), std::size_t(1));
+    // The embedding made in the worker gives the points the model gives.
+    scenes::SceneDeformer model;
+    model.update(w.scene());
+    model.finishGesture(w.scene());
+    QVERIFY(maxDifference(w.deformer().points(sphere), model.points(sphere)) < 1e-12);
+    QVERIFY(maxDifference(w.deformer().points(sphere), w.scene().objects.front().mesh.points) > 0.05);
+    action(w, "actionUndo")->trigger();
+    QVERIFY(w.scene().attachments.empty());
+  }
+
   void aGlyphIsReplacedByAPartFromThePropertyPanel() {
     MainWindow& w = *window_;
     const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2)});

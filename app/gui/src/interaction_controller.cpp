@@ -13,6 +13,32 @@ namespace ffdkit::app {
 using widgets::WidgetId;
 using widgets::WidgetType;
 
+void fitAndAttachLattice(scenes::Scene& scene, WidgetId lattice, const std::string& objectName) {
+  const scenes::SceneObject* object = scene.findObject(objectName);
+  if (object == nullptr) throw std::invalid_argument("no object '" + objectName + "'");
+  if (object->mesh.points.rows() == 0) throw std::invalid_argument("object '" + objectName + "' has no points");
+  if (scene.widgets.parentCell(lattice))
+    throw std::invalid_argument("'" + scene.widgets.name(lattice) + "' is a child lattice: attach its root");
+  // Fit the unit box onto the padded bounding box (the same rule as scenes::attachNewLattice).
+  const Eigen::Vector3d lo = object->mesh.points.colwise().minCoeff();
+  const Eigen::Vector3d hi = object->mesh.points.colwise().maxCoeff();
+  const double diagonal = (hi - lo).norm();
+  const double pad = 0.05 * diagonal;
+  const Eigen::Vector3d extent =
+      ((hi - lo).array() + 2.0 * pad).max(std::max(1e-3, 0.05 * diagonal)).matrix();
+  const Eigen::Vector3d origin = 0.5 * (lo + hi) - 0.5 * extent;
+  scene.widgets.setLatticeFrame(lattice, Eigen::Translation3d(origin) * Eigen::Scaling(extent));
+  const std::string& name = scene.widgets.name(lattice);
+  auto it = std::find_if(scene.attachments.begin(), scene.attachments.end(),
+                         [&](const scenes::Attachment& a) { return a.lattice == name; });
+  if (it == scene.attachments.end()) {
+    scene.attachments.push_back({name, {objectName}});
+  } else if (std::find(it->objects.begin(), it->objects.end(), objectName) == it->objects.end()) {
+    it->objects.push_back(objectName);
+  }
+  scenes::validateScene(scene);
+}
+
 InteractionController::InteractionController(scenes::Scene& scene, scenes::SceneDeformer& deformer,
                                              scenes::CommandStack& commands)
     : scene_(scene), deformer_(deformer), commands_(commands) {}
@@ -273,29 +299,7 @@ void InteractionController::removeWidget(WidgetId id) {
 
 void InteractionController::attachLattice(WidgetId lattice, const std::string& objectName) {
   edit("Attach " + scene_.widgets.name(lattice) + " to " + objectName, [&] {
-    const scenes::SceneObject* object = scene_.findObject(objectName);
-    if (object == nullptr) throw std::invalid_argument("no object '" + objectName + "'");
-    if (object->mesh.points.rows() == 0) throw std::invalid_argument("object '" + objectName + "' has no points");
-    if (scene_.widgets.parentCell(lattice))
-      throw std::invalid_argument("'" + scene_.widgets.name(lattice) + "' is a child lattice: attach its root");
-    // Fit the unit box onto the padded bounding box (the same rule as scenes::attachNewLattice).
-    const Eigen::Vector3d lo = object->mesh.points.colwise().minCoeff();
-    const Eigen::Vector3d hi = object->mesh.points.colwise().maxCoeff();
-    const double diagonal = (hi - lo).norm();
-    const double pad = 0.05 * diagonal;
-    const Eigen::Vector3d extent =
-        ((hi - lo).array() + 2.0 * pad).max(std::max(1e-3, 0.05 * diagonal)).matrix();
-    const Eigen::Vector3d origin = 0.5 * (lo + hi) - 0.5 * extent;
-    scene_.widgets.setLatticeFrame(lattice, Eigen::Translation3d(origin) * Eigen::Scaling(extent));
-    const std::string& name = scene_.widgets.name(lattice);
-    auto it = std::find_if(scene_.attachments.begin(), scene_.attachments.end(),
-                           [&](const scenes::Attachment& a) { return a.lattice == name; });
-    if (it == scene_.attachments.end()) {
-      scene_.attachments.push_back({name, {objectName}});
-    } else if (std::find(it->objects.begin(), it->objects.end(), objectName) == it->objects.end()) {
-      it->objects.push_back(objectName);
-    }
-    scenes::validateScene(scene_);
+    fitAndAttachLattice(scene_, lattice, objectName);
   });
 }
 

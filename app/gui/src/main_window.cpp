@@ -24,6 +24,10 @@
 #include <QMessageBox>
 #include <QMimeData>
 #include <QMouseEvent>
+#include <QEventLoop>
+#include <QProgressDialog>
+#include <QPointer>
+#include <QThread>
 #include <QScrollArea>
 #include <QSettings>
 #include <QSpinBox>
@@ -349,7 +353,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   };
   QAction* attach = action(widgetsMenu, tr("&Attach Lattice to Object"), "actionAttach",
                            [this, selectedLattice, selectedObject] {
-                             impl_->controller->attachLattice(selectedLattice(), selectedObject());
+                             if (!attachLattice(selectedLattice(), selectedObject()))
+                               statusBar()->showMessage(tr("Attach cancelled"), 5000);
                            });
   action(widgetsMenu, tr("&Detach Lattice from Object"), "actionDetach", [this, selectedLattice, selectedObject] {
     impl_->controller->detachLattice(selectedLattice(), selectedObject());
@@ -479,6 +484,61 @@ void MainWindow::exportMesh(const std::filesystem::path& path) {
   mesh.points = impl_->deformer.points(name);
   scenes::writeMesh(path, mesh);
   statusBar()->showMessage(tr("Exported %1 to %2").arg(qs(name), qs(path.string())), 5000);
+}
+
+namespace {
+long backgroundPoints = 200000;
+}
+
+void MainWindow::setBackgroundEmbedPoints(long points) { backgroundPoints = points; }
+long MainWindow::backgroundEmbedPoints() { return backgroundPoints; }
+
+bool MainWindow::attachLattice(widgets::WidgetId lattice, const std::string& object) {
+  Impl& d = *impl_;
+  const scenes::SceneObject* target = d.scene.findObject(object);
+  if (target == nullptr || target->mesh.points.rows() < backgroundPoints) {
+    d.controller->attachLattice(lattice, object);
+    return true;
+  }
+  // Embed on a copy of the scene in a worker thread; the GUI stays live and can cancel. The
+  // worker owns its copy, so a cancelled embedding finishes harmlessly in the background.
+  struct Job {
+    scenes::Scene scene;
+    scenes::SceneDeformer deformer;
+    std::string error;
+  };
+  auto job = std::make_shared<Job>();
+  job->scene = d.scene;
+  fitAndAttachLattice(job->scene, lattice, object);  // throws before anything starts
+  QThread* thread = QThread::create([job] {
+    try {
+      job->deformer.update(job->scene);
+      job->deformer.finishGesture(job->scene);
+    } catch (const std::exception& e) {
+      job->error = e.what();
+    }
+  });
+  QProgressDialog progress(tr("Embedding %1 points of '%2'...").arg(target->mesh.points.rows()).arg(qs(object)),
+                           tr("Cancel"), 0, 0, this);
+  progress.setObjectName("embedProgress");
+  progress.setWindowModality(Qt::WindowModal);
+  progress.setMinimumDuration(0);
+  QEventLoop loop;
+  connect(thread, &QThread::finished, &loop, &QEventLoop::quit);
+  connect(&progress, &QProgressDialog::canceled, &loop, &QEventLoop::quit);
+  connect(thread, &QThread::finished, thread, &QObject::deleteLater);
+  const QPointer<QThread> running(thread);
+  thread->start();
+  progress.show();
+  loop.exec();
+  const bool finished = running.isNull() || running->isFinished();
+  if (progress.wasCanceled()) return false;
+  progress.reset();
+  if (!finished) return false;
+  if (!job->error.empty()) throw std::runtime_error(job->error);
+  d.controller->adoptDeformer(std::move(job->deformer));
+  d.controller->attachLattice(lattice, object);  // the same edit: nothing left to embed
+  return true;
 }
 
 void MainWindow::openAny(const std::filesystem::path& path) {

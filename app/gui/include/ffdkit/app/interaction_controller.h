@@ -25,6 +25,12 @@ struct NewLatticeOptions {
   bool cylindrical = false;  ///< counts (radial, angular, height); the angular basis is made periodic
 };
 
+/// Fits a root lattice's frame to the object's bounding box (padded by 5 % of its diagonal, a
+/// flat box gets a minimum thickness) and attaches it to the object: the model edit of
+/// InteractionController::attachLattice, without undo or deformation (for previews on copies).
+/// @throws std::invalid_argument for an unknown or empty object or a child lattice.
+void fitAndAttachLattice(scenes::Scene& scene, widgets::WidgetId lattice, const std::string& object);
+
 /// The GUI-free heart of the application: turns world rays into model gestures (hover, pick,
 /// drag) and user operations into model edits, each one undoable command on `commands`, and
 /// keeps the deformed objects up to date. Views only convert pixels to rays and redraw when
@@ -99,6 +105,10 @@ class InteractionController {
   /// Replaces the widget model (a widget file opened): attachments of lattices that no longer
   /// exist are dropped.
   void replaceWidgets(widgets::WidgetModel model);
+
+  /// Replaces the deformer's state by one computed elsewhere for the same scene (an embedding
+  /// done in a worker thread on a copy), so that the next update has nothing to re-embed.
+  void adoptDeformer(scenes::SceneDeformer deformer) { deformer_ = std::move(deformer); }
 
   /// Re-deforms every object (after undo/redo or a scene change) and notifies.
   void refresh();

@@ -8,6 +8,7 @@
 #include "ffdkit/scenes/command_stack.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
+#include "ffdkit/widgets/widget_id.h"
 
 class QTreeWidget;
 
@@ -41,6 +42,13 @@ class MainWindow : public QMainWindow {
   void importMesh(const std::filesystem::path& path);
   /// Writes the selected (else the first) object at its deformed points. @throws scenes::MeshIoError.
   void exportMesh(const std::filesystem::path& path);
+  /// Attaches `lattice` to `object` (undoable). An object of at least backgroundEmbedPoints()
+  /// points is embedded in a worker thread first, behind a progress dialog whose Cancel leaves
+  /// the scene as it was. @return false if cancelled. @throws what the model throws.
+  bool attachLattice(widgets::WidgetId lattice, const std::string& object);
+  static void setBackgroundEmbedPoints(long points);
+  static long backgroundEmbedPoints();
+
   /// Opens whatever `path` is: scene, widget file (by its "format"), or mesh.
   void openAny(const std::filesystem::path& path);
 
