@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "ffdkit/geometry/cardinal/generators.h"
+#include "ffdkit/geometry/curvenet/example_networks.h"
 #include "ffdkit/geometry/g3/g3_curve_generator.h"
 #include "ffdkit/geometry/polyhedron/polyhedron_surface_generator.h"
 #include "ffdkit/geometry/quaternion/curve_generators.h"
@@ -267,6 +268,36 @@ TEST(BuiltinGenerators, RequiredParametersAreNamedWhenMissing) {
   GeneratorParameters faces;
   faces.set("vertices", std::vector<std::vector<double>>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
   EXPECT_NE(errorOf("polyhedron-surface", faces).find("missing parameter 'faces'"), std::string::npos);
+}
+
+TEST(BuiltinGenerators, ACurveNetworkCanBeGivenAsCurvesAndFaired) {
+  // The height-grid network given curve by curve equals the named one.
+  const auto named = geometry::curvenet::exampleNetwork("height-grid");
+  std::vector<std::vector<double>> points;
+  std::vector<double> sizes;
+  for (const auto& curve : named.curves) {
+    ASSERT_FALSE(curve.closed);
+    sizes.push_back(static_cast<double>(curve.points.rows()));
+    for (Eigen::Index r = 0; r < curve.points.rows(); ++r)
+      points.push_back({curve.points(r, 0), curve.points(r, 1), curve.points(r, 2)});
+  }
+  GeneratorParameters byName, byCurves;
+  byName.set("network", std::string("height-grid"));
+  byCurves.set("points", points);
+  byCurves.set("curve-sizes", sizes);
+  const MeshData a = builtinGenerators().generate("curve-network-surface", byName);
+  const MeshData b = builtinGenerators().generate("curve-network-surface", byCurves);
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(a.triangles, b.triangles);
+  byName.set("fairing", true);
+  const MeshData faired = builtinGenerators().generate("curve-network-surface", byName);
+  EXPECT_EQ(faired.triangles, a.triangles);
+  EXPECT_TRUE(faired.points.allFinite());
+  EXPECT_GT((faired.points - a.points).cwiseAbs().maxCoeff(), 1e-9) << "the flag reaches the topic";
+  sizes.back() += 1;
+  byCurves.set("curve-sizes", sizes);
+  EXPECT_NE(errorOf("curve-network-surface", byCurves).find("parameter 'curve-sizes': the sizes add up to more than"),
+            std::string::npos);
 }
 
 TEST(BuiltinGenerators, AnExplicitPolyhedronIsAccepted) {

@@ -65,6 +65,7 @@ cn::CurveNetworkSurfaceParams surfaceParams(const GeneratorParameters& p) {
   o.orientationHint = vector3(p, "orientation-hint", o.orientationHint);
   o.fillOpenRegions = p.flag("fill-open-regions", o.fillOpenRegions);
   params.patch.blendingExponent = positiveInteger(p, "blending-exponent", params.patch.blendingExponent);
+  params.fairing = p.flag("fairing", params.fairing);
   params.validate();
   return params;
 }
@@ -77,7 +78,7 @@ void addCurvenetGenerators(GeneratorRegistry& registry) {
       .summary = "surface interpolating a network of curves by multi-sided sweep patches (seed 001 ch. 5)",
       .parameterNames = {"network", "points", "curve-sizes", "closed-curves", "intersection-tolerance",
                          "minimum-crossing-angle", "straight-angle", "orientation-hint", "fill-open-regions",
-                         "blending-exponent", "pitch"},
+                         "blending-exponent", "fairing", "pitch"},
       .generate =
           [](const GeneratorParameters& p, double density) {
             const int pitch = scaledCount(positiveInteger(p, "pitch", 8), density, 1);
