@@ -157,6 +157,13 @@ class MainWindowTest : public QObject {
     const std::string sphere = w.scene().objects.front().name;
     QCOMPARE(w.scene().latticesDeforming(sphere).size(), std::size_t(1));
 
+    // Hovering over the arrow highlights it.
+    const widgets::WidgetFrame frame = w.scene().widgets.affineFrame(arrow);
+    const Eigen::Vector3d onArrow = frame.frame.translation() + 0.6 * frame.size * frame.frame.linear().col(0);
+    sendMouse(w.view(), QEvent::MouseMove, toWidget(w, onArrow), Qt::NoButton, Qt::NoButton);
+    QVERIFY(w.controller().hovered() == std::optional<WidgetId>(arrow));
+    QVERIFY(w.sceneView().camera().position.norm() > 0.0);
+
     const Eigen::MatrixX3d before = w.deformer().points(sphere);
     scenes::Scene expected = w.scene();
     double camera[3];
@@ -334,6 +341,32 @@ class MainWindowTest : public QObject {
       QCOMPARE(b.worldControlPoints(same), a.worldControlPoints(lattice));
     }
     QCOMPARE(b.variation(b.find("pull")), a.variation(pull));
+  }
+
+  void latticesAreReorderedByDragAndDropInTheOutliner() {
+    MainWindow& w = *window_;
+    triggerWithDialog(w, "actionNewLattice");
+    triggerWithDialog(w, "actionNewLattice");
+    const auto roots = w.scene().widgets.roots();
+    QCOMPARE(roots.size(), std::size_t(2));
+    const QString first = QString::fromStdString(w.scene().widgets.name(roots[0]));
+    const QString second = QString::fromStdString(w.scene().widgets.name(roots[1]));
+    clickRow(w, second);
+    QTreeWidget* tree = w.outliner();
+    QTreeWidgetItem* target = tree->findItems(first, Qt::MatchExactly | Qt::MatchRecursive).front();
+    std::unique_ptr<QMimeData> data(tree->model()->mimeData(tree->selectionModel()->selectedIndexes()));
+    const QPoint at = tree->visualItemRect(target).center();
+    QDragEnterEvent enter(at, Qt::MoveAction, data.get(), Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(tree->viewport(), &enter);
+    QDragMoveEvent move(at, Qt::MoveAction, data.get(), Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(tree->viewport(), &move);
+    QDropEvent drop(QPointF(at), Qt::MoveAction, data.get(), Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(tree->viewport(), &drop);
+    const auto reordered = w.scene().widgets.roots();
+    QCOMPARE(reordered.size(), std::size_t(2));
+    QVERIFY(reordered[0] == roots[1]);  // the pipeline now runs the second lattice first
+    action(w, "actionUndo")->trigger();
+    QVERIFY(w.scene().widgets.roots()[0] == roots[0]);
   }
 
   void droppedFilesOpenByKind() {

@@ -2,6 +2,7 @@
 
 #include <QDropEvent>
 #include <QHeaderView>
+#include <QMimeData>
 
 #include "ffdkit/widgets/widget_model.h"
 
@@ -47,6 +48,8 @@ Outliner::Outliner(QWidget* parent) : QTreeWidget(parent) {
   header()->setSectionResizeMode(1, QHeaderView::ResizeToContents);
   setSelectionMode(QAbstractItemView::ExtendedSelection);
   setDragDropMode(QAbstractItemView::InternalMove);
+  setAcceptDrops(true);
+  viewport()->setAcceptDrops(true);
   connect(this, &QTreeWidget::itemSelectionChanged, this, [this] {
     if (!programmatic_) emit selectionEdited();
   });
@@ -121,6 +124,23 @@ QTreeWidgetItem* Outliner::itemFor(const OutlinerEntry& entry) const {
   for (QTreeWidgetItemIterator it(const_cast<Outliner*>(this)); *it; ++it)
     if ((*it)->data(0, kKindRole).isValid() && same(entryOf(*it), entry)) return *it;
   return nullptr;
+}
+
+// Rows of this tree only (its own mime type); dropEvent decides what a drop may do.
+void Outliner::dragEnterEvent(QDragEnterEvent* event) {
+  if (event->mimeData()->hasFormat(mimeTypes().front())) {
+    event->acceptProposedAction();
+  } else {
+    event->ignore();
+  }
+}
+
+void Outliner::dragMoveEvent(QDragMoveEvent* event) {
+  if (event->mimeData()->hasFormat(mimeTypes().front())) {
+    event->acceptProposedAction();
+  } else {
+    event->ignore();
+  }
 }
 
 void Outliner::dropEvent(QDropEvent* event) {

@@ -42,6 +42,8 @@ class Outliner : public QTreeWidget {
   void siblingMoveRequested(widgets::WidgetId lattice, int position);
 
  protected:
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dragMoveEvent(QDragMoveEvent* event) override;
   void dropEvent(QDropEvent* event) override;
 
  private:
