@@ -264,6 +264,7 @@ struct SceneView::Impl {
     std::string name;
     Eigen::Index pointCount = 0;
     VertexFaces vertexFaces;                  ///< of the triangles, for the normals
+    Eigen::Vector3d restLo, restHi;           ///< bounding box of the object's own points
     std::vector<Eigen::Vector3f> faceNormals; ///< scratch
     vtkSmartPointer<vtkPolyData> polyData;
     vtkSmartPointer<vtkActor> actor;
@@ -304,6 +305,10 @@ struct SceneView::Impl {
       entry.name = object.name;
       const Eigen::MatrixX3d& points = deformed.points(object.name);
       entry.pointCount = points.rows();
+      entry.restLo = object.mesh.points.rows() > 0 ? Eigen::Vector3d(object.mesh.points.colwise().minCoeff().transpose())
+                                                   : Eigen::Vector3d::Zero();
+      entry.restHi = object.mesh.points.rows() > 0 ? Eigen::Vector3d(object.mesh.points.colwise().maxCoeff().transpose())
+                                                   : Eigen::Vector3d::Zero();
       entry.polyData = toPolyData(object.mesh, points);
       vtkNew<vtkPolyDataMapper> mapper;
       if (object.mesh.triangles.rows() > 0) {
@@ -433,7 +438,13 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
     lo = lo.cwiseMin(points.colwise().minCoeff().transpose());
     hi = hi.cwiseMax(points.colwise().maxCoeff().transpose());
   };
-  for (const auto& entry : impl_->objects) grow(deformed.points(entry.name));
+  // Deformed points lie in their lattices' control hull (FFD's convex hull property) or stay
+  // near their own points (outside policies): the own box and the lattices bound the scene
+  // without visiting a million points per frame.
+  for (const auto& entry : impl_->objects) {
+    lo = lo.cwiseMin(entry.restLo);
+    hi = hi.cwiseMax(entry.restHi);
+  }
   for (widgets::WidgetId lattice : scene.widgets.widgets(widgets::WidgetType::Lattice))
     grow(scene.widgets.worldControlPoints(lattice));
   if (lo.x() <= hi.x()) {
