@@ -2,7 +2,9 @@
 // actions, dialogs, the outliner and the property panel; glyph drags with the mouse; undo;
 // widget files; the sample scenes on screen.
 #include <QAction>
+#include <QCheckBox>
 #include <QComboBox>
+#include <QDoubleSpinBox>
 #include <QApplication>
 #include <QDialog>
 #include <QFileDialog>
@@ -210,6 +212,25 @@ class MainWindowTest : public QObject {
     QVERIFY2(std::abs(v0 - 0.2) < 0.02, qPrintable(QString("variation %1").arg(v0)));
     QVERIFY(std::abs(v1 - v0) < 1e-12);
     QVERIFY(maxDifference(m.cellWorldPoints(otherCell), otherBefore) > 0.15);
+
+    // The conversion rule in the property panel: gain 2, then a clamp of the driven widget.
+    const widgets::BindingId variation = m.bindings().back();
+    clickRow(w, QString::fromStdString(m.name(created[0]) + " <-> " + m.name(created[1])));
+    auto* gain = w.findChild<QDoubleSpinBox*>("gain");
+    QVERIFY(gain != nullptr);
+    gain->setValue(2.0);
+    QCOMPARE(m.binding(variation).rule.gain, 2.0);
+    const double start1 = m.variation(created[1]);
+    dragArrow(w, created[0], 0.1);
+    QVERIFY(std::abs((m.variation(created[1]) - start1) - 2.0 * 0.1) < 0.03);
+    auto* clampMax = w.findChild<QDoubleSpinBox*>("clampMax");
+    auto* clamp = w.findChild<QCheckBox*>("clamp");
+    QVERIFY(clampMax != nullptr && clamp != nullptr);
+    clampMax->setValue(0.5);
+    clamp->setChecked(true);
+    QVERIFY(m.binding(variation).rule.clamp.has_value());
+    dragArrow(w, created[0], 0.3);
+    QVERIFY(m.variation(created[1]) <= 0.5 + 1e-9);
   }
 
   void editingACellMotionMaskChangesWhatFollows() {
