@@ -382,6 +382,8 @@ TEST(BuiltinGenerators, CurvesHaveCurvatureProfilesAndSurfacesDoNot) {
     for (Eigen::Index i = 0; i < n; ++i) worst = std::max(worst, distanceToPolyline(profile.points.row(i).transpose(), mesh));
     EXPECT_LT(worst, 1e-6 * diagonal(mesh.points));
   }
+  for (double density : {0.0, -1.0, 100.0, std::numeric_limits<double>::quiet_NaN()})
+    EXPECT_THROW(builtinGenerators().profile("sphere-tangent", {}, density), GeneratorError) << density;
   // the G3 curve of Fig. 2(c) starts with the curvature it was given
   const CurvatureProfile g3 = builtinGenerators().profile("g3-curve", sampleSource("g3-curve").parameters);
   EXPECT_NEAR(g3.curvature(0), -0.10923218, 1e-7);

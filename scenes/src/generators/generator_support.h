@@ -20,7 +20,11 @@
 namespace ffdkit::scenes::generators {
 
 /// round(base * density), at least `minimum`: the sampling of a generator at `density`.
+/// @throws GeneratorError for a density outside (0, 64] (GeneratorRegistry::generate checks it
+///   too; the profile path relies on this check).
 inline int scaledCount(int base, double density, int minimum) {
+  if (!(density > 0.0 && density <= 64.0))
+    throw GeneratorError("density must be in (0, 64], got " + std::to_string(density));
   const double scaled = std::round(static_cast<double>(base) * density);
   return std::max(minimum, static_cast<int>(std::min(scaled, 1e8)));
 }
