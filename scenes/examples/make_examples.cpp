@@ -8,6 +8,7 @@
 #include <functional>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "ffdkit/ffd/cylindrical_lattice.h"
@@ -260,6 +261,41 @@ Scene makeG3Curve() {
                         "g3-curve", "g3-curve", std::move(p), {0.2, 0.6, 0.45});
 }
 
+// Seed 002 Fig. 5: the G3 curve of 12 points with natural ends and its 4-clothoid
+// approximation (clothoid-levels 2), one above the other, in one lattice.
+Scene makeG3Clothoids() {
+  const Rows points = {{6, 2}, {3.5, 7.5}, {8, 11}, {11.5, 8.5}, {9.5, 4.5}, {6, 9},
+                       {6, 15}, {13, 17.5}, {20.5, 13}, {17.5, 7}, {14.5, 2}, {20, 1}};
+  Scene scene;
+  scene.description = "Seed 002 Fig. 5: a G3 curve (below) and its 4-clothoid-per-span approximation (above), one lattice.";
+  for (const auto& [name, levels, z, colour] :
+       {std::tuple{"g3-curve", 0.0, 0.0, Eigen::Vector3d(0.2, 0.6, 0.45)}, std::tuple{"clothoids", 2.0, 3.0, Eigen::Vector3d(0.85, 0.45, 0.2)}}) {
+    GeneratorParameters p;
+    p.set("points", points);
+    p.set("clothoid-levels", levels);
+    p.set("z", z);
+    p.set("samples-per-span", 64.0);
+    scenes::SceneObject object;
+    object.name = name;
+    object.source = scenes::GeneratedSource{"g3-curve", std::move(p), 1.0};
+    object.display.color = colour;
+    object.mesh = scenes::buildObjectMesh(object.source, ".");
+    scene.objects.push_back(std::move(object));
+  }
+  scenes::AttachOptions attach;
+  attach.latticeName = "lattice";
+  attach.counts = {4, 4, 2};
+  const auto lattice = scenes::attachNewLattice(scene, {"g3-curve", "clothoids"}, attach);
+  const auto corner = scene.widgets.addCell(lattice, CellSpec::point(3, 3, 1), "corner");
+  widgets::AffineOptions out;
+  out.name = "pull";
+  const auto pull = scene.widgets.addAffine(corner, AffineKind::Translate, out);  // local x = world +x
+  scene.widgets.setVariation(pull, 3.0);
+  scene.camera.focalPoint = {12.3, 9.3, 1.5};
+  scene.camera.position = {35.0, -31.0, 30.0};
+  return scene;
+}
+
 // Seed 001 Fig. 3-7: the closed S-spline through the corners of a square, tension 5.
 Scene makeSSplineCurve() {
   GeneratorParameters p;
@@ -373,6 +409,7 @@ int main(int argc, char** argv) {
       {"qi-fit", makeQiFit},
       {"sphere-tangent", makeSphereTangent},
       {"g3-curve", makeG3Curve},
+      {"g3-clothoids", makeG3Clothoids},
       {"s-spline-curve", makeSSplineCurve},
       {"sigma-spline-curve", makeSigmaSplineCurve},
       {"s-spline-surface", makeSSplineSurface},

@@ -391,6 +391,20 @@ TEST(BuiltinGenerators, CurvesHaveCurvatureProfilesAndSurfacesDoNot) {
   EXPECT_NEAR(g3.arcLength(g3.arcLength.size() - 1), 31.944481581, 1e-6);
 }
 
+TEST(BuiltinGenerators, ClothoidApproximationFollowsTheG3Curve) {
+  // Seed 002 Fig. 5 (docs/geometry-g3.md): length about 74.6084 for both.
+  const Scene scene = readScene(kExamples / "g3-clothoids");
+  ASSERT_EQ(scene.objects.size(), 2u);
+  std::vector<double> lengths;
+  for (const auto& object : scene.objects) {
+    const auto& source = std::get<GeneratedSource>(object.source);
+    const CurvatureProfile profile = builtinGenerators().profile(source.generator, source.parameters, source.density);
+    lengths.push_back(profile.arcLength(profile.arcLength.size() - 1));
+  }
+  EXPECT_NEAR(lengths[0], 74.6084, 1e-3);
+  EXPECT_NEAR(lengths[1], lengths[0], 1e-3 * lengths[0]);
+}
+
 TEST(BuiltinGenerators, EveryGeneratorHasAWorkingExampleInItsDocumentation) {
   // docs/generators.md: each generator's section ends with a ```json block holding the
   // "generator" object of a scene object; each must load and generate.
@@ -417,7 +431,9 @@ TEST(BuiltinGenerators, EveryGeneratorHasAWorkingExampleInItsDocumentation) {
 }
 
 TEST(BuiltinGenerators, EveryGeneratedSampleSceneLoadsDeformsAndRoundTrips) {
-  for (const auto& [folder, generator] : kGeneratedSamples) {
+  std::vector<std::string> folders = {"g3-clothoids"};  // two objects, one lattice
+  for (const auto& [folder, generator] : kGeneratedSamples) folders.push_back(folder);
+  for (const auto& folder : folders) {
     SCOPED_TRACE(folder);
     const auto path = kExamples / folder / "scene.json";
     const Scene scene = readScene(path);
