@@ -67,6 +67,8 @@ c::SSplineCurveParams sSplineCurve(const GeneratorParameters& p) {
   o.endTangent = vector3(p, "end-tangent", o.endTangent);
   o.degree = positiveInteger(p, "degree", o.degree);
   o.clipped = p.flag("clipped", o.clipped);
+  if (o.end != c::SSplineEnd::Tangent && (p.has("start-tangent") || p.has("end-tangent")))
+    throw GeneratorError("parameters 'start-tangent' and 'end-tangent' are used only with end 'tangent'");
   params.validate();
   return params;
 }

@@ -53,6 +53,8 @@ q::QiInterpolateParams interpolateParams(const GeneratorParameters& p) {
   o.endTangent = vector3(p, "end-tangent", o.endTangent);
   if (o.endRule == q::EndTangentRule::User && (!p.has("start-tangent") || !p.has("end-tangent")))
     throw GeneratorError("parameters 'start-tangent' and 'end-tangent' are required with end-rule 'user'");
+  if (o.endRule != q::EndTangentRule::User && (p.has("start-tangent") || p.has("end-tangent")))
+    throw GeneratorError("parameters 'start-tangent' and 'end-tangent' are used only with end-rule 'user'");
   o.stopMode = choice(p, "stop-mode", o.stopMode, kStopModes);
   o.maxIterations = positiveInteger(p, "max-iterations", o.maxIterations);
   return params;
@@ -69,6 +71,8 @@ q::QiFitParams fitParams(const GeneratorParameters& p) {
   o.form = choice(p, "form", o.form, kForms);
   o.startTangent = choice(p, "start-tangent-mode", o.startTangent, kStartModes);
   o.givenStartTangent = vector3(p, "start-tangent", o.givenStartTangent);
+  if ((o.startTangent == q::StartTangentMode::Given) != p.has("start-tangent"))
+    throw GeneratorError("parameter 'start-tangent' goes with start-tangent-mode 'given' (and is required by it)");
   o.initialCurve = choice(p, "initial-curve", o.initialCurve, kInitialCurves);
   o.maxIterations = positiveInteger(p, "max-iterations", o.maxIterations);
   return params;
