@@ -262,6 +262,24 @@ TEST(BuiltinGenerators, RefusesWrongTypesAndValuesNamingTheParameter) {
   }
 }
 
+TEST(BuiltinGenerators, RefusesParametersTheChosenOptionsWouldIgnore) {
+  GeneratorParameters sigma = sampleSource("sigma-spline-curve").parameters;
+  sigma.set("start-slope", std::vector<double>{1, 1, 0});
+  EXPECT_EQ(errorOf("sigma-spline-curve", sigma), "");
+  sigma.set("shape", std::string("midpoint"));
+  EXPECT_NE(errorOf("sigma-spline-curve", sigma).find("'start-slope' and 'end-slope' are used only by open curves"),
+            std::string::npos);
+  GeneratorParameters cube;
+  cube.set("resolution", std::vector<double>{8, 4});
+  EXPECT_NE(errorOf("polyhedron-surface", cube).find("parameter 'resolution': only with builtin-mesh 'sphere' or 'torus'"),
+            std::string::npos);
+  cube.set("builtin-mesh", std::string("torus"));
+  EXPECT_EQ(errorOf("polyhedron-surface", cube), "");
+  GeneratorParameters quadratic;
+  quadratic.set("second-control", std::vector<double>{0, 1, 0});
+  EXPECT_NE(errorOf("sphere-tangent", quadratic).find("parameter 'second-control': only with degree 3"), std::string::npos);
+}
+
 TEST(BuiltinGenerators, RequiredParametersAreNamedWhenMissing) {
   EXPECT_NE(errorOf("qi-interpolate", {}).find("missing parameter 'points'"), std::string::npos);
   EXPECT_NE(errorOf("g3-curve", {}).find("missing parameter 'points'"), std::string::npos);

@@ -83,6 +83,8 @@ c::SigmaSplineCurveParams sigmaSplineCurve(const GeneratorParameters& p) {
   params.shape = choice(p, "shape", params.shape, kShapes);
   params.endSlopes.start = optionalVector3(p, "start-slope");
   params.endSlopes.end = optionalVector3(p, "end-slope");
+  if ((params.closed || params.shape != c::ShapeMode::Cubic) && (p.has("start-slope") || p.has("end-slope")))
+    throw GeneratorError("parameters 'start-slope' and 'end-slope' are used only by open curves with shape 'cubic'");
   params.validate();
   return params;
 }
