@@ -437,30 +437,36 @@ class MainWindowTest : public QObject {
       w.openScene(folder.path());
       const QImage shot = w.view()->grabFramebuffer();
       QVERIFY(!shot.isNull());
-      // The same view without the objects: the pixels that differ are the objects'.
-      scenes::Scene hidden = w.scene();
-      const Eigen::Vector3d colour = hidden.objects.front().display.color;
-      for (auto& o : hidden.objects) o.display.visible = false;
-      w.setScene(hidden);
-      const QImage bare = w.view()->grabFramebuffer();
-      QCOMPARE(bare.size(), shot.size());
-      long differing = 0;
-      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      for (int y = 0; y < shot.height(); ++y)
-        for (int x = 0; x < shot.width(); ++x) {
-          const QColor a = shot.pixelColor(x, y), b = bare.pixelColor(x, y);
-          if (std::abs(a.red() - b.red()) + std::abs(a.green() - b.green()) + std::abs(a.blue() - b.blue()) < 30) continue;
-          ++differing;
-          sum += Eigen::Vector3d(a.redF(), a.greenF(), a.blueF());
-        }
-      const double share = double(differing) / (double(shot.width()) * shot.height());
-      // Surfaces cover several percent of the view; a curve (a tube) less.
-      const bool curve = w.scene().objects.front().mesh.triangles.rows() == 0;
-      qInfo("%s: object pixels %.2f %%", qPrintable(name), 100.0 * share);
-      QVERIFY2(share > (curve ? 0.003 : 0.03), qPrintable(QString("%1: object covers only %2 of the view").arg(name).arg(share)));
-      // Shaded, but the object's hue: the mean colour points the way of its display colour.
-      const double cosine = sum.normalized().dot(colour.normalized());
-      QVERIFY2(cosine > 0.97, qPrintable(QString("%1: mean object pixel is off its colour (%2)").arg(name).arg(cosine)));
+      const scenes::Scene full = w.scene();
+      // For each object: the same view without it; the pixels that differ are the object's.
+      for (std::size_t i = 0; i < full.objects.size(); ++i) {
+        const scenes::SceneObject& object = full.objects[i];
+        if (!object.display.visible) continue;
+        scenes::Scene hidden = full;
+        hidden.objects[i].display.visible = false;
+        w.setScene(hidden);
+        const QImage bare = w.view()->grabFramebuffer();
+        QCOMPARE(bare.size(), shot.size());
+        long differing = 0;
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        for (int y = 0; y < shot.height(); ++y)
+          for (int x = 0; x < shot.width(); ++x) {
+            const QColor a = shot.pixelColor(x, y), b = bare.pixelColor(x, y);
+            if (std::abs(a.red() - b.red()) + std::abs(a.green() - b.green()) + std::abs(a.blue() - b.blue()) < 30)
+              continue;
+            ++differing;
+            sum += Eigen::Vector3d(a.redF(), a.greenF(), a.blueF());
+          }
+        const double share = double(differing) / (double(shot.width()) * shot.height());
+        const QString what = name + "/" + QString::fromStdString(object.name);
+        qInfo("%s: object pixels %.2f %%", qPrintable(what), 100.0 * share);
+        // Surfaces cover percents of the view; a curve (a tube) less.
+        const bool curve = object.mesh.triangles.rows() == 0;
+        QVERIFY2(share > (curve ? 0.002 : 0.01), qPrintable(QString("%1: object covers only %2 of the view").arg(what).arg(share)));
+        // Shaded, but the object's hue: the mean colour points the way of its display colour.
+        const double cosine = sum.normalized().dot(object.display.color.normalized());
+        QVERIFY2(cosine > 0.95, qPrintable(QString("%1: mean object pixel is off its colour (%2)").arg(what).arg(cosine)));
+      }
     }
     QVERIFY(scenesSeen >= 6);
   }
