@@ -9,7 +9,8 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${FFDKIT_BUILD_DIR:-$root/build}"
 if [ "${FFDKIT_NO_BUILD:-0}" != 1 ]; then
-  cmake --build "$build" --target ffdkit
+  "$root/scripts/setup-deps.sh"
+  "$root/scripts/build.sh" --target ffdkit
 fi
 app="$build/app/gui/ffdkit"
 [ -x "$app" ] || { echo "screenshots.sh: no application at $app (set FFDKIT_BUILD_DIR)" >&2; exit 1; }
