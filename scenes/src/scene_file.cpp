@@ -123,7 +123,9 @@ SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions
   if (j.contains("display")) {
     const Json& d = j["display"];
     const Location dat = at / "display";
-    checkKeys(d, {"color", "opacity", "visible"}, dat);
+    checkKeys(d, {"color", "opacity", "visible", "surfaceStyle", "zebraStripes", "zebraDirection", "curvatureComb",
+                  "combScale"},
+              dat);
     if (d.contains("color")) object.display.color = colour(d["color"], dat / "color");
     if (d.contains("opacity")) {
       object.display.opacity = number(d["opacity"], dat / "opacity");
@@ -132,6 +134,30 @@ SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions
     if (d.contains("visible")) {
       if (!d["visible"].is_boolean()) (dat / "visible").fail("expected true or false");
       object.display.visible = d["visible"].get<bool>();
+    }
+    if (d.contains("surfaceStyle")) {
+      const std::string style = text(d["surfaceStyle"], dat / "surfaceStyle");
+      if (style == "shaded") object.display.surfaceStyle = SurfaceStyle::Shaded;
+      else if (style == "zebra") object.display.surfaceStyle = SurfaceStyle::Zebra;
+      else (dat / "surfaceStyle").fail("unknown surface style '" + style + "' (known: shaded, zebra)");
+    }
+    if (d.contains("zebraStripes")) {
+      const Json& n = d["zebraStripes"];
+      if (!n.is_number_integer() || n.get<long long>() < 1 || n.get<long long>() > 256)
+        (dat / "zebraStripes").fail("expected an integer in [1, 256], got " + n.dump());
+      object.display.zebraStripes = static_cast<int>(n.get<long long>());
+    }
+    if (d.contains("zebraDirection")) {
+      object.display.zebraDirection = vector3(d["zebraDirection"], dat / "zebraDirection");
+      if (!(object.display.zebraDirection.norm() > 1e-12)) (dat / "zebraDirection").fail("must not be zero");
+    }
+    if (d.contains("curvatureComb")) {
+      if (!d["curvatureComb"].is_boolean()) (dat / "curvatureComb").fail("expected true or false");
+      object.display.curvatureComb = d["curvatureComb"].get<bool>();
+    }
+    if (d.contains("combScale")) {
+      object.display.combScale = number(d["combScale"], dat / "combScale");
+      if (!(object.display.combScale > 0.0)) (dat / "combScale").fail("must be positive");
     }
   }
   try {
@@ -254,6 +280,16 @@ Json sceneJson(const Scene& scene) {
     o["display"] = {{"color", array3(object.display.color)},
                     {"opacity", object.display.opacity},
                     {"visible", object.display.visible}};
+    // The look keys added later are written only when set, so older scene files keep their bytes.
+    const DisplaySettings defaults;
+    Json& display = o["display"];
+    if (object.display.surfaceStyle != defaults.surfaceStyle)
+      display["surfaceStyle"] = object.display.surfaceStyle == SurfaceStyle::Zebra ? "zebra" : "shaded";
+    if (object.display.zebraStripes != defaults.zebraStripes) display["zebraStripes"] = object.display.zebraStripes;
+    if (object.display.zebraDirection != defaults.zebraDirection)
+      display["zebraDirection"] = array3(object.display.zebraDirection);
+    if (object.display.curvatureComb != defaults.curvatureComb) display["curvatureComb"] = object.display.curvatureComb;
+    if (object.display.combScale != defaults.combScale) display["combScale"] = object.display.combScale;
     objects.push_back(std::move(o));
   }
   root["objects"] = std::move(objects);

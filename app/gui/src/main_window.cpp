@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <functional>
 #include <numbers>
 #include <sstream>
 
@@ -84,6 +85,8 @@ struct MainWindow::Impl {
   QMenu* recentMenu = nullptr;
   QAction* undo = nullptr;
   QAction* redo = nullptr;
+  QAction* zebra = nullptr;
+  QAction* comb = nullptr;
   std::filesystem::path scenePath;
   std::vector<std::string> selectedObjects;
   std::optional<widgets::BindingId> selectedBinding;
@@ -91,6 +94,54 @@ struct MainWindow::Impl {
   QPoint pressAt;
   bool pressOnEmpty = false;
   bool showingScene = false;
+
+  // The objects the View menu's looks apply to: the selected ones, else all.
+  std::vector<std::string> lookTargets() const {
+    if (!selectedObjects.empty()) return selectedObjects;
+    std::vector<std::string> names;
+    for (const auto& o : scene.objects) names.push_back(o.name);
+    return names;
+  }
+
+  // Checks the look actions when every target surface is zebra / every target curve has a comb.
+  void syncLookActions() {
+    if (!zebra) return;
+    bool anySurface = false, allZebra = true, anyCurve = false, allComb = true;
+    for (const auto& name : lookTargets()) {
+      const scenes::SceneObject* o = scene.findObject(name);
+      if (!o) continue;
+      if (o->mesh.triangles.rows() > 0) {
+        anySurface = true;
+        allZebra = allZebra && o->display.surfaceStyle == scenes::SurfaceStyle::Zebra;
+      } else if (o->mesh.segments.rows() > 0) {
+        anyCurve = true;
+        allComb = allComb && o->display.curvatureComb;
+      }
+    }
+    zebra->setChecked(anySurface && allZebra);
+    comb->setChecked(anyCurve && allComb);
+  }
+
+  // Changes the look of the target objects (undoable) and redraws; no re-deform is needed.
+  void changeLook(const std::string& description, const std::function<void(scenes::SceneObject&)>& change) {
+    const std::vector<std::string> names = lookTargets();
+    std::vector<scenes::DisplaySettings> before, after;
+    for (const auto& name : names) {
+      scenes::SceneObject& o = *scene.findObject(name);
+      before.push_back(o.display);
+      change(o);
+      after.push_back(o.display);
+    }
+    auto restore = [this, names](const std::vector<scenes::DisplaySettings>& looks) {
+      for (std::size_t i = 0; i < names.size(); ++i)
+        if (scenes::SceneObject* o = scene.findObject(names[i])) o->display = looks[i];
+      sceneView->refresh(scene, deformer);
+      view->requestRender();
+      syncLookActions();
+    };
+    restore(after);
+    commands.pushSnapshots(description, std::move(before), std::move(after), restore);
+  }
 
   widgets::Ray rayAt(const QPoint& p) const {
     const double ratio = view->devicePixelRatioF();
@@ -136,7 +187,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   addDockWidget(Qt::RightDockWidgetArea, propertiesDock);
   connect(d.properties, &PropertyPanel::error, this, [this](const QString& m) { statusBar()->showMessage(m, 8000); });
 
-  auto refreshPanel = [this] { impl_->properties->showSelection(impl_->entries()); };
+  auto refreshPanel = [this] {
+    impl_->properties->showSelection(impl_->entries());
+    impl_->syncLookActions();
+  };
   connect(d.outliner, &Outliner::selectionEdited, this, [this, refreshPanel] {
     Impl& s = *impl_;
     s.selectedObjects.clear();
@@ -400,6 +454,26 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     impl_->sceneView->applyCamera(impl_->scene.camera);
     impl_->view->requestRender();
   });
+  viewMenu->addSeparator();
+  // Looks of the selected objects (else of all): reflection lines on surfaces, curvature combs
+  // on curves (DisplaySettings::surfaceStyle / curvatureComb; stripe count and comb scale are
+  // scene-file settings).
+  d.zebra = action(viewMenu, tr("&Zebra Stripes"), "actionZebra", [this] {
+    const bool on = impl_->zebra->isChecked();
+    impl_->changeLook(on ? "zebra stripes" : "shaded surfaces", [on](scenes::SceneObject& o) {
+      if (o.mesh.triangles.rows() > 0)
+        o.display.surfaceStyle = on ? scenes::SurfaceStyle::Zebra : scenes::SurfaceStyle::Shaded;
+    });
+  });
+  d.zebra->setCheckable(true);
+  d.comb = action(viewMenu, tr("Curvature &Comb"), "actionCurvatureComb", [this] {
+    const bool on = impl_->comb->isChecked();
+    impl_->changeLook(on ? "curvature comb" : "no curvature comb", [on](scenes::SceneObject& o) {
+      if (o.mesh.segments.rows() > 0) o.display.curvatureComb = on;
+    });
+  });
+  d.comb->setCheckable(true);
+  viewMenu->addSeparator();
   viewMenu->addAction(outlinerDock->toggleViewAction());
   viewMenu->addAction(propertiesDock->toggleViewAction());
 
@@ -571,6 +645,7 @@ void MainWindow::setScene(scenes::Scene scene) {
   d.showingScene = true;
   d.outliner->rebuild(d.scene);
   d.properties->showSelection({});
+  d.syncLookActions();
   statusBar()->showMessage(tr("%1 objects, %2 lattices")
                                .arg(d.scene.objects.size())
                                .arg(d.scene.widgets.widgets(widgets::WidgetType::Lattice).size()));

@@ -14,6 +14,7 @@
 #include <vtkCubeSource.h>
 #include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
+#include <vtkImageData.h>
 #include <vtkPointData.h>
 #include <vtkNew.h>
 #include <vtkParametricFunctionSource.h>
@@ -25,9 +26,11 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
+#include <vtkTexture.h>
 #include <vtkTransform.h>
 #include <vtkTubeFilter.h>
 
+#include "ffdkit/app/curvature_comb.h"
 #include "ffdkit/app/parts.h"
 #include "ffdkit/widgets/widget_model.h"
 
@@ -101,6 +104,77 @@ void updateNormals(vtkFloatArray* normals, const Eigen::MatrixX3i& triangles, co
     out[3 * i + 2] = v.z();
   }
   normals->Modified();
+}
+
+// Zebra stripes: texture coordinate s = stripes * angle(n, d) / pi per vertex from the vertex
+// normals, over a repeated two-texel (dark, light) texture without interpolation, so the stripe
+// edges stay sharp between vertices.
+void updateZebraCoordinates(vtkFloatArray* tcoords, vtkFloatArray* normals, const Eigen::Vector3d& direction,
+                            int stripes) {
+  const Eigen::Index n = normals->GetNumberOfTuples();
+  tcoords->SetNumberOfComponents(2);
+  tcoords->SetNumberOfTuples(n);
+  const float* in = normals->GetPointer(0);
+  float* out = tcoords->GetPointer(0);
+  const Eigen::Vector3f d = direction.normalized().cast<float>();
+  const float perRadian = static_cast<float>(stripes / std::numbers::pi);
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const float c = std::clamp(in[3 * i] * d.x() + in[3 * i + 1] * d.y() + in[3 * i + 2] * d.z(), -1.0f, 1.0f);
+    out[2 * i] = perRadian * std::acos(c);
+    out[2 * i + 1] = 0.5f;
+  }
+  tcoords->Modified();
+}
+
+vtkSmartPointer<vtkTexture> zebraTexture() {
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(2, 1, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto* texel = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (int c = 0; c < 3; ++c) {
+    texel[c] = static_cast<unsigned char>(std::lround(255.0 * kZebraDark[c]));
+    texel[3 + c] = static_cast<unsigned char>(std::lround(255.0 * kZebraLight[c]));
+  }
+  auto texture = vtkSmartPointer<vtkTexture>::New();
+  texture->SetInputData(image);
+  texture->InterpolateOff();
+  texture->RepeatOn();
+  texture->EdgeClampOff();
+  return texture;
+}
+
+// The curvature comb of every chain of a curve object's segments, as lines: the teeth and the
+// polyline through their tips.
+vtkSmartPointer<vtkPolyData> combPolyData(const std::vector<std::vector<int>>& chains, const Eigen::MatrixX3d& points,
+                                          double scale) {
+  vtkNew<vtkPoints> vtkPts;
+  vtkPts->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> lines;
+  for (const auto& chain : chains) {
+    const bool closed = chain.size() > 2 && chain.front() == chain.back();
+    const std::size_t count = closed ? chain.size() - 1 : chain.size();
+    Eigen::MatrixX3d curve(static_cast<Eigen::Index>(count), 3);
+    for (std::size_t k = 0; k < count; ++k) curve.row(static_cast<Eigen::Index>(k)) = points.row(chain[k]);
+    const CurvatureComb comb = curvatureComb(curve, closed, scale);
+    const vtkIdType first = vtkPts->GetNumberOfPoints();
+    const vtkIdType teeth = comb.bases.rows();
+    for (vtkIdType k = 0; k < teeth; ++k) vtkPts->InsertNextPoint(comb.bases(k, 0), comb.bases(k, 1), comb.bases(k, 2));
+    for (vtkIdType k = 0; k < teeth; ++k) vtkPts->InsertNextPoint(comb.tips(k, 0), comb.tips(k, 1), comb.tips(k, 2));
+    for (vtkIdType k = 0; k < teeth; ++k) {
+      const vtkIdType tooth[2] = {first + k, first + teeth + k};
+      lines->InsertNextCell(2, tooth);
+    }
+    if (teeth >= 2) {
+      lines->InsertNextCell(teeth + (closed ? 1 : 0));
+      for (vtkIdType k = 0; k < teeth; ++k) lines->InsertCellPoint(first + teeth + k);
+      if (closed) lines->InsertCellPoint(first + teeth);
+    }
+  }
+  auto polyData = vtkSmartPointer<vtkPolyData>::New();
+  polyData->SetPoints(vtkPts);
+  polyData->SetLines(lines);
+  return polyData;
 }
 
 vtkSmartPointer<vtkPolyData> toPolyData(const scenes::MeshData& mesh, const Eigen::MatrixX3d& points) {
@@ -263,6 +337,10 @@ struct SceneView::Impl {
   struct ObjectActor {
     std::string name;
     Eigen::Index pointCount = 0;
+    scenes::DisplaySettings display;          ///< as drawn; a change rebuilds the actor
+    double restDiagonal = 0.0;                ///< of the object's own points (comb scale)
+    std::vector<std::vector<int>> chains;     ///< curves: the segments in curve order (comb)
+    vtkSmartPointer<vtkActor> comb;           ///< the curvature comb, or null
     VertexFaces vertexFaces;                  ///< of the triangles, for the normals
     Eigen::Vector3d restLo, restHi;           ///< bounding box of the object's own points
     std::vector<Eigen::Vector3f> faceNormals; ///< scratch
@@ -293,7 +371,10 @@ struct SceneView::Impl {
   }
 
   void clearObjects() {
-    for (auto& o : objects) renderer->RemoveActor(o.actor);
+    for (auto& o : objects) {
+      renderer->RemoveActor(o.actor);
+      if (o.comb) renderer->RemoveActor(o.comb);
+    }
     objects.clear();
   }
 
@@ -309,13 +390,21 @@ struct SceneView::Impl {
                                                    : Eigen::Vector3d::Zero();
       entry.restHi = object.mesh.points.rows() > 0 ? Eigen::Vector3d(object.mesh.points.colwise().maxCoeff().transpose())
                                                    : Eigen::Vector3d::Zero();
+      entry.display = object.display;
+      entry.restDiagonal = (entry.restHi - entry.restLo).norm();
       entry.polyData = toPolyData(object.mesh, points);
+      const bool zebra = object.display.surfaceStyle == scenes::SurfaceStyle::Zebra && object.mesh.triangles.rows() > 0;
       vtkNew<vtkPolyDataMapper> mapper;
       if (object.mesh.triangles.rows() > 0) {
         vtkNew<vtkFloatArray> normals;  // smooth shading of the deformed surface
         entry.vertexFaces = vertexFaces(object.mesh.triangles, points.rows());
         updateNormals(normals, object.mesh.triangles, entry.vertexFaces, points, entry.faceNormals);
         entry.polyData->GetPointData()->SetNormals(normals);
+        if (zebra) {
+          vtkNew<vtkFloatArray> tcoords;
+          updateZebraCoordinates(tcoords, normals, object.display.zebraDirection, object.display.zebraStripes);
+          entry.polyData->GetPointData()->SetTCoords(tcoords);
+        }
         mapper->SetInputData(entry.polyData);
       } else if (object.mesh.segments.rows() > 0) {
         // Curves as shaded tubes, thick enough to read at any zoom of the object.
@@ -326,6 +415,17 @@ struct SceneView::Impl {
         tubes->SetNumberOfSides(10);
         tubes->CappingOn();
         mapper->SetInputConnection(tubes->GetOutputPort());
+        if (object.display.curvatureComb) {
+          entry.chains = segmentChains(object.mesh.segments, points.rows());
+          vtkNew<vtkPolyDataMapper> combMapper;
+          combMapper->SetInputData(combPolyData(entry.chains, points, combScale(entry)));
+          entry.comb = vtkSmartPointer<vtkActor>::New();
+          entry.comb->SetMapper(combMapper);
+          entry.comb->GetProperty()->SetColor(kCombColour.x(), kCombColour.y(), kCombColour.z());
+          entry.comb->GetProperty()->SetLighting(false);
+          entry.comb->GetProperty()->SetLineWidth(1.5);
+          renderer->AddActor(entry.comb);
+        }
       } else {
         mapper->SetInputData(entry.polyData);
       }
@@ -337,6 +437,11 @@ struct SceneView::Impl {
       entry.actor->GetProperty()->SetOpacity(object.display.opacity);
       entry.actor->GetProperty()->SetSpecular(0.2);
       entry.actor->GetProperty()->SetSpecularPower(30);
+      if (zebra) {  // unlit stripes: the texture's colours exactly
+        entry.actor->SetTexture(zebraTexture());
+        entry.actor->GetProperty()->SetColor(1.0, 1.0, 1.0);
+        entry.actor->GetProperty()->SetLighting(false);
+      }
       renderer->AddActor(entry.actor);
       objects.push_back(std::move(entry));
     }
@@ -348,11 +453,15 @@ struct SceneView::Impl {
     for (const auto& object : scene.objects) {
       if (!object.display.visible) continue;
       if (n >= objects.size() || objects[n].name != object.name ||
-          objects[n].pointCount != deformed.points(object.name).rows())
+          objects[n].pointCount != deformed.points(object.name).rows() || !(objects[n].display == object.display))
         return false;
       ++n;
     }
     return n == objects.size();
+  }
+
+  static double combScale(const ObjectActor& entry) {
+    return entry.display.combScale * entry.restDiagonal * entry.restDiagonal;
   }
 
   void buildWidgets(const widgets::WidgetModel& model) {
@@ -419,9 +528,15 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
     for (auto& entry : impl_->objects) {
       const Eigen::MatrixX3d& points = deformed.points(entry.name);
       setPoints(entry.polyData->GetPoints(), points);
-      if (auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals()))
+      if (auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals())) {
         updateNormals(normals, scene.findObject(entry.name)->mesh.triangles, entry.vertexFaces, points,
                       entry.faceNormals);
+        if (auto* tcoords = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetTCoords()))
+          updateZebraCoordinates(tcoords, normals, entry.display.zebraDirection, entry.display.zebraStripes);
+      }
+      if (entry.comb)
+        vtkPolyDataMapper::SafeDownCast(entry.comb->GetMapper())
+            ->SetInputData(combPolyData(entry.chains, points, Impl::combScale(entry)));
       entry.polyData->Modified();
     }
   } else {

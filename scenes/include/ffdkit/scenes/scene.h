@@ -31,11 +31,29 @@ struct GeneratedSource {
 /// Where an object's own (undeformed) points come from.
 using ObjectSource = std::variant<PrimitiveOptions, MeshFileSource, GeneratedSource>;
 
+/// How a surface is drawn: shaded in its colour, or with zebra (reflection-line) stripes that
+/// show the smoothness of the deformed surface (seed 001 l.1721).
+enum class SurfaceStyle { Shaded, Zebra };
+
 /// How an object looks in the 3D view.
 struct DisplaySettings {
   Eigen::Vector3d color{0.85, 0.55, 0.30};  ///< RGB in [0, 1]
   double opacity = 1.0;                     ///< in [0, 1]
   bool visible = true;
+  /// Surfaces only (objects with triangles); curves and point clouds ignore it.
+  SurfaceStyle surfaceStyle = SurfaceStyle::Shaded;
+  /// Zebra: dark/light stripe pairs over the angle 0..pi between the vertex normal and
+  /// zebraDirection, an integer in [1, 256].
+  int zebraStripes = 12;
+  /// Zebra: the "light tube" direction in world coordinates (any non-zero length).
+  Eigen::Vector3d zebraDirection{0.0, 0.0, 1.0};
+  /// Curves only (objects with segments): draws a curvature comb of the deformed polyline.
+  bool curvatureComb = false;
+  /// Comb tooth length = combScale * curvature * d^2, d the diagonal of the object's own points
+  /// (so the comb looks alike at any object size); positive.
+  double combScale = 0.05;
+
+  friend bool operator==(const DisplaySettings&, const DisplaySettings&) = default;
 };
 
 /// A deformable object: its source, its own points (built from the source on load), its look.

@@ -22,6 +22,12 @@ struct LatticePointRef {
   friend bool operator==(const LatticePointRef&, const LatticePointRef&) = default;
 };
 
+/// The two (unlit) colours of a surface drawn in zebra style (scenes::SurfaceStyle::Zebra).
+inline const Eigen::Vector3d kZebraDark{0.08, 0.08, 0.10};
+inline const Eigen::Vector3d kZebraLight{0.96, 0.96, 0.96};
+/// The colour of curvature combs.
+inline const Eigen::Vector3d kCombColour{1.0, 0.35, 0.75};
+
 /// What the view emphasises; the model knows nothing about it.
 struct ViewHighlights {
   std::optional<widgets::WidgetId> hovered;
@@ -30,10 +36,11 @@ struct ViewHighlights {
   std::optional<LatticePointRef> point;    ///< a picked lattice point
 };
 
-/// Draws a scene into a VTK renderer: shaded objects at their deformed points, curves as
-/// lines, lattice points and edges, cells as points, affine widgets as glyphs at their frames
-/// (arrow = translate, ring = rotate, cube = scale, or a part of the parts library), coloured
-/// by kind, with hover / selection / gesture highlights. The actors rebuild themselves from the
+/// Draws a scene into a VTK renderer: shaded (or zebra-striped, DisplaySettings::surfaceStyle)
+/// objects at their deformed points, curves as tubes (with a curvature comb of the deformed
+/// polyline when DisplaySettings::curvatureComb is set), lattice points and edges, cells as
+/// points, affine widgets as glyphs at their frames (arrow = translate, ring = rotate, cube =
+/// scale, or a part of the parts library), coloured by kind, with hover / selection / gesture highlights. The actors rebuild themselves from the
 /// model; they hold no state of their own.
 class SceneView {
  public:

@@ -1,0 +1,287 @@
+// Display modes: the curvature comb's math, zebra stripes and combs rendered off screen (Xvfb),
+// and the scene-file keys of both.
+#include <QGuiApplication>
+#include <QImage>
+#include <QTemporaryDir>
+#include <QTest>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include <vtkNew.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkUnsignedCharArray.h>
+
+#include "ffdkit/app/curvature_comb.h"
+#include "ffdkit/app/offscreen_render.h"
+#include "ffdkit/app/scene_view.h"
+#include "ffdkit/scenes/scene_deformer.h"
+#include "ffdkit/scenes/scene_file.h"
+
+using namespace ffdkit;
+
+namespace {
+
+Eigen::MatrixX3d circle(double radius, int n, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
+  Eigen::MatrixX3d points(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * std::numbers::pi * i / n;
+    points.row(i) = (centre + radius * Eigen::Vector3d(std::cos(t), std::sin(t), 0.0)).transpose();
+  }
+  return points;
+}
+
+// A scene with a single sphere (no widgets) seen from the default camera.
+scenes::Scene sphereScene(scenes::SurfaceStyle style) {
+  scenes::Scene scene;
+  scenes::SceneObject sphere;
+  sphere.name = "sphere";
+  scenes::PrimitiveOptions options;
+  options.resolution = 64;
+  sphere.source = options;
+  sphere.mesh = scenes::buildObjectMesh(sphere.source, ".");
+  sphere.display.surfaceStyle = style;
+  scene.objects.push_back(sphere);
+  return scene;
+}
+
+QImage render(const scenes::Scene& scene, int width = 400, int height = 400) {
+  QTemporaryDir dir;
+  const std::filesystem::path png = dir.filePath("shot.png").toStdString();
+  app::renderSceneToPng(scene, png, {.width = width, .height = height});
+  QImage image(QString::fromStdString(png.string()));
+  return image.convertToFormat(QImage::Format_RGB32);
+}
+
+double distance(const QColor& c, const Eigen::Vector3d& rgb) {
+  return (Eigen::Vector3d(c.redF(), c.greenF(), c.blueF()) - rgb).norm();
+}
+
+struct LineStats {
+  int objectPixels = 0;
+  int stripePixels = 0;  ///< within 0.1 of a zebra colour
+  int transitions = 0;   ///< bright <-> dark changes between successive object pixels
+};
+
+// Walks the image column x from top to bottom over the pixels that are not background.
+LineStats scanColumn(const QImage& image, int x, const Eigen::Vector3d& background) {
+  LineStats stats;
+  int last = -1;
+  for (int y = 0; y < image.height(); ++y) {
+    const QColor c = image.pixelColor(x, y);
+    if (distance(c, background) < 0.05) continue;
+    ++stats.objectPixels;
+    if (distance(c, app::kZebraDark) < 0.1 || distance(c, app::kZebraLight) < 0.1) ++stats.stripePixels;
+    const int bright = c.lightness() > 128 ? 1 : 0;
+    if (last >= 0 && bright != last) ++stats.transitions;
+    last = bright;
+  }
+  return stats;
+}
+
+}  // namespace
+
+class DisplayModesTest : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void combOfACircleHasCurvatureOneOverRadiusTowardTheCentre() {
+    const double r = 2.5;
+    const Eigen::Vector3d centre(1.0, -2.0, 0.5);
+    const app::CurvatureComb comb = app::curvatureComb(circle(r, 64, centre), true, 0.8);
+    QCOMPARE(comb.bases.rows(), Eigen::Index(64));  // closed: a tooth at every point
+    for (Eigen::Index k = 0; k < comb.bases.rows(); ++k) {
+      QVERIFY(std::abs(comb.curvature(k) - 1.0 / r) < 1e-9);  // the circle through 3 points of a circle
+      const Eigen::Vector3d base = comb.bases.row(k).transpose(), tip = comb.tips.row(k).transpose();
+      QVERIFY(std::abs((tip - base).norm() - 0.8 / r) < 1e-9);
+      // Toward the centre: the tip lies on the line to the centre, nearer to it.
+      QVERIFY(((tip - base).normalized() - (centre - base).normalized()).norm() < 1e-9);
+    }
+    // Open: no teeth at the two ends.
+    const app::CurvatureComb open = app::curvatureComb(circle(r, 64, centre), false, 1.0);
+    QCOMPARE(open.bases.rows(), Eigen::Index(62));
+    QVERIFY((open.bases.row(0) - circle(r, 64, centre).row(1)).norm() < 1e-12);
+  }
+
+  void combOfAStraightLineHasZeroLengthTeeth() {
+    Eigen::MatrixX3d line(20, 3);
+    for (int i = 0; i < 20; ++i) line.row(i) = Eigen::RowVector3d(0.3 * i, 0.1 * i * 1.7, -0.2 * i);
+    const app::CurvatureComb comb = app::curvatureComb(line, false, 5.0);
+    QCOMPARE(comb.bases.rows(), Eigen::Index(18));
+    QVERIFY(comb.curvature.cwiseAbs().maxCoeff() < 1e-9);
+    QVERIFY((comb.tips - comb.bases).cwiseAbs().maxCoeff() < 1e-9);
+  }
+
+  void combFollowsDeformation() {
+    // A circle squashed into an ellipse x/a, y/b: curvature a/b^2 at (a, 0), b/a^2 at (0, b).
+    const int n = 400;
+    Eigen::MatrixX3d points = circle(1.0, n);
+    const app::CurvatureComb before = app::curvatureComb(points, true, 1.0);
+    points.col(0) *= 2.0;  // a = 2, b = 1
+    const app::CurvatureComb after = app::curvatureComb(points, true, 1.0);
+    QVERIFY((after.tips - before.tips).cwiseAbs().maxCoeff() > 0.5);
+    QVERIFY2(std::abs(after.curvature(0) - 2.0) < 0.01, qPrintable(QString::number(after.curvature(0))));
+    QVERIFY2(std::abs(after.curvature(n / 4) - 0.25) < 0.01, qPrintable(QString::number(after.curvature(n / 4))));
+    // Still toward the inside: at (2, 0) the tooth points along -x.
+    QVERIFY(after.tips(0, 0) < after.bases(0, 0) - 1.9);
+  }
+
+  void segmentsAreChainedInCurveOrder() {
+    // An open chain given out of order and reversed, and a separate triangle loop.
+    Eigen::MatrixX2i segments(6, 2);
+    segments << 2, 1, 0, 1, 3, 2, 4, 5, 5, 6, 6, 4;
+    const auto chains = app::segmentChains(segments, 7);
+    QCOMPARE(chains.size(), std::size_t(2));
+    const std::vector<int> open = chains[0].front() == 0 ? chains[0] : std::vector<int>(chains[0].rbegin(), chains[0].rend());
+    QCOMPARE(open, std::vector<int>({0, 1, 2, 3}));
+    QCOMPARE(chains[1].size(), std::size_t(4));
+    QCOMPARE(chains[1].front(), chains[1].back());  // closed
+  }
+
+  void zebraStripesAlternateAcrossASphereAndShadingDoesNot() {
+    const scenes::Scene shaded = sphereScene(scenes::SurfaceStyle::Shaded);
+    const scenes::Scene zebra = sphereScene(scenes::SurfaceStyle::Zebra);
+    const QImage a = render(shaded), b = render(zebra);
+    const LineStats s = scanColumn(a, a.width() / 2, shaded.background);
+    const LineStats z = scanColumn(b, b.width() / 2, zebra.background);
+    qInfo("shaded: %d object pixels, %d transitions; zebra: %d object pixels, %d stripe-coloured, %d transitions",
+          s.objectPixels, s.transitions, z.objectPixels, z.stripePixels, z.transitions);
+    QVERIFY(s.objectPixels > 100);
+    QVERIFY(std::abs(z.objectPixels - s.objectPixels) < 6);  // the same sphere
+    QVERIFY(s.transitions <= 2);
+    QVERIFY(z.transitions >= 10);
+    QVERIFY(z.stripePixels > 0.85 * z.objectPixels);  // unlit: the two stripe colours, edges aside
+    QVERIFY(s.stripePixels < 0.1 * s.objectPixels);
+
+    // More stripes, more transitions.
+    scenes::Scene dense = zebra;
+    dense.objects[0].display.zebraStripes = 24;
+    const LineStats d = scanColumn(render(dense), 200, zebra.background);
+    QVERIFY2(d.transitions > 1.6 * z.transitions, qPrintable(QString("%1 vs %2").arg(d.transitions).arg(z.transitions)));
+  }
+
+  void zebraUsesTheDeformedNormals() {
+    // The default sample: a sphere under a lattice with an arrow. Stretched by the arrow, its
+    // stripes must be those of a mesh whose own points are the deformed points.
+    scenes::Scene deformedScene = scenes::readScene(std::filesystem::path(FFDKIT_SOURCE_DIR "/scenes/examples/default"));
+    deformedScene.objects[0].display.surfaceStyle = scenes::SurfaceStyle::Zebra;
+    const widgets::WidgetId arrow = deformedScene.widgets.widgets(widgets::WidgetType::Affine).front();
+    const QImage rest = render(deformedScene, 320, 320);
+
+    // Drawn as the GUI does a drag step: show at rest, then refresh with the deformed points.
+    vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkRenderWindow> window;
+    window->SetOffScreenRendering(true);
+    window->SetSize(320, 320);
+    window->AddRenderer(renderer);
+    app::SceneView view(renderer);
+    scenes::SceneDeformer deformer;
+    deformer.update(deformedScene);
+    deformer.finishGesture(deformedScene);
+    view.show(deformedScene, deformer);
+    window->Render();
+    deformedScene.widgets.setVariation(arrow, 0.4);
+    deformer.update(deformedScene);
+    deformer.finishGesture(deformedScene);
+    view.refresh(deformedScene, deformer);
+    window->Render();
+    vtkNew<vtkUnsignedCharArray> pixels;
+    window->GetPixelData(0, 0, 319, 319, 0, pixels);  // bottom-up RGB
+
+    // The same shape as a mesh of its own (not deformed), same widgets drawn.
+    scenes::Scene baked = deformedScene;
+    baked.attachments.clear();
+    baked.objects[0].mesh.points = deformer.points(baked.objects[0].name);
+    const QImage expected = render(baked, 320, 320);
+
+    int differing = 0, fromRest = 0;
+    for (int y = 0; y < 320; ++y)
+      for (int x = 0; x < 320; ++x) {
+        const unsigned char* p = pixels->GetPointer(3 * ((319 - y) * 320 + x));
+        const QColor e = expected.pixelColor(x, y);
+        const QColor r = rest.pixelColor(x, y);
+        if (std::abs(p[0] - e.red()) + std::abs(p[1] - e.green()) + std::abs(p[2] - e.blue()) > 60) ++differing;
+        if (std::abs(p[0] - r.red()) + std::abs(p[1] - r.green()) + std::abs(p[2] - r.blue()) > 60) ++fromRest;
+      }
+    qInfo("pixels differing from the baked mesh: %d, from the rest state: %d", differing, fromRest);
+    QVERIFY(fromRest > 2000);           // the drag changed the stripes
+    QVERIFY(differing < fromRest / 50);  // and they are the deformed surface's
+  }
+
+  void curvatureCombIsDrawnForCurves() {
+    scenes::Scene scene;
+    scenes::SceneObject curve;
+    curve.name = "circle";
+    curve.mesh.points = circle(0.8, 120);
+    curve.mesh.points.col(2) = curve.mesh.points.col(1);  // tilted toward the default camera
+    curve.mesh.segments.resize(120, 2);
+    for (int i = 0; i < 120; ++i) curve.mesh.segments.row(i) << i, (i + 1) % 120;
+    scene.objects.push_back(curve);
+    scene.camera.position = {0.0, -5.0, 0.0};
+    scene.camera.focalPoint = {0.0, 0.0, 0.0};
+    auto combPixels = [](const QImage& image) {
+      int n = 0;
+      for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) n += distance(image.pixelColor(x, y), app::kCombColour) < 0.15;
+      return n;
+    };
+    const int without = combPixels(render(scene, 300, 300));
+    scene.objects[0].display.curvatureComb = true;
+    const int with = combPixels(render(scene, 300, 300));
+    scene.objects[0].display.combScale = 0.2;
+    const int longer = combPixels(render(scene, 300, 300));
+    qInfo("comb pixels: off %d, on %d, scale 0.2 %d", without, with, longer);
+    QCOMPARE(without, 0);
+    QVERIFY(with > 300);
+    QVERIFY(longer > with + 300);  // longer teeth
+  }
+
+  void displayKeysRoundTripAndDefaultsAreNotWritten() {
+    scenes::Scene scene = sphereScene(scenes::SurfaceStyle::Shaded);
+    const std::string plain = scenes::sceneFileText(scene);
+    for (const char* key : {"surfaceStyle", "zebraStripes", "zebraDirection", "curvatureComb", "combScale"})
+      QVERIFY2(plain.find(key) == std::string::npos, key);
+    scenes::DisplaySettings& d = scene.objects[0].display;
+    d.surfaceStyle = scenes::SurfaceStyle::Zebra;
+    d.zebraStripes = 7;
+    d.zebraDirection = {1.0, 0.5, 0.0};
+    d.curvatureComb = true;
+    d.combScale = 0.125;
+    const std::string text = scenes::sceneFileText(scene);
+    std::istringstream in(text);
+    const scenes::Scene back = scenes::readScene(in);
+    QVERIFY(back.objects[0].display == d);
+    QCOMPARE(scenes::sceneFileText(back), text);
+  }
+
+  void badDisplayValuesAreRefusedWithTheirPlace() {
+    const std::string good = scenes::sceneFileText(sphereScene(scenes::SurfaceStyle::Shaded));
+    const std::string anchor = "\"visible\": true";
+    QVERIFY(good.find(anchor) != std::string::npos);
+    auto refusal = [&](const std::string& extra) -> std::string {
+      std::string text = good;
+      text.replace(text.find(anchor), anchor.size(), anchor + ", " + extra);
+      std::istringstream in(text);
+      try {
+        scenes::readScene(in);
+      } catch (const scenes::SceneFileError& e) {
+        return e.what();
+      }
+      return "";
+    };
+    const std::string zero = refusal("\"zebraStripes\": 0");
+    QVERIFY2(zero.find("zebraStripes") != std::string::npos && zero.find("[1, 256]") != std::string::npos, zero.c_str());
+    QVERIFY(refusal("\"zebraStripes\": 2.5").find("zebraStripes") != std::string::npos);
+    const std::string style = refusal("\"surfaceStyle\": \"plaid\"");
+    QVERIFY2(style.find("plaid") != std::string::npos && style.find("zebra") != std::string::npos, style.c_str());
+    QVERIFY(refusal("\"zebraDirection\": [0, 0, 0]").find("zebraDirection") != std::string::npos);
+    QVERIFY(refusal("\"combScale\": -1").find("combScale") != std::string::npos);
+    QVERIFY(refusal("\"curvatureComb\": 1").find("curvatureComb") != std::string::npos);
+    QVERIFY(refusal("\"zebraStripes\": 5").empty());  // the splice itself is fine
+  }
+};
+
+QTEST_GUILESS_MAIN(DisplayModesTest)
+#include "display_modes_test.moc"
