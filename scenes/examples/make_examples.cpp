@@ -225,8 +225,12 @@ Scene makeQiInterpolate() {
   GeneratorParameters p;
   p.set("points", rowsOf(geometry::quaternion::exampleQiInterpolateParams().points));
   p.set("end-rule", std::string("circle3"));
-  return generatedScene("Seed 000: a G2 quaternion-integral curve through 7 points (Circle3 end tangents), in a lattice.",
-                        "qi-curve", "qi-interpolate", std::move(p), {0.85, 0.35, 0.25});
+  Scene scene = generatedScene(
+      "Seed 000: a G2 quaternion-integral curve through 7 points (Circle3 end tangents), in a lattice; its curvature "
+      "comb follows the deformation.",
+      "qi-curve", "qi-interpolate", std::move(p), {0.85, 0.35, 0.25});
+  scene.objects.front().display.curvatureComb = true;
+  return scene;
 }
 
 // Seed 003 Ex. 1: a noisy sine fitted by 4 quaternion-integral segments.
@@ -342,8 +346,12 @@ Scene makeSigmaSplineSurface() {
   p.set("columns", 6.0);
   p.set("closed-u", true);
   p.set("closed-v", true);
-  return generatedScene("Seed 001 ch. 3: a bicubic sigma-spline torus interpolating an 8 x 6 closed grid.", "torus",
-                        "sigma-spline-surface", std::move(p), {0.85, 0.65, 0.35});
+  Scene scene = generatedScene(
+      "Seed 001 ch. 3: a bicubic sigma-spline torus interpolating an 8 x 6 closed grid, in zebra stripes (reflection "
+      "lines) that show its smoothness under the deformation.",
+      "torus", "sigma-spline-surface", std::move(p), {0.85, 0.65, 0.35});
+  scene.objects.front().display.surfaceStyle = scenes::SurfaceStyle::Zebra;
+  return scene;
 }
 
 // Seed 001 Fig. 3-18/3-19: a circle and a star joined by a C2 blend: a vase.

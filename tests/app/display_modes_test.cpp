@@ -157,7 +157,7 @@ class DisplayModesTest : public QObject {
 
     // More stripes, more transitions.
     scenes::Scene dense = zebra;
-    dense.objects[0].display.zebraStripes = 24;
+    dense.objects[0].display.zebraStripes = 2 * zebra.objects[0].display.zebraStripes;
     const LineStats d = scanColumn(render(dense), 200, zebra.background);
     QVERIFY2(d.transitions > 1.6 * z.transitions, qPrintable(QString("%1 vs %2").arg(d.transitions).arg(z.transitions)));
   }
@@ -230,9 +230,9 @@ class DisplayModesTest : public QObject {
     const int without = combPixels(render(scene, 300, 300));
     scene.objects[0].display.curvatureComb = true;
     const int with = combPixels(render(scene, 300, 300));
-    scene.objects[0].display.combScale = 0.2;
+    scene.objects[0].display.combScale = 0.4;
     const int longer = combPixels(render(scene, 300, 300));
-    qInfo("comb pixels: off %d, on %d, scale 0.2 %d", without, with, longer);
+    qInfo("comb pixels: off %d, on %d, scale 0.4 %d", without, with, longer);
     QCOMPARE(without, 0);
     QVERIFY(with > 300);
     QVERIFY(longer > with + 300);  // longer teeth

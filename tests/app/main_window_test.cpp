@@ -427,6 +427,64 @@ class MainWindowTest : public QObject {
     QVERIFY(w.scene().widgets.widgets(widgets::WidgetType::Affine).size() >= 2);
   }
 
+  void zebraAndCombAreToggledFromTheViewMenuAndUndone() {
+    MainWindow& w = *window_;
+    auto stripePixels = [](const QImage& image, const Eigen::Vector3d& colour, double tolerance) {
+      long n = 0;
+      for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) {
+          const QColor c = image.pixelColor(x, y);
+          n += (Eigen::Vector3d(c.redF(), c.greenF(), c.blueF()) - colour).norm() < tolerance;
+        }
+      return n;
+    };
+    w.openScene(FFDKIT_SOURCE_DIR "/scenes/examples/default");
+    const QImage shaded = w.view()->grabFramebuffer();
+    QAction* zebra = action(w, "actionZebra");
+    QVERIFY(zebra->isCheckable() && !zebra->isChecked());
+    zebra->trigger();
+    QVERIFY(zebra->isChecked());
+    QCOMPARE(w.scene().objects.front().display.surfaceStyle, scenes::SurfaceStyle::Zebra);
+    const QImage striped = w.view()->grabFramebuffer();
+    QVERIFY(striped != shaded);
+    const long dark = stripePixels(striped, app::kZebraDark, 0.1), light = stripePixels(striped, app::kZebraLight, 0.1);
+    qInfo("zebra: %ld dark and %ld light stripe pixels (shaded: %ld, %ld)", dark, light,
+          stripePixels(shaded, app::kZebraDark, 0.1), stripePixels(shaded, app::kZebraLight, 0.1));
+    QVERIFY(dark > 1000 && light > 1000);
+    // Shaded: a few dark pixels at the unlit rim at most, no light stripes.
+    QVERIFY(stripePixels(shaded, app::kZebraDark, 0.1) + stripePixels(shaded, app::kZebraLight, 0.1) < (dark + light) / 20);
+    QVERIFY(stripePixels(shaded, app::kZebraLight, 0.1) < light / 100);
+    // Stripes follow a drag step (the deformed normals).
+    const WidgetId arrow = w.scene().widgets.widgets(widgets::WidgetType::Affine).front();
+    dragArrow(w, arrow, 0.3);
+    QVERIFY(w.view()->grabFramebuffer() != striped);
+    sendMouse(w.view(), QEvent::MouseMove, QPoint(2, 2), Qt::NoButton, Qt::NoButton);  // no hovered arrow
+    action(w, "actionUndo")->trigger();  // the drag
+    w.controller().clearSelection();      // the dragged arrow was selected
+    QCOMPARE(w.view()->grabFramebuffer(), striped);
+    action(w, "actionUndo")->trigger();  // the zebra
+    QVERIFY(!zebra->isChecked());
+    QCOMPARE(w.scene().objects.front().display.surfaceStyle, scenes::SurfaceStyle::Shaded);
+    QCOMPARE(w.view()->grabFramebuffer(), shaded);
+
+    w.openScene(FFDKIT_SOURCE_DIR "/scenes/examples/qi-interpolate");
+    scenes::Scene plain = w.scene();
+    for (auto& o : plain.objects) o.display.curvatureComb = false;
+    w.setScene(plain);
+    const QImage bare = w.view()->grabFramebuffer();
+    QAction* comb = action(w, "actionCurvatureComb");
+    QVERIFY(!comb->isChecked());
+    comb->trigger();
+    QVERIFY(comb->isChecked());
+    const QImage combed = w.view()->grabFramebuffer();
+    const long before = stripePixels(bare, app::kCombColour, 0.15), after = stripePixels(combed, app::kCombColour, 0.15);
+    qInfo("comb pixels: %ld off, %ld on", before, after);
+    QVERIFY(after > before + 500);
+    action(w, "actionUndo")->trigger();
+    QVERIFY(!comb->isChecked());
+    QCOMPARE(w.view()->grabFramebuffer(), bare);
+  }
+
   void eachSampleSceneShowsItsObject() {
     MainWindow& w = *window_;
     int scenesSeen = 0;
@@ -447,7 +505,7 @@ class MainWindowTest : public QObject {
         w.setScene(hidden);
         const QImage bare = w.view()->grabFramebuffer();
         QCOMPARE(bare.size(), shot.size());
-        long differing = 0;
+        long differing = 0, striped = 0;
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
         for (int y = 0; y < shot.height(); ++y)
           for (int x = 0; x < shot.width(); ++x) {
@@ -455,7 +513,10 @@ class MainWindowTest : public QObject {
             if (std::abs(a.red() - b.red()) + std::abs(a.green() - b.green()) + std::abs(a.blue() - b.blue()) < 30)
               continue;
             ++differing;
-            sum += Eigen::Vector3d(a.redF(), a.greenF(), a.blueF());
+            const Eigen::Vector3d rgb(a.redF(), a.greenF(), a.blueF());
+            if ((rgb - app::kZebraDark).norm() < 0.1 || (rgb - app::kZebraLight).norm() < 0.1) ++striped;
+            if (object.display.curvatureComb && (rgb - app::kCombColour).norm() < 0.15) continue;  // the comb
+            sum += rgb;
           }
         const double share = double(differing) / (double(shot.width()) * shot.height());
         const QString what = name + "/" + QString::fromStdString(object.name);
@@ -463,6 +524,11 @@ class MainWindowTest : public QObject {
         // Surfaces cover percents of the view; a curve (a tube) less.
         const bool curve = object.mesh.triangles.rows() == 0;
         QVERIFY2(share > (curve ? 0.002 : 0.01), qPrintable(QString("%1: object covers only %2 of the view").arg(what).arg(share)));
+        if (object.display.surfaceStyle == scenes::SurfaceStyle::Zebra && !curve) {
+          // Zebra: the object's pixels are the two stripe colours (edges and lattice lines aside).
+          QVERIFY2(striped > 0.8 * differing, qPrintable(QString("%1: %2 of %3 pixels striped").arg(what).arg(striped).arg(differing)));
+          continue;
+        }
         // Shaded, but the object's hue: the mean colour points the way of its display colour.
         const double cosine = sum.normalized().dot(object.display.color.normalized());
         QVERIFY2(cosine > 0.95, qPrintable(QString("%1: mean object pixel is off its colour (%2)").arg(what).arg(cosine)));

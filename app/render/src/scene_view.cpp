@@ -144,6 +144,35 @@ vtkSmartPointer<vtkTexture> zebraTexture() {
   return texture;
 }
 
+std::vector<Eigen::MatrixX3d> chainCurves(const std::vector<std::vector<int>>& chains, const Eigen::MatrixX3d& points,
+                                          std::vector<bool>& closed) {
+  std::vector<Eigen::MatrixX3d> curves;
+  closed.clear();
+  for (const auto& chain : chains) {
+    closed.push_back(chain.size() > 2 && chain.front() == chain.back());
+    const std::size_t count = closed.back() ? chain.size() - 1 : chain.size();
+    Eigen::MatrixX3d curve(static_cast<Eigen::Index>(count), 3);
+    for (std::size_t k = 0; k < count; ++k) curve.row(static_cast<Eigen::Index>(k)) = points.row(chain[k]);
+    curves.push_back(std::move(curve));
+  }
+  return curves;
+}
+
+// Tooth length per unit curvature: the longest tooth of the undeformed curve is `scale` times
+// its bounding-box diagonal (a straight curve: scale * diagonal^2), so that any curve shows a
+// readable comb and a deformation shows as a change of it.
+double combFactor(const std::vector<std::vector<int>>& chains, const Eigen::MatrixX3d& restPoints, double scale,
+                  double diagonal) {
+  std::vector<bool> closed;
+  const auto curves = chainCurves(chains, restPoints, closed);
+  double maxCurvature = 0.0;
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    const CurvatureComb comb = curvatureComb(curves[c], closed[c], 0.0);
+    if (comb.curvature.size() > 0) maxCurvature = std::max(maxCurvature, comb.curvature.maxCoeff());
+  }
+  return maxCurvature * diagonal > 1e-9 ? scale * diagonal / maxCurvature : scale * diagonal * diagonal;
+}
+
 // The curvature comb of every chain of a curve object's segments, as lines: the teeth and the
 // polyline through their tips.
 vtkSmartPointer<vtkPolyData> combPolyData(const std::vector<std::vector<int>>& chains, const Eigen::MatrixX3d& points,
@@ -151,17 +180,19 @@ vtkSmartPointer<vtkPolyData> combPolyData(const std::vector<std::vector<int>>& c
   vtkNew<vtkPoints> vtkPts;
   vtkPts->SetDataTypeToDouble();
   vtkNew<vtkCellArray> lines;
-  for (const auto& chain : chains) {
-    const bool closed = chain.size() > 2 && chain.front() == chain.back();
-    const std::size_t count = closed ? chain.size() - 1 : chain.size();
-    Eigen::MatrixX3d curve(static_cast<Eigen::Index>(count), 3);
-    for (std::size_t k = 0; k < count; ++k) curve.row(static_cast<Eigen::Index>(k)) = points.row(chain[k]);
-    const CurvatureComb comb = curvatureComb(curve, closed, scale);
+  std::vector<bool> closedChains;
+  const auto curves = chainCurves(chains, points, closedChains);
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    const bool closed = closedChains[c];
+    const CurvatureComb comb = curvatureComb(curves[c], closed, scale);
     const vtkIdType first = vtkPts->GetNumberOfPoints();
     const vtkIdType teeth = comb.bases.rows();
     for (vtkIdType k = 0; k < teeth; ++k) vtkPts->InsertNextPoint(comb.bases(k, 0), comb.bases(k, 1), comb.bases(k, 2));
     for (vtkIdType k = 0; k < teeth; ++k) vtkPts->InsertNextPoint(comb.tips(k, 0), comb.tips(k, 1), comb.tips(k, 2));
-    for (vtkIdType k = 0; k < teeth; ++k) {
+    // At most ~120 teeth drawn per curve (a dense polyline would fill the comb in); the tip
+    // polyline goes through every sample.
+    const vtkIdType stride = std::max<vtkIdType>(1, (teeth + 119) / 120);
+    for (vtkIdType k = 0; k < teeth; k += stride) {
       const vtkIdType tooth[2] = {first + k, first + teeth + k};
       lines->InsertNextCell(2, tooth);
     }
@@ -338,7 +369,7 @@ struct SceneView::Impl {
     std::string name;
     Eigen::Index pointCount = 0;
     scenes::DisplaySettings display;          ///< as drawn; a change rebuilds the actor
-    double restDiagonal = 0.0;                ///< of the object's own points (comb scale)
+    double combFactor = 0.0;                  ///< tooth length per unit curvature
     std::vector<std::vector<int>> chains;     ///< curves: the segments in curve order (comb)
     vtkSmartPointer<vtkActor> comb;           ///< the curvature comb, or null
     VertexFaces vertexFaces;                  ///< of the triangles, for the normals
@@ -391,7 +422,6 @@ struct SceneView::Impl {
       entry.restHi = object.mesh.points.rows() > 0 ? Eigen::Vector3d(object.mesh.points.colwise().maxCoeff().transpose())
                                                    : Eigen::Vector3d::Zero();
       entry.display = object.display;
-      entry.restDiagonal = (entry.restHi - entry.restLo).norm();
       entry.polyData = toPolyData(object.mesh, points);
       const bool zebra = object.display.surfaceStyle == scenes::SurfaceStyle::Zebra && object.mesh.triangles.rows() > 0;
       vtkNew<vtkPolyDataMapper> mapper;
@@ -417,8 +447,10 @@ struct SceneView::Impl {
         mapper->SetInputConnection(tubes->GetOutputPort());
         if (object.display.curvatureComb) {
           entry.chains = segmentChains(object.mesh.segments, points.rows());
+          entry.combFactor = combFactor(entry.chains, object.mesh.points, object.display.combScale,
+                                        (entry.restHi - entry.restLo).norm());
           vtkNew<vtkPolyDataMapper> combMapper;
-          combMapper->SetInputData(combPolyData(entry.chains, points, combScale(entry)));
+          combMapper->SetInputData(combPolyData(entry.chains, points, entry.combFactor));
           entry.comb = vtkSmartPointer<vtkActor>::New();
           entry.comb->SetMapper(combMapper);
           entry.comb->GetProperty()->SetColor(kCombColour.x(), kCombColour.y(), kCombColour.z());
@@ -458,10 +490,6 @@ struct SceneView::Impl {
       ++n;
     }
     return n == objects.size();
-  }
-
-  static double combScale(const ObjectActor& entry) {
-    return entry.display.combScale * entry.restDiagonal * entry.restDiagonal;
   }
 
   void buildWidgets(const widgets::WidgetModel& model) {
@@ -536,7 +564,7 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
       }
       if (entry.comb)
         vtkPolyDataMapper::SafeDownCast(entry.comb->GetMapper())
-            ->SetInputData(combPolyData(entry.chains, points, Impl::combScale(entry)));
+            ->SetInputData(combPolyData(entry.chains, points, entry.combFactor));
       entry.polyData->Modified();
     }
   } else {

@@ -44,14 +44,15 @@ struct DisplaySettings {
   SurfaceStyle surfaceStyle = SurfaceStyle::Shaded;
   /// Zebra: dark/light stripe pairs over the angle 0..pi between the vertex normal and
   /// zebraDirection, an integer in [1, 256].
-  int zebraStripes = 12;
+  int zebraStripes = 8;
   /// Zebra: the "light tube" direction in world coordinates (any non-zero length).
   Eigen::Vector3d zebraDirection{0.0, 0.0, 1.0};
   /// Curves only (objects with segments): draws a curvature comb of the deformed polyline.
   bool curvatureComb = false;
-  /// Comb tooth length = combScale * curvature * d^2, d the diagonal of the object's own points
-  /// (so the comb looks alike at any object size); positive.
-  double combScale = 0.05;
+  /// Comb tooth length proportional to curvature, such that the longest tooth of the undeformed
+  /// curve is combScale times the diagonal of its bounding box (a straight undeformed curve:
+  /// length = combScale * curvature * diagonal^2); positive.
+  double combScale = 0.15;
 
   friend bool operator==(const DisplaySettings&, const DisplaySettings&) = default;
 };
