@@ -44,6 +44,42 @@ class InteractionControllerTest : public QObject {
   Q_OBJECT
 
  private slots:
+  void looksChangeAsOneUndoableCommandWithoutReDeforming() {
+    Fixture f;
+    f.controller.setVariation(f.widget, 0.2);
+    const Eigen::MatrixX3d deformed = f.deformer.points(f.sphere);
+    const std::size_t position = f.commands.position();
+    int notified = 0;
+    f.controller.onChanged = [&] { ++notified; };
+    scenes::DisplaySettings look = f.scene.findObject(f.sphere)->display;
+    look.surfaceStyle = scenes::SurfaceStyle::Zebra;
+    look.zebraStripes = 5;
+    f.controller.setDisplay({f.sphere}, {look}, "Zebra");
+    QVERIFY(f.scene.findObject(f.sphere)->display == look);
+    QCOMPARE(f.commands.position(), position + 1);
+    QCOMPARE(f.commands.undoDescription(), std::string("Zebra"));
+    QCOMPARE(notified, 1);
+    QVERIFY(maxDifference(f.deformer.points(f.sphere), deformed) == 0.0);
+    f.commands.undo();
+    QCOMPARE(f.scene.findObject(f.sphere)->display.surfaceStyle, scenes::SurfaceStyle::Shaded);
+    f.commands.redo();
+    QCOMPARE(f.scene.findObject(f.sphere)->display.zebraStripes, 5);
+    // The same look again is no command.
+    f.controller.setDisplay({f.sphere}, {look});
+    QCOMPARE(f.commands.position(), position + 1);
+    // Refused, with nothing changed.
+    scenes::DisplaySettings bad = look;
+    bad.zebraStripes = 0;
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, f.controller.setDisplay({f.sphere}, {bad}));
+    bad = look;
+    bad.combScale = -1.0;
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, f.controller.setDisplay({f.sphere}, {bad}));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, f.controller.setDisplay({"nobody"}, {look}));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, f.controller.setDisplay({f.sphere}, {}));
+    QVERIFY(f.scene.findObject(f.sphere)->display == look);
+    QCOMPARE(f.commands.position(), position + 1);
+  }
+
   void operationsBuildTheModelAsUndoableCommands() {
     Fixture f;
     QCOMPARE(f.commands.position(), std::size_t(4));

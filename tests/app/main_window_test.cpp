@@ -10,6 +10,7 @@
 #include <QFileDialog>
 #include <QMimeData>
 #include <QMouseEvent>
+#include <QSpinBox>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
@@ -483,6 +484,40 @@ class MainWindowTest : public QObject {
     action(w, "actionUndo")->trigger();
     QVERIFY(!comb->isChecked());
     QCOMPARE(w.view()->grabFramebuffer(), bare);
+  }
+
+  void stripeCountAndCombAreEditedInThePropertyPanel() {
+    MainWindow& w = *window_;
+    w.openScene(FFDKIT_SOURCE_DIR "/scenes/examples/sigma-spline-surface");
+    QCOMPARE(w.scene().objects.front().display.surfaceStyle, scenes::SurfaceStyle::Zebra);
+    QVERIFY(action(w, "actionZebra")->isChecked());
+    clickRow(w, "torus");
+    auto* stripes = w.findChild<QSpinBox*>("zebraStripes");
+    QVERIFY(stripes != nullptr && stripes->isEnabled());
+    QCOMPARE(stripes->value(), w.scene().objects.front().display.zebraStripes);
+    const QImage before = w.view()->grabFramebuffer();
+    stripes->setValue(3);
+    QCOMPARE(w.scene().objects.front().display.zebraStripes, 3);
+    QVERIFY(w.view()->grabFramebuffer() != before);
+    auto* style = w.findChild<QComboBox*>("surfaceStyle");
+    QVERIFY(style != nullptr);
+    style->setCurrentIndex(0);
+    QCOMPARE(w.scene().objects.front().display.surfaceStyle, scenes::SurfaceStyle::Shaded);
+    QVERIFY(!action(w, "actionZebra")->isChecked());
+    action(w, "actionUndo")->trigger();
+    action(w, "actionUndo")->trigger();
+    QCOMPARE(w.view()->grabFramebuffer(), before);
+
+    w.openScene(FFDKIT_SOURCE_DIR "/scenes/examples/qi-interpolate");
+    clickRow(w, "qi-curve");
+    auto* comb = w.findChild<QCheckBox*>("curvatureComb");
+    QVERIFY(comb != nullptr && comb->isChecked());
+    auto* scale = w.findChild<QDoubleSpinBox*>("combScale");
+    QVERIFY(scale != nullptr);
+    const QImage combed = w.view()->grabFramebuffer();
+    scale->setValue(2.0 * scale->value());
+    QCOMPARE(w.scene().objects.front().display.combScale, 0.3);
+    QVERIFY(w.view()->grabFramebuffer() != combed);
   }
 
   void eachSampleSceneShowsItsObject() {

@@ -220,6 +220,31 @@ auto InteractionController::edit(const std::string& description, Change change, 
   }
 }
 
+void InteractionController::setDisplay(const std::vector<std::string>& objects,
+                                       const std::vector<scenes::DisplaySettings>& looks,
+                                       const std::string& description) {
+  if (objects.size() != looks.size()) throw std::invalid_argument("setDisplay: one look per object");
+  std::vector<scenes::DisplaySettings> before;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const scenes::SceneObject* object = scene_.findObject(objects[i]);
+    if (object == nullptr) throw std::invalid_argument("no object '" + objects[i] + "'");
+    const scenes::DisplaySettings& look = looks[i];
+    if (look.zebraStripes < 1 || look.zebraStripes > 256)
+      throw std::invalid_argument("zebra stripes must be in [1, 256], got " + std::to_string(look.zebraStripes));
+    if (!(look.zebraDirection.norm() > 1e-12)) throw std::invalid_argument("the zebra direction must not be zero");
+    if (!(look.combScale > 0.0)) throw std::invalid_argument("the comb scale must be positive");
+    before.push_back(object->display);
+  }
+  if (before == looks) return;
+  auto restore = [this, objects](const std::vector<scenes::DisplaySettings>& set) {
+    for (std::size_t i = 0; i < objects.size(); ++i)
+      if (scenes::SceneObject* object = scene_.findObject(objects[i])) object->display = set[i];
+    notify();
+  };
+  restore(looks);
+  commands_.pushSnapshots(description, std::move(before), looks, restore);
+}
+
 WidgetId InteractionController::newLattice(const NewLatticeOptions& options) {
   return edit("New lattice", [&] {
     widgets::LatticeOptions lattice;

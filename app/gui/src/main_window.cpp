@@ -122,25 +122,18 @@ struct MainWindow::Impl {
     comb->setChecked(anyCurve && allComb);
   }
 
-  // Changes the look of the target objects (undoable) and redraws; no re-deform is needed.
-  void changeLook(const std::string& description, const std::function<void(scenes::SceneObject&)>& change) {
+  // Changes the look of the target objects through the controller (one undoable command).
+  void changeLook(const std::string& description, const std::function<void(const scenes::SceneObject&,
+                                                                             scenes::DisplaySettings&)>& change) {
     const std::vector<std::string> names = lookTargets();
-    std::vector<scenes::DisplaySettings> before, after;
+    std::vector<scenes::DisplaySettings> looks;
     for (const auto& name : names) {
-      scenes::SceneObject& o = *scene.findObject(name);
-      before.push_back(o.display);
-      change(o);
-      after.push_back(o.display);
+      const scenes::SceneObject& o = *scene.findObject(name);
+      looks.push_back(o.display);
+      change(o, looks.back());
     }
-    auto restore = [this, names](const std::vector<scenes::DisplaySettings>& looks) {
-      for (std::size_t i = 0; i < names.size(); ++i)
-        if (scenes::SceneObject* o = scene.findObject(names[i])) o->display = looks[i];
-      sceneView->refresh(scene, deformer);
-      view->requestRender();
-      syncLookActions();
-    };
-    restore(after);
-    commands.pushSnapshots(description, std::move(before), std::move(after), restore);
+    controller->setDisplay(names, looks, description);
+    syncLookActions();
   }
 
   widgets::Ray rayAt(const QPoint& p) const {
@@ -460,16 +453,15 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   // scene-file settings).
   d.zebra = action(viewMenu, tr("&Zebra Stripes"), "actionZebra", [this] {
     const bool on = impl_->zebra->isChecked();
-    impl_->changeLook(on ? "zebra stripes" : "shaded surfaces", [on](scenes::SceneObject& o) {
-      if (o.mesh.triangles.rows() > 0)
-        o.display.surfaceStyle = on ? scenes::SurfaceStyle::Zebra : scenes::SurfaceStyle::Shaded;
+    impl_->changeLook(on ? "Zebra stripes" : "Shaded surfaces", [on](const scenes::SceneObject& o, scenes::DisplaySettings& look) {
+      if (o.mesh.triangles.rows() > 0) look.surfaceStyle = on ? scenes::SurfaceStyle::Zebra : scenes::SurfaceStyle::Shaded;
     });
   });
   d.zebra->setCheckable(true);
   d.comb = action(viewMenu, tr("Curvature &Comb"), "actionCurvatureComb", [this] {
     const bool on = impl_->comb->isChecked();
-    impl_->changeLook(on ? "curvature comb" : "no curvature comb", [on](scenes::SceneObject& o) {
-      if (o.mesh.segments.rows() > 0) o.display.curvatureComb = on;
+    impl_->changeLook(on ? "Curvature comb" : "No curvature comb", [on](const scenes::SceneObject& o, scenes::DisplaySettings& look) {
+      if (o.mesh.segments.rows() > 0) look.curvatureComb = on;
     });
   });
   d.comb->setCheckable(true);

@@ -11,6 +11,7 @@
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QSpinBox>
 #include <QToolButton>
 #include <QVBoxLayout>
 
@@ -343,6 +344,49 @@ void PropertyPanel::showObject(const std::string& name) {
   QStringList lattices;
   for (widgets::WidgetId l : scene_.latticesDeforming(name)) lattices << qs(scene_.widgets.name(l));
   form_->addRow(tr("Deformed by"), new QLabel(lattices.isEmpty() ? tr("(nothing)") : lattices.join(", ")));
+  // Looks (DisplaySettings): zebra stripes for surfaces, a curvature comb for curves.
+  auto setLook = [this, name](auto change) {
+    guarded([&] {
+      scenes::DisplaySettings look = scene_.findObject(name)->display;
+      change(look);
+      controller_.setDisplay({name}, {look});
+    });
+  };
+  const scenes::DisplaySettings& d = object->display;
+  if (object->mesh.triangles.rows() > 0) {
+    auto* style = new QComboBox;
+    style->setObjectName("surfaceStyle");
+    style->addItems({tr("shaded"), tr("zebra stripes")});
+    style->setCurrentIndex(d.surfaceStyle == scenes::SurfaceStyle::Zebra ? 1 : 0);
+    connect(style, &QComboBox::currentIndexChanged, this, [setLook](int index) {
+      setLook([index](scenes::DisplaySettings& look) {
+        look.surfaceStyle = index == 1 ? scenes::SurfaceStyle::Zebra : scenes::SurfaceStyle::Shaded;
+      });
+    });
+    form_->addRow(tr("Surface"), style);
+    auto* stripes = new QSpinBox;
+    stripes->setObjectName("zebraStripes");
+    stripes->setRange(1, 256);
+    stripes->setValue(d.zebraStripes);
+    stripes->setKeyboardTracking(false);
+    stripes->setEnabled(d.surfaceStyle == scenes::SurfaceStyle::Zebra);
+    connect(stripes, &QSpinBox::valueChanged, this,
+            [setLook](int n) { setLook([n](scenes::DisplaySettings& look) { look.zebraStripes = n; }); });
+    form_->addRow(tr("Stripes"), stripes);
+  } else if (object->mesh.segments.rows() > 0) {
+    auto* comb = new QCheckBox(tr("curvature comb"));
+    comb->setObjectName("curvatureComb");
+    comb->setChecked(d.curvatureComb);
+    connect(comb, &QCheckBox::toggled, this,
+            [setLook](bool on) { setLook([on](scenes::DisplaySettings& look) { look.curvatureComb = on; }); });
+    form_->addRow(tr("Comb"), comb);
+    auto* scale = spin("combScale", d.combScale, 0.001, 100.0, 3);
+    scale->setSingleStep(0.01);
+    scale->setEnabled(d.curvatureComb);
+    connect(scale, &QDoubleSpinBox::valueChanged, this,
+            [setLook](double v) { setLook([v](scenes::DisplaySettings& look) { look.combScale = v; }); });
+    form_->addRow(tr("Comb scale"), scale);
+  }
 }
 
 }  // namespace ffdkit::app

@@ -93,6 +93,12 @@ class InteractionController {
   std::string addPrimitive(const scenes::PrimitiveOptions& options);
   /// Adds an object (an imported mesh); its name must be unique.
   void addObject(scenes::SceneObject object);
+  /// Changes how objects look, `looks[i]` for `objects[i]` (zebra stripes, curvature comb,
+  /// ...): one undoable command, no re-deform.
+  /// @throws std::invalid_argument for an unknown object, sizes that differ, or a look out of
+  /// range (stripes outside [1, 256], a zero zebra direction, a comb scale not positive).
+  void setDisplay(const std::vector<std::string>& objects, const std::vector<scenes::DisplaySettings>& looks,
+                  const std::string& description = "Change look");
   void setVariation(widgets::WidgetId affine, double value);
   void setPlacement(widgets::WidgetId affine, const Eigen::Affine3d& placement);
   void setGlyph(widgets::WidgetId affine, const widgets::Glyph& glyph);
