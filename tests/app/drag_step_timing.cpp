@@ -1,10 +1,12 @@
 // Measures one drag step of the application with a large object attached (issue 6, item 4):
 // the time the FFD engine spends (SceneDeformer::lastStats().seconds) against the whole step
 // in our code (ray drag, deformation, VTK point update) and the frame's render, off screen.
-// Not a test: run by hand, e.g.  drag_step_timing 1414  (sphere resolution; ~1M vertices).
+// Not a test: run by hand, e.g.  drag_step_timing 1414  (sphere resolution; ~1M vertices);
+// drag_step_timing 1414 10 zebra  draws the sphere in zebra stripes.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 #include <vtkNew.h>
 #include <vtkRenderWindow.h>
@@ -41,6 +43,9 @@ int main(int argc, char** argv) {
   t0 = Clock::now();
   controller.attachLattice(lattice, name);
   const double attachSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+
+  if (argc > 3 && std::string(argv[3]) == "zebra")
+    scene.findObject(name)->display.surfaceStyle = scenes::SurfaceStyle::Zebra;
 
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
