@@ -17,6 +17,7 @@
 #include "ffdkit/app/curvature_comb.h"
 #include "ffdkit/app/offscreen_render.h"
 #include "ffdkit/app/scene_view.h"
+#include "ffdkit/scenes/generator.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
 
@@ -126,6 +127,44 @@ class DisplayModesTest : public QObject {
     QVERIFY2(std::abs(after.curvature(n / 4) - 0.25) < 0.01, qPrintable(QString::number(after.curvature(n / 4))));
     // Still toward the inside: at (2, 0) the tooth points along -x.
     QVERIFY(after.tips(0, 0) < after.bases(0, 0) - 1.9);
+  }
+
+  void combOfAGeneratedCurveAgreesWithItsGeneratorsExactProfile() {
+    // The qi-interpolate sample at rest: the discrete comb of its polyline against the
+    // generator's exact curvature and principal normals at the nearest profile sample.
+    const scenes::Scene scene = scenes::readScene(std::filesystem::path(FFDKIT_SOURCE_DIR "/scenes/examples/qi-interpolate"));
+    const scenes::SceneObject& curve = scene.objects.front();
+    const auto& source = std::get<scenes::GeneratedSource>(curve.source);
+    const scenes::CurvatureProfile exact =
+        scenes::builtinGenerators().profile(source.generator, source.parameters, source.density);
+    const auto chains = app::segmentChains(curve.mesh.segments, curve.mesh.points.rows());
+    QCOMPARE(chains.size(), std::size_t(1));
+    Eigen::MatrixX3d points(static_cast<Eigen::Index>(chains[0].size()), 3);
+    for (std::size_t k = 0; k < chains[0].size(); ++k) points.row(Eigen::Index(k)) = curve.mesh.points.row(chains[0][k]);
+    const app::CurvatureComb comb = app::curvatureComb(points, false, 1.0);
+    const double maxCurvature = exact.curvature.cwiseAbs().maxCoeff();
+    double worstCurvature = 0.0, worstNormal = 0.0, worstDistance = 0.0;
+    for (Eigen::Index k = 0; k < comb.bases.rows(); ++k) {
+      Eigen::Index nearest = 0;
+      const double d = (exact.points.rowwise() - comb.bases.row(k)).rowwise().squaredNorm().minCoeff(&nearest);
+      worstDistance = std::max(worstDistance, std::sqrt(d));
+      const double kappa = std::abs(exact.curvature(nearest));
+      worstCurvature = std::max(worstCurvature, std::abs(comb.curvature(k) - kappa) / maxCurvature);
+      if (kappa > 0.1 * maxCurvature) {  // the normal is defined well away from inflections
+        const Eigen::Vector3d n = (comb.tips.row(k) - comb.bases.row(k)).transpose().normalized();
+        const Eigen::Vector3d e = exact.normals.row(nearest).transpose();
+        // A space curve's principal normal is the comb's; a planar profile may carry the sign
+        // in its curvature and a fixed side normal instead.
+        const double flipped = exact.torsion.size() != 0 ? 2.0 : (n + e).norm();
+        worstNormal = std::max(worstNormal, std::min((n - e).norm(), flipped));
+      }
+    }
+    QVERIFY(exact.torsion.size() != 0);  // a space curve: normals compared without flips
+    qInfo("%ld samples: nearest profile sample within %.2g; curvature off by %.3f of its maximum; normals by %.3f",
+          long(comb.bases.rows()), worstDistance, worstCurvature, worstNormal);
+    QVERIFY(worstDistance < 1e-6);  // the polyline samples are profile samples
+    QVERIFY(worstCurvature < 0.03);
+    QVERIFY(worstNormal < 0.1);
   }
 
   void segmentsAreChainedInCurveOrder() {
