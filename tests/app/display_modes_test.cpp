@@ -1,5 +1,5 @@
-// Display modes: the curvature comb's math, zebra stripes and combs rendered off screen (Xvfb),
-// and the scene-file keys of both.
+// Display modes rendered off screen (Xvfb): zebra stripes and curvature combs (the comb's math
+// is in curvature_comb_test.cpp), and the scene-file keys of both.
 #include <QGuiApplication>
 #include <QImage>
 #include <QTemporaryDir>
@@ -14,10 +14,8 @@
 #include <vtkRenderer.h>
 #include <vtkUnsignedCharArray.h>
 
-#include "ffdkit/app/curvature_comb.h"
 #include "ffdkit/app/offscreen_render.h"
 #include "ffdkit/app/scene_view.h"
-#include "ffdkit/scenes/generator.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
 
@@ -88,97 +86,6 @@ class DisplayModesTest : public QObject {
   Q_OBJECT
 
  private slots:
-  void combOfACircleHasCurvatureOneOverRadiusTowardTheCentre() {
-    const double r = 2.5;
-    const Eigen::Vector3d centre(1.0, -2.0, 0.5);
-    const app::CurvatureComb comb = app::curvatureComb(circle(r, 64, centre), true, 0.8);
-    QCOMPARE(comb.bases.rows(), Eigen::Index(64));  // closed: a tooth at every point
-    for (Eigen::Index k = 0; k < comb.bases.rows(); ++k) {
-      QVERIFY(std::abs(comb.curvature(k) - 1.0 / r) < 1e-9);  // the circle through 3 points of a circle
-      const Eigen::Vector3d base = comb.bases.row(k).transpose(), tip = comb.tips.row(k).transpose();
-      QVERIFY(std::abs((tip - base).norm() - 0.8 / r) < 1e-9);
-      // Toward the centre: the tip lies on the line to the centre, nearer to it.
-      QVERIFY(((tip - base).normalized() - (centre - base).normalized()).norm() < 1e-9);
-    }
-    // Open: no teeth at the two ends.
-    const app::CurvatureComb open = app::curvatureComb(circle(r, 64, centre), false, 1.0);
-    QCOMPARE(open.bases.rows(), Eigen::Index(62));
-    QVERIFY((open.bases.row(0) - circle(r, 64, centre).row(1)).norm() < 1e-12);
-  }
-
-  void combOfAStraightLineHasZeroLengthTeeth() {
-    Eigen::MatrixX3d line(20, 3);
-    for (int i = 0; i < 20; ++i) line.row(i) = Eigen::RowVector3d(0.3 * i, 0.1 * i * 1.7, -0.2 * i);
-    const app::CurvatureComb comb = app::curvatureComb(line, false, 5.0);
-    QCOMPARE(comb.bases.rows(), Eigen::Index(18));
-    QVERIFY(comb.curvature.cwiseAbs().maxCoeff() < 1e-9);
-    QVERIFY((comb.tips - comb.bases).cwiseAbs().maxCoeff() < 1e-9);
-  }
-
-  void combFollowsDeformation() {
-    // A circle squashed into an ellipse x/a, y/b: curvature a/b^2 at (a, 0), b/a^2 at (0, b).
-    const int n = 400;
-    Eigen::MatrixX3d points = circle(1.0, n);
-    const app::CurvatureComb before = app::curvatureComb(points, true, 1.0);
-    points.col(0) *= 2.0;  // a = 2, b = 1
-    const app::CurvatureComb after = app::curvatureComb(points, true, 1.0);
-    QVERIFY((after.tips - before.tips).cwiseAbs().maxCoeff() > 0.5);
-    QVERIFY2(std::abs(after.curvature(0) - 2.0) < 0.01, qPrintable(QString::number(after.curvature(0))));
-    QVERIFY2(std::abs(after.curvature(n / 4) - 0.25) < 0.01, qPrintable(QString::number(after.curvature(n / 4))));
-    // Still toward the inside: at (2, 0) the tooth points along -x.
-    QVERIFY(after.tips(0, 0) < after.bases(0, 0) - 1.9);
-  }
-
-  void combOfAGeneratedCurveAgreesWithItsGeneratorsExactProfile() {
-    // The qi-interpolate sample at rest: the discrete comb of its polyline against the
-    // generator's exact curvature and principal normals at the nearest profile sample.
-    const scenes::Scene scene = scenes::readScene(std::filesystem::path(FFDKIT_SOURCE_DIR "/scenes/examples/qi-interpolate"));
-    const scenes::SceneObject& curve = scene.objects.front();
-    const auto& source = std::get<scenes::GeneratedSource>(curve.source);
-    const scenes::CurvatureProfile exact =
-        scenes::builtinGenerators().profile(source.generator, source.parameters, source.density);
-    const auto chains = app::segmentChains(curve.mesh.segments, curve.mesh.points.rows());
-    QCOMPARE(chains.size(), std::size_t(1));
-    Eigen::MatrixX3d points(static_cast<Eigen::Index>(chains[0].size()), 3);
-    for (std::size_t k = 0; k < chains[0].size(); ++k) points.row(Eigen::Index(k)) = curve.mesh.points.row(chains[0][k]);
-    const app::CurvatureComb comb = app::curvatureComb(points, false, 1.0);
-    const double maxCurvature = exact.curvature.cwiseAbs().maxCoeff();
-    double worstCurvature = 0.0, worstNormal = 0.0, worstDistance = 0.0;
-    for (Eigen::Index k = 0; k < comb.bases.rows(); ++k) {
-      Eigen::Index nearest = 0;
-      const double d = (exact.points.rowwise() - comb.bases.row(k)).rowwise().squaredNorm().minCoeff(&nearest);
-      worstDistance = std::max(worstDistance, std::sqrt(d));
-      const double kappa = std::abs(exact.curvature(nearest));
-      worstCurvature = std::max(worstCurvature, std::abs(comb.curvature(k) - kappa) / maxCurvature);
-      if (kappa > 0.1 * maxCurvature) {  // the normal is defined well away from inflections
-        const Eigen::Vector3d n = (comb.tips.row(k) - comb.bases.row(k)).transpose().normalized();
-        const Eigen::Vector3d e = exact.normals.row(nearest).transpose();
-        // A space curve's principal normal is the comb's; a planar profile may carry the sign
-        // in its curvature and a fixed side normal instead.
-        const double flipped = exact.torsion.size() != 0 ? 2.0 : (n + e).norm();
-        worstNormal = std::max(worstNormal, std::min((n - e).norm(), flipped));
-      }
-    }
-    QVERIFY(exact.torsion.size() != 0);  // a space curve: normals compared without flips
-    qInfo("%ld samples: nearest profile sample within %.2g; curvature off by %.3f of its maximum; normals by %.3f",
-          long(comb.bases.rows()), worstDistance, worstCurvature, worstNormal);
-    QVERIFY(worstDistance < 1e-6);  // the polyline samples are profile samples
-    QVERIFY(worstCurvature < 0.03);
-    QVERIFY(worstNormal < 0.1);
-  }
-
-  void segmentsAreChainedInCurveOrder() {
-    // An open chain given out of order and reversed, and a separate triangle loop.
-    Eigen::MatrixX2i segments(6, 2);
-    segments << 2, 1, 0, 1, 3, 2, 4, 5, 5, 6, 6, 4;
-    const auto chains = app::segmentChains(segments, 7);
-    QCOMPARE(chains.size(), std::size_t(2));
-    const std::vector<int> open = chains[0].front() == 0 ? chains[0] : std::vector<int>(chains[0].rbegin(), chains[0].rend());
-    QCOMPARE(open, std::vector<int>({0, 1, 2, 3}));
-    QCOMPARE(chains[1].size(), std::size_t(4));
-    QCOMPARE(chains[1].front(), chains[1].back());  // closed
-  }
-
   void zebraStripesAlternateAcrossASphereAndShadingDoesNot() {
     const scenes::Scene shaded = sphereScene(scenes::SurfaceStyle::Shaded);
     const scenes::Scene zebra = sphereScene(scenes::SurfaceStyle::Zebra);

@@ -15,10 +15,13 @@ struct CurvatureComb {
   Eigen::VectorXd curvature; ///< discrete curvature at each base (>= 0)
 };
 
-/// Discrete curvature comb of the polyline `points` (in order; `closed` joins the last point
-/// to the first): the curvature at a point is that of the circle through it and its two
-/// neighbours, the normal points toward that circle's centre. Open polylines get no tooth at
-/// their two end points; a straight run gets zero-length teeth.
+/// Discrete curvature comb of the polyline `points` (#P x 3, in order; `closed` joins the last
+/// point to the first): the curvature at a point is that of the circle through it and its two
+/// neighbours (Menger curvature 4 * area / product of the three side lengths), the normal points
+/// toward that circle's centre; it tends to the curve's curvature and principal normal as the
+/// samples get denser. Open polylines get no tooth at their two end points; a straight run (or
+/// repeated points) gets zero-length teeth. `scale`: tooth length per unit curvature (world
+/// length squared).
 CurvatureComb curvatureComb(const Eigen::MatrixX3d& points, bool closed, double scale);
 
 /// Splits line segments (pairs of point indices) into chains of point indices in curve order;
