@@ -12,6 +12,12 @@ namespace {
 
 const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
 
+AttachOptions withCounts(int l, int m, int n) {
+  AttachOptions options;
+  options.counts = {l, m, n};
+  return options;
+}
+
 Scene sphereScene() {
   Scene scene;
   SceneObject sphere;
@@ -31,7 +37,7 @@ TEST(SceneDeformer, AnObjectWithNoLatticeKeepsItsPoints) {
 
 TEST(SceneDeformer, AttachedLatticeAtRestReproducesThePoints) {
   Scene scene = sphereScene();
-  attachNewLattice(scene, {"sphere"}, {.counts = {4, 3, 5}});
+  attachNewLattice(scene, {"sphere"}, withCounts(4, 3, 5));
   SceneDeformer deformer;
   deformer.update(scene);
   EXPECT_LE((deformer.points("sphere") - scene.objects[0].mesh.points).cwiseAbs().maxCoeff(), 1e-12);
@@ -39,7 +45,7 @@ TEST(SceneDeformer, AttachedLatticeAtRestReproducesThePoints) {
 
 TEST(SceneDeformer, MovingEveryControlPointAffinelyMovesTheObjectAffinely) {
   Scene scene = sphereScene();
-  const auto lattice = attachNewLattice(scene, {"sphere"}, {.counts = {3, 3, 3}});
+  const auto lattice = attachNewLattice(scene, {"sphere"}, withCounts(3, 3, 3));
   SceneDeformer deformer;
   deformer.update(scene);
   // An affine map of the lattice's local space, applied to every control point.
@@ -61,7 +67,9 @@ TEST(SceneDeformer, MovingEveryControlPointAffinelyMovesTheObjectAffinely) {
 
 TEST(SceneDeformer, DetachRestoresTheObjectsOwnPoints) {
   Scene scene = sphereScene();
-  const auto lattice = attachNewLattice(scene, {"sphere"}, {.latticeName = "box"});
+  AttachOptions named;
+  named.latticeName = "box";
+  const auto lattice = attachNewLattice(scene, {"sphere"}, named);
   Eigen::MatrixX3d points = scene.widgets.controlPoints(lattice);
   points.col(2) *= 2.0;
   scene.widgets.setControlPoints(lattice, points);
@@ -104,7 +112,9 @@ TEST(SceneDeformer, CylindricalLatticeEmbedsTheWholeCylinderIncludingItsAxis) {
   const Eigen::MatrixX3d& out = deformer.points(cylinder.name);
   for (Eigen::Index i = 0; i < out.rows(); ++i) {
     const Eigen::Vector3d q = cylinder.mesh.points.row(i);
-    if (q.head<2>().norm() < 1e-12) EXPECT_LE(Eigen::Vector2d(out(i, 0), out(i, 1)).norm(), 1e-9) << "axis point " << i;
+    if (q.head<2>().norm() < 1e-12) {
+      EXPECT_LE(Eigen::Vector2d(out(i, 0), out(i, 1)).norm(), 1e-9) << "axis point " << i;
+    }
   }
 }
 
