@@ -9,17 +9,14 @@
 #include <vtkContextView.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
-#include <vtkUnsignedCharArray.h>
-#include <vtkWindowToImageFilter.h>
+#include "png_output.h"
 
-#include "ffdkit/scenes/atomic_write.h"
 
 namespace ffdkit::app {
 
@@ -90,19 +87,7 @@ void plotCurvatureToPng(const scenes::CurvatureProfile& profile, const std::file
   }
   view->GetRenderWindow()->Render();
 
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(view->GetRenderWindow());
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputConnection(grab->GetOutputPort());
-  writer->WriteToMemoryOn();
-  writer->Write();
-  vtkUnsignedCharArray* bytes = writer->GetResult();
-  if (bytes == nullptr || bytes->GetNumberOfValues() == 0)
-    throw std::runtime_error(png.string() + ": plotting produced no image");
-  scenes::writeFileAtomically(png, std::string_view(reinterpret_cast<const char*>(bytes->GetPointer(0)),
-                                                    static_cast<std::size_t>(bytes->GetNumberOfValues())));
+  detail::writeWindowPng(view->GetRenderWindow(), png);
 }
 
 }  // namespace ffdkit::app

@@ -3,14 +3,11 @@
 #include <stdexcept>
 
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
-#include <vtkUnsignedCharArray.h>
-#include <vtkWindowToImageFilter.h>
 
 #include "ffdkit/app/scene_view.h"
-#include "ffdkit/scenes/atomic_write.h"
+#include "png_output.h"
 
 namespace ffdkit::app {
 
@@ -32,21 +29,7 @@ void renderSceneToPng(const scenes::Scene& scene, const std::filesystem::path& p
   view.show(scene, deformed);
   window->Render();
 
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputConnection(grab->GetOutputPort());
-  writer->WriteToMemoryOn();
-  writer->Write();
-  vtkUnsignedCharArray* bytes = writer->GetResult();
-  if (bytes == nullptr || bytes->GetNumberOfValues() == 0) {
-    throw std::runtime_error(png.string() + ": rendering produced no image");
-  }
-  scenes::writeFileAtomically(
-      png, std::string_view(reinterpret_cast<const char*>(bytes->GetPointer(0)),
-                            static_cast<std::size_t>(bytes->GetNumberOfValues())));
+  detail::writeWindowPng(window, png);
 }
 
 }  // namespace ffdkit::app
