@@ -324,6 +324,22 @@ Scene readScene(const std::filesystem::path& path) {
   return readScene(in, file.string(), options);
 }
 
+GeneratorParameters readGeneratorParameters(std::istream& in, const std::string& sourceName) {
+  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const Json root = detail::parseJson<SceneFileError>(content, sourceName);
+  const Location at{&sourceName, ""};
+  detail::checkObject(root, at);
+  GeneratorParameters parameters;
+  for (const auto& item : root.items()) parameters.set(item.key(), readParameter(item.value(), at / item.key()));
+  return parameters;
+}
+
+GeneratorParameters readGeneratorParameters(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneFileError(path.string() + ": cannot open the parameter file");
+  return readGeneratorParameters(in, path.string());
+}
+
 std::string sceneFileText(const Scene& scene) { return detail::canonicalJsonText(sceneJson(scene)); }
 
 void writeScene(std::ostream& out, const Scene& scene) { out << sceneFileText(scene); }

@@ -1,9 +1,4 @@
 // ffdkit-cli plot: curvature (and torsion) of a generated curve against arc length, as a PNG.
-#include <fstream>
-#include <sstream>
-
-#include <nlohmann/json.hpp>
-
 #include "commands.h"
 #include "console.h"
 #include "ffdkit/app/curve_plot.h"
@@ -14,68 +9,6 @@ namespace ffdkit::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using Json = nlohmann::json;
-
-std::string lineColumn(const std::string& text, std::size_t byte) {
-  std::size_t line = 1;
-  std::size_t column = 1;
-  for (std::size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(column);
-}
-
-scenes::ParameterValue parameterValue(const Json& j, const std::string& where) {
-  const auto fail = [&] {
-    return std::runtime_error(where + ": expected a flag, number, text, list of numbers or list of rows of numbers");
-  };
-  if (j.is_boolean()) return j.get<bool>();
-  if (j.is_number()) return j.get<double>();
-  if (j.is_string()) return j.get<std::string>();
-  if (!j.is_array()) throw fail();
-  if (!j.empty() && j.front().is_array()) {
-    std::vector<std::vector<double>> rows;
-    for (const auto& row : j) {
-      if (!row.is_array()) throw fail();
-      std::vector<double>& r = rows.emplace_back();
-      for (const auto& v : row) {
-        if (!v.is_number()) throw fail();
-        r.push_back(v.get<double>());
-      }
-    }
-    return rows;
-  }
-  std::vector<double> numbers;
-  for (const auto& v : j) {
-    if (!v.is_number()) throw fail();
-    numbers.push_back(v.get<double>());
-  }
-  return numbers;
-}
-
-/// A JSON object of generator parameters, as in a scene file's "parameters".
-scenes::GeneratorParameters readParameters(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": cannot open the parameter file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  Json j;
-  try {
-    j = Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    throw std::runtime_error(path.string() + ":" + lineColumn(text, e.byte) + ": syntax error: " + e.what());
-  }
-  if (!j.is_object()) throw std::runtime_error(path.string() + ": expected a JSON object of parameters");
-  scenes::GeneratorParameters parameters;
-  for (const auto& [name, value] : j.items()) parameters.set(name, parameterValue(value, path.string() + " /" + name));
-  return parameters;
-}
 
 int runPlot(const Args& args) {
   Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
@@ -94,7 +27,7 @@ int runPlot(const Args& args) {
     if (object || args.positional().size() != 1)
       throw UsageError("--generator NAME takes one PARAMETERS.json (a JSON object) and no --object");
     console.begin("read", "reading " + args.positional()[0]);
-    const scenes::GeneratorParameters parameters = readParameters(args.positional()[0]);
+    const scenes::GeneratorParameters parameters = scenes::readGeneratorParameters(fs::path(args.positional()[0]));
     console.begin("profile", "sampling " + *generator);
     profile = registry.profile(*generator, parameters, density);
     options.title = *generator;

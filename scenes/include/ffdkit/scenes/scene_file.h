@@ -47,4 +47,10 @@ void writeScene(std::ostream& out, const Scene& scene);
 /// @throws SceneFileError if a file cannot be written.
 void writeScene(const std::filesystem::path& path, const Scene& scene);
 
+/// Reads a JSON object of generator parameters, the same as a scene file's generator
+/// "parameters" (flags, numbers, strings, lists of numbers, lists of rows of numbers).
+/// @throws SceneFileError with `file:line:column` for syntax errors and a JSON pointer for values.
+GeneratorParameters readGeneratorParameters(std::istream& in, const std::string& sourceName = "<stream>");
+GeneratorParameters readGeneratorParameters(const std::filesystem::path& path);
+
 }  // namespace ffdkit::scenes
