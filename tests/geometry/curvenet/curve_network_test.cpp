@@ -1,6 +1,7 @@
 #include "ffdkit/geometry/curvenet/curve_network.h"
 
 #include <cmath>
+#include <numbers>
 #include <map>
 #include <set>
 
@@ -240,6 +241,63 @@ TEST(CurveNetwork, RejectsSingleCurveAndBadInfluence) {
   } catch (const CurveInputError& e) {
     EXPECT_NE(std::string(e.what()).find("curve 'x=0' (#1): influence weight must be > 0"), std::string::npos);
   }
+}
+
+}  // namespace
+}  // namespace ffdkit::geometry::curvenet
+
+namespace ffdkit::geometry::curvenet {
+namespace {
+
+// A closed circle of 16 points, centre c, radius r, in the plane spanned by unit vectors a, b.
+CurveDescription circle(const std::string& name, const Eigen::Vector3d& c, double r, const Eigen::Vector3d& a,
+                        const Eigen::Vector3d& b) {
+  CurveDescription d;
+  d.name = name;
+  d.closed = true;
+  d.points.resize(16, 3);
+  for (int k = 0; k < 16; ++k) {
+    const double t = 2.0 * std::numbers::pi * k / 16.0;
+    d.points.row(k) = (c + r * (std::cos(t) * a + std::sin(t) * b)).transpose();
+  }
+  return d;
+}
+
+const NetworkVertex* vertexNear(const CurveNetwork& net, const Eigen::Vector3d& p) {
+  for (const auto& v : net.vertices)
+    if ((v.position - p).norm() < 1e-6) return &v;
+  return nullptr;
+}
+
+TEST(CurveNetwork, TangentPlaneNormalFollowsRuleN1ToN3WhenTheCurvesAgree) {  // F13
+  // Two unit circles about the origin in the xy and xz planes cross at (+-1, 0, 0); at both
+  // crossings the outward sides of the two regions agree, so N.3 fixes the sign: outwards.
+  CurveNetworkDescription d;
+  d.curves = {circle("equator", Eigen::Vector3d::Zero(), 1.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()),
+              circle("meridian", Eigen::Vector3d::Zero(), 1.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ())};
+  const CurveNetwork net = buildCurveNetwork(d);
+  for (double side : {1.0, -1.0}) {
+    const NetworkVertex* v = vertexNear(net, Eigen::Vector3d(side, 0, 0));
+    ASSERT_NE(v, nullptr) << "no crossing at x = " << side;
+    EXPECT_TRUE(v->normalFromRule);
+    EXPECT_NEAR(v->normal.dot(Eigen::Vector3d(side, 0, 0)), 1.0, 1e-9);  // N.2: T1 x T2 = +-x; N.3: outwards
+  }
+}
+
+TEST(CurveNetwork, AnInconsistentPairLeavesTheNormalUndeterminedByTheRule) {  // F13, N.4
+  // The small circle about (1.5, 0, 0) in the xz plane meets the unit circle at (1, 0, 0), where
+  // its outward side (-x) opposes the unit circle's (+x): V1 V2 < 0, the rule decides nothing.
+  CurveNetworkDescription d;
+  d.curves = {circle("equator", Eigen::Vector3d::Zero(), 1.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()),
+              circle("loop", Eigen::Vector3d(1.5, 0, 0), 0.5, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ())};
+  const CurveNetwork net = buildCurveNetwork(d);
+  const NetworkVertex* v = vertexNear(net, Eigen::Vector3d(1, 0, 0));
+  ASSERT_NE(v, nullptr);
+  EXPECT_FALSE(v->normalFromRule);
+  EXPECT_NEAR(std::abs(v->normal.dot(Eigen::Vector3d::UnitX())), 1.0, 1e-9);  // still T1 x T2, only the sign is open
+  bool noted = false;
+  for (const auto& note : net.notes) noted = noted || note.find("undetermined by N.1-N.4") != std::string::npos;
+  EXPECT_TRUE(noted) << "the fallback must be reported in the notes";
 }
 
 }  // namespace
