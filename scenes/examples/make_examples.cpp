@@ -159,13 +159,21 @@ Scene makeCylinderTwist() {
   options.settings.basis = cylinder.bases;
   options.settings.cylinder = rest.cylinderRestShape();
   const auto lattice = model.addLattice(options);
-  const auto top = model.addCell(lattice, CellSpec::slab(2, 3), "top-ring");
-  widgets::AffineOptions twistOptions;
-  twistOptions.name = "twist";
-  const auto twist = model.addAffine(top, AffineKind::Rotate, twistOptions);
-  model.setVariation(twist, std::numbers::pi / 2);
+  // A rotate widget on every ring of control points above the bottom one; the top ring's
+  // drives the others through variation bindings with gains 2/3 and 1/3, so that a turn of
+  // the top twists the cylinder progressively instead of pinching it at one height.
+  std::vector<widgets::WidgetId> turns;
+  for (int k = 1; k <= 3; ++k) {
+    const auto ring = model.addCell(lattice, CellSpec::slab(2, k), "ring-" + std::to_string(k));
+    widgets::AffineOptions turn;
+    turn.name = k == 3 ? "twist" : "turn-" + std::to_string(k);
+    turns.push_back(model.addAffine(ring, AffineKind::Rotate, turn));
+  }
+  model.bind(turns[2], turns[1], widgets::ConversionRule(2.0 / 3.0));
+  model.bind(turns[2], turns[0], widgets::ConversionRule(1.0 / 3.0));
+  model.setVariation(turns[2], std::numbers::pi / 2);
   Scene scene;
-  scene.description = "Fig. 6-11: EFFD. A cylindrical lattice around a cylinder; its top ring turned 90 degrees.";
+  scene.description = "Fig. 6-11: EFFD. A cylindrical lattice twisting a cylinder: the top ring turned 90 degrees drives the rings below by 2/3 and 1/3.";
   scene.widgets = std::move(model);
   scene.objects.push_back(primitiveObject("cylinder", {.kind = scenes::PrimitiveKind::Cylinder, .resolution = 48},
                                           {0.9, 0.6, 0.45}));
