@@ -56,6 +56,7 @@ void plotCurvatureToPng(const scenes::CurvatureProfile& profile, const std::file
   checkProfile(profile);
   const bool hasTorsion = profile.torsion.size() != 0;
 
+  detail::requireDisplay("plotting");
   vtkNew<vtkTable> table;
   table->AddColumn(column("arc length", profile.arcLength));
   table->AddColumn(column("curvature", profile.curvature));

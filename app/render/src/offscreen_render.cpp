@@ -17,6 +17,7 @@ void renderSceneToPng(const scenes::Scene& scene, const std::filesystem::path& p
     throw std::invalid_argument("render size must be 1..16384 pixels per side, got " + std::to_string(options.width) +
                                 "x" + std::to_string(options.height));
   }
+  detail::requireDisplay("rendering");
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(true);

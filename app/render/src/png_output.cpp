@@ -1,6 +1,8 @@
 #include "png_output.h"
 
+#include <cstdlib>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 
 #include <vtkNew.h>
@@ -12,6 +14,12 @@
 #include "ffdkit/scenes/atomic_write.h"
 
 namespace ffdkit::app::detail {
+
+void requireDisplay(const char* what) {
+  const char* display = std::getenv("DISPLAY");
+  if (display == nullptr || *display == '\0')
+    throw std::runtime_error(std::string(what) + " needs an X display (OpenGL through X): set DISPLAY or run under xvfb-run");
+}
 
 void writeWindowPng(vtkRenderWindow* window, const std::filesystem::path& png) {
   vtkNew<vtkWindowToImageFilter> grab;
