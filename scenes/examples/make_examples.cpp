@@ -52,6 +52,8 @@ Scene makeDefault() {
   up.placement = Eigen::AngleAxisd(-std::numbers::pi / 2, Eigen::Vector3d::UnitY());  // local x -> world +z
   const auto pull = scene.widgets.addAffine(top, AffineKind::Translate, up);
   scene.widgets.setVariation(pull, 0.5);
+  scene.camera.position = {3.0, -3.8, 2.7};  // far enough to see the pulled arrow
+  scene.camera.focalPoint = {0.0, 0.0, 0.3};
   return scene;
 }
 

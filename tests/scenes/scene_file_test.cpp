@@ -103,7 +103,7 @@ TEST(SceneFile, BadInputGetsLocatedErrors) {
   EXPECT_NE(errorOf(replaced("\"primitive\": {", "\"generator\": {\"name\": \"nope\"}, \"primitive\": {")).find("exactly one"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"counts\": [3, 3, 3]", "\"counts\": [1, 3, 3]")).find("/widgets"), std::string::npos);
-  EXPECT_NE(errorOf(replaced("\"position\": [2.4, -3.0, 2.0]", "\"position\": [0.0, 0.0, 0.0]")).find("/camera"),
+  EXPECT_NE(errorOf(replaced("\"position\": [3.0, -3.8, 2.7]", "\"position\": [0.0, 0.0, 0.3]")).find("/camera"),
             std::string::npos);
 }
 
