@@ -75,6 +75,12 @@ SceneDeformer& SceneDeformer::operator=(SceneDeformer&&) noexcept = default;
 void SceneDeformer::reset() { objects_.clear(); }
 
 void SceneDeformer::update(const Scene& scene, std::optional<widgets::WidgetId> activeLattice) {
+  run(scene, activeLattice, /*exact=*/false);
+}
+
+void SceneDeformer::finishGesture(const Scene& scene) { run(scene, std::nullopt, /*exact=*/true); }
+
+void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, bool exact) {
   const auto start = std::chrono::steady_clock::now();
   SceneDeformStats stats;
   std::map<std::string, std::unique_ptr<ObjectPipeline>> next;
@@ -111,7 +117,12 @@ void SceneDeformer::update(const Scene& scene, std::optional<widgets::WidgetId> 
       std::optional<ffd::LatticeId> active;
       if (activeLattice && p->ids.count(*activeLattice)) active = p->ids.at(*activeLattice);
       p->pipeline->setActiveLattice(active);
-      p->pipeline->update();
+      // exact: re-embed every throttled stage too (one pipeline pass, not an update and then another).
+      if (exact) {
+        p->pipeline->reembedAll();
+      } else {
+        p->pipeline->update();
+      }
       for (const auto& report : p->pipeline->lastReport()) stats.reembeddedStages += report.reembedded ? 1 : 0;
       if (const ffd::Embedding* first = p->pipeline->embedding(p->ids.at(stages.front().lattice))) {
         stats.outsidePoints += first->outsideCount();
@@ -126,12 +137,6 @@ void SceneDeformer::update(const Scene& scene, std::optional<widgets::WidgetId> 
   stats_ = stats;
 }
 
-void SceneDeformer::finishGesture(const Scene& scene) {
-  update(scene);
-  for (auto& [name, p] : objects_)
-    if (!p->stages.empty()) p->pipeline->reembedAll();
-}
-
 const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const {
   auto it = objects_.find(object);
   if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
@@ -141,8 +146,7 @@ const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const {
 
 std::map<std::string, Eigen::MatrixX3d> deformScene(const Scene& scene) {
   SceneDeformer deformer;
-  deformer.update(scene);
-  deformer.finishGesture(scene);
+  deformer.finishGesture(scene);  // the exact result in one pass
   std::map<std::string, Eigen::MatrixX3d> result;
   for (const auto& object : scene.objects) result[object.name] = deformer.points(object.name);
   return result;

@@ -214,8 +214,8 @@ std::vector<Output> plannedOutputs(const DeformRequest& r, const scenes::Scene& 
 
 /// Evaluates in two timed steps with the same result as scenes::deformScene. "embed": one
 /// update with every lattice at rest (the embeddings, plus an identity pass). "deform": the
-/// edit from rest to the current control points, an incremental update (child lattices, whose
-/// input moved with their parent, re-embed here), then finishGesture for the exact result.
+/// edit from rest to the current control points, an exact incremental pass (child lattices,
+/// whose input moved with their parent, re-embed here).
 void evaluate(scenes::Scene& scene, scenes::SceneDeformer& deformer, Console& console) {
   Eigen::Index pointCount = 0;
   for (const auto& object : scene.objects) pointCount += object.mesh.points.rows();
@@ -223,11 +223,9 @@ void evaluate(scenes::Scene& scene, scenes::SceneDeformer& deformer, Console& co
   const widgets::WidgetModelState current = scene.widgets.captureState();
   for (auto lattice : scene.widgets.widgets(widgets::WidgetType::Lattice))
     scene.widgets.setControlPoints(lattice, scene.widgets.restPoints(lattice));
-  deformer.update(scene);
   deformer.finishGesture(scene);
   scene.widgets.restoreState(current);
   console.begin("deform", "deforming " + std::to_string(pointCount) + " points");
-  deformer.update(scene);
   deformer.finishGesture(scene);
 }
 

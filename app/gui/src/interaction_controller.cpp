@@ -112,8 +112,7 @@ void InteractionController::release() {
   dragging_ = false;
   const WidgetId target = *scene_.widgets.gestureWidget();
   scene_.widgets.endGesture();
-  deformer_.update(scene_, dragLattice_);
-  deformer_.finishGesture(scene_);
+  deformer_.finishGesture(scene_);  // the exact result, in one pass
   const widgets::WidgetModelState end = scene_.widgets.captureState();
   commands_.pushSnapshots("Drag " + scene_.widgets.name(target), dragStart_, end,
                           [this](const widgets::WidgetModelState& state) {
@@ -200,7 +199,6 @@ auto InteractionController::edit(const std::string& description, Change change, 
     Snapshot after = snapshot(withObjects);
     commands_.pushSnapshots(description, std::move(before), std::move(after),
                             [this](const Snapshot& s) { restore(s); });
-    deformer_.update(scene_);
     deformer_.finishGesture(scene_);
     notify();
     if (onStructureChanged) onStructureChanged();
@@ -407,7 +405,6 @@ void InteractionController::replaceWidgets(widgets::WidgetModel model) {
 }
 
 void InteractionController::refresh() {
-  deformer_.update(scene_);
   deformer_.finishGesture(scene_);
   notify();
 }

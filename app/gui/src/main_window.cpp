@@ -578,7 +578,6 @@ bool MainWindow::attachLattice(widgets::WidgetId lattice, const std::string& obj
   fitAndAttachLattice(job->scene, lattice, object);  // throws before anything starts
   QThread* thread = QThread::create([job] {
     try {
-      job->deformer.update(job->scene);
       job->deformer.finishGesture(job->scene);
     } catch (const std::exception& e) {
       job->error = e.what();
@@ -627,11 +626,10 @@ void MainWindow::setScene(scenes::Scene scene) {
   d.selectedBinding.reset();
   d.commands.clear();
   d.deformer.reset();
-  d.deformer.update(d.scene);
+  d.deformer.finishGesture(d.scene);
   d.deformStatus->setText(tr("deform %1 ms, %2 points")
                               .arg(d.deformer.lastStats().seconds * 1e3, 0, 'f', 2)
                               .arg(d.deformer.lastStats().deformedPoints));
-  d.deformer.finishGesture(d.scene);
   d.sceneView->setHighlights(d.controller->highlights());
   d.sceneView->show(d.scene, d.deformer);
   d.showingScene = true;

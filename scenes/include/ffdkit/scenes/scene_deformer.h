@@ -53,6 +53,10 @@ class SceneDeformer {
   void reset();
 
  private:
+  // Syncs every object's pipeline with the scene, then runs it: incrementally (throttled
+  // stages approximate) or, when `exact`, re-embedding every stale stage.
+  void run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, bool exact);
+
   struct ObjectPipeline;
   std::map<std::string, std::unique_ptr<ObjectPipeline>> objects_;
   SceneDeformStats stats_;
