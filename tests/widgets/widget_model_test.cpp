@@ -295,6 +295,37 @@ TEST(WidgetModel, ChangingAMaskKeepsTheWidgetInPlace) {
   EXPECT_TRUE(m.affineFrame(fig.faceRotate).frame.linear().isApprox(before.frame.linear(), 1e-14));
 }
 
+// A translate widget turned into a rotate widget: the points stay, the variation restarts,
+// the default arrow becomes a ring, and the next drag turns the cell about the widget's z.
+TEST(WidgetModel, ChangingTheKindKeepsThePointsAndTurnsTheNextGesture) {
+  Fig62 fig = buildFig62();
+  WidgetModel& m = fig.model;
+  m.applyVariation(fig.edgeTranslate, 0.5);
+  const Eigen::MatrixX3d moved = m.controlPoints(fig.lattice);
+  m.setAffineKind(fig.edgeTranslate, AffineKind::Rotate);
+  EXPECT_EQ(m.affineKind(fig.edgeTranslate), AffineKind::Rotate);
+  EXPECT_EQ(m.variation(fig.edgeTranslate), 0.0);
+  EXPECT_EQ(m.glyph(fig.edgeTranslate).shape, "ring");
+  EXPECT_EQ(m.controlPoints(fig.lattice), moved);
+
+  const WidgetId cell = *m.attachedCell(fig.edgeTranslate);
+  const WidgetFrame f = m.affineFrame(fig.edgeTranslate);
+  const Eigen::MatrixX3d before = m.cellWorldPoints(cell);
+  m.applyVariation(fig.edgeTranslate, pi / 2);
+  const Eigen::MatrixX3d after = m.cellWorldPoints(cell);
+  const Eigen::Affine3d turn = Eigen::Translation3d(f.frame.translation()) *
+                               Eigen::AngleAxisd(pi / 2, f.frame.linear().col(2)) *
+                               Eigen::Translation3d(-f.frame.translation());
+  for (Eigen::Index i = 0; i < before.rows(); ++i)
+    EXPECT_TRUE(Eigen::Vector3d(after.row(i).transpose()).isApprox(turn * Eigen::Vector3d(before.row(i).transpose()), 1e-12));
+
+  // A library part survives a kind change; the data round trip keeps the new kind.
+  m.setGlyph(fig.edgeTranslate, Glyph{"crank", 0.3, Eigen::Affine3d::Identity()});
+  m.setAffineKind(fig.edgeTranslate, AffineKind::Scale);
+  EXPECT_EQ(m.glyph(fig.edgeTranslate).shape, "crank");
+  EXPECT_EQ(WidgetModel::fromData(m.toData()).affineKind(fig.edgeTranslate), AffineKind::Scale);
+}
+
 TEST(WidgetModel, RayDragsCellsInTheViewPlaneAndScalesRadially) {
   WidgetModel m;
   const WidgetId lat = m.addLattice("box", Eigen::Vector3i(2, 2, 2));

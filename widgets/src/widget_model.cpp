@@ -969,6 +969,17 @@ void WidgetModel::setGlyph(WidgetId affine, const Glyph& glyph) {
   m.touch();
 }
 
+void WidgetModel::setAffineKind(WidgetId affine, AffineKind kind) {
+  Impl& m = *impl_;
+  m.requireNoGesture("changing an affine widget's kind");
+  Impl::Node& n = m.node(affine, WidgetType::Affine);
+  if (n.kind == kind) return;
+  if (n.glyph.shape == defaultShape(n.kind)) n.glyph.shape = defaultShape(kind);
+  n.kind = kind;
+  n.variation = 0.0;
+  m.touch();
+}
+
 void WidgetModel::setMask(BindingId binding, AffineMask mask) {
   Impl& m = *impl_;
   m.requireNoGesture("setting a mask");

@@ -370,6 +370,15 @@ void InteractionController::setGlyph(WidgetId affine, const widgets::Glyph& glyp
   edit("Glyph of " + scene_.widgets.name(affine), [&] { scene_.widgets.setGlyph(affine, glyph); });
 }
 
+void InteractionController::setAffineKind(WidgetId affine, widgets::AffineKind kind) {
+  edit("Make " + scene_.widgets.name(affine) + " a " + std::string(widgets::affineKindName(kind)) + " widget",
+       [&] { scene_.widgets.setAffineKind(affine, kind); });
+}
+
+void InteractionController::setOneWay(widgets::BindingId binding, bool oneWay) {
+  edit(oneWay ? "Make binding one-way" : "Make binding two-way", [&] { scene_.widgets.setOneWay(binding, oneWay); });
+}
+
 void InteractionController::setMask(widgets::BindingId binding, widgets::AffineMask mask) {
   edit("Set mask " + widgets::maskString(mask), [&] { scene_.widgets.setMask(binding, mask); });
 }

@@ -127,6 +127,10 @@ class WidgetModel {
   void rename(WidgetId id, std::string name);
   void setPlacement(WidgetId affine, const Eigen::Affine3d& placement);
   void setGlyph(WidgetId affine, const Glyph& glyph);
+  /// Changes what an affine widget does (translate / rotate / scale). The points stay where they
+  /// are and the variation restarts at 0 (a distance is no angle); a glyph of the old kind's
+  /// default shape becomes the new kind's (a library part stays). Bindings are kept.
+  void setAffineKind(WidgetId affine, AffineKind kind);
   void setMask(BindingId binding, AffineMask mask);
   void setRule(BindingId binding, const ConversionRule& rule);
   void setOneWay(BindingId binding, bool oneWay);

@@ -102,6 +102,10 @@ class InteractionController {
   void setVariation(widgets::WidgetId affine, double value);
   void setPlacement(widgets::WidgetId affine, const Eigen::Affine3d& placement);
   void setGlyph(widgets::WidgetId affine, const widgets::Glyph& glyph);
+  /// Makes an affine widget a translate / rotate / scale widget (its variation restarts at 0).
+  void setAffineKind(widgets::WidgetId affine, widgets::AffineKind kind);
+  /// One-way: only the binding's `from` end drives its `to` end (spec §5).
+  void setOneWay(widgets::BindingId binding, bool oneWay);
   void setMask(widgets::BindingId binding, widgets::AffineMask mask);
   void setRule(widgets::BindingId binding, const widgets::ConversionRule& rule);
   void setLatticeSettings(widgets::WidgetId lattice, const widgets::LatticeSettings& settings);
