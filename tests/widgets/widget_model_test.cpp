@@ -326,6 +326,25 @@ TEST(WidgetModel, ChangingTheKindKeepsThePointsAndTurnsTheNextGesture) {
   EXPECT_EQ(WidgetModel::fromData(m.toData()).affineKind(fig.edgeTranslate), AffineKind::Scale);
 }
 
+// placementBase * placement is the widget's full frame: moving the widget by a world motion M
+// through its placement (what the transformer manipulator does) moves its rigid frame by M, on
+// a stretched lattice too.
+TEST(WidgetModel, PlacementBaseTurnsAWorldMotionIntoAPlacement) {
+  Fig62 fig = buildFig62();
+  WidgetModel& m = fig.model;
+  m.applyMotion(fig.lattice, Eigen::Affine3d(Eigen::Scaling(Eigen::Vector3d(2.0, 0.5, 1.5))));
+  m.applyVariation(fig.faceRotate, 0.3);
+  const WidgetFrame before = m.affineFrame(fig.faceRotate);
+  const Eigen::Affine3d motion(Eigen::Translation3d(0.1, -0.2, 0.3) * Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+  const Eigen::Affine3d base = m.placementBase(fig.faceRotate);
+  m.setPlacement(fig.faceRotate, base.inverse() * motion * base * m.placement(fig.faceRotate));
+  const WidgetFrame after = m.affineFrame(fig.faceRotate);
+  EXPECT_TRUE(after.frame.matrix().isApprox((motion * before.frame).matrix(), 1e-12));
+  EXPECT_NEAR(after.size, before.size, 1e-12);
+  const WidgetId free = m.addFreeAffine(AffineKind::Translate);
+  EXPECT_TRUE(m.placementBase(free).matrix().isIdentity(0.0));
+}
+
 TEST(WidgetModel, RayDragsCellsInTheViewPlaneAndScalesRadially) {
   WidgetModel m;
   const WidgetId lat = m.addLattice("box", Eigen::Vector3i(2, 2, 2));

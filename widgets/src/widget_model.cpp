@@ -1246,6 +1246,14 @@ WidgetFrame WidgetModel::affineFrame(WidgetId affine) const {
   return f;
 }
 
+Eigen::Affine3d WidgetModel::placementBase(WidgetId affine) const {
+  const auto& n = impl_->node(affine, WidgetType::Affine);
+  if (!n.attachment.valid()) return Eigen::Affine3d::Identity();
+  const Binding& b = *impl_->bindings[n.attachment.value];
+  const auto& cell = impl_->nodes[b.from.value];
+  return impl_->latticeFrame(impl_->nodes[cell.lattice.value]) * impl_->maskedCellFrame(cell, b.mask);
+}
+
 // ---- gestures -----------------------------------------------------------------------------------
 void WidgetModel::beginGesture(WidgetId id) { impl_->begin(id); }
 

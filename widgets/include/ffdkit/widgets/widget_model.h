@@ -197,6 +197,12 @@ class WidgetModel {
   const Glyph& glyph(WidgetId affine) const;
   /// World frame (rigid) and glyph size of an affine widget (spec §4).
   WidgetFrame affineFrame(WidgetId affine) const;
+  /// The full (not necessarily rigid) frame an affine widget's placement is relative to:
+  /// L * mask(A_cell) * C0 for an attached widget, the identity for a free one; so the widget's
+  /// world frame is placementBase(affine) * placement(affine) before its rigid part is taken.
+  /// A transformer manipulator that moves the widget by a world motion M sets the placement to
+  /// placementBase^-1 * M * placementBase * placement.
+  Eigen::Affine3d placementBase(WidgetId affine) const;
 
   // ---- gestures (spec §4, §5) -------------------------------------------------------------
   /// Starts a gesture on a widget: records the gesture-start state and the breadth-first
