@@ -1066,6 +1066,14 @@ void WidgetModel::setLatticeSettings(WidgetId lattice, const LatticeSettings& se
   m.touch();
 }
 
+void WidgetModel::setLatticeCounts(WidgetId lattice, const Eigen::Vector3i& counts) {
+  Impl& m = *impl_;
+  m.requireNoGesture("changing a lattice's counts");
+  const Impl::Node& n = m.node(lattice, WidgetType::Lattice);
+  if (n.counts == counts) return;
+  fail(WidgetErrorCode::InvalidArgument, "changing the counts of lattice '" + n.name + "' is not supported yet");
+}
+
 ffd::Lattice WidgetModel::ffdLattice(WidgetId lattice) const {
   const Impl::Node& n = impl_->node(lattice, WidgetType::Lattice);
   return Impl::makeFfd(n.counts, n.settings, n.rest, n.control, impl_->latticeFrame(n));

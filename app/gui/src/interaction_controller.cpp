@@ -375,6 +375,10 @@ void InteractionController::setAffineKind(WidgetId affine, widgets::AffineKind k
        [&] { scene_.widgets.setAffineKind(affine, kind); });
 }
 
+void InteractionController::setLatticeCounts(WidgetId lattice, const Eigen::Vector3i& counts) {
+  edit("Set counts of " + scene_.widgets.name(lattice), [&] { scene_.widgets.setLatticeCounts(lattice, counts); });
+}
+
 void InteractionController::setOneWay(widgets::BindingId binding, bool oneWay) {
   edit(oneWay ? "Make binding one-way" : "Make binding two-way", [&] { scene_.widgets.setOneWay(binding, oneWay); });
 }

@@ -135,6 +135,8 @@ class WidgetModel {
   void setRule(BindingId binding, const ConversionRule& rule);
   void setOneWay(BindingId binding, bool oneWay);
   void setLatticeSettings(WidgetId lattice, const LatticeSettings& settings);
+  /// Changes a lattice's point counts (l, m, n), each >= 2 (in progress: see widget_model.cpp).
+  void setLatticeCounts(WidgetId lattice, const Eigen::Vector3i& counts);
   /// Root lattice: sets its world frame. @throws InvalidArgument for a child lattice.
   void setLatticeFrame(WidgetId lattice, const Eigen::Affine3d& frame);
   /// Moves a lattice to `position` among its siblings (roots or children of one parent).

@@ -109,6 +109,8 @@ class InteractionController {
   void setMask(widgets::BindingId binding, widgets::AffineMask mask);
   void setRule(widgets::BindingId binding, const widgets::ConversionRule& rule);
   void setLatticeSettings(widgets::WidgetId lattice, const widgets::LatticeSettings& settings);
+  /// Changes a lattice's point counts (WidgetModel::setLatticeCounts).
+  void setLatticeCounts(widgets::WidgetId lattice, const Eigen::Vector3i& counts);
   /// A root lattice's world frame (its placement, orientation and size).
   void setLatticeFrame(widgets::WidgetId lattice, const Eigen::Affine3d& frame);
   void setSiblingPosition(widgets::WidgetId lattice, std::size_t position);
