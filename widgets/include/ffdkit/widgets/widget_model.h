@@ -135,7 +135,26 @@ class WidgetModel {
   void setRule(BindingId binding, const ConversionRule& rule);
   void setOneWay(BindingId binding, bool oneWay);
   void setLatticeSettings(WidgetId lattice, const LatticeSettings& settings);
-  /// Changes a lattice's point counts (l, m, n), each >= 2 (in progress: see widget_model.cpp).
+  /// Changes a lattice's point counts to (l, m, n), each >= 2, keeping its deformation as well as
+  /// the new lattice can hold it (like resizing a Blender lattice):
+  /// - rest points: a box lattice (affine rest map) stays the same box, its points at the new
+  ///   bases' Greville abscissae; a cylindrical one (settings().cylinder) the same analytic
+  ///   cylinder; a user-shaped one samples its old rest map Xbar at the new grid parameters.
+  /// - control points: rest + the old displacement X(p) - Xbar(p), taken at the rest-space points
+  ///   the new lattice puts at its grid parameters and interpolated by the new bases (per axis,
+  ///   collocation at the Greville abscissae). An undeformed lattice stays exactly at rest; an
+  ///   affine deformation is kept exactly, and so is any deformation the new lattice can
+  ///   represent (a Bernstein axis raised from n to n' > n points: degree elevation). A Bernstein
+  ///   axis that loses points samples the displacement there instead (no overshoot); other cases
+  ///   approximate it.
+  /// - cells: a grid index i of n points goes to round(i (n'-1) / (n-1)) (periodic axis:
+  ///   round(i n' / n) mod n'); point, edge, face and box cells move their lower corner, a slab
+  ///   its plane, a custom cell each index (duplicates dropped). Attached affine widgets keep
+  ///   their placement on their (remapped) cell and their variation; child lattices keep their
+  ///   world frame. Bindings and ids are unchanged.
+  /// @throws GestureState during a gesture; InvalidArgument for counts < 2, a basis whose degree
+  ///   a new count cannot carry, a cell that no longer fits on the new grid (the message names
+  ///   it). The model is unchanged on every error.
   void setLatticeCounts(WidgetId lattice, const Eigen::Vector3i& counts);
   /// Root lattice: sets its world frame. @throws InvalidArgument for a child lattice.
   void setLatticeFrame(WidgetId lattice, const Eigen::Affine3d& frame);
