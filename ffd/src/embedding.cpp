@@ -304,65 +304,77 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
   const Eigen::Matrix3d Ainv = lattice.restAffineLinear().inverse();
   const Eigen::Vector3d b = lattice.restAffineOffset();
 
-#pragma omp parallel for schedule(dynamic, 1024) if (options.parallel && n >= kParallelPoints)
-  for (Eigen::Index p = 0; p < n; ++p) {
-    const Eigen::Vector3d q = toLocal * points.row(p).transpose();
-    Eigen::Vector3d uvw;
-    bool converged = true;
-    if (affine) {
-      uvw = Ainv * (q - b);
-    } else {
-      uvw = solver.initialGuess(q);
-      converged = solver.newton(q, uvw);
-      if (!converged) {
-        Eigen::Vector3d restart = solver.nearestSample(q);
-        if (solver.newton(q, restart)) {
-          uvw = restart;
-          converged = true;
-        }
-      }
+  const auto report = [&options, n](Eigen::Index done) {
+    if (options.progress && !options.progress(done, n)) {
+      throw Cancelled("embed: cancelled after " + std::to_string(done) + " of " + std::to_string(n) + " points");
     }
-    PointStatus status = PointStatus::Inside;
-    PointClass cls = PointClass::Evaluated;
-    double s = 1.0;
-    if (!converged) {
-      status = PointStatus::Failed;
-      cls = PointClass::Frozen;
-      uvw = solver.clampToBox(uvw);
-    } else if (!solver.insideBox(uvw)) {
-      status = PointStatus::Outside;
-      switch (policy.kind) {
-        case OutsidePolicy::Kind::Identity:
-          cls = PointClass::Frozen;
-          break;
-        case OutsidePolicy::Kind::Extrapolate:
-          break;
-        case OutsidePolicy::Kind::ClampEdge:
-          cls = PointClass::Blended;
-          uvw = solver.clampToBox(uvw);
-          break;
-        case OutsidePolicy::Kind::Falloff: {
-          uvw = solver.clampToBox(uvw);
-          Eigen::Matrix3d J;
-          const double x = (solver.evaluate(uvw, J) - q).norm() / policy.distance;
-          if (x >= 1.0) {
-            cls = PointClass::Frozen;
-          } else {
-            cls = PointClass::Blended;
-            s = 1.0 - x * x * (3.0 - 2.0 * x);  // smoothstep from 1 at the boundary to 0 at `distance`
+  };
+  report(0);
+  // Chunks one after another, each in parallel: the progress hook runs between them on this
+  // thread (a check inside the parallel loop could neither throw nor stop the other threads).
+  for (Eigen::Index chunkBegin = 0; chunkBegin < n; chunkBegin += kEmbedProgressChunk) {
+    const Eigen::Index chunkEnd = std::min(n, chunkBegin + kEmbedProgressChunk);
+#pragma omp parallel for schedule(dynamic, 1024) if (options.parallel && chunkEnd - chunkBegin >= kParallelPoints)
+    for (Eigen::Index p = chunkBegin; p < chunkEnd; ++p) {
+      const Eigen::Vector3d q = toLocal * points.row(p).transpose();
+      Eigen::Vector3d uvw;
+      bool converged = true;
+      if (affine) {
+        uvw = Ainv * (q - b);
+      } else {
+        uvw = solver.initialGuess(q);
+        converged = solver.newton(q, uvw);
+        if (!converged) {
+          Eigen::Vector3d restart = solver.nearestSample(q);
+          if (solver.newton(q, restart)) {
+            uvw = restart;
+            converged = true;
           }
-          break;
         }
       }
+      PointStatus status = PointStatus::Inside;
+      PointClass cls = PointClass::Evaluated;
+      double s = 1.0;
+      if (!converged) {
+        status = PointStatus::Failed;
+        cls = PointClass::Frozen;
+        uvw = solver.clampToBox(uvw);
+      } else if (!solver.insideBox(uvw)) {
+        status = PointStatus::Outside;
+        switch (policy.kind) {
+          case OutsidePolicy::Kind::Identity:
+            cls = PointClass::Frozen;
+            break;
+          case OutsidePolicy::Kind::Extrapolate:
+            break;
+          case OutsidePolicy::Kind::ClampEdge:
+            cls = PointClass::Blended;
+            uvw = solver.clampToBox(uvw);
+            break;
+          case OutsidePolicy::Kind::Falloff: {
+            uvw = solver.clampToBox(uvw);
+            Eigen::Matrix3d J;
+            const double x = (solver.evaluate(uvw, J) - q).norm() / policy.distance;
+            if (x >= 1.0) {
+              cls = PointClass::Frozen;
+            } else {
+              cls = PointClass::Blended;
+              s = 1.0 - x * x * (3.0 - 2.0 * x);  // smoothstep from 1 at the boundary to 0 at `distance`
+            }
+            break;
+          }
+        }
+      }
+      for (int a = 0; a < 3; ++a) uvw[a] = axes[a]->wrap(uvw[a]);
+      u[p] = uvw[0];
+      v[p] = uvw[1];
+      w[p] = uvw[2];
+      weight[p] = s;
+      e.status_[p] = status;
+      const std::int64_t cell = axes[0]->cellOf(uvw[0]) + cells[0] * (axes[1]->cellOf(uvw[1]) + std::int64_t(cells[1]) * axes[2]->cellOf(uvw[2]));
+      key[p] = static_cast<std::uint32_t>(static_cast<std::int64_t>(cls) * cellTotal + cell);
     }
-    for (int a = 0; a < 3; ++a) uvw[a] = axes[a]->wrap(uvw[a]);
-    u[p] = uvw[0];
-    v[p] = uvw[1];
-    w[p] = uvw[2];
-    weight[p] = s;
-    e.status_[p] = status;
-    const std::int64_t cell = axes[0]->cellOf(uvw[0]) + cells[0] * (axes[1]->cellOf(uvw[1]) + std::int64_t(cells[1]) * axes[2]->cellOf(uvw[2]));
-    key[p] = static_cast<std::uint32_t>(static_cast<std::int64_t>(cls) * cellTotal + cell);
+    if (chunkEnd < n) report(chunkEnd);
   }
 
   // Per tile of consecutive points, a counting sort by (class, cell): stable, so a single-cell
@@ -425,6 +437,7 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
     else if (s == PointStatus::Outside) ++e.outside_;
     else ++e.failed_;
   }
+  report(n);
   return e;
 }
 

@@ -1,6 +1,7 @@
 #include "ffdkit/ffd/pipeline.h"
 
 #include <algorithm>
+#include <chrono>
 #include <functional>
 #include <string>
 
@@ -99,9 +100,9 @@ void Pipeline::setThrottle(const ReembedThrottle& throttle) {
   throttle_ = throttle;
 }
 
-const Eigen::MatrixX3d& Pipeline::update() { return run(false); }
+const Eigen::MatrixX3d& Pipeline::update(const EmbedProgress& progress) { return run(false, progress); }
 
-const Eigen::MatrixX3d& Pipeline::reembedAll() { return run(true); }
+const Eigen::MatrixX3d& Pipeline::reembedAll(const EmbedProgress& progress) { return run(true, progress); }
 
 const Eigen::MatrixX3d& Pipeline::points() const { return output_ ? *output_ : input_; }
 
@@ -110,51 +111,133 @@ const Embedding* Pipeline::embedding(LatticeId id) const {
   return n.deformer ? &n.deformer->embedding() : nullptr;
 }
 
-const Eigen::MatrixX3d& Pipeline::run(bool forceEmbed) {
+Pipeline::Action Pipeline::decide(LatticeId id, const Node& n, std::uint64_t inputVersion, bool forceEmbed) const {
+  const bool fresh = n.deformer && n.embeddedRest == n.lattice.restRevision() && n.embeddedInput == inputVersion;
+  if (fresh) return Action::Update;
+  // Every stage's input has the object's point count (each stage maps n points to n points).
+  const bool compatible = n.deformer && n.deformer->embedding().latticeCounts() == n.lattice.counts() &&
+                          n.deformer->embedding().pointCount() == input_.rows();
+  bool reembed = forceEmbed || !compatible || active_ == id;
+  switch (throttle_.kind) {
+    case ReembedThrottle::Kind::Immediate:
+      reembed = true;
+      break;
+    case ReembedThrottle::Kind::EveryN:
+      reembed = reembed || n.pending + 1 >= throttle_.n;
+      break;
+    case ReembedThrottle::Kind::OnDemand:
+      break;
+  }
+  if (reembed) return Action::Reembed;
+  const bool kept = n.keptInput == inputVersion && n.keptRest == n.lattice.restRevision() &&
+                    n.deformer->lastControlPoints() == n.lattice.controlPoints();
+  return kept ? Action::Keep : Action::Stale;
+}
+
+Eigen::Index Pipeline::pointsToEmbed(bool reembedAll) const {
+  // Replays run()'s decisions without running: a stage whose output changes gives it a version no
+  // stage has seen, so the next stage is not fresh; a fresh stage's output changes iff one of its
+  // control points moved since its deformer last ran (what Deformer::update() compares).
+  Eigen::Index total = 0;
+  std::uint64_t counter = versionCounter_;
+  std::uint64_t inputVersion = inputVersion_;
+  for (LatticeId id : order()) {
+    const Node& n = nodes_.at(id);
+    const Action action = decide(id, n, inputVersion, reembedAll);
+    bool changed = action != Action::Keep;
+    if (action == Action::Update) changed = n.deformer->lastControlPoints() != n.lattice.controlPoints();
+    if (action == Action::Reembed) total += input_.rows();
+    inputVersion = changed || n.outputVersion == 0 ? ++counter : n.outputVersion;
+  }
+  return total;
+}
+
+const Eigen::MatrixX3d& Pipeline::run(bool forceEmbed, const EmbedProgress& progress) {
+  const std::vector<LatticeId> stages = order();
+  const Eigen::Index total = progress ? pointsToEmbed(forceEmbed) : 0;
+  Eigen::Index done = 0;
+  const auto tell = [&progress, total](Eigen::Index d) {
+    if (progress && !progress(std::min(d, total), total)) {
+      throw Cancelled("pipeline: cancelled after embedding " + std::to_string(std::min(d, total)) + " of " +
+                      std::to_string(total) + " points");
+    }
+  };
+  // After a cancel points() must still be the last completed output. It normally lives in the
+  // last stage, which changes only when no stage is left to cancel; when the tree changed since
+  // (a lattice added, priorities changed) it may live in an earlier stage: keep a copy.
+  if (output_ && output_ != heldOutput_.get()) {
+    const Node* last = stages.empty() ? nullptr : &nodes_.at(stages.back());
+    if (!last || !last->deformer || output_ != &last->deformer->points()) {
+      heldOutput_ = std::make_unique<Eigen::MatrixX3d>(*output_);
+      output_ = heldOutput_.get();
+    }
+  }
+  // Stages deformed approximately in this run, with their input version.
+  std::vector<std::pair<Node*, std::uint64_t>> approximated;
+
   report_.clear();
   const Eigen::MatrixX3d* input = &input_;
   std::uint64_t inputVersion = inputVersion_;
-  for (LatticeId id : order()) {
-    Node& n = nodes_.at(id);
-    StageReport report{id};
-    const bool fresh = n.deformer && n.embeddedRest == n.lattice.restRevision() && n.embeddedInput == inputVersion;
-    if (fresh) {
-      n.deformer->update(n.lattice, *input);
-      report.outputChanged = n.deformer->lastStats().changedControlPoints > 0;
-    } else {
-      const bool compatible = n.deformer && n.deformer->embedding().latticeCounts() == n.lattice.counts() &&
-                              n.deformer->embedding().pointCount() == input->rows();
-      bool reembed = forceEmbed || !compatible || active_ == id;
-      switch (throttle_.kind) {
-        case ReembedThrottle::Kind::Immediate:
-          reembed = true;
-          break;
-        case ReembedThrottle::Kind::EveryN:
-          reembed = reembed || n.pending + 1 >= throttle_.n;
-          break;
-        case ReembedThrottle::Kind::OnDemand:
-          break;
-      }
-      if (reembed) {
-        n.deformer = std::make_unique<Deformer>(embed(n.lattice, *input, options_));
+  try {
+    tell(0);
+    for (LatticeId id : stages) {
+      Node& n = nodes_.at(id);
+      StageReport report{id};
+      const Action action = decide(id, n, inputVersion, forceEmbed);
+      if (action == Action::Update) {
+        n.deformer->update(n.lattice, *input);
+        report.outputChanged = n.deformer->lastStats().changedControlPoints > 0;
+      } else if (action == Action::Reembed) {
+        EmbedOptions options = options_;
+        options.progress = {};
+        if (progress) {
+          options.progress = [&progress, done, total](Eigen::Index d, Eigen::Index) {
+            return progress(std::min(done + d, total), total);
+          };
+        }
+        const auto start = std::chrono::steady_clock::now();
+        // A cancel throws here, before the stage is touched.
+        Embedding embedding = embed(n.lattice, *input, options);
+        report.embedSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        done += input->rows();
+        if (n.deformer && output_ == &n.deformer->points()) output_ = nullptr;
+        n.deformer = std::make_unique<Deformer>(std::move(embedding));
         n.embeddedRest = n.lattice.restRevision();
         n.embeddedInput = inputVersion;
         n.pending = 0;
         n.deformer->deform(n.lattice, *input);
         report.reembedded = true;
-      } else {
+        report.outputChanged = true;
+      } else if (action == Action::Stale) {
         ++n.pending;
+        approximated.emplace_back(&n, inputVersion);
         n.deformer->deformStale(n.lattice, *input);
         report.approximate = true;
+        report.outputChanged = true;
+      } else {  // Keep: this output, from a cancelled run, is what deformStale would compute again.
+        ++n.pending;
+        approximated.emplace_back(&n, inputVersion);
+        report.approximate = true;
       }
-      report.outputChanged = true;
+      n.keptInput = n.keptRest = 0;
+      if (report.outputChanged || n.outputVersion == 0) n.outputVersion = ++versionCounter_;
+      inputVersion = n.outputVersion;
+      input = &n.deformer->points();
+      report_.push_back(report);
     }
-    if (report.outputChanged || n.outputVersion == 0) n.outputVersion = ++versionCounter_;
-    inputVersion = n.outputVersion;
-    input = &n.deformer->points();
-    report_.push_back(report);
+  } catch (...) {
+    // The next run must decide as this one did, as if it had not been cut short: the throttled
+    // stages that ran keep their output (Action::Keep) and count this run once.
+    for (auto& [n, version] : approximated) {
+      --n->pending;
+      n->keptInput = version;
+      n->keptRest = n->lattice.restRevision();
+    }
+    throw;
   }
   output_ = input == &input_ ? nullptr : input;
+  heldOutput_.reset();
+  tell(total);
   return points();
 }
 

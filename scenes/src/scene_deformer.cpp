@@ -1,6 +1,8 @@
 #include "ffdkit/scenes/scene_deformer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <set>
 #include <stdexcept>
 
 #include "ffdkit/ffd/pipeline.h"
@@ -82,25 +84,30 @@ void SceneDeformer::finishGesture(const Scene& scene) { run(scene, std::nullopt,
 
 void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, bool exact) {
   const auto start = std::chrono::steady_clock::now();
-  SceneDeformStats stats;
-  std::map<std::string, std::unique_ptr<ObjectPipeline>> next;
+  // 1. Sync every object's pipeline with the scene, in place (nothing is embedded yet), so that a
+  //    throw in step 2 leaves each pipeline whole.
+  std::vector<ObjectPipeline*> toRun;
+  std::set<std::string> names;
   for (const auto& object : scene.objects) {
-    auto found = objects_.find(object.name);
-    std::unique_ptr<ObjectPipeline> p =
-        found != objects_.end() ? std::move(found->second) : std::make_unique<ObjectPipeline>();
+    names.insert(object.name);
+    std::unique_ptr<ObjectPipeline>& slot = objects_[object.name];
+    if (!slot) slot = std::make_unique<ObjectPipeline>();
+    ObjectPipeline* p = slot.get();
     std::vector<Stage> stages = stagesFor(scene, object.name);
     const bool inputChanged = p->input.rows() != object.mesh.points.rows() || p->input != object.mesh.points;
     if (!p->pipeline || inputChanged || stages != p->stages) {
       // New object, new points or a new lattice tree: rebuild (embeddings follow on update).
-      p->input = object.mesh.points;
-      p->stages = stages;
-      p->pipeline = std::make_unique<ffd::Pipeline>(p->input);
-      p->ids.clear();
+      auto pipeline = std::make_unique<ffd::Pipeline>(object.mesh.points);
+      std::map<widgets::WidgetId, ffd::LatticeId> ids;
       for (const Stage& stage : stages) {
         std::optional<ffd::LatticeId> parent;
-        if (stage.parent) parent = p->ids.at(*stage.parent);
-        p->ids[stage.lattice] = p->pipeline->addLattice(scene.widgets.ffdLattice(stage.lattice), parent, stage.priority);
+        if (stage.parent) parent = ids.at(*stage.parent);
+        ids[stage.lattice] = pipeline->addLattice(scene.widgets.ffdLattice(stage.lattice), parent, stage.priority);
       }
+      p->input = object.mesh.points;
+      p->stages = std::move(stages);
+      p->pipeline = std::move(pipeline);
+      p->ids = std::move(ids);
     } else {
       for (const Stage& stage : stages) {
         ffd::Lattice fresh = scene.widgets.ffdLattice(stage.lattice);
@@ -112,29 +119,52 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
         }
       }
     }
-    if (!stages.empty()) {
-      p->pipeline->setThrottle(throttleFor(scene.widgets.latticeSettings(stages.front().lattice)));
+    if (!p->stages.empty()) {
+      p->pipeline->setThrottle(throttleFor(scene.widgets.latticeSettings(p->stages.front().lattice)));
       std::optional<ffd::LatticeId> active;
       if (activeLattice && p->ids.count(*activeLattice)) active = p->ids.at(*activeLattice);
       p->pipeline->setActiveLattice(active);
-      // exact: re-embed every throttled stage too (one pipeline pass, not an update and then another).
-      if (exact) {
-        p->pipeline->reembedAll();
-      } else {
-        p->pipeline->update();
-      }
-      for (const auto& report : p->pipeline->lastReport()) stats.reembeddedStages += report.reembedded ? 1 : 0;
-      if (const ffd::Embedding* first = p->pipeline->embedding(p->ids.at(stages.front().lattice))) {
-        stats.outsidePoints += first->outsideCount();
-        stats.failedPoints += first->failedCount();
-      }
-      stats.deformedPoints += p->input.rows();
+      toRun.push_back(p);
     }
-    next[object.name] = std::move(p);
   }
-  objects_ = std::move(next);
+  std::erase_if(objects_, [&names](const auto& entry) { return !names.count(entry.first); });
+
+  // 2. Run the pipelines; progress counts the points every one of them embeds.
+  std::vector<Eigen::Index> toEmbed;
+  Eigen::Index total = 0;
+  if (progress_) {
+    for (const ObjectPipeline* p : toRun) total += toEmbed.emplace_back(p->pipeline->pointsToEmbed(exact));
+  }
+  const auto goOn = [this, total](Eigen::Index done) {
+    return progress_(total > 0 ? double(std::min(done, total)) / double(total) : 0.0);
+  };
+  if (progress_ && !goOn(0)) throw ffd::Cancelled("scene deformer: cancelled before any embedding");
+  SceneDeformStats stats;
+  Eigen::Index done = 0;
+  for (std::size_t i = 0; i < toRun.size(); ++i) {
+    ObjectPipeline& p = *toRun[i];
+    ffd::EmbedProgress hook;
+    if (progress_ && toEmbed[i] > 0) hook = [&goOn, done](Eigen::Index d, Eigen::Index) { return goOn(done + d); };
+    // exact: re-embed every throttled stage too (one pipeline pass, not an update and then another).
+    if (exact) {
+      p.pipeline->reembedAll(hook);
+    } else {
+      p.pipeline->update(hook);
+    }
+    if (progress_) done += toEmbed[i];
+    for (const auto& report : p.pipeline->lastReport()) {
+      stats.reembeddedStages += report.reembedded ? 1 : 0;
+      stats.embedSeconds += report.embedSeconds;
+    }
+    if (const ffd::Embedding* first = p.pipeline->embedding(p.ids.at(p.stages.front().lattice))) {
+      stats.outsidePoints += first->outsideCount();
+      stats.failedPoints += first->failedCount();
+    }
+    stats.deformedPoints += p.input.rows();
+  }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats_ = stats;
+  if (progress_ && !progress_(1.0)) throw ffd::Cancelled("scene deformer: cancelled at the end (all work kept)");
 }
 
 const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const {

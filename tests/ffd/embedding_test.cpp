@@ -1,8 +1,13 @@
 #include "ffdkit/ffd/embedding.h"
 
+#include <atomic>
 #include <cmath>
+#include <condition_variable>
 #include <limits>
+#include <mutex>
 #include <random>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -22,6 +27,38 @@ double roundTripError(const Lattice& lattice, const Embedding& e, const Eigen::M
   }
   const double worldSize = lattice.restSize() * lattice.frame().linear().norm();
   return worst / worldSize;
+}
+
+// A user-shaped (non-affine) 4x4x4 lattice on the unit box, as in bench_ffd's BM_EmbedNewton, and
+// n uniform points in the unit box: Newton embedding, ~1 us per point and thread.
+Lattice userShapedUnitLattice() {
+  Lattice lattice = makeBoxLattice();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-0.06, 0.06);
+  Eigen::MatrixX3d rest = lattice.restPoints();
+  for (Eigen::Index r = 0; r < rest.rows(); ++r)
+    for (int c = 0; c < 3; ++c) rest(r, c) += U(rng);
+  lattice.setRestPoints(rest);
+  return lattice;
+}
+
+Eigen::MatrixX3d uniformUnitBox(Eigen::Index n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  Eigen::MatrixX3d Q(n, 3);
+  for (Eigen::Index r = 0; r < n; ++r) Q.row(r) << U(rng), U(rng), U(rng);
+  return Q;
+}
+
+struct ProgressCall {
+  Eigen::Index done;
+  Eigen::Index total;
+  std::thread::id thread;
+};
+
+bool sameEmbedding(const Embedding& a, const Embedding& b) {
+  return a.statuses() == b.statuses() && a.sortedU() == b.sortedU() && a.sortedV() == b.sortedV() &&
+         a.sortedW() == b.sortedW() && a.order() == b.order() && a.blendWeight() == b.blendWeight();
 }
 
 TEST(Embedding, BoxLatticesEmbedInClosedFormForEveryBasis) {
@@ -135,6 +172,120 @@ TEST(Embedding, SingleCellLatticesKeepTheOriginalOrder) {
   const Embedding e = embed(lattice, testing::restImages(lattice, testing::randomParameters(lattice, 100, rng)));
   EXPECT_TRUE(e.order().empty());
   EXPECT_LE(e.memoryBytes(), 100u * 64u + 4096u);
+}
+
+TEST(EmbedProgress, IsCalledOnTheCallingThreadMonotoneUpToTheTotal) {
+  const Lattice lattice = userShapedUnitLattice();
+  const Eigen::MatrixX3d Q = uniformUnitBox(3 * kEmbedProgressChunk + 1234, 11);
+  std::vector<ProgressCall> calls;
+  EmbedOptions options;
+  options.progress = [&calls](Eigen::Index done, Eigen::Index total) {
+    calls.push_back({done, total, std::this_thread::get_id()});
+    return true;
+  };
+  const Embedding withProgress = embed(lattice, Q, options);
+  ASSERT_GE(calls.size(), 5u);  // (0, n), three chunk ends, (n, n)
+  EXPECT_EQ(calls.front().done, 0);
+  EXPECT_EQ(calls.back().done, Q.rows());
+  for (std::size_t i = 0; i < calls.size(); ++i) {
+    EXPECT_EQ(calls[i].total, Q.rows());
+    EXPECT_EQ(calls[i].thread, std::this_thread::get_id()) << "call " << i << " from another thread";
+    if (i > 0) {
+      EXPECT_GE(calls[i].done, calls[i - 1].done) << "call " << i;
+      EXPECT_LE(calls[i].done - calls[i - 1].done, kEmbedProgressChunk) << "call " << i;
+    }
+  }
+  EXPECT_TRUE(sameEmbedding(withProgress, embed(lattice, Q))) << "the hook must not change the result";
+  EXPECT_EQ(withProgress.failedCount(), 0);
+}
+
+TEST(EmbedProgress, IsCalledForAnEmptyPointSet) {
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> calls;
+  EmbedOptions options;
+  options.progress = [&calls](Eigen::Index done, Eigen::Index total) {
+    calls.emplace_back(done, total);
+    return true;
+  };
+  EXPECT_EQ(embed(makeBoxLattice(), Eigen::MatrixX3d(0, 3), options).pointCount(), 0);
+  ASSERT_FALSE(calls.empty());
+  EXPECT_EQ(calls.back(), std::make_pair(Eigen::Index(0), Eigen::Index(0)));
+}
+
+TEST(EmbedProgress, ReturningFalseAtAboutHalfThrowsCancelledAndStopsCalling) {
+  const Lattice lattice = userShapedUnitLattice();
+  const Eigen::MatrixX3d Q = uniformUnitBox(4 * kEmbedProgressChunk, 12);
+  int callsAfterCancel = 0;
+  bool cancelled = false;
+  Eigen::Index cancelledAt = -1;
+  EmbedOptions options;
+  options.progress = [&](Eigen::Index done, Eigen::Index total) {
+    if (cancelled) ++callsAfterCancel;
+    if (2 * done >= total) {
+      cancelled = true;
+      cancelledAt = done;
+      return false;
+    }
+    return true;
+  };
+  EXPECT_THROW(embed(lattice, Q, options), Cancelled);
+  EXPECT_EQ(callsAfterCancel, 0);
+  EXPECT_EQ(cancelledAt, 2 * kEmbedProgressChunk);
+  // Cancelled is no input error: callers catching LatticeError must not swallow it.
+  try {
+    embed(lattice, Q, options);
+    FAIL() << "expected Cancelled";
+  } catch (const LatticeError&) {
+    FAIL() << "Cancelled must not be a LatticeError";
+  } catch (const Cancelled& e) {
+    EXPECT_NE(std::string(e.what()).find("cancelled after 131072 of 262144 points"), std::string::npos) << e.what();
+  }
+  // Cancelling at the very end discards the finished embedding too: nothing is returned.
+  options.progress = [](Eigen::Index done, Eigen::Index total) { return done < total; };
+  EXPECT_THROW(embed(lattice, Q.topRows(1000), options), Cancelled);
+}
+
+TEST(EmbedProgress, AnAtomicFlagSetFromAnotherThreadStopsALargeNewtonEmbedding) {
+  // The GUI's pattern: the embedding runs on a worker, the flag is set by another thread.
+  const Lattice lattice = userShapedUnitLattice();
+  ASSERT_FALSE(lattice.restIsAffine());
+  const Eigen::MatrixX3d Q = uniformUnitBox(2000000, 13);
+  std::atomic<bool> cancel{false};
+  std::atomic<int> calls{0};
+  int callsWhenSet = -1;
+  int callsWhenSeen = -1;
+  std::mutex mutex;
+  std::condition_variable started;
+  bool hasStarted = false;
+  Eigen::Index doneWhenSeen = -1;
+  EmbedOptions options;
+  options.progress = [&](Eigen::Index done, Eigen::Index) {
+    const int call = ++calls;
+    if (cancel.load()) {
+      callsWhenSeen = call;
+      doneWhenSeen = done;
+      return false;
+    }
+    if (done > 0) {
+      std::lock_guard lock(mutex);
+      hasStarted = true;
+      started.notify_one();
+    }
+    return true;
+  };
+  std::thread canceller([&] {
+    std::unique_lock lock(mutex);
+    started.wait(lock, [&] { return hasStarted; });
+    callsWhenSet = calls.load();
+    cancel.store(true);
+  });
+  EXPECT_THROW(embed(lattice, Q, options), Cancelled);
+  canceller.join();
+  ASSERT_GT(callsWhenSet, 0);
+  // The flag is read at every call: at most one more chunk runs after it is set.
+  EXPECT_GE(callsWhenSeen, callsWhenSet + 1);
+  EXPECT_LE(callsWhenSeen, callsWhenSet + 2);
+  EXPECT_EQ(calls.load(), callsWhenSeen) << "no call after the cancel";
+  EXPECT_LT(doneWhenSeen, Q.rows()) << "stopped before the end";
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <random>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -165,6 +167,192 @@ TEST(Pipeline, EmptyPipelineReturnsTheInput) {
   Eigen::MatrixX3d bad = Q;
   bad(1, 1) = std::nan("");
   EXPECT_THROW(pipeline.setPoints(bad), LatticeError);
+}
+
+// A chain root -> child -> grandchild of bent box lattices over n random points: every stage
+// moves the points, so every stage's input depends on the one before.
+struct Chain {
+  Pipeline pipeline;
+  std::vector<LatticeId> ids;
+};
+
+Chain makeChain(const Eigen::MatrixX3d& Q, ReembedThrottle throttle = ReembedThrottle::immediate()) {
+  Chain c{Pipeline(Q), {}};
+  c.ids.push_back(c.pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4)));
+  c.ids.push_back(c.pipeline.addLattice(boxAt({0.1, 0.1, 0.1}, 0.8, 3), c.ids[0]));
+  c.ids.push_back(c.pipeline.addLattice(boxAt({0.2, 0.2, 0.2}, 0.6, 3), c.ids[1]));
+  for (std::size_t i = 0; i < c.ids.size(); ++i) bend(c.pipeline.lattice(c.ids[i]), 0.1 + 0.05 * double(i));
+  c.pipeline.setThrottle(throttle);
+  return c;
+}
+
+// Moves a lattice's frame: its rest lattice moves in the world, so it must be re-embedded.
+void shift(Lattice& lattice, double dx) {
+  Eigen::Affine3d frame = lattice.frame();
+  frame.pretranslate(Eigen::Vector3d(dx, 0, 0));
+  lattice.setFrame(frame);
+}
+
+using Calls = std::vector<std::pair<Eigen::Index, Eigen::Index>>;
+
+EmbedProgress recorder(Calls& calls) {
+  return [&calls](Eigen::Index done, Eigen::Index total) {
+    calls.emplace_back(done, total);
+    return true;
+  };
+}
+
+// Returns false (cancels) from the first call with done >= at.
+EmbedProgress cancelAt(Eigen::Index at, Calls& calls) {
+  return [&calls, at](Eigen::Index done, Eigen::Index total) {
+    calls.emplace_back(done, total);
+    return done < at;
+  };
+}
+
+void expectMonotoneUpTo(const Calls& calls, Eigen::Index total) {
+  ASSERT_GE(calls.size(), 2u);
+  EXPECT_EQ(calls.front(), std::make_pair(Eigen::Index(0), total));
+  EXPECT_EQ(calls.back(), std::make_pair(total, total));
+  for (std::size_t i = 1; i < calls.size(); ++i) {
+    EXPECT_EQ(calls[i].second, total);
+    EXPECT_GE(calls[i].first, calls[i - 1].first) << "call " << i;
+    EXPECT_LE(calls[i].first - calls[i - 1].first, kEmbedProgressChunk) << "call " << i;
+  }
+}
+
+TEST(PipelineProgress, CountsThePointsOfEveryStageThatReembeds) {
+  const Eigen::Index n = kEmbedProgressChunk + 5000;
+  const Eigen::MatrixX3d Q = randomPointsInUnitBox(n, 21);
+  Chain c = makeChain(Q);
+  EXPECT_EQ(c.pipeline.pointsToEmbed(), 3 * n);
+  Calls calls;
+  c.pipeline.update(recorder(calls));
+  expectMonotoneUpTo(calls, 3 * n);
+
+  // An edit of control points re-embeds nothing: (0, 0) and (0, 0).
+  bend(c.pipeline.lattice(c.ids[2]), 0.05);
+  EXPECT_EQ(c.pipeline.pointsToEmbed(), 0);
+  calls.clear();
+  c.pipeline.update(recorder(calls));
+  expectMonotoneUpTo(calls, 0);
+
+  // The middle lattice moves: it and the stage after it (its input moved) re-embed.
+  shift(c.pipeline.lattice(c.ids[1]), 0.02);
+  EXPECT_EQ(c.pipeline.pointsToEmbed(), 2 * n);
+  calls.clear();
+  c.pipeline.update(recorder(calls));
+  expectMonotoneUpTo(calls, 2 * n);
+  EXPECT_FALSE(c.pipeline.lastReport()[0].reembedded);
+  EXPECT_TRUE(c.pipeline.lastReport()[1].reembedded);
+  EXPECT_TRUE(c.pipeline.lastReport()[2].reembedded);
+  EXPECT_GT(c.pipeline.lastReport()[1].embedSeconds, 0.0);
+  EXPECT_EQ(c.pipeline.lastReport()[0].embedSeconds, 0.0);
+
+  // Throttled: only the active lattice and the stages that must (no compatible embedding) count.
+  c.pipeline.setThrottle(ReembedThrottle::onDemand());
+  c.pipeline.setActiveLattice(c.ids[0]);
+  shift(c.pipeline.lattice(c.ids[0]), 0.01);
+  EXPECT_EQ(c.pipeline.pointsToEmbed(), n);
+  EXPECT_EQ(c.pipeline.pointsToEmbed(/*reembedAll=*/true), 3 * n);
+  calls.clear();
+  c.pipeline.update(recorder(calls));
+  expectMonotoneUpTo(calls, n);
+  EXPECT_TRUE(c.pipeline.lastReport()[1].approximate);
+  EXPECT_EQ(c.pipeline.pointsToEmbed(true), 2 * n);
+  calls.clear();
+  c.pipeline.reembedAll(recorder(calls));
+  expectMonotoneUpTo(calls, 2 * n);
+}
+
+TEST(PipelineProgress, ACancelledRunKeepsThePipelineConsistentAndTheNextRunExact) {
+  const Eigen::Index n = kEmbedProgressChunk + 5000;
+  const Eigen::MatrixX3d Q = randomPointsInUnitBox(n, 22);
+  Chain c = makeChain(Q);
+  c.pipeline.update();
+  const Eigen::MatrixX3d before = c.pipeline.points();
+  for (LatticeId id : c.ids) shift(c.pipeline.lattice(id), 0.03);
+  Calls calls;
+  // Cancel inside the second stage's embedding (3n points to embed in all).
+  EXPECT_THROW(c.pipeline.update(cancelAt(n + kEmbedProgressChunk, calls)), Cancelled);
+  EXPECT_EQ(calls.back().first, n + kEmbedProgressChunk);
+  // The first stage finished; the second (cancelled) and third still hold their old embeddings
+  // and outputs, so the object still shows the last complete result.
+  EXPECT_NO_THROW(c.pipeline.embedding(c.ids[0])->checkLattice(c.pipeline.lattice(c.ids[0])));
+  EXPECT_THROW(c.pipeline.embedding(c.ids[1])->checkLattice(c.pipeline.lattice(c.ids[1])), LatticeError);
+  EXPECT_THROW(c.pipeline.embedding(c.ids[2])->checkLattice(c.pipeline.lattice(c.ids[2])), LatticeError);
+  EXPECT_EQ(c.pipeline.points(), before);
+  EXPECT_EQ(c.pipeline.pointsToEmbed(), 2 * n) << "the cancelled stage and the one after it";
+
+  c.pipeline.update();
+  EXPECT_FALSE(c.pipeline.lastReport()[0].reembedded) << "kept from the cancelled run";
+  EXPECT_TRUE(c.pipeline.lastReport()[1].reembedded);
+  Chain fresh = makeChain(Q);
+  for (LatticeId id : fresh.ids) shift(fresh.pipeline.lattice(id), 0.03);
+  EXPECT_EQ(c.pipeline.points(), fresh.pipeline.update()) << "bit for bit a never-cancelled result";
+}
+
+TEST(PipelineProgress, ACancelledThrottledRunIsRepeatedAsIfNeverCancelled) {
+  // Dragging the root with the others throttled (every 2nd update): the middle stage is deformed
+  // approximately, the last is re-embedded because it is active; cancel inside the last one.
+  // Afterwards the pipeline must follow exactly the same path as a twin that was never cancelled.
+  const Eigen::Index n = kEmbedProgressChunk + 5000;
+  const Eigen::MatrixX3d Q = randomPointsInUnitBox(n, 23);
+  Chain cancelled = makeChain(Q, ReembedThrottle::everyN(2));
+  Chain twin = makeChain(Q, ReembedThrottle::everyN(2));
+  for (Chain* c : {&cancelled, &twin}) {
+    c->pipeline.update();
+    c->pipeline.setActiveLattice(c->ids[2]);
+    bend(c->pipeline.lattice(c->ids[0]), 0.02);
+    shift(c->pipeline.lattice(c->ids[2]), 0.01);
+  }
+  ASSERT_EQ(cancelled.pipeline.pointsToEmbed(), n);
+  Calls calls;
+  EXPECT_THROW(cancelled.pipeline.update(cancelAt(kEmbedProgressChunk, calls)), Cancelled);
+  cancelled.pipeline.update();
+  twin.pipeline.update();
+  ASSERT_EQ(twin.pipeline.lastReport().size(), 3u);
+  EXPECT_TRUE(twin.pipeline.lastReport()[1].approximate);
+  EXPECT_TRUE(cancelled.pipeline.lastReport()[1].approximate);
+  EXPECT_FALSE(cancelled.pipeline.lastReport()[1].outputChanged) << "kept from the cancelled run, not recomputed";
+  EXPECT_EQ(cancelled.pipeline.points(), twin.pipeline.points());
+  // The throttle counted the cancelled run once: the next drag step re-embeds the middle stage on both.
+  for (Chain* c : {&cancelled, &twin}) {
+    bend(c->pipeline.lattice(c->ids[0]), 0.02);
+    c->pipeline.update();
+    EXPECT_TRUE(c->pipeline.lastReport()[1].reembedded);
+  }
+  EXPECT_EQ(cancelled.pipeline.points(), twin.pipeline.points());
+}
+
+TEST(PipelineProgress, ACancelledRunAfterALatticeWasAddedKeepsTheLastOutput) {
+  // The last complete output lives in the first stage; the new last stage is cancelled.
+  const Eigen::Index n = kEmbedProgressChunk + 5000;
+  const Eigen::MatrixX3d Q = randomPointsInUnitBox(n, 24);
+  Pipeline pipeline(Q);
+  const LatticeId root = pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4));
+  bend(pipeline.lattice(root), 0.1);
+  const Eigen::MatrixX3d before = pipeline.update();
+  shift(pipeline.lattice(root), 0.02);  // the root re-embeds (its deformer is replaced) ...
+  const LatticeId child = pipeline.addLattice(boxAt({0.2, 0.2, 0.2}, 0.6, 3), root);
+  Calls calls;
+  EXPECT_THROW(pipeline.update(cancelAt(n + 1, calls)), Cancelled);  // ... then the child is cancelled
+  EXPECT_EQ(pipeline.points(), before);
+  Pipeline moved = std::move(pipeline);
+  EXPECT_EQ(moved.points(), before) << "a moved pipeline keeps its output";
+  moved.update();
+  EXPECT_EQ(moved.points(), sequential({&moved.lattice(root), &moved.lattice(child)}, Q));
+}
+
+TEST(PipelineProgress, ACancelAtTheLastCallRedoesOnlyTheLastEmbedding) {
+  const Eigen::MatrixX3d Q = randomPointsInUnitBox(1000, 25);
+  Chain c = makeChain(Q);
+  const EmbedProgress refuseTheEnd = [](Eigen::Index done, Eigen::Index total) { return total == 0 || done < total; };
+  EXPECT_THROW(c.pipeline.update(refuseTheEnd), Cancelled);
+  // The last stage's own embedding was refused at its end: it is redone by the next run.
+  EXPECT_EQ(c.pipeline.pointsToEmbed(), 1000);
+  c.pipeline.update();
+  EXPECT_EQ(c.pipeline.points(), makeChain(Q).pipeline.update());
 }
 
 }  // namespace

@@ -1,10 +1,15 @@
 #include "ffdkit/scenes/scene_deformer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "ffdkit/ffd/embedding.h"
 #include "ffdkit/scenes/scene_file.h"
 
 namespace ffdkit::scenes {
@@ -132,6 +137,120 @@ TEST(SceneDeformer, EverySampleSceneDeformsToFinitePoints) {
       EXPECT_GT((points - object.mesh.points).cwiseAbs().maxCoeff(), 1e-3) << "the sample should show a deformation";
     }
   }
+}
+
+// The hierarchy sample (a parent and a child lattice on one column) with the column replaced by
+// n random points in its bounding box, plus a second object with a lattice of its own: progress
+// then spans two objects and three stages, n points each.
+Scene largeScene(Eigen::Index n) {
+  Scene scene = readScene(kExamples / "hierarchy");
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  Eigen::MatrixX3d& column = scene.objects.at(0).mesh.points;
+  const Eigen::Vector3d lo = column.colwise().minCoeff();
+  const Eigen::Vector3d hi = column.colwise().maxCoeff();
+  Eigen::MatrixX3d random(n, 3);
+  for (Eigen::Index r = 0; r < n; ++r)
+    for (int c = 0; c < 3; ++c) random(r, c) = lo[c] + (hi[c] - lo[c]) * U(rng);
+  column = random;
+  SceneObject extra = scene.objects.at(0);
+  extra.name = "extra";
+  extra.mesh.points.col(0).array() += 2.0 * (hi[0] - lo[0]);
+  scene.objects.push_back(extra);
+  AttachOptions box = withCounts(3, 3, 3);
+  box.latticeName = "extra-box";
+  const auto lattice = attachNewLattice(scene, {"extra"}, box);
+  Eigen::MatrixX3d control = scene.widgets.controlPoints(lattice);
+  control.col(2) += 0.1 * control.col(0).cwiseProduct(control.col(0));
+  scene.widgets.setControlPoints(lattice, control);
+  return scene;
+}
+
+void expectSamePoints(const SceneDeformer& a, const SceneDeformer& b, const Scene& scene) {
+  for (const auto& object : scene.objects) EXPECT_EQ(a.points(object.name), b.points(object.name)) << object.name;
+}
+
+TEST(SceneDeformerProgress, GoesFromZeroToOneOverEveryObjectAndStageOnTheCallingThread) {
+  const Eigen::Index n = ffd::kEmbedProgressChunk + 3000;
+  const Scene scene = largeScene(n);
+  std::vector<double> fractions;
+  bool otherThread = false;
+  SceneDeformer deformer;
+  const std::thread::id caller = std::this_thread::get_id();
+  deformer.setProgress([&](double fraction) {
+    fractions.push_back(fraction);
+    otherThread = otherThread || std::this_thread::get_id() != caller;
+    return true;
+  });
+  deformer.finishGesture(scene);
+  EXPECT_FALSE(otherThread);
+  ASSERT_GE(fractions.size(), 8u);  // 0, 2 calls per chunk end in 3 stages of 2 chunks, 1
+  EXPECT_EQ(fractions.front(), 0.0);
+  EXPECT_EQ(fractions.back(), 1.0);
+  for (std::size_t i = 1; i < fractions.size(); ++i) {
+    EXPECT_GE(fractions[i], fractions[i - 1]) << "call " << i;
+    EXPECT_LE(fractions[i], 1.0);
+  }
+  // A third of the work per stage: a value close to 1/3 and 2/3 is reported at each stage end.
+  EXPECT_NE(std::find(fractions.begin(), fractions.end(), 1.0 / 3.0), fractions.end());
+  EXPECT_EQ(deformer.lastStats().reembeddedStages, 3);
+  EXPECT_GT(deformer.lastStats().embedSeconds, 0.0);
+  EXPECT_LE(deformer.lastStats().embedSeconds, deformer.lastStats().seconds);
+
+  // Nothing to embed: just 0 and 1.
+  fractions.clear();
+  deformer.update(scene);
+  EXPECT_EQ(fractions, (std::vector<double>{0.0, 1.0}));
+  EXPECT_EQ(deformer.lastStats().reembeddedStages, 0);
+  EXPECT_EQ(deformer.lastStats().embedSeconds, 0.0);
+}
+
+TEST(SceneDeformerProgress, CancelAtAboutHalfLeavesADeformerWhoseNextRunIsExact) {
+  const Eigen::Index n = ffd::kEmbedProgressChunk + 3000;
+  const Scene scene = largeScene(n);
+  SceneDeformer deformer;
+  deformer.update(scene);  // some previous state, with different lattices
+  Scene moved = scene;
+  for (const char* name : {"parent", "extra-box"}) {  // the child follows the parent
+    const auto lattice = moved.widgets.find(name);
+    Eigen::Affine3d frame = moved.widgets.latticeFrame(lattice);
+    frame.pretranslate(Eigen::Vector3d(0.01, 0.02, 0.0));
+    moved.widgets.setLatticeFrame(lattice, frame);
+  }
+  const SceneDeformStats statsBefore = deformer.lastStats();
+  std::vector<double> fractions;
+  deformer.setProgress([&](double fraction) {
+    fractions.push_back(fraction);
+    return fraction < 0.5;
+  });
+  EXPECT_THROW(deformer.finishGesture(moved), ffd::Cancelled);
+  ASSERT_FALSE(fractions.empty());
+  EXPECT_GE(fractions.back(), 0.5);
+  EXPECT_LT(fractions.back(), 1.0);
+  EXPECT_EQ(deformer.lastStats().seconds, statsBefore.seconds) << "stats of the last completed run";
+
+  deformer.setProgress({});
+  deformer.finishGesture(moved);
+  EXPECT_EQ(deformer.lastStats().reembeddedStages, 2) << "the parent's embedding was kept; the child's and the box's redone";
+  SceneDeformer fresh;
+  fresh.finishGesture(moved);
+  expectSamePoints(deformer, fresh, moved);
+
+  // The same through update() with an active lattice, cancelled right at the start.
+  deformer.setProgress([](double) { return false; });
+  Scene again = moved;
+  const auto parent = again.widgets.find("parent");
+  Eigen::Affine3d frame = again.widgets.latticeFrame(parent);
+  frame.pretranslate(Eigen::Vector3d(0.0, 0.0, 0.01));
+  again.widgets.setLatticeFrame(parent, frame);
+  EXPECT_THROW(deformer.update(again, parent), ffd::Cancelled);
+  expectSamePoints(deformer, fresh, moved);  // nothing changed yet
+  deformer.setProgress({});
+  deformer.update(again, parent);
+  SceneDeformer fresh2;
+  fresh2.update(moved);
+  fresh2.update(again, parent);
+  expectSamePoints(deformer, fresh2, again);
 }
 
 }  // namespace

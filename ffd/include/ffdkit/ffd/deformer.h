@@ -67,6 +67,9 @@ class Deformer {
   /// The last deformed points, #points x 3, world.
   const Eigen::MatrixX3d& points() const { return output_; }
   const DeformStats& lastStats() const { return stats_; }
+  /// LOCAL control points of the last deform() / update() (what update() compares against);
+  /// empty before the first deform().
+  const Eigen::MatrixX3d& lastControlPoints() const { return lastControl_; }
 
   /// Run on all OpenMP threads (default) or on the calling thread only.
   void setParallel(bool parallel) { parallel_ = parallel; }

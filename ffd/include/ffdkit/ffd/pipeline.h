@@ -44,6 +44,7 @@ struct StageReport {
   bool reembedded = false;     ///< a new embedding was computed
   bool approximate = false;    ///< deformed with a stale embedding (throttled)
   bool outputChanged = false;  ///< its output points differ from the previous update
+  double embedSeconds = 0.0;   ///< wall time spent in embed() (0 unless reembedded)
 };
 
 /// The FFD pipeline of one object (seed 001 l.2373-2377, Fig. 6-7): a tree of lattices
@@ -83,10 +84,27 @@ class Pipeline {
 
   /// Runs the pipeline: stages whose embedding is fresh and whose input did not change are updated
   /// incrementally; stale stages are re-embedded or deformed approximately per the throttle.
+  /// @param progress optional hook over the whole run: `total` = pointsToEmbed() (the points of
+  ///   every stage this run re-embeds), `done` counts them across the stages in order, monotone.
+  ///   Called on this thread with (0, total) first, during each embedding (every
+  ///   kEmbedProgressChunk points) and with (total, total) once the run is complete; the
+  ///   EmbedOptions::progress given to the constructor is not used.
   /// @return #points x 3 deformed WORLD points.
-  const Eigen::MatrixX3d& update();
+  /// @throws Cancelled when `progress` returns false. The pipeline stays consistent and usable:
+  ///   stages finished before the cancel keep their new embeddings and outputs, the cancelled
+  ///   stage and the ones after it keep their previous embedding and output untouched (the
+  ///   cancelled one is re-embedded by the next run), throttle counters are as before the call,
+  ///   points() still returns the output of the last completed run, and running the same call
+  ///   again gives bit for bit what a never-cancelled call would have. A cancel at the final
+  ///   (total, total) call throws with all the work done and kept.
+  const Eigen::MatrixX3d& update(const EmbedProgress& progress = {});
   /// Re-embeds every stale lattice, then updates: the exact result (call on gesture release).
-  const Eigen::MatrixX3d& reembedAll();
+  /// Progress and cancel as update().
+  const Eigen::MatrixX3d& reembedAll(const EmbedProgress& progress = {});
+  /// How many points the next update() (`reembedAll` false) or reembedAll() (true) will embed: the
+  /// input size times the number of stages it will re-embed (0 when it only deforms). The
+  /// `total` of their progress; for a caller summing work over several pipelines.
+  Eigen::Index pointsToEmbed(bool reembedAll = false) const;
 
   /// Output of the last update() (the object points before the first update()).
   const Eigen::MatrixX3d& points() const;
@@ -107,10 +125,18 @@ class Pipeline {
     std::uint64_t embeddedInput = 0;
     std::uint64_t outputVersion = 0;
     int pending = 0;
+    // Set when a run that deformed this stage approximately (throttled) was cancelled later on:
+    // the input version and rest revision it used, so that the next run keeps that output
+    // instead of recomputing it and bumping its version (Action::Keep). 0: none.
+    std::uint64_t keptInput = 0;
+    std::uint64_t keptRest = 0;
   };
   Node& node(LatticeId id);
   const Node& node(LatticeId id) const;
-  const Eigen::MatrixX3d& run(bool forceEmbed);
+  enum class Action { Update, Reembed, Stale, Keep };
+  // What run() does with a stage whose input has version `inputVersion`.
+  Action decide(LatticeId id, const Node& n, std::uint64_t inputVersion, bool forceEmbed) const;
+  const Eigen::MatrixX3d& run(bool forceEmbed, const EmbedProgress& progress);
 
   Eigen::MatrixX3d input_;
   EmbedOptions options_;
@@ -122,6 +148,10 @@ class Pipeline {
   ReembedThrottle throttle_;
   std::vector<StageReport> report_;
   const Eigen::MatrixX3d* output_ = nullptr;
+  // The last completed output when the stage holding it may change before a run completes
+  // (the tree changed since that run); see run(). On the heap: output_ may point to it, and a
+  // moved pipeline must keep that pointer valid.
+  std::unique_ptr<Eigen::MatrixX3d> heldOutput_;
 };
 
 }  // namespace ffdkit::ffd

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -7,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "ffdkit/ffd/cancelled.h"
 #include "ffdkit/scenes/scene.h"
 
 namespace ffdkit::scenes {
@@ -18,7 +20,14 @@ struct SceneDeformStats {
   Eigen::Index deformedPoints = 0;
   Eigen::Index outsidePoints = 0; ///< object points outside their first lattice
   Eigen::Index failedPoints = 0;  ///< points whose Newton embedding failed (left unchanged)
+  double embedSeconds = 0.0;      ///< part of `seconds` spent computing embeddings (the rest: syncing, deforming)
 };
+
+/// Progress of SceneDeformer::update() / finishGesture(): the fraction in [0, 1] of the points the
+/// call embeds (over all its objects and lattice stages), non-decreasing, 0.0 first and 1.0 once
+/// the call is complete (only these two when nothing needs embedding). Called on the thread that
+/// runs the call, at least every ffd::kEmbedProgressChunk embedded points. Return false to cancel.
+using SceneProgress = std::function<bool(double fraction)>;
 
 /// Evaluates a scene: for each object, its attached lattice trees in pre-order (spec §6,
 /// seed 001 l.2373-2377), on the FFD engine's pipeline. Precompute apart from per-frame work:
@@ -38,10 +47,21 @@ class SceneDeformer {
   /// Brings every object's deformed points up to date with `scene`.
   /// `activeLattice`: the lattice being dragged (always re-embedded at once; the others follow
   /// their re-embed policy). @throws ffd::LatticeError for a degenerate lattice.
+  /// @throws ffd::Cancelled when the progress callback (setProgress) returns false. The deformer
+  ///   stays usable: objects finished before the cancel hold their new points, the others their
+  ///   previous ones (each object's points are always one complete evaluation), lastStats() is
+  ///   unchanged, and the same call run again gives bit for bit the result of a call that was
+  ///   never cancelled (only the embeddings not finished are computed again).
   void update(const Scene& scene, std::optional<widgets::WidgetId> activeLattice = std::nullopt);
 
   /// Re-embeds every lattice that was throttled (call on gesture release): the exact result.
+  /// Progress and cancel as update().
   void finishGesture(const Scene& scene);
+
+  /// Progress / cancel hook for the following update() and finishGesture() calls (empty: none).
+  /// A worker thread typically passes a lambda that stores the fraction in an std::atomic the
+  /// GUI polls and returns !cancelFlag.load().
+  void setProgress(SceneProgress progress) { progress_ = std::move(progress); }
 
   /// Deformed points of an object (its own points if no lattice deforms it), #points x 3.
   /// @throws std::invalid_argument for an object update() has not seen.
@@ -60,6 +80,7 @@ class SceneDeformer {
   struct ObjectPipeline;
   std::map<std::string, std::unique_ptr<ObjectPipeline>> objects_;
   SceneDeformStats stats_;
+  SceneProgress progress_;
 };
 
 /// One-shot evaluation: the deformed points of every object, by name.
