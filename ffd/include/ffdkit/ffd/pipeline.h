@@ -112,6 +112,7 @@ class Pipeline {
   const Eigen::MatrixX3d& inputPoints() const { return input_; }
   /// Embedding of a lattice's input (null before its first update). @throws LatticeError on an unknown id.
   const Embedding* embedding(LatticeId id) const;
+  /// What each stage did in the last run (after a cancelled run: the stages finished before the cancel).
   const std::vector<StageReport>& lastReport() const { return report_; }
 
  private:
