@@ -36,6 +36,9 @@ struct Fixture {
   }
 };
 
+// A ray looking along -view at the world point p.
+widgets::Ray looking(const Eigen::Vector3d& p, const Eigen::Vector3d& view) { return {p + 10.0 * view, -view}; }
+
 double maxDifference(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) { return (a - b).cwiseAbs().maxCoeff(); }
 
 }  // namespace
@@ -160,6 +163,181 @@ class InteractionControllerTest : public QObject {
     const std::size_t n = f.commands.position();
     QVERIFY_THROWS_EXCEPTION(std::exception, f.controller.bind(f.widget, f.widget));
     QCOMPARE(f.commands.position(), n);
+  }
+
+  // ---- the transformer manipulator -----------------------------------------------------------
+
+  void transformerShowsForOneAffineOrLatticeWidget() {
+    Fixture f;
+    QCOMPARE(f.controller.selection(), std::vector{f.widget});  // a new widget is selected: its transformer shows
+    f.controller.clearSelection();
+    QVERIFY(!f.controller.transformer());
+    f.controller.setSelection({f.widget});
+    const auto t = f.controller.transformer();
+    QVERIFY(t.has_value());
+    const widgets::WidgetFrame frame = f.scene.widgets.affineFrame(f.widget);
+    QVERIFY(t->frame.isApprox(frame.frame, 1e-15));
+    QVERIFY(t->uniformSize);
+    QCOMPARE(t->size, 2.5 * frame.size);
+    QVERIFY(f.controller.highlights().transformer.has_value());
+    // A lattice: at the centre of its rest box, size handles per axis.
+    f.controller.setSelection({f.lattice});
+    const Eigen::MatrixX3d rest = f.scene.widgets.worldRestPoints(f.lattice);
+    QVERIFY(f.controller.transformer()->frame.translation().isApprox(rest.colwise().mean().transpose(), 1e-14));
+    QVERIFY(!f.controller.transformer()->uniformSize);
+    // Two widgets, a cell, nothing: no transformer.
+    f.controller.setSelection({f.widget, f.lattice});
+    QVERIFY(!f.controller.transformer());
+    f.controller.setSelection({*f.scene.widgets.attachedCell(f.widget)});
+    QVERIFY(!f.controller.transformer());
+    f.controller.clearSelection();
+    QVERIFY(!f.controller.highlights().transformer.has_value());
+  }
+
+  void hoveringAHandleHighlightsIt() {
+    Fixture f;
+    f.controller.setSelection({f.widget});
+    const auto t = *f.controller.transformer();
+    const Eigen::Vector3d cube = t.frame * Eigen::Vector3d(0, app::TransformerLayout::sizeAt * t.size, 0);
+    QVERIFY(f.controller.hover(looking(cube, t.frame.linear().col(2)), 1e-3));
+    QCOMPARE(f.controller.highlights().transformerHandle, std::optional(app::TransformerHandle::SizeY));
+    QVERIFY(!f.controller.highlights().hovered.has_value());
+    QVERIFY(f.controller.hover(looking(cube + Eigen::Vector3d(5, 5, 5), t.frame.linear().col(2)), 1e-3));
+    QVERIFY(!f.controller.highlights().transformerHandle.has_value());
+  }
+
+  // Moving, turning and sizing an affine widget changes its placement: the widget moves by
+  // exactly the drag, the lattice and the sphere do not; each drag is one command.
+  void transformerSetsAnAffineWidgetsPlacement() {
+    Fixture f;
+    f.controller.setVariation(f.widget, 0.1);
+    const Eigen::MatrixX3d points = f.scene.widgets.controlPoints(f.lattice);
+    const Eigen::MatrixX3d sphere = f.deformer.points(f.sphere);
+    f.controller.setSelection({f.widget});
+    const app::Transformer t = *f.controller.transformer();
+    const Eigen::Vector3d o = t.frame.translation(), z = t.frame.linear().col(2);
+    const Eigen::Vector3d view = (t.frame.linear().col(0) + t.frame.linear().col(1)).normalized();
+    const std::size_t position = f.commands.position();
+
+    // Move z by 0.3.
+    QCOMPARE(f.controller.press(looking(o + 0.7 * t.size * z, view), 1e-3), InteractionController::PressResult::Handle);
+    f.controller.drag(looking(o + (0.7 * t.size + 0.3) * z, view));
+    f.controller.release();
+    widgets::WidgetFrame now = f.scene.widgets.affineFrame(f.widget);
+    QVERIFY(now.frame.translation().isApprox(o + 0.3 * z, 1e-12));
+    QVERIFY(now.frame.linear().isApprox(t.frame.linear(), 1e-12));
+    QCOMPARE(f.scene.widgets.controlPoints(f.lattice), points);
+    QCOMPARE(f.deformer.points(f.sphere), sphere);
+    QCOMPARE(f.commands.position(), position + 1);
+    QVERIFY(f.commands.undoDescription().rfind("Move z ", 0) == 0);
+    QCOMPARE(f.scene.widgets.variation(f.widget), 0.1);  // the variation is not touched
+
+    // Turn z by a quarter: the translate axis (world x) now points along world y, and the
+    // next variation moves the point along y.
+    const app::Transformer t2 = *f.controller.transformer();
+    const Eigen::Vector3d o2 = t2.frame.translation();
+    const Eigen::Vector3d x = t2.frame.linear().col(0), y = t2.frame.linear().col(1);
+    const double r = app::TransformerLayout::turnRadius * t2.size;
+    QCOMPARE(f.controller.press(looking(o2 + r * (std::cos(0.3) * x + std::sin(0.3) * y), z), 1e-3),
+             InteractionController::PressResult::Handle);
+    f.controller.drag(looking(o2 + r * (std::cos(0.3 + M_PI / 2) * x + std::sin(0.3 + M_PI / 2) * y), z));
+    f.controller.release();
+    now = f.scene.widgets.affineFrame(f.widget);
+    QVERIFY(now.frame.linear().col(0).isApprox(y, 1e-12));
+    QVERIFY(now.frame.translation().isApprox(o2, 1e-12));
+    const Eigen::Index top = 1 + 3 * (1 + 3 * 2);
+    const Eigen::Vector3d before = f.scene.widgets.worldControlPoints(f.lattice).row(top).transpose();
+    f.controller.setVariation(f.widget, 0.3);
+    const Eigen::Vector3d after = f.scene.widgets.worldControlPoints(f.lattice).row(top).transpose();
+    QVERIFY((after - before).isApprox(0.2 * y, 1e-9));
+    f.commands.undo();
+
+    // Size: twice as big, about its origin.
+    const app::Transformer t3 = *f.controller.transformer();
+    const double at = app::TransformerLayout::sizeAt * t3.size;
+    const Eigen::Vector3d x3 = t3.frame.linear().col(0);
+    QCOMPARE(f.controller.press(looking(t3.frame * Eigen::Vector3d(at, 0, 0), z), 1e-3),
+             InteractionController::PressResult::Handle);
+    f.controller.drag(looking(t3.frame.translation() + 2.0 * at * x3, z));
+    f.controller.release();
+    now = f.scene.widgets.affineFrame(f.widget);
+    QVERIFY(std::abs(now.size - 2.0 * t3.size / 2.5) < 1e-12);
+    QVERIFY(now.frame.translation().isApprox(t3.frame.translation(), 1e-12));
+
+    // Undo all three: the placement of the start.
+    while (f.commands.position() > position) f.commands.undo();
+    QVERIFY(f.scene.widgets.affineFrame(f.widget).frame.isApprox(t.frame, 1e-14));
+    QCOMPARE(f.deformer.points(f.sphere), sphere);
+  }
+
+  void escapeDuringAHandleDragPutsTheWidgetBack() {
+    Fixture f;
+    f.controller.setSelection({f.widget});
+    const app::Transformer t = *f.controller.transformer();
+    const Eigen::Vector3d o = t.frame.translation(), z = t.frame.linear().col(2);
+    const Eigen::Vector3d view = (t.frame.linear().col(0) + t.frame.linear().col(1)).normalized();
+    const Eigen::Affine3d placement = f.scene.widgets.placement(f.widget);
+    const std::size_t position = f.commands.position();
+    f.controller.press(looking(o + 0.7 * t.size * z, view), 1e-3);
+    f.controller.drag(looking(o + (0.7 * t.size + 0.5) * z, view));
+    QVERIFY(!f.scene.widgets.placement(f.widget).isApprox(placement));
+    f.controller.cancel();
+    QCOMPARE(f.scene.widgets.placement(f.widget).matrix(), placement.matrix());
+    QCOMPARE(f.commands.position(), position);
+    QVERIFY(!f.controller.dragging());
+  }
+
+  // Turning a deformed lattice with its transformer: the frame turns about the lattice's centre,
+  // the sphere is re-embedded, and its points are what a lattice set to that frame directly
+  // gives (computed independently on a copy); undo restores the sphere exactly.
+  void transformerTurnsALatticeAndTheSphereFollowsTheModel() {
+    Fixture f;
+    f.controller.setVariation(f.widget, 0.3);
+    const Eigen::MatrixX3d sphere = f.deformer.points(f.sphere);
+    const Eigen::Affine3d frame = f.scene.widgets.latticeFrame(f.lattice);
+    f.controller.setSelection({f.lattice});
+    const app::Transformer t = *f.controller.transformer();
+    const Eigen::Vector3d o = t.frame.translation();
+    const Eigen::Vector3d x = t.frame.linear().col(0), y = t.frame.linear().col(1), z = t.frame.linear().col(2);
+    const double r = app::TransformerLayout::turnRadius * t.size;
+    auto onRing = [&](double a) { return looking(o + r * (std::cos(a) * y + std::sin(a) * z), x); };
+    QCOMPARE(f.controller.press(onRing(0.4), 1e-3), InteractionController::PressResult::Handle);
+    f.controller.drag(onRing(0.4 + 0.2));
+    QVERIFY(maxDifference(f.deformer.points(f.sphere), sphere) > 1e-3);  // live
+    f.controller.drag(onRing(0.4 + 0.5));
+    f.controller.release();
+    const Eigen::Affine3d turn = Eigen::Translation3d(o) * Eigen::AngleAxisd(0.5, x) * Eigen::Translation3d(-o);
+    QVERIFY(f.scene.widgets.latticeFrame(f.lattice).isApprox(turn * frame, 1e-12));
+    QVERIFY(f.commands.undoDescription().rfind("Turn x ", 0) == 0);
+
+    scenes::Scene expected = f.scene;
+    expected.widgets.setLatticeFrame(f.lattice, turn * frame);
+    scenes::SceneDeformer independent;
+    independent.finishGesture(expected);
+    QVERIFY(maxDifference(f.deformer.points(f.sphere), independent.points(f.sphere)) < 1e-12);
+
+    // Size along y by 1.5, then undo both.
+    const app::Transformer t2 = *f.controller.transformer();
+    const double at = app::TransformerLayout::sizeAt * t2.size;
+    const Eigen::Vector3d y2 = t2.frame.linear().col(1);
+    QCOMPARE(f.controller.press(looking(t2.frame.translation() + at * y2, t2.frame.linear().col(2)), 1e-3),
+             InteractionController::PressResult::Handle);
+    f.controller.drag(looking(t2.frame.translation() + 1.5 * at * y2, t2.frame.linear().col(2)));
+    f.controller.release();
+    // The lattice's extent along y2 grew by 1.5 about the centre: its rest points' spread.
+    auto spread = [&](const Eigen::Vector3d& axis) {
+      const Eigen::VectorXd d = f.scene.widgets.worldRestPoints(f.lattice) * axis;
+      return d.maxCoeff() - d.minCoeff();
+    };
+    f.commands.undo();
+    const double spreadBefore = spread(y2);
+    f.commands.redo();
+    QVERIFY(std::abs(spread(y2) - 1.5 * spreadBefore) < 1e-9);
+    QVERIFY((f.controller.transformer()->frame.translation() - o).norm() < 1e-12);
+    f.commands.undo();
+    f.commands.undo();
+    QVERIFY(f.scene.widgets.latticeFrame(f.lattice).isApprox(frame, 1e-14));
+    QVERIFY(maxDifference(f.deformer.points(f.sphere), sphere) < 1e-12);
   }
 };
 

@@ -1,6 +1,7 @@
 #include "ffdkit/app/interaction_controller.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -12,6 +13,25 @@ namespace ffdkit::app {
 
 using widgets::WidgetId;
 using widgets::WidgetType;
+
+namespace {
+bool sameState(const widgets::WidgetModelState& a, const widgets::WidgetModelState& b) {
+  auto samePoints = [](const auto& p, const auto& q) {
+    return p.first == q.first && p.second.rows() == q.second.rows() && p.second == q.second;
+  };
+  auto sameFrames = [](const auto& p, const auto& q) { return p.first == q.first && p.second.matrix() == q.second.matrix(); };
+  return std::equal(a.controlPoints.begin(), a.controlPoints.end(), b.controlPoints.begin(), b.controlPoints.end(), samePoints) &&
+         std::equal(a.latticeFrames.begin(), a.latticeFrames.end(), b.latticeFrames.begin(), b.latticeFrames.end(), sameFrames) &&
+         a.variations == b.variations;
+}
+
+/// "Move x", "Turn z", ...: the undo text of a handle drag.
+std::string handleDragDescription(TransformerHandle handle) {
+  std::string text = transformerHandleName(handle);
+  text[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(text[0])));
+  return text;
+}
+}  // namespace
 
 void fitAndAttachLattice(scenes::Scene& scene, WidgetId lattice, const std::string& objectName) {
   const scenes::SceneObject* object = scene.findObject(objectName);
@@ -50,8 +70,18 @@ bool InteractionController::hover(const widgets::Ray& ray, double tolerance) {
   widgets::PickOptions options;
   options.tolerance = tolerance;
   const auto hit = scene_.widgets.pick(ray, options);
+  const auto gizmo = hit || pickPoint(ray, tolerance) ? std::nullopt : transformer();  // the order of press()
+  const std::optional<TransformerHandle> handle = gizmo ? pickTransformer(*gizmo, ray, tolerance) : std::nullopt;
+  const bool handleChanged = handle != hoveredHandle_;
+  hoveredHandle_ = handle;
+  if (handle) {
+    const bool changed = handleChanged || hovered_.has_value();
+    hovered_.reset();
+    if (changed) notify();
+    return changed;
+  }
   const std::optional<WidgetId> now = hit ? std::optional<WidgetId>(hit->id) : std::nullopt;
-  if (now == hovered_) return false;
+  if (now == hovered_ && !handleChanged) return false;
   hovered_ = now;
   notify();
   return true;
@@ -67,7 +97,8 @@ InteractionController::PressResult InteractionController::press(const widgets::R
     options.cells = false;
     options.lattices = true;
   }
-  if (const auto hit = scene_.widgets.pick(ray, options)) {
+  const auto hit = scene_.widgets.pick(ray, options);
+  if (hit) {
     if (!extend) selection_.clear();
     if (std::find(selection_.begin(), selection_.end(), hit->id) == selection_.end()) selection_.push_back(hit->id);
     point_.reset();
@@ -79,6 +110,24 @@ InteractionController::PressResult InteractionController::press(const widgets::R
     return PressResult::Widget;
   }
   // A lattice control point: the target of "add widget" (a point cell is made on demand).
+  const std::optional<LatticePointRef> best = pickPoint(ray, tolerance);
+  // The model's own glyphs, cells and points come first (small targets, and dragging them is the
+  // point of the tool); the transformer's larger handles take the rest.
+  if (!best && !lattices)
+    if (const auto gizmo = transformer())
+      if (const auto handle = pickTransformer(*gizmo, ray, tolerance)) {
+        beginHandleDrag(*gizmo, *handle, ray);
+        return PressResult::Handle;
+      }
+  if (!best) return PressResult::Nothing;
+  point_ = best;
+  if (!extend) selection_.clear();
+  selection_.push_back(best->lattice);
+  notify();
+  return PressResult::Point;
+}
+
+std::optional<LatticePointRef> InteractionController::pickPoint(const widgets::Ray& ray, double tolerance) const {
   const Eigen::Vector3d dir = ray.direction.normalized();
   std::optional<LatticePointRef> best;
   double bestT = std::numeric_limits<double>::infinity();
@@ -92,16 +141,47 @@ InteractionController::PressResult InteractionController::press(const widgets::R
       best = LatticePointRef{lattice, i};
     }
   }
-  if (!best) return PressResult::Nothing;
-  point_ = best;
-  if (!extend) selection_.clear();
-  selection_.push_back(best->lattice);
+  return best;
+}
+
+void InteractionController::beginHandleDrag(const Transformer& gizmo, TransformerHandle handle, const widgets::Ray& ray) {
+  handleTarget_ = selection_.front();
+  handleDrag_.emplace(gizmo, handle, ray);
+  hoveredHandle_ = handle;
+  point_.reset();
+  if (scene_.widgets.type(handleTarget_) == WidgetType::Affine) {
+    // The placement is not part of WidgetModelState: undo to the whole model.
+    handleStart_ = snapshot(false);
+    placementStart_ = scene_.widgets.placement(handleTarget_);
+    placementBase_ = scene_.widgets.placementBase(handleTarget_);
+    dragLattice_.reset();
+  } else {
+    // A lattice moves through a gesture: its frame (a root) or its parent cell (a child)
+    // follows, bound widgets too, and the attached objects are re-embedded as it moves.
+    handleStart_.reset();
+    dragStart_ = scene_.widgets.captureState();
+    scene_.widgets.beginGesture(handleTarget_);
+    dragLattice_ = handleTarget_;
+  }
+  dragging_ = true;
   notify();
-  return PressResult::Point;
 }
 
 void InteractionController::drag(const widgets::Ray& ray) {
   if (!dragging_) return;
+  if (handleDrag_) {
+    const Eigen::Affine3d motion = handleDrag_->motion(ray);
+    if (handleStart_) {
+      // F' = M * F with F = base * placement (WidgetModel::placementBase).
+      scene_.widgets.setPlacement(handleTarget_, placementBase_.inverse() * motion * placementBase_ * placementStart_);
+      notify();  // a placement moves no points
+      return;
+    }
+    scene_.widgets.updateGesture(motion);
+    deformer_.update(scene_, dragLattice_);
+    notify();
+    return;
+  }
   scene_.widgets.dragTo(ray);
   deformer_.update(scene_, dragLattice_);
   notify();
@@ -110,11 +190,28 @@ void InteractionController::drag(const widgets::Ray& ray) {
 void InteractionController::release() {
   if (!dragging_) return;
   dragging_ = false;
+  const std::optional<TransformerHandle> handle =
+      handleDrag_ ? std::optional<TransformerHandle>(handleDrag_->handle()) : std::nullopt;
+  handleDrag_.reset();
+  if (handleStart_) {
+    Snapshot before = std::move(*handleStart_);
+    handleStart_.reset();
+    if (scene_.widgets.placement(handleTarget_).matrix() != placementStart_.matrix())
+      commands_.pushSnapshots(handleDragDescription(handle.value_or(TransformerHandle::MoveX)) + " " + scene_.widgets.name(handleTarget_),
+                              std::move(before), snapshot(false), [this](const Snapshot& s) { restore(s); });
+    notify();
+    return;
+  }
   const WidgetId target = *scene_.widgets.gestureWidget();
   scene_.widgets.endGesture();
   deformer_.finishGesture(scene_);  // the exact result, in one pass
   const widgets::WidgetModelState end = scene_.widgets.captureState();
-  commands_.pushSnapshots("Drag " + scene_.widgets.name(target), dragStart_, end,
+  const std::string what = handle ? handleDragDescription(*handle) : std::string("Drag");
+  if (sameState(dragStart_, end)) {  // a click that selected a widget changed nothing: no command
+    notify();
+    return;
+  }
+  commands_.pushSnapshots(what + " " + scene_.widgets.name(target), dragStart_, end,
                           [this](const widgets::WidgetModelState& state) {
                             scene_.widgets.restoreState(state);
                             refresh();
@@ -125,8 +222,47 @@ void InteractionController::release() {
 void InteractionController::cancel() {
   if (!dragging_) return;
   dragging_ = false;
+  handleDrag_.reset();
+  if (handleStart_) {
+    scene_.widgets.setPlacement(handleTarget_, placementStart_);
+    handleStart_.reset();
+    notify();
+    return;
+  }
   scene_.widgets.cancelGesture();
   refresh();
+}
+
+std::optional<Transformer> InteractionController::transformer() const {
+  if (selection_.size() != 1 || point_) return std::nullopt;
+  const auto& m = scene_.widgets;
+  const WidgetId id = selection_.front();
+  if (!m.contains(id)) return std::nullopt;
+  Transformer t;
+  if (m.type(id) == WidgetType::Affine) {
+    const widgets::WidgetFrame f = m.affineFrame(id);
+    t.frame = f.frame;
+    t.size = 2.5 * f.size;
+    t.uniformSize = true;
+    return t;
+  }
+  if (m.type(id) != WidgetType::Lattice) return std::nullopt;
+  // At the centre of the rest lattice, along the rigid part of the frame (polar decomposition).
+  const Eigen::Affine3d frame = m.latticeFrame(id);
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(frame.linear(), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d rotation = svd.matrixU() * svd.matrixV().transpose();
+  if (rotation.determinant() < 0.0) rotation = -rotation;  // a mirrored frame: keep right-handed axes
+  const Eigen::MatrixX3d rest = m.worldRestPoints(id);
+  t.frame.linear() = rotation;
+  t.frame.translation() = rest.colwise().mean().transpose();
+  t.size = std::max(0.3 * (rest.colwise().maxCoeff() - rest.colwise().minCoeff()).norm(), 1e-6);
+  t.uniformSize = false;
+  return t;
+}
+
+std::optional<TransformerHandle> InteractionController::transformerHandle() const {
+  if (handleDrag_) return handleDrag_->handle();
+  return transformer() ? hoveredHandle_ : std::nullopt;
 }
 
 std::optional<WidgetId> InteractionController::activeLattice(WidgetId id) const {
@@ -167,6 +303,8 @@ ViewHighlights InteractionController::highlights() const {
   h.selected = selection_;
   h.visited = scene_.widgets.gestureVisitOrder();
   h.point = point_;
+  h.transformer = transformer();
+  h.transformerHandle = transformerHandle();
   return h;
 }
 

@@ -664,6 +664,7 @@ bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
         const bool lattices = (e->modifiers() & Qt::AltModifier) != 0;
         const auto hit = d.controller->press(d.rayAt(d.pressAt), d.tolerance(), extend, lattices);
         d.pressOnEmpty = hit == InteractionController::PressResult::Nothing;
+        if (hit == InteractionController::PressResult::Handle) return true;  // the manipulator: no orbit
         if (hit != InteractionController::PressResult::Nothing) {
           d.selectedObjects.clear();
           d.selectedBinding.reset();

@@ -381,6 +381,10 @@ struct SceneView::Impl {
   vtkRenderer* renderer = nullptr;
   std::vector<ObjectActor> objects;
   std::vector<vtkSmartPointer<vtkActor>> widgetActors;
+  // The transformer manipulator is drawn by a second renderer in the layer above, sharing the
+  // camera, so that it stays visible inside the object it moves (a lattice's centre usually is).
+  vtkSmartPointer<vtkRenderer> overlay;
+  std::vector<vtkSmartPointer<vtkActor>> overlayActors;
   ViewHighlights highlights;
 
   Eigen::Vector3d emphasis(WidgetId id, const Eigen::Vector3d& base) const {
@@ -492,7 +496,97 @@ struct SceneView::Impl {
     return n == objects.size();
   }
 
+  void removeOverlay() {
+    if (!overlay) return;
+    if (vtkRenderWindow* window = overlay->GetRenderWindow()) window->RemoveRenderer(overlay);
+    overlay = nullptr;
+    overlayActors.clear();
+  }
+
+  vtkRenderer* overlayRenderer() {
+    vtkRenderWindow* window = renderer->GetRenderWindow();
+    if (window == nullptr) return nullptr;
+    if (overlay && overlay->GetRenderWindow() == window) return overlay;
+    removeOverlay();
+    overlay = vtkSmartPointer<vtkRenderer>::New();
+    overlay->SetLayer(renderer->GetLayer() + 1);
+    overlay->SetInteractive(false);
+    overlay->SetActiveCamera(renderer->GetActiveCamera());
+    overlay->SetViewport(renderer->GetViewport());
+    if (window->GetNumberOfLayers() < overlay->GetLayer() + 1) window->SetNumberOfLayers(overlay->GetLayer() + 1);
+    window->AddRenderer(overlay);
+    return overlay;
+  }
+
+  // The handles of TransformerLayout, red / green / blue per axis, the hovered or dragged one
+  // in the selection colour.
+  void buildTransformer() {
+    if (overlay) {
+      for (auto& actor : overlayActors) overlay->RemoveActor(actor);
+      overlayActors.clear();
+    }
+    if (!highlights.transformer) return;
+    vtkRenderer* target = overlayRenderer();
+    if (target == nullptr) return;
+    using L = TransformerLayout;
+    const Transformer& t = *highlights.transformer;
+    const double s = t.size;
+    const Eigen::Vector3d axisColour[3] = {{0.95, 0.25, 0.25}, {0.3, 0.9, 0.3}, {0.3, 0.5, 1.0}};
+    auto add = [&](vtkPolyData* shape, const Eigen::Affine3d& place, TransformerHandle handle) {
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputData(shape);
+      auto actor = vtkSmartPointer<vtkActor>::New();
+      actor->SetMapper(mapper);
+      const Eigen::Vector3d colour =
+          highlights.transformerHandle == handle ? kSelected : axisColour[transformerAxis(handle)];
+      actor->GetProperty()->SetColor(colour.x(), colour.y(), colour.z());
+      actor->GetProperty()->SetAmbient(0.35);
+      vtkNew<vtkTransform> transform;
+      const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m = (Eigen::Affine3d(t.frame) * place).matrix();
+      transform->SetMatrix(m.data());
+      actor->SetUserTransform(transform);
+      target->AddActor(actor);
+      overlayActors.push_back(actor);
+    };
+    vtkNew<vtkArrowSource> arrow;  // along +x, length 1
+    const double length = L::moveTip - L::moveFrom;
+    arrow->SetShaftRadius(0.025 / length);
+    arrow->SetTipRadius(0.07 / length);
+    arrow->SetTipLength((L::moveTip - L::moveTo) / length);
+    arrow->SetShaftResolution(12);
+    arrow->SetTipResolution(20);
+    arrow->Update();
+    vtkNew<vtkParametricTorus> torus;  // about z
+    torus->SetRingRadius(L::turnRadius);
+    torus->SetCrossSectionRadius(0.018);
+    vtkNew<vtkParametricFunctionSource> ring;
+    ring->SetParametricFunction(torus);
+    ring->SetUResolution(64);
+    ring->SetVResolution(6);
+    ring->Update();
+    vtkNew<vtkCubeSource> cube;
+    cube->SetXLength(2.0 * L::sizeHalf);
+    cube->SetYLength(2.0 * L::sizeHalf);
+    cube->SetZLength(2.0 * L::sizeHalf);
+    cube->Update();
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d a = Eigen::Vector3d::Unit(i);
+      // Rotations taking +x (arrow) and +z (ring) onto axis i.
+      const Eigen::Matrix3d xToAxis = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), a).toRotationMatrix();
+      const Eigen::Matrix3d zToAxis = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), a).toRotationMatrix();
+      add(arrow->GetOutput(),
+          Eigen::Affine3d(Eigen::Scaling(s)) * Eigen::Affine3d(xToAxis) * Eigen::Translation3d(L::moveFrom, 0, 0) *
+              Eigen::Scaling(length),
+          static_cast<TransformerHandle>(i));
+      add(ring->GetOutput(), Eigen::Affine3d(Eigen::Scaling(s)) * Eigen::Affine3d(zToAxis),
+          static_cast<TransformerHandle>(3 + i));
+      add(cube->GetOutput(), Eigen::Affine3d(Eigen::Scaling(s)) * Eigen::Translation3d(L::sizeAt * a),
+          static_cast<TransformerHandle>(6 + i));
+    }
+  }
+
   void buildWidgets(const widgets::WidgetModel& model) {
+    buildTransformer();
     for (auto& actor : widgetActors) renderer->RemoveActor(actor);
     widgetActors.clear();
     for (WidgetId lattice : model.widgets(widgets::WidgetType::Lattice)) {
@@ -540,6 +634,7 @@ struct SceneView::Impl {
 SceneView::SceneView(vtkRenderer* renderer) : impl_(std::make_unique<Impl>()) { impl_->renderer = renderer; }
 
 SceneView::~SceneView() {
+  impl_->removeOverlay();
   impl_->clearObjects();
   for (auto& actor : impl_->widgetActors) impl_->renderer->RemoveActor(actor);
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ffdkit/app/scene_view.h"
+#include "ffdkit/app/transformer.h"
 #include "ffdkit/scenes/command_stack.h"
 #include "ffdkit/scenes/primitive.h"
 #include "ffdkit/scenes/scene.h"
@@ -51,10 +52,12 @@ class InteractionController {
   enum class PressResult {
     Nothing,  ///< empty space: the caller orbits the camera (and clears the selection on a click)
     Point,    ///< a lattice control point became the picked point; the camera may still orbit
-    Widget    ///< a widget was selected and its drag began: the caller must not orbit
+    Widget,   ///< a widget was selected and its drag began: the caller must not orbit
+    Handle    ///< a handle of the transformer manipulator: its drag began (no orbit)
   };
   /// Picks under the ray: an affine glyph or a cell (WidgetModel::pick), else a lattice control
-  /// point within `tolerance` (world units). A widget becomes the selection (or is added to it
+  /// point within `tolerance` (world units), else a handle of the transformer manipulator (when
+  /// one is shown). A widget becomes the selection (or is added to it
   /// with `extend`) and starts a drag (WidgetModel::beginDrag).
   /// With `lattices`, only lattice widgets are picked (by their world bounding box) and dragged
   /// in the view plane; the application binds it to Alt+drag.
@@ -72,6 +75,16 @@ class InteractionController {
   void setPickedPoint(std::optional<LatticePointRef> point);
   void clearSelection();
   std::optional<widgets::WidgetId> hovered() const { return hovered_; }
+
+  // ---- transformer manipulator (seed 001 l.2264) -------------------------------------------
+  /// The manipulator of the selection: shown when exactly one affine widget or lattice widget is
+  /// selected; at the widget's frame (an affine widget, 2.5 glyph sizes, uniform size handles)
+  /// or at the lattice's centre along its axes (size handles per axis). Its drags set an affine
+  /// widget's placement (the points do not move) or move the lattice's frame through a lattice
+  /// gesture (the attached objects are re-embedded, bound widgets follow); one command each.
+  std::optional<Transformer> transformer() const;
+  /// The handle under the pointer, or being dragged.
+  std::optional<TransformerHandle> transformerHandle() const;
   /// What a view should emphasise now.
   ViewHighlights highlights() const;
 
@@ -142,6 +155,9 @@ class InteractionController {
   template <class Change>
   auto edit(const std::string& description, Change change, bool withObjects = false);
   std::optional<widgets::WidgetId> activeLattice(widgets::WidgetId id) const;
+  /// The nearest lattice control point within `tolerance` of the ray.
+  std::optional<LatticePointRef> pickPoint(const widgets::Ray& ray, double tolerance) const;
+  void beginHandleDrag(const Transformer& gizmo, TransformerHandle handle, const widgets::Ray& ray);
   void notify();
 
   scenes::Scene& scene_;
@@ -153,6 +169,14 @@ class InteractionController {
   bool dragging_ = false;
   std::optional<widgets::WidgetId> dragLattice_;
   widgets::WidgetModelState dragStart_;
+  // Transformer: the hovered handle; during a handle drag, its math, its widget, and for an
+  // affine widget the placement and base at the press and the whole model to undo to.
+  std::optional<TransformerHandle> hoveredHandle_;
+  std::optional<TransformerDrag> handleDrag_;
+  widgets::WidgetId handleTarget_;
+  Eigen::Affine3d placementStart_ = Eigen::Affine3d::Identity();
+  Eigen::Affine3d placementBase_ = Eigen::Affine3d::Identity();
+  std::optional<Snapshot> handleStart_;
 };
 
 }  // namespace ffdkit::app

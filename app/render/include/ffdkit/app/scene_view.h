@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "ffdkit/app/transformer.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/widgets/ray.h"
@@ -34,6 +35,8 @@ struct ViewHighlights {
   std::vector<widgets::WidgetId> selected;
   std::vector<widgets::WidgetId> visited;  ///< widgets the active gesture moves (spec §5)
   std::optional<LatticePointRef> point;    ///< a picked lattice point
+  std::optional<Transformer> transformer;  ///< the manipulator of the selection, if shown
+  std::optional<TransformerHandle> transformerHandle;  ///< its hovered or dragged handle
 };
 
 /// Draws a scene into a VTK renderer: shaded (or zebra-striped, DisplaySettings::surfaceStyle)
