@@ -1,6 +1,8 @@
 #include "ffdkit/app/main_window.h"
 
 #include <algorithm>
+#include <atomic>
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <numbers>
@@ -29,6 +31,7 @@
 #include <QProgressDialog>
 #include <QPointer>
 #include <QThread>
+#include <QTimer>
 #include <QScrollArea>
 #include <QSettings>
 #include <QSpinBox>
@@ -36,6 +39,7 @@
 #include <QToolBar>
 
 #include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/ffd/cancelled.h"
 #include "ffdkit/app/scene_view.h"
 #include "ffdkit/app/vtk_view_widget.h"
 #include "ffdkit/scenes/mesh_io.h"
@@ -566,40 +570,56 @@ bool MainWindow::attachLattice(widgets::WidgetId lattice, const std::string& obj
     d.controller->attachLattice(lattice, object);
     return true;
   }
-  // Embed on a copy of the scene in a worker thread; the GUI stays live and can cancel. The
-  // worker owns its copy, so a cancelled embedding finishes harmlessly in the background.
+  // Embed on a copy of the scene in a worker thread; the GUI stays live, shows the embedding's
+  // progress and can cancel it: the worker's progress hook reports into atomics that a timer
+  // polls, and stops the embedding (ffd::Cancelled) at its next chunk once Cancel is pressed.
   struct Job {
     scenes::Scene scene;
     scenes::SceneDeformer deformer;
     std::string error;
+    std::atomic<int> permille{0};
+    std::atomic<bool> cancel{false};
   };
   auto job = std::make_shared<Job>();
   job->scene = d.scene;
   fitAndAttachLattice(job->scene, lattice, object);  // throws before anything starts
+  job->deformer.setProgress([raw = job.get()](double fraction) {
+    raw->permille.store(static_cast<int>(std::lround(1000.0 * fraction)));
+    return !raw->cancel.load();
+  });
   QThread* thread = QThread::create([job] {
     try {
       job->deformer.finishGesture(job->scene);
+    } catch (const ffd::Cancelled&) {
+      // The copy is dropped below.
     } catch (const std::exception& e) {
       job->error = e.what();
     }
   });
   QProgressDialog progress(tr("Embedding %1 points of '%2'...").arg(target->mesh.points.rows()).arg(qs(object)),
-                           tr("Cancel"), 0, 0, this);
+                           tr("Cancel"), 0, 1000, this);
   progress.setObjectName("embedProgress");
   progress.setWindowModality(Qt::WindowModal);
   progress.setMinimumDuration(0);
+  progress.setAutoReset(false);
+  progress.setAutoClose(false);
+  QTimer poll;
+  connect(&poll, &QTimer::timeout, &progress, [&] { progress.setValue(job->permille.load()); });
   QEventLoop loop;
   connect(thread, &QThread::finished, &loop, &QEventLoop::quit);
-  connect(&progress, &QProgressDialog::canceled, &loop, &QEventLoop::quit);
+  connect(&progress, &QProgressDialog::canceled, &loop, [&] {
+    job->cancel.store(true);  // the worker stops at its next chunk; wait for it below
+  });
   connect(thread, &QThread::finished, thread, &QObject::deleteLater);
-  const QPointer<QThread> running(thread);
   thread->start();
   progress.show();
-  loop.exec();
-  const bool finished = running.isNull() || running->isFinished();
-  if (progress.wasCanceled()) return false;
+  poll.start(30);
+  loop.exec();  // until the worker has finished, cancelled or not
+  poll.stop();
   progress.reset();
-  if (!finished) return false;
+  const bool cancelled = job->cancel.load();
+  job->deformer.setProgress({});  // the hook points into the job
+  if (cancelled) return false;
   if (!job->error.empty()) throw std::runtime_error(job->error);
   d.controller->adoptDeformer(std::move(job->deformer));
   d.controller->attachLattice(lattice, object);  // the same edit: nothing left to embed

@@ -43,8 +43,9 @@ class MainWindow : public QMainWindow {
   /// Writes the selected (else the first) object at its deformed points. @throws scenes::MeshIoError.
   void exportMesh(const std::filesystem::path& path);
   /// Attaches `lattice` to `object` (undoable). An object of at least backgroundEmbedPoints()
-  /// points is embedded in a worker thread first, behind a progress dialog whose Cancel leaves
-  /// the scene as it was. @return false if cancelled. @throws what the model throws.
+  /// points is embedded in a worker thread first, behind a progress dialog (the fraction of the
+  /// points embedded) whose Cancel stops the embedding at its next chunk and leaves the scene as
+  /// it was. @return false if cancelled. @throws what the model throws.
   bool attachLattice(widgets::WidgetId lattice, const std::string& object);
   static void setBackgroundEmbedPoints(long points);
   static long backgroundEmbedPoints();
