@@ -4,6 +4,7 @@
 #include <QAction>
 #include <QApplication>
 #include <QMouseEvent>
+#include <QStatusBar>
 #include <QSurfaceFormat>
 #include <QTest>
 
@@ -123,6 +124,8 @@ class TransformerGuiTest : public QObject {
     const Eigen::MatrixX3d sphere = w.deformer().points(s.sphere);
     const std::size_t position = w.commands().position();
     dragWorld(w, shaft, shaft + 0.2 * z);
+    QVERIFY2(w.statusBar()->currentMessage().startsWith("move z 0.19") || w.statusBar()->currentMessage().startsWith("move z 0.20"),
+             qPrintable(w.statusBar()->currentMessage()));
     f = m.affineFrame(s.widget);
     QVERIFY2((f.frame.translation() - (o + 0.2 * z)).norm() < 0.01,
              qPrintable(QString("moved by %1").arg((f.frame.translation() - o).dot(z))));

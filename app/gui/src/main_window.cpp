@@ -218,6 +218,15 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     if (!s.showingScene) return;
     s.sceneView->setHighlights(s.controller->highlights());
     s.sceneView->refresh(s.scene, s.deformer);
+    if (const auto value = s.controller->handleDragValue()) {
+      // What the transformer drag does so far, as a designer reads it.
+      const TransformerHandle handle = *s.controller->transformerHandle();
+      const int group = static_cast<int>(handle) / 3;
+      const QString amount = group == 0   ? QString::number(*value, 'f', 3)
+                             : group == 1 ? QString("%1°").arg(*value * 180.0 / std::numbers::pi, 0, 'f', 1)
+                                          : QString("x%1").arg(*value, 0, 'f', 3);
+      statusBar()->showMessage(QString("%1 %2").arg(transformerHandleName(handle), amount));
+    }
     const auto& stats = s.deformer.lastStats();
     // An update with nothing to do (a hover, a selection) keeps the last real deform time.
     if (stats.seconds > 0.0 && stats.deformedPoints > 0 && (stats.seconds >= 1e-5 || stats.reembeddedStages > 0))

@@ -85,6 +85,10 @@ class InteractionController {
   std::optional<Transformer> transformer() const;
   /// The handle under the pointer, or being dragged.
   std::optional<TransformerHandle> transformerHandle() const;
+  /// During a handle drag: its value so far (TransformerDrag::value: distance, rad or factor).
+  std::optional<double> handleDragValue() const {
+    return handleDrag_ ? std::optional<double>(handleDrag_->value()) : std::nullopt;
+  }
   /// What a view should emphasise now.
   ViewHighlights highlights() const;
 
