@@ -6,6 +6,7 @@
 
 #include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/scenes/scene_deformer.h"
+#include "ffdkit/widgets/thesis_examples.h"
 
 using namespace ffdkit;
 using app::InteractionController;
@@ -338,6 +339,33 @@ class InteractionControllerTest : public QObject {
     f.commands.undo();
     QVERIFY(f.scene.widgets.latticeFrame(f.lattice).isApprox(frame, 1e-14));
     QVERIFY(maxDifference(f.deformer.points(f.sphere), sphere) < 1e-12);
+  }
+
+  // A child lattice's transformer moves it through its gesture: the hierarchy binding carries
+  // the motion to the parent's face, and the child follows that face (Fig. 6-9).
+  void aChildLatticesTransformerMovesItsParentCell() {
+    scenes::Scene scene;
+    scenes::SceneDeformer deformer;
+    scenes::CommandStack commands;
+    InteractionController controller(scene, deformer, commands);
+    widgets::Fig69 fig = widgets::buildFig69();
+    controller.replaceWidgets(fig.model);
+    const Eigen::Affine3d frame = scene.widgets.latticeFrame(fig.child);
+    const Eigen::MatrixX3d parent = scene.widgets.controlPoints(fig.parent);
+    controller.setSelection({fig.child});
+    const app::Transformer t = *controller.transformer();
+    const Eigen::Vector3d o = t.frame.translation(), z = t.frame.linear().col(2);
+    const Eigen::Vector3d view = (t.frame.linear().col(0) + t.frame.linear().col(1)).normalized();
+    QCOMPARE(controller.press(looking(o + 0.6 * t.size * z, view), 1e-3), InteractionController::PressResult::Handle);
+    controller.drag(looking(o + (0.6 * t.size + 0.2) * z, view));
+    controller.release();
+    QVERIFY(scene.widgets.latticeFrame(fig.child).isApprox(Eigen::Translation3d(0.2 * z) * frame, 1e-12));
+    const Eigen::MatrixX3d moved = scene.widgets.controlPoints(fig.parent) - parent;
+    QVERIFY(std::abs(moved.col(2).maxCoeff() - 0.2 * z.z()) < 1e-12);  // the top face rose with it
+    QVERIFY(std::abs(moved.col(2).minCoeff()) < 1e-12);                // the bottom stayed
+    commands.undo();
+    QVERIFY(scene.widgets.latticeFrame(fig.child).isApprox(frame, 1e-14));
+    QCOMPARE(scene.widgets.controlPoints(fig.parent), parent);
   }
 };
 
