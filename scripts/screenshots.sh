@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Renders every sample scene with the ffdkit application (its --screenshot option: the window's
 # 3D view, glyphs and lattices included) into docs/images/<scene>.png, as shown in the README,
-# and the whole window on the hierarchy scene into docs/images/app-window.png (docs/app.md).
+# and the whole window on the hierarchy scene, its child lattice selected (transformer and
+# properties shown), into docs/images/app-window.png (docs/app.md).
 # Runs under Xvfb when there is no display. Builds the application first unless
 # FFDKIT_NO_BUILD=1.
 #   scripts/screenshots.sh [scene-name ...]     (default: every folder of scenes/examples)
@@ -36,5 +37,5 @@ for name in "${scenes[@]}"; do
   "${run[@]}" "$app" "$root/scenes/examples/$name" --screenshot "$root/docs/images/$name.png"
 done
 if [ "$#" -eq 0 ]; then
-  "${run[@]}" "$app" "$root/scenes/examples/hierarchy" --window-screenshot "$root/docs/images/app-window.png"
+  "${run[@]}" "$app" "$root/scenes/examples/hierarchy" --select child --window-screenshot "$root/docs/images/app-window.png"
 fi

@@ -26,11 +26,14 @@ int main(int argc, char** argv) {
   QCommandLineOption windowShot("window-screenshot", "Like --screenshot, but the whole window (outliner, properties).",
                                 "png");
   parser.addOption(windowShot);
+  QCommandLineOption select("select", "Select the widget of this name (shows its transformer and properties).", "widget");
+  parser.addOption(select);
   parser.process(app);
 
   try {
     ffdkit::app::MainWindow window;
     if (!parser.positionalArguments().isEmpty()) window.openScene(parser.positionalArguments().first().toStdString());
+    if (parser.isSet(select)) window.selectWidget(parser.value(select).toStdString());
     if (parser.isSet(screenshot)) {
       // Only the 3D view, at the size of the off-screen renderer.
       for (auto* dock : window.findChildren<QDockWidget*>()) dock->hide();

@@ -635,6 +635,16 @@ bool MainWindow::attachLattice(widgets::WidgetId lattice, const std::string& obj
   return true;
 }
 
+void MainWindow::selectWidget(const std::string& name) {
+  Impl& d = *impl_;
+  const widgets::WidgetId id = d.scene.widgets.find(name);
+  d.selectedObjects.clear();
+  d.selectedBinding.reset();
+  d.controller->setSelection({id});
+  d.outliner->select(d.entries());
+  d.properties->showSelection(d.entries());
+}
+
 void MainWindow::openAny(const std::filesystem::path& path) {
   if (isMeshFile(path)) {
     importMesh(path);

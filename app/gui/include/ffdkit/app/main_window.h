@@ -50,6 +50,10 @@ class MainWindow : public QMainWindow {
   static void setBackgroundEmbedPoints(long points);
   static long backgroundEmbedPoints();
 
+  /// Selects the widget named `name` (as a click would: outliner, property panel, and the
+  /// transformer of an affine or lattice widget). @throws widgets::WidgetError naming the known widgets.
+  void selectWidget(const std::string& name);
+
   /// Opens whatever `path` is: scene, widget file (by its "format"), or mesh.
   void openAny(const std::filesystem::path& path);
 
