@@ -11,6 +11,7 @@
 #include <QMimeData>
 #include <QMouseEvent>
 #include <QSpinBox>
+#include <QStatusBar>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
@@ -113,7 +114,37 @@ void clickRow(MainWindow& w, const QString& text, Qt::KeyboardModifiers modifier
   QTest::mouseClick(tree->viewport(), Qt::LeftButton, modifiers, tree->visualItemRect(items.front()).center());
 }
 
+// Clicks a lattice's own outliner row (its name also appears under each object it deforms).
+void clickLatticeRow(MainWindow& w, const QString& name) {
+  QTreeWidget* tree = w.outliner();
+  for (QTreeWidgetItem* item : tree->findItems(name, Qt::MatchExactly | Qt::MatchRecursive)) {
+    if (item->text(1) == QObject::tr("deformed by")) continue;
+    tree->scrollToItem(item);
+    QTest::mouseClick(tree->viewport(), Qt::LeftButton, Qt::NoModifier, tree->visualItemRect(item).center());
+    return;
+  }
+  QFAIL(qPrintable("no lattice row " + name));
+}
+
 double maxDifference(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) { return (a - b).cwiseAbs().maxCoeff(); }
+
+// The property panel's control named `name` now on screen. The panel rebuilds itself after every
+// edit: the new rows are shown and the previous ones deleted by posted events, delivered here.
+template <class T>
+T* panelControl(MainWindow& w, const char* name) {
+  QApplication::processEvents();
+  QApplication::sendPostedEvents(nullptr, QEvent::DeferredDelete);
+  for (T* control : w.findChildren<T*>(name))
+    if (control->isVisible()) return control;
+  return nullptr;
+}
+
+// Drags a rotate widget's ring by `angle` radians about its axis (in the ring's plane).
+void dragRing(MainWindow& w, WidgetId affine, double angle) {
+  const widgets::WidgetFrame f = w.scene().widgets.affineFrame(affine);
+  const Eigen::Vector3d o = f.frame.translation(), x = f.frame.linear().col(0), y = f.frame.linear().col(1);
+  dragWorld(w, o + f.size * x, o + f.size * (std::cos(angle) * x + std::sin(angle) * y));
+}
 
 Eigen::Index flat(int i, int j, int k) { return i + 3 * (j + 3 * k); }
 
@@ -269,6 +300,147 @@ class MainWindowTest : public QObject {
     dragArrow(w, created[0], 0.2);
     QVERIFY(maxDifference(m.cellWorldPoints(cellA), aBefore) > 0.15);
     QVERIFY2(maxDifference(m.cellWorldPoints(cellB), bBefore) < 1e-9, "translation no longer carried to cell B");
+  }
+
+  void theKindOfAWidgetIsChangedInThePropertyPanelAndItsDragThenRotates() {
+    MainWindow& w = *window_;
+    const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2)});
+    QCOMPARE(created.size(), std::size_t(1));
+    const WidgetId widget = created.front();
+    const auto& m = w.scene().widgets;
+    clickRow(w, QString::fromStdString(m.name(widget)));
+    auto* kind = panelControl<QComboBox>(w, "kind");
+    QVERIFY(kind != nullptr);
+    QCOMPARE(kind->currentText(), QString("translate"));
+    kind->setCurrentIndex(kind->findText("rotate"));
+    QCOMPARE(m.affineKind(widget), widgets::AffineKind::Rotate);
+    QCOMPARE(m.glyph(widget).shape, std::string("ring"));
+    QCOMPARE(panelControl<QComboBox>(w, "kind")->currentText(), QString("rotate"));
+    // Tip the ring towards the camera (about x by 60 degrees) and put its axis beside the point, so
+    // that turning it swings the point around the axis.
+    panelControl<QDoubleSpinBox>(w, "orientationx")->setValue(60.0);
+    panelControl<QDoubleSpinBox>(w, "placementy")->setValue(0.3);
+    const WidgetId lattice = m.latticeOf(widget);
+    const Eigen::Vector3d point0 = m.worldControlPoints(lattice).row(flat(1, 1, 2));
+    const widgets::WidgetFrame frame = m.affineFrame(widget);
+    const Eigen::Vector3d centre = frame.frame.translation(), axis = frame.frame.linear().col(2);
+
+    dragRing(w, widget, 0.6);
+    const double turned = m.variation(widget);
+    QVERIFY2(std::abs(turned - 0.6) < 0.05, qPrintable(QString("variation %1 rad").arg(turned)));
+    // The point turned about the ring's axis by the widget's variation.
+    const Eigen::Vector3d point1 = m.worldControlPoints(lattice).row(flat(1, 1, 2));
+    const Eigen::Vector3d expected = centre + Eigen::AngleAxisd(turned, axis) * (point0 - centre);
+    QVERIFY2((point1 - expected).norm() < 1e-9, qPrintable(QString("off by %1").arg((point1 - expected).norm())));
+    QVERIFY((point1 - point0).norm() > 0.05);
+    // Undo the drag, then the kind.
+    for (int i = 0; i < 4; ++i) action(w, "actionUndo")->trigger();
+    QCOMPARE(m.affineKind(widget), widgets::AffineKind::Translate);
+  }
+
+  void aOneWayBindingOnlyCarriesMotionFromItsFromEnd() {
+    MainWindow& w = *window_;
+    const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2), flat(1, 1, 0)});
+    QCOMPARE(created.size(), std::size_t(2));
+    const auto& m = w.scene().widgets;
+    clickRow(w, QString::fromStdString(m.name(created[0])));
+    clickRow(w, QString::fromStdString(m.name(created[1])), Qt::ControlModifier);
+    action(w, "actionBind")->trigger();
+    const widgets::BindingId binding = m.bindings().back();
+    QCOMPARE(m.binding(binding).kind, widgets::BindingKind::Variation);
+    const WidgetId from = m.binding(binding).from, to = m.binding(binding).to;
+    clickRow(w, QString::fromStdString(m.name(from) + " <-> " + m.name(to)));
+    auto* oneWay = panelControl<QCheckBox>(w, "oneWay");
+    QVERIFY(oneWay != nullptr && !oneWay->isChecked());
+    QTest::mouseClick(oneWay, Qt::LeftButton);
+    QVERIFY(m.binding(binding).oneWay);
+    QVERIFY(panelControl<QCheckBox>(w, "oneWay")->isChecked());
+
+    // Dragging `to` moves it alone.
+    const double from0 = m.variation(from), to0 = m.variation(to);
+    dragArrow(w, to, 0.2);
+    QVERIFY2(std::abs(m.variation(to) - to0 - 0.2) < 0.02, qPrintable(QString("to moved %1").arg(m.variation(to) - to0)));
+    QCOMPARE(m.variation(from), from0);
+    // Dragging `from` still drives `to`.
+    const double to1 = m.variation(to);
+    dragArrow(w, from, 0.2);
+    const double moved = m.variation(from) - from0;
+    QVERIFY2(std::abs(moved - 0.2) < 0.02, qPrintable(QString("from moved %1").arg(moved)));
+    QVERIFY(std::abs((m.variation(to) - to1) - moved) < 1e-12);
+    // Undo the drags and the toggle: two-way again.
+    for (int i = 0; i < 3; ++i) action(w, "actionUndo")->trigger();
+    QVERIFY(!m.binding(binding).oneWay);
+  }
+
+  void latticeCountsAreRaisedInThePropertyPanelKeepingTheDeformationAndUndone() {
+    MainWindow& w = *window_;
+    const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2)});
+    QCOMPARE(created.size(), std::size_t(1));
+    const auto& m = w.scene().widgets;
+    const std::string sphere = w.scene().objects.front().name;
+    const WidgetId lattice = m.latticeOf(created.front());
+    dragArrow(w, created.front(), 0.3);
+    const Eigen::MatrixX3d rest = w.scene().objects.front().mesh.points;
+    const Eigen::MatrixX3d deformed = w.deformer().points(sphere);
+    QVERIFY(maxDifference(deformed, rest) > 0.05);
+    const Eigen::MatrixX3d control = m.controlPoints(lattice);
+
+    clickLatticeRow(w, QString::fromStdString(m.name(lattice)));
+    for (const char* name : {"countU", "countV", "countW"}) {
+      auto* count = panelControl<QSpinBox>(w, name);
+      QVERIFY2(count != nullptr, name);
+      QCOMPARE(count->value(), 3);
+      count->setValue(4);
+      QCOMPARE(panelControl<QSpinBox>(w, name)->value(), 4);
+    }
+    QCOMPARE(m.counts(lattice), Eigen::Vector3i(4, 4, 4));
+    QCOMPARE(m.cellSpec(*m.attachedCell(created.front())), widgets::CellSpec::point(2, 2, 3));
+    // The dialog's default basis is Bernstein: 3 points per axis hold a tri-quadratic map, 4 a
+    // tri-cubic one, so each raise is a degree elevation and the sphere keeps its shape up to
+    // rounding in the embedding and evaluation (1e-9).
+    const double change = maxDifference(w.deformer().points(sphere), deformed);
+    qInfo("sphere points after 3x3x3 -> 4x4x4: moved by at most %.3g", change);
+    QVERIFY2(change < 1e-9, qPrintable(QString("sphere moved by %1").arg(change)));
+
+    for (int i = 0; i < 3; ++i) action(w, "actionUndo")->trigger();
+    QCOMPARE(m.counts(lattice), Eigen::Vector3i(3, 3, 3));
+    QCOMPARE(m.controlPoints(lattice), control);
+    QVERIFY(maxDifference(w.deformer().points(sphere), deformed) < 1e-12);
+  }
+
+  void anEditTheModelRejectsIsReportedAndTheControlShowsTheModelAgain() {
+    MainWindow& w = *window_;
+    const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2)});
+    QCOMPARE(created.size(), std::size_t(1));
+    const auto& m = w.scene().widgets;
+    const WidgetId lattice = m.latticeOf(created.front());
+    clickLatticeRow(w, QString::fromStdString(m.name(lattice)));
+    const widgets::WidgetModelData before = m.toData();
+    const QString undoText = action(w, "actionUndo")->text();
+
+    // A cubic B-spline along u needs 4 points; the lattice has 3.
+    auto* basisU = panelControl<QComboBox>(w, "basisU");
+    QVERIFY(basisU != nullptr);
+    QCOMPARE(basisU->currentText(), QString("Bernstein"));
+    basisU->setCurrentIndex(basisU->findText("B-spline deg 3"));
+    QVERIFY2(w.statusBar()->currentMessage().contains("degree"), qPrintable(w.statusBar()->currentMessage()));
+    QCOMPARE(panelControl<QComboBox>(w, "basisU")->currentText(), QString("Bernstein"));
+    QCOMPARE(m.latticeSettings(lattice).basis[0].kind, ffd::AxisBasis::Kind::Bernstein);
+    QCOMPARE(action(w, "actionUndo")->text(), undoText);
+
+    // A quadratic one fits; then 2 points along u no longer carry it.
+    panelControl<QComboBox>(w, "basisU")->setCurrentIndex(panelControl<QComboBox>(w, "basisU")->findText("B-spline deg 2"));
+    QCOMPARE(m.latticeSettings(lattice).basis[0].kind, ffd::AxisBasis::Kind::BSpline);
+    const Eigen::MatrixX3d control = m.controlPoints(lattice);
+    w.statusBar()->clearMessage();
+    panelControl<QSpinBox>(w, "countU")->setValue(2);
+    QVERIFY2(w.statusBar()->currentMessage().contains("along u"), qPrintable(w.statusBar()->currentMessage()));
+    QCOMPARE(panelControl<QSpinBox>(w, "countU")->value(), 3);
+    QCOMPARE(m.counts(lattice), Eigen::Vector3i(3, 3, 3));
+    QCOMPARE(m.controlPoints(lattice), control);
+    action(w, "actionUndo")->trigger();
+    QCOMPARE(m.latticeSettings(lattice).basis[0].kind, ffd::AxisBasis::Kind::Bernstein);
+    QCOMPARE(m.toData().lattices.front().controlPoints, before.lattices.front().controlPoints);
   }
 
   void aLargeObjectIsEmbeddedBehindAProgressDialog() {

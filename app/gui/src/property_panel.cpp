@@ -1,5 +1,6 @@
 #include "property_panel.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -11,6 +12,7 @@
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QSignalBlocker>
 #include <QSpinBox>
 #include <QToolButton>
 #include <QVBoxLayout>
@@ -38,10 +40,40 @@ QDoubleSpinBox* spin(const QString& name, double value, double lo, double hi, in
 QString basisName(const ffd::AxisBasis& b) {
   switch (b.kind) {
     case ffd::AxisBasis::Kind::Bernstein: return "Bernstein";
-    case ffd::AxisBasis::Kind::BSpline: return QString("B-spline deg %1").arg(b.degree);
+    case ffd::AxisBasis::Kind::BSpline:
+      return QString(b.knots.size() > 0 ? "B-spline deg %1, knots" : "B-spline deg %1").arg(b.degree);
     case ffd::AxisBasis::Kind::PeriodicBSpline: return QString("periodic B-spline deg %1").arg(b.degree);
   }
   return "?";
+}
+
+// The bases a lattice axis offers: Bernstein and clamped B-splines of degree 1-3, or, for the
+// angular axis of a cylindrical lattice, periodic B-splines of degree 1-3; plus the current
+// basis when it is none of these (explicit knots, a higher degree), so the combo can show it.
+std::vector<ffd::AxisBasis> basisChoices(const ffd::AxisBasis& current, bool angular) {
+  std::vector<ffd::AxisBasis> out;
+  if (angular) {
+    for (int d = 1; d <= 3; ++d) out.push_back(ffd::AxisBasis::periodic(d));
+  } else {
+    out.push_back(ffd::AxisBasis::bernstein());
+    for (int d = 1; d <= 3; ++d) out.push_back(ffd::AxisBasis::bspline(d));
+  }
+  const bool listed = std::any_of(out.begin(), out.end(), [&](const ffd::AxisBasis& b) {
+    return b.kind == current.kind && (b.kind == ffd::AxisBasis::Kind::Bernstein || b.degree == current.degree) &&
+           current.knots.size() == 0;
+  });
+  if (!listed) out.push_back(current);
+  return out;
+}
+
+int basisIndex(const std::vector<ffd::AxisBasis>& choices, const ffd::AxisBasis& b) {
+  for (std::size_t i = 0; i < choices.size(); ++i) {
+    const ffd::AxisBasis& c = choices[i];
+    if (c.kind == b.kind && (c.kind == ffd::AxisBasis::Kind::Bernstein || c.degree == b.degree) &&
+        c.knots.size() == b.knots.size())
+      return static_cast<int>(i);
+  }
+  return -1;
 }
 
 }  // namespace
@@ -56,11 +88,13 @@ PropertyPanel::PropertyPanel(InteractionController& controller, const scenes::Sc
 }
 
 template <class F>
-void PropertyPanel::guarded(F f) {
+bool PropertyPanel::guarded(F f) {
   try {
     f();
+    return true;
   } catch (const std::exception& e) {
     emit error(QString::fromStdString(e.what()));
+    return false;
   }
 }
 
@@ -106,7 +140,20 @@ void PropertyPanel::showAffine(widgets::WidgetId id) {
   const auto& m = scene_.widgets;
   form_->addRow(tr("Name"), new QLabel(qs(m.name(id))));
   const widgets::AffineKind kind = m.affineKind(id);
-  form_->addRow(tr("Kind"), new QLabel(qs(affineKindName(kind))));
+  // Kind: the points stay, the variation restarts at 0 (WidgetModel::setAffineKind).
+  auto* kindBox = new QComboBox;
+  kindBox->setObjectName("kind");
+  for (auto k : {widgets::AffineKind::Translate, widgets::AffineKind::Rotate, widgets::AffineKind::Scale})
+    kindBox->addItem(qs(affineKindName(k)), static_cast<int>(k));
+  kindBox->setCurrentIndex(kindBox->findData(static_cast<int>(kind)));
+  connect(kindBox, &QComboBox::currentIndexChanged, this, [this, id, kindBox](int index) {
+    const auto chosen = static_cast<widgets::AffineKind>(kindBox->itemData(index).toInt());
+    if (!guarded([&] { controller_.setAffineKind(id, chosen); })) {
+      const QSignalBlocker block(kindBox);
+      kindBox->setCurrentIndex(kindBox->findData(static_cast<int>(scene_.widgets.affineKind(id))));
+    }
+  });
+  form_->addRow(tr("Kind"), kindBox);
   const auto cell = m.attachedCell(id);
   form_->addRow(tr("Cell"), new QLabel(cell ? qs(m.name(*cell)) : tr("(free)")));
   const QString unit = kind == widgets::AffineKind::Translate ? tr("distance")
@@ -202,7 +249,18 @@ void PropertyPanel::showBinding(widgets::BindingId id) {
   form_->addRow(tr("Binding"), new QLabel(qs(bindingKindName(b.kind))));
   form_->addRow(tr("From"), new QLabel(qs(m.name(b.from))));
   form_->addRow(tr("To"), new QLabel(qs(m.name(b.to))));
-  form_->addRow(tr("Direction"), new QLabel(b.oneWay ? tr("one way") : tr("two way")));
+  // Direction: one way = only `from` drives `to` (for an attachment or a hierarchy: the cell
+  // drives its widget or child lattice, which no longer move the cell).
+  auto* oneWay = new QCheckBox(tr("one way (only '%1' drives)").arg(qs(m.name(b.from))));
+  oneWay->setObjectName("oneWay");
+  oneWay->setChecked(b.oneWay);
+  connect(oneWay, &QCheckBox::toggled, this, [this, id, oneWay](bool checked) {
+    if (!guarded([&] { controller_.setOneWay(id, checked); })) {
+      const QSignalBlocker block(oneWay);
+      oneWay->setChecked(scene_.widgets.binding(id).oneWay);
+    }
+  });
+  form_->addRow(tr("Direction"), oneWay);
   if (b.kind != widgets::BindingKind::Variation) {
     auto* masks = new QWidget;
     auto* row = new QHBoxLayout(masks);
@@ -262,12 +320,56 @@ void PropertyPanel::showBinding(widgets::BindingId id) {
 void PropertyPanel::showLattice(widgets::WidgetId id) {
   const auto& m = scene_.widgets;
   form_->addRow(tr("Lattice"), new QLabel(qs(m.name(id))));
+  // Counts: the model resamples the lattice, keeping its deformation (WidgetModel::setLatticeCounts).
   const Eigen::Vector3i n = m.counts(id);
-  form_->addRow(tr("Counts"), new QLabel(QString("%1 x %2 x %3").arg(n.x()).arg(n.y()).arg(n.z())));
+  auto* countsRow = new QWidget;
+  auto* countsLayout = new QHBoxLayout(countsRow);
+  countsLayout->setContentsMargins(0, 0, 0, 0);
+  for (int axis = 0; axis < 3; ++axis) {
+    auto* count = new QSpinBox;
+    count->setObjectName(QString("count%1").arg("UVW"[axis]));
+    count->setRange(2, 64);
+    count->setValue(n[axis]);
+    count->setKeyboardTracking(false);
+    count->setToolTip(tr("points along %1").arg("uvw"[axis]));
+    connect(count, &QSpinBox::valueChanged, this, [this, id, axis, count](int value) {
+      const bool done = guarded([&] {
+        Eigen::Vector3i c = scene_.widgets.counts(id);
+        c[axis] = value;
+        controller_.setLatticeCounts(id, c);
+      });
+      if (!done) {
+        const QSignalBlocker block(count);
+        count->setValue(scene_.widgets.counts(id)[axis]);
+      }
+    });
+    countsLayout->addWidget(count);
+  }
+  form_->addRow(tr("Counts (u v w)"), countsRow);
   const auto& settings = m.latticeSettings(id);
   form_->addRow(tr("Shape"), new QLabel(settings.cylinder ? tr("cylindrical (EFFD)") : tr("box")));
-  for (int axis = 0; axis < 3; ++axis)
-    form_->addRow(tr("Basis %1").arg("uvw"[axis]), new QLabel(basisName(settings.basis[static_cast<std::size_t>(axis)])));
+  for (int axis = 0; axis < 3; ++axis) {
+    const auto a = static_cast<std::size_t>(axis);
+    const bool angular = settings.basis[a].kind == ffd::AxisBasis::Kind::PeriodicBSpline;
+    const std::vector<ffd::AxisBasis> choices = basisChoices(settings.basis[a], angular);
+    auto* basis = new QComboBox;
+    basis->setObjectName(QString("basis%1").arg("UVW"[axis]));
+    for (const ffd::AxisBasis& b : choices) basis->addItem(basisName(b));
+    basis->setCurrentIndex(basisIndex(choices, settings.basis[a]));
+    connect(basis, &QComboBox::currentIndexChanged, this, [this, id, a, choices, basis](int index) {
+      if (index < 0) return;
+      const bool done = guarded([&] {
+        widgets::LatticeSettings s = scene_.widgets.latticeSettings(id);
+        s.basis[a] = choices[static_cast<std::size_t>(index)];
+        controller_.setLatticeSettings(id, s);
+      });
+      if (!done) {
+        const QSignalBlocker block(basis);
+        basis->setCurrentIndex(basisIndex(choices, scene_.widgets.latticeSettings(id).basis[a]));
+      }
+    });
+    form_->addRow(tr("Basis %1").arg("uvw"[axis]), basis);
+  }
   auto* outside = new QComboBox;
   outside->setObjectName("outside");
   outside->addItems({tr("identity"), tr("clamp edge"), tr("extrapolate"), tr("falloff")});

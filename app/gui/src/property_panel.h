@@ -13,10 +13,11 @@ namespace ffdkit::app {
 class InteractionController;
 
 /// Properties of the selection, generated from the model: an affine widget (kind, variation,
-/// placement, glyph or part), a binding (kind, mask as T/R/S toggle buttons, conversion rule
-/// gain and clamp range), a lattice (counts, basis per axis, outside policy), a cell, an object.
-/// Every edit goes through the controller (one undoable command); errors are reported with
-/// `error`.
+/// placement, glyph or part), a binding (one-way direction, mask as T/R/S toggle buttons,
+/// conversion rule gain and clamp range), a lattice (counts, basis per axis, outside policy), a
+/// cell, an object. Every edit goes through the controller (one undoable command); an edit the
+/// model rejects is reported with `error` and its control shows the model's value again.
+/// Controls carry object names for tests ("kind", "oneWay", "countU", "basisV", ...).
 class PropertyPanel : public QWidget {
   Q_OBJECT
 
@@ -35,8 +36,10 @@ class PropertyPanel : public QWidget {
   void showLattice(widgets::WidgetId id);
   void showCell(widgets::WidgetId id);
   void showObject(const std::string& name);
+  /// Runs an edit; on an error reports it with `error` and returns false (the caller then puts
+  /// its control back to the model's value).
   template <class F>
-  void guarded(F f);
+  bool guarded(F f);
 
   InteractionController& controller_;
   const scenes::Scene& scene_;
