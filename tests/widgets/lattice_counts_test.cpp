@@ -195,6 +195,26 @@ TEST(LatticeCounts, AGeneralDeformationIsInterpolatedAtTheNewGridAndCloseElsewhe
   std::printf("cubic 5^3 -> 8^3: max error %.3g of a displacement up to %.3g (%.2f %%)\n", error, largest, 100.0 * error / largest);
 }
 
+// Fewer points: the displacement is sampled, not interpolated, so the new control displacements
+// stay within the old ones (each sample is a convex combination of old control displacements);
+// an interpolant of detail the coarse lattice cannot hold would overshoot.
+TEST(LatticeCounts, AnAxisThatLosesPointsDoesNotOvershoot) {
+  WidgetModel m;
+  LatticeOptions o = box(Eigen::Vector3i(12, 3, 3), ffd::AxisBasis::bernstein());
+  o.settings.basis[0] = ffd::AxisBasis::bspline(3);
+  const WidgetId l = m.addLattice(o);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  Eigen::MatrixX3d p = m.restPoints(l);
+  for (Eigen::Index r = 0; r < p.rows(); ++r) p.row(r) += Eigen::RowVector3d(u(rng), u(rng), u(rng));
+  m.setControlPoints(l, p);
+  const Eigen::Vector3d oldMax = (m.controlPoints(l) - m.restPoints(l)).cwiseAbs().colwise().maxCoeff();
+  m.setLatticeCounts(l, Eigen::Vector3i(5, 3, 3));
+  const Eigen::Vector3d newMax = (m.controlPoints(l) - m.restPoints(l)).cwiseAbs().colwise().maxCoeff();
+  EXPECT_TRUE((newMax.array() <= oldMax.array() + 1e-15).all()) << newMax.transpose() << " vs " << oldMax.transpose();
+  EXPECT_GT(newMax.maxCoeff(), 0.0);
+}
+
 TEST(LatticeCounts, CellsAreRemappedAndAttachedWidgetsMoveTheRightPoints) {
   WidgetModel m;
   const WidgetId l = m.addLattice("l", Eigen::Vector3i(3, 3, 3));

@@ -1246,8 +1246,10 @@ void WidgetModel::setLatticeCounts(WidgetId lattice, const Eigen::Vector3i& coun
   // displacements interpolate these samples (tensor-product collocation at the Greville
   // abscissae). Exactly zero for an undeformed lattice; exact for an affine deformation (every
   // basis reproduces affine maps) and when the old displacement lies in the new lattice's space
-  // (a Bernstein axis raised from n to n' > n points: degree elevation). A Bernstein axis that
-  // loses points samples the old displacement instead of interpolating it (no overshoot).
+  // (a Bernstein axis raised from n to n' > n points: degree elevation). An axis that loses
+  // points samples the old displacement instead of interpolating it: detail the coarser lattice
+  // cannot hold would make the interpolant overshoot (a random 30-point cubic B-spline
+  // displacement interpolated by 5 points: control displacements 2.4x the old ones).
   Eigen::MatrixX3d at = oldParams;  // parameters of the samples in the old lattice
   if (!old.restIsAffine() || cylinder) {
     Eigen::MatrixX3d samples(total, 3);
@@ -1269,7 +1271,7 @@ void WidgetModel::setLatticeCounts(WidgetId lattice, const Eigen::Vector3i& coun
     std::array<Eigen::MatrixXd, 3> colloc;
     for (int a = 0; a < 3; ++a) {
       const auto s = static_cast<std::size_t>(a);
-      const bool sample = axes[s].basis().kind == ffd::AxisBasis::Kind::Bernstein && counts[a] < n.counts[a];
+      const bool sample = counts[a] < n.counts[a];
       colloc[s] = sample ? Eigen::MatrixXd::Identity(counts[a], counts[a]) : collocation(axes[s], axes[s].greville());
     }
     displacement = solveTensor(colloc, counts, displacement);

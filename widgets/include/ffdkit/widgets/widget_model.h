@@ -144,9 +144,9 @@ class WidgetModel {
   ///   the new lattice puts at its grid parameters and interpolated by the new bases (per axis,
   ///   collocation at the Greville abscissae). An undeformed lattice stays exactly at rest; an
   ///   affine deformation is kept exactly, and so is any deformation the new lattice can
-  ///   represent (a Bernstein axis raised from n to n' > n points: degree elevation). A Bernstein
-  ///   axis that loses points samples the displacement there instead (no overshoot); other cases
-  ///   approximate it.
+  ///   represent (a Bernstein axis raised from n to n' > n points: degree elevation). An axis
+  ///   that loses points samples the displacement at its new parameters instead (no overshoot);
+  ///   other deformations are approximated.
   /// - cells: a grid index i of n points goes to round(i (n'-1) / (n-1)) (periodic axis:
   ///   round(i n' / n) mod n'); point, edge, face and box cells move their lower corner, a slab
   ///   its plane, a custom cell each index (duplicates dropped). Attached affine widgets keep
