@@ -1,12 +1,15 @@
 #include "ffdkit/ffd/embedding.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <numbers>
 #include <string>
 
 #include <Eigen/LU>
+#include <omp.h>
 
 namespace ffdkit::ffd {
 namespace {
@@ -304,78 +307,106 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
   const Eigen::Matrix3d Ainv = lattice.restAffineLinear().inverse();
   const Eigen::Vector3d b = lattice.restAffineOffset();
 
-  const auto report = [&options, n](Eigen::Index done) {
-    if (options.progress && !options.progress(done, n)) {
-      throw Cancelled("embed: cancelled after " + std::to_string(done) + " of " + std::to_string(n) + " points");
-    }
-  };
-  report(0);
-  // Chunks one after another, each in parallel: the progress hook runs between them on this
-  // thread (a check inside the parallel loop could neither throw nor stop the other threads).
-  for (Eigen::Index chunkBegin = 0; chunkBegin < n; chunkBegin += kEmbedProgressChunk) {
-    const Eigen::Index chunkEnd = std::min(n, chunkBegin + kEmbedProgressChunk);
-#pragma omp parallel for schedule(dynamic, 1024) if (options.parallel && chunkEnd - chunkBegin >= kParallelPoints)
-    for (Eigen::Index p = chunkBegin; p < chunkEnd; ++p) {
-      const Eigen::Vector3d q = toLocal * points.row(p).transpose();
-      Eigen::Vector3d uvw;
-      bool converged = true;
-      if (affine) {
-        uvw = Ainv * (q - b);
-      } else {
-        uvw = solver.initialGuess(q);
-        converged = solver.newton(q, uvw);
-        if (!converged) {
-          Eigen::Vector3d restart = solver.nearestSample(q);
-          if (solver.newton(q, restart)) {
-            uvw = restart;
-            converged = true;
-          }
-        }
-      }
-      PointStatus status = PointStatus::Inside;
-      PointClass cls = PointClass::Evaluated;
-      double s = 1.0;
+  // Solves point p into u, v, w, weight, key and e.status_.
+  const auto solve = [&](Eigen::Index p) {
+    const Eigen::Vector3d q = toLocal * points.row(p).transpose();
+    Eigen::Vector3d uvw;
+    bool converged = true;
+    if (affine) {
+      uvw = Ainv * (q - b);
+    } else {
+      uvw = solver.initialGuess(q);
+      converged = solver.newton(q, uvw);
       if (!converged) {
-        status = PointStatus::Failed;
-        cls = PointClass::Frozen;
-        uvw = solver.clampToBox(uvw);
-      } else if (!solver.insideBox(uvw)) {
-        status = PointStatus::Outside;
-        switch (policy.kind) {
-          case OutsidePolicy::Kind::Identity:
-            cls = PointClass::Frozen;
-            break;
-          case OutsidePolicy::Kind::Extrapolate:
-            break;
-          case OutsidePolicy::Kind::ClampEdge:
-            cls = PointClass::Blended;
-            uvw = solver.clampToBox(uvw);
-            break;
-          case OutsidePolicy::Kind::Falloff: {
-            uvw = solver.clampToBox(uvw);
-            Eigen::Matrix3d J;
-            const double x = (solver.evaluate(uvw, J) - q).norm() / policy.distance;
-            if (x >= 1.0) {
-              cls = PointClass::Frozen;
-            } else {
-              cls = PointClass::Blended;
-              s = 1.0 - x * x * (3.0 - 2.0 * x);  // smoothstep from 1 at the boundary to 0 at `distance`
-            }
-            break;
-          }
+        Eigen::Vector3d restart = solver.nearestSample(q);
+        if (solver.newton(q, restart)) {
+          uvw = restart;
+          converged = true;
         }
       }
-      for (int a = 0; a < 3; ++a) uvw[a] = axes[a]->wrap(uvw[a]);
-      u[p] = uvw[0];
-      v[p] = uvw[1];
-      w[p] = uvw[2];
-      weight[p] = s;
-      e.status_[p] = status;
-      const std::int64_t cell = axes[0]->cellOf(uvw[0]) + cells[0] * (axes[1]->cellOf(uvw[1]) + std::int64_t(cells[1]) * axes[2]->cellOf(uvw[2]));
-      key[p] = static_cast<std::uint32_t>(static_cast<std::int64_t>(cls) * cellTotal + cell);
     }
-    if (chunkEnd < n) report(chunkEnd);
+    PointStatus status = PointStatus::Inside;
+    PointClass cls = PointClass::Evaluated;
+    double s = 1.0;
+    if (!converged) {
+      status = PointStatus::Failed;
+      cls = PointClass::Frozen;
+      uvw = solver.clampToBox(uvw);
+    } else if (!solver.insideBox(uvw)) {
+      status = PointStatus::Outside;
+      switch (policy.kind) {
+        case OutsidePolicy::Kind::Identity:
+          cls = PointClass::Frozen;
+          break;
+        case OutsidePolicy::Kind::Extrapolate:
+          break;
+        case OutsidePolicy::Kind::ClampEdge:
+          cls = PointClass::Blended;
+          uvw = solver.clampToBox(uvw);
+          break;
+        case OutsidePolicy::Kind::Falloff: {
+          uvw = solver.clampToBox(uvw);
+          Eigen::Matrix3d J;
+          const double x = (solver.evaluate(uvw, J) - q).norm() / policy.distance;
+          if (x >= 1.0) {
+            cls = PointClass::Frozen;
+          } else {
+            cls = PointClass::Blended;
+            s = 1.0 - x * x * (3.0 - 2.0 * x);  // smoothstep from 1 at the boundary to 0 at `distance`
+          }
+          break;
+        }
+      }
+    }
+    for (int a = 0; a < 3; ++a) uvw[a] = axes[a]->wrap(uvw[a]);
+    u[p] = uvw[0];
+    v[p] = uvw[1];
+    w[p] = uvw[2];
+    weight[p] = s;
+    e.status_[p] = status;
+    const std::int64_t cell = axes[0]->cellOf(uvw[0]) + cells[0] * (axes[1]->cellOf(uvw[1]) + std::int64_t(cells[1]) * axes[2]->cellOf(uvw[2]));
+    key[p] = static_cast<std::uint32_t>(static_cast<std::int64_t>(cls) * cellTotal + cell);
+  };
+
+  // One parallel region; threads take blocks of kBlock points from a shared counter. The calling
+  // thread (OpenMP thread 0 of the team) calls the progress hook between its own blocks, each
+  // time the points finished by all threads pass another kEmbedProgressChunk; a `false` makes
+  // every thread stop after its current block. Cutting the loop into chunks run one after
+  // another instead put a barrier at every chunk end, which on a loaded machine (a thread
+  // descheduled while its team-mate waits) cost up to 40 % of the wall time (docs/ffd-engine.md).
+  constexpr Eigen::Index kBlock = 1024;
+  std::atomic<Eigen::Index> next{0};
+  std::atomic<Eigen::Index> finished{0};
+  std::atomic<bool> stop{false};
+  std::exception_ptr hookError;
+  Eigen::Index reported = 0;
+  const auto callHook = [&](Eigen::Index done) {
+    try {
+      if (!options.progress(done, n)) stop = true;
+    } catch (...) {
+      hookError = std::current_exception();
+      stop = true;
+    }
+    reported = done;
+  };
+  if (options.progress) callHook(0);
+#pragma omp parallel if (options.parallel && n >= kParallelPoints)
+  {
+    const bool caller = omp_get_thread_num() == 0;
+    while (!stop.load(std::memory_order_relaxed)) {
+      const Eigen::Index begin = next.fetch_add(kBlock, std::memory_order_relaxed);
+      if (begin >= n) break;
+      const Eigen::Index end = std::min(n, begin + kBlock);
+      for (Eigen::Index p = begin; p < end; ++p) solve(p);
+      const Eigen::Index done = finished.fetch_add(end - begin, std::memory_order_acq_rel) + (end - begin);
+      if (caller && options.progress && done < n && done - reported >= kEmbedProgressChunk) callHook(done);
+    }
   }
+  if (hookError) std::rethrow_exception(hookError);
+  const auto cancelled = [&reported, n] {
+    return Cancelled("embed: cancelled after " + std::to_string(reported) + " of " + std::to_string(n) + " points");
+  };
+  if (stop) throw cancelled();
 
   // Per tile of consecutive points, a counting sort by (class, cell): stable, so a single-cell
   // lattice keeps the original order, and reads/writes in original order stay within the tile.
@@ -437,7 +468,11 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
     else if (s == PointStatus::Outside) ++e.outside_;
     else ++e.failed_;
   }
-  report(n);
+  if (options.progress) {
+    callHook(n);
+    if (hookError) std::rethrow_exception(hookError);
+    if (stop) throw cancelled();
+  }
   return e;
 }
 

@@ -90,9 +90,9 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   std::set<std::string> names;
   for (const auto& object : scene.objects) {
     names.insert(object.name);
-    std::unique_ptr<ObjectPipeline>& slot = objects_[object.name];
-    if (!slot) slot = std::make_unique<ObjectPipeline>();
-    ObjectPipeline* p = slot.get();
+    auto found = objects_.find(object.name);
+    std::unique_ptr<ObjectPipeline> added;  // a new object enters objects_ once it is synced
+    ObjectPipeline* p = found != objects_.end() ? found->second.get() : (added = std::make_unique<ObjectPipeline>()).get();
     std::vector<Stage> stages = stagesFor(scene, object.name);
     const bool inputChanged = p->input.rows() != object.mesh.points.rows() || p->input != object.mesh.points;
     if (!p->pipeline || inputChanged || stages != p->stages) {
@@ -126,6 +126,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       p->pipeline->setActiveLattice(active);
       toRun.push_back(p);
     }
+    if (added) objects_[object.name] = std::move(added);
   }
   std::erase_if(objects_, [&names](const auto& entry) { return !names.count(entry.first); });
 

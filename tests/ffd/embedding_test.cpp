@@ -177,26 +177,38 @@ TEST(Embedding, SingleCellLatticesKeepTheOriginalOrder) {
 TEST(EmbedProgress, IsCalledOnTheCallingThreadMonotoneUpToTheTotal) {
   const Lattice lattice = userShapedUnitLattice();
   const Eigen::MatrixX3d Q = uniformUnitBox(3 * kEmbedProgressChunk + 1234, 11);
-  std::vector<ProgressCall> calls;
-  EmbedOptions options;
-  options.progress = [&calls](Eigen::Index done, Eigen::Index total) {
-    calls.push_back({done, total, std::this_thread::get_id()});
-    return true;
-  };
-  const Embedding withProgress = embed(lattice, Q, options);
-  ASSERT_GE(calls.size(), 5u);  // (0, n), three chunk ends, (n, n)
-  EXPECT_EQ(calls.front().done, 0);
-  EXPECT_EQ(calls.back().done, Q.rows());
-  for (std::size_t i = 0; i < calls.size(); ++i) {
-    EXPECT_EQ(calls[i].total, Q.rows());
-    EXPECT_EQ(calls[i].thread, std::this_thread::get_id()) << "call " << i << " from another thread";
-    if (i > 0) {
-      EXPECT_GE(calls[i].done, calls[i - 1].done) << "call " << i;
-      EXPECT_LE(calls[i].done - calls[i - 1].done, kEmbedProgressChunk) << "call " << i;
+  const Embedding reference = embed(lattice, Q);
+  for (const bool parallel : {true, false}) {
+    SCOPED_TRACE(parallel ? "parallel" : "serial");
+    std::vector<ProgressCall> calls;
+    EmbedOptions options;
+    options.parallel = parallel;
+    options.progress = [&calls](Eigen::Index done, Eigen::Index total) {
+      calls.push_back({done, total, std::this_thread::get_id()});
+      return true;
+    };
+    const Embedding withProgress = embed(lattice, Q, options);
+    ASSERT_GE(calls.size(), 2u);
+    EXPECT_EQ(calls.front().done, 0);
+    EXPECT_EQ(calls.back().done, Q.rows());
+    for (std::size_t i = 0; i < calls.size(); ++i) {
+      EXPECT_EQ(calls[i].total, Q.rows());
+      EXPECT_EQ(calls[i].thread, std::this_thread::get_id()) << "call " << i << " from another thread";
+      if (i > 0) {
+        EXPECT_GT(calls[i].done, calls[i - 1].done) << "call " << i;
+      }
     }
+    if (!parallel) {
+      // On one thread the calls fall exactly on the chunk ends. (In parallel the calling thread
+      // reports between its own blocks, so a busy machine may space them further apart.)
+      ASSERT_EQ(calls.size(), 5u);
+      for (std::size_t i = 1; i + 1 < calls.size(); ++i) {
+        EXPECT_EQ(calls[i].done, Eigen::Index(i) * kEmbedProgressChunk);
+      }
+    }
+    EXPECT_TRUE(sameEmbedding(withProgress, reference)) << "the hook must not change the result";
+    EXPECT_EQ(withProgress.failedCount(), 0);
   }
-  EXPECT_TRUE(sameEmbedding(withProgress, embed(lattice, Q))) << "the hook must not change the result";
-  EXPECT_EQ(withProgress.failedCount(), 0);
 }
 
 TEST(EmbedProgress, IsCalledForAnEmptyPointSet) {
@@ -229,7 +241,9 @@ TEST(EmbedProgress, ReturningFalseAtAboutHalfThrowsCancelledAndStopsCalling) {
   };
   EXPECT_THROW(embed(lattice, Q, options), Cancelled);
   EXPECT_EQ(callsAfterCancel, 0);
-  EXPECT_EQ(cancelledAt, 2 * kEmbedProgressChunk);
+  EXPECT_GE(cancelledAt, 2 * kEmbedProgressChunk);
+  EXPECT_LT(cancelledAt, Q.rows());
+  cancelled = false;
   // Cancelled is no input error: callers catching LatticeError must not swallow it.
   try {
     embed(lattice, Q, options);
@@ -237,7 +251,9 @@ TEST(EmbedProgress, ReturningFalseAtAboutHalfThrowsCancelledAndStopsCalling) {
   } catch (const LatticeError&) {
     FAIL() << "Cancelled must not be a LatticeError";
   } catch (const Cancelled& e) {
-    EXPECT_NE(std::string(e.what()).find("cancelled after 131072 of 262144 points"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cancelled after " + std::to_string(cancelledAt) + " of 262144 points"),
+              std::string::npos)
+        << e.what();
   }
   // Cancelling at the very end discards the finished embedding too: nothing is returned.
   options.progress = [](Eigen::Index done, Eigen::Index total) { return done < total; };

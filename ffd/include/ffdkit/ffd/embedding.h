@@ -31,15 +31,18 @@ struct EmbedOptions {
   int maxIterations = 40;         ///< Newton iteration cap per point (after the initial guess).
   double boundaryEpsilon = 1e-9;  ///< inside test: uvw within the box grown by this fraction of its size.
   bool parallel = true;           ///< use all threads (OpenMP) over points.
-  /// Optional progress / cancel hook (empty: none). embed() calls it with (0, n) before any work,
-  /// after every chunk of kEmbedProgressChunk points, and with (n, n) once the Embedding is
-  /// complete; `done` never decreases. Returning false (at any call, the last included) makes
-  /// embed() throw ffd::Cancelled and return nothing. Cost: one call per chunk.
+  /// Optional progress / cancel hook (empty: none). embed() calls it on the calling thread with
+  /// (0, n) before any work, about every kEmbedProgressChunk solved points, and with (n, n) once
+  /// the Embedding is complete; `done` increases from call to call. Returning false (at any
+  /// call, the last included) stops every thread after its current block of 1024 points and
+  /// makes embed() throw ffd::Cancelled, returning nothing. Cost: one call per chunk.
   EmbedProgress progress = {};
 };
 
-/// Points solved between two EmbedOptions::progress calls (each chunk runs in parallel):
-/// ~30-60 ms of Newton embedding per thread on the benchmark lattices.
+/// Points solved between two EmbedOptions::progress calls: ~60 ms of Newton embedding on one
+/// thread for the benchmark lattices. Single-threaded (parallel = false or fewer than 16384
+/// points) the calls fall exactly on multiples of it; in parallel the calling thread makes the
+/// call when it finishes a block after the count of solved points passed the next multiple.
 inline constexpr Eigen::Index kEmbedProgressChunk = 65536;
 
 /// The (u,v,w) parameters of a set of object points in one lattice's rest lattice: the

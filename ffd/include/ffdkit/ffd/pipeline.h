@@ -93,10 +93,11 @@ class Pipeline {
   /// @throws Cancelled when `progress` returns false. The pipeline stays consistent and usable:
   ///   stages finished before the cancel keep their new embeddings and outputs, the cancelled
   ///   stage and the ones after it keep their previous embedding and output untouched (the
-  ///   cancelled one is re-embedded by the next run), throttle counters are as before the call,
-  ///   points() still returns the output of the last completed run, and running the same call
-  ///   again gives bit for bit what a never-cancelled call would have. A cancel at the final
-  ///   (total, total) call throws with all the work done and kept.
+  ///   cancelled one is re-embedded by the next run), points() still returns the output of the
+  ///   last completed run, and running the same call again gives bit for bit what a
+  ///   never-cancelled call would have (stages deformed approximately before the cancel keep that
+  ///   output and count once for the throttle). The last embedding also reports (total, total):
+  ///   false there cancels it; false at the run's own closing call throws with all work kept.
   const Eigen::MatrixX3d& update(const EmbedProgress& progress = {});
   /// Re-embeds every stale lattice, then updates: the exact result (call on gesture release).
   /// Progress and cancel as update().
