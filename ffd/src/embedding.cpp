@@ -373,7 +373,7 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
   // time the points finished by all threads pass another kEmbedProgressChunk; a `false` makes
   // every thread stop after its current block. Cutting the loop into chunks run one after
   // another instead put a barrier at every chunk end, which on a loaded machine (a thread
-  // descheduled while its team-mate waits) cost up to 40 % of the wall time (docs/ffd-engine.md).
+  // descheduled while its team-mate waits) cost 7-43 % of the median wall time (docs/ffd-engine.md).
   constexpr Eigen::Index kBlock = 1024;
   std::atomic<Eigen::Index> next{0};
   std::atomic<Eigen::Index> finished{0};

@@ -26,7 +26,7 @@ struct SceneDeformStats {
 /// Progress of SceneDeformer::update() / finishGesture(): the fraction in [0, 1] of the points the
 /// call embeds (over all its objects and lattice stages), non-decreasing, 0.0 first and 1.0 once
 /// the call is complete (only these two when nothing needs embedding). Called on the thread that
-/// runs the call, at least every ffd::kEmbedProgressChunk embedded points. Return false to cancel.
+/// runs the call, about every ffd::kEmbedProgressChunk embedded points. Return false to cancel.
 using SceneProgress = std::function<bool(double fraction)>;
 
 /// Evaluates a scene: for each object, its attached lattice trees in pre-order (spec §6,
