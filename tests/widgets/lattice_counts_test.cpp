@@ -149,6 +149,36 @@ TEST(LatticeCounts, ACylindricalLatticeKeepsAnAffineDeformation) {
   EXPECT_LT(maxDifference(m.controlPoints(l), expected), 1e-10);
 }
 
+// A user-shaped rest lattice (a bent box): the new rest points sample its rest map, the new grid
+// is located in it by Newton, and an affine deformation is again kept.
+TEST(LatticeCounts, AUserShapedLatticeSamplesItsRestMapAndKeepsAnAffineDeformation) {
+  WidgetModel m;
+  const WidgetId box3 = m.addLattice(box(Eigen::Vector3i(3, 3, 3), ffd::AxisBasis::bernstein()));
+  LatticeOptions o = box(Eigen::Vector3i(3, 3, 3), ffd::AxisBasis::bernstein());
+  o.restPoints = m.restPoints(box3);
+  for (Eigen::Index r = 0; r < o.restPoints.rows(); ++r) {
+    const double x = o.restPoints(r, 0);
+    o.restPoints(r, 2) += 0.2 * x * x;  // the rest lattice bends up along x
+  }
+  const WidgetId l = m.addLattice(o);
+  const ffd::Lattice before = m.ffdLattice(l);
+  ASSERT_FALSE(before.restIsAffine());
+  Eigen::Affine3d a = Eigen::Affine3d::Identity();
+  a.translate(Eigen::Vector3d(0.0, 0.1, 0.2)).rotate(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()));
+  m.setControlPoints(l, (m.restPoints(l) * a.linear().transpose()).rowwise() + a.translation().transpose());
+  m.setLatticeCounts(l, Eigen::Vector3i(5, 4, 3));
+  // New rest points on the old rest map at the new grid parameters (i / 4, j / 3, k / 2).
+  const Eigen::Vector3i to(5, 4, 3);
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 5; ++i) {
+        const Eigen::Vector3d expected = before.evaluateRest(Eigen::Vector3d(i / 4.0, j / 3.0, k / 2.0));
+        EXPECT_LT((Eigen::Vector3d(m.restPoints(l).row(flat(to, i, j, k))) - expected).norm(), 1e-15);
+      }
+  const Eigen::MatrixX3d expected = (m.restPoints(l) * a.linear().transpose()).rowwise() + a.translation().transpose();
+  EXPECT_LT(maxDifference(m.controlPoints(l), expected), 1e-10);
+}
+
 // A Bernstein lattice of 3 points per axis is a tri-quadratic map; 4 points hold every
 // tri-cubic one, so raising 3x3x3 to 4x4x4 keeps ANY deformation (degree elevation).
 TEST(LatticeCounts, ADeformedBernsteinLatticeRaisedFrom3To4KeepsItsDeformation) {
