@@ -2,7 +2,8 @@
 # Renders every sample scene with the ffdkit application (its --screenshot option: the window's
 # 3D view, glyphs and lattices included) into docs/images/<scene>.png, as shown in the README,
 # and the whole window on the hierarchy scene, its child lattice selected (transformer and
-# properties shown), into docs/images/app-window.png (docs/app.md).
+# properties shown), into docs/images/app-window.png, and the transformers of the default
+# scene's widget and lattice into docs/images/transformer-*.png (docs/app.md).
 # Runs under Xvfb when there is no display. Builds the application first unless
 # FFDKIT_NO_BUILD=1.
 #   scripts/screenshots.sh [scene-name ...]     (default: every folder of scenes/examples)
@@ -38,4 +39,7 @@ for name in "${scenes[@]}"; do
 done
 if [ "$#" -eq 0 ]; then
   "${run[@]}" "$app" "$root/scenes/examples/hierarchy" --select child --window-screenshot "$root/docs/images/app-window.png"
+  # The transformer manipulator of an affine widget and of a lattice (docs/app.md).
+  "${run[@]}" "$app" "$root/scenes/examples/default" --select pull --screenshot "$root/docs/images/transformer-widget.png"
+  "${run[@]}" "$app" "$root/scenes/examples/default" --select lattice --screenshot "$root/docs/images/transformer-lattice.png"
 fi
