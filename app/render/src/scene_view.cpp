@@ -385,6 +385,8 @@ struct SceneView::Impl {
   // camera, so that it stays visible inside the object it moves (a lattice's centre usually is).
   vtkSmartPointer<vtkRenderer> overlay;
   std::vector<vtkSmartPointer<vtkActor>> overlayActors;
+  // The transformer's three shapes at size 1 (built once; the actors place them per frame).
+  vtkSmartPointer<vtkPolyData> transformerArrow, transformerRing, transformerCube;
   ViewHighlights highlights;
 
   Eigen::Vector3d emphasis(WidgetId id, const Eigen::Vector3d& base) const {
@@ -548,39 +550,44 @@ struct SceneView::Impl {
       target->AddActor(actor);
       overlayActors.push_back(actor);
     };
-    vtkNew<vtkArrowSource> arrow;  // along +x, length 1
     const double length = L::moveTip - L::moveFrom;
-    arrow->SetShaftRadius(0.025 / length);
-    arrow->SetTipRadius(0.07 / length);
-    arrow->SetTipLength((L::moveTip - L::moveTo) / length);
-    arrow->SetShaftResolution(12);
-    arrow->SetTipResolution(20);
-    arrow->Update();
-    vtkNew<vtkParametricTorus> torus;  // about z
-    torus->SetRingRadius(L::turnRadius);
-    torus->SetCrossSectionRadius(0.018);
-    vtkNew<vtkParametricFunctionSource> ring;
-    ring->SetParametricFunction(torus);
-    ring->SetUResolution(64);
-    ring->SetVResolution(6);
-    ring->Update();
-    vtkNew<vtkCubeSource> cube;
-    cube->SetXLength(2.0 * L::sizeHalf);
-    cube->SetYLength(2.0 * L::sizeHalf);
-    cube->SetZLength(2.0 * L::sizeHalf);
-    cube->Update();
+    if (!transformerArrow) {
+      vtkNew<vtkArrowSource> arrow;  // along +x, length 1
+      arrow->SetShaftRadius(0.025 / length);
+      arrow->SetTipRadius(0.07 / length);
+      arrow->SetTipLength((L::moveTip - L::moveTo) / length);
+      arrow->SetShaftResolution(12);
+      arrow->SetTipResolution(20);
+      arrow->Update();
+      transformerArrow = arrow->GetOutput();
+      vtkNew<vtkParametricTorus> torus;  // about z
+      torus->SetRingRadius(L::turnRadius);
+      torus->SetCrossSectionRadius(0.018);
+      vtkNew<vtkParametricFunctionSource> ring;
+      ring->SetParametricFunction(torus);
+      ring->SetUResolution(64);
+      ring->SetVResolution(6);
+      ring->Update();
+      transformerRing = ring->GetOutput();
+      vtkNew<vtkCubeSource> cube;
+      cube->SetXLength(2.0 * L::sizeHalf);
+      cube->SetYLength(2.0 * L::sizeHalf);
+      cube->SetZLength(2.0 * L::sizeHalf);
+      cube->Update();
+      transformerCube = cube->GetOutput();
+    }
     for (int i = 0; i < 3; ++i) {
       const Eigen::Vector3d a = Eigen::Vector3d::Unit(i);
       // Rotations taking +x (arrow) and +z (ring) onto axis i.
       const Eigen::Matrix3d xToAxis = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), a).toRotationMatrix();
       const Eigen::Matrix3d zToAxis = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), a).toRotationMatrix();
-      add(arrow->GetOutput(),
+      add(transformerArrow,
           Eigen::Affine3d(Eigen::Scaling(s)) * Eigen::Affine3d(xToAxis) * Eigen::Translation3d(L::moveFrom, 0, 0) *
               Eigen::Scaling(length),
           static_cast<TransformerHandle>(i));
-      add(ring->GetOutput(), Eigen::Affine3d(Eigen::Scaling(s)) * Eigen::Affine3d(zToAxis),
+      add(transformerRing, Eigen::Affine3d(Eigen::Scaling(s)) * Eigen::Affine3d(zToAxis),
           static_cast<TransformerHandle>(3 + i));
-      add(cube->GetOutput(), Eigen::Affine3d(Eigen::Scaling(s)) * Eigen::Translation3d(L::sizeAt * a),
+      add(transformerCube, Eigen::Affine3d(Eigen::Scaling(s)) * Eigen::Translation3d(L::sizeAt * a),
           static_cast<TransformerHandle>(6 + i));
     }
   }
