@@ -10,6 +10,7 @@
 
 using namespace ffdkit;
 using app::InteractionController;
+using widgets::WidgetId;
 
 namespace {
 
@@ -366,6 +367,104 @@ class InteractionControllerTest : public QObject {
     commands.undo();
     QVERIFY(scene.widgets.latticeFrame(fig.child).isApprox(frame, 1e-14));
     QCOMPARE(scene.widgets.controlPoints(fig.parent), parent);
+  }
+
+  // ---- direct manipulation -------------------------------------------------------------------
+
+  // Dragging a point of the sphere: the lattice gets the least-norm change that puts the point
+  // exactly on the pointer ray; far points move less; one command; undo and cancel restore.
+  void draggingAnObjectPointMovesItExactlyUnderThePointer() {
+    Fixture f;
+    f.controller.clearSelection();
+    const Eigen::MatrixX3d before = f.deformer.points(f.sphere);
+    const Eigen::MatrixX3d control = f.scene.widgets.controlPoints(f.lattice);
+    const std::size_t position = f.commands.position();
+    widgets::Ray ray{Eigen::Vector3d(5.0, 0.1, 0.2), Eigen::Vector3d(-1.0, 0.0, 0.0)};
+    QCOMPARE(f.controller.pressObject(ray, 1e-3), std::optional<std::string>(f.sphere));
+    QVERIFY(f.controller.dragging());
+    const auto [object, vertex] = *f.controller.grabbedPoint();
+    QCOMPARE(object, f.sphere);
+    const Eigen::Vector3d grab = before.row(vertex).transpose();
+    QVERIFY(grab.x() > 0.2);  // on the side facing the ray
+    // The pointer moves by (0, 0.1, 0.05) in the drag plane (normal: the ray, -x).
+    const Eigen::Vector3d offset(0.0, 0.1, 0.05);
+    f.controller.drag({Eigen::Vector3d(5.0, grab.y(), grab.z()) + offset, Eigen::Vector3d(-1.0, 0.0, 0.0)});
+    QVERIFY((f.deformer.points(f.sphere).row(vertex).transpose() - (grab + offset)).norm() < 1e-9);  // live
+    f.controller.drag({Eigen::Vector3d(5.0, grab.y(), grab.z()) + 2.0 * offset, Eigen::Vector3d(-1.0, 0.0, 0.0)});
+    f.controller.release();
+    QVERIFY(!f.controller.grabbedPoint());
+    const Eigen::MatrixX3d after = f.deformer.points(f.sphere);
+    QVERIFY((after.row(vertex).transpose() - (grab + 2.0 * offset)).norm() < 1e-9);
+    // Smooth: the opposite side of the sphere moves much less than the grabbed point.
+    Eigen::Index far = 0;
+    (before.rowwise() - grab.transpose()).rowwise().norm().maxCoeff(&far);
+    QVERIFY((after.row(far) - before.row(far)).norm() < 0.5 * (2.0 * offset).norm());
+    QCOMPARE(f.commands.position(), position + 1);
+    QVERIFY(f.commands.undoDescription().rfind("Drag point ", 0) == 0);
+    // The deformation is the model's: a fresh deformer of the same scene gives the same points.
+    QVERIFY(maxDifference(after, scenes::deformScene(f.scene).at(f.sphere)) < 1e-12);
+    f.commands.undo();
+    QCOMPARE(f.scene.widgets.controlPoints(f.lattice), control);
+    QVERIFY(maxDifference(f.deformer.points(f.sphere), before) < 1e-12);
+
+    // Esc (cancel) mid-drag puts the lattice back; a miss grabs nothing.
+    QVERIFY(f.controller.pressObject(ray, 1e-3).has_value());
+    f.controller.drag({Eigen::Vector3d(5.0, grab.y(), grab.z()) + offset, Eigen::Vector3d(-1.0, 0.0, 0.0)});
+    f.controller.cancel();
+    QCOMPARE(f.scene.widgets.controlPoints(f.lattice), control);
+    QVERIFY(maxDifference(f.deformer.points(f.sphere), before) < 1e-12);
+    QCOMPARE(f.commands.position(), position);
+    QVERIFY(!f.controller.pressObject({Eigen::Vector3d(5.0, 5.0, 5.0), Eigen::Vector3d(1.0, 0.0, 0.0)}, 1e-3));
+  }
+
+  void anObjectWithoutALatticeCannotBeDraggedAndSaysWhy() {
+    Fixture f;
+    scenes::PrimitiveOptions cube;
+    cube.kind = scenes::PrimitiveKind::Cube;
+    cube.placement = Eigen::Translation3d(3.0, 0.0, 0.0);
+    const std::string name = f.controller.addPrimitive(cube);
+    try {
+      f.controller.pressObject({Eigen::Vector3d(3.0, 0.0, 5.0), Eigen::Vector3d(0.0, 0.0, -1.0)}, 1e-3);
+      QFAIL("expected std::invalid_argument");
+    } catch (const std::invalid_argument& e) {
+      QVERIFY2(std::string(e.what()).find("'" + name + "' is not deformed by a lattice") != std::string::npos, e.what());
+    }
+    QVERIFY(!f.controller.dragging());
+  }
+
+  // A lattice tree (spec §6): a child lattice around the sphere's top cap, bound to the top slab
+  // of the sphere's lattice. A point of the cap (inside the child) is moved by the child; a
+  // point at the bottom (outside it: the identity outside policy leaves it alone) by the parent.
+  // Both land on the pointer.
+  void directManipulationPicksTheLatticeThatHoldsThePoint() {
+    Fixture f;
+    const WidgetId top = f.scene.widgets.addCell(f.lattice, widgets::CellSpec::slab(2, 2), "top");
+    const WidgetId child = f.controller.newLattice({});
+    f.controller.setLatticeFrame(child, Eigen::Translation3d(-0.3, -0.3, 0.2) * Eigen::Scaling(0.6, 0.6, 0.45));
+    f.controller.bind(top, child);
+    QCOMPARE(f.scene.widgets.parentLattice(child), std::optional(f.lattice));
+    f.controller.clearSelection();
+    const Eigen::MatrixX3d before = f.deformer.points(f.sphere);
+    Eigen::Index highest = 0, lowest = 0;
+    before.col(2).maxCoeff(&highest);
+    before.col(2).minCoeff(&lowest);
+    for (Eigen::Index vertex : {highest, lowest}) {
+      const Eigen::Vector3d view = vertex == highest ? Eigen::Vector3d(0, 0, -1) : Eigen::Vector3d(0, 0, 1);
+      const Eigen::Vector3d p = before.row(vertex).transpose();
+      QVERIFY(f.controller.pressObject({p - 5.0 * view, view}, 1e-3).has_value());
+      const Eigen::Index grabbed = f.controller.grabbedPoint()->second;
+      const Eigen::Vector3d grab = before.row(grabbed).transpose();
+      const Eigen::MatrixX3d parentBefore = f.scene.widgets.controlPoints(f.lattice);
+      const Eigen::MatrixX3d childBefore = f.scene.widgets.controlPoints(child);
+      const Eigen::Vector3d offset(0.05, -0.04, 0.0);
+      f.controller.drag({grab + offset - 5.0 * view, view});
+      f.controller.release();
+      QVERIFY((f.deformer.points(f.sphere).row(grabbed).transpose() - (grab + offset)).norm() < 1e-9);
+      QCOMPARE(f.scene.widgets.controlPoints(child) != childBefore, vertex == highest);
+      QCOMPARE(f.scene.widgets.controlPoints(f.lattice) != parentBefore, vertex == lowest);
+      f.commands.undo();
+      QVERIFY(maxDifference(f.deformer.points(f.sphere), before) < 1e-12);
+    }
   }
 };
 

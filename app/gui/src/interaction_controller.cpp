@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <cctype>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
 
 #include "ffdkit/ffd/cylindrical_lattice.h"
+#include "ffdkit/ffd/direct_manipulation.h"
+#include "ffdkit/ffd/embedding.h"
+#include "ffdkit/ffd/pipeline.h"
 
 namespace ffdkit::app {
 
@@ -167,8 +171,116 @@ void InteractionController::beginHandleDrag(const Transformer& gizmo, Transforme
   notify();
 }
 
+namespace {
+
+// The lattices that deform `object`, in the order its pipeline runs them: each attached root
+// (attachment order) with its subtree in pre-order (spec §6).
+std::vector<WidgetId> objectStages(const scenes::Scene& scene, const std::string& object) {
+  std::vector<WidgetId> out;
+  std::function<void(WidgetId)> visit = [&](WidgetId lattice) {
+    out.push_back(lattice);
+    for (WidgetId child : scene.widgets.children(lattice)) visit(child);
+  };
+  for (WidgetId root : scene.latticesDeforming(object)) visit(root);
+  return out;
+}
+
+// Where `point` (world) is after the lattices stages[0, count) have deformed it.
+Eigen::Vector3d throughStages(const scenes::Scene& scene, const std::vector<WidgetId>& stages, std::size_t count,
+                              const Eigen::Vector3d& point) {
+  if (count == 0) return point;
+  ffd::Pipeline pipeline(point.transpose());
+  for (std::size_t i = 0; i < count; ++i) pipeline.addLattice(scene.widgets.ffdLattice(stages[i]), std::nullopt, static_cast<int>(i));
+  return pipeline.update().row(0).transpose();
+}
+
+}  // namespace
+
+std::optional<std::string> InteractionController::pressObject(const widgets::Ray& ray, double tolerance) {
+  if (dragging_) cancel();
+  const Eigen::Vector3d dir = ray.direction.normalized();
+  // The nearest object point under the ray, on the deformed objects.
+  std::optional<std::pair<std::string, Eigen::Index>> best;
+  double bestT = std::numeric_limits<double>::infinity();
+  for (const scenes::SceneObject& object : scene_.objects) {
+    if (!object.display.visible) continue;
+    const Eigen::MatrixX3d& points = deformer_.points(object.name);
+    const Eigen::MatrixX3i& triangles = object.mesh.triangles;
+    if (triangles.rows() > 0) {
+      for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+        const Eigen::Vector3d a = points.row(triangles(t, 0)).transpose(), b = points.row(triangles(t, 1)).transpose(),
+                              c = points.row(triangles(t, 2)).transpose();
+        const auto hit = widgets::intersectTriangle(ray, a, b, c);
+        if (!hit || *hit >= bestT) continue;
+        bestT = *hit;
+        const Eigen::Vector3d p = ray.at(*hit);
+        int corner = 0;
+        for (int k = 1; k < 3; ++k)
+          if ((points.row(triangles(t, k)).transpose() - p).norm() < (points.row(triangles(t, corner)).transpose() - p).norm())
+            corner = k;
+        best = std::make_pair(object.name, static_cast<Eigen::Index>(triangles(t, corner)));
+      }
+    } else {
+      for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        const Eigen::Vector3d v = points.row(i).transpose() - ray.origin;
+        const double t = v.dot(dir);
+        if (t < 0.0 || t >= bestT || (v - t * dir).norm() > tolerance) continue;
+        bestT = t;
+        best = std::make_pair(object.name, i);
+      }
+    }
+  }
+  if (!best) return std::nullopt;
+  const auto& [name, vertex] = *best;
+  const std::vector<WidgetId> stages = objectStages(scene_, name);
+  if (stages.empty()) throw std::invalid_argument("'" + name + "' is not deformed by a lattice: attach one to drag its points");
+  const Eigen::Vector3d own = scene_.findObject(name)->mesh.points.row(vertex).transpose();
+  // From the last stage back: the first lattice whose input holds the point moves it; a later
+  // one that does not hold it must leave it alone (identity outside policy).
+  for (std::size_t k = stages.size(); k-- > 0;) {
+    const ffd::Lattice lattice = scene_.widgets.ffdLattice(stages[k]);
+    const Eigen::Vector3d input = throughStages(scene_, stages, k, own);
+    const ffd::Embedding e = ffd::embed(lattice, input.transpose());
+    if (e.status(0) == ffd::PointStatus::Inside) {
+      ObjectGrab g;
+      g.object = name;
+      g.vertex = vertex;
+      g.lattice = stages[k];
+      g.uvw = e.parameters().row(0).transpose();
+      g.grab = deformer_.points(name).row(vertex).transpose();
+      g.normal = dir;
+      g.controlStart = scene_.widgets.controlPoints(stages[k]);
+      objectGrab_ = std::move(g);
+      dragStart_ = scene_.widgets.captureState();
+      dragLattice_ = stages[k];
+      dragging_ = true;
+      notify();
+      return name;
+    }
+    if (lattice.outsidePolicy().kind != ffd::OutsidePolicy::Kind::Identity)
+      throw std::invalid_argument("point " + std::to_string(vertex) + " of '" + name + "' is outside lattice '" +
+                                  scene_.widgets.name(stages[k]) +
+                                  "', whose outside policy moves it: direct manipulation needs a point inside");
+  }
+  throw std::invalid_argument("point " + std::to_string(vertex) + " of '" + name +
+                              "' is outside every lattice deforming it: nothing can move it");
+}
+
 void InteractionController::drag(const widgets::Ray& ray) {
   if (!dragging_) return;
+  if (objectGrab_) {
+    const ObjectGrab& g = *objectGrab_;
+    const auto t = widgets::intersectPlane(ray, g.grab, g.normal);
+    if (!t) return;  // parallel to the drag plane: keep the last position
+    // World displacement -> lattice-local (world = frame * local), then HHK's least-norm change.
+    const ffd::Lattice lattice = scene_.widgets.ffdLattice(g.lattice);
+    const Eigen::Vector3d local = lattice.frame().linear().inverse() * (ray.at(*t) - g.grab);
+    const Eigen::MatrixX3d change = ffd::leastNormControlChange(lattice, g.uvw.transpose(), local.transpose());
+    scene_.widgets.setControlPoints(g.lattice, g.controlStart + change);
+    deformer_.update(scene_, dragLattice_);
+    notify();
+    return;
+  }
   if (handleDrag_) {
     const Eigen::Affine3d motion = handleDrag_->motion(ray);
     if (handleStart_) {
@@ -190,6 +302,19 @@ void InteractionController::drag(const widgets::Ray& ray) {
 void InteractionController::release() {
   if (!dragging_) return;
   dragging_ = false;
+  if (objectGrab_) {
+    const std::string description = "Drag point " + std::to_string(objectGrab_->vertex) + " of " + objectGrab_->object;
+    objectGrab_.reset();
+    deformer_.finishGesture(scene_);
+    const widgets::WidgetModelState end = scene_.widgets.captureState();
+    if (!sameState(dragStart_, end))
+      commands_.pushSnapshots(description, dragStart_, end, [this](const widgets::WidgetModelState& state) {
+        scene_.widgets.restoreState(state);
+        refresh();
+      });
+    notify();
+    return;
+  }
   const std::optional<TransformerHandle> handle =
       handleDrag_ ? std::optional<TransformerHandle>(handleDrag_->handle()) : std::nullopt;
   handleDrag_.reset();
@@ -222,6 +347,12 @@ void InteractionController::release() {
 void InteractionController::cancel() {
   if (!dragging_) return;
   dragging_ = false;
+  if (objectGrab_) {
+    scene_.widgets.setControlPoints(objectGrab_->lattice, objectGrab_->controlStart);
+    objectGrab_.reset();
+    refresh();
+    return;
+  }
   handleDrag_.reset();
   if (handleStart_) {
     scene_.widgets.setPlacement(handleTarget_, placementStart_);

@@ -107,6 +107,7 @@ struct MainWindow::Impl {
   // Pointer state of the 3D view.
   QPoint pressAt;
   bool pressOnEmpty = false;
+  QAction* directManipulation = nullptr;  ///< checked: a drag on an object moves its point
   bool showingScene = false;
 
   // The objects the View menu's looks apply to: the selected ones, else all.
@@ -429,6 +430,16 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   action(widgetsMenu, tr("&Detach Lattice from Object"), "actionDetach", [this, selectedLattice, selectedObject] {
     impl_->controller->detachLattice(selectedLattice(), selectedObject());
   });
+  // Direct manipulation (spec §10): a mode, because a drag on an object otherwise orbits.
+  d.directManipulation = action(widgetsMenu, tr("&Direct Manipulation"), "actionDirectManipulation", [this] {
+    statusBar()->showMessage(impl_->directManipulation->isChecked()
+                                 ? tr("Direct manipulation: drag a point of an object; its lattice follows")
+                                 : tr("Direct manipulation off"),
+                             5000);
+  });
+  d.directManipulation->setCheckable(true);
+  d.directManipulation->setShortcut(QKeySequence(Qt::Key_D));
+  d.directManipulation->setToolTip(tr("Drag points of objects: the lattice gets the smallest change that puts the point under the pointer (D)"));
   widgetsMenu->addSeparator();
   QAction* primitive = action(widgetsMenu, tr("Add &Primitive..."), "actionAddPrimitive", [this] {
     QDialog dialog(this);
@@ -502,6 +513,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   for (QAction* a : addActions) toolbar->addAction(a);
   toolbar->addAction(bind);
   toolbar->addAction(attach);
+  toolbar->addAction(d.directManipulation);
 
   QSettings settings;
   const QStringList recent = settings.value("recentFiles").toStringList();
@@ -710,6 +722,9 @@ bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
         const bool extend = (e->modifiers() & (Qt::ControlModifier | Qt::ShiftModifier)) != 0;
         const bool lattices = (e->modifiers() & Qt::AltModifier) != 0;
         const auto hit = d.controller->press(d.rayAt(d.pressAt), d.tolerance(), extend, lattices);
+        if (hit == InteractionController::PressResult::Nothing && d.directManipulation->isChecked() && !lattices &&
+            d.controller->pressObject(d.rayAt(d.pressAt), d.tolerance()))
+          return true;  // dragging a point of an object: no orbit
         d.pressOnEmpty = hit == InteractionController::PressResult::Nothing;
         if (hit == InteractionController::PressResult::Handle) return true;  // the manipulator: no orbit
         if (hit != InteractionController::PressResult::Nothing) {

@@ -64,6 +64,24 @@ class InteractionController {
   PressResult press(const widgets::Ray& ray, double tolerance, bool extend = false, bool lattices = false);
   void drag(const widgets::Ray& ray);
   void release();
+
+  /// Direct manipulation (spec §10; Hsu, Hughes & Kaufman 1992): grabs the point of a deformed
+  /// object under the ray (the nearest vertex of the first triangle hit; for curves and point
+  /// clouds the nearest vertex within `tolerance`) and begins dragging it in the plane through
+  /// it facing the ray. Each drag() gives the lattice that moves that point the least-norm
+  /// control-point change (ffd::leastNormControlChange) that puts it on the pointer ray: the
+  /// point follows the pointer exactly, the rest of the object smoothly. The lattice is the last
+  /// one in the object's pipeline whose input holds the point (the later ones, with the
+  /// identity outside policy, leave it alone). release() pushes one command; cancel() undoes.
+  /// @return the object's name, or nullopt if no object point is under the ray.
+  /// @throws std::invalid_argument naming the object when no lattice can move the point (none
+  ///   attached, or the point is outside them).
+  std::optional<std::string> pressObject(const widgets::Ray& ray, double tolerance);
+  /// During a direct-manipulation drag: the object and the index of the point being dragged.
+  std::optional<std::pair<std::string, Eigen::Index>> grabbedPoint() const {
+    if (!objectGrab_) return std::nullopt;
+    return std::make_pair(objectGrab_->object, objectGrab_->vertex);
+  }
   /// Abandons the active drag (the model returns to the gesture start; nothing is pushed).
   void cancel();
   bool dragging() const { return dragging_; }
@@ -181,6 +199,17 @@ class InteractionController {
   Eigen::Affine3d placementStart_ = Eigen::Affine3d::Identity();
   Eigen::Affine3d placementBase_ = Eigen::Affine3d::Identity();
   std::optional<Snapshot> handleStart_;
+  // Direct manipulation: the grabbed point and the lattice that moves it.
+  struct ObjectGrab {
+    std::string object;
+    Eigen::Index vertex = 0;
+    widgets::WidgetId lattice;
+    Eigen::Vector3d uvw = Eigen::Vector3d::Zero();   ///< the point's parameters in that lattice
+    Eigen::Vector3d grab = Eigen::Vector3d::Zero();  ///< its deformed world position at the press
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< of the drag plane
+    Eigen::MatrixX3d controlStart;                   ///< the lattice's local control points at the press
+  };
+  std::optional<ObjectGrab> objectGrab_;
 };
 
 }  // namespace ffdkit::app
