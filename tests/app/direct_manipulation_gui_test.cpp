@@ -2,43 +2,14 @@
 // Manipulation on, dragging a point of the sphere moves that point under the pointer (the
 // lattice gets the least-norm change); with it off the same drag orbits the camera.
 #include <QAction>
-#include <QApplication>
-#include <QMouseEvent>
-#include <QSurfaceFormat>
 #include <QTest>
 
-#include <cmath>
-
 #include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/main_window.h"
-#include "ffdkit/app/scene_view.h"
-#include "ffdkit/app/vtk_view_widget.h"
+#include "gui_test_support.h"
 
 using namespace ffdkit;
 using app::MainWindow;
-
-namespace {
-
-void sendMouse(QWidget* widget, QEvent::Type type, QPoint at, Qt::MouseButton button, Qt::MouseButtons buttons) {
-  QMouseEvent event(type, QPointF(at), widget->mapToGlobal(QPointF(at)), button, buttons, Qt::NoModifier);
-  QApplication::sendEvent(widget, &event);
-}
-
-QPoint toWidget(MainWindow& w, const Eigen::Vector3d& p) {
-  const Eigen::Vector2d d = w.sceneView().displayPoint(p);
-  const double ratio = w.view()->devicePixelRatioF();
-  return QPoint(static_cast<int>(std::lround(d.x() / ratio)),
-                static_cast<int>(std::lround((w.view()->height() * ratio - 1.0 - d.y()) / ratio)));
-}
-
-void drag(MainWindow& w, QPoint a, QPoint b) {
-  sendMouse(w.view(), QEvent::MouseButtonPress, a, Qt::LeftButton, Qt::LeftButton);
-  for (int step = 1; step <= 10; ++step)
-    sendMouse(w.view(), QEvent::MouseMove, a + (b - a) * step / 10, Qt::NoButton, Qt::LeftButton);
-  sendMouse(w.view(), QEvent::MouseButtonRelease, b, Qt::LeftButton, Qt::NoButton);
-}
-
-}  // namespace
+using namespace ffdkit::app::testing;
 
 class DirectManipulationGuiTest : public QObject {
   Q_OBJECT
@@ -72,7 +43,7 @@ class DirectManipulationGuiTest : public QObject {
 
     // Off: the drag orbits the camera, the sphere stays.
     const scenes::Camera orbitStart = w.sceneView().camera();
-    drag(w, from, to);
+    dragPixels(w, from, to);
     QVERIFY((w.sceneView().camera().position - orbitStart.position).norm() > 1e-3);
     QCOMPARE(w.deformer().points(sphere), before);
     w.sceneView().applyCamera(camera);
@@ -84,7 +55,7 @@ class DirectManipulationGuiTest : public QObject {
     mode->trigger();
     QVERIFY(mode->isChecked());
     const std::size_t commands = w.commands().position();
-    drag(w, from, to);
+    dragPixels(w, from, to);
     const Eigen::MatrixX3d after = w.deformer().points(sphere);
     Eigen::Index moved = 0;
     const double most = (after - before).rowwise().norm().maxCoeff(&moved);
@@ -104,11 +75,6 @@ class DirectManipulationGuiTest : public QObject {
   std::unique_ptr<MainWindow> window_;
 };
 
-int main(int argc, char** argv) {
-  QSurfaceFormat::setDefaultFormat(app::VtkViewWidget::defaultFormat());
-  QApplication app(argc, argv);
-  DirectManipulationGuiTest test;
-  return QTest::qExec(&test, argc, argv);
-}
+int main(int argc, char** argv) { return runGuiTest<DirectManipulationGuiTest>(argc, argv); }
 
 #include "direct_manipulation_gui_test.moc"

@@ -4,16 +4,14 @@
 #include <QApplication>
 #include <QProgressDialog>
 #include <QPushButton>
-#include <QSurfaceFormat>
 #include <QTest>
 #include <QTimer>
 
 #include <algorithm>
 
 #include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/main_window.h"
-#include "ffdkit/app/vtk_view_widget.h"
 #include "ffdkit/scenes/scene_deformer.h"
+#include "gui_test_support.h"
 
 using namespace ffdkit;
 using app::MainWindow;
@@ -90,11 +88,6 @@ class EmbedProgressGuiTest : public QObject {
   std::unique_ptr<MainWindow> window_;
 };
 
-int main(int argc, char** argv) {
-  QSurfaceFormat::setDefaultFormat(app::VtkViewWidget::defaultFormat());
-  QApplication app(argc, argv);
-  EmbedProgressGuiTest test;
-  return QTest::qExec(&test, argc, argv);
-}
+int main(int argc, char** argv) { return ffdkit::app::testing::runGuiTest<EmbedProgressGuiTest>(argc, argv); }
 
 #include "embed_progress_gui_test.moc"

@@ -2,56 +2,22 @@
 // affine widget or a lattice widget brings it up, drawn over the object; dragging its handles
 // moves, turns and sizes the widget; clicking empty space dismisses it; undo puts things back.
 #include <QAction>
-#include <QApplication>
-#include <QMouseEvent>
 #include <QStatusBar>
-#include <QSurfaceFormat>
 #include <QTest>
 
 #include <cmath>
 
 #include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/main_window.h"
-#include "ffdkit/app/scene_view.h"
 #include "ffdkit/app/transformer.h"
-#include "ffdkit/app/vtk_view_widget.h"
 #include "ffdkit/scenes/scene_deformer.h"
+#include "gui_test_support.h"
 
 using namespace ffdkit;
 using app::MainWindow;
 using widgets::WidgetId;
+using namespace ffdkit::app::testing;
 
 namespace {
-
-void sendMouse(QWidget* widget, QEvent::Type type, QPoint at, Qt::MouseButton button, Qt::MouseButtons buttons,
-               Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
-  QMouseEvent event(type, QPointF(at), widget->mapToGlobal(QPointF(at)), button, buttons, modifiers);
-  QApplication::sendEvent(widget, &event);
-}
-
-// Where the view draws world point p, in the view widget's (logical) coordinates.
-QPoint toWidget(MainWindow& w, const Eigen::Vector3d& p) {
-  const Eigen::Vector2d d = w.sceneView().displayPoint(p);
-  const double ratio = w.view()->devicePixelRatioF();
-  return QPoint(static_cast<int>(std::lround(d.x() / ratio)),
-                static_cast<int>(std::lround((w.view()->height() * ratio - 1.0 - d.y()) / ratio)));
-}
-
-void click(MainWindow& w, QPoint at, Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
-  sendMouse(w.view(), QEvent::MouseButtonPress, at, Qt::LeftButton, Qt::LeftButton, modifiers);
-  sendMouse(w.view(), QEvent::MouseButtonRelease, at, Qt::LeftButton, Qt::NoButton, modifiers);
-}
-
-void hover(MainWindow& w, QPoint at) { sendMouse(w.view(), QEvent::MouseMove, at, Qt::NoButton, Qt::NoButton); }
-
-// Drags the mouse from world point `from` to world point `to` in ten steps.
-void dragWorld(MainWindow& w, const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
-  const QPoint a = toWidget(w, from), b = toWidget(w, to);
-  sendMouse(w.view(), QEvent::MouseButtonPress, a, Qt::LeftButton, Qt::LeftButton);
-  for (int step = 1; step <= 10; ++step)
-    sendMouse(w.view(), QEvent::MouseMove, a + (b - a) * step / 10, Qt::NoButton, Qt::LeftButton);
-  sendMouse(w.view(), QEvent::MouseButtonRelease, b, Qt::LeftButton, Qt::NoButton);
-}
 
 double maxDifference(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) { return (a - b).cwiseAbs().maxCoeff(); }
 
@@ -207,11 +173,6 @@ class TransformerGuiTest : public QObject {
   std::unique_ptr<MainWindow> window_;
 };
 
-int main(int argc, char** argv) {
-  QSurfaceFormat::setDefaultFormat(app::VtkViewWidget::defaultFormat());
-  QApplication app(argc, argv);
-  TransformerGuiTest test;
-  return QTest::qExec(&test, argc, argv);
-}
+int main(int argc, char** argv) { return runGuiTest<TransformerGuiTest>(argc, argv); }
 
 #include "transformer_gui_test.moc"
