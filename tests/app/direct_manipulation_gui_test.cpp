@@ -16,11 +16,8 @@ class DirectManipulationGuiTest : public QObject {
 
  private slots:
   void init() {
-    window_ = std::make_unique<MainWindow>();
-    window_->resize(1000, 760);
-    window_->show();
-    QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
-    window_->view()->grabFramebuffer();
+    window_ = openWindow(QSize(1000, 760));
+    QVERIFY(window_ != nullptr);
   }
   void cleanup() { window_.reset(); }
 

@@ -15,15 +15,15 @@
 
 using namespace ffdkit;
 using app::MainWindow;
+using namespace ffdkit::app::testing;
 
 class EmbedProgressGuiTest : public QObject {
   Q_OBJECT
 
  private slots:
   void init() {
-    window_ = std::make_unique<MainWindow>();
-    window_->show();
-    QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
+    window_ = openWindow();
+    QVERIFY(window_ != nullptr);
   }
   void cleanup() { window_.reset(); }
 
@@ -88,6 +88,6 @@ class EmbedProgressGuiTest : public QObject {
   std::unique_ptr<MainWindow> window_;
 };
 
-int main(int argc, char** argv) { return ffdkit::app::testing::runGuiTest<EmbedProgressGuiTest>(argc, argv); }
+int main(int argc, char** argv) { return runGuiTest<EmbedProgressGuiTest>(argc, argv); }
 
 #include "embed_progress_gui_test.moc"

@@ -9,6 +9,7 @@
 #include <QTest>
 
 #include <cmath>
+#include <memory>
 
 #include <Eigen/Core>
 
@@ -51,6 +52,17 @@ inline void dragPixels(MainWindow& w, QPoint a, QPoint b) {
 /// A left-button drag from where world point `from` is drawn to where `to` is.
 inline void dragWorld(MainWindow& w, const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
   dragPixels(w, toWidget(w, from), toWidget(w, to));
+}
+
+/// A shown main window of `size` (if given), exposed, with a first frame drawn (which sizes
+/// VTK's window); null if the window system never exposed it.
+inline std::unique_ptr<MainWindow> openWindow(QSize size = QSize()) {
+  auto window = std::make_unique<MainWindow>();
+  if (size.isValid()) window->resize(size);
+  window->show();
+  if (!QTest::qWaitForWindowExposed(window.get())) return nullptr;
+  window->view()->grabFramebuffer();
+  return window;
 }
 
 /// main() of a GUI test: VTK's surface format before the QApplication, then the Qt Test run.

@@ -10,20 +10,31 @@
 #include "ffdkit/ffd/embedding.h"
 #include "ffdkit/widgets/thesis_examples.h"
 #include "ffdkit/widgets/widget_model.h"
+#include "widget_test_support.h"
 
 namespace ffdkit::widgets {
 namespace {
 
-template <class F>
-WidgetError expectError(WidgetErrorCode code, F&& f) {
-  try {
-    f();
-  } catch (const WidgetError& e) {
-    EXPECT_EQ(e.code(), code) << e.what();
-    return e;
-  }
-  ADD_FAILURE() << "expected a WidgetError";
-  return WidgetError(code, "");
+using testing::expectError;
+
+// A 3 x 8 x 4 cylindrical (EFFD) lattice of radius 0.5 ...
+ffd::CylindricalLatticeOptions cylinderOptions() {
+  ffd::CylindricalLatticeOptions c;
+  c.counts = Eigen::Vector3i(3, 8, 4);
+  c.bases = {ffd::AxisBasis::bspline(2), ffd::AxisBasis::periodic(3), ffd::AxisBasis::bspline(3)};
+  c.outerRadius = 0.5;
+  return c;
+}
+
+// ... as a widget model builds it.
+LatticeOptions cylindricalOptions(const ffd::CylindricalLatticeOptions& c = cylinderOptions()) {
+  const ffd::Lattice cyl = ffd::makeCylindricalLattice(c);
+  LatticeOptions o;
+  o.counts = c.counts;
+  o.restPoints = cyl.restPoints();
+  o.settings.basis = c.bases;
+  o.settings.cylinder = cyl.cylinderRestShape();
+  return o;
 }
 
 LatticeOptions box(const Eigen::Vector3i& counts, const ffd::AxisBasis& basis) {
@@ -84,17 +95,8 @@ TEST(LatticeCounts, ARestLatticeStaysExactlyAtRestOnTheNewRegularGrid) {
   m.setLatticeCounts(l, Eigen::Vector3i(2, 3, 4));
   EXPECT_EQ(m.controlPoints(l), m.restPoints(l));
 
-  ffd::CylindricalLatticeOptions c;
-  c.counts = Eigen::Vector3i(3, 8, 4);
-  c.bases = {ffd::AxisBasis::bspline(2), ffd::AxisBasis::periodic(3), ffd::AxisBasis::bspline(3)};
-  c.outerRadius = 0.5;
-  const ffd::Lattice cyl = ffd::makeCylindricalLattice(c);
-  LatticeOptions o;
-  o.counts = c.counts;
-  o.restPoints = cyl.restPoints();
-  o.settings.basis = c.bases;
-  o.settings.cylinder = cyl.cylinderRestShape();
-  const WidgetId cl = m.addLattice(o);
+  ffd::CylindricalLatticeOptions c = cylinderOptions();
+  const WidgetId cl = m.addLattice(cylindricalOptions(c));
   m.setLatticeCounts(cl, Eigen::Vector3i(3, 12, 4));
   EXPECT_EQ(m.controlPoints(cl), m.restPoints(cl));
   c.counts = Eigen::Vector3i(3, 12, 4);
@@ -128,16 +130,7 @@ TEST(LatticeCounts, AnAffineDeformationIsKeptExactly) {
 // A cylindrical lattice: the new grid points are located in the old rest lattice by Newton, and
 // an affine deformation is kept to Newton's tolerance.
 TEST(LatticeCounts, ACylindricalLatticeKeepsAnAffineDeformation) {
-  ffd::CylindricalLatticeOptions c;
-  c.counts = Eigen::Vector3i(3, 8, 4);
-  c.bases = {ffd::AxisBasis::bspline(2), ffd::AxisBasis::periodic(3), ffd::AxisBasis::bspline(3)};
-  c.outerRadius = 0.5;
-  const ffd::Lattice cyl = ffd::makeCylindricalLattice(c);
-  LatticeOptions o;
-  o.counts = c.counts;
-  o.restPoints = cyl.restPoints();
-  o.settings.basis = c.bases;
-  o.settings.cylinder = cyl.cylinderRestShape();
+  const LatticeOptions o = cylindricalOptions();
   WidgetModel m;
   const WidgetId l = m.addLattice(o);
   Eigen::Affine3d a = Eigen::Affine3d::Identity();

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "ffdkit/widgets/thesis_examples.h"
+#include "widget_test_support.h"
 
 namespace ffdkit::widgets {
 namespace {
@@ -20,17 +21,7 @@ Eigen::Affine3d pointing(const Eigen::Vector3d& direction, const Eigen::Vector3d
   return a;
 }
 
-template <class F>
-WidgetError expectError(WidgetErrorCode code, F&& f) {
-  try {
-    f();
-  } catch (const WidgetError& e) {
-    EXPECT_EQ(e.code(), code) << e.what();
-    return e;
-  }
-  ADD_FAILURE() << "expected a WidgetError";
-  return WidgetError(code, "");
-}
+using testing::expectError;
 
 // The README example: a 3x3x3 lattice, a rotate widget on the top face bound to a translate
 // widget, turned by 90 degrees.
