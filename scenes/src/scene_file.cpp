@@ -124,7 +124,7 @@ SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions
     const Json& d = j["display"];
     const Location dat = at / "display";
     checkKeys(d, {"color", "opacity", "visible", "surfaceStyle", "zebraStripes", "zebraDirection", "curvatureComb",
-                  "combScale"},
+                  "combScale", "curveStyle"},
               dat);
     if (d.contains("color")) object.display.color = colour(d["color"], dat / "color");
     if (d.contains("opacity")) {
@@ -158,6 +158,12 @@ SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions
     if (d.contains("combScale")) {
       object.display.combScale = number(d["combScale"], dat / "combScale");
       if (!(object.display.combScale > 0.0)) (dat / "combScale").fail("must be positive");
+    }
+    if (d.contains("curveStyle")) {
+      const std::string style = text(d["curveStyle"], dat / "curveStyle");
+      if (style == "tube") object.display.curveStyle = CurveStyle::Tube;
+      else if (style == "line") object.display.curveStyle = CurveStyle::Line;
+      else (dat / "curveStyle").fail("unknown curve style '" + style + "' (known: tube, line)");
     }
   }
   try {
@@ -290,6 +296,8 @@ Json sceneJson(const Scene& scene) {
       display["zebraDirection"] = array3(object.display.zebraDirection);
     if (object.display.curvatureComb != defaults.curvatureComb) display["curvatureComb"] = object.display.curvatureComb;
     if (object.display.combScale != defaults.combScale) display["combScale"] = object.display.combScale;
+    if (object.display.curveStyle != defaults.curveStyle)
+      display["curveStyle"] = object.display.curveStyle == CurveStyle::Line ? "line" : "tube";
     objects.push_back(std::move(o));
   }
   root["objects"] = std::move(objects);

@@ -1,10 +1,11 @@
-// Display modes rendered off screen (Xvfb): zebra stripes and curvature combs (the comb's math
-// is in curvature_comb_test.cpp), and the scene-file keys of both.
+// Display modes rendered off screen (Xvfb): zebra stripes, curvature combs (the comb's math is
+// in curvature_comb_test.cpp), curves as tubes or lines, and the scene-file keys of all.
 #include <QGuiApplication>
 #include <QImage>
 #include <QTemporaryDir>
 #include <QTest>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -79,6 +80,62 @@ LineStats scanColumn(const QImage& image, int x, const Eigen::Vector3d& backgrou
   }
   return stats;
 }
+
+// A closed curve: a circle of radius 0.8 tilted toward a camera on the -y axis.
+scenes::Scene circleCurveScene() {
+  scenes::Scene scene;
+  scenes::SceneObject curve;
+  curve.name = "circle";
+  curve.mesh.points = circle(0.8, 120);
+  curve.mesh.points.col(2) = curve.mesh.points.col(1);  // tilted toward the default camera
+  curve.mesh.segments.resize(120, 2);
+  for (int i = 0; i < 120; ++i) curve.mesh.segments.row(i) << i, (i + 1) % 120;
+  curve.display.color = {0.9, 0.75, 0.1};
+  scene.objects.push_back(curve);
+  scene.camera.position = {0.0, -4.0, 0.0};
+  scene.camera.focalPoint = {0.0, 0.0, 0.0};
+  return scene;
+}
+
+// A view kept across frames, as the GUI keeps it: show() once, then refresh() per change.
+class LiveView {
+ public:
+  explicit LiveView(int size) : size_(size), view_(renderer_) {
+    window_->SetOffScreenRendering(true);
+    window_->SetSize(size, size);
+    window_->AddRenderer(renderer_);
+  }
+  QImage draw(const scenes::Scene& scene) {
+    scenes::SceneDeformer deformer;
+    deformer.update(scene);
+    deformer.finishGesture(scene);
+    if (first_) {
+      // The frame right after show() differs from later ones in a few dozen edge pixels (its
+      // clipping range is VTK's own, later frames use the view's bounds): compare later frames.
+      view_.show(scene, deformer);
+      window_->Render();
+      first_ = false;
+    }
+    view_.refresh(scene, deformer);
+    window_->Render();
+    vtkNew<vtkUnsignedCharArray> pixels;
+    window_->GetPixelData(0, 0, size_ - 1, size_ - 1, 0, pixels);  // bottom-up RGB
+    QImage image(size_, size_, QImage::Format_RGB32);
+    for (int y = 0; y < size_; ++y)
+      for (int x = 0; x < size_; ++x) {
+        const unsigned char* p = pixels->GetPointer(3 * ((size_ - 1 - y) * size_ + x));
+        image.setPixel(x, y, qRgb(p[0], p[1], p[2]));
+      }
+    return image;
+  }
+
+ private:
+  int size_;
+  vtkNew<vtkRenderer> renderer_;
+  vtkNew<vtkRenderWindow> window_;
+  app::SceneView view_;
+  bool first_ = true;
+};
 
 }  // namespace
 
@@ -184,10 +241,81 @@ class DisplayModesTest : public QObject {
     QVERIFY(longer > with + 300);  // longer teeth
   }
 
+  void aCurveDrawnAsALineIsThinnerThanItsTubeAndInItsColour() {
+    scenes::Scene scene = circleCurveScene();
+    const Eigen::Vector3d colour = scene.objects[0].display.color;
+    struct Count {
+      int drawn = 0;     ///< not background
+      int coloured = 0;  ///< within 0.1 of the object's colour
+      int blended = 0;   ///< within 0.05 of a mix of the background and the object's colour
+    };
+    auto count = [&](const QImage& image) {
+      Count c;
+      const Eigen::Vector3d along = colour - scene.background;
+      for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) {
+          const QColor p = image.pixelColor(x, y);
+          if (distance(p, scene.background) < 0.05) continue;
+          ++c.drawn;
+          c.coloured += distance(p, colour) < 0.1;
+          // Edge pixels are antialiased: a mix of the two colours, never a shade of the colour.
+          const Eigen::Vector3d rgb(p.redF(), p.greenF(), p.blueF());
+          const double t = std::clamp((rgb - scene.background).dot(along) / along.squaredNorm(), 0.0, 1.0);
+          c.blended += (scene.background + t * along - rgb).norm() < 0.05;
+        }
+      return c;
+    };
+    LiveView view(500);
+    const QImage tubeImage = view.draw(scene);
+    scene.objects[0].display.curveStyle = scenes::CurveStyle::Line;
+    const QImage lineImage = view.draw(scene);  // refresh(): the changed look rebuilds the actor
+    scene.objects[0].display.curveStyle = scenes::CurveStyle::Tube;
+    const QImage tubeAgain = view.draw(scene);
+    const Count tube = count(tubeImage), line = count(lineImage);
+    qInfo("tube: %d pixels (%d in the object's colour, %d mixed with the background); line: %d pixels (%d, %d)",
+          tube.drawn, tube.coloured, tube.blended, line.drawn, line.coloured, line.blended);
+    // The circle is ~1170 pixels round: the 2-pixel line, antialiased, covers ~3300 pixels, the
+    // ~8-pixel-wide tube about three times that.
+    QVERIFY(line.drawn > 1000);
+    QVERIFY2(line.drawn < tube.drawn / 2, qPrintable(QString("line %1 vs tube %2").arg(line.drawn).arg(tube.drawn)));
+    // Unlit: the colour itself, mixed with the background at the antialiased edges.
+    QVERIFY(line.coloured > 0.3 * line.drawn);
+    QVERIFY(line.blended > 0.95 * line.drawn);
+    QVERIFY(tube.coloured < 0.2 * tube.drawn);  // shaded: lit and dark sides
+    // Every line pixel lies on the tube (the same curve).
+    int offTube = 0;
+    for (int y = 0; y < lineImage.height(); ++y)
+      for (int x = 0; x < lineImage.width(); ++x)
+        offTube += distance(lineImage.pixelColor(x, y), scene.background) >= 0.05 &&
+                   distance(tubeImage.pixelColor(x, y), scene.background) < 0.05;
+    QVERIFY2(offTube < line.drawn / 50, qPrintable(QString("%1 line pixels off the tube").arg(offTube)));
+    QCOMPARE(tubeAgain, tubeImage);  // switching back restores the tube
+
+    // A fresh render of a scene saved with lines agrees with the live view.
+    scene.objects[0].display.curveStyle = scenes::CurveStyle::Line;
+    const Count fresh = count(render(scene, 500, 500));
+    QVERIFY2(std::abs(fresh.drawn - line.drawn) < line.drawn / 20, qPrintable(QString::number(fresh.drawn)));
+
+    // The comb is drawn for a line as for a tube.
+    auto combPixels = [](const QImage& image) {
+      int n = 0;
+      for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) n += distance(image.pixelColor(x, y), app::kCombColour) < 0.15;
+      return n;
+    };
+    scene.objects[0].display.curvatureComb = true;
+    const int combOnLine = combPixels(render(scene, 300, 300));
+    scene.objects[0].display.curveStyle = scenes::CurveStyle::Tube;
+    const int combOnTube = combPixels(render(scene, 300, 300));
+    qInfo("comb pixels: on a line %d, on a tube %d", combOnLine, combOnTube);
+    QVERIFY(combOnTube > 300);
+    QVERIFY(combOnLine >= combOnTube);  // the thinner curve hides less of it
+  }
+
   void displayKeysRoundTripAndDefaultsAreNotWritten() {
     scenes::Scene scene = sphereScene(scenes::SurfaceStyle::Shaded);
     const std::string plain = scenes::sceneFileText(scene);
-    for (const char* key : {"surfaceStyle", "zebraStripes", "zebraDirection", "curvatureComb", "combScale"})
+    for (const char* key : {"surfaceStyle", "zebraStripes", "zebraDirection", "curvatureComb", "combScale", "curveStyle"})
       QVERIFY2(plain.find(key) == std::string::npos, key);
     scenes::DisplaySettings& d = scene.objects[0].display;
     d.surfaceStyle = scenes::SurfaceStyle::Zebra;
@@ -195,6 +323,7 @@ class DisplayModesTest : public QObject {
     d.zebraDirection = {1.0, 0.5, 0.0};
     d.curvatureComb = true;
     d.combScale = 0.125;
+    d.curveStyle = scenes::CurveStyle::Line;
     const std::string text = scenes::sceneFileText(scene);
     std::istringstream in(text);
     const scenes::Scene back = scenes::readScene(in);
@@ -225,6 +354,10 @@ class DisplayModesTest : public QObject {
     QVERIFY(refusal("\"zebraDirection\": [0, 0, 0]").find("zebraDirection") != std::string::npos);
     QVERIFY(refusal("\"combScale\": -1").find("combScale") != std::string::npos);
     QVERIFY(refusal("\"curvatureComb\": 1").find("curvatureComb") != std::string::npos);
+    const std::string curve = refusal("\"curveStyle\": \"ribbon\"");
+    QVERIFY2(curve.find("/display/curveStyle") != std::string::npos && curve.find("ribbon") != std::string::npos &&
+                 curve.find("tube, line") != std::string::npos,
+             curve.c_str());
     QVERIFY(refusal("\"zebraStripes\": 5").empty());  // the splice itself is fine
   }
 };

@@ -692,6 +692,35 @@ class MainWindowTest : public QObject {
     QVERIFY(w.view()->grabFramebuffer() != combed);
   }
 
+  void aCurveIsSwitchedToALineInThePropertyPanelAndUndone() {
+    MainWindow& w = *window_;
+    w.openScene(FFDKIT_SOURCE_DIR "/scenes/examples/g3-curve");
+    const scenes::SceneObject& curve = w.scene().objects.front();
+    QVERIFY(curve.mesh.segments.rows() > 0 && curve.mesh.triangles.rows() == 0);
+    QCOMPARE(curve.display.curveStyle, scenes::CurveStyle::Tube);
+    clickRow(w, QString::fromStdString(curve.name));
+    auto* style = panelControl<QComboBox>(w, "curveStyle");
+    QVERIFY(style != nullptr);
+    QCOMPARE(style->currentText(), QString("tube"));
+    QVERIFY(panelControl<QComboBox>(w, "surfaceStyle") == nullptr);  // a curve has no surface look
+    const QString undoText = action(w, "actionUndo")->text();
+    const QImage tube = w.view()->grabFramebuffer();
+    style->setCurrentIndex(style->findText("line"));
+    QCOMPARE(w.scene().objects.front().display.curveStyle, scenes::CurveStyle::Line);
+    QVERIFY(action(w, "actionUndo")->text() != undoText);  // one undoable command
+    const QImage line = w.view()->grabFramebuffer();
+    QCOMPARE(line.size(), tube.size());
+    long changed = 0;
+    for (int y = 0; y < tube.height(); ++y)
+      for (int x = 0; x < tube.width(); ++x) changed += tube.pixel(x, y) != line.pixel(x, y);
+    qInfo("curve as a line: %ld of %lld pixels changed", changed, static_cast<long long>(tube.width()) * tube.height());
+    QVERIFY(changed > 500);
+    action(w, "actionUndo")->trigger();
+    QCOMPARE(w.scene().objects.front().display.curveStyle, scenes::CurveStyle::Tube);
+    QCOMPARE(action(w, "actionUndo")->text(), undoText);
+    QCOMPARE(w.view()->grabFramebuffer(), tube);
+  }
+
   void eachSampleSceneShowsItsObject() {
     MainWindow& w = *window_;
     int scenesSeen = 0;

@@ -107,6 +107,46 @@ TEST(SceneFile, BadInputGetsLocatedErrors) {
             std::string::npos);
 }
 
+TEST(SceneFile, CurveStyleRoundTripsAndTheDefaultIsNotWritten) {
+  Scene scene = readScene(kExamples / "default");
+  EXPECT_EQ(scene.objects.front().display.curveStyle, CurveStyle::Tube);
+  EXPECT_EQ(sceneFileText(scene).find("curveStyle"), std::string::npos);  // older files keep their bytes
+
+  scene.objects.front().display.curveStyle = CurveStyle::Line;
+  const std::string text = sceneFileText(scene);
+  EXPECT_NE(text.find("\"curveStyle\": \"line\""), std::string::npos) << text;
+  std::istringstream in(text);
+  const Scene back = readScene(in, "scene.json", {.baseDirectory = kExamples / "default"});
+  EXPECT_EQ(back.objects.front().display.curveStyle, CurveStyle::Line);
+  EXPECT_EQ(back.objects.front().display, scene.objects.front().display);
+  EXPECT_EQ(sceneFileText(back), text);
+
+  // "tube" spelled out reads as the default and is then omitted again.
+  std::string tube = text;
+  tube.replace(tube.find("\"line\""), 6, "\"tube\"");
+  std::istringstream tubeIn(tube);
+  const Scene tubeScene = readScene(tubeIn, "scene.json", {.baseDirectory = kExamples / "default"});
+  EXPECT_EQ(tubeScene.objects.front().display.curveStyle, CurveStyle::Tube);
+  EXPECT_EQ(sceneFileText(tubeScene).find("curveStyle"), std::string::npos);
+}
+
+TEST(SceneFile, AnUnknownCurveStyleIsRefusedWithItsPlaceAndTheKnownStyles) {
+  const std::string base = fileText(kExamples / "default" / "scene.json");
+  const std::string anchor = "\"visible\": true";
+  auto with = [&](const std::string& extra) {
+    std::string text = base;
+    const auto at = text.find(anchor);
+    EXPECT_NE(at, std::string::npos);
+    return text.replace(at, anchor.size(), anchor + ", " + extra);
+  };
+  const std::string message = errorOf(with("\"curveStyle\": \"ribbon\""));
+  EXPECT_NE(message.find("scene.json /objects/0/display/curveStyle: unknown curve style 'ribbon' (known: tube, line)"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(errorOf(with("\"curveStyle\": 1")).find("/objects/0/display/curveStyle"), std::string::npos);
+  EXPECT_EQ(errorOf(with("\"curveStyle\": \"line\"")), "");  // the splice itself is fine
+}
+
 TEST(SceneFile, AFailedWriteLeavesTheOldFile) {
   const auto dir = std::filesystem::temp_directory_path() / "ffdkit-scene-write-test";
   std::filesystem::remove_all(dir);

@@ -446,7 +446,7 @@ void PropertyPanel::showObject(const std::string& name) {
   QStringList lattices;
   for (widgets::WidgetId l : scene_.latticesDeforming(name)) lattices << qs(scene_.widgets.name(l));
   form_->addRow(tr("Deformed by"), new QLabel(lattices.isEmpty() ? tr("(nothing)") : lattices.join(", ")));
-  // Looks (DisplaySettings): zebra stripes for surfaces, a curvature comb for curves.
+  // Looks (DisplaySettings): zebra stripes for surfaces; tube or line and a curvature comb for curves.
   auto setLook = [this, name](auto change) {
     guarded([&] {
       scenes::DisplaySettings look = scene_.findObject(name)->display;
@@ -476,6 +476,16 @@ void PropertyPanel::showObject(const std::string& name) {
             [setLook](int n) { setLook([n](scenes::DisplaySettings& look) { look.zebraStripes = n; }); });
     form_->addRow(tr("Stripes"), stripes);
   } else if (object->mesh.segments.rows() > 0) {
+    auto* curve = new QComboBox;
+    curve->setObjectName("curveStyle");
+    curve->addItem(tr("tube"), static_cast<int>(scenes::CurveStyle::Tube));
+    curve->addItem(tr("line"), static_cast<int>(scenes::CurveStyle::Line));
+    curve->setCurrentIndex(curve->findData(static_cast<int>(d.curveStyle)));
+    connect(curve, &QComboBox::currentIndexChanged, this, [setLook, curve](int index) {
+      const auto chosen = static_cast<scenes::CurveStyle>(curve->itemData(index).toInt());
+      setLook([chosen](scenes::DisplaySettings& look) { look.curveStyle = chosen; });
+    });
+    form_->addRow(tr("Curve"), curve);
     auto* comb = new QCheckBox(tr("curvature comb"));
     comb->setObjectName("curvatureComb");
     comb->setChecked(d.curvatureComb);

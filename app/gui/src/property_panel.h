@@ -15,7 +15,8 @@ class InteractionController;
 /// Properties of the selection, generated from the model: an affine widget (kind, variation,
 /// placement, glyph or part), a binding (one-way direction, mask as T/R/S toggle buttons,
 /// conversion rule gain and clamp range), a lattice (counts, basis per axis, outside policy), a
-/// cell, an object. Every edit goes through the controller (one undoable command); an edit the
+/// cell, an object (its look: shaded or zebra for a surface, tube or line and a comb for a
+/// curve). Every edit goes through the controller (one undoable command); an edit the
 /// model rejects is reported with `error` and its control shows the model's value again.
 /// Controls carry object names for tests ("kind", "oneWay", "countU", "basisV", ...).
 class PropertyPanel : public QWidget {

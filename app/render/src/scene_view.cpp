@@ -430,6 +430,9 @@ struct SceneView::Impl {
       entry.display = object.display;
       entry.polyData = toPolyData(object.mesh, points);
       const bool zebra = object.display.surfaceStyle == scenes::SurfaceStyle::Zebra && object.mesh.triangles.rows() > 0;
+      constexpr double kCurveLineWidth = 2.0;  // pixels, DisplaySettings::curveStyle
+      const bool curveLine = object.display.curveStyle == scenes::CurveStyle::Line && object.mesh.triangles.rows() == 0 &&
+                             object.mesh.segments.rows() > 0;
       vtkNew<vtkPolyDataMapper> mapper;
       if (object.mesh.triangles.rows() > 0) {
         vtkNew<vtkFloatArray> normals;  // smooth shading of the deformed surface
@@ -443,14 +446,19 @@ struct SceneView::Impl {
         }
         mapper->SetInputData(entry.polyData);
       } else if (object.mesh.segments.rows() > 0) {
-        // Curves as shaded tubes, thick enough to read at any zoom of the object.
-        const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
-        vtkNew<vtkTubeFilter> tubes;
-        tubes->SetInputData(entry.polyData);
-        tubes->SetRadius(std::max(1e-6, 0.006 * diagonal));
-        tubes->SetNumberOfSides(10);
-        tubes->CappingOn();
-        mapper->SetInputConnection(tubes->GetOutputPort());
+        if (curveLine) {
+          // Curves as lines: the polyline itself (unlit, set below), the exact points drawn.
+          mapper->SetInputData(entry.polyData);
+        } else {
+          // Curves as shaded tubes, thick enough to read at any zoom of the object.
+          const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+          vtkNew<vtkTubeFilter> tubes;
+          tubes->SetInputData(entry.polyData);
+          tubes->SetRadius(std::max(1e-6, 0.006 * diagonal));
+          tubes->SetNumberOfSides(10);
+          tubes->CappingOn();
+          mapper->SetInputConnection(tubes->GetOutputPort());
+        }
         if (object.display.curvatureComb) {
           entry.chains = segmentChains(object.mesh.segments, points.rows());
           entry.combFactor = combFactor(entry.chains, object.mesh.points, object.display.combScale,
@@ -479,6 +487,10 @@ struct SceneView::Impl {
         entry.actor->SetTexture(zebraTexture());
         entry.actor->GetProperty()->SetColor(1.0, 1.0, 1.0);
         entry.actor->GetProperty()->SetLighting(false);
+      }
+      if (curveLine) {  // unlit: the object's colour exactly, at any orientation of the line
+        entry.actor->GetProperty()->SetLighting(false);
+        entry.actor->GetProperty()->SetLineWidth(kCurveLineWidth);
       }
       renderer->AddActor(entry.actor);
       objects.push_back(std::move(entry));

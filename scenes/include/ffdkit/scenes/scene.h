@@ -35,6 +35,10 @@ using ObjectSource = std::variant<PrimitiveOptions, MeshFileSource, GeneratedSou
 /// show the smoothness of the deformed surface (seed 001 l.1721).
 enum class SurfaceStyle { Shaded, Zebra };
 
+/// How a curve is drawn: a shaded tube around the polyline, or the polyline itself as unlit
+/// lines in the object's colour (lighter on a dense scene, and the exact points of the curve).
+enum class CurveStyle { Tube, Line };
+
 /// How an object looks in the 3D view.
 struct DisplaySettings {
   Eigen::Vector3d color{0.85, 0.55, 0.30};  ///< RGB in [0, 1]
@@ -53,6 +57,10 @@ struct DisplaySettings {
   /// curve is combScale times the diagonal of its bounding box (a straight undeformed curve:
   /// length = combScale * curvature * diagonal^2); positive.
   double combScale = 0.15;
+  /// Curves only (objects with segments); surfaces and point clouds ignore it. Tube: a shaded
+  /// tube of radius 0.6 % of the deformed curve's bounding-box diagonal. Line: the polyline,
+  /// unlit, in `color`, 2 pixels wide. The curvature comb is drawn the same for both.
+  CurveStyle curveStyle = CurveStyle::Tube;
 
   friend bool operator==(const DisplaySettings&, const DisplaySettings&) = default;
 };
