@@ -74,8 +74,11 @@ bool InteractionController::hover(const widgets::Ray& ray, double tolerance) {
   widgets::PickOptions options;
   options.tolerance = tolerance;
   const auto hit = scene_.widgets.pick(ray, options);
-  const auto gizmo = hit || pickPoint(ray, tolerance) ? std::nullopt : transformer();  // the order of press()
-  const std::optional<TransformerHandle> handle = gizmo ? pickTransformer(*gizmo, ray, tolerance) : std::nullopt;
+  // The order of press(): glyphs and cells, lattice points, then the transformer's handles.
+  std::optional<TransformerHandle> handle;
+  if (!hit)
+    if (const auto gizmo = transformer(); gizmo && !pickPoint(ray, tolerance))
+      handle = pickTransformer(*gizmo, ray, tolerance);
   const bool handleChanged = handle != hoveredHandle_;
   hoveredHandle_ = handle;
   if (handle) {
