@@ -9,18 +9,12 @@
 #include "ffdkit/app/curvature_comb.h"
 #include "ffdkit/scenes/generator.h"
 #include "ffdkit/scenes/scene_file.h"
+#include "test_curves.h"
 
 namespace ffdkit::app {
 namespace {
 
-Eigen::MatrixX3d circle(double radius, int n, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
-  Eigen::MatrixX3d points(n, 3);
-  for (int i = 0; i < n; ++i) {
-    const double t = 2.0 * std::numbers::pi * i / n;
-    points.row(i) = (centre + radius * Eigen::Vector3d(std::cos(t), std::sin(t), 0.0)).transpose();
-  }
-  return points;
-}
+using testing::circle;
 
 TEST(CurvatureComb, ACircleHasCurvatureOneOverRadiusTowardTheCentre) {
   const double r = 2.5;

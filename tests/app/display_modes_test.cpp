@@ -19,19 +19,13 @@
 #include "ffdkit/app/scene_view.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
+#include "test_curves.h"
 
 using namespace ffdkit;
 
 namespace {
 
-Eigen::MatrixX3d circle(double radius, int n, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
-  Eigen::MatrixX3d points(n, 3);
-  for (int i = 0; i < n; ++i) {
-    const double t = 2.0 * std::numbers::pi * i / n;
-    points.row(i) = (centre + radius * Eigen::Vector3d(std::cos(t), std::sin(t), 0.0)).transpose();
-  }
-  return points;
-}
+using app::testing::circle;
 
 // A scene with a single sphere (no widgets) seen from the default camera.
 scenes::Scene sphereScene(scenes::SurfaceStyle style) {
@@ -82,7 +76,7 @@ LineStats scanColumn(const QImage& image, int x, const Eigen::Vector3d& backgrou
 }
 
 // A closed curve: a circle of radius 0.8 tilted toward a camera on the -y axis.
-scenes::Scene circleCurveScene() {
+scenes::Scene circleCurveScene(double cameraDistance = 4.0) {
   scenes::Scene scene;
   scenes::SceneObject curve;
   curve.name = "circle";
@@ -92,7 +86,7 @@ scenes::Scene circleCurveScene() {
   for (int i = 0; i < 120; ++i) curve.mesh.segments.row(i) << i, (i + 1) % 120;
   curve.display.color = {0.9, 0.75, 0.1};
   scene.objects.push_back(curve);
-  scene.camera.position = {0.0, -4.0, 0.0};
+  scene.camera.position = {0.0, -cameraDistance, 0.0};
   scene.camera.focalPoint = {0.0, 0.0, 0.0};
   return scene;
 }
@@ -214,16 +208,7 @@ class DisplayModesTest : public QObject {
   }
 
   void curvatureCombIsDrawnForCurves() {
-    scenes::Scene scene;
-    scenes::SceneObject curve;
-    curve.name = "circle";
-    curve.mesh.points = circle(0.8, 120);
-    curve.mesh.points.col(2) = curve.mesh.points.col(1);  // tilted toward the default camera
-    curve.mesh.segments.resize(120, 2);
-    for (int i = 0; i < 120; ++i) curve.mesh.segments.row(i) << i, (i + 1) % 120;
-    scene.objects.push_back(curve);
-    scene.camera.position = {0.0, -5.0, 0.0};
-    scene.camera.focalPoint = {0.0, 0.0, 0.0};
+    scenes::Scene scene = circleCurveScene(5.0);
     auto combPixels = [](const QImage& image) {
       int n = 0;
       for (int y = 0; y < image.height(); ++y)
