@@ -249,7 +249,9 @@ std::optional<std::string> InteractionController::pressObject(const widgets::Ray
       g.object = name;
       g.vertex = vertex;
       g.lattice = stages[k];
-      g.uvw = e.parameters().row(0).transpose();
+      // The least-norm change for a unit displacement along x: its x column is the weight vector.
+      g.weights = ffd::leastNormControlChange(lattice, e.parameters(), Eigen::RowVector3d::UnitX()).col(0);
+      g.worldToLocal = lattice.frame().linear().inverse();
       g.grab = deformer_.points(name).row(vertex).transpose();
       g.normal = dir;
       g.controlStart = scene_.widgets.controlPoints(stages[k]);
@@ -276,10 +278,8 @@ void InteractionController::drag(const widgets::Ray& ray) {
     const auto t = widgets::intersectPlane(ray, g.grab, g.normal);
     if (!t) return;  // parallel to the drag plane: keep the last position
     // World displacement -> lattice-local (world = frame * local), then HHK's least-norm change.
-    const ffd::Lattice lattice = scene_.widgets.ffdLattice(g.lattice);
-    const Eigen::Vector3d local = lattice.frame().linear().inverse() * (ray.at(*t) - g.grab);
-    const Eigen::MatrixX3d change = ffd::leastNormControlChange(lattice, g.uvw.transpose(), local.transpose());
-    scene_.widgets.setControlPoints(g.lattice, g.controlStart + change);
+    const Eigen::Vector3d local = g.worldToLocal * (ray.at(*t) - g.grab);
+    scene_.widgets.setControlPoints(g.lattice, g.controlStart + g.weights * local.transpose());
     deformer_.update(scene_, dragLattice_);
     notify();
     return;

@@ -204,10 +204,14 @@ class InteractionController {
     std::string object;
     Eigen::Index vertex = 0;
     widgets::WidgetId lattice;
-    Eigen::Vector3d uvw = Eigen::Vector3d::Zero();   ///< the point's parameters in that lattice
     Eigen::Vector3d grab = Eigen::Vector3d::Zero();  ///< its deformed world position at the press
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< of the drag plane
     Eigen::MatrixX3d controlStart;                   ///< the lattice's local control points at the press
+    /// Precomputed at the press (the weights and the frame do not change during the drag): the
+    /// least-norm change is `weights * (worldToLocal * d)^T` for a world displacement d, with
+    /// weights = w_i / sum_j w_j^2 (HHK 1992 for one point; ffd::leastNormControlChange).
+    Eigen::VectorXd weights;
+    Eigen::Matrix3d worldToLocal = Eigen::Matrix3d::Identity();
   };
   std::optional<ObjectGrab> objectGrab_;
 };
