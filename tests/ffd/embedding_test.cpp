@@ -42,14 +42,6 @@ Lattice userShapedUnitLattice() {
   return lattice;
 }
 
-Eigen::MatrixX3d uniformUnitBox(Eigen::Index n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  Eigen::MatrixX3d Q(n, 3);
-  for (Eigen::Index r = 0; r < n; ++r) Q.row(r) << U(rng), U(rng), U(rng);
-  return Q;
-}
-
 struct ProgressCall {
   Eigen::Index done;
   Eigen::Index total;
@@ -176,7 +168,7 @@ TEST(Embedding, SingleCellLatticesKeepTheOriginalOrder) {
 
 TEST(EmbedProgress, IsCalledOnTheCallingThreadMonotoneUpToTheTotal) {
   const Lattice lattice = userShapedUnitLattice();
-  const Eigen::MatrixX3d Q = uniformUnitBox(2 * kEmbedProgressChunk + 1234, 11);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(2 * kEmbedProgressChunk + 1234, 11);
   const Embedding reference = embed(lattice, Q);
   for (const bool parallel : {true, false}) {
     SCOPED_TRACE(parallel ? "parallel" : "serial");
@@ -225,7 +217,7 @@ TEST(EmbedProgress, IsCalledForAnEmptyPointSet) {
 
 TEST(EmbedProgress, ReturningFalseAtAboutHalfThrowsCancelledAndStopsCalling) {
   const Lattice lattice = userShapedUnitLattice();
-  const Eigen::MatrixX3d Q = uniformUnitBox(4 * kEmbedProgressChunk, 12);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(4 * kEmbedProgressChunk, 12);
   int callsAfterCancel = 0;
   bool cancelled = false;
   Eigen::Index cancelledAt = -1;
@@ -264,7 +256,7 @@ TEST(EmbedProgress, AnAtomicFlagSetFromAnotherThreadStopsALargeNewtonEmbedding) 
   // The GUI's pattern: the embedding runs on a worker, the flag is set by another thread.
   const Lattice lattice = userShapedUnitLattice();
   ASSERT_FALSE(lattice.restIsAffine());
-  const Eigen::MatrixX3d Q = uniformUnitBox(2000000, 13);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(2000000, 13);
   std::atomic<bool> cancel{false};
   std::atomic<int> calls{0};
   int callsWhenSet = -1;

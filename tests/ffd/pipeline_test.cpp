@@ -22,14 +22,6 @@ Lattice boxAt(const Eigen::Vector3d& corner, double size, int count = 3) {
   return makeBoxLattice(options);
 }
 
-Eigen::MatrixX3d randomPointsInUnitBox(Eigen::Index n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  Eigen::MatrixX3d Q(n, 3);
-  for (Eigen::Index r = 0; r < n; ++r) Q.row(r) << U(rng), U(rng), U(rng);
-  return Q;
-}
-
 // The pipeline computed by hand: embed and deform lattice after lattice.
 Eigen::MatrixX3d sequential(const std::vector<const Lattice*>& lattices, Eigen::MatrixX3d points) {
   for (const Lattice* lattice : lattices) {
@@ -46,7 +38,7 @@ void bend(Lattice& lattice, double amount) {
 }
 
 TEST(Pipeline, RunsLatticesInPreOrderWithSiblingPriorities) {
-  Pipeline pipeline(randomPointsInUnitBox(10, 1));
+  Pipeline pipeline(testing::uniformPointsInUnitBox(10, 1));
   const LatticeId a = pipeline.addLattice(boxAt({0, 0, 0}, 1.0));
   const LatticeId b = pipeline.addLattice(boxAt({0, 0, 0}, 0.5), a, 1);
   const LatticeId c = pipeline.addLattice(boxAt({0.5, 0, 0}, 0.5), a, 0);
@@ -65,7 +57,7 @@ TEST(Pipeline, RunsLatticesInPreOrderWithSiblingPriorities) {
 }
 
 TEST(Pipeline, OutputOfOneLatticeIsTheInputOfTheNext) {
-  const Eigen::MatrixX3d Q = randomPointsInUnitBox(2000, 2);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(2000, 2);
   Pipeline pipeline(Q);
   const LatticeId parent = pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4));
   const LatticeId child = pipeline.addLattice(boxAt({0.2, 0.2, 0.2}, 0.6, 3), parent);
@@ -80,7 +72,7 @@ TEST(Pipeline, OutputOfOneLatticeIsTheInputOfTheNext) {
 }
 
 TEST(Pipeline, EditingTheLastLatticeUpdatesIncrementally) {
-  const Eigen::MatrixX3d Q = randomPointsInUnitBox(2000, 3);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(2000, 3);
   Pipeline pipeline(Q);
   const LatticeId parent = pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4));
   const LatticeId child = pipeline.addLattice(boxAt({0.2, 0.2, 0.2}, 0.6, 3), parent);
@@ -96,7 +88,7 @@ TEST(Pipeline, EditingTheLastLatticeUpdatesIncrementally) {
 }
 
 TEST(Pipeline, ThrottlesReembeddingOfLatticesOtherThanTheActiveOne) {
-  const Eigen::MatrixX3d Q = randomPointsInUnitBox(2000, 4);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(2000, 4);
   for (ReembedThrottle throttle : {ReembedThrottle::immediate(), ReembedThrottle::everyN(3), ReembedThrottle::onDemand()}) {
     Pipeline pipeline(Q);
     const LatticeId parent = pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4));
@@ -145,7 +137,7 @@ TEST(Pipeline, ThrottlesReembeddingOfLatticesOtherThanTheActiveOne) {
 }
 
 TEST(Pipeline, MovingALatticeFrameReembedsIt) {
-  const Eigen::MatrixX3d Q = randomPointsInUnitBox(500, 5);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(500, 5);
   Pipeline pipeline(Q);
   const LatticeId id = pipeline.addLattice(boxAt({0, 0, 0}, 1.0, 3));
   bend(pipeline.lattice(id), 0.3);
@@ -160,7 +152,7 @@ TEST(Pipeline, MovingALatticeFrameReembedsIt) {
 }
 
 TEST(Pipeline, EmptyPipelineReturnsTheInput) {
-  const Eigen::MatrixX3d Q = randomPointsInUnitBox(5, 6);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(5, 6);
   Pipeline pipeline(Q);
   EXPECT_EQ(pipeline.update(), Q);
   EXPECT_THROW(pipeline.setThrottle(ReembedThrottle::everyN(0)), LatticeError);
@@ -222,7 +214,7 @@ void expectMonotoneUpTo(const Calls& calls, Eigen::Index total) {
 
 TEST(PipelineProgress, CountsThePointsOfEveryStageThatReembeds) {
   const Eigen::Index n = kEmbedProgressChunk + 5000;
-  const Eigen::MatrixX3d Q = randomPointsInUnitBox(n, 21);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(n, 21);
   Chain c = makeChain(Q);
   EXPECT_EQ(c.pipeline.pointsToEmbed(), 3 * n);
   Calls calls;
@@ -266,7 +258,7 @@ TEST(PipelineProgress, CountsThePointsOfEveryStageThatReembeds) {
 
 TEST(PipelineProgress, ACancelledRunKeepsThePipelineConsistentAndTheNextRunExact) {
   const Eigen::Index n = kEmbedProgressChunk + 5000;
-  const Eigen::MatrixX3d Q = randomPointsInUnitBox(n, 22);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(n, 22);
   Chain c = makeChain(Q);
   c.pipeline.update();
   const Eigen::MatrixX3d before = c.pipeline.points();
@@ -297,7 +289,7 @@ TEST(PipelineProgress, ACancelledThrottledRunIsRepeatedAsIfNeverCancelled) {
   // approximately, the last is re-embedded because it is active; cancel inside the last one.
   // Afterwards the pipeline must follow exactly the same path as a twin that was never cancelled.
   const Eigen::Index n = kEmbedProgressChunk + 5000;
-  const Eigen::MatrixX3d Q = randomPointsInUnitBox(n, 23);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(n, 23);
   Chain cancelled = makeChain(Q, ReembedThrottle::everyN(2));
   Chain twin = makeChain(Q, ReembedThrottle::everyN(2));
   for (Chain* c : {&cancelled, &twin}) {
@@ -328,7 +320,7 @@ TEST(PipelineProgress, ACancelledThrottledRunIsRepeatedAsIfNeverCancelled) {
 TEST(PipelineProgress, ACancelledRunAfterALatticeWasAddedKeepsTheLastOutput) {
   // The last complete output lives in the first stage; the new last stage is cancelled.
   const Eigen::Index n = kEmbedProgressChunk + 5000;
-  const Eigen::MatrixX3d Q = randomPointsInUnitBox(n, 24);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(n, 24);
   Pipeline pipeline(Q);
   const LatticeId root = pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4));
   bend(pipeline.lattice(root), 0.1);
@@ -345,7 +337,7 @@ TEST(PipelineProgress, ACancelledRunAfterALatticeWasAddedKeepsTheLastOutput) {
 }
 
 TEST(PipelineProgress, ACancelAtTheLastCallRedoesOnlyTheLastEmbedding) {
-  const Eigen::MatrixX3d Q = randomPointsInUnitBox(1000, 25);
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(1000, 25);
   Chain c = makeChain(Q);
   const EmbedProgress refuseTheEnd = [](Eigen::Index done, Eigen::Index total) { return total == 0 || done < total; };
   EXPECT_THROW(c.pipeline.update(refuseTheEnd), Cancelled);

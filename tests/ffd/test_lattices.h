@@ -68,6 +68,15 @@ inline Lattice randomLattice(std::mt19937& rng, double jitter, int maxCount = 6)
   return lattice;
 }
 
+/// n points drawn uniformly from the unit box [0, 1]^3, #n x 3 (reproducible per seed).
+inline Eigen::MatrixX3d uniformPointsInUnitBox(Eigen::Index n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  Eigen::MatrixX3d Q(n, 3);
+  for (Eigen::Index r = 0; r < n; ++r) Q.row(r) << U(rng), U(rng), U(rng);
+  return Q;
+}
+
 /// Random parameters in the lattice's parameter box, #n x 3.
 inline Eigen::MatrixX3d randomParameters(const Lattice& lattice, Eigen::Index n, std::mt19937& rng) {
   std::uniform_real_distribution<double> U(0.0, 1.0);
