@@ -169,6 +169,16 @@ std::vector<WidgetId> buildSphereWithWidgets(MainWindow& w, const std::vector<Ei
   return out;
 }
 
+// buildSphereWithWidgets with translate widgets on the top and bottom centre points, both then
+// selected in the outliner (click, Ctrl+click), ready for Bind Two Widgets.
+std::vector<WidgetId> selectTwoWidgetsOnTheSphere(MainWindow& w) {
+  const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2), flat(1, 1, 0)});
+  if (created.size() != 2) return created;
+  clickRow(w, QString::fromStdString(w.scene().widgets.name(created[0])));
+  clickRow(w, QString::fromStdString(w.scene().widgets.name(created[1])), Qt::ControlModifier);
+  return created;
+}
+
 }  // namespace
 
 class MainWindowTest : public QObject {
@@ -226,11 +236,9 @@ class MainWindowTest : public QObject {
 
   void boundWidgetsMoveTogether() {
     MainWindow& w = *window_;
-    const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2), flat(1, 1, 0)});
+    const auto created = selectTwoWidgetsOnTheSphere(w);
     QCOMPARE(created.size(), std::size_t(2));
     const auto& m = w.scene().widgets;
-    clickRow(w, QString::fromStdString(m.name(created[0])));
-    clickRow(w, QString::fromStdString(m.name(created[1])), Qt::ControlModifier);
     QCOMPARE(w.controller().selection().size(), std::size_t(2));
     const std::size_t bindings = m.bindings().size();
     action(w, "actionBind")->trigger();
@@ -340,11 +348,9 @@ class MainWindowTest : public QObject {
 
   void aOneWayBindingOnlyCarriesMotionFromItsFromEnd() {
     MainWindow& w = *window_;
-    const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2), flat(1, 1, 0)});
+    const auto created = selectTwoWidgetsOnTheSphere(w);
     QCOMPARE(created.size(), std::size_t(2));
     const auto& m = w.scene().widgets;
-    clickRow(w, QString::fromStdString(m.name(created[0])));
-    clickRow(w, QString::fromStdString(m.name(created[1])), Qt::ControlModifier);
     action(w, "actionBind")->trigger();
     const widgets::BindingId binding = m.bindings().back();
     QCOMPARE(m.binding(binding).kind, widgets::BindingKind::Variation);
