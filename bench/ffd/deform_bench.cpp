@@ -134,6 +134,43 @@ void BM_Update(benchmark::State& state, Eigen::Vector3i control, Eigen::Index n,
   state.counters["max_diff_vs_full"] = drift;
 }
 
+// Closed-form embedding into a box lattice (affine rest map), points in random order: the
+// embedding every box lattice of the CLI and the scene deformer does. grow = 1: every point
+// inside (a lattice fitted to the object, as `ffdkit-cli deform --fit`); grow = 1.1: the box
+// grown by 10 %, a quarter of the points outside. The result is checked against
+// Lattice::evaluateRest once before timing.
+void BM_EmbedBox(benchmark::State& state, int count, AxisBasis basis, Eigen::Index n, double grow) {
+  Lattice lattice = boxLattice(count, basis);
+  lattice.setFrame(Eigen::Affine3d(Eigen::Translation3d(0.25, -0.5, 1.0)) * Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()) *
+                   Eigen::Scaling(2.0, 1.5, 0.5));
+  Eigen::MatrixX3d Q = (randomPoints(n, 5).array() * grow - 0.5 * (grow - 1.0)).matrix();
+  Q = (lattice.frame() * Q.transpose()).transpose();
+  Eigen::Index inside = 0;
+  {
+    const Embedding e = embed(lattice, Q);
+    const Eigen::MatrixX3d uvw = e.parameters();
+    for (Eigen::Index r = 0; r < n; r += std::max<Eigen::Index>(1, n / 997)) {
+      const Eigen::Vector3d x = lattice.frame() * lattice.evaluateRest(uvw.row(r).transpose());
+      const bool in = (uvw.row(r).array() >= -1e-9).all() && (uvw.row(r).array() <= 1.0 + 1e-9).all();
+      if ((x - Q.row(r).transpose()).norm() > 1e-12 * (1.0 + x.norm()) ||
+          in != (e.status(r) == PointStatus::Inside)) {
+        state.SkipWithError("closed-form embedding disagrees with Lattice::evaluateRest");
+        return;
+      }
+    }
+  }
+  double bytes = 0;
+  for (auto _ : state) {
+    Embedding e = embed(lattice, Q);
+    inside = e.insideCount();
+    bytes = double(e.memoryBytes()) / double(n);
+    benchmark::DoNotOptimize(e.sortedU().data());
+  }
+  state.counters["inside"] = double(inside);
+  state.counters["embed_bytes_per_point"] = bytes;
+  state.SetItemsProcessed(state.iterations() * n);
+}
+
 // Newton embedding into a non-affine lattice.
 // withProgress: the GUI's hook (publish the fraction in an atomic, read an atomic cancel flag),
 // to show that the progress calls cost nothing measurable.
@@ -208,6 +245,15 @@ const bool registered = [] {
             BM_Update, control, million, name("BM_Deform", million, lattice), exact)
             ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
       }
+    }
+  }
+  for (auto [count, basis, label] : {std::tuple{4, AxisBasis::bspline(3), "4x4x4/basis:bspline3"},
+                                     std::tuple{3, AxisBasis::bernstein(), "3x3x3/basis:bernstein"},
+                                     std::tuple{8, AxisBasis::bspline(3), "8x8x8/basis:bspline3"}}) {
+    for (auto [grow, inside] : {std::pair{1.0, "/inside:100%"}, std::pair{1.1, "/inside:75%"}}) {
+      benchmark::RegisterBenchmark((name("BM_EmbedBox", million, label) + inside).c_str(), BM_EmbedBox, count, basis,
+                                   million, grow)
+          ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
     }
   }
   for (bool progress : {false, true}) {

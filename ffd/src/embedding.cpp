@@ -1,249 +1,100 @@
 #include "ffdkit/ffd/embedding.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <exception>
 #include <limits>
-#include <numbers>
+#include <memory>
 #include <string>
 
-#include <Eigen/LU>
 #include <omp.h>
+
+#include "rest_solver.h"
+#include "vector_clones.h"
 
 namespace ffdkit::ffd {
 namespace {
 
-constexpr int kMaxBasis = 33;
 // Below this many points a parallel region costs more than it saves (thread wake-up, barriers).
 constexpr Eigen::Index kParallelPoints = 16384;
-
-// Evaluates Xbar and its Jacobian on the rest lattice; one per thread-safe call, no allocation.
-class RestSolver {
- public:
-  RestSolver(const Lattice& lattice, const EmbedOptions& options)
-      : lattice_(lattice), rest_(lattice.restPoints()), options_(options) {
-    for (int a = 0; a < 3; ++a) {
-      axis_[a] = &lattice.axis(a);
-      lo_[a] = axis_[a]->domainMin();
-      hi_[a] = axis_[a]->domainMax();
-    }
-    range_ = hi_ - lo_;
-    tol_ = options.tolerance * lattice.restSize();
-    affineInverse_ = lattice.restAffineLinear().inverse();
-    if (!affineInverse_.allFinite()) affineInverse_ = Eigen::Matrix3d::Identity();
-    cylinder_ = lattice.cylinderRestShape();
-    buildWindows();
-    if (!lattice.restIsAffine()) buildSamples();
-  }
-
-  Eigen::Vector3d evaluate(const Eigen::Vector3d& uvw, Eigen::Matrix3d& J) const {
-    double N[3][kMaxBasis];
-    double D[3][kMaxBasis];
-    int cell[3];
-    for (int a = 0; a < 3; ++a) {
-      cell[a] = axis_[a]->cellOf(uvw[a]);
-      axis_[a]->basis(cell[a], uvw[a], N[a], D[a]);
-    }
-    const int nu = axis_[0]->degree() + 1;
-    const int nv = axis_[1]->degree() + 1;
-    const int nw = axis_[2]->degree() + 1;
-    const double* W = windows_.data() +
-                      3 * windowSize_ * (cell[0] + cells_[0] * (cell[1] + static_cast<std::size_t>(cells_[1]) * cell[2]));
-    double x[3] = {0, 0, 0}, ju[3] = {0, 0, 0}, jv[3] = {0, 0, 0}, jw[3] = {0, 0, 0};
-    for (int c = 0; c < nw; ++c) {
-      for (int b = 0; b < nv; ++b) {
-        double s[3] = {0, 0, 0}, su[3] = {0, 0, 0};
-        for (int a = 0; a < nu; ++a, W += 3) {
-          for (int d = 0; d < 3; ++d) {
-            s[d] += N[0][a] * W[d];
-            su[d] += D[0][a] * W[d];
-          }
-        }
-        const double nn = N[1][b] * N[2][c];
-        const double dn = D[1][b] * N[2][c];
-        const double nd = N[1][b] * D[2][c];
-        for (int d = 0; d < 3; ++d) {
-          x[d] += nn * s[d];
-          ju[d] += nn * su[d];
-          jv[d] += dn * s[d];
-          jw[d] += nd * s[d];
-        }
-      }
-    }
-    J << ju[0], jv[0], jw[0], ju[1], jv[1], jw[1], ju[2], jv[2], jw[2];
-    return Eigen::Vector3d(x[0], x[1], x[2]);
-  }
-
-  // Wraps periodic axes, reflects through the axis of a solid cylinder, keeps iterates bounded.
-  void normalize(Eigen::Vector3d& uvw) const {
-    if (cylinder_ && cylinder_->innerRadius == 0.0 && uvw[0] < lo_[0]) {
-      if (lattice_.counts()[1] % 2 == 0) {
-        // Xbar(lo - d, v) == Xbar(lo + d, v + 1/2) when the ring of control points is point-symmetric.
-        uvw[0] = 2.0 * lo_[0] - uvw[0];
-        uvw[1] += 0.5;
-      } else {
-        uvw[0] = lo_[0];
-      }
-    }
-    for (int a = 0; a < 3; ++a) {
-      if (axis_[a]->periodic()) {
-        uvw[a] = axis_[a]->wrap(uvw[a]);
-      } else {
-        uvw[a] = std::clamp(uvw[a], lo_[a] - 2.0 * range_[a], hi_[a] + 2.0 * range_[a]);
-      }
-    }
-  }
-
-  Eigen::Vector3d initialGuess(const Eigen::Vector3d& q) const {
-    Eigen::Vector3d uvw;
-    if (cylinder_) {
-      const double r = std::hypot(q.x(), q.y());
-      const double angle = r > 0.0 ? std::atan2(q.y(), q.x()) : 0.0;
-      uvw[0] = lo_[0] + range_[0] * (r - cylinder_->innerRadius) / (cylinder_->outerRadius - cylinder_->innerRadius);
-      uvw[1] = angle / (2.0 * std::numbers::pi);
-      uvw[2] = lo_[2] + range_[2] * (q.z() - cylinder_->zMin) / (cylinder_->zMax - cylinder_->zMin);
-    } else {
-      uvw = affineInverse_ * (q - lattice_.restAffineOffset());
-    }
-    for (int a = 0; a < 3; ++a) {
-      if (!std::isfinite(uvw[a])) uvw[a] = 0.5 * (lo_[a] + hi_[a]);
-      if (!axis_[a]->periodic()) uvw[a] = std::clamp(uvw[a], lo_[a] - 0.5 * range_[a], hi_[a] + 0.5 * range_[a]);
-    }
-    normalize(uvw);
-    return uvw;
-  }
-
-  // Damped Newton; returns true on convergence. uvw: initial guess in, last iterate out.
-  bool newton(const Eigen::Vector3d& q, Eigen::Vector3d& uvw) const {
-    Eigen::Matrix3d J;
-    Eigen::Vector3d F = evaluate(uvw, J) - q;
-    double f = F.norm();
-    for (int it = 0; it < options_.maxIterations; ++it) {
-      if (f <= tol_) return true;
-      Eigen::Vector3d delta;
-      const double det = J.determinant();
-      const double scale = J.norm();
-      if (std::abs(det) > 1e-10 * scale * scale * scale) {
-        delta = -(J.inverse() * F);
-      } else {
-        // Levenberg-Marquardt step where the Jacobian is (nearly) singular, e.g. on a cylinder's axis.
-        const Eigen::Matrix3d JtJ = J.transpose() * J;
-        const double mu = 1e-8 * JtJ.trace() + std::numeric_limits<double>::min();
-        delta = -(JtJ + mu * Eigen::Matrix3d::Identity()).ldlt().solve(J.transpose() * F);
-      }
-      if (!delta.allFinite()) return false;
-      bool accepted = false;
-      double step = 1.0;
-      for (int halving = 0; halving < 30; ++halving, step *= 0.5) {
-        Eigen::Vector3d trial = uvw + step * delta;
-        normalize(trial);
-        Eigen::Matrix3d Jt;
-        const Eigen::Vector3d Ft = evaluate(trial, Jt) - q;
-        const double ft = Ft.norm();
-        if (ft < f || ft <= tol_) {
-          uvw = trial;
-          F = Ft;
-          f = ft;
-          J = Jt;
-          accepted = true;
-          break;
-        }
-      }
-      if (!accepted) return f <= tol_;
-    }
-    return f <= tol_;
-  }
-
-  // Nearest sample of a coarse parameter grid: the restart point when Newton from the first guess fails.
-  Eigen::Vector3d nearestSample(const Eigen::Vector3d& q) const {
-    double best = std::numeric_limits<double>::infinity();
-    Eigen::Vector3d uvw = 0.5 * (lo_ + hi_);
-    for (std::size_t s = 0; s < sampleX_.size(); ++s) {
-      const double d = (sampleX_[s] - q).squaredNorm();
-      if (d < best) {
-        best = d;
-        uvw = sampleUvw_[s];
-      }
-    }
-    return uvw;
-  }
-
-  bool insideBox(const Eigen::Vector3d& uvw) const {
-    for (int a = 0; a < 3; ++a) {
-      if (axis_[a]->periodic()) continue;
-      const double eps = options_.boundaryEpsilon * range_[a];
-      if (uvw[a] < lo_[a] - eps || uvw[a] > hi_[a] + eps) return false;
-    }
-    return true;
-  }
-
-  Eigen::Vector3d clampToBox(Eigen::Vector3d uvw) const {
-    for (int a = 0; a < 3; ++a) {
-      if (!axis_[a]->periodic()) uvw[a] = std::clamp(uvw[a], lo_[a], hi_[a]);
-    }
-    return uvw;
-  }
-
-  const Eigen::Vector3d& lo() const { return lo_; }
-  const Eigen::Vector3d& hi() const { return hi_; }
-
- private:
-  // Each cell's rest control points, contiguous (x, y, z per point, a fastest): Newton evaluates
-  // Xbar many times per point, and gathering through the lattice's index map dominated it.
-  void buildWindows() {
-    const int nu = axis_[0]->degree() + 1;
-    const int nv = axis_[1]->degree() + 1;
-    const int nw = axis_[2]->degree() + 1;
-    windowSize_ = static_cast<std::size_t>(nu) * nv * nw;
-    for (int a = 0; a < 3; ++a) cells_[a] = axis_[a]->cellCount();
-    windows_.reserve(3 * windowSize_ * cells_[0] * cells_[1] * cells_[2]);
-    for (int cw = 0; cw < cells_[2]; ++cw)
-      for (int cv = 0; cv < cells_[1]; ++cv)
-        for (int cu = 0; cu < cells_[0]; ++cu)
-          for (int c = 0; c < nw; ++c)
-            for (int b = 0; b < nv; ++b)
-              for (int a = 0; a < nu; ++a) {
-                const Eigen::Index f = lattice_.index(axis_[0]->controlIndex(cu, a), axis_[1]->controlIndex(cv, b),
-                                                      axis_[2]->controlIndex(cw, c));
-                for (int d = 0; d < 3; ++d) windows_.push_back(rest_(f, d));
-              }
-  }
-
-  void buildSamples() {
-    int n[3];
-    for (int a = 0; a < 3; ++a) n[a] = std::min(2 * axis_[a]->cellCount() + 1, 12) + (axis_[a]->periodic() ? 0 : 1);
-    Eigen::Matrix3d J;
-    for (int k = 0; k < n[2]; ++k)
-      for (int j = 0; j < n[1]; ++j)
-        for (int i = 0; i < n[0]; ++i) {
-          const int idx[3] = {i, j, k};
-          Eigen::Vector3d uvw;
-          for (int a = 0; a < 3; ++a) {
-            const double t = axis_[a]->periodic() ? double(idx[a]) / n[a] : double(idx[a]) / (n[a] - 1);
-            uvw[a] = lo_[a] + range_[a] * t;
-          }
-          sampleUvw_.push_back(uvw);
-          sampleX_.push_back(evaluate(uvw, J));
-        }
-  }
-
-  const Lattice& lattice_;
-  const Eigen::MatrixX3d& rest_;
-  EmbedOptions options_;
-  const AxisSpline* axis_[3];
-  Eigen::Vector3d lo_, hi_, range_;
-  double tol_;
-  Eigen::Matrix3d affineInverse_;
-  std::optional<CylinderRestShape> cylinder_;
-  std::vector<double> windows_;
-  std::size_t windowSize_ = 0;
-  int cells_[3] = {0, 0, 0};
-  std::vector<Eigen::Vector3d> sampleUvw_;
-  std::vector<Eigen::Vector3d> sampleX_;
-};
+constexpr std::uint32_t kTile = Embedding::kTileSize;
 
 enum class PointClass : std::uint8_t { Evaluated = 0, Blended = 1, Frozen = 2 };
+
+// AxisSpline::cellOf without the binary search: a guess from uniform breaks, corrected against
+// the true breaks, so the cell is the same as cellOf's for every t (non-periodic axes).
+class CellLocator {
+ public:
+  explicit CellLocator(const AxisSpline& axis) : cells_(axis.cellCount()) {
+    for (int c = 0; c < cells_; ++c) breaks_.push_back(axis.cellMin(c));
+    breaks_.push_back(axis.cellMax(cells_ - 1));
+    lo_ = breaks_.front();
+    scale_ = cells_ / (breaks_.back() - breaks_.front());
+  }
+  int operator()(double t) const {
+    if (cells_ == 1 || !(t > breaks_[1])) return 0;  // also catches NaN, as cellOf does
+    if (t >= breaks_[cells_ - 1]) return cells_ - 1;
+    int c = std::clamp(static_cast<int>((t - lo_) * scale_), 1, cells_ - 2);
+    while (t < breaks_[c]) --c;
+    while (t >= breaks_[c + 1]) ++c;
+    return c;
+  }
+
+ private:
+  int cells_;
+  std::vector<double> breaks_;
+  double lo_ = 0.0, scale_ = 1.0;
+};
+
+// One tile's solved points in original order, before grouping: (u, v, w) in pu, pv, pw (the
+// arrays below, or the closed form's output written straight into the Embedding).
+struct TileScratch {
+  double *pu = nullptr, *pv = nullptr, *pw = nullptr;
+  std::array<double, kTile> u, v, w, weight;
+  std::array<std::uint32_t, kTile> key, order;
+  std::array<std::uint8_t, kTile> flagged;
+  std::vector<std::uint32_t> start;  // counting-sort buckets
+};
+
+// One tile's blocks (sorted positions are global), its blend weights (blendOffset relative to
+// the tile's first weight) and status counts; `identity`: the sorted order is the original one.
+struct TileGroups {
+  std::vector<Embedding::Block> blocks;
+  std::vector<double> blend;
+  bool identity = true;
+  Eigen::Index inside = 0, outside = 0, failed = 0;
+};
+
+// The closed form of an affine rest map over m points, uvw = A^-1 (F^-1 x - b), across points
+// (vectorised): coef = F^-1 row-major (9), F^-1 translation - b (3), A^-1 row-major (9), the
+// epsilon-grown parameter box lo (3), hi (3). flagged[i] = 1 for a point outside the box or
+// not finite (solved again one by one); returns whether any point is not finite.
+FFDKIT_VECTOR_CLONES
+bool affineTile(const double* __restrict X, const double* __restrict Y, const double* __restrict Z, std::uint32_t m,
+                const double* __restrict coef, double* __restrict U, double* __restrict V, double* __restrict W,
+                std::uint8_t* __restrict flagged) {
+  double c[27];
+  for (int k = 0; k < 27; ++k) c[k] = coef[k];
+  bool anyNonFinite = false;
+  for (std::uint32_t i = 0; i < m; ++i) {
+    const double qx = c[0] * X[i] + c[1] * Y[i] + c[2] * Z[i] + c[9];
+    const double qy = c[3] * X[i] + c[4] * Y[i] + c[5] * Z[i] + c[10];
+    const double qz = c[6] * X[i] + c[7] * Y[i] + c[8] * Z[i] + c[11];
+    const double u = c[12] * qx + c[13] * qy + c[14] * qz;
+    const double v = c[15] * qx + c[16] * qy + c[17] * qz;
+    const double w = c[18] * qx + c[19] * qy + c[20] * qz;
+    U[i] = u;
+    V[i] = v;
+    W[i] = w;
+    const double sum = X[i] + Y[i] + Z[i];
+    const bool nonFinite = !(sum - sum == 0.0);  // Inf and NaN (or an overflowing sum: rechecked)
+    anyNonFinite |= nonFinite;
+    flagged[i] = nonFinite | (u < c[21]) | (v < c[22]) | (w < c[23]) | (u > c[24]) | (v > c[25]) | (w > c[26]);
+  }
+  return anyNonFinite;
+}
 
 }  // namespace
 
@@ -284,31 +135,44 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
   if (n >= static_cast<Eigen::Index>(std::numeric_limits<std::uint32_t>::max())) {
     throw LatticeError("embed: at most 2^32-2 points, got " + std::to_string(n));
   }
-  if (!points.allFinite()) {
-    for (Eigen::Index r = 0; r < n; ++r) {
-      if (!points.row(r).allFinite()) throw LatticeError("embed: point " + std::to_string(r) + " is not finite");
-    }
-  }
-  const RestSolver solver(lattice, options);
+  const detail::RestSolver solver(lattice, options);
   const Eigen::Affine3d toLocal = lattice.frame().inverse();
   const OutsidePolicy policy = lattice.outsidePolicy();
   const AxisSpline* axes[3] = {&lattice.axis(0), &lattice.axis(1), &lattice.axis(2)};
+  const CellLocator locate[3] = {CellLocator(*axes[0]), CellLocator(*axes[1]), CellLocator(*axes[2])};
   const int cells[3] = {axes[0]->cellCount(), axes[1]->cellCount(), axes[2]->cellCount()};
   const std::int64_t cellTotal = std::int64_t(cells[0]) * cells[1] * cells[2];
+  const bool periodic[3] = {axes[0]->periodic(), axes[1]->periodic(), axes[2]->periodic()};
+  const bool affine = lattice.restIsAffine();
+  const Eigen::Matrix3d Ainv = lattice.restAffineLinear().inverse();
+  const Eigen::Vector3d b = lattice.restAffineOffset();
 
   Embedding e;
   e.restRevision_ = lattice.restRevision();
   e.counts_ = lattice.counts();
   e.policy_ = policy;
+  // Written once below, tile by tile in parallel: no zero fill first (see NoInitAllocator).
   e.status_.resize(static_cast<std::size_t>(n));
-  std::vector<double> u(n), v(n), w(n), weight(n);
-  std::vector<std::uint32_t> key(n);
-  const bool affine = lattice.restIsAffine();
-  const Eigen::Matrix3d Ainv = lattice.restAffineLinear().inverse();
-  const Eigen::Vector3d b = lattice.restAffineOffset();
+  e.u_.resize(n);
+  e.v_.resize(n);
+  e.w_.resize(n);
+  e.order_.resize(n);
+  const std::int64_t tileCount = (n + kTile - 1) / kTile;
+  std::vector<TileGroups> groups(static_cast<std::size_t>(tileCount));
+  // Non-finite input points are found in the same pass (a separate check cost as much as the
+  // closed-form embedding itself); embed() then throws for the first one.
+  std::atomic<bool> nonFinite{false};
 
-  // Solves point p into u, v, w, weight, key and e.status_.
-  const auto solve = [&](Eigen::Index p) {
+  // Point p of a tile: (u, v, w), blend weight, (class, cell) key, status (seed 001 eq. (6.2)).
+  const auto solvePoint = [&](Eigen::Index p, std::uint32_t i, TileScratch& t) {
+    if (!points.row(p).allFinite()) {
+      nonFinite.store(true, std::memory_order_relaxed);
+      t.pu[i] = t.pv[i] = t.pw[i] = 0.0;
+      t.weight[i] = 0.0;
+      t.key[i] = 0;
+      e.status_[p] = PointStatus::Failed;
+      return;
+    }
     const Eigen::Vector3d q = toLocal * points.row(p).transpose();
     Eigen::Vector3d uvw;
     bool converged = true;
@@ -358,24 +222,160 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
         }
       }
     }
-    for (int a = 0; a < 3; ++a) uvw[a] = axes[a]->wrap(uvw[a]);
-    u[p] = uvw[0];
-    v[p] = uvw[1];
-    w[p] = uvw[2];
-    weight[p] = s;
+    for (int a = 0; a < 3; ++a) {
+      if (periodic[a]) uvw[a] = axes[a]->wrap(uvw[a]);
+    }
+    t.pu[i] = uvw[0];
+    t.pv[i] = uvw[1];
+    t.pw[i] = uvw[2];
+    t.weight[i] = s;
     e.status_[p] = status;
-    const std::int64_t cell = axes[0]->cellOf(uvw[0]) + cells[0] * (axes[1]->cellOf(uvw[1]) + std::int64_t(cells[1]) * axes[2]->cellOf(uvw[2]));
-    key[p] = static_cast<std::uint32_t>(static_cast<std::int64_t>(cls) * cellTotal + cell);
+    const std::int64_t cell = locate[0](uvw[0]) + cells[0] * (locate[1](uvw[1]) + std::int64_t(cells[1]) * locate[2](uvw[2]));
+    t.key[i] = static_cast<std::uint32_t>(static_cast<std::int64_t>(cls) * cellTotal + cell);
   };
 
-  // One parallel region; threads take blocks of kBlock points from a shared counter. The calling
-  // thread (OpenMP thread 0 of the team) calls the progress hook between its own blocks, each
-  // time the points finished by all threads pass another kEmbedProgressChunk; a `false` makes
-  // every thread stop after its current block. Cutting the loop into chunks run one after
+  // The closed form of an affine rest map, uvw = A^-1 (F^-1 x - b), a tile at a time: the
+  // arithmetic runs over the columns of the tile (vectorised across points); the few points
+  // outside the box go through solvePoint for their outside policy.
+  const Eigen::Matrix3d L = toLocal.linear();
+  const Eigen::Vector3d T = toLocal.translation();
+  double lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    const double eps = options.boundaryEpsilon * (axes[a]->domainMax() - axes[a]->domainMin());
+    lo[a] = axes[a]->domainMin() - eps;
+    hi[a] = axes[a]->domainMax() + eps;
+  }
+  const bool singleCell = cellTotal == 1;
+  // Identity and Extrapolate keep an outside point's parameters as solved: no per-point policy work.
+  const bool outsideKeepsParameters =
+      policy.kind == OutsidePolicy::Kind::Identity || policy.kind == OutsidePolicy::Kind::Extrapolate;
+  const std::int64_t outsideClass = static_cast<std::int64_t>(
+      policy.kind == OutsidePolicy::Kind::Identity ? PointClass::Frozen : PointClass::Evaluated);
+  double affineCoef[27];
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      affineCoef[3 * r + c] = L(r, c);
+      affineCoef[12 + 3 * r + c] = Ainv(r, c);
+    }
+    affineCoef[9 + r] = T[r] - b[r];
+    affineCoef[21 + r] = lo[r];
+    affineCoef[24 + r] = hi[r];
+  }
+  const auto solveAffineTile = [&](Eigen::Index begin, std::uint32_t m, TileScratch& t) {
+    t.pu = e.u_.data() + begin;
+    t.pv = e.v_.data() + begin;
+    t.pw = e.w_.data() + begin;
+    const double* U = t.pu;
+    const double* V = t.pv;
+    const double* W = t.pw;
+    if (affineTile(points.col(0).data() + begin, points.col(1).data() + begin, points.col(2).data() + begin, m,
+                   affineCoef, t.pu, t.pv, t.pw, t.flagged.data())) {
+      nonFinite.store(true, std::memory_order_relaxed);
+    }
+    PointStatus* status = e.status_.data() + begin;
+    const auto cellKey = [&](std::uint32_t i) -> std::uint32_t {
+      return singleCell ? 0u
+                        : static_cast<std::uint32_t>(locate[0](U[i]) +
+                                                     cells[0] * (locate[1](V[i]) + std::int64_t(cells[1]) * locate[2](W[i])));
+    };
+    for (std::uint32_t i = 0; i < m; ++i) {
+      t.weight[i] = 1.0;
+      if (!t.flagged[i]) {
+        status[i] = PointStatus::Inside;
+        t.key[i] = cellKey(i);
+      } else if (outsideKeepsParameters && points.row(begin + i).allFinite()) {
+        status[i] = PointStatus::Outside;
+        t.key[i] = static_cast<std::uint32_t>(outsideClass * cellTotal) + cellKey(i);
+      } else {
+        solvePoint(begin + i, i, t);
+      }
+    }
+  };
+
+  // Sorts a solved tile by (class, cell), stably, and writes its parameters, order and blocks:
+  // a block streams one cell's control points over its points in Deformer, while reads and
+  // writes in original order stay within the tile (cache-local). A tile of one key (any
+  // single-cell lattice with every point inside) keeps the original order.
+  const std::size_t keyCount = static_cast<std::size_t>(3 * cellTotal);
+  const bool counting = keyCount <= 4 * kTile;
+  const auto groupTile = [&](std::int64_t tile, TileScratch& t) {
+    const Eigen::Index begin = tile * kTile;
+    const std::uint32_t m = static_cast<std::uint32_t>(std::min<Eigen::Index>(n - begin, kTile));
+    TileGroups& g = groups[static_cast<std::size_t>(tile)];
+    std::uint32_t* order = t.order.data();
+    const std::uint32_t* key = t.key.data();
+    bool uniform = true;
+    for (std::uint32_t i = 1; i < m; ++i) uniform &= key[i] == key[0];
+    if (uniform) {
+      for (std::uint32_t i = 0; i < m; ++i) order[i] = i;
+    } else if (counting) {
+      t.start.assign(keyCount + 1, 0u);
+      for (std::uint32_t i = 0; i < m; ++i) ++t.start[key[i] + 1];
+      for (std::size_t k = 0; k < keyCount; ++k) t.start[k + 1] += t.start[k];
+      for (std::uint32_t i = 0; i < m; ++i) order[t.start[key[i]]++] = i;
+    } else {
+      for (std::uint32_t i = 0; i < m; ++i) order[i] = i;
+      std::stable_sort(order, order + m, [key](std::uint32_t lhs, std::uint32_t rhs) { return key[lhs] < key[rhs]; });
+    }
+    for (std::uint32_t i = 0; i < m; ++i) g.identity &= order[i] == i;
+    double* u = e.u_.data() + begin;
+    double* v = e.v_.data() + begin;
+    double* w = e.w_.data() + begin;
+    if (g.identity) {
+      if (t.pu != u) {
+        std::copy_n(t.pu, m, u);
+        std::copy_n(t.pv, m, v);
+        std::copy_n(t.pw, m, w);
+      }
+    } else {
+      if (t.pu == u) {  // solved in place: permute from a copy
+        std::copy_n(u, m, t.u.data());
+        std::copy_n(v, m, t.v.data());
+        std::copy_n(w, m, t.w.data());
+      }
+      std::uint32_t* globalOrder = e.order_.data() + begin;
+      for (std::uint32_t i = 0; i < m; ++i) {
+        u[i] = t.u[order[i]];
+        v[i] = t.v[order[i]];
+        w[i] = t.w[order[i]];
+        globalOrder[i] = static_cast<std::uint32_t>(begin) + order[i];
+      }
+    }
+    // Runs of equal key become blocks.
+    for (std::uint32_t i = 0; i < m;) {
+      const std::uint32_t k = key[order[i]];
+      std::uint32_t runEnd = i + 1;
+      while (runEnd < m && key[order[runEnd]] == k) ++runEnd;
+      const std::int64_t cell = k % cellTotal;
+      Embedding::Block block{};
+      block.cell[0] = static_cast<int>(cell % cells[0]);
+      block.cell[1] = static_cast<int>((cell / cells[0]) % cells[1]);
+      block.cell[2] = static_cast<int>(cell / (std::int64_t(cells[0]) * cells[1]));
+      block.begin = static_cast<std::uint32_t>(begin + i);
+      block.end = static_cast<std::uint32_t>(begin + runEnd);
+      block.kind = static_cast<Embedding::BlockKind>(k / cellTotal);
+      block.blendOffset = static_cast<std::uint32_t>(g.blend.size());
+      if (block.kind == Embedding::BlockKind::Blended) {
+        for (std::uint32_t r = i; r < runEnd; ++r) g.blend.push_back(t.weight[order[r]]);
+      }
+      g.blocks.push_back(block);
+      i = runEnd;
+    }
+    for (Eigen::Index p = begin; p < begin + m; ++p) {
+      const PointStatus s = e.status_[p];
+      g.inside += s == PointStatus::Inside;
+      g.outside += s == PointStatus::Outside;
+      g.failed += s == PointStatus::Failed;
+    }
+  };
+
+  // One parallel region; threads take tiles from a shared counter, solve and group them. The
+  // calling thread (OpenMP thread 0 of the team) calls the progress hook between its own tiles,
+  // each time the points finished by all threads pass another kEmbedProgressChunk; a `false`
+  // makes every thread stop after its current tile. Cutting the loop into chunks run one after
   // another instead put a barrier at every chunk end, which on a loaded machine (a thread
   // descheduled while its team-mate waits) cost 7-43 % of the median wall time (docs/ffd-engine.md).
-  constexpr Eigen::Index kBlock = 1024;
-  std::atomic<Eigen::Index> next{0};
+  std::atomic<std::int64_t> next{0};
   std::atomic<Eigen::Index> finished{0};
   std::atomic<bool> stop{false};
   std::exception_ptr hookError;
@@ -393,80 +393,60 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
 #pragma omp parallel if (options.parallel && n >= kParallelPoints)
   {
     const bool caller = omp_get_thread_num() == 0;
+    const auto scratch = std::make_unique<TileScratch>();
     while (!stop.load(std::memory_order_relaxed)) {
-      const Eigen::Index begin = next.fetch_add(kBlock, std::memory_order_relaxed);
-      if (begin >= n) break;
-      const Eigen::Index end = std::min(n, begin + kBlock);
-      for (Eigen::Index p = begin; p < end; ++p) solve(p);
+      const std::int64_t tile = next.fetch_add(1, std::memory_order_relaxed);
+      if (tile >= tileCount) break;
+      const Eigen::Index begin = tile * kTile;
+      const Eigen::Index end = std::min<Eigen::Index>(n, begin + kTile);
+      if (affine) {
+        solveAffineTile(begin, static_cast<std::uint32_t>(end - begin), *scratch);
+      } else {
+        scratch->pu = scratch->u.data();
+        scratch->pv = scratch->v.data();
+        scratch->pw = scratch->w.data();
+        for (Eigen::Index p = begin; p < end; ++p) solvePoint(p, static_cast<std::uint32_t>(p - begin), *scratch);
+      }
+      groupTile(tile, *scratch);
       const Eigen::Index done = finished.fetch_add(end - begin, std::memory_order_acq_rel) + (end - begin);
       if (caller && options.progress && done < n && done - reported >= kEmbedProgressChunk) callHook(done);
     }
   }
   if (hookError) std::rethrow_exception(hookError);
+  if (nonFinite) {
+    for (Eigen::Index r = 0; r < n; ++r) {
+      if (!points.row(r).allFinite()) throw LatticeError("embed: point " + std::to_string(r) + " is not finite");
+    }
+  }
   const auto cancelled = [&reported, n] {
     return Cancelled("embed: cancelled after " + std::to_string(reported) + " of " + std::to_string(n) + " points");
   };
   if (stop) throw cancelled();
 
-  // Per tile of consecutive points, a counting sort by (class, cell): stable, so a single-cell
-  // lattice keeps the original order, and reads/writes in original order stay within the tile.
-  const std::size_t keyCount = static_cast<std::size_t>(3 * cellTotal);
-  std::vector<std::uint32_t> order(n);
-  std::vector<std::uint32_t> start(keyCount + 1);
-  const bool counting = keyCount <= 4 * Embedding::kTileSize;
-  for (Eigen::Index tileBegin = 0; tileBegin < n; tileBegin += Embedding::kTileSize) {
-    const Eigen::Index tileEnd = std::min<Eigen::Index>(n, tileBegin + Embedding::kTileSize);
-    std::uint32_t* tileOrder = order.data() + tileBegin;
-    for (Eigen::Index p = tileBegin; p < tileEnd; ++p) tileOrder[p - tileBegin] = static_cast<std::uint32_t>(p);
-    if (counting) {
-      std::fill(start.begin(), start.end(), 0u);
-      for (Eigen::Index p = tileBegin; p < tileEnd; ++p) ++start[key[p] + 1];
-      for (std::size_t k = 0; k < keyCount; ++k) start[k + 1] += start[k];
-      for (Eigen::Index p = tileBegin; p < tileEnd; ++p) tileOrder[start[key[p]]++] = static_cast<std::uint32_t>(p);
-    } else {
-      std::stable_sort(tileOrder, tileOrder + (tileEnd - tileBegin),
-                       [&key](std::uint32_t lhs, std::uint32_t rhs) { return key[lhs] < key[rhs]; });
-    }
-    // Runs of equal key become blocks.
-    for (Eigen::Index q = tileBegin; q < tileEnd;) {
-      const std::uint32_t k = key[order[q]];
-      Eigen::Index runEnd = q + 1;
-      while (runEnd < tileEnd && key[order[runEnd]] == k) ++runEnd;
-      const std::int64_t cls = k / cellTotal;
-      const std::int64_t cell = k % cellTotal;
-      Embedding::Block block{};
-      block.cell[0] = static_cast<int>(cell % cells[0]);
-      block.cell[1] = static_cast<int>((cell / cells[0]) % cells[1]);
-      block.cell[2] = static_cast<int>(cell / (std::int64_t(cells[0]) * cells[1]));
-      block.begin = static_cast<std::uint32_t>(q);
-      block.end = static_cast<std::uint32_t>(runEnd);
-      block.kind = static_cast<Embedding::BlockKind>(cls);
-      block.blendOffset = static_cast<std::uint32_t>(e.blend_.size());
-      if (block.kind == Embedding::BlockKind::Blended) {
-        for (Eigen::Index r = q; r < runEnd; ++r) e.blend_.push_back(weight[order[r]]);
-      }
-      e.blocks_.push_back(block);
-      q = runEnd;
-    }
-    e.tileBlocks_.push_back(static_cast<std::uint32_t>(e.blocks_.size()));
-  }
-  e.u_.resize(n);
-  e.v_.resize(n);
-  e.w_.resize(n);
   bool identity = true;
-  for (Eigen::Index q = 0; q < n; ++q) {
-    const std::uint32_t p = order[q];
-    identity = identity && p == static_cast<std::uint32_t>(q);
-    e.u_[q] = u[p];
-    e.v_[q] = v[p];
-    e.w_[q] = w[p];
+  for (const TileGroups& g : groups) {
+    const std::uint32_t blendBase = static_cast<std::uint32_t>(e.blend_.size());
+    for (Embedding::Block block : g.blocks) {
+      block.blendOffset += blendBase;
+      e.blocks_.push_back(block);
+    }
+    e.blend_.insert(e.blend_.end(), g.blend.begin(), g.blend.end());
+    e.tileBlocks_.push_back(static_cast<std::uint32_t>(e.blocks_.size()));
+    e.inside_ += g.inside;
+    e.outside_ += g.outside;
+    e.failed_ += g.failed;
+    identity = identity && g.identity;
   }
-  if (!identity) e.order_ = std::move(order);
-  e.blend_.shrink_to_fit();
-  for (const PointStatus s : e.status_) {
-    if (s == PointStatus::Inside) ++e.inside_;
-    else if (s == PointStatus::Outside) ++e.outside_;
-    else ++e.failed_;
+  if (identity) {
+    Embedding::IndexVector().swap(e.order_);  // never written: only address space was reserved
+  } else {
+#pragma omp parallel for if (options.parallel && n >= kParallelPoints)
+    for (std::int64_t tile = 0; tile < tileCount; ++tile) {
+      if (!groups[static_cast<std::size_t>(tile)].identity) continue;
+      const Eigen::Index begin = tile * kTile;
+      const Eigen::Index end = std::min<Eigen::Index>(n, begin + kTile);
+      for (Eigen::Index p = begin; p < end; ++p) e.order_[p] = static_cast<std::uint32_t>(p);
+    }
   }
   if (options.progress) {
     callHook(n);

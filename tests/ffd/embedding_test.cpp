@@ -136,6 +136,66 @@ TEST(Embedding, NewtonFindsOutsidePointsOfUserShapedLattices) {
   EXPECT_EQ(e.outsideCount() + e.failedCount(), 50);
 }
 
+// The closed form runs tile by tile in parallel, with a vectorised pass and a per-point pass for
+// outside points: over many tiles, every basis, every outside policy, each point must get the
+// parameters it was generated from (clamped for ClampEdge / Falloff) and the status of its
+// generating parameters.
+TEST(Embedding, BoxEmbeddingOverManyTilesGivesEachPointItsParametersAndStatus) {
+  std::mt19937 rng(11);
+  const OutsidePolicy policies[] = {OutsidePolicy::identity(), OutsidePolicy::extrapolate(), OutsidePolicy::clampEdge(),
+                                    OutsidePolicy::falloff(0.3)};
+  for (int trial = 0; trial < 4; ++trial) {
+    Lattice lattice = testing::randomLattice(rng, 0.0);
+    lattice.setOutsidePolicy(policies[trial]);
+    ASSERT_TRUE(lattice.restIsAffine());
+    const Eigen::Index n = 5 * Embedding::kTileSize + 123;  // parallel, and a partial last tile
+    const Eigen::Vector3d lo = lattice.parameterMin();
+    const Eigen::Vector3d hi = lattice.parameterMax();
+    std::uniform_real_distribution<double> U(-0.15, 1.15);  // about 40 % of the points outside
+    Eigen::MatrixX3d uvw(n, 3);
+    for (Eigen::Index r = 0; r < n; ++r) {
+      for (int a = 0; a < 3; ++a) {
+        double t = U(rng);
+        if (std::abs(t) < 1e-6 || std::abs(t - 1.0) < 1e-6) t = 0.5;  // clear of the epsilon band
+        uvw(r, a) = lo[a] + (hi[a] - lo[a]) * t;
+      }
+    }
+    // B-splines reproduce linear functions on every polynomial piece, so beyond the box too
+    // frame * Xbar(uvw) is the affine image of uvw.
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, uvw);
+    const Embedding e = embed(lattice, Q);
+    const Eigen::MatrixX3d got = e.parameters();
+    Eigen::Index inside = 0;
+    for (Eigen::Index r = 0; r < n; ++r) {
+      const Eigen::Vector3d t = uvw.row(r).transpose();
+      const bool in = ((t - lo).array() >= 0.0).all() && ((hi - t).array() >= 0.0).all();
+      inside += in;
+      ASSERT_EQ(e.status(r), in ? PointStatus::Inside : PointStatus::Outside) << "trial " << trial << " point " << r;
+      const bool clamped = !in && (policies[trial].kind == OutsidePolicy::Kind::ClampEdge ||
+                                   policies[trial].kind == OutsidePolicy::Kind::Falloff);
+      const Eigen::Vector3d expected = clamped ? Eigen::Vector3d(t.cwiseMax(lo).cwiseMin(hi)) : t;
+      ASSERT_LT((got.row(r).transpose() - expected).norm(), 1e-10) << "trial " << trial << " point " << r;
+    }
+    EXPECT_EQ(e.insideCount(), inside);
+    EXPECT_EQ(e.outsideCount(), n - inside);
+    EXPECT_GT(n - inside, n / 5);
+  }
+}
+
+TEST(Embedding, RejectsANonFinitePointInAnyTileNamingIt) {
+  const Lattice lattice = makeBoxLattice();
+  Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(5 * Embedding::kTileSize, 12);
+  Q(4 * Embedding::kTileSize + 7, 2) = std::numeric_limits<double>::infinity();
+  try {
+    embed(lattice, Q);
+    FAIL() << "expected LatticeError";
+  } catch (const LatticeError& error) {
+    EXPECT_NE(std::string(error.what()).find("point " + std::to_string(4 * Embedding::kTileSize + 7) + " is not finite"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(Embedding, RejectsNonFinitePoints) {
   const Lattice lattice = makeBoxLattice();
   Eigen::MatrixX3d Q = Eigen::MatrixX3d::Constant(4, 3, 0.5);

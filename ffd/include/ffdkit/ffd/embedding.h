@@ -2,6 +2,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -34,7 +36,7 @@ struct EmbedOptions {
   /// Optional progress / cancel hook (empty: none). embed() calls it on the calling thread with
   /// (0, n) before any work, about every kEmbedProgressChunk solved points, and with (n, n) once
   /// the Embedding is complete; `done` increases from call to call. Returning false (at any
-  /// call, the last included) stops every thread after its current block of 1024 points and
+  /// call, the last included) stops every thread after its current tile of 4096 points and
   /// makes embed() throw ffd::Cancelled, returning nothing. Cost: one call per chunk.
   EmbedProgress progress = {};
 };
@@ -44,6 +46,28 @@ struct EmbedOptions {
 /// points) the calls fall exactly on multiples of it; in parallel the calling thread makes the
 /// call when it finishes a block after the count of solved points passed the next multiple.
 inline constexpr Eigen::Index kEmbedProgressChunk = 65536;
+
+/// std::allocator whose resize() leaves new elements default-initialised (no zero fill): the
+/// embedding's per-point arrays are written exactly once, in parallel, right after allocation,
+/// and a zero fill first would double the memory traffic of a closed-form embedding.
+template <class T>
+struct NoInitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = NoInitAllocator<U>;
+  };
+  NoInitAllocator() = default;
+  template <class U>
+  NoInitAllocator(const NoInitAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
 
 /// The (u,v,w) parameters of a set of object points in one lattice's rest lattice: the
 /// precompute half of FFD (seed 001 l.2359-2367: computed once when the object is attached,
@@ -55,12 +79,16 @@ inline constexpr Eigen::Index kEmbedProgressChunk = 65536;
 /// point for many-cell lattices in random point order), + 8 bytes per ClampEdge/Falloff point.
 class Embedding {
  public:
+  using ParameterVector = std::vector<double, NoInitAllocator<double>>;
+  using IndexVector = std::vector<std::uint32_t, NoInitAllocator<std::uint32_t>>;
+  using StatusVector = std::vector<PointStatus, NoInitAllocator<PointStatus>>;
+
   Embedding() = default;
 
   Eigen::Index pointCount() const { return static_cast<Eigen::Index>(status_.size()); }
   /// Status of point `point` (original order). @throws LatticeError on a bad index.
   PointStatus status(Eigen::Index point) const;
-  const std::vector<PointStatus>& statuses() const { return status_; }
+  const StatusVector& statuses() const { return status_; }
   Eigen::Index insideCount() const { return inside_; }
   Eigen::Index outsideCount() const { return outside_; }
   Eigen::Index failedCount() const { return failed_; }
@@ -102,17 +130,17 @@ class Embedding {
   const std::vector<Block>& blocks() const { return blocks_; }
   /// Blocks of tile t: [tileBlocks()[t], tileBlocks()[t+1]).
   const std::vector<std::uint32_t>& tileBlocks() const { return tileBlocks_; }
-  const std::vector<double>& sortedU() const { return u_; }
-  const std::vector<double>& sortedV() const { return v_; }
-  const std::vector<double>& sortedW() const { return w_; }
+  const ParameterVector& sortedU() const { return u_; }
+  const ParameterVector& sortedV() const { return v_; }
+  const ParameterVector& sortedW() const { return w_; }
   /// Original index of sorted position q; empty when the sorted order is the original order.
-  const std::vector<std::uint32_t>& order() const { return order_; }
+  const IndexVector& order() const { return order_; }
   const std::vector<double>& blendWeight() const { return blend_; }
 
  private:
   friend Embedding embed(const Lattice&, const Eigen::Ref<const Eigen::MatrixX3d>&, const EmbedOptions&);
 
-  std::vector<PointStatus> status_;
+  StatusVector status_;
   Eigen::Index inside_ = 0;
   Eigen::Index outside_ = 0;
   Eigen::Index failed_ = 0;
@@ -121,8 +149,8 @@ class Embedding {
   OutsidePolicy policy_{};
   std::vector<Block> blocks_;
   std::vector<std::uint32_t> tileBlocks_{0};
-  std::vector<double> u_, v_, w_;
-  std::vector<std::uint32_t> order_;
+  ParameterVector u_, v_, w_;
+  IndexVector order_;
   std::vector<double> blend_;
 };
 

@@ -1,0 +1,245 @@
+// Internal to ffd/: solves Xbar(u,v,w) = Q on a lattice's rest lattice (seed 001 eq. (6.2)).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include "ffdkit/ffd/embedding.h"
+#include "ffdkit/ffd/lattice.h"
+
+namespace ffdkit::ffd::detail {
+
+constexpr int kMaxBasis = 33;
+// Evaluates Xbar and its Jacobian on the rest lattice; one per thread-safe call, no allocation.
+class RestSolver {
+ public:
+  RestSolver(const Lattice& lattice, const EmbedOptions& options)
+      : lattice_(lattice), rest_(lattice.restPoints()), options_(options) {
+    for (int a = 0; a < 3; ++a) {
+      axis_[a] = &lattice.axis(a);
+      lo_[a] = axis_[a]->domainMin();
+      hi_[a] = axis_[a]->domainMax();
+    }
+    range_ = hi_ - lo_;
+    tol_ = options.tolerance * lattice.restSize();
+    affineInverse_ = lattice.restAffineLinear().inverse();
+    if (!affineInverse_.allFinite()) affineInverse_ = Eigen::Matrix3d::Identity();
+    cylinder_ = lattice.cylinderRestShape();
+    buildWindows();
+    if (!lattice.restIsAffine()) buildSamples();
+  }
+
+  Eigen::Vector3d evaluate(const Eigen::Vector3d& uvw, Eigen::Matrix3d& J) const {
+    double N[3][kMaxBasis];
+    double D[3][kMaxBasis];
+    int cell[3];
+    for (int a = 0; a < 3; ++a) {
+      cell[a] = axis_[a]->cellOf(uvw[a]);
+      axis_[a]->basis(cell[a], uvw[a], N[a], D[a]);
+    }
+    const int nu = axis_[0]->degree() + 1;
+    const int nv = axis_[1]->degree() + 1;
+    const int nw = axis_[2]->degree() + 1;
+    const double* W = windows_.data() +
+                      3 * windowSize_ * (cell[0] + cells_[0] * (cell[1] + static_cast<std::size_t>(cells_[1]) * cell[2]));
+    double x[3] = {0, 0, 0}, ju[3] = {0, 0, 0}, jv[3] = {0, 0, 0}, jw[3] = {0, 0, 0};
+    for (int c = 0; c < nw; ++c) {
+      for (int b = 0; b < nv; ++b) {
+        double s[3] = {0, 0, 0}, su[3] = {0, 0, 0};
+        for (int a = 0; a < nu; ++a, W += 3) {
+          for (int d = 0; d < 3; ++d) {
+            s[d] += N[0][a] * W[d];
+            su[d] += D[0][a] * W[d];
+          }
+        }
+        const double nn = N[1][b] * N[2][c];
+        const double dn = D[1][b] * N[2][c];
+        const double nd = N[1][b] * D[2][c];
+        for (int d = 0; d < 3; ++d) {
+          x[d] += nn * s[d];
+          ju[d] += nn * su[d];
+          jv[d] += dn * s[d];
+          jw[d] += nd * s[d];
+        }
+      }
+    }
+    J << ju[0], jv[0], jw[0], ju[1], jv[1], jw[1], ju[2], jv[2], jw[2];
+    return Eigen::Vector3d(x[0], x[1], x[2]);
+  }
+
+  // Wraps periodic axes, reflects through the axis of a solid cylinder, keeps iterates bounded.
+  void normalize(Eigen::Vector3d& uvw) const {
+    if (cylinder_ && cylinder_->innerRadius == 0.0 && uvw[0] < lo_[0]) {
+      if (lattice_.counts()[1] % 2 == 0) {
+        // Xbar(lo - d, v) == Xbar(lo + d, v + 1/2) when the ring of control points is point-symmetric.
+        uvw[0] = 2.0 * lo_[0] - uvw[0];
+        uvw[1] += 0.5;
+      } else {
+        uvw[0] = lo_[0];
+      }
+    }
+    for (int a = 0; a < 3; ++a) {
+      if (axis_[a]->periodic()) {
+        uvw[a] = axis_[a]->wrap(uvw[a]);
+      } else {
+        uvw[a] = std::clamp(uvw[a], lo_[a] - 2.0 * range_[a], hi_[a] + 2.0 * range_[a]);
+      }
+    }
+  }
+
+  Eigen::Vector3d initialGuess(const Eigen::Vector3d& q) const {
+    Eigen::Vector3d uvw;
+    if (cylinder_) {
+      const double r = std::hypot(q.x(), q.y());
+      const double angle = r > 0.0 ? std::atan2(q.y(), q.x()) : 0.0;
+      uvw[0] = lo_[0] + range_[0] * (r - cylinder_->innerRadius) / (cylinder_->outerRadius - cylinder_->innerRadius);
+      uvw[1] = angle / (2.0 * std::numbers::pi);
+      uvw[2] = lo_[2] + range_[2] * (q.z() - cylinder_->zMin) / (cylinder_->zMax - cylinder_->zMin);
+    } else {
+      uvw = affineInverse_ * (q - lattice_.restAffineOffset());
+    }
+    for (int a = 0; a < 3; ++a) {
+      if (!std::isfinite(uvw[a])) uvw[a] = 0.5 * (lo_[a] + hi_[a]);
+      if (!axis_[a]->periodic()) uvw[a] = std::clamp(uvw[a], lo_[a] - 0.5 * range_[a], hi_[a] + 0.5 * range_[a]);
+    }
+    normalize(uvw);
+    return uvw;
+  }
+
+  // Damped Newton; returns true on convergence. uvw: initial guess in, last iterate out.
+  bool newton(const Eigen::Vector3d& q, Eigen::Vector3d& uvw) const {
+    Eigen::Matrix3d J;
+    Eigen::Vector3d F = evaluate(uvw, J) - q;
+    double f = F.norm();
+    for (int it = 0; it < options_.maxIterations; ++it) {
+      if (f <= tol_) return true;
+      Eigen::Vector3d delta;
+      const double det = J.determinant();
+      const double scale = J.norm();
+      if (std::abs(det) > 1e-10 * scale * scale * scale) {
+        delta = -(J.inverse() * F);
+      } else {
+        // Levenberg-Marquardt step where the Jacobian is (nearly) singular, e.g. on a cylinder's axis.
+        const Eigen::Matrix3d JtJ = J.transpose() * J;
+        const double mu = 1e-8 * JtJ.trace() + std::numeric_limits<double>::min();
+        delta = -(JtJ + mu * Eigen::Matrix3d::Identity()).ldlt().solve(J.transpose() * F);
+      }
+      if (!delta.allFinite()) return false;
+      bool accepted = false;
+      double step = 1.0;
+      for (int halving = 0; halving < 30; ++halving, step *= 0.5) {
+        Eigen::Vector3d trial = uvw + step * delta;
+        normalize(trial);
+        Eigen::Matrix3d Jt;
+        const Eigen::Vector3d Ft = evaluate(trial, Jt) - q;
+        const double ft = Ft.norm();
+        if (ft < f || ft <= tol_) {
+          uvw = trial;
+          F = Ft;
+          f = ft;
+          J = Jt;
+          accepted = true;
+          break;
+        }
+      }
+      if (!accepted) return f <= tol_;
+    }
+    return f <= tol_;
+  }
+
+  // Nearest sample of a coarse parameter grid: the restart point when Newton from the first guess fails.
+  Eigen::Vector3d nearestSample(const Eigen::Vector3d& q) const {
+    double best = std::numeric_limits<double>::infinity();
+    Eigen::Vector3d uvw = 0.5 * (lo_ + hi_);
+    for (std::size_t s = 0; s < sampleX_.size(); ++s) {
+      const double d = (sampleX_[s] - q).squaredNorm();
+      if (d < best) {
+        best = d;
+        uvw = sampleUvw_[s];
+      }
+    }
+    return uvw;
+  }
+
+  bool insideBox(const Eigen::Vector3d& uvw) const {
+    for (int a = 0; a < 3; ++a) {
+      if (axis_[a]->periodic()) continue;
+      const double eps = options_.boundaryEpsilon * range_[a];
+      if (uvw[a] < lo_[a] - eps || uvw[a] > hi_[a] + eps) return false;
+    }
+    return true;
+  }
+
+  Eigen::Vector3d clampToBox(Eigen::Vector3d uvw) const {
+    for (int a = 0; a < 3; ++a) {
+      if (!axis_[a]->periodic()) uvw[a] = std::clamp(uvw[a], lo_[a], hi_[a]);
+    }
+    return uvw;
+  }
+
+  const Eigen::Vector3d& lo() const { return lo_; }
+  const Eigen::Vector3d& hi() const { return hi_; }
+
+ private:
+  // Each cell's rest control points, contiguous (x, y, z per point, a fastest): Newton evaluates
+  // Xbar many times per point, and gathering through the lattice's index map dominated it.
+  void buildWindows() {
+    const int nu = axis_[0]->degree() + 1;
+    const int nv = axis_[1]->degree() + 1;
+    const int nw = axis_[2]->degree() + 1;
+    windowSize_ = static_cast<std::size_t>(nu) * nv * nw;
+    for (int a = 0; a < 3; ++a) cells_[a] = axis_[a]->cellCount();
+    windows_.reserve(3 * windowSize_ * cells_[0] * cells_[1] * cells_[2]);
+    for (int cw = 0; cw < cells_[2]; ++cw)
+      for (int cv = 0; cv < cells_[1]; ++cv)
+        for (int cu = 0; cu < cells_[0]; ++cu)
+          for (int c = 0; c < nw; ++c)
+            for (int b = 0; b < nv; ++b)
+              for (int a = 0; a < nu; ++a) {
+                const Eigen::Index f = lattice_.index(axis_[0]->controlIndex(cu, a), axis_[1]->controlIndex(cv, b),
+                                                      axis_[2]->controlIndex(cw, c));
+                for (int d = 0; d < 3; ++d) windows_.push_back(rest_(f, d));
+              }
+  }
+
+  void buildSamples() {
+    int n[3];
+    for (int a = 0; a < 3; ++a) n[a] = std::min(2 * axis_[a]->cellCount() + 1, 12) + (axis_[a]->periodic() ? 0 : 1);
+    Eigen::Matrix3d J;
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i) {
+          const int idx[3] = {i, j, k};
+          Eigen::Vector3d uvw;
+          for (int a = 0; a < 3; ++a) {
+            const double t = axis_[a]->periodic() ? double(idx[a]) / n[a] : double(idx[a]) / (n[a] - 1);
+            uvw[a] = lo_[a] + range_[a] * t;
+          }
+          sampleUvw_.push_back(uvw);
+          sampleX_.push_back(evaluate(uvw, J));
+        }
+  }
+
+  const Lattice& lattice_;
+  const Eigen::MatrixX3d& rest_;
+  EmbedOptions options_;
+  const AxisSpline* axis_[3];
+  Eigen::Vector3d lo_, hi_, range_;
+  double tol_;
+  Eigen::Matrix3d affineInverse_;
+  std::optional<CylinderRestShape> cylinder_;
+  std::vector<double> windows_;
+  std::size_t windowSize_ = 0;
+  int cells_[3] = {0, 0, 0};
+  std::vector<Eigen::Vector3d> sampleUvw_;
+  std::vector<Eigen::Vector3d> sampleX_;
+};
+
+}  // namespace ffdkit::ffd::detail
