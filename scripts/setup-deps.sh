@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config git
   libeigen3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libopenmpi-dev openmpi-bin
   nlohmann-json3-dev
   libvtk9-dev
   qt6-base-dev libqt6opengl6-dev

@@ -2,10 +2,16 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <exception>
+#include <fstream>
+#include <iterator>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
+#include "batch_ranks.h"
 #include "commands.h"
 #include "console.h"
 #include "ffdkit/scenes/mesh_io.h"
@@ -42,14 +48,23 @@ Eigen::AlignedBox3d restBox(const widgets::WidgetModel& model) {
   return box;
 }
 
+/// The bounding box of every point of the scene's objects on every rank of the batch (min and
+/// max do not depend on the order, so a batch fits exactly as one process does).
+Eigen::AlignedBox3d objectsBox(const scenes::Scene& scene, const BatchRanks& ranks) {
+  Eigen::AlignedBox3d box;
+  for (const auto& object : scene.objects) {
+    if (object.mesh.points.rows() == 0) continue;
+    box.extend(Eigen::AlignedBox3d(object.mesh.points.colwise().minCoeff().transpose(),
+                                   object.mesh.points.colwise().maxCoeff().transpose()));
+  }
+  return ranks.unite(box);
+}
+
 /// --fit: one scale-and-translate map M takes the tool's rest box onto the objects' bounding
 /// box grown by `padding` x its diagonal on every side (an axis flatter than 1e-3 of the
 /// diagonal gets that thickness); every root frame F becomes M * F, so a tool of several
 /// root lattices keeps its arrangement.
-void fitRoots(scenes::Scene& scene, double padding) {
-  Eigen::AlignedBox3d objects;
-  for (const auto& object : scene.objects)
-    for (Eigen::Index i = 0; i < object.mesh.points.rows(); ++i) objects.extend(object.mesh.points.row(i).transpose());
+void fitRoots(scenes::Scene& scene, const Eigen::AlignedBox3d& objects, double padding) {
   const Eigen::AlignedBox3d tool = restBox(scene.widgets);
   if (objects.isEmpty() || tool.isEmpty()) throw std::runtime_error("--fit: nothing to fit (no points or no lattice)");
   const double diagonal = objects.diagonal().norm();
@@ -73,25 +88,65 @@ std::string uniqueName(const std::string& stem, std::set<std::string>& taken) {
   return name;
 }
 
-/// Writes every output or none: each mesh goes to a hidden temporary beside its target (same
-/// folder, same extension so that the writer picks the format), and only when all are written
-/// are they renamed onto their targets.
-void writeAll(const std::vector<std::pair<fs::path, scenes::MeshData>>& outputs) {
+/// Runs `work` on this rank, then every rank learns whether all succeeded: this rank's own error
+/// propagates, and a rank whose work succeeded while another's failed throws too, so that no
+/// rank goes on to wait in a collective for one that left. One process: just `work`.
+template <class Work>
+void onEveryRank(const BatchRanks& ranks, Work&& work) {
+  std::exception_ptr error;
+  try {
+    work();
+  } catch (...) {
+    error = std::current_exception();
+  }
+  const bool ok = ranks.allOk(!error);
+  if (error) std::rethrow_exception(error);
+  if (!ok) throw std::runtime_error("another process of the mpirun batch failed (its message says why)");
+}
+
+/// Writes every output of every rank or none: each mesh goes to a hidden temporary beside its
+/// target (same folder, same extension so that the writer picks the format), and only when all
+/// ranks have written all theirs are they renamed onto their targets.
+void writeAll(const std::vector<std::pair<fs::path, scenes::MeshData>>& outputs, const BatchRanks& ranks) {
   std::vector<std::pair<fs::path, fs::path>> staged;
   try {
-    for (std::size_t i = 0; i < outputs.size(); ++i) {
-      const fs::path& target = outputs[i].first;
-      const fs::path temp = target.parent_path() / (".ffdkit-cli-" + std::to_string(::getpid()) + "-" +
-                                                    std::to_string(i) + "-" + target.filename().string());
-      staged.emplace_back(temp, target);
-      scenes::writeMesh(temp, outputs[i].second);
-    }
+    onEveryRank(ranks, [&] {
+      for (std::size_t i = 0; i < outputs.size(); ++i) {
+        const fs::path& target = outputs[i].first;
+        const fs::path temp = target.parent_path() / (".ffdkit-cli-" + std::to_string(::getpid()) + "-" +
+                                                      std::to_string(i) + "-" + target.filename().string());
+        staged.emplace_back(temp, target);
+        scenes::writeMesh(temp, outputs[i].second);
+      }
+    });
     for (const auto& [temp, target] : staged) fs::rename(temp, target);
   } catch (...) {
     std::error_code ignored;
     for (const auto& [temp, target] : staged) fs::remove(temp, ignored);
     throw;
   }
+}
+
+/// The widget file, read once (by rank 0 of a batch) and sent to every rank.
+widgets::WidgetModel readTool(const fs::path& path, const BatchRanks& ranks) {
+  std::string text, error;
+  if (ranks.leader()) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) error = path.string() + ": cannot open the widget file for reading";
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  ranks.broadcast(error);
+  if (!error.empty()) throw scenes::WidgetFileError(error);
+  ranks.broadcast(text);
+  std::istringstream in(text);
+  return scenes::readWidgetFile(in, path.string());
+}
+
+/// The INPUT pieces this rank reads, deforms and writes: a contiguous share of the list.
+std::pair<std::size_t, std::size_t> ownPieces(std::size_t pieces, const BatchRanks& ranks) {
+  const std::size_t size = static_cast<std::size_t>(ranks.size());
+  const std::size_t rank = static_cast<std::size_t>(ranks.rank());
+  return {rank * pieces / size, (rank + 1) * pieces / size};
 }
 
 /// The command line of `deform`, checked.
@@ -139,45 +194,58 @@ DeformRequest parseRequest(const Args& args) {
   return r;
 }
 
-/// Reads the tool or scene and the inputs, and builds the scene to evaluate: with INPUT files
-/// every root lattice deforms every input. `sourceOf` receives each input object's file.
-scenes::Scene loadScene(const DeformRequest& r, Console& console, std::map<std::string, fs::path>& sourceOf) {
+/// Reads the tool or scene and the inputs (in a batch: this rank's pieces), and builds the scene
+/// to evaluate: with INPUT files every root lattice deforms every input. `sourceOf` receives each
+/// input object's file.
+scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRanks& ranks,
+                        std::map<std::string, fs::path>& sourceOf) {
   scenes::Scene scene;
-  if (r.widgetFile) {
-    console.begin("read", "reading " + r.widgetFile->string());
-    scene.widgets = scenes::readWidgetFile(*r.widgetFile);
-  } else {
-    console.begin("read", "reading " + r.sceneFile->string());
-    scene = scenes::readScene(*r.sceneFile);
-  }
-  if (!r.inputs.empty()) {
-    std::vector<scenes::SceneObject> objects;
+  onEveryRank(ranks, [&] {
+    if (r.widgetFile) {
+      console.begin("read", "reading " + r.widgetFile->string());
+      scene.widgets = readTool(*r.widgetFile, ranks);
+    } else {
+      console.begin("read", "reading " + r.sceneFile->string());
+      scene = scenes::readScene(*r.sceneFile);
+    }
+  });
+  onEveryRank(ranks, [&] {
+    if (r.inputs.empty()) return;
+    // Names from the whole list, so that every rank names the pieces as one process does.
+    std::vector<std::string> names;
     std::set<std::string> taken;
-    for (const auto& input : r.inputs) {
+    for (const auto& input : r.inputs) names.push_back(uniqueName(fs::path(input).stem().string(), taken));
+    const auto [first, last] = ownPieces(r.inputs.size(), ranks);
+    std::vector<scenes::SceneObject> objects;
+    for (std::size_t i = first; i < last; ++i) {
+      const std::string& input = r.inputs[i];
       console.begin("read", "reading " + input);
       scenes::SceneObject object;
       object.mesh = readInputMesh(fs::path(input));
-      object.name = uniqueName(fs::path(input).stem().string(), taken);
+      object.name = names[i];
       object.source = scenes::MeshFileSource{fs::absolute(input).string()};
       sourceOf[object.name] = input;
       objects.push_back(std::move(object));
     }
     scene.objects = std::move(objects);
-  }
+  });
 
   console.begin("build scene", "building the scene");
-  if (!r.inputs.empty()) {
-    scene.attachments.clear();
-    for (auto root : scene.widgets.roots()) {
-      scenes::Attachment attachment{scene.widgets.name(root), {}};
-      for (const auto& object : scene.objects) attachment.objects.push_back(object.name);
-      scene.attachments.push_back(std::move(attachment));
+  const Eigen::AlignedBox3d box = r.fit ? objectsBox(scene, ranks) : Eigen::AlignedBox3d();
+  onEveryRank(ranks, [&] {
+    if (!r.inputs.empty()) {
+      scene.attachments.clear();
+      for (auto root : scene.widgets.roots()) {
+        scenes::Attachment attachment{scene.widgets.name(root), {}};
+        for (const auto& object : scene.objects) attachment.objects.push_back(object.name);
+        scene.attachments.push_back(std::move(attachment));
+      }
+      if (scene.attachments.empty()) console.warn("the widget model has no lattice: the output equals the input");
     }
-    if (scene.attachments.empty()) console.warn("the widget model has no lattice: the output equals the input");
-  }
-  if (r.fit) fitRoots(scene, r.padding);
-  applySettings(scene.widgets, r.settings);
-  scenes::validateScene(scene);
+    if (r.fit) fitRoots(scene, box, r.padding);
+    applySettings(scene.widgets, r.settings);
+    scenes::validateScene(scene);
+  });
   return scene;
 }
 
@@ -192,8 +260,10 @@ std::vector<Output> plannedOutputs(const DeformRequest& r, const scenes::Scene& 
     for (const auto& object : scene.objects) names.push_back(object.name);
   for (const auto& name : names)
     if (!scene.findObject(name)) throw std::runtime_error("--object: the scene has no object '" + name + "'");
-  if (names.empty()) throw std::runtime_error("nothing to deform: the scene has no objects");
-  intoFolder = names.size() > 1 || fs::is_directory(r.output);
+  // In a batch a rank holds only its pieces (possibly none): decide as for the whole list.
+  const std::size_t total = r.inputs.empty() ? names.size() : r.inputs.size();
+  if (total == 0) throw std::runtime_error("nothing to deform: the scene has no objects");
+  intoFolder = total > 1 || fs::is_directory(r.output);
   std::vector<Output> targets;
   for (const auto& name : names) {
     if (!intoFolder) {
@@ -230,34 +300,47 @@ void evaluate(scenes::Scene& scene, scenes::SceneDeformer& deformer, Console& co
 }
 
 int runDeform(const Args& args) {
-  Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
-  const DeformRequest request = parseRequest(args);
+  // In an mpirun batch every rank runs this; rank 0 speaks for the batch.
+  const BatchRanks ranks;
+  Console console(args.flag("quiet") || !ranks.leader(), args.flag("progress") && ranks.leader(),
+                  args.flag("timings") && ranks.leader());
+  DeformRequest request;
+  onEveryRank(ranks, [&] {
+    request = parseRequest(args);
+    if (ranks.size() > 1 && (!request.widgetFile || request.inputs.empty()))
+      throw UsageError("an mpirun batch takes --widgets TOOL and INPUT pieces (each rank deforms its share)");
+  });
   std::map<std::string, fs::path> sourceOf;
-  scenes::Scene scene = loadScene(request, console, sourceOf);
+  scenes::Scene scene = loadScene(request, console, ranks, sourceOf);
   bool intoFolder = false;
-  const std::vector<Output> targets = plannedOutputs(request, scene, sourceOf, intoFolder);
+  std::vector<Output> targets;
+  onEveryRank(ranks, [&] { targets = plannedOutputs(request, scene, sourceOf, intoFolder); });
   scenes::SceneDeformer deformer;
-  evaluate(scene, deformer, console);
-  const scenes::SceneDeformStats stats = deformer.lastStats();
-
   std::vector<std::pair<fs::path, scenes::MeshData>> meshes;
-  for (const auto& target : targets) {
-    scenes::MeshData mesh = std::move(scene.findObject(target.object)->mesh);  // the scene is done with
-    mesh.points = deformer.points(target.object);
-    scenes::validateMesh(mesh, "deformed object '" + target.object + "'");
-    meshes.emplace_back(target.path, std::move(mesh));
-  }
+  onEveryRank(ranks, [&] {
+    evaluate(scene, deformer, console);
+    for (const auto& target : targets) {
+      scenes::MeshData mesh = std::move(scene.findObject(target.object)->mesh);  // the scene is done with
+      mesh.points = deformer.points(target.object);
+      scenes::validateMesh(mesh, "deformed object '" + target.object + "'");
+      meshes.emplace_back(target.path, std::move(mesh));
+    }
+  });
+  const scenes::SceneDeformStats stats = deformer.lastStats();
   console.begin("write", "writing " + std::to_string(meshes.size()) + " file(s)");
   if (intoFolder) fs::create_directories(request.output);
-  writeAll(meshes);
+  writeAll(meshes, ranks);
   console.end();
 
   for (const auto& [path, mesh] : meshes)
     console.say("wrote " + path.string() + " (" + std::to_string(mesh.points.rows()) + " points)");
-  if (stats.failedPoints > 0)
-    console.warn(std::to_string(stats.failedPoints) + " points failed to embed and were left unchanged");
-  if (stats.outsidePoints > 0)
-    console.say(std::to_string(stats.outsidePoints) + " points lie outside their lattice (outside policy applied)");
+  if (ranks.size() > 1) console.say("mpirun batch: " + std::to_string(ranks.size()) + " processes wrote " +
+                                    std::to_string(ranks.sum(static_cast<std::int64_t>(meshes.size()))) + " file(s)");
+  const std::int64_t failed = ranks.sum(stats.failedPoints);
+  const std::int64_t outside = ranks.sum(stats.outsidePoints);
+  if (failed > 0) console.warn(std::to_string(failed) + " points failed to embed and were left unchanged");
+  if (outside > 0)
+    console.say(std::to_string(outside) + " points lie outside their lattice (outside policy applied)");
   console.printTimings();
   return 0;
 }
@@ -276,7 +359,10 @@ Command deformCommand() {
           "INPUT: .obj .ply .stl .vtp .vtk .gltf .glb .xyz. OUTPUT: a file when there is one\n"
           "result (its extension picks the format: .obj .ply .stl .vtp .xyz), else a folder that\n"
           "receives NAME.EXT per object. Normals are recomputed when the input had them.\n"
-          "Nothing is written when anything fails.\n",
+          "Nothing is written when anything fails.\n"
+          "Batch: mpirun -n N ffdkit-cli deform --widgets TOOL PIECE... -o FOLDER: rank 0 reads TOOL\n"
+          "and sends it to every rank; each rank reads, deforms and writes its contiguous share of\n"
+          "the PIECE files (--fit fits to the box of all pieces), as one process would (docs/scaling.md).\n",
           {{"widgets", 'w', "FILE", "the widget file (deformation tool) to apply"},
            {"scene", 's', "SCENE", "the scene (file or sample folder) whose widget trees to apply"},
            {"output", 'o', "PATH", "output file, or folder for several outputs"},
