@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -120,6 +121,10 @@ struct WidgetModel::Impl {
     double variation = 0.0;
     Glyph glyph;
     BindingId attachment;
+    // revisions (widget_changes.h): the model revision of the last change of...
+    std::uint64_t ownRevision = 0;      // the widget's own data
+    std::uint64_t controlRevision = 0;  // lattice: its control points
+    std::uint64_t restRevision = 0;     // lattice: its own frame / placement and rest lattice
   };
 
   struct Step {
@@ -170,7 +175,15 @@ struct WidgetModel::Impl {
   std::vector<WidgetId> roots;
   std::map<std::string, WidgetId, std::less<>> names;
   std::uint64_t revision = 0;
+  std::uint64_t instance = nextInstance();
+  std::uint64_t structureRevision = 0;
+  std::vector<std::uint64_t> bindingRevisions;  // by binding id; 0: never changed
   std::optional<Gesture> gesture;
+
+  static std::uint64_t nextInstance() {
+    static std::atomic<std::uint64_t> counter{0};
+    return ++counter;
+  }
 
   // ---- lookup ------------------------------------------------------------------------------
   std::string knownIds() const {
@@ -273,7 +286,38 @@ struct WidgetModel::Impl {
     axes = rigidPart(full).frame.linear();
   }
 
+  // One mutation takes one new revision (touch) and stamps every item it changed with it.
   void touch() { ++revision; }
+  void markStructure() { structureRevision = revision; }
+  void markWidget(WidgetId id) { nodes[id.value].ownRevision = revision; }
+  void markControl(WidgetId lattice) { nodes[lattice.value].controlRevision = revision; }
+  void markRest(WidgetId lattice) { nodes[lattice.value].restRevision = revision; }
+  void markBinding(BindingId id) {
+    if (bindingRevisions.size() <= id.value) bindingRevisions.resize(id.value + 1, 0);
+    bindingRevisions[id.value] = revision;
+  }
+  std::uint64_t bindingRevision(BindingId id) const {
+    return id.value < bindingRevisions.size() ? bindingRevisions[id.value] : 0;
+  }
+  // A child lattice's world frame follows its parent cell: its rest lattice changes with the
+  // parent's points and frame and with its binding's mask.
+  std::uint64_t frameRevision(const Node& lat) const {
+    std::uint64_t r = lat.restRevision;
+    if (lat.parentBinding.valid()) {
+      const Node& parent = nodes[nodes[bindings[lat.parentBinding.value]->from.value].lattice.value];
+      r = std::max({r, bindingRevision(lat.parentBinding), parent.controlRevision, frameRevision(parent)});
+    }
+    return r;
+  }
+  // What the active gesture's last update (or its cancel) changed: the points of the lattices it
+  // moves, the variations of its affine widgets, the frame of a lattice that moves itself.
+  void markGesture() {
+    const Gesture& g = *gesture;
+    for (const auto& [lattice, points] : g.affected) markControl(lattice);
+    for (const Step& s : g.steps)
+      if (s.type == WidgetType::Affine) markWidget(s.node);
+    if (g.latticeMovesItself) markRest(g.target);
+  }
 
   // The FFD engine's lattice for these settings; its errors become WidgetError.
   static ffd::Lattice makeFfd(const Eigen::Vector3i& counts, const LatticeSettings& settings,
@@ -739,17 +783,23 @@ struct WidgetModel::Impl {
       }
     }
     touch();
+    markGesture();
   }
 };
 
 // ---------------------------------------------------------------------------------------------
 WidgetModel::WidgetModel() : impl_(std::make_unique<Impl>()) {}
 WidgetModel::~WidgetModel() = default;
-WidgetModel::WidgetModel(const WidgetModel& o) : impl_(std::make_unique<Impl>(*o.impl_)) { impl_->gesture.reset(); }
+// A copy is another revision history (its consumers must not mistake it for the original).
+WidgetModel::WidgetModel(const WidgetModel& o) : impl_(std::make_unique<Impl>(*o.impl_)) {
+  impl_->gesture.reset();
+  impl_->instance = Impl::nextInstance();
+}
 WidgetModel& WidgetModel::operator=(const WidgetModel& o) {
   if (this != &o) {
     impl_ = std::make_unique<Impl>(*o.impl_);
     impl_->gesture.reset();  // steps point into the source's bindings
+    impl_->instance = Impl::nextInstance();
   }
   return *this;
 }
@@ -801,6 +851,10 @@ WidgetId WidgetModel::addLattice(const LatticeOptions& options) {
   node.settings = options.settings;
   m.roots.push_back(id);
   m.touch();
+  m.markStructure();
+  m.markWidget(id);
+  m.markControl(id);
+  m.markRest(id);
   return id;
 }
 
@@ -849,6 +903,8 @@ WidgetId WidgetModel::addCell(WidgetId lattice, const CellSpec& spec, std::strin
   node.restFrame = frame;
   m.nodes[lattice.value].cells.push_back(id);
   m.touch();
+  m.markStructure();
+  m.markWidget(id);
   return id;
 }
 
@@ -868,6 +924,8 @@ WidgetId WidgetModel::addFreeAffine(AffineKind kind, const AffineOptions& option
   node.glyph = options.glyph.value_or(Glyph{defaultShape(kind), 0.2, Eigen::Affine3d::Identity()});
   if (node.glyph.shape.empty()) node.glyph.shape = defaultShape(kind);
   m.touch();
+  m.markStructure();
+  m.markWidget(id);
   return id;
 }
 
@@ -883,6 +941,7 @@ WidgetId WidgetModel::addAffine(WidgetId cell, AffineKind kind, const AffineOpti
   b.to = id;
   b.mask = mask;
   m.insertBinding(b, BindingId{});  // a fresh widget closes no loop; placement stays cell-relative
+  m.markStructure();  // the revision addFreeAffine took
   return id;
 }
 
@@ -904,15 +963,22 @@ BindingId WidgetModel::bind(WidgetId a, WidgetId b, const BindingOptions& option
   }
   const BindingId id = m.insertBinding(nb, BindingId{});
   m.touch();
+  m.markStructure();
+  m.markBinding(id);
+  if (nb.kind == BindingKind::Attachment) m.markWidget(nb.to);  // its placement became cell-relative
+  if (nb.kind == BindingKind::Hierarchy) m.markRest(nb.to);
   return id;
 }
 
 void WidgetModel::unbind(BindingId binding) {
   Impl& m = *impl_;
   m.requireNoGesture("unbinding");
-  m.binding(binding);
+  const Binding old = m.binding(binding);
   m.eraseBinding(binding);
   m.touch();
+  m.markStructure();
+  if (old.kind == BindingKind::Attachment) m.markWidget(old.to);  // free at its world frame
+  if (old.kind == BindingKind::Hierarchy) m.markRest(old.to);       // a root at its world frame
 }
 
 void WidgetModel::remove(WidgetId id) {
@@ -927,6 +993,15 @@ void WidgetModel::remove(WidgetId id) {
       for (WidgetId a : m.nodes[c.value].affines) doomed.push_back(a);
     }
   }
+  // Widgets left behind (affine widgets freed, child lattices made roots) keep their world frames
+  // through new placements / root frames.
+  std::vector<WidgetId> freed;
+  for (WidgetId w : doomed)
+    for (BindingId b : m.nodes[w.value].bindings)
+      if (const Binding& binding = *m.bindings[b.value];
+          binding.kind != BindingKind::Variation && binding.kind != BindingKind::CellMotion &&
+          std::find(doomed.begin(), doomed.end(), binding.to) == doomed.end())
+        freed.push_back(binding.to);
   // Bindings first (free widgets and orphaned child lattices keep their world frames), then nodes.
   for (WidgetId w : doomed) {
     while (!m.nodes[w.value].bindings.empty()) m.eraseBinding(m.nodes[w.value].bindings.front());
@@ -942,6 +1017,11 @@ void WidgetModel::remove(WidgetId id) {
     d = Impl::Node{};
   }
   m.touch();
+  m.markStructure();
+  for (WidgetId w : freed) {
+    if (m.nodes[w.value].type == WidgetType::Lattice) m.markRest(w);
+    else m.markWidget(w);
+  }
 }
 
 void WidgetModel::rename(WidgetId id, std::string name) {
@@ -953,6 +1033,7 @@ void WidgetModel::rename(WidgetId id, std::string name) {
   n.name = std::move(name);
   m.names.emplace(n.name, id);
   m.touch();
+  m.markWidget(id);
 }
 
 void WidgetModel::setPlacement(WidgetId affine, const Eigen::Affine3d& placement) {
@@ -963,6 +1044,7 @@ void WidgetModel::setPlacement(WidgetId affine, const Eigen::Affine3d& placement
     fail(WidgetErrorCode::InvalidArgument, "placement must be finite and invertible");
   n.placement = placement;
   m.touch();
+  m.markWidget(affine);
 }
 
 void WidgetModel::setGlyph(WidgetId affine, const Glyph& glyph) {
@@ -972,6 +1054,7 @@ void WidgetModel::setGlyph(WidgetId affine, const Glyph& glyph) {
     fail(WidgetErrorCode::InvalidArgument, "glyph needs a shape name and a positive size");
   n.glyph = glyph;
   m.touch();
+  m.markWidget(affine);
 }
 
 void WidgetModel::setAffineKind(WidgetId affine, AffineKind kind) {
@@ -983,6 +1066,7 @@ void WidgetModel::setAffineKind(WidgetId affine, AffineKind kind) {
   n.kind = kind;
   n.variation = 0.0;
   m.touch();
+  m.markWidget(affine);
 }
 
 void WidgetModel::setMask(BindingId binding, AffineMask mask) {
@@ -1030,6 +1114,9 @@ void WidgetModel::setMask(BindingId binding, AffineMask mask) {
     m.bindings[binding.value]->mask = mask;
   }
   m.touch();
+  m.markBinding(binding);
+  if (old.kind == BindingKind::Attachment) m.markWidget(old.to);  // its placement keeps it in place
+  if (old.kind == BindingKind::Hierarchy) m.markRest(old.to);
 }
 
 void WidgetModel::setRule(BindingId binding, const ConversionRule& rule) {
@@ -1051,6 +1138,7 @@ void WidgetModel::setRule(BindingId binding, const ConversionRule& rule) {
     throw;
   }
   m.touch();
+  m.markBinding(binding);
 }
 
 void WidgetModel::setOneWay(BindingId binding, bool oneWay) {
@@ -1059,6 +1147,7 @@ void WidgetModel::setOneWay(BindingId binding, bool oneWay) {
   m.binding(binding);
   m.bindings[binding.value]->oneWay = oneWay;
   m.touch();
+  m.markBinding(binding);
 }
 
 void WidgetModel::setLatticeSettings(WidgetId lattice, const LatticeSettings& settings) {
@@ -1069,6 +1158,8 @@ void WidgetModel::setLatticeSettings(WidgetId lattice, const LatticeSettings& se
   Impl::makeFfd(n.counts, settings, n.rest, n.control, Eigen::Affine3d::Identity());  // validates bases and policy
   n.settings = settings;
   m.touch();
+  m.markWidget(lattice);
+  m.markRest(lattice);
 }
 
 // ---- setLatticeCounts ---------------------------------------------------------------------------
@@ -1305,6 +1396,11 @@ void WidgetModel::setLatticeCounts(WidgetId lattice, const Eigen::Vector3i& coun
     ch.frame = (m.latticeFrame(w) * m.maskedCellFrame(cell, b.mask)).inverse() * world;
   }
   m.touch();
+  m.markStructure();  // its cells hold other points
+  m.markWidget(lattice);
+  m.markControl(lattice);
+  m.markRest(lattice);
+  for (WidgetId cell : m.nodes[lattice.value].cells) m.markWidget(cell);
 }
 
 ffd::Lattice WidgetModel::ffdLattice(WidgetId lattice) const {
@@ -1323,6 +1419,7 @@ void WidgetModel::setLatticeFrame(WidgetId lattice, const Eigen::Affine3d& frame
     fail(WidgetErrorCode::InvalidArgument, "lattice frame must be finite and invertible");
   n.frame = frame;
   m.touch();
+  m.markRest(lattice);
 }
 
 void WidgetModel::setSiblingPosition(WidgetId lattice, std::size_t position) {
@@ -1337,6 +1434,7 @@ void WidgetModel::setSiblingPosition(WidgetId lattice, std::size_t position) {
   list.erase(std::find(list.begin(), list.end(), lattice));
   list.insert(list.begin() + static_cast<std::ptrdiff_t>(position), lattice);
   m.touch();
+  m.markStructure();
 }
 
 void WidgetModel::setControlPoints(WidgetId lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points) {
@@ -1348,6 +1446,7 @@ void WidgetModel::setControlPoints(WidgetId lattice, const Eigen::Ref<const Eige
                                                " x 3 finite values, got " + std::to_string(points.rows()) + " x 3");
   n.control = points;
   m.touch();
+  m.markControl(lattice);
 }
 
 void WidgetModel::resetLattice(WidgetId lattice) {
@@ -1355,9 +1454,13 @@ void WidgetModel::resetLattice(WidgetId lattice) {
   m.requireNoGesture("resetting a lattice");
   Impl::Node& n = m.node(lattice, WidgetType::Lattice);
   n.control = n.rest;
-  for (WidgetId c : n.cells)
-    for (WidgetId a : m.nodes[c.value].affines) m.nodes[a.value].variation = 0.0;
   m.touch();
+  m.markControl(lattice);
+  for (WidgetId c : n.cells)
+    for (WidgetId a : m.nodes[c.value].affines) {
+      m.nodes[a.value].variation = 0.0;
+      m.markWidget(a);
+    }
 }
 
 // ---- queries ----------------------------------------------------------------------------------
@@ -1403,6 +1506,37 @@ std::vector<BindingId> WidgetModel::bindings() const {
 std::vector<BindingId> WidgetModel::bindingsOf(WidgetId id) const { return impl_->node(id).bindings; }
 const Binding& WidgetModel::binding(BindingId id) const { return impl_->binding(id); }
 std::uint64_t WidgetModel::revision() const { return impl_->revision; }
+std::uint64_t WidgetModel::instance() const { return impl_->instance; }
+std::uint64_t WidgetModel::structureRevision() const { return impl_->structureRevision; }
+std::uint64_t WidgetModel::controlRevision(WidgetId lattice) const {
+  return impl_->node(lattice, WidgetType::Lattice).controlRevision;
+}
+std::uint64_t WidgetModel::frameRevision(WidgetId lattice) const {
+  return impl_->frameRevision(impl_->node(lattice, WidgetType::Lattice));
+}
+std::uint64_t WidgetModel::widgetRevision(WidgetId id) const { return impl_->node(id).ownRevision; }
+std::uint64_t WidgetModel::bindingRevision(BindingId binding) const {
+  impl_->binding(binding);
+  return impl_->bindingRevision(binding);
+}
+
+WidgetChanges WidgetModel::changesSince(std::uint64_t since) const {
+  const Impl& m = *impl_;
+  WidgetChanges changes;
+  changes.since = since;
+  changes.revision = m.revision;
+  changes.structure = m.structureRevision > since;
+  for (const Impl::Node& n : m.nodes) {
+    if (!n.alive) continue;
+    if (n.ownRevision > since) changes.widgets.push_back(n.id);
+    if (n.type != WidgetType::Lattice) continue;
+    if (n.controlRevision > since) changes.controlPoints.push_back(n.id);
+    if (m.frameRevision(n) > since) changes.frames.push_back(n.id);
+  }
+  for (const auto& b : m.bindings)
+    if (b && m.bindingRevision(b->id) > since) changes.bindings.push_back(b->id);
+  return changes;
+}
 
 Eigen::Vector3i WidgetModel::counts(WidgetId lattice) const { return impl_->node(lattice, WidgetType::Lattice).counts; }
 const Eigen::MatrixX3d& WidgetModel::controlPoints(WidgetId lattice) const { return impl_->node(lattice, WidgetType::Lattice).control; }
@@ -1437,7 +1571,17 @@ std::vector<WidgetId> WidgetModel::children(WidgetId lattice) const { return imp
 std::vector<WidgetId> WidgetModel::roots() const { return impl_->roots; }
 std::vector<WidgetId> WidgetModel::pipelineOrder() const {
   std::vector<WidgetId> out;
-  std::vector<WidgetId> stack(impl_->roots.rbegin(), impl_->roots.rend());
+  for (WidgetId root : impl_->roots) {
+    const std::vector<WidgetId> tree = pipelineOrder(root);
+    out.insert(out.end(), tree.begin(), tree.end());
+  }
+  return out;
+}
+
+std::vector<WidgetId> WidgetModel::pipelineOrder(WidgetId root) const {
+  impl_->node(root, WidgetType::Lattice);
+  std::vector<WidgetId> out;
+  std::vector<WidgetId> stack{root};
   while (!stack.empty()) {
     const WidgetId id = stack.back();
     stack.pop_back();
@@ -1520,16 +1664,16 @@ void WidgetModel::updateGesture(const Eigen::Affine3d& worldMotion) {
 
 void WidgetModel::endGesture() {
   if (!impl_->gesture) fail(WidgetErrorCode::GestureState, "endGesture without beginGesture");
-  impl_->gesture.reset();
-  impl_->touch();
+  impl_->gesture.reset();  // the points are where the last update put them: nothing changes
 }
 
 void WidgetModel::cancelGesture() {
   Impl& m = *impl_;
   if (!m.gesture) fail(WidgetErrorCode::GestureState, "cancelGesture without beginGesture");
   m.resetToStart();
-  m.gesture.reset();
   m.touch();
+  m.markGesture();
+  m.gesture.reset();
 }
 
 bool WidgetModel::gestureActive() const { return impl_->gesture.has_value(); }
@@ -1803,10 +1947,23 @@ void WidgetModel::restoreState(const WidgetModelState& s) {
   }
   for (const auto& [id, f] : s.latticeFrames) m.node(id, WidgetType::Lattice);
   for (const auto& [id, v] : s.variations) m.node(id, WidgetType::Affine);
-  for (const auto& [id, p] : s.controlPoints) m.nodes[id.value].control = p;
-  for (const auto& [id, f] : s.latticeFrames) m.nodes[id.value].frame = f;
-  for (const auto& [id, v] : s.variations) m.nodes[id.value].variation = v;
+  // Only what differs is written and stamped: an undo of a drag re-embeds nothing.
   m.touch();
+  for (const auto& [id, p] : s.controlPoints)
+    if (Impl::Node& n = m.nodes[id.value]; n.control != p) {
+      n.control = p;
+      m.markControl(id);
+    }
+  for (const auto& [id, f] : s.latticeFrames)
+    if (Impl::Node& n = m.nodes[id.value]; n.frame.matrix() != f.matrix()) {
+      n.frame = f;
+      m.markRest(id);
+    }
+  for (const auto& [id, v] : s.variations)
+    if (Impl::Node& n = m.nodes[id.value]; n.variation != v) {
+      n.variation = v;
+      m.markWidget(id);
+    }
 }
 
 WidgetModelData WidgetModel::toData() const {

@@ -16,6 +16,7 @@
 #include "ffdkit/widgets/cell.h"
 #include "ffdkit/widgets/lattice_settings.h"
 #include "ffdkit/widgets/ray.h"
+#include "ffdkit/widgets/widget_changes.h"
 #include "ffdkit/widgets/widget_data.h"
 #include "ffdkit/widgets/widget_error.h"
 #include "ffdkit/widgets/widget_id.h"
@@ -176,7 +177,27 @@ class WidgetModel {
   std::vector<BindingId> bindings() const;                 ///< in id order
   std::vector<BindingId> bindingsOf(WidgetId id) const;
   const Binding& binding(BindingId id) const;
-  std::uint64_t revision() const;  ///< grows with every change (renderers compare it)
+  // ---- revisions and change sets (widget_changes.h) ----------------------------------------
+  /// Grows by one with every mutation; each item the mutation changed is stamped with it.
+  std::uint64_t revision() const;
+  /// Identity of this model's revision history: a copy, or a model made by fromData, is a new
+  /// instance (a consumer that sees another instance takes the model in full).
+  std::uint64_t instance() const;
+  /// The revision of the last change of the tree shape (see WidgetChanges::structure).
+  std::uint64_t structureRevision() const;
+  /// The revision of the last change of a lattice's local control points.
+  std::uint64_t controlRevision(WidgetId lattice) const;
+  /// The revision of the last change of a lattice's rest lattice in the world (frame, rest points,
+  /// counts, bases, outside policy; for a child lattice also its parent lattice's points and
+  /// frame and its binding): what an embedding of the lattice depends on.
+  std::uint64_t frameRevision(WidgetId lattice) const;
+  /// The revision of the last change of a widget's own data (name, placement, glyph, variation,
+  /// kind, lattice settings, cell points).
+  std::uint64_t widgetRevision(WidgetId id) const;
+  /// The revision of the last change of a binding's mask, rule or direction (0: never changed).
+  std::uint64_t bindingRevision(BindingId binding) const;
+  /// Everything changed after revision `since` (exclusive) up to revision().
+  WidgetChanges changesSince(std::uint64_t since) const;
 
   // lattices
   Eigen::Vector3i counts(WidgetId lattice) const;
@@ -197,6 +218,9 @@ class WidgetModel {
   /// The lattices in pre-order (parent before children, siblings in order): the order in which
   /// the FFD pipeline deforms (spec §6, seed 001 l.2375).
   std::vector<WidgetId> pipelineOrder() const;
+  /// The lattice `root` and its subtree in the same pre-order (the one traversal every pipeline,
+  /// the deformer and the controller use). @throws UnknownWidget, InvalidArgument (not a lattice).
+  std::vector<WidgetId> pipelineOrder(WidgetId root) const;
   std::vector<WidgetId> cellsOf(WidgetId lattice) const;
 
   // cells
