@@ -18,6 +18,23 @@ void CommandStack::push(Command command) {
     throw std::invalid_argument("CommandStack::push: command '" + command.description + "' lacks undo or redo");
   if (cleanPosition_ > position_ && cleanPosition_ != kNoCleanState) cleanPosition_ = kNoCleanState;
   commands_.resize(position_);
+  if (!command.mergeKey.empty() && position_ > 0 && commands_[position_ - 1].mergeKey == command.mergeKey &&
+      cleanPosition_ != position_) {
+    // One more edit of the same field: one step from before the first to after the last.
+    Command& top = commands_[position_ - 1];
+    top.undo = [later = std::move(command.undo), earlier = std::move(top.undo)] {
+      later();
+      earlier();
+    };
+    top.redo = [earlier = std::move(top.redo), later = std::move(command.redo)] {
+      earlier();
+      later();
+    };
+    top.description = std::move(command.description);
+    top.bytes += command.bytes;
+    changed();
+    return;
+  }
   commands_.push_back(std::move(command));
   ++position_;
   if (commands_.size() > limit_) {
@@ -40,6 +57,12 @@ void CommandStack::redo() {
   commands_[position_].redo();
   ++position_;
   changed();
+}
+
+std::size_t CommandStack::bytes() const {
+  std::size_t total = 0;
+  for (const Command& c : commands_) total += c.bytes;
+  return total;
 }
 
 std::string CommandStack::undoDescription() const { return canUndo() ? commands_[position_ - 1].description : ""; }

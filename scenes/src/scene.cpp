@@ -4,6 +4,9 @@
 #include <set>
 #include <stdexcept>
 
+#include "ffdkit/scenes/lattice_fit.h"
+#include "ffdkit/scenes/scene_changes.h"
+
 namespace ffdkit::scenes {
 namespace {
 
@@ -40,6 +43,15 @@ std::vector<widgets::WidgetId> Scene::latticesDeforming(const std::string& objec
   return result;
 }
 
+std::vector<widgets::WidgetId> Scene::stagesDeforming(const std::string& object) const {
+  std::vector<widgets::WidgetId> stages;
+  for (widgets::WidgetId root : latticesDeforming(object)) {
+    const std::vector<widgets::WidgetId> tree = widgets.pipelineOrder(root);
+    stages.insert(stages.end(), tree.begin(), tree.end());
+  }
+  return stages;
+}
+
 MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path& baseDirectory,
                          const GeneratorRegistry& generators) {
   return std::visit(Overloaded{
@@ -67,26 +79,14 @@ widgets::WidgetId attachNewLattice(Scene& scene, const std::vector<std::string>&
     for (Eigen::Index i = 0; i < object->mesh.points.rows(); ++i) box.extend(Eigen::Vector3d(object->mesh.points.row(i)));
   }
   if (box.isEmpty()) throw std::invalid_argument("attach: the objects have no points");
-  // Pad by a fraction of the diagonal; give flat (or point-like) boxes a minimum thickness so
-  // that the lattice has volume and the embedding is well posed.
-  const double diagonal = box.diagonal().norm();
-  const double margin = options.padding * diagonal;
-  const double minimumSize = std::max(1e-3 * diagonal, 1e-6);
-  Eigen::Vector3d lower = box.min().array() - margin;
-  Eigen::Vector3d size = (box.sizes().array() + 2.0 * margin).matrix();
-  for (int a = 0; a < 3; ++a) {
-    if (size[a] < minimumSize) {
-      lower[a] -= 0.5 * (minimumSize - size[a]);
-      size[a] = minimumSize;
-    }
-  }
   widgets::LatticeOptions lattice;
   lattice.name = options.latticeName;
   lattice.counts = options.counts;
-  lattice.frame = Eigen::Translation3d(lower) * Eigen::Scaling(size);
+  lattice.frame = fittedLatticeFrame(box, options.padding);
   lattice.settings = options.settings;
   const widgets::WidgetId id = scene.widgets.addLattice(lattice);
   scene.attachments.push_back(Attachment{scene.widgets.name(id), objects});
+  touchStructure(scene);
   return id;
 }
 
@@ -97,6 +97,7 @@ void detachLattice(Scene& scene, const std::string& lattice, const std::string& 
     if (o == it->objects.end()) continue;
     it->objects.erase(o);
     if (it->objects.empty()) scene.attachments.erase(it);
+    touchStructure(scene);
     return;
   }
   throw std::invalid_argument("detach: lattice '" + lattice + "' does not deform object '" + object + "'");

@@ -14,14 +14,16 @@ bool sameBasis(const ffd::AxisBasis& a, const ffd::AxisBasis& b) {
   return a.kind == b.kind && a.degree == b.degree && a.knots.size() == b.knots.size() && a.knots == b.knots;
 }
 
-// True when `a` and `b` have the same rest lattice in the world (counts, frame, rest points,
-// bases, outside policy): then an edit of control points needs no new embedding.
-bool sameRestLattice(const ffd::Lattice& a, const ffd::Lattice& b) {
-  if (a.counts() != b.counts() || a.frame().matrix() != b.frame().matrix() || a.restPoints() != b.restPoints() ||
-      !(a.outsidePolicy() == b.outsidePolicy()))
+// True when the pipeline's `current` lattice has the model lattice's rest shape (counts, rest
+// points, bases, outside policy): then a new frame moves it in place (Lattice::setFrame) and an
+// edit of control points needs no new lattice. Read only after the lattice's frame revision moved.
+bool sameRestShape(const widgets::WidgetModel& model, widgets::WidgetId id, const ffd::Lattice& current) {
+  const widgets::LatticeSettings& settings = model.latticeSettings(id);
+  if (model.counts(id) != current.counts() || !(settings.outside == current.outsidePolicy()) ||
+      model.restPoints(id) != current.restPoints())
     return false;
   for (int axis = 0; axis < 3; ++axis)
-    if (!sameBasis(a.basis(axis), b.basis(axis))) return false;
+    if (!sameBasis(settings.basis[std::size_t(axis)], current.basis(axis))) return false;
   return true;
 }
 
@@ -46,16 +48,16 @@ struct Stage {
 std::vector<Stage> stagesFor(const Scene& scene, const std::string& object) {
   std::vector<Stage> stages;
   int rootPriority = 0;
-  for (widgets::WidgetId root : scene.latticesDeforming(object)) {
-    std::vector<Stage> stack{{root, std::nullopt, rootPriority++}};
-    while (!stack.empty()) {
-      Stage stage = stack.back();
-      stack.pop_back();
-      stages.push_back(stage);
-      const auto children = scene.widgets.children(stage.lattice);
-      for (int c = static_cast<int>(children.size()) - 1; c >= 0; --c)
-        stack.push_back({children[std::size_t(c)], stage.lattice, c});
+  for (widgets::WidgetId lattice : scene.stagesDeforming(object)) {
+    const std::optional<widgets::WidgetId> parent = scene.widgets.parentLattice(lattice);
+    int priority = rootPriority;
+    if (parent) {
+      const std::vector<widgets::WidgetId> siblings = scene.widgets.children(*parent);
+      priority = static_cast<int>(std::find(siblings.begin(), siblings.end(), lattice) - siblings.begin());
+    } else {
+      ++rootPriority;
     }
+    stages.push_back({lattice, parent, priority});
   }
   return stages;
 }
@@ -63,10 +65,17 @@ std::vector<Stage> stagesFor(const Scene& scene, const std::string& object) {
 }  // namespace
 
 struct SceneDeformer::ObjectPipeline {
-  Eigen::MatrixX3d input;  // the object's own points when the pipeline was built
+  // The object's own points when the pipeline was built live in pipeline->inputPoints(); these
+  // tell whether the object still holds them without comparing a million points per step.
+  const double* meshData = nullptr;
+  Eigen::Index meshRows = -1;
+  std::uint64_t meshRevision = 0;
   std::vector<Stage> stages;
   std::unique_ptr<ffd::Pipeline> pipeline;
   std::map<widgets::WidgetId, ffd::LatticeId> ids;
+  // Per stage: the model revisions its lattice in the pipeline was last synced to.
+  std::map<widgets::WidgetId, std::pair<std::uint64_t, std::uint64_t>> synced;  // (frame, control)
+  std::uint64_t revision = 0;  // of the output points (SceneDeformer::revision)
 };
 
 SceneDeformer::SceneDeformer() = default;
@@ -88,35 +97,63 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   //    throw in step 2 leaves each pipeline whole.
   std::vector<ObjectPipeline*> toRun;
   std::set<std::string> names;
+  // Revisions compare within one widget model: another instance (a replaced model) syncs in full.
+  const bool sameModel = widgetInstance_ == scene.widgets.instance();
+  int latticesBuilt = 0;
   for (const auto& object : scene.objects) {
     names.insert(object.name);
     auto found = objects_.find(object.name);
     std::unique_ptr<ObjectPipeline> added;  // a new object enters objects_ once it is synced
     ObjectPipeline* p = found != objects_.end() ? found->second.get() : (added = std::make_unique<ObjectPipeline>()).get();
     std::vector<Stage> stages = stagesFor(scene, object.name);
-    const bool inputChanged = p->input.rows() != object.mesh.points.rows() || p->input != object.mesh.points;
+    const Eigen::MatrixX3d& own = object.mesh.points;
+    const bool sameMesh = p->pipeline && object.meshRevision == p->meshRevision && own.data() == p->meshData &&
+                          own.rows() == p->meshRows;
+    // A mesh at another address (a copied scene, an undo of an object edit) may still be the same:
+    // compare it then, once, rather than rebuild.
+    const bool inputChanged = !sameMesh && (!p->pipeline || p->pipeline->inputPoints().rows() != own.rows() ||
+                                            p->pipeline->inputPoints() != own);
+    p->meshData = own.data();
+    p->meshRows = own.rows();
+    p->meshRevision = object.meshRevision;
     if (!p->pipeline || inputChanged || stages != p->stages) {
       // New object, new points or a new lattice tree: rebuild (embeddings follow on update).
-      auto pipeline = std::make_unique<ffd::Pipeline>(object.mesh.points);
+      auto pipeline = std::make_unique<ffd::Pipeline>(own);
       std::map<widgets::WidgetId, ffd::LatticeId> ids;
+      p->synced.clear();
       for (const Stage& stage : stages) {
         std::optional<ffd::LatticeId> parent;
         if (stage.parent) parent = ids.at(*stage.parent);
         ids[stage.lattice] = pipeline->addLattice(scene.widgets.ffdLattice(stage.lattice), parent, stage.priority);
+        ++latticesBuilt;
+        p->synced[stage.lattice] = {scene.widgets.frameRevision(stage.lattice), scene.widgets.controlRevision(stage.lattice)};
       }
-      p->input = object.mesh.points;
       p->stages = std::move(stages);
       p->pipeline = std::move(pipeline);
       p->ids = std::move(ids);
+      ++p->revision;
     } else {
+      // In place: a stage whose revisions did not move is left alone; new control points are
+      // written into the pipeline's lattice (the deformer then updates incrementally), a new frame
+      // moves it (re-embedding per the throttle); only a new rest shape makes a new lattice.
       for (const Stage& stage : stages) {
-        ffd::Lattice fresh = scene.widgets.ffdLattice(stage.lattice);
+        const std::uint64_t frameRevision = scene.widgets.frameRevision(stage.lattice);
+        const std::uint64_t controlRevision = scene.widgets.controlRevision(stage.lattice);
+        auto& seen = p->synced[stage.lattice];
+        if (sameModel && seen == std::pair(frameRevision, controlRevision)) continue;
         ffd::Lattice& current = p->pipeline->lattice(p->ids.at(stage.lattice));
-        if (!sameRestLattice(fresh, current)) {
-          current = std::move(fresh);  // its rest lattice moved: re-embed (per the throttle)
-        } else if (fresh.controlPoints() != current.controlPoints()) {
-          current.setControlPoints(fresh.controlPoints());  // an edit: incremental update
+        if (!sameModel || seen.first != frameRevision) {
+          if (!sameRestShape(scene.widgets, stage.lattice, current)) {
+            current = scene.widgets.ffdLattice(stage.lattice);
+            ++latticesBuilt;
+          } else if (const Eigen::Affine3d frame = scene.widgets.latticeFrame(stage.lattice);
+                     frame.matrix() != current.frame().matrix()) {
+            current.setFrame(frame);
+          }
         }
+        const Eigen::MatrixX3d& control = scene.widgets.controlPoints(stage.lattice);
+        if (control != current.controlPoints()) current.setControlPoints(control);
+        seen = {frameRevision, controlRevision};
       }
     }
     if (!p->stages.empty()) {
@@ -129,6 +166,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
     if (added) objects_[object.name] = std::move(added);
   }
   std::erase_if(objects_, [&names](const auto& entry) { return !names.count(entry.first); });
+  widgetInstance_ = scene.widgets.instance();  // every object is synced to it
 
   // 2. Run the pipelines; progress counts the points every one of them embeds.
   std::vector<Eigen::Index> toEmbed;
@@ -141,6 +179,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   };
   if (progress_ && !goOn(0)) throw ffd::Cancelled("scene deformer: cancelled before any embedding");
   SceneDeformStats stats;
+  stats.latticesBuilt = latticesBuilt;
   Eigen::Index done = 0;
   for (std::size_t i = 0; i < toRun.size(); ++i) {
     ObjectPipeline& p = *toRun[i];
@@ -161,7 +200,12 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       stats.outsidePoints += first->outsideCount();
       stats.failedPoints += first->failedCount();
     }
-    stats.deformedPoints += p.input.rows();
+    stats.deformedPoints += p.pipeline->inputPoints().rows();
+    for (const auto& report : p.pipeline->lastReport())
+      if (report.outputChanged) {
+        ++p.revision;
+        break;
+      }
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats_ = stats;
@@ -171,8 +215,13 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
 const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const {
   auto it = objects_.find(object);
   if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
-  const ObjectPipeline& p = *it->second;
-  return p.stages.empty() ? p.input : p.pipeline->points();
+  return it->second->pipeline->points();
+}
+
+std::uint64_t SceneDeformer::revision(const std::string& object) const {
+  auto it = objects_.find(object);
+  if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
+  return it->second->revision;
 }
 
 std::map<std::string, Eigen::MatrixX3d> deformScene(const Scene& scene) {

@@ -94,8 +94,38 @@ TEST(CommandStack, KeepsAtMostLimitCommands) {
 
 TEST(CommandStack, RejectsIncompleteCommands) {
   CommandStack stack;
-  EXPECT_THROW(stack.push(Command{"nothing", {}, {}}), std::invalid_argument);
+  EXPECT_THROW(stack.push(Command{"nothing", {}, {}, "", 0}), std::invalid_argument);
   EXPECT_THROW(CommandStack(0), std::invalid_argument);
+}
+
+// Typing a value: every keystroke is a command with the same merge key; one undo step.
+TEST(CommandStack, ConsecutiveEditsOfOneFieldMergeIntoOneStep) {
+  Document doc;
+  CommandStack stack;
+  setValue(stack, doc, 0, 7);  // no key: its own step
+  auto typed = [&](int value) {
+    const int before = doc.values[1];
+    doc.values[1] = value;
+    stack.push(Command{"type " + std::to_string(value), [&doc, before] { doc.values[1] = before; },
+                       [&doc, value] { doc.values[1] = value; }, "value/1", sizeof(int)});
+  };
+  typed(1);
+  typed(12);
+  typed(123);
+  EXPECT_EQ(stack.size(), 2u);
+  EXPECT_EQ(stack.undoDescription(), "type 123");
+  EXPECT_EQ(stack.bytes(), 2 * sizeof(std::vector<int>) + 3 * sizeof(int));
+  stack.undo();
+  EXPECT_EQ(doc.values, (std::vector<int>{7, 0, 0}));
+  stack.redo();
+  EXPECT_EQ(doc.values, (std::vector<int>{7, 123, 0}));
+  // A save between two edits keeps them apart; so does another key.
+  stack.markClean();
+  typed(5);
+  EXPECT_EQ(stack.size(), 3u);
+  stack.undo();
+  EXPECT_EQ(doc.values, (std::vector<int>{7, 123, 0}));
+  EXPECT_FALSE(stack.isDirty());
 }
 
 }  // namespace

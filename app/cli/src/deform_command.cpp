@@ -14,6 +14,7 @@
 #include "batch_ranks.h"
 #include "commands.h"
 #include "console.h"
+#include "ffdkit/scenes/lattice_fit.h"
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
@@ -61,17 +62,14 @@ Eigen::AlignedBox3d objectsBox(const scenes::Scene& scene, const BatchRanks& ran
 }
 
 /// --fit: one scale-and-translate map M takes the tool's rest box onto the objects' bounding
-/// box grown by `padding` x its diagonal on every side (an axis flatter than 1e-3 of the
-/// diagonal gets that thickness); every root frame F becomes M * F, so a tool of several
+/// box fitted as every lattice is (scenes::fittedLatticeBox: grown by `padding` x its diagonal on
+/// every side, a minimum thickness); every root frame F becomes M * F, so a tool of several
 /// root lattices keeps its arrangement.
 void fitRoots(scenes::Scene& scene, const Eigen::AlignedBox3d& objects, double padding) {
   const Eigen::AlignedBox3d tool = restBox(scene.widgets);
   if (objects.isEmpty() || tool.isEmpty()) throw std::runtime_error("--fit: nothing to fit (no points or no lattice)");
-  const double diagonal = objects.diagonal().norm();
-  if (!(diagonal > 0.0)) throw std::runtime_error("--fit: the inputs' bounding box is a single point");
-  Eigen::Vector3d size = objects.sizes();
-  for (int a = 0; a < 3; ++a) size[a] = std::max(size[a], 1e-3 * diagonal);
-  size.array() += 2.0 * padding * diagonal;
+  if (!(objects.diagonal().norm() > 0.0)) throw std::runtime_error("--fit: the inputs' bounding box is a single point");
+  const Eigen::Vector3d size = scenes::fittedLatticeBox(objects, padding).sizes();
   const Eigen::Vector3d toolSize = tool.sizes().cwiseMax(1e-12 * std::max(1.0, tool.diagonal().norm()));
   Eigen::Affine3d map = Eigen::Affine3d::Identity();
   map.translate(objects.center());

@@ -8,11 +8,19 @@
 namespace ffdkit::scenes {
 
 /// One undoable change: a short description for menus ("Drag translate1", "Bind rotate1 ->
-/// translate2") and the two ways to get from one state to the other.
+/// translate2") and the two ways to get from one state to the other. A command holds the delta
+/// it applied (what changed, before and after), never a copy of the document or of a mesh.
 struct Command {
   std::string description;
   std::function<void()> undo;  ///< puts the document back as it was before the change
   std::function<void()> redo;  ///< applies the change again
+  /// Commands with the same non-empty key pushed one right after the other merge into one step
+  /// (typing a value, dragging a spin box, the mouse wheel): its undo goes back to before the
+  /// first, its redo to after the last (QUndoCommand::id / mergeWith). A clean state (a save)
+  /// between them keeps them apart.
+  std::string mergeKey;
+  /// Bytes the command's deltas hold (heap included), for CommandStack::bytes().
+  std::size_t bytes = 0;
 };
 
 /// Undo / redo for every change to a document (ParaView-style: the stack lives outside the
@@ -32,7 +40,7 @@ class CommandStack {
   template <class State, class Restore>
   void pushSnapshots(std::string description, State before, State after, Restore restore) {
     push(Command{std::move(description), [restore, before] { restore(before); },
-                 [restore, after] { restore(after); }});
+                 [restore, after] { restore(after); }, std::string(), 2 * sizeof(State)});
   }
 
   bool canUndo() const { return position_ > 0; }
@@ -47,6 +55,8 @@ class CommandStack {
   std::string redoDescription() const;
 
   std::size_t size() const { return commands_.size(); }
+  /// Bytes held by every command kept (undoable and redoable): the undo memory.
+  std::size_t bytes() const;
   /// Commands applied (and so undoable): the stack's position.
   std::size_t position() const { return position_; }
   /// True when the document differs from the last markClean() (e.g. the last save).

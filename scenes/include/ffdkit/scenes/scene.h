@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -71,6 +72,10 @@ struct SceneObject {
   ObjectSource source;
   DisplaySettings display;
   MeshData mesh;     ///< the object's own points; the widget trees deform copies of them
+  /// Scene revisions (scene_changes.h) of the last change of `mesh` / `display`; stamped by the
+  /// scene edit functions, read by the deformer and the view instead of comparing the data.
+  std::uint64_t meshRevision = 0;
+  std::uint64_t displayRevision = 0;
 };
 
 /// A root lattice widget (with its whole subtree of child lattices) deforming some objects:
@@ -78,6 +83,7 @@ struct SceneObject {
 struct Attachment {
   std::string lattice;               ///< name of a ROOT lattice widget
   std::vector<std::string> objects;  ///< names of the objects it deforms
+  friend bool operator==(const Attachment&, const Attachment&) = default;
 };
 
 /// The view's camera, in world coordinates.
@@ -99,12 +105,20 @@ struct Scene {
   /// When set, the widget model lives in this widget file (relative to the scene's folder)
   /// and the scene file references it instead of holding the widgets inline.
   std::optional<std::string> widgetFile;
+  /// Revisions of the parts outside the widget model (which keeps its own): `revision` grows with
+  /// every edit made through scene_changes.h, which stamps what it changed with it.
+  std::uint64_t revision = 0;
+  std::uint64_t structureRevision = 0;  ///< objects added / removed / renamed, attachments
+  std::uint64_t cameraRevision = 0;     ///< camera, background
 
   /// The object with this name, or nullptr.
   const SceneObject* findObject(const std::string& name) const;
   SceneObject* findObject(const std::string& name);
   /// Root lattices deforming `object`, in attachment order.
   std::vector<widgets::WidgetId> latticesDeforming(const std::string& object) const;
+  /// Every lattice deforming `object` in the order its pipeline runs them (spec §6): each attached
+  /// root in attachment order followed by its subtree (WidgetModel::pipelineOrder(root)).
+  std::vector<widgets::WidgetId> stagesDeforming(const std::string& object) const;
 };
 
 /// Builds an object's own points from its source. Mesh paths resolve against `baseDirectory`.
@@ -121,8 +135,8 @@ struct AttachOptions {
 };
 
 /// Attach (spec §7): adds a root lattice whose frame maps the local unit box onto the
-/// bounding box of the named objects (padded; a flat or degenerate box gets a minimum
-/// thickness), and attaches it to them.
+/// bounding box of the named objects (fittedLatticeFrame, lattice_fit.h: padded; a flat or
+/// degenerate box gets the minimum thickness), and attaches it to them.
 /// @return the new lattice. @throws std::invalid_argument for unknown objects or no points.
 widgets::WidgetId attachNewLattice(Scene& scene, const std::vector<std::string>& objects,
                                    const AttachOptions& options = {});

@@ -21,6 +21,9 @@ struct SceneDeformStats {
   Eigen::Index outsidePoints = 0; ///< object points outside their first lattice
   Eigen::Index failedPoints = 0;  ///< points whose Newton embedding failed (left unchanged)
   double embedSeconds = 0.0;      ///< part of `seconds` spent computing embeddings (the rest: syncing, deforming)
+  /// Pipeline lattices built anew from the model (a new object, lattice tree or rest shape); a
+  /// drag step writes control points into the existing ones and builds none.
+  int latticesBuilt = 0;
 };
 
 /// Progress of SceneDeformer::update() / finishGesture(): the fraction in [0, 1] of the points the
@@ -35,8 +38,13 @@ using SceneProgress = std::function<bool(double fraction)>;
 /// frame moves; an edit of control points is an incremental update.
 ///
 /// Keep one SceneDeformer per open scene and call update() after every model change; it
-/// notices new objects and lattices, changed attachments and sources (call reset() after
-/// replacing an object's mesh).
+/// notices new objects and lattices, changed attachments and sources. Change-driven: a lattice
+/// whose revisions (WidgetModel::frameRevision, controlRevision) did not move since the last
+/// update is not looked at; new control points are written in place into the stage's lattice and
+/// deformed incrementally; a new frame moves the lattice and re-embeds it (per its throttle); no
+/// lattice is rebuilt for a drag step. An object's own points are taken as unchanged while its
+/// mesh keeps its address, size and SceneObject::meshRevision: after editing them in place, stamp
+/// them (scenes::touchMesh, setObjectMesh) or call reset().
 class SceneDeformer {
  public:
   SceneDeformer();
@@ -66,6 +74,9 @@ class SceneDeformer {
   /// Deformed points of an object (its own points if no lattice deforms it), #points x 3.
   /// @throws std::invalid_argument for an object update() has not seen.
   const Eigen::MatrixX3d& points(const std::string& object) const;
+  /// Grows whenever points(object) changes (a view updates the object's arrays when it moved).
+  /// @throws std::invalid_argument for an object update() has not seen.
+  std::uint64_t revision(const std::string& object) const;
 
   const SceneDeformStats& lastStats() const { return stats_; }
 
@@ -81,6 +92,7 @@ class SceneDeformer {
   std::map<std::string, std::unique_ptr<ObjectPipeline>> objects_;
   SceneDeformStats stats_;
   SceneProgress progress_;
+  std::uint64_t widgetInstance_ = 0;  // the widget model last synced (WidgetModel::instance)
 };
 
 /// One-shot evaluation: the deformed points of every object, by name.

@@ -1,0 +1,70 @@
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "ffdkit/scenes/scene.h"
+#include "ffdkit/widgets/widget_model.h"
+
+namespace ffdkit::scenes {
+
+/// What a gesture or a value edit changed in a widget model's mutable state (control points,
+/// lattice frames, variations): only the items that differ, before and after. Undo and redo
+/// write them in place (WidgetModel::restoreState), which stamps only what differs, so the
+/// deformer re-embeds nothing unless a frame changed.
+struct StateDelta {
+  widgets::WidgetModelState before;
+  widgets::WidgetModelState after;
+
+  bool empty() const { return before.controlPoints.empty() && before.latticeFrames.empty() && before.variations.empty(); }
+  /// Heap and inline bytes held.
+  std::size_t bytes() const;
+};
+
+/// The items of `after` that differ from `before` (both captured from one model, same widgets).
+StateDelta stateDelta(const widgets::WidgetModelState& before, const widgets::WidgetModelState& after);
+
+/// What a structural edit changed in a widget model's data (WidgetModel::toData): the records
+/// (lattices, cells, affine widgets, bindings) added, removed or changed, each as (before,
+/// after) with nullopt for "absent", and the root order when it changed. Applying it rebuilds the
+/// model from its present data with these records swapped (WidgetModel::fromData): a new model
+/// instance, which the deformer syncs by value (a lattice whose rest shape and frame did not
+/// change is not re-embedded).
+struct ModelPatch {
+  template <class Record>
+  using Changes = std::vector<std::pair<std::optional<Record>, std::optional<Record>>>;
+  Changes<widgets::LatticeData> lattices;
+  Changes<widgets::CellData> cells;
+  Changes<widgets::AffineData> affines;
+  Changes<widgets::Binding> bindings;
+  std::optional<std::pair<std::vector<widgets::WidgetId>, std::vector<widgets::WidgetId>>> rootOrder;
+
+  bool empty() const {
+    return lattices.empty() && cells.empty() && affines.empty() && bindings.empty() && !rootOrder;
+  }
+  std::size_t bytes() const;
+};
+
+/// The records that differ between two data snapshots of one model (matched by id).
+ModelPatch modelPatch(const widgets::WidgetModelData& before, const widgets::WidgetModelData& after);
+
+/// Applies `patch` to `model`, forward (before -> after) or backward.
+/// @throws widgets::WidgetError if the model is not in the state the patch starts from.
+void applyPatch(widgets::WidgetModel& model, const ModelPatch& patch, bool forward);
+
+/// A document edit's delta: its widget patch and, when they changed, the attachments before and
+/// after (a few names each). Objects added or removed are kept by the command that moved them.
+struct SceneDelta {
+  ModelPatch widgets;
+  std::optional<std::pair<std::vector<Attachment>, std::vector<Attachment>>> attachments;
+
+  bool empty() const { return widgets.empty() && !attachments; }
+  std::size_t bytes() const;
+};
+
+/// Applies a SceneDelta forward or backward (stamps the scene's structure when attachments change).
+void applySceneDelta(Scene& scene, const SceneDelta& delta, bool forward);
+
+}  // namespace ffdkit::scenes
