@@ -5,6 +5,7 @@
 #include <functional>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <type_traits>
 
@@ -12,6 +13,9 @@
 #include "ffdkit/ffd/direct_manipulation.h"
 #include "ffdkit/ffd/embedding.h"
 #include "ffdkit/ffd/pipeline.h"
+#include "ffdkit/scenes/document_delta.h"
+#include "ffdkit/scenes/lattice_fit.h"
+#include "ffdkit/scenes/scene_changes.h"
 
 namespace ffdkit::app {
 
@@ -19,16 +23,6 @@ using widgets::WidgetId;
 using widgets::WidgetType;
 
 namespace {
-bool sameState(const widgets::WidgetModelState& a, const widgets::WidgetModelState& b) {
-  auto samePoints = [](const auto& p, const auto& q) {
-    return p.first == q.first && p.second.rows() == q.second.rows() && p.second == q.second;
-  };
-  auto sameFrames = [](const auto& p, const auto& q) { return p.first == q.first && p.second.matrix() == q.second.matrix(); };
-  return std::equal(a.controlPoints.begin(), a.controlPoints.end(), b.controlPoints.begin(), b.controlPoints.end(), samePoints) &&
-         std::equal(a.latticeFrames.begin(), a.latticeFrames.end(), b.latticeFrames.begin(), b.latticeFrames.end(), sameFrames) &&
-         a.variations == b.variations;
-}
-
 /// "Move x", "Turn z", ...: the undo text of a handle drag.
 std::string handleDragDescription(TransformerHandle handle) {
   std::string text = transformerHandleName(handle);
@@ -43,15 +37,10 @@ void fitAndAttachLattice(scenes::Scene& scene, WidgetId lattice, const std::stri
   if (object->mesh.points.rows() == 0) throw std::invalid_argument("object '" + objectName + "' has no points");
   if (scene.widgets.parentCell(lattice))
     throw std::invalid_argument("'" + scene.widgets.name(lattice) + "' is a child lattice: attach its root");
-  // Fit the unit box onto the padded bounding box (the same rule as scenes::attachNewLattice).
-  const Eigen::Vector3d lo = object->mesh.points.colwise().minCoeff();
-  const Eigen::Vector3d hi = object->mesh.points.colwise().maxCoeff();
-  const double diagonal = (hi - lo).norm();
-  const double pad = 0.05 * diagonal;
-  const Eigen::Vector3d extent =
-      ((hi - lo).array() + 2.0 * pad).max(std::max(1e-3, 0.05 * diagonal)).matrix();
-  const Eigen::Vector3d origin = 0.5 * (lo + hi) - 0.5 * extent;
-  scene.widgets.setLatticeFrame(lattice, Eigen::Translation3d(origin) * Eigen::Scaling(extent));
+  // The same rule as scenes::attachNewLattice (lattice_fit.h).
+  const Eigen::AlignedBox3d bounds(object->mesh.points.colwise().minCoeff().transpose(),
+                                   object->mesh.points.colwise().maxCoeff().transpose());
+  scene.widgets.setLatticeFrame(lattice, scenes::fittedLatticeFrame(bounds, 0.05));
   const std::string& name = scene.widgets.name(lattice);
   auto it = std::find_if(scene.attachments.begin(), scene.attachments.end(),
                          [&](const scenes::Attachment& a) { return a.lattice == name; });
@@ -60,6 +49,7 @@ void fitAndAttachLattice(scenes::Scene& scene, WidgetId lattice, const std::stri
   } else if (std::find(it->objects.begin(), it->objects.end(), objectName) == it->objects.end()) {
     it->objects.push_back(objectName);
   }
+  scenes::touchStructure(scene);
   scenes::validateScene(scene);
 }
 
@@ -157,15 +147,15 @@ void InteractionController::beginHandleDrag(const Transformer& gizmo, Transforme
   hoveredHandle_ = handle;
   point_.reset();
   if (scene_.widgets.type(handleTarget_) == WidgetType::Affine) {
-    // The placement is not part of WidgetModelState: undo to the whole model.
-    handleStart_ = snapshot(false);
+    // The placement is not part of WidgetModelState: the command stores it (release()).
+    handleStart_ = true;
     placementStart_ = scene_.widgets.placement(handleTarget_);
     placementBase_ = scene_.widgets.placementBase(handleTarget_);
     dragLattice_.reset();
   } else {
     // A lattice moves through a gesture: its frame (a root) or its parent cell (a child)
     // follows, bound widgets too, and the attached objects are re-embedded as it moves.
-    handleStart_.reset();
+    handleStart_ = false;
     dragStart_ = scene_.widgets.captureState();
     scene_.widgets.beginGesture(handleTarget_);
     dragLattice_ = handleTarget_;
@@ -175,18 +165,6 @@ void InteractionController::beginHandleDrag(const Transformer& gizmo, Transforme
 }
 
 namespace {
-
-// The lattices that deform `object`, in the order its pipeline runs them: each attached root
-// (attachment order) with its subtree in pre-order (spec §6).
-std::vector<WidgetId> objectStages(const scenes::Scene& scene, const std::string& object) {
-  std::vector<WidgetId> out;
-  std::function<void(WidgetId)> visit = [&](WidgetId lattice) {
-    out.push_back(lattice);
-    for (WidgetId child : scene.widgets.children(lattice)) visit(child);
-  };
-  for (WidgetId root : scene.latticesDeforming(object)) visit(root);
-  return out;
-}
 
 // Where `point` (world) is after the lattices stages[0, count) have deformed it.
 Eigen::Vector3d throughStages(const scenes::Scene& scene, const std::vector<WidgetId>& stages, std::size_t count,
@@ -235,7 +213,7 @@ std::optional<std::string> InteractionController::pressObject(const widgets::Ray
   }
   if (!best) return std::nullopt;
   const auto& [name, vertex] = *best;
-  const std::vector<WidgetId> stages = objectStages(scene_, name);
+  const std::vector<WidgetId> stages = scene_.stagesDeforming(name);
   if (stages.empty()) throw std::invalid_argument("'" + name + "' is not deformed by a lattice: attach one to drag its points");
   const Eigen::Vector3d own = scene_.findObject(name)->mesh.points.row(vertex).transpose();
   // From the last stage back: the first lattice whose input holds the point moves it; a later
@@ -309,12 +287,7 @@ void InteractionController::release() {
     const std::string description = "Drag point " + std::to_string(objectGrab_->vertex) + " of " + objectGrab_->object;
     objectGrab_.reset();
     deformer_.finishGesture(scene_);
-    const widgets::WidgetModelState end = scene_.widgets.captureState();
-    if (!sameState(dragStart_, end))
-      commands_.pushSnapshots(description, dragStart_, end, [this](const widgets::WidgetModelState& state) {
-        scene_.widgets.restoreState(state);
-        refresh();
-      });
+    pushState(description, scenes::stateDelta(dragStart_, scene_.widgets.captureState()));
     notify();
     return;
   }
@@ -322,28 +295,29 @@ void InteractionController::release() {
       handleDrag_ ? std::optional<TransformerHandle>(handleDrag_->handle()) : std::nullopt;
   handleDrag_.reset();
   if (handleStart_) {
-    Snapshot before = std::move(*handleStart_);
-    handleStart_.reset();
-    if (scene_.widgets.placement(handleTarget_).matrix() != placementStart_.matrix())
-      commands_.pushSnapshots(handleDragDescription(handle.value_or(TransformerHandle::MoveX)) + " " + scene_.widgets.name(handleTarget_),
-                              std::move(before), snapshot(false), [this](const Snapshot& s) { restore(s); });
+    handleStart_ = false;
+    if (scene_.widgets.placement(handleTarget_).matrix() != placementStart_.matrix()) {
+      // The placement is not part of the model's state: its change is the command's delta.
+      const WidgetId target = handleTarget_;
+      const Eigen::Affine3d before = placementStart_, after = scene_.widgets.placement(target);
+      auto place = [this, target](const Eigen::Affine3d& placement) {
+        scene_.widgets.setPlacement(target, placement);
+        notify();  // a placement moves no points
+      };
+      commands_.push(scenes::Command{handleDragDescription(handle.value_or(TransformerHandle::MoveX)) + " " +
+                                         scene_.widgets.name(target),
+                                     [place, before] { place(before); }, [place, after] { place(after); }, "",
+                                     2 * sizeof(Eigen::Affine3d)});
+    }
     notify();
     return;
   }
   const WidgetId target = *scene_.widgets.gestureWidget();
   scene_.widgets.endGesture();
   deformer_.finishGesture(scene_);  // the exact result, in one pass
-  const widgets::WidgetModelState end = scene_.widgets.captureState();
   const std::string what = handle ? handleDragDescription(*handle) : std::string("Drag");
-  if (sameState(dragStart_, end)) {  // a click that selected a widget changed nothing: no command
-    notify();
-    return;
-  }
-  commands_.pushSnapshots(what + " " + scene_.widgets.name(target), dragStart_, end,
-                          [this](const widgets::WidgetModelState& state) {
-                            scene_.widgets.restoreState(state);
-                            refresh();
-                          });
+  // A click that selected a widget changed nothing: no command.
+  pushState(what + " " + scene_.widgets.name(target), scenes::stateDelta(dragStart_, scene_.widgets.captureState()));
   notify();
 }
 
@@ -359,7 +333,7 @@ void InteractionController::cancel() {
   handleDrag_.reset();
   if (handleStart_) {
     scene_.widgets.setPlacement(handleTarget_, placementStart_);
-    handleStart_.reset();
+    handleStart_ = false;
     notify();
     return;
   }
@@ -444,33 +418,64 @@ ViewHighlights InteractionController::highlights() const {
 
 // ---- operations --------------------------------------------------------------------------
 
-InteractionController::Snapshot InteractionController::snapshot(bool withObjects) const {
-  Snapshot s{scene_.widgets, scene_.attachments, std::nullopt};
-  if (withObjects) s.objects = scene_.objects;
-  return s;
-}
-
-void InteractionController::restore(const Snapshot& s) {
-  scene_.widgets = s.widgets;
-  scene_.attachments = s.attachments;
-  if (s.objects) scene_.objects = *s.objects;
+void InteractionController::pruneSelection() {
   // Selections may name widgets that no longer exist.
   std::erase_if(selection_, [&](WidgetId id) { return !scene_.widgets.contains(id); });
   if (point_ && !scene_.widgets.contains(point_->lattice)) point_.reset();
   if (hovered_ && !scene_.widgets.contains(*hovered_)) hovered_.reset();
-  deformer_.reset();
-  refresh();
-  if (onStructureChanged) onStructureChanged();
+}
+
+void InteractionController::pushState(const std::string& description, scenes::StateDelta delta,
+                                      const std::string& mergeKey) {
+  if (delta.empty()) return;
+  const std::size_t bytes = delta.bytes();
+  auto shared = std::make_shared<const scenes::StateDelta>(std::move(delta));
+  auto apply = [this, shared](bool forward) {
+    // In place: only what differs is stamped, so the deformer re-embeds nothing unless a frame
+    // changed and then only the stages concerned.
+    scene_.widgets.restoreState(forward ? shared->after : shared->before);
+    refresh();
+  };
+  commands_.push(scenes::Command{description, [apply] { apply(false); }, [apply] { apply(true); }, mergeKey, bytes});
 }
 
 template <class Change>
-auto InteractionController::edit(const std::string& description, Change change, bool withObjects) {
+auto InteractionController::edit(const std::string& description, Change change, const std::string& mergeKey) {
   if (dragging_) cancel();
-  Snapshot before = snapshot(withObjects);
+  // The model's data and the attachments before the change (transient: the command keeps only
+  // the records that differ), and the objects there were.
+  const widgets::WidgetModelData widgetsBefore = scene_.widgets.toData();
+  const std::vector<scenes::Attachment> attachmentsBefore = scene_.attachments;
+  const std::size_t objectsBefore = scene_.objects.size();
+  auto deltaFromBefore = [&] {
+    scenes::SceneDelta delta;
+    delta.widgets = scenes::modelPatch(widgetsBefore, scene_.widgets.toData());
+    if (!(attachmentsBefore == scene_.attachments)) delta.attachments = std::pair(attachmentsBefore, scene_.attachments);
+    return delta;
+  };
   auto finish = [&] {
-    Snapshot after = snapshot(withObjects);
-    commands_.pushSnapshots(description, std::move(before), std::move(after),
-                            [this](const Snapshot& s) { restore(s); });
+    auto delta = std::make_shared<const scenes::SceneDelta>(deltaFromBefore());
+    // Objects the change added (appended): moved out of the scene into `held` on undo, back on
+    // redo; the command holds an object only while it is undone.
+    auto held = std::make_shared<std::vector<scenes::SceneObject>>();
+    const std::size_t added = scene_.objects.size() - objectsBefore;
+    auto apply = [this, delta, held, added, objectsBefore](bool forward) {
+      if (!forward) {
+        for (std::size_t i = 0; i < added; ++i) held->push_back(std::move(scene_.objects[objectsBefore + i]));
+        scene_.objects.resize(objectsBefore);
+        if (added > 0) scenes::touchStructure(scene_);
+      }
+      scenes::applySceneDelta(scene_, *delta, forward);
+      if (forward && added > 0) {
+        for (auto& object : *held) scenes::addObject(scene_, std::move(object));
+        held->clear();
+      }
+      pruneSelection();
+      refresh();
+      if (onStructureChanged) onStructureChanged();
+    };
+    commands_.push(scenes::Command{description, [apply] { apply(false); }, [apply] { apply(true); }, mergeKey,
+                                   delta->bytes() + sizeof(*held)});
     deformer_.finishGesture(scene_);
     notify();
     if (onStructureChanged) onStructureChanged();
@@ -485,7 +490,12 @@ auto InteractionController::edit(const std::string& description, Change change, 
       return result;
     }
   } catch (...) {
-    restore(before);  // a failed edit leaves no trace
+    // A failed edit leaves no trace.
+    scenes::applySceneDelta(scene_, deltaFromBefore(), /*forward=*/false);
+    scene_.objects.resize(std::min(scene_.objects.size(), objectsBefore));
+    pruneSelection();
+    refresh();
+    if (onStructureChanged) onStructureChanged();
     throw;
   }
 }
@@ -508,11 +518,15 @@ void InteractionController::setDisplay(const std::vector<std::string>& objects,
   if (before == looks) return;
   auto restore = [this, objects](const std::vector<scenes::DisplaySettings>& set) {
     for (std::size_t i = 0; i < objects.size(); ++i)
-      if (scenes::SceneObject* object = scene_.findObject(objects[i])) object->display = set[i];
+      if (scene_.findObject(objects[i]) != nullptr) scenes::setObjectDisplay(scene_, objects[i], set[i]);
     notify();
   };
   restore(looks);
-  commands_.pushSnapshots(description, std::move(before), looks, restore);
+  std::string key = "look";
+  for (const std::string& name : objects) key += "/" + name;
+  const std::size_t bytes = 2 * looks.size() * sizeof(scenes::DisplaySettings);
+  commands_.push(scenes::Command{description, [restore, before] { restore(before); }, [restore, looks] { restore(looks); },
+                                 key, bytes});
 }
 
 WidgetId InteractionController::newLattice(const NewLatticeOptions& options) {
@@ -614,10 +628,9 @@ std::string InteractionController::addPrimitive(const scenes::PrimitiveOptions& 
         object.name = name;
         object.source = options;
         object.mesh = scenes::buildObjectMesh(object.source, ".");
-        scene_.objects.push_back(std::move(object));
+        scenes::addObject(scene_, std::move(object));
         return name;
-      },
-      true);
+      });
 }
 
 void InteractionController::addObject(scenes::SceneObject object) {
@@ -625,21 +638,23 @@ void InteractionController::addObject(scenes::SceneObject object) {
       "Import " + object.name,
       [&] {
         if (scene_.findObject(object.name) != nullptr) throw std::invalid_argument("object '" + object.name + "' exists");
-        scene_.objects.push_back(std::move(object));
-      },
-      true);
+        scenes::addObject(scene_, std::move(object));
+      });
 }
 
 void InteractionController::setVariation(WidgetId affine, double value) {
-  edit("Set variation of " + scene_.widgets.name(affine), [&] { scene_.widgets.setVariation(affine, value); });
+  edit("Set variation of " + scene_.widgets.name(affine), [&] { scene_.widgets.setVariation(affine, value); },
+       "variation/" + widgets::toString(affine));
 }
 
 void InteractionController::setPlacement(WidgetId affine, const Eigen::Affine3d& placement) {
-  edit("Place " + scene_.widgets.name(affine), [&] { scene_.widgets.setPlacement(affine, placement); });
+  edit("Place " + scene_.widgets.name(affine), [&] { scene_.widgets.setPlacement(affine, placement); },
+       "placement/" + widgets::toString(affine));
 }
 
 void InteractionController::setGlyph(WidgetId affine, const widgets::Glyph& glyph) {
-  edit("Glyph of " + scene_.widgets.name(affine), [&] { scene_.widgets.setGlyph(affine, glyph); });
+  edit("Glyph of " + scene_.widgets.name(affine), [&] { scene_.widgets.setGlyph(affine, glyph); },
+       "glyph/" + widgets::toString(affine));
 }
 
 void InteractionController::setAffineKind(WidgetId affine, widgets::AffineKind kind) {
@@ -660,7 +675,7 @@ void InteractionController::setMask(widgets::BindingId binding, widgets::AffineM
 }
 
 void InteractionController::setRule(widgets::BindingId binding, const widgets::ConversionRule& rule) {
-  edit("Set conversion rule", [&] { scene_.widgets.setRule(binding, rule); });
+  edit("Set conversion rule", [&] { scene_.widgets.setRule(binding, rule); }, "rule/" + widgets::toString(binding));
 }
 
 void InteractionController::setLatticeSettings(WidgetId lattice, const widgets::LatticeSettings& settings) {
@@ -669,7 +684,8 @@ void InteractionController::setLatticeSettings(WidgetId lattice, const widgets::
 }
 
 void InteractionController::setLatticeFrame(WidgetId lattice, const Eigen::Affine3d& frame) {
-  edit("Place " + scene_.widgets.name(lattice), [&] { scene_.widgets.setLatticeFrame(lattice, frame); });
+  edit("Place " + scene_.widgets.name(lattice), [&] { scene_.widgets.setLatticeFrame(lattice, frame); },
+       "frame/" + widgets::toString(lattice));
 }
 
 void InteractionController::setSiblingPosition(WidgetId lattice, std::size_t position) {

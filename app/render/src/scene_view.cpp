@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -368,6 +369,7 @@ struct SceneView::Impl {
   struct ObjectActor {
     std::string name;
     Eigen::Index pointCount = 0;
+    std::uint64_t pointsRevision = 0;         ///< SceneDeformer::revision of the points drawn
     scenes::DisplaySettings display;          ///< as drawn; a change rebuilds the actor
     double combFactor = 0.0;                  ///< tooth length per unit curvature
     std::vector<std::vector<int>> chains;     ///< curves: the segments in curve order (comb)
@@ -380,11 +382,29 @@ struct SceneView::Impl {
   };
   vtkRenderer* renderer = nullptr;
   std::vector<ObjectActor> objects;
-  std::vector<vtkSmartPointer<vtkActor>> widgetActors;
+  // Widget actors are rebuilt when the model changes (its instance or revision); a change of the
+  // highlights only recolours them, shows or hides the selected lattices' faces and moves the
+  // point marker: hover and selection build no geometry.
+  enum class Role { Lattice, LatticeFaces, Cell, Glyph };
+  struct WidgetActor {
+    vtkSmartPointer<vtkActor> actor;
+    WidgetId id;
+    Role role = Role::Lattice;
+    Eigen::Vector3d base = Eigen::Vector3d::Ones();
+  };
+  std::vector<WidgetActor> widgets;
+  std::vector<vtkSmartPointer<vtkActor>> widgetActors;  // every widget actor, for removal
+  vtkSmartPointer<vtkActor> pointMarker;                // the picked lattice point, moved by a transform
+  std::uint64_t widgetInstance = 0, widgetRevision = 0;  // of the model the widget actors show
+  // Glyph shapes at size 1 by shape, kind and part placement: built once, shared by the actors.
+  std::map<std::string, vtkSmartPointer<vtkPolyData>> glyphShapes;
+  std::optional<Transformer> overlayBuiltFor;  // the transformer the overlay actors show
+  SceneViewStats stats;
   // The transformer manipulator is drawn by a second renderer in the layer above, sharing the
   // camera, so that it stays visible inside the object it moves (a lattice's centre usually is).
   vtkSmartPointer<vtkRenderer> overlay;
   std::vector<vtkSmartPointer<vtkActor>> overlayActors;
+  std::vector<TransformerHandle> overlayHandles;  // of overlayActors, in order
   // The transformer's three shapes at size 1 (built once; the actors place them per frame).
   vtkSmartPointer<vtkPolyData> transformerArrow, transformerRing, transformerCube;
   ViewHighlights highlights;
@@ -406,6 +426,47 @@ struct SceneView::Impl {
     widgetActors.push_back(actor);
     return actor;
   }
+  vtkSmartPointer<vtkActor> addWidgetActor(vtkPolyData* polyData, WidgetId id, Role role, const Eigen::Vector3d& base) {
+    auto actor = addWidgetActor(polyData, base);
+    widgets.push_back({actor, id, role, base});
+    return actor;
+  }
+
+  vtkPolyData* cachedGlyph(const widgets::Glyph& glyph, AffineKind kind) {
+    std::string key = glyph.shape + "|" + std::string(widgets::affineKindName(kind));
+    if (partMesh(glyph.shape)) {
+      const Eigen::Matrix4d& m = glyph.partPlacement.matrix();
+      key.append(reinterpret_cast<const char*>(m.data()), sizeof(double) * 16);
+    }
+    auto& shape = glyphShapes[key];
+    if (!shape) shape = glyphShape(glyph, kind);
+    return shape;
+  }
+
+  // Colours, line widths, the selected lattices' faces and the point marker from the highlights.
+  void applyHighlights(const widgets::WidgetModel& model) {
+    for (const WidgetActor& w : widgets) {
+      const bool selected = contains(highlights.selected, w.id);
+      vtkProperty* property = w.actor->GetProperty();
+      if (w.role == Role::LatticeFaces) {
+        w.actor->SetVisibility(selected);
+        continue;
+      }
+      const Eigen::Vector3d colour = emphasis(w.id, w.base);
+      property->SetColor(colour.x(), colour.y(), colour.z());
+      if (w.role == Role::Lattice) property->SetLineWidth(selected ? 3.0 : 1.5);
+    }
+    const bool marked = highlights.point && model.contains(highlights.point->lattice) &&
+                        model.type(highlights.point->lattice) == widgets::WidgetType::Lattice &&
+                        highlights.point->index < model.controlPoints(highlights.point->lattice).rows();
+    pointMarker->SetVisibility(marked);
+    if (marked) {
+      const Eigen::Vector3d p =
+          model.latticeFrame(highlights.point->lattice) *
+          Eigen::Vector3d(model.controlPoints(highlights.point->lattice).row(highlights.point->index).transpose());
+      pointMarker->SetPosition(p.x(), p.y(), p.z());
+    }
+  }
 
   void clearObjects() {
     for (auto& o : objects) {
@@ -423,6 +484,7 @@ struct SceneView::Impl {
       entry.name = object.name;
       const Eigen::MatrixX3d& points = deformed.points(object.name);
       entry.pointCount = points.rows();
+      entry.pointsRevision = deformed.revision(object.name);
       entry.restLo = object.mesh.points.rows() > 0 ? Eigen::Vector3d(object.mesh.points.colwise().minCoeff().transpose())
                                                    : Eigen::Vector3d::Zero();
       entry.restHi = object.mesh.points.rows() > 0 ? Eigen::Vector3d(object.mesh.points.colwise().maxCoeff().transpose())
@@ -494,6 +556,7 @@ struct SceneView::Impl {
       }
       renderer->AddActor(entry.actor);
       objects.push_back(std::move(entry));
+      ++stats.objectBuilds;
     }
   }
 
@@ -515,6 +578,7 @@ struct SceneView::Impl {
     if (vtkRenderWindow* window = overlay->GetRenderWindow()) window->RemoveRenderer(overlay);
     overlay = nullptr;
     overlayActors.clear();
+    overlayHandles.clear();
   }
 
   vtkRenderer* overlayRenderer() {
@@ -534,33 +598,51 @@ struct SceneView::Impl {
 
   // The handles of TransformerLayout, red / green / blue per axis, the hovered or dragged one
   // in the selection colour.
+  static bool sameTransformer(const std::optional<Transformer>& a, const std::optional<Transformer>& b) {
+    if (a.has_value() != b.has_value()) return false;
+    return !a || (a->frame.matrix() == b->frame.matrix() && a->size == b->size && a->uniformSize == b->uniformSize);
+  }
+
+  // The overlay actors are placed once per transformer; the hovered or dragged handle recolours.
+  void updateTransformer() {
+    const bool placed = overlay && overlay->GetRenderWindow() == renderer->GetRenderWindow();
+    if (!placed || !sameTransformer(overlayBuiltFor, highlights.transformer)) buildTransformer();
+    const Eigen::Vector3d axisColour[3] = {{0.95, 0.25, 0.25}, {0.3, 0.9, 0.3}, {0.3, 0.5, 1.0}};
+    for (std::size_t k = 0; k < overlayActors.size(); ++k) {
+      const TransformerHandle handle = overlayHandles[k];
+      const Eigen::Vector3d colour =
+          highlights.transformerHandle == handle ? kSelected : axisColour[transformerAxis(handle)];
+      overlayActors[k]->GetProperty()->SetColor(colour.x(), colour.y(), colour.z());
+    }
+  }
+
   void buildTransformer() {
     if (overlay) {
       for (auto& actor : overlayActors) overlay->RemoveActor(actor);
       overlayActors.clear();
     }
+    overlayHandles.clear();
+    overlayBuiltFor = highlights.transformer;
     if (!highlights.transformer) return;
+    ++stats.overlayBuilds;
     vtkRenderer* target = overlayRenderer();
     if (target == nullptr) return;
     using L = TransformerLayout;
     const Transformer& t = *highlights.transformer;
     const double s = t.size;
-    const Eigen::Vector3d axisColour[3] = {{0.95, 0.25, 0.25}, {0.3, 0.9, 0.3}, {0.3, 0.5, 1.0}};
     auto add = [&](vtkPolyData* shape, const Eigen::Affine3d& place, TransformerHandle handle) {
       vtkNew<vtkPolyDataMapper> mapper;
       mapper->SetInputData(shape);
       auto actor = vtkSmartPointer<vtkActor>::New();
       actor->SetMapper(mapper);
-      const Eigen::Vector3d colour =
-          highlights.transformerHandle == handle ? kSelected : axisColour[transformerAxis(handle)];
-      actor->GetProperty()->SetColor(colour.x(), colour.y(), colour.z());
-      actor->GetProperty()->SetAmbient(0.35);
+      actor->GetProperty()->SetAmbient(0.35);  // colours: updateTransformer
       vtkNew<vtkTransform> transform;
       const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m = (Eigen::Affine3d(t.frame) * place).matrix();
       transform->SetMatrix(m.data());
       actor->SetUserTransform(transform);
       target->AddActor(actor);
       overlayActors.push_back(actor);
+      overlayHandles.push_back(handle);
     };
     const double length = L::moveTip - L::moveFrom;
     if (!transformerArrow) {
@@ -605,31 +687,25 @@ struct SceneView::Impl {
   }
 
   void buildWidgets(const widgets::WidgetModel& model) {
-    buildTransformer();
     for (auto& actor : widgetActors) renderer->RemoveActor(actor);
     widgetActors.clear();
+    widgets.clear();
+    widgetInstance = model.instance();
+    widgetRevision = model.revision();
+    ++stats.widgetBuilds;
     for (WidgetId lattice : model.widgets(widgets::WidgetType::Lattice)) {
       const Eigen::MatrixX3d points = model.worldControlPoints(lattice);
-      auto actor = addWidgetActor(latticePolyData(points, model.counts(lattice)),
-                                  emphasis(lattice, {0.55, 0.8, 1.0}));
-      actor->GetProperty()->SetLineWidth(contains(highlights.selected, lattice) ? 3.0 : 1.5);
+      const Eigen::Vector3d base{0.55, 0.8, 1.0};
+      auto actor = addWidgetActor(latticePolyData(points, model.counts(lattice)), lattice, Role::Lattice, base);
       actor->GetProperty()->SetPointSize(9.0);
       actor->GetProperty()->SetRenderPointsAsSpheres(true);
       actor->GetProperty()->SetLighting(false);
-      if (contains(highlights.selected, lattice)) {
-        auto faces = addWidgetActor(latticeFacesPolyData(points, model.counts(lattice)), {0.55, 0.8, 1.0});
-        faces->GetProperty()->SetOpacity(0.18);
-        faces->GetProperty()->SetLighting(false);
-      }
-      if (highlights.point && highlights.point->lattice == lattice && highlights.point->index < points.rows()) {
-        auto marker = addWidgetActor(pointsPolyData(points.row(highlights.point->index)), kSelected);
-        marker->GetProperty()->SetPointSize(18.0);
-        marker->GetProperty()->SetRenderPointsAsSpheres(true);
-        marker->GetProperty()->SetLighting(false);
-      }
+      auto faces = addWidgetActor(latticeFacesPolyData(points, model.counts(lattice)), lattice, Role::LatticeFaces, base);
+      faces->GetProperty()->SetOpacity(0.18);
+      faces->GetProperty()->SetLighting(false);
     }
     for (WidgetId cell : model.widgets(widgets::WidgetType::Cell)) {
-      auto actor = addWidgetActor(pointsPolyData(model.cellWorldPoints(cell)), emphasis(cell, {1.0, 0.65, 0.2}));
+      auto actor = addWidgetActor(pointsPolyData(model.cellWorldPoints(cell)), cell, Role::Cell, {1.0, 0.65, 0.2});
       actor->GetProperty()->SetPointSize(14.0);
       actor->GetProperty()->SetRenderPointsAsSpheres(true);
       actor->GetProperty()->SetLighting(false);
@@ -642,11 +718,23 @@ struct SceneView::Impl {
       Eigen::Matrix<double, 4, 4, Eigen::RowMajor> rowMajor = m;
       transform->SetMatrix(rowMajor.data());
       const AffineKind kind = model.affineKind(affine);
-      auto actor = addWidgetActor(glyphShape(model.glyph(affine), kind), emphasis(affine, kindColour(kind)));
+      auto actor = addWidgetActor(cachedGlyph(model.glyph(affine), kind), affine, Role::Glyph, kindColour(kind));
       actor->SetUserTransform(transform);
       actor->GetProperty()->SetSpecular(0.4);
       actor->GetProperty()->SetSpecularPower(40);
     }
+    // The picked-point marker: one point at the origin, placed by the actor's position.
+    pointMarker = addWidgetActor(pointsPolyData(Eigen::RowVector3d::Zero()), kSelected);
+    pointMarker->GetProperty()->SetPointSize(18.0);
+    pointMarker->GetProperty()->SetRenderPointsAsSpheres(true);
+    pointMarker->GetProperty()->SetLighting(false);
+  }
+
+  // Widget actors from the model when it changed; highlights always (no geometry).
+  void updateWidgets(const widgets::WidgetModel& model) {
+    updateTransformer();
+    if (!pointMarker || widgetInstance != model.instance() || widgetRevision != model.revision()) buildWidgets(model);
+    applyHighlights(model);
   }
 };
 
@@ -660,7 +748,9 @@ SceneView::~SceneView() {
 
 void SceneView::show(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
   impl_->buildObjects(scene, deformed);
+  impl_->buildTransformer();
   impl_->buildWidgets(scene.widgets);
+  impl_->updateWidgets(scene.widgets);
   impl_->renderer->SetBackground(scene.background.x(), scene.background.y(), scene.background.z());
   applyCamera(scene.camera);
 }
@@ -668,9 +758,15 @@ void SceneView::show(const scenes::Scene& scene, const scenes::SceneDeformer& de
 void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
   if (impl_->sameObjects(scene, deformed)) {
     for (auto& entry : impl_->objects) {
+      // Only objects whose deformed points moved: their point array, normals and comb, in place.
+      const std::uint64_t revision = deformed.revision(entry.name);
+      if (revision == entry.pointsRevision) continue;
+      entry.pointsRevision = revision;
       const Eigen::MatrixX3d& points = deformed.points(entry.name);
       setPoints(entry.polyData->GetPoints(), points);
+      ++impl_->stats.pointUpdates;
       if (auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals())) {
+        ++impl_->stats.normalUpdates;
         updateNormals(normals, scene.findObject(entry.name)->mesh.triangles, entry.vertexFaces, points,
                       entry.faceNormals);
         if (auto* tcoords = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetTCoords()))
@@ -684,7 +780,7 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
   } else {
     impl_->buildObjects(scene, deformed);
   }
-  impl_->buildWidgets(scene.widgets);
+  impl_->updateWidgets(scene.widgets);
   impl_->renderer->SetBackground(scene.background.x(), scene.background.y(), scene.background.z());
   // The clipping range from our own bounds: VTK's would visit every cell of a large mesh
   // (~40 ms per frame at 1M vertices).
@@ -716,6 +812,8 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
 }
 
 void SceneView::setHighlights(const ViewHighlights& highlights) { impl_->highlights = highlights; }
+
+const SceneViewStats& SceneView::stats() const { return impl_->stats; }
 
 void SceneView::applyCamera(const scenes::Camera& camera) {
   vtkCamera* c = impl_->renderer->GetActiveCamera();

@@ -9,6 +9,7 @@
 #include "ffdkit/app/scene_view.h"
 #include "ffdkit/app/transformer.h"
 #include "ffdkit/scenes/command_stack.h"
+#include "ffdkit/scenes/document_delta.h"
 #include "ffdkit/scenes/primitive.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
@@ -166,16 +167,15 @@ class InteractionController {
   std::function<void()> onStructureChanged;
 
  private:
-  struct Snapshot {
-    widgets::WidgetModel widgets;
-    std::vector<scenes::Attachment> attachments;
-    std::optional<std::vector<scenes::SceneObject>> objects;  ///< only for edits of objects
-  };
-  Snapshot snapshot(bool withObjects) const;
-  void restore(const Snapshot& s);
-  /// Runs `change` on the scene and pushes it as one command (snapshots before and after).
+  /// Pushes a gesture's or a value edit's delta as one command (nothing when it is empty).
+  void pushState(const std::string& description, scenes::StateDelta delta, const std::string& mergeKey = {});
+  /// Runs `change` on the scene and pushes it as one command holding its delta (the widget records
+  /// and attachments it changed, the objects it added); edits with the same non-empty
+  /// `mergeKey` in a row merge into one step.
   template <class Change>
-  auto edit(const std::string& description, Change change, bool withObjects = false);
+  auto edit(const std::string& description, Change change, const std::string& mergeKey = {});
+  /// Drops selected, picked or hovered widgets that no longer exist.
+  void pruneSelection();
   std::optional<widgets::WidgetId> activeLattice(widgets::WidgetId id) const;
   /// The nearest lattice control point within `tolerance` of the ray.
   std::optional<LatticePointRef> pickPoint(const widgets::Ray& ray, double tolerance) const;
@@ -192,13 +192,13 @@ class InteractionController {
   std::optional<widgets::WidgetId> dragLattice_;
   widgets::WidgetModelState dragStart_;
   // Transformer: the hovered handle; during a handle drag, its math, its widget, and for an
-  // affine widget the placement and base at the press and the whole model to undo to.
+  // affine widget (handleStart_) the placement and base at the press.
   std::optional<TransformerHandle> hoveredHandle_;
   std::optional<TransformerDrag> handleDrag_;
   widgets::WidgetId handleTarget_;
   Eigen::Affine3d placementStart_ = Eigen::Affine3d::Identity();
   Eigen::Affine3d placementBase_ = Eigen::Affine3d::Identity();
-  std::optional<Snapshot> handleStart_;
+  bool handleStart_ = false;
   // Direct manipulation: the grabbed point and the lattice that moves it.
   struct ObjectGrab {
     std::string object;

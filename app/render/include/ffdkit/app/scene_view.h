@@ -39,12 +39,25 @@ struct ViewHighlights {
   std::optional<TransformerHandle> transformerHandle;  ///< its hovered or dragged handle
 };
 
+/// What a SceneView has built and updated since it was made (how tests see that hover and
+/// selection build no geometry and that a drag step touches only the objects that moved).
+struct SceneViewStats {
+  int objectBuilds = 0;   ///< object actors made (show(), or a refresh after the objects changed)
+  int pointUpdates = 0;   ///< object point arrays rewritten in place
+  int normalUpdates = 0;  ///< object normal arrays recomputed in place
+  int widgetBuilds = 0;   ///< rebuilds of the widget actors (the model changed)
+  int overlayBuilds = 0;  ///< placements of the transformer's actors (another transformer)
+};
+
 /// Draws a scene into a VTK renderer: shaded (or zebra-striped, DisplaySettings::surfaceStyle)
 /// objects at their deformed points, curves as tubes (with a curvature comb of the deformed
 /// polyline when DisplaySettings::curvatureComb is set), lattice points and edges, cells as
 /// points, affine widgets as glyphs at their frames (arrow = translate, ring = rotate, cube =
-/// scale, or a part of the parts library), coloured by kind, with hover / selection / gesture highlights. The actors rebuild themselves from the
-/// model; they hold no state of their own.
+/// scale, or a part of the parts library), coloured by kind, with hover / selection / gesture
+/// highlights. Change-driven: refresh() rewrites the point array (and normals) of an object only
+/// when its deformed points moved (SceneDeformer::revision), rebuilds the widget actors only when
+/// the model changed (WidgetModel::instance / revision), and applies highlights by recolouring
+/// and showing or hiding actors, so hover and selection build no geometry.
 class SceneView {
  public:
   /// Draws into `renderer` (not owned; must outlive the view).
@@ -63,6 +76,8 @@ class SceneView {
 
   /// Highlights used by the next show() / refresh().
   void setHighlights(const ViewHighlights& highlights);
+
+  const SceneViewStats& stats() const;
 
   /// Sets the renderer's camera from `camera` (clipping range reset to the scene).
   void applyCamera(const scenes::Camera& camera);
