@@ -1,0 +1,141 @@
+// The interactive path (issue 16): a drag step (model gesture, in-place deformation, the view's
+// point and normal arrays), a hover (highlights only) and an undo of a drag, on a sphere of
+// 1M (10M) vertices in a 4x4x4 cubic B-spline lattice with one point widget. No GL draw: the
+// view's renderer has no window. Run:
+//   bench_interaction --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// Each benchmark checks once that its work did what it should (the view updated the points, the
+// hover built nothing, the undo embedded nothing) and aborts otherwise.
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+
+#include <benchmark/benchmark.h>
+#include <vtkNew.h>
+#include <vtkRenderer.h>
+
+#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/app/scene_view.h"
+
+using namespace ffdkit;
+
+namespace {
+
+void require(bool ok, const char* what) {
+  if (!ok) {
+    std::fprintf(stderr, "bench_interaction: %s\n", what);
+    std::abort();
+  }
+}
+
+// A sphere of about resolution^2 / 2 vertices in a 4x4x4 cubic lattice, a translate widget on an
+// inner point of the top layer, and a view of it all.
+struct Session {
+  scenes::Scene scene;
+  scenes::SceneDeformer deformer;
+  scenes::CommandStack commands;
+  app::InteractionController controller{scene, deformer, commands};
+  vtkNew<vtkRenderer> renderer;
+  std::unique_ptr<app::SceneView> view;
+  widgets::WidgetId lattice, widget;
+
+  explicit Session(int resolution) {
+    scenes::PrimitiveOptions sphere;
+    sphere.resolution = resolution;
+    const std::string name = controller.addPrimitive(sphere);
+    app::NewLatticeOptions cubic;
+    cubic.counts = Eigen::Vector3i::Constant(4);
+    cubic.basis = {ffd::AxisBasis::bspline(3), ffd::AxisBasis::bspline(3), ffd::AxisBasis::bspline(3)};
+    lattice = controller.newLattice(cubic);
+    controller.attachLattice(lattice, name);
+    widget = controller.addAffineAtPoint({lattice, 1 + 4 * (1 + 4 * 3)}, widgets::AffineKind::Translate);
+    controller.clearSelection();
+    view = std::make_unique<app::SceneView>(renderer);
+    view->setHighlights(controller.highlights());
+    view->show(scene, deformer);
+    controller.onChanged = [this] {
+      view->setHighlights(controller.highlights());
+      view->refresh(scene, deformer);
+    };
+  }
+  // A ray down the widget's frame z through its arrow at `along` glyph sizes, shifted sideways.
+  widgets::Ray ray(double along, double shift = 0.0) const {
+    const widgets::WidgetFrame f = scene.widgets.affineFrame(widget);
+    widgets::Ray r;
+    r.origin = f.frame.translation() + f.size * (along * f.frame.linear().col(0) + shift * f.frame.linear().col(1)) +
+               5.0 * f.frame.linear().col(2);
+    r.direction = -f.frame.linear().col(2);
+    return r;
+  }
+  double tolerance() const { return 0.05 * scene.widgets.affineFrame(widget).size; }
+};
+
+Session& session(int resolution) {
+  static std::map<int, std::unique_ptr<Session>> sessions;
+  auto& s = sessions[resolution];
+  if (!s) s = std::make_unique<Session>(resolution);
+  return *s;
+}
+
+void BM_DragStep(benchmark::State& state) {
+  Session& s = session(static_cast<int>(state.range(0)));
+  const widgets::Ray grab = s.ray(0.5);
+  require(s.controller.press(grab, s.tolerance()) == app::InteractionController::PressResult::Widget,
+          "the press missed the widget");
+  const Eigen::Vector3d axis = s.scene.widgets.affineFrame(s.widget).frame.linear().col(0);
+  const int before = s.view->stats().pointUpdates;
+  int step = 0;
+  for (auto _ : state) {
+    // Along the arrow: the widget moves by 0.01 .. 0.1 of its size, back and forth.
+    widgets::Ray r = grab;
+    r.origin += (0.01 * (1 + step++ % 10)) * s.scene.widgets.affineFrame(s.widget).size * axis;
+    s.controller.drag(r);
+  }
+  require(s.view->stats().pointUpdates >= before + int(state.iterations()) - 1, "the view did not follow the drag");
+  require(s.deformer.lastStats().reembeddedStages == 0, "a drag step re-embedded");
+  s.controller.release();
+  state.counters["points"] = double(s.scene.objects.front().mesh.points.rows());
+}
+
+void BM_Hover(benchmark::State& state) {
+  Session& s = session(static_cast<int>(state.range(0)));
+  s.controller.clearSelection();  // no transformer: the pointer meets the widget or nothing
+  const widgets::Ray on = s.ray(0.5), off = s.ray(0.5, 3.0);
+  const app::SceneViewStats before = s.view->stats();
+  bool over = false;
+  for (auto _ : state) {
+    over = !over;
+    s.controller.hover(over ? on : off, s.tolerance());
+  }
+  const app::SceneViewStats after = s.view->stats();
+  require(after.pointUpdates == before.pointUpdates && after.normalUpdates == before.normalUpdates &&
+              after.objectBuilds == before.objectBuilds && after.widgetBuilds == before.widgetBuilds,
+          "a hover built or updated geometry");
+  require(s.controller.hovered().has_value() == over, "the hover did not find the widget");
+}
+
+void BM_UndoDrag(benchmark::State& state) {
+  Session& s = session(static_cast<int>(state.range(0)));
+  // One drag gesture to undo and redo.
+  require(s.controller.press(s.ray(0.5), s.tolerance()) == app::InteractionController::PressResult::Widget,
+          "the press missed the widget");
+  s.controller.drag(s.ray(0.6));
+  s.controller.release();
+  bool undone = false;
+  for (auto _ : state) {
+    if (undone) s.commands.redo();
+    else s.commands.undo();
+    undone = !undone;
+    require(s.deformer.lastStats().reembeddedStages == 0 && s.deformer.lastStats().latticesBuilt == 0,
+            "an undo or redo of a drag re-embedded or built a lattice");
+  }
+  if (undone) s.commands.redo();
+  state.counters["points"] = double(s.scene.objects.front().mesh.points.rows());
+}
+
+}  // namespace
+
+// Sphere resolution 1414: ~1M vertices; 4472: ~10M.
+BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Hover)->Name("BM_Hover/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_UndoDrag)->Name("BM_UndoDrag/points:10M/lattice:4x4x4-cubic")->Arg(4472)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
