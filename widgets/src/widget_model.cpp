@@ -14,6 +14,7 @@
 
 #include "ffdkit/ffd/cylindrical_lattice.h"
 #include "ffdkit/ffd/embedding.h"
+#include "ffdkit/widgets/glyph_shape.h"
 
 namespace ffdkit::widgets {
 namespace {
@@ -1719,19 +1720,20 @@ std::optional<PickResult> WidgetModel::pick(const Ray& ray, const PickOptions& o
       const Eigen::Matrix3d r = f.frame.linear();
       switch (n.kind) {
         case AffineKind::Translate: {
-          auto h = closestRaySegment(ray, o, o + f.size * r.col(0));
-          if (h && h->distance <= tol + 0.05 * f.size) offer(n.id, h->t, 0);
+          auto h = closestRaySegment(ray, o, o + GlyphShape::arrowLength * f.size * r.col(0));
+          if (h && h->distance <= tol + GlyphShape::pickThickness * f.size) offer(n.id, h->t, 0);
           break;
         }
         case AffineKind::Rotate: {
           if (auto t = intersectPlane(ray, o, r.col(2))) {
             const double rad = (ray.origin + *t * dir - o).norm();
-            if (std::abs(rad - f.size) <= tol + 0.05 * f.size) offer(n.id, *t, 0);
+            if (std::abs(rad - GlyphShape::ringRadius * f.size) <= tol + GlyphShape::pickThickness * f.size)
+              offer(n.id, *t, 0);
           }
           break;
         }
         case AffineKind::Scale: {
-          const double half = 0.15 * f.size + tol;
+          const double half = GlyphShape::cubeHalfWidth * f.size + tol;
           const Eigen::Vector3d lo = r.transpose() * (ray.origin - o);
           const Eigen::Vector3d ld = r.transpose() * dir;
           double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();

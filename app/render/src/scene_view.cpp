@@ -33,12 +33,14 @@
 
 #include "ffdkit/app/curvature_comb.h"
 #include "ffdkit/app/parts.h"
+#include "ffdkit/widgets/glyph_shape.h"
 #include "ffdkit/widgets/widget_model.h"
 
 namespace ffdkit::app {
 namespace {
 
 using widgets::AffineKind;
+using widgets::GlyphShape;
 using widgets::WidgetId;
 
 void setPoints(vtkPoints* vtkPts, const Eigen::MatrixX3d& points) {
@@ -307,9 +309,9 @@ vtkSmartPointer<vtkPolyData> pointsPolyData(const Eigen::MatrixX3d& points) {
   return polyData;
 }
 
-// The glyph shapes in the widget frame, at size 1, matching WidgetModel::pick: the arrow runs
-// from the origin along +x for one size, the ring has radius one size about z, the cube has
-// half-width 0.15 sizes.
+// The glyph shapes in the widget frame, at size 1, as widgets::GlyphShape gives them (what
+// WidgetModel::pick hits).
+static_assert(GlyphShape::arrowLength == 1.0, "vtkArrowSource makes arrows of length 1");
 vtkSmartPointer<vtkPolyData> glyphShape(const widgets::Glyph& glyph, AffineKind kind) {
   if (auto part = partMesh(glyph.shape)) {
     scenes::MeshData mesh;
@@ -322,8 +324,8 @@ vtkSmartPointer<vtkPolyData> glyphShape(const widgets::Glyph& glyph, AffineKind 
   const std::string shape = glyph.shape.empty() ? std::string(widgets::affineKindName(kind)) : glyph.shape;
   if (shape == "ring" || (shape == "rotate")) {
     vtkNew<vtkParametricTorus> torus;
-    torus->SetRingRadius(1.0);
-    torus->SetCrossSectionRadius(0.05);
+    torus->SetRingRadius(GlyphShape::ringRadius);
+    torus->SetCrossSectionRadius(GlyphShape::ringTubeRadius);
     vtkNew<vtkParametricFunctionSource> source;
     source->SetParametricFunction(torus);
     source->SetUResolution(48);
@@ -333,16 +335,16 @@ vtkSmartPointer<vtkPolyData> glyphShape(const widgets::Glyph& glyph, AffineKind 
   }
   if (shape == "cube" || shape == "scale") {
     vtkNew<vtkCubeSource> cube;
-    cube->SetXLength(0.3);
-    cube->SetYLength(0.3);
-    cube->SetZLength(0.3);
+    cube->SetXLength(2.0 * GlyphShape::cubeHalfWidth);
+    cube->SetYLength(2.0 * GlyphShape::cubeHalfWidth);
+    cube->SetZLength(2.0 * GlyphShape::cubeHalfWidth);
     cube->Update();
     return cube->GetOutput();
   }
   vtkNew<vtkArrowSource> arrow;
-  arrow->SetShaftRadius(0.04);
-  arrow->SetTipRadius(0.1);
-  arrow->SetTipLength(0.25);
+  arrow->SetShaftRadius(GlyphShape::arrowShaftRadius);  // vtkArrowSource: length 1 along +x
+  arrow->SetTipRadius(GlyphShape::arrowTipRadius);
+  arrow->SetTipLength(GlyphShape::arrowTipLength);
   arrow->SetShaftResolution(16);
   arrow->SetTipResolution(24);
   arrow->Update();
