@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "ffdkit/app/transformer.h"
+#include "ffdkit/app/view_highlights.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/widgets/ray.h"
@@ -16,28 +17,11 @@ class vtkRenderer;
 
 namespace ffdkit::app {
 
-/// A lattice control point singled out by the user (a pick target for "add widget to cell").
-struct LatticePointRef {
-  widgets::WidgetId lattice;
-  Eigen::Index index = 0;  ///< flat index i + l*(j + m*k)
-  friend bool operator==(const LatticePointRef&, const LatticePointRef&) = default;
-};
-
 /// The two (unlit) colours of a surface drawn in zebra style (scenes::SurfaceStyle::Zebra).
 inline const Eigen::Vector3d kZebraDark{0.08, 0.08, 0.10};
 inline const Eigen::Vector3d kZebraLight{0.96, 0.96, 0.96};
 /// The colour of curvature combs.
 inline const Eigen::Vector3d kCombColour{1.0, 0.35, 0.75};
-
-/// What the view emphasises; the model knows nothing about it.
-struct ViewHighlights {
-  std::optional<widgets::WidgetId> hovered;
-  std::vector<widgets::WidgetId> selected;
-  std::vector<widgets::WidgetId> visited;  ///< widgets the active gesture moves (spec §5)
-  std::optional<LatticePointRef> point;    ///< a picked lattice point
-  std::optional<Transformer> transformer;  ///< the manipulator of the selection, if shown
-  std::optional<TransformerHandle> transformerHandle;  ///< its hovered or dragged handle
-};
 
 /// What a SceneView has built and updated since it was made (how tests see that hover and
 /// selection build no geometry and that a drag step touches only the objects that moved).

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "ffdkit/app/scene_view.h"
 #include "ffdkit/app/transformer.h"
+#include "ffdkit/app/view_highlights.h"
 #include "ffdkit/scenes/command_stack.h"
 #include "ffdkit/scenes/document_delta.h"
 #include "ffdkit/scenes/primitive.h"
