@@ -66,14 +66,21 @@ void expectDeformerIsFresh(const Document& d) {
   }
 }
 
-TEST(DocumentUndo, AThousandRandomOperationsUndoneAndRedoneGiveTheSameFiles) {
-  Document d;
+// A small sphere in a 3x3x3 lattice with a translate widget on its top corner; its widget.
+WidgetId smallScene(Document& d) {
   scenes::PrimitiveOptions sphere;
   sphere.resolution = 6;
   const std::string ball = d.controller.addPrimitive(sphere);
   const WidgetId lattice = d.controller.newLattice({});
   d.controller.attachLattice(lattice, ball);
-  d.controller.addAffineAtPoint({lattice, 26}, AffineKind::Translate);
+  return d.controller.addAffineAtPoint({lattice, 26}, AffineKind::Translate);
+}
+
+TEST(DocumentUndo, AThousandRandomOperationsUndoneAndRedoneGiveTheSameFiles) {
+  Document d;
+  smallScene(d);
+  scenes::PrimitiveOptions sphere;
+  sphere.resolution = 6;
   d.commands.clear();
   d.deformer.update(d.scene);
   const std::string start = scenes::sceneFileText(d.scene);
@@ -194,12 +201,7 @@ TEST(DocumentUndo, AThousandRandomOperationsUndoneAndRedoneGiveTheSameFiles) {
 
 TEST(DocumentUndo, ConsecutiveEditsOfOneFieldAreOneStep) {
   Document d;
-  scenes::PrimitiveOptions sphere;
-  sphere.resolution = 6;
-  const std::string ball = d.controller.addPrimitive(sphere);
-  const WidgetId lattice = d.controller.newLattice({});
-  d.controller.attachLattice(lattice, ball);
-  const WidgetId push = d.controller.addAffineAtPoint({lattice, 26}, AffineKind::Translate);
+  const WidgetId push = smallScene(d);
   const std::size_t steps = d.commands.size();
   const std::string before = scenes::sceneFileText(d.scene);
   for (int i = 1; i <= 20; ++i) d.controller.setVariation(push, 0.01 * i);  // typing, the wheel

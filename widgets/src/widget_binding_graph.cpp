@@ -4,7 +4,6 @@ namespace ffdkit::widgets {
 
 // Bindings: paths, loops, preparing, inserting and erasing (spec §5).
 
-// Path of bindings from a to b over all bindings (undirected), or empty when unconnected.
 std::vector<BindingId> WidgetModel::Impl::path(WidgetId a, WidgetId b) const {
   std::vector<BindingId> via(nodes.size());
   std::vector<char> seen(nodes.size(), 0);
@@ -40,7 +39,6 @@ bool WidgetModel::Impl::isDescendantOrSelf(WidgetId lattice, WidgetId candidate)
   return false;
 }
 
-// Validates a binding and returns it with its kind and mask decided; throws without changes.
 Binding WidgetModel::Impl::prepareBinding(WidgetId a, WidgetId b, const BindingOptions& options) const {
   const Node& na = node(a);
   const Node& nb = node(b);
@@ -108,8 +106,6 @@ Binding WidgetModel::Impl::prepareBinding(WidgetId a, WidgetId b, const BindingO
   return out;
 }
 
-// static
-// Whether binding e carries motion from widget u to its other end during a gesture.
 bool WidgetModel::Impl::drives(const Binding& e, WidgetId u) {
   const bool fromSide = e.from == u;
   switch (e.kind) {
@@ -122,10 +118,6 @@ bool WidgetModel::Impl::drives(const Binding& e, WidgetId u) {
   return false;
 }
 
-// Refuses a binding that closes a loop along which one gesture could reach a widget twice
-// (spec §5), unless the loop is consistent: all variation bindings whose gains multiply to 1,
-// or all cell bindings with equal masks. Loops that propagation cannot run around (two
-// widgets attached to different cells meet only at those cells) are harmless and accepted.
 void WidgetModel::Impl::checkLoop(const Binding& nb) const {
   const std::vector<BindingId> p = path(nb.to, nb.from);
   if (p.empty()) return;
@@ -177,10 +169,6 @@ void WidgetModel::Impl::checkLoop(const Binding& nb) const {
   checkRoutes(nb);
 }
 
-// The exhaustive form of the loop rule for components of moderate size: with `nb` added, a
-// gesture started anywhere must not reach a widget along two routes that disagree (different
-// kinds, gain products or masks). The cycle test above examines one loop; this one all of
-// them, at O(V (V + E)) per binding, so it is skipped for components above kMaxRouteCheck.
 void WidgetModel::Impl::checkRoutes(const Binding& nb) const {
   constexpr std::size_t kMaxRouteCheck = 256;
   auto incident = [&](WidgetId w, auto&& visit) {
