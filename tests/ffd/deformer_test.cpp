@@ -1,5 +1,6 @@
 #include "ffdkit/ffd/deformer.h"
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -95,6 +96,85 @@ TEST(Deformer, MatchesReferenceEvaluatorOnRandomLattices) {
       const Eigen::Vector3d expected = lattice.frame() * reference::evaluate(axes, lattice.controlPoints(), uvw.row(r).transpose());
       EXPECT_LT((out.row(r).transpose() - expected).norm(), 1e-12 * (1.0 + expected.norm())) << "trial " << t;
     }
+  }
+}
+
+// Parameters for the reference comparison: random ones plus every distinct knot inside the
+// domain (repeated knots, domain ends) on each axis, where span selection is easiest to get wrong.
+Eigen::MatrixX3d parametersWithKnots(const Lattice& lattice, Eigen::Index n, std::mt19937& rng) {
+  Eigen::MatrixX3d uvw = testing::randomParameters(lattice, n, rng);
+  std::uniform_int_distribution<Eigen::Index> pick(0, n - 1);
+  for (int a = 0; a < 3; ++a) {
+    const AxisSpline& axis = lattice.axis(a);
+    for (double t : axis.knots()) {
+      if (t < axis.domainMin() || t > axis.domainMax() || (axis.periodic() && t >= axis.domainMax())) continue;
+      uvw(pick(rng), a) = t;
+    }
+  }
+  return uvw;
+}
+
+// Item 5 of issue 18: the deformer against the reference evaluator on repeated interior knots,
+// unclamped knots, counts >= 8 and periodic axes, at the parameters the points were made from.
+TEST(Deformer, MatchesReferenceOnRepeatedUnclampedLargeAndPeriodicBases) {
+  std::mt19937 rng(18);
+  const auto knots = [](const std::vector<double>& t) { return Eigen::VectorXd::Map(t.data(), static_cast<Eigen::Index>(t.size())); };
+  struct Case {
+    const char* name;
+    Lattice lattice;
+  };
+  std::vector<Case> cases;
+  const auto box = [&](const Eigen::Vector3i& counts, const std::array<AxisBasis, 3>& bases) {
+    BoxLatticeOptions o;
+    o.counts = counts;
+    o.bases = bases;
+    o.capDegreeToCount = false;
+    o.boxMin = Eigen::Vector3d(-1.0, 0.0, 0.5);
+    o.boxMax = Eigen::Vector3d(1.0, 0.7, 2.0);
+    o.frame = testing::randomFrame(rng);
+    return makeBoxLattice(o);
+  };
+  cases.push_back({"repeated knots, multiplicity 1 / 2 / 3 (C0) at 1/3 and 2/3",
+                   box({6, 8, 10}, {AxisBasis::bsplineWithKnots(3, knots(reference::repeatedInterior(3, 1))),
+                                    AxisBasis::bsplineWithKnots(3, knots(reference::repeatedInterior(3, 2))),
+                                    AxisBasis::bsplineWithKnots(3, knots(reference::repeatedInterior(3, 3)))})});
+  cases.push_back({"repeated knots, quadratic and linear",
+                   box({7, 5, 4}, {AxisBasis::bsplineWithKnots(2, knots(reference::repeatedInterior(2, 2))),
+                                   AxisBasis::bsplineWithKnots(2, knots(reference::repeatedInterior(2, 1))),
+                                   AxisBasis::bsplineWithKnots(1, knots(reference::repeatedInterior(1, 1)))})});
+  cases.push_back({"unclamped non-uniform knots",
+                   box({5, 9, 4}, {AxisBasis::bsplineWithKnots(2, knots(reference::randomUnclamped(5, 2, rng))),
+                                   AxisBasis::bsplineWithKnots(3, knots(reference::randomUnclamped(9, 3, rng))),
+                                   AxisBasis::bsplineWithKnots(1, knots(reference::randomUnclamped(4, 1, rng)))})});
+  cases.push_back({"counts 8 to 12", box({8, 12, 9}, {AxisBasis::bernstein(), AxisBasis::bspline(5),
+                                                      AxisBasis::bsplineWithKnots(4, knots(reference::randomClamped(9, 4, rng)))})});
+  for (int degree : {1, 2, 3, 4}) {
+    CylindricalLatticeOptions o;
+    o.counts = {3, degree == 2 ? 13 : 8, 4};
+    o.bases = {AxisBasis::bspline(2), AxisBasis::periodic(degree), AxisBasis::bernstein()};
+    o.innerRadius = 0.3;  // off the axis, where the angle parameter is unique
+    o.frame = testing::randomFrame(rng);
+    cases.push_back({"periodic angle", makeCylindricalLattice(o)});
+  }
+  for (Case& c : cases) {
+    Lattice& lattice = c.lattice;
+    const Eigen::MatrixX3d uvw = parametersWithKnots(lattice, 300, rng);
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, uvw);
+    Deformer deformer(embed(lattice, Q));
+    ASSERT_EQ(deformer.embedding().insideCount(), Q.rows()) << c.name;
+    lattice.setControlPoints(randomMove(lattice, 0.3, rng));
+    const Eigen::MatrixX3d out = deformer.deform(lattice, Q);
+    const reference::Axis axes[3] = {referenceAxis(lattice.axis(0)), referenceAxis(lattice.axis(1)),
+                                     referenceAxis(lattice.axis(2))};
+    double worst = 0.0;
+    for (Eigen::Index r = 0; r < Q.rows(); ++r) {
+      const Eigen::Vector3d expected = lattice.frame() * reference::evaluate(axes, lattice.controlPoints(), uvw.row(r).transpose());
+      worst = std::max(worst, (out.row(r).transpose() - expected).norm() / (1.0 + expected.norm()));
+      // The rest lattice too: it reproduces the point the parameters were made from.
+      const Eigen::Vector3d restExpected = lattice.frame() * reference::evaluate(axes, lattice.restPoints(), uvw.row(r).transpose());
+      EXPECT_LT((Q.row(r).transpose() - restExpected).norm(), 1e-12 * (1.0 + restExpected.norm())) << c.name << " point " << r;
+    }
+    EXPECT_LT(worst, 1e-10) << c.name;
   }
 }
 

@@ -28,10 +28,10 @@ inline double binomial(int n, int k) {
 
 inline double coxDeBoor(const std::vector<double>& t, int i, int p, double u, double domainMax) {
   if (p == 0) {
-    if (t[i] <= u && u < t[i + 1]) return 1.0;
-    // Right end of the domain belongs to the last non-empty span.
-    if (u == domainMax && t[i] < t[i + 1] && t[i + 1] == domainMax) return 1.0;
-    return 0.0;
+    // The right end of the domain belongs to the last non-empty span that ends there (and only
+    // to it: with unclamped knots the span starting at domainMax is non-empty too).
+    if (u == domainMax) return t[i] < t[i + 1] && t[i + 1] == domainMax ? 1.0 : 0.0;
+    return t[i] <= u && u < t[i + 1] ? 1.0 : 0.0;
   }
   double value = 0.0;
   const double d1 = t[i + p] - t[i];
@@ -87,6 +87,26 @@ inline std::vector<double> clampedUniform(int count, int degree) {
 inline std::vector<double> periodicUniform(int count, int degree) {
   std::vector<double> t;
   for (int i = 0; i < count + 2 * degree + 1; ++i) t.push_back(double(i - degree) / count);
+  return t;
+}
+
+/// Clamped knots on [0, 1] whose interior knots are 1/3 and 2/3, each repeated `multiplicity`
+/// times (1 <= multiplicity <= degree; multiplicity = degree leaves the basis C0 there).
+/// count = degree + 1 + 2 * multiplicity.
+inline std::vector<double> repeatedInterior(int degree, int multiplicity) {
+  std::vector<double> t(degree + 1, 0.0);
+  for (int r = 0; r < multiplicity; ++r) t.push_back(1.0 / 3.0);
+  for (int r = 0; r < multiplicity; ++r) t.push_back(2.0 / 3.0);
+  for (int r = 0; r <= degree; ++r) t.push_back(1.0);
+  return t;
+}
+
+/// Unclamped (no repeated end knots) strictly increasing non-uniform knots, count+degree+1 of
+/// them, starting below 0; the domain [t_degree, t_count] is a sub-range.
+inline std::vector<double> randomUnclamped(int count, int degree, std::mt19937& rng) {
+  std::uniform_real_distribution<double> U(0.3, 1.0);
+  std::vector<double> t{-0.5};
+  for (int i = 1; i < count + degree + 1; ++i) t.push_back(t.back() + U(rng));
   return t;
 }
 
