@@ -192,17 +192,23 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
     PointStatus status = PointStatus::Inside;
     PointClass cls = PointClass::Evaluated;
     double s = 1.0;
-    if (!converged) {
+    // Outside for certain, yet Newton found no preimage (the lattice's polynomial extension does
+    // not reach q): Outside, not Failed, with the closest boundary parameters; no extrapolated
+    // preimage exists, so Extrapolate keeps the offset like ClampEdge.
+    const bool noPreimageOutside = !converged && solver.outsideRestHull(q);
+    if (noPreimageOutside) uvw = solver.closestInBox(q);
+    if (!converged && !noPreimageOutside) {
       status = PointStatus::Failed;
       cls = PointClass::Frozen;
       uvw = solver.clampToBox(uvw);
-    } else if (!solver.insideBox(uvw)) {
+    } else if (noPreimageOutside || !solver.insideBox(uvw)) {
       status = PointStatus::Outside;
       switch (policy.kind) {
         case OutsidePolicy::Kind::Identity:
           cls = PointClass::Frozen;
           break;
         case OutsidePolicy::Kind::Extrapolate:
+          if (noPreimageOutside) cls = PointClass::Blended;
           break;
         case OutsidePolicy::Kind::ClampEdge:
           cls = PointClass::Blended;

@@ -32,6 +32,8 @@ class RestSolver {
     affineInverse_ = lattice.restAffineLinear().inverse();
     if (!affineInverse_.allFinite()) affineInverse_ = Eigen::Matrix3d::Identity();
     cylinder_ = lattice.cylinderRestShape();
+    restMin_ = rest_.colwise().minCoeff().transpose();
+    restMax_ = rest_.colwise().maxCoeff().transpose();
     buildWindows();
     if (!lattice.restIsAffine()) buildSamples();
   }
@@ -154,6 +156,44 @@ class RestSolver {
     return f <= tol_;
   }
 
+  // True when q lies outside the axis-aligned bounding box of the rest points (grown by the
+  // tolerance): then it is outside the rest volume, which lies in the convex hull of the rest
+  // points (the bases are non-negative and sum to 1), whatever Newton did.
+  bool outsideRestHull(const Eigen::Vector3d& q) const {
+    return ((q - restMin_).array() < -tol_).any() || ((q - restMax_).array() > tol_).any();
+  }
+
+  // The parameters in the box whose rest image is closest to q: projected Gauss-Newton on
+  // |Xbar(uvw) - q|^2 from the nearest grid sample. For points outside the rest volume where
+  // Newton on Xbar(uvw) = q has no solution (the polynomial's extension never reaches q).
+  Eigen::Vector3d closestInBox(const Eigen::Vector3d& q) const {
+    Eigen::Vector3d uvw = clampToBox(nearestSample(q));
+    Eigen::Matrix3d J;
+    Eigen::Vector3d F = evaluate(uvw, J) - q;
+    for (int it = 0; it < options_.maxIterations; ++it) {
+      const Eigen::Matrix3d JtJ = J.transpose() * J;
+      const double mu = 1e-10 * JtJ.trace() + std::numeric_limits<double>::min();
+      const Eigen::Vector3d delta = -(JtJ + mu * Eigen::Matrix3d::Identity()).ldlt().solve(J.transpose() * F);
+      bool accepted = false;
+      for (double step = 1.0; step > 1e-9; step *= 0.5) {
+        Eigen::Vector3d trial = uvw + step * delta;
+        normalize(trial);
+        trial = clampToBox(trial);
+        Eigen::Matrix3d Jt;
+        const Eigen::Vector3d Ft = evaluate(trial, Jt) - q;
+        if (Ft.squaredNorm() < F.squaredNorm()) {
+          accepted = (trial - uvw).cwiseAbs().maxCoeff() > 1e-15 * range_.maxCoeff();
+          uvw = trial;
+          F = Ft;
+          J = Jt;
+          break;
+        }
+      }
+      if (!accepted) break;
+    }
+    return uvw;
+  }
+
   // Nearest sample of a coarse parameter grid: the restart point when Newton from the first guess fails.
   Eigen::Vector3d nearestSample(const Eigen::Vector3d& q) const {
     double best = std::numeric_limits<double>::infinity();
@@ -232,6 +272,7 @@ class RestSolver {
   EmbedOptions options_;
   const AxisSpline* axis_[3];
   Eigen::Vector3d lo_, hi_, range_;
+  Eigen::Vector3d restMin_, restMax_;  // bounding box of the rest points (local)
   double tol_;
   Eigen::Matrix3d affineInverse_;
   std::optional<CylinderRestShape> cylinder_;

@@ -397,5 +397,36 @@ TEST(Deformer, FalloffBlendsFromClampEdgeToIdentity) {
   EXPECT_LT(maxRowError(inc, fresh.deform(c.lattice, c.Q)), 1e-12);
 }
 
+TEST(Deformer, ClampEdgeCarriesFarOutsidePointsOfUserShapedLatticesAlong) {
+  // Points beyond the bounding box of a user-shaped lattice's rest points are outside for certain;
+  // Newton on the polynomial extension often finds no preimage for them. ClampEdge must still keep
+  // their offset from a surface point: translating every control point by t moves them by t
+  // (affine invariance of the blend), where a point wrongly reported Failed would stay put.
+  std::mt19937 rng(21);
+  const Eigen::Vector3d t(0.3, -0.2, 0.1);
+  for (int trial = 0; trial < 6; ++trial) {
+    Lattice lattice = testing::randomLattice(rng, 0.2);
+    lattice.setOutsidePolicy(OutsidePolicy::clampEdge());
+    Eigen::MatrixX3d world(lattice.restPoints().rows(), 3);
+    for (Eigen::Index r = 0; r < world.rows(); ++r)
+      world.row(r) = (lattice.frame() * Eigen::Vector3d(lattice.restPoints().row(r).transpose())).transpose();
+    const Eigen::Vector3d lo = world.colwise().minCoeff(), hi = world.colwise().maxCoeff();
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    Eigen::MatrixX3d Q(30, 3);
+    for (Eigen::Index r = 0; r < Q.rows(); ++r) {
+      Eigen::Vector3d x = lo + Eigen::Vector3d(U(rng), U(rng), U(rng)).cwiseProduct(hi - lo);
+      const int axis = static_cast<int>(r % 3);
+      x[axis] = r % 2 ? hi[axis] + (0.05 + 0.5 * U(rng)) * (hi - lo)[axis] : lo[axis] - (0.05 + 0.5 * U(rng)) * (hi - lo)[axis];
+      Q.row(r) = x.transpose();
+    }
+    Deformer deformer(embed(lattice, Q));
+    EXPECT_EQ(deformer.embedding().outsideCount(), Q.rows()) << "trial " << trial;
+    const Eigen::Vector3d tLocal = lattice.frame().linear().inverse() * t;
+    lattice.setControlPoints(lattice.restPoints().rowwise() + tLocal.transpose());
+    const Eigen::MatrixX3d out = deformer.deform(lattice, Q);
+    EXPECT_LT(maxRowError(out, Q.rowwise() + t.transpose()), 1e-12) << "trial " << trial;
+  }
+}
+
 }  // namespace
 }  // namespace ffdkit::ffd

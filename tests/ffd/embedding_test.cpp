@@ -125,15 +125,48 @@ TEST(Embedding, ReportsOutsidePointsEpsilonInclusively) {
   EXPECT_THROW(e.status(5), LatticeError);
 }
 
-TEST(Embedding, NewtonFindsOutsidePointsOfUserShapedLattices) {
+TEST(Embedding, NewtonJudgesKnownInsideAndOutsidePointsOneByOne) {
+  // Known inside: images of parameters strictly inside the box (a margin of 5 % per axis).
+  // Known outside: points beyond the bounding box of the rest control points, which holds the
+  // whole rest volume (convex hull property of the Bernstein and B-spline bases).
+  // Every point's status is checked, so a solver that reports Failed everywhere fails here.
   std::mt19937 rng(5);
-  const Lattice lattice = testing::randomLattice(rng, 0.2);
-  Eigen::MatrixX3d uvw = testing::randomParameters(lattice, 50, rng);
-  uvw.col(0).array() += 1.3;  // beyond the box along u
-  const Eigen::MatrixX3d Q = testing::restImages(lattice, uvw);
-  const Embedding e = embed(lattice, Q);
-  EXPECT_EQ(e.insideCount(), 0);
-  EXPECT_EQ(e.outsideCount() + e.failedCount(), 50);
+  for (int trial = 0; trial < 12; ++trial) {
+    const Lattice lattice = testing::randomLattice(rng, 0.2);
+    ASSERT_FALSE(lattice.restIsAffine());
+    Eigen::MatrixX3d uvw = testing::randomParameters(lattice, 40, rng);
+    const Eigen::Vector3d lo = lattice.parameterMin(), hi = lattice.parameterMax();
+    for (Eigen::Index r = 0; r < uvw.rows(); ++r)
+      for (int a = 0; a < 3; ++a) uvw(r, a) = lo[a] + (hi[a] - lo[a]) * (0.05 + 0.9 * (uvw(r, a) - lo[a]) / (hi[a] - lo[a]));
+    const Eigen::MatrixX3d inside = testing::restImages(lattice, uvw);
+    Eigen::MatrixX3d world(lattice.restPoints().rows(), 3);
+    for (Eigen::Index r = 0; r < world.rows(); ++r)
+      world.row(r) = (lattice.frame() * Eigen::Vector3d(lattice.restPoints().row(r).transpose())).transpose();
+    const Eigen::Vector3d boxLo = world.colwise().minCoeff(), boxHi = world.colwise().maxCoeff();
+    const Eigen::Vector3d size = boxHi - boxLo;
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    Eigen::MatrixX3d outside(30, 3);
+    for (Eigen::Index r = 0; r < outside.rows(); ++r) {
+      Eigen::Vector3d x = boxLo + Eigen::Vector3d(U(rng), U(rng), U(rng)).cwiseProduct(size);
+      const int axis = static_cast<int>(r % 3);
+      // 2 % to 50 % of the box size beyond one face of the bounding box.
+      x[axis] = (r % 2 ? boxHi[axis] : boxLo[axis]) + (r % 2 ? 1.0 : -1.0) * (0.02 + 0.48 * U(rng)) * size[axis];
+      outside.row(r) = x.transpose();
+    }
+    Eigen::MatrixX3d Q(inside.rows() + outside.rows(), 3);
+    Q << inside, outside;
+    const Embedding e = embed(lattice, Q);
+    for (Eigen::Index r = 0; r < inside.rows(); ++r) {
+      ASSERT_EQ(e.status(r), PointStatus::Inside) << "trial " << trial << " point " << r;
+      EXPECT_LT((e.parameters().row(r) - uvw.row(r)).cwiseAbs().maxCoeff(), 1e-9) << "trial " << trial << " point " << r;
+    }
+    for (Eigen::Index r = inside.rows(); r < Q.rows(); ++r) {
+      EXPECT_EQ(e.status(r), PointStatus::Outside) << "trial " << trial << " point " << r;
+    }
+    EXPECT_EQ(e.insideCount(), inside.rows());
+    EXPECT_EQ(e.outsideCount(), outside.rows());
+    EXPECT_EQ(e.failedCount(), 0);
+  }
 }
 
 // The closed form runs tile by tile in parallel, with a vectorised pass and a per-point pass for
