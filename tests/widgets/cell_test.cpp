@@ -1,5 +1,6 @@
 #include "ffdkit/widgets/cell.h"
 
+#include <cmath>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -68,6 +69,27 @@ TEST(Cell, RestFramesFollowTheSpec) {
   // Point: lattice axes.
   const CellSpec point = CellSpec::point(1, 1, 1);
   EXPECT_TRUE(cellRestFrame(point, c, rows(grid, cellPointIndices(c, point))).linear().isIdentity());
+}
+
+TEST(Cell, RingSlabOfACylindricalLatticeHasItsNormalAlongTheAxis) {
+  // Slab k of a (radial 2, angular 12, height 3) lattice is a closed ring: its radial and angular
+  // sums vanish, and the frame once followed round-off. Its z must be the grid normal
+  // radial x angular = +z (so a ring's rotate widget turns counter-clockwise seen from +z).
+  const Eigen::Vector3i c(2, 12, 3);
+  Eigen::MatrixX3d grid(c.prod(), 3);
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 12; ++j)
+      for (int i = 0; i < 2; ++i) {
+        const double t = 2.0 * std::numbers::pi * (j - 1) / 12.0, r = 0.2 + 0.5 * i;
+        grid.row(i + 2 * (j + 12 * k)) << r * std::cos(t), r * std::sin(t), 0.4 * k;
+      }
+  for (int k = 0; k < 3; ++k) {
+    const CellSpec ring = CellSpec::slab(2, k);
+    const Eigen::Isometry3d f = cellRestFrame(ring, c, rows(grid, cellPointIndices(c, ring)));
+    EXPECT_LE((f.linear().col(2) - Eigen::Vector3d::UnitZ()).norm(), 1e-12) << k;
+    EXPECT_LE((f.linear().col(0) - Eigen::Vector3d::UnitX()).norm(), 1e-12) << k;
+    EXPECT_LE((f.translation() - Eigen::Vector3d(0, 0, 0.4 * k)).norm(), 1e-12) << k;
+  }
 }
 
 TEST(Cell, FitRecoversARigidMotionAndPerAxisScale) {

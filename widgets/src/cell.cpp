@@ -195,6 +195,26 @@ Eigen::Isometry3d cellRestFrame(const CellSpec& spec, const Eigen::Vector3i& cou
       Eigen::Vector3d xdir = Eigen::Vector3d::Zero(), ydir = Eigen::Vector3d::Zero();
       for (int ic = 0; ic < nc; ++ic) xdir += row(ic * na + na - 1) - row(ic * na);
       for (int ia = 0; ia < na; ++ia) ydir += row((nc - 1) * na + ia) - row(ia);
+      // A grid direction that closes on itself (the angular rings of a cylindrical lattice) sums
+      // to ~0, and a frame built from it followed round-off: a ring's rotate widget could turn
+      // either way. Then z is the slab's grid normal (the sum of its quads' diagonal cross
+      // products, oriented like a -> c) and x the lattice x axis in the slab's plane.
+      double extent = 0.0;
+      for (Eigen::Index r = 1; r < p.rows(); ++r) extent = std::max(extent, (row(r) - row(0)).norm());
+      const double tiny = 1e-9 * extent * std::max(na, nc);
+      if (xdir.norm() <= tiny || ydir.norm() <= tiny) {
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
+        for (int ic = 0; ic + 1 < nc; ++ic)
+          for (int ia = 0; ia + 1 < na; ++ia) {
+            const Eigen::Index r = ic * na + ia;
+            n += (row(r + na + 1) - row(r)).cross(row(r + na) - row(r + 1));
+          }
+        const Eigen::Vector3d z = n.norm() > 0.0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Unit(spec.axis);
+        Eigen::Vector3d x = Eigen::Vector3d::UnitX() - z.x() * z;
+        if (x.norm() < 1e-6) x = Eigen::Vector3d::UnitY() - z.y() * z;
+        f.linear() = frameFrom(x, z.cross(x));
+        break;
+      }
       f.linear() = frameFrom(xdir, ydir);
       break;
     }
