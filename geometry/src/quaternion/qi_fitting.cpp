@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
 
 #include <Eigen/Cholesky>
 
@@ -84,7 +85,10 @@ Eigen::Matrix3d leftJacobian(const Eigen::Vector3d& theta) {
 template <class F>
 std::vector<Eigen::MatrixXd> cumulativeMatrixIntegral(F&& f, const Eigen::VectorXd& params, int cols, int order,
                                                       int minPanels) {
-  thread_local std::vector<GaussLegendreRule> rules(65);
+  // Grown on demand: a fixed 65-slot table was indexed past its end for orders above 64.
+  thread_local std::vector<GaussLegendreRule> rules;
+  if (order < 1) throw QuaternionCurveError("fitQiChain: quadrature order must be >= 1, got " + std::to_string(order));
+  if (static_cast<std::size_t>(order) >= rules.size()) rules.resize(static_cast<std::size_t>(order) + 1);
   if (rules[order].nodes.size() != order) rules[order] = gaussLegendreRule(order);
   const GaussLegendreRule& rule = rules[order];
   std::vector<double> breaks(params.data(), params.data() + params.size());
