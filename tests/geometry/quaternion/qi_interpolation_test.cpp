@@ -1,6 +1,7 @@
 #include "ffdkit/geometry/quaternion/qi_interpolation.h"
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -95,15 +96,24 @@ TEST(QiInterpolation, NewtonConvergesQuadraticallyWithinSixIterations) {
 }
 
 TEST(QiInterpolation, InitialResidualIsNearSpecHistories) {
-  // Spec 000 §6 initial |f|^2 with the exact mid rule and spline lengths. Ours (on data normalised
-  // to mean chord 1) is 9-22% above the prototype's; the converged curves agree to 1e-6, so only
-  // the magnitude of the start is checked here.
+  // Spec 000 §6 initial |f|^2 with the exact mid rule and spline lengths, printed to 2 digits
+  // (+-2 %). Ours is |f|^2 of the data normalised to mean chord c = 1 (spec §4); the prototype's
+  // histories are those of the raw data, where the F rows (lengths) scale by c and the G, H rows
+  // (angle per length) by 1 / c. So raw = c^2 |F_n|^2 + c^-2 |GH_n|^2 and the normalised value
+  // lies in [raw / c^2, raw * c^2] (c = 1.109 for P4, 1.050 for P7): that band, plus the
+  // rounding, is what the spec supports. The start is dominated by the G, H rows (the joints'
+  // tangents are exact, the lengths nearly so), so ours is raw * c^2 to within 4 % (measured:
+  // 0.973, 0.994, 0.991, 1.004).
   const std::vector<double> initial = {2.5e-3, 8.2e-3, 1.4e-1, 8.1e-2};
   const std::vector<Reference> refs = references();
   for (std::size_t k = 0; k < refs.size(); ++k) {
     const InterpolationResult r = interpolateQi(refs[k].points, withRule(refs[k].rule));
-    EXPECT_GT(r.residualHistory.front(), 0.8 * initial[k]) << refs[k].name;
-    EXPECT_LT(r.residualHistory.front(), 1.3 * initial[k]) << refs[k].name;
+    const double c = r.meanChord, f0 = r.residualHistory.front();
+    std::printf("[initial |f|^2] %s: %.4g, spec %.2g, spec c^2 %.4g (ratio %.4f)\n", refs[k].name, f0, initial[k],
+                initial[k] * c * c, f0 / (initial[k] * c * c));
+    EXPECT_GE(f0, 0.98 * initial[k] / (c * c)) << refs[k].name;
+    EXPECT_LE(f0, 1.02 * initial[k] * c * c) << refs[k].name;
+    EXPECT_NEAR(f0 / (initial[k] * c * c), 1.0, 0.04) << refs[k].name;
   }
 }
 
