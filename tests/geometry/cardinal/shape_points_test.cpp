@@ -1,7 +1,11 @@
 #include "ffdkit/geometry/cardinal/shape_points.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
+#include <Eigen/LU>
 #include <gtest/gtest.h>
 
 #include "ffdkit/geometry/cardinal/cardinal_error.h"
@@ -255,6 +259,119 @@ TEST(SigmaSurfaceShapePoints, BicubicRoutesAgreeAndPatchesAreBicubic) {
       EXPECT_LT((r.surface.evaluate(tu[i], tv[j]) - g(i, j)).norm(), 1e-12);
   // The corner twist is honoured: d2Q/dudv at (u0, v0) = T00 / (Delta^u_0 Delta^v_0).
   EXPECT_LT((r.surface.evaluate(0, 0, 1, 1) * 1.0 * 2.0 - Eigen::Vector3d(0.1, 0.2, 0.3)).norm(), 1e-12);
+}
+
+// An independent bicubic spline (de Boor's tensor-product interpolation): 1D clamped cubic
+// splines solved here, and bicubic Hermite patches from P, Pu, Pv, Puv at the knots.
+// Derivatives at the knots t of the C2 cubic spline through y with end slopes m0, mn.
+Eigen::MatrixX3d clampedSplineSlopes(const Eigen::VectorXd& t, const Eigen::MatrixX3d& y, const Eigen::Vector3d& m0,
+                                     const Eigen::Vector3d& mn) {
+  const Eigen::Index n = t.size() - 1;
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n + 1, n + 1);
+  Eigen::MatrixX3d b(n + 1, 3);
+  a(0, 0) = a(n, n) = 1.0;
+  b.row(0) = m0.transpose();
+  b.row(n) = mn.transpose();
+  for (Eigen::Index i = 1; i < n; ++i) {
+    const double h0 = t[i] - t[i - 1], h1 = t[i + 1] - t[i];
+    a(i, i - 1) = h1;
+    a(i, i) = 2.0 * (h0 + h1);
+    a(i, i + 1) = h0;
+    b.row(i) = 3.0 * (h1 * (y.row(i) - y.row(i - 1)) / h0 + h0 * (y.row(i + 1) - y.row(i)) / h1);
+  }
+  return a.partialPivLu().solve(b);
+}
+
+struct HermiteGrid {
+  Eigen::VectorXd tu, tv;
+  std::vector<Eigen::MatrixX3d> p, pu, pv, puv;  // [i] = column of v-knots j
+
+  Eigen::Vector3d evaluate(double u, double v) const {
+    const auto span = [](const Eigen::VectorXd& t, double x) {
+      Eigen::Index i = 0;
+      while (i + 2 < t.size() && x >= t[i + 1]) ++i;
+      return i;
+    };
+    const Eigen::Index i = span(tu, u), j = span(tv, v);
+    const double hu = tu[i + 1] - tu[i], hv = tv[j + 1] - tv[j];
+    const double s = (u - tu[i]) / hu, r = (v - tv[j]) / hv;
+    const auto h0 = [](double x, int end) { return end ? -2 * x * x * x + 3 * x * x : 2 * x * x * x - 3 * x * x + 1; };
+    const auto h1 = [](double x, int end) { return end ? x * x * x - x * x : x * x * x - 2 * x * x + x; };
+    Eigen::Vector3d q = Eigen::Vector3d::Zero();
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const Eigen::Index ii = i + a, jj = j + b;
+        q += h0(s, a) * h0(r, b) * p[ii].row(jj).transpose() + hu * h1(s, a) * h0(r, b) * pu[ii].row(jj).transpose() +
+             hv * h0(s, a) * h1(r, b) * pv[ii].row(jj).transpose() +
+             hu * hv * h1(s, a) * h1(r, b) * puv[ii].row(jj).transpose();
+      }
+    return q;
+  }
+};
+
+TEST(SigmaSurfaceShapePoints, BicubicModeIsTheTensorProductSplineOfItsEndData) {
+  // P11 on the geometry, not through the library's routeDiscrepancy: with all beta2 = 0 and
+  // explicit end data (u-end slopes per row, v-end slopes per column, corner twists) the cubic-mode
+  // surface must be the unique C2 bicubic spline of those data, built here independently by
+  // de Boor's construction: Pu along the knot rows, Pv along the knot columns, the boundary twists
+  // along the two v-end rows from the corner twists, and Puv along the columns from Pu.
+  std::srand(40);
+  Eigen::VectorXd tu(5), tv(6);
+  tu << 0, 1, 2.5, 3, 4.5;
+  tv << 0, 2, 3, 3.5, 5, 6;
+  const SigmaKnots ku(tu, Eigen::VectorXd::Zero(5)), kv(tv, Eigen::VectorXd::Zero(6));
+  PointGrid g(5, 6);
+  for (auto& q : g.data) q = Eigen::Vector3d::Random();
+  SigmaSurfaceOptions o;
+  o.ends.uStart = Eigen::MatrixX3d::Random(6, 3);
+  o.ends.uEnd = Eigen::MatrixX3d::Random(6, 3);
+  o.ends.vStart = Eigen::MatrixX3d::Random(5, 3);
+  o.ends.vEnd = Eigen::MatrixX3d::Random(5, 3);
+  o.ends.twists = std::array<Eigen::Vector3d, 4>{Eigen::Vector3d(0.1, 0.2, 0.3), Eigen::Vector3d(-0.2, 0, 0.1),
+                                                 Eigen::Vector3d(0.5, -0.4, 0), Eigen::Vector3d(1, 1, 1)};
+  // The end data are in the local parameters of the end intervals (shape_points.h): the global
+  // slopes divide by the end interval's length, the twists by both.
+  const double du0 = tu[1] - tu[0], du1 = tu[4] - tu[3], dv0 = tv[1] - tv[0], dv1 = tv[5] - tv[4];
+  const Eigen::MatrixX3d uStart = *o.ends.uStart / du0, uEnd = *o.ends.uEnd / du1;
+  const Eigen::MatrixX3d vStart = *o.ends.vStart / dv0, vEnd = *o.ends.vEnd / dv1;
+  const auto& t = *o.ends.twists;  // (u0,v0), (u0,vn), (um,v0), (um,vn)
+  const std::array<Eigen::Vector3d, 4> tw{t[0] / (du0 * dv0), t[1] / (du0 * dv1), t[2] / (du1 * dv0), t[3] / (du1 * dv1)};
+
+  HermiteGrid ref{tu, tv, {}, {}, {}, {}};
+  Eigen::MatrixX3d pu(5 * 6, 3);  // row i + 5 j
+  for (int j = 0; j < 6; ++j) {
+    Eigen::MatrixX3d row(5, 3);
+    for (int i = 0; i < 5; ++i) row.row(i) = g(i, j).transpose();
+    const Eigen::MatrixX3d slopes = clampedSplineSlopes(tu, row, uStart.row(j), uEnd.row(j));
+    for (int i = 0; i < 5; ++i) pu.row(i + 5 * j) = slopes.row(i);
+  }
+  const Eigen::MatrixX3d twistStart = clampedSplineSlopes(tu, vStart, tw[0], tw[2]);
+  const Eigen::MatrixX3d twistEnd = clampedSplineSlopes(tu, vEnd, tw[1], tw[3]);
+  for (int i = 0; i < 5; ++i) {
+    Eigen::MatrixX3d column(6, 3), columnPu(6, 3);
+    for (int j = 0; j < 6; ++j) {
+      column.row(j) = g(i, j).transpose();
+      columnPu.row(j) = pu.row(i + 5 * j);
+    }
+    ref.p.push_back(column);
+    ref.pu.push_back(columnPu);
+    ref.pv.push_back(clampedSplineSlopes(tv, column, vStart.row(i), vEnd.row(i)));
+    ref.puv.push_back(clampedSplineSlopes(tv, columnPu, twistStart.row(i), twistEnd.row(i)));
+  }
+
+  const SigmaSurface s = interpolateSigmaSurface(ku, kv, g, o).surface;
+  double worst = 0.0;
+  for (double u = 0.0; u <= 4.5; u += 0.125)
+    for (double v = 0.0; v <= 6.0; v += 0.125) worst = std::max(worst, (s.evaluate(u, v) - ref.evaluate(u, v)).norm());
+  EXPECT_LT(worst, 1e-12);
+  // The negative control of spec §7 item 12: the thesis' literal zero cross-end data make the
+  // two routes disagree, and the surface is no longer that spline.
+  o.thesisZeroCrossDefaults = true;
+  const SigmaSurface literal = interpolateSigmaSurface(ku, kv, g, o).surface;
+  double off = 0.0;
+  for (double u = 0.0; u <= 4.5; u += 0.125)
+    for (double v = 0.0; v <= 6.0; v += 0.125) off = std::max(off, (literal.evaluate(u, v) - ref.evaluate(u, v)).norm());
+  EXPECT_GT(off, 1e-3);
 }
 
 TEST(SigmaSurfaceShapePoints, ThesisZeroDefaultBreaksTheRouteAgreement) {
