@@ -56,6 +56,68 @@ TEST(PatchSurface, IsG1AcrossEveryInteriorCurveOfEveryReferenceMesh) {
   }
 }
 
+// Normal jump across the interior curves measured from positions only: on each of the two
+// patches at an edge point, the tangent along the edge (central difference) and the tangent into
+// the patch towards its third corner (one-sided, second order) give a normal; the angle between
+// the two sides' normals is the jump (spec §6 property 5), independent of the library's analytic
+// normals and of surface_diagnostics.
+struct SampledJump {
+  double maxAngle = 0.0;
+  double maxGap = 0.0;  // the two patches' positions at the same edge point
+  int samples = 0;
+};
+
+SampledJump sampledNormalJump(const PatchSurface& s, int perCurve = 9) {
+  SampledJump out;
+  const MeshTopology& topo = s.triangulated().topology;
+  const double h = 1e-5;
+  for (int e = 0; e < topo.edgeCount(); ++e) {
+    if (topo.isBoundaryEdge(e)) continue;
+    const int he = topo.edgeHalfEdge(e);
+    const int a = topo.from(he), b = topo.to(he);
+    Eigen::Vector3d normals[2], points[2];
+    for (int k = 1; k <= perCurve; ++k) {
+      const double t = static_cast<double>(k) / (perCurve + 1);
+      for (int side = 0; side < 2; ++side) {
+        const RationalQuarticTriangle& p = s.patches()[topo.face(side ? topo.twin(he) : he)];
+        const int sa = p.cornerSlot(a), sb = p.cornerSlot(b), sc = 3 - sa - sb;
+        const auto at = [&](double along, double into) {
+          Eigen::Vector3d bary = Eigen::Vector3d::Zero();
+          bary[sa] = 1.0 - along - 0.5 * into;
+          bary[sb] = along - 0.5 * into;
+          bary[sc] = into;
+          return p.evaluate(bary[0], bary[1], bary[2]);
+        };
+        const Eigen::Vector3d alongEdge = (at(t + h, 0) - at(t - h, 0)) / (2 * h);
+        const Eigen::Vector3d inward = (-3.0 * at(t, 0) + 4.0 * at(t, h) - at(t, 2 * h)) / (2 * h);
+        // Seen from outside the left patch turns a -> b -> c counter-clockwise, so
+        // along x inward is outward there; on the right patch the third corner lies the other way.
+        const Eigen::Vector3d n = side ? inward.cross(alongEdge) : alongEdge.cross(inward);
+        normals[side] = n.normalized();
+        points[side] = at(t, 0);
+      }
+      out.maxAngle = std::max(out.maxAngle, std::atan2(normals[0].cross(normals[1]).norm(), normals[0].dot(normals[1])));
+      out.maxGap = std::max(out.maxGap, (points[0] - points[1]).norm());
+      ++out.samples;
+    }
+  }
+  return out;
+}
+
+TEST(PatchSurface, SampledNormalsAgreeAcrossEveryInteriorCurve) {
+  for (const auto& m : referenceMeshes()) {
+    const PatchSurface s = PatchSurface::build(m.mesh, m.tensions);
+    const SampledJump jump = sampledNormalJump(s);
+    EXPECT_GT(jump.samples, 0) << m.name;
+    EXPECT_LE(jump.maxGap, 1e-12 * (1.0 + s.mesh().vertices.cwiseAbs().maxCoeff())) << m.name;
+    EXPECT_LE(jump.maxAngle, 1e-6) << m.name;  // finite differences: O(h^2) + round-off / h
+  }
+  // The measure sees a real crease: the thesis' literal G1 constants on the cube (spec §5.3).
+  PatchSurfaceOptions literal;
+  literal.g1Scalars = G1Scalars::ThesisConstants;
+  EXPECT_GT(sampledNormalJump(PatchSurface::build(cubeMesh(), {}, literal)).maxAngle, 0.2);
+}
+
 TEST(PatchSurface, InterpolatesVerticesAndSharesNetworkCurvesExactly) {
   for (const auto& m : referenceMeshes()) {
     const PatchSurface s = PatchSurface::build(m.mesh, m.tensions);
