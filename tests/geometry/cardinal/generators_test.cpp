@@ -101,6 +101,41 @@ TEST(Generators, BlendMeshCoversBothSurfacesAndTheGap) {
   EXPECT_EQ(generateSplineBlend(b, {2, 2}).vertices.rows(), 9 * 5);
 }
 
+TEST(Generators, ChordLengthKnotsAverageTheChordsOverTheOtherDirection) {
+  // generators.h: t_{i+1} - t_i = |P_{i+1} - P_i|, averaged over the other direction for surfaces,
+  // written out here over every row and column of an uneven grid (closed v adds the closing chord).
+  PointGrid g(4, 5);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 5; ++j) g(i, j) = Eigen::Vector3d(i * i * 0.5 + 0.1 * j, std::exp(0.3 * j) + 0.2 * i, 0.1 * i * j);
+  SigmaSplineSurfaceParams params;
+  params.points = g;
+  params.spacing = KnotSpacing::ChordLength;
+  params.closedV = true;
+  const SigmaSurface s = buildSigmaSurface(params);
+  Eigen::VectorXd tu = Eigen::VectorXd::Zero(4), tv = Eigen::VectorXd::Zero(6);
+  for (int i = 0; i + 1 < 4; ++i) {
+    double sum = 0.0;
+    for (int j = 0; j < 5; ++j) sum += (g(i + 1, j) - g(i, j)).norm();
+    tu[i + 1] = tu[i] + sum / 5.0;
+  }
+  for (int j = 0; j < 5; ++j) {
+    double sum = 0.0;
+    for (int i = 0; i < 4; ++i) sum += (g(i, (j + 1) % 5) - g(i, j)).norm();
+    tv[j + 1] = tv[j] + sum / 4.0;
+  }
+  EXPECT_LT((s.knotsU.knots() - tu).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_LT((s.knotsV.knots() - tv).cwiseAbs().maxCoeff(), 1e-14);
+  // Curves: the plain chord lengths.
+  SigmaSplineCurveParams curve;
+  curve.points = circlePoints(5, 2.0).topRows(4);
+  curve.points(3, 2) = 1.0;
+  curve.spacing = KnotSpacing::ChordLength;
+  const SigmaCurve c = buildSigmaCurve(curve);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(c.knots().knots()[k + 1] - c.knots().knots()[k], (curve.points.row(k + 1) - curve.points.row(k)).norm(), 1e-14) << k;
+  }
+}
+
 TEST(Generators, ValidationNamesTheField) {
   SigmaSplineCurveParams p;
   p.points = Eigen::MatrixX3d::Zero(1, 3);
