@@ -13,6 +13,7 @@ packages=(
   qt6-base-dev libqt6opengl6-dev
   libgl1-mesa-dev libgl1-mesa-dri libglx-mesa0 libegl-mesa0 mesa-utils
   xvfb xauth
+  python3
 )
 
 missing=()
