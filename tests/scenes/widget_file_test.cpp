@@ -17,7 +17,8 @@ namespace {
 using namespace ffdkit::widgets;
 namespace fs = std::filesystem;
 
-const fs::path kExamples = fs::path(__FILE__).parent_path() / ".." / ".." / "widgets" / "examples";
+// From the source root the build defines: __FILE__ is relative when ccache rewrites paths.
+const fs::path kExamples = fs::path(FFDKIT_SOURCE_DIR) / "widgets" / "examples";
 
 std::string slurp(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
