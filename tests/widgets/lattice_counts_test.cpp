@@ -103,6 +103,29 @@ TEST(LatticeCounts, ARestLatticeStaysExactlyAtRestOnTheNewRegularGrid) {
   EXPECT_LT(maxDifference(m.restPoints(cl), ffd::makeCylindricalLattice(c).restPoints()), 1e-15);
 }
 
+TEST(LatticeCounts, AnAffineRestBoxAwayFromTheOriginKeepsItsPlace) {
+  // A rest lattice that is the box [1, 3] x [-2, -1] x [3, 3.5] (an affine rest with an offset):
+  // new counts put the rest points on the regular grid of the same box.
+  const Eigen::Vector3d lo(1.0, -2.0, 3.0), size(2.0, 1.0, 0.5);
+  const auto grid = [&](const Eigen::Vector3i& c) {
+    Eigen::MatrixX3d p(c.prod(), 3);
+    for (int k = 0; k < c.z(); ++k)
+      for (int j = 0; j < c.y(); ++j)
+        for (int i = 0; i < c.x(); ++i) {
+          const Eigen::Vector3d t(double(i) / (c.x() - 1), double(j) / (c.y() - 1), double(k) / (c.z() - 1));
+          p.row(flat(c, i, j, k)) = (lo + size.cwiseProduct(t)).transpose();
+        }
+    return p;
+  };
+  WidgetModel m;
+  LatticeOptions o = box(Eigen::Vector3i(3, 3, 3), ffd::AxisBasis::bernstein());
+  o.restPoints = grid(o.counts);
+  const WidgetId l = m.addLattice(o);
+  m.setLatticeCounts(l, Eigen::Vector3i(4, 3, 2));
+  EXPECT_LT(maxDifference(m.restPoints(l), grid(Eigen::Vector3i(4, 3, 2))), 1e-14);
+  EXPECT_EQ(m.controlPoints(l), m.restPoints(l));
+}
+
 TEST(LatticeCounts, AnAffineDeformationIsKeptExactly) {
   Eigen::Affine3d a = Eigen::Affine3d::Identity();
   a.translate(Eigen::Vector3d(0.1, -0.2, 0.3)).rotate(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()));

@@ -4,9 +4,11 @@
 #include <numbers>
 #include <random>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "ffdkit/widgets/thesis_examples.h"
+#include "ffdkit/widgets/widget_error.h"
 #include "widget_test_support.h"
 
 namespace ffdkit::widgets {
@@ -463,6 +465,42 @@ TEST(WidgetModel, ThousandGesturesAndTheirInversesReturnToRest) {
   Network again = buildNetwork();
   for (const Gesture& g : gestures) play(again, g, 1.0);
   EXPECT_EQ(again.m.controlPoints(again.lattice), forward);
+}
+
+TEST(WidgetModel, RenameMovesTheNameAndOnlyChangesOnANewName) {
+  WidgetModel m;
+  const WidgetId box = m.addLattice("box", Eigen::Vector3i(2, 2, 2));
+  const std::uint64_t before = m.revision();
+  m.rename(box, "box");  // the same name: nothing to do
+  EXPECT_EQ(m.revision(), before);
+  m.rename(box, "crate");
+  EXPECT_GT(m.revision(), before);
+  EXPECT_EQ(m.name(box), "crate");
+  EXPECT_EQ(m.find("crate"), box);
+  EXPECT_THROW(m.find("box"), WidgetError);
+  // The old name is free again, the new one taken.
+  const WidgetId other = m.addLattice("box", Eigen::Vector3i(2, 2, 2));
+  EXPECT_EQ(m.find("box"), other);
+  EXPECT_THROW(m.rename(other, "crate"), WidgetError);
+}
+
+TEST(WidgetModel, AffineFramesStayRigidInANonUniformlyScaledLattice) {
+  // A widget's world frame is the rigid part of L * mask(A_cell) * C0 * O (spec §4): with a lattice
+  // frame scaled (1, 2, 3) it must still be a rotation, located at the cell's world centroid.
+  WidgetModel m;
+  LatticeOptions o;
+  o.counts = Eigen::Vector3i(2, 2, 2);
+  o.frame = Eigen::Translation3d(1, 2, 3) * Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) * Eigen::Scaling(1.0, 2.0, 3.0);
+  const WidgetId l = m.addLattice(o);
+  const WidgetId face = m.addCell(l, CellSpec::face(0, 0, 1, 2));
+  const WidgetId ring = m.addAffine(face, AffineKind::Rotate, "ring");
+  const WidgetFrame f = m.affineFrame(ring);
+  const Eigen::Matrix3d r = f.frame.linear();
+  EXPECT_LT((r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_NEAR(r.determinant(), 1.0, 1e-12);
+  EXPECT_LT((f.frame.translation() - o.frame * Eigen::Vector3d(0.5, 0.5, 1.0)).norm(), 1e-12);
+  // Its z is the face's world normal: the lattice z axis turned into the world.
+  EXPECT_LT((r.col(2) - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
 }
 
 }  // namespace

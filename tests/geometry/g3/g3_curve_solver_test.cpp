@@ -553,6 +553,19 @@ TEST(G3CurveSolver, RejectsInvalidInput) {
   Eigen::MatrixX2d dup = p;
   dup.row(3) = dup.row(2);
   EXPECT_THROW(solveG3Curve(dup, t1Conditions()), G3InputError);
+  // Each invalid option on its own is refused (not only in combination).
+  const auto bad = [&](auto&& spoil) {
+    G3SolverOptions o;
+    spoil(o);
+    EXPECT_THROW(solveG3Curve(p, t1Conditions(), o), G3InputError);
+  };
+  bad([](G3SolverOptions& o) { o.maxIterations = 0; });
+  bad([](G3SolverOptions& o) { o.quadratureNodes = 1; });
+  bad([](G3SolverOptions& o) { o.maxTurnPerPanel = 0.0; });
+  bad([](G3SolverOptions& o) { o.tolerance = 0.0; });
+  bad([](G3SolverOptions& o) { o.lineSearchFloor = -1.0; });
+  bad([](G3SolverOptions& o) { o.minContinuationStep = std::nan(""); });
+  EXPECT_TRUE(solveG3Curve(p, t1Conditions(), G3SolverOptions{}).converged);
 }
 
 }  // namespace
