@@ -12,6 +12,8 @@ if(FFDKIT_CCACHE)
   set(CMAKE_CXX_COMPILER_LAUNCHER "${FFDKIT_CCACHE}")
 endif()
 
+include(FfdkitInstall)
+
 # ffdkit_target_defaults(target): warnings on for project code.
 function(ffdkit_target_defaults target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local
@@ -19,7 +21,8 @@ function(ffdkit_target_defaults target)
 endfunction()
 
 # ffdkit_add_library(NAME module SOURCES ... DEPS ...): one library target per module,
-# exported as ffdkit::<module>, public headers under <module>/include/ffdkit/<module>/.
+# exported as ffdkit::<module>, public headers under <module>/include/ffdkit/<module>/; installed
+# with its headers and exported in the ffdkit CMake package (cmake/FfdkitInstall.cmake).
 function(ffdkit_add_module_library module)
   cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   add_library(ffdkit_${module} ${ARG_SOURCES})
@@ -27,5 +30,9 @@ function(ffdkit_add_module_library module)
   target_include_directories(ffdkit_${module} PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>)
   target_link_libraries(ffdkit_${module} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  # Position-independent: the static libraries also go into the Python module (a shared object)
+  # and into shared libraries of projects that use the installed package.
+  set_target_properties(ffdkit_${module} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   ffdkit_target_defaults(ffdkit_${module})
+  ffdkit_install_library(ffdkit_${module} ${module} HEADERS "${CMAKE_CURRENT_SOURCE_DIR}/include")
 endfunction()

@@ -14,6 +14,7 @@ packages=(
   libgl1-mesa-dev libgl1-mesa-dri libglx-mesa0 libegl-mesa0 mesa-utils
   xvfb xauth
   python3
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 missing=()

@@ -1,0 +1,24 @@
+"""ffdkit: direct-manipulation free-form deformation with 3D widgets, from Python.
+
+Submodules mirror the C++ namespaces (docs/python.md):
+
+- ``ffdkit.ffd``      lattices, embedding, deformation, pipelines, direct manipulation
+- ``ffdkit.widgets``  the headless widget model (lattice, cell and affine widgets, bindings)
+- ``ffdkit.scenes``   scene and widget files, the scene deformer, mesh files, generators
+- ``ffdkit.pygem``    PyGeM's ``FFD`` class on ffdkit's engine
+
+Points are numpy float64 arrays of shape (N, 3). Errors are ``ffdkit.Error`` subclasses carrying
+the C++ messages.
+"""
+
+import sys as _sys
+
+from ._ffdkit import (Cancelled, Error, GeneratorError, LatticeError, MeshIoError, SceneFileError,
+                      WidgetError, WidgetFileError, __version__, ffd, scenes, widgets)
+
+# `import ffdkit.ffd` and `from ffdkit.ffd import X` find the extension's submodules.
+for _module in (ffd, widgets, scenes):
+    _sys.modules[__name__ + "." + _module.__name__.rsplit(".", 1)[-1]] = _module
+
+__all__ = ["ffd", "widgets", "scenes", "Error", "LatticeError", "Cancelled", "WidgetError",
+           "WidgetFileError", "SceneFileError", "MeshIoError", "GeneratorError", "__version__"]

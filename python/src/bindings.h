@@ -1,0 +1,14 @@
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace ffdkit::python {
+
+namespace py = pybind11;
+
+/// One function per C++ module, each filling the Python submodule of the same name.
+void bindFfd(py::module_& module);
+void bindWidgets(py::module_& module);
+void bindScenes(py::module_& module);
+
+}  // namespace ffdkit::python
