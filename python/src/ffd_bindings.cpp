@@ -59,9 +59,16 @@ std::string basisRepr(const ffd::AxisBasis& basis) {
   return "AxisBasis()";
 }
 
-ffd::EmbedOptions embedOptions(const py::object& options) {
-  return options.is_none() ? ffd::EmbedOptions{} : options.cast<ffd::EmbedOptions>();
-}
+// The arguments (options, progress) of the embedding calls: EmbedOptions with the Python
+// progress callback bridged into it.
+struct EmbedArgs {
+  EmbedArgs(const py::object& options, const py::object& callback) : progress(callback) {
+    if (!options.is_none()) embed = options.cast<ffd::EmbedOptions>();
+    embed.progress = progress.embedHook();
+  }
+  PythonProgress progress;
+  ffd::EmbedOptions embed;
+};
 
 // Runs `work` without the GIL; a Python exception raised by the progress callback replaces
 // the Cancelled it caused.
@@ -291,10 +298,8 @@ void bindDeformation(py::module_& m) {
   m.def("embed",
         [](const ffd::Lattice& lattice, const py::object& points, const py::object& options, const py::object& progress) {
           const PointsArg q(points, "points");
-          ffd::EmbedOptions embed = embedOptions(options);
-          PythonProgress hook(progress);
-          embed.progress = hook.embedHook();
-          return withoutGil(hook, [&] { return ffd::embed(lattice, q.ref(), embed); });
+          const EmbedArgs args(options, progress);
+          return withoutGil(args.progress, [&] { return ffd::embed(lattice, q.ref(), args.embed); });
         },
         "lattice"_a, "points"_a, "options"_a = py::none(), "progress"_a = py::none(),
         "Embeds WORLD points (N x 3) into the rest lattice (seed 001 eq. (6.2)); the GIL is released. "
@@ -304,13 +309,11 @@ void bindDeformation(py::module_& m) {
   m.def("deformPoints",
         [](ffd::Lattice& lattice, const py::object& points, const py::object& options, const py::object& progress) {
           const PointsArg q(points, "points");
-          ffd::EmbedOptions embed = embedOptions(options);
-          PythonProgress hook(progress);
-          embed.progress = hook.embedHook();
+          const EmbedArgs args(options, progress);
           synced(lattice);
           auto deformer = std::make_unique<ffd::Deformer>();
-          withoutGil(hook, [&] {
-            *deformer = ffd::Deformer(ffd::embed(lattice, q.ref(), embed));
+          withoutGil(args.progress, [&] {
+            *deformer = ffd::Deformer(ffd::embed(lattice, q.ref(), args.embed));
             return &deformer->deform(lattice, q.ref());
           });
           // The result is the private deformer's output buffer (no copy); the deformer, and with
@@ -328,6 +331,14 @@ void bindDeformation(py::module_& m) {
       .def_readonly("evaluatedPoints", &ffd::DeformStats::evaluatedPoints);
 
   // Deformer results are read-only views of Deformer.points: the next deform()/update() rewrites them.
+  using Evaluation = const Eigen::MatrixX3d& (ffd::Deformer::*)(const ffd::Lattice&, const Eigen::Ref<const Eigen::MatrixX3d>&);
+  auto evaluate = [](py::object self, ffd::Lattice& lattice, const py::object& input, Evaluation evaluation) {
+    auto& deformer = self.cast<ffd::Deformer&>();
+    const PointsArg q(input, "input");
+    synced(lattice);
+    withoutGil(PythonProgress(py::none()), [&] { return &(deformer.*evaluation)(lattice, q.ref()); });
+    return viewOf(deformer.points(), self, false);
+  };
   py::class_<ffd::Deformer>(m, "Deformer", "Maps embedded points through a lattice (ffd/deformer.h).")
       .def(py::init<>())
       .def(py::init<ffd::Embedding>(), "embedding"_a, "Takes a copy of the embedding.")
@@ -335,42 +346,28 @@ void bindDeformation(py::module_& m) {
                   [](const ffd::Lattice& lattice, const py::object& points, const py::object& options,
                      const py::object& progress) {
                     const PointsArg q(points, "points");
-                    ffd::EmbedOptions embed = embedOptions(options);
-                    PythonProgress hook(progress);
-                    embed.progress = hook.embedHook();
-                    return withoutGil(hook, [&] { return ffd::Deformer(ffd::embed(lattice, q.ref(), embed)); });
+                    const EmbedArgs args(options, progress);
+                    return withoutGil(args.progress,
+                                      [&] { return ffd::Deformer(ffd::embed(lattice, q.ref(), args.embed)); });
                   },
                   "lattice"_a, "points"_a, "options"_a = py::none(), "progress"_a = py::none(),
                   "Deformer(embed(lattice, points, options)) without copying the embedding.")
       .def_property_readonly("embedding", &ffd::Deformer::embedding, py::return_value_policy::reference_internal)
-      .def("deform",
-           [](py::object self, ffd::Lattice& lattice, const py::object& input) {
-             auto& deformer = self.cast<ffd::Deformer&>();
-             const PointsArg q(input, "input");
-             synced(lattice);
-             withoutGil(PythonProgress(py::none()), [&] { return &deformer.deform(lattice, q.ref()); });
-             return viewOf(deformer.points(), self, false);
-           },
-           "lattice"_a, "input"_a, "Full evaluation; returns the deformed WORLD points (a read-only view).")
-      .def("deformStale",
-           [](py::object self, ffd::Lattice& lattice, const py::object& input) {
-             auto& deformer = self.cast<ffd::Deformer&>();
-             const PointsArg q(input, "input");
-             synced(lattice);
-             withoutGil(PythonProgress(py::none()), [&] { return &deformer.deformStale(lattice, q.ref()); });
-             return viewOf(deformer.points(), self, false);
-           },
-           "lattice"_a, "input"_a)
+      .def("deform", [evaluate](py::object self, ffd::Lattice& lattice, const py::object& input) {
+        return evaluate(self, lattice, input, &ffd::Deformer::deform);
+      }, "lattice"_a, "input"_a, "Full evaluation; returns the deformed WORLD points (a read-only view).")
+      .def("deformStale", [evaluate](py::object self, ffd::Lattice& lattice, const py::object& input) {
+        return evaluate(self, lattice, input, &ffd::Deformer::deformStale);
+      }, "lattice"_a, "input"_a)
       .def("update",
-           [](py::object self, ffd::Lattice& lattice, const py::object& input) {
+           [evaluate](py::object self, ffd::Lattice& lattice, const py::object& input) {
+             if (!input.is_none()) {
+               using Ref = const Eigen::Ref<const Eigen::MatrixX3d>&;
+               return evaluate(self, lattice, input, py::overload_cast<const ffd::Lattice&, Ref>(&ffd::Deformer::update));
+             }
              auto& deformer = self.cast<ffd::Deformer&>();
              synced(lattice);
-             if (input.is_none()) {
-               withoutGil(PythonProgress(py::none()), [&] { return &deformer.update(lattice); });
-             } else {
-               const PointsArg q(input, "input");
-               withoutGil(PythonProgress(py::none()), [&] { return &deformer.update(lattice, q.ref()); });
-             }
+             withoutGil(PythonProgress(py::none()), [&] { return &deformer.update(lattice); });
              return viewOf(deformer.points(), self, false);
            },
            "lattice"_a, "input"_a = py::none(),
@@ -418,7 +415,8 @@ void bindPipeline(py::module_& m) {
   };
   py::class_<ffd::Pipeline>(m, "Pipeline", "A tree of lattices deforming one point set in pre-order (ffd/pipeline.h).")
       .def(py::init([](const py::object& points, const py::object& options) {
-             return ffd::Pipeline(PointsArg(points, "points").ref(), embedOptions(options));
+             return ffd::Pipeline(PointsArg(points, "points").ref(),
+                                  options.is_none() ? ffd::EmbedOptions{} : options.cast<ffd::EmbedOptions>());
            }),
            "points"_a, "options"_a = py::none())
       .def("addLattice", &ffd::Pipeline::addLattice, "lattice"_a, "parent"_a = py::none(), "priority"_a = 0,

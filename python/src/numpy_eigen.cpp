@@ -147,9 +147,10 @@ PythonProgress::PythonProgress(py::object callback) {
   });
 }
 
-bool PythonProgress::call(State& /*state*/, py::object result) {
-  return result.is_none() || py::cast<bool>(result);
-}
+namespace {
+// None (a callback that only reports) goes on, like True.
+bool goesOn(const py::object& result) { return result.is_none() || py::cast<bool>(result); }
+}  // namespace
 
 ffd::EmbedProgress PythonProgress::embedHook() const {
   if (!state_) return {};
@@ -158,7 +159,7 @@ ffd::EmbedProgress PythonProgress::embedHook() const {
     if (state->error) return false;
     try {
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-      return call(*state, state->callback(done, total));
+      return goesOn(state->callback(done, total));
     } catch (py::error_already_set& error) {
       state->error.emplace(std::move(error));
       return false;
@@ -173,7 +174,7 @@ std::function<bool(double)> PythonProgress::fractionHook() const {
     if (state->error) return false;
     try {
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-      return call(*state, state->callback(fraction));
+      return goesOn(state->callback(fraction));
     } catch (py::error_already_set& error) {
       state->error.emplace(std::move(error));
       return false;

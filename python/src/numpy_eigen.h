@@ -74,7 +74,6 @@ class PythonProgress {
     py::object callback;
     std::optional<py::error_already_set> error;
   };
-  static bool call(State& state, py::object result);
   std::shared_ptr<State> state_;
 };
 

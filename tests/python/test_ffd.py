@@ -138,7 +138,7 @@ def test_deform_matches_the_bernstein_formula_in_an_oriented_box():
     expected = apply_frame(frame, bernstein_ffd(lattice.controlPoints, counts, uvw))
     np.testing.assert_allclose(out, expected, rtol=1e-12, atol=1e-12 * np.abs(expected).max())
     assert not out.flags.writeable
-    # C-ordered, Fortran-ordered and float32 inputs give one result.
+    # C-ordered (copied) and Fortran-ordered (used in place) inputs give one result.
     for variant in (np.ascontiguousarray(points), np.asfortranarray(points)):
         np.testing.assert_array_equal(ffd.deformPoints(lattice, variant), out)
 
