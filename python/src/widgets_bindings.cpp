@@ -232,7 +232,11 @@ void bindModel(py::module_& m) {
       .def("parentLattice", &WidgetModel::parentLattice, "lattice"_a)
       .def("children", &WidgetModel::children, "lattice"_a)
       .def("roots", &WidgetModel::roots)
-      .def("pipelineOrder", &WidgetModel::pipelineOrder)
+      .def("pipelineOrder",
+           [](const WidgetModel& model, std::optional<WidgetId> root) {
+             return root ? model.pipelineOrder(*root) : model.pipelineOrder();
+           },
+           "root"_a = py::none(), "Lattices in pre-order (of one root's tree if given).")
       .def("cellsOf", &WidgetModel::cellsOf, "lattice"_a)
       .def("latticeOf", &WidgetModel::latticeOf, "id"_a)
       .def("cellSpec", &WidgetModel::cellSpec, "cell"_a)
