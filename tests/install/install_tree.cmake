@@ -10,6 +10,7 @@ foreach(file
     include/ffdkit/ffd/lattice.h include/ffdkit/widgets/widget_model.h include/ffdkit/scenes/scene.h
     include/ffdkit/geometry/gauss_legendre.h include/ffdkit/geometry/quaternion/qi_interpolation.h
     lib/libffdkit_ffd.a lib/libffdkit_widgets.a lib/libffdkit_scenes.a lib/libffdkit_geometry_core.a
+    lib/libffdkit_interaction.a lib/libffdkit_parts.a include/ffdkit/app/interaction_controller.h
     lib/cmake/ffdkit/ffdkitConfig.cmake lib/cmake/ffdkit/ffdkitTargets.cmake
     bin/ffdkit bin/ffdkit-cli share/ffdkit/scenes/press/scene.json share/ffdkit/widgets/fig6-8.json)
   if(NOT EXISTS "${PREFIX}/${file}")
