@@ -129,15 +129,21 @@ Scene makeMirror() {
                                          {0.45, 0.75, 0.5}));
 }
 
-// Fig. 6-9: a child lattice rides on the parent's top face.
+// Fig. 6-9: a child lattice rides on the parent's top face. It straddles the face, so the top of
+// the column runs through both lattices: lifting the face stretches the column, and the child's
+// widgets (child-push) bend its top. The child blends its change out below its box (a falloff
+// of half its height) so that the column does not tear where it leaves the child.
 Scene makeHierarchy() {
   auto fig = widgets::buildFig69();
+  widgets::LatticeSettings childSettings = fig.model.latticeSettings(fig.child);
+  childSettings.outside = ffd::OutsidePolicy::falloff(0.5);
+  fig.model.setLatticeSettings(fig.child, childSettings);
   fig.model.setVariation(fig.faceLift, 0.2);
   fig.model.applyVariation(fig.childEdge, 0.15);
-  Scene scene = withThesisModel("Fig. 6-9: a child lattice on the parent's top face follows it; the FFD runs parent then child.",
+  Scene scene = withThesisModel("Fig. 6-9: a child lattice straddles the parent's top face and follows it; the FFD runs parent then child.",
                          std::move(fig.model), fig.parent,
-                         primitiveObject("column", {.kind = scenes::PrimitiveKind::Cylinder, .resolution = 40, .size = 0.7,
-                                                    .placement = placedAt({0.5, 0.5, 0.5}) * Eigen::Scaling(1.0, 1.0, 1.35)},
+                         primitiveObject("column", {.kind = scenes::PrimitiveKind::Cylinder, .resolution = 40, .size = 0.44,
+                                                    .placement = placedAt({0.5, 0.5, 0.5}) * Eigen::Scaling(1.0, 1.0, 2.15)},
                                          {0.7, 0.55, 0.85}));
   scene.camera.position = {3.4, -3.1, 3.0};
   scene.camera.focalPoint = {0.5, 0.5, 0.8};

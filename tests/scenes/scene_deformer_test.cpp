@@ -88,21 +88,42 @@ TEST(SceneDeformer, DetachRestoresTheObjectsOwnPoints) {
 }
 
 TEST(SceneDeformer, HierarchyRunsParentThenChild) {
-  // Fig. 6-9 sample: the parent's top face lifted by 0.2 stretches z by 1.2; the child (at rest)
-  // adds nothing. Every point of the column must follow the parent's map.
+  // Fig. 6-9 sample: the parent's top face lifted by 0.2 stretches z by 1.2; the child lattice
+  // straddles that face and its bottom front edge is pushed (child-push 0.15), so the top of the
+  // column runs through both. Every point must be the child's map of the parent's map: inside
+  // the child's box the child's trilinear map, beyond its falloff (0.5 of its size) the parent's
+  // alone.
   const Scene scene = readScene(kExamples / "hierarchy");
   const auto deformed = deformScene(scene);
   const SceneObject& column = scene.objects.at(0);
   const Eigen::MatrixX3d& out = deformed.at(column.name);
-  const auto parent = scene.widgets.find("parent");
-  const ffd::Lattice lattice = scene.widgets.ffdLattice(parent);
+  const ffd::Lattice parent = scene.widgets.ffdLattice(scene.widgets.find("parent"));
+  const ffd::Lattice child = scene.widgets.ffdLattice(scene.widgets.find("child"));
+  ASSERT_EQ(child.outsidePolicy(), ffd::OutsidePolicy::falloff(0.5));
+  Eigen::Index inChild = 0, parentOnly = 0;
+  double childMotion = 0.0;
   for (Eigen::Index i = 0; i < out.rows(); ++i) {
     const Eigen::Vector3d q = column.mesh.points.row(i);
-    const Eigen::Vector3d local = lattice.frame().inverse() * q;
-    if ((local.array() < 0.0).any() || (local.array() > 1.0).any()) continue;  // outside: Identity
-    const Eigen::Vector3d expected = lattice.frame() * lattice.evaluate(local);
-    EXPECT_LE((Eigen::Vector3d(out.row(i)) - expected).norm(), 1e-9) << "point " << i << " at " << q.transpose();
+    const Eigen::Vector3d local = parent.frame().inverse() * q;
+    ASSERT_TRUE((local.array() >= 0.0).all() && (local.array() <= 1.0).all()) << "the column lies in the parent";
+    const Eigen::Vector3d afterParent = parent.frame() * parent.evaluate(local);
+    const Eigen::Vector3d c = child.frame().inverse() * afterParent;
+    const double outside = (c.array() - c.array().min(1.0).max(0.0)).matrix().norm();
+    if (outside == 0.0) {
+      ++inChild;
+      const Eigen::Vector3d expected = child.frame() * child.evaluate(c);
+      EXPECT_LE((Eigen::Vector3d(out.row(i)) - expected).norm(), 1e-9) << "point " << i << " at " << q.transpose();
+      childMotion = std::max(childMotion, (expected - afterParent).norm());
+    } else if (outside > 0.5) {
+      ++parentOnly;
+      EXPECT_LE((Eigen::Vector3d(out.row(i)) - afterParent).norm(), 1e-9) << "point " << i << " at " << q.transpose();
+    }
   }
+  // The top of the column is in the child, and child-push moves it visibly (its bottom front
+  // edge moves 0.15; the column's front top rim is near it).
+  EXPECT_GT(inChild, out.rows() / 10);
+  EXPECT_GT(parentOnly, out.rows() / 10);
+  EXPECT_GT(childMotion, 0.05);
 }
 
 TEST(SceneDeformer, CylindricalLatticeEmbedsTheWholeCylinderIncludingItsAxis) {

@@ -68,8 +68,10 @@ Fig69 buildFig69() {
   Fig69 f;
   WidgetModel& m = f.model;
   f.parent = m.addLattice("parent", Eigen::Vector3i(2, 2, 2));
+  // The child straddles the parent's top face (z from 0.75 to 1.25): an object reaching the
+  // face passes through both lattices, so the child's widgets deform it too.
   Eigen::Affine3d childFrame = Eigen::Affine3d::Identity();
-  childFrame.translate(Eigen::Vector3d(0.25, 0.25, 1.0)).scale(0.5);
+  childFrame.translate(Eigen::Vector3d(0.25, 0.25, 0.75)).scale(0.5);
   LatticeOptions child;
   child.name = "child";
   child.frame = childFrame;
@@ -93,13 +95,15 @@ Fig69 buildFig69() {
 Fig610 buildFig610(double pitch, std::optional<VariationRange> clamp) {
   Fig610 f;
   WidgetModel& m = f.model;
-  f.lattice = m.addLattice("vise", Eigen::Vector3i(2, 2, 2));
+  f.lattice = m.addLattice("press-frame", Eigen::Vector3i(2, 2, 2));
   f.topFace = m.addCell(f.lattice, CellSpec::face(0, 0, 1, 2), "jaw");
   f.press = m.addAffine(f.topFace, AffineKind::Translate, named("press", pointing(-Eigen::Vector3d::UnitZ())));
   Eigen::Affine3d handleFrame = Eigen::Affine3d::Identity();
   handleFrame.translation() = Eigen::Vector3d(0.5, 0.5, 1.5);
   AffineOptions handle = named("handle", handleFrame);
-  handle.glyph = Glyph{"crank-handle", 0.3, Eigen::Affine3d::Identity()};
+  // The parts library's crank (app/parts), scaled so that its knob stands on the circle of radius
+  // one glyph size about z where WidgetModel::pick finds a rotate widget: the user grabs the knob.
+  handle.glyph = Glyph{"crank", 0.3, Eigen::Affine3d(Eigen::Scaling(2.2, 2.2, 1.2))};
   f.handle = m.addFreeAffine(AffineKind::Rotate, handle);
   ConversionRule rule = ConversionRule::screw(pitch);
   rule.clamp = clamp;

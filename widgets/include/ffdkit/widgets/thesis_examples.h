@@ -30,7 +30,7 @@ struct Fig68 {
 Fig68 buildFig68();
 
 /// Fig. 6-9: a 2x2x2 parent lattice whose top face carries a 2x2x2 child lattice (the box
-/// [0.25, 0.75]^2 x [1, 1.5]); a translate widget (+z) lifts the face; translate widgets on
+/// [0.25, 0.75]^2 x [0.75, 1.25], straddling the face z = 1); a translate widget (+z) lifts the face; translate widgets on
 /// the points (0,0,0) (-x) and (1,0,0) (+x) are bound; a translate widget (+y) on the parent's
 /// edge (0,1,0)/x is bound to one (+y) on the child's edge (0,0,0)/x.
 struct Fig69 {
@@ -39,8 +39,9 @@ struct Fig69 {
 };
 Fig69 buildFig69();
 
-/// Fig. 6-10: a press. A 2x2x2 lattice with a translate widget pointing down (-z) on its top
-/// face and a free rotate widget (the handle, at (0.5, 0.5, 1.5)) bound to it by a screw rule:
+/// Fig. 6-10: a press. A 2x2x2 lattice ("press-frame") with a translate widget pointing down (-z) on
+/// its top face and a free rotate widget (the handle, at (0.5, 0.5, 1.5), drawn as the parts
+/// library's crank with its knob on the pick circle) bound to it by a screw rule:
 /// one turn lowers the face by `pitch`; `clamp` bounds the press's variation.
 struct Fig610 {
   WidgetModel model;
