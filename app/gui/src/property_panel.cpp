@@ -420,11 +420,18 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
   }
   form_->addRow(tr("Cells"), new QLabel(QString::number(m.cellsOf(id).size())));
   form_->addRow(tr("Parent"), new QLabel(parent ? qs(m.name(*parent)) : tr("(root)")));
+  // A child lattice deforms what its root is attached to (the pipeline runs the whole tree).
+  widgets::WidgetId root = id;
+  while (const auto up = m.parentLattice(root)) root = *up;
   QStringList objects;
   for (const auto& a : scene_.attachments)
-    if (a.lattice == m.name(id))
+    if (a.lattice == m.name(root))
       for (const auto& o : a.objects) objects << qs(o);
-  form_->addRow(tr("Deforms"), new QLabel(objects.isEmpty() ? tr("(nothing)") : objects.join(", ")));
+  QString deforms = objects.isEmpty() ? tr("(nothing)") : objects.join(", ");
+  if (root != id && !objects.isEmpty()) deforms += tr(" (through %1)").arg(qs(m.name(root)));
+  auto* deformsLabel = new QLabel(deforms);
+  deformsLabel->setObjectName("deforms");
+  form_->addRow(tr("Deforms"), deformsLabel);
 }
 
 void PropertyPanel::showCell(widgets::WidgetId id) {

@@ -715,11 +715,15 @@ struct SceneView::Impl {
     for (WidgetId affine : model.widgets(widgets::WidgetType::Affine)) {
       const widgets::WidgetFrame frame = model.affineFrame(affine);
       vtkNew<vtkTransform> transform;
+      const AffineKind kind = model.affineKind(affine);
       Eigen::Matrix4d m = frame.frame.matrix();
       m.topLeftCorner<3, 3>() *= frame.size;
+      // A free rotate widget (a handle) turns its glyph by its variation about its axis, so a
+      // crank follows the pointer; an attached one already turns with its cell.
+      if (kind == AffineKind::Rotate && !model.attachedCell(affine))
+        m.topLeftCorner<3, 3>() *= Eigen::AngleAxisd(model.variation(affine), Eigen::Vector3d::UnitZ()).toRotationMatrix();
       Eigen::Matrix<double, 4, 4, Eigen::RowMajor> rowMajor = m;
       transform->SetMatrix(rowMajor.data());
-      const AffineKind kind = model.affineKind(affine);
       auto actor = addWidgetActor(cachedGlyph(model.glyph(affine), kind), affine, Role::Glyph, kindColour(kind));
       actor->SetUserTransform(transform);
       actor->GetProperty()->SetSpecular(0.4);
