@@ -692,16 +692,60 @@ void InteractionController::setSiblingPosition(WidgetId lattice, std::size_t pos
   edit("Reorder " + scene_.widgets.name(lattice), [&] { scene_.widgets.setSiblingPosition(lattice, position); });
 }
 
-void InteractionController::replaceWidgets(widgets::WidgetModel model) {
-  edit("Open widget file", [&] {
+void InteractionController::replaceWidgets(widgets::WidgetModel model, const std::optional<std::string>& attachTo) {
+  edit(attachTo ? "Open widget file on " + *attachTo : std::string("Open widget file"), [&] {
     scene_.widgets = std::move(model);
     std::erase_if(scene_.attachments, [&](const scenes::Attachment& a) {
       const auto roots = scene_.widgets.roots();
       return std::none_of(roots.begin(), roots.end(), [&](WidgetId r) { return scene_.widgets.name(r) == a.lattice; });
     });
+    if (attachTo)
+      for (WidgetId root : scene_.widgets.roots()) fitAndAttachLattice(scene_, root, *attachTo);
     selection_.clear();
     point_.reset();
     hovered_.reset();
+  });
+}
+
+void InteractionController::removeObjects(const std::vector<std::string>& objects) {
+  for (const std::string& object : objects)
+    if (scene_.findObject(object) == nullptr) throw std::invalid_argument("no object '" + object + "'");
+  if (objects.empty()) return;
+  std::string description = "Delete " + objects.front();
+  if (objects.size() > 1) description += " and " + std::to_string(objects.size() - 1) + " more";
+  edit(
+      description,
+      [&] {
+        auto gone = [&](const std::string& name) { return std::find(objects.begin(), objects.end(), name) != objects.end(); };
+        std::erase_if(scene_.objects, [&](const scenes::SceneObject& o) { return gone(o.name); });
+        for (scenes::Attachment& a : scene_.attachments) std::erase_if(a.objects, gone);
+        std::erase_if(scene_.attachments, [](const scenes::Attachment& a) { return a.objects.empty(); });
+      },
+      true);
+}
+
+void InteractionController::renameObject(const std::string& object, const std::string& name) {
+  if (scene_.findObject(object) == nullptr) throw std::invalid_argument("no object '" + object + "'");
+  if (name == object) return;
+  if (name.empty()) throw std::invalid_argument("an object needs a name");
+  if (scene_.findObject(name) != nullptr) throw std::invalid_argument("object name '" + name + "' is already used");
+  edit(
+      "Rename " + object + " to " + name,
+      [&] {
+        scene_.findObject(object)->name = name;
+        for (scenes::Attachment& a : scene_.attachments) std::replace(a.objects.begin(), a.objects.end(), object, name);
+      },
+      true);
+}
+
+void InteractionController::renameWidget(WidgetId id, const std::string& name) {
+  const std::string old = scene_.widgets.name(id);
+  if (name == old) return;
+  edit("Rename " + old + " to " + name, [&] {
+    scene_.widgets.rename(id, name);
+    // Attachments name root lattices (scenes::Attachment::lattice).
+    for (scenes::Attachment& a : scene_.attachments)
+      if (a.lattice == old) a.lattice = name;
   });
 }
 

@@ -151,8 +151,19 @@ class InteractionController {
   void setLatticeFrame(widgets::WidgetId lattice, const Eigen::Affine3d& frame);
   void setSiblingPosition(widgets::WidgetId lattice, std::size_t position);
   /// Replaces the widget model (a widget file opened): attachments of lattices that no longer
-  /// exist are dropped.
-  void replaceWidgets(widgets::WidgetModel model);
+  /// exist are dropped. With `attachTo`, each root lattice of the new model is then fitted to
+  /// that object and attached to it (as attachLattice), all in the same command.
+  void replaceWidgets(widgets::WidgetModel model, const std::optional<std::string>& attachTo = std::nullopt);
+  /// Removes objects with their links: they leave every attachment, and an attachment left with
+  /// no object goes (the lattice stays). One command. @throws std::invalid_argument for an
+  /// unknown object (nothing is removed).
+  void removeObjects(const std::vector<std::string>& objects);
+  /// Renames an object; the attachments naming it follow. @throws std::invalid_argument for an
+  /// unknown object, an empty name or one another object has.
+  void renameObject(const std::string& object, const std::string& name);
+  /// Renames a widget (WidgetModel::rename): bindings hold ids and stay; the attachments of a
+  /// root lattice follow its new name. @throws what the model throws (a used or empty name).
+  void renameWidget(widgets::WidgetId id, const std::string& name);
 
   /// Replaces the deformer's state by one computed elsewhere for the same scene (an embedding
   /// done in a worker thread on a copy), so that the next update has nothing to re-embed.
