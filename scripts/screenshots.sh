@@ -27,6 +27,11 @@ else
 fi
 
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
+# A fresh settings and data folder: the pictures do not depend on the user's saved window
+# layout, and the runs add nothing to the user's recent files.
+user_folders="$(mktemp -d)"
+trap 'rm -rf "$user_folders"' EXIT
+export XDG_CONFIG_HOME="$user_folders/config" XDG_DATA_HOME="$user_folders/data"
 run=()
 if [ -z "${DISPLAY:-}" ]; then
   export QT_QPA_PLATFORM=xcb

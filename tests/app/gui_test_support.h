@@ -3,10 +3,18 @@
 // Real Qt events for the GUI tests (Xvfb): mouse events sent to the application's 3D view,
 // world points mapped to the view's pixels, and a main() that sets VTK's surface format first.
 
+#include <QAction>
 #include <QApplication>
+#include <QFile>
 #include <QMouseEvent>
 #include <QSurfaceFormat>
+#include <QTemporaryDir>
 #include <QTest>
+#include <QTimer>
+#include <QTreeWidget>
+
+#include <deque>
+#include <functional>
 
 #include <cmath>
 #include <memory>
@@ -54,6 +62,46 @@ inline void dragWorld(MainWindow& w, const Eigen::Vector3d& from, const Eigen::V
   dragPixels(w, toWidget(w, from), toWidget(w, to));
 }
 
+/// Drags a translate widget's arrow `distance` world units along its axis.
+inline void dragArrow(MainWindow& w, widgets::WidgetId affine, double distance) {
+  const widgets::WidgetFrame f = w.scene().widgets.affineFrame(affine);
+  const Eigen::Vector3d x = f.frame.linear().col(0);
+  const Eigen::Vector3d grab = f.frame.translation() + 0.6 * f.size * x;
+  dragWorld(w, grab, grab + distance * x);
+}
+
+/// A key pressed (and released) on the 3D view of the active window, as a user types it:
+/// window shortcuts (menu actions) get it first. The window is activated first: Qt gives
+/// window shortcuts only to the active window.
+inline void pressKey(MainWindow& w, Qt::Key key, Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
+  if (QApplication::activeWindow() != &w) {
+    w.activateWindow();
+    if (!QTest::qWaitForWindowActive(&w)) qWarning("the window did not become active");
+  }
+  w.view()->setFocus();
+  QTest::keyClick(w.view(), key, modifiers);
+}
+
+/// The window's action of that object name (fatal if there is none).
+inline QAction* action(MainWindow& w, const char* name) {
+  auto* a = w.findChild<QAction*>(name);
+  if (a == nullptr) qFatal("no action %s", name);
+  return a;
+}
+
+/// Clicks the outliner row named `text` (with modifiers, e.g. Ctrl to extend the selection);
+/// for a lattice, its own row, not the one under each object it deforms.
+inline void clickRow(MainWindow& w, const QString& text, Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
+  QTreeWidget* tree = w.outliner();
+  for (QTreeWidgetItem* item : tree->findItems(text, Qt::MatchExactly | Qt::MatchRecursive)) {
+    if (item->text(1) == QObject::tr("deformed by")) continue;
+    tree->scrollToItem(item);
+    QTest::mouseClick(tree->viewport(), Qt::LeftButton, modifiers, tree->visualItemRect(item).center());
+    return;
+  }
+  QFAIL(qPrintable("no outliner row " + text));
+}
+
 /// A shown main window of `size` (if given), exposed, with a first frame drawn (which sizes
 /// VTK's window); null if the window system never exposed it.
 inline std::unique_ptr<MainWindow> openWindow(QSize size = QSize()) {
@@ -65,9 +113,53 @@ inline std::unique_ptr<MainWindow> openWindow(QSize size = QSize()) {
   return window;
 }
 
-/// main() of a GUI test: VTK's surface format before the QApplication, then the Qt Test run.
+/// The user's settings and data folders for a test run, in a temporary folder (XDG_CONFIG_HOME
+/// and XDG_DATA_HOME, set before the QApplication reads them): a test never reads or changes the
+/// user's window layout, recent files or recovery files. A process the test starts inherits them.
+class TemporaryUserFolders {
+ public:
+  TemporaryUserFolders() {
+    if (qEnvironmentVariableIsSet("FFDKIT_TEST_USER_FOLDERS")) return;  // started by a test: its folders
+    qputenv("XDG_CONFIG_HOME", QFile::encodeName(dir_.filePath("config")));
+    qputenv("XDG_DATA_HOME", QFile::encodeName(dir_.filePath("data")));
+    qputenv("FFDKIT_TEST_USER_FOLDERS", QFile::encodeName(dir_.path()));
+  }
+
+ private:
+  QTemporaryDir dir_;
+};
+
+/// Answers the modal dialogs that the next actions open, in order: each handler gets the
+/// active modal widget (a QMessageBox, a QFileDialog, ...) and answers it, with real events
+/// where it clicks. `answered()` says how many were.
+class ModalAnswers : public QObject {
+ public:
+  using Handler = std::function<void(QWidget*)>;
+  explicit ModalAnswers(std::vector<Handler> handlers) : handlers_(handlers.begin(), handlers.end()) {
+    connect(&poll_, &QTimer::timeout, this, [this] {
+      QWidget* modal = QApplication::activeModalWidget();
+      if (modal == nullptr || modal->property("ffdkitAnswered").toBool() || handlers_.empty()) return;
+      modal->setProperty("ffdkitAnswered", true);
+      Handler handler = std::move(handlers_.front());
+      handlers_.pop_front();
+      ++answered_;
+      handler(modal);
+    });
+    poll_.start(20);
+  }
+  int answered() const { return answered_; }
+
+ private:
+  QTimer poll_;
+  std::deque<Handler> handlers_;
+  int answered_ = 0;
+};
+
+/// main() of a GUI test: VTK's surface format and temporary user folders before the
+/// QApplication, then the Qt Test run.
 template <class Test>
 int runGuiTest(int argc, char** argv) {
+  static TemporaryUserFolders folders;
   QSurfaceFormat::setDefaultFormat(VtkViewWidget::defaultFormat());
   QApplication app(argc, argv);
   Test test;

@@ -8,6 +8,7 @@
 #include <QApplication>
 #include <QDialog>
 #include <QFileDialog>
+#include <QMessageBox>
 #include <QMimeData>
 #include <QMouseEvent>
 #include <QSpinBox>
@@ -33,6 +34,7 @@
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/widget_file.h"
+#include "gui_test_support.h"
 
 using namespace ffdkit;
 using app::MainWindow;
@@ -429,7 +431,7 @@ class MainWindowTest : public QObject {
     QVERIFY(basisU != nullptr);
     QCOMPARE(basisU->currentText(), QString("Bernstein"));
     basisU->setCurrentIndex(basisU->findText("B-spline deg 3"));
-    QVERIFY2(w.statusBar()->currentMessage().contains("degree"), qPrintable(w.statusBar()->currentMessage()));
+    QVERIFY2(w.statusMessage().contains("degree"), qPrintable(w.statusMessage()));
     QCOMPARE(panelControl<QComboBox>(w, "basisU")->currentText(), QString("Bernstein"));
     QCOMPARE(m.latticeSettings(lattice).basis[0].kind, ffd::AxisBasis::Kind::Bernstein);
     QCOMPARE(action(w, "actionUndo")->text(), undoText);
@@ -438,9 +440,9 @@ class MainWindowTest : public QObject {
     panelControl<QComboBox>(w, "basisU")->setCurrentIndex(panelControl<QComboBox>(w, "basisU")->findText("B-spline deg 2"));
     QCOMPARE(m.latticeSettings(lattice).basis[0].kind, ffd::AxisBasis::Kind::BSpline);
     const Eigen::MatrixX3d control = m.controlPoints(lattice);
-    w.statusBar()->clearMessage();
+    QCOMPARE(w.statusMessage(), QString());  // the refusal went with the next edit
     panelControl<QSpinBox>(w, "countU")->setValue(2);
-    QVERIFY2(w.statusBar()->currentMessage().contains("along u"), qPrintable(w.statusBar()->currentMessage()));
+    QVERIFY2(w.statusMessage().contains("along u"), qPrintable(w.statusMessage()));
     QCOMPARE(panelControl<QSpinBox>(w, "countU")->value(), 3);
     QCOMPARE(m.counts(lattice), Eigen::Vector3i(3, 3, 3));
     QCOMPARE(m.controlPoints(lattice), control);
@@ -602,7 +604,19 @@ class MainWindowTest : public QObject {
     drop(json);
     QCOMPARE(w.scene().objects.size(), std::size_t(1));
     QCOMPARE(w.scene().widgets.counts(w.scene().widgets.find("dropped")), Eigen::Vector3i(2, 3, 4));
-    drop(FFDKIT_SOURCE_DIR "/scenes/examples/vise/scene.json");
+    // The widget file's lattice went onto the only object.
+    QCOMPARE(w.scene().attachments.size(), std::size_t(1));
+    QCOMPARE(w.scene().attachments.front().objects, std::vector<std::string>{"triangle"});
+    {
+      // A scene replaces the modified document: asked first (Discard).
+      ffdkit::app::testing::ModalAnswers discard({[](QWidget* modal) {
+        auto* box = qobject_cast<QMessageBox*>(modal);
+        QVERIFY(box != nullptr);
+        QTest::mouseClick(box->button(QMessageBox::Discard), Qt::LeftButton);
+      }});
+      drop(FFDKIT_SOURCE_DIR "/scenes/examples/vise/scene.json");
+      QCOMPARE(discard.answered(), 1);
+    }
     QVERIFY(w.scene().widgets.widgets(widgets::WidgetType::Affine).size() >= 2);
   }
 
@@ -784,9 +798,9 @@ class MainWindowTest : public QObject {
 };
 
 int main(int argc, char** argv) {
+  static ffdkit::app::testing::TemporaryUserFolders folders;  // recent files and layout: a temporary folder
   QSurfaceFormat::setDefaultFormat(ffdkit::app::VtkViewWidget::defaultFormat());
   QApplication app(argc, argv);
-  QApplication::setOrganizationName("ffdkit-tests");  // recent files go to a test-only settings file
   MainWindowTest test;
   return QTest::qExec(&test, argc, argv);
 }

@@ -86,9 +86,15 @@ class TransformerGuiTest : public QObject {
     const Eigen::MatrixX3d points = m.controlPoints(s.lattice);
     const Eigen::MatrixX3d sphere = w.deformer().points(s.sphere);
     const std::size_t position = w.commands().position();
-    dragWorld(w, shaft, shaft + 0.2 * z);
-    QVERIFY2(w.statusBar()->currentMessage().startsWith("move z 0.19") || w.statusBar()->currentMessage().startsWith("move z 0.20"),
-             qPrintable(w.statusBar()->currentMessage()));
+    const QPoint from = toWidget(w, shaft), to = toWidget(w, shaft + 0.2 * z);
+    sendMouse(w.view(), QEvent::MouseButtonPress, from, Qt::LeftButton, Qt::LeftButton);
+    for (int step = 1; step <= 10; ++step)
+      sendMouse(w.view(), QEvent::MouseMove, from + (to - from) * step / 10, Qt::NoButton, Qt::LeftButton);
+    // While dragging, the status line says what the drag does so far; the release ends that.
+    QVERIFY2(w.statusMessage().startsWith("move z 0.19") || w.statusMessage().startsWith("move z 0.20"),
+             qPrintable(w.statusMessage()));
+    sendMouse(w.view(), QEvent::MouseButtonRelease, to, Qt::LeftButton, Qt::NoButton);
+    QCOMPARE(w.statusMessage(), QString());
     f = m.affineFrame(s.widget);
     QVERIFY2((f.frame.translation() - (o + 0.2 * z)).norm() < 0.01,
              qPrintable(QString("moved by %1").arg((f.frame.translation() - o).dot(z))));

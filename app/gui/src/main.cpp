@@ -58,6 +58,8 @@ int main(int argc, char** argv) {
       const int rc = QApplication::exec();
       return status != 0 ? status : rc;
     }
+    // After a crash: offer the document the last session had not saved (autosave).
+    QTimer::singleShot(0, &window, [&window] { window.offerRecovery(); });
     return QApplication::exec();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ffdkit: %s\n", e.what());

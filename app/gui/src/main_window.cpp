@@ -22,6 +22,8 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
+#include <QInputDialog>
+#include <QKeyEvent>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
@@ -29,6 +31,8 @@
 #include <QMouseEvent>
 #include <QEventLoop>
 #include <QProgressDialog>
+#include <QPushButton>
+#include <QDir>
 #include <QPointer>
 #include <QThread>
 #include <QTimer>
@@ -47,11 +51,14 @@
 #include "ffdkit/scenes/widget_file.h"
 #include "outliner.h"
 #include "property_panel.h"
+#include "ffdkit/app/recovery_file.h"
+#include "status_line.h"
 
 namespace ffdkit::app {
 namespace {
 
 constexpr int kMaxRecent = 8;
+constexpr int kDefaultAutosaveMinutes = 2;
 constexpr double kPickPixels = 7.0;  // pick tolerance on screen
 
 QString qs(const std::string& s) { return QString::fromStdString(s); }
@@ -72,6 +79,11 @@ bool isWidgetFile(const std::filesystem::path& path) {
   const auto widgetsAt = head.find("\"ffdkit-widgets\"");
   const auto sceneAt = head.find("\"ffdkit-scene\"");
   return widgetsAt != std::string::npos && (sceneAt == std::string::npos || widgetsAt < sceneAt);
+}
+
+// What openAny does with `path`: a scene replaces the document (so first ask to save it).
+bool opensAsScene(const std::filesystem::path& path) {
+  return !isMeshFile(path) && (std::filesystem::is_directory(path) || !isWidgetFile(path));
 }
 
 }  // namespace
@@ -96,7 +108,14 @@ struct MainWindow::Impl {
   Outliner* outliner = nullptr;
   PropertyPanel* properties = nullptr;
   QLabel* deformStatus = nullptr;
+  StatusLine* status = nullptr;
   QMenu* recentMenu = nullptr;
+  RecoveryFile recovery;
+  QTimer autosaveTimer;
+  /// A document restored from a recovery file differs from its file with nothing to undo.
+  bool restoredUnsaved = false;
+  /// The command-stack position last autosaved (an autosave per change, not per timer tick).
+  std::optional<std::size_t> autosavedAt;
   QAction* undo = nullptr;
   QAction* redo = nullptr;
   QAction* zebra = nullptr;
@@ -109,6 +128,27 @@ struct MainWindow::Impl {
   bool pressOnEmpty = false;
   QAction* directManipulation = nullptr;  ///< checked: a drag on an object moves its point
   bool showingScene = false;
+
+  bool modified() const { return commands.isDirty() || restoredUnsaved; }
+
+  // A refusal or error as the user reads it: widgets by name, the whole text (it wraps).
+  void sayError(const std::string& what) { status->say(qs(readableMessage(scene.widgets, what))); }
+
+  // The open document to the recovery file when it has unsaved changes; none when it has not.
+  void autosave() {
+    if (!modified()) {
+      recovery.remove();
+      autosavedAt.reset();
+      return;
+    }
+    if (autosavedAt == commands.position() && !restoredUnsaved) return;
+    try {
+      recovery.write(scene, sceneView->camera(), scenePath);
+      autosavedAt = commands.position();
+    } catch (const std::exception& e) {
+      status->say(QObject::tr("Autosave failed: %1").arg(qs(e.what())));
+    }
+  }
 
   // The objects the View menu's looks apply to: the selected ones, else all.
   std::vector<std::string> lookTargets() const {
@@ -169,7 +209,7 @@ struct MainWindow::Impl {
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
-  setWindowTitle("ffdkit[*]");
+  setWindowTitle(tr("untitled[*] - ffdkit"));
   setAcceptDrops(true);
   d.view = new VtkViewWidget(this);
   d.view->setObjectName("view");
@@ -193,7 +233,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   propertiesDock->setObjectName("propertiesDock");
   propertiesDock->setWidget(scroll);
   addDockWidget(Qt::RightDockWidgetArea, propertiesDock);
-  connect(d.properties, &PropertyPanel::error, this, [this](const QString& m) { statusBar()->showMessage(m, 8000); });
+  connect(d.properties, &PropertyPanel::error, this, [this](const QString& m) { impl_->sayError(m.toStdString()); });
 
   auto refreshPanel = [this] {
     impl_->properties->showSelection(impl_->entries());
@@ -210,17 +250,20 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
       if (e.kind == OutlinerEntry::Kind::Binding) s.selectedBinding = e.binding;
     }
     s.controller->setSelection(widgets);
+    s.status->clearStale();
     refreshPanel();
   });
   connect(d.outliner, &Outliner::siblingMoveRequested, this, [this](widgets::WidgetId lattice, int position) {
     try {
       impl_->controller->setSiblingPosition(lattice, static_cast<std::size_t>(position));
     } catch (const std::exception& e) {
-      statusBar()->showMessage(qs(e.what()), 8000);
+      impl_->sayError(e.what());
     }
   });
 
   // Model -> view.
+  d.status = new StatusLine;
+  statusBar()->addWidget(d.status, 1);
   d.deformStatus = new QLabel;
   d.deformStatus->setObjectName("deformStatus");
   statusBar()->addPermanentWidget(d.deformStatus);
@@ -236,7 +279,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
       const QString amount = group == 0   ? QString::number(*value, 'f', 3)
                              : group == 1 ? QString("%1°").arg(*value * 180.0 / std::numbers::pi, 0, 'f', 1)
                                           : QString("x%1").arg(*value, 0, 'f', 3);
-      statusBar()->showMessage(QString("%1 %2").arg(transformerHandleName(handle), amount));
+      s.status->say(QString("%1 %2").arg(transformerHandleName(handle), amount));
     }
     const auto& stats = s.deformer.lastStats();
     // An update with nothing to do (a hover, a selection) keeps the last real deform time.
@@ -252,9 +295,18 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     Impl& s = *impl_;
     s.undo->setEnabled(s.commands.canUndo());
     s.redo->setEnabled(s.commands.canRedo());
-    s.undo->setText(s.commands.canUndo() ? tr("&Undo %1").arg(qs(s.commands.undoDescription())) : tr("&Undo"));
-    s.redo->setText(s.commands.canRedo() ? tr("&Redo %1").arg(qs(s.commands.redoDescription())) : tr("&Redo"));
-    setWindowModified(s.commands.isDirty());
+    // The menu names the step; the toolbar button keeps its short text (a fixed width) and
+    // names the step in its tooltip.
+    const QString undoStep = qs(s.commands.undoDescription()), redoStep = qs(s.commands.redoDescription());
+    s.undo->setText(s.commands.canUndo() ? tr("&Undo %1").arg(undoStep) : tr("&Undo"));
+    s.redo->setText(s.commands.canRedo() ? tr("&Redo %1").arg(redoStep) : tr("&Redo"));
+    s.undo->setIconText(tr("Undo"));
+    s.redo->setIconText(tr("Redo"));
+    s.undo->setToolTip(s.commands.canUndo() ? tr("Undo %1 (Ctrl+Z)").arg(undoStep) : tr("Nothing to undo"));
+    s.redo->setToolTip(s.commands.canRedo() ? tr("Redo %1 (Ctrl+Shift+Z)").arg(redoStep) : tr("Nothing to redo"));
+    s.status->clearStale();  // what was said was about the document before this change
+    setWindowModified(s.modified());
+    s.autosave();
     if (s.selectedBinding && !s.scene.widgets.bindings().empty()) {
       const auto all = s.scene.widgets.bindings();
       if (std::find(all.begin(), all.end(), *s.selectedBinding) == all.end()) s.selectedBinding.reset();
@@ -271,7 +323,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
       try {
         slot();
       } catch (const std::exception& e) {
-        statusBar()->showMessage(qs(e.what()), 8000);
+        impl_->sayError(e.what());
         QApplication::beep();
       }
     });
@@ -296,20 +348,24 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   const QString meshFilter = tr("Meshes (*.obj *.ply *.stl *.vtp *.vtk *.gltf *.glb *.xyz);;All files (*)");
 
   QMenu* file = menuBar()->addMenu(tr("&File"));
-  fileAction(file, tr("&Open Scene..."), "actionOpenScene", false, sceneFilter,
-             [this](const std::filesystem::path& p) { openScene(p); })
-      ->setShortcut(QKeySequence::Open);
-  d.recentMenu = file->addMenu(tr("Open &Recent"));
-  action(file, tr("&Save Scene"), "actionSaveScene", [this] {
-    if (impl_->scenePath.empty()) {
-      const QString path = QFileDialog::getSaveFileName(this, tr("Save Scene"), QString(), tr("ffdkit scenes (*.json)"));
-      if (!path.isEmpty()) saveScene(path.toStdString());
-    } else {
-      saveScene(impl_->scenePath);
+  action(file, tr("&New Scene"), "actionNewScene", [this] {
+    if (maybeSave()) newScene();
+  })->setShortcut(QKeySequence::New);
+  action(file, tr("&Open Scene..."), "actionOpenScene", [this, sceneFilter] {
+    if (!maybeSave()) return;
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open Scene"), QString(), sceneFilter);
+    if (path.isEmpty()) return;
+    try {
+      openScene(path.toStdString());
+    } catch (const std::exception& e) {
+      QMessageBox::critical(this, tr("Open Scene"), qs(e.what()));
     }
-  })->setShortcut(QKeySequence::Save);
-  fileAction(file, tr("Save Scene &As..."), "actionSaveSceneAs", true, sceneFilter,
-             [this](const std::filesystem::path& p) { saveScene(p); });
+  })->setShortcut(QKeySequence::Open);
+  d.recentMenu = file->addMenu(tr("Open &Recent"));
+  action(file, tr("&Save Scene"), "actionSaveScene", [this] { saveInteractively(false); })
+      ->setShortcut(QKeySequence::Save);
+  action(file, tr("Save Scene &As..."), "actionSaveSceneAs", [this] { saveInteractively(true); })
+      ->setShortcut(QKeySequence(tr("Ctrl+Shift+S")));
   file->addSeparator();
   fileAction(file, tr("Open &Widget File..."), "actionOpenWidgetFile", false, widgetFilter,
              [this](const std::filesystem::path& p) { openWidgetFile(p); });
@@ -333,13 +389,38 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   edit->addSeparator();
   action(edit, tr("&Delete Widget"), "actionRemove", [this] {
     const auto sel = impl_->controller->selection();
-    if (impl_->selectedBinding) {
+    if (!impl_->selectedObjects.empty() && sel.empty() && !impl_->selectedBinding) {
+      deleteSelectedObjects();  // the Delete key deletes whatever is selected
+    } else if (impl_->selectedBinding) {
       impl_->controller->unbind(*impl_->selectedBinding);
       impl_->selectedBinding.reset();
     } else if (!sel.empty()) {
       impl_->controller->removeWidget(sel.front());
     }
   })->setShortcut(QKeySequence::Delete);
+  action(edit, tr("Delete &Object"), "actionDeleteObject", [this] { deleteSelectedObjects(); });
+  action(edit, tr("Re&name..."), "actionRename", [this] { renameSelection(); })->setShortcut(QKeySequence(Qt::Key_F2));
+  edit->addSeparator();
+  action(edit, tr("&Preferences..."), "actionPreferences", [this] {
+    QDialog dialog(this);
+    dialog.setObjectName("preferencesDialog");
+    dialog.setWindowTitle(tr("Preferences"));
+    auto* form = new QFormLayout(&dialog);
+    auto* minutes = new QSpinBox;
+    minutes->setObjectName("autosaveMinutes");
+    minutes->setRange(0, 120);
+    minutes->setSpecialValueText(tr("only on changes"));
+    minutes->setSuffix(tr(" min"));
+    minutes->setValue(QSettings().value("autosaveMinutes", kDefaultAutosaveMinutes).toInt());
+    form->addRow(tr("Autosave for recovery every"), minutes);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    form->addRow(buttons);
+    if (dialog.exec() != QDialog::Accepted) return;
+    QSettings().setValue("autosaveMinutes", minutes->value());
+    startAutosaveTimer();
+  });
 
   // The thesis operations (seed 001 §6.4).
   QMenu* widgetsMenu = menuBar()->addMenu(tr("&Widgets"));
@@ -378,7 +459,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     }
     options.cylindrical = cylindrical->isChecked();
     impl_->controller->newLattice(options);
-    statusBar()->showMessage(tr("New lattice: click one of its points, then add a widget"), 5000);
+    impl_->status->say(tr("New lattice: click one of its points, then add a widget"));
   });
   widgetsMenu->addSeparator();
   const std::pair<const char*, widgets::AffineKind> kinds[] = {{"actionAddTranslate", widgets::AffineKind::Translate},
@@ -425,17 +506,17 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   QAction* attach = action(widgetsMenu, tr("&Attach Lattice to Object"), "actionAttach",
                            [this, selectedLattice, selectedObject] {
                              if (!attachLattice(selectedLattice(), selectedObject()))
-                               statusBar()->showMessage(tr("Attach cancelled"), 5000);
+                               impl_->status->say(tr("Attach cancelled"), 5000);
                            });
   action(widgetsMenu, tr("&Detach Lattice from Object"), "actionDetach", [this, selectedLattice, selectedObject] {
     impl_->controller->detachLattice(selectedLattice(), selectedObject());
   });
   // Direct manipulation (spec §10): a mode, because a drag on an object otherwise orbits.
   d.directManipulation = action(widgetsMenu, tr("&Direct Manipulation"), "actionDirectManipulation", [this] {
-    statusBar()->showMessage(impl_->directManipulation->isChecked()
-                                 ? tr("Direct manipulation: drag a point of an object; its lattice follows")
-                                 : tr("Direct manipulation off"),
-                             5000);
+    impl_->status->say(impl_->directManipulation->isChecked()
+                           ? tr("Direct manipulation: drag a point of an object; its lattice follows")
+                           : tr("Direct manipulation off"),
+                       5000);
   });
   d.directManipulation->setCheckable(true);
   d.directManipulation->setShortcut(QKeySequence(Qt::Key_D));
@@ -515,35 +596,25 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   toolbar->addAction(attach);
   toolbar->addAction(d.directManipulation);
 
-  QSettings settings;
-  const QStringList recent = settings.value("recentFiles").toStringList();
-  for (const QString& path : recent.mid(0, kMaxRecent)) {
-    d.recentMenu->addAction(path, this, [this, path] {
-      try {
-        openAny(path.toStdString());
-      } catch (const std::exception& e) {
-        QMessageBox::critical(this, tr("Cannot open"), qs(e.what()));
-      }
-    });
-  }
+  rebuildRecentMenu();
 
   setScene({});
-  statusBar()->showMessage(tr("Ready"));
   resize(1280, 800);
-  resizeDocks({outlinerDock, propertiesDock}, {280, 300}, Qt::Horizontal);
+  resizeDocks({outlinerDock, propertiesDock}, {280, 340}, Qt::Horizontal);
+  // The layout the user left (dock sizes and places, toolbar, window geometry).
+  QSettings settings;
+  restoreGeometry(settings.value("windowGeometry").toByteArray());
+  restoreState(settings.value("windowState").toByteArray());
+
+  connect(&d.autosaveTimer, &QTimer::timeout, this, [this] { impl_->autosave(); });
+  startAutosaveTimer();
 }
 
 MainWindow::~MainWindow() = default;
 
 void MainWindow::openScene(const std::filesystem::path& path) {
   setScene(scenes::readScene(path));
-  impl_->scenePath = std::filesystem::is_directory(path) ? path / "scene.json" : path;
-  setWindowTitle(QString("ffdkit - %1[*]").arg(qs(path.string())));
-  QSettings settings;
-  QStringList recent = settings.value("recentFiles").toStringList();
-  recent.removeAll(qs(path.string()));
-  recent.prepend(qs(path.string()));
-  settings.setValue("recentFiles", recent.mid(0, kMaxRecent));
+  setDocumentPath(std::filesystem::is_directory(path) ? path / "scene.json" : path);
 }
 
 void MainWindow::saveScene(const std::filesystem::path& path) {
@@ -551,20 +622,190 @@ void MainWindow::saveScene(const std::filesystem::path& path) {
   copy.camera = impl_->sceneView->camera();
   copy.widgetFile.reset();
   scenes::writeScene(path, copy);
-  impl_->scenePath = path;
   impl_->commands.markClean();
-  setWindowModified(false);
-  statusBar()->showMessage(tr("Saved %1").arg(qs(path.string())), 5000);
+  impl_->restoredUnsaved = false;
+  setDocumentPath(path);
+  impl_->autosave();  // nothing left to recover
+  impl_->status->say(tr("Saved %1").arg(qs(path.string())), 5000);
+}
+
+void MainWindow::newScene() {
+  setScene({});
+  setDocumentPath({});
+}
+
+bool MainWindow::isModified() const { return impl_->modified(); }
+std::filesystem::path MainWindow::documentPath() const { return impl_->scenePath; }
+QString MainWindow::statusMessage() const { return impl_->status->text(); }
+
+void MainWindow::setDocumentPath(const std::filesystem::path& path) {
+  Impl& d = *impl_;
+  d.scenePath = path;
+  // The file's name; a sample scene's "scene.json" by its folder.
+  QString name = tr("untitled");
+  if (!path.empty()) {
+    const QFileInfo info(qs(path.string()));
+    name = info.fileName() == "scene.json" ? info.dir().dirName() + "/" + info.fileName() : info.fileName();
+  }
+  setWindowTitle(tr("%1[*] - ffdkit").arg(name));
+  setWindowModified(d.modified());
+  if (path.empty()) return;
+  QSettings settings;
+  QStringList recent = settings.value("recentFiles").toStringList();
+  const QString entry = qs(path.string());
+  recent.removeAll(entry);
+  recent.prepend(entry);
+  settings.setValue("recentFiles", recent.mid(0, kMaxRecent));
+  rebuildRecentMenu();
+}
+
+void MainWindow::rebuildRecentMenu() {
+  Impl& d = *impl_;
+  d.recentMenu->clear();
+  const QStringList recent = QSettings().value("recentFiles").toStringList();
+  for (const QString& path : recent.mid(0, kMaxRecent)) {
+    d.recentMenu->addAction(path, this, [this, path] {
+      const std::filesystem::path file = path.toStdString();
+      if (opensAsScene(file) && !maybeSave()) return;
+      try {
+        openAny(file);
+      } catch (const std::exception& e) {
+        QMessageBox::critical(this, tr("Cannot open"), qs(e.what()));
+      }
+    });
+  }
+  d.recentMenu->setEnabled(!recent.isEmpty());
+}
+
+bool MainWindow::saveInteractively(bool askForPath) {
+  std::filesystem::path path = impl_->scenePath;
+  if (askForPath || path.empty()) {
+    const QString chosen =
+        QFileDialog::getSaveFileName(this, tr("Save Scene As"), qs(path.string()), tr("ffdkit scenes (*.json)"));
+    if (chosen.isEmpty()) return false;
+    path = chosen.toStdString();
+  }
+  try {
+    saveScene(path);
+    return true;
+  } catch (const std::exception& e) {
+    QMessageBox::critical(this, tr("Save Scene"), qs(e.what()));
+    return false;
+  }
+}
+
+bool MainWindow::maybeSave() {
+  if (!impl_->modified()) return true;
+  QMessageBox prompt(QMessageBox::Warning, tr("Unsaved changes"),
+                     tr("%1 has unsaved changes.").arg(windowTitle().section("[*]", 0, 0)),
+                     QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, this);
+  prompt.setObjectName("unsavedChangesPrompt");
+  prompt.setInformativeText(tr("Save them before going on?"));
+  prompt.setDefaultButton(QMessageBox::Save);
+  switch (prompt.exec()) {
+    case QMessageBox::Save: return saveInteractively(false);
+    case QMessageBox::Discard: return true;
+    default: return false;
+  }
+}
+
+void MainWindow::startAutosaveTimer() {
+  const int minutes = QSettings().value("autosaveMinutes", kDefaultAutosaveMinutes).toInt();
+  if (minutes > 0) {
+    impl_->autosaveTimer.start(minutes * 60 * 1000);
+  } else {
+    impl_->autosaveTimer.stop();  // still written on every change
+  }
+}
+
+bool MainWindow::offerRecovery() {
+  const std::vector<RecoveredDocument> found = RecoveryFile::orphans();
+  if (found.empty()) return false;
+  const RecoveredDocument& newest = found.front();
+  const QString what = newest.origin.empty() ? tr("an untitled scene") : qs(newest.origin.string());
+  QMessageBox prompt(QMessageBox::Question, tr("Recover unsaved changes"),
+                     tr("ffdkit did not close properly. Restore the unsaved changes of %1?").arg(what),
+                     QMessageBox::NoButton, this);
+  prompt.setObjectName("recoveryPrompt");
+  QPushButton* restore = prompt.addButton(tr("Restore"), QMessageBox::AcceptRole);
+  prompt.addButton(tr("Discard"), QMessageBox::DestructiveRole);
+  prompt.setDefaultButton(restore);
+  prompt.exec();
+  bool restored = false;
+  if (prompt.clickedButton() == restore) {
+    try {
+      setScene(scenes::readScene(newest.scene));
+      impl_->restoredUnsaved = true;
+      setDocumentPath(newest.origin);
+      impl_->autosave();  // ours now: the next crash keeps it
+      impl_->status->say(tr("Restored the unsaved changes of %1").arg(what));
+      restored = true;
+    } catch (const std::exception& e) {
+      QMessageBox::critical(this, tr("Recover unsaved changes"), qs(e.what()));
+      return false;  // the file stays for another try
+    }
+  }
+  for (const RecoveredDocument& document : found) RecoveryFile::discard(document);
+  return restored;
+}
+
+void MainWindow::deleteSelectedObjects() {
+  Impl& d = *impl_;
+  if (d.selectedObjects.empty()) throw std::invalid_argument("select an object to delete (in the outliner)");
+  d.controller->removeObjects(d.selectedObjects);
+  d.selectedObjects.clear();
+  d.outliner->select(d.entries());
+  d.properties->showSelection(d.entries());
+}
+
+void MainWindow::renameSelection() {
+  Impl& d = *impl_;
+  const auto widgets = d.controller->selection();
+  const bool object = d.selectedObjects.size() == 1 && widgets.empty();
+  if (!object && widgets.size() != 1)
+    throw std::invalid_argument("select one object, lattice or widget to rename");
+  const std::string old = object ? d.selectedObjects.front() : d.scene.widgets.name(widgets.front());
+  QInputDialog dialog(this);
+  dialog.setObjectName("renameDialog");
+  dialog.setWindowTitle(tr("Rename"));
+  dialog.setLabelText(tr("New name of '%1':").arg(qs(old)));
+  dialog.setTextValue(qs(old));
+  if (dialog.exec() != QDialog::Accepted) return;
+  const std::string name = dialog.textValue().trimmed().toStdString();
+  if (object) {
+    d.controller->renameObject(old, name);
+    d.selectedObjects = {name};
+  } else {
+    d.controller->renameWidget(widgets.front(), name);
+  }
+  d.outliner->select(d.entries());
+  d.properties->showSelection(d.entries());
 }
 
 void MainWindow::openWidgetFile(const std::filesystem::path& path) {
-  impl_->controller->replaceWidgets(scenes::readWidgetFile(path));
-  statusBar()->showMessage(tr("Opened widget file %1").arg(qs(path.string())), 5000);
+  Impl& d = *impl_;
+  widgets::WidgetModel model = scenes::readWidgetFile(path);
+  // Its lattices go onto the selected object (or the only one), fitted as Attach fits them.
+  std::optional<std::string> target;
+  if (!d.selectedObjects.empty()) {
+    target = d.selectedObjects.front();
+  } else if (d.scene.objects.size() == 1) {
+    target = d.scene.objects.front().name;
+  }
+  if (model.roots().empty()) target.reset();
+  d.controller->replaceWidgets(std::move(model), target);
+  const QString file = QFileInfo(qs(path.string())).fileName();
+  if (target) {
+    d.status->say(tr("Opened widget file %1: its lattices deform '%2'").arg(file, qs(*target)));
+  } else {
+    d.status->say(tr("Opened widget file %1. Nothing is attached: select an object and a lattice, then "
+                     "Widgets > Attach Lattice to Object").arg(file));
+  }
 }
 
 void MainWindow::saveWidgetFile(const std::filesystem::path& path) {
   scenes::writeWidgetFile(path, impl_->scene.widgets);
-  statusBar()->showMessage(tr("Saved widget file %1").arg(qs(path.string())), 5000);
+  impl_->status->say(tr("Saved widget file %1").arg(qs(path.string())), 5000);
 }
 
 void MainWindow::importMesh(const std::filesystem::path& path) {
@@ -584,7 +825,7 @@ void MainWindow::exportMesh(const std::filesystem::path& path) {
   scenes::MeshData mesh = impl_->scene.findObject(name)->mesh;
   mesh.points = impl_->deformer.points(name);
   scenes::writeMesh(path, mesh);
-  statusBar()->showMessage(tr("Exported %1 to %2").arg(qs(name), qs(path.string())), 5000);
+  impl_->status->say(tr("Exported %1 to %2").arg(qs(name), qs(path.string())), 5000);
 }
 
 namespace {
@@ -695,9 +936,9 @@ void MainWindow::setScene(scenes::Scene scene) {
   d.outliner->rebuild(d.scene);
   d.properties->showSelection({});
   d.syncLookActions();
-  statusBar()->showMessage(tr("%1 objects, %2 lattices")
-                               .arg(d.scene.objects.size())
-                               .arg(d.scene.widgets.widgets(widgets::WidgetType::Lattice).size()));
+  d.status->say(tr("%1 objects, %2 lattices")
+                    .arg(d.scene.objects.size())
+                    .arg(d.scene.widgets.widgets(widgets::WidgetType::Lattice).size()));
   d.controller->refresh();
   d.view->requestRender();
 }
@@ -764,15 +1005,16 @@ bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
         break;
       }
       case QEvent::KeyPress:
-        if (static_cast<QKeyEvent*>(event)->key() == Qt::Key_Escape && d.controller->dragging()) {
-          d.controller->cancel();
-          return true;
-        }
-        break;
+        if (static_cast<QKeyEvent*>(event)->key() == Qt::Key_Escape && d.controller->dragging()) d.controller->cancel();
+        // No key reaches VTK's interactor style: its defaults (w wireframe, 3 stereo, e / q
+        // exit, r reset, f fly to, p pick, j / t / a / c modes, ...) are not ffdkit's; ffdkit's
+        // keys are action shortcuts, handled before the view sees the key.
+        return true;
+      case QEvent::KeyRelease: return true;
       default: break;
     }
   } catch (const std::exception& e) {
-    statusBar()->showMessage(qs(e.what()), 8000);
+    d.sayError(e.what());
     return true;
   }
   return QMainWindow::eventFilter(watched, event);
@@ -785,8 +1027,10 @@ void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
 void MainWindow::dropEvent(QDropEvent* event) {
   for (const QUrl& url : event->mimeData()->urls()) {
     if (!url.isLocalFile()) continue;
+    const std::filesystem::path file = url.toLocalFile().toStdString();
+    if (opensAsScene(file) && !maybeSave()) continue;
     try {
-      openAny(url.toLocalFile().toStdString());
+      openAny(file);
     } catch (const std::exception& e) {
       QMessageBox::critical(this, tr("Cannot open"), qs(e.what()));
     }
@@ -796,6 +1040,14 @@ void MainWindow::dropEvent(QDropEvent* event) {
 
 void MainWindow::closeEvent(QCloseEvent* event) {
   impl_->controller->cancel();
+  if (!maybeSave()) {
+    event->ignore();
+    return;
+  }
+  QSettings settings;
+  settings.setValue("windowGeometry", saveGeometry());
+  settings.setValue("windowState", saveState());
+  impl_->recovery.remove();  // closed properly: nothing to recover
   event->accept();
 }
 

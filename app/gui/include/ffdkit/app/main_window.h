@@ -57,6 +57,19 @@ class MainWindow : public QMainWindow {
   /// Opens whatever `path` is: scene, widget file (by its "format"), or mesh.
   void openAny(const std::filesystem::path& path);
 
+  /// File > New Scene: an empty, untitled scene (asks nothing; the action asks first).
+  void newScene();
+  /// True when the document differs from its file (the title shows `*`).
+  bool isModified() const;
+  /// The document's file; empty for a scene never saved.
+  std::filesystem::path documentPath() const;
+  /// The status line's message (it wraps; it is cleared when it stops being true).
+  QString statusMessage() const;
+  /// After a crash: offers to restore the newest recovery file another ffdkit process left
+  /// (Restore / Discard) and removes those files. main() calls it at start.
+  /// @return true if a document was restored.
+  bool offerRecovery();
+
   /// Shows `scene` (replacing the current one; clears undo).
   void setScene(scenes::Scene scene);
   const scenes::Scene& scene() const;
@@ -75,6 +88,18 @@ class MainWindow : public QMainWindow {
   void closeEvent(QCloseEvent* event) override;
 
  private:
+  /// Asks Save / Discard / Cancel when the document has unsaved changes.
+  /// @return false if the user cancelled (or a save failed): keep everything.
+  bool maybeSave();
+  /// Save (to the document's file) or Save As (asks where). @return false if not saved.
+  bool saveInteractively(bool askForPath);
+  /// The document's file: the title, the recent files.
+  void setDocumentPath(const std::filesystem::path& path);
+  void rebuildRecentMenu();
+  void startAutosaveTimer();
+  void deleteSelectedObjects();
+  void renameSelection();
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
