@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <numbers>
-#include <sstream>
 
 #include <QAction>
 #include <QActionGroup>
@@ -22,7 +20,6 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
-#include <QInputDialog>
 #include <QKeyEvent>
 #include <QLabel>
 #include <QMenuBar>
@@ -31,8 +28,6 @@
 #include <QMouseEvent>
 #include <QEventLoop>
 #include <QProgressDialog>
-#include <QPushButton>
-#include <QDir>
 #include <QPointer>
 #include <QThread>
 #include <QTimer>
@@ -42,51 +37,12 @@
 #include <QStatusBar>
 #include <QToolBar>
 
-#include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/ffd/cancelled.h"
-#include "ffdkit/app/scene_view.h"
-#include "ffdkit/app/vtk_view_widget.h"
-#include "ffdkit/scenes/mesh_io.h"
-#include "ffdkit/scenes/scene_file.h"
-#include "ffdkit/scenes/widget_file.h"
-#include "outliner.h"
-#include "property_panel.h"
-#include "ffdkit/app/recovery_file.h"
-#include "status_line.h"
+#include "main_window_impl.h"
 
 namespace ffdkit::app {
-namespace {
 
-constexpr int kMaxRecent = 8;
-constexpr int kDefaultAutosaveMinutes = 2;
-constexpr double kPickPixels = 7.0;  // pick tolerance on screen
-
-QString qs(const std::string& s) { return QString::fromStdString(s); }
-
-bool isMeshFile(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".vtp" || ext == ".vtk" || ext == ".gltf" ||
-         ext == ".glb" || ext == ".xyz";
-}
-
-// A widget file says "format": "ffdkit-widgets" near its top; a scene says "ffdkit-scene".
-bool isWidgetFile(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::string head(512, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
-  const auto widgetsAt = head.find("\"ffdkit-widgets\"");
-  const auto sceneAt = head.find("\"ffdkit-scene\"");
-  return widgetsAt != std::string::npos && (sceneAt == std::string::npos || widgetsAt < sceneAt);
-}
-
-// What openAny does with `path`: a scene replaces the document (so first ask to save it).
-bool opensAsScene(const std::filesystem::path& path) {
-  return !isMeshFile(path) && (std::filesystem::is_directory(path) || !isWidgetFile(path));
-}
-
-}  // namespace
+using namespace window_detail;
 
 namespace {
 /// The status bar's last deform time: "deform 8.80 ms, 1000000 points", and when the update
@@ -97,115 +53,6 @@ QString deformStatusText(const scenes::SceneDeformStats& stats) {
   return text;
 }
 }  // namespace
-
-struct MainWindow::Impl {
-  VtkViewWidget* view = nullptr;
-  std::unique_ptr<SceneView> sceneView;
-  scenes::Scene scene;
-  scenes::SceneDeformer deformer;
-  scenes::CommandStack commands;
-  std::unique_ptr<InteractionController> controller;
-  Outliner* outliner = nullptr;
-  PropertyPanel* properties = nullptr;
-  QLabel* deformStatus = nullptr;
-  StatusLine* status = nullptr;
-  QMenu* recentMenu = nullptr;
-  RecoveryFile recovery;
-  QTimer autosaveTimer;
-  /// A document restored from a recovery file differs from its file with nothing to undo.
-  bool restoredUnsaved = false;
-  /// The command-stack position last autosaved (an autosave per change, not per timer tick).
-  std::optional<std::size_t> autosavedAt;
-  QAction* undo = nullptr;
-  QAction* redo = nullptr;
-  QAction* zebra = nullptr;
-  QAction* comb = nullptr;
-  std::filesystem::path scenePath;
-  std::vector<std::string> selectedObjects;
-  std::optional<widgets::BindingId> selectedBinding;
-  // Pointer state of the 3D view.
-  QPoint pressAt;
-  bool pressOnEmpty = false;
-  QAction* directManipulation = nullptr;  ///< checked: a drag on an object moves its point
-  bool showingScene = false;
-
-  bool modified() const { return commands.isDirty() || restoredUnsaved; }
-
-  // A refusal or error as the user reads it: widgets by name, the whole text (it wraps).
-  void sayError(const std::string& what) { status->say(qs(readableMessage(scene.widgets, what))); }
-
-  // The open document to the recovery file when it has unsaved changes; none when it has not.
-  void autosave() {
-    if (!modified()) {
-      recovery.remove();
-      autosavedAt.reset();
-      return;
-    }
-    if (autosavedAt == commands.position() && !restoredUnsaved) return;
-    try {
-      recovery.write(scene, sceneView->camera(), scenePath);
-      autosavedAt = commands.position();
-    } catch (const std::exception& e) {
-      status->say(QObject::tr("Autosave failed: %1").arg(qs(e.what())));
-    }
-  }
-
-  // The objects the View menu's looks apply to: the selected ones, else all.
-  std::vector<std::string> lookTargets() const {
-    if (!selectedObjects.empty()) return selectedObjects;
-    std::vector<std::string> names;
-    for (const auto& o : scene.objects) names.push_back(o.name);
-    return names;
-  }
-
-  // Checks the look actions when every target surface is zebra / every target curve has a comb.
-  void syncLookActions() {
-    if (!zebra) return;
-    bool anySurface = false, allZebra = true, anyCurve = false, allComb = true;
-    for (const auto& name : lookTargets()) {
-      const scenes::SceneObject* o = scene.findObject(name);
-      if (!o) continue;
-      if (o->mesh.triangles.rows() > 0) {
-        anySurface = true;
-        allZebra = allZebra && o->display.surfaceStyle == scenes::SurfaceStyle::Zebra;
-      } else if (o->mesh.segments.rows() > 0) {
-        anyCurve = true;
-        allComb = allComb && o->display.curvatureComb;
-      }
-    }
-    zebra->setChecked(anySurface && allZebra);
-    comb->setChecked(anyCurve && allComb);
-  }
-
-  // Changes the look of the target objects through the controller (one undoable command).
-  void changeLook(const std::string& description, const std::function<void(const scenes::SceneObject&,
-                                                                             scenes::DisplaySettings&)>& change) {
-    const std::vector<std::string> names = lookTargets();
-    std::vector<scenes::DisplaySettings> looks;
-    for (const auto& name : names) {
-      const scenes::SceneObject& o = *scene.findObject(name);
-      looks.push_back(o.display);
-      change(o, looks.back());
-    }
-    controller->setDisplay(names, looks, description);
-    syncLookActions();
-  }
-
-  widgets::Ray rayAt(const QPoint& p) const {
-    const double ratio = view->devicePixelRatioF();
-    const double h = view->height() * ratio;
-    return sceneView->rayAt(p.x() * ratio, h - p.y() * ratio - 1.0);
-  }
-  double tolerance() const { return kPickPixels * view->devicePixelRatioF() * sceneView->pixelSize(); }
-
-  std::vector<OutlinerEntry> entries() const {
-    std::vector<OutlinerEntry> out;
-    for (const auto& o : selectedObjects) out.push_back({OutlinerEntry::Kind::Object, o, {}, {}});
-    for (widgets::WidgetId w : controller->selection()) out.push_back({OutlinerEntry::Kind::Widget, {}, w, {}});
-    if (selectedBinding) out.push_back({OutlinerEntry::Kind::Binding, {}, {}, *selectedBinding});
-    return out;
-  }
-};
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
@@ -612,222 +459,6 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
 
 MainWindow::~MainWindow() = default;
 
-void MainWindow::openScene(const std::filesystem::path& path) {
-  setScene(scenes::readScene(path));
-  setDocumentPath(std::filesystem::is_directory(path) ? path / "scene.json" : path);
-}
-
-void MainWindow::saveScene(const std::filesystem::path& path) {
-  scenes::Scene copy = impl_->scene;
-  copy.camera = impl_->sceneView->camera();
-  copy.widgetFile.reset();
-  scenes::writeScene(path, copy);
-  impl_->commands.markClean();
-  impl_->restoredUnsaved = false;
-  setDocumentPath(path);
-  impl_->autosave();  // nothing left to recover
-  impl_->status->say(tr("Saved %1").arg(qs(path.string())), 5000);
-}
-
-void MainWindow::newScene() {
-  setScene({});
-  setDocumentPath({});
-}
-
-bool MainWindow::isModified() const { return impl_->modified(); }
-std::filesystem::path MainWindow::documentPath() const { return impl_->scenePath; }
-QString MainWindow::statusMessage() const { return impl_->status->text(); }
-
-void MainWindow::setDocumentPath(const std::filesystem::path& path) {
-  Impl& d = *impl_;
-  d.scenePath = path;
-  // The file's name; a sample scene's "scene.json" by its folder.
-  QString name = tr("untitled");
-  if (!path.empty()) {
-    const QFileInfo info(qs(path.string()));
-    name = info.fileName() == "scene.json" ? info.dir().dirName() + "/" + info.fileName() : info.fileName();
-  }
-  setWindowTitle(tr("%1[*] - ffdkit").arg(name));
-  setWindowModified(d.modified());
-  if (path.empty()) return;
-  QSettings settings;
-  QStringList recent = settings.value("recentFiles").toStringList();
-  const QString entry = qs(path.string());
-  recent.removeAll(entry);
-  recent.prepend(entry);
-  settings.setValue("recentFiles", recent.mid(0, kMaxRecent));
-  rebuildRecentMenu();
-}
-
-void MainWindow::rebuildRecentMenu() {
-  Impl& d = *impl_;
-  d.recentMenu->clear();
-  const QStringList recent = QSettings().value("recentFiles").toStringList();
-  for (const QString& path : recent.mid(0, kMaxRecent)) {
-    d.recentMenu->addAction(path, this, [this, path] {
-      const std::filesystem::path file = path.toStdString();
-      if (opensAsScene(file) && !maybeSave()) return;
-      try {
-        openAny(file);
-      } catch (const std::exception& e) {
-        QMessageBox::critical(this, tr("Cannot open"), qs(e.what()));
-      }
-    });
-  }
-  d.recentMenu->setEnabled(!recent.isEmpty());
-}
-
-bool MainWindow::saveInteractively(bool askForPath) {
-  std::filesystem::path path = impl_->scenePath;
-  if (askForPath || path.empty()) {
-    const QString chosen =
-        QFileDialog::getSaveFileName(this, tr("Save Scene As"), qs(path.string()), tr("ffdkit scenes (*.json)"));
-    if (chosen.isEmpty()) return false;
-    path = chosen.toStdString();
-  }
-  try {
-    saveScene(path);
-    return true;
-  } catch (const std::exception& e) {
-    QMessageBox::critical(this, tr("Save Scene"), qs(e.what()));
-    return false;
-  }
-}
-
-bool MainWindow::maybeSave() {
-  if (!impl_->modified()) return true;
-  QMessageBox prompt(QMessageBox::Warning, tr("Unsaved changes"),
-                     tr("%1 has unsaved changes.").arg(windowTitle().section("[*]", 0, 0)),
-                     QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, this);
-  prompt.setObjectName("unsavedChangesPrompt");
-  prompt.setInformativeText(tr("Save them before going on?"));
-  prompt.setDefaultButton(QMessageBox::Save);
-  switch (prompt.exec()) {
-    case QMessageBox::Save: return saveInteractively(false);
-    case QMessageBox::Discard: return true;
-    default: return false;
-  }
-}
-
-void MainWindow::startAutosaveTimer() {
-  const int minutes = QSettings().value("autosaveMinutes", kDefaultAutosaveMinutes).toInt();
-  if (minutes > 0) {
-    impl_->autosaveTimer.start(minutes * 60 * 1000);
-  } else {
-    impl_->autosaveTimer.stop();  // still written on every change
-  }
-}
-
-bool MainWindow::offerRecovery() {
-  const std::vector<RecoveredDocument> found = RecoveryFile::orphans();
-  if (found.empty()) return false;
-  const RecoveredDocument& newest = found.front();
-  const QString what = newest.origin.empty() ? tr("an untitled scene") : qs(newest.origin.string());
-  QMessageBox prompt(QMessageBox::Question, tr("Recover unsaved changes"),
-                     tr("ffdkit did not close properly. Restore the unsaved changes of %1?").arg(what),
-                     QMessageBox::NoButton, this);
-  prompt.setObjectName("recoveryPrompt");
-  QPushButton* restore = prompt.addButton(tr("Restore"), QMessageBox::AcceptRole);
-  prompt.addButton(tr("Discard"), QMessageBox::DestructiveRole);
-  prompt.setDefaultButton(restore);
-  prompt.exec();
-  bool restored = false;
-  if (prompt.clickedButton() == restore) {
-    try {
-      setScene(scenes::readScene(newest.scene));
-      impl_->restoredUnsaved = true;
-      setDocumentPath(newest.origin);
-      impl_->autosave();  // ours now: the next crash keeps it
-      impl_->status->say(tr("Restored the unsaved changes of %1").arg(what));
-      restored = true;
-    } catch (const std::exception& e) {
-      QMessageBox::critical(this, tr("Recover unsaved changes"), qs(e.what()));
-      return false;  // the file stays for another try
-    }
-  }
-  for (const RecoveredDocument& document : found) RecoveryFile::discard(document);
-  return restored;
-}
-
-void MainWindow::deleteSelectedObjects() {
-  Impl& d = *impl_;
-  if (d.selectedObjects.empty()) throw std::invalid_argument("select an object to delete (in the outliner)");
-  d.controller->removeObjects(d.selectedObjects);
-  d.selectedObjects.clear();
-  d.outliner->select(d.entries());
-  d.properties->showSelection(d.entries());
-}
-
-void MainWindow::renameSelection() {
-  Impl& d = *impl_;
-  const auto widgets = d.controller->selection();
-  const bool object = d.selectedObjects.size() == 1 && widgets.empty();
-  if (!object && widgets.size() != 1)
-    throw std::invalid_argument("select one object, lattice or widget to rename");
-  const std::string old = object ? d.selectedObjects.front() : d.scene.widgets.name(widgets.front());
-  QInputDialog dialog(this);
-  dialog.setObjectName("renameDialog");
-  dialog.setWindowTitle(tr("Rename"));
-  dialog.setLabelText(tr("New name of '%1':").arg(qs(old)));
-  dialog.setTextValue(qs(old));
-  if (dialog.exec() != QDialog::Accepted) return;
-  const std::string name = dialog.textValue().trimmed().toStdString();
-  if (object) {
-    d.controller->renameObject(old, name);
-    d.selectedObjects = {name};
-  } else {
-    d.controller->renameWidget(widgets.front(), name);
-  }
-  d.outliner->select(d.entries());
-  d.properties->showSelection(d.entries());
-}
-
-void MainWindow::openWidgetFile(const std::filesystem::path& path) {
-  Impl& d = *impl_;
-  widgets::WidgetModel model = scenes::readWidgetFile(path);
-  // Its lattices go onto the selected object (or the only one), fitted as Attach fits them.
-  std::optional<std::string> target;
-  if (!d.selectedObjects.empty()) {
-    target = d.selectedObjects.front();
-  } else if (d.scene.objects.size() == 1) {
-    target = d.scene.objects.front().name;
-  }
-  if (model.roots().empty()) target.reset();
-  d.controller->replaceWidgets(std::move(model), target);
-  const QString file = QFileInfo(qs(path.string())).fileName();
-  if (target) {
-    d.status->say(tr("Opened widget file %1: its lattices deform '%2'").arg(file, qs(*target)));
-  } else {
-    d.status->say(tr("Opened widget file %1. Nothing is attached: select an object and a lattice, then "
-                     "Widgets > Attach Lattice to Object").arg(file));
-  }
-}
-
-void MainWindow::saveWidgetFile(const std::filesystem::path& path) {
-  scenes::writeWidgetFile(path, impl_->scene.widgets);
-  impl_->status->say(tr("Saved widget file %1").arg(qs(path.string())), 5000);
-}
-
-void MainWindow::importMesh(const std::filesystem::path& path) {
-  scenes::SceneObject object;
-  object.mesh = scenes::readMesh(path);
-  object.source = scenes::MeshFileSource{std::filesystem::absolute(path).string()};
-  std::string base = path.stem().string();
-  object.name = base;
-  for (int n = 2; impl_->scene.findObject(object.name) != nullptr; ++n) object.name = base + std::to_string(n);
-  impl_->controller->addObject(std::move(object));
-}
-
-void MainWindow::exportMesh(const std::filesystem::path& path) {
-  const auto& objects = impl_->scene.objects;
-  if (objects.empty()) throw std::invalid_argument("the scene has no object to export");
-  const std::string name = impl_->selectedObjects.empty() ? objects.front().name : impl_->selectedObjects.front();
-  scenes::MeshData mesh = impl_->scene.findObject(name)->mesh;
-  mesh.points = impl_->deformer.points(name);
-  scenes::writeMesh(path, mesh);
-  impl_->status->say(tr("Exported %1 to %2").arg(qs(name), qs(path.string())), 5000);
-}
-
 namespace {
 long backgroundPoints = 200000;
 }
@@ -908,22 +539,13 @@ void MainWindow::selectWidget(const std::string& name) {
   d.properties->showSelection(d.entries());
 }
 
-void MainWindow::openAny(const std::filesystem::path& path) {
-  if (isMeshFile(path)) {
-    importMesh(path);
-  } else if (!std::filesystem::is_directory(path) && isWidgetFile(path)) {
-    openWidgetFile(path);
-  } else {
-    openScene(path);
-  }
-}
-
 void MainWindow::setScene(scenes::Scene scene) {
   Impl& d = *impl_;
   d.showingScene = false;
   d.controller->cancel();
   d.controller->clearSelection();
   d.scene = std::move(scene);
+  d.restoredUnsaved = false;  // a new document; offerRecovery marks a restored one after this
   d.selectedObjects.clear();
   d.selectedBinding.reset();
   d.commands.clear();

@@ -1,0 +1,159 @@
+// MainWindow's state shared by its two source files: main_window.cpp (the window, its menus,
+// the view's events) and main_window_document.cpp (the document's files: open, save, the
+// unsaved-changes prompt, recent files, recovery).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <QAction>
+#include <QLabel>
+#include <QMenu>
+#include <QPoint>
+#include <QString>
+#include <QTimer>
+
+#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/app/main_window.h"
+#include "ffdkit/app/recovery_file.h"
+#include "ffdkit/app/scene_view.h"
+#include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/scenes/command_stack.h"
+#include "ffdkit/scenes/scene.h"
+#include "ffdkit/scenes/scene_deformer.h"
+#include "outliner.h"
+#include "property_panel.h"
+#include "status_line.h"
+
+namespace ffdkit::app {
+namespace window_detail {
+
+constexpr int kMaxRecent = 8;
+constexpr int kDefaultAutosaveMinutes = 2;
+constexpr double kPickPixels = 7.0;  // pick tolerance on screen
+
+inline QString qs(const std::string& s) { return QString::fromStdString(s); }
+
+/// A mesh file by its extension (.obj .ply .stl .vtp .vtk .gltf .glb .xyz, any case).
+bool isMeshFile(const std::filesystem::path& path);
+/// A widget file says "format": "ffdkit-widgets" near its top; a scene says "ffdkit-scene".
+bool isWidgetFile(const std::filesystem::path& path);
+/// What openAny does with `path`: a scene replaces the document (so first ask to save it).
+bool opensAsScene(const std::filesystem::path& path);
+
+}  // namespace window_detail
+
+struct MainWindow::Impl {
+  VtkViewWidget* view = nullptr;
+  std::unique_ptr<SceneView> sceneView;
+  scenes::Scene scene;
+  scenes::SceneDeformer deformer;
+  scenes::CommandStack commands;
+  std::unique_ptr<InteractionController> controller;
+  Outliner* outliner = nullptr;
+  PropertyPanel* properties = nullptr;
+  QLabel* deformStatus = nullptr;
+  StatusLine* status = nullptr;
+  QMenu* recentMenu = nullptr;
+  RecoveryFile recovery;
+  QTimer autosaveTimer;
+  /// A document restored from a recovery file differs from its file with nothing to undo.
+  bool restoredUnsaved = false;
+  /// The command-stack position last autosaved (an autosave per change, not per timer tick).
+  std::optional<std::size_t> autosavedAt;
+  QAction* undo = nullptr;
+  QAction* redo = nullptr;
+  QAction* zebra = nullptr;
+  QAction* comb = nullptr;
+  std::filesystem::path scenePath;
+  std::vector<std::string> selectedObjects;
+  std::optional<widgets::BindingId> selectedBinding;
+  // Pointer state of the 3D view.
+  QPoint pressAt;
+  bool pressOnEmpty = false;
+  QAction* directManipulation = nullptr;  ///< checked: a drag on an object moves its point
+  bool showingScene = false;
+
+  bool modified() const { return commands.isDirty() || restoredUnsaved; }
+
+  // A refusal or error as the user reads it: widgets by name, the whole text (it wraps).
+  void sayError(const std::string& what) { status->say(window_detail::qs(readableMessage(scene.widgets, what))); }
+
+  // The open document to the recovery file when it has unsaved changes; none when it has not.
+  void autosave() {
+    if (!modified()) {
+      recovery.remove();
+      autosavedAt.reset();
+      return;
+    }
+    if (autosavedAt == commands.position() && !restoredUnsaved) return;
+    try {
+      recovery.write(scene, sceneView->camera(), scenePath);
+      autosavedAt = commands.position();
+    } catch (const std::exception& e) {
+      status->say(QObject::tr("Autosave failed: %1").arg(window_detail::qs(e.what())));
+    }
+  }
+
+  // The objects the View menu's looks apply to: the selected ones, else all.
+  std::vector<std::string> lookTargets() const {
+    if (!selectedObjects.empty()) return selectedObjects;
+    std::vector<std::string> names;
+    for (const auto& o : scene.objects) names.push_back(o.name);
+    return names;
+  }
+
+  // Checks the look actions when every target surface is zebra / every target curve has a comb.
+  void syncLookActions() {
+    if (!zebra) return;
+    bool anySurface = false, allZebra = true, anyCurve = false, allComb = true;
+    for (const auto& name : lookTargets()) {
+      const scenes::SceneObject* o = scene.findObject(name);
+      if (!o) continue;
+      if (o->mesh.triangles.rows() > 0) {
+        anySurface = true;
+        allZebra = allZebra && o->display.surfaceStyle == scenes::SurfaceStyle::Zebra;
+      } else if (o->mesh.segments.rows() > 0) {
+        anyCurve = true;
+        allComb = allComb && o->display.curvatureComb;
+      }
+    }
+    zebra->setChecked(anySurface && allZebra);
+    comb->setChecked(anyCurve && allComb);
+  }
+
+  // Changes the look of the target objects through the controller (one undoable command).
+  void changeLook(const std::string& description, const std::function<void(const scenes::SceneObject&,
+                                                                             scenes::DisplaySettings&)>& change) {
+    const std::vector<std::string> names = lookTargets();
+    std::vector<scenes::DisplaySettings> looks;
+    for (const auto& name : names) {
+      const scenes::SceneObject& o = *scene.findObject(name);
+      looks.push_back(o.display);
+      change(o, looks.back());
+    }
+    controller->setDisplay(names, looks, description);
+    syncLookActions();
+  }
+
+  widgets::Ray rayAt(const QPoint& p) const {
+    const double ratio = view->devicePixelRatioF();
+    const double h = view->height() * ratio;
+    return sceneView->rayAt(p.x() * ratio, h - p.y() * ratio - 1.0);
+  }
+  double tolerance() const { return window_detail::kPickPixels * view->devicePixelRatioF() * sceneView->pixelSize(); }
+
+  std::vector<OutlinerEntry> entries() const {
+    std::vector<OutlinerEntry> out;
+    for (const auto& o : selectedObjects) out.push_back({OutlinerEntry::Kind::Object, o, {}, {}});
+    for (widgets::WidgetId w : controller->selection()) out.push_back({OutlinerEntry::Kind::Widget, {}, w, {}});
+    if (selectedBinding) out.push_back({OutlinerEntry::Kind::Binding, {}, {}, *selectedBinding});
+    return out;
+  }
+};
+
+}  // namespace ffdkit::app
