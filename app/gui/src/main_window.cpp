@@ -52,6 +52,15 @@ QString deformStatusText(const scenes::SceneDeformStats& stats) {
   if (stats.embedSeconds > 0.0) text += QObject::tr(" (embed %1 ms)").arg(stats.embedSeconds * 1e3, 0, 'f', 2);
   return text;
 }
+
+/// Adds OK / Cancel to a form dialog and runs it. @return true if accepted.
+bool acceptedForm(QDialog& dialog, QFormLayout* form) {
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+  QObject::connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+  QObject::connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+  form->addRow(buttons);
+  return dialog.exec() == QDialog::Accepted;
+}
 }  // namespace
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_unique<Impl>()) {
@@ -260,11 +269,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     minutes->setSuffix(tr(" min"));
     minutes->setValue(QSettings().value("autosaveMinutes", kDefaultAutosaveMinutes).toInt());
     form->addRow(tr("Autosave for recovery every"), minutes);
-    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
-    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
-    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
-    form->addRow(buttons);
-    if (dialog.exec() != QDialog::Accepted) return;
+    if (!acceptedForm(dialog, form)) return;
     QSettings().setValue("autosaveMinutes", minutes->value());
     startAutosaveTimer();
   });
@@ -292,11 +297,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     auto* cylindrical = new QCheckBox(tr("cylindrical (radius, angle, height)"));
     cylindrical->setObjectName("cylindrical");
     form->addRow(tr("Shape"), cylindrical);
-    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
-    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
-    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
-    form->addRow(buttons);
-    if (dialog.exec() != QDialog::Accepted) return;
+    if (!acceptedForm(dialog, form)) return;
     NewLatticeOptions options;
     for (int a = 0; a < 3; ++a) {
       options.counts[a] = counts[a]->value();
@@ -389,11 +390,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     form->addRow(tr("Type"), kind);
     form->addRow(tr("Axis"), axis);
     form->addRow(tr("Resolution"), resolution);
-    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
-    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
-    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
-    form->addRow(buttons);
-    if (dialog.exec() != QDialog::Accepted) return;
+    if (!acceptedForm(dialog, form)) return;
     scenes::PrimitiveOptions options;
     options.kind = static_cast<scenes::PrimitiveKind>(kind->currentData().toInt());
     options.resolution = resolution->value();
