@@ -711,17 +711,50 @@ void InteractionController::removeObjects(const std::vector<std::string>& object
   for (const std::string& object : objects)
     if (scene_.findObject(object) == nullptr) throw std::invalid_argument("no object '" + object + "'");
   if (objects.empty()) return;
+  if (dragging_) cancel();
   std::string description = "Delete " + objects.front();
   if (objects.size() > 1) description += " and " + std::to_string(objects.size() - 1) + " more";
-  edit(
-      description,
-      [&] {
-        auto gone = [&](const std::string& name) { return std::find(objects.begin(), objects.end(), name) != objects.end(); };
-        std::erase_if(scene_.objects, [&](const scenes::SceneObject& o) { return gone(o.name); });
-        for (scenes::Attachment& a : scene_.attachments) std::erase_if(a.objects, gone);
-        std::erase_if(scene_.attachments, [](const scenes::Attachment& a) { return a.objects.empty(); });
-      },
-      true);
+  // The command holds the removed objects (with their places) while they are removed, and the
+  // attachments before (a few names); scenes::removeObject drops each from its attachments.
+  auto held = std::make_shared<std::vector<std::pair<std::size_t, scenes::SceneObject>>>();
+  const auto attachmentsBefore = std::make_shared<const std::vector<scenes::Attachment>>(scene_.attachments);
+  auto remove = [this, objects, held] {
+    for (std::size_t i = scene_.objects.size(); i-- > 0;)
+      if (std::find(objects.begin(), objects.end(), scene_.objects[i].name) != objects.end()) {
+        const std::string name = scene_.objects[i].name;
+        held->emplace_back(i, std::move(scene_.objects[i]));
+        scene_.objects[i].name = name;  // the moved-from entry, which removeObject finds and erases
+        scenes::removeObject(scene_, name);
+      }
+  };
+  auto putBack = [this, held, attachmentsBefore] {
+    for (auto it = held->rbegin(); it != held->rend(); ++it)
+      scene_.objects.insert(scene_.objects.begin() + static_cast<std::ptrdiff_t>(it->first), std::move(it->second));
+    held->clear();
+    scene_.attachments = *attachmentsBefore;
+    scenes::touchStructure(scene_);
+  };
+  auto after = [this] {
+    pruneSelection();
+    refresh();
+    if (onStructureChanged) onStructureChanged();
+  };
+  remove();
+  std::size_t bytes = 0;
+  for (const auto& [place, object] : *held)
+    bytes += sizeof(object) + 8 * static_cast<std::size_t>(object.mesh.points.size()) +
+             4 * static_cast<std::size_t>(object.mesh.triangles.size() + object.mesh.segments.size());
+  commands_.push(scenes::Command{description,
+                                 [putBack, after] {
+                                   putBack();
+                                   after();
+                                 },
+                                 [remove, after] {
+                                   remove();
+                                   after();
+                                 },
+                                 {}, bytes});
+  after();
 }
 
 void InteractionController::renameObject(const std::string& object, const std::string& name) {
@@ -729,13 +762,18 @@ void InteractionController::renameObject(const std::string& object, const std::s
   if (name == object) return;
   if (name.empty()) throw std::invalid_argument("an object needs a name");
   if (scene_.findObject(name) != nullptr) throw std::invalid_argument("object name '" + name + "' is already used");
-  edit(
-      "Rename " + object + " to " + name,
-      [&] {
-        scene_.findObject(object)->name = name;
-        for (scenes::Attachment& a : scene_.attachments) std::replace(a.objects.begin(), a.objects.end(), object, name);
-      },
-      true);
+  if (dragging_) cancel();
+  // The attachments name objects (scenes::Attachment::objects): they follow.
+  auto rename = [this](const std::string& from, const std::string& to) {
+    scene_.findObject(from)->name = to;
+    for (scenes::Attachment& a : scene_.attachments) std::replace(a.objects.begin(), a.objects.end(), from, to);
+    scenes::touchStructure(scene_);
+    refresh();
+    if (onStructureChanged) onStructureChanged();
+  };
+  rename(object, name);
+  commands_.push(scenes::Command{"Rename " + object + " to " + name, [rename, object, name] { rename(name, object); },
+                                 [rename, object, name] { rename(object, name); }, {}, 0});
 }
 
 void InteractionController::renameWidget(WidgetId id, const std::string& name) {
