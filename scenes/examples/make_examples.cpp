@@ -73,11 +73,14 @@ Scene withThesisModel(std::string description, widgets::WidgetModel model, widge
 Scene makePress() {
   auto press = widgets::buildFig610(0.4, widgets::VariationRange{0.0, 0.3});
   press.model.setVariation(press.handle, std::numbers::pi);
-  return withThesisModel("Fig. 6-10: a press. Turn the handle: one turn lowers the top face by the pitch (0.4).",
-                         std::move(press.model), press.lattice,
-                         primitiveObject("block", {.kind = scenes::PrimitiveKind::Cylinder, .resolution = 40, .size = 0.8,
-                                                   .placement = placedAt({0.5, 0.5, 0.5})},
-                                         {0.55, 0.7, 0.85}));
+  Scene scene = withThesisModel("Fig. 6-10: a press. Turn the handle: one turn lowers the top face by the pitch (0.4).",
+                                std::move(press.model), press.lattice,
+                                primitiveObject("block", {.kind = scenes::PrimitiveKind::Cylinder, .resolution = 40, .size = 0.8,
+                                                          .placement = placedAt({0.5, 0.5, 0.5})},
+                                                {0.55, 0.7, 0.85}));
+  scene.camera.position = {3.2, -2.9, 2.9};  // the crank above the lattice in view too
+  scene.camera.focalPoint = {0.5, 0.5, 0.8};
+  return scene;
 }
 
 // A vise: two jaws (translate widgets on the faces x = 0 and x = 1, pointing inwards) bound

@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
     ffdkit::app::MainWindow window;
     if (!parser.positionalArguments().isEmpty()) window.openScene(parser.positionalArguments().first().toStdString());
     if (parser.isSet(select)) window.selectWidget(parser.value(select).toStdString());
+    if (parser.isSet(screenshot) || parser.isSet(windowShot)) window.setLayoutRemembered(false);
     if (parser.isSet(screenshot)) {
       // Only the 3D view, at the size of the off-screen renderer.
       for (auto* dock : window.findChildren<QDockWidget*>()) dock->hide();

@@ -657,15 +657,19 @@ void MainWindow::dropEvent(QDropEvent* event) {
   event->acceptProposedAction();
 }
 
+void MainWindow::setLayoutRemembered(bool remembered) { impl_->rememberLayout = remembered; }
+
 void MainWindow::closeEvent(QCloseEvent* event) {
   impl_->controller->cancel();
   if (!maybeSave()) {
     event->ignore();
     return;
   }
-  QSettings settings;
-  settings.setValue("windowGeometry", saveGeometry());
-  settings.setValue("windowState", saveState());
+  if (impl_->rememberLayout) {
+    QSettings settings;
+    settings.setValue("windowGeometry", saveGeometry());
+    settings.setValue("windowState", saveState());
+  }
   impl_->recovery.remove();  // closed properly: nothing to recover
   event->accept();
 }

@@ -63,6 +63,7 @@ struct MainWindow::Impl {
   QTimer autosaveTimer;
   /// A document restored from a recovery file differs from its file with nothing to undo.
   bool restoredUnsaved = false;
+  bool rememberLayout = true;  ///< closeEvent saves the layout (not after a screenshot run hid the docks)
   /// The command-stack position last autosaved (an autosave per change, not per timer tick).
   std::optional<std::size_t> autosavedAt;
   QAction* undo = nullptr;

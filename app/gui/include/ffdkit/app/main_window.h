@@ -70,6 +70,10 @@ class MainWindow : public QMainWindow {
   /// @return true if a document was restored.
   bool offerRecovery();
 
+  /// Whether closing saves the dock layout and window geometry for the next session (on by
+  /// default; off for a screenshot run, which hides the docks).
+  void setLayoutRemembered(bool remembered);
+
   /// Shows `scene` (replacing the current one; clears undo).
   void setScene(scenes::Scene scene);
   const scenes::Scene& scene() const;
