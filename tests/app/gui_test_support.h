@@ -76,6 +76,11 @@ inline void dragArrow(MainWindow& w, widgets::WidgetId affine, double distance) 
 inline void pressKey(MainWindow& w, Qt::Key key, Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
   if (QApplication::activeWindow() != &w) {
     w.activateWindow();
+#if QT_VERSION < QT_VERSION_CHECK(6, 5, 0)
+    // Another test's window on the same display (CTest runs GUI tests in parallel in one Xvfb)
+    // may hold the X focus: make this one Qt's active window regardless.
+    QApplication::setActiveWindow(&w);
+#endif
     if (!QTest::qWaitForWindowActive(&w)) qWarning("the window did not become active");
   }
   w.view()->setFocus();
