@@ -503,5 +503,19 @@ TEST(WidgetModel, AffineFramesStayRigidInANonUniformlyScaledLattice) {
   EXPECT_LT((r.col(2) - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
 }
 
+TEST(WidgetModel, UnknownAndRemovedBindingsAreRefused) {
+  WidgetModel m;
+  const WidgetId box = m.addLattice("box", Eigen::Vector3i(2, 2, 2));
+  const WidgetId a = m.addAffine(m.addCell(box, CellSpec::point(0, 0, 0)), AffineKind::Translate, "a");
+  const WidgetId b = m.addAffine(m.addCell(box, CellSpec::point(1, 0, 0)), AffineKind::Translate, "b");
+  const BindingId bound = m.bind(a, b, ConversionRule(2.0));
+  EXPECT_EQ(m.binding(bound).rule.gain, 2.0);
+  expectError(WidgetErrorCode::UnknownWidget, [&] { m.binding(BindingId{999}); });
+  expectError(WidgetErrorCode::UnknownWidget, [&] { m.binding(BindingId{}); });
+  m.unbind(bound);
+  expectError(WidgetErrorCode::UnknownWidget, [&] { m.binding(bound); });
+  expectError(WidgetErrorCode::UnknownWidget, [&] { m.setRule(bound, ConversionRule(3.0)); });
+}
+
 }  // namespace
 }  // namespace ffdkit::widgets
