@@ -84,11 +84,19 @@ def target_of(rel):
 
 
 def sync_tree(root, tree):
-    """Copies the tracked and new unignored files of root into tree; unchanged files keep their
-    mtime so the mutation build does not rebuild them."""
+    """Copies the tracked and new unignored files of root into tree. A changed file gets a fresh
+    mtime (so the mutation build recompiles it); unchanged files are not touched (so it does
+    not). Files of the mutated modules that root no longer has are removed from the copy."""
     listed = subprocess.run(["git", "ls-files", "-co", "--exclude-standard", "-z"], cwd=root, check=True,
                             capture_output=True).stdout.decode().split("\0")
-    for rel in filter(None, listed):
+    keep = set(filter(None, listed))
+    for module in MODULES:
+        for d, _, names in os.walk(os.path.join(tree, module)):
+            for name in names:
+                rel = os.path.relpath(os.path.join(d, name), tree)
+                if rel not in keep:
+                    os.remove(os.path.join(tree, rel))
+    for rel in sorted(keep):
         src, dst = os.path.join(root, rel), os.path.join(tree, rel)
         if not os.path.isfile(src):
             continue
@@ -97,7 +105,7 @@ def sync_tree(root, tree):
                 if a.read() == b.read():
                     continue
         os.makedirs(os.path.dirname(dst), exist_ok=True)
-        shutil.copy2(src, dst)
+        shutil.copyfile(src, dst)
 
 
 def build(build_dir, target, jobs, log):
