@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package that ffdkit's build, tests and app need.
 # Idempotent: installs only what is missing, and runs `apt-get update` once, only then.
+#   scripts/setup-deps.sh           the build, tests and app
+#   scripts/setup-deps.sh --fuzz    also clang and libFuzzer (scripts/fuzz.sh)
 set -euo pipefail
 
 packages=(
@@ -9,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
   nlohmann-json3-dev
+  libfast-float-dev libtinygltf-dev
   libvtk9-dev
   qt6-base-dev libqt6opengl6-dev
   libgl1-mesa-dev libgl1-mesa-dri libglx-mesa0 libegl-mesa0 mesa-utils
@@ -16,6 +19,9 @@ packages=(
   python3
   pybind11-dev python3-dev python3-numpy python3-pytest
 )
+if [ "${1:-}" = "--fuzz" ]; then
+  packages+=(clang libfuzzer-14-dev libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

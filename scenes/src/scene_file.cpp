@@ -1,5 +1,6 @@
 #include "ffdkit/scenes/scene_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -7,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "ffdkit/scenes/atomic_write.h"
+#include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/scenes/widget_file.h"
 #include "json_text.h"
 #include "widget_json.h"
@@ -84,6 +85,18 @@ ParameterValue readParameter(const Json& v, const Location& at) {
 
 Json writeParameter(const ParameterValue& value) {
   return std::visit([](const auto& v) { return Json(v); }, value);
+}
+
+// Whether `path` (relative to `folder`, or absolute) names a file inside `folder`, after ".."
+// and symbolic links are resolved.
+bool insideFolder(const std::filesystem::path& path, const std::filesystem::path& folder) {
+  std::error_code ec;
+  const std::filesystem::path root = std::filesystem::weakly_canonical(folder.empty() ? "." : folder, ec);
+  if (ec) return false;
+  const std::filesystem::path full = std::filesystem::weakly_canonical(path.is_absolute() ? path : folder / path, ec);
+  if (ec) return false;
+  const auto [end, ignored] = std::mismatch(root.begin(), root.end(), full.begin(), full.end());
+  return end == root.end();
 }
 
 SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions& options,
@@ -165,6 +178,13 @@ SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions
       else if (style == "line") object.display.curveStyle = CurveStyle::Line;
       else (dat / "curveStyle").fail("unknown curve style '" + style + "' (known: tube, line)");
     }
+  }
+  if (const auto* file = std::get_if<MeshFileSource>(&object.source);
+      file != nullptr && !options.allowMeshesOutsideFolder && !insideFolder(file->path, options.baseDirectory)) {
+    (at / "mesh" / "path")
+        .fail("object '" + object.name + "': mesh file '" + file->path +
+              "' is outside the scene's folder (a shared scene must not read other files; allow it with "
+              "--allow-outside-meshes or the app's preference)");
   }
   try {
     object.mesh = buildObjectMesh(object.source, options.baseDirectory, generators);
@@ -323,14 +343,15 @@ Scene readScene(std::istream& in, const std::string& sourceName, const SceneRead
   return readSceneJson(detail::parseJson<SceneFileError>(content, sourceName), sourceName, options);
 }
 
-Scene readScene(const std::filesystem::path& path) {
+Scene readScene(const std::filesystem::path& path, SceneReadOptions options) {
   const std::filesystem::path file = std::filesystem::is_directory(path) ? path / "scene.json" : path;
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneFileError(file.string() + ": cannot open scene file");
-  SceneReadOptions options;
   options.baseDirectory = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
   return readScene(in, file.string(), options);
 }
+
+Scene readScene(const std::filesystem::path& path) { return readScene(path, SceneReadOptions{}); }
 
 GeneratorParameters readGeneratorParameters(std::istream& in, const std::string& sourceName) {
   const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -360,7 +381,7 @@ void writeScene(const std::filesystem::path& path, const Scene& scene) {
       const std::filesystem::path widgetPath(*scene.widgetFile);
       writeWidgetFile(widgetPath.is_absolute() ? widgetPath : folder / widgetPath, scene.widgets);
     }
-    writeFileAtomically(path, text);
+    meshio::writeFileAtomically(path, text);
   } catch (const std::exception& e) {
     throw SceneFileError(e.what());
   }

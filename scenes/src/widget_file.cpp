@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ffdkit/ffd/lattice.h"
-#include "ffdkit/scenes/atomic_write.h"
+#include "ffdkit/meshio/atomic_write.h"
 #include "json_text.h"
 #include "widget_json.h"
 
@@ -519,7 +519,7 @@ void writeWidgetFile(std::ostream& out, const WidgetModel& model) { out << widge
 
 void writeWidgetFile(const std::filesystem::path& path, const WidgetModel& model) {
   try {
-    writeFileAtomically(path, widgetFileText(model));
+    meshio::writeFileAtomically(path, widgetFileText(model));
   } catch (const std::exception& e) {
     throw WidgetFileError(path.string() + ": cannot write the widget file: " + e.what());
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "cli_runner.h"
+#include "../meshio/hostile_files.h"
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/primitive.h"
 #include "ffdkit/scenes/scene.h"
@@ -343,7 +344,7 @@ TEST(CliValidate, ReportsEveryBrokenFileWithWhereAndWritesNothing) {
       "missing-mesh.json",                                   // ... and the scene that names it
       "unknown generator 'no-such-curve'",
       "unknown widget name 'no-such-lattice'",
-      "nan.ply: point 1 has a non-finite coordinate",
+      "nan.ply:11: vertex 1 (y): non-finite number 'nan'",
       "infinite.xyz:2",
       "empty.xyz: the file has no points",
       "huge-lattice.json /lattices/0/basis: lattice has too many control points: (500, 500, 500)",
@@ -352,6 +353,52 @@ TEST(CliValidate, ReportsEveryBrokenFileWithWhereAndWritesNothing) {
   };
   for (const auto& message : expected) EXPECT_NE(r.err.find(message), std::string::npos) << message << "\n" << r.err;
   EXPECT_EQ(dir.entries(), before);
+}
+
+TEST(CliScenePaths, AMeshOutsideTheScenesFolderNeedsAllowOutsideMeshes) {
+  TempDir dir;
+  fs::create_directories(dir / "shared");
+  std::ofstream(dir / "cloud.xyz") << "0 0 0\n1 0 0\n";
+  std::ofstream(dir / "shared" / "scene.json")
+      << R"({"format": "ffdkit-scene", "version": 1, "objects": [{"name": "c", "mesh": {"path": "../cloud.xyz"}}]})";
+  const std::string scene = (dir / "shared" / "scene.json").string();
+  for (const std::string command : {"info", "validate"}) {
+    const CliResult refused = runCli({command, scene});
+    EXPECT_EQ(refused.exitCode, 1) << describe(refused);
+    EXPECT_NE(refused.err.find("mesh file '../cloud.xyz' is outside the scene's folder"), std::string::npos) << describe(refused);
+    const CliResult allowed = runCli({command, "--allow-outside-meshes", scene});
+    EXPECT_EQ(allowed.exitCode, 0) << describe(allowed);
+  }
+  const CliResult deform = runCli({"deform", "--scene", scene, "-o", (dir / "out.xyz").string()});
+  EXPECT_EQ(deform.exitCode, 1) << describe(deform);
+  EXPECT_FALSE(fs::exists(dir / "out.xyz"));
+}
+
+// Issue 17's table: each bad mesh, through info, validate, deform and a scene that uses it,
+// exits 1 with the reader's message (file, element) and writes nothing; none crashes.
+TEST(CliHostileInput, EveryBadMeshOfTheIssueTableGetsAClearErrorAndNoOutput) {
+  TempDir dir;
+  const std::string tool = (kWidgetExamples / "fig6-8.json").string();
+  for (const auto& file : meshio::test::hostileFiles()) {
+    SCOPED_TRACE(file.name);
+    std::ofstream(dir / file.name, std::ios::binary) << file.bytes;
+    std::ofstream(dir / "scene.json") << R"({"format": "ffdkit-scene", "version": 1, "objects": [{"name": "m", "mesh": {"path": ")"
+                                     << file.name << R"("}}]})";
+    const std::string path = (dir / file.name).string();
+    const std::vector<std::vector<std::string>> commands = {
+        {"info", path},
+        {"validate", path},
+        {"deform", "--widgets", tool, path, "-o", (dir / "out.ply").string()},
+        {"deform", "--scene", (dir / "scene.json").string(), "-o", (dir / "out.ply").string()},
+    };
+    for (const auto& args : commands) {
+      const CliResult r = runCli(args);
+      EXPECT_EQ(r.exitCode, 1) << args[0] << "\n" << describe(r);
+      EXPECT_NE(r.err.find(file.name), std::string::npos) << describe(r);
+      EXPECT_NE(r.err.find(file.expected), std::string::npos) << describe(r);
+    }
+    EXPECT_FALSE(fs::exists(dir / "out.ply"));
+  }
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 namespace ffdkit::scenes {
@@ -79,6 +81,41 @@ TEST(SceneFile, MeshFilesAndWidgetFilesResolveNextToTheScene) {
     EXPECT_NE(message.find("cloud.xyz: no such file"), std::string::npos) << message;
   }
   std::filesystem::remove_all(dir);
+}
+
+TEST(SceneFile, MeshPathsOutsideTheScenesFolderAreRefusedUnlessAllowed) {
+  const auto root = std::filesystem::temp_directory_path() / ("ffdkit-scene-paths-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(root);
+  std::filesystem::create_directories(root / "shared" / "meshes");
+  std::ofstream(root / "secret.xyz") << "0 0 0\n";
+  std::ofstream(root / "shared" / "meshes" / "ok.xyz") << "0 0 0\n1 1 1\n";
+  std::filesystem::create_symlink(root / "secret.xyz", root / "shared" / "link.xyz");
+  auto sceneWith = [&](const std::string& path) {
+    std::ofstream(root / "shared" / "scene.json")
+        << R"({"format": "ffdkit-scene", "version": 1, "objects": [{"name": "m", "mesh": {"path": ")" << path << R"("}}]})";
+  };
+  for (const std::string path : {"../secret.xyz", (root / "secret.xyz").string(), "meshes/../../secret.xyz", "link.xyz"}) {
+    SCOPED_TRACE(path);
+    sceneWith(path);
+    try {
+      readScene(root / "shared" / "scene.json");
+      ADD_FAILURE() << "expected an error";
+    } catch (const SceneFileError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("scene.json /objects/0/mesh/path: object 'm': mesh file '" + path + "' is outside the scene's folder"),
+                std::string::npos)
+          << message;
+    }
+    SceneReadOptions allow;
+    allow.allowMeshesOutsideFolder = true;
+    EXPECT_EQ(readScene(root / "shared" / "scene.json", allow).objects[0].mesh.points.rows(), 1);
+  }
+  for (const std::string path : {"meshes/ok.xyz", (root / "shared" / "meshes" / "ok.xyz").string(), "meshes/../meshes/ok.xyz"}) {
+    SCOPED_TRACE(path);
+    sceneWith(path);
+    EXPECT_EQ(readScene(root / "shared" / "scene.json").objects[0].mesh.points.rows(), 2);
+  }
+  std::filesystem::remove_all(root);
 }
 
 TEST(SceneFile, BadInputGetsLocatedErrors) {

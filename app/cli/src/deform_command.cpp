@@ -1,6 +1,4 @@
 // ffdkit-cli deform: applies a widget file or a scene's widget trees to meshes or point files.
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -14,13 +12,13 @@
 #include "batch_ranks.h"
 #include "commands.h"
 #include "console.h"
+#include "ffdkit/meshio/atomic_write.h"
+#include "ffdkit/meshio/mesh_io.h"
 #include "ffdkit/scenes/lattice_fit.h"
-#include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/scenes/widget_file.h"
-#include "input_mesh.h"
 
 namespace ffdkit::cli {
 
@@ -102,27 +100,25 @@ void onEveryRank(const BatchRanks& ranks, Work&& work) {
   if (!ok) throw std::runtime_error("another process of the mpirun batch failed (its message says why)");
 }
 
-/// Writes every output of every rank or none: each mesh goes to a hidden temporary beside its
-/// target (same folder, same extension so that the writer picks the format), and only when all
-/// ranks have written all theirs are they renamed onto their targets.
+/// Writes every output of every rank or none: each mesh is staged in a hidden temporary file
+/// beside its target, and only when all ranks have staged all theirs are they renamed onto their
+/// targets (a failure or a kill before that leaves every target as it was; the next write of a
+/// target removes temporaries its killed writers left).
 void writeAll(const std::vector<std::pair<fs::path, scenes::MeshData>>& outputs, const BatchRanks& ranks) {
-  std::vector<std::pair<fs::path, fs::path>> staged;
-  try {
-    onEveryRank(ranks, [&] {
-      for (std::size_t i = 0; i < outputs.size(); ++i) {
-        const fs::path& target = outputs[i].first;
-        const fs::path temp = target.parent_path() / (".ffdkit-cli-" + std::to_string(::getpid()) + "-" +
-                                                      std::to_string(i) + "-" + target.filename().string());
-        staged.emplace_back(temp, target);
-        scenes::writeMesh(temp, outputs[i].second);
+  std::vector<meshio::StagedFile> staged;
+  onEveryRank(ranks, [&] {
+    for (const auto& [target, mesh] : outputs) {
+      const auto format = meshio::meshFormatOf(target);
+      if (!format || !meshio::isWritable(*format))
+        throw meshio::MeshIoError(target.string() + ": cannot write format '" + target.extension().string() + "'");
+      try {
+        staged.emplace_back(target, meshio::meshFileBytes(mesh, *format));
+      } catch (const meshio::MeshIoError& e) {
+        throw meshio::MeshIoError(target.string() + ": " + e.what());
       }
-    });
-    for (const auto& [temp, target] : staged) fs::rename(temp, target);
-  } catch (...) {
-    std::error_code ignored;
-    for (const auto& [temp, target] : staged) fs::remove(temp, ignored);
-    throw;
-  }
+    }
+  });
+  for (auto& file : staged) file.commit();
 }
 
 /// The widget file, read once (by rank 0 of a batch) and sent to every rank.
@@ -158,6 +154,7 @@ struct DeformRequest {
   std::vector<VariationSetting> settings;
   std::vector<std::string> objects;  ///< --object: the scene objects to write ("" = all)
   std::optional<std::string> format; ///< lower case, no dot
+  bool allowOutsideMeshes = false;   ///< --allow-outside-meshes
 };
 
 DeformRequest parseRequest(const Args& args) {
@@ -172,6 +169,7 @@ DeformRequest parseRequest(const Args& args) {
   r.inputs = args.positional();
   if (r.widgetFile && r.inputs.empty()) throw UsageError("--widgets needs at least one INPUT mesh or point file");
   r.fit = args.flag("fit");
+  r.allowOutsideMeshes = args.flag("allow-outside-meshes");
   if (r.fit && r.inputs.empty()) throw UsageError("--fit fits the lattices to INPUT files; a scene's objects need none");
   if (auto padding = args.value("padding")) {
     if (!r.fit) throw UsageError("--padding only applies with --fit");
@@ -185,8 +183,9 @@ DeformRequest parseRequest(const Args& args) {
   if (auto f = args.value("format")) {
     std::string format = lower(*f);
     if (!format.empty() && format[0] == '.') format.erase(0, 1);
-    static const std::set<std::string> writable = {"obj", "ply", "stl", "vtp", "xyz"};
-    if (writable.count(format) == 0) throw UsageError("--format must be one of obj, ply, stl, vtp, xyz; got '" + *f + "'");
+    const auto known = meshio::meshFormatOf("output." + format);
+    if (!known || !meshio::isWritable(*known))
+      throw UsageError("--format must be one of obj, ply, stl, vtp, vtk, xyz, npy; got '" + *f + "'");
     r.format = format;
   }
   return r;
@@ -204,7 +203,9 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
       scene.widgets = readTool(*r.widgetFile, ranks);
     } else {
       console.begin("read", "reading " + r.sceneFile->string());
-      scene = scenes::readScene(*r.sceneFile);
+      scenes::SceneReadOptions options;
+      options.allowMeshesOutsideFolder = r.allowOutsideMeshes;
+      scene = scenes::readScene(*r.sceneFile, options);
     }
   });
   onEveryRank(ranks, [&] {
@@ -219,7 +220,7 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
       const std::string& input = r.inputs[i];
       console.begin("read", "reading " + input);
       scenes::SceneObject object;
-      object.mesh = readInputMesh(fs::path(input));
+      object.mesh = meshio::readMesh(fs::path(input));
       object.name = names[i];
       object.source = scenes::MeshFileSource{fs::absolute(input).string()};
       sourceOf[object.name] = input;
@@ -273,7 +274,7 @@ std::vector<Output> plannedOutputs(const DeformRequest& r, const scenes::Scene& 
     std::string ext = r.format.value_or("");
     if (ext.empty() && sourceOf.count(name)) ext = lower(sourceOf.at(name).extension().string());
     if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
-    if (ext.empty() || ext == "gltf" || ext == "glb" || ext == "vtk")
+    if (ext.empty() || ext == "gltf" || ext == "glb")
       throw UsageError("give --format EXT for object '" + name + "' (its input format cannot be written)");
     targets.push_back({name, r.output / (name + "." + ext)});
   }
@@ -354,8 +355,8 @@ Command deformCommand() {
           "(--fit first maps the lattices onto the inputs' bounding box). With --scene and INPUT\n"
           "files, the scene's root lattices deform the inputs the same way; without INPUT files\n"
           "the scene's own objects are deformed and written (--object picks some).\n"
-          "INPUT: .obj .ply .stl .vtp .vtk .gltf .glb .xyz. OUTPUT: a file when there is one\n"
-          "result (its extension picks the format: .obj .ply .stl .vtp .xyz), else a folder that\n"
+          "INPUT: .obj .ply .stl .vtp .vtk .gltf .glb .xyz .npy. OUTPUT: a file when there is one\n"
+          "result (its extension picks the format: .obj .ply .stl .vtp .vtk .xyz .npy), else a folder that\n"
           "receives NAME.EXT per object. Normals are recomputed when the input had them.\n"
           "Nothing is written when anything fails.\n"
           "Batch: mpirun -n N ffdkit-cli deform --widgets TOOL PIECE... -o FOLDER: rank 0 reads TOOL\n"
@@ -369,7 +370,7 @@ Command deformCommand() {
            {"padding", '\0', "P", "with --fit: margin on every side, relative to the box diagonal (0.05)"},
            {"object", '\0', "NAME", "with --scene and no INPUT: write only this object", true},
            {"format", '\0', "EXT", "format of outputs written into a folder (default: the input's)"},
-           quietOption(), progressOption(), timingsOption()},
+           allowOutsideMeshesOption(), quietOption(), progressOption(), timingsOption()},
           runDeform};
 }
 

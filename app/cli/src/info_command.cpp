@@ -10,7 +10,6 @@
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/scenes/widget_file.h"
-#include "input_mesh.h"
 
 namespace ffdkit::cli {
 
@@ -61,8 +60,8 @@ void printWidgets(const widgets::WidgetModel& model) {
   std::printf("bindings: %zu\n", model.bindings().size());
 }
 
-void infoScene(const fs::path& path) {
-  const scenes::Scene scene = scenes::readScene(path);
+void infoScene(const fs::path& path, const Args& args) {
+  const scenes::Scene scene = readSceneFile(path, args);
   std::printf("scene: %s\n", path.string().c_str());
   if (!scene.description.empty()) std::printf("description: %s\n", scene.description.c_str());
   if (scene.widgetFile) std::printf("widget file: %s\n", scene.widgetFile->c_str());
@@ -90,7 +89,7 @@ void infoWidgets(const fs::path& path) {
 }
 
 void infoMesh(const fs::path& path) {
-  const scenes::MeshData mesh = readInputMesh(path);
+  const scenes::MeshData mesh = scenes::readMesh(path);
   std::printf("mesh: %s\n%s\n", path.string().c_str(), meshText(mesh).c_str());
 }
 
@@ -115,7 +114,7 @@ int runInfo(const Args& args) {
     if (!first) std::printf("\n");
     first = false;
     switch (fileKind(file)) {
-      case FileKind::Scene: infoScene(file); break;
+      case FileKind::Scene: infoScene(file, args); break;
       case FileKind::Widgets: infoWidgets(file); break;
       case FileKind::Mesh: infoMesh(file); break;
     }
@@ -125,10 +124,10 @@ int runInfo(const Args& args) {
 
 /// Checks one file completely: reads it, builds every object, validates references and meshes,
 /// and evaluates a scene (a degenerate lattice fails there). @throws on the first problem.
-std::string check(const fs::path& path) {
+std::string check(const fs::path& path, const Args& args) {
   switch (fileKind(path)) {
     case FileKind::Scene: {
-      const scenes::Scene scene = scenes::readScene(path);
+      const scenes::Scene scene = readSceneFile(path, args);
       scenes::validateScene(scene);
       for (const auto& object : scene.objects)
         scenes::validateMesh(object.mesh, path.string() + ": object '" + object.name + "'");
@@ -147,7 +146,7 @@ std::string check(const fs::path& path) {
                     model.widgets(widgets::WidgetType::Affine).size());
     }
     case FileKind::Mesh: {
-      const scenes::MeshData mesh = readInputMesh(path);
+      const scenes::MeshData mesh = scenes::readMesh(path);
       scenes::validateMesh(mesh, path.string());
       return format("mesh, %lld points", static_cast<long long>(mesh.points.rows()));
     }
@@ -161,7 +160,7 @@ int runValidate(const Args& args) {
   int broken = 0;
   for (const auto& file : args.positional()) {
     try {
-      const std::string summary = check(file);
+      const std::string summary = check(file, args);
       console.say(file + ": ok (" + summary + ")");
     } catch (const std::exception& e) {
       std::fflush(stdout);
@@ -190,7 +189,7 @@ Command infoCommand() {
           "FILE: a scene (.json or a sample-scene folder), a widget file (.json with format\n"
           "\"ffdkit-widgets\") or a mesh / point file. Lists objects, lattices, affine widgets (the\n"
           "names --set takes) with their variations, attachments, and evaluates a scene.\n",
-          {{"generators", '\0', "", "list the registered curve and surface generators"}, quietOption()},
+          {{"generators", '\0', "", "list the registered curve and surface generators"}, allowOutsideMeshesOption(), quietOption()},
           runInfo};
 }
 
@@ -201,7 +200,7 @@ Command validateCommand() {
           "Reads each file completely (a scene: its mesh files, generators, widgets and\n"
           "attachments, then evaluates it) and prints 'FILE: ok' or the problem, with line and\n"
           "column for malformed JSON. Exit status 1 when any file is broken. Writes nothing.\n",
-          {quietOption()},
+          {allowOutsideMeshesOption(), quietOption()},
           runValidate};
 }
 

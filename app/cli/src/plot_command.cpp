@@ -34,7 +34,7 @@ int runPlot(const Args& args) {
   } else {
     if (!object || args.positional().size() != 1) throw UsageError("plot takes a SCENE and --object NAME (or --generator)");
     console.begin("read", "reading " + args.positional()[0]);
-    const scenes::Scene scene = scenes::readScene(fs::path(args.positional()[0]));
+    const scenes::Scene scene = readSceneFile(fs::path(args.positional()[0]), args);
     const scenes::SceneObject* found = scene.findObject(*object);
     if (!found) {
       std::string known;
@@ -79,7 +79,7 @@ Command plotCommand() {
            {"density", '\0', "D", "sampling relative to the generator's default, (0, 64] (the object's, or 1)"},
            {"size", '\0', "WxH", "image size in pixels (900x520)"},
            {"title", '\0', "TEXT", "chart title (the object or generator name)"},
-           quietOption(), progressOption(), timingsOption()},
+           allowOutsideMeshesOption(), quietOption(), progressOption(), timingsOption()},
           runPlot};
 }
 

@@ -65,7 +65,7 @@ int runRender(const Args& args) {
   const auto settings = parseSettings(args.values("set"));
 
   console.begin("read", "reading " + scenePath.string());
-  scenes::Scene scene = scenes::readScene(scenePath);
+  scenes::Scene scene = readSceneFile(scenePath, args);
   console.begin("build scene", "applying settings");
   applySettings(scene.widgets, settings);
   if (preset != "scene") scene.camera = presetCamera(scene, preset);
@@ -89,7 +89,7 @@ Command renderCommand() {
           "top (from +z), iso (from (1,-1,1)); presets frame the deformed objects.\n",
           {{"size", '\0', "WxH", "image size in pixels (1024x768)"},
            {"camera", '\0', "PRESET", "scene, front, top, side or iso (scene)"},
-           setOption(), quietOption(), progressOption(), timingsOption()},
+           setOption(), allowOutsideMeshesOption(), quietOption(), progressOption(), timingsOption()},
           runRender};
 }
 

@@ -11,7 +11,7 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkWindowToImageFilter.h>
 
-#include "ffdkit/scenes/atomic_write.h"
+#include "ffdkit/meshio/atomic_write.h"
 
 namespace ffdkit::app::detail {
 
@@ -32,7 +32,7 @@ void writeWindowPng(vtkRenderWindow* window, const std::filesystem::path& png) {
   writer->Write();
   vtkUnsignedCharArray* bytes = writer->GetResult();
   if (bytes == nullptr || bytes->GetNumberOfValues() == 0) throw std::runtime_error(png.string() + ": rendering produced no image");
-  scenes::writeFileAtomically(png, std::string_view(reinterpret_cast<const char*>(bytes->GetPointer(0)),
+  meshio::writeFileAtomically(png, std::string_view(reinterpret_cast<const char*>(bytes->GetPointer(0)),
                                                     static_cast<std::size_t>(bytes->GetNumberOfValues())));
 }
 

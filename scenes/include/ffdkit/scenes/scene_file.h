@@ -26,6 +26,9 @@ struct SceneReadOptions {
   /// the scene file's folder).
   std::filesystem::path baseDirectory = ".";
   const GeneratorRegistry* generators = nullptr;  ///< nullptr: builtinGenerators()
+  /// false: a mesh path that leads outside `baseDirectory` (absolute, "..", or through a
+  /// symbolic link) is an error, so a shared scene cannot make a batch job read other files.
+  bool allowMeshesOutsideFolder = false;
 };
 
 /// Reads a scene from JSON text; builds every object's points (primitives, mesh files,
@@ -33,8 +36,10 @@ struct SceneReadOptions {
 /// @throws SceneFileError; nothing is returned half-read.
 Scene readScene(std::istream& in, const std::string& sourceName = "<stream>", const SceneReadOptions& options = {});
 
-/// Reads `path`, or `path/scene.json` when `path` is a directory (sample scenes are folders).
+/// Reads `path`, or `path/scene.json` when `path` is a directory (sample scenes are folders);
+/// relative paths resolve against the scene file's folder (options.baseDirectory is set to it).
 Scene readScene(const std::filesystem::path& path);
+Scene readScene(const std::filesystem::path& path, SceneReadOptions options);
 
 /// The canonical JSON text of a scene: fixed key order, 2-space indent, short arrays on one
 /// line, shortest round-trip numbers, trailing newline; reading it and writing again gives

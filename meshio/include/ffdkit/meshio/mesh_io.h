@@ -1,0 +1,51 @@
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+
+#include "ffdkit/meshio/mesh_data.h"
+#include "ffdkit/meshio/mesh_format.h"
+
+namespace ffdkit::meshio {
+
+/// The byte layout of a written PLY file.
+enum class PlyEncoding { BinaryLittleEndian, BinaryBigEndian, Ascii };
+
+struct MeshWriteOptions {
+  PlyEncoding plyEncoding = PlyEncoding::BinaryLittleEndian;
+  /// Path writes only: flush the file to disk (fsync) before the rename, so that a power loss
+  /// cannot leave a renamed but empty file. A killed process never leaves a partial file either way.
+  bool durable = true;
+};
+
+/// Reads a mesh or point file; the format comes from the extension (see MeshFormat).
+/// Every reader validates while it parses: counts are checked against the bytes left before
+/// anything is allocated, indices are in range, numbers finite, and truncated or over-long
+/// files are errors. A result always passes validateMesh.
+/// @throws MeshIoError naming the file, the element and (text formats) the line.
+MeshData readMesh(const std::filesystem::path& path);
+
+/// Reads a mesh of `format` from a stream (glTF: no external buffers). `sourceName` names the
+/// stream in messages.
+MeshData readMesh(std::istream& in, MeshFormat format, const std::string& sourceName = "<stream>");
+
+/// Reads a mesh of `format` from bytes in memory (what the stream and path overloads call).
+MeshData readMeshBytes(std::string_view bytes, MeshFormat format, const std::string& sourceName = "<memory>");
+
+/// Writes a mesh; the format comes from the extension: .obj, .ply, .stl (binary, triangles
+/// only), .xyz and .npy (points only), .vtp, .vtk. Normals are recomputed from the points when
+/// `mesh.hasNormals`. Atomic: the bytes go to a hidden temporary file beside `path` that is
+/// renamed over it, so `path` is either the old file or the complete new one; temporaries
+/// left by killed writers are removed by the next write into the folder.
+/// @throws MeshIoError for an unknown extension, a mesh that fails validateMesh, or a failed write.
+void writeMesh(const std::filesystem::path& path, const MeshData& mesh, const MeshWriteOptions& options = {});
+
+/// Writes a mesh of `format` to a stream.
+void writeMesh(std::ostream& out, const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options = {});
+
+/// The bytes of `mesh` in `format` (what the stream and path overloads write).
+std::string meshFileBytes(const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options = {});
+
+}  // namespace ffdkit::meshio

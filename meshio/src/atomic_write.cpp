@@ -1,0 +1,117 @@
+#include "ffdkit/meshio/atomic_write.h"
+
+#include <atomic>
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
+namespace ffdkit::meshio {
+
+namespace {
+
+std::filesystem::path folderOf(const std::filesystem::path& path) {
+  return path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+}
+
+std::string temporaryPrefix(const std::filesystem::path& path) {
+  // Built by appending: GCC 12 warns falsely (-Wrestrict, bug 105329) on a "." + string chain.
+  std::string prefix = ".";
+  prefix.append(path.filename().string()).append(".tmp-");
+  return prefix;
+}
+
+}  // namespace
+
+std::filesystem::path temporaryPathBeside(const std::filesystem::path& path) {
+  static std::atomic<unsigned> counter{0};
+  std::string name = temporaryPrefix(path);
+  name.append(std::to_string(::getpid())).append("-").append(std::to_string(counter.fetch_add(1)));
+  return folderOf(path) / name;
+}
+
+int removeStaleTemporaries(const std::filesystem::path& path) {
+  const std::string prefix = temporaryPrefix(path);
+  std::error_code ec;
+  std::filesystem::directory_iterator it(folderOf(path), ec), end;
+  int removed = 0;
+  for (; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+    // ".<name>.tmp-<pid>-<n>": the writer's pid decides whether the file is still being written.
+    const char* first = name.data() + prefix.size();
+    const char* last = name.data() + name.size();
+    long pid = 0;
+    const auto [next, error] = std::from_chars(first, last, pid);
+    if (error != std::errc() || next == last || *next != '-' || pid <= 0) continue;
+    if (pid == ::getpid()) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
+    std::error_code ignored;
+    if (std::filesystem::remove(it->path(), ignored)) ++removed;
+  }
+  return removed;
+}
+
+StagedFile::StagedFile(const std::filesystem::path& path, std::string_view content, bool durable)
+    : path_(path), temporary_(temporaryPathBeside(path)) {
+  removeStaleTemporaries(path);
+  auto fail = [&](const std::string& step) {
+    const std::string reason = std::strerror(errno);
+    std::error_code ignored;
+    std::filesystem::remove(temporary_, ignored);
+    throw std::runtime_error(path.string() + ": cannot write (" + step + ": " + reason + ")");
+  };
+  const int fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const std::string reason = std::strerror(errno);
+    throw std::runtime_error(path.string() + ": cannot write (create temporary file: " + reason + ")");
+  }
+  const char* data = content.data();
+  std::size_t left = content.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, data, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      ::close(fd);
+      fail("write");
+    }
+    data += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  if (durable && ::fsync(fd) != 0) {
+    ::close(fd);
+    fail("flush");
+  }
+  if (::close(fd) != 0) fail("close");
+}
+
+StagedFile::~StagedFile() {
+  if (temporary_.empty()) return;
+  std::error_code ignored;
+  std::filesystem::remove(temporary_, ignored);
+}
+
+StagedFile::StagedFile(StagedFile&& other) noexcept
+    : path_(std::move(other.path_)), temporary_(std::move(other.temporary_)) {
+  other.temporary_.clear();
+}
+
+void StagedFile::commit() {
+  if (temporary_.empty()) throw std::logic_error(path_.string() + ": staged file committed twice");
+  if (::rename(temporary_.c_str(), path_.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    throw std::runtime_error(path_.string() + ": cannot write (rename: " + reason + ")");
+  }
+  temporary_.clear();
+}
+
+void writeFileAtomically(const std::filesystem::path& path, std::string_view content, bool durable) {
+  StagedFile(path, content, durable).commit();
+}
+
+}  // namespace ffdkit::meshio

@@ -1,0 +1,36 @@
+#include "ffdkit/meshio/mesh_data.h"
+
+#include <Eigen/Geometry>
+
+namespace ffdkit::meshio {
+
+void validateMesh(const MeshData& mesh, const std::string& what) {
+  const Eigen::Index n = mesh.points.rows();
+  if (n == 0) throw MeshIoError(what + ": the mesh has no points");
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (!mesh.points.row(i).allFinite())
+      throw MeshIoError(what + ": point " + std::to_string(i) + " has a non-finite coordinate");
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t)
+    if (mesh.triangles.row(t).minCoeff() < 0 || mesh.triangles.row(t).maxCoeff() >= n)
+      throw MeshIoError(what + ": triangle " + std::to_string(t) + " uses a point index outside 0.." + std::to_string(n - 1));
+  for (Eigen::Index s = 0; s < mesh.segments.rows(); ++s)
+    if (mesh.segments.row(s).minCoeff() < 0 || mesh.segments.row(s).maxCoeff() >= n)
+      throw MeshIoError(what + ": segment " + std::to_string(s) + " uses a point index outside 0.." + std::to_string(n - 1));
+}
+
+Eigen::MatrixX3d vertexNormals(const Eigen::MatrixX3d& points, const Eigen::MatrixX3i& triangles) {
+  Eigen::MatrixX3d normals = Eigen::MatrixX3d::Zero(points.rows(), 3);
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+    const Eigen::Vector3d a = points.row(triangles(t, 0)), b = points.row(triangles(t, 1)), c = points.row(triangles(t, 2));
+    const Eigen::RowVector3d areaNormal = (b - a).cross(c - a).transpose();  // twice the area, so larger faces weigh more
+    for (int k = 0; k < 3; ++k) normals.row(triangles(t, k)) += areaNormal;
+  }
+  for (Eigen::Index i = 0; i < normals.rows(); ++i) {
+    const double length = normals.row(i).norm();
+    if (length > 0.0 && std::isfinite(length)) normals.row(i) /= length;
+    else normals.row(i).setZero();
+  }
+  return normals;
+}
+
+}  // namespace ffdkit::meshio

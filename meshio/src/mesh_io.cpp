@@ -1,0 +1,153 @@
+#include "ffdkit/meshio/mesh_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <istream>
+#include <iterator>
+#include <ostream>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "ffdkit/meshio/atomic_write.h"
+#include "formats.h"
+
+namespace ffdkit::meshio {
+
+namespace {
+
+constexpr std::pair<std::string_view, MeshFormat> kExtensions[] = {
+    {".obj", MeshFormat::Obj},   {".ply", MeshFormat::Ply}, {".stl", MeshFormat::Stl},
+    {".xyz", MeshFormat::Xyz},   {".npy", MeshFormat::Npy}, {".gltf", MeshFormat::Gltf},
+    {".glb", MeshFormat::Glb},   {".vtp", MeshFormat::Vtp}, {".vtk", MeshFormat::Vtk}};
+
+std::string formatList(bool writable) {
+  std::string list;
+  for (const auto& [ext, format] : kExtensions)
+    if (!writable || isWritable(format)) list.append(list.empty() ? "" : " ").append(ext);
+  return list;
+}
+
+// The whole file in memory: read(2) into one buffer of the file's size.
+std::string readFileBytes(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw MeshIoError(path.string() + ": cannot open (" + std::strerror(errno) + ")");
+  struct stat info {};
+  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+    ::close(fd);
+    throw MeshIoError(path.string() + ": not a regular file");
+  }
+  std::string bytes(std::size_t(info.st_size), '\0');
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      ::close(fd);
+      throw MeshIoError(path.string() + ": cannot read (" + (n < 0 ? std::strerror(errno) : "the file shrank while read") + ")");
+    }
+    done += std::size_t(n);
+  }
+  ::close(fd);
+  return bytes;
+}
+
+MeshData parse(std::string_view bytes, MeshFormat format, const std::string& source,
+               const std::optional<std::filesystem::path>& folder) {
+  switch (format) {
+    case MeshFormat::Obj: return detail::readObj(bytes, source);
+    case MeshFormat::Ply: return detail::readPly(bytes, source);
+    case MeshFormat::Stl: return detail::readStl(bytes, source);
+    case MeshFormat::Xyz: return detail::readXyz(bytes, source);
+    case MeshFormat::Npy: return detail::readNpy(bytes, source);
+    case MeshFormat::Gltf: return detail::readGltf(bytes, false, source, folder);
+    case MeshFormat::Glb: return detail::readGltf(bytes, true, source, folder);
+    case MeshFormat::Vtp: return detail::readVtk(bytes, true, source);
+    case MeshFormat::Vtk: return detail::readVtk(bytes, false, source);
+  }
+  throw MeshIoError(source + ": unknown format");
+}
+
+}  // namespace
+
+std::optional<MeshFormat> meshFormatOf(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  for (const auto& [e, format] : kExtensions)
+    if (e == ext) return format;
+  return std::nullopt;
+}
+
+std::string_view meshFormatExtension(MeshFormat format) {
+  for (const auto& [ext, f] : kExtensions)
+    if (f == format) return ext;
+  return "";
+}
+
+bool isWritable(MeshFormat format) { return format != MeshFormat::Gltf && format != MeshFormat::Glb; }
+
+MeshData readMeshBytes(std::string_view bytes, MeshFormat format, const std::string& sourceName) {
+  return parse(bytes, format, sourceName, std::nullopt);
+}
+
+MeshData readMesh(std::istream& in, MeshFormat format, const std::string& sourceName) {
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw MeshIoError(sourceName + ": cannot read the stream");
+  return readMeshBytes(bytes, format, sourceName);
+}
+
+MeshData readMesh(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  const auto format = meshFormatOf(path);
+  if (!format)
+    throw MeshIoError(source + ": unknown mesh format '" + path.extension().string() + "' (reads " + formatList(false) + ")");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw MeshIoError(source + ": no such file");
+  const std::string bytes = readFileBytes(path);
+  return parse(bytes, *format, source, path.parent_path());
+}
+
+std::string meshFileBytes(const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {
+  switch (format) {
+    case MeshFormat::Obj: return detail::writeObj(mesh);
+    case MeshFormat::Ply: return detail::writePly(mesh, options.plyEncoding);
+    case MeshFormat::Stl: return detail::writeStl(mesh);
+    case MeshFormat::Xyz: return detail::writeXyz(mesh);
+    case MeshFormat::Npy: return detail::writeNpy(mesh);
+    case MeshFormat::Vtp: return detail::writeVtk(mesh, true);
+    case MeshFormat::Vtk: return detail::writeVtk(mesh, false);
+    case MeshFormat::Gltf:
+    case MeshFormat::Glb: break;
+  }
+  throw MeshIoError("cannot write format '" + std::string(meshFormatExtension(format)) + "' (writes " + formatList(true) + ")");
+}
+
+void writeMesh(std::ostream& out, const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {
+  validateMesh(mesh, "<stream>");
+  const std::string bytes = meshFileBytes(mesh, format, options);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+  if (!out) throw MeshIoError("<stream>: cannot write");
+}
+
+void writeMesh(const std::filesystem::path& path, const MeshData& mesh, const MeshWriteOptions& options) {
+  const auto format = meshFormatOf(path);
+  if (!format || !isWritable(*format))
+    throw MeshIoError(path.string() + ": cannot write format '" + path.extension().string() + "' (writes " + formatList(true) + ")");
+  validateMesh(mesh, path.string());
+  std::string bytes;
+  try {
+    bytes = meshFileBytes(mesh, *format, options);
+  } catch (const MeshIoError& e) {
+    throw MeshIoError(path.string() + ": " + e.what());
+  }
+  try {
+    writeFileAtomically(path, bytes, options.durable);
+  } catch (const std::runtime_error& e) {
+    throw MeshIoError(e.what());
+  }
+}
+
+}  // namespace ffdkit::meshio

@@ -1,0 +1,225 @@
+#pragma once
+// Cursors over a file's bytes that check before they read, and growing sinks for points and
+// cells. Private to meshio: every reader parses from memory through these, so every bound is
+// checked in one place.
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <system_error>
+
+#include <fast_float/fast_float.h>
+
+#include "ffdkit/meshio/mesh_data.h"
+
+namespace ffdkit::meshio::detail {
+
+/// Names an element in a message: "face 12", "vertex 7 (x)". Built into text only on failure,
+/// so that a reader's hot loop allocates nothing.
+struct Where {
+  const char* kind;
+  long long index = -1;          ///< -1: no index ("header")
+  std::string_view detail = {};  ///< a property name, or empty
+  std::string text() const {
+    std::string t = kind;
+    if (index >= 0) t.append(" ").append(std::to_string(index));
+    if (!detail.empty()) t.append(" (").append(detail).append(")");
+    return t;
+  }
+};
+
+/// Text read token by token with the line number kept for messages (`file:12: ...`).
+class TextCursor {
+ public:
+  /// `firstLine`: the line number of `text`'s first line in the file.
+  TextCursor(std::string_view text, const std::string& source, int firstLine = 1)
+      : text_(text), source_(source), line_(firstLine) {}
+
+  bool atEnd() const { return pos_ >= text_.size(); }
+  int line() const { return line_; }
+  std::size_t bytesLeft() const { return text_.size() - pos_; }
+
+  /// Skips spaces, tabs and carriage returns (not newlines).
+  void skipBlanks() {
+    while (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\t' || text_[pos_] == '\r')) ++pos_;
+  }
+  /// After skipBlanks: at a newline, a '#' comment (when `hashComments`), or the end.
+  bool atLineEnd(bool hashComments = false) const {
+    return pos_ >= text_.size() || text_[pos_] == '\n' || (hashComments && text_[pos_] == '#');
+  }
+  /// Moves past the next newline (or to the end).
+  void nextLine() {
+    const std::size_t newline = text_.find('\n', pos_);
+    pos_ = newline == std::string_view::npos ? text_.size() : newline + 1;
+    ++line_;
+  }
+  /// Fails unless only blanks (and a '#' comment when `hashComments`) are left on the line;
+  /// then moves to the next line.
+  void endLine(const Where& where, bool hashComments = false) {
+    skipBlanks();
+    if (!atLineEnd(hashComments)) fail(where.text() + ": unexpected '" + std::string(peekWord()) + "' at the end of the line");
+    nextLine();
+  }
+  /// The next run of non-blank characters on this line (empty at the line's end).
+  std::string_view word() {
+    skipBlanks();
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && !isBlankOrNewline(text_[pos_])) ++pos_;
+    return text_.substr(start, pos_ - start);
+  }
+  std::string_view peekWord() const {
+    std::size_t end = pos_;
+    while (end < text_.size() && !isBlankOrNewline(text_[end]) && end - pos_ < 40) ++end;
+    return text_.substr(pos_, end - pos_);
+  }
+  /// The rest of the line (without the newline); the cursor stays.
+  std::string_view restOfLine() const {
+    const std::size_t newline = text_.find('\n', pos_);
+    return text_.substr(pos_, (newline == std::string_view::npos ? text_.size() : newline) - pos_);
+  }
+
+  /// A finite number of type T (double or float; fast_float rounds the decimal text once,
+  /// so the shortest text of a value reads back as exactly that value).
+  template <class T = double>
+  T number(const Where& where) {
+    skipBlanks();
+    const char* first = text_.data() + pos_;
+    const char* last = text_.data() + text_.size();
+    if (first < last && *first == '+') ++first;  // from_chars follows strtod except for '+'
+    T value = 0;
+    const auto result = fast_float::from_chars(first, last, value);
+    if (result.ec != std::errc() || (result.ptr < last && !isBlankOrNewline(*result.ptr)))
+      fail(where.text() + ": expected a number, got '" + std::string(peekWord()) + "'");
+    if (!std::isfinite(value)) fail(where.text() + ": non-finite number '" + std::string(peekWord()) + "'");
+    pos_ = std::size_t(result.ptr - text_.data());
+    return value;
+  }
+  /// An integer in [lo, hi].
+  long long integer(const Where& where, long long lo, long long hi) {
+    skipBlanks();
+    const char* first = text_.data() + pos_;
+    const char* last = text_.data() + text_.size();
+    if (first < last && *first == '+') ++first;
+    long long value = 0;
+    const auto result = std::from_chars(first, last, value);
+    if (result.ec == std::errc::result_out_of_range)
+      fail(where.text() + ": '" + std::string(peekWord()) + "' is out of range");
+    if (result.ec != std::errc() || (result.ptr < last && !isBlankOrNewline(*result.ptr)))
+      fail(where.text() + ": expected an integer, got '" + std::string(peekWord()) + "'");
+    if (value < lo || value > hi)
+      fail(where.text() + ": " + std::to_string(value) + " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
+    pos_ = std::size_t(result.ptr - text_.data());
+    return value;
+  }
+
+  [[noreturn]] void fail(const std::string& message) const {
+    throw MeshIoError(source_ + ":" + std::to_string(line_) + ": " + message);
+  }
+  const std::string& source() const { return source_; }
+
+  static bool isBlankOrNewline(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+
+ private:
+  std::string_view text_;
+  const std::string& source_;
+  std::size_t pos_ = 0;
+  int line_;
+};
+
+/// Binary data read value by value; every read is checked against the bytes left.
+class ByteCursor {
+ public:
+  ByteCursor(std::string_view bytes, const std::string& source, std::size_t offset = 0)
+      : bytes_(bytes), source_(source), pos_(offset) {}
+
+  std::size_t offset() const { return pos_; }
+  std::size_t bytesLeft() const { return bytes_.size() - pos_; }
+  const char* here() const { return bytes_.data() + pos_; }
+
+  /// Fails unless `n` more bytes are there; `where` names what needs them.
+  void need(std::size_t n, const Where& where) const {
+    if (n > bytesLeft())
+      fail("truncated: " + where.text() + " needs " + std::to_string(n) + " bytes at offset " + std::to_string(pos_) +
+           ", the file has " + std::to_string(bytesLeft()) + " left");
+  }
+  void skip(std::size_t n) { pos_ += n; }  // after need()
+
+  /// A value of type T, byte-swapped when `bigEndian`; call need() first.
+  template <class T>
+  T take(bool bigEndian) {
+    T value;
+    char raw[sizeof(T)];
+    std::memcpy(raw, bytes_.data() + pos_, sizeof(T));
+    if (bigEndian != (std::endian::native == std::endian::big)) std::reverse(raw, raw + sizeof(T));
+    std::memcpy(&value, raw, sizeof(T));
+    pos_ += sizeof(T);
+    return value;
+  }
+
+  [[noreturn]] void fail(const std::string& message) const { throw MeshIoError(source_ + ": " + message); }
+
+ private:
+  std::string_view bytes_;
+  const std::string& source_;
+  std::size_t pos_;
+};
+
+/// Rows appended to an Eigen matrix whose capacity doubles; shrink() trims it to the rows added.
+template <class Matrix>
+class RowSink {
+ public:
+  explicit RowSink(Eigen::Index capacity = 0) { matrix_.resize(capacity, Matrix::ColsAtCompileTime); }
+  template <class... Values>
+  void add(Values... values) {
+    if (rows_ == matrix_.rows()) matrix_.conservativeResize(std::max<Eigen::Index>(16, 2 * rows_), Eigen::NoChange);
+    Eigen::Index c = 0;
+    ((matrix_(rows_, c++) = values), ...);
+    ++rows_;
+  }
+  Eigen::Index rows() const { return rows_; }
+  Matrix take() {
+    if (rows_ != matrix_.rows()) matrix_.conservativeResize(rows_, Eigen::NoChange);
+    return std::move(matrix_);
+  }
+
+ private:
+  Matrix matrix_;
+  Eigen::Index rows_ = 0;
+};
+
+using PointSink = RowSink<Eigen::MatrixX3d>;
+using TriangleSink = RowSink<Eigen::MatrixX3i>;
+using SegmentSink = RowSink<Eigen::MatrixX2i>;
+
+/// Appends the shortest decimal text that reads back as exactly `value` (std::to_chars).
+inline void appendNumber(std::string& out, double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+inline void appendNumber(std::string& out, float value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+inline void appendNumber(std::string& out, long long value) {
+  char buffer[24];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+/// Appends the raw bytes of `value` in the given byte order.
+template <class T>
+void appendBinary(std::string& out, T value, bool bigEndian) {
+  char raw[sizeof(T)];
+  std::memcpy(raw, &value, sizeof(T));
+  if (bigEndian != (std::endian::native == std::endian::big)) std::reverse(raw, raw + sizeof(T));
+  out.append(raw, sizeof(T));
+}
+
+}  // namespace ffdkit::meshio::detail

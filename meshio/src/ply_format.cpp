@@ -1,0 +1,444 @@
+// Stanford PLY (Turk 1994): an ASCII header declaring elements and their properties, then the
+// data in ASCII or binary (either byte order). Reads "vertex" (x y z, optional nx ny nz),
+// "face" (a list of vertex indices, fan-triangulated) and "edge" (vertex1 vertex2); other
+// elements are checked and skipped.
+#include <array>
+#include <climits>
+#include <vector>
+
+#include "formats.h"
+#include "parse_support.h"
+
+namespace ffdkit::meshio::detail {
+namespace {
+
+enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+
+std::optional<Type> typeNamed(std::string_view name) {
+  static constexpr std::pair<std::string_view, Type> names[] = {
+      {"char", Type::Int8},     {"int8", Type::Int8},      {"uchar", Type::UInt8},    {"uint8", Type::UInt8},
+      {"short", Type::Int16},   {"int16", Type::Int16},    {"ushort", Type::UInt16},  {"uint16", Type::UInt16},
+      {"int", Type::Int32},     {"int32", Type::Int32},    {"uint", Type::UInt32},    {"uint32", Type::UInt32},
+      {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64}, {"float64", Type::Float64}};
+  for (const auto& [n, t] : names)
+    if (n == name) return t;
+  return std::nullopt;
+}
+
+std::size_t sizeOf(Type t) {
+  switch (t) {
+    case Type::Int8: case Type::UInt8: return 1;
+    case Type::Int16: case Type::UInt16: return 2;
+    case Type::Int32: case Type::UInt32: case Type::Float32: return 4;
+    case Type::Float64: return 8;
+  }
+  return 0;
+}
+
+bool isInteger(Type t) { return t != Type::Float32 && t != Type::Float64; }
+
+// What a property is for: a coordinate slot of the point or normal, the face's or edge's
+// vertex indices, or nothing (checked and skipped).
+enum class Role { Ignore, X, Y, Z, NX, NY, NZ, FaceIndices, Edge0, Edge1 };
+
+struct Property {
+  std::string name;
+  Type type = Type::Float32;
+  bool isList = false;
+  Type countType = Type::UInt8;
+  Role role = Role::Ignore;
+};
+
+struct Element {
+  std::string name;
+  long long count = 0;
+  std::vector<Property> properties;
+  int headerLine = 0;
+};
+
+enum class Encoding { Ascii, Little, Big };
+
+struct Header {
+  Encoding encoding = Encoding::Ascii;
+  std::vector<Element> elements;
+  std::size_t dataOffset = 0;
+  int dataLine = 0;  ///< the first data line (ASCII)
+};
+
+Header readHeader(std::string_view bytes, const std::string& source) {
+  // The header is short text; cap it so a file without "end_header" is not scanned for long.
+  constexpr std::size_t kMaxHeader = 1 << 20;
+  const std::size_t end = bytes.substr(0, kMaxHeader).find("end_header");
+  TextCursor text(bytes.substr(0, end == std::string_view::npos ? std::min(bytes.size(), kMaxHeader) : end + 10), source);
+  if (text.word() != "ply") text.fail("not a PLY file (it must start with 'ply')");
+  text.endLine({"header"});
+  Header header;
+  bool haveFormat = false;
+  for (;;) {
+    if (text.atEnd()) text.fail("the header has no 'end_header' line");
+    const std::string_view keyword = text.word();
+    if (keyword.empty()) {
+      text.nextLine();
+    } else if (keyword == "comment" || keyword == "obj_info") {
+      text.nextLine();
+    } else if (keyword == "format") {
+      const std::string_view f = text.word();
+      if (f == "ascii") header.encoding = Encoding::Ascii;
+      else if (f == "binary_little_endian") header.encoding = Encoding::Little;
+      else if (f == "binary_big_endian") header.encoding = Encoding::Big;
+      else text.fail("unknown format '" + std::string(f) + "' (ascii, binary_little_endian, binary_big_endian)");
+      if (text.word() != "1.0") text.fail("format: only PLY version 1.0 is known");
+      text.endLine({"format"});
+      haveFormat = true;
+    } else if (keyword == "element") {
+      Element e;
+      e.headerLine = text.line();
+      e.name = std::string(text.word());
+      if (e.name.empty()) text.fail("element: missing name");
+      e.count = text.integer({"element count"}, 0, LLONG_MAX);
+      text.endLine({"element"});
+      header.elements.push_back(std::move(e));
+    } else if (keyword == "property") {
+      if (header.elements.empty()) text.fail("property before any element");
+      Property p;
+      std::string_view typeName = text.word();
+      if (typeName == "list") {
+        p.isList = true;
+        const std::string_view countName = text.word();
+        const auto countType = typeNamed(countName);
+        if (!countType || !isInteger(*countType)) text.fail("list count type '" + std::string(countName) + "' is not an integer type");
+        p.countType = *countType;
+        typeName = text.word();
+      }
+      const auto type = typeNamed(typeName);
+      if (!type) text.fail("unknown property type '" + std::string(typeName) + "'");
+      p.type = *type;
+      p.name = std::string(text.word());
+      if (p.name.empty()) text.fail("property: missing name");
+      text.endLine({"property"});
+      header.elements.back().properties.push_back(std::move(p));
+    } else if (keyword == "end_header") {
+      // The data start right after this line's newline ("\r\n" too).
+      text.skipBlanks();
+      if (text.atEnd() && end + 10 < bytes.size() && bytes[end + 10] != '\n' && bytes[end + 10] != '\r')
+        text.fail("garbage after 'end_header'");
+      std::size_t offset = end + 10;
+      while (offset < bytes.size() && bytes[offset] == '\r') ++offset;
+      if (offset < bytes.size() && bytes[offset] == '\n') ++offset;
+      else if (offset < bytes.size()) text.fail("'end_header' must end its line");
+      header.dataOffset = offset;
+      header.dataLine = text.line() + 1;
+      break;
+    } else {
+      text.fail("unknown header keyword '" + std::string(keyword) + "'");
+    }
+  }
+  if (!haveFormat) text.fail("the header has no 'format' line");
+  return header;
+}
+
+// Gives every property its role and checks the elements ffdkit reads have what they need.
+void assignRoles(Header& header, const std::string& source, bool& hasNormals) {
+  auto fail = [&](const Element& e, const std::string& message) {
+    throw MeshIoError(source + ":" + std::to_string(e.headerLine) + ": element '" + e.name + "': " + message);
+  };
+  int vertexElements = 0;
+  for (Element& e : header.elements) {
+    if (e.count > 0 && e.properties.empty()) fail(e, "has no properties");
+    if (e.name == "vertex") {
+      ++vertexElements;
+      int found = 0, normals = 0;
+      for (Property& p : e.properties) {
+        static constexpr std::pair<std::string_view, Role> slots[] = {
+            {"x", Role::X}, {"y", Role::Y}, {"z", Role::Z}, {"nx", Role::NX}, {"ny", Role::NY}, {"nz", Role::NZ}};
+        for (const auto& [name, role] : slots)
+          if (p.name == name) {
+            if (p.isList) fail(e, "property '" + p.name + "' must not be a list");
+            p.role = role;
+            (role == Role::X || role == Role::Y || role == Role::Z ? found : normals) += 1;
+          }
+      }
+      if (found != 3) fail(e, "needs the properties x, y and z");
+      hasNormals = normals == 3;
+    } else if (e.name == "face") {
+      for (Property& p : e.properties)
+        if (p.name == "vertex_indices" || p.name == "vertex_index") {
+          if (!p.isList || !isInteger(p.type)) fail(e, "'" + p.name + "' must be a list of integers");
+          p.role = Role::FaceIndices;
+        }
+    } else if (e.name == "edge") {
+      for (Property& p : e.properties) {
+        if (p.name == "vertex1") p.role = Role::Edge0;
+        if (p.name == "vertex2") p.role = Role::Edge1;
+        if (p.role != Role::Ignore && (p.isList || !isInteger(p.type))) fail(e, "'" + p.name + "' must be an integer");
+      }
+    }
+  }
+  if (vertexElements != 1) throw MeshIoError(source + ": a PLY mesh needs exactly one 'vertex' element");
+}
+
+// The fewest bytes one element can take, so that a count can be checked before allocating.
+std::size_t minimumBytes(const Element& e, Encoding encoding) {
+  std::size_t bytes = 0;
+  for (const Property& p : e.properties)
+    bytes += encoding == Encoding::Ascii ? 2 : (p.isList ? sizeOf(p.countType) : sizeOf(p.type));
+  return bytes;
+}
+
+// The data section: one value source for ASCII and binary, with the element's name in errors.
+class DataReader {
+ public:
+  DataReader(std::string_view bytes, const Header& header, const std::string& source)
+      : encoding_(header.encoding),
+        text_(bytes.substr(header.dataOffset), source, header.dataLine),
+        bytes_(bytes, source, header.dataOffset) {}
+
+  template <class T>
+  T value(Type type, const Where& where) {
+    if (encoding_ == Encoding::Ascii) {
+      text_.skipBlanks();
+      // Values may wrap onto following lines in some writers; each element ends its line.
+      while (!text_.atEnd() && text_.atLineEnd()) {
+        text_.nextLine();
+        text_.skipBlanks();
+      }
+      if (text_.atEnd()) text_.fail(where.text() + ": the file ends early");
+      if (isInteger(type)) return T(asciiInteger(type, where));
+      if (type == Type::Float32) return T(text_.number<float>(where));
+      return T(text_.number<double>(where));
+    }
+    const bool big = encoding_ == Encoding::Big;
+    bytes_.need(sizeOf(type), where);
+    switch (type) {
+      case Type::Int8: return T(bytes_.take<std::int8_t>(big));
+      case Type::UInt8: return T(bytes_.take<std::uint8_t>(big));
+      case Type::Int16: return T(bytes_.take<std::int16_t>(big));
+      case Type::UInt16: return T(bytes_.take<std::uint16_t>(big));
+      case Type::Int32: return T(bytes_.take<std::int32_t>(big));
+      case Type::UInt32: return T(bytes_.take<std::uint32_t>(big));
+      case Type::Float32: {
+        const float v = bytes_.take<float>(big);
+        if (!std::isfinite(v)) bytes_.fail(where.text() + ": non-finite number");
+        return T(v);
+      }
+      case Type::Float64: {
+        const double v = bytes_.take<double>(big);
+        if (!std::isfinite(v)) bytes_.fail(where.text() + ": non-finite number");
+        return T(v);
+      }
+    }
+    return T();
+  }
+
+  /// Bytes (binary) or characters (ASCII) not yet read.
+  std::size_t bytesLeft() const { return encoding_ == Encoding::Ascii ? text_.bytesLeft() : bytes_.bytesLeft(); }
+
+  /// ASCII: an element ends its line.
+  void endElement(const Where& where) {
+    if (encoding_ == Encoding::Ascii) text_.endLine(where);
+  }
+
+  /// Fails when data are left after the last element (blank lines in ASCII are fine).
+  void expectEnd() {
+    if (encoding_ == Encoding::Ascii) {
+      while (!text_.atEnd()) {
+        text_.skipBlanks();
+        if (!text_.atLineEnd()) text_.fail("data after the last element");
+        text_.nextLine();
+      }
+    } else if (bytes_.bytesLeft() != 0) {
+      bytes_.fail(std::to_string(bytes_.bytesLeft()) + " bytes after the last element");
+    }
+  }
+
+  [[noreturn]] void fail(const std::string& message) const {
+    if (encoding_ == Encoding::Ascii) text_.fail(message);
+    bytes_.fail(message);
+  }
+
+ private:
+  long long asciiInteger(Type type, const Where& where) {
+    static constexpr std::pair<long long, long long> ranges[] = {
+        {-128, 127}, {0, 255}, {-32768, 32767}, {0, 65535}, {INT_MIN, INT_MAX}, {0, 4294967295LL}};
+    const auto [lo, hi] = ranges[int(type)];
+    return text_.integer(where, lo, hi);
+  }
+
+  Encoding encoding_;
+  TextCursor text_;
+  ByteCursor bytes_;
+};
+
+}  // namespace
+
+MeshData readPly(std::string_view bytes, const std::string& source) {
+  Header header = readHeader(bytes, source);
+  MeshData mesh;
+  assignRoles(header, source, mesh.hasNormals);
+
+  // Every count against the bytes left, before anything is allocated.
+  std::size_t needed = 0;
+  const std::size_t available = bytes.size() - header.dataOffset + (header.encoding == Encoding::Ascii ? 1 : 0);
+  long long vertexCount = 0;
+  for (const Element& e : header.elements) {
+    const std::size_t each = minimumBytes(e, header.encoding);
+    if (each > 0 && std::size_t(e.count) > (available - std::min(needed, available)) / each)
+      throw MeshIoError(source + ":" + std::to_string(e.headerLine) + ": element '" + e.name + "' announces " +
+                        std::to_string(e.count) + " items of at least " + std::to_string(each) +
+                        " bytes, the file has " + std::to_string(available - std::min(needed, available)) + " bytes of data left");
+    needed += std::size_t(e.count) * each;
+    if (e.name == "vertex") vertexCount = e.count;
+  }
+  if (vertexCount > INT_MAX) throw MeshIoError(source + ": " + std::to_string(vertexCount) + " vertices is more than ffdkit indexes");
+  if (vertexCount == 0) throw MeshIoError(source + ": the file has no vertices");
+
+  mesh.points.resize(Eigen::Index(vertexCount), 3);
+  Eigen::MatrixX3d normals;
+  TriangleSink triangles;
+  SegmentSink segments;
+  DataReader data(bytes, header, source);
+  std::vector<long long> polygon;
+  for (const Element& e : header.elements) {
+    if (e.name == "face") triangles = TriangleSink(Eigen::Index(e.count));
+    if (e.name == "edge") segments = SegmentSink(Eigen::Index(e.count));
+    const char* kind = e.name == "vertex" ? "vertex" : e.name == "face" ? "face" : e.name == "edge" ? "edge" : e.name.c_str();
+    for (long long i = 0; i < e.count; ++i) {
+      long long edge[2] = {-1, -1};
+      bool haveFace = false;
+      for (const Property& p : e.properties) {
+        const Where where{kind, i, p.name};
+        if (p.isList) {
+          const long long n = data.value<long long>(p.countType, where);
+          if (n < 0) data.fail(where.text() + ": negative list count");
+          // A list count is checked against the bytes left too (a 255 past the end is an error, not a read).
+          const std::size_t each = header.encoding == Encoding::Ascii ? 2 : sizeOf(p.type);
+          if (std::size_t(n) > (data.bytesLeft() + 1) / each)
+            data.fail(where.text() + ": a list of " + std::to_string(n) + " values runs past the end of the file");
+          if (p.role == Role::FaceIndices) {
+            polygon.clear();
+            for (long long k = 0; k < n; ++k) {
+              const long long index = data.value<long long>(p.type, where);
+              if (index < 0 || index >= vertexCount)
+                data.fail(Where{kind, i}.text() + ": vertex index " + std::to_string(index) + " is outside 0.." +
+                          std::to_string(vertexCount - 1));
+              polygon.push_back(index);
+            }
+            if (n < 3) data.fail(Where{kind, i}.text() + ": a face needs at least 3 vertices, it has " + std::to_string(n));
+            for (long long k = 1; k + 1 < n; ++k) triangles.add(int(polygon[0]), int(polygon[std::size_t(k)]), int(polygon[std::size_t(k + 1)]));
+            haveFace = true;
+          } else {
+            for (long long k = 0; k < n; ++k) (void)data.value<double>(p.type, where);
+          }
+          continue;
+        }
+        switch (p.role) {
+          case Role::X: mesh.points(i, 0) = data.value<double>(p.type, where); break;
+          case Role::Y: mesh.points(i, 1) = data.value<double>(p.type, where); break;
+          case Role::Z: mesh.points(i, 2) = data.value<double>(p.type, where); break;
+          case Role::Edge0: case Role::Edge1: {
+            const long long index = data.value<long long>(p.type, where);
+            if (index < 0 || index >= vertexCount)
+              data.fail(Where{kind, i}.text() + ": vertex index " + std::to_string(index) + " is outside 0.." +
+                        std::to_string(vertexCount - 1));
+            edge[p.role == Role::Edge0 ? 0 : 1] = index;
+            break;
+          }
+          default: (void)data.value<double>(p.type, where); break;  // normals are recomputed on write
+        }
+      }
+      if (e.name == "face" && !haveFace) data.fail("element 'face' has no 'vertex_indices' list");
+      if (edge[0] >= 0 && edge[1] >= 0) segments.add(int(edge[0]), int(edge[1]));
+      data.endElement({kind, i});
+    }
+  }
+  data.expectEnd();
+  mesh.triangles = triangles.take();
+  mesh.segments = segments.take();
+  return mesh;
+}
+
+std::string writePly(const MeshData& mesh, PlyEncoding encoding) {
+  const bool normals = mesh.hasNormals && mesh.triangles.rows() > 0;
+  const Eigen::MatrixX3d n = normals ? vertexNormals(mesh.points, mesh.triangles) : Eigen::MatrixX3d();
+  const bool ascii = encoding == PlyEncoding::Ascii;
+  std::string out = "ply\nformat ";
+  out += ascii ? "ascii" : encoding == PlyEncoding::BinaryBigEndian ? "binary_big_endian" : "binary_little_endian";
+  out += " 1.0\ncomment ffdkit\nelement vertex " + std::to_string(mesh.points.rows()) + "\n";
+  // ASCII keeps doubles (shortest text, exact); binary files keep float32, as most tools expect.
+  const char* real = ascii ? "double" : "float";
+  for (const char* axis : {"x", "y", "z"}) out.append("property ").append(real).append(" ").append(axis).append("\n");
+  if (normals)
+    for (const char* axis : {"nx", "ny", "nz"}) out.append("property float ").append(axis).append("\n");
+  if (mesh.triangles.rows() > 0)
+    out += "element face " + std::to_string(mesh.triangles.rows()) + "\nproperty list uchar int vertex_indices\n";
+  if (mesh.segments.rows() > 0)
+    out += "element edge " + std::to_string(mesh.segments.rows()) + "\nproperty int vertex1\nproperty int vertex2\n";
+  out += "end_header\n";
+
+  if (ascii) {
+    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {
+      for (int c = 0; c < 3; ++c) {
+        if (c > 0) out += ' ';
+        appendNumber(out, mesh.points(i, c));
+      }
+      for (int c = 0; normals && c < 3; ++c) {
+        out += ' ';
+        appendNumber(out, float(n(i, c)));
+      }
+      out += '\n';
+    }
+    for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+      out += '3';
+      for (int c = 0; c < 3; ++c) {
+        out += ' ';
+        appendNumber(out, (long long)mesh.triangles(t, c));
+      }
+      out += '\n';
+    }
+    for (Eigen::Index s = 0; s < mesh.segments.rows(); ++s) {
+      appendNumber(out, (long long)mesh.segments(s, 0));
+      out += ' ';
+      appendNumber(out, (long long)mesh.segments(s, 1));
+      out += '\n';
+    }
+    return out;
+  }
+
+  // Binary: the body's size is known, so fill a buffer of that size without reallocating.
+  const bool big = encoding == PlyEncoding::BinaryBigEndian;
+  const std::size_t vertexBytes = normals ? 24 : 12;
+  const std::size_t headerBytes = out.size();
+  out.resize(headerBytes + std::size_t(mesh.points.rows()) * vertexBytes + std::size_t(mesh.triangles.rows()) * 13 +
+             std::size_t(mesh.segments.rows()) * 8);
+  char* cursor = out.data() + headerBytes;
+  auto put = [&](auto value) {
+    char raw[sizeof(value)];
+    std::memcpy(raw, &value, sizeof(value));
+    if (big != (std::endian::native == std::endian::big)) std::reverse(raw, raw + sizeof(value));
+    std::memcpy(cursor, raw, sizeof(value));
+    cursor += sizeof(value);
+  };
+  for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {
+    put(float(mesh.points(i, 0)));
+    put(float(mesh.points(i, 1)));
+    put(float(mesh.points(i, 2)));
+    if (normals) {
+      put(float(n(i, 0)));
+      put(float(n(i, 1)));
+      put(float(n(i, 2)));
+    }
+  }
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+    *cursor++ = 3;
+    put(std::int32_t(mesh.triangles(t, 0)));
+    put(std::int32_t(mesh.triangles(t, 1)));
+    put(std::int32_t(mesh.triangles(t, 2)));
+  }
+  for (Eigen::Index s = 0; s < mesh.segments.rows(); ++s) {
+    put(std::int32_t(mesh.segments(s, 0)));
+    put(std::int32_t(mesh.segments(s, 1)));
+  }
+  return out;
+}
+
+}  // namespace ffdkit::meshio::detail

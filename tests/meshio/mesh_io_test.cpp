@@ -1,0 +1,200 @@
+// Round trips through every writable format, stream and path overloads, and write failures.
+#include "ffdkit/meshio/mesh_io.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "ffdkit/scenes/primitive.h"
+
+namespace ffdkit::meshio {
+namespace {
+
+class MeshIo : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("ffdkit-mesh-io-" + std::to_string(::getpid()) + "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  static MeshData torus() {
+    const auto mesh = scenes::makePrimitive({.kind = scenes::PrimitiveKind::Torus, .resolution = 12});
+    return MeshData{mesh.vertices, mesh.triangles, {}, false};
+  }
+  int filesInDir() const {
+    int files = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir_)) ++files;
+    return files;
+  }
+
+  std::filesystem::path dir_;
+};
+
+// Float32 storage (binary PLY, STL) rounds each coordinate to 24 bits: relative 2^-24.
+constexpr double kFloatTolerance = 1e-6;
+
+TEST_F(MeshIo, RoundTripsEveryWritableFormat) {
+  const MeshData original = torus();
+  const std::pair<const char*, double> formats[] = {{".vtp", 0.0}, {".vtk", 0.0}, {".xyz", 0.0}, {".npy", 0.0},
+                                                    {".obj", 0.0}, {".ply", kFloatTolerance}, {".stl", kFloatTolerance}};
+  for (const auto& [ext, tolerance] : formats) {
+    SCOPED_TRACE(ext);
+    const auto path = dir_ / (std::string("torus") + ext);
+    writeMesh(path, original);
+    const MeshData back = readMesh(path);
+    if (std::string(ext) == ".stl") {
+      // STL stores corners per triangle; the reader merges identical ones back into shared points.
+      ASSERT_EQ(back.points.rows(), original.points.rows());
+      ASSERT_EQ(back.triangles.rows(), original.triangles.rows());
+      for (Eigen::Index t = 0; t < original.triangles.rows(); ++t)
+        for (int c = 0; c < 3; ++c)
+          EXPECT_LE((back.points.row(back.triangles(t, c)) - original.points.row(original.triangles(t, c))).norm(), tolerance);
+      continue;
+    }
+    ASSERT_EQ(back.points.rows(), original.points.rows());
+    EXPECT_LE((back.points - original.points).cwiseAbs().maxCoeff(), tolerance);
+    if (std::string(ext) != ".xyz" && std::string(ext) != ".npy") {
+      EXPECT_EQ(back.triangles, original.triangles);
+    }
+  }
+  EXPECT_EQ(filesInDir(), 7);  // no temporaries left
+}
+
+TEST_F(MeshIo, TextFormatsAndAsciiPlyRoundTripDoublesExactly) {
+  MeshData mesh = torus();
+  mesh.points(0, 0) = 0.1;
+  mesh.points(1, 1) = -2.5e-7;
+  mesh.points(2, 2) = 1.0 / 3.0;
+  mesh.points(3, 0) = 1e300;
+  mesh.points(4, 1) = 5e-324;  // the smallest subnormal
+  for (MeshFormat format : {MeshFormat::Obj, MeshFormat::Xyz, MeshFormat::Npy, MeshFormat::Ply}) {
+    SCOPED_TRACE(std::string(meshFormatExtension(format)));
+    std::stringstream stream;
+    writeMesh(stream, mesh, format, {.plyEncoding = PlyEncoding::Ascii});
+    const MeshData back = readMesh(stream, format);
+    EXPECT_EQ(back.points, mesh.points);  // bit for bit
+  }
+}
+
+TEST_F(MeshIo, BinaryPlyOfBothByteOrdersReadsTheSame) {
+  MeshData mesh = torus();
+  mesh.segments.resize(2, 2);
+  mesh.segments << 0, 1, 5, 7;
+  mesh.hasNormals = true;
+  const std::string little = meshFileBytes(mesh, MeshFormat::Ply, {.plyEncoding = PlyEncoding::BinaryLittleEndian});
+  const std::string big = meshFileBytes(mesh, MeshFormat::Ply, {.plyEncoding = PlyEncoding::BinaryBigEndian});
+  EXPECT_NE(little, big);
+  EXPECT_NE(big.find("format binary_big_endian 1.0"), std::string::npos);
+  const MeshData a = readMeshBytes(little, MeshFormat::Ply), b = readMeshBytes(big, MeshFormat::Ply);
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(a.triangles, mesh.triangles);
+  EXPECT_EQ(b.triangles, mesh.triangles);
+  EXPECT_EQ(b.segments, mesh.segments);
+  EXPECT_TRUE(b.hasNormals);
+  EXPECT_LE((b.points - mesh.points).cwiseAbs().maxCoeff(), kFloatTolerance);
+}
+
+TEST_F(MeshIo, NormalsAreRecomputedFromTheDeformedPoints) {
+  // A unit square in the z = 0 plane, "deformed" by swapping y and z: its normal must follow.
+  MeshData mesh;
+  mesh.points.resize(4, 3);
+  mesh.points << 0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1;  // now in the y = 0 plane
+  mesh.triangles.resize(2, 3);
+  mesh.triangles << 0, 1, 2, 0, 2, 3;
+  mesh.hasNormals = true;
+  const std::string obj = meshFileBytes(mesh, MeshFormat::Obj);
+  // (1,0,0) x (1,0,1) = (0,-1,0): every vertex normal is -y.
+  EXPECT_NE(obj.find("vn 0 -1 0\nvn 0 -1 0\nvn 0 -1 0\nvn 0 -1 0\n"), std::string::npos) << obj;
+  EXPECT_NE(obj.find("f 1//1 2//2 3//3"), std::string::npos) << obj;
+  writeMesh(dir_ / "n.vtp", mesh);
+  const MeshData back = readMesh(dir_ / "n.vtp");
+  EXPECT_TRUE(back.hasNormals);
+  EXPECT_EQ(back.points, mesh.points);
+  const Eigen::MatrixX3d n = vertexNormals(mesh.points, mesh.triangles);
+  for (Eigen::Index i = 0; i < 4; ++i) EXPECT_EQ(n.row(i), Eigen::RowVector3d(0, -1, 0));
+}
+
+TEST_F(MeshIo, PolylinesBecomeSegments) {
+  MeshData curve;
+  curve.points.resize(4, 3);
+  curve.points << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 1;
+  curve.segments.resize(3, 2);
+  curve.segments << 0, 1, 1, 2, 2, 3;
+  for (const char* ext : {".vtp", ".vtk", ".obj", ".ply"}) {
+    SCOPED_TRACE(ext);
+    writeMesh(dir_ / (std::string("c") + ext), curve);
+    const MeshData back = readMesh(dir_ / (std::string("c") + ext));
+    EXPECT_EQ(back.segments, curve.segments);
+    EXPECT_EQ(back.triangles.rows(), 0);
+  }
+}
+
+TEST_F(MeshIo, PointCloudsKeepEveryPoint) {
+  MeshData cloud;
+  cloud.points = Eigen::MatrixX3d::Random(50, 3);
+  for (const char* ext : {".vtp", ".vtk", ".obj", ".ply", ".xyz", ".npy"}) {
+    SCOPED_TRACE(ext);
+    writeMesh(dir_ / (std::string("p") + ext), cloud);
+    const MeshData back = readMesh(dir_ / (std::string("p") + ext));
+    ASSERT_EQ(back.points.rows(), 50);
+    EXPECT_LE((back.points - cloud.points).cwiseAbs().maxCoeff(), kFloatTolerance);
+  }
+}
+
+TEST_F(MeshIo, WriteErrorsNameTheProblemAndWriteNothing) {
+  auto expectError = [](auto&& call, const std::string& part) {
+    try {
+      call();
+      ADD_FAILURE() << "expected an error containing '" << part << "'";
+    } catch (const MeshIoError& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  MeshData broken = torus();
+  broken.points(3, 1) = std::nan("");
+  expectError([&] { writeMesh(dir_ / "out.obj", broken); }, "out.obj: point 3 has a non-finite coordinate");
+  broken = torus();
+  broken.triangles(5, 0) = 100000;
+  expectError([&] { writeMesh(dir_ / "out.ply", broken); }, "out.ply: triangle 5 uses a point index outside 0..");
+  expectError([&] { writeMesh(dir_ / "out.gltf", torus()); }, "cannot write format '.gltf'");
+  expectError([&] { writeMesh(dir_ / "out.3ds", torus()); }, "cannot write format '.3ds'");
+  MeshData cloud;
+  cloud.points = Eigen::MatrixX3d::Zero(3, 3);
+  expectError([&] { writeMesh(dir_ / "out.stl", cloud); }, "out.stl: STL needs triangles");
+  expectError([&] { writeMesh(dir_ / "missing-folder" / "out.ply", torus()); }, "cannot write (create temporary file");
+  EXPECT_EQ(filesInDir(), 0);
+}
+
+TEST_F(MeshIo, AFailedWriteLeavesTheExistingFileUntouched) {
+  const auto path = dir_ / "keep.xyz";
+  std::ofstream(path) << "1 2 3\n";
+  EXPECT_THROW(writeMesh(path, MeshData{}), MeshIoError);
+  EXPECT_EQ(readMesh(path).points.rows(), 1);
+  EXPECT_EQ(filesInDir(), 1);
+}
+
+TEST_F(MeshIo, ReadErrorsForMissingFilesAndUnknownFormats) {
+  try {
+    readMesh(dir_ / "missing.obj");
+    FAIL();
+  } catch (const MeshIoError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.obj: no such file"), std::string::npos) << e.what();
+  }
+  try {
+    readMesh(dir_ / "x.3ds");
+    FAIL();
+  } catch (const MeshIoError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown mesh format '.3ds' (reads .obj .ply .stl .xyz .npy .gltf .glb .vtp .vtk)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace ffdkit::meshio
