@@ -1,9 +1,17 @@
 # Project-wide compile settings, applied per target so that VTK and Qt headers
 # (found as SYSTEM include directories) do not flood the build with warnings.
 
-if(FFDKIT_SANITIZE)
-  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer)
+if(FFDKIT_SANITIZE OR FFDKIT_FUZZ)
+  # halt_on_error: the first report fails the test (ASan halts by default; UBSan needs this).
+  add_compile_options(-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
   add_link_options(-fsanitize=address,undefined)
+endif()
+if(FFDKIT_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "FFDKIT_FUZZ needs clang (libFuzzer): configure with -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang")
+  endif()
+  # Coverage for libFuzzer in every library; the fuzz targets themselves link -fsanitize=fuzzer.
+  add_compile_options(-fsanitize=fuzzer-no-link)
 endif()
 
 find_program(FFDKIT_CCACHE ccache)

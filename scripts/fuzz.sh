@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Builds the fuzz targets of tests/fuzz with clang + libFuzzer (ASan + UBSan) into build-fuzz/
+# and runs each for SECONDS (default 60), starting from its seed corpus. New inputs go to
+# out/fuzz/<target>/corpus, crashes to out/fuzz/<target>/ (copy each into
+# tests/fuzz/regressions/<target>/ once fixed: the corpus tests then run it on every CI run).
+#   scripts/fuzz.sh [SECONDS] [TARGET...]      e.g. scripts/fuzz.sh 1800 fuzz_mesh_ply
+# Prints executions and time per target; exits 1 if any target found a crash.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+seconds="${1:-60}"
+shift || true
+build="${FFDKIT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
+jobs="${FFDKIT_JOBS:-$(nproc)}"
+"$root/scripts/setup-deps.sh" --fuzz
+
+all=(fuzz_mesh_ply fuzz_mesh_obj fuzz_mesh_stl fuzz_mesh_xyz fuzz_mesh_npy fuzz_mesh_gltf fuzz_mesh_glb
+     fuzz_mesh_vtp fuzz_mesh_vtk fuzz_widget_file fuzz_scene_file fuzz_generator)
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then targets=("${all[@]}"); fi
+
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  generator=()
+  if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+  CC=clang CXX=clang++ cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DFFDKIT_FUZZ=ON -DFFDKIT_BUILD_GUI=OFF -DFFDKIT_BUILD_BENCH=OFF
+fi
+build_args=()
+for t in "${targets[@]}"; do build_args+=(--target "$t"); done
+cmake --build "$build" --parallel "$jobs" "${build_args[@]}"
+
+export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+found=0
+printf '%-20s %12s %8s %s\n' target executions seconds result
+for t in "${targets[@]}"; do
+  out="$root/out/fuzz/$t"
+  mkdir -p "$out/corpus"
+  log="$out/fuzz.log"
+  status=0
+  # -rss_limit_mb / -malloc_limit_mb: allocating what a file merely announces is a finding.
+  "$build/tests/fuzz/$t" "$out/corpus" "$root/tests/fuzz/corpus/$t" -max_total_time="$seconds" \
+    -rss_limit_mb=2048 -malloc_limit_mb=1024 -timeout=10 -max_len=65536 -print_final_stats=1 \
+    -artifact_prefix="$out/" >"$log" 2>&1 || status=$?
+  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
+  time=$(grep -o 'Done [0-9]* runs in [0-9]* second' "$log" | grep -o 'in [0-9]*' | grep -o '[0-9]*' || echo "$seconds")
+  result=ok
+  if [ "$status" -ne 0 ]; then result="CRASH (see $log)"; found=1; fi
+  printf '%-20s %12s %8s %s\n' "$t" "$runs" "$time" "$result"
+done
+exit $found
