@@ -8,9 +8,12 @@
 #include <QApplication>
 #include <QDialog>
 #include <QFileDialog>
+#include <QMenu>
+#include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
 #include <QMouseEvent>
+#include <QSettings>
 #include <QSpinBox>
 #include <QStatusBar>
 #include <QSurfaceFormat>
@@ -22,6 +25,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 
 #include <vtkCamera.h>
@@ -569,6 +573,38 @@ class MainWindowTest : public QObject {
     QVERIFY(reordered[0] == roots[1]);  // the pipeline now runs the second lattice first
     action(w, "actionUndo")->trigger();
     QVERIFY(w.scene().widgets.roots()[0] == roots[0]);
+  }
+
+  // File > Allow Meshes Outside a Scene's Folder: off, a scene naming "../cloud.xyz" is refused;
+  // clicked on in the menu (and kept in the settings), the same scene opens.
+  void meshesOutsideTheScenesFolderNeedThePreference() {
+    QTemporaryDir dir;
+    std::ofstream(dir.filePath("cloud.xyz").toStdString()) << "0 0 0\n1 0 0\n";
+    std::filesystem::create_directories(dir.filePath("shared").toStdString());
+    const std::filesystem::path scene = dir.filePath("shared/scene.json").toStdString();
+    std::ofstream(scene) << R"({"format": "ffdkit-scene", "version": 1, "objects": [{"name": "c", "mesh": {"path": "../cloud.xyz"}}]})";
+    QSettings().setValue("allowMeshesOutsideSceneFolder", false);
+    window_ = std::make_unique<MainWindow>();  // reads the preference
+    MainWindow& fresh = *window_;
+    fresh.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&fresh));
+    QAction* allow = action(fresh, "actionAllowOutsideMeshes");
+    QVERIFY(!allow->isChecked());
+    QVERIFY_EXCEPTION_THROWN(fresh.openScene(scene), std::runtime_error);
+    // Open the File menu and click the preference.
+    QMenu* fileMenu = nullptr;
+    QAction* fileTitle = nullptr;
+    for (QAction* a : fresh.menuBar()->actions())
+      if (a->menu() != nullptr && a->menu()->actions().contains(allow)) fileTitle = a, fileMenu = a->menu();
+    QVERIFY(fileMenu != nullptr);
+    QTest::mouseClick(fresh.menuBar(), Qt::LeftButton, Qt::NoModifier, fresh.menuBar()->actionGeometry(fileTitle).center());
+    QTRY_VERIFY(fileMenu->isVisible());
+    QTest::mouseClick(fileMenu, Qt::LeftButton, Qt::NoModifier, fileMenu->actionGeometry(allow).center());
+    QTRY_VERIFY(allow->isChecked());
+    QVERIFY(QSettings().value("allowMeshesOutsideSceneFolder").toBool());
+    fresh.openScene(scene);
+    QCOMPARE(fresh.scene().objects.front().mesh.points.rows(), Eigen::Index(2));
+    QSettings().setValue("allowMeshesOutsideSceneFolder", false);
   }
 
   void droppedFilesOpenByKind() {

@@ -94,7 +94,7 @@ TEST(SceneFile, MeshPathsOutsideTheScenesFolderAreRefusedUnlessAllowed) {
     std::ofstream(root / "shared" / "scene.json")
         << R"({"format": "ffdkit-scene", "version": 1, "objects": [{"name": "m", "mesh": {"path": ")" << path << R"("}}]})";
   };
-  for (const std::string path : {"../secret.xyz", (root / "secret.xyz").string(), "meshes/../../secret.xyz", "link.xyz"}) {
+  for (const std::string& path : std::vector<std::string>{"../secret.xyz", (root / "secret.xyz").string(), "meshes/../../secret.xyz", "link.xyz"}) {
     SCOPED_TRACE(path);
     sceneWith(path);
     try {
@@ -110,7 +110,7 @@ TEST(SceneFile, MeshPathsOutsideTheScenesFolderAreRefusedUnlessAllowed) {
     allow.allowMeshesOutsideFolder = true;
     EXPECT_EQ(readScene(root / "shared" / "scene.json", allow).objects[0].mesh.points.rows(), 1);
   }
-  for (const std::string path : {"meshes/ok.xyz", (root / "shared" / "meshes" / "ok.xyz").string(), "meshes/../meshes/ok.xyz"}) {
+  for (const std::string& path : std::vector<std::string>{"meshes/ok.xyz", (root / "shared" / "meshes" / "ok.xyz").string(), "meshes/../meshes/ok.xyz"}) {
     SCOPED_TRACE(path);
     sceneWith(path);
     EXPECT_EQ(readScene(root / "shared" / "scene.json").objects[0].mesh.points.rows(), 2);

@@ -201,7 +201,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
 
   const QString sceneFilter = tr("ffdkit scenes (*.json);;All files (*)");
   const QString widgetFilter = tr("ffdkit widget files (*.json);;All files (*)");
-  const QString meshFilter = tr("Meshes (*.obj *.ply *.stl *.vtp *.vtk *.gltf *.glb *.xyz);;All files (*)");
+  const QString meshFilter = tr("Meshes (*.obj *.ply *.stl *.vtp *.vtk *.gltf *.glb *.xyz *.npy);;All files (*)");
 
   QMenu* file = menuBar()->addMenu(tr("&File"));
   action(file, tr("&New Scene"), "actionNewScene", [this] {
@@ -232,6 +232,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
              [this](const std::filesystem::path& p) { importMesh(p); });
   fileAction(file, tr("&Export Deformed Mesh..."), "actionExportMesh", true, meshFilter,
              [this](const std::filesystem::path& p) { exportMesh(p); });
+  file->addSeparator();
+  // A preference, off by default: a shared scene must not make the app read files outside the
+  // scene's folder (scenes::SceneReadOptions::allowMeshesOutsideFolder).
+  QAction* outside = file->addAction(tr("Allow Meshes &Outside a Scene's Folder"));
+  outside->setObjectName("actionAllowOutsideMeshes");
+  outside->setCheckable(true);
+  outside->setChecked(QSettings().value(kAllowOutsideMeshesKey, false).toBool());
+  connect(outside, &QAction::toggled, this, [](bool on) { QSettings().setValue(kAllowOutsideMeshesKey, on); });
   file->addSeparator();
   action(file, tr("&Quit"), "actionQuit", [this] { close(); })->setShortcut(QKeySequence::Quit);
 

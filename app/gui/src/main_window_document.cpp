@@ -48,7 +48,9 @@ bool opensAsScene(const std::filesystem::path& path) {
 using namespace window_detail;
 
 void MainWindow::openScene(const std::filesystem::path& path) {
-  setScene(scenes::readScene(path));
+  scenes::SceneReadOptions options;
+  options.allowMeshesOutsideFolder = QSettings().value(kAllowOutsideMeshesKey, false).toBool();
+  setScene(scenes::readScene(path, options));
   setDocumentPath(std::filesystem::is_directory(path) ? path / "scene.json" : path);
 }
 
@@ -169,7 +171,10 @@ bool MainWindow::offerRecovery() {
   bool restored = false;
   if (prompt.clickedButton() == restore) {
     try {
-      setScene(scenes::readScene(newest.scene));
+      // The app's own recovery file: its mesh paths are the document's, wherever they lead.
+      scenes::SceneReadOptions options;
+      options.allowMeshesOutsideFolder = true;
+      setScene(scenes::readScene(newest.scene, options));
       impl_->restoredUnsaved = true;
       setDocumentPath(newest.origin);
       impl_->autosave();  // ours now: the next crash keeps it
