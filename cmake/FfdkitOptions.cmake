@@ -24,7 +24,8 @@ include(FfdkitInstall)
 
 # ffdkit_target_defaults(target): warnings on for project code.
 function(ffdkit_target_defaults target)
-  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local
+  # -Wshadow=local is GCC's spelling; clang (fuzz builds) has no such option.
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic $<$<CXX_COMPILER_ID:GNU>:-Wshadow=local>
                          -Wno-unused-parameter)
 endfunction()
 
