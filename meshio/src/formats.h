@@ -30,7 +30,8 @@ std::string writeNpy(const MeshData& mesh);
 MeshData readGltf(std::string_view bytes, bool binary, const std::string& source,
                   const std::optional<std::filesystem::path>& folder);
 
-MeshData readVtk(std::string_view bytes, bool xml, const std::string& source);
+MeshData readLegacyVtk(std::string_view bytes, const std::string& source);
+MeshData readVtp(std::string_view bytes, const std::string& source);
 std::string writeVtk(const MeshData& mesh, bool xml);
 
 }  // namespace ffdkit::meshio::detail

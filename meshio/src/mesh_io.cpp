@@ -65,8 +65,8 @@ MeshData parse(std::string_view bytes, MeshFormat format, const std::string& sou
     case MeshFormat::Npy: return detail::readNpy(bytes, source);
     case MeshFormat::Gltf: return detail::readGltf(bytes, false, source, folder);
     case MeshFormat::Glb: return detail::readGltf(bytes, true, source, folder);
-    case MeshFormat::Vtp: return detail::readVtk(bytes, true, source);
-    case MeshFormat::Vtk: return detail::readVtk(bytes, false, source);
+    case MeshFormat::Vtp: return detail::readVtp(bytes, source);
+    case MeshFormat::Vtk: return detail::readLegacyVtk(bytes, source);
   }
   throw MeshIoError(source + ": unknown format");
 }

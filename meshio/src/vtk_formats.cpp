@@ -1,7 +1,9 @@
-// VTK XML poly data (.vtp) and legacy poly data (.vtk), through VTK's readers and writers: the
-// one place VTK is used in meshio. VTK's readers trust their input, so their output is checked
-// completely before anything uses it: every cell's offsets and point ids in range, every
-// point finite; cells are then triangulated here (fans, strips), not by a VTK filter.
+// VTK XML poly data (.vtp), read and written through VTK, and legacy poly data (.vtk), written
+// through VTK (legacy_vtk_format.cpp reads it): the one place VTK is used in meshio. VTK's XML
+// reader allocates what a file announces and trusts the data, so the announced counts are
+// checked against the file's size first, and the output is checked completely before anything
+// uses it: every cell's offsets and point ids in range, every point finite; cells are then
+// triangulated here (fans, strips), not by a VTK filter.
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
@@ -15,7 +17,6 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkPolyDataReader.h>
 #include <vtkPolyDataWriter.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
@@ -148,7 +149,12 @@ MeshData readWith(std::string_view bytes, const std::string& source) {
   VtkMessages executive(reader->GetExecutive());
   reader->ReadFromInputStringOn();
   reader->SetInputString(std::string(bytes));
-  reader->Update();
+  try {
+    reader->Update();
+  } catch (const std::bad_alloc&) {
+    // VTK allocates the sizes a binary block's header announces before it reads the block.
+    throw MeshIoError(source + ": cannot read (a data block announces more data than fits in memory)");
+  }
   vtkPolyData* poly = reader->GetOutput();
   // Any error means part of the file was not read (VTK keeps what it had, e.g. zeros).
   if (!messages.empty()) throw MeshIoError(source + ": cannot read (" + messages.firstLine() + ")");
@@ -171,8 +177,21 @@ vtkSmartPointer<vtkCellArray> cellArray(const auto& indices) {
 
 }  // namespace
 
-MeshData readVtk(std::string_view bytes, bool xml, const std::string& source) {
-  return xml ? readWith<vtkXMLPolyDataReader>(bytes, source) : readWith<vtkPolyDataReader>(bytes, source);
+MeshData readVtp(std::string_view bytes, const std::string& source) {
+  // Every NumberOf... attribute (of each Piece) against what the file's bytes can hold: a
+  // point or cell takes at least 4 bytes, and compression (zlib, LZ4) expands data at most
+  // ~1000 times, so no count above 256 x the file's size can be real.
+  const std::size_t limit = 256 * std::max<std::size_t>(bytes.size(), 1);
+  for (std::size_t at = bytes.find("NumberOf"); at != std::string_view::npos; at = bytes.find("NumberOf", at + 8)) {
+    const std::size_t quote = bytes.find('"', at);
+    if (quote == std::string_view::npos || quote > at + 40) continue;
+    unsigned long long value = 0;
+    const auto r = std::from_chars(bytes.data() + quote + 1, bytes.data() + bytes.size(), value);
+    if (r.ec == std::errc::result_out_of_range || (r.ec == std::errc() && value > limit))
+      throw MeshIoError(source + ": " + std::string(bytes.substr(at, quote - at - 1)) + " announces more than a file of " +
+                        std::to_string(bytes.size()) + " bytes can hold");
+  }
+  return readWith<vtkXMLPolyDataReader>(bytes, source);
 }
 
 std::string writeVtk(const MeshData& mesh, bool xml) {
