@@ -230,6 +230,9 @@ class DataReader {
     return T();
   }
 
+  /// The binary data's cursor (the fast paths read through it directly).
+  ByteCursor& binary() { return bytes_; }
+
   /// Bytes (binary) or characters (ASCII) not yet read.
   std::size_t bytesLeft() const { return encoding_ == Encoding::Ascii ? text_.bytesLeft() : bytes_.bytesLeft(); }
 
@@ -269,6 +272,66 @@ class DataReader {
   ByteCursor bytes_;
 };
 
+// The layouts nearly every binary file uses, read without a per-value dispatch: vertices of
+// float32 properties only, and faces of one "list uchar int" property. Same checks as the
+// general path: bytes before reading, finiteness, index range. Returns false for other layouts.
+bool readBinaryFast(const Element& e, bool big, ByteCursor& data, MeshData& mesh, TriangleSink& triangles, long long vertices) {
+  const bool swap = big != (std::endian::native == std::endian::big);
+  auto word = [&](const char* at) {
+    std::uint32_t w;
+    std::memcpy(&w, at, 4);
+    return swap ? __builtin_bswap32(w) : w;  // std::byteswap is C++23
+  };
+  if (e.name == "vertex") {
+    for (const Property& p : e.properties)
+      if (p.isList || p.type != Type::Float32) return false;
+    const std::size_t stride = 4 * e.properties.size();
+    data.need(std::size_t(e.count) * stride, {"vertex", e.count - 1});
+    int column[16];
+    if (e.properties.size() > 16) return false;
+    for (std::size_t k = 0; k < e.properties.size(); ++k) {
+      const Role r = e.properties[k].role;
+      column[k] = r == Role::X ? 0 : r == Role::Y ? 1 : r == Role::Z ? 2 : -1;
+    }
+    const char* at = data.here();
+    for (long long i = 0; i < e.count; ++i, at += stride)
+      for (std::size_t k = 0; k < e.properties.size(); ++k) {
+        const float v = std::bit_cast<float>(word(at + 4 * k));
+        if (!std::isfinite(v)) data.fail(Where{"vertex", i, e.properties[k].name}.text() + ": non-finite number");
+        if (column[k] >= 0) mesh.points(i, column[k]) = v;
+      }
+    data.skip(std::size_t(e.count) * stride);
+    return true;
+  }
+  if (e.name == "face") {
+    if (e.properties.size() != 1) return false;
+    const Property& p = e.properties[0];
+    if (p.role != Role::FaceIndices || p.countType != Type::UInt8 || (p.type != Type::Int32 && p.type != Type::UInt32)) return false;
+    for (long long i = 0; i < e.count; ++i) {
+      data.need(1, {"face", i, p.name});
+      const int n = static_cast<unsigned char>(*data.here());
+      data.skip(1);
+      if (n < 3) data.fail(Where{"face", i}.text() + ": a face needs at least 3 vertices, it has " + std::to_string(n));
+      if (std::size_t(n) * 4 > data.bytesLeft())
+        data.fail(Where{"face", i, p.name}.text() + ": a list of " + std::to_string(n) + " values runs past the end of the file");
+      const char* at = data.here();
+      int first = 0, previous = 0;
+      for (int k = 0; k < n; ++k) {
+        const std::uint32_t raw = word(at + 4 * k);
+        const long long index = p.type == Type::Int32 ? (long long)std::bit_cast<std::int32_t>(raw) : (long long)raw;
+        if (index < 0 || index >= vertices)
+          data.fail(Where{"face", i}.text() + ": vertex index " + std::to_string(index) + " is outside 0.." + std::to_string(vertices - 1));
+        if (k == 0) first = int(index);
+        else if (k >= 2) triangles.add(first, previous, int(index));
+        previous = int(index);
+      }
+      data.skip(std::size_t(n) * 4);
+    }
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 MeshData readPly(std::string_view bytes, const std::string& source) {
@@ -301,6 +364,9 @@ MeshData readPly(std::string_view bytes, const std::string& source) {
   for (const Element& e : header.elements) {
     if (e.name == "face") triangles = TriangleSink(Eigen::Index(e.count));
     if (e.name == "edge") segments = SegmentSink(Eigen::Index(e.count));
+    if (header.encoding != Encoding::Ascii && e.count > 0 &&
+        readBinaryFast(e, header.encoding == Encoding::Big, data.binary(), mesh, triangles, vertexCount))
+      continue;
     const char* kind = e.name == "vertex" ? "vertex" : e.name == "face" ? "face" : e.name == "edge" ? "edge" : e.name.c_str();
     for (long long i = 0; i < e.count; ++i) {
       long long edge[2] = {-1, -1};
