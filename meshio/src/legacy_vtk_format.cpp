@@ -5,6 +5,8 @@
 // CONNECTIVITY arrays). POINT_DATA, CELL_DATA and FIELD end the geometry (only NORMALS is noted).
 #include <climits>
 #include <cmath>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "formats.h"
@@ -55,6 +57,9 @@ class LegacyCursor {
     if (pos_ < bytes_.size()) ++pos_, ++line_;
   }
   std::size_t bytesLeft() const { return bytes_.size() - pos_; }
+  /// Where the cursor is, to look ahead and come back.
+  std::pair<std::size_t, int> mark() const { return {pos_, line_}; }
+  void reset(std::pair<std::size_t, int> at) { std::tie(pos_, line_) = at; }
 
   // One value of `type` ("float", "double", "int", "vtktypeint64", ...) as double.
   double value(std::string_view type, const Where& where) {
@@ -106,7 +111,8 @@ std::vector<std::vector<int>> readCells(LegacyCursor& in, const char* kind, long
   const long long first = in.count({kind}), second = in.count({kind});
   const std::size_t minimum = in.binary ? 4 : 2;
   auto checkFits = [&](long long n) {
-    if (std::size_t(n) > in.bytesLeft() / minimum)
+    // ASCII: a digit and a separator per value (the last value may end the file).
+    if (std::size_t(n) > (in.bytesLeft() + 1) / minimum)
       in.fail(std::string(kind) + ": " + std::to_string(n) + " values do not fit in the " + std::to_string(in.bytesLeft()) +
               " bytes left");
   };
@@ -116,9 +122,8 @@ std::vector<std::vector<int>> readCells(LegacyCursor& in, const char* kind, long
     return int(value);
   };
   std::vector<std::vector<int>> cells;
-  const std::size_t save = in.bytesLeft();
-  const std::string_view next = in.word();
-  if (next == "OFFSETS") {
+  const auto start = in.mark();
+  if (in.word() == "OFFSETS") {
     // 5.x: `first` offsets (cells + 1) and `second` connectivity entries.
     const std::string_view offsetType = in.word();
     if (!LegacyCursor::known(offsetType, false)) in.fail(std::string(kind) + ": unknown OFFSETS type '" + std::string(offsetType) + "'");
@@ -142,20 +147,12 @@ std::vector<std::vector<int>> readCells(LegacyCursor& in, const char* kind, long
     }
     return cells;
   }
-  (void)save;
   // Classic: `first` cells in `second` integers, each cell "count id id ...".
+  in.reset(start);
   checkFits(second);
   if (in.binary) in.startBinary();
   std::vector<long long> values;
   values.reserve(std::size_t(second));
-  // The word read to look for OFFSETS is the first value of an ASCII cell list.
-  if (!in.binary && second > 0) {
-    long long v = 0;
-    const auto r = std::from_chars(next.data(), next.data() + next.size(), v);
-    if (next.empty() || r.ec != std::errc() || r.ptr != next.data() + next.size())
-      in.fail(std::string(kind) + ": expected an integer, got '" + std::string(next.substr(0, 40)) + "'");
-    values.push_back(v);
-  }
   while ((long long)values.size() < second) values.push_back(in.integer("int", {kind}));
   std::size_t k = 0;
   for (long long c = 0; c < first; ++c) {
