@@ -4,6 +4,7 @@
 // new one, byte for byte; the next complete run leaves no temporary file behind.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -49,17 +50,20 @@ pid_t spawn(const std::vector<std::string>& args) {
     std::vector<std::string> copy = args;
     for (auto& a : copy) argv.push_back(a.data());
     argv.push_back(nullptr);
-    ::freopen("/dev/null", "w", stdout);
-    ::freopen("/dev/null", "w", stderr);
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, STDOUT_FILENO);
+    ::dup2(null, STDERR_FILENO);
     ::execv(FFDKIT_CLI, argv.data());
     ::_exit(127);
   }
   return pid;
 }
 
-bool temporaryPresent(const fs::path& dir) {
+// Whether process `pid` has a temporary file in `dir` (".<name>.tmp-<pid>-<n>"): it is writing.
+bool temporaryPresent(const fs::path& dir, pid_t pid) {
+  const std::string mark = ".tmp-" + std::to_string(pid) + "-";
   for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().filename().string().find(".tmp-") != std::string::npos) return true;
+    if (e.path().filename().string().find(mark) != std::string::npos) return true;
   return false;
 }
 
@@ -87,7 +91,7 @@ KillCounts killWhileWriting(const TempDir& dir, const std::string& ext, int roun
   Clock::time_point writeStart{};
   int status = 0;
   while (::waitpid(pid, &status, WNOHANG) == 0) {
-    if (writeStart == Clock::time_point{} && temporaryPresent(dir.path())) writeStart = Clock::now();
+    if (writeStart == Clock::time_point{} && temporaryPresent(dir.path(), pid)) writeStart = Clock::now();
     std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
@@ -104,13 +108,13 @@ KillCounts killWhileWriting(const TempDir& dir, const std::string& ext, int roun
     }
     pid = spawn(args);
     if (k % 2 == 0) {
-      while (!temporaryPresent(dir.path()) && ::waitpid(pid, &status, WNOHANG) == 0)
+      while (!temporaryPresent(dir.path(), pid) && ::waitpid(pid, &status, WNOHANG) == 0)
         std::this_thread::sleep_for(std::chrono::microseconds(100));
       std::this_thread::sleep_for(std::uniform_real_distribution<double>(0.0, 1.0)(random) * writing);
     } else {
       std::this_thread::sleep_for(std::uniform_real_distribution<double>(0.0, 1.0)(random) * total);
     }
-    counts.whileWriting += temporaryPresent(dir.path());
+    counts.whileWriting += temporaryPresent(dir.path(), pid);
     ::kill(pid, SIGKILL);
     ::waitpid(pid, &status, 0);
     ++counts.kills;
@@ -135,6 +139,7 @@ TEST(CliKill, ADeformKilledWhileWritingLeavesTheOldOrTheCompleteFile) {
   for (const char* ext : {".ply", ".vtp"}) {
     SCOPED_TRACE(ext);
     const KillCounts c = killWhileWriting(dir, ext, 12, random);
+    std::fflush(stdout);
     std::printf("%s: %d kills, %d while a temporary existed; destination old %d, complete %d\n", ext, c.kills, c.whileWriting,
                 c.old, c.complete);
     EXPECT_GE(c.kills, 20);
@@ -157,8 +162,15 @@ TEST(CliKill, ASceneSaveKilledLeavesTheOldOrTheCompleteFile) {
     if (pid == 0) {
       for (;;) scenes::writeScene(path, scene);
     }
-    std::this_thread::sleep_for(std::chrono::microseconds(std::uniform_int_distribution<int>(0, 40000)(random)));
-    seenWriting += temporaryPresent(dir.path());
+    // Every other kill waits for a write to start (its temporary file), then a little more.
+    if (k % 2 == 0) {
+      const auto give_up = Clock::now() + std::chrono::seconds(5);
+      while (!temporaryPresent(dir.path(), pid) && Clock::now() < give_up) std::this_thread::sleep_for(std::chrono::microseconds(50));
+      std::this_thread::sleep_for(std::chrono::microseconds(std::uniform_int_distribution<int>(0, 3000)(random)));
+    } else {
+      std::this_thread::sleep_for(std::chrono::microseconds(std::uniform_int_distribution<int>(0, 400000)(random)));
+    }
+    seenWriting += temporaryPresent(dir.path(), pid);
     ::kill(pid, SIGKILL);
     int status = 0;
     ::waitpid(pid, &status, 0);
