@@ -80,7 +80,7 @@ struct KillCounts {
 };
 
 // Kills `deform ... -o out` 2 * `rounds` times: half right after its temporary output appears
-// plus a random delay up to the write's length, half at a random moment of the whole run.
+// plus a random delay of a few milliseconds, half at a random moment of the whole run.
 KillCounts killWhileWriting(const TempDir& dir, const std::string& ext, int rounds, std::mt19937& random) {
   const fs::path out = dir / ("out" + ext);
   const std::vector<std::string> args = {"deform", "-w", (kSource / "widgets" / "examples" / "fig6-8.json").string(),
@@ -110,7 +110,10 @@ KillCounts killWhileWriting(const TempDir& dir, const std::string& ext, int roun
     if (k % 2 == 0) {
       while (!temporaryPresent(dir.path(), pid) && ::waitpid(pid, &status, WNOHANG) == 0)
         std::this_thread::sleep_for(std::chrono::microseconds(100));
-      std::this_thread::sleep_for(std::uniform_real_distribution<double>(0.0, 1.0)(random) * writing);
+      // Within the write (its length varies with the machine's load: at most 5 ms into it, or a
+      // fifth of the reference run's write when that is shorter).
+      const auto window = std::min<Clock::duration>(writing / 5, std::chrono::milliseconds(5));
+      std::this_thread::sleep_for(std::uniform_real_distribution<double>(0.0, 1.0)(random) * window);
     } else {
       std::this_thread::sleep_for(std::uniform_real_distribution<double>(0.0, 1.0)(random) * total);
     }
@@ -143,7 +146,7 @@ TEST(CliKill, ADeformKilledWhileWritingLeavesTheOldOrTheCompleteFile) {
     std::printf("%s: %d kills, %d while a temporary existed; destination old %d, complete %d\n", ext, c.kills, c.whileWriting,
                 c.old, c.complete);
     EXPECT_GE(c.kills, 20);
-    EXPECT_GE(c.whileWriting, 5);  // the kills did land while writing
+    EXPECT_GE(c.whileWriting, 8);  // the kills did land while writing
   }
 }
 
