@@ -99,10 +99,13 @@ void bindMeshes(py::module_& m) {
                std::to_string(mesh.triangles.rows()) + " triangles, " + std::to_string(mesh.segments.rows()) +
                " segments>";
       });
-  m.def("readMesh", &scenes::readMesh, "path"_a, py::call_guard<py::gil_scoped_release>(),
-        "Reads .obj .ply .stl .vtp .vtk .gltf/.glb .xyz by extension.");
-  m.def("writeMesh", &scenes::writeMesh, "path"_a, "mesh"_a, py::call_guard<py::gil_scoped_release>(),
-        "Writes .obj .ply .stl .vtp .xyz by extension, atomically.");
+  // Lambdas: readMesh and writeMesh also have stream overloads.
+  m.def("readMesh", [](const std::filesystem::path& path) { return scenes::readMesh(path); }, "path"_a,
+        py::call_guard<py::gil_scoped_release>(),
+        "Reads .obj .ply .stl .vtp .vtk .gltf/.glb .xyz .npy by extension, checked while it parses.");
+  m.def("writeMesh", [](const std::filesystem::path& path, const scenes::MeshData& mesh) { scenes::writeMesh(path, mesh); },
+        "path"_a, "mesh"_a, py::call_guard<py::gil_scoped_release>(),
+        "Writes .obj .ply .stl .vtp .vtk .xyz .npy by extension, atomically.");
   m.def("validateMesh", &scenes::validateMesh, "mesh"_a, "what"_a = "mesh");
 }
 
