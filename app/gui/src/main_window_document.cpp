@@ -11,6 +11,7 @@
 #include <QPushButton>
 #include <QSettings>
 
+#include "ffdkit/meshio/mesh_format.h"
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/scenes/widget_file.h"
@@ -20,12 +21,7 @@ namespace ffdkit::app {
 
 namespace window_detail {
 
-bool isMeshFile(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".vtp" || ext == ".vtk" || ext == ".gltf" ||
-         ext == ".glb" || ext == ".xyz";
-}
+bool isMeshFile(const std::filesystem::path& path) { return meshio::meshFormatOf(path).has_value(); }
 
 // A widget file says "format": "ffdkit-widgets" near its top; a scene says "ffdkit-scene".
 bool isWidgetFile(const std::filesystem::path& path) {

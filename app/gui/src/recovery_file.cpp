@@ -11,7 +11,7 @@
 
 #include <QStandardPaths>
 
-#include "ffdkit/scenes/atomic_write.h"
+#include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/scenes/scene_file.h"
 
 namespace ffdkit::app {
@@ -61,7 +61,7 @@ RecoveryFile::RecoveryFile(fs::path directory) : directory_(std::move(directory)
 void RecoveryFile::write(const scenes::Scene& scene, const scenes::Camera& camera, const fs::path& origin) {
   fs::create_directories(directory_);
   // The origin first: a scene file never appears without it.
-  scenes::writeFileAtomically(origin_, origin.empty() ? std::string() : fs::absolute(origin).string());
+  meshio::writeFileAtomically(origin_, origin.empty() ? std::string() : fs::absolute(origin).string());
   scenes::writeScene(scene_, fileContent(scene, camera, origin));
 }
 
