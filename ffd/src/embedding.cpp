@@ -11,6 +11,7 @@
 
 #include <omp.h>
 
+#include "cell_locator.h"
 #include "rest_solver.h"
 #include "vector_clones.h"
 
@@ -22,31 +23,6 @@ constexpr Eigen::Index kParallelPoints = 16384;
 constexpr std::uint32_t kTile = Embedding::kTileSize;
 
 enum class PointClass : std::uint8_t { Evaluated = 0, Blended = 1, Frozen = 2 };
-
-// AxisSpline::cellOf without the binary search: a guess from uniform breaks, corrected against
-// the true breaks, so the cell is the same as cellOf's for every t (non-periodic axes).
-class CellLocator {
- public:
-  explicit CellLocator(const AxisSpline& axis) : cells_(axis.cellCount()) {
-    for (int c = 0; c < cells_; ++c) breaks_.push_back(axis.cellMin(c));
-    breaks_.push_back(axis.cellMax(cells_ - 1));
-    lo_ = breaks_.front();
-    scale_ = cells_ / (breaks_.back() - breaks_.front());
-  }
-  int operator()(double t) const {
-    if (cells_ == 1 || !(t > breaks_[1])) return 0;  // also catches NaN, as cellOf does
-    if (t >= breaks_[cells_ - 1]) return cells_ - 1;
-    int c = std::clamp(static_cast<int>((t - lo_) * scale_), 1, cells_ - 2);
-    while (t < breaks_[c]) --c;
-    while (t >= breaks_[c + 1]) ++c;
-    return c;
-  }
-
- private:
-  int cells_;
-  std::vector<double> breaks_;
-  double lo_ = 0.0, scale_ = 1.0;
-};
 
 // One tile's solved points in original order, before grouping: (u, v, w) in pu, pv, pw (the
 // arrays below, or the closed form's output written straight into the Embedding).
@@ -96,6 +72,18 @@ bool affineTile(const double* __restrict X, const double* __restrict Y, const do
   return anyNonFinite;
 }
 
+// Damped Newton from the first guess, else from the nearest sample of the coarse grid; the
+// solver's evaluation is inlined into each clone (vectorised per coordinate).
+FFDKIT_VECTOR_CLONES
+bool solveNewton(const detail::RestSolver& solver, const Eigen::Vector3d& q, Eigen::Vector3d& uvw) {
+  uvw = solver.initialGuess(q);
+  if (solver.newton(q, uvw)) return true;
+  Eigen::Vector3d restart = solver.nearestSample(q);
+  if (!solver.newton(q, restart)) return false;
+  uvw = restart;
+  return true;
+}
+
 }  // namespace
 
 PointStatus Embedding::status(Eigen::Index point) const {
@@ -139,7 +127,8 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
   const Eigen::Affine3d toLocal = lattice.frame().inverse();
   const OutsidePolicy policy = lattice.outsidePolicy();
   const AxisSpline* axes[3] = {&lattice.axis(0), &lattice.axis(1), &lattice.axis(2)};
-  const CellLocator locate[3] = {CellLocator(*axes[0]), CellLocator(*axes[1]), CellLocator(*axes[2])};
+  const detail::CellLocator locate[3] = {detail::CellLocator(*axes[0]), detail::CellLocator(*axes[1]),
+                                         detail::CellLocator(*axes[2])};
   const int cells[3] = {axes[0]->cellCount(), axes[1]->cellCount(), axes[2]->cellCount()};
   const std::int64_t cellTotal = std::int64_t(cells[0]) * cells[1] * cells[2];
   const bool periodic[3] = {axes[0]->periodic(), axes[1]->periodic(), axes[2]->periodic()};
@@ -179,15 +168,7 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
     if (affine) {
       uvw = Ainv * (q - b);
     } else {
-      uvw = solver.initialGuess(q);
-      converged = solver.newton(q, uvw);
-      if (!converged) {
-        Eigen::Vector3d restart = solver.nearestSample(q);
-        if (solver.newton(q, restart)) {
-          uvw = restart;
-          converged = true;
-        }
-      }
+      converged = solveNewton(solver, q, uvw);
     }
     PointStatus status = PointStatus::Inside;
     PointClass cls = PointClass::Evaluated;

@@ -14,14 +14,23 @@
 #include "ffdkit/ffd/embedding.h"
 #include "ffdkit/ffd/lattice.h"
 
+#include "cell_locator.h"
+#include "vector_clones.h"
+
 namespace ffdkit::ffd::detail {
 
 constexpr int kMaxBasis = 33;
+
+// x, y, z and a zero: one point of a cell window, one AVX register (two SSE2 registers).
+typedef double Xyz0 __attribute__((vector_size(4 * sizeof(double))));
 // Evaluates Xbar and its Jacobian on the rest lattice; one per thread-safe call, no allocation.
 class RestSolver {
  public:
   RestSolver(const Lattice& lattice, const EmbedOptions& options)
-      : lattice_(lattice), rest_(lattice.restPoints()), options_(options) {
+      : lattice_(lattice),
+        rest_(lattice.restPoints()),
+        options_(options),
+        locate_{CellLocator(lattice.axis(0)), CellLocator(lattice.axis(1)), CellLocator(lattice.axis(2))} {
     for (int a = 0; a < 3; ++a) {
       axis_[a] = &lattice.axis(a);
       lo_[a] = axis_[a]->domainMin();
@@ -38,46 +47,70 @@ class RestSolver {
     if (!lattice.restIsAffine()) buildSamples();
   }
 
-  Eigen::Vector3d evaluate(const Eigen::Vector3d& uvw, Eigen::Matrix3d& J) const {
+  // The basis values and derivatives of one parameter point, kept so that the Jacobian is only
+  // computed for iterates Newton goes on from (not for the last, converged one).
+  struct Basis {
+    int cell[3];
     double N[3][kMaxBasis];
     double D[3][kMaxBasis];
-    int cell[3];
+  };
+
+  // Xbar(uvw) (seed 001 eq. (6.1) on the rest points), filling `basis`. The x, y, z of a window
+  // point share one vector register, so each basis product is one multiply-add for all three.
+  FFDKIT_INLINE Eigen::Vector3d value(const Eigen::Vector3d& uvw, Basis& basis) const {
     for (int a = 0; a < 3; ++a) {
-      cell[a] = axis_[a]->cellOf(uvw[a]);
-      axis_[a]->basis(cell[a], uvw[a], N[a], D[a]);
+      const double t = axis_[a]->wrap(uvw[a]);
+      basis.cell[a] = locate_[a](t);
+      axis_[a]->basis(basis.cell[a], t, basis.N[a], basis.D[a]);
     }
     const int nu = axis_[0]->degree() + 1;
     const int nv = axis_[1]->degree() + 1;
     const int nw = axis_[2]->degree() + 1;
-    const double* W = windows_.data() +
-                      3 * windowSize_ * (cell[0] + cells_[0] * (cell[1] + static_cast<std::size_t>(cells_[1]) * cell[2]));
-    double x[3] = {0, 0, 0}, ju[3] = {0, 0, 0}, jv[3] = {0, 0, 0}, jw[3] = {0, 0, 0};
+    const Xyz0* W = window(basis);
+    Xyz0 x = {0, 0, 0, 0};
     for (int c = 0; c < nw; ++c) {
       for (int b = 0; b < nv; ++b) {
-        double s[3] = {0, 0, 0}, su[3] = {0, 0, 0};
-        for (int a = 0; a < nu; ++a, W += 3) {
-          for (int d = 0; d < 3; ++d) {
-            s[d] += N[0][a] * W[d];
-            su[d] += D[0][a] * W[d];
-          }
-        }
-        const double nn = N[1][b] * N[2][c];
-        const double dn = D[1][b] * N[2][c];
-        const double nd = N[1][b] * D[2][c];
-        for (int d = 0; d < 3; ++d) {
-          x[d] += nn * s[d];
-          ju[d] += nn * su[d];
-          jv[d] += dn * s[d];
-          jw[d] += nd * s[d];
-        }
+        Xyz0 s = {0, 0, 0, 0};
+        for (int a = 0; a < nu; ++a, ++W) s += basis.N[0][a] * *W;
+        x += (basis.N[1][b] * basis.N[2][c]) * s;
       }
     }
-    J << ju[0], jv[0], jw[0], ju[1], jv[1], jw[1], ju[2], jv[2], jw[2];
     return Eigen::Vector3d(x[0], x[1], x[2]);
   }
 
+  // dXbar/duvw at the point `basis` was filled for by value().
+  FFDKIT_INLINE Eigen::Matrix3d jacobian(const Basis& basis) const {
+    const int nu = axis_[0]->degree() + 1;
+    const int nv = axis_[1]->degree() + 1;
+    const int nw = axis_[2]->degree() + 1;
+    const Xyz0* W = window(basis);
+    Xyz0 ju = {0, 0, 0, 0}, jv = ju, jw = ju;
+    for (int c = 0; c < nw; ++c) {
+      for (int b = 0; b < nv; ++b) {
+        Xyz0 s = {0, 0, 0, 0}, su = s;
+        for (int a = 0; a < nu; ++a, ++W) {
+          s += basis.N[0][a] * *W;
+          su += basis.D[0][a] * *W;
+        }
+        ju += (basis.N[1][b] * basis.N[2][c]) * su;
+        jv += (basis.D[1][b] * basis.N[2][c]) * s;
+        jw += (basis.N[1][b] * basis.D[2][c]) * s;
+      }
+    }
+    Eigen::Matrix3d J;
+    J << ju[0], jv[0], jw[0], ju[1], jv[1], jw[1], ju[2], jv[2], jw[2];
+    return J;
+  }
+
+  Eigen::Vector3d evaluate(const Eigen::Vector3d& uvw, Eigen::Matrix3d& J) const {
+    Basis basis;
+    const Eigen::Vector3d x = value(uvw, basis);
+    J = jacobian(basis);
+    return x;
+  }
+
   // Wraps periodic axes, reflects through the axis of a solid cylinder, keeps iterates bounded.
-  void normalize(Eigen::Vector3d& uvw) const {
+  FFDKIT_INLINE void normalize(Eigen::Vector3d& uvw) const {
     if (cylinder_ && cylinder_->innerRadius == 0.0 && uvw[0] < lo_[0]) {
       if (lattice_.counts()[1] % 2 == 0) {
         // Xbar(lo - d, v) == Xbar(lo + d, v + 1/2) when the ring of control points is point-symmetric.
@@ -96,7 +129,7 @@ class RestSolver {
     }
   }
 
-  Eigen::Vector3d initialGuess(const Eigen::Vector3d& q) const {
+  FFDKIT_INLINE Eigen::Vector3d initialGuess(const Eigen::Vector3d& q) const {
     Eigen::Vector3d uvw;
     if (cylinder_) {
       const double r = std::hypot(q.x(), q.y());
@@ -116,12 +149,14 @@ class RestSolver {
   }
 
   // Damped Newton; returns true on convergence. uvw: initial guess in, last iterate out.
-  bool newton(const Eigen::Vector3d& q, Eigen::Vector3d& uvw) const {
-    Eigen::Matrix3d J;
-    Eigen::Vector3d F = evaluate(uvw, J) - q;
+  FFDKIT_INLINE bool newton(const Eigen::Vector3d& q, Eigen::Vector3d& uvw) const {
+    Basis basis[2];
+    int current = 0;
+    Eigen::Vector3d F = value(uvw, basis[current]) - q;
     double f = F.norm();
     for (int it = 0; it < options_.maxIterations; ++it) {
       if (f <= tol_) return true;
+      const Eigen::Matrix3d J = jacobian(basis[current]);
       Eigen::Vector3d delta;
       const double det = J.determinant();
       const double scale = J.norm();
@@ -139,14 +174,13 @@ class RestSolver {
       for (int halving = 0; halving < 30; ++halving, step *= 0.5) {
         Eigen::Vector3d trial = uvw + step * delta;
         normalize(trial);
-        Eigen::Matrix3d Jt;
-        const Eigen::Vector3d Ft = evaluate(trial, Jt) - q;
+        const Eigen::Vector3d Ft = value(trial, basis[1 - current]) - q;
         const double ft = Ft.norm();
         if (ft < f || ft <= tol_) {
           uvw = trial;
           F = Ft;
           f = ft;
-          J = Jt;
+          current = 1 - current;
           accepted = true;
           break;
         }
@@ -194,8 +228,14 @@ class RestSolver {
     return uvw;
   }
 
+  // Windows of the cell `basis` lies in.
+  FFDKIT_INLINE const Xyz0* window(const Basis& basis) const {
+    return windows_.data() +
+           windowSize_ * (basis.cell[0] + cells_[0] * (basis.cell[1] + static_cast<std::size_t>(cells_[1]) * basis.cell[2]));
+  }
+
   // Nearest sample of a coarse parameter grid: the restart point when Newton from the first guess fails.
-  Eigen::Vector3d nearestSample(const Eigen::Vector3d& q) const {
+  FFDKIT_INLINE Eigen::Vector3d nearestSample(const Eigen::Vector3d& q) const {
     double best = std::numeric_limits<double>::infinity();
     Eigen::Vector3d uvw = 0.5 * (lo_ + hi_);
     for (std::size_t s = 0; s < sampleX_.size(); ++s) {
@@ -236,7 +276,7 @@ class RestSolver {
     const int nw = axis_[2]->degree() + 1;
     windowSize_ = static_cast<std::size_t>(nu) * nv * nw;
     for (int a = 0; a < 3; ++a) cells_[a] = axis_[a]->cellCount();
-    windows_.reserve(3 * windowSize_ * cells_[0] * cells_[1] * cells_[2]);
+    windows_.reserve(windowSize_ * cells_[0] * cells_[1] * cells_[2]);
     for (int cw = 0; cw < cells_[2]; ++cw)
       for (int cv = 0; cv < cells_[1]; ++cv)
         for (int cu = 0; cu < cells_[0]; ++cu)
@@ -245,7 +285,7 @@ class RestSolver {
               for (int a = 0; a < nu; ++a) {
                 const Eigen::Index f = lattice_.index(axis_[0]->controlIndex(cu, a), axis_[1]->controlIndex(cv, b),
                                                       axis_[2]->controlIndex(cw, c));
-                for (int d = 0; d < 3; ++d) windows_.push_back(rest_(f, d));
+                windows_.push_back(Xyz0{rest_(f, 0), rest_(f, 1), rest_(f, 2), 0.0});
               }
   }
 
@@ -276,7 +316,8 @@ class RestSolver {
   double tol_;
   Eigen::Matrix3d affineInverse_;
   std::optional<CylinderRestShape> cylinder_;
-  std::vector<double> windows_;
+  CellLocator locate_[3];
+  std::vector<Xyz0> windows_;
   std::size_t windowSize_ = 0;
   int cells_[3] = {0, 0, 0};
   std::vector<Eigen::Vector3d> sampleUvw_;

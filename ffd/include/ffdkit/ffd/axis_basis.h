@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <Eigen/Core>
@@ -84,5 +86,59 @@ class AxisSpline {
   std::vector<double> inverses_;
   Eigen::VectorXd greville_;
 };
+
+// Inline: Newton embedding evaluates the basis several times per point.
+inline double AxisSpline::wrap(double t) const {
+  if (!periodic_) return t;
+  double w = t - std::floor(t);
+  if (w >= 1.0) w = 0.0;
+  return w;
+}
+
+inline int AxisSpline::cellOf(double t) const {
+  t = wrap(t);
+  const int cells = cellCount();
+  if (!(t > breaks_[1])) return 0;  // also catches NaN
+  if (t >= breaks_[cells - 1]) return cells - 1;
+  const auto it = std::upper_bound(breaks_.begin() + 1, breaks_.end() - 1, t);
+  return static_cast<int>(it - breaks_.begin()) - 1;
+}
+
+inline void AxisSpline::basis(int cell, double t, double* values, double* derivatives) const {
+  // Cox-de Boor (The NURBS Book A2.2 / A2.3) with the cell's precomputed reciprocals.
+  const int p = degree_;
+  const int s = cellSpan_[cell];
+  const double* U = knots_.data();
+  const double* inv = inverses_.data() + static_cast<std::size_t>(cell) * p * (p + 1) / 2;
+  t = wrap(t);
+  double left[34];
+  double right[34];
+  double lower[34];
+  values[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    if (j == p && derivatives != nullptr) {
+      for (int r = 0; r < p; ++r) lower[r] = values[r];
+    }
+    left[j] = t - U[s + 1 - j];
+    right[j] = U[s + j] - t;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r, ++inv) {
+      const double temp = values[r] * *inv;
+      values[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    values[j] = saved;
+  }
+  if (derivatives == nullptr) return;
+  // dN_(s-p+r) = p (lower[r-1] / (U[s+r] - U[s-p+r]) - lower[r] / (U[s+r+1] - U[s-p+r+1])); these are
+  // the reciprocals of the last row (j = p), which `inv` has just walked past.
+  const double* last = inv - p;
+  for (int r = 0; r <= p; ++r) {
+    double d = 0.0;
+    if (r >= 1) d += lower[r - 1] * last[r - 1];
+    if (r < p) d -= lower[r] * last[r];
+    derivatives[r] = p * d;
+  }
+}
 
 }  // namespace ffdkit::ffd
