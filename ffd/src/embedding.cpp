@@ -123,7 +123,8 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
   if (n >= static_cast<Eigen::Index>(std::numeric_limits<std::uint32_t>::max())) {
     throw LatticeError("embed: at most 2^32-2 points, got " + std::to_string(n));
   }
-  const detail::RestSolver solver(lattice, options);
+  // The tabulated inverse (about 5000 Newton solves) pays for itself from a few 10^4 points on.
+  const detail::RestSolver solver(lattice, options, /*inverseGrid=*/n >= 4 * kParallelPoints);
   const Eigen::Affine3d toLocal = lattice.frame().inverse();
   const OutsidePolicy policy = lattice.outsidePolicy();
   const AxisSpline* axes[3] = {&lattice.axis(0), &lattice.axis(1), &lattice.axis(2)};

@@ -83,6 +83,32 @@ TEST(Embedding, NewtonRoundTripsOnRandomUserShapedLattices) {
   }
 }
 
+// Large inputs start Newton from a tabulated inverse map instead of the affine fit: the same
+// points must get the same parameters and statuses either way.
+TEST(Embedding, NewtonFromTheTabulatedInverseAgreesWithNewtonFromTheAffineGuess) {
+  std::mt19937 rng(21);
+  for (int trial = 0; trial < 2; ++trial) {
+    const Lattice lattice = testing::randomLattice(rng, 0.25);
+    Eigen::MatrixX3d uvw = testing::randomParameters(lattice, 70000, rng);
+    uvw.topRows(2000).array() *= 1.3;  // some outside too
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, uvw);
+    const Embedding whole = embed(lattice, Q);  // above the tabulation threshold
+    EXPECT_EQ(whole.failedCount(), 0) << "trial " << trial;
+    EXPECT_LT(roundTripError(lattice, whole, Q), 1e-12) << "trial " << trial;
+    const Eigen::MatrixX3d parameters = whole.parameters();
+    for (Eigen::Index begin = 0; begin < Q.rows(); begin += 10000) {  // below it
+      const Embedding part = embed(lattice, Q.middleRows(begin, 10000));
+      const Eigen::MatrixX3d partParameters = part.parameters();
+      for (Eigen::Index r = 0; r < 10000; ++r) {
+        ASSERT_EQ(part.status(r), whole.status(begin + r)) << "trial " << trial << " point " << begin + r;
+        if (part.status(r) == PointStatus::Inside) {
+          ASSERT_LT((partParameters.row(r) - parameters.row(begin + r)).norm(), 1e-9) << "point " << begin + r;
+        }
+      }
+    }
+  }
+}
+
 TEST(Embedding, CylindricalLatticeRoundTripsIncludingTheAxis) {
   std::mt19937 rng(3);
   for (int inner : {0, 1}) {
