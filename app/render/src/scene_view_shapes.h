@@ -1,0 +1,72 @@
+#pragma once
+
+// The VTK data SceneView draws (private to ffdkit::render): object meshes with their normals and
+// zebra coordinates, curvature combs, lattices, points and widget glyphs. SceneView decides
+// what to build and when; these functions only build it.
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <vtkFloatArray.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkTexture.h>
+
+#include "ffdkit/meshio/mesh_data.h"
+#include "ffdkit/widgets/widget_model.h"
+
+namespace ffdkit::app::scene_view_shapes {
+
+/// Writes `points` (#points x 3) into `vtkPts` (resized, marked modified).
+void setPoints(vtkPoints* vtkPts, const Eigen::MatrixX3d& points);
+
+/// Which triangles touch each vertex (compressed rows), built once per object: normals are
+/// then gathered per vertex without write races, in parallel.
+struct VertexFaces {
+  std::vector<int> start;  ///< #points + 1
+  std::vector<int> faces;
+};
+
+VertexFaces vertexFaces(const Eigen::MatrixX3i& triangles, Eigen::Index pointCount);
+
+/// Area-weighted vertex normals of a triangle mesh into `normals` (#points x 3 floats);
+/// `faceNormals` is scratch space kept between calls.
+void updateNormals(vtkFloatArray* normals, const Eigen::MatrixX3i& triangles, const VertexFaces& vf,
+                   const Eigen::MatrixX3d& points, std::vector<Eigen::Vector3f>& faceNormals);
+
+/// Zebra texture coordinates from the vertex normals (see zebraTexture).
+void updateZebraCoordinates(vtkFloatArray* tcoords, vtkFloatArray* normals, const Eigen::Vector3d& direction,
+                            int stripes);
+
+/// The repeated two-texel (dark, light) stripe texture, not interpolated.
+vtkSmartPointer<vtkTexture> zebraTexture();
+
+/// Tooth length per unit curvature of a curve object's comb (chains of rest points).
+double combFactor(const std::vector<std::vector<int>>& chains, const Eigen::MatrixX3d& restPoints, double scale,
+                  double diagonal);
+
+/// The curvature comb of every chain, as lines: the teeth and the polyline through their tips.
+vtkSmartPointer<vtkPolyData> combPolyData(const std::vector<std::vector<int>>& chains, const Eigen::MatrixX3d& points,
+                                          double scale);
+
+/// An object's mesh (its triangles or segments) at `points` (#points x 3).
+vtkSmartPointer<vtkPolyData> toPolyData(const meshio::MeshData& mesh, const Eigen::MatrixX3d& points);
+
+/// Lattice points as vertices and the grid lines between neighbours as lines (n: counts).
+vtkSmartPointer<vtkPolyData> latticePolyData(const Eigen::MatrixX3d& points, const Eigen::Vector3i& n);
+
+/// The six boundary sides of a lattice as quads (drawn translucent for a selected lattice).
+vtkSmartPointer<vtkPolyData> latticeFacesPolyData(const Eigen::MatrixX3d& points, const Eigen::Vector3i& n);
+
+/// Points as vertices.
+vtkSmartPointer<vtkPolyData> pointsPolyData(const Eigen::MatrixX3d& points);
+
+/// A glyph's shape in the widget frame at size 1, as widgets::GlyphShape gives it (what
+/// WidgetModel::pick hits).
+vtkSmartPointer<vtkPolyData> glyphShape(const widgets::Glyph& glyph, widgets::AffineKind kind);
+
+/// The colour of an affine widget kind (translate red, rotate green, scale blue).
+Eigen::Vector3d kindColour(widgets::AffineKind kind);
+
+}  // namespace ffdkit::app::scene_view_shapes
