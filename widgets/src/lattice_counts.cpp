@@ -227,9 +227,7 @@ void WidgetModel::setLatticeCounts(WidgetId lattice, const Eigen::Vector3i& coun
     Impl::Node& cell = m.nodes[cellIds[c].value];
     cell.spec = std::move(specs[c]);
     cell.indices = std::move(indices[c]);
-    cell.restCellPoints.resize(static_cast<Eigen::Index>(cell.indices.size()), 3);
-    for (std::size_t r = 0; r < cell.indices.size(); ++r)
-      cell.restCellPoints.row(static_cast<Eigen::Index>(r)) = rest.row(cell.indices[r]);
+    cell.restCellPoints = detail::gatherRows(rest, cell.indices);
     cell.restFrame = widgets::cellRestFrame(cell.spec, counts, cell.restCellPoints);
   }
   for (const auto& [child, world] : childWorld) {

@@ -163,7 +163,7 @@ void WidgetModel::updateGesture(const Eigen::Affine3d& worldMotion) {
   if (!m.gesture) fail(WidgetErrorCode::GestureState, "updateGesture without beginGesture");
   if (m.nodes[m.gesture->target.value].type == WidgetType::Affine)
     fail(WidgetErrorCode::GestureState, "affine widget '" + m.label(m.gesture->target) + " takes a variation delta");
-  if (!finite(worldMotion.matrix()) || std::abs(worldMotion.linear().determinant()) < 1e-300)
+  if (!detail::finiteAndInvertible(worldMotion))
     fail(WidgetErrorCode::InvalidArgument, "world motion must be finite and invertible");
   m.run(0.0, worldMotion);
 }
@@ -210,7 +210,7 @@ void WidgetModel::setVariation(WidgetId affine, double value) {
 void WidgetModel::applyMotion(WidgetId id, const Eigen::Affine3d& worldMotion) {
   if (impl_->node(id).type == WidgetType::Affine)
     fail(WidgetErrorCode::InvalidArgument, "affine widget '" + impl_->label(id) + " takes a variation: use applyVariation");
-  if (!finite(worldMotion.matrix()) || std::abs(worldMotion.linear().determinant()) < 1e-300)
+  if (!detail::finiteAndInvertible(worldMotion))
     fail(WidgetErrorCode::InvalidArgument, "world motion must be finite and invertible");
   beginGesture(id);
   updateGesture(worldMotion);

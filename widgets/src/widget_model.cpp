@@ -110,8 +110,7 @@ WidgetId WidgetModel::addCell(WidgetId lattice, const CellSpec& spec, std::strin
   const WidgetId id = m.newId();
   if (name.empty()) name = m.defaultName(cellKindName(spec.kind), id);
   m.checkName(name);
-  Eigen::MatrixX3d rest(static_cast<Eigen::Index>(indices.size()), 3);
-  for (std::size_t r = 0; r < indices.size(); ++r) rest.row(static_cast<Eigen::Index>(r)) = lat.rest.row(indices[r]);
+  Eigen::MatrixX3d rest = detail::gatherRows(lat.rest, indices);
   const Eigen::Isometry3d frame = widgets::cellRestFrame(spec, lat.counts, rest);
   Impl::Node& node = m.emplace(id, WidgetType::Cell, std::move(name));
   node.lattice = lattice;
@@ -129,7 +128,7 @@ WidgetId WidgetModel::addCell(WidgetId lattice, const CellSpec& spec, std::strin
 WidgetId WidgetModel::addFreeAffine(AffineKind kind, const AffineOptions& options) {
   Impl& m = *impl_;
   m.requireNoGesture("adding an affine widget");
-  if (!finite(options.placement.matrix()) || std::abs(options.placement.linear().determinant()) < 1e-300)
+  if (!detail::finiteAndInvertible(options.placement))
     fail(WidgetErrorCode::InvalidArgument, "placement must be finite and invertible");
   if (options.glyph && !(options.glyph->size > 0.0 && std::isfinite(options.glyph->size)))
     fail(WidgetErrorCode::InvalidArgument, "glyph size must be positive");
@@ -258,7 +257,7 @@ void WidgetModel::setPlacement(WidgetId affine, const Eigen::Affine3d& placement
   Impl& m = *impl_;
   m.requireNoGesture("setting a placement");
   Impl::Node& n = m.node(affine, WidgetType::Affine);
-  if (!finite(placement.matrix()) || std::abs(placement.linear().determinant()) < 1e-300)
+  if (!detail::finiteAndInvertible(placement))
     fail(WidgetErrorCode::InvalidArgument, "placement must be finite and invertible");
   n.placement = placement;
   m.touch();
@@ -392,7 +391,7 @@ void WidgetModel::setLatticeFrame(WidgetId lattice, const Eigen::Affine3d& frame
   if (n.parentBinding.valid())
     fail(WidgetErrorCode::InvalidArgument, "lattice '" + m.label(lattice) + " follows cell '" +
                                                m.label(m.bindings[n.parentBinding.value]->from) + ": unbind it to set its frame");
-  if (!finite(frame.matrix()) || std::abs(frame.linear().determinant()) < 1e-300)
+  if (!detail::finiteAndInvertible(frame))
     fail(WidgetErrorCode::InvalidArgument, "lattice frame must be finite and invertible");
   n.frame = frame;
   m.touch();

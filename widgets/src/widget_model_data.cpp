@@ -99,7 +99,7 @@ WidgetModel WidgetModel::fromData(const WidgetModelData& data) {
       if (l.controlPoints.rows() != n || !finite(l.controlPoints))
         bad(WidgetErrorCode::InvalidArgument, "expected " + std::to_string(n) + " finite control points, got " + std::to_string(l.controlPoints.rows()));
       at(base + "/frame");
-      if (!finite(l.frame.matrix()) || std::abs(l.frame.linear().determinant()) < 1e-300)
+      if (!detail::finiteAndInvertible(l.frame))
         bad(WidgetErrorCode::InvalidArgument, "frame must be finite and invertible");
       at(base + "/id");
       Impl::Node& node = claim(l.id, WidgetType::Lattice, l.name);
@@ -120,8 +120,7 @@ WidgetModel WidgetModel::fromData(const WidgetModelData& data) {
       const Impl::Node& lat = m.node(c.lattice, WidgetType::Lattice);
       at(base);
       std::vector<Eigen::Index> indices = cellPointIndices(lat.counts, c.spec);
-      Eigen::MatrixX3d rest(static_cast<Eigen::Index>(indices.size()), 3);
-      for (std::size_t r = 0; r < indices.size(); ++r) rest.row(static_cast<Eigen::Index>(r)) = lat.rest.row(indices[r]);
+      Eigen::MatrixX3d rest = detail::gatherRows(lat.rest, indices);
       const Eigen::Isometry3d frame = widgets::cellRestFrame(c.spec, lat.counts, rest);
       at(base + "/id");
       Impl::Node& node = claim(c.id, WidgetType::Cell, c.name);
@@ -136,7 +135,7 @@ WidgetModel WidgetModel::fromData(const WidgetModelData& data) {
       const AffineData& a = data.affines[i];
       const std::string base = "/affines/" + std::to_string(i);
       at(base + "/placement");
-      if (!finite(a.placement.matrix()) || std::abs(a.placement.linear().determinant()) < 1e-300)
+      if (!detail::finiteAndInvertible(a.placement))
         bad(WidgetErrorCode::InvalidArgument, "placement must be finite and invertible");
       at(base + "/variation");
       if (!std::isfinite(a.variation)) bad(WidgetErrorCode::InvalidArgument, "variation must be finite");

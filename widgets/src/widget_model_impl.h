@@ -28,6 +28,17 @@ namespace detail {
 
 [[noreturn]] void fail(WidgetErrorCode code, const std::string& message);
 inline bool finite(const Eigen::Ref<const Eigen::MatrixXd>& m) { return m.allFinite(); }
+// A frame, placement or motion the model can use: finite and invertible.
+template <class Transform>
+bool finiteAndInvertible(const Transform& t) {
+  return t.matrix().allFinite() && std::abs(t.linear().determinant()) >= 1e-300;
+}
+// The rows of `points` at `indices`, in that order (a cell's points of its lattice).
+inline Eigen::MatrixX3d gatherRows(const Eigen::MatrixX3d& points, const std::vector<Eigen::Index>& indices) {
+  Eigen::MatrixX3d rows(static_cast<Eigen::Index>(indices.size()), 3);
+  for (std::size_t r = 0; r < indices.size(); ++r) rows.row(static_cast<Eigen::Index>(r)) = points.row(indices[r]);
+  return rows;
+}
 // Rigid part and mean scale of an affine map (polar decomposition, via SVD).
 WidgetFrame rigidPart(const Eigen::Affine3d& a);
 // The local motion D(delta) of an affine widget in its own frame (spec §4).
@@ -211,9 +222,7 @@ struct WidgetModel::Impl {
   // ---- derived geometry ------------------------------------------------------------------
   Eigen::MatrixX3d cellPoints(const Node& cell) const {
     const Node& lat = nodes[cell.lattice.value];
-    Eigen::MatrixX3d p(static_cast<Eigen::Index>(cell.indices.size()), 3);
-    for (std::size_t r = 0; r < cell.indices.size(); ++r) p.row(static_cast<Eigen::Index>(r)) = lat.control.row(cell.indices[r]);
-    return p;
+    return detail::gatherRows(lat.control, cell.indices);
   }
   CellAffine fit(const Node& cell) const {
     return fitCellAffine(cell.spec, cell.restFrame, cell.restCellPoints, cellPoints(cell));
