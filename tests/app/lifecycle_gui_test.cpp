@@ -75,9 +75,6 @@ ModalAnswers::Handler chooseFile(const fs::path& path) {
   return [path](QWidget* modal) {
     auto* dialog = qobject_cast<QFileDialog*>(modal);
     QVERIFY2(dialog != nullptr, qPrintable(modal->metaObject()->className()));
-    // accept() may itself ask (replace an existing file?) in a nested modal loop that this
-    // timer-driven answerer cannot reach: the test answers for the user that it may.
-    dialog->setOption(QFileDialog::DontConfirmOverwrite, true);
     dialog->selectFile(QString::fromStdString(path.string()));
     static_cast<QDialog*>(dialog)->accept();  // public through QDialog, virtual: QFileDialog::accept
   };
