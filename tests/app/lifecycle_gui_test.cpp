@@ -228,26 +228,6 @@ class LifecycleGuiTest : public QObject {
     QVERIFY(!w.isVisible());
   }
 
-  void saveAsUpdatesTheTitleAndTheRecentFiles() {
-    MainWindow& w = *window_;
-    w.openScene(copySample(dir_, "default", "doc.json"));
-    dragArrow(w, w.scene().widgets.find("pull"), 0.2);
-    const fs::path other = fs::path(dir_.path().toStdString()) / "other.json";
-    ModalAnswers answers({chooseFile(other)});
-    key(w, Qt::Key_S, Qt::ControlModifier | Qt::ShiftModifier);  // File > Save Scene As
-    QCOMPARE(answers.answered(), 1);
-    QVERIFY(fs::exists(other));
-    QCOMPARE(shownTitle(w), QString("other.json - ffdkit"));
-    QCOMPARE(w.documentPath(), other);
-    const QString entry = QString::fromStdString(other.string());
-    QCOMPARE(QSettings().value("recentFiles").toStringList().value(0), entry);
-    QList<QAction*> recentActions;
-    for (QMenu* menu : w.findChildren<QMenu*>())
-      if (menu->title() == QObject::tr("Open &Recent")) recentActions = menu->actions();
-    QVERIFY(!recentActions.isEmpty());
-    QCOMPARE(recentActions.front()->text(), entry);
-  }
-
   // ---- 3. New Scene, Delete Object, Rename --------------------------------------------------
 
   void deleteObjectTakesItsLinksInOneUndoStep() {
