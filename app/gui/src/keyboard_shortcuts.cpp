@@ -1,0 +1,122 @@
+#include "keyboard_shortcuts.h"
+
+#include <array>
+#include <stdexcept>
+
+#include <QAction>
+#include <QDialog>
+#include <QHeaderView>
+#include <QKeyEvent>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+namespace ffdkit::app {
+
+namespace {
+
+using C = ShortcutContext;
+
+// The table. Keys of menu actions are set from here only (applyKeyboardShortcuts); keys the view
+// handles itself are checked against it (matchesShortcut).
+constexpr std::array kShortcuts{
+    KeyboardShortcut{"Ctrl+N", "actionNewScene", C::Window, "New scene"},
+    KeyboardShortcut{"Ctrl+O", "actionOpenScene", C::Window, "Open a scene"},
+    KeyboardShortcut{"Ctrl+S", "actionSaveScene", C::Window, "Save the scene"},
+    KeyboardShortcut{"Ctrl+Shift+S", "actionSaveSceneAs", C::Window, "Save the scene under another name"},
+    KeyboardShortcut{"Ctrl+Q", "actionQuit", C::Window, "Quit (asks to save changes)"},
+    KeyboardShortcut{"Ctrl+Z", "actionUndo", C::Window, "Undo"},
+    KeyboardShortcut{"Ctrl+Shift+Z", "actionRedo", C::Window, "Redo"},
+    KeyboardShortcut{"Del", "actionRemove", C::Window, "Delete the selected widget, binding or objects"},
+    KeyboardShortcut{"F2", "actionRename", C::Window, "Rename the selected object or widget"},
+    KeyboardShortcut{"D", "actionDirectManipulation", C::Window, "Direct manipulation on / off"},
+    KeyboardShortcut{"F1", "actionKeyboardShortcuts", C::Window, "This list of keyboard shortcuts"},
+    KeyboardShortcut{"Esc", "cancelDrag", C::Drag, "Cancel the drag: the scene goes back to where it started"},
+};
+
+bool isAction(const KeyboardShortcut& s) { return std::string_view(s.action).starts_with("action"); }
+
+QKeySequence keysOf(const KeyboardShortcut& s) { return QKeySequence(QString::fromLatin1(s.keys), QKeySequence::PortableText); }
+
+}  // namespace
+
+std::span<const KeyboardShortcut> keyboardShortcuts() { return kShortcuts; }
+
+QList<QKeySequence> shortcutsOf(std::string_view action) {
+  QList<QKeySequence> keys;
+  for (const KeyboardShortcut& s : kShortcuts)
+    if (action == s.action) keys.push_back(keysOf(s));
+  return keys;
+}
+
+bool matchesShortcut(const QKeyEvent& event, std::string_view action) {
+  for (const KeyboardShortcut& s : kShortcuts) {
+    if (action != s.action) continue;
+    const QKeySequence keys = keysOf(s);
+    if (keys.count() != 1) continue;
+    Qt::KeyboardModifiers modifiers = event.modifiers();
+    if (!keys[0].keyboardModifiers().testFlag(Qt::KeypadModifier)) modifiers &= ~Qt::KeypadModifier;
+    if (keys[0] == QKeyCombination(modifiers, static_cast<Qt::Key>(event.key()))) return true;
+  }
+  return false;
+}
+
+void applyKeyboardShortcuts(QObject* root) {
+  for (const KeyboardShortcut& s : kShortcuts) {
+    if (!isAction(s)) continue;
+    auto* action = root->findChild<QAction*>(QString::fromLatin1(s.action));
+    if (action == nullptr)
+      throw std::logic_error(std::string("keyboard shortcut ") + s.keys + ": no action '" + s.action + "'");
+    action->setShortcuts(shortcutsOf(s.action));
+  }
+}
+
+QString shortcutKeysText(const KeyboardShortcut& shortcut) {
+  QString text = QString::fromLatin1(shortcut.keys);
+  text.replace("Num+", "Numpad ");
+  return text;
+}
+
+QString shortcutContextText(ShortcutContext context) {
+  switch (context) {
+    case ShortcutContext::Window: return QObject::tr("anywhere");
+    case ShortcutContext::View: return QObject::tr("3D view");
+    case ShortcutContext::Drag: return QObject::tr("while dragging");
+    case ShortcutContext::EditMode: return QObject::tr("lattice edit mode");
+  }
+  return {};
+}
+
+std::string shortcutMarkdownRow(const KeyboardShortcut& shortcut) {
+  return "| " + shortcutKeysText(shortcut).toStdString() + " | " + shortcutContextText(shortcut.context).toStdString() +
+         " | " + shortcut.description + " |";
+}
+
+QWidget* showKeyboardShortcuts(QWidget* parent) {
+  auto* dialog = parent->findChild<QDialog*>("keyboardShortcutsDialog");
+  if (dialog == nullptr) {
+    dialog = new QDialog(parent);
+    dialog->setObjectName("keyboardShortcutsDialog");
+    dialog->setWindowTitle(QObject::tr("Keyboard Shortcuts"));
+    auto* table = new QTableWidget(static_cast<int>(kShortcuts.size()), 3);
+    table->setObjectName("shortcutsTable");
+    table->setHorizontalHeaderLabels({QObject::tr("Keys"), QObject::tr("Where"), QObject::tr("Does")});
+    table->verticalHeader()->hide();
+    table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    for (int row = 0; row < static_cast<int>(kShortcuts.size()); ++row) {
+      const KeyboardShortcut& s = kShortcuts[static_cast<std::size_t>(row)];
+      table->setItem(row, 0, new QTableWidgetItem(shortcutKeysText(s)));
+      table->setItem(row, 1, new QTableWidgetItem(shortcutContextText(s.context)));
+      table->setItem(row, 2, new QTableWidgetItem(QObject::tr(s.description)));
+    }
+    table->resizeColumnsToContents();
+    table->horizontalHeader()->setStretchLastSection(true);
+    auto* layout = new QVBoxLayout(dialog);
+    layout->addWidget(table);
+    dialog->resize(640, 480);
+  }
+  dialog->show();
+  dialog->raise();
+  return dialog;
+}
+
+}  // namespace ffdkit::app
