@@ -13,8 +13,10 @@
 #include <QTreeWidget>
 #include <QWindow>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <numbers>
 #include <set>
 
@@ -92,11 +94,11 @@ class ChromeGuiTest : public QObject {
     vtkRenderWindowInteractor* interactor = w.view()->interactor();
     for (unsigned long e : {vtkCommand::KeyPressEvent, vtkCommand::KeyReleaseEvent, vtkCommand::CharEvent})
       interactor->AddObserver(e, counter);
-    // ffdkit's own single keys (action shortcuts without modifiers).
-    std::set<int> bound;
+    // ffdkit's own single keys (action shortcuts without modifiers, keyboard_shortcuts.h).
+    std::map<int, QAction*> bound;
     for (QAction* a : w.findChildren<QAction*>())
       for (const QKeySequence& sequence : a->shortcuts())
-        if (sequence.count() == 1 && sequence[0].keyboardModifiers() == Qt::NoModifier) bound.insert(sequence[0].key());
+        if (sequence.count() == 1 && sequence[0].keyboardModifiers() == Qt::NoModifier) bound[sequence[0].key()] = a;
     QVERIFY(bound.count(Qt::Key_D));  // Direct Manipulation: a bound key still works below
 
     const ViewState reference = ViewState::of(w);
@@ -114,9 +116,12 @@ class ChromeGuiTest : public QObject {
       QVERIFY2(w.isVisible(), qPrintable(name + " closed the window"));
       QVERIFY2(vtkKeys == 0, qPrintable(name + " reached VTK's interactor"));
       if (bound.count(k)) {
-        QVERIFY(k == Qt::Key_D);
-        QVERIFY(action(w, "actionDirectManipulation")->isChecked() != reference.directManipulation);
-        action(w, "actionDirectManipulation")->trigger();  // back
+        // ffdkit's key did what its action does (each is tested where it is built; D here):
+        // a mode goes back off and the scene is opened again for the next key.
+        QAction* a = bound[k];
+        if (k == Qt::Key_D) QVERIFY(a->isChecked() != reference.directManipulation);
+        if (a->isCheckable() && a->isChecked()) a->trigger();
+        w.openScene(kExamples / "default");
         continue;
       }
       const ViewState now = ViewState::of(w);
@@ -129,7 +134,8 @@ class ChromeGuiTest : public QObject {
       QVERIFY2(now.image == reference.image, qPrintable(name + " changed the picture"));
       ++tested;
     }
-    QCOMPARE(tested, 35);
+    const auto boundHere = std::count_if(keys.begin(), keys.end(), [&](int k) { return bound.count(k) > 0; });
+    QCOMPARE(tested, static_cast<int>(keys.size()) - static_cast<int>(boundHere));
     // The mouse still drives the view: a drag on empty space orbits the camera.
     dragPixels(w, QPoint(40, 40), QPoint(140, 60));
     QVERIFY(ViewState::of(w).position != reference.position);

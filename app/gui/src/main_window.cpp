@@ -38,6 +38,7 @@
 #include <QToolBar>
 
 #include "ffdkit/ffd/cancelled.h"
+#include "keyboard_shortcuts.h"
 #include "main_window_impl.h"
 
 namespace ffdkit::app {
@@ -206,7 +207,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   QMenu* file = menuBar()->addMenu(tr("&File"));
   action(file, tr("&New Scene"), "actionNewScene", [this] {
     if (maybeSave()) newScene();
-  })->setShortcut(QKeySequence::New);
+  });
   action(file, tr("&Open Scene..."), "actionOpenScene", [this, sceneFilter] {
     if (!maybeSave()) return;
     const QString path = QFileDialog::getOpenFileName(this, tr("Open Scene"), QString(), sceneFilter);
@@ -216,12 +217,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     } catch (const std::exception& e) {
       QMessageBox::critical(this, tr("Open Scene"), qs(e.what()));
     }
-  })->setShortcut(QKeySequence::Open);
+  });
   d.recentMenu = file->addMenu(tr("Open &Recent"));
-  action(file, tr("&Save Scene"), "actionSaveScene", [this] { saveInteractively(false); })
-      ->setShortcut(QKeySequence::Save);
-  action(file, tr("Save Scene &As..."), "actionSaveSceneAs", [this] { saveInteractively(true); })
-      ->setShortcut(QKeySequence(tr("Ctrl+Shift+S")));
+  action(file, tr("&Save Scene"), "actionSaveScene", [this] { saveInteractively(false); });
+  action(file, tr("Save Scene &As..."), "actionSaveSceneAs", [this] { saveInteractively(true); });
   file->addSeparator();
   fileAction(file, tr("Open &Widget File..."), "actionOpenWidgetFile", false, widgetFilter,
              [this](const std::filesystem::path& p) { openWidgetFile(p); });
@@ -241,13 +240,11 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   outside->setChecked(QSettings().value(kAllowOutsideMeshesKey, false).toBool());
   connect(outside, &QAction::toggled, this, [](bool on) { QSettings().setValue(kAllowOutsideMeshesKey, on); });
   file->addSeparator();
-  action(file, tr("&Quit"), "actionQuit", [this] { close(); })->setShortcut(QKeySequence::Quit);
+  action(file, tr("&Quit"), "actionQuit", [this] { close(); });
 
   QMenu* edit = menuBar()->addMenu(tr("&Edit"));
   d.undo = action(edit, tr("&Undo"), "actionUndo", [this] { impl_->commands.undo(); });
-  d.undo->setShortcut(QKeySequence::Undo);
   d.redo = action(edit, tr("&Redo"), "actionRedo", [this] { impl_->commands.redo(); });
-  d.redo->setShortcut(QKeySequence::Redo);
   d.undo->setEnabled(false);
   d.redo->setEnabled(false);
   edit->addSeparator();
@@ -261,9 +258,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     } else if (!sel.empty()) {
       impl_->controller->removeWidget(sel.front());
     }
-  })->setShortcut(QKeySequence::Delete);
+  });
   action(edit, tr("Delete &Object"), "actionDeleteObject", [this] { deleteSelectedObjects(); });
-  action(edit, tr("Re&name..."), "actionRename", [this] { renameSelection(); })->setShortcut(QKeySequence(Qt::Key_F2));
+  action(edit, tr("Re&name..."), "actionRename", [this] { renameSelection(); });
   edit->addSeparator();
   action(edit, tr("&Preferences..."), "actionPreferences", [this] {
     QDialog dialog(this);
@@ -375,7 +372,6 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
                        5000);
   });
   d.directManipulation->setCheckable(true);
-  d.directManipulation->setShortcut(QKeySequence(Qt::Key_D));
   d.directManipulation->setToolTip(tr("Drag points of objects: the lattice gets the smallest change that puts the point under the pointer (D)"));
   widgetsMenu->addSeparator();
   QAction* primitive = action(widgetsMenu, tr("Add &Primitive..."), "actionAddPrimitive", [this] {
@@ -447,6 +443,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   toolbar->addAction(bind);
   toolbar->addAction(attach);
   toolbar->addAction(d.directManipulation);
+
+  QMenu* help = menuBar()->addMenu(tr("&Help"));
+  action(help, tr("&Keyboard Shortcuts"), "actionKeyboardShortcuts", [this] { showKeyboardShortcuts(this); });
+  applyKeyboardShortcuts(this);  // every action's keys from the one table (keyboard_shortcuts.h)
 
   rebuildRecentMenu();
 
@@ -632,7 +632,7 @@ bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
         break;
       }
       case QEvent::KeyPress:
-        if (static_cast<QKeyEvent*>(event)->key() == Qt::Key_Escape && d.controller->dragging()) d.controller->cancel();
+        if (matchesShortcut(*static_cast<QKeyEvent*>(event), "cancelDrag") && d.controller->dragging()) d.controller->cancel();
         // No key reaches VTK's interactor style: its defaults (w wireframe, 3 stereo, e / q
         // exit, r reset, f fly to, p pick, j / t / a / c modes, ...) are not ffdkit's; ffdkit's
         // keys are action shortcuts, handled before the view sees the key.
