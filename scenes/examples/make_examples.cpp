@@ -13,6 +13,7 @@
 
 #include "ffdkit/ffd/cylindrical_lattice.h"
 #include "ffdkit/geometry/quaternion/curve_generators.h"
+#include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/widgets/thesis_examples.h"
 
@@ -30,6 +31,19 @@ scenes::SceneObject primitiveObject(std::string name, scenes::PrimitiveOptions p
   object.display.color = colour;
   object.mesh = scenes::buildObjectMesh(object.source, ".");
   return object;
+}
+
+// Keys an affine widget's variation at the given (frame, value) pairs (the scene's frame rate).
+void keyVariation(Scene& scene, const char* widget, const std::vector<std::pair<int, double>>& keys,
+                  scenes::Interpolation interpolation = scenes::Interpolation::Smooth) {
+  const auto id = scene.widgets.find(widget);
+  for (const auto& [frame, value] : keys) {
+    scenes::Keyframe key;
+    key.time = scenes::frameTime(scene.animation, frame);
+    key.variation = value;
+    key.interpolation = interpolation;
+    scenes::setKey(scene, id, scenes::ChannelKind::Variation, key);
+  }
 }
 
 Eigen::Affine3d placedAt(const Eigen::Vector3d& centre) {
@@ -54,6 +68,8 @@ Scene makeDefault() {
   scene.widgets.setVariation(pull, 0.5);
   scene.camera.position = {3.0, -3.8, 2.7};  // far enough to see the pulled arrow
   scene.camera.focalPoint = {0.0, 0.0, 0.3};
+  // Three seconds at 24 fps: the arrow rises to the saved pull at 1 s, dips, comes back.
+  keyVariation(scene, "pull", {{0, 0.0}, {24, 0.5}, {48, -0.2}, {72, 0.0}});
   return scene;
 }
 
@@ -80,6 +96,8 @@ Scene makePress() {
                                                 {0.55, 0.7, 0.85}));
   scene.camera.position = {3.2, -2.9, 2.9};  // the crank above the lattice in view too
   scene.camera.focalPoint = {0.5, 0.5, 0.8};
+  // One turn of the handle in three seconds, at a steady speed (the clamp stops the face at 0.3).
+  keyVariation(scene, "handle", {{0, 0.0}, {72, 2 * std::numbers::pi}}, scenes::Interpolation::Linear);
   return scene;
 }
 
@@ -124,12 +142,16 @@ Scene makeMirror() {
   auto fig = widgets::buildFig68();
   fig.model.setVariation(fig.faceTranslateA, 0.2);
   fig.model.setVariation(fig.edgeTranslateA, 0.15);
-  return withThesisModel("Fig. 6-8: a 2x3x2 lattice; bound pairs of widgets move mirror-symmetrically about y = 0.5.",
-                         std::move(fig.model), fig.lattice,
-                         primitiveObject("torus", {.kind = scenes::PrimitiveKind::Torus, .resolution = 48, .size = 0.9,
-                                                   .placement = placedAt({0.5, 0.5, 0.5}) *
-                                                                Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitX())},
-                                         {0.45, 0.75, 0.5}));
+  Scene scene = withThesisModel("Fig. 6-8: a 2x3x2 lattice; bound pairs of widgets move mirror-symmetrically about y = 0.5.",
+                                std::move(fig.model), fig.lattice,
+                                primitiveObject("torus", {.kind = scenes::PrimitiveKind::Torus, .resolution = 48, .size = 0.9,
+                                                          .placement = placedAt({0.5, 0.5, 0.5}) *
+                                                                       Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitX())},
+                                                {0.45, 0.75, 0.5}));
+  // One widget of each bound pair is keyed; its partner follows through the binding at every frame.
+  keyVariation(scene, "push-front", {{0, 0.0}, {36, 0.2}, {72, 0.0}});
+  keyVariation(scene, "pull-front", {{0, 0.0}, {24, 0.15}}, scenes::Interpolation::Constant);
+  return scene;
 }
 
 // Fig. 6-9: a child lattice rides on the parent's top face. It straddles the face, so the top of

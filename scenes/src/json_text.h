@@ -32,6 +32,11 @@ Json parseJson(const std::string& content, const std::string& sourceName) {
     std::string message = e.what();
     if (auto pos = message.find("syntax error"); pos != std::string::npos) message = message.substr(pos);
     throw Error(sourceName + ":" + lineColumn(content, e.byte == 0 ? 0 : e.byte - 1) + ": " + message);
+  } catch (const Json::out_of_range& e) {
+    // A number beyond double range ("1e400") is refused by the parser this way, without a position.
+    std::string message = e.what();
+    if (auto pos = message.find("] "); pos != std::string::npos) message = message.substr(pos + 2);
+    throw Error(sourceName + ": " + message);
   }
 }
 

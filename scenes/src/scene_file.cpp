@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "ffdkit/meshio/atomic_write.h"
+#include "ffdkit/scenes/animation.h"
+#include "animation_checks.h"
 #include "ffdkit/scenes/widget_file.h"
 #include "json_text.h"
 #include "widget_json.h"
@@ -194,11 +196,172 @@ SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions
   return object;
 }
 
+// A 3 x 4 affine matrix, as rows.
+Eigen::Affine3d affineRows(const Json& p, const Location& at) {
+  if (!p.is_array() || p.size() != 3) at.fail("expected 3 rows of 4 numbers (a 3x4 affine matrix)");
+  Eigen::Affine3d m = Eigen::Affine3d::Identity();
+  for (std::size_t r = 0; r < 3; ++r) {
+    if (!p[r].is_array() || p[r].size() != 4) (at / r).fail("expected 4 numbers");
+    for (std::size_t c = 0; c < 4; ++c) m.matrix()(Eigen::Index(r), Eigen::Index(c)) = number(p[r][c], at / r / c);
+  }
+  return m;
+}
+
+Json affineJson(const Eigen::Affine3d& m) {
+  Json rows = Json::array();
+  for (int r = 0; r < 3; ++r) {
+    Json row = Json::array();
+    for (int c = 0; c < 4; ++c) row.push_back(m.matrix()(r, c));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// "animation" (format version 2): frame rate, frame range, channels of keys naming their widget.
+void readAnimation(const Json& j, const Location& at, Scene& scene) {
+  checkKeys(j, {"frameRate", "frames", "channels"}, at);
+  Animation& animation = scene.animation;
+  if (j.contains("frameRate")) {
+    animation.framesPerSecond = number(j["frameRate"], at / "frameRate");
+    if (!(animation.framesPerSecond > 0.0 && animation.framesPerSecond <= kMaxFrameRate))
+      (at / "frameRate").fail("expected frames per second in (0, 1000], got " + j["frameRate"].dump());
+  }
+  if (j.contains("frames")) {
+    const Json& f = j["frames"];
+    if (!f.is_array() || f.size() != 2) (at / "frames").fail("expected [first, last] frame numbers");
+    for (std::size_t k = 0; k < 2; ++k) {
+      const bool inRange = f[k].is_number_unsigned() ? f[k].get<unsigned long long>() <= kMaxFrameMagnitude
+                                                     : f[k].is_number_integer() && std::llabs(f[k].get<long long>()) <= kMaxFrameMagnitude;
+      if (!inRange)
+        (at / "frames" / k).fail("expected an integer frame within +-" + std::to_string(kMaxFrameMagnitude) + ", got " +
+                                 f[k].dump());
+    }
+    animation.firstFrame = f[0].get<int>();
+    animation.lastFrame = f[1].get<int>();
+    if (animation.firstFrame > animation.lastFrame)
+      (at / "frames").fail("the first frame " + f[0].dump() + " is after the last " + f[1].dump());
+  }
+  if (!j.contains("channels")) return;
+  const Json& list = j["channels"];
+  const Location lat = at / "channels";
+  detail::checkArray(list, lat);
+  if (list.size() > kMaxChannels)
+    lat.fail("at most " + std::to_string(kMaxChannels) + " channels, got " + std::to_string(list.size()));
+  std::size_t values = 0;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Json& c = list[i];
+    const Location cat = lat / i;
+    checkKeys(c, {"widget", "property", "keys"}, cat);
+    const std::string widgetName = text(member(c, "widget", cat), cat / "widget");
+    Channel channel;
+    try {
+      channel.widget = scene.widgets.find(widgetName);
+    } catch (const widgets::WidgetError& e) {
+      (cat / "widget").fail(e.what());
+    }
+    const std::string property = text(member(c, "property", cat), cat / "property");
+    const auto kind = parseChannelKind(property);
+    if (!kind) (cat / "property").fail("unknown property '" + property + "' (known: variation, frame, controlPoints)");
+    channel.kind = *kind;
+    if (findChannel(animation, channel.widget, channel.kind) != nullptr)
+      cat.fail("a second '" + property + "' channel of widget '" + widgetName + "'");
+    try {
+      detail::checkKeyable(scene.widgets, channel.widget, channel.kind);
+    } catch (const AnimationError& e) {
+      (cat / "property").fail(e.what());
+    }
+    const Json& keys = member(c, "keys", cat);
+    const Location kat = cat / "keys";
+    detail::checkArray(keys, kat);
+    if (keys.empty()) kat.fail("a channel needs at least one key");
+    if (keys.size() > kMaxKeysPerChannel)
+      kat.fail("at most " + std::to_string(kMaxKeysPerChannel) + " keys per channel, got " + std::to_string(keys.size()));
+    const Eigen::Index pointCount =
+        channel.kind == ChannelKind::ControlPoints ? scene.widgets.controlPoints(channel.widget).rows() : 0;
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+      const Json& kj = keys[k];
+      const Location kloc = kat / k;
+      checkKeys(kj, {"time", "value", "interpolation"}, kloc);
+      Keyframe key;
+      key.time = number(member(kj, "time", kloc), kloc / "time");
+      if (kj.contains("interpolation")) {
+        const std::string name = text(kj["interpolation"], kloc / "interpolation");
+        const auto interpolation = parseInterpolation(name);
+        if (!interpolation)
+          (kloc / "interpolation").fail("unknown interpolation '" + name + "' (known: constant, linear, smooth)");
+        key.interpolation = *interpolation;
+      }
+      const Json& value = member(kj, "value", kloc);
+      switch (channel.kind) {
+        case ChannelKind::Variation: key.variation = number(value, kloc / "value"); break;
+        case ChannelKind::LatticeFrame: key.frame = affineRows(value, kloc / "value"); break;
+        case ChannelKind::ControlPoints: {
+          detail::checkArray(value, kloc / "value");
+          if (Eigen::Index(value.size()) != pointCount)
+            (kloc / "value").fail("expected " + std::to_string(pointCount) + " control points (lattice '" + widgetName +
+                                "'), got " + std::to_string(value.size()));
+          values += 3 * value.size();
+          if (values > kMaxKeyValues) (kloc / "value").fail("the keys hold more than " + std::to_string(kMaxKeyValues) + " numbers");
+          key.points.resize(pointCount, 3);
+          for (std::size_t p = 0; p < value.size(); ++p) key.points.row(Eigen::Index(p)) = vector3(value[p], kloc / "value" / p).transpose();
+          break;
+        }
+      }
+      if (const std::string problem = detail::keyProblem(scene.widgets, channel.widget, channel.kind, key); !problem.empty())
+        kloc.fail(problem);
+      if (k > 0 && !(key.time > channel.keys.back().time + 1e-9))
+        (kloc / "time").fail("key times must increase: " + kj["time"].dump() + " after " + keys[k - 1]["time"].dump() +
+                           " (keys are sorted and one per time)");
+      channel.keys.push_back(std::move(key));
+    }
+    animation.channels.push_back(std::move(channel));
+  }
+}
+
+Json animationJson(const Scene& scene) {
+  const Animation& animation = scene.animation;
+  Json a;
+  a["frameRate"] = animation.framesPerSecond;
+  a["frames"] = Json::array({animation.firstFrame, animation.lastFrame});
+  Json channels = Json::array();
+  for (const Channel& c : animation.channels) {
+    if (!scene.widgets.contains(c.widget) || c.keys.empty()) continue;  // a removed widget's keys go with it
+    Json keys = Json::array();
+    for (const Keyframe& k : c.keys) {
+      Json key;
+      key["time"] = k.time;
+      switch (c.kind) {
+        case ChannelKind::Variation: key["value"] = k.variation; break;
+        case ChannelKind::LatticeFrame: key["value"] = affineJson(k.frame); break;
+        case ChannelKind::ControlPoints: {
+          Json rows = Json::array();
+          for (Eigen::Index p = 0; p < k.points.rows(); ++p) rows.push_back(Json::array({k.points(p, 0), k.points(p, 1), k.points(p, 2)}));
+          key["value"] = std::move(rows);
+          break;
+        }
+      }
+      key["interpolation"] = std::string(interpolationName(k.interpolation));
+      keys.push_back(std::move(key));
+    }
+    channels.push_back({{"widget", scene.widgets.name(c.widget)},
+                        {"property", std::string(channelKindName(c.kind))},
+                        {"keys", std::move(keys)}});
+  }
+  a["channels"] = std::move(channels);
+  return a;
+}
+
+bool isDefault(const Animation& animation) {
+  const Animation defaults;
+  return animation.channels.empty() && animation.framesPerSecond == defaults.framesPerSecond &&
+         animation.firstFrame == defaults.firstFrame && animation.lastFrame == defaults.lastFrame;
+}
+
 Scene readSceneJson(const Json& root, const std::string& source, const SceneReadOptions& options) {
   const GeneratorRegistry& generators = options.generators != nullptr ? *options.generators : builtinGenerators();
   const Location at{&source, ""};
   checkKeys(root, {"format", "version", "description", "background", "objects", "widgets", "widgetFile",
-                   "attachments", "camera"},
+                   "attachments", "camera", "animation"},
             at);
   if (text(member(root, "format", at), at / "format") != "ffdkit-scene")
     (at / "format").fail("not an ffdkit scene (expected \"ffdkit-scene\")");
@@ -208,6 +371,10 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
     (at / "version").fail("format version " + version.dump() + " is not supported by this build (reads 1.." +
                           std::to_string(kSceneFormatVersion) + ")");
   }
+  // Migration: version 1 (before animation) reads as version 2 without keys; nothing else changed.
+  const long long fileVersion = version.get<long long>();
+  if (fileVersion < 2 && root.contains("animation"))
+    (at / "animation").fail("'animation' needs format version 2 (this file says version " + version.dump() + ")");
   Scene scene;
   if (root.contains("description")) scene.description = text(root["description"], at / "description");
   if (root.contains("background")) scene.background = colour(root["background"], at / "background");
@@ -265,6 +432,14 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
     validateScene(scene);
   } catch (const std::invalid_argument& e) {
     (at / "attachments").fail(e.what());
+  }
+  if (root.contains("animation")) {
+    readAnimation(root["animation"], at / "animation", scene);
+    try {
+      validateAnimation(scene);
+    } catch (const AnimationError& e) {
+      (at / "animation").fail(e.what());
+    }
   }
   return scene;
 }
@@ -333,6 +508,8 @@ Json sceneJson(const Scene& scene) {
                     {"focalPoint", array3(scene.camera.focalPoint)},
                     {"viewUp", array3(scene.camera.viewUp)},
                     {"viewAngle", scene.camera.viewAngleDegrees}};
+  // Written only when there is something to say: a scene without keys stays as short as before.
+  if (!isDefault(scene.animation)) root["animation"] = animationJson(scene);
   return root;
 }
 

@@ -127,7 +127,7 @@ TEST(SceneFile, BadInputGetsLocatedErrors) {
     return text.replace(at, from.size(), to);
   };
   EXPECT_NE(errorOf("{\n  \"format\": \"ffdkit-scene\",\n  \"version\": 1,,\n}").find("scene.json:3:"), std::string::npos);
-  EXPECT_NE(errorOf(replaced("\"version\": 1", "\"version\": 7")).find("/version: format version 7 is not supported"),
+  EXPECT_NE(errorOf(replaced("\"version\": 2", "\"version\": 7")).find("/version: format version 7 is not supported"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"kind\": \"sphere\"", "\"kind\": \"teapot\"")).find("/objects/0/primitive/kind: unknown primitive 'teapot'"),
             std::string::npos);

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "ffdkit/scenes/generator.h"
+#include "ffdkit/scenes/keyframes.h"
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/primitive.h"
 #include "ffdkit/widgets/widget_model.h"
@@ -105,11 +106,14 @@ struct Scene {
   /// When set, the widget model lives in this widget file (relative to the scene's folder)
   /// and the scene file references it instead of holding the widgets inline.
   std::optional<std::string> widgetFile;
+  /// Frame rate, frame range and keyed channels (animation.h evaluates and edits them).
+  Animation animation;
   /// Revisions of the parts outside the widget model (which keeps its own): `revision` grows with
   /// every edit made through scene_changes.h, which stamps what it changed with it.
   std::uint64_t revision = 0;
   std::uint64_t structureRevision = 0;  ///< objects added / removed / renamed, attachments
   std::uint64_t cameraRevision = 0;     ///< camera, background
+  std::uint64_t animationRevision = 0;  ///< keys, frame rate, frame range (animation.h edits)
 
   /// The object with this name, or nullptr.
   const SceneObject* findObject(const std::string& name) const;

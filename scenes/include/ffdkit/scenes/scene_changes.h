@@ -25,11 +25,12 @@ struct SceneChanges {
   widgets::WidgetChanges widgets;   ///< within the same model (empty when replaced)
   bool structure = false;           ///< objects added, removed or renamed; attachments changed
   bool camera = false;              ///< camera or background
+  bool animation = false;           ///< keys, frame rate or frame range
   std::vector<std::string> meshes;  ///< objects whose own points (or source) changed
   std::vector<std::string> looks;   ///< objects whose DisplaySettings changed
 
   bool empty() const {
-    return !widgetsReplaced && widgets.empty() && !structure && !camera && meshes.empty() && looks.empty();
+    return !widgetsReplaced && widgets.empty() && !structure && !camera && !animation && meshes.empty() && looks.empty();
   }
 };
 

@@ -10,8 +10,10 @@
 
 namespace ffdkit::scenes {
 
-/// The scene file format this build reads and writes (docs/scene-file-format.md).
-inline constexpr int kSceneFormatVersion = 1;
+/// The scene file format this build writes (docs/scene-file-format.md). It reads every version
+/// from 1: version 2 added "animation" (keys, frame rate, frame range); a version-1 file reads as
+/// a version-2 file without keys.
+inline constexpr int kSceneFormatVersion = 2;
 
 /// A scene file that cannot be read. what() says where: `scene.json:14:9: ...` for syntax
 /// errors, `scene.json /objects/2/primitive/kind: unknown primitive 'teapot' (known: ...)`
