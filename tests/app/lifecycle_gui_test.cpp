@@ -7,6 +7,7 @@
 #include <QFileDialog>
 #include <QInputDialog>
 #include <QLineEdit>
+#include <QFileSystemModel>
 #include <QMenu>
 #include <QMessageBox>
 #include <QProcess>
@@ -76,6 +77,27 @@ ModalAnswers::Handler chooseFile(const fs::path& path) {
     auto* dialog = qobject_cast<QFileDialog*>(modal);
     QVERIFY2(dialog != nullptr, qPrintable(modal->metaObject()->className()));
     dialog->selectFile(QString::fromStdString(path.string()));
+    static_cast<QDialog*>(dialog)->accept();  // public through QDialog, virtual: QFileDialog::accept
+  };
+}
+
+// Answers a Save As dialog opened on the document's own file with `path`. The dialog lists its
+// folder asynchronously (QFileSystemModel's gatherer thread) and updates its selection as the
+// rows arrive, which can overwrite a name chosen earlier: accept() then asked whether to replace
+// the open file, a nested modal nobody answered (the test hung at random under load). So wait
+// until the folder, which holds the open file, is listed; then type the new path and accept.
+ModalAnswers::Handler chooseSavePath(const fs::path& path) {
+  return [path](QWidget* modal) {
+    auto* dialog = qobject_cast<QFileDialog*>(modal);
+    QVERIFY2(dialog != nullptr, qPrintable(modal->metaObject()->className()));
+    auto* files = dialog->findChild<QFileSystemModel*>();
+    auto* name = dialog->findChild<QLineEdit*>("fileNameEdit");
+    QVERIFY(files != nullptr && name != nullptr);
+    const QModelIndex folder = files->index(QString::fromStdString(path.parent_path().string()));
+    QTRY_VERIFY_WITH_TIMEOUT(files->rowCount(folder) > 0 && !files->canFetchMore(folder), 20000);
+    name->selectAll();
+    QTest::keyClicks(name, QString::fromStdString(path.filename().string()));
+    QCOMPARE(dialog->selectedFiles(), QStringList{QString::fromStdString(path.string())});
     static_cast<QDialog*>(dialog)->accept();  // public through QDialog, virtual: QFileDialog::accept
   };
 }
@@ -226,6 +248,26 @@ class LifecycleGuiTest : public QObject {
     QVERIFY(w.close());
     QCOMPARE(answers.answered(), 1);
     QVERIFY(!w.isVisible());
+  }
+
+  void saveAsUpdatesTheTitleAndTheRecentFiles() {
+    MainWindow& w = *window_;
+    w.openScene(copySample(dir_, "default", "doc.json"));
+    dragArrow(w, w.scene().widgets.find("pull"), 0.2);
+    const fs::path other = fs::path(dir_.path().toStdString()) / "other.json";
+    ModalAnswers answers({chooseSavePath(other)});
+    key(w, Qt::Key_S, Qt::ControlModifier | Qt::ShiftModifier);  // File > Save Scene As
+    QCOMPARE(answers.answered(), 1);
+    QVERIFY(fs::exists(other));
+    QCOMPARE(shownTitle(w), QString("other.json - ffdkit"));
+    QCOMPARE(w.documentPath(), other);
+    const QString entry = QString::fromStdString(other.string());
+    QCOMPARE(QSettings().value("recentFiles").toStringList().value(0), entry);
+    QList<QAction*> recentActions;
+    for (QMenu* menu : w.findChildren<QMenu*>())
+      if (menu->title() == QObject::tr("Open &Recent")) recentActions = menu->actions();
+    QVERIFY(!recentActions.isEmpty());
+    QCOMPARE(recentActions.front()->text(), entry);
   }
 
   // ---- 3. New Scene, Delete Object, Rename --------------------------------------------------
