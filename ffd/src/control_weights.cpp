@@ -1,0 +1,103 @@
+#include "ffdkit/ffd/control_weights.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <vector>
+
+namespace ffdkit::ffd {
+
+ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& embedding, int k) {
+  if (k < 1) throw LatticeError("largestControlWeights: k must be >= 1, got " + std::to_string(k));
+  embedding.checkLattice(lattice);
+  const Eigen::Index n = embedding.pointCount();
+  ControlWeights result;
+  result.k = k;
+  result.indices.setConstant(n, k, -1);
+  result.weights.setZero(n, k);
+  result.total.setZero(n);
+  result.dropped.setZero(n);
+
+  int np[3];
+  for (int a = 0; a < 3; ++a) np[a] = lattice.axis(a).degree() + 1;
+  const int window = np[0] * np[1] * np[2];
+  const auto& blocks = embedding.blocks();
+  const auto& tiles = embedding.tileBlocks();
+  const auto& order = embedding.order();
+  const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
+#pragma omp parallel if (n >= 16384)
+  {
+    std::vector<double> bu(static_cast<std::size_t>(np[0])), bv(static_cast<std::size_t>(np[1])),
+        bw(static_cast<std::size_t>(np[2]));
+    std::vector<double> w(static_cast<std::size_t>(window));
+    std::vector<std::int32_t> index(static_cast<std::size_t>(window));
+    std::vector<int> rank(static_cast<std::size_t>(window));
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t t = 0; t < tileCount; ++t) {
+      for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
+        const Embedding::Block& block = blocks[bi];
+        if (block.kind == Embedding::BlockKind::Frozen) continue;  // no weights, total 0
+        // The cell's window of control indices, in the order Deformer's gatherWindow walks it.
+        int wi = 0;
+        for (int c = 0; c < np[2]; ++c)
+          for (int b = 0; b < np[1]; ++b)
+            for (int a = 0; a < np[0]; ++a, ++wi)
+              index[std::size_t(wi)] = static_cast<std::int32_t>(
+                  lattice.index(lattice.axis(0).controlIndex(block.cell[0], a), lattice.axis(1).controlIndex(block.cell[1], b),
+                                lattice.axis(2).controlIndex(block.cell[2], c)));
+        // A periodic axis with fewer control points than its window wraps onto the same point
+        // twice: first[r] is the first window position with index[r] (the weights add up there).
+        std::vector<int> first(static_cast<std::size_t>(window));
+        bool wraps = false;
+        for (int r = 0; r < window; ++r) {
+          first[std::size_t(r)] = int(std::find(index.begin(), index.begin() + r + 1, index[std::size_t(r)]) - index.begin());
+          wraps = wraps || first[std::size_t(r)] != r;
+        }
+        for (std::uint32_t q = block.begin; q < block.end; ++q) {
+          const Eigen::Index p = order.empty() ? q : order[q];
+          const double s = block.kind == Embedding::BlockKind::Blended
+                               ? embedding.blendWeight()[block.blendOffset + q - block.begin]
+                               : 1.0;
+          lattice.axis(0).basis(block.cell[0], embedding.sortedU()[q], bu.data());
+          lattice.axis(1).basis(block.cell[1], embedding.sortedV()[q], bv.data());
+          lattice.axis(2).basis(block.cell[2], embedding.sortedW()[q], bw.data());
+          wi = 0;
+          for (int c = 0; c < np[2]; ++c)
+            for (int b = 0; b < np[1]; ++b)
+              for (int a = 0; a < np[0]; ++a, ++wi) w[std::size_t(wi)] = s * bu[std::size_t(a)] * bv[std::size_t(b)] * bw[std::size_t(c)];
+          if (wraps) {
+            for (int r = 0; r < window; ++r) {
+              if (first[std::size_t(r)] == r) continue;
+              w[std::size_t(first[std::size_t(r)])] += w[std::size_t(r)];
+              w[std::size_t(r)] = 0.0;
+            }
+          }
+          std::iota(rank.begin(), rank.end(), 0);
+          const int kept = std::min(k, window);
+          // Largest first; ties by window position, so the result does not depend on the sort.
+          std::partial_sort(rank.begin(), rank.begin() + kept, rank.end(), [&w](int x, int y) {
+            return w[std::size_t(x)] > w[std::size_t(y)] || (w[std::size_t(x)] == w[std::size_t(y)] && x < y);
+          });
+          double dropped = 0.0;
+          for (int r = kept; r < window; ++r) dropped += std::abs(w[std::size_t(rank[std::size_t(r)])]);
+          int slot = 0;
+          for (int r = 0; r < kept; ++r) {
+            const int at = rank[std::size_t(r)];
+            if (w[std::size_t(at)] == 0.0) {
+              continue;  // a zero weight is no joint (a point on a knot: fewer non-zero basis functions)
+            }
+            result.indices(p, slot) = index[std::size_t(at)];
+            result.weights(p, slot) = w[std::size_t(at)];
+            ++slot;
+          }
+          result.total[p] = s;
+          result.dropped[p] = dropped;
+        }
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace ffdkit::ffd
