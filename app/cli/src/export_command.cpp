@@ -1,0 +1,108 @@
+// ffdkit-cli export: a scene as binary glTF 2.0 (the deformed mesh at a frame, the animation as
+// morph targets, or as a skin on the lattices' control points).
+#include <cmath>
+#include <cstdio>
+
+#include "commands.h"
+#include "console.h"
+#include "ffdkit/exporters/gltf_export.h"
+#include "ffdkit/exporters/scene_animation.h"
+
+namespace ffdkit::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string format(const char* fmt, auto... values) {
+  char line[1024];
+  std::snprintf(line, sizeof line, fmt, values...);
+  return line;
+}
+
+int runExport(const Args& args) {
+  Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
+  if (args.positional().size() != 1) throw UsageError("expected one SCENE, got " + std::to_string(args.positional().size()));
+  const auto output = args.value("output");
+  if (!output) throw UsageError("missing -o OUT.glb");
+  exporters::GltfExportOptions options;
+  const int contents = int(args.value("frame").has_value()) + int(args.flag("morph")) + int(args.flag("skin"));
+  if (contents > 1) throw UsageError("choose one of --frame, --morph, --skin");
+  if (args.flag("morph")) options.content = exporters::GltfContent::Morph;
+  if (args.flag("skin")) options.content = exporters::GltfContent::Skin;
+  if (options.content != exporters::GltfContent::Skin &&
+      (args.value("joints") || args.value("tolerance") || args.flag("no-raise")))
+    throw UsageError("--joints, --tolerance and --no-raise go with --skin");
+  if (const auto joints = args.value("joints")) {
+    if (*joints != "4" && *joints != "8") throw UsageError("--joints takes 4 or 8, got '" + *joints + "'");
+    options.joints = std::stoi(*joints);
+    options.raiseJoints = false;  // asked for a k: keep it
+  }
+  if (args.flag("no-raise")) options.raiseJoints = false;
+  if (const auto tolerance = args.value("tolerance")) {
+    options.tolerance = parseNumber(*tolerance, "--tolerance");
+    if (options.tolerance < 0.0) throw UsageError("--tolerance must be >= 0, got " + *tolerance);
+  }
+  options.normals = !args.flag("no-normals");
+
+  console.begin("read", "reading " + args.positional()[0]);
+  scenes::Scene scene = readSceneFile(args.positional()[0], args);
+  applySettings(scene.widgets, parseSettings(args.values("set")));
+  console.end();
+  const exporters::AnimationSource animation = exporters::sceneAnimation(scene);
+  if (const auto frame = args.value("frame")) options.time = exporters::sceneFrameTime(scene, parseNumber(*frame, "--frame"));
+
+  console.begin("export", "exporting " + *output);
+  const exporters::GltfExportReport report = exporters::exportGltf(scene, animation, fs::path(*output), options);
+  console.end();
+  const std::string content(exporters::gltfContentName(report.content));
+  console.say(format("wrote %s: %s, %d objects, %lld vertices, %lld triangles, %llu bytes", output->c_str(),
+                     content.c_str(), report.objects, static_cast<long long>(report.vertices),
+                     static_cast<long long>(report.triangles), static_cast<unsigned long long>(report.bytes)));
+  if (report.content == exporters::GltfContent::Morph)
+    console.say(format("morph targets: %d per mesh, %s weights; largest error at a key %.3g (float32 rounding)",
+                       report.morphTargets, report.interpolation.c_str(), report.maxError));
+  if (report.content == exporters::GltfContent::Skin) {
+    console.say(format("skin: %d joints (the static joint and the control points), %d per vertex, joint scale %g, "
+                       "%s translations at %zu sampled times",
+                       report.joints, report.k, report.jointScale, report.interpolation.c_str(), report.samples.size()));
+    console.say("time        error(k=4)  error(k=8)  all weights  (scene units; scene size " +
+                format("%.4g", report.sceneSize) + ")");
+    for (const auto& sample : report.samples)
+      console.say(format("%-10.4g  %-10.3g  %-10.3g  %-10.3g", sample.time, sample.error4, sample.error8, sample.linearError));
+    console.say(format("largest error with k = %d: %.3g (tolerance %g)", report.k, report.maxError, options.tolerance));
+  }
+  if (report.content == exporters::GltfContent::Frame)
+    console.say(format("largest error: %.3g (float32 rounding)", report.maxError));
+  console.printTimings();
+  return 0;
+}
+
+}  // namespace
+
+Command exportCommand() {
+  return {"export",
+          "write a scene as binary glTF 2.0 (.glb): a deformed frame, morph targets or a skin",
+          "ffdkit-cli export SCENE -o OUT.glb [--frame F | --morph | --skin [--joints 4|8] [--tolerance E]]",
+          "--frame F (the default, frame 0): the deformed meshes at frame F of the scene's animation.\n"
+          "--morph: the undeformed meshes with one morph target per key; an animation drives their\n"
+          "weights (STEP when every key is constant, else LINEAR): exact at the keys to float32.\n"
+          "--skin: the undeformed meshes skinned to the lattices' control points (translation-only\n"
+          "joints), each vertex keeping its 4 (or 8) largest FFD weights. The position error this\n"
+          "causes is measured against ffdkit's own deformation at every key and frame and printed;\n"
+          "above --tolerance (default 0.001, scene units) 4 joints become 8, and if 8 still exceed it\n"
+          "nothing is written (exit 1, the message gives the errors). --joints fixes k. See docs/export.md.\n"
+          "The file is written atomically: nothing is left behind when anything fails.\n",
+          {{"output", 'o', "OUT.glb", "the .glb to write"},
+           {"frame", '\0', "F", "export the deformed meshes at frame F (default: 0)"},
+           {"morph", '\0', "", "export the animation as morph targets"},
+           {"skin", '\0', "", "export the animation as a skin on the lattices' control points"},
+           {"joints", '\0', "K", "with --skin: joints per vertex, 4 or 8 (default 4, raised to 8 if needed)"},
+           {"tolerance", '\0', "E", "with --skin: largest position error allowed (default 0.001)"},
+           {"no-raise", '\0', "", "with --skin: refuse rather than raise 4 joints to 8"},
+           {"no-normals", '\0', "", "write no NORMAL attributes"},
+           setOption(), allowOutsideMeshesOption(), quietOption(), progressOption(), timingsOption()},
+          runExport};
+}
+
+}  // namespace ffdkit::cli
