@@ -11,7 +11,7 @@ namespace {
 
 const std::vector<Command>& commands() {
   static const std::vector<Command> list = {deformCommand(), renderCommand(), infoCommand(), validateCommand(),
-                                            plotCommand()};
+                                            plotCommand(), exportCommand()};
   return list;
 }
 

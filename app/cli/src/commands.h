@@ -26,6 +26,7 @@ Command renderCommand();
 Command infoCommand();
 Command validateCommand();
 Command plotCommand();
+Command exportCommand();
 
 /// Runs ffdkit-cli: `argv` without the program name. Prints help and errors; returns the exit code.
 int runCli(const std::vector<std::string>& argv);
