@@ -78,18 +78,25 @@ tinygltf::Mesh meshOf(GlbBuilder& glb, const scenes::SceneObject& object, const 
   return mesh;
 }
 
-// Evaluates a working copy of the scene at any time: ffdkit's exact deformation.
+// Evaluates a working copy of the scene at any time: ffdkit's exact deformation. Each time starts
+// from the exported scene's own widget state, so the state at t does not depend on the times
+// sampled before (an animation applied through gestures may: non-commuting motions).
 class Evaluator {
  public:
-  Evaluator(const scenes::Scene& scene, const AnimationSource& animation) : work_(scene), animation_(animation) {}
+  Evaluator(const scenes::Scene& scene, const AnimationSource& animation)
+      : original_(scene), work_(scene), animation_(animation) {}
   void at(double t) {
-    if (animation_.setTime) animation_.setTime(work_, t);
+    if (animation_.setTime) {
+      work_.widgets = original_.widgets;  // the deformer syncs another model instance by value
+      animation_.setTime(work_, t);
+    }
     deformer_.finishGesture(work_);
   }
   const Eigen::MatrixX3d& points(const std::string& object) const { return deformer_.points(object); }
   scenes::Scene& scene() { return work_; }
 
  private:
+  const scenes::Scene& original_;
   scenes::Scene work_;
   const AnimationSource& animation_;
   scenes::SceneDeformer deformer_;
@@ -133,6 +140,11 @@ double holdBefore(double t0, double t1) {
 // Sample times: the keys, the frames between them (when `frames`), and for a LINEAR sampler the
 // holds of Constant keys; sorted, distinct as float32.
 std::vector<double> sampleTimes(const AnimationSource& animation, bool frames, bool step) {
+  // Morph (no frames): only Constant segments hold; a skin also holds where a part jumps.
+  const auto holds = [&](std::size_t i) {
+    return interpolationOf(animation, i) == KeyInterpolation::Constant ||
+           (frames && i < animation.jumps.size() && animation.jumps[i]);
+  };
   std::set<double> times(animation.keyTimes.begin(), animation.keyTimes.end());
   const double first = animation.keyTimes.front();
   const double last = animation.keyTimes.back();
@@ -142,7 +154,7 @@ std::vector<double> sampleTimes(const AnimationSource& animation, bool frames, b
   }
   if (!step) {
     for (std::size_t i = 0; i + 1 < animation.keyTimes.size(); ++i) {
-      if (interpolationOf(animation, i) != KeyInterpolation::Constant) continue;
+      if (!holds(i)) continue;
       const double t0 = animation.keyTimes[i];
       const double t1 = animation.keyTimes[i + 1];
       const double hold = t1 - holdBefore(t0, t1);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -14,6 +15,7 @@
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
+#include "ffdkit/exporters/scene_animation.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "glb_reader.h"
@@ -414,6 +416,62 @@ TEST(GltfExport, VtksGltfPlayerShowsTheSkinAndTheMorphTargetsWithinTheReportedEr
     ASSERT_EQ(morphed.rows(), exact.rows());
     EXPECT_LE((morphed - exact).rowwise().norm().maxCoeff(), morph.maxError + player) << "t = " << t;
   }
+}
+
+}  // namespace
+}  // namespace ffdkit::exporters
+
+namespace ffdkit::exporters {
+namespace {
+
+TEST(SceneAnimation, TheKeyedSamplesExportAsMorphTargetsAndSkinsWithinTheirReportedErrors) {
+  TempFolder dir;
+  for (const std::string name : {"default", "press", "mirror"}) {
+    const scenes::Scene scene = sample(name);
+    const AnimationSource animation = sceneAnimation(scene);
+    ASSERT_GE(animation.keyTimes.size(), 2u) << name;
+    EXPECT_EQ(animation.frameRate, scene.animation.framesPerSecond);
+    GltfExportOptions options;
+    options.content = GltfContent::Morph;
+    const GltfExportReport morph = exportGltf(scene, animation, dir / "morph.glb", options);
+    EXPECT_EQ(std::size_t(morph.morphTargets), animation.keyTimes.size());
+    EXPECT_LE(morph.maxError, 2.0 * roundingBound(scene.objects[0].mesh.points) * 4);
+    options.content = GltfContent::Skin;
+    options.tolerance = 10.0;
+    options.raiseJoints = false;
+    for (const int k : {4, 8}) {
+      options.joints = k;
+      const GltfExportReport skin = exportGltf(scene, animation, dir / "skin.glb", options);
+      checkSkinAgainstFile(scene, animation, dir / "skin.glb", skin);
+      double linear = 0.0;
+      for (const auto& sample : skin.samples) linear = std::max(linear, sample.linearError);
+      std::printf("keyed skin %-8s k = %d: largest error %.3g (all weights %.3g), %zu samples\n", name.c_str(), k,
+                  skin.maxError, linear, skin.samples.size());
+    }
+  }
+  // The segments: default's keys are Smooth, press's Linear; mirror mixes a Constant channel in.
+  EXPECT_EQ(sceneAnimation(sample("default")).interpolation.front(), KeyInterpolation::Smooth);
+  EXPECT_EQ(sceneAnimation(sample("press")).interpolation.front(), KeyInterpolation::Linear);
+  EXPECT_FALSE(sceneAnimation(sample("vise")).setTime);
+  // mirror: pull-front is Constant from 0 s to its key at 1 s while push-front moves (Smooth):
+  // the skin samples just before 1 s, where the pull still holds.
+  const AnimationSource mirror = sceneAnimation(sample("mirror"));
+  ASSERT_GE(mirror.keyTimes.size(), 2u);
+  EXPECT_EQ(mirror.keyTimes[1], 1.0);
+  EXPECT_EQ(mirror.interpolation[0], KeyInterpolation::Smooth);
+  EXPECT_TRUE(mirror.jumps[0]);
+  for (std::size_t k = 1; k < mirror.jumps.size(); ++k) EXPECT_FALSE(mirror.jumps[k]) << k;  // pull-front's last key
+  GltfExportOptions options;
+  options.content = GltfContent::Skin;
+  options.tolerance = 10.0;
+  std::ostringstream out;
+  const GltfExportReport report = exportGltf(sample("mirror"), mirror, out, options);
+  std::vector<double> times;
+  for (const auto& s : report.samples) times.push_back(s.time);
+  const auto hold = std::lower_bound(times.begin(), times.end(), 1.0);
+  ASSERT_NE(hold, times.begin());
+  EXPECT_EQ(*hold, 1.0);
+  EXPECT_NEAR(*(hold - 1), 1.0, 1e-4);  // the hold sample, not the frame at 23/24 s
 }
 
 }  // namespace

@@ -45,12 +45,19 @@ int runExport(const Args& args) {
   }
   options.normals = !args.flag("no-normals");
 
+  const std::vector<VariationSetting> settings = parseSettings(args.values("set"));
+  const double frame = args.value("frame") ? parseNumber(*args.value("frame"), "--frame") : 0.0;
   console.begin("read", "reading " + args.positional()[0]);
   scenes::Scene scene = readSceneFile(args.positional()[0], args);
-  applySettings(scene.widgets, parseSettings(args.values("set")));
   console.end();
-  const exporters::AnimationSource animation = exporters::sceneAnimation(scene);
-  if (const auto frame = args.value("frame")) options.time = exporters::sceneFrameTime(scene, parseNumber(*frame, "--frame"));
+  exporters::AnimationSource animation = exporters::sceneAnimation(scene);
+  if (options.content == exporters::GltfContent::Frame) {
+    // The frame's state, then --set on top of it (as deform --frame does); exported as is.
+    if (animation.setTime) animation.setTime(scene, exporters::sceneFrameTime(scene, frame));
+    animation = {};
+  }
+  // Morph / skin: --set gives widgets that are not keyed their values for the whole animation.
+  applySettings(scene.widgets, settings);
 
   console.begin("export", "exporting " + *output);
   const exporters::GltfExportReport report = exporters::exportGltf(scene, animation, fs::path(*output), options);
@@ -84,7 +91,9 @@ Command exportCommand() {
   return {"export",
           "write a scene as binary glTF 2.0 (.glb): a deformed frame, morph targets or a skin",
           "ffdkit-cli export SCENE -o OUT.glb [--frame F | --morph | --skin [--joints 4|8] [--tolerance E]]",
-          "--frame F (the default, frame 0): the deformed meshes at frame F of the scene's animation.\n"
+          "--frame F (the default, frame 0): the deformed meshes at frame F of the scene's animation\n"
+          "(--set then changes variations on top of it; with --morph / --skin, --set holds for the whole\n"
+          "animation and keyed widgets take their keys).\n"
           "--morph: the undeformed meshes with one morph target per key; an animation drives their\n"
           "weights (STEP when every key is constant, else LINEAR): exact at the keys to float32.\n"
           "--skin: the undeformed meshes skinned to the lattices' control points (translation-only\n"

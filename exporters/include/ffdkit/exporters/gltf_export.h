@@ -32,6 +32,10 @@ struct AnimationSource {
   /// Per key, the interpolation towards the next key (size keyTimes.size(); the last is unused).
   /// Empty: all Linear.
   std::vector<KeyInterpolation> interpolation;
+  /// Per key (optional): some part of the scene holds over the segment that starts here and
+  /// jumps at its end (a Constant channel among moving ones). The skin then gets a sample just
+  /// before the next key, as for a Constant segment. Empty: only Constant segments hold.
+  std::vector<bool> jumps;
   /// Skin: also sampled at every frame of [keyTimes.front(), keyTimes.back()] at this rate (> 0).
   double frameRate = 24.0;
   /// Sets `scene` to time t (keyed variations, frames and control points; bindings follow).
