@@ -14,7 +14,9 @@
 #include "console.h"
 #include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/mesh_io.h"
+#include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/lattice_fit.h"
+#include "frames.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
@@ -155,18 +157,27 @@ struct DeformRequest {
   std::vector<std::string> objects;  ///< --object: the scene objects to write ("" = all)
   std::optional<std::string> format; ///< lower case, no dot
   bool allowOutsideMeshes = false;   ///< --allow-outside-meshes
+  std::optional<std::string> frame;  ///< --frame T: the scene's animation at frame T
 };
 
 DeformRequest parseRequest(const Args& args) {
   DeformRequest r;
   if (auto w = args.value("widgets")) r.widgetFile = *w;
   if (auto s = args.value("scene")) r.sceneFile = *s;
+  r.inputs = args.positional();
+  // `deform SCENE ...`: a first positional scene file or sample folder stands for --scene SCENE.
+  if (!r.widgetFile && !r.sceneFile && !r.inputs.empty() && fs::exists(r.inputs.front()) &&
+      fileKind(r.inputs.front()) == FileKind::Scene) {
+    r.sceneFile = r.inputs.front();
+    r.inputs.erase(r.inputs.begin());
+  }
   if (r.widgetFile.has_value() == r.sceneFile.has_value())
     throw UsageError("give exactly one of --widgets FILE and --scene FILE");
   const auto output = args.value("output");
   if (!output) throw UsageError("missing --output (-o) PATH");
   r.output = *output;
-  r.inputs = args.positional();
+  r.frame = args.value("frame");
+  if (r.frame && r.widgetFile) throw UsageError("--frame animates a scene; a widget file has no animation");
   if (r.widgetFile && r.inputs.empty()) throw UsageError("--widgets needs at least one INPUT mesh or point file");
   r.fit = args.flag("fit");
   r.allowOutsideMeshes = args.flag("allow-outside-meshes");
@@ -206,6 +217,7 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
       scenes::SceneReadOptions options;
       options.allowMeshesOutsideFolder = r.allowOutsideMeshes;
       scene = scenes::readScene(*r.sceneFile, options);
+      if (r.frame) scenes::applyAnimationFrame(scene, parseFrame(*r.frame, scene.animation));
     }
   });
   onEveryRank(ranks, [&] {
@@ -350,11 +362,14 @@ Command deformCommand() {
   return {"deform",
           "apply a widget file or a scene to meshes or point files and write the result",
           "ffdkit-cli deform --widgets TOOL.json INPUT... -o OUTPUT [options]\n"
-          "       ffdkit-cli deform --scene SCENE [INPUT...] -o OUTPUT [options]",
+          "       ffdkit-cli deform --scene SCENE [INPUT...] -o OUTPUT [--frame T] [options]\n"
+          "       ffdkit-cli deform SCENE --frame T -o OUTPUT [options]",
           "With --widgets, every root lattice of the widget file deforms every INPUT where it lies\n"
           "(--fit first maps the lattices onto the inputs' bounding box). With --scene and INPUT\n"
           "files, the scene's root lattices deform the inputs the same way; without INPUT files\n"
-          "the scene's own objects are deformed and written (--object picks some).\n"
+          "the scene's own objects are deformed and written (--object picks some). A scene may also\n"
+          "be given as the first INPUT. --frame T first sets the scene's animation to frame T (in its\n"
+          "frame range; docs/animation.md); --set values apply after it.\n"
           "INPUT: .obj .ply .stl .vtp .vtk .gltf .glb .xyz .npy. OUTPUT: a file when there is one\n"
           "result (its extension picks the format: .obj .ply .stl .vtp .vtk .xyz .npy), else a folder that\n"
           "receives NAME.EXT per object. Normals are recomputed when the input had them.\n"
@@ -365,6 +380,7 @@ Command deformCommand() {
           {{"widgets", 'w', "FILE", "the widget file (deformation tool) to apply"},
            {"scene", 's', "SCENE", "the scene (file or sample folder) whose widget trees to apply"},
            {"output", 'o', "PATH", "output file, or folder for several outputs"},
+           {"frame", '\0', "T", "with a scene: deform at frame T of its animation"},
            setOption(),
            {"fit", '\0', "", "refit the root lattices' frames to the inputs' bounding box"},
            {"padding", '\0', "P", "with --fit: margin on every side, relative to the box diagonal (0.05)"},

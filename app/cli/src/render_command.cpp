@@ -6,6 +6,8 @@
 #include "commands.h"
 #include "console.h"
 #include "ffdkit/app/offscreen_render.h"
+#include "ffdkit/scenes/animation.h"
+#include "frames.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
 
@@ -54,25 +56,46 @@ scenes::Camera presetCamera(const scenes::Scene& scene, const std::string& prese
 
 int runRender(const Args& args) {
   Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
-  if (args.positional().size() != 2) throw UsageError("render takes a SCENE and an OUTPUT.png");
+  const auto output = args.value("output");
+  if (args.positional().size() != (output ? 1u : 2u))
+    throw UsageError("render takes a SCENE and an OUTPUT.png (or -o OUTPUT.png, or -o PATTERN with --frames)");
   const std::filesystem::path scenePath = args.positional()[0];
-  const std::filesystem::path png = args.positional()[1];
+  const std::string target = output ? *output : args.positional()[1];
   app::OffscreenRenderOptions options;
   if (auto size = args.value("size")) parseSize(*size, "--size", options.width, options.height);
   const std::string preset = args.value("camera").value_or("scene");
   if (preset != "scene" && preset != "front" && preset != "top" && preset != "side" && preset != "iso")
     throw UsageError("--camera must be one of front, top, side, iso, scene; got '" + preset + "'");
   const auto settings = parseSettings(args.values("set"));
+  const auto frameText = args.value("frame");
+  const auto framesText = args.value("frames");
+  if (frameText && framesText) throw UsageError("give --frame T or --frames A:B, not both");
+  if (framesText) checkFramePattern(target);  // before reading anything
 
   console.begin("read", "reading " + scenePath.string());
   scenes::Scene scene = readSceneFile(scenePath, args);
-  console.begin("build scene", "applying settings");
-  applySettings(scene.widgets, settings);
-  if (preset != "scene") scene.camera = presetCamera(scene, preset);
-  console.begin("render", "rendering " + std::to_string(options.width) + "x" + std::to_string(options.height));
-  app::renderSceneToPng(scene, png, options);
-  console.end();
-  console.say("wrote " + png.string());
+  // Frames: the animation at each frame, then --set on top (a setting overrides a key).
+  std::vector<std::pair<double, std::filesystem::path>> frames;
+  if (framesText) {
+    const FrameRange range = parseFrameRange(*framesText, scene.animation);
+    for (int f = range.first; f <= range.last; ++f) frames.emplace_back(f, framePath(target, f));
+  } else {
+    frames.emplace_back(frameText ? parseFrame(*frameText, scene.animation) : std::nan(""), target);
+  }
+  bool framed = false;
+  for (const auto& [frame, png] : frames) {
+    console.begin("build scene", "applying the animation and settings");
+    if (!std::isnan(frame)) scenes::applyAnimationFrame(scene, frame);
+    applySettings(scene.widgets, settings);
+    if (preset != "scene" && !framed) {
+      scene.camera = presetCamera(scene, preset);  // framed once: the camera holds still over a sequence
+      framed = true;
+    }
+    console.begin("render", "rendering " + std::to_string(options.width) + "x" + std::to_string(options.height));
+    app::renderSceneToPng(scene, png, options);
+    console.end();
+    console.say("wrote " + png.string());
+  }
   console.printTimings();
   return 0;
 }
@@ -82,12 +105,20 @@ int runRender(const Args& args) {
 Command renderCommand() {
   return {"render",
           "render a scene to PNG off screen",
-          "ffdkit-cli render SCENE OUTPUT.png [--size WxH] [--camera PRESET] [--set NAME=VALUE]...",
+          "ffdkit-cli render SCENE OUTPUT.png [--frame T] [--size WxH] [--camera PRESET] [--set NAME=VALUE]...\n"
+          "       ffdkit-cli render SCENE --frames A:B -o out_%04d.png [options]",
           "Draws the scene's objects at their deformed points and its lattices, as the app shows\n"
           "them, into an off-screen window (needs an X display; use xvfb-run on a server).\n"
           "Camera presets: scene (the scene's own camera), front (from -y), side (from +x),\n"
-          "top (from +z), iso (from (1,-1,1)); presets frame the deformed objects.\n",
+          "top (from +z), iso (from (1,-1,1)); presets frame the deformed objects.\n"
+          "Animation (docs/animation.md): --frame T renders the scene at frame T; --frames A:B renders\n"
+          "every frame from A to B into -o PATTERN, whose one %0Nd becomes the frame number\n"
+          "(out_%04d.png -> out_0007.png). Frames must lie in the scene's frame range. --set values\n"
+          "are applied after the animation at every frame.\n",
           {{"size", '\0', "WxH", "image size in pixels (1024x768)"},
+           {"output", 'o', "PATH", "the PNG (instead of OUTPUT.png), or with --frames a pattern with one %0Nd"},
+           {"frame", '\0', "T", "render the animation at frame T (the scene's frame range)"},
+           {"frames", '\0', "A:B", "render frames A..B into -o PATTERN (one PNG per frame)"},
            {"camera", '\0', "PRESET", "scene, front, top, side or iso (scene)"},
            setOption(), allowOutsideMeshesOption(), quietOption(), progressOption(), timingsOption()},
           runRender};
