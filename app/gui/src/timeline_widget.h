@@ -1,0 +1,64 @@
+// The timeline under the 3D view (docs/animation.md): a ruler of the scene's frame range with the
+// current frame and the keys of the selection, scrubbed by dragging; play / pause at the scene's
+// frame rate; jump to the previous / next key; Insert Key and Delete Key. A thin Qt layer over
+// app::Timeline (the headless logic, app/interaction).
+#pragma once
+
+#include <QElapsedTimer>
+#include <QTimer>
+#include <QWidget>
+
+#include "ffdkit/app/timeline.h"
+
+class QAction;
+class QLabel;
+class QMainWindow;
+class QMenu;
+class QToolButton;
+
+namespace ffdkit::app {
+
+class TimelineBar;
+
+class TimelineWidget : public QWidget {
+  Q_OBJECT
+ public:
+  TimelineWidget(scenes::Scene& scene, scenes::CommandStack& commands, InteractionController& controller,
+                 QWidget* parent = nullptr);
+
+  Timeline& timeline() { return timeline_; }
+  /// The Animation menu: Insert Key (actionInsertKey), Delete Key (actionDeleteKey), Play / Pause
+  /// (actionPlayPause), Previous Key (actionPreviousKey), Next Key (actionNextKey); their keys
+  /// come from keyboard_shortcuts.
+  QMenu* menu() const { return menu_; }
+  /// Redraws the ruler, the marks and the frame label (after any change of the scene or selection).
+  void sync();
+  /// Frames shown by playback since it last started (for measuring playback speed).
+  int playedFrames() const { return playedFrames_; }
+
+ signals:
+  /// An operation was refused or failed (the window says it in its status line).
+  void error(const QString& message);
+
+ private:
+  void togglePlay();
+  void tick();
+  template <class F>
+  void guarded(F f);
+
+  Timeline timeline_;
+  TimelineBar* bar_ = nullptr;
+  QLabel* label_ = nullptr;
+  QMenu* menu_ = nullptr;
+  QAction* play_ = nullptr;
+  QTimer playTimer_;
+  QElapsedTimer clock_;
+  int playedFrames_ = 0;
+};
+
+/// Puts a timeline in a dock under the 3D view of `window` (between the side docks) and its
+/// Animation menu in the menu bar. @return the timeline widget (object name "timeline").
+TimelineWidget* addTimelineDock(QMainWindow* window, scenes::Scene& scene, scenes::CommandStack& commands,
+                                InteractionController& controller);
+
+}  // namespace ffdkit::app

@@ -1,0 +1,131 @@
+// The timeline under real events (Xvfb): I inserts a key (one undo step), scrubbing the ruler with
+// the mouse sets the widget to the interpolated value, Space plays and pauses, Alt+Right / Alt+Left
+// jump between keys, Alt+I deletes the key and Ctrl+Z brings it back.
+#include <QAction>
+#include <QLabel>
+
+#include <cmath>
+#include <filesystem>
+
+#include "ffdkit/scenes/animation.h"
+#include "gui_test_support.h"
+#include "timeline_widget.h"
+
+using namespace ffdkit;
+using namespace ffdkit::app::testing;
+using app::MainWindow;
+
+namespace {
+
+const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
+
+// Where the ruler draws `frame`: an 18-pixel margin each side, the range spread between
+// (TimelineBar's layout, written out independently here).
+QPoint rulerPoint(QWidget* bar, const scenes::Animation& a, int frame) {
+  const double x = 18.0 + double(frame - a.firstFrame) / (a.lastFrame - a.firstFrame) * (bar->width() - 36.0);
+  return QPoint(static_cast<int>(std::lround(x)), bar->height() / 2);
+}
+
+class TimelineGuiTest : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void keysScrubPlayAndUndo() {
+    auto w = openWindow(QSize(1280, 800));
+    QVERIFY(w);
+    w->openScene(kExamples / "default");
+    const scenes::Scene& scene = w->scene();
+    const widgets::WidgetId pull = scene.widgets.find("pull");
+    auto* timeline = w->findChild<app::TimelineWidget*>("timeline");
+    QVERIFY(timeline);
+    QWidget* bar = w->findChild<QWidget*>("timelineBar");
+    QVERIFY(bar && bar->isVisible());
+    const scenes::Animation& a = scene.animation;
+    QCOMPARE(a.lastFrame, 72);
+
+    // Scrub with the mouse to frame 12: between the keys 0 (frame 0) and 0.5 (frame 24), both
+    // flat (an end and a peak), the Hermite midpoint is their mean.
+    clickRow(*w, "pull");
+    QTest::mouseClick(bar, Qt::LeftButton, Qt::NoModifier, rulerPoint(bar, a, 12));
+    QCOMPARE(timeline->timeline().frame(), 12);
+    QVERIFY(std::abs(scene.widgets.variation(pull) - 0.25) < 1e-12);
+
+    // Drag the arrow up, then I keys the new value at frame 12: one undo step.
+    dragArrow(*w, pull, 0.1);
+    const double keyed = scene.widgets.variation(pull);
+    QVERIFY(keyed > 0.3 && keyed < 0.4);
+    const std::size_t steps = w->commands().position();
+    pressKey(*w, Qt::Key_I);
+    QCOMPARE(w->commands().position(), steps + 1);
+    QCOMPARE(QString::fromStdString(w->commands().undoDescription()), QString("Insert Key"));
+    const double t12 = scenes::frameTime(a, 12);
+    const auto key = scenes::keyAt(a, pull, scenes::ChannelKind::Variation, t12);
+    QVERIFY(key);
+    QCOMPARE(key->variation, keyed);
+
+    // Scrub by dragging from frame 30 to frame 6: the value is the smooth curve's at frame 6.
+    // Keys (0 s, 0), (0.5 s, v), (1 s, 0.5): slope 0 at the first key, (0.5 - 0) / (1 - 0) = 0.5
+    // at the middle one (0 < v < 0.5); at s = 1/2, h = 0.5: v / 2 - (1/8)(0.5)(0.5).
+    QTest::mousePress(bar, Qt::LeftButton, Qt::NoModifier, rulerPoint(bar, a, 30));
+    for (int f = 28; f >= 6; f -= 2) QTest::mouseMove(bar, rulerPoint(bar, a, f));
+    QTest::mouseRelease(bar, Qt::LeftButton, Qt::NoModifier, rulerPoint(bar, a, 6));
+    QCOMPARE(timeline->timeline().frame(), 6);
+    QVERIFY(std::abs(scene.widgets.variation(pull) - (keyed / 2 - 0.03125)) < 1e-12);
+    QCOMPARE(w->commands().position(), steps + 1);  // scrubbing is not an edit
+
+    // Space plays at the scene's rate; Space again pauses.
+    pressKey(*w, Qt::Key_Space);
+    QVERIFY(timeline->timeline().playing());
+    QTest::qWait(600);  // ~14 frames at 24 fps
+    pressKey(*w, Qt::Key_Space);
+    QVERIFY(!timeline->timeline().playing());
+    const int reached = timeline->timeline().frame();
+    QVERIFY2(reached > 6 + 3, qPrintable(QString("frame %1 after 0.6 s of play").arg(reached)));
+    QVERIFY(timeline->playedFrames() >= 3);
+    QTest::qWait(200);
+    QCOMPARE(timeline->timeline().frame(), reached);  // paused
+
+    // Jump between the selection's keys: Alt+Left / Alt+Right.
+    QTest::mouseClick(bar, Qt::LeftButton, Qt::NoModifier, rulerPoint(bar, a, 18));
+    pressKey(*w, Qt::Key_Left, Qt::AltModifier);
+    QCOMPARE(timeline->timeline().frame(), 12);
+    pressKey(*w, Qt::Key_Right, Qt::AltModifier);
+    QCOMPARE(timeline->timeline().frame(), 24);
+    pressKey(*w, Qt::Key_Left, Qt::AltModifier);
+    QCOMPARE(timeline->timeline().frame(), 12);
+    QVERIFY(std::abs(scene.widgets.variation(pull) - keyed) < 1e-12);
+
+    // Alt+I deletes the key at frame 12 (one step); Ctrl+Z brings it back, with its value.
+    pressKey(*w, Qt::Key_I, Qt::AltModifier);
+    QVERIFY(!scenes::keyAt(a, pull, scenes::ChannelKind::Variation, t12));
+    QCOMPARE(w->commands().position(), steps + 2);
+    QCOMPARE(QString::fromStdString(w->commands().undoDescription()), QString("Delete Key"));
+    pressKey(*w, Qt::Key_Z, Qt::ControlModifier);
+    const auto back = scenes::keyAt(a, pull, scenes::ChannelKind::Variation, t12);
+    QVERIFY(back);
+    QCOMPARE(back->variation, keyed);
+    // Undo once more: the inserted key goes, and the scene's keys are the file's again.
+    pressKey(*w, Qt::Key_Z, Qt::ControlModifier);
+    QVERIFY(!scenes::keyAt(a, pull, scenes::ChannelKind::Variation, t12));
+    QCOMPARE(scenes::keyTimes(scene), (std::vector<double>{0.0, 1.0, 2.0, 3.0}));
+  }
+
+  void insertKeyWithNothingKeyableSaysWhy() {
+    auto w = openWindow(QSize(1280, 800));
+    QVERIFY(w);
+    w->openScene(kExamples / "default");
+    clickRow(*w, "top");  // a cell
+    const std::size_t steps = w->commands().position();
+    pressKey(*w, Qt::Key_I);
+    QCOMPARE(w->commands().position(), steps);
+    auto* status = w->findChild<QLabel*>("statusMessage");
+    QVERIFY(status);
+    QVERIFY2(status->text().contains("Insert Key"), qPrintable(status->text()));
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) { return runGuiTest<TimelineGuiTest>(argc, argv); }
+
+#include "timeline_gui_test.moc"
