@@ -29,6 +29,11 @@ constexpr std::array kShortcuts{
     KeyboardShortcut{"Del", "actionRemove", C::Window, "Delete the selected widget, binding or objects"},
     KeyboardShortcut{"F2", "actionRename", C::Window, "Rename the selected object or widget"},
     KeyboardShortcut{"D", "actionDirectManipulation", C::Window, "Direct manipulation on / off"},
+    KeyboardShortcut{"I", "actionInsertKey", C::Window, "Insert a key for the selection at the current frame"},
+    KeyboardShortcut{"Alt+I", "actionDeleteKey", C::Window, "Delete the selection's keys at the current frame"},
+    KeyboardShortcut{"Space", "actionPlayPause", C::Window, "Play / pause the animation at the scene's frame rate"},
+    KeyboardShortcut{"Alt+Left", "actionPreviousKey", C::Window, "Jump to the previous key"},
+    KeyboardShortcut{"Alt+Right", "actionNextKey", C::Window, "Jump to the next key"},
     KeyboardShortcut{"F1", "actionKeyboardShortcuts", C::Window, "This list of keyboard shortcuts"},
     KeyboardShortcut{"Esc", "cancelDrag", C::Drag, "Cancel the drag: the scene goes back to where it started"},
 };

@@ -129,6 +129,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     if (!s.showingScene) return;
     s.sceneView->setHighlights(s.controller->highlights());
     s.sceneView->refresh(s.scene, s.deformer);
+    if (s.timeline) s.timeline->sync();
     if (const auto value = s.controller->handleDragValue()) {
       // What the transformer drag does so far, as a designer reads it.
       const TransformerHandle handle = *s.controller->transformerHandle();
@@ -444,6 +445,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   toolbar->addAction(attach);
   toolbar->addAction(d.directManipulation);
 
+  d.timeline = addTimelineDock(this, d.scene, d.commands, *d.controller);
+  connect(d.timeline, &TimelineWidget::error, this, [this](const QString& m) { impl_->sayError(m.toStdString()); });
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   action(help, tr("&Keyboard Shortcuts"), "actionKeyboardShortcuts", [this] { showKeyboardShortcuts(this); });
   applyKeyboardShortcuts(this);  // every action's keys from the one table (keyboard_shortcuts.h)

@@ -28,6 +28,7 @@
 #include "outliner.h"
 #include "property_panel.h"
 #include "status_line.h"
+#include "timeline_widget.h"
 
 namespace ffdkit::app {
 namespace window_detail {
@@ -58,6 +59,7 @@ struct MainWindow::Impl {
   std::unique_ptr<InteractionController> controller;
   Outliner* outliner = nullptr;
   PropertyPanel* properties = nullptr;
+  TimelineWidget* timeline = nullptr;  ///< under the view (timeline_widget.h)
   QLabel* deformStatus = nullptr;
   StatusLine* status = nullptr;
   QMenu* recentMenu = nullptr;
