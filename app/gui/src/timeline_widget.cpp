@@ -27,7 +27,7 @@ class TimelineBar : public QWidget {
       : timeline_(timeline), scene_(scene), scrub_(std::move(scrub)) {
     setObjectName("timelineBar");
     setMinimumHeight(34);
-    setMinimumWidth(240);
+    setMinimumWidth(60);
     setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Fixed);
     setCursor(Qt::SizeHorCursor);
   }
@@ -138,6 +138,8 @@ TimelineWidget::TimelineWidget(scenes::Scene& scene, scenes::CommandStack& comma
   // Window-wide keys: the actions live in the window (its menu bar), not only on this widget.
   auto* layout = new QHBoxLayout(this);
   layout->setContentsMargins(4, 2, 4, 2);
+  // A narrow window squeezes the timeline (clipping it) rather than the docks beside the view.
+  layout->setSizeConstraint(QLayout::SetNoConstraint);
   for (QAction* a : {previous, play_, next, insert, remove}) {
     auto* button = new QToolButton;
     button->setDefaultAction(a);
@@ -151,6 +153,8 @@ TimelineWidget::TimelineWidget(scenes::Scene& scene, scenes::CommandStack& comma
   connect(&playTimer_, &QTimer::timeout, this, [this] { tick(); });
   sync();
 }
+
+QSize TimelineWidget::minimumSizeHint() const { return {0, QWidget::minimumSizeHint().height()}; }
 
 template <class F>
 void TimelineWidget::guarded(F f) {

@@ -35,6 +35,7 @@ class TimelineWidget : public QWidget {
   void sync();
   /// Frames shown by playback since it last started (for measuring playback speed).
   int playedFrames() const { return playedFrames_; }
+  QSize minimumSizeHint() const override;
 
  signals:
   /// An operation was refused or failed (the window says it in its status line).
