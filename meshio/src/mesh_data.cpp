@@ -7,15 +7,21 @@ namespace ffdkit::meshio {
 void validateMesh(const MeshData& mesh, const std::string& what) {
   const Eigen::Index n = mesh.points.rows();
   if (n == 0) throw MeshIoError(what + ": the mesh has no points");
-  for (Eigen::Index i = 0; i < n; ++i)
-    if (!mesh.points.row(i).allFinite())
-      throw MeshIoError(what + ": point " + std::to_string(i) + " has a non-finite coordinate");
-  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t)
-    if (mesh.triangles.row(t).minCoeff() < 0 || mesh.triangles.row(t).maxCoeff() >= n)
-      throw MeshIoError(what + ": triangle " + std::to_string(t) + " uses a point index outside 0.." + std::to_string(n - 1));
-  for (Eigen::Index s = 0; s < mesh.segments.rows(); ++s)
-    if (mesh.segments.row(s).minCoeff() < 0 || mesh.segments.row(s).maxCoeff() >= n)
-      throw MeshIoError(what + ": segment " + std::to_string(s) + " uses a point index outside 0.." + std::to_string(n - 1));
+  // Whole-matrix checks first (contiguous, vectorised); the offending row is looked for only
+  // when one fails.
+  if (!mesh.points.allFinite())
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (!mesh.points.row(i).allFinite())
+        throw MeshIoError(what + ": point " + std::to_string(i) + " has a non-finite coordinate");
+  auto checkIndices = [&](const auto& cells, const char* kind) {
+    if (cells.size() == 0 || (cells.minCoeff() >= 0 && cells.maxCoeff() < n)) return;
+    for (Eigen::Index t = 0; t < cells.rows(); ++t)
+      if (cells.row(t).minCoeff() < 0 || cells.row(t).maxCoeff() >= n)
+        throw MeshIoError(what + ": " + kind + " " + std::to_string(t) + " uses a point index outside 0.." +
+                          std::to_string(n - 1));
+  };
+  checkIndices(mesh.triangles, "triangle");
+  checkIndices(mesh.segments, "segment");
 }
 
 Eigen::MatrixX3d vertexNormals(const Eigen::MatrixX3d& points, const Eigen::MatrixX3i& triangles) {

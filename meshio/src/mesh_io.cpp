@@ -6,6 +6,7 @@
 #include <cstring>
 #include <istream>
 #include <iterator>
+#include <memory>
 #include <ostream>
 
 #include <fcntl.h>
@@ -14,6 +15,7 @@
 
 #include "ffdkit/meshio/atomic_write.h"
 #include "formats.h"
+#include "parse_support.h"
 
 namespace ffdkit::meshio {
 
@@ -31,8 +33,15 @@ std::string formatList(bool writable) {
   return list;
 }
 
-// The whole file in memory: read(2) into one buffer of the file's size.
-std::string readFileBytes(const std::filesystem::path& path) {
+// The whole file in memory: read(2) into one buffer of the file's size, left uninitialised (the
+// read fills it) and backed by huge pages where the system allows (detail::adviseHugePages).
+struct FileBytes {
+  std::unique_ptr<char[]> data;
+  std::size_t size = 0;
+  std::string_view view() const { return {data.get(), size}; }
+};
+
+FileBytes readFileBytes(const std::filesystem::path& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw MeshIoError(path.string() + ": cannot open (" + std::strerror(errno) + ")");
   struct stat info {};
@@ -40,10 +49,11 @@ std::string readFileBytes(const std::filesystem::path& path) {
     ::close(fd);
     throw MeshIoError(path.string() + ": not a regular file");
   }
-  std::string bytes(std::size_t(info.st_size), '\0');
+  FileBytes bytes{std::make_unique_for_overwrite<char[]>(std::size_t(info.st_size)), std::size_t(info.st_size)};
+  detail::adviseHugePages(bytes.data.get(), bytes.size);
   std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
+  while (done < bytes.size) {
+    const ssize_t n = ::read(fd, bytes.data.get() + done, bytes.size - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       ::close(fd);
@@ -106,8 +116,8 @@ MeshData readMesh(const std::filesystem::path& path) {
     throw MeshIoError(source + ": unknown mesh format '" + path.extension().string() + "' (reads " + formatList(false) + ")");
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw MeshIoError(source + ": no such file");
-  const std::string bytes = readFileBytes(path);
-  return parse(bytes, *format, source, path.parent_path());
+  const FileBytes bytes = readFileBytes(path);
+  return parse(bytes.view(), *format, source, path.parent_path());
 }
 
 std::string meshFileBytes(const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {

@@ -356,6 +356,7 @@ MeshData readPly(std::string_view bytes, const std::string& source) {
   if (vertexCount == 0) throw MeshIoError(source + ": the file has no vertices");
 
   mesh.points.resize(Eigen::Index(vertexCount), 3);
+  adviseHugePages(mesh.points);
   Eigen::MatrixX3d normals;
   TriangleSink triangles;
   SegmentSink segments;
@@ -474,8 +475,11 @@ std::string writePly(const MeshData& mesh, PlyEncoding encoding) {
   const bool big = encoding == PlyEncoding::BinaryBigEndian;
   const std::size_t vertexBytes = normals ? 24 : 12;
   const std::size_t headerBytes = out.size();
-  out.resize(headerBytes + std::size_t(mesh.points.rows()) * vertexBytes + std::size_t(mesh.triangles.rows()) * 13 +
-             std::size_t(mesh.segments.rows()) * 8);
+  const std::size_t total = headerBytes + std::size_t(mesh.points.rows()) * vertexBytes +
+                            std::size_t(mesh.triangles.rows()) * 13 + std::size_t(mesh.segments.rows()) * 8;
+  out.reserve(total);
+  adviseHugePages(out.data(), out.capacity());
+  out.resize(total);
   char* cursor = out.data() + headerBytes;
   auto put = [&](auto value) {
     char raw[sizeof(value)];
