@@ -115,19 +115,19 @@ std::string writeObj(const MeshData& mesh) {
   const bool normals = mesh.hasNormals && mesh.triangles.rows() > 0;
   std::string out = "# ffdkit\n";
   out.reserve(std::size_t(mesh.points.rows()) * (normals ? 120 : 64) + std::size_t(mesh.triangles.rows()) * 40);
-  auto row = [&](const char* keyword, const auto& m, Eigen::Index i) {
-    out += keyword;
-    for (int c = 0; c < 3; ++c) {
-      out += ' ';
-      appendNumber(out, m(i, c));
-    }
-    out += '\n';
+  auto rows = [&](std::string_view keyword, const Eigen::MatrixX3d& m) {
+    appendRows(out, m.rows(), keyword.size() + 3 * 25, [&](char* at, Eigen::Index i) {
+      at = std::copy(keyword.begin(), keyword.end(), at);
+      for (int c = 0; c < 3; ++c) {
+        *at++ = ' ';
+        at = putNumber(at, m(i, c));
+      }
+      *at++ = '\n';
+      return at;
+    });
   };
-  for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) row("v", mesh.points, i);
-  if (normals) {
-    const Eigen::MatrixX3d n = vertexNormals(mesh.points, mesh.triangles);
-    for (Eigen::Index i = 0; i < n.rows(); ++i) row("vn", n, i);
-  }
+  rows("v", mesh.points);
+  if (normals) rows("vn", vertexNormals(mesh.points, mesh.triangles));
   for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
     out += 'f';
     for (int c = 0; c < 3; ++c) {

@@ -34,15 +34,15 @@ MeshData readXyz(std::string_view bytes, const std::string& source) {
 
 std::string writeXyz(const MeshData& mesh) {
   std::string out;
-  out.reserve(std::size_t(mesh.points.rows()) * 60);
-  for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {
-    appendNumber(out, mesh.points(i, 0));
-    out += ' ';
-    appendNumber(out, mesh.points(i, 1));
-    out += ' ';
-    appendNumber(out, mesh.points(i, 2));
-    out += '\n';
-  }
+  appendRows(out, mesh.points.rows(), 3 * 25, [&](char* at, Eigen::Index i) {
+    at = putNumber(at, mesh.points(i, 0));
+    *at++ = ' ';
+    at = putNumber(at, mesh.points(i, 1));
+    *at++ = ' ';
+    at = putNumber(at, mesh.points(i, 2));
+    *at++ = '\n';
+    return at;
+  });
   return out;
 }
 

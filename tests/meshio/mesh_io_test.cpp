@@ -1,6 +1,8 @@
 // Round trips through every writable format, stream and path overloads, and write failures.
 #include "ffdkit/meshio/mesh_io.h"
 
+#include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -79,6 +81,36 @@ TEST_F(MeshIo, TextFormatsAndAsciiPlyRoundTripDoublesExactly) {
     writeMesh(stream, mesh, format, {.plyEncoding = PlyEncoding::Ascii});
     const MeshData back = readMesh(stream, format);
     EXPECT_EQ(back.points, mesh.points);  // bit for bit
+  }
+}
+
+// Large text files are formatted in slices side by side (one per hardware thread): the text must be
+// line for line what a serial printf-style loop gives, in order. 300,007 points make several
+// slices with an uneven last one; each line is checked against std::to_chars of its own point.
+TEST_F(MeshIo, LargeTextFilesAreTheSerialTextLineForLine) {
+  MeshData mesh;
+  mesh.points.resize(300007, 3);
+  for (Eigen::Index i = 0; i < mesh.points.rows(); ++i)
+    mesh.points.row(i) << std::ldexp(double(i) + 0.1, -int(i % 40)), -1.0 / double(i + 3), double(i) * 1e100;
+  for (MeshFormat format : {MeshFormat::Xyz, MeshFormat::Obj}) {
+    SCOPED_TRACE(std::string(meshFormatExtension(format)));
+    const std::string text = meshFileBytes(mesh, format);
+    std::istringstream lines(text);
+    std::string line;
+    if (format == MeshFormat::Obj) std::getline(lines, line);  // "# ffdkit"
+    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {
+      ASSERT_TRUE(std::getline(lines, line)) << "missing line for point " << i;
+      std::string expected = format == MeshFormat::Obj ? "v " : "";
+      for (int c = 0; c < 3; ++c) {
+        char buffer[32];
+        expected.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, mesh.points(i, c)).ptr);
+        if (c < 2) expected += ' ';
+      }
+      ASSERT_EQ(line, expected) << "point " << i;
+    }
+    EXPECT_FALSE(std::getline(lines, line)) << "extra text: " << line;
+    std::istringstream in(text);
+    EXPECT_EQ(readMesh(in, format).points, mesh.points);  // bit for bit
   }
 }
 
