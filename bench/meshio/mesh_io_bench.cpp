@@ -1,6 +1,7 @@
 // Reading and writing mesh files per format and size (the CLI's read and write steps):
 //   BM_ReadMesh/format:ply/vertices:1000000   a 1000 x 1000 grid, 1,996,002 triangles (binary PLY: 38 MB)
-//   BM_WriteMesh/format:xyz/vertices:1000000  points only
+//   BM_WriteMesh/format:xyz/vertices:1000000  points only (a durable write: fsync before rename)
+//   BM_EncodeMesh/format:xyz/...              the file's bytes only (no file)
 // Each run first checks that the file read back has the mesh's counts (the correctness check
 // beside the timing). Files go to the system temp folder.
 #include <benchmark/benchmark.h>
@@ -74,13 +75,25 @@ void BM_WriteMesh(benchmark::State& state, const std::string& ext, bool triangle
   fs::remove(path);
 }
 
+// The file's bytes only, no file: BM_WriteMesh minus the durable write (fsync), which on this
+// machine's disk is most of a binary write.
+void BM_EncodeMesh(benchmark::State& state, const std::string& ext, bool triangles) {
+  const int side = int(std::lround(std::sqrt(double(state.range(0)))));
+  const MeshData mesh = grid(side, triangles);
+  const MeshFormat format = *meshFormatOf(fs::path("mesh" + ext));
+  std::size_t bytes = 0;
+  for (auto _ : state) bytes = meshFileBytes(mesh, format, {}).size();
+  state.counters["MB"] = double(bytes) / 1e6;
+}
+
 void sizes(benchmark::internal::Benchmark* b) {
   b->ArgName("vertices")->Arg(10000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
 }
 
 #define FFDKIT_MESH_BENCH(name, ext, triangles)                                                   \
   BENCHMARK_CAPTURE(BM_ReadMesh, format:name, std::string(ext), triangles)->Apply(sizes);         \
-  BENCHMARK_CAPTURE(BM_WriteMesh, format:name, std::string(ext), triangles)->Apply(sizes)
+  BENCHMARK_CAPTURE(BM_WriteMesh, format:name, std::string(ext), triangles)->Apply(sizes);       \
+  BENCHMARK_CAPTURE(BM_EncodeMesh, format:name, std::string(ext), triangles)->Apply(sizes)
 
 FFDKIT_MESH_BENCH(ply, ".ply", true);
 FFDKIT_MESH_BENCH(obj, ".obj", true);
