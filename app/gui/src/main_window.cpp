@@ -39,6 +39,7 @@
 
 #include "ffdkit/ffd/cancelled.h"
 #include "keyboard_shortcuts.h"
+#include "gltf_export_dialog.h"
 #include "main_window_impl.h"
 
 namespace ffdkit::app {
@@ -232,6 +233,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
              [this](const std::filesystem::path& p) { importMesh(p); });
   fileAction(file, tr("&Export Deformed Mesh..."), "actionExportMesh", true, meshFilter,
              [this](const std::filesystem::path& p) { exportMesh(p); });
+  action(file, tr("Export &glTF..."), "actionExportGltf", [this] { exportGltfInteractively(this, impl_->scene); });
   file->addSeparator();
   // A preference, off by default: a shared scene must not make the app read files outside the
   // scene's folder (scenes::SceneReadOptions::allowMeshesOutsideFolder).
