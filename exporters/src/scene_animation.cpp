@@ -43,6 +43,4 @@ AnimationSource sceneAnimation(const scenes::Scene& scene) {
   return source;
 }
 
-double sceneFrameTime(const scenes::Scene& scene, double frame) { return scenes::frameTime(scene.animation, frame); }
-
 }  // namespace ffdkit::exporters

@@ -23,7 +23,7 @@ TEST(CliExport, AFrameIsTheLibrarysDeformationAsFloat32) {
   ASSERT_EQ(r.exitCode, 0) << describe(r);
   EXPECT_NE(r.out.find("wrote " + out.string() + ": frame, 1 objects"), std::string::npos) << r.out;
   scenes::Scene scene = scenes::readScene(kExamples / "press");
-  scenes::applyAnimationFrame(scene, 0);  // --frame 0 (the default), then --set on top
+  // No --frame: the scene as saved, then --set on top.
   scene.widgets.setVariation(scene.widgets.find("handle"), 2.0);
   const Eigen::MatrixX3d exact = scenes::deformScene(scene).at(scene.objects.at(0).name);
   const scenes::MeshData read = scenes::readMesh(out);  // ffdkit's own (validating) glTF reader
@@ -85,7 +85,8 @@ TEST(CliExport, UsageErrorsExitTwoAndWriteNothing) {
            {"export", scene, "-o", out, "--joints", "4"},
            {"export", scene, "-o", out, "--skin", "--joints", "5"},
            {"export", scene, "-o", out, "--skin", "--tolerance", "-1"},
-           {"export", scene, "-o", out, "--frame", "x"}}) {
+           {"export", scene, "-o", out, "--frame", "x"},
+           {"export", scene, "-o", out, "--frame", "100000"}}) {
     const CliResult r = runCli(args);
     EXPECT_EQ(r.exitCode, 2) << describe(r);
     EXPECT_NE(r.err.find("usage: ffdkit-cli export"), std::string::npos) << r.err;

@@ -5,6 +5,8 @@
 
 #include "commands.h"
 #include "console.h"
+#include "frames.h"
+#include "ffdkit/scenes/animation.h"
 #include "ffdkit/exporters/gltf_export.h"
 #include "ffdkit/exporters/scene_animation.h"
 
@@ -46,14 +48,13 @@ int runExport(const Args& args) {
   options.normals = !args.flag("no-normals");
 
   const std::vector<VariationSetting> settings = parseSettings(args.values("set"));
-  const double frame = args.value("frame") ? parseNumber(*args.value("frame"), "--frame") : 0.0;
   console.begin("read", "reading " + args.positional()[0]);
   scenes::Scene scene = readSceneFile(args.positional()[0], args);
   console.end();
   exporters::AnimationSource animation = exporters::sceneAnimation(scene);
   if (options.content == exporters::GltfContent::Frame) {
-    // The frame's state, then --set on top of it (as deform --frame does); exported as is.
-    if (animation.setTime) animation.setTime(scene, exporters::sceneFrameTime(scene, frame));
+    // The scene as saved, or its animation at --frame; then --set on top (as deform does).
+    if (const auto frame = args.value("frame")) scenes::applyAnimationFrame(scene, parseFrame(*frame, scene.animation));
     animation = {};
   }
   // Morph / skin: --set gives widgets that are not keyed their values for the whole animation.
@@ -91,9 +92,9 @@ Command exportCommand() {
   return {"export",
           "write a scene as binary glTF 2.0 (.glb): a deformed frame, morph targets or a skin",
           "ffdkit-cli export SCENE -o OUT.glb [--frame F | --morph | --skin [--joints 4|8] [--tolerance E]]",
-          "--frame F (the default, frame 0): the deformed meshes at frame F of the scene's animation\n"
-          "(--set then changes variations on top of it; with --morph / --skin, --set holds for the whole\n"
-          "animation and keyed widgets take their keys).\n"
+          "--frame F: the deformed meshes at frame F of the scene's animation (in its frame range;\n"
+          "without any of the three: the scene as saved); --set values apply after it. With --morph /\n"
+          "--skin, --set holds for the whole animation and keyed widgets take their keys.\n"
           "--morph: the undeformed meshes with one morph target per key; an animation drives their\n"
           "weights (STEP when every key is constant, else LINEAR): exact at the keys to float32.\n"
           "--skin: the undeformed meshes skinned to the lattices' control points (translation-only\n"
@@ -103,7 +104,7 @@ Command exportCommand() {
           "nothing is written (exit 1, the message gives the errors). --joints fixes k. See docs/export.md.\n"
           "The file is written atomically: nothing is left behind when anything fails.\n",
           {{"output", 'o', "OUT.glb", "the .glb to write"},
-           {"frame", '\0', "F", "export the deformed meshes at frame F (default: 0)"},
+           {"frame", '\0', "F", "export the deformed meshes at frame F of the scene's animation"},
            {"morph", '\0', "", "export the animation as morph targets"},
            {"skin", '\0', "", "export the animation as a skin on the lattices' control points"},
            {"joints", '\0', "K", "with --skin: joints per vertex, 4 or 8 (default 4, raised to 8 if needed)"},

@@ -8,10 +8,8 @@ namespace ffdkit::exporters {
 /// The animation a scene's keys describe, for exportGltf: the key times of every channel, per key
 /// the interpolation of the segment that starts there (Constant when every channel holds over it,
 /// Smooth when any channel is Smooth, else Linear) and whether a Constant channel jumps at its
-/// end, the scene's frame rate, and setTime = the scene's own evaluation (scenes::applyAnimation). A scene without keys gives an empty source (a static scene).
+/// end, the scene's frame rate, and setTime = the scene's own evaluation (scenes::applyAnimation).
+/// A scene without keys gives an empty source (a static scene).
 AnimationSource sceneAnimation(const scenes::Scene& scene);
-
-/// Seconds of a frame number at the scene's frame rate (scenes::frameTime).
-double sceneFrameTime(const scenes::Scene& scene, double frame);
 
 }  // namespace ffdkit::exporters
