@@ -476,3 +476,81 @@ TEST(SceneAnimation, TheKeyedSamplesExportAsMorphTargetsAndSkinsWithinTheirRepor
 
 }  // namespace
 }  // namespace ffdkit::exporters
+
+namespace ffdkit::exporters {
+namespace {
+
+// The press (one 2x2x2 lattice: 8 weights per vertex, all kept with 8 joints) shrunk so that part
+// of its block lies outside the lattice.
+scenes::Scene shrunkPress() {
+  scenes::Scene scene = sample("press");
+  const widgets::WidgetId lattice = scene.widgets.find("press-frame");
+  const Eigen::Affine3d shrink = Eigen::Translation3d(0.5, 0.5, 0.5) * Eigen::Scaling(0.6) *
+                                 Eigen::Translation3d(-0.5, -0.5, -0.5);
+  scene.widgets.setLatticeFrame(lattice, shrink * scene.widgets.latticeFrame(lattice));
+  return scene;
+}
+
+GltfExportReport exportSkin8(const scenes::Scene& scene, const AnimationSource& animation, const fs::path& path) {
+  GltfExportOptions options;
+  options.content = GltfContent::Skin;
+  options.joints = 8;
+  options.tolerance = 10.0;
+  const GltfExportReport report = exportGltf(scene, animation, path, options);
+  checkSkinAgainstFile(scene, animation, path, report);  // honest on every sample
+  return report;
+}
+
+double largestLinearError(const GltfExportReport& report) {
+  double worst = 0.0;
+  for (const auto& sample : report.samples) worst = std::max(worst, sample.linearError);
+  return worst;
+}
+
+TEST(GltfExport, OutsidePoliciesAndKeyedFramesAreMeasuredNotAssumed) {
+  TempFolder dir;
+  const double rounding = 8 * roundingBound(sample("press").objects[0].mesh.points);
+  for (const ffd::OutsidePolicy policy :
+       {ffd::OutsidePolicy::falloff(0.2), ffd::OutsidePolicy::clampEdge(), ffd::OutsidePolicy::extrapolate()}) {
+    scenes::Scene scene = shrunkPress();
+    const widgets::WidgetId lattice = scene.widgets.find("press-frame");
+    widgets::LatticeSettings settings = scene.widgets.latticeSettings(lattice);
+    settings.outside = policy;
+    scene.widgets.setLatticeSettings(lattice, settings);
+    scenes::SceneDeformer deformer;
+    deformer.finishGesture(scene);
+    ASSERT_GT(deformer.lastStats().outsidePoints, 100);  // the case under test
+    const GltfExportReport report = exportSkin8(scene, test::scaledVariations(scene), dir / "policy.glb");
+    std::printf("press shrunk, outside policy %d, k = 8: largest error %.3g (all weights %.3g)\n", int(policy.kind),
+                report.maxError, largestLinearError(report));
+    if (policy.kind == ffd::OutsidePolicy::Kind::Extrapolate) {
+      // Continued trilinear pieces give negative weights outside, which glTF cannot hold.
+      EXPECT_GT(report.maxError, 1e-3);
+    } else {
+      // The blend weight s goes into the joint weights and 1 - s onto the static joint: exact.
+      EXPECT_LT(largestLinearError(report), 1e-12);
+      EXPECT_LT(report.maxError, rounding);
+    }
+  }
+  // A keyed lattice frame: ffdkit re-embeds the block in the moved lattice, the skin keeps the
+  // bind weights. Not exact, and measured.
+  scenes::Scene scene = shrunkPress();
+  const widgets::WidgetId lattice = scene.widgets.find("press-frame");
+  const widgets::WidgetId handle = scene.widgets.find("handle");
+  const Eigen::Affine3d frame0 = scene.widgets.latticeFrame(lattice);
+  AnimationSource moving;
+  moving.keyTimes = {0.0, 1.0};
+  moving.frameRate = 4.0;
+  moving.setTime = [=](scenes::Scene& s, double t) {
+    s.widgets.setLatticeFrame(lattice, Eigen::Translation3d(0.15 * t, 0.0, 0.0) * frame0);
+    s.widgets.setVariation(handle, 3.0 * t);
+  };
+  const GltfExportReport report = exportSkin8(scene, moving, dir / "moving.glb");
+  std::printf("press shrunk, keyed frame, k = 8: largest error %.3g (all weights %.3g)\n", report.maxError,
+              largestLinearError(report));
+  EXPECT_GT(largestLinearError(report), 1e-3);
+  EXPECT_GE(report.maxError, 0.5 * largestLinearError(report));
+}
+
+}  // namespace
+}  // namespace ffdkit::exporters
