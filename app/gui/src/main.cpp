@@ -8,9 +8,23 @@
 
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 
 #include "ffdkit/app/main_window.h"
 #include "ffdkit/app/vtk_view_widget.h"
+#include "timeline_widget.h"
+
+namespace {
+
+// --frame: the timeline's current frame (the model set to the animation there).
+void goToFrame(ffdkit::app::MainWindow& window, const QString& text) {
+  bool ok = false;
+  const int frame = text.toInt(&ok);
+  if (!ok) throw std::invalid_argument("--frame: expected a whole frame number, got '" + text.toStdString() + "'");
+  window.findChild<ffdkit::app::TimelineWidget*>("timeline")->goTo(frame);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   QSurfaceFormat::setDefaultFormat(ffdkit::app::VtkViewWidget::defaultFormat());
@@ -28,12 +42,15 @@ int main(int argc, char** argv) {
   parser.addOption(windowShot);
   QCommandLineOption select("select", "Select the widget of this name (shows its transformer and properties).", "widget");
   parser.addOption(select);
+  QCommandLineOption frame("frame", "Go to this frame of the scene's animation (the timeline).", "frame");
+  parser.addOption(frame);
   parser.process(app);
 
   try {
     ffdkit::app::MainWindow window;
     if (!parser.positionalArguments().isEmpty()) window.openScene(parser.positionalArguments().first().toStdString());
     if (parser.isSet(select)) window.selectWidget(parser.value(select).toStdString());
+    if (parser.isSet(frame)) goToFrame(window, parser.value(frame));
     if (parser.isSet(screenshot) || parser.isSet(windowShot)) window.setLayoutRemembered(false);
     if (parser.isSet(screenshot)) {
       // Only the 3D view, at the size of the off-screen renderer.

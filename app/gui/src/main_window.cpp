@@ -449,6 +449,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
 
   d.timeline = addTimelineDock(this, d.scene, d.commands, *d.controller);
   connect(d.timeline, &TimelineWidget::error, this, [this](const QString& m) { impl_->sayError(m.toStdString()); });
+  connect(d.timeline, &TimelineWidget::frameChanged, this, refreshPanel);
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   action(help, tr("&Keyboard Shortcuts"), "actionKeyboardShortcuts", [this] { showKeyboardShortcuts(this); });
   applyKeyboardShortcuts(this);  // every action's keys from the one table (keyboard_shortcuts.h)

@@ -106,9 +106,7 @@ TimelineWidget::TimelineWidget(scenes::Scene& scene, scenes::CommandStack& comma
     : QWidget(parent), timeline_(scene, commands, controller) {
   setObjectName("timeline");
   bar_ = new TimelineBar(timeline_, scene, [this](int frame) {
-    guarded([&] {
-      if (timeline_.frame() != frame) timeline_.setFrame(frame);
-    });
+    if (timeline_.frame() != frame) goTo(frame);
   });
   label_ = new QLabel;
   label_->setObjectName("timelineLabel");
@@ -124,10 +122,10 @@ TimelineWidget::TimelineWidget(scenes::Scene& scene, scenes::CommandStack& comma
   menu_->addSeparator();
   play_ = add(tr("&Play"), "actionPlayPause", [this] { togglePlay(); });
   QAction* previous = add(tr("Jump to P&revious Key"), "actionPreviousKey", [this] {
-    if (const auto f = timeline_.previousKey()) timeline_.setFrame(static_cast<int>(std::floor(*f)));
+    if (const auto f = timeline_.previousKey()) goTo(static_cast<int>(std::floor(*f)));
   });
   QAction* next = add(tr("Jump to &Next Key"), "actionNextKey", [this] {
-    if (const auto f = timeline_.nextKey()) timeline_.setFrame(static_cast<int>(std::ceil(*f)));
+    if (const auto f = timeline_.nextKey()) goTo(static_cast<int>(std::ceil(*f)));
   });
   // Short faces for the buttons (the menu keeps the words, the tooltips name the keys).
   previous->setIconText(QString::fromUtf8("\u25C0\u25C6"));
@@ -167,6 +165,11 @@ void TimelineWidget::guarded(F f) {
   sync();
 }
 
+void TimelineWidget::goTo(int frame) {
+  guarded([&] { timeline_.setFrame(frame); });
+  emit frameChanged();
+}
+
 void TimelineWidget::sync() {
   const scenes::Animation& a = timeline_.scene().animation;
   label_->setText(tr("frame %1  (%2..%3, %4 fps)")
@@ -187,6 +190,7 @@ void TimelineWidget::togglePlay() {
     playTimer_.start(std::max(1, static_cast<int>(std::lround(1000.0 / timeline_.scene().animation.framesPerSecond))));
   } else {
     playTimer_.stop();
+    emit frameChanged();
   }
 }
 

@@ -31,6 +31,8 @@ class TimelineWidget : public QWidget {
   /// (actionPlayPause), Previous Key (actionPreviousKey), Next Key (actionNextKey); their keys
   /// come from keyboard_shortcuts.
   QMenu* menu() const { return menu_; }
+  /// Goes to `frame` (Timeline::setFrame), redraws and emits frameChanged.
+  void goTo(int frame);
   /// Redraws the ruler, the marks and the frame label (after any change of the scene or selection).
   void sync();
   /// Frames shown by playback since it last started (for measuring playback speed).
@@ -40,6 +42,9 @@ class TimelineWidget : public QWidget {
  signals:
   /// An operation was refused or failed (the window says it in its status line).
   void error(const QString& message);
+  /// The current frame was set by a scrub, a jump or a pause (not at each frame of playback):
+  /// the window refreshes what shows the widgets' values (the property panel).
+  void frameChanged();
 
  private:
   void togglePlay();
