@@ -2,6 +2,7 @@
 // the mouse sets the widget to the interpolated value, Space plays and pauses, Alt+Right / Alt+Left
 // jump between keys, Alt+I deletes the key and Ctrl+Z brings it back.
 #include <QAction>
+#include <QDoubleSpinBox>
 #include <QLabel>
 
 #include <cmath>
@@ -49,6 +50,13 @@ class TimelineGuiTest : public QObject {
     QTest::mouseClick(bar, Qt::LeftButton, Qt::NoModifier, rulerPoint(bar, a, 12));
     QCOMPARE(timeline->timeline().frame(), 12);
     QVERIFY(std::abs(scene.widgets.variation(pull) - 0.25) < 1e-12);
+    // The property panel shows the value of the frame, not the one before the scrub.
+    QApplication::processEvents();    // the panel's new rows show on a queued call
+    QDoubleSpinBox* field = nullptr;  // the panel's shown row (rows it replaced wait hidden for deletion)
+    for (auto* box : w->findChildren<QDoubleSpinBox*>("variation"))
+      if (box->isVisible()) field = box;
+    QVERIFY(field);
+    QCOMPARE(field->value(), 0.25);
 
     // Drag the arrow up, then I keys the new value at frame 12: one undo step.
     dragArrow(*w, pull, 0.1);
