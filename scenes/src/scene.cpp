@@ -61,7 +61,9 @@ MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path
                         },
                         [&](const MeshFileSource& file) {
                           const std::filesystem::path path(file.path);
-                          return readMesh(path.is_absolute() ? path : baseDirectory / path);
+                          MeshData mesh = readMesh(path.is_absolute() ? path : baseDirectory / path);
+                          convertToZUp(mesh, file.up);
+                          return mesh;
                         },
                         [&](const GeneratedSource& generated) {
                           return generators.generate(generated.generator, generated.parameters, generated.density);

@@ -113,8 +113,14 @@ SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions
     object.source = readPrimitive(j["primitive"], at / "primitive");
   } else if (j.contains("mesh")) {
     const Json& m = j["mesh"];
-    checkKeys(m, {"path"}, at / "mesh");
-    object.source = MeshFileSource{text(member(m, "path", at / "mesh"), at / "mesh" / "path")};
+    checkKeys(m, {"path", "up"}, at / "mesh");
+    MeshFileSource file{text(member(m, "path", at / "mesh"), at / "mesh" / "path")};
+    if (m.contains("up")) {
+      const std::string up = text(m["up"], at / "mesh" / "up");
+      if (up == "y") file.up = UpAxis::Y;
+      else if (up != "z") (at / "mesh" / "up").fail("unknown up axis '" + up + "' (known: z, y)");
+    }
+    object.source = file;
   } else {
     const Json& g = j["generator"];
     const Location gat = at / "generator";
@@ -472,6 +478,7 @@ Json sceneJson(const Scene& scene) {
       o["primitive"] = p;
     } else if (const auto* file = std::get_if<MeshFileSource>(&object.source)) {
       o["mesh"] = {{"path", file->path}};
+      if (file->up != UpAxis::Z) o["mesh"]["up"] = std::string(upAxisName(file->up));  // older files keep their bytes
     } else {
       const auto& generated = std::get<GeneratedSource>(object.source);
       Json parameters = Json::object();

@@ -13,6 +13,7 @@
 #include "ffdkit/scenes/keyframes.h"
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/primitive.h"
+#include "ffdkit/scenes/up_axis.h"
 #include "ffdkit/widgets/widget_model.h"
 
 namespace ffdkit::scenes {
@@ -20,6 +21,8 @@ namespace ffdkit::scenes {
 /// An object read from a mesh or point file (seed 001 l.2385).
 struct MeshFileSource {
   std::string path;  ///< as written in the scene file: relative to the scene file's folder, or absolute
+  /// The file's up axis: a Y-up file's points are turned to Z-up as they are read (up_axis.h).
+  UpAxis up = UpAxis::Z;
 };
 
 /// An object made by a named generator (curves and surfaces of the geometry topics); it keeps
