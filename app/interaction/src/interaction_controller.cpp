@@ -164,53 +164,10 @@ void InteractionController::beginHandleDrag(const Transformer& gizmo, Transforme
   notify();
 }
 
-namespace {
-
-// Where `point` (world) is after the lattices stages[0, count) have deformed it.
-Eigen::Vector3d throughStages(const scenes::Scene& scene, const std::vector<WidgetId>& stages, std::size_t count,
-                              const Eigen::Vector3d& point) {
-  if (count == 0) return point;
-  ffd::Pipeline pipeline(point.transpose());
-  for (std::size_t i = 0; i < count; ++i) pipeline.addLattice(scene.widgets.ffdLattice(stages[i]), std::nullopt, static_cast<int>(i));
-  return pipeline.update().row(0).transpose();
-}
-
-}  // namespace
-
-std::optional<std::string> InteractionController::pressObject(const widgets::Ray& ray, double tolerance) {
+std::optional<std::string> InteractionController::pressObject(const widgets::Ray& ray, double tolerance, bool carryPins) {
   if (dragging_) cancel();
   const Eigen::Vector3d dir = ray.direction.normalized();
-  // The nearest object point under the ray, on the deformed objects.
-  std::optional<std::pair<std::string, Eigen::Index>> best;
-  double bestT = std::numeric_limits<double>::infinity();
-  for (const scenes::SceneObject& object : scene_.objects) {
-    if (!object.display.visible) continue;
-    const Eigen::MatrixX3d& points = deformer_.points(object.name);
-    const Eigen::MatrixX3i& triangles = object.mesh.triangles;
-    if (triangles.rows() > 0) {
-      for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-        const Eigen::Vector3d a = points.row(triangles(t, 0)).transpose(), b = points.row(triangles(t, 1)).transpose(),
-                              c = points.row(triangles(t, 2)).transpose();
-        const auto hit = widgets::intersectTriangle(ray, a, b, c);
-        if (!hit || *hit >= bestT) continue;
-        bestT = *hit;
-        const Eigen::Vector3d p = ray.at(*hit);
-        int corner = 0;
-        for (int k = 1; k < 3; ++k)
-          if ((points.row(triangles(t, k)).transpose() - p).norm() < (points.row(triangles(t, corner)).transpose() - p).norm())
-            corner = k;
-        best = std::make_pair(object.name, static_cast<Eigen::Index>(triangles(t, corner)));
-      }
-    } else {
-      for (Eigen::Index i = 0; i < points.rows(); ++i) {
-        const Eigen::Vector3d v = points.row(i).transpose() - ray.origin;
-        const double t = v.dot(dir);
-        if (t < 0.0 || t >= bestT || (v - t * dir).norm() > tolerance) continue;
-        bestT = t;
-        best = std::make_pair(object.name, i);
-      }
-    }
-  }
+  const std::optional<ObjectPoint> best = objectPointAt(ray, tolerance);
   if (!best) return std::nullopt;
   const auto& [name, vertex] = *best;
   const std::vector<WidgetId> stages = scene_.stagesDeforming(name);
@@ -220,15 +177,14 @@ std::optional<std::string> InteractionController::pressObject(const widgets::Ray
   // one that does not hold it must leave it alone (identity outside policy).
   for (std::size_t k = stages.size(); k-- > 0;) {
     const ffd::Lattice lattice = scene_.widgets.ffdLattice(stages[k]);
-    const Eigen::Vector3d input = throughStages(scene_, stages, k, own);
+    const Eigen::Vector3d input = pointBeforeStage(scene_, stages, k, own);
     const ffd::Embedding e = ffd::embed(lattice, input.transpose());
     if (e.status(0) == ffd::PointStatus::Inside) {
       ObjectGrab g;
       g.object = name;
       g.vertex = vertex;
       g.lattice = stages[k];
-      // The least-norm change for a unit displacement along x: its x column is the weight vector.
-      g.weights = ffd::leastNormControlChange(lattice, e.parameters(), Eigen::RowVector3d::UnitX()).col(0);
+      g.weights = pinnedDragWeights(scene_, stages[k], e.parameters().row(0), *best, pins_, carryPins);
       g.worldToLocal = lattice.frame().linear().inverse();
       g.grab = deformer_.points(name).row(vertex).transpose();
       g.normal = dir;
@@ -341,6 +297,19 @@ void InteractionController::cancel() {
   refresh();
 }
 
+void InteractionController::togglePin(const ObjectPoint& point) {
+  const scenes::SceneObject* object = scene_.findObject(point.object);
+  if (object == nullptr || point.vertex < 0 || point.vertex >= object->mesh.points.rows())
+    throw std::invalid_argument("no point " + std::to_string(point.vertex) + " of '" + point.object + "' to pin");
+  if (std::erase(pins_, point) == 0) pins_.push_back(point);
+  notify();
+}
+
+void InteractionController::clearPins() {
+  pins_.clear();
+  notify();
+}
+
 std::optional<Transformer> InteractionController::transformer() const {
   if (selection_.size() != 1 || point_) return std::nullopt;
   const auto& m = scene_.widgets;
@@ -413,6 +382,9 @@ ViewHighlights InteractionController::highlights() const {
   h.point = point_;
   h.transformer = transformer();
   h.transformerHandle = transformerHandle();
+  for (const ObjectPoint& pin : pins_)
+    if (const scenes::SceneObject* o = scene_.findObject(pin.object); o && pin.vertex < o->mesh.points.rows())
+      h.pins.push_back(deformer_.points(pin.object).row(pin.vertex).transpose());
   return h;
 }
 
@@ -423,6 +395,10 @@ void InteractionController::pruneSelection() {
   std::erase_if(selection_, [&](WidgetId id) { return !scene_.widgets.contains(id); });
   if (point_ && !scene_.widgets.contains(point_->lattice)) point_.reset();
   if (hovered_ && !scene_.widgets.contains(*hovered_)) hovered_.reset();
+  std::erase_if(pins_, [&](const ObjectPoint& pin) {
+    const scenes::SceneObject* object = scene_.findObject(pin.object);
+    return object == nullptr || pin.vertex >= object->mesh.points.rows();
+  });
 }
 
 void InteractionController::pushState(const std::string& description, scenes::StateDelta delta,

@@ -91,6 +91,27 @@ struct SceneView::Impl {
   // The transformer's three shapes at size 1 (built once; the actors place them per frame).
   vtkSmartPointer<vtkPolyData> transformerArrow, transformerRing, transformerCube;
   ViewHighlights highlights;
+  // Pinned object points (direct manipulation): red dots, rebuilt only when the pins move.
+  vtkSmartPointer<vtkActor> pins;
+  std::vector<Eigen::Vector3d> pinsShown;
+
+  void updatePins() {
+    if (pins && highlights.pins == pinsShown) return;
+    pinsShown = highlights.pins;
+    Eigen::MatrixX3d points(static_cast<Eigen::Index>(pinsShown.size()), 3);
+    for (std::size_t i = 0; i < pinsShown.size(); ++i) points.row(static_cast<Eigen::Index>(i)) = pinsShown[i].transpose();
+    if (!pins) {
+      pins = vtkSmartPointer<vtkActor>::New();
+      pins->SetMapper(vtkSmartPointer<vtkPolyDataMapper>::New());
+      pins->GetProperty()->SetColor(kPinColour.x(), kPinColour.y(), kPinColour.z());
+      pins->GetProperty()->SetPointSize(14.0);
+      pins->GetProperty()->SetRenderPointsAsSpheres(true);
+      pins->GetProperty()->SetLighting(false);
+      renderer->AddActor(pins);
+    }
+    vtkPolyDataMapper::SafeDownCast(pins->GetMapper())->SetInputData(pointsPolyData(points));
+    pins->SetVisibility(!pinsShown.empty());
+  }
 
   Eigen::Vector3d emphasis(WidgetId id, const Eigen::Vector3d& base) const {
     if (contains(highlights.selected, id)) return kSelected;
@@ -422,6 +443,7 @@ struct SceneView::Impl {
     updateTransformer();
     if (!pointMarker || widgetInstance != model.instance() || widgetRevision != model.revision()) buildWidgets(model);
     applyHighlights(model);
+    updatePins();
   }
 };
 
@@ -431,6 +453,7 @@ SceneView::~SceneView() {
   impl_->removeOverlay();
   impl_->clearObjects();
   for (auto& actor : impl_->widgetActors) impl_->renderer->RemoveActor(actor);
+  if (impl_->pins) impl_->renderer->RemoveActor(impl_->pins);
 }
 
 void SceneView::show(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
@@ -522,6 +545,18 @@ scenes::Camera SceneView::camera() const {
   return camera;
 }
 
+ViewCamera SceneView::viewCamera() const {
+  vtkCamera* c = impl_->renderer->GetActiveCamera();
+  return ViewCamera{camera(), c->GetParallelProjection() != 0, c->GetParallelScale()};
+}
+
+void SceneView::setViewCamera(const ViewCamera& view) {
+  vtkCamera* c = impl_->renderer->GetActiveCamera();
+  c->SetParallelProjection(view.parallel);
+  c->SetParallelScale(view.parallelScale);
+  applyCamera(view.camera);
+}
+
 widgets::Ray SceneView::rayAt(double x, double y) const {
   vtkRenderer* r = impl_->renderer;
   auto world = [&](double z) {
@@ -550,6 +585,7 @@ double SceneView::pixelSize() const {
   vtkCamera* c = impl_->renderer->GetActiveCamera();
   const int* size = impl_->renderer->GetSize();
   const double height = std::max(1, size[1]);
+  if (c->GetParallelProjection()) return 2.0 * c->GetParallelScale() / height;
   return 2.0 * c->GetDistance() * std::tan(c->GetViewAngle() * std::numbers::pi / 360.0) / height;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "ffdkit/app/object_points.h"
 #include "ffdkit/app/transformer.h"
 #include "ffdkit/app/view_highlights.h"
 #include "ffdkit/scenes/command_stack.h"
@@ -74,10 +75,22 @@ class InteractionController {
   /// point follows the pointer exactly, the rest of the object smoothly. The lattice is the last
   /// one in the object's pipeline whose input holds the point (the later ones, with the
   /// identity outside policy, leave it alone). release() pushes one command; cancel() undoes.
+  /// The pins (pins()) that lattice moves keep their place exactly, or with `carryPins` move by
+  /// the same displacement as the grabbed point (pinnedDragWeights).
   /// @return the object's name, or nullopt if no object point is under the ray.
   /// @throws std::invalid_argument naming the object when no lattice can move the point (none
   ///   attached, or the point is outside them).
-  std::optional<std::string> pressObject(const widgets::Ray& ray, double tolerance);
+  std::optional<std::string> pressObject(const widgets::Ray& ray, double tolerance, bool carryPins = false);
+  /// The object point under the ray (pickObjectPoint on the deformed objects).
+  std::optional<ObjectPoint> objectPointAt(const widgets::Ray& ray, double tolerance) const {
+    return pickObjectPoint(scene_, deformer_, ray, tolerance);
+  }
+  /// Pinned object points (direct manipulation): a view state like the selection, not an edit.
+  const std::vector<ObjectPoint>& pins() const { return pins_; }
+  /// Pins `point`, or unpins it if it is pinned. @throws std::invalid_argument for an unknown
+  ///   object or vertex.
+  void togglePin(const ObjectPoint& point);
+  void clearPins();
   /// During a direct-manipulation drag: the object and the index of the point being dragged.
   std::optional<std::pair<std::string, Eigen::Index>> grabbedPoint() const {
     if (!objectGrab_) return std::nullopt;
@@ -220,11 +233,12 @@ class InteractionController {
     Eigen::MatrixX3d controlStart;                   ///< the lattice's local control points at the press
     /// Precomputed at the press (the weights and the frame do not change during the drag): the
     /// least-norm change is `weights * (worldToLocal * d)^T` for a world displacement d, with
-    /// weights = w_i / sum_j w_j^2 (HHK 1992 for one point; ffd::leastNormControlChange).
+    /// weights from pinnedDragWeights (HHK 1992 with the pins as further constraints).
     Eigen::VectorXd weights;
     Eigen::Matrix3d worldToLocal = Eigen::Matrix3d::Identity();
   };
   std::optional<ObjectGrab> objectGrab_;
+  std::vector<ObjectPoint> pins_;
 };
 
 }  // namespace ffdkit::app

@@ -25,6 +25,7 @@ struct ViewHighlights {
   std::optional<LatticePointRef> point;    ///< a picked lattice point
   std::optional<Transformer> transformer;  ///< the manipulator of the selection, if shown
   std::optional<TransformerHandle> transformerHandle;  ///< its hovered or dragged handle
+  std::vector<Eigen::Vector3d> pins;  ///< pinned object points (direct manipulation), where they are drawn
 };
 
 }  // namespace ffdkit::app

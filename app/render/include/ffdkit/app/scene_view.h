@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "ffdkit/app/camera_navigation.h"
 #include "ffdkit/app/transformer.h"
 #include "ffdkit/app/view_highlights.h"
 #include "ffdkit/scenes/scene.h"
@@ -22,6 +23,8 @@ inline const Eigen::Vector3d kZebraDark{0.08, 0.08, 0.10};
 inline const Eigen::Vector3d kZebraLight{0.96, 0.96, 0.96};
 /// The colour of curvature combs.
 inline const Eigen::Vector3d kCombColour{1.0, 0.35, 0.75};
+/// The colour of pinned object points (direct manipulation).
+inline const Eigen::Vector3d kPinColour{0.95, 0.15, 0.15};
 
 /// What a SceneView has built and updated since it was made (how tests see that hover and
 /// selection build no geometry and that a drag step touches only the objects that moved).
@@ -67,6 +70,10 @@ class SceneView {
   void applyCamera(const scenes::Camera& camera);
   /// The renderer's current camera.
   scenes::Camera camera() const;
+  /// The camera with its projection (orthographic or not) as navigation changes it.
+  ViewCamera viewCamera() const;
+  /// Sets the renderer's camera and projection (clipping range reset to the scene).
+  void setViewCamera(const ViewCamera& view);
 
   /// World ray from the camera through display pixel (x, y) (VTK display coordinates: device
   /// pixels, origin at the bottom left). Needs the renderer to be in a sized render window.
