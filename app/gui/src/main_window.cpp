@@ -38,6 +38,8 @@
 #include <QToolBar>
 
 #include "ffdkit/ffd/cancelled.h"
+#include "ffdkit/app/scene_bounds.h"
+#include "import_options.h"
 #include "keyboard_shortcuts.h"
 #include "gltf_export_dialog.h"
 #include "main_window_impl.h"
@@ -231,6 +233,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   file->addSeparator();
   fileAction(file, tr("&Import Mesh..."), "actionImportMesh", false, meshFilter,
              [this](const std::filesystem::path& p) { importMesh(p); });
+  addImportUpAxisMenu(file);
   fileAction(file, tr("&Export Deformed Mesh..."), "actionExportMesh", true, meshFilter,
              [this](const std::filesystem::path& p) { exportMesh(p); });
   action(file, tr("Export &glTF..."), "actionExportGltf", [this] { exportGltfInteractively(this, impl_->scene); });
@@ -376,6 +379,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   });
   d.directManipulation->setCheckable(true);
   d.directManipulation->setToolTip(tr("Drag points of objects: the lattice gets the smallest change that puts the point under the pointer (D)"));
+  action(widgetsMenu, tr("&Clear Pins"), "actionClearPins", [this] { impl_->controller->clearPins(); });
   widgetsMenu->addSeparator();
   QAction* primitive = action(widgetsMenu, tr("Add &Primitive..."), "actionAddPrimitive", [this] {
     QDialog dialog(this);
@@ -413,6 +417,11 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     impl_->sceneView->applyCamera(impl_->scene.camera);
     impl_->view->requestRender();
   });
+  d.navigation = new ViewNavigation(
+      d.view, *d.sceneView,
+      [this] { return selectionBounds(impl_->scene, impl_->deformer, impl_->controller->selection(), impl_->selectedObjects); },
+      [this] { return sceneBounds(impl_->scene, impl_->deformer); }, this);
+  d.navigation->addActions(viewMenu);
   viewMenu->addSeparator();
   // Looks of the selected objects (else of all): reflection lines on surfaces, curvature combs
   // on curves (DisplaySettings::surfaceStyle / curvatureComb; stripe count and comb scale are
@@ -555,6 +564,7 @@ void MainWindow::setScene(scenes::Scene scene) {
   d.showingScene = false;
   d.controller->cancel();
   d.controller->clearSelection();
+  d.controller->clearPins();
   d.scene = std::move(scene);
   d.restoredUnsaved = false;  // a new document; offerRecovery marks a restored one after this
   d.selectedObjects.clear();
@@ -597,7 +607,7 @@ bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
         const bool lattices = (e->modifiers() & Qt::AltModifier) != 0;
         const auto hit = d.controller->press(d.rayAt(d.pressAt), d.tolerance(), extend, lattices);
         if (hit == InteractionController::PressResult::Nothing && d.directManipulation->isChecked() && !lattices &&
-            d.controller->pressObject(d.rayAt(d.pressAt), d.tolerance()))
+            d.controller->pressObject(d.rayAt(d.pressAt), d.tolerance(), e->modifiers().testFlag(Qt::ShiftModifier)))
           return true;  // dragging a point of an object: no orbit
         d.pressOnEmpty = hit == InteractionController::PressResult::Nothing;
         if (hit == InteractionController::PressResult::Handle) return true;  // the manipulator: no orbit
@@ -608,7 +618,8 @@ bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
           d.properties->showSelection(d.entries());
         }
         if (hit == InteractionController::PressResult::Widget) return true;  // no camera orbit
-        break;
+        d.navigation->beginOrbit(d.pressAt);  // empty space or a lattice point: the drag orbits
+        return true;
       }
       case QEvent::MouseMove: {
         auto* e = static_cast<QMouseEvent*>(event);
@@ -616,12 +627,20 @@ bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
           d.controller->drag(d.rayAt(e->position().toPoint()));
           return true;
         }
+        if (d.navigation->orbitTo(e->position().toPoint())) return true;
         if (e->buttons() == Qt::NoButton) d.controller->hover(d.rayAt(e->position().toPoint()), d.tolerance());
         break;
       }
       case QEvent::MouseButtonRelease: {
         auto* e = static_cast<QMouseEvent*>(event);
         if (e->button() != Qt::LeftButton) break;
+        d.navigation->endOrbit();
+        if (const auto grabbed = d.controller->grabbedPoint();
+            grabbed && (e->position().toPoint() - d.pressAt).manhattanLength() < 4) {
+          d.controller->cancel();  // a click on an object point (direct manipulation) pins or unpins it
+          d.controller->togglePin({grabbed->first, grabbed->second});
+          return true;
+        }
         if (d.controller->dragging()) {
           d.controller->release();
           return true;

@@ -15,6 +15,8 @@
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/scenes/widget_file.h"
+#include "ffdkit/app/scene_bounds.h"
+#include "import_options.h"
 #include "main_window_impl.h"
 
 namespace ffdkit::app {
@@ -246,12 +248,16 @@ void MainWindow::saveWidgetFile(const std::filesystem::path& path) {
 
 void MainWindow::importMesh(const std::filesystem::path& path) {
   scenes::SceneObject object;
+  const scenes::UpAxis up = importUpAxis();  // File > Import Up Axis
   object.mesh = scenes::readMesh(path);
-  object.source = scenes::MeshFileSource{std::filesystem::absolute(path).string()};
+  scenes::convertToZUp(object.mesh, up);  // once, here; the scene file says "up" so a reload does it again
+  object.source = scenes::MeshFileSource{std::filesystem::absolute(path).string(), up};
   std::string base = path.stem().string();
   object.name = base;
   for (int n = 2; impl_->scene.findObject(object.name) != nullptr; ++n) object.name = base + std::to_string(n);
+  const std::string name = object.name;
   impl_->controller->addObject(std::move(object));
+  impl_->navigation->frameBox(selectionBounds(impl_->scene, impl_->deformer, {}, {name}));  // show what came in
 }
 
 void MainWindow::exportMesh(const std::filesystem::path& path) {

@@ -29,6 +29,7 @@
 #include "property_panel.h"
 #include "status_line.h"
 #include "timeline_widget.h"
+#include "view_navigation.h"
 
 namespace ffdkit::app {
 namespace window_detail {
@@ -81,6 +82,7 @@ struct MainWindow::Impl {
   QPoint pressAt;
   bool pressOnEmpty = false;
   QAction* directManipulation = nullptr;  ///< checked: a drag on an object moves its point
+  ViewNavigation* navigation = nullptr;   ///< orbit, framing, axis views (owned by the window)
   bool showingScene = false;
 
   bool modified() const { return commands.isDirty() || restoredUnsaved; }
