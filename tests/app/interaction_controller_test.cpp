@@ -420,6 +420,64 @@ class InteractionControllerTest : public QObject {
     QVERIFY(!f.controller.pressObject({Eigen::Vector3d(5.0, 5.0, 5.0), Eigen::Vector3d(1.0, 0.0, 0.0)}, 1e-3));
   }
 
+  // Pins (headless): pinned object points keep their place within 1e-9 while another point is
+  // dragged onto the pointer; with carryPins they move by the dragged point's displacement.
+  // Pins are no edit; they are drawn (highlights) and pruned with their object.
+  void pinnedPointsHoldOrMoveAlong() {
+    Fixture f;
+    f.controller.clearSelection();
+    const Eigen::MatrixX3d before = f.deformer.points(f.sphere);
+    Eigen::Index top = 0, bottom = 0;
+    before.col(2).maxCoeff(&top);
+    before.col(2).minCoeff(&bottom);
+    const std::size_t position = f.commands.position();
+    f.controller.togglePin({f.sphere, top});
+    f.controller.togglePin({f.sphere, bottom});
+    f.controller.togglePin({f.sphere, 7});
+    f.controller.togglePin({f.sphere, 7});  // a second toggle unpins
+    QCOMPARE(f.controller.pins().size(), std::size_t{2});
+    QCOMPARE(f.commands.position(), position);
+    QCOMPARE(f.controller.highlights().pins.size(), std::size_t{2});
+    QVERIFY((f.controller.highlights().pins[0] - before.row(top).transpose()).norm() == 0.0);
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, f.controller.togglePin({f.sphere, before.rows()}));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, f.controller.togglePin({"nobody", 0}));
+
+    const widgets::Ray ray{Eigen::Vector3d(5.0, 0.1, 0.2), Eigen::Vector3d(-1.0, 0.0, 0.0)};
+    const Eigen::Vector3d offset(0.0, 0.1, 0.05);
+    for (bool carry : {false, true}) {
+      const Eigen::MatrixX3d start = f.deformer.points(f.sphere);
+      QVERIFY(f.controller.pressObject(ray, 1e-3, carry).has_value());
+      const Eigen::Index vertex = f.controller.grabbedPoint()->second;
+      const Eigen::Vector3d grab = start.row(vertex).transpose();
+      for (int step = 1; step <= 3; ++step) {
+        f.controller.drag({Eigen::Vector3d(5.0, grab.y(), grab.z()) + step * offset, Eigen::Vector3d(-1.0, 0.0, 0.0)});
+        const Eigen::MatrixX3d now = f.deformer.points(f.sphere);
+        QVERIFY((now.row(vertex).transpose() - (grab + step * offset)).norm() < 1e-9);  // on the pointer
+        for (Eigen::Index pin : {top, bottom}) {
+          const Eigen::Vector3d expected = start.row(pin).transpose() + (carry ? double(step) : 0.0) * offset;
+          QVERIFY2((now.row(pin).transpose() - expected).norm() < 1e-9,
+                   qPrintable(QString("pin %1 off by %2 (carry %3)").arg(pin).arg((now.row(pin).transpose() - expected).norm()).arg(carry)));
+        }
+      }
+      f.controller.release();
+      QCOMPARE(f.commands.position(), position + (carry ? 2 : 1));
+      QVERIFY(maxDifference(f.deformer.points(f.sphere), scenes::deformScene(f.scene).at(f.sphere)) < 1e-12);
+    }
+    // Without pins the same drag moves them: the constraint is what holds them.
+    f.controller.clearPins();
+    QVERIFY(f.controller.highlights().pins.empty());
+    const Eigen::MatrixX3d start = f.deformer.points(f.sphere);
+    QVERIFY(f.controller.pressObject(ray, 1e-3).has_value());
+    const Eigen::Vector3d grab = start.row(f.controller.grabbedPoint()->second).transpose();
+    f.controller.drag({Eigen::Vector3d(5.0, grab.y(), grab.z()) + offset, Eigen::Vector3d(-1.0, 0.0, 0.0)});
+    f.controller.release();
+    QVERIFY((f.deformer.points(f.sphere).row(top) - start.row(top)).norm() > 1e-4);
+    // Pins go with their object.
+    f.controller.togglePin({f.sphere, top});
+    f.controller.removeObjects({f.sphere});
+    QVERIFY(f.controller.pins().empty());
+  }
+
   void anObjectWithoutALatticeCannotBeDraggedAndSaysWhy() {
     Fixture f;
     scenes::PrimitiveOptions cube;
