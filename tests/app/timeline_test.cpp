@@ -77,6 +77,14 @@ TEST(Timeline, PlaybackFollowsWallTimeAndLoops) {
   EXPECT_TRUE(d.timeline.advance(0.5));  // a slow frame skips frames, it does not slow down
   EXPECT_EQ(d.timeline.frame(), 12);
   EXPECT_NEAR(d.scene.widgets.variation(pull), 0.25, 1e-12);
+  // A drag under way is left alone; the frame catches up after it.
+  d.scene.widgets.beginGesture(pull);
+  EXPECT_FALSE(d.timeline.advance(1.0 / 24));
+  EXPECT_EQ(d.timeline.frame(), 12);
+  d.scene.widgets.endGesture();
+  EXPECT_TRUE(d.timeline.advance(0.0));
+  EXPECT_EQ(d.timeline.frame(), 13);
+  d.timeline.setFrame(12);
   // The deformer follows: the sphere equals a fresh evaluation of the scene at frame 12.
   const auto fresh = scenes::deformScene(d.scene);
   EXPECT_LT((d.deformer.points("sphere") - fresh.at("sphere")).cwiseAbs().maxCoeff(), 1e-12);

@@ -157,6 +157,8 @@ bool Timeline::advance(double seconds) {
   if (clock_ < a.firstFrame) clock_ = a.firstFrame;
   const int whole = static_cast<int>(std::floor(clock_));
   if (whole == frame()) return false;
+  // A drag under way owns the model: the clock runs on, the frame follows after the release.
+  if (scene_.widgets.gestureActive() || controller_.dragging()) return false;
   frame_ = whole;
   scenes::applyAnimationFrame(scene_, frame_);
   controller_.refresh();

@@ -54,7 +54,8 @@ class Timeline {
   bool playing() const { return playing_; }
   /// Moves the playback clock on by `seconds` of wall time at the scene's rate, looping over the
   /// frame range; goes to the whole frame the clock reaches when it differs from the current
-  /// one (a slow frame makes playback skip frames, not slow down). @return true if the frame changed.
+  /// one (a slow frame makes playback skip frames, not slow down). During a drag nothing is
+  /// applied (the drag owns the model; the clock runs on). @return true if the frame changed.
   bool advance(double seconds);
 
   /// Bytes a key command holds for `keys` (CommandStack::bytes).
