@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "ffdkit/ffd/huge_pages.h"
 #include "vector_clones.h"
 
 namespace ffdkit::ffd {
@@ -275,7 +276,10 @@ const Eigen::MatrixX3d& Deformer::deformStale(const Lattice& lattice, const Eige
     throw LatticeError("Deformer::deform: expected " + std::to_string(n) + " x 3 input points (the embedded ones), got " +
                        std::to_string(input.rows()) + " x 3");
   }
-  output_.resize(n, 3);
+  if (output_.rows() != n) {
+    output_.resize(n, 3);
+    adviseHugePages(output_);
+  }
   evaluateBlocks(lattice, input, nullptr);
   lastControl_ = lattice.controlPoints();
   deformed_ = true;

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "ffdkit/ffd/cancelled.h"
+#include "ffdkit/ffd/huge_pages.h"
 #include "ffdkit/ffd/lattice.h"
 #include "ffdkit/ffd/outside_policy.h"
 
@@ -59,6 +60,12 @@ struct NoInitAllocator : std::allocator<T> {
   NoInitAllocator() = default;
   template <class U>
   NoInitAllocator(const NoInitAllocator<U>&) noexcept {}
+  /// Large blocks are backed by huge pages where the system allows (adviseHugePages).
+  T* allocate(std::size_t n) {
+    T* p = std::allocator<T>::allocate(n);
+    adviseHugePages(p, n * sizeof(T));
+    return p;
+  }
   template <class U>
   void construct(U* p) noexcept {
     ::new (static_cast<void*>(p)) U;
