@@ -34,7 +34,7 @@ std::string formatList(bool writable) {
 }
 
 // The whole file in memory: read(2) into one buffer of the file's size, left uninitialised (the
-// read fills it) and backed by huge pages where the system allows (detail::adviseHugePages).
+// read fills it) and backed by huge pages where the system allows (ffd::adviseHugePages).
 struct FileBytes {
   std::unique_ptr<char[]> data;
   std::size_t size = 0;
@@ -50,7 +50,7 @@ FileBytes readFileBytes(const std::filesystem::path& path) {
     throw MeshIoError(path.string() + ": not a regular file");
   }
   FileBytes bytes{std::make_unique_for_overwrite<char[]>(std::size_t(info.st_size)), std::size_t(info.st_size)};
-  detail::adviseHugePages(bytes.data.get(), bytes.size);
+  ffd::adviseHugePages(bytes.data.get(), bytes.size);
   std::size_t done = 0;
   while (done < bytes.size) {
     const ssize_t n = ::read(fd, bytes.data.get() + done, bytes.size - done);

@@ -18,32 +18,14 @@
 
 #include <fast_float/fast_float.h>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
+
+#include "ffdkit/ffd/huge_pages.h"
 
 #include "ffdkit/meshio/mesh_data.h"
 
 namespace ffdkit::meshio::detail {
 
-/// Asks the kernel to back the untouched memory [data, data + bytes) with transparent huge pages
-/// (2 MiB) where the system allows it (THP "madvise" mode, Debian's default). Reading a 1M-vertex
-/// mesh fills about 90 MB of fresh memory; with 4 KiB pages that is ~22,000 page faults, which
-/// cost more than the parse itself. Only a hint: a no-op for small blocks, on other systems, or
-/// when the kernel declines. Call it right after allocating, before the first write.
-inline void adviseHugePages([[maybe_unused]] void* data, [[maybe_unused]] std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
-  if (bytes < 2 * kHuge) return;
-  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
-  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
-  if (end > begin) (void)::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-#endif
-}
-template <class Matrix>
-void adviseHugePages(Matrix& matrix) {
-  adviseHugePages(matrix.data(), std::size_t(matrix.size()) * sizeof(typename Matrix::Scalar));
-}
+using ffd::adviseHugePages;
 
 /// Names an element in a message: "face 12", "vertex 7 (x)". Built into text only on failure,
 /// so that a reader's hot loop allocates nothing.
