@@ -1,11 +1,19 @@
 #pragma once
 
 #include <chrono>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace ffdkit::cli {
+
+/// printf-style text for a result line (at most 1023 characters; longer text is cut).
+std::string format(const char* fmt, auto... values) {
+  char line[1024];
+  std::snprintf(line, sizeof line, fmt, values...);
+  return line;
+}
 
 /// What a command tells the user: results on stdout (unless --quiet), progress of long steps on
 /// stderr (only when stderr is a terminal, or with --progress), and the --timings split.

@@ -16,12 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string format(const char* fmt, auto... values) {
-  char line[1024];
-  std::snprintf(line, sizeof line, fmt, values...);
-  return line;
-}
-
 int runExport(const Args& args) {
   Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
   if (args.positional().size() != 1) throw UsageError("expected one SCENE, got " + std::to_string(args.positional().size()));

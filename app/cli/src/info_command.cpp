@@ -17,12 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string format(const char* fmt, auto... values) {
-  char line[1024];
-  std::snprintf(line, sizeof line, fmt, values...);
-  return line;
-}
-
 std::string boxText(const Eigen::MatrixX3d& points) {
   if (points.rows() == 0) return "empty";
   const Eigen::Vector3d lo = points.colwise().minCoeff();
