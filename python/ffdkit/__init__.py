@@ -4,7 +4,8 @@ Submodules mirror the C++ namespaces (docs/python.md):
 
 - ``ffdkit.ffd``      lattices, embedding, deformation, pipelines, direct manipulation
 - ``ffdkit.widgets``  the headless widget model (lattice, cell and affine widgets, bindings)
-- ``ffdkit.scenes``   scene and widget files, the scene deformer, mesh files, generators
+- ``ffdkit.scenes``   scenes (objects, lattices, keyframes), scene and widget files, the scene
+                      deformer, mesh files, generators
 - ``ffdkit.pygem``    PyGeM's ``FFD`` class on ffdkit's engine
 
 Points are numpy float64 arrays of shape (N, 3). Errors are ``ffdkit.Error`` subclasses carrying
@@ -13,12 +14,13 @@ the C++ messages.
 
 import sys as _sys
 
-from ._ffdkit import (Cancelled, Error, GeneratorError, LatticeError, MeshIoError, SceneFileError,
-                      WidgetError, WidgetFileError, __version__, ffd, scenes, widgets)
+from ._ffdkit import (AnimationError, Cancelled, Error, GeneratorError, LatticeError, MeshIoError,
+                      SceneFileError, WidgetError, WidgetFileError, __version__, ffd, scenes, widgets)
 
 # `import ffdkit.ffd` and `from ffdkit.ffd import X` find the extension's submodules.
 for _module in (ffd, widgets, scenes):
     _sys.modules[__name__ + "." + _module.__name__.rsplit(".", 1)[-1]] = _module
 
 __all__ = ["ffd", "widgets", "scenes", "Error", "LatticeError", "Cancelled", "WidgetError",
-           "WidgetFileError", "SceneFileError", "MeshIoError", "GeneratorError", "__version__"]
+           "WidgetFileError", "SceneFileError", "MeshIoError", "GeneratorError", "AnimationError",
+           "__version__"]

@@ -10,5 +10,9 @@ namespace py = pybind11;
 void bindFfd(py::module_& module);
 void bindWidgets(py::module_& module);
 void bindScenes(py::module_& module);
+/// Parts of ffdkit.scenes bound in animation_bindings.cpp, called by bindScenes: the keyframe
+/// enums (before Scene), then Scene's object, lattice and animation editing (after Scene).
+void bindAnimationTypes(py::module_& module);
+void bindSceneEditing(py::module_& module);
 
 }  // namespace ffdkit::python

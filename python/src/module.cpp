@@ -9,6 +9,7 @@
 #include "bindings.h"
 #include "ffdkit/ffd/cancelled.h"
 #include "ffdkit/ffd/lattice_error.h"
+#include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/generator.h"
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene_file.h"
@@ -31,6 +32,7 @@ struct ErrorClasses {
   PyObject* sceneFile = nullptr;
   PyObject* meshIo = nullptr;
   PyObject* generator = nullptr;
+  PyObject* animation = nullptr;
 };
 ErrorClasses errors;
 
@@ -66,6 +68,8 @@ PYBIND11_MODULE(_ffdkit, module) {
                            "A mesh or point file that cannot be read or written.");
   errors.generator = addError(module, "GeneratorError", py::make_tuple(base, valueError),
                               "A generator that cannot run with the given parameters.");
+  errors.animation = addError(module, "AnimationError", py::make_tuple(base, valueError),
+                              "A key or animation that cannot be set or evaluated (scenes::AnimationError).");
 
   py::register_exception_translator([](std::exception_ptr pointer) {
     if (!pointer) return;
@@ -90,6 +94,8 @@ PYBIND11_MODULE(_ffdkit, module) {
       PyErr_SetString(errors.meshIo, e.what());
     } catch (const scenes::GeneratorError& e) {
       PyErr_SetString(errors.generator, e.what());
+    } catch (const scenes::AnimationError& e) {
+      PyErr_SetString(errors.animation, e.what());
     }
   });
 

@@ -214,7 +214,9 @@ void bindSceneDocuments(py::module_& m) {
 void bindScenes(py::module_& module) {
   bindMeshes(module);
   bindGenerators(module);
+  bindAnimationTypes(module);
   bindSceneDocuments(module);
+  bindSceneEditing(module);
 }
 
 }  // namespace ffdkit::python
