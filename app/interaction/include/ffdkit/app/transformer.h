@@ -64,9 +64,11 @@ class TransformerDrag {
   TransformerHandle handle() const { return handle_; }
   /// The last motion's scalar: distance (world units), angle (rad) or factor.
   double value() const { return value_; }
+  /// The world motion of this handle for a value (distance, rad or factor): a typed or snapped
+  /// value instead of the pointer's.
+  Eigen::Affine3d motionFor(double value) const;
 
  private:
-  Eigen::Affine3d motionFor(double value) const;
   std::optional<double> axisParameter(const widgets::Ray& ray) const;
   std::optional<double> planeAngle(const widgets::Ray& ray) const;
 

@@ -23,6 +23,7 @@ struct ViewHighlights {
   std::vector<widgets::WidgetId> selected;
   std::vector<widgets::WidgetId> visited;  ///< widgets the active gesture moves (spec §5)
   std::optional<LatticePointRef> point;    ///< a picked lattice point
+  std::vector<LatticePointRef> selectedPoints;  ///< a lattice's edit mode: its selected points
   std::optional<Transformer> transformer;  ///< the manipulator of the selection, if shown
   std::optional<TransformerHandle> transformerHandle;  ///< its hovered or dragged handle
   std::vector<Eigen::Vector3d> pins;  ///< pinned object points (direct manipulation), where they are drawn

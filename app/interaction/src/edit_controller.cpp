@@ -1,0 +1,485 @@
+#include "ffdkit/app/edit_controller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+
+#include "ffdkit/scenes/document_delta.h"
+
+namespace ffdkit::app {
+
+using widgets::WidgetId;
+using widgets::WidgetType;
+
+namespace {
+
+/// The motion `m` (made about `pivot`) made about `centre` instead: the same linear part, and
+/// the pivot's own displacement (Blender's individual origins).
+Eigen::Affine3d aboutCentre(const Eigen::Affine3d& m, const Eigen::Vector3d& pivot, const Eigen::Vector3d& centre) {
+  Eigen::Affine3d out = Eigen::Affine3d::Identity();
+  out.linear() = m.linear();
+  out.translation() = centre - m.linear() * centre + (m * pivot - pivot);
+  return out;
+}
+
+const char* verb(TransformMode mode) {
+  return mode == TransformMode::Move ? "Move" : mode == TransformMode::Rotate ? "Turn" : "Size";
+}
+
+}  // namespace
+
+EditController::EditController(scenes::Scene& scene, scenes::SceneDeformer& deformer, scenes::CommandStack& commands,
+                               InteractionController& widgets)
+    : scene_(scene), deformer_(deformer), commands_(commands), widgets_(widgets) {}
+
+// ---- edit mode ---------------------------------------------------------------------------
+
+void EditController::enter(WidgetId lattice) {
+  if (!scene_.widgets.contains(lattice) || scene_.widgets.type(lattice) != WidgetType::Lattice)
+    throw std::invalid_argument("select a lattice to edit its points");
+  cancel();
+  selection_.emplace(lattice, scene_.widgets.counts(lattice));
+  hoveredHandle_.reset();
+  notify();
+}
+
+void EditController::exit() {
+  if (!editing()) return;
+  cancel();
+  selection_.reset();
+  hoveredHandle_.reset();
+  notify();
+}
+
+WidgetId EditController::lattice() const {
+  if (!selection_) throw std::logic_error("not in a lattice's edit mode");
+  return selection_->lattice();
+}
+
+const PointSelection& EditController::points() const {
+  if (!selection_) throw std::logic_error("not in a lattice's edit mode");
+  return *selection_;
+}
+
+Eigen::MatrixX3d EditController::worldPoints() const { return scene_.widgets.worldControlPoints(lattice()); }
+
+std::optional<Eigen::Index> EditController::pointUnder(const widgets::Ray& ray, double tolerance) const {
+  if (!editing()) return std::nullopt;
+  const Eigen::Vector3d dir = ray.direction.normalized();
+  const Eigen::MatrixX3d points = worldPoints();
+  std::optional<Eigen::Index> best;
+  double bestT = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const Eigen::Vector3d v = points.row(i).transpose() - ray.origin;
+    const double t = v.dot(dir);
+    if (t < 0.0 || t >= bestT || (v - t * dir).norm() > tolerance) continue;
+    bestT = t;
+    best = i;
+  }
+  return best;
+}
+
+bool EditController::click(const widgets::Ray& ray, double tolerance, SelectMode mode) {
+  const auto hit = pointUnder(ray, tolerance);
+  if (!hit) return false;
+  selection_->pick(*hit, mode);
+  notify();
+  return true;
+}
+
+void EditController::pickMany(const std::vector<Eigen::Index>& indices, SelectMode mode) {
+  if (!selection_) throw std::logic_error("not in a lattice's edit mode");
+  selection_->pickMany(indices, mode);
+  notify();
+}
+
+void EditController::selectAll() {
+  if (!selection_) return;
+  selection_->selectAll();
+  notify();
+}
+
+void EditController::selectNone() {
+  if (!selection_) return;
+  selection_->selectNone();
+  notify();
+}
+
+void EditController::invert() {
+  if (!selection_) return;
+  selection_->invert();
+  notify();
+}
+
+void EditController::selectLinked(int axis, bool plane) {
+  if (!selection_) return;
+  selection_->selectLinked(axis, plane);
+  notify();
+}
+
+// ---- transforms --------------------------------------------------------------------------
+
+void EditController::setPivot(PivotChoice pivot) {
+  pivot_ = pivot;
+  notify();
+}
+
+std::vector<WidgetId> EditController::movableWidgets() const {
+  const auto& m = scene_.widgets;
+  const std::vector<WidgetId>& selected = widgets_.selection();
+  // An item on a selected lattice (or below one in the tree) moves with that lattice's frame:
+  // moving it again would move it twice.
+  auto carried = [&](WidgetId id) {
+    std::optional<WidgetId> lattice;
+    if (m.type(id) == WidgetType::Lattice) lattice = m.parentLattice(id);
+    else if (m.type(id) == WidgetType::Cell || m.attachedCell(id)) lattice = m.latticeOf(id);
+    for (; lattice; lattice = m.parentLattice(*lattice))
+      if (std::find(selected.begin(), selected.end(), *lattice) != selected.end()) return true;
+    return false;
+  };
+  std::vector<WidgetId> out;
+  for (WidgetId id : selected) {
+    if (!m.contains(id)) continue;
+    if (m.type(id) == WidgetType::Lattice && m.parentCell(id)) continue;
+    if (carried(id)) continue;
+    out.push_back(id);
+  }
+  return out;
+}
+
+std::optional<std::string> EditController::refusal() const {
+  if (editing()) {
+    if (selection_->empty()) return std::string("select points first (click, Shift+click, drag a box, A for all)");
+    return std::nullopt;
+  }
+  const auto& m = scene_.widgets;
+  for (WidgetId id : widgets_.selection())
+    if (m.contains(id) && m.type(id) == WidgetType::Lattice && m.parentCell(id))
+      return "'" + m.name(id) + "' is a child lattice: its frame follows its parent cell";
+  if (movableWidgets().size() < 2)
+    return std::string("select two or more widgets (Ctrl+click), or press Tab to edit a lattice's points");
+  return std::nullopt;
+}
+
+std::vector<EditController::Target> EditController::targets() const {
+  std::vector<Target> out;
+  if (refusal()) return out;
+  const auto& m = scene_.widgets;
+  // Points of one lattice are one target (cells that share points move them once).
+  std::map<WidgetId, std::size_t> pointTarget;
+  auto addPoints = [&](WidgetId lattice, const std::vector<Eigen::Index>& indices,
+                       const std::optional<Eigen::Vector3d>& centre) {
+    auto [it, added] = pointTarget.emplace(lattice, out.size());
+    if (added) {
+      Target t;
+      t.kind = Target::Kind::Points;
+      t.id = lattice;
+      t.startPoints = m.controlPoints(lattice);
+      out.push_back(std::move(t));
+    }
+    Target& t = out[it->second];
+    const Eigen::MatrixX3d world = m.worldControlPoints(lattice);
+    for (Eigen::Index i : indices) {
+      if (std::find(t.indices.begin(), t.indices.end(), i) != t.indices.end()) continue;
+      t.indices.push_back(i);
+      t.centres.push_back(centre.value_or(Eigen::Vector3d(world.row(i).transpose())));
+    }
+  };
+  if (editing()) {
+    addPoints(selection_->lattice(), selection_->indices(), std::nullopt);
+    const Eigen::MatrixX3d world = worldPoints();
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (Eigen::Index i : selection_->indices()) sum += world.row(i).transpose();
+    out.front().centre = sum / static_cast<double>(selection_->count());
+    if (selection_->active()) out.front().activeCentre = world.row(*selection_->active()).transpose();
+    return out;
+  }
+  for (WidgetId id : movableWidgets()) {
+    switch (m.type(id)) {
+      case WidgetType::Affine: {
+        Target t;
+        t.kind = Target::Kind::Placement;
+        t.id = id;
+        t.start = m.placement(id);
+        t.base = m.placementBase(id);
+        t.centre = m.affineFrame(id).frame.translation();
+        out.push_back(std::move(t));
+        break;
+      }
+      case WidgetType::Lattice: {
+        Target t;
+        t.kind = Target::Kind::Frame;
+        t.id = id;
+        t.start = m.latticeFrame(id);
+        t.centre = m.worldRestPoints(id).colwise().mean().transpose();
+        out.push_back(std::move(t));
+        break;
+      }
+      case WidgetType::Cell: {
+        const Eigen::Vector3d centre = m.cellWorldPoints(id).colwise().mean().transpose();
+        addPoints(m.latticeOf(id), m.cellIndices(id), centre);
+        out[pointTarget[m.latticeOf(id)]].centre = centre;
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+std::optional<Eigen::Vector3d> EditController::pivotPoint() const {
+  if (live_) return live_->pivot;
+  const std::vector<Target> all = targets();
+  if (all.empty()) return std::nullopt;
+  if (editing()) {
+    const Target& t = all.front();
+    return pivot_ == PivotChoice::Active && t.activeCentre ? *t.activeCentre : t.centre;
+  }
+  if (pivot_ == PivotChoice::Active) {
+    // The last widget picked: the end of the widget selection.
+    const WidgetId last = movableWidgets().back();
+    const auto& m = scene_.widgets;
+    switch (m.type(last)) {
+      case WidgetType::Affine: return m.affineFrame(last).frame.translation();
+      case WidgetType::Lattice: return m.worldRestPoints(last).colwise().mean().transpose();
+      case WidgetType::Cell: return m.cellWorldPoints(last).colwise().mean().transpose();
+    }
+  }
+  // Median: the mean of the items' centres (each cell and widget counts once).
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int n = 0;
+  const auto& m = scene_.widgets;
+  for (WidgetId id : movableWidgets()) {
+    switch (m.type(id)) {
+      case WidgetType::Affine: sum += m.affineFrame(id).frame.translation(); break;
+      case WidgetType::Lattice: sum += m.worldRestPoints(id).colwise().mean().transpose(); break;
+      case WidgetType::Cell: sum += m.cellWorldPoints(id).colwise().mean().transpose(); break;
+    }
+    ++n;
+  }
+  return sum / n;
+}
+
+std::optional<Transformer> EditController::transformer() const {
+  if (live_ && live_->handle) return live_->transformer;
+  const auto pivot = pivotPoint();
+  if (!pivot) return std::nullopt;
+  Transformer t;
+  t.frame.translation() = *pivot;
+  t.uniformSize = false;
+  // Sized to the lattice in the edit mode, to the spread of the items otherwise.
+  const auto& m = scene_.widgets;
+  Eigen::AlignedBox3d box;
+  if (editing()) {
+    const Eigen::MatrixX3d rest = m.worldRestPoints(lattice());
+    for (Eigen::Index i = 0; i < rest.rows(); ++i) box.extend(Eigen::Vector3d(rest.row(i).transpose()));
+  } else {
+    for (const Target& target : targets()) {
+      box.extend(target.centre);
+      for (const auto& c : target.centres) box.extend(c);
+    }
+  }
+  t.size = std::max(0.25 * box.diagonal().norm(), 0.25);
+  return t;
+}
+
+bool EditController::hover(const widgets::Ray& ray, double tolerance) {
+  if (live_) return false;
+  std::optional<TransformerHandle> handle;
+  if (const auto t = transformer(); t && !pointUnder(ray, tolerance)) handle = pickTransformer(*t, ray, tolerance);
+  if (handle == hoveredHandle_) return false;
+  hoveredHandle_ = handle;
+  notify();
+  return true;
+}
+
+void EditController::startLive(std::vector<Target> all, const std::string& verbText) {
+  Live live;
+  live.before = scene_.widgets.captureState();
+  live.verb = verbText;
+  std::size_t points = 0;
+  for (const Target& t : all) points += t.indices.size();
+  if (editing()) {
+    live.what = std::to_string(points) + (points == 1 ? " point of " : " points of ") + scene_.widgets.name(lattice());
+  } else {
+    live.what = std::to_string(movableWidgets().size()) + " widgets";
+  }
+  live.pivot = *pivotPoint();
+  live.targets = std::move(all);
+  live_ = std::move(live);
+}
+
+bool EditController::pressHandle(const widgets::Ray& ray, double tolerance) {
+  if (live_) return false;
+  const auto t = transformer();
+  if (!t) return false;
+  const auto handle = pickTransformer(*t, ray, tolerance);
+  if (!handle) return false;
+  const int group = static_cast<int>(*handle) / 3;
+  startLive(targets(), group == 0 ? "Move" : group == 1 ? "Turn" : "Size");
+  live_->handle.emplace(*t, *handle, ray);
+  live_->transformer = *t;
+  hoveredHandle_ = handle;
+  notify();
+  return true;
+}
+
+void EditController::beginModal(TransformMode mode, const widgets::Ray& ray, const Eigen::Vector3d& viewDirection) {
+  if (live_) cancel();
+  if (const auto why = refusal()) throw std::invalid_argument(*why);
+  if (editing() && pivot_ == PivotChoice::Individual && mode != TransformMode::Move)
+    throw std::invalid_argument(std::string(mode == TransformMode::Rotate ? "turning" : "sizing") +
+                                " points about their individual origins leaves them in place: choose the median "
+                                "or the active point as pivot");
+  startLive(targets(), verb(mode));
+  modal_.emplace(mode, live_->pivot, ray, viewDirection);
+  notify();
+}
+
+void EditController::update(const widgets::Ray& ray, bool snap) {
+  if (!live_) return;
+  if (modal_) {
+    apply(modal_->motion(ray, snap));
+    return;
+  }
+  TransformerDrag& drag = *live_->handle;
+  Eigen::Affine3d motion = drag.motion(ray);
+  if (snap) {
+    const int group = static_cast<int>(drag.handle()) / 3;
+    const SnapSteps steps;
+    const double step = group == 0 ? steps.distance : group == 1 ? steps.degrees * std::numbers::pi / 180.0 : steps.factor;
+    motion = drag.motionFor(std::max(group == 2 ? step : -std::numeric_limits<double>::infinity(),
+                                     std::round(drag.value() / step) * step));
+  }
+  apply(motion);
+}
+
+void EditController::apply(const Eigen::Affine3d& motion) {
+  auto& m = scene_.widgets;
+  const Eigen::Vector3d pivot = live_->pivot;
+  const bool individual = pivot_ == PivotChoice::Individual;
+  std::optional<WidgetId> active;
+  for (const Target& t : live_->targets) {
+    switch (t.kind) {
+      case Target::Kind::Points: {
+        const Eigen::Affine3d frame = m.latticeFrame(t.id);
+        const Eigen::Affine3d toLocal = frame.inverse();
+        Eigen::MatrixX3d points = t.startPoints;
+        for (std::size_t n = 0; n < t.indices.size(); ++n) {
+          const Eigen::Index i = t.indices[n];
+          const Eigen::Vector3d world = frame * Eigen::Vector3d(t.startPoints.row(i).transpose());
+          const Eigen::Affine3d own = individual ? aboutCentre(motion, pivot, t.centres[n]) : motion;
+          points.row(i) = (toLocal * (own * world)).transpose();
+        }
+        m.setControlPoints(t.id, points);
+        active = t.id;
+        break;
+      }
+      case Target::Kind::Frame:
+        m.setLatticeFrame(t.id, (individual ? aboutCentre(motion, pivot, t.centre) : motion) * t.start);
+        break;
+      case Target::Kind::Placement: {
+        // F' = M * F with F = base * placement (WidgetModel::placementBase).
+        const Eigen::Affine3d own = individual ? aboutCentre(motion, pivot, t.centre) : motion;
+        m.setPlacement(t.id, t.base.inverse() * own * t.base * t.start);
+        break;
+      }
+    }
+  }
+  deformer_.update(scene_, live_->targets.size() == 1 ? active : std::nullopt);
+  notify();
+}
+
+void EditController::confirm() {
+  if (!live_) return;
+  Live live = std::move(*live_);
+  live_.reset();
+  modal_.reset();
+  auto& m = scene_.widgets;
+  auto delta = std::make_shared<const scenes::StateDelta>(scenes::stateDelta(live.before, m.captureState()));
+  // Placements are not part of the model's state: the command holds those that changed.
+  struct Placed {
+    WidgetId id;
+    Eigen::Affine3d before, after;
+  };
+  auto placed = std::make_shared<std::vector<Placed>>();
+  for (const Target& t : live.targets)
+    if (t.kind == Target::Kind::Placement && m.placement(t.id).matrix() != t.start.matrix())
+      placed->push_back({t.id, t.start, m.placement(t.id)});
+  deformer_.finishGesture(scene_);
+  if (delta->empty() && placed->empty()) {
+    notify();
+    return;
+  }
+  auto restore = [this, delta, placed](bool forward) {
+    scene_.widgets.restoreState(forward ? delta->after : delta->before);
+    for (const Placed& p : *placed) scene_.widgets.setPlacement(p.id, forward ? p.after : p.before);
+    widgets_.refresh();
+    notify();
+  };
+  commands_.push(scenes::Command{live.verb + " " + live.what, [restore] { restore(false); }, [restore] { restore(true); },
+                                 "", delta->bytes() + placed->size() * sizeof(Placed)});
+  notify();
+}
+
+void EditController::cancel() {
+  if (!live_) return;
+  Live live = std::move(*live_);
+  live_.reset();
+  modal_.reset();
+  scene_.widgets.restoreState(live.before);
+  for (const Target& t : live.targets)
+    if (t.kind == Target::Kind::Placement) scene_.widgets.setPlacement(t.id, t.start);
+  widgets_.refresh();
+  notify();
+}
+
+std::string EditController::describe() const {
+  if (!live_) return "";
+  if (modal_) return modal_->describe();
+  const TransformerDrag& drag = *live_->handle;
+  const int group = static_cast<int>(drag.handle()) / 3;
+  char text[96];
+  if (group == 0) std::snprintf(text, sizeof text, "%s %.3f", transformerHandleName(drag.handle()), drag.value());
+  if (group == 1)
+    std::snprintf(text, sizeof text, "%s %.1f°", transformerHandleName(drag.handle()), drag.value() * 180.0 / std::numbers::pi);
+  if (group == 2) std::snprintf(text, sizeof text, "%s x%.3f", transformerHandleName(drag.handle()), drag.value());
+  return text;
+}
+
+// ---- make cell ---------------------------------------------------------------------------
+
+CellFromSelection EditController::cellFor(std::optional<widgets::CellKind> kind) const {
+  const PointSelection& s = points();
+  if (kind) return cellFromSelection(s.counts(), s.indices(), *kind);
+  CellFromSelection out;
+  out.spec = classifySelection(s.counts(), s.indices());
+  if (!out.spec)
+    out.why = s.empty() ? "no point is selected"
+                        : std::to_string(s.count()) + " points that are no point, edge, face, slab or box";
+  return out;
+}
+
+WidgetId EditController::makeCell(const widgets::CellSpec& spec) { return widgets_.addCell(lattice(), spec); }
+
+ViewHighlights EditController::highlights(ViewHighlights h) const {
+  if (editing() && scene_.widgets.contains(lattice()))
+    for (Eigen::Index i : selection_->indices()) h.selectedPoints.push_back({lattice(), i});
+  // In the edit mode the points' transformer replaces the lattice's; outside, a group's shows
+  // where the controller has none (two or more widgets selected).
+  if (const auto t = transformer(); t || editing()) {
+    h.transformer = t;
+    h.transformerHandle = live_ && live_->handle ? std::optional(live_->handle->handle()) : hoveredHandle_;
+    if (!t) h.transformerHandle.reset();
+  }
+  return h;
+}
+
+void EditController::notify() {
+  if (onChanged) onChanged();
+}
+
+}  // namespace ffdkit::app
