@@ -285,10 +285,10 @@ class MainWindowTest : public QObject {
     QCOMPARE(created.size(), std::size_t(1));
     const auto& m = w.scene().widgets;
     const WidgetId cellA = *m.attachedCell(created[0]);
-    // A second point cell, made by adding a scale widget on the bottom-centre point.
+    // A second point cell, made by adding a translate widget on the bottom-centre point.
     const WidgetId lattice = m.latticeOf(cellA);
     click(w, toWidget(w, m.worldControlPoints(lattice).row(flat(1, 1, 0))));
-    action(w, "actionAddScale")->trigger();
+    action(w, "actionAddTranslate")->trigger();
     const WidgetId cellB = *m.attachedCell(m.widgets(widgets::WidgetType::Affine).back());
     clickRow(w, QString::fromStdString(m.name(cellA)));
     clickRow(w, QString::fromStdString(m.name(cellB)), Qt::ControlModifier);

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "ffdkit/app/cell_from_selection.h"
 #include "ffdkit/ffd/cylindrical_lattice.h"
 #include "ffdkit/ffd/direct_manipulation.h"
 #include "ffdkit/ffd/embedding.h"
@@ -532,7 +533,18 @@ WidgetId InteractionController::newLattice(const NewLatticeOptions& options) {
   });
 }
 
+WidgetId InteractionController::addCell(WidgetId lattice, const widgets::CellSpec& spec) {
+  return edit("Make " + std::string(widgets::cellKindName(spec.kind)) + " cell", [&] {
+    const WidgetId id = scene_.widgets.addCell(lattice, spec);
+    selection_ = {id};
+    point_.reset();
+    return id;
+  });
+}
+
 WidgetId InteractionController::addAffine(WidgetId cell, widgets::AffineKind kind) {
+  if (scene_.widgets.contains(cell) && scene_.widgets.type(cell) == WidgetType::Cell)
+    if (const auto why = affineRefusal(kind, scene_.widgets.cellSpec(cell).kind)) throw std::invalid_argument(*why);
   return edit("Add " + std::string(widgets::affineKindName(kind)) + " widget", [&] {
     const WidgetId id = scene_.widgets.addAffine(cell, kind);
     selection_ = {id};
@@ -541,6 +553,7 @@ WidgetId InteractionController::addAffine(WidgetId cell, widgets::AffineKind kin
 }
 
 WidgetId InteractionController::addAffineAtPoint(const LatticePointRef& point, widgets::AffineKind kind) {
+  if (const auto why = affineRefusal(kind, widgets::CellKind::Point)) throw std::invalid_argument(*why);
   return edit("Add " + std::string(widgets::affineKindName(kind)) + " widget", [&] {
     auto& m = scene_.widgets;
     std::optional<WidgetId> cell;

@@ -126,8 +126,12 @@ class InteractionController {
 
   // ---- operations (each one undoable command; they throw the model's errors unchanged) ----
   widgets::WidgetId newLattice(const NewLatticeOptions& options);
-  /// A translate / rotate / scale widget on `cell`.
+  /// A translate / rotate / scale widget on `cell`. @throws std::invalid_argument for a rotate or
+  /// scale widget on a point cell, which would do nothing (affineRefusal).
   widgets::WidgetId addAffine(widgets::WidgetId cell, widgets::AffineKind kind);
+  /// A cell of `lattice` (made from selected points, EditController::makeCell); it becomes the
+  /// selection.
+  widgets::WidgetId addCell(widgets::WidgetId lattice, const widgets::CellSpec& spec);
   /// A widget on the point cell at `point` (made if the point has none yet).
   widgets::WidgetId addAffineAtPoint(const LatticePointRef& point, widgets::AffineKind kind);
   /// Binds two widgets; the kind follows from their types (a cell and a lattice: hierarchy).
