@@ -1,0 +1,229 @@
+// The lattice edit mode and group transforms, headless (app/interaction/edit_controller.h):
+// semantic steps (pick, box, G / R / S with constraints and typed values, handles, Make Cell,
+// undo) against control points and frames computed by hand.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "ffdkit/app/edit_controller.h"
+#include "ffdkit/scenes/scene_deformer.h"
+
+namespace ffdkit::app {
+namespace {
+
+using std::numbers::pi;
+using widgets::CellKind;
+using widgets::WidgetId;
+
+struct Document {
+  scenes::Scene scene;
+  scenes::SceneDeformer deformer;
+  scenes::CommandStack commands;
+  InteractionController controller{scene, deformer, commands};
+  EditController edit{scene, deformer, commands, controller};
+};
+
+Eigen::Index f(int i, int j, int k) { return i + 3 * (j + 3 * k); }
+
+// Looking down -z at the point p.
+widgets::Ray downAt(const Eigen::Vector3d& p) {
+  widgets::Ray r;
+  r.origin = p + Eigen::Vector3d(0, 0, 10);
+  r.direction = {0, 0, -1};
+  return r;
+}
+const Eigen::Vector3d kView(0, 0, -1);
+// From above and a little to the front (+y), through p: the turn rings are not seen edge-on.
+widgets::Ray tiltedAt(const Eigen::Vector3d& p) {
+  widgets::Ray r;
+  r.origin = p + Eigen::Vector3d(0, 3, 10);
+  r.direction = -Eigen::Vector3d(0, 3, 10);
+  return r;
+}
+
+TEST(EditController, PickBoxAndTheSelectionCount) {
+  Document d;
+  const WidgetId lattice = d.controller.newLattice({});
+  d.edit.enter(lattice);
+  // Seen from above, (1,1,k) for k = 0..2 lie on one ray: the nearest (k = 2) is picked.
+  EXPECT_TRUE(d.edit.click(downAt({0.5, 0.5, 0}), 0.05, SelectMode::Replace));
+  EXPECT_EQ(d.edit.points().indices(), std::vector<Eigen::Index>{f(1, 1, 2)});
+  EXPECT_FALSE(d.edit.click(downAt({0.25, 0.25, 0}), 0.05, SelectMode::Replace));  // a miss changes nothing
+  EXPECT_EQ(d.edit.points().count(), 1);
+  d.edit.selectAll();
+  EXPECT_EQ(d.edit.points().count(), 27);
+  d.edit.invert();
+  EXPECT_TRUE(d.edit.points().empty());
+  EXPECT_EQ(d.edit.refusal(), "select points first (click, Shift+click, drag a box, A for all)");
+  EXPECT_THROW(d.edit.enter(WidgetId(999)), std::invalid_argument);
+}
+
+TEST(EditController, GAlongZWithATypedValueMovesExactlyAndIsOneUndoStep) {
+  Document d;
+  d.controller.addPrimitive({});
+  const WidgetId lattice = d.controller.newLattice({});
+  d.controller.attachLattice(lattice, "sphere1");
+  const std::size_t steps = d.commands.position();
+  const Eigen::MatrixX3d start = d.scene.widgets.controlPoints(lattice);
+  const Eigen::MatrixX3d sphereStart = d.deformer.points("sphere1");
+  d.edit.enter(lattice);
+  d.edit.pickMany({f(0, 0, 2), f(1, 0, 2)}, SelectMode::Replace);
+  d.edit.beginModal(TransformMode::Move, downAt({0.3, 0.3, 1}), kView);
+  d.edit.update(downAt({0.6, 0.1, 1}), false);  // the pointer moves the points live ...
+  EXPECT_GT((d.scene.widgets.controlPoints(lattice) - start).norm(), 0.1);
+  EXPECT_GT((d.deformer.points("sphere1") - sphereStart).norm(), 0.0);  // ... and the sphere with them
+  d.edit.modal()->setConstraint({2, false});
+  for (char c : std::string("0.5")) d.edit.modal()->typed().type(c);
+  d.edit.update(downAt({0.6, 0.1, 1}), false);
+  d.edit.confirm();
+  // Fitted frame: local = frame^-1 (world + 0.5 z); compare in the world.
+  const Eigen::MatrixX3d world0 = (d.scene.widgets.latticeFrame(lattice) * start.transpose()).transpose();
+  Eigen::MatrixX3d expected = world0;
+  expected(f(0, 0, 2), 2) += 0.5;
+  expected(f(1, 0, 2), 2) += 0.5;
+  EXPECT_LE((d.scene.widgets.worldControlPoints(lattice) - expected).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_EQ(d.commands.position(), steps + 1);
+  EXPECT_EQ(d.commands.undoDescription(), "Move 2 points of " + d.scene.widgets.name(lattice));
+  d.commands.undo();
+  EXPECT_EQ(d.scene.widgets.controlPoints(lattice), start);
+  EXPECT_LE((d.deformer.points("sphere1") - sphereStart).cwiseAbs().maxCoeff(), 1e-12);
+  d.commands.redo();
+  EXPECT_LE((d.scene.widgets.worldControlPoints(lattice) - expected).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(EditController, CancelPutsThePointsBackAndPushesNothing) {
+  Document d;
+  const WidgetId lattice = d.controller.newLattice({});
+  const std::size_t steps = d.commands.position();
+  d.edit.enter(lattice);
+  d.edit.selectAll();
+  d.edit.beginModal(TransformMode::Scale, downAt({1, 1, 0}), kView);
+  d.edit.update(downAt({2, 2, 0}), false);
+  d.edit.cancel();
+  EXPECT_EQ(d.scene.widgets.controlPoints(lattice), d.scene.widgets.restPoints(lattice));
+  EXPECT_EQ(d.commands.position(), steps);
+}
+
+TEST(EditController, RotateAboutTheActivePointAndIndividualOriginsRefused) {
+  Document d;
+  const WidgetId lattice = d.controller.newLattice({});
+  d.edit.enter(lattice);
+  d.edit.pickMany({f(0, 0, 0), f(2, 0, 0)}, SelectMode::Replace);
+  d.edit.setPivot(PivotChoice::Individual);
+  EXPECT_THROW(d.edit.beginModal(TransformMode::Rotate, downAt({0, 0, 0}), kView), std::invalid_argument);
+  d.edit.pickMany({}, SelectMode::Replace);
+  d.edit.click(downAt({0, 0, 0}), 0.05, SelectMode::Add);  // (0,0,2) is nearest: active
+  d.edit.click(downAt({1, 0, 0}), 0.05, SelectMode::Add);  // (2,0,2): active now
+  d.edit.setPivot(PivotChoice::Active);
+  EXPECT_TRUE(d.edit.pivotPoint()->isApprox(Eigen::Vector3d(1, 0, 1)));
+  d.edit.beginModal(TransformMode::Rotate, downAt({0, 0, 0}), kView);
+  d.edit.modal()->setConstraint({2, false});
+  d.edit.modal()->typed().type('9');
+  d.edit.modal()->typed().type('0');
+  d.edit.update(downAt({0, 0, 0}), false);
+  d.edit.confirm();
+  // (0,0,1) turned 90 degrees about +z through (1,0,1): (1,-1,1); the active point stays.
+  const Eigen::MatrixX3d p = d.scene.widgets.worldControlPoints(lattice);
+  EXPECT_LE((p.row(f(0, 0, 2)) - Eigen::RowVector3d(1, -1, 1)).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_LE((p.row(f(2, 0, 2)) - Eigen::RowVector3d(1, 0, 1)).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_EQ(d.commands.undoDescription(), "Turn 2 points of " + d.scene.widgets.name(lattice));
+}
+
+TEST(EditController, TransformerHandleDragMovesTheSelectionWithSnapping) {
+  Document d;
+  const WidgetId lattice = d.controller.newLattice({});
+  d.edit.enter(lattice);
+  d.edit.pickMany({f(2, 2, 2)}, SelectMode::Replace);
+  const auto t = d.edit.transformer();
+  ASSERT_TRUE(t.has_value());
+  EXPECT_TRUE(t->frame.translation().isApprox(Eigen::Vector3d(1, 1, 1)));
+  // Grab the x arrow and pull it by 0.23: snapped to 0.2.
+  const Eigen::Vector3d grab = t->frame.translation() + 0.6 * t->size * Eigen::Vector3d::UnitX();
+  ASSERT_TRUE(d.edit.pressHandle(tiltedAt(grab), 0.02));
+  d.edit.update(tiltedAt(grab + Eigen::Vector3d(0.23, 0.1, 0)), /*snap=*/true);
+  d.edit.confirm();
+  EXPECT_LE((d.scene.widgets.worldControlPoints(lattice).row(f(2, 2, 2)) - Eigen::RowVector3d(1.2, 1, 1)).cwiseAbs().maxCoeff(),
+            1e-12);
+}
+
+TEST(EditController, MakeCellYieldsEachKindAndRefusesAMisfit) {
+  Document d;
+  const WidgetId lattice = d.controller.newLattice({});
+  d.edit.enter(lattice);
+  const auto& m = d.scene.widgets;
+  auto make = [&](std::vector<Eigen::Index> points, std::optional<CellKind> kind) -> std::optional<WidgetId> {
+    d.edit.pickMany(points, SelectMode::Replace);
+    const CellFromSelection cell = d.edit.cellFor(kind);
+    if (!cell.spec) return std::nullopt;
+    return d.edit.makeCell(*cell.spec);
+  };
+  EXPECT_EQ(m.cellSpec(*make({f(2, 2, 0)}, std::nullopt)), widgets::CellSpec::point(2, 2, 0));
+  EXPECT_EQ(m.cellSpec(*make({f(0, 2, 0), f(1, 2, 0)}, std::nullopt)), widgets::CellSpec::edge(0, 2, 0, 0));
+  const WidgetId face = *make({f(0, 0, 2), f(1, 0, 2), f(0, 1, 2), f(1, 1, 2)}, std::nullopt);
+  EXPECT_EQ(m.cellSpec(face), widgets::CellSpec::face(0, 0, 2, 2));
+  EXPECT_EQ(d.controller.selection(), std::vector{face});  // Add Translate / Rotate / Scale act on it
+  std::vector<Eigen::Index> plane, box;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) plane.push_back(f(i, j, 1));
+  EXPECT_EQ(m.cellSpec(*make(plane, std::nullopt)), widgets::CellSpec::slab(2, 1));
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) box.push_back(f(i, j, k));
+  EXPECT_EQ(m.cellSpec(*make(box, std::nullopt)), widgets::CellSpec::box(0, 0, 0));
+  EXPECT_EQ(m.cellSpec(*make({f(0, 0, 0), f(2, 2, 2)}, CellKind::Custom)).kind, CellKind::Custom);
+  EXPECT_FALSE(make({f(0, 0, 0), f(2, 2, 2)}, std::nullopt).has_value());
+  d.edit.pickMany({f(0, 0, 0), f(2, 2, 2)}, SelectMode::Replace);
+  EXPECT_EQ(d.edit.cellFor(CellKind::Edge).why,
+            "an edge cell is 2 neighbouring points along one axis; (0,0,0) and (2,2,2) differ by 2 along i, 2 along j, "
+            "2 along k");
+  // The face's rotate widget acts; a point cell's is refused with the reason.
+  EXPECT_NO_THROW(d.controller.addAffine(face, widgets::AffineKind::Rotate));
+  EXPECT_THROW(d.controller.addAffine(m.cellsOf(lattice).front(), widgets::AffineKind::Rotate), std::invalid_argument);
+  EXPECT_THROW(d.controller.addAffineAtPoint({lattice, 0}, widgets::AffineKind::Scale), std::invalid_argument);
+}
+
+TEST(EditController, AGroupOfWidgetsMovesAndTurnsAsOneUndoStep) {
+  Document d;
+  const WidgetId a = d.controller.newLattice({});
+  const WidgetId b = d.controller.newLattice({});
+  d.controller.setLatticeFrame(b, Eigen::Affine3d(Eigen::Translation3d(2, 0, 0)));
+  const WidgetId third = d.controller.newLattice({});
+  d.controller.setLatticeFrame(third, Eigen::Affine3d(Eigen::Translation3d(0, 3, 0)));
+  const WidgetId arrow = d.controller.addAffineAtPoint({third, f(1, 1, 2)}, widgets::AffineKind::Translate);
+  const auto& m = d.scene.widgets;
+  const Eigen::Affine3d frameA = m.latticeFrame(a), frameB = m.latticeFrame(b);
+  const Eigen::Vector3d arrowAt = m.affineFrame(arrow).frame.translation();
+  d.controller.setSelection({a, b, arrow});
+  EXPECT_FALSE(d.edit.refusal().has_value());
+  // Median pivot: the mean of the two lattice centres and the arrow.
+  const Eigen::Vector3d pivot = (Eigen::Vector3d(0.5, 0.5, 0.5) + Eigen::Vector3d(2.5, 0.5, 0.5) + arrowAt) / 3.0;
+  EXPECT_TRUE(d.edit.pivotPoint()->isApprox(pivot, 1e-14));
+  const std::size_t steps = d.commands.position();
+  d.edit.beginModal(TransformMode::Rotate, downAt(pivot), kView);
+  d.edit.modal()->setConstraint({2, false});
+  for (char c : std::string("30")) d.edit.modal()->typed().type(c);
+  d.edit.update(downAt(pivot), false);
+  d.edit.confirm();
+  EXPECT_EQ(d.commands.position(), steps + 1);
+  EXPECT_EQ(d.commands.undoDescription(), "Turn 3 widgets");
+  const Eigen::Affine3d turn = Eigen::Translation3d(pivot) * Eigen::AngleAxisd(pi / 6, Eigen::Vector3d::UnitZ()) *
+                               Eigen::Translation3d(-pivot);
+  EXPECT_TRUE(m.latticeFrame(a).matrix().isApprox((turn * frameA).matrix(), 1e-12));
+  EXPECT_TRUE(m.latticeFrame(b).matrix().isApprox((turn * frameB).matrix(), 1e-12));
+  EXPECT_TRUE(m.affineFrame(arrow).frame.translation().isApprox(turn * arrowAt, 1e-12));
+  d.commands.undo();
+  EXPECT_TRUE(m.latticeFrame(a).matrix().isApprox(frameA.matrix(), 1e-15));
+  EXPECT_TRUE(m.latticeFrame(b).matrix().isApprox(frameB.matrix(), 1e-15));
+  EXPECT_TRUE(m.affineFrame(arrow).frame.translation().isApprox(arrowAt, 1e-14));
+  // A widget on a selected lattice moves with it, not twice: {a, its widget} is one item.
+  const WidgetId onA = d.controller.addAffineAtPoint({a, f(1, 1, 2)}, widgets::AffineKind::Translate);
+  d.controller.setSelection({a, onA});
+  EXPECT_TRUE(d.edit.refusal().has_value());
+  // Fewer than two widgets: nothing to group.
+  d.controller.setSelection({a});
+  EXPECT_TRUE(d.edit.refusal().has_value());
+  EXPECT_FALSE(d.edit.transformer().has_value());
+}
+
+}  // namespace
+}  // namespace ffdkit::app
