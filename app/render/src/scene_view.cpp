@@ -78,6 +78,9 @@ struct SceneView::Impl {
   std::vector<WidgetActor> widgets;
   std::vector<vtkSmartPointer<vtkActor>> widgetActors;  // every widget actor, for removal
   vtkSmartPointer<vtkActor> pointMarker;                // the picked lattice point, moved by a transform
+  vtkSmartPointer<vtkActor> selectedPoints;             // the edit mode's selected points
+  std::vector<LatticePointRef> selectedShown;           // ... as drawn
+  std::uint64_t selectedRevision = 0;                   // of the model they were drawn for
   std::uint64_t widgetInstance = 0, widgetRevision = 0;  // of the model the widget actors show
   // Glyph shapes at size 1 by shape, kind and part placement: built once, shared by the actors.
   std::map<std::string, vtkSmartPointer<vtkPolyData>> glyphShapes;
@@ -164,6 +167,19 @@ struct SceneView::Impl {
                         model.type(highlights.point->lattice) == widgets::WidgetType::Lattice &&
                         highlights.point->index < model.controlPoints(highlights.point->lattice).rows();
     pointMarker->SetVisibility(marked);
+    // The edit mode's selection: its few points again when it or the model changed.
+    if (highlights.selectedPoints != selectedShown || selectedRevision != model.revision()) {
+      selectedShown = highlights.selectedPoints;
+      selectedRevision = model.revision();
+      Eigen::MatrixX3d points(static_cast<Eigen::Index>(selectedShown.size()), 3);
+      Eigen::Index row = 0;
+      for (const LatticePointRef& p : selectedShown)
+        if (model.contains(p.lattice) && model.type(p.lattice) == widgets::WidgetType::Lattice &&
+            p.index < model.controlPoints(p.lattice).rows())
+          points.row(row++) = (model.latticeFrame(p.lattice) * Eigen::Vector3d(model.controlPoints(p.lattice).row(p.index).transpose())).transpose();
+      vtkPolyDataMapper::SafeDownCast(selectedPoints->GetMapper())->SetInputData(pointsPolyData(points.topRows(row)));
+    }
+    selectedPoints->SetVisibility(!selectedShown.empty());
     if (marked) {
       const Eigen::Vector3d p =
           model.latticeFrame(highlights.point->lattice) *
@@ -436,6 +452,12 @@ struct SceneView::Impl {
     pointMarker->GetProperty()->SetPointSize(18.0);
     pointMarker->GetProperty()->SetRenderPointsAsSpheres(true);
     pointMarker->GetProperty()->SetLighting(false);
+    selectedPoints = addWidgetActor(pointsPolyData(Eigen::MatrixX3d(0, 3)), kSelected);
+    selectedPoints->GetProperty()->SetPointSize(13.0);
+    selectedPoints->GetProperty()->SetRenderPointsAsSpheres(true);
+    selectedPoints->GetProperty()->SetLighting(false);
+    selectedShown.clear();
+    selectedRevision = 0;
   }
 
   // Widget actors from the model when it changed; highlights always (no geometry).
