@@ -220,19 +220,36 @@ void InteractionController::drag(const widgets::Ray& ray) {
     return;
   }
   if (handleDrag_) {
-    const Eigen::Affine3d motion = handleDrag_->motion(ray);
-    if (handleStart_) {
-      // F' = M * F with F = base * placement (WidgetModel::placementBase).
-      scene_.widgets.setPlacement(handleTarget_, placementBase_.inverse() * motion * placementBase_ * placementStart_);
-      notify();  // a placement moves no points
-      return;
-    }
-    scene_.widgets.updateGesture(motion);
-    deformer_.update(scene_, dragLattice_);
-    notify();
+    applyHandleMotion(handleDrag_->motion(ray));
     return;
   }
   scene_.widgets.dragTo(ray);
+  deformer_.update(scene_, dragLattice_);
+  notify();
+}
+
+bool InteractionController::setDragValue(double value) {
+  if (!dragging_ || objectGrab_) return false;
+  if (handleDrag_) {
+    applyHandleMotion(handleDrag_->motionFor(value));
+    return true;
+  }
+  const auto widget = scene_.widgets.gestureWidget();
+  if (!widget || scene_.widgets.type(*widget) != WidgetType::Affine) return false;
+  scene_.widgets.updateGesture(value);
+  deformer_.update(scene_, dragLattice_);
+  notify();
+  return true;
+}
+
+void InteractionController::applyHandleMotion(const Eigen::Affine3d& motion) {
+  if (handleStart_) {
+    // F' = M * F with F = base * placement (WidgetModel::placementBase).
+    scene_.widgets.setPlacement(handleTarget_, placementBase_.inverse() * motion * placementBase_ * placementStart_);
+    notify();  // a placement moves no points
+    return;
+  }
+  scene_.widgets.updateGesture(motion);
   deformer_.update(scene_, dragLattice_);
   notify();
 }

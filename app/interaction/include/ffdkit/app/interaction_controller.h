@@ -65,6 +65,11 @@ class InteractionController {
   /// in the view plane; the application binds it to Alt+drag.
   PressResult press(const widgets::Ray& ray, double tolerance, bool extend = false, bool lattices = false);
   void drag(const widgets::Ray& ray);
+  /// A value typed during a drag (Blender: type `0.5` while dragging): an affine widget's glyph
+  /// drag gets that variation change (distance, rad or log factor), a transformer handle drag
+  /// that amount (distance, rad or factor), instead of the pointer's; release() confirms.
+  /// @return false when neither drag is active.
+  bool setDragValue(double value);
   void release();
 
   /// Direct manipulation (spec §10; Hsu, Hughes & Kaufman 1992): grabs the point of a deformed
@@ -208,6 +213,8 @@ class InteractionController {
   /// The nearest lattice control point within `tolerance` of the ray.
   std::optional<LatticePointRef> pickPoint(const widgets::Ray& ray, double tolerance) const;
   void beginHandleDrag(const Transformer& gizmo, TransformerHandle handle, const widgets::Ray& ray);
+  /// A handle drag's world motion applied: an affine widget's placement, else the lattice gesture.
+  void applyHandleMotion(const Eigen::Affine3d& motion);
   void notify();
 
   scenes::Scene& scene_;
