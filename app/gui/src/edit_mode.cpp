@@ -1,0 +1,449 @@
+#include "edit_mode.h"
+
+#include <QActionGroup>
+#include <QApplication>
+#include <QKeyEvent>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMouseEvent>
+#include <QSignalBlocker>
+#include <QStatusBar>
+
+#include <cmath>
+#include <numbers>
+
+namespace ffdkit::app {
+
+namespace {
+
+QString qs(const std::string& s) { return QString::fromStdString(s); }
+
+// The axis of an X / Y / Z key, or -1.
+int axisOfKey(int key) {
+  switch (key) {
+    case Qt::Key_X: return 0;
+    case Qt::Key_Y: return 1;
+    case Qt::Key_Z: return 2;
+    default: return -1;
+  }
+}
+
+// The character a key types into a value ("0.5", "-90", "0.1,0,0.2"), or 0.
+char typedChar(const QKeyEvent* e) {
+  const int key = e->key();
+  if (key >= Qt::Key_0 && key <= Qt::Key_9) return static_cast<char>('0' + (key - Qt::Key_0));
+  if (key == Qt::Key_Period) return '.';
+  if (key == Qt::Key_Minus) return '-';
+  if (key == Qt::Key_Comma) return ',';
+  return 0;
+}
+
+bool isModalKey(const QKeyEvent* e) {
+  const int key = e->key();
+  return typedChar(e) != 0 || axisOfKey(key) >= 0 || key == Qt::Key_Backspace || key == Qt::Key_Return ||
+         key == Qt::Key_Enter || key == Qt::Key_Escape;
+}
+
+}  // namespace
+
+EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
+    : QObject(parts.window), p_(std::move(parts)) {
+  using widgets::CellKind;
+  p_.edit->onChanged = [this] { changed(); };
+
+  editAction_ = addAction(widgetsMenu, tr("&Edit Lattice Points"), "actionEditMode", QKeySequence(Qt::Key_Tab), {});
+  editAction_->setCheckable(true);
+  editAction_->setToolTip(tr("Edit the selected lattice's points: select, move, turn, size, make cells (Tab)"));
+  connect(editAction_, &QAction::triggered, this, [this](bool on) { toggleEditMode(on); });
+  toolbar->addAction(editAction_);
+
+  // Make Cell: from the selected points (Widgets menu and the view's context menu).
+  cellMenu_ = widgetsMenu->addMenu(tr("Make &Cell"));
+  cellMenu_->setObjectName("menuMakeCell");
+  addAction(cellMenu_, tr("From Selection"), "actionMakeCell", QKeySequence(tr("Ctrl+M")), [this] { makeCell(std::nullopt); });
+  cellMenu_->addSeparator();
+  const std::pair<const char*, CellKind> kinds[] = {{"actionMakeCellPoint", CellKind::Point}, {"actionMakeCellEdge", CellKind::Edge},
+                                                    {"actionMakeCellFace", CellKind::Face},   {"actionMakeCellSlab", CellKind::Slab},
+                                                    {"actionMakeCellBox", CellKind::Box},     {"actionMakeCellCustom", CellKind::Custom}};
+  for (const auto& [name, kind] : kinds) {
+    const CellKind k = kind;
+    QString text = qs(std::string(widgets::cellKindName(kind)));
+    text[0] = text[0].toUpper();
+    addAction(cellMenu_, text, name, {}, [this, k] { makeCell(k); });
+  }
+
+  // Selection and transforms of the edit mode (keys on the view, as in Blender).
+  selectMenu_ = p_.window->menuBar()->addMenu(tr("&Select"));
+  selectMenu_->setObjectName("menuSelect");
+  auto needEditing = [this] {
+    if (!p_.edit->editing()) throw std::invalid_argument("press Tab to edit a lattice's points first");
+  };
+  addAction(selectMenu_, tr("&All"), "actionSelectAll", QKeySequence(Qt::Key_A), [this, needEditing] {
+    needEditing();
+    p_.edit->selectAll();
+  });
+  addAction(selectMenu_, tr("&None"), "actionSelectNone", QKeySequence(Qt::ALT | Qt::Key_A), [this, needEditing] {
+    needEditing();
+    p_.edit->selectNone();
+  });
+  addAction(selectMenu_, tr("&Invert"), "actionSelectInvert", QKeySequence(Qt::CTRL | Qt::Key_I), [this, needEditing] {
+    needEditing();
+    p_.edit->invert();
+  });
+  addAction(selectMenu_, tr("&Box Select"), "actionBoxSelect", QKeySequence(Qt::Key_B), [this, needEditing] {
+    needEditing();
+    boxArmed_ = true;
+    p_.status->say(tr("Box select: drag a rectangle (Shift adds, Ctrl removes)"));
+  });
+  QMenu* linked = selectMenu_->addMenu(tr("&Linked"));
+  for (int axis = 0; axis < 3; ++axis)
+    for (bool plane : {false, true}) {
+      const QString text = plane ? tr("Planes %1 = const").arg(QChar("ijk"[axis])) : tr("Rows along %1").arg(QChar("ijk"[axis]));
+      const std::string name = std::string(plane ? "actionSelectPlanes" : "actionSelectRows") + "ijk"[axis];
+      QAction* a = addAction(linked, text, "", {}, [this, needEditing, axis, plane] {
+        needEditing();
+        p_.edit->selectLinked(axis, plane);
+      });
+      a->setObjectName(QString::fromStdString(name));
+    }
+  selectMenu_->addSeparator();
+  addAction(selectMenu_, tr("&Move"), "actionMoveSelection", QKeySequence(Qt::Key_G), [this] { beginModal(TransformMode::Move); });
+  addAction(selectMenu_, tr("&Rotate"), "actionRotateSelection", QKeySequence(Qt::Key_R), [this] { beginModal(TransformMode::Rotate); });
+  addAction(selectMenu_, tr("&Scale"), "actionScaleSelection", QKeySequence(Qt::Key_S), [this] { beginModal(TransformMode::Scale); });
+  QMenu* pivot = selectMenu_->addMenu(tr("&Pivot"));
+  auto* pivots = new QActionGroup(this);
+  const std::tuple<const char*, QString, PivotChoice> choices[] = {
+      {"actionPivotMedian", tr("&Median Point"), PivotChoice::Median},
+      {"actionPivotActive", tr("&Active Point"), PivotChoice::Active},
+      {"actionPivotIndividual", tr("&Individual Origins"), PivotChoice::Individual}};
+  for (const auto& [name, text, choice] : choices) {
+    const PivotChoice c = choice;
+    QAction* a = addAction(pivot, text, name, {}, [this, c] { p_.edit->setPivot(c); });
+    a->setCheckable(true);
+    a->setChecked(c == PivotChoice::Median);
+    pivots->addAction(a);
+  }
+
+  count_ = new QLabel;
+  count_->setObjectName("editCount");
+  count_->hide();
+  p_.window->statusBar()->addPermanentWidget(count_);
+  band_ = new QRubberBand(QRubberBand::Rectangle, p_.view);
+  p_.view->installEventFilter(this);  // after the window's filter: this one sees events first
+}
+
+QAction* EditModeInput::addAction(QMenu* menu, const QString& text, const char* name, const QKeySequence& keys,
+                                  std::function<void()> slot) {
+  QAction* a = menu->addAction(text);
+  a->setObjectName(name);
+  if (!keys.isEmpty()) {
+    // Single keys act in the 3D view only (a text field keeps its letters and its Tab).
+    a->setShortcut(keys);
+    a->setShortcutContext(Qt::WidgetShortcut);
+    p_.view->addAction(a);
+  }
+  if (slot)
+    connect(a, &QAction::triggered, this, [this, slot] {
+      try {
+        slot();
+      } catch (const std::exception& e) {
+        p_.sayError(e.what());
+        QApplication::beep();
+      }
+    });
+  return a;
+}
+
+void EditModeInput::leave() {
+  boxFrom_.reset();
+  band_->hide();
+  p_.edit->exit();
+  editAction_->setChecked(false);
+}
+
+void EditModeInput::toggleEditMode(bool on) {
+  if (!on) {
+    p_.edit->exit();
+    p_.status->say(tr("Edit mode off"), 3000);
+    return;
+  }
+  try {
+    // The lattice of the selection (a lattice, or the lattice of a cell or widget), else the only one.
+    const auto& m = p_.scene->widgets;
+    std::optional<widgets::WidgetId> lattice;
+    for (widgets::WidgetId w : p_.controller->selection()) {
+      if (!m.contains(w)) continue;
+      if (m.type(w) == widgets::WidgetType::Lattice) lattice = w;
+      else if (m.type(w) == widgets::WidgetType::Cell || m.attachedCell(w)) lattice = m.latticeOf(w);
+      if (lattice) break;
+    }
+    const auto all = m.widgets(widgets::WidgetType::Lattice);
+    if (!lattice && all.size() == 1) lattice = all.front();
+    if (!lattice) throw std::invalid_argument(all.empty() ? "add a lattice first (Widgets > New Lattice)"
+                                                          : "select the lattice whose points to edit");
+    p_.controller->clearSelection();  // the lattice's own highlight would hide the selected points
+    p_.edit->enter(*lattice);
+    p_.status->say(tr("Editing the points of '%1': click, Shift+click, drag a box (Alt+drag orbits); "
+                      "G / R / S move, turn, size; Tab leaves")
+                       .arg(qs(m.name(*lattice))));
+  } catch (const std::exception& e) {
+    const QSignalBlocker block(editAction_);
+    editAction_->setChecked(false);
+    p_.sayError(e.what());
+    QApplication::beep();
+  }
+}
+
+Eigen::Vector3d EditModeInput::viewDirection() const {
+  const scenes::Camera camera = p_.sceneView->camera();
+  return (camera.focalPoint - camera.position).normalized();
+}
+
+void EditModeInput::beginModal(TransformMode mode) {
+  if (!havePos_) lastPos_ = QPoint(p_.view->width() / 2, p_.view->height() / 2);
+  p_.edit->beginModal(mode, p_.rayAt(lastPos_), viewDirection());
+  p_.view->setFocus();
+}
+
+void EditModeInput::makeCell(std::optional<widgets::CellKind> kind) {
+  if (!p_.edit->editing()) throw std::invalid_argument("press Tab to edit a lattice's points, select some, then Make Cell");
+  CellFromSelection cell = p_.edit->cellFor(kind);
+  if (!cell.spec) {
+    if (kind || p_.edit->points().empty()) throw std::invalid_argument(cell.why);
+    // Anything else is a custom cell: asked, not assumed.
+    const auto answer = QMessageBox::question(
+        p_.window, tr("Make Cell"),
+        tr("The %1 selected points are no point, edge, face, slab or box. Make a custom cell of them?")
+            .arg(p_.edit->points().count()));
+    if (answer != QMessageBox::Yes) return;
+    cell = p_.edit->cellFor(widgets::CellKind::Custom);
+  }
+  const widgets::WidgetId id = p_.edit->makeCell(*cell.spec);
+  p_.status->say(tr("Made %1 cell '%2': add a translate, rotate or scale widget to it (Widgets menu)")
+                     .arg(qs(std::string(widgets::cellKindName(cell.spec->kind))), qs(p_.scene->widgets.name(id))),
+                 8000);
+}
+
+bool EditModeInput::typeIntoDrag(const QKeyEvent* e) {
+  InteractionController& c = *p_.controller;
+  if (e->key() == Qt::Key_Return || e->key() == Qt::Key_Enter) {
+    dragTyped_.clear();
+    c.release();
+    return true;
+  }
+  if (e->key() == Qt::Key_Backspace) {
+    dragTyped_.backspace();
+  } else if (const char ch = typedChar(e)) {
+    dragTyped_.type(ch);
+  } else {
+    return false;
+  }
+  const auto typed = dragTyped_.components();
+  if (!typed) return true;
+  const double v = (*typed)[0];
+  // Designer's units: degrees for a turn, a factor for a size; the model's: rad, log factor.
+  double value = v;
+  QString unit;
+  if (c.handleDragValue()) {
+    const int group = static_cast<int>(*c.transformerHandle()) / 3;
+    if (group == 1) value = v * std::numbers::pi / 180.0, unit = QStringLiteral("°");
+    if (group == 2) unit = QStringLiteral("x");
+  } else if (const auto widget = p_.scene->widgets.gestureWidget();
+             widget && p_.scene->widgets.type(*widget) == widgets::WidgetType::Affine) {
+    const widgets::AffineKind kind = p_.scene->widgets.affineKind(*widget);
+    if (kind == widgets::AffineKind::Rotate) value = v * std::numbers::pi / 180.0, unit = QStringLiteral("°");
+    if (kind == widgets::AffineKind::Scale) {
+      if (!(v > 0.0)) return true;
+      value = std::log(v);
+      unit = QStringLiteral("x");
+    }
+  }
+  if (c.setDragValue(value))
+    p_.status->say(tr("typed %1%2 (Enter or release confirms, Backspace edits, Esc cancels)").arg(qs(dragTyped_.text()), unit));
+  return true;
+}
+
+void EditModeInput::changed() {
+  if (p_.edit->editing()) {
+    const PointSelection& s = p_.edit->points();
+    count_->setText(tr("%1: %2 of %3 points selected")
+                        .arg(qs(p_.scene->widgets.name(s.lattice())))
+                        .arg(s.count())
+                        .arg(s.pointCount()));
+    count_->show();
+  } else {
+    count_->hide();
+  }
+  if (p_.edit->transforming()) p_.status->say(qs(p_.edit->describe()));
+  p_.redraw();
+}
+
+void EditModeInput::finishBox(const QPoint& end, Qt::KeyboardModifiers modifiers) {
+  const QPoint from = *boxFrom_;
+  boxFrom_.reset();
+  boxArmed_ = false;
+  band_->hide();
+  const SelectMode mode = (modifiers & Qt::ShiftModifier)     ? SelectMode::Add
+                          : (modifiers & Qt::ControlModifier) ? SelectMode::Subtract
+                                                              : SelectMode::Replace;
+  if ((end - from).manhattanLength() < 4) {
+    // A click on empty space: nothing selected (a Shift or Ctrl click keeps the selection).
+    if (mode == SelectMode::Replace) p_.edit->selectNone();
+    return;
+  }
+  // The points' pixels (VTK display coordinates), those in front of the camera only.
+  const double ratio = p_.view->devicePixelRatioF();
+  const double h = p_.view->height() * ratio;
+  auto display = [&](const QPoint& q) { return Eigen::Vector2d(q.x() * ratio, h - q.y() * ratio - 1.0); };
+  const Eigen::MatrixX3d world = p_.edit->worldPoints();
+  const scenes::Camera camera = p_.sceneView->camera();
+  const Eigen::Vector3d forward = camera.focalPoint - camera.position;
+  Eigen::MatrixX2d screen(world.rows(), 2);
+  for (Eigen::Index i = 0; i < world.rows(); ++i) {
+    const Eigen::Vector3d q = world.row(i).transpose();
+    screen.row(i) = (q - camera.position).dot(forward) > 0.0 ? p_.sceneView->displayPoint(q).transpose()
+                                                             : Eigen::RowVector2d(-1e9, -1e9);
+  }
+  p_.edit->pickMany(pointsInRectangle(screen, display(from), display(end)), mode);
+}
+
+bool EditModeInput::eventFilter(QObject* watched, QEvent* event) {
+  if (watched != p_.view) return false;
+  EditController& edit = *p_.edit;
+  try {
+    switch (event->type()) {
+      case QEvent::ShortcutOverride: {
+        // While transforming, X / Y / Z, digits, Enter and Escape belong to the transform.
+        auto* e = static_cast<QKeyEvent*>(event);
+        if ((edit.transforming() || p_.controller->dragging()) && isModalKey(e)) {
+          e->accept();
+          return true;
+        }
+        return false;
+      }
+      case QEvent::KeyPress: {
+        auto* e = static_cast<QKeyEvent*>(event);
+        if (!edit.transforming() && p_.controller->dragging()) {
+          if (e->key() == Qt::Key_Escape) dragTyped_.clear();
+          return typeIntoDrag(e);
+        }
+        if (!edit.transforming()) {
+          if (e->key() == Qt::Key_Escape && boxFrom_) {
+            boxFrom_.reset();
+            band_->hide();
+            return true;
+          }
+          return false;
+        }
+        const bool snap = QApplication::keyboardModifiers() & Qt::ControlModifier;
+        if (e->key() == Qt::Key_Escape) {
+          edit.cancel();
+          p_.status->say(tr("Transform cancelled"), 3000);
+        } else if (e->key() == Qt::Key_Return || e->key() == Qt::Key_Enter) {
+          edit.confirm();
+        } else if (ModalTransform* modal = edit.modal()) {
+          if (const int axis = axisOfKey(e->key()); axis >= 0) {
+            modal->setConstraint(modal->constraint().pressed(axis, e->modifiers() & Qt::ShiftModifier));
+          } else if (e->key() == Qt::Key_Backspace) {
+            modal->typed().backspace();
+          } else if (const char c = typedChar(e)) {
+            modal->typed().type(c);
+          }
+          edit.update(p_.rayAt(lastPos_), snap);
+        }
+        return true;
+      }
+      case QEvent::MouseMove: {
+        auto* e = static_cast<QMouseEvent*>(event);
+        lastPos_ = e->position().toPoint();
+        havePos_ = true;
+        const bool snap = e->modifiers() & Qt::ControlModifier;
+        if (edit.transforming()) {
+          edit.update(p_.rayAt(lastPos_), snap);
+          return true;
+        }
+        if (p_.controller->dragging() && !dragTyped_.empty()) return true;  // the typed value rules
+        if (boxFrom_) {
+          band_->setGeometry(QRect(*boxFrom_, lastPos_).normalized());
+          return true;
+        }
+        if (e->buttons() == Qt::NoButton) edit.hover(p_.rayAt(lastPos_), p_.tolerance());
+        return false;
+      }
+      case QEvent::MouseButtonPress: {
+        auto* e = static_cast<QMouseEvent*>(event);
+        const QPoint at = e->position().toPoint();
+        lastPos_ = at;
+        havePos_ = true;
+        dragTyped_.clear();
+        if (edit.modal()) {
+          // A click confirms a modal transform; a right click cancels it.
+          if (e->button() == Qt::RightButton) edit.cancel();
+          else edit.confirm();
+          return true;
+        }
+        if (e->button() == Qt::RightButton && edit.editing()) rightAt_ = at;
+        if (e->button() != Qt::LeftButton || (e->modifiers() & Qt::AltModifier)) return false;
+        const widgets::Ray ray = p_.rayAt(at);
+        if (!edit.editing()) {
+          // Two or more widgets: their group transformer's handles, unless a glyph is under the pointer.
+          widgets::PickOptions options;
+          options.tolerance = p_.tolerance();
+          if (edit.transformer() && !p_.scene->widgets.pick(ray, options) && edit.pressHandle(ray, p_.tolerance()))
+            return true;
+          return false;
+        }
+        if (!boxArmed_) {
+          // The points first (small targets, the point of the mode), then the transformer's handles.
+          const SelectMode mode = (e->modifiers() & Qt::ShiftModifier)     ? SelectMode::Toggle
+                                  : (e->modifiers() & Qt::ControlModifier) ? SelectMode::Subtract
+                                                                           : SelectMode::Replace;
+          if (edit.click(ray, p_.tolerance(), mode)) return true;
+          if (edit.pressHandle(ray, p_.tolerance())) return true;
+        }
+        boxFrom_ = at;
+        band_->setGeometry(QRect(at, QSize()));
+        band_->show();
+        return true;
+      }
+      case QEvent::MouseButtonRelease: {
+        auto* e = static_cast<QMouseEvent*>(event);
+        const QPoint at = e->position().toPoint();
+        if (e->button() == Qt::LeftButton) dragTyped_.clear();
+        if (e->button() == Qt::RightButton && rightAt_) {
+          const bool click = (at - *rightAt_).manhattanLength() < 4;
+          rightAt_.reset();
+          if (click && edit.editing()) {
+            // The context menu: Make Cell and the selection.
+            auto* menu = new QMenu(p_.view);
+            menu->setObjectName("editContextMenu");
+            menu->setAttribute(Qt::WA_DeleteOnClose);
+            menu->addMenu(cellMenu_);
+            menu->addSeparator();
+            for (const char* name : {"actionSelectAll", "actionSelectNone", "actionSelectInvert"})
+              menu->addAction(p_.window->findChild<QAction*>(name));
+            menu->popup(p_.view->mapToGlobal(at));
+          }
+          return false;
+        }
+        if (e->button() != Qt::LeftButton) return false;
+        if (edit.transforming() && !edit.modal()) {
+          edit.confirm();
+          return true;
+        }
+        if (boxFrom_) {
+          finishBox(at, e->modifiers());
+          return true;
+        }
+        return edit.editing() && !(e->modifiers() & Qt::AltModifier);
+      }
+      default: break;
+    }
+  } catch (const std::exception& e) {
+    p_.sayError(e.what());
+    return true;
+  }
+  return false;
+}
+
+}  // namespace ffdkit::app

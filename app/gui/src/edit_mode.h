@@ -1,0 +1,83 @@
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <QAction>
+#include <QKeyEvent>
+#include <QLabel>
+#include <QMainWindow>
+#include <QMenu>
+#include <QObject>
+#include <QPoint>
+#include <QRubberBand>
+#include <QToolBar>
+
+#include "ffdkit/app/edit_controller.h"
+#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/app/scene_view.h"
+#include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/scenes/scene.h"
+#include "status_line.h"
+
+namespace ffdkit::app {
+
+/// The Qt side of a lattice's edit mode and of group transforms (EditController holds the
+/// logic): the actions (Tab: Edit Lattice Points; A, Alt+A, Ctrl+I, B; G, R, S; pivot; Make
+/// Cell), the view's keys and mouse while editing or transforming (an event filter on the view
+/// that sees events before the window's), the box's rubber band, the view's context menu and a
+/// selection count in the status bar. It maps keys and pointers to EditController calls only.
+class EditModeInput : public QObject {
+  Q_OBJECT
+
+ public:
+  /// What it works with; all must outlive it.
+  struct Parts {
+    QMainWindow* window = nullptr;
+    VtkViewWidget* view = nullptr;
+    SceneView* sceneView = nullptr;
+    StatusLine* status = nullptr;
+    const scenes::Scene* scene = nullptr;
+    InteractionController* controller = nullptr;
+    EditController* edit = nullptr;
+    std::function<void(const std::string&)> sayError;  ///< a refusal as the user reads it
+    std::function<widgets::Ray(const QPoint&)> rayAt;   ///< view pixel -> world ray
+    std::function<double()> tolerance;                  ///< pick tolerance (world units)
+    std::function<void()> redraw;                       ///< the window's redraw of the model and highlights
+  };
+  /// Adds its actions to `widgetsMenu` (Make Cell), a new Select menu and `toolbar`, and filters
+  /// the view's events.
+  EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar);
+
+  /// Leaves the edit mode (a new scene).
+  void leave();
+  bool eventFilter(QObject* watched, QEvent* event) override;
+
+ private:
+  QAction* addAction(QMenu* menu, const QString& text, const char* name, const QKeySequence& keys,
+                     std::function<void()> slot);
+  void toggleEditMode(bool on);
+  void beginModal(TransformMode mode);
+  void makeCell(std::optional<widgets::CellKind> kind);
+  void changed();
+  void finishBox(const QPoint& end, Qt::KeyboardModifiers modifiers);
+  Eigen::Vector3d viewDirection() const;
+  /// A value typed during a drag of the InteractionController (a glyph or a transformer handle).
+  bool typeIntoDrag(const QKeyEvent* event);
+
+  Parts p_;
+  QAction* editAction_ = nullptr;
+  QMenu* cellMenu_ = nullptr;
+  QMenu* selectMenu_ = nullptr;
+  QLabel* count_ = nullptr;
+  QRubberBand* band_ = nullptr;
+  QPoint lastPos_;
+  bool havePos_ = false;
+  std::optional<QPoint> boxFrom_;  ///< a box select being dragged
+  bool boxArmed_ = false;          ///< B pressed: the next left press starts a box even on a point
+  TypedValue dragTyped_;           ///< typed during a glyph or handle drag
+  std::optional<QPoint> rightAt_;  ///< a right press in the edit mode (a click opens the context menu)
+};
+
+}  // namespace ffdkit::app
