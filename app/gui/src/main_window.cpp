@@ -78,6 +78,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   setCentralWidget(d.view);
   d.sceneView = std::make_unique<SceneView>(d.view->renderer());
   d.controller = std::make_unique<InteractionController>(d.scene, d.deformer, d.commands);
+  d.edit = std::make_unique<EditController>(d.scene, d.deformer, d.commands, *d.controller);
 
   // Outliner and property panel.
   d.outliner = new Outliner;
@@ -130,7 +131,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   d.controller->onChanged = [this] {
     Impl& s = *impl_;
     if (!s.showingScene) return;
-    s.sceneView->setHighlights(s.controller->highlights());
+    s.sceneView->setHighlights(s.edit->highlights(s.controller->highlights()));
     s.sceneView->refresh(s.scene, s.deformer);
     if (s.timeline) s.timeline->sync();
     if (const auto value = s.controller->handleDragValue()) {
@@ -455,6 +456,11 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   toolbar->addAction(bind);
   toolbar->addAction(attach);
   toolbar->addAction(d.directManipulation);
+  d.editInput = new EditModeInput({this, d.view, d.sceneView.get(), d.status, &d.scene, d.controller.get(), d.edit.get(),
+                                   [this](const std::string& m) { impl_->sayError(m); },
+                                   [this](const QPoint& p) { return impl_->rayAt(p); }, [this] { return impl_->tolerance(); },
+                                   [this] { impl_->controller->onChanged(); }},
+                                  widgetsMenu, toolbar);
 
   d.timeline = addTimelineDock(this, d.scene, d.commands, *d.controller);
   connect(d.timeline, &TimelineWidget::error, this, [this](const QString& m) { impl_->sayError(m.toStdString()); });
@@ -562,6 +568,7 @@ void MainWindow::selectWidget(const std::string& name) {
 void MainWindow::setScene(scenes::Scene scene) {
   Impl& d = *impl_;
   d.showingScene = false;
+  if (d.editInput) d.editInput->leave();
   d.controller->cancel();
   d.controller->clearSelection();
   d.controller->clearPins();
@@ -590,6 +597,7 @@ const scenes::Scene& MainWindow::scene() const { return impl_->scene; }
 const scenes::SceneDeformer& MainWindow::deformer() const { return impl_->deformer; }
 scenes::CommandStack& MainWindow::commands() const { return impl_->commands; }
 InteractionController& MainWindow::controller() const { return *impl_->controller; }
+EditController& MainWindow::editController() const { return *impl_->edit; }
 SceneView& MainWindow::sceneView() const { return *impl_->sceneView; }
 QTreeWidget* MainWindow::outliner() const { return impl_->outliner; }
 VtkViewWidget* MainWindow::view() const { return impl_->view; }
@@ -597,6 +605,8 @@ VtkViewWidget* MainWindow::view() const { return impl_->view; }
 bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
   Impl& d = *impl_;
   if (watched != d.view) return QMainWindow::eventFilter(watched, event);
+  // In a lattice's edit mode the pointer is the edit mode's (edit_mode.cpp); what it passes on orbits.
+  if (d.edit->editing() && dynamic_cast<QMouseEvent*>(event) != nullptr) return QMainWindow::eventFilter(watched, event);
   try {
     switch (event->type()) {
       case QEvent::MouseButtonPress: {

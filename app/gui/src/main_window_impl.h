@@ -17,6 +17,7 @@
 #include <QString>
 #include <QTimer>
 
+#include "ffdkit/app/edit_controller.h"
 #include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/app/main_window.h"
 #include "ffdkit/app/recovery_file.h"
@@ -25,6 +26,7 @@
 #include "ffdkit/scenes/command_stack.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
+#include "edit_mode.h"
 #include "outliner.h"
 #include "property_panel.h"
 #include "status_line.h"
@@ -58,6 +60,8 @@ struct MainWindow::Impl {
   scenes::SceneDeformer deformer;
   scenes::CommandStack commands;
   std::unique_ptr<InteractionController> controller;
+  std::unique_ptr<EditController> edit;  ///< a lattice's edit mode, group transforms
+  EditModeInput* editInput = nullptr;    ///< their actions, keys and pointer (edit_mode.h)
   Outliner* outliner = nullptr;
   PropertyPanel* properties = nullptr;
   TimelineWidget* timeline = nullptr;  ///< under the view (timeline_widget.h)

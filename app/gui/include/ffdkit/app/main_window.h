@@ -16,6 +16,7 @@ namespace ffdkit::app {
 
 class VtkViewWidget;
 class InteractionController;
+class EditController;
 class SceneView;
 
 /// The application window: the 3D view, an outliner of objects / widget tree / bindings, a
@@ -80,6 +81,8 @@ class MainWindow : public QMainWindow {
   const scenes::SceneDeformer& deformer() const;
   scenes::CommandStack& commands() const;
   InteractionController& controller() const;
+  /// A lattice's edit mode and group transforms (Tab; edit_mode.h).
+  EditController& editController() const;
   SceneView& sceneView() const;
   QTreeWidget* outliner() const;
 
