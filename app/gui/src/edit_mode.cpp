@@ -9,6 +9,8 @@
 #include <QSignalBlocker>
 #include <QStatusBar>
 
+#include "keyboard_shortcuts.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -18,14 +20,15 @@ namespace {
 
 QString qs(const std::string& s) { return QString::fromStdString(s); }
 
-// The axis of an X / Y / Z key, or -1.
-int axisOfKey(int key) {
-  switch (key) {
-    case Qt::Key_X: return 0;
-    case Qt::Key_Y: return 1;
-    case Qt::Key_Z: return 2;
-    default: return -1;
-  }
+// The axis constraint an X / Y / Z key (Shift: excluded) sets while transforming, or nullopt
+// (the keys from keyboard_shortcuts.cpp).
+std::optional<std::pair<int, bool>> axisKey(const QKeyEvent& e) {
+  for (int axis = 0; axis < 3; ++axis)
+    for (bool exclude : {false, true}) {
+      const std::string name = std::string(exclude ? "excludeAxis" : "constrainAxis") + "XYZ"[axis];
+      if (matchesShortcut(e, name)) return std::pair(axis, exclude);
+    }
+  return std::nullopt;
 }
 
 // The character a key types into a value ("0.5", "-90", "0.1,0,0.2"), or 0.
@@ -38,10 +41,11 @@ char typedChar(const QKeyEvent* e) {
   return 0;
 }
 
+bool isConfirm(const QKeyEvent& e) { return matchesShortcut(e, "confirmTransform") || e.key() == Qt::Key_Enter; }
+
 bool isModalKey(const QKeyEvent* e) {
-  const int key = e->key();
-  return typedChar(e) != 0 || axisOfKey(key) >= 0 || key == Qt::Key_Backspace || key == Qt::Key_Return ||
-         key == Qt::Key_Enter || key == Qt::Key_Escape;
+  return typedChar(e) != 0 || axisKey(*e) || matchesShortcut(*e, "typedBackspace") || isConfirm(*e) ||
+         matchesShortcut(*e, "cancelDrag");
 }
 
 }  // namespace
@@ -51,7 +55,7 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
   using widgets::CellKind;
   p_.edit->onChanged = [this] { changed(); };
 
-  editAction_ = addAction(widgetsMenu, tr("&Edit Lattice Points"), "actionEditMode", QKeySequence(Qt::Key_Tab), {});
+  editAction_ = addAction(widgetsMenu, tr("&Edit Lattice Points"), "actionEditMode", true, {});
   editAction_->setCheckable(true);
   editAction_->setToolTip(tr("Edit the selected lattice's points: select, move, turn, size, make cells (Tab)"));
   connect(editAction_, &QAction::triggered, this, [this](bool on) { toggleEditMode(on); });
@@ -60,7 +64,7 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
   // Make Cell: from the selected points (Widgets menu and the view's context menu).
   cellMenu_ = widgetsMenu->addMenu(tr("Make &Cell"));
   cellMenu_->setObjectName("menuMakeCell");
-  addAction(cellMenu_, tr("From Selection"), "actionMakeCell", QKeySequence(tr("Ctrl+M")), [this] { makeCell(std::nullopt); });
+  addAction(cellMenu_, tr("From Selection"), "actionMakeCell", true, [this] { makeCell(std::nullopt); });
   cellMenu_->addSeparator();
   const std::pair<const char*, CellKind> kinds[] = {{"actionMakeCellPoint", CellKind::Point}, {"actionMakeCellEdge", CellKind::Edge},
                                                     {"actionMakeCellFace", CellKind::Face},   {"actionMakeCellSlab", CellKind::Slab},
@@ -69,7 +73,7 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
     const CellKind k = kind;
     QString text = qs(std::string(widgets::cellKindName(kind)));
     text[0] = text[0].toUpper();
-    addAction(cellMenu_, text, name, {}, [this, k] { makeCell(k); });
+    addAction(cellMenu_, text, name, false, [this, k] { makeCell(k); });
   }
 
   // Selection and transforms of the edit mode (keys on the view, as in Blender).
@@ -78,19 +82,19 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
   auto needEditing = [this] {
     if (!p_.edit->editing()) throw std::invalid_argument("press Tab to edit a lattice's points first");
   };
-  addAction(selectMenu_, tr("&All"), "actionSelectAll", QKeySequence(Qt::Key_A), [this, needEditing] {
+  addAction(selectMenu_, tr("&All"), "actionSelectAll", true, [this, needEditing] {
     needEditing();
     p_.edit->selectAll();
   });
-  addAction(selectMenu_, tr("&None"), "actionSelectNone", QKeySequence(Qt::ALT | Qt::Key_A), [this, needEditing] {
+  addAction(selectMenu_, tr("&None"), "actionSelectNone", true, [this, needEditing] {
     needEditing();
     p_.edit->selectNone();
   });
-  addAction(selectMenu_, tr("&Invert"), "actionSelectInvert", QKeySequence(Qt::CTRL | Qt::Key_I), [this, needEditing] {
+  addAction(selectMenu_, tr("&Invert"), "actionSelectInvert", true, [this, needEditing] {
     needEditing();
     p_.edit->invert();
   });
-  addAction(selectMenu_, tr("&Box Select"), "actionBoxSelect", QKeySequence(Qt::Key_B), [this, needEditing] {
+  addAction(selectMenu_, tr("&Box Select"), "actionBoxSelect", true, [this, needEditing] {
     needEditing();
     boxArmed_ = true;
     p_.status->say(tr("Box select: drag a rectangle (Shift adds, Ctrl removes)"));
@@ -100,16 +104,16 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
     for (bool plane : {false, true}) {
       const QString text = plane ? tr("Planes %1 = const").arg(QChar("ijk"[axis])) : tr("Rows along %1").arg(QChar("ijk"[axis]));
       const std::string name = std::string(plane ? "actionSelectPlanes" : "actionSelectRows") + "ijk"[axis];
-      QAction* a = addAction(linked, text, "", {}, [this, needEditing, axis, plane] {
+      QAction* a = addAction(linked, text, "", false, [this, needEditing, axis, plane] {
         needEditing();
         p_.edit->selectLinked(axis, plane);
       });
       a->setObjectName(QString::fromStdString(name));
     }
   selectMenu_->addSeparator();
-  addAction(selectMenu_, tr("&Move"), "actionMoveSelection", QKeySequence(Qt::Key_G), [this] { beginModal(TransformMode::Move); });
-  addAction(selectMenu_, tr("&Rotate"), "actionRotateSelection", QKeySequence(Qt::Key_R), [this] { beginModal(TransformMode::Rotate); });
-  addAction(selectMenu_, tr("&Scale"), "actionScaleSelection", QKeySequence(Qt::Key_S), [this] { beginModal(TransformMode::Scale); });
+  addAction(selectMenu_, tr("&Move"), "actionMoveSelection", true, [this] { beginModal(TransformMode::Move); });
+  addAction(selectMenu_, tr("&Rotate"), "actionRotateSelection", true, [this] { beginModal(TransformMode::Rotate); });
+  addAction(selectMenu_, tr("&Scale"), "actionScaleSelection", true, [this] { beginModal(TransformMode::Scale); });
   QMenu* pivot = selectMenu_->addMenu(tr("&Pivot"));
   auto* pivots = new QActionGroup(this);
   const std::tuple<const char*, QString, PivotChoice> choices[] = {
@@ -118,7 +122,7 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
       {"actionPivotIndividual", tr("&Individual Origins"), PivotChoice::Individual}};
   for (const auto& [name, text, choice] : choices) {
     const PivotChoice c = choice;
-    QAction* a = addAction(pivot, text, name, {}, [this, c] { p_.edit->setPivot(c); });
+    QAction* a = addAction(pivot, text, name, false, [this, c] { p_.edit->setPivot(c); });
     a->setCheckable(true);
     a->setChecked(c == PivotChoice::Median);
     pivots->addAction(a);
@@ -132,13 +136,12 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
   p_.view->installEventFilter(this);  // after the window's filter: this one sees events first
 }
 
-QAction* EditModeInput::addAction(QMenu* menu, const QString& text, const char* name, const QKeySequence& keys,
+QAction* EditModeInput::addAction(QMenu* menu, const QString& text, const char* name, bool viewKeys,
                                   std::function<void()> slot) {
   QAction* a = menu->addAction(text);
   a->setObjectName(name);
-  if (!keys.isEmpty()) {
-    // Single keys act in the 3D view only (a text field keeps its letters and its Tab).
-    a->setShortcut(keys);
+  if (viewKeys) {
+    // Its keys (keyboard_shortcuts.cpp) act in the 3D view only: a text field keeps its letters and Tab.
     a->setShortcutContext(Qt::WidgetShortcut);
     p_.view->addAction(a);
   }
@@ -226,12 +229,12 @@ void EditModeInput::makeCell(std::optional<widgets::CellKind> kind) {
 
 bool EditModeInput::typeIntoDrag(const QKeyEvent* e) {
   InteractionController& c = *p_.controller;
-  if (e->key() == Qt::Key_Return || e->key() == Qt::Key_Enter) {
+  if (isConfirm(*e)) {
     dragTyped_.clear();
     c.release();
     return true;
   }
-  if (e->key() == Qt::Key_Backspace) {
+  if (matchesShortcut(*e, "typedBackspace")) {
     dragTyped_.backspace();
   } else if (const char ch = typedChar(e)) {
     dragTyped_.type(ch);
@@ -324,11 +327,11 @@ bool EditModeInput::eventFilter(QObject* watched, QEvent* event) {
       case QEvent::KeyPress: {
         auto* e = static_cast<QKeyEvent*>(event);
         if (!edit.transforming() && p_.controller->dragging()) {
-          if (e->key() == Qt::Key_Escape) dragTyped_.clear();
+          if (matchesShortcut(*e, "cancelDrag")) dragTyped_.clear();
           return typeIntoDrag(e);
         }
         if (!edit.transforming()) {
-          if (e->key() == Qt::Key_Escape && boxFrom_) {
+          if (matchesShortcut(*e, "cancelDrag") && boxFrom_) {
             boxFrom_.reset();
             band_->hide();
             return true;
@@ -336,15 +339,15 @@ bool EditModeInput::eventFilter(QObject* watched, QEvent* event) {
           return false;
         }
         const bool snap = QApplication::keyboardModifiers() & Qt::ControlModifier;
-        if (e->key() == Qt::Key_Escape) {
+        if (matchesShortcut(*e, "cancelDrag")) {
           edit.cancel();
           p_.status->say(tr("Transform cancelled"), 3000);
-        } else if (e->key() == Qt::Key_Return || e->key() == Qt::Key_Enter) {
+        } else if (isConfirm(*e)) {
           edit.confirm();
         } else if (ModalTransform* modal = edit.modal()) {
-          if (const int axis = axisOfKey(e->key()); axis >= 0) {
-            modal->setConstraint(modal->constraint().pressed(axis, e->modifiers() & Qt::ShiftModifier));
-          } else if (e->key() == Qt::Key_Backspace) {
+          if (const auto axis = axisKey(*e)) {
+            modal->setConstraint(modal->constraint().pressed(axis->first, axis->second));
+          } else if (matchesShortcut(*e, "typedBackspace")) {
             modal->typed().backspace();
           } else if (const char c = typedChar(e)) {
             modal->typed().type(c);

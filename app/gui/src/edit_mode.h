@@ -55,8 +55,8 @@ class EditModeInput : public QObject {
   bool eventFilter(QObject* watched, QEvent* event) override;
 
  private:
-  QAction* addAction(QMenu* menu, const QString& text, const char* name, const QKeySequence& keys,
-                     std::function<void()> slot);
+  /// A menu action; with `viewKeys`, its keys (from keyboard_shortcuts.cpp) act in the view only.
+  QAction* addAction(QMenu* menu, const QString& text, const char* name, bool viewKeys, std::function<void()> slot);
   void toggleEditMode(bool on);
   void beginModal(TransformMode mode);
   void makeCell(std::optional<widgets::CellKind> kind);
