@@ -58,6 +58,18 @@ TEST(EditController, PickBoxAndTheSelectionCount) {
   EXPECT_THROW(d.edit.enter(WidgetId(999)), std::invalid_argument);
 }
 
+TEST(EditController, AnUndoThatRemovesTheLatticeEndsTheEditMode) {
+  Document d;
+  const WidgetId lattice = d.controller.newLattice({});
+  d.edit.enter(lattice);
+  d.edit.selectAll();
+  d.commands.undo();  // the lattice is gone
+  EXPECT_FALSE(d.edit.editing());
+  EXPECT_TRUE(d.edit.highlights({}).selectedPoints.empty());
+  EXPECT_FALSE(d.edit.transformer().has_value());
+  EXPECT_FALSE(d.edit.click(downAt({0, 0, 0}), 0.05, SelectMode::Replace));
+}
+
 TEST(EditController, GAlongZWithATypedValueMovesExactlyAndIsOneUndoStep) {
   Document d;
   d.controller.addPrimitive({});

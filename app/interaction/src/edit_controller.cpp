@@ -48,11 +48,18 @@ void EditController::enter(WidgetId lattice) {
 }
 
 void EditController::exit() {
-  if (!editing()) return;
+  if (!selection_) return;
   cancel();
   selection_.reset();
   hoveredHandle_.reset();
   notify();
+}
+
+bool EditController::editing() const {
+  if (!selection_) return false;
+  const auto& m = scene_.widgets;
+  const WidgetId id = selection_->lattice();
+  return m.contains(id) && m.type(id) == WidgetType::Lattice && m.counts(id) == selection_->counts();
 }
 
 WidgetId EditController::lattice() const {
@@ -84,6 +91,7 @@ std::optional<Eigen::Index> EditController::pointUnder(const widgets::Ray& ray, 
 }
 
 bool EditController::click(const widgets::Ray& ray, double tolerance, SelectMode mode) {
+  if (!editing()) return false;
   const auto hit = pointUnder(ray, tolerance);
   if (!hit) return false;
   selection_->pick(*hit, mode);
@@ -92,31 +100,31 @@ bool EditController::click(const widgets::Ray& ray, double tolerance, SelectMode
 }
 
 void EditController::pickMany(const std::vector<Eigen::Index>& indices, SelectMode mode) {
-  if (!selection_) throw std::logic_error("not in a lattice's edit mode");
+  if (!editing()) throw std::logic_error("not in a lattice's edit mode");
   selection_->pickMany(indices, mode);
   notify();
 }
 
 void EditController::selectAll() {
-  if (!selection_) return;
+  if (!editing()) return;
   selection_->selectAll();
   notify();
 }
 
 void EditController::selectNone() {
-  if (!selection_) return;
+  if (!editing()) return;
   selection_->selectNone();
   notify();
 }
 
 void EditController::invert() {
-  if (!selection_) return;
+  if (!editing()) return;
   selection_->invert();
   notify();
 }
 
 void EditController::selectLinked(int axis, bool plane) {
-  if (!selection_) return;
+  if (!editing()) return;
   selection_->selectLinked(axis, plane);
   notify();
 }

@@ -453,7 +453,7 @@ struct SceneView::Impl {
     pointMarker->GetProperty()->SetRenderPointsAsSpheres(true);
     pointMarker->GetProperty()->SetLighting(false);
     selectedPoints = addWidgetActor(pointsPolyData(Eigen::MatrixX3d(0, 3)), kSelected);
-    selectedPoints->GetProperty()->SetPointSize(13.0);
+    selectedPoints->GetProperty()->SetPointSize(17.0);  // over a cell's points (14)
     selectedPoints->GetProperty()->SetRenderPointsAsSpheres(true);
     selectedPoints->GetProperty()->SetLighting(false);
     selectedShown.clear();

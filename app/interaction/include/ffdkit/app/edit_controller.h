@@ -44,7 +44,9 @@ class EditController {
   void enter(widgets::WidgetId lattice);
   /// Leaves the edit mode (a transform in progress is cancelled).
   void exit();
-  bool editing() const { return selection_.has_value(); }
+  /// In a lattice's edit mode, with that lattice still there at the same counts (an undo that
+  /// removes or resizes it ends the mode's effect).
+  bool editing() const;
   /// The lattice in edit mode. @throws std::logic_error outside the edit mode.
   widgets::WidgetId lattice() const;
   /// The selected points. @throws std::logic_error outside the edit mode.
