@@ -296,6 +296,12 @@ class EditModeGuiTest : public QObject {
     const WidgetId ring = makeCell({flat(0, 0, 2), flat(1, 0, 2), flat(0, 1, 2), flat(1, 1, 2)}, "actionAddRotate");
     const WidgetId edgeArrow = makeCell({flat(0, 2, 0), flat(1, 2, 0)}, "actionAddTranslate");
     const WidgetId pointArrow = makeCell({flat(2, 2, 0)}, "actionAddTranslate");
+    // docs/app.md's picture (with FFDKIT_DOC_IMAGES=<folder>): the face's points selected again.
+    if (const QString folder = qEnvironmentVariable("FFDKIT_DOC_IMAGES"); !folder.isEmpty()) {
+      pressKey(w, Qt::Key_A, Qt::AltModifier);
+      for (Eigen::Index p : {flat(0, 0, 2), flat(1, 0, 2), flat(0, 1, 2), flat(1, 1, 2)}) clickPoint(w, lattice, p, Qt::ShiftModifier);
+      QVERIFY(w.grab().save(folder + "/edit-mode.png"));
+    }
     pressKey(w, Qt::Key_Tab);
     QCOMPARE(m.widgets(widgets::WidgetType::Affine).size(), std::size_t(3));
 
