@@ -10,6 +10,7 @@
 #include <QMessageBox>
 #include <QTest>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -181,32 +182,35 @@ class EditModeGuiTest : public QObject {
     const auto& m = w.scene().widgets;
     lookAtUnitBox(w);
     pressKey(w, Qt::Key_Tab);
+    // Selects exactly `points` by Shift+clicks; false (and the test stops) if the clicks missed.
     auto select = [&](const std::vector<Eigen::Index>& points) {
       pressKey(w, Qt::Key_A, Qt::AltModifier);
       for (Eigen::Index p : points) clickPoint(w, lattice, p, Qt::ShiftModifier);
-      QCOMPARE(editOf(w).points().count(), Eigen::Index(points.size()));
+      std::vector<Eigen::Index> sorted = points;
+      std::sort(sorted.begin(), sorted.end());
+      return editOf(w).points().indices() == sorted;
     };
     auto lastCell = [&] { return m.cellSpec(m.cellsOf(lattice).back()); };
-    select({flat(2, 2, 0)});
+    QVERIFY(select({flat(2, 2, 0)}));
     pressKey(w, Qt::Key_M, Qt::ControlModifier);
     QCOMPARE(lastCell(), widgets::CellSpec::point(2, 2, 0));
-    select({flat(0, 2, 0), flat(1, 2, 0)});
+    QVERIFY(select({flat(0, 2, 0), flat(1, 2, 0)}));
     pressKey(w, Qt::Key_M, Qt::ControlModifier);
     QCOMPARE(lastCell(), widgets::CellSpec::edge(0, 2, 0, 0));
-    select({flat(0, 0, 2), flat(1, 0, 2), flat(0, 1, 2), flat(1, 1, 2)});
+    QVERIFY(select({flat(0, 0, 2), flat(1, 0, 2), flat(0, 1, 2), flat(1, 1, 2)}));
     pressKey(w, Qt::Key_M, Qt::ControlModifier);
     QCOMPARE(lastCell(), widgets::CellSpec::face(0, 0, 2, 2));
     QCOMPARE(w.controller().selection(), std::vector{m.cellsOf(lattice).back()});
-    select({flat(0, 0, 1)});
+    QVERIFY(select({flat(0, 0, 1)}));
     action(w, "actionSelectPlanesk")->trigger();  // the plane k = 1
     pressKey(w, Qt::Key_M, Qt::ControlModifier);
     QCOMPARE(lastCell(), widgets::CellSpec::slab(2, 1));
-    select({flat(1, 1, 1), flat(2, 1, 1), flat(1, 2, 1), flat(2, 2, 1), flat(1, 1, 2), flat(2, 1, 2), flat(1, 2, 2),
-            flat(2, 2, 2)});
+    QVERIFY(select({flat(1, 1, 1), flat(2, 1, 1), flat(1, 2, 1), flat(2, 2, 1), flat(1, 1, 2), flat(2, 1, 2), flat(1, 2, 2),
+            flat(2, 2, 2)}));
     pressKey(w, Qt::Key_M, Qt::ControlModifier);
     QCOMPARE(lastCell(), widgets::CellSpec::box(1, 1, 1));
     // Anything else is asked about, then made a custom cell.
-    select({flat(0, 0, 0), flat(2, 0, 0)});
+    QVERIFY(select({flat(0, 0, 0), flat(2, 0, 0)}));
     ModalAnswers yes({[](QWidget* modal) {
       auto* box = qobject_cast<QMessageBox*>(modal);
       QVERIFY(box != nullptr);
@@ -289,6 +293,7 @@ class EditModeGuiTest : public QObject {
     auto makeCell = [&](const std::vector<Eigen::Index>& points, const char* add) {
       pressKey(w, Qt::Key_A, Qt::AltModifier);
       for (Eigen::Index p : points) clickPoint(w, lattice, p, Qt::ShiftModifier);
+      if (editOf(w).points().count() != static_cast<Eigen::Index>(points.size())) return WidgetId();  // a click missed
       pressKey(w, Qt::Key_M, Qt::ControlModifier);
       action(w, add)->trigger();
       return m.widgets(widgets::WidgetType::Affine).back();
@@ -302,6 +307,7 @@ class EditModeGuiTest : public QObject {
       for (Eigen::Index p : {flat(0, 0, 2), flat(1, 0, 2), flat(0, 1, 2), flat(1, 1, 2)}) clickPoint(w, lattice, p, Qt::ShiftModifier);
       QVERIFY(w.grab().save(folder + "/edit-mode.png"));
     }
+    QVERIFY(ring.valid() && edgeArrow.valid() && pointArrow.valid());
     pressKey(w, Qt::Key_Tab);
     QCOMPARE(m.widgets(widgets::WidgetType::Affine).size(), std::size_t(3));
 

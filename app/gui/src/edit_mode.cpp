@@ -144,6 +144,7 @@ QAction* EditModeInput::addAction(QMenu* menu, const QString& text, const char* 
     // Its keys (keyboard_shortcuts.cpp) act in the 3D view only: a text field keeps its letters and Tab.
     a->setShortcutContext(Qt::WidgetShortcut);
     p_.view->addAction(a);
+    viewActions_.push_back(a);
   }
   if (slot)
     connect(a, &QAction::triggered, this, [this, slot] {
@@ -155,6 +156,12 @@ QAction* EditModeInput::addAction(QMenu* menu, const QString& text, const char* 
       }
     });
   return a;
+}
+
+QAction* EditModeInput::viewActionFor(const QKeyEvent& e) const {
+  for (QAction* a : viewActions_)
+    if (a->isEnabled() && matchesShortcut(e, a->objectName().toStdString())) return a;
+  return nullptr;
 }
 
 void EditModeInput::leave() {
@@ -316,9 +323,11 @@ bool EditModeInput::eventFilter(QObject* watched, QEvent* event) {
   try {
     switch (event->type()) {
       case QEvent::ShortcutOverride: {
-        // While transforming, X / Y / Z, digits, Enter and Escape belong to the transform.
+        // While transforming, X / Y / Z, digits, Enter and Escape belong to the transform; in the
+        // view, this object's keys are its own (over a menu's Alt mnemonic or a window key).
         auto* e = static_cast<QKeyEvent*>(event);
-        if ((edit.transforming() || p_.controller->dragging()) && isModalKey(e)) {
+        const bool busy = edit.transforming() || p_.controller->dragging();
+        if ((busy && isModalKey(e)) || (!busy && viewActionFor(*e))) {
           e->accept();
           return true;
         }
@@ -326,6 +335,11 @@ bool EditModeInput::eventFilter(QObject* watched, QEvent* event) {
       }
       case QEvent::KeyPress: {
         auto* e = static_cast<QKeyEvent*>(event);
+        if (!edit.transforming() && !p_.controller->dragging())
+          if (QAction* a = viewActionFor(*e)) {
+            a->trigger();
+            return true;
+          }
         if (!edit.transforming() && p_.controller->dragging()) {
           if (matchesShortcut(*e, "cancelDrag")) dragTyped_.clear();
           return typeIntoDrag(e);

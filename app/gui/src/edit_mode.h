@@ -3,6 +3,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <QAction>
 #include <QKeyEvent>
@@ -63,11 +64,14 @@ class EditModeInput : public QObject {
   void changed();
   void finishBox(const QPoint& end, Qt::KeyboardModifiers modifiers);
   Eigen::Vector3d viewDirection() const;
+  /// The action of this object whose keys (keyboard_shortcuts.cpp) the event is, or null.
+  QAction* viewActionFor(const QKeyEvent& event) const;
   /// A value typed during a drag of the InteractionController (a glyph or a transformer handle).
   bool typeIntoDrag(const QKeyEvent* event);
 
   Parts p_;
   QAction* editAction_ = nullptr;
+  std::vector<QAction*> viewActions_;  ///< the actions whose keys act in the view
   QMenu* cellMenu_ = nullptr;
   QMenu* selectMenu_ = nullptr;
   QLabel* count_ = nullptr;
