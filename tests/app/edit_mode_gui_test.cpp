@@ -129,6 +129,14 @@ class EditModeGuiTest : public QObject {
     clickPoint(w, lattice, flat(0, 1, 1));
     action(w, "actionSelectRowsi")->trigger();
     QCOMPARE(edit->points().indices(), (std::vector<Eigen::Index>{flat(0, 1, 1), flat(1, 1, 1), flat(2, 1, 1)}));
+    // Alt+drag orbits the camera and leaves the selection alone.
+    const Eigen::Vector3d eye = w.sceneView().camera().position;
+    sendMouse(w.view(), QEvent::MouseButtonPress, QPoint(40, 40), Qt::LeftButton, Qt::LeftButton, Qt::AltModifier);
+    for (int step = 1; step <= 5; ++step)
+      sendMouse(w.view(), QEvent::MouseMove, QPoint(40 + 20 * step, 40), Qt::NoButton, Qt::LeftButton, Qt::AltModifier);
+    sendMouse(w.view(), QEvent::MouseButtonRelease, QPoint(140, 40), Qt::LeftButton, Qt::NoButton, Qt::AltModifier);
+    QVERIFY((w.sceneView().camera().position - eye).norm() > 0.1);
+    QCOMPARE(edit->points().count(), Eigen::Index(3));
     pressKey(w, Qt::Key_Tab);
     QVERIFY(!edit->editing());
     QVERIFY(!w.findChild<QLabel*>("editCount")->isVisible());

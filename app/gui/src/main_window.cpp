@@ -605,8 +605,14 @@ VtkViewWidget* MainWindow::view() const { return impl_->view; }
 bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
   Impl& d = *impl_;
   if (watched != d.view) return QMainWindow::eventFilter(watched, event);
-  // In a lattice's edit mode the pointer is the edit mode's (edit_mode.cpp); what it passes on orbits.
-  if (d.edit->editing() && dynamic_cast<QMouseEvent*>(event) != nullptr) return QMainWindow::eventFilter(watched, event);
+  // In a lattice's edit mode the left button is the edit mode's (edit_mode.cpp); what it passes
+  // on (Alt+drag) orbits.
+  if (auto* e = dynamic_cast<QMouseEvent*>(event); e && d.edit->editing()) {
+    if (event->type() == QEvent::MouseButtonPress && e->button() == Qt::LeftButton) d.navigation->beginOrbit(e->position().toPoint());
+    if (event->type() == QEvent::MouseMove && d.navigation->orbitTo(e->position().toPoint())) return true;
+    if (event->type() == QEvent::MouseButtonRelease && e->button() == Qt::LeftButton) d.navigation->endOrbit();
+    return e->button() == Qt::LeftButton || QMainWindow::eventFilter(watched, event);
+  }
   try {
     switch (event->type()) {
       case QEvent::MouseButtonPress: {
