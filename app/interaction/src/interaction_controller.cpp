@@ -1,22 +1,16 @@
+// The interaction controller, pointer gestures: hover, press, drag, release and cancel of a
+// widget, lattice point, transformer handle or object point; the selection and highlights; undo
+// steps of gestures. Transformer handle drags are in interaction_controller_handles.cpp, direct
+// manipulation and pins in interaction_controller_pins.cpp, document operations (undoable
+// edits) in interaction_controller_operations.cpp.
 #include "ffdkit/app/interaction_controller.h"
 
 #include <algorithm>
 #include <cctype>
-#include <functional>
-#include <cmath>
 #include <limits>
 #include <memory>
-#include <stdexcept>
-#include <type_traits>
 
-#include "ffdkit/app/cell_from_selection.h"
-#include "ffdkit/ffd/cylindrical_lattice.h"
-#include "ffdkit/ffd/direct_manipulation.h"
-#include "ffdkit/ffd/embedding.h"
-#include "ffdkit/ffd/pipeline.h"
 #include "ffdkit/scenes/document_delta.h"
-#include "ffdkit/scenes/lattice_fit.h"
-#include "ffdkit/scenes/scene_changes.h"
 
 namespace ffdkit::app {
 
@@ -31,28 +25,6 @@ std::string handleDragDescription(TransformerHandle handle) {
   return text;
 }
 }  // namespace
-
-void fitAndAttachLattice(scenes::Scene& scene, WidgetId lattice, const std::string& objectName) {
-  const scenes::SceneObject* object = scene.findObject(objectName);
-  if (object == nullptr) throw std::invalid_argument("no object '" + objectName + "'");
-  if (object->mesh.points.rows() == 0) throw std::invalid_argument("object '" + objectName + "' has no points");
-  if (scene.widgets.parentCell(lattice))
-    throw std::invalid_argument("'" + scene.widgets.name(lattice) + "' is a child lattice: attach its root");
-  // The same rule as scenes::attachNewLattice (lattice_fit.h).
-  const Eigen::AlignedBox3d bounds(object->mesh.points.colwise().minCoeff().transpose(),
-                                   object->mesh.points.colwise().maxCoeff().transpose());
-  scene.widgets.setLatticeFrame(lattice, scenes::fittedLatticeFrame(bounds, 0.05));
-  const std::string& name = scene.widgets.name(lattice);
-  auto it = std::find_if(scene.attachments.begin(), scene.attachments.end(),
-                         [&](const scenes::Attachment& a) { return a.lattice == name; });
-  if (it == scene.attachments.end()) {
-    scene.attachments.push_back({name, {objectName}});
-  } else if (std::find(it->objects.begin(), it->objects.end(), objectName) == it->objects.end()) {
-    it->objects.push_back(objectName);
-  }
-  scenes::touchStructure(scene);
-  scenes::validateScene(scene);
-}
 
 InteractionController::InteractionController(scenes::Scene& scene, scenes::SceneDeformer& deformer,
                                              scenes::CommandStack& commands)
@@ -142,70 +114,6 @@ std::optional<LatticePointRef> InteractionController::pickPoint(const widgets::R
   return best;
 }
 
-void InteractionController::beginHandleDrag(const Transformer& gizmo, TransformerHandle handle, const widgets::Ray& ray) {
-  handleTarget_ = selection_.front();
-  handleDrag_.emplace(gizmo, handle, ray);
-  hoveredHandle_ = handle;
-  point_.reset();
-  if (scene_.widgets.type(handleTarget_) == WidgetType::Affine) {
-    // The placement is not part of WidgetModelState: the command stores it (release()).
-    handleStart_ = true;
-    placementStart_ = scene_.widgets.placement(handleTarget_);
-    placementBase_ = scene_.widgets.placementBase(handleTarget_);
-    dragLattice_.reset();
-  } else {
-    // A lattice moves through a gesture: its frame (a root) or its parent cell (a child)
-    // follows, bound widgets too, and the attached objects are re-embedded as it moves.
-    handleStart_ = false;
-    dragStart_ = scene_.widgets.captureState();
-    scene_.widgets.beginGesture(handleTarget_);
-    dragLattice_ = handleTarget_;
-  }
-  dragging_ = true;
-  notify();
-}
-
-std::optional<std::string> InteractionController::pressObject(const widgets::Ray& ray, double tolerance, bool carryPins) {
-  if (dragging_) cancel();
-  const Eigen::Vector3d dir = ray.direction.normalized();
-  const std::optional<ObjectPoint> best = objectPointAt(ray, tolerance);
-  if (!best) return std::nullopt;
-  const auto& [name, vertex] = *best;
-  const std::vector<WidgetId> stages = scene_.stagesDeforming(name);
-  if (stages.empty()) throw std::invalid_argument("'" + name + "' is not deformed by a lattice: attach one to drag its points");
-  const Eigen::Vector3d own = scene_.findObject(name)->mesh.points.row(vertex).transpose();
-  // From the last stage back: the first lattice whose input holds the point moves it; a later
-  // one that does not hold it must leave it alone (identity outside policy).
-  for (std::size_t k = stages.size(); k-- > 0;) {
-    const ffd::Lattice lattice = scene_.widgets.ffdLattice(stages[k]);
-    const Eigen::Vector3d input = pointBeforeStage(scene_, stages, k, own);
-    const ffd::Embedding e = ffd::embed(lattice, input.transpose());
-    if (e.status(0) == ffd::PointStatus::Inside) {
-      ObjectGrab g;
-      g.object = name;
-      g.vertex = vertex;
-      g.lattice = stages[k];
-      g.weights = pinnedDragWeights(scene_, stages[k], e.parameters().row(0), *best, pins_, carryPins);
-      g.worldToLocal = lattice.frame().linear().inverse();
-      g.grab = deformer_.points(name).row(vertex).transpose();
-      g.normal = dir;
-      g.controlStart = scene_.widgets.controlPoints(stages[k]);
-      objectGrab_ = std::move(g);
-      dragStart_ = scene_.widgets.captureState();
-      dragLattice_ = stages[k];
-      dragging_ = true;
-      notify();
-      return name;
-    }
-    if (lattice.outsidePolicy().kind != ffd::OutsidePolicy::Kind::Identity)
-      throw std::invalid_argument("point " + std::to_string(vertex) + " of '" + name + "' is outside lattice '" +
-                                  scene_.widgets.name(stages[k]) +
-                                  "', whose outside policy moves it: direct manipulation needs a point inside");
-  }
-  throw std::invalid_argument("point " + std::to_string(vertex) + " of '" + name +
-                              "' is outside every lattice deforming it: nothing can move it");
-}
-
 void InteractionController::drag(const widgets::Ray& ray) {
   if (!dragging_) return;
   if (objectGrab_) {
@@ -240,18 +148,6 @@ bool InteractionController::setDragValue(double value) {
   deformer_.update(scene_, dragLattice_);
   notify();
   return true;
-}
-
-void InteractionController::applyHandleMotion(const Eigen::Affine3d& motion) {
-  if (handleStart_) {
-    // F' = M * F with F = base * placement (WidgetModel::placementBase).
-    scene_.widgets.setPlacement(handleTarget_, placementBase_.inverse() * motion * placementBase_ * placementStart_);
-    notify();  // a placement moves no points
-    return;
-  }
-  scene_.widgets.updateGesture(motion);
-  deformer_.update(scene_, dragLattice_);
-  notify();
 }
 
 void InteractionController::release() {
@@ -315,51 +211,6 @@ void InteractionController::cancel() {
   refresh();
 }
 
-void InteractionController::togglePin(const ObjectPoint& point) {
-  const scenes::SceneObject* object = scene_.findObject(point.object);
-  if (object == nullptr || point.vertex < 0 || point.vertex >= object->mesh.points.rows())
-    throw std::invalid_argument("no point " + std::to_string(point.vertex) + " of '" + point.object + "' to pin");
-  if (std::erase(pins_, point) == 0) pins_.push_back(point);
-  notify();
-}
-
-void InteractionController::clearPins() {
-  pins_.clear();
-  notify();
-}
-
-std::optional<Transformer> InteractionController::transformer() const {
-  if (selection_.size() != 1 || point_) return std::nullopt;
-  const auto& m = scene_.widgets;
-  const WidgetId id = selection_.front();
-  if (!m.contains(id)) return std::nullopt;
-  Transformer t;
-  if (m.type(id) == WidgetType::Affine) {
-    const widgets::WidgetFrame f = m.affineFrame(id);
-    t.frame = f.frame;
-    t.size = 2.5 * f.size;
-    t.uniformSize = true;
-    return t;
-  }
-  if (m.type(id) != WidgetType::Lattice) return std::nullopt;
-  // At the centre of the rest lattice, along the rigid part of the frame (polar decomposition).
-  const Eigen::Affine3d frame = m.latticeFrame(id);
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(frame.linear(), Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d rotation = svd.matrixU() * svd.matrixV().transpose();
-  if (rotation.determinant() < 0.0) rotation = -rotation;  // a mirrored frame: keep right-handed axes
-  const Eigen::MatrixX3d rest = m.worldRestPoints(id);
-  t.frame.linear() = rotation;
-  t.frame.translation() = rest.colwise().mean().transpose();
-  t.size = std::max(0.3 * (rest.colwise().maxCoeff() - rest.colwise().minCoeff()).norm(), 1e-6);
-  t.uniformSize = false;
-  return t;
-}
-
-std::optional<TransformerHandle> InteractionController::transformerHandle() const {
-  if (handleDrag_) return handleDrag_->handle();
-  return transformer() ? hoveredHandle_ : std::nullopt;
-}
-
 std::optional<WidgetId> InteractionController::activeLattice(WidgetId id) const {
   const auto& m = scene_.widgets;
   switch (m.type(id)) {
@@ -406,8 +257,6 @@ ViewHighlights InteractionController::highlights() const {
   return h;
 }
 
-// ---- operations --------------------------------------------------------------------------
-
 void InteractionController::pruneSelection() {
   // Selections may name widgets that no longer exist.
   std::erase_if(selection_, [&](WidgetId id) { return !scene_.widgets.contains(id); });
@@ -431,366 +280,6 @@ void InteractionController::pushState(const std::string& description, scenes::St
     refresh();
   };
   commands_.push(scenes::Command{description, [apply] { apply(false); }, [apply] { apply(true); }, mergeKey, bytes});
-}
-
-template <class Change>
-auto InteractionController::edit(const std::string& description, Change change, const std::string& mergeKey) {
-  if (dragging_) cancel();
-  // The model's data and the attachments before the change (transient: the command keeps only
-  // the records that differ), and the objects there were.
-  const widgets::WidgetModelData widgetsBefore = scene_.widgets.toData();
-  const std::vector<scenes::Attachment> attachmentsBefore = scene_.attachments;
-  const std::size_t objectsBefore = scene_.objects.size();
-  auto deltaFromBefore = [&] {
-    scenes::SceneDelta delta;
-    delta.widgets = scenes::modelPatch(widgetsBefore, scene_.widgets.toData());
-    if (!(attachmentsBefore == scene_.attachments)) delta.attachments = std::pair(attachmentsBefore, scene_.attachments);
-    return delta;
-  };
-  auto finish = [&] {
-    auto delta = std::make_shared<const scenes::SceneDelta>(deltaFromBefore());
-    // Objects the change added (appended): moved out of the scene into `held` on undo, back on
-    // redo; the command holds an object only while it is undone.
-    auto held = std::make_shared<std::vector<scenes::SceneObject>>();
-    const std::size_t added = scene_.objects.size() - objectsBefore;
-    auto apply = [this, delta, held, added, objectsBefore](bool forward) {
-      if (!forward) {
-        for (std::size_t i = 0; i < added; ++i) held->push_back(std::move(scene_.objects[objectsBefore + i]));
-        scene_.objects.resize(objectsBefore);
-        if (added > 0) scenes::touchStructure(scene_);
-      }
-      scenes::applySceneDelta(scene_, *delta, forward);
-      if (forward && added > 0) {
-        for (auto& object : *held) scenes::addObject(scene_, std::move(object));
-        held->clear();
-      }
-      pruneSelection();
-      refresh();
-      if (onStructureChanged) onStructureChanged();
-    };
-    commands_.push(scenes::Command{description, [apply] { apply(false); }, [apply] { apply(true); }, mergeKey,
-                                   delta->bytes() + sizeof(*held)});
-    deformer_.finishGesture(scene_);
-    notify();
-    if (onStructureChanged) onStructureChanged();
-  };
-  try {
-    if constexpr (std::is_void_v<decltype(change())>) {
-      change();
-      finish();
-    } else {
-      auto result = change();
-      finish();
-      return result;
-    }
-  } catch (...) {
-    // A failed edit leaves no trace.
-    scenes::applySceneDelta(scene_, deltaFromBefore(), /*forward=*/false);
-    scene_.objects.resize(std::min(scene_.objects.size(), objectsBefore));
-    pruneSelection();
-    refresh();
-    if (onStructureChanged) onStructureChanged();
-    throw;
-  }
-}
-
-void InteractionController::setDisplay(const std::vector<std::string>& objects,
-                                       const std::vector<scenes::DisplaySettings>& looks,
-                                       const std::string& description) {
-  if (objects.size() != looks.size()) throw std::invalid_argument("setDisplay: one look per object");
-  std::vector<scenes::DisplaySettings> before;
-  for (std::size_t i = 0; i < objects.size(); ++i) {
-    const scenes::SceneObject* object = scene_.findObject(objects[i]);
-    if (object == nullptr) throw std::invalid_argument("no object '" + objects[i] + "'");
-    const scenes::DisplaySettings& look = looks[i];
-    if (look.zebraStripes < 1 || look.zebraStripes > 256)
-      throw std::invalid_argument("zebra stripes must be in [1, 256], got " + std::to_string(look.zebraStripes));
-    if (!(look.zebraDirection.norm() > 1e-12)) throw std::invalid_argument("the zebra direction must not be zero");
-    if (!(look.combScale > 0.0)) throw std::invalid_argument("the comb scale must be positive");
-    before.push_back(object->display);
-  }
-  if (before == looks) return;
-  auto restore = [this, objects](const std::vector<scenes::DisplaySettings>& set) {
-    for (std::size_t i = 0; i < objects.size(); ++i)
-      if (scene_.findObject(objects[i]) != nullptr) scenes::setObjectDisplay(scene_, objects[i], set[i]);
-    notify();
-  };
-  restore(looks);
-  std::string key = "look";
-  for (const std::string& name : objects) key += "/" + name;
-  const std::size_t bytes = 2 * looks.size() * sizeof(scenes::DisplaySettings);
-  commands_.push(scenes::Command{description, [restore, before] { restore(before); }, [restore, looks] { restore(looks); },
-                                 key, bytes});
-}
-
-WidgetId InteractionController::newLattice(const NewLatticeOptions& options) {
-  return edit("New lattice", [&] {
-    widgets::LatticeOptions lattice;
-    lattice.counts = options.counts;
-    lattice.settings.basis = options.basis;
-    if (options.cylindrical) {
-      ffd::CylindricalLatticeOptions cylinder;
-      cylinder.counts = options.counts;
-      cylinder.bases = options.basis;
-      if (cylinder.bases[1].kind != ffd::AxisBasis::Kind::PeriodicBSpline)
-        cylinder.bases[1] = ffd::AxisBasis::periodic(std::min(3, options.counts.y() - 1));
-      cylinder.outerRadius = 0.5;  // in the unit box like a box lattice
-      cylinder.zMin = 0.0;
-      cylinder.zMax = 1.0;
-      cylinder.frame = Eigen::Translation3d(0.5, 0.5, 0.0);
-      const ffd::Lattice rest = ffd::makeCylindricalLattice(cylinder);
-      lattice.restPoints = rest.restPoints();
-      lattice.settings.basis = cylinder.bases;
-      lattice.settings.cylinder = rest.cylinderRestShape();
-      lattice.frame = cylinder.frame;
-    }
-    const WidgetId id = scene_.widgets.addLattice(lattice);
-    selection_ = {id};
-    return id;
-  });
-}
-
-WidgetId InteractionController::addCell(WidgetId lattice, const widgets::CellSpec& spec) {
-  return edit("Make " + std::string(widgets::cellKindName(spec.kind)) + " cell", [&] {
-    const WidgetId id = scene_.widgets.addCell(lattice, spec);
-    selection_ = {id};
-    point_.reset();
-    return id;
-  });
-}
-
-WidgetId InteractionController::addAffine(WidgetId cell, widgets::AffineKind kind) {
-  if (scene_.widgets.contains(cell) && scene_.widgets.type(cell) == WidgetType::Cell)
-    if (const auto why = affineRefusal(kind, scene_.widgets.cellSpec(cell).kind)) throw std::invalid_argument(*why);
-  return edit("Add " + std::string(widgets::affineKindName(kind)) + " widget", [&] {
-    const WidgetId id = scene_.widgets.addAffine(cell, kind);
-    selection_ = {id};
-    return id;
-  });
-}
-
-WidgetId InteractionController::addAffineAtPoint(const LatticePointRef& point, widgets::AffineKind kind) {
-  if (const auto why = affineRefusal(kind, widgets::CellKind::Point)) throw std::invalid_argument(*why);
-  return edit("Add " + std::string(widgets::affineKindName(kind)) + " widget", [&] {
-    auto& m = scene_.widgets;
-    std::optional<WidgetId> cell;
-    for (WidgetId c : m.cellsOf(point.lattice)) {
-      const auto& indices = m.cellIndices(c);
-      if (m.cellSpec(c).kind == widgets::CellKind::Point && indices.size() == 1 && indices.front() == point.index)
-        cell = c;
-    }
-    if (!cell) {
-      const Eigen::Vector3i n = m.counts(point.lattice);
-      const int i = static_cast<int>(point.index % n.x());
-      const int j = static_cast<int>((point.index / n.x()) % n.y());
-      const int k = static_cast<int>(point.index / (n.x() * n.y()));
-      cell = m.addCell(point.lattice, widgets::CellSpec::point(i, j, k));
-    }
-    const WidgetId id = m.addAffine(*cell, kind);
-    selection_ = {id};
-    point_.reset();
-    return id;
-  });
-}
-
-widgets::BindingId InteractionController::bind(WidgetId a, WidgetId b) {
-  return edit("Bind " + scene_.widgets.name(a) + " - " + scene_.widgets.name(b),
-              [&] { return scene_.widgets.bind(a, b); });
-}
-
-void InteractionController::unbind(widgets::BindingId binding) {
-  edit("Unbind", [&] { scene_.widgets.unbind(binding); });
-}
-
-void InteractionController::removeWidget(WidgetId id) {
-  edit("Remove " + scene_.widgets.name(id), [&] {
-    const std::string name = scene_.widgets.name(id);
-    scene_.widgets.remove(id);
-    std::erase_if(scene_.attachments, [&](const scenes::Attachment& a) { return a.lattice == name; });
-    selection_.clear();
-    point_.reset();
-  });
-}
-
-void InteractionController::attachLattice(WidgetId lattice, const std::string& objectName) {
-  edit("Attach " + scene_.widgets.name(lattice) + " to " + objectName, [&] {
-    fitAndAttachLattice(scene_, lattice, objectName);
-  });
-}
-
-void InteractionController::detachLattice(WidgetId lattice, const std::string& object) {
-  edit("Detach " + scene_.widgets.name(lattice) + " from " + object,
-       [&] { scenes::detachLattice(scene_, scene_.widgets.name(lattice), object); });
-}
-
-std::string InteractionController::addPrimitive(const scenes::PrimitiveOptions& options) {
-  return edit(
-      "Add " + std::string(scenes::primitiveKindName(options.kind)),
-      [&] {
-        const std::string base(scenes::primitiveKindName(options.kind));
-        std::string name;
-        for (int n = 1; name.empty() || scene_.findObject(name) != nullptr; ++n) name = base + std::to_string(n);
-        scenes::SceneObject object;
-        object.name = name;
-        object.source = options;
-        object.mesh = scenes::buildObjectMesh(object.source, ".");
-        scenes::addObject(scene_, std::move(object));
-        return name;
-      });
-}
-
-void InteractionController::addObject(scenes::SceneObject object) {
-  edit(
-      "Import " + object.name,
-      [&] {
-        if (scene_.findObject(object.name) != nullptr) throw std::invalid_argument("object '" + object.name + "' exists");
-        scenes::addObject(scene_, std::move(object));
-      });
-}
-
-void InteractionController::setVariation(WidgetId affine, double value) {
-  edit("Set variation of " + scene_.widgets.name(affine), [&] { scene_.widgets.setVariation(affine, value); },
-       "variation/" + widgets::toString(affine));
-}
-
-void InteractionController::setPlacement(WidgetId affine, const Eigen::Affine3d& placement) {
-  edit("Place " + scene_.widgets.name(affine), [&] { scene_.widgets.setPlacement(affine, placement); },
-       "placement/" + widgets::toString(affine));
-}
-
-void InteractionController::setGlyph(WidgetId affine, const widgets::Glyph& glyph) {
-  edit("Glyph of " + scene_.widgets.name(affine), [&] { scene_.widgets.setGlyph(affine, glyph); },
-       "glyph/" + widgets::toString(affine));
-}
-
-void InteractionController::setAffineKind(WidgetId affine, widgets::AffineKind kind) {
-  edit("Make " + scene_.widgets.name(affine) + " a " + std::string(widgets::affineKindName(kind)) + " widget",
-       [&] { scene_.widgets.setAffineKind(affine, kind); });
-}
-
-void InteractionController::setLatticeCounts(WidgetId lattice, const Eigen::Vector3i& counts) {
-  edit("Set counts of " + scene_.widgets.name(lattice), [&] { scene_.widgets.setLatticeCounts(lattice, counts); });
-}
-
-void InteractionController::setOneWay(widgets::BindingId binding, bool oneWay) {
-  edit(oneWay ? "Make binding one-way" : "Make binding two-way", [&] { scene_.widgets.setOneWay(binding, oneWay); });
-}
-
-void InteractionController::setMask(widgets::BindingId binding, widgets::AffineMask mask) {
-  edit("Set mask " + widgets::maskString(mask), [&] { scene_.widgets.setMask(binding, mask); });
-}
-
-void InteractionController::setRule(widgets::BindingId binding, const widgets::ConversionRule& rule) {
-  edit("Set conversion rule", [&] { scene_.widgets.setRule(binding, rule); }, "rule/" + widgets::toString(binding));
-}
-
-void InteractionController::setLatticeSettings(WidgetId lattice, const widgets::LatticeSettings& settings) {
-  edit("Lattice settings of " + scene_.widgets.name(lattice),
-       [&] { scene_.widgets.setLatticeSettings(lattice, settings); });
-}
-
-void InteractionController::setLatticeFrame(WidgetId lattice, const Eigen::Affine3d& frame) {
-  edit("Place " + scene_.widgets.name(lattice), [&] { scene_.widgets.setLatticeFrame(lattice, frame); },
-       "frame/" + widgets::toString(lattice));
-}
-
-void InteractionController::setSiblingPosition(WidgetId lattice, std::size_t position) {
-  edit("Reorder " + scene_.widgets.name(lattice), [&] { scene_.widgets.setSiblingPosition(lattice, position); });
-}
-
-void InteractionController::replaceWidgets(widgets::WidgetModel model, const std::optional<std::string>& attachTo) {
-  edit(attachTo ? "Open widget file on " + *attachTo : std::string("Open widget file"), [&] {
-    scene_.widgets = std::move(model);
-    std::erase_if(scene_.attachments, [&](const scenes::Attachment& a) {
-      const auto roots = scene_.widgets.roots();
-      return std::none_of(roots.begin(), roots.end(), [&](WidgetId r) { return scene_.widgets.name(r) == a.lattice; });
-    });
-    if (attachTo)
-      for (WidgetId root : scene_.widgets.roots()) fitAndAttachLattice(scene_, root, *attachTo);
-    selection_.clear();
-    point_.reset();
-    hovered_.reset();
-  });
-}
-
-void InteractionController::removeObjects(const std::vector<std::string>& objects) {
-  for (const std::string& object : objects)
-    if (scene_.findObject(object) == nullptr) throw std::invalid_argument("no object '" + object + "'");
-  if (objects.empty()) return;
-  if (dragging_) cancel();
-  std::string description = "Delete " + objects.front();
-  if (objects.size() > 1) description += " and " + std::to_string(objects.size() - 1) + " more";
-  // The command holds the removed objects (with their places) while they are removed, and the
-  // attachments before (a few names); scenes::removeObject drops each from its attachments.
-  auto held = std::make_shared<std::vector<std::pair<std::size_t, scenes::SceneObject>>>();
-  const auto attachmentsBefore = std::make_shared<const std::vector<scenes::Attachment>>(scene_.attachments);
-  auto remove = [this, objects, held] {
-    for (std::size_t i = scene_.objects.size(); i-- > 0;)
-      if (std::find(objects.begin(), objects.end(), scene_.objects[i].name) != objects.end()) {
-        const std::string name = scene_.objects[i].name;
-        held->emplace_back(i, std::move(scene_.objects[i]));
-        scene_.objects[i].name = name;  // the moved-from entry, which removeObject finds and erases
-        scenes::removeObject(scene_, name);
-      }
-  };
-  auto putBack = [this, held, attachmentsBefore] {
-    for (auto it = held->rbegin(); it != held->rend(); ++it)
-      scene_.objects.insert(scene_.objects.begin() + static_cast<std::ptrdiff_t>(it->first), std::move(it->second));
-    held->clear();
-    scene_.attachments = *attachmentsBefore;
-    scenes::touchStructure(scene_);
-  };
-  auto after = [this] {
-    pruneSelection();
-    refresh();
-    if (onStructureChanged) onStructureChanged();
-  };
-  remove();
-  std::size_t bytes = 0;
-  for (const auto& [place, object] : *held)
-    bytes += sizeof(object) + 8 * static_cast<std::size_t>(object.mesh.points.size()) +
-             4 * static_cast<std::size_t>(object.mesh.triangles.size() + object.mesh.segments.size());
-  commands_.push(scenes::Command{description,
-                                 [putBack, after] {
-                                   putBack();
-                                   after();
-                                 },
-                                 [remove, after] {
-                                   remove();
-                                   after();
-                                 },
-                                 {}, bytes});
-  after();
-}
-
-void InteractionController::renameObject(const std::string& object, const std::string& name) {
-  if (scene_.findObject(object) == nullptr) throw std::invalid_argument("no object '" + object + "'");
-  if (name == object) return;
-  if (name.empty()) throw std::invalid_argument("an object needs a name");
-  if (scene_.findObject(name) != nullptr) throw std::invalid_argument("object name '" + name + "' is already used");
-  if (dragging_) cancel();
-  // The attachments name objects (scenes::Attachment::objects): they follow.
-  auto rename = [this](const std::string& from, const std::string& to) {
-    scene_.findObject(from)->name = to;
-    for (scenes::Attachment& a : scene_.attachments) std::replace(a.objects.begin(), a.objects.end(), from, to);
-    scenes::touchStructure(scene_);
-    refresh();
-    if (onStructureChanged) onStructureChanged();
-  };
-  rename(object, name);
-  commands_.push(scenes::Command{"Rename " + object + " to " + name, [rename, object, name] { rename(name, object); },
-                                 [rename, object, name] { rename(object, name); }, {}, 0});
-}
-
-void InteractionController::renameWidget(WidgetId id, const std::string& name) {
-  const std::string old = scene_.widgets.name(id);
-  if (name == old) return;
-  edit("Rename " + old + " to " + name, [&] {
-    scene_.widgets.rename(id, name);
-    // Attachments name root lattices (scenes::Attachment::lattice).
-    for (scenes::Attachment& a : scene_.attachments)
-      if (a.lattice == old) a.lattice = name;
-  });
 }
 
 void InteractionController::refresh() {
