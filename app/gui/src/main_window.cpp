@@ -1,47 +1,25 @@
+// MainWindow: the window, its docks, the model -> view wiring, the 3D view's pointer and keys,
+// drops and closing. Its menus and actions are in main_window_menus.cpp, the document's files in
+// main_window_document.cpp, a large attach's background embedding in main_window_embed.cpp.
 #include "ffdkit/app/main_window.h"
 
 #include <algorithm>
-#include <atomic>
-#include <cmath>
-#include <functional>
 #include <numbers>
 
-#include <QAction>
-#include <QActionGroup>
-#include <QApplication>
-#include <QCheckBox>
 #include <QCloseEvent>
-#include <QComboBox>
-#include <QDialog>
-#include <QDialogButtonBox>
 #include <QDockWidget>
 #include <QDragEnterEvent>
 #include <QDropEvent>
-#include <QFileDialog>
-#include <QFileInfo>
-#include <QFormLayout>
 #include <QKeyEvent>
 #include <QLabel>
-#include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
 #include <QMouseEvent>
-#include <QEventLoop>
-#include <QProgressDialog>
-#include <QPointer>
-#include <QThread>
-#include <QTimer>
 #include <QScrollArea>
 #include <QSettings>
-#include <QSpinBox>
 #include <QStatusBar>
-#include <QToolBar>
 
-#include "ffdkit/ffd/cancelled.h"
-#include "ffdkit/app/scene_bounds.h"
-#include "import_options.h"
 #include "keyboard_shortcuts.h"
-#include "gltf_export_dialog.h"
 #include "main_window_impl.h"
 
 namespace ffdkit::app {
@@ -55,15 +33,6 @@ QString deformStatusText(const scenes::SceneDeformStats& stats) {
   QString text = QObject::tr("deform %1 ms, %2 points").arg(stats.seconds * 1e3, 0, 'f', 2).arg(stats.deformedPoints);
   if (stats.embedSeconds > 0.0) text += QObject::tr(" (embed %1 ms)").arg(stats.embedSeconds * 1e3, 0, 'f', 2);
   return text;
-}
-
-/// Adds OK / Cancel to a form dialog and runs it. @return true if accepted.
-bool acceptedForm(QDialog& dialog, QFormLayout* form) {
-  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
-  QObject::connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
-  QObject::connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
-  form->addRow(buttons);
-  return dialog.exec() == QDialog::Accepted;
 }
 }  // namespace
 
@@ -177,297 +146,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     refreshPanel();
   };
 
-  // Helpers for actions.
-  auto action = [this](QMenu* menu, const QString& text, const char* name, auto slot) {
-    QAction* a = menu->addAction(text);
-    a->setObjectName(name);
-    connect(a, &QAction::triggered, this, [this, slot] {
-      try {
-        slot();
-      } catch (const std::exception& e) {
-        impl_->sayError(e.what());
-        QApplication::beep();
-      }
-    });
-    return a;
-  };
-  auto fileAction = [this, action](QMenu* menu, const QString& text, const char* name, bool save, const QString& filter,
-                                   auto apply) {
-    return action(menu, text, name, [this, text, save, filter, apply] {
-      const QString path = save ? QFileDialog::getSaveFileName(this, text, QString(), filter)
-                                : QFileDialog::getOpenFileName(this, text, QString(), filter);
-      if (path.isEmpty()) return;
-      try {
-        apply(std::filesystem::path(path.toStdString()));
-      } catch (const std::exception& e) {
-        QMessageBox::critical(this, text, qs(e.what()));
-      }
-    });
-  };
+  createMenus(outlinerDock, propertiesDock, refreshPanel);
 
-  const QString sceneFilter = tr("ffdkit scenes (*.json);;All files (*)");
-  const QString widgetFilter = tr("ffdkit widget files (*.json);;All files (*)");
-  const QString meshFilter = tr("Meshes (*.obj *.ply *.stl *.vtp *.vtk *.gltf *.glb *.xyz *.npy);;All files (*)");
-
-  QMenu* file = menuBar()->addMenu(tr("&File"));
-  action(file, tr("&New Scene"), "actionNewScene", [this] {
-    if (maybeSave()) newScene();
-  });
-  action(file, tr("&Open Scene..."), "actionOpenScene", [this, sceneFilter] {
-    if (!maybeSave()) return;
-    const QString path = QFileDialog::getOpenFileName(this, tr("Open Scene"), QString(), sceneFilter);
-    if (path.isEmpty()) return;
-    try {
-      openScene(path.toStdString());
-    } catch (const std::exception& e) {
-      QMessageBox::critical(this, tr("Open Scene"), qs(e.what()));
-    }
-  });
-  d.recentMenu = file->addMenu(tr("Open &Recent"));
-  action(file, tr("&Save Scene"), "actionSaveScene", [this] { saveInteractively(false); });
-  action(file, tr("Save Scene &As..."), "actionSaveSceneAs", [this] { saveInteractively(true); });
-  file->addSeparator();
-  fileAction(file, tr("Open &Widget File..."), "actionOpenWidgetFile", false, widgetFilter,
-             [this](const std::filesystem::path& p) { openWidgetFile(p); });
-  fileAction(file, tr("Save W&idget File..."), "actionSaveWidgetFile", true, widgetFilter,
-             [this](const std::filesystem::path& p) { saveWidgetFile(p); });
-  file->addSeparator();
-  fileAction(file, tr("&Import Mesh..."), "actionImportMesh", false, meshFilter,
-             [this](const std::filesystem::path& p) { importMesh(p); });
-  addImportUpAxisMenu(file);
-  fileAction(file, tr("&Export Deformed Mesh..."), "actionExportMesh", true, meshFilter,
-             [this](const std::filesystem::path& p) { exportMesh(p); });
-  action(file, tr("Export &glTF..."), "actionExportGltf", [this] { exportGltfInteractively(this, impl_->scene); });
-  file->addSeparator();
-  // A preference, off by default: a shared scene must not make the app read files outside the
-  // scene's folder (scenes::SceneReadOptions::allowMeshesOutsideFolder).
-  QAction* outside = file->addAction(tr("Allow Meshes &Outside a Scene's Folder"));
-  outside->setObjectName("actionAllowOutsideMeshes");
-  outside->setCheckable(true);
-  outside->setChecked(QSettings().value(kAllowOutsideMeshesKey, false).toBool());
-  connect(outside, &QAction::toggled, this, [](bool on) { QSettings().setValue(kAllowOutsideMeshesKey, on); });
-  file->addSeparator();
-  action(file, tr("&Quit"), "actionQuit", [this] { close(); });
-
-  QMenu* edit = menuBar()->addMenu(tr("&Edit"));
-  d.undo = action(edit, tr("&Undo"), "actionUndo", [this] { impl_->commands.undo(); });
-  d.redo = action(edit, tr("&Redo"), "actionRedo", [this] { impl_->commands.redo(); });
-  d.undo->setEnabled(false);
-  d.redo->setEnabled(false);
-  edit->addSeparator();
-  action(edit, tr("&Delete Widget"), "actionRemove", [this] {
-    const auto sel = impl_->controller->selection();
-    if (!impl_->selectedObjects.empty() && sel.empty() && !impl_->selectedBinding) {
-      deleteSelectedObjects();  // the Delete key deletes whatever is selected
-    } else if (impl_->selectedBinding) {
-      impl_->controller->unbind(*impl_->selectedBinding);
-      impl_->selectedBinding.reset();
-    } else if (!sel.empty()) {
-      impl_->controller->removeWidget(sel.front());
-    }
-  });
-  action(edit, tr("Delete &Object"), "actionDeleteObject", [this] { deleteSelectedObjects(); });
-  action(edit, tr("Re&name..."), "actionRename", [this] { renameSelection(); });
-  edit->addSeparator();
-  action(edit, tr("&Preferences..."), "actionPreferences", [this] {
-    QDialog dialog(this);
-    dialog.setObjectName("preferencesDialog");
-    dialog.setWindowTitle(tr("Preferences"));
-    auto* form = new QFormLayout(&dialog);
-    auto* minutes = new QSpinBox;
-    minutes->setObjectName("autosaveMinutes");
-    minutes->setRange(0, 120);
-    minutes->setSpecialValueText(tr("only on changes"));
-    minutes->setSuffix(tr(" min"));
-    minutes->setValue(QSettings().value("autosaveMinutes", kDefaultAutosaveMinutes).toInt());
-    form->addRow(tr("Autosave for recovery every"), minutes);
-    if (!acceptedForm(dialog, form)) return;
-    QSettings().setValue("autosaveMinutes", minutes->value());
-    startAutosaveTimer();
-  });
-
-  // The thesis operations (seed 001 §6.4).
-  QMenu* widgetsMenu = menuBar()->addMenu(tr("&Widgets"));
-  QAction* newLattice = action(widgetsMenu, tr("New &Lattice..."), "actionNewLattice", [this] {
-    QDialog dialog(this);
-    dialog.setObjectName("newLatticeDialog");
-    dialog.setWindowTitle(tr("New Lattice"));
-    auto* form = new QFormLayout(&dialog);
-    QSpinBox* counts[3];
-    QComboBox* bases[3];
-    for (int a = 0; a < 3; ++a) {
-      counts[a] = new QSpinBox;
-      counts[a]->setObjectName(QString("count%1").arg("uvw"[a]));
-      counts[a]->setRange(2, 32);
-      counts[a]->setValue(3);
-      bases[a] = new QComboBox;
-      bases[a]->setObjectName(QString("basis%1").arg("uvw"[a]));
-      bases[a]->addItems({tr("Bernstein"), tr("B-spline cubic"), tr("B-spline quadratic"), tr("B-spline linear")});
-      form->addRow(tr("Points along %1").arg("uvw"[a]), counts[a]);
-      form->addRow(tr("Basis along %1").arg("uvw"[a]), bases[a]);
-    }
-    auto* cylindrical = new QCheckBox(tr("cylindrical (radius, angle, height)"));
-    cylindrical->setObjectName("cylindrical");
-    form->addRow(tr("Shape"), cylindrical);
-    if (!acceptedForm(dialog, form)) return;
-    NewLatticeOptions options;
-    for (int a = 0; a < 3; ++a) {
-      options.counts[a] = counts[a]->value();
-      const int degree = std::min(counts[a]->value() - 1, 4 - bases[a]->currentIndex());
-      options.basis[static_cast<std::size_t>(a)] =
-          bases[a]->currentIndex() == 0 ? ffd::AxisBasis::bernstein() : ffd::AxisBasis::bspline(degree);
-    }
-    options.cylindrical = cylindrical->isChecked();
-    impl_->controller->newLattice(options);
-    impl_->status->say(tr("New lattice: click one of its points, then add a widget"));
-  });
-  widgetsMenu->addSeparator();
-  const std::pair<const char*, widgets::AffineKind> kinds[] = {{"actionAddTranslate", widgets::AffineKind::Translate},
-                                                               {"actionAddRotate", widgets::AffineKind::Rotate},
-                                                               {"actionAddScale", widgets::AffineKind::Scale}};
-  QAction* addActions[3];
-  int k = 0;
-  for (const auto& [name, kind] : kinds) {
-    const widgets::AffineKind kindCopy = kind;
-    addActions[k++] = action(widgetsMenu,
-                             tr("Add %1 Widget").arg(qs(std::string(widgets::affineKindName(kind)))), name,
-                             [this, kindCopy] {
-                               Impl& s = *impl_;
-                               if (const auto point = s.controller->pickedPoint()) {
-                                 s.controller->addAffineAtPoint(*point, kindCopy);
-                                 return;
-                               }
-                               for (widgets::WidgetId w : s.controller->selection())
-                                 if (s.scene.widgets.type(w) == widgets::WidgetType::Cell) {
-                                   s.controller->addAffine(w, kindCopy);
-                                   return;
-                                 }
-                               throw std::invalid_argument("pick a lattice point or select a cell first");
-                             });
-  }
-  QAction* bind = action(widgetsMenu, tr("&Bind Two Widgets"), "actionBind", [this] {
-    const auto sel = impl_->controller->selection();
-    if (sel.size() != 2) throw std::invalid_argument("select exactly two widgets to bind (Ctrl+click)");
-    impl_->controller->bind(sel[0], sel[1]);
-  });
-  widgetsMenu->addSeparator();
-  auto selectedLattice = [this]() -> widgets::WidgetId {
-    for (widgets::WidgetId w : impl_->controller->selection())
-      if (impl_->scene.widgets.type(w) == widgets::WidgetType::Lattice) return w;
-    const auto roots = impl_->scene.widgets.roots();
-    if (roots.size() == 1) return roots.front();
-    throw std::invalid_argument("select a lattice");
-  };
-  auto selectedObject = [this]() -> std::string {
-    if (!impl_->selectedObjects.empty()) return impl_->selectedObjects.front();
-    if (impl_->scene.objects.size() == 1) return impl_->scene.objects.front().name;
-    throw std::invalid_argument("select an object in the outliner");
-  };
-  QAction* attach = action(widgetsMenu, tr("&Attach Lattice to Object"), "actionAttach",
-                           [this, selectedLattice, selectedObject] {
-                             if (!attachLattice(selectedLattice(), selectedObject()))
-                               impl_->status->say(tr("Attach cancelled"), 5000);
-                           });
-  action(widgetsMenu, tr("&Detach Lattice from Object"), "actionDetach", [this, selectedLattice, selectedObject] {
-    impl_->controller->detachLattice(selectedLattice(), selectedObject());
-  });
-  // Direct manipulation (spec §10): a mode, because a drag on an object otherwise orbits.
-  d.directManipulation = action(widgetsMenu, tr("&Direct Manipulation"), "actionDirectManipulation", [this] {
-    impl_->status->say(impl_->directManipulation->isChecked()
-                           ? tr("Direct manipulation: drag a point of an object; its lattice follows")
-                           : tr("Direct manipulation off"),
-                       5000);
-  });
-  d.directManipulation->setCheckable(true);
-  d.directManipulation->setToolTip(tr("Drag points of objects: the lattice gets the smallest change that puts the point under the pointer (D)"));
-  action(widgetsMenu, tr("&Clear Pins"), "actionClearPins", [this] { impl_->controller->clearPins(); });
-  widgetsMenu->addSeparator();
-  QAction* primitive = action(widgetsMenu, tr("Add &Primitive..."), "actionAddPrimitive", [this] {
-    QDialog dialog(this);
-    dialog.setObjectName("addPrimitiveDialog");
-    dialog.setWindowTitle(tr("Add Primitive"));
-    auto* form = new QFormLayout(&dialog);
-    auto* kind = new QComboBox;
-    kind->setObjectName("primitiveKind");
-    for (auto k2 : {scenes::PrimitiveKind::Sphere, scenes::PrimitiveKind::Cylinder, scenes::PrimitiveKind::Cube,
-                    scenes::PrimitiveKind::Cone, scenes::PrimitiveKind::Torus, scenes::PrimitiveKind::Plane})
-      kind->addItem(qs(std::string(scenes::primitiveKindName(k2))), static_cast<int>(k2));
-    auto* axis = new QComboBox;
-    axis->setObjectName("primitiveAxis");
-    axis->addItems({tr("+z"), tr("+x"), tr("+y")});
-    auto* resolution = new QSpinBox;
-    resolution->setObjectName("primitiveResolution");
-    resolution->setRange(3, 512);
-    resolution->setValue(32);
-    form->addRow(tr("Type"), kind);
-    form->addRow(tr("Axis"), axis);
-    form->addRow(tr("Resolution"), resolution);
-    if (!acceptedForm(dialog, form)) return;
-    scenes::PrimitiveOptions options;
-    options.kind = static_cast<scenes::PrimitiveKind>(kind->currentData().toInt());
-    options.resolution = resolution->value();
-    if (axis->currentIndex() == 1) options.placement = Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitY());
-    if (axis->currentIndex() == 2) options.placement = Eigen::AngleAxisd(-std::numbers::pi / 2, Eigen::Vector3d::UnitX());
-    const std::string name = impl_->controller->addPrimitive(options);
-    impl_->selectedObjects = {name};
-    impl_->outliner->select(impl_->entries());
-  });
-
-  QMenu* viewMenu = menuBar()->addMenu(tr("&View"));
-  action(viewMenu, tr("&Reset Camera"), "actionResetCamera", [this] {
-    impl_->sceneView->applyCamera(impl_->scene.camera);
-    impl_->view->requestRender();
-  });
-  d.navigation = new ViewNavigation(
-      d.view, *d.sceneView,
-      [this] { return selectionBounds(impl_->scene, impl_->deformer, impl_->controller->selection(), impl_->selectedObjects); },
-      [this] { return sceneBounds(impl_->scene, impl_->deformer); }, this);
-  d.navigation->addActions(viewMenu);
-  viewMenu->addSeparator();
-  // Looks of the selected objects (else of all): reflection lines on surfaces, curvature combs
-  // on curves (DisplaySettings::surfaceStyle / curvatureComb; stripe count and comb scale are
-  // scene-file settings).
-  d.zebra = action(viewMenu, tr("&Zebra Stripes"), "actionZebra", [this] {
-    const bool on = impl_->zebra->isChecked();
-    impl_->changeLook(on ? "Zebra stripes" : "Shaded surfaces", [on](const scenes::SceneObject& o, scenes::DisplaySettings& look) {
-      if (o.mesh.triangles.rows() > 0) look.surfaceStyle = on ? scenes::SurfaceStyle::Zebra : scenes::SurfaceStyle::Shaded;
-    });
-  });
-  d.zebra->setCheckable(true);
-  d.comb = action(viewMenu, tr("Curvature &Comb"), "actionCurvatureComb", [this] {
-    const bool on = impl_->comb->isChecked();
-    impl_->changeLook(on ? "Curvature comb" : "No curvature comb", [on](const scenes::SceneObject& o, scenes::DisplaySettings& look) {
-      if (o.mesh.segments.rows() > 0) look.curvatureComb = on;
-    });
-  });
-  d.comb->setCheckable(true);
-  viewMenu->addSeparator();
-  viewMenu->addAction(outlinerDock->toggleViewAction());
-  viewMenu->addAction(propertiesDock->toggleViewAction());
-
-  QToolBar* toolbar = addToolBar(tr("Operations"));
-  toolbar->setObjectName("operationsToolbar");
-  toolbar->addAction(d.undo);
-  toolbar->addAction(d.redo);
-  toolbar->addSeparator();
-  toolbar->addAction(primitive);
-  toolbar->addAction(newLattice);
-  for (QAction* a : addActions) toolbar->addAction(a);
-  toolbar->addAction(bind);
-  toolbar->addAction(attach);
-  toolbar->addAction(d.directManipulation);
-  d.editInput = new EditModeInput({this, d.view, d.sceneView.get(), d.status, &d.scene, d.controller.get(), d.edit.get(),
-                                   [this](const std::string& m) { impl_->sayError(m); },
-                                   [this](const QPoint& p) { return impl_->rayAt(p); }, [this] { return impl_->tolerance(); },
-                                   [this] { impl_->controller->onChanged(); }},
-                                  widgetsMenu, toolbar);
-
-  d.timeline = addTimelineDock(this, d.scene, d.commands, *d.controller);
-  connect(d.timeline, &TimelineWidget::error, this, [this](const QString& m) { impl_->sayError(m.toStdString()); });
-  connect(d.timeline, &TimelineWidget::frameChanged, this, refreshPanel);
-  QMenu* help = menuBar()->addMenu(tr("&Help"));
-  action(help, tr("&Keyboard Shortcuts"), "actionKeyboardShortcuts", [this] { showKeyboardShortcuts(this); });
-  applyKeyboardShortcuts(this);  // every action's keys from the one table (keyboard_shortcuts.h)
 
   rebuildRecentMenu();
 
@@ -485,75 +165,6 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
 
 MainWindow::~MainWindow() = default;
 
-namespace {
-long backgroundPoints = 200000;
-}
-
-void MainWindow::setBackgroundEmbedPoints(long points) { backgroundPoints = points; }
-long MainWindow::backgroundEmbedPoints() { return backgroundPoints; }
-
-bool MainWindow::attachLattice(widgets::WidgetId lattice, const std::string& object) {
-  Impl& d = *impl_;
-  const scenes::SceneObject* target = d.scene.findObject(object);
-  if (target == nullptr || target->mesh.points.rows() < backgroundPoints) {
-    d.controller->attachLattice(lattice, object);
-    return true;
-  }
-  // Embed on a copy of the scene in a worker thread; the GUI stays live, shows the embedding's
-  // progress and can cancel it: the worker's progress hook reports into atomics that a timer
-  // polls, and stops the embedding (ffd::Cancelled) at its next chunk once Cancel is pressed.
-  struct Job {
-    scenes::Scene scene;
-    scenes::SceneDeformer deformer;
-    std::string error;
-    std::atomic<int> permille{0};
-    std::atomic<bool> cancel{false};
-  };
-  auto job = std::make_shared<Job>();
-  job->scene = d.scene;
-  fitAndAttachLattice(job->scene, lattice, object);  // throws before anything starts
-  job->deformer.setProgress([raw = job.get()](double fraction) {
-    raw->permille.store(static_cast<int>(std::lround(1000.0 * fraction)));
-    return !raw->cancel.load();
-  });
-  QThread* thread = QThread::create([job] {
-    try {
-      job->deformer.finishGesture(job->scene);
-    } catch (const ffd::Cancelled&) {
-      // The copy is dropped below.
-    } catch (const std::exception& e) {
-      job->error = e.what();
-    }
-  });
-  QProgressDialog progress(tr("Embedding %1 points of '%2'...").arg(target->mesh.points.rows()).arg(qs(object)),
-                           tr("Cancel"), 0, 1000, this);
-  progress.setObjectName("embedProgress");
-  progress.setWindowModality(Qt::WindowModal);
-  progress.setMinimumDuration(0);
-  progress.setAutoReset(false);
-  progress.setAutoClose(false);
-  QTimer poll;
-  connect(&poll, &QTimer::timeout, &progress, [&] { progress.setValue(job->permille.load()); });
-  QEventLoop loop;
-  connect(thread, &QThread::finished, &loop, &QEventLoop::quit);
-  connect(&progress, &QProgressDialog::canceled, &loop, [&] {
-    job->cancel.store(true);  // the worker stops at its next chunk; wait for it below
-  });
-  connect(thread, &QThread::finished, thread, &QObject::deleteLater);
-  thread->start();
-  progress.show();
-  poll.start(30);
-  loop.exec();  // until the worker has finished, cancelled or not
-  poll.stop();
-  progress.reset();
-  const bool cancelled = job->cancel.load();
-  job->deformer.setProgress({});  // the hook points into the job
-  if (cancelled) return false;
-  if (!job->error.empty()) throw std::runtime_error(job->error);
-  d.controller->adoptDeformer(std::move(job->deformer));
-  d.controller->attachLattice(lattice, object);  // the same edit: nothing left to embed
-  return true;
-}
 
 void MainWindow::selectWidget(const std::string& name) {
   Impl& d = *impl_;

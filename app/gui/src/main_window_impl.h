@@ -1,6 +1,7 @@
-// MainWindow's state shared by its two source files: main_window.cpp (the window, its menus,
-// the view's events) and main_window_document.cpp (the document's files: open, save, the
-// unsaved-changes prompt, recent files, recovery).
+// MainWindow's state shared by its source files: main_window.cpp (the window, the model -> view
+// wiring, the view's events), main_window_menus.cpp (the menus, actions and toolbar),
+// main_window_document.cpp (the document's files: open, save, the unsaved-changes prompt, recent
+// files, recovery) and main_window_embed.cpp (a large attach's background embedding).
 #pragma once
 
 #include <filesystem>

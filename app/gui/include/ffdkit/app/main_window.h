@@ -1,6 +1,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 
 #include <QMainWindow>
@@ -10,6 +11,7 @@
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/widgets/widget_id.h"
 
+class QDockWidget;
 class QTreeWidget;
 
 namespace ffdkit::app {
@@ -95,6 +97,9 @@ class MainWindow : public QMainWindow {
   void closeEvent(QCloseEvent* event) override;
 
  private:
+  /// The menus, their actions, the toolbar, the edit mode's input and the timeline dock
+  /// (main_window_menus.cpp); `refreshPanel` shows the selection in the property panel.
+  void createMenus(QDockWidget* outlinerDock, QDockWidget* propertiesDock, const std::function<void()>& refreshPanel);
   /// Asks Save / Discard / Cancel when the document has unsaved changes.
   /// @return false if the user cancelled (or a save failed): keep everything.
   bool maybeSave();
