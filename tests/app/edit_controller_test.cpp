@@ -158,6 +158,62 @@ TEST(EditController, TransformerHandleDragMovesTheSelectionWithSnapping) {
             1e-12);
 }
 
+TEST(EditController, AValueTypedDuringAHandleDragSetsItsAmountExactlyAsOneUndoStep) {
+  Document d;
+  const WidgetId lattice = d.controller.newLattice({});
+  const auto& m = d.scene.widgets;
+  d.edit.enter(lattice);
+  d.edit.pickMany({f(1, 1, 2), f(2, 1, 2)}, SelectMode::Replace);
+  EXPECT_FALSE(d.edit.setDragValue(0.5));  // no drag: nothing changes
+  const Eigen::MatrixX3d start = m.worldControlPoints(lattice);
+  const std::size_t steps = d.commands.position();
+  const Transformer t = *d.edit.transformer();
+  const Eigen::Vector3d grab = t.frame.translation() + 0.6 * t.size * Eigen::Vector3d::UnitX();
+  ASSERT_TRUE(d.edit.pressHandle(tiltedAt(grab), 0.02));
+  EXPECT_EQ(d.edit.draggedHandle(), TransformerHandle::MoveX);
+  d.edit.update(tiltedAt(grab + Eigen::Vector3d(0.23, 0, 0)), false);
+  ASSERT_TRUE(d.edit.setDragValue(0.5));
+  d.edit.update(tiltedAt(grab + Eigen::Vector3d(0.1, 0, 0)), true);  // the typed value rules
+  EXPECT_EQ(d.edit.describe(), "move x 0.500");
+  d.edit.confirm();
+  Eigen::MatrixX3d expected = start;
+  expected(f(1, 1, 2), 0) += 0.5;
+  expected(f(2, 1, 2), 0) += 0.5;
+  EXPECT_EQ((m.worldControlPoints(lattice) - expected).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(d.commands.position(), steps + 1);
+  d.commands.undo();
+  EXPECT_EQ((m.worldControlPoints(lattice) - start).cwiseAbs().maxCoeff(), 0.0);
+  d.edit.exit();
+
+  // A group's turn ring: 90 degrees (typed as rad) about z through the median pivot.
+  const WidgetId other = d.controller.newLattice({});
+  d.controller.setLatticeFrame(other, Eigen::Affine3d(Eigen::Translation3d(2, 0, 0)));
+  d.controller.setSelection({lattice, other});
+  const Eigen::Affine3d a0 = m.latticeFrame(lattice), b0 = m.latticeFrame(other);
+  const Transformer g = *d.edit.transformer();
+  const Eigen::Vector3d pivot = g.frame.translation();
+  EXPECT_TRUE(pivot.isApprox(Eigen::Vector3d(1.5, 0.5, 0.5), 1e-14));
+  const double r = TransformerLayout::turnRadius * g.size;
+  const Eigen::Vector3d ring = pivot + r * Eigen::Vector3d(std::cos(0.7), std::sin(0.7), 0);
+  ASSERT_TRUE(d.edit.pressHandle(tiltedAt(ring), 0.02));
+  ASSERT_EQ(d.edit.draggedHandle(), TransformerHandle::TurnZ);
+  ASSERT_TRUE(d.edit.setDragValue(pi / 2));
+  d.edit.confirm();
+  const Eigen::Affine3d turn =
+      Eigen::Translation3d(pivot) * Eigen::AngleAxisd(pi / 2, Eigen::Vector3d::UnitZ()) * Eigen::Translation3d(-pivot);
+  EXPECT_TRUE(m.latticeFrame(lattice).matrix().isApprox((turn * a0).matrix(), 1e-12));
+  EXPECT_TRUE(m.latticeFrame(other).matrix().isApprox((turn * b0).matrix(), 1e-12));
+  EXPECT_EQ(d.commands.undoDescription(), "Turn 2 widgets");
+  // A size handle refuses a factor that is not positive.
+  const Eigen::Vector3d cube = pivot + TransformerLayout::sizeAt * g.size * Eigen::Vector3d::UnitX();
+  ASSERT_TRUE(d.edit.pressHandle(tiltedAt(cube), 0.02));
+  ASSERT_EQ(d.edit.draggedHandle(), TransformerHandle::SizeX);
+  EXPECT_FALSE(d.edit.setDragValue(0.0));
+  EXPECT_TRUE(d.edit.setDragValue(2.0));
+  d.edit.cancel();
+  EXPECT_FALSE(d.edit.draggedHandle().has_value());
+}
+
 TEST(EditController, MakeCellYieldsEachKindAndRefusesAMisfit) {
   Document d;
   const WidgetId lattice = d.controller.newLattice({});

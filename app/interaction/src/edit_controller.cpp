@@ -353,6 +353,7 @@ void EditController::update(const widgets::Ray& ray, bool snap) {
     apply(modal_->motion(ray, snap));
     return;
   }
+  if (live_->typed) return;  // the typed value rules
   TransformerDrag& drag = *live_->handle;
   Eigen::Affine3d motion = drag.motion(ray);
   if (snap) {
@@ -363,6 +364,19 @@ void EditController::update(const widgets::Ray& ray, bool snap) {
                                      std::round(drag.value() / step) * step));
   }
   apply(motion);
+}
+
+bool EditController::setDragValue(double value) {
+  if (!live_ || !live_->handle || !std::isfinite(value)) return false;
+  if (static_cast<int>(live_->handle->handle()) / 3 == 2 && !(value > 0.0)) return false;
+  live_->typed = value;
+  apply(live_->handle->motionFor(value));
+  return true;
+}
+
+std::optional<TransformerHandle> EditController::draggedHandle() const {
+  if (!live_ || !live_->handle) return std::nullopt;
+  return live_->handle->handle();
 }
 
 void EditController::apply(const Eigen::Affine3d& motion) {
@@ -450,11 +464,12 @@ std::string EditController::describe() const {
   if (modal_) return modal_->describe();
   const TransformerDrag& drag = *live_->handle;
   const int group = static_cast<int>(drag.handle()) / 3;
+  const double value = live_->typed.value_or(drag.value());
   char text[96];
-  if (group == 0) std::snprintf(text, sizeof text, "%s %.3f", transformerHandleName(drag.handle()), drag.value());
+  if (group == 0) std::snprintf(text, sizeof text, "%s %.3f", transformerHandleName(drag.handle()), value);
   if (group == 1)
-    std::snprintf(text, sizeof text, "%s %.1f°", transformerHandleName(drag.handle()), drag.value() * 180.0 / std::numbers::pi);
-  if (group == 2) std::snprintf(text, sizeof text, "%s x%.3f", transformerHandleName(drag.handle()), drag.value());
+    std::snprintf(text, sizeof text, "%s %.1f°", transformerHandleName(drag.handle()), value * 180.0 / std::numbers::pi);
+  if (group == 2) std::snprintf(text, sizeof text, "%s x%.3f", transformerHandleName(drag.handle()), value);
   return text;
 }
 

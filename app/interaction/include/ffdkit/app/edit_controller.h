@@ -92,6 +92,14 @@ class EditController {
   /// Moves the active transform (handle drag or modal) to the pointer at `ray`; `snap` (Ctrl)
   /// rounds to increments.
   void update(const widgets::Ray& ray, bool snap);
+  /// During a handle drag: sets the handle's amount to `value` (a number typed during the drag;
+  /// InteractionController::setDragValue for one widget): a distance (world units), an angle
+  /// (rad) or a factor. From then on the pointer no longer moves it (the typed value rules);
+  /// the next confirm() makes it one command. @return false (nothing changes) with no handle
+  /// drag, or for a factor that is not positive.
+  bool setDragValue(double value);
+  /// The handle being dragged, or nullopt (no transform, or a modal one).
+  std::optional<TransformerHandle> draggedHandle() const;
   /// Ends the active transform: one command (nothing if nothing moved).
   void confirm();
   /// Abandons the active transform: the model as before it, nothing pushed.
@@ -135,6 +143,7 @@ class EditController {
     std::string what;  ///< "4 points of lattice1", "3 widgets"
     Eigen::Vector3d pivot = Eigen::Vector3d::Zero();
     std::optional<TransformerDrag> handle;
+    std::optional<double> typed;  ///< a handle drag's typed amount (setDragValue)
     Transformer transformer;  ///< the one whose handle is dragged
   };
   std::vector<Target> targets() const;
