@@ -183,6 +183,102 @@ class EditModeGuiTest : public QObject {
     QCOMPARE(w.commands().position(), steps);
   }
 
+  // A number typed while a transformer handle is held sets its amount exactly (as for one
+  // widget's glyph or handle): the edit mode's z arrow by 0.5, a group's z ring by 90 degrees;
+  // each one undo step.
+  void aValueTypedDuringAHandleDragSetsItsAmountExactly() {
+    MainWindow& w = *window_;
+    const auto& m = w.scene().widgets;
+    triggerWithDialog(w, "actionNewLattice");
+    const WidgetId lattice = m.roots().front();
+    lookAtUnitBox(w);
+    pressKey(w, Qt::Key_Tab);
+    clickPoint(w, lattice, flat(1, 1, 2));
+    clickPoint(w, lattice, flat(2, 1, 2), Qt::ShiftModifier);
+    QCOMPARE(editOf(w).points().count(), Eigen::Index(2));
+    const Eigen::MatrixX3d start = m.worldControlPoints(lattice);
+    const std::size_t steps = w.commands().position();
+    const app::Transformer t = *editOf(w).transformer();
+    const Eigen::Vector3d o = t.frame.translation(), z = Eigen::Vector3d::UnitZ();
+    const QPoint grab = toWidget(w, o + 0.6 * t.size * z);
+    sendMouse(w.view(), QEvent::MouseButtonPress, grab, Qt::LeftButton, Qt::LeftButton);
+    QCOMPARE(editOf(w).draggedHandle(), std::optional(app::TransformerHandle::MoveZ));
+    sendMouse(w.view(), QEvent::MouseMove, toWidget(w, o + 0.8 * t.size * z), Qt::NoButton, Qt::LeftButton);
+    QVERIFY((m.worldControlPoints(lattice) - start).norm() > 0.05);  // the pointer moves them ...
+    typeKeys(w, "0.5");                                               // ... then the typed amount
+    QVERIFY2(w.statusMessage().contains("typed 0.5"), qPrintable(w.statusMessage()));
+    sendMouse(w.view(), QEvent::MouseMove, toWidget(w, o + 0.7 * t.size * z), Qt::NoButton, Qt::LeftButton);  // the typed value rules
+    pressKey(w, Qt::Key_Return);
+    sendMouse(w.view(), QEvent::MouseButtonRelease, grab, Qt::LeftButton, Qt::NoButton);
+    Eigen::MatrixX3d expected = start;
+    expected(flat(1, 1, 2), 2) += 0.5;
+    expected(flat(2, 1, 2), 2) += 0.5;
+    QCOMPARE((m.worldControlPoints(lattice) - expected).cwiseAbs().maxCoeff(), 0.0);
+    QCOMPARE(w.commands().position(), steps + 1);
+    action(w, "actionUndo")->trigger();
+    QCOMPARE((m.worldControlPoints(lattice) - start).cwiseAbs().maxCoeff(), 0.0);
+    pressKey(w, Qt::Key_Tab);
+    QVERIFY(!editOf(w).editing());
+
+    // A group of two lattices: its z ring, turned by a typed 90 degrees about the group's pivot.
+    triggerWithDialog(w, "actionNewLattice");
+    const WidgetId other = m.roots().back();
+    w.controller().setLatticeFrame(other, Eigen::Affine3d(Eigen::Translation3d(1.5, 0, 0)));
+    clickRow(w, QString::fromStdString(m.name(lattice)));
+    clickRow(w, QString::fromStdString(m.name(other)), Qt::ControlModifier);
+    QCOMPARE(w.controller().selection().size(), std::size_t(2));
+    const Eigen::Affine3d a0 = m.latticeFrame(lattice), b0 = m.latticeFrame(other);
+    const app::Transformer g = *editOf(w).transformer();
+    const Eigen::Vector3d pivot = g.frame.translation();
+    QVERIFY(pivot.isApprox(Eigen::Vector3d(1.25, 0.5, 0.5), 1e-14));
+    const double r = app::TransformerLayout::turnRadius * g.size;
+    auto onRing = [&](double degrees) {
+      const double a = degrees * std::numbers::pi / 180.0;
+      return toWidget(w, pivot + r * Eigen::Vector3d(std::cos(a), std::sin(a), 0));
+    };
+    const std::size_t groupSteps = w.commands().position();
+    sendMouse(w.view(), QEvent::MouseButtonPress, onRing(-70), Qt::LeftButton, Qt::LeftButton);
+    QCOMPARE(editOf(w).draggedHandle(), std::optional(app::TransformerHandle::TurnZ));
+    sendMouse(w.view(), QEvent::MouseMove, onRing(-50), Qt::NoButton, Qt::LeftButton);
+    typeKeys(w, "90");
+    pressKey(w, Qt::Key_Return);
+    sendMouse(w.view(), QEvent::MouseButtonRelease, onRing(-50), Qt::LeftButton, Qt::NoButton);
+    const Eigen::Affine3d turn =
+        Eigen::Translation3d(pivot) * Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()) * Eigen::Translation3d(-pivot);
+    QVERIFY(m.latticeFrame(lattice).matrix().isApprox((turn * a0).matrix(), 1e-12));
+    QVERIFY(m.latticeFrame(other).matrix().isApprox((turn * b0).matrix(), 1e-12));
+    QCOMPARE(w.commands().position(), groupSteps + 1);
+    action(w, "actionUndo")->trigger();
+    QVERIFY(m.latticeFrame(lattice).matrix().isApprox(a0.matrix(), 1e-15));
+    QVERIFY(m.latticeFrame(other).matrix().isApprox(b0.matrix(), 1e-15));
+  }
+
+  // An undo that removes the edited lattice ends the mode, and the toolbar toggle follows; a redo
+  // does not bring the mode back.
+  void theEditModeToggleFollowsAnUndoThatRemovesTheLattice() {
+    MainWindow& w = *window_;
+    triggerWithDialog(w, "actionNewLattice");
+    lookAtUnitBox(w);
+    QAction* toggle = action(w, "actionEditMode");
+    pressKey(w, Qt::Key_Tab);
+    QVERIFY(toggle->isChecked());
+    QVERIFY(editOf(w).editing());
+    pressKey(w, Qt::Key_A);
+    pressKey(w, Qt::Key_Z, Qt::ControlModifier);  // undo New Lattice
+    QVERIFY(w.scene().widgets.roots().empty());
+    QVERIFY(!editOf(w).editing());
+    QVERIFY(!toggle->isChecked());
+    QVERIFY(!w.findChild<QLabel*>("editCount")->isVisible());
+    pressKey(w, Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);  // redo: the lattice is back, the mode is not
+    QCOMPARE(w.scene().widgets.roots().size(), std::size_t(1));
+    QVERIFY(!editOf(w).editing());
+    QVERIFY(!toggle->isChecked());
+    pressKey(w, Qt::Key_Tab);
+    QVERIFY(toggle->isChecked());
+    QVERIFY(editOf(w).editing());
+    QCOMPARE(editOf(w).points().count(), Eigen::Index(0));
+  }
+
   void makeCellYieldsEachKindAndSaysWhyASelectionDoesNotFit() {
     MainWindow& w = *window_;
     triggerWithDialog(w, "actionNewLattice");

@@ -133,6 +133,12 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
   count_->hide();
   p_.window->statusBar()->addPermanentWidget(count_);
   band_ = new QRubberBand(QRubberBand::Rectangle, p_.view);
+  // Every model change (an undo too) reaches the controller's onChanged: the toggle follows
+  // EditController::editing() there, before the window redraws.
+  p_.controller->onChanged = [this, redrawWindow = p_.controller->onChanged] {
+    syncEditToggle();
+    if (redrawWindow) redrawWindow();
+  };
   p_.view->installEventFilter(this);  // after the window's filter: this one sees events first
 }
 
@@ -191,12 +197,15 @@ void EditModeInput::toggleEditMode(bool on) {
     if (!lattice && all.size() == 1) lattice = all.front();
     if (!lattice) throw std::invalid_argument(all.empty() ? "add a lattice first (Widgets > New Lattice)"
                                                           : "select the lattice whose points to edit");
+    entering_ = true;  // the toggle is checked before the mode begins
     p_.controller->clearSelection();  // the lattice's own highlight would hide the selected points
     p_.edit->enter(*lattice);
+    entering_ = false;
     p_.status->say(tr("Editing the points of '%1': click, Shift+click, drag a box (Alt+drag orbits); "
                       "G / R / S move, turn, size; Tab leaves")
                        .arg(qs(m.name(*lattice))));
   } catch (const std::exception& e) {
+    entering_ = false;
     const QSignalBlocker block(editAction_);
     editAction_->setChecked(false);
     p_.sayError(e.what());
@@ -235,10 +244,15 @@ void EditModeInput::makeCell(std::optional<widgets::CellKind> kind) {
 }
 
 bool EditModeInput::typeIntoDrag(const QKeyEvent* e) {
+  // The drag of a transformer handle of this object's (the edit mode's points or a group), else
+  // the InteractionController's (a glyph or one widget's transformer handle).
   InteractionController& c = *p_.controller;
+  EditController& edit = *p_.edit;
+  const std::optional<TransformerHandle> ownHandle = edit.draggedHandle();
   if (isConfirm(*e)) {
     dragTyped_.clear();
-    c.release();
+    if (ownHandle) edit.confirm();
+    else c.release();
     return true;
   }
   if (matchesShortcut(*e, "typedBackspace")) {
@@ -251,11 +265,14 @@ bool EditModeInput::typeIntoDrag(const QKeyEvent* e) {
   const auto typed = dragTyped_.components();
   if (!typed) return true;
   const double v = (*typed)[0];
-  // Designer's units: degrees for a turn, a factor for a size; the model's: rad, log factor.
+  // Designer's units: degrees for a turn, a factor for a size; the model's: rad, log factor
+  // (an affine scale widget) or the factor (a transformer's size handle).
   double value = v;
   QString unit;
-  if (c.handleDragValue()) {
-    const int group = static_cast<int>(*c.transformerHandle()) / 3;
+  const std::optional<TransformerHandle> handle =
+      ownHandle ? ownHandle : c.handleDragValue() ? c.transformerHandle() : std::nullopt;
+  if (handle) {
+    const int group = static_cast<int>(*handle) / 3;
     if (group == 1) value = v * std::numbers::pi / 180.0, unit = QStringLiteral("°");
     if (group == 2) unit = QStringLiteral("x");
   } else if (const auto widget = p_.scene->widgets.gestureWidget();
@@ -268,12 +285,28 @@ bool EditModeInput::typeIntoDrag(const QKeyEvent* e) {
       unit = QStringLiteral("x");
     }
   }
-  if (c.setDragValue(value))
+  if (ownHandle ? edit.setDragValue(value) : c.setDragValue(value))
     p_.status->say(tr("typed %1%2 (Enter or release confirms, Backspace edits, Esc cancels)").arg(qs(dragTyped_.text()), unit));
   return true;
 }
 
+void EditModeInput::syncEditToggle() {
+  // An undo (or any edit) that removes or resizes the edited lattice ends the mode: the toggle
+  // follows, and the mode is left for good (a redo does not bring back a stale selection).
+  if (entering_ || p_.edit->editing() || !editAction_->isChecked()) return;
+  {
+    const QSignalBlocker block(editAction_);
+    editAction_->setChecked(false);
+  }
+  boxFrom_.reset();
+  boxArmed_ = false;
+  band_->hide();
+  p_.edit->exit();
+  p_.status->say(tr("Edit mode off: the edited lattice was removed or resized"), 5000);
+}
+
 void EditModeInput::changed() {
+  syncEditToggle();
   if (p_.edit->editing()) {
     const PointSelection& s = p_.edit->points();
     count_->setText(tr("%1: %2 of %3 points selected")
@@ -354,8 +387,11 @@ bool EditModeInput::eventFilter(QObject* watched, QEvent* event) {
         }
         const bool snap = QApplication::keyboardModifiers() & Qt::ControlModifier;
         if (matchesShortcut(*e, "cancelDrag")) {
+          dragTyped_.clear();
           edit.cancel();
           p_.status->say(tr("Transform cancelled"), 3000);
+        } else if (edit.draggedHandle()) {
+          typeIntoDrag(e);  // a typed amount of the handle (the pointer no longer moves it)
         } else if (isConfirm(*e)) {
           edit.confirm();
         } else if (ModalTransform* modal = edit.modal()) {

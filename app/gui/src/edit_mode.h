@@ -66,8 +66,12 @@ class EditModeInput : public QObject {
   Eigen::Vector3d viewDirection() const;
   /// The action of this object whose keys (keyboard_shortcuts.cpp) the event is, or null.
   QAction* viewActionFor(const QKeyEvent& event) const;
-  /// A value typed during a drag of the InteractionController (a glyph or a transformer handle).
+  /// A value typed during a drag: of a handle of EditController's transformer, or of the
+  /// InteractionController (a glyph or one widget's transformer handle).
   bool typeIntoDrag(const QKeyEvent* event);
+  /// Unchecks the Edit Mode toggle (and leaves the mode) when EditController::editing() ended
+  /// behind its back (an undo removed or resized the lattice).
+  void syncEditToggle();
 
   Parts p_;
   QAction* editAction_ = nullptr;
@@ -80,6 +84,7 @@ class EditModeInput : public QObject {
   bool havePos_ = false;
   std::optional<QPoint> boxFrom_;  ///< a box select being dragged
   bool boxArmed_ = false;          ///< B pressed: the next left press starts a box even on a point
+  bool entering_ = false;          ///< toggleEditMode is entering the mode
   TypedValue dragTyped_;           ///< typed during a glyph or handle drag
   std::optional<QPoint> rightAt_;  ///< a right press in the edit mode (a click opens the context menu)
 };
