@@ -8,8 +8,6 @@
 // Each checks once that the frame did what it should (the widget at the keyed curve's value, the
 // deformer and the view updated, nothing re-embedded) and aborts otherwise.
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <memory>
 
 #include <benchmark/benchmark.h>
@@ -19,17 +17,13 @@
 #include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/app/scene_view.h"
 #include "ffdkit/app/timeline.h"
+#include "sphere_session.h"
 
 using namespace ffdkit;
 
 namespace {
 
-void require(bool ok, const char* what) {
-  if (!ok) {
-    std::fprintf(stderr, "bench_animation: %s\n", what);
-    std::abort();
-  }
-}
+void require(bool ok, const char* what) { bench::require(ok, "bench_animation", what); }
 
 struct Session {
   scenes::Scene scene;
@@ -42,16 +36,7 @@ struct Session {
   widgets::WidgetId widget;
 
   explicit Session(int resolution) {
-    scenes::PrimitiveOptions sphere;
-    sphere.resolution = resolution;
-    const std::string name = controller.addPrimitive(sphere);
-    app::NewLatticeOptions cubic;
-    cubic.counts = Eigen::Vector3i::Constant(4);
-    cubic.basis = {ffd::AxisBasis::bspline(3), ffd::AxisBasis::bspline(3), ffd::AxisBasis::bspline(3)};
-    const auto lattice = controller.newLattice(cubic);
-    controller.attachLattice(lattice, name);
-    widget = controller.addAffineAtPoint({lattice, 1 + 4 * (1 + 4 * 3)}, widgets::AffineKind::Translate);
-    controller.clearSelection();
+    widget = bench::addSphereInCubicLattice(controller, resolution).widget;
     scene.animation.lastFrame = 48;
     for (const auto& [frame, value] : {std::pair{0, 0.0}, {24, 0.3}, {48, 0.0}}) {
       scenes::Keyframe key;

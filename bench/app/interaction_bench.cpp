@@ -6,8 +6,6 @@
 //   bench_interaction --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // Each benchmark checks once that its work did what it should (the view updated the points, the
 // hover built nothing, the undo embedded nothing) and aborts otherwise.
-#include <cstdio>
-#include <cstdlib>
 #include <map>
 #include <memory>
 
@@ -17,17 +15,13 @@
 
 #include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/app/scene_view.h"
+#include "sphere_session.h"
 
 using namespace ffdkit;
 
 namespace {
 
-void require(bool ok, const char* what) {
-  if (!ok) {
-    std::fprintf(stderr, "bench_interaction: %s\n", what);
-    std::abort();
-  }
-}
+void require(bool ok, const char* what) { bench::require(ok, "bench_interaction", what); }
 
 // A sphere of about resolution^2 / 2 vertices in a 4x4x4 cubic lattice, a translate widget on an
 // inner point of the top layer, and a view of it all.
@@ -41,16 +35,9 @@ struct Session {
   widgets::WidgetId lattice, widget;
 
   explicit Session(int resolution) {
-    scenes::PrimitiveOptions sphere;
-    sphere.resolution = resolution;
-    const std::string name = controller.addPrimitive(sphere);
-    app::NewLatticeOptions cubic;
-    cubic.counts = Eigen::Vector3i::Constant(4);
-    cubic.basis = {ffd::AxisBasis::bspline(3), ffd::AxisBasis::bspline(3), ffd::AxisBasis::bspline(3)};
-    lattice = controller.newLattice(cubic);
-    controller.attachLattice(lattice, name);
-    widget = controller.addAffineAtPoint({lattice, 1 + 4 * (1 + 4 * 3)}, widgets::AffineKind::Translate);
-    controller.clearSelection();
+    const bench::SphereWidget made = bench::addSphereInCubicLattice(controller, resolution);
+    lattice = made.lattice;
+    widget = made.widget;
     view = std::make_unique<app::SceneView>(renderer);
     view->setHighlights(controller.highlights());
     view->show(scene, deformer);
