@@ -40,8 +40,6 @@ using widgets::WidgetId;
 
 namespace {
 
-const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
-
 // Everything a VTK default key would change, read from the view.
 struct ViewState {
   Eigen::Vector3d position, focal, up;

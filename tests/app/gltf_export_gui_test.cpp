@@ -12,8 +12,6 @@
 #include <QTemporaryDir>
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 
 #include "ffdkit/exporters/gltf_export.h"
@@ -27,13 +25,6 @@ using app::MainWindow;
 namespace {
 
 namespace fs = std::filesystem;
-
-const fs::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
 
 // Fills the export dialog as a user does: Down in the content box `contentDowns` times (0 frame,
 // 2 skin), Down in the joints box for 8, the tolerance and the path typed, OK clicked.

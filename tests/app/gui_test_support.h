@@ -14,7 +14,11 @@
 #include <QTreeWidget>
 
 #include <deque>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
+#include <string>
 
 #include <cmath>
 #include <memory>
@@ -26,6 +30,15 @@
 #include "ffdkit/app/vtk_view_widget.h"
 
 namespace ffdkit::app::testing {
+
+/// The sample scenes of the source tree (FFDKIT_SOURCE_DIR: ffdkit_add_qt_test defines it).
+inline const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
+
+/// A file's bytes.
+inline std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
 
 inline void sendMouse(QWidget* widget, QEvent::Type type, QPoint at, Qt::MouseButton button, Qt::MouseButtons buttons,
                       Qt::KeyboardModifiers modifiers = Qt::NoModifier) {

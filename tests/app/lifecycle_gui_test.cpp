@@ -19,8 +19,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 
 #include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/app/recovery_file.h"
@@ -35,13 +33,6 @@ using widgets::WidgetId;
 namespace {
 
 namespace fs = std::filesystem;
-
-const fs::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
 
 // The title as the window system shows it ("[*]" replaced by "*" when modified).
 QString shownTitle(MainWindow& w) {

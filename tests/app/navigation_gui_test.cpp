@@ -23,7 +23,6 @@ using app::MainWindow;
 
 namespace {
 
-const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
 const std::filesystem::path kColumn = FFDKIT_SOURCE_DIR "/tests/data/y_up_column.obj";
 
 Eigen::Vector3d dirOf(const scenes::Camera& c) { return (c.focalPoint - c.position).normalized(); }

@@ -18,8 +18,6 @@ using app::MainWindow;
 
 namespace {
 
-const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
-
 // Where the ruler draws `frame`: an 18-pixel margin each side, the range spread between
 // (TimelineBar's layout, written out independently here).
 QPoint rulerPoint(QWidget* bar, const scenes::Animation& a, int frame) {
