@@ -214,6 +214,66 @@ TEST(EditController, AValueTypedDuringAHandleDragSetsItsAmountExactlyAsOneUndoSt
   EXPECT_FALSE(d.edit.draggedHandle().has_value());
 }
 
+TEST(EditController, MirrorEditingMovesEachImageByTheMirroredMotion) {
+  Document d;
+  const WidgetId lattice = d.controller.newLattice({});
+  const auto& m = d.scene.widgets;
+  // A lattice frame that is no identity: the mid-plane is the lattice's, not the world's.
+  d.controller.setLatticeFrame(lattice, Eigen::Translation3d(0.3, -0.2, 0.1) * Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()));
+  EXPECT_THROW(d.edit.setMirror(3), std::invalid_argument);
+  d.edit.setMirror(0);  // across the mid-plane i = 1 (local x = 0.5)
+  d.edit.enter(lattice);
+  const Eigen::MatrixX3d start = m.controlPoints(lattice);  // local
+  const std::size_t steps = d.commands.position();
+  // (2,1,2) and the mid-plane point (1,0,0) selected; a typed world move (0.1, 0.2, 0.3).
+  d.edit.pickMany({f(2, 1, 2), f(1, 0, 0)}, SelectMode::Replace);
+  const Eigen::Vector3d pivot = *d.edit.pivotPoint();
+  d.edit.beginModal(TransformMode::Move, downAt(pivot), kView);
+  for (char c : std::string("0.1,0.2,0.3")) d.edit.modal()->typed().type(c);
+  d.edit.update(downAt(pivot), false);
+  d.edit.confirm();
+  EXPECT_EQ(d.commands.position(), steps + 1);
+  EXPECT_EQ(d.commands.undoDescription(), "Move 2 points of " + m.name(lattice) + " (mirrored)");
+  // In local coordinates the world move is R^T (0.1, 0.2, 0.3); the image (0,1,2) moves by it
+  // with x negated; the mid-plane point and everything else by M or not at all.
+  const Eigen::Vector3d local = Eigen::AngleAxisd(-0.4, Eigen::Vector3d::UnitZ()) * Eigen::Vector3d(0.1, 0.2, 0.3);
+  Eigen::MatrixX3d expected = start;
+  expected.row(f(2, 1, 2)) += local.transpose();
+  expected.row(f(1, 0, 0)) += local.transpose();
+  expected.row(f(0, 1, 2)) += Eigen::RowVector3d(-local.x(), local.y(), local.z());
+  EXPECT_LE((m.controlPoints(lattice) - expected).cwiseAbs().maxCoeff(), 1e-15);
+  d.commands.undo();
+  EXPECT_EQ((m.controlPoints(lattice) - start).cwiseAbs().maxCoeff(), 0.0);
+
+  // A turn of 30 degrees about world z through the two points' median: the images turn the
+  // other way about the mirrored pivot, each pair stays symmetric (x' = 1 - x, y' = y, z' = z
+  // locally).
+  d.edit.pickMany({f(2, 0, 0), f(2, 2, 2)}, SelectMode::Replace);
+  d.edit.beginModal(TransformMode::Rotate, downAt(*d.edit.pivotPoint()), kView);
+  d.edit.modal()->setConstraint({2, false});
+  for (char c : std::string("30")) d.edit.modal()->typed().type(c);
+  d.edit.update(downAt(*d.edit.pivotPoint()), false);
+  d.edit.confirm();
+  const Eigen::MatrixX3d p = m.controlPoints(lattice);
+  for (const auto& [a, b] : {std::pair(f(2, 0, 0), f(0, 0, 0)), std::pair(f(2, 2, 2), f(0, 2, 2))}) {
+    EXPECT_GT((p.row(a) - start.row(a)).norm(), 0.05);
+    EXPECT_LE(std::abs(p(b, 0) - (1.0 - p(a, 0))), 1e-15);
+    EXPECT_LE(std::abs(p(b, 1) - p(a, 1)), 1e-15);
+    EXPECT_LE(std::abs(p(b, 2) - p(a, 2)), 1e-15);
+  }
+  // Both of a pair selected: each moves by M (no image is added).
+  d.commands.undo();
+  d.edit.pickMany({f(2, 1, 1), f(0, 1, 1)}, SelectMode::Replace);
+  d.edit.beginModal(TransformMode::Move, downAt(pivot), kView);
+  d.edit.modal()->typed().type('1');
+  d.edit.update(downAt(pivot), false);
+  d.edit.confirm();
+  EXPECT_EQ(d.commands.undoDescription(), "Move 2 points of " + m.name(lattice));
+  EXPECT_GT(m.controlPoints(lattice)(f(0, 1, 1), 0) - start(f(0, 1, 1), 0), 0.5);
+  d.edit.setMirror(std::nullopt);
+  EXPECT_FALSE(d.edit.mirror().has_value());
+}
+
 TEST(EditController, MakeCellYieldsEachKindAndRefusesAMisfit) {
   Document d;
   const WidgetId lattice = d.controller.newLattice({});

@@ -131,6 +131,12 @@ void EditController::selectLinked(int axis, bool plane) {
 
 // ---- transforms --------------------------------------------------------------------------
 
+void EditController::setMirror(std::optional<int> axis) {
+  if (axis && (*axis < 0 || *axis > 2)) throw std::invalid_argument("mirror axis must be i, j or k (0, 1, 2)");
+  mirror_ = axis;
+  notify();
+}
+
 void EditController::setPivot(PivotChoice pivot) {
   pivot_ = pivot;
   notify();
@@ -204,6 +210,21 @@ std::vector<EditController::Target> EditController::targets() const {
     for (Eigen::Index i : selection_->indices()) sum += world.row(i).transpose();
     out.front().centre = sum / static_cast<double>(selection_->count());
     if (selection_->active()) out.front().activeCentre = world.row(*selection_->active()).transpose();
+    if (mirror_) {
+      // Each selected point's image across the mid-plane normal to index axis `a` (unless it is
+      // selected itself or is its own image).
+      Target& t = out.front();
+      const int a = *mirror_;
+      const double mid = m.restPoints(t.id).col(a).mean();
+      t.reflection.linear()(a, a) = -1.0;
+      t.reflection.translation()(a) = 2.0 * mid;
+      for (std::size_t n = 0; n < t.indices.size(); ++n) {
+        Eigen::Vector3i g = selection_->gridIndex(t.indices[n]);
+        g(a) = selection_->counts()(a) - 1 - g(a);
+        const Eigen::Index image = selection_->flatIndex(g);
+        if (image != t.indices[n] && !selection_->contains(image)) t.images.emplace_back(image, n);
+      }
+    }
     return out;
   }
   for (WidgetId id : movableWidgets()) {
@@ -312,6 +333,7 @@ void EditController::startLive(std::vector<Target> all, const std::string& verbT
   for (const Target& t : all) points += t.indices.size();
   if (editing()) {
     live.what = std::to_string(points) + (points == 1 ? " point of " : " points of ") + scene_.widgets.name(lattice());
+    if (!all.empty() && !all.front().images.empty()) live.what += " (mirrored)";
   } else {
     live.what = std::to_string(movableWidgets().size()) + " widgets";
   }
@@ -390,11 +412,18 @@ void EditController::apply(const Eigen::Affine3d& motion) {
         const Eigen::Affine3d frame = m.latticeFrame(t.id);
         const Eigen::Affine3d toLocal = frame.inverse();
         Eigen::MatrixX3d points = t.startPoints;
+        auto ownMotion = [&](std::size_t n) { return individual ? aboutCentre(motion, pivot, t.centres[n]) : motion; };
         for (std::size_t n = 0; n < t.indices.size(); ++n) {
           const Eigen::Index i = t.indices[n];
           const Eigen::Vector3d world = frame * Eigen::Vector3d(t.startPoints.row(i).transpose());
-          const Eigen::Affine3d own = individual ? aboutCentre(motion, pivot, t.centres[n]) : motion;
-          points.row(i) = (toLocal * (own * world)).transpose();
+          points.row(i) = (toLocal * (ownMotion(n) * world)).transpose();
+        }
+        // Mirror images: moved by S M S in the lattice's local coordinates (S the reflection
+        // there), M the world motion brought into them.
+        for (const auto& [image, n] : t.images) {
+          const Eigen::Affine3d local = toLocal * ownMotion(n) * frame;
+          const Eigen::Vector3d start = t.startPoints.row(image).transpose();
+          points.row(image) = (t.reflection * (local * (t.reflection * start))).transpose();
         }
         m.setControlPoints(t.id, points);
         active = t.id;

@@ -67,6 +67,15 @@ class EditController {
   Eigen::MatrixX3d worldPoints() const;
 
   // ---- transforms --------------------------------------------------------------------------
+  /// Mirror editing (Blender's lattice X-mirror): with an index axis (0 = i, 1 = j, 2 = k), a
+  /// transform of the edit mode's points also moves each selected point's mirror image, the
+  /// point at index n-1-i along that axis, by the mirrored motion S M S, where S reflects across
+  /// the lattice's mid-plane normal to that axis (in its frame: the plane through the mean of
+  /// its rest points along that axis). A symmetric pair stays exactly symmetric. A point whose
+  /// image is selected too, or that is its own image (on the mid-plane), moves by M only.
+  /// nullopt: off. @throws std::invalid_argument for another axis.
+  void setMirror(std::optional<int> axis);
+  std::optional<int> mirror() const { return mirror_; }
   PivotChoice pivot() const { return pivot_; }
   void setPivot(PivotChoice pivot);
   /// What a transform would move now: the selected points in the edit mode, else two or more
@@ -135,6 +144,9 @@ class EditController {
     Eigen::Affine3d base = Eigen::Affine3d::Identity();   ///< Placement: WidgetModel::placementBase
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();     ///< world; the edit mode's points: their mean
     std::optional<Eigen::Vector3d> activeCentre;          ///< the edit mode's active point (world)
+    /// Points, mirror editing: (image index, position in `indices` of the point it mirrors).
+    std::vector<std::pair<Eigen::Index, std::size_t>> images;
+    Eigen::Affine3d reflection = Eigen::Affine3d::Identity();  ///< Points, mirror editing: S (local)
   };
   struct Live {
     std::vector<Target> targets;
@@ -158,6 +170,7 @@ class EditController {
   InteractionController& widgets_;
   std::optional<PointSelection> selection_;
   PivotChoice pivot_ = PivotChoice::Median;
+  std::optional<int> mirror_;
   std::optional<Live> live_;
   std::optional<ModalTransform> modal_;
   std::optional<TransformerHandle> hoveredHandle_;
