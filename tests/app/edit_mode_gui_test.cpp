@@ -279,6 +279,37 @@ class EditModeGuiTest : public QObject {
     QCOMPARE(editOf(w).points().count(), Eigen::Index(0));
   }
 
+  // Select > Mirror > Across the Mid-Plane of i: G X 0.25 on the point (2,1,2) moves its image
+  // (0,1,2) by -0.25 along x; one undo step puts both back.
+  void mirrorEditingMovesTheImageAcrossTheMidPlane() {
+    MainWindow& w = *window_;
+    const auto& m = w.scene().widgets;
+    triggerWithDialog(w, "actionNewLattice");
+    const WidgetId lattice = m.roots().front();
+    lookAtUnitBox(w);
+    pressKey(w, Qt::Key_Tab);
+    action(w, "actionMirrori")->trigger();
+    QCOMPARE(editOf(w).mirror(), std::optional(0));
+    clickPoint(w, lattice, flat(2, 1, 2));
+    QCOMPARE(editOf(w).points().indices(), std::vector<Eigen::Index>{flat(2, 1, 2)});
+    const Eigen::MatrixX3d start = m.worldControlPoints(lattice);
+    const std::size_t steps = w.commands().position();
+    hover(w, toWidget(w, Eigen::Vector3d(1.0, 0.5, 1.0)));
+    pressKey(w, Qt::Key_G);
+    pressKey(w, Qt::Key_X);
+    typeKeys(w, "0.25");
+    pressKey(w, Qt::Key_Return);
+    Eigen::MatrixX3d expected = start;
+    expected(flat(2, 1, 2), 0) += 0.25;
+    expected(flat(0, 1, 2), 0) -= 0.25;
+    QCOMPARE((m.worldControlPoints(lattice) - expected).cwiseAbs().maxCoeff(), 0.0);
+    QCOMPARE(w.commands().position(), steps + 1);
+    action(w, "actionUndo")->trigger();
+    QCOMPARE((m.worldControlPoints(lattice) - start).cwiseAbs().maxCoeff(), 0.0);
+    action(w, "actionMirrorOff")->trigger();
+    QVERIFY(!editOf(w).mirror().has_value());
+  }
+
   void makeCellYieldsEachKindAndSaysWhyASelectionDoesNotFit() {
     MainWindow& w = *window_;
     triggerWithDialog(w, "actionNewLattice");

@@ -127,6 +127,24 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
     a->setChecked(c == PivotChoice::Median);
     pivots->addAction(a);
   }
+  // Mirror editing across the edited lattice's mid-plane normal to an index axis.
+  QMenu* mirror = selectMenu_->addMenu(tr("Mi&rror"));
+  mirror->setObjectName("menuMirror");
+  auto* mirrors = new QActionGroup(this);
+  for (int axis = -1; axis < 3; ++axis) {
+    const QString text = axis < 0 ? tr("&Off") : tr("Across the Mid-Plane of &%1").arg(QChar("ijk"[axis]));
+    const std::string name = axis < 0 ? std::string("actionMirrorOff") : std::string("actionMirror") + "ijk"[axis];
+    QAction* a = addAction(mirror, text, "", false, [this, axis] {
+      p_.edit->setMirror(axis < 0 ? std::nullopt : std::optional(axis));
+      if (axis >= 0)
+        p_.status->say(tr("Mirror editing: a selected point's image across the %1 mid-plane moves with it").arg(QChar("ijk"[axis])),
+                       5000);
+    });
+    a->setObjectName(QString::fromStdString(name));
+    a->setCheckable(true);
+    a->setChecked(axis < 0);
+    mirrors->addAction(a);
+  }
 
   count_ = new QLabel;
   count_->setObjectName("editCount");
