@@ -50,6 +50,15 @@ void lookAtUnitBox(MainWindow& w) {
   w.view()->grabFramebuffer();
 }
 
+// A new 3 x 3 x 3 lattice (Widgets > New Lattice), seen from lookAtUnitBox, in edit mode (Tab).
+WidgetId newLatticeInEditMode(MainWindow& w) {
+  triggerWithDialog(w, "actionNewLattice");
+  const WidgetId lattice = w.scene().widgets.roots().front();
+  lookAtUnitBox(w);
+  pressKey(w, Qt::Key_Tab);
+  return lattice;
+}
+
 // True when every grid point of the unit box is drawn inside the view.
 bool unitBoxInView(MainWindow& w) {
   for (int k = 0; k < 3; ++k)
@@ -89,10 +98,7 @@ class EditModeGuiTest : public QObject {
 
   void tabEntersTheEditModeAndClicksAndBoxesSelectPoints() {
     MainWindow& w = *window_;
-    triggerWithDialog(w, "actionNewLattice");
-    const WidgetId lattice = w.scene().widgets.roots().front();
-    lookAtUnitBox(w);
-    pressKey(w, Qt::Key_Tab);
+    const WidgetId lattice = newLatticeInEditMode(w);
     QVERIFY(w.findChild<QAction*>("actionEditMode")->isChecked());
     const app::EditController* edit = &editOf(w);
     QVERIFY(edit->editing());
@@ -144,10 +150,7 @@ class EditModeGuiTest : public QObject {
 
   void gWithAnAxisAndATypedValueMovesExactlyAsOneUndoStep() {
     MainWindow& w = *window_;
-    triggerWithDialog(w, "actionNewLattice");
-    const WidgetId lattice = w.scene().widgets.roots().front();
-    lookAtUnitBox(w);
-    pressKey(w, Qt::Key_Tab);
+    const WidgetId lattice = newLatticeInEditMode(w);
     clickPoint(w, lattice, flat(1, 1, 2));
     clickPoint(w, lattice, flat(2, 1, 2), Qt::ShiftModifier);
     const Eigen::MatrixX3d start = w.scene().widgets.worldControlPoints(lattice);
@@ -189,10 +192,7 @@ class EditModeGuiTest : public QObject {
   void aValueTypedDuringAHandleDragSetsItsAmountExactly() {
     MainWindow& w = *window_;
     const auto& m = w.scene().widgets;
-    triggerWithDialog(w, "actionNewLattice");
-    const WidgetId lattice = m.roots().front();
-    lookAtUnitBox(w);
-    pressKey(w, Qt::Key_Tab);
+    const WidgetId lattice = newLatticeInEditMode(w);
     clickPoint(w, lattice, flat(1, 1, 2));
     clickPoint(w, lattice, flat(2, 1, 2), Qt::ShiftModifier);
     QCOMPARE(editOf(w).points().count(), Eigen::Index(2));
@@ -284,10 +284,7 @@ class EditModeGuiTest : public QObject {
   void mirrorEditingMovesTheImageAcrossTheMidPlane() {
     MainWindow& w = *window_;
     const auto& m = w.scene().widgets;
-    triggerWithDialog(w, "actionNewLattice");
-    const WidgetId lattice = m.roots().front();
-    lookAtUnitBox(w);
-    pressKey(w, Qt::Key_Tab);
+    const WidgetId lattice = newLatticeInEditMode(w);
     action(w, "actionMirrori")->trigger();
     QCOMPARE(editOf(w).mirror(), std::optional(0));
     clickPoint(w, lattice, flat(2, 1, 2));
@@ -421,10 +418,7 @@ class EditModeGuiTest : public QObject {
   void fig62IsBuiltFromAnEmptySceneThroughTheGuiAlone() {
     MainWindow& w = *window_;
     const auto& m = w.scene().widgets;
-    triggerWithDialog(w, "actionNewLattice");
-    const WidgetId lattice = m.roots().front();
-    lookAtUnitBox(w);
-    pressKey(w, Qt::Key_Tab);
+    const WidgetId lattice = newLatticeInEditMode(w);
     auto makeCell = [&](const std::vector<Eigen::Index>& points, const char* add) {
       pressKey(w, Qt::Key_A, Qt::AltModifier);
       for (Eigen::Index p : points) clickPoint(w, lattice, p, Qt::ShiftModifier);
