@@ -6,6 +6,7 @@ Submodules mirror the C++ namespaces (docs/python.md):
 - ``ffdkit.widgets``  the headless widget model (lattice, cell and affine widgets, bindings)
 - ``ffdkit.scenes``   scenes (objects, lattices, keyframes), scene and widget files, the scene
                       deformer, mesh files, generators
+- ``ffdkit.app``      a scene edited as the app edits it, one undoable command per operation
 - ``ffdkit.pygem``    PyGeM's ``FFD`` class on ffdkit's engine
 
 Points are numpy float64 arrays of shape (N, 3). Errors are ``ffdkit.Error`` subclasses carrying
@@ -15,12 +16,13 @@ the C++ messages.
 import sys as _sys
 
 from ._ffdkit import (AnimationError, Cancelled, Error, GeneratorError, LatticeError, MeshIoError,
-                      SceneFileError, WidgetError, WidgetFileError, __version__, ffd, scenes, widgets)
+                      SceneFileError, WidgetError, WidgetFileError, __version__, app, ffd, scenes,
+                      widgets)
 
 # `import ffdkit.ffd` and `from ffdkit.ffd import X` find the extension's submodules.
-for _module in (ffd, widgets, scenes):
+for _module in (ffd, widgets, scenes, app):
     _sys.modules[__name__ + "." + _module.__name__.rsplit(".", 1)[-1]] = _module
 
-__all__ = ["ffd", "widgets", "scenes", "Error", "LatticeError", "Cancelled", "WidgetError",
+__all__ = ["ffd", "widgets", "scenes", "app", "Error", "LatticeError", "Cancelled", "WidgetError",
            "WidgetFileError", "SceneFileError", "MeshIoError", "GeneratorError", "AnimationError",
            "__version__"]

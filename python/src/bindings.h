@@ -14,5 +14,7 @@ void bindScenes(py::module_& module);
 /// enums (before Scene), then Scene's object, lattice and animation editing (after Scene).
 void bindAnimationTypes(py::module_& module);
 void bindSceneEditing(py::module_& module);
+/// ffdkit.app: the Document (scene, deformer, undo stack, interaction controller).
+void bindApp(py::module_& module);
 
 }  // namespace ffdkit::python

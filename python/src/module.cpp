@@ -106,4 +106,7 @@ PYBIND11_MODULE(_ffdkit, module) {
   py::module_ scenesModule =
       module.def_submodule("scenes", "Scenes, widget and scene files, mesh I/O, generators (ffdkit::scenes).");
   python::bindScenes(scenesModule);
+  py::module_ appModule =
+      module.def_submodule("app", "Scenes edited as the app edits them, with undo (ffdkit::app's controller).");
+  python::bindApp(appModule);
 }
