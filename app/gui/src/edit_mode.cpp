@@ -151,12 +151,6 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
   count_->hide();
   p_.window->statusBar()->addPermanentWidget(count_);
   band_ = new QRubberBand(QRubberBand::Rectangle, p_.view);
-  // Every model change (an undo too) reaches the controller's onChanged: the toggle follows
-  // EditController::editing() there, before the window redraws.
-  p_.controller->onChanged = [this, redrawWindow = p_.controller->onChanged] {
-    syncEditToggle();
-    if (redrawWindow) redrawWindow();
-  };
   p_.view->installEventFilter(this);  // after the window's filter: this one sees events first
 }
 

@@ -53,6 +53,10 @@ class EditModeInput : public QObject {
 
   /// Leaves the edit mode (a new scene).
   void leave();
+  /// Unchecks the Edit Mode toggle (and leaves the mode) when EditController::editing() ended
+  /// behind its back (an undo removed or resized the lattice). The window calls it on every
+  /// model change.
+  void syncEditToggle();
   bool eventFilter(QObject* watched, QEvent* event) override;
 
  private:
@@ -69,10 +73,6 @@ class EditModeInput : public QObject {
   /// A value typed during a drag: of a handle of EditController's transformer, or of the
   /// InteractionController (a glyph or one widget's transformer handle).
   bool typeIntoDrag(const QKeyEvent* event);
-  /// Unchecks the Edit Mode toggle (and leaves the mode) when EditController::editing() ended
-  /// behind its back (an undo removed or resized the lattice).
-  void syncEditToggle();
-
   Parts p_;
   QAction* editAction_ = nullptr;
   std::vector<QAction*> viewActions_;  ///< the actions whose keys act in the view

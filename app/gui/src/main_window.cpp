@@ -99,6 +99,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   statusBar()->addPermanentWidget(d.deformStatus);
   d.controller->onChanged = [this] {
     Impl& s = *impl_;
+    // Every model change (an undo too) comes here: the Edit Mode toggle follows
+    // EditController::editing() before anything is drawn.
+    if (s.editInput) s.editInput->syncEditToggle();
     if (!s.showingScene) return;
     s.sceneView->setHighlights(s.edit->highlights(s.controller->highlights()));
     s.sceneView->refresh(s.scene, s.deformer);
