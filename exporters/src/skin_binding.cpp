@@ -54,8 +54,8 @@ SkinBinding bindSkin(const scenes::Scene& bind, int maxJoints) {
     p.total = Eigen::VectorXd::Zero(object.mesh.points.rows());
     for (const widgets::WidgetId stage : stages) {
       const ffd::Lattice lattice = bind.widgets.ffdLattice(stage);
-      skin.embeddings.push_back(ffd::embed(lattice, object.mesh.points));
-      p.perStage.push_back(ffd::largestControlWeights(lattice, skin.embeddings.back(), maxJoints));
+      skin.deformers.emplace_back(ffd::embed(lattice, object.mesh.points));
+      p.perStage.push_back(ffd::largestControlWeights(lattice, skin.deformers.back().embedding(), maxJoints));
       p.total += p.perStage.back().total;
     }
     if (p.total.size() > 0) binding.jointScale = std::max(binding.jointScale, p.total.maxCoeff());
@@ -169,8 +169,7 @@ Eigen::MatrixX3d linearPositions(const ObjectSkin& skin, const scenes::Scene& sc
   const Eigen::MatrixX3d& Q = object->mesh.points;
   Eigen::MatrixX3d out = Q;
   for (std::size_t st = 0; st < skin.stages.size(); ++st) {
-    ffd::Deformer deformer(skin.embeddings[st]);
-    out += deformer.deformStale(scene.widgets.ffdLattice(skin.stages[st]), Q) - Q;
+    out += skin.deformers[st].deformStale(scene.widgets.ffdLattice(skin.stages[st]), Q) - Q;
   }
   return out;
 }

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "ffdkit/ffd/deformer.h"
 #include "ffdkit/ffd/embedding.h"
 #include "ffdkit/scenes/scene.h"
 
@@ -32,10 +33,12 @@ struct ObjectSkin {
   /// #vertices x kMax weights of the full model (not renormalised; all of a vertex's weights,
   /// kept or not, sum to 1). Zero-weight slots hold joint 0.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> weights;
-  /// The lattices deforming the object in pipeline order and their bind-state embeddings of Q
-  /// (for the linear model's own error, SkinBinding::linearPositions).
+  /// The lattices deforming the object in pipeline order and deformers holding their
+  /// bind-state embeddings of Q (for the linear model's own error, linearPositions, evaluated at
+  /// every sample: kept here so that no sample copies an embedding; mutable because a deformer
+  /// reuses its output buffer).
   std::vector<widgets::WidgetId> stages;
-  std::vector<ffd::Embedding> embeddings;
+  mutable std::vector<ffd::Deformer> deformers;
 };
 
 /// Joints and vertex weights of every lattice-deformed object of a scene.
