@@ -84,6 +84,12 @@ void bindSceneEditing(py::module_& m) {
           "Adds a root lattice fitted around the objects (padded by `padding` of their diagonal) and "
           "attaches it to them; returns its WidgetId.")
       .def("detachLattice", &scenes::detachLattice, "lattice"_a, "object"_a)
+      .def(
+          "detachLattice",
+          [](Scene& s, const std::string& lattice, const std::string& object) {
+            scenes::detachLattice(s, s.widgets.find(lattice), object);
+          },
+          "lattice"_a, "object"_a, "The same, the lattice given by its name.")
       // ---- animation ----
       .def_property(
           "framesPerSecond", [](const Scene& s) { return s.animation.framesPerSecond; },

@@ -130,7 +130,7 @@ void bindSceneDocuments(py::module_& m) {
       .def_readonly("name", &scenes::SceneObject::name)
       .def_readwrite("mesh", &scenes::SceneObject::mesh, "The object's own (undeformed) points.");
   py::class_<scenes::Attachment>(m, "Attachment")
-      .def_readonly("lattice", &scenes::Attachment::lattice)
+      .def_readonly("lattice", &scenes::Attachment::lattice, "The root lattice's WidgetId (a rename keeps it).")
       .def_readonly("objects", &scenes::Attachment::objects);
 
   py::class_<scenes::Scene>(m, "Scene", "Objects, the widget model deforming them, attachments (scenes/scene.h).")

@@ -79,7 +79,7 @@ Scene withThesisModel(std::string description, widgets::WidgetModel model, widge
   scene.description = std::move(description);
   scene.widgets = std::move(model);
   scene.objects.push_back(std::move(object));
-  scene.attachments.push_back({scene.widgets.name(root), {scene.objects.front().name}});
+  scene.attachments.push_back({root, {scene.objects.front().name}});
   scene.camera.position = {2.9, -2.6, 2.3};
   scene.camera.focalPoint = {0.5, 0.5, 0.5};
   return scene;
@@ -210,7 +210,7 @@ Scene makeCylinderTwist() {
   scene.widgets = std::move(model);
   scene.objects.push_back(primitiveObject("cylinder", {.kind = scenes::PrimitiveKind::Cylinder, .resolution = 48},
                                           {0.9, 0.6, 0.45}));
-  scene.attachments.push_back({"cylinder-lattice", {"cylinder"}});
+  scene.attachments.push_back({scene.widgets.find("cylinder-lattice"), {"cylinder"}});
   return scene;
 }
 

@@ -98,7 +98,6 @@ std::size_t changesBytes(const ModelPatch::Changes<Record>& changes) {
 std::size_t attachmentsBytes(const std::vector<Attachment>& list) {
   std::size_t bytes = list.size() * sizeof(Attachment);
   for (const Attachment& a : list) {
-    bytes += a.lattice.size();
     for (const std::string& o : a.objects) bytes += sizeof(o) + o.size();
   }
   return bytes;

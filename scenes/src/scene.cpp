@@ -39,7 +39,7 @@ std::vector<widgets::WidgetId> Scene::latticesDeforming(const std::string& objec
   std::vector<widgets::WidgetId> result;
   for (const auto& attachment : attachments)
     if (std::find(attachment.objects.begin(), attachment.objects.end(), object) != attachment.objects.end())
-      result.push_back(widgets.find(attachment.lattice));
+      result.push_back(attachment.lattice);
   return result;
 }
 
@@ -87,12 +87,12 @@ widgets::WidgetId attachNewLattice(Scene& scene, const std::vector<std::string>&
   lattice.frame = fittedLatticeFrame(box, options.padding);
   lattice.settings = options.settings;
   const widgets::WidgetId id = scene.widgets.addLattice(lattice);
-  scene.attachments.push_back(Attachment{scene.widgets.name(id), objects});
+  scene.attachments.push_back(Attachment{id, objects});
   touchStructure(scene);
   return id;
 }
 
-void detachLattice(Scene& scene, const std::string& lattice, const std::string& object) {
+void detachLattice(Scene& scene, widgets::WidgetId lattice, const std::string& object) {
   for (auto it = scene.attachments.begin(); it != scene.attachments.end(); ++it) {
     if (it->lattice != lattice) continue;
     auto o = std::find(it->objects.begin(), it->objects.end(), object);
@@ -102,7 +102,8 @@ void detachLattice(Scene& scene, const std::string& lattice, const std::string& 
     touchStructure(scene);
     return;
   }
-  throw std::invalid_argument("detach: lattice '" + lattice + "' does not deform object '" + object + "'");
+  const std::string name = scene.widgets.contains(lattice) ? scene.widgets.name(lattice) : widgets::toString(lattice);
+  throw std::invalid_argument("detach: lattice '" + name + "' does not deform object '" + object + "'");
 }
 
 void validateScene(const Scene& scene) {
@@ -111,25 +112,24 @@ void validateScene(const Scene& scene) {
     if (object.name.empty()) throw std::invalid_argument("scene: an object has an empty name");
     if (!names.insert(object.name).second) throw std::invalid_argument("scene: duplicate object name '" + object.name + "'");
   }
-  std::set<std::pair<std::string, std::string>> pairs;
+  std::set<std::pair<widgets::WidgetId, std::string>> pairs;
   for (const auto& attachment : scene.attachments) {
-    widgets::WidgetId id;
-    try {
-      id = scene.widgets.find(attachment.lattice);
-    } catch (const std::exception& e) {
-      throw std::invalid_argument("scene: attachment of '" + attachment.lattice + "': " + e.what());
-    }
+    const widgets::WidgetId id = attachment.lattice;
+    if (!scene.widgets.contains(id))
+      throw std::invalid_argument("scene: an attachment holds lattice " + widgets::toString(id) +
+                                  ", which the widget model does not have");
+    const std::string& name = scene.widgets.name(id);
     if (scene.widgets.type(id) != widgets::WidgetType::Lattice)
-      throw std::invalid_argument("scene: attachment names '" + attachment.lattice + "', which is not a lattice widget");
+      throw std::invalid_argument("scene: attachment names '" + name + "', which is not a lattice widget");
     if (scene.widgets.parentCell(id).has_value())
-      throw std::invalid_argument("scene: attachment names '" + attachment.lattice +
+      throw std::invalid_argument("scene: attachment names '" + name +
                                   "', a child lattice: attach its root (children deform through it)");
     for (const auto& object : attachment.objects) {
       if (names.count(object) == 0)
-        throw std::invalid_argument("scene: lattice '" + attachment.lattice + "' is attached to unknown object '" +
-                                    object + "' (known: " + knownObjects(scene) + ")");
-      if (!pairs.insert({attachment.lattice, object}).second)
-        throw std::invalid_argument("scene: lattice '" + attachment.lattice + "' is attached to '" + object + "' twice");
+        throw std::invalid_argument("scene: lattice '" + name + "' is attached to unknown object '" + object +
+                                    "' (known: " + knownObjects(scene) + ")");
+      if (!pairs.insert({id, object}).second)
+        throw std::invalid_argument("scene: lattice '" + name + "' is attached to '" + object + "' twice");
     }
   }
 }

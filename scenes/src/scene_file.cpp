@@ -412,7 +412,13 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
       const Location aat = at / "attachments" / i;
       checkKeys(list[i], {"lattice", "objects"}, aat);
       Attachment attachment;
-      attachment.lattice = text(member(list[i], "lattice", aat), aat / "lattice");
+      // The file names the lattice (readable); the scene holds its id, which a rename keeps.
+      const std::string lattice = text(member(list[i], "lattice", aat), aat / "lattice");
+      try {
+        attachment.lattice = scene.widgets.find(lattice);
+      } catch (const std::exception& e) {
+        (aat / "lattice").fail(std::string("attachment of '") + lattice + "': " + e.what());
+      }
       const Json& names = member(list[i], "objects", aat);
       if (!names.is_array() || names.empty()) (aat / "objects").fail("expected a non-empty array of object names");
       for (std::size_t k = 0; k < names.size(); ++k) attachment.objects.push_back(text(names[k], aat / "objects" / k));
@@ -509,7 +515,12 @@ Json sceneJson(const Scene& scene) {
     root["widgets"] = detail::widgetModelToJson(scene.widgets);
   }
   Json attachments = Json::array();
-  for (const auto& a : scene.attachments) attachments.push_back({{"lattice", a.lattice}, {"objects", a.objects}});
+  for (const auto& a : scene.attachments) {
+    if (!scene.widgets.contains(a.lattice))
+      throw std::invalid_argument("scene: an attachment holds lattice " + widgets::toString(a.lattice) +
+                                  ", which the widget model does not have");
+    attachments.push_back({{"lattice", scene.widgets.name(a.lattice)}, {"objects", a.objects}});
+  }
   root["attachments"] = std::move(attachments);
   root["camera"] = {{"position", array3(scene.camera.position)},
                     {"focalPoint", array3(scene.camera.focalPoint)},

@@ -7,8 +7,10 @@
 
 #include <cstdio>
 #include <random>
+#include <sstream>
 
 #include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
 
@@ -176,7 +178,7 @@ TEST(DocumentUndo, AThousandRandomOperationsUndoneAndRedoneGiveTheSameFiles) {
         case 16:
           if (!d.scene.attachments.empty()) {
             const scenes::Attachment a = d.scene.attachments.back();
-            d.controller.detachLattice(m.find(a.lattice), a.objects.front());
+            d.controller.detachLattice(a.lattice, a.objects.front());
           }
           break;
       }
@@ -196,6 +198,67 @@ TEST(DocumentUndo, AThousandRandomOperationsUndoneAndRedoneGiveTheSameFiles) {
   expectDeformerIsFresh(d);
   while (d.commands.canRedo()) d.commands.redo();
   EXPECT_EQ(scenes::sceneFileText(d.scene), end);
+  expectDeformerIsFresh(d);
+}
+
+// Attachments and animation channels hold ids (scenes::Attachment, scenes::Channel): a rename
+// changes one name and no link; the file still writes names and reads back to the same ids.
+TEST(DocumentUndo, RenamingALatticeAndAWidgetKeepsEveryLinkKeyAndUndoStep) {
+  Document d;
+  const WidgetId push = smallScene(d);
+  const std::string ball = d.scene.objects.front().name;
+  const WidgetId lattice = d.scene.latticesDeforming(ball).front();
+  scenes::Keyframe key;
+  key.time = 1.0;
+  key.variation = 0.25;
+  scenes::setKey(d.scene, push, scenes::ChannelKind::Variation, key);
+  d.commands.clear();
+  d.deformer.update(d.scene);
+  const std::string start = scenes::sceneFileText(d.scene);
+
+  d.controller.renameWidget(lattice, "cage");
+  d.controller.renameWidget(push, "pull");
+  EXPECT_EQ(d.commands.size(), 2u);
+  ASSERT_EQ(d.scene.attachments.size(), 1u);
+  EXPECT_EQ(d.scene.attachments.front().lattice, lattice);
+  EXPECT_EQ(d.scene.latticesDeforming(ball), std::vector<WidgetId>{lattice});
+  EXPECT_EQ(d.scene.animation.channels.front().widget, push);
+  EXPECT_NO_THROW(scenes::validateScene(d.scene));
+  // The file names the renamed lattice and widget; reading it gives back the same links.
+  const std::string renamed = scenes::sceneFileText(d.scene);
+  EXPECT_NE(renamed.find(R"({"lattice": "cage", "objects": [")" + ball + R"("]})"), std::string::npos) << renamed;
+  EXPECT_NE(renamed.find(R"("widget": "pull")"), std::string::npos);
+  std::istringstream in(renamed);
+  const scenes::Scene reread = scenes::readScene(in, "renamed.json");
+  EXPECT_EQ(reread.attachments.front().lattice, reread.widgets.find("cage"));
+  EXPECT_EQ(reread.animation.channels.front().widget, reread.widgets.find("pull"));
+  EXPECT_EQ(scenes::sceneFileText(reread), renamed);
+
+  // The renamed lattice still deforms the ball: a drag of the renamed widget moves it.
+  const Eigen::MatrixX3d before = d.deformer.points(ball);
+  ASSERT_TRUE(dragGlyph(d, push, 0.5));
+  EXPECT_GT((d.deformer.points(ball) - before).cwiseAbs().maxCoeff(), 1e-3);
+  expectDeformerIsFresh(d);
+  const std::string dragged = scenes::sceneFileText(d.scene);
+  // Detach by id, undo it.
+  d.controller.detachLattice(lattice, ball);
+  EXPECT_TRUE(d.scene.attachments.empty());
+  d.commands.undo();
+  EXPECT_EQ(scenes::sceneFileText(d.scene), dragged);
+
+  // Undo the drag and both renames: the start file, byte for byte; redo: the dragged file.
+  d.commands.undo();
+  EXPECT_EQ(scenes::sceneFileText(d.scene), renamed);
+  d.commands.undo();
+  EXPECT_EQ(d.scene.widgets.name(lattice), "cage");
+  EXPECT_NE(d.scene.widgets.name(push), "pull");
+  d.commands.undo();
+  EXPECT_EQ(scenes::sceneFileText(d.scene), start);
+  EXPECT_EQ(d.scene.attachments.front().lattice, lattice);
+  expectDeformerIsFresh(d);
+  for (int step = 0; step < 3; ++step) d.commands.redo();  // the renames and the drag
+  EXPECT_EQ(d.scene.widgets.name(lattice), "cage");
+  EXPECT_EQ(scenes::sceneFileText(d.scene), dragged);
   expectDeformerIsFresh(d);
 }
 

@@ -297,7 +297,7 @@ class LifecycleGuiTest : public QObject {
       QCOMPARE(answers.answered(), 1);
     }
     QCOMPARE(w.scene().widgets.name(front), std::string("front"));
-    // A lattice: the attachment follows its name.
+    // A lattice: the attachment holds its id and needs no rewrite.
     clickRow(w, "lattice");
     {
       ModalAnswers answers({typeName("cage")});
@@ -305,7 +305,8 @@ class LifecycleGuiTest : public QObject {
       QCOMPARE(answers.answered(), 1);
     }
     QCOMPARE(w.scene().widgets.name(lattice), std::string("cage"));
-    QCOMPARE(w.scene().attachments.front().lattice, std::string("cage"));
+    QVERIFY(w.scene().attachments.front().lattice == lattice);
+    QCOMPARE(w.scene().widgets.name(w.scene().attachments.front().lattice), std::string("cage"));
     // An object: the attachment follows it too.
     clickRow(w, "torus");
     {
@@ -360,7 +361,7 @@ class LifecycleGuiTest : public QObject {
     action(w, "actionOpenWidgetFile")->trigger();
     QCOMPARE(answers.answered(), 1);
     QCOMPARE(w.scene().attachments.size(), std::size_t(1));
-    QCOMPARE(w.scene().attachments.front().lattice, std::string("parent"));
+    QCOMPARE(w.scene().widgets.name(w.scene().attachments.front().lattice), std::string("parent"));
     QCOMPARE(w.scene().attachments.front().objects, std::vector<std::string>{"sphere"});
     // The parent's frame is the sphere's bounding box grown by 5 % of its diagonal per side.
     const Eigen::MatrixX3d& p = w.scene().findObject("sphere")->mesh.points;
@@ -377,7 +378,7 @@ class LifecycleGuiTest : public QObject {
     // One undo step took the widgets and the attachment in.
     key(w, Qt::Key_Z, Qt::ControlModifier);
     key(w, Qt::Key_Z, Qt::ControlModifier);
-    QCOMPARE(w.scene().attachments.front().lattice, std::string("lattice"));
+    QCOMPARE(w.scene().widgets.name(w.scene().attachments.front().lattice), std::string("lattice"));
   }
 
   void aWidgetFileWithNoObjectToTakeItSaysSoAndHowToAttach() {

@@ -116,7 +116,7 @@ def press_expectation(scene, press):
 def test_scene_load_drive_and_deformed_points():
     scene = scenes.readScene(ROOT / "scenes" / "examples" / "press")
     assert scene.objectNames() == ["block"]
-    assert [a.lattice for a in scene.attachments] == ["press-frame"]
+    assert [a.lattice for a in scene.attachments] == [scene.widgets.find("press-frame")]
     model = scene.widgets
     handle, press = model.find("handle"), model.find("press")
     model.setVariation(handle, 1.5 * math.pi)  # 0.4 per turn: 0.3, the clamp's end

@@ -70,7 +70,7 @@ TEST(SceneChanges, EachEditReportsWhatItChanged) {
   EXPECT_TRUE(c.widgets.frames.empty() && !c.structure && c.meshes.empty());
 
   mark = markOf(scene);
-  detachLattice(scene, scene.widgets.name(lattice), "b");
+  detachLattice(scene, lattice, "b");
   EXPECT_TRUE(changesSince(scene, mark).structure);
   mark = markOf(scene);
   removeObject(scene, "a");  // the attachment loses its last object and goes

@@ -81,10 +81,10 @@ TEST(SceneDeformer, DetachRestoresTheObjectsOwnPoints) {
   SceneDeformer deformer;
   deformer.update(scene);
   EXPECT_GT((deformer.points("sphere") - scene.objects[0].mesh.points).cwiseAbs().maxCoeff(), 0.1);
-  detachLattice(scene, "box", "sphere");
+  detachLattice(scene, lattice, "sphere");
   deformer.update(scene);
   EXPECT_EQ(deformer.points("sphere"), scene.objects[0].mesh.points);
-  EXPECT_THROW(detachLattice(scene, "box", "sphere"), std::invalid_argument);
+  EXPECT_THROW(detachLattice(scene, lattice, "sphere"), std::invalid_argument);
 }
 
 TEST(SceneDeformer, HierarchyRunsParentThenChild) {

@@ -134,7 +134,11 @@ TEST(SceneFile, BadInputGetsLocatedErrors) {
   EXPECT_NE(errorOf(replaced("\"resolution\": 48", "\"resolution\": 100000")).find("/objects/0/primitive/resolution"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"size\": 1.0", "\"size\": 1.0, \"colour\": 3")).find("unknown key 'colour'"), std::string::npos);
-  EXPECT_NE(errorOf(replaced("\"lattice\": \"lattice\"", "\"lattice\": \"nope\"")).find("/attachments"), std::string::npos);
+  // The file names the lattice; an unknown name is an error at its key (the scene holds ids).
+  EXPECT_NE(errorOf(replaced("\"lattice\": \"lattice\"", "\"lattice\": \"nope\"")).find("/attachments/0/lattice: attachment of 'nope'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"lattice\": \"lattice\"", "\"lattice\": \"top\"")).find("/attachments: scene: attachment names 'top', which is not a lattice widget"),
+            std::string::npos);
   EXPECT_NE(errorOf(replaced("\"objects\": [\"sphere\"]", "\"objects\": [\"moon\"]")).find("unknown object 'moon'"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"primitive\": {", "\"generator\": {\"name\": \"nope\"}, \"primitive\": {")).find("exactly one"),

@@ -247,7 +247,7 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
     if (!r.inputs.empty()) {
       scene.attachments.clear();
       for (auto root : scene.widgets.roots()) {
-        scenes::Attachment attachment{scene.widgets.name(root), {}};
+        scenes::Attachment attachment{root, {}};
         for (const auto& object : scene.objects) attachment.objects.push_back(object.name);
         scene.attachments.push_back(std::move(attachment));
       }

@@ -66,7 +66,7 @@ void infoScene(const fs::path& path, const Args& args) {
   for (const auto& a : scene.attachments) {
     std::string objects;
     for (const auto& o : a.objects) objects += (objects.empty() ? "" : ", ") + o;
-    std::printf("attachment: %s deforms %s\n", a.lattice.c_str(), objects.c_str());
+    std::printf("attachment: %s deforms %s\n", scene.widgets.name(a.lattice).c_str(), objects.c_str());
   }
   scenes::SceneDeformer deformer;
   deformer.finishGesture(scene);  // syncs and runs the exact pipeline in one pass

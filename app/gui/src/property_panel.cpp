@@ -425,7 +425,7 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
   while (const auto up = m.parentLattice(root)) root = *up;
   QStringList objects;
   for (const auto& a : scene_.attachments)
-    if (a.lattice == m.name(root))
+    if (a.lattice == root)
       for (const auto& o : a.objects) objects << qs(o);
   QString deforms = objects.isEmpty() ? tr("(nothing)") : objects.join(", ");
   if (root != id && !objects.isEmpty()) deforms += tr(" (through %1)").arg(qs(m.name(root)));

@@ -29,11 +29,10 @@ void fitAndAttachLattice(scenes::Scene& scene, WidgetId lattice, const std::stri
   const Eigen::AlignedBox3d bounds(object->mesh.points.colwise().minCoeff().transpose(),
                                    object->mesh.points.colwise().maxCoeff().transpose());
   scene.widgets.setLatticeFrame(lattice, scenes::fittedLatticeFrame(bounds, 0.05));
-  const std::string& name = scene.widgets.name(lattice);
   auto it = std::find_if(scene.attachments.begin(), scene.attachments.end(),
-                         [&](const scenes::Attachment& a) { return a.lattice == name; });
+                         [&](const scenes::Attachment& a) { return a.lattice == lattice; });
   if (it == scene.attachments.end()) {
-    scene.attachments.push_back({name, {objectName}});
+    scene.attachments.push_back({lattice, {objectName}});
   } else if (std::find(it->objects.begin(), it->objects.end(), objectName) == it->objects.end()) {
     it->objects.push_back(objectName);
   }
@@ -214,9 +213,8 @@ void InteractionController::unbind(widgets::BindingId binding) {
 
 void InteractionController::removeWidget(WidgetId id) {
   edit("Remove " + scene_.widgets.name(id), [&] {
-    const std::string name = scene_.widgets.name(id);
     scene_.widgets.remove(id);
-    std::erase_if(scene_.attachments, [&](const scenes::Attachment& a) { return a.lattice == name; });
+    std::erase_if(scene_.attachments, [&](const scenes::Attachment& a) { return !scene_.widgets.contains(a.lattice); });
     selection_.clear();
     point_.reset();
   });
@@ -230,7 +228,7 @@ void InteractionController::attachLattice(WidgetId lattice, const std::string& o
 
 void InteractionController::detachLattice(WidgetId lattice, const std::string& object) {
   edit("Detach " + scene_.widgets.name(lattice) + " from " + object,
-       [&] { scenes::detachLattice(scene_, scene_.widgets.name(lattice), object); });
+       [&] { scenes::detachLattice(scene_, lattice, object); });
 }
 
 std::string InteractionController::addPrimitive(const scenes::PrimitiveOptions& options) {
@@ -310,11 +308,17 @@ void InteractionController::setSiblingPosition(WidgetId lattice, std::size_t pos
 
 void InteractionController::replaceWidgets(widgets::WidgetModel model, const std::optional<std::string>& attachTo) {
   edit(attachTo ? "Open widget file on " + *attachTo : std::string("Open widget file"), [&] {
+    // Another model has its own ids: an attachment goes over to the new root of its lattice's
+    // name, or goes.
+    std::vector<std::pair<std::string, std::vector<std::string>>> named;
+    for (const scenes::Attachment& a : scene_.attachments) named.emplace_back(scene_.widgets.name(a.lattice), a.objects);
     scene_.widgets = std::move(model);
-    std::erase_if(scene_.attachments, [&](const scenes::Attachment& a) {
-      const auto roots = scene_.widgets.roots();
-      return std::none_of(roots.begin(), roots.end(), [&](WidgetId r) { return scene_.widgets.name(r) == a.lattice; });
-    });
+    scene_.attachments.clear();
+    const std::vector<WidgetId> roots = scene_.widgets.roots();
+    for (auto& [name, objects] : named) {
+      const auto root = std::find_if(roots.begin(), roots.end(), [&](WidgetId r) { return scene_.widgets.name(r) == name; });
+      if (root != roots.end()) scene_.attachments.push_back({*root, std::move(objects)});
+    }
     if (attachTo)
       for (WidgetId root : scene_.widgets.roots()) fitAndAttachLattice(scene_, root, *attachTo);
     selection_.clear();
@@ -396,10 +400,8 @@ void InteractionController::renameWidget(WidgetId id, const std::string& name) {
   const std::string old = scene_.widgets.name(id);
   if (name == old) return;
   edit("Rename " + old + " to " + name, [&] {
+    // Attachments and animation channels hold the id: nothing else changes.
     scene_.widgets.rename(id, name);
-    // Attachments name root lattices (scenes::Attachment::lattice).
-    for (scenes::Attachment& a : scene_.attachments)
-      if (a.lattice == old) a.lattice = name;
   });
 }
 

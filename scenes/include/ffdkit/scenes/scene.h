@@ -83,9 +83,10 @@ struct SceneObject {
 };
 
 /// A root lattice widget (with its whole subtree of child lattices) deforming some objects:
-/// for each object the lattices run in pre-order (spec §6, seed 001 l.2375).
+/// for each object the lattices run in pre-order (spec §6, seed 001 l.2375). The lattice is held
+/// by its id, which a rename keeps (the scene file writes its name, scene-file-format.md).
 struct Attachment {
-  std::string lattice;               ///< name of a ROOT lattice widget
+  widgets::WidgetId lattice;         ///< a ROOT lattice widget of the scene's model
   std::vector<std::string> objects;  ///< names of the objects it deforms
   friend bool operator==(const Attachment&, const Attachment&) = default;
 };
@@ -150,10 +151,11 @@ widgets::WidgetId attachNewLattice(Scene& scene, const std::vector<std::string>&
 
 /// Detach: the lattice stops deforming `object` (the object shows its own points again).
 /// @throws std::invalid_argument if it was not attached.
-void detachLattice(Scene& scene, const std::string& lattice, const std::string& object);
+void detachLattice(Scene& scene, widgets::WidgetId lattice, const std::string& object);
 
-/// Checks names and references: unique object names, attachments naming existing root
-/// lattices and objects, each object deformed at most once by a given lattice.
+/// Checks names and references: unique object names, attachments holding ids of existing root
+/// lattices and names of existing objects, each object deformed at
+/// most once by a given lattice.
 /// @throws std::invalid_argument naming the first problem.
 void validateScene(const Scene& scene);
 

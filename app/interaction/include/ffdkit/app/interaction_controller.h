@@ -183,8 +183,8 @@ class InteractionController {
   /// Renames an object; the attachments naming it follow. @throws std::invalid_argument for an
   /// unknown object, an empty name or one another object has.
   void renameObject(const std::string& object, const std::string& name);
-  /// Renames a widget (WidgetModel::rename): bindings hold ids and stay; the attachments of a
-  /// root lattice follow its new name. @throws what the model throws (a used or empty name).
+  /// Renames a widget (WidgetModel::rename): bindings, attachments and animation channels hold
+  /// its id and stay as they are. @throws what the model throws (a used or empty name).
   void renameWidget(widgets::WidgetId id, const std::string& name);
 
   /// Replaces the deformer's state by one computed elsewhere for the same scene (an embedding
