@@ -145,7 +145,9 @@ Eigen::Index Pipeline::pointsToEmbed(bool reembedAll) const {
     const Node& n = nodes_.at(id);
     const Action action = decide(id, n, inputVersion, reembedAll);
     bool changed = action != Action::Keep;
-    if (action == Action::Update) changed = n.deformer->lastControlPoints() != n.lattice.controlPoints();
+    if (action == Action::Update)
+      changed = (n.deltaApplied && (reembedAll || mode_ == UpdateMode::Exact)) ||
+                n.deformer->lastControlPoints() != n.lattice.controlPoints();
     if (action == Action::Reembed) total += input_.rows();
     inputVersion = changed || n.outputVersion == 0 ? ++counter : n.outputVersion;
   }
@@ -184,7 +186,19 @@ const Eigen::MatrixX3d& Pipeline::run(bool forceEmbed, const EmbedProgress& prog
       Node& n = nodes_.at(id);
       StageReport report{id};
       const Action action = decide(id, n, inputVersion, forceEmbed);
-      if (action == Action::Update) {
+      const bool exact = forceEmbed || mode_ == UpdateMode::Exact;
+      if (action == Action::Update && n.deltaApplied && exact) {
+        // Deltas since the last full evaluation: evaluate in full again (bit for bit what exact
+        // incremental updates would have given).
+        n.deformer->deform(n.lattice, *input);
+        n.deltaApplied = false;
+        report.outputChanged = true;
+      } else if (action == Action::Update && !exact) {
+        n.deformer->update(n.lattice);
+        report.outputChanged = n.deformer->lastStats().changedControlPoints > 0;
+        report.delta = report.outputChanged;
+        n.deltaApplied = n.deltaApplied || report.outputChanged;
+      } else if (action == Action::Update) {
         n.deformer->update(n.lattice, *input);
         report.outputChanged = n.deformer->lastStats().changedControlPoints > 0;
       } else if (action == Action::Reembed) {
@@ -205,6 +219,7 @@ const Eigen::MatrixX3d& Pipeline::run(bool forceEmbed, const EmbedProgress& prog
         n.embeddedRest = n.lattice.restRevision();
         n.embeddedInput = inputVersion;
         n.pending = 0;
+        n.deltaApplied = false;
         n.deformer->deform(n.lattice, *input);
         report.reembedded = true;
         report.outputChanged = true;
@@ -212,6 +227,7 @@ const Eigen::MatrixX3d& Pipeline::run(bool forceEmbed, const EmbedProgress& prog
         ++n.pending;
         approximated.emplace_back(&n, inputVersion);
         n.deformer->deformStale(n.lattice, *input);
+        n.deltaApplied = false;
         report.approximate = true;
         report.outputChanged = true;
       } else {  // Keep: this output, from a cancelled run, is what deformStale would compute again.

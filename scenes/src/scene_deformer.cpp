@@ -86,12 +86,17 @@ SceneDeformer& SceneDeformer::operator=(SceneDeformer&&) noexcept = default;
 void SceneDeformer::reset() { objects_.clear(); }
 
 void SceneDeformer::update(const Scene& scene, std::optional<widgets::WidgetId> activeLattice) {
-  run(scene, activeLattice, /*exact=*/false);
+  run(scene, activeLattice, Run::Update);
 }
 
-void SceneDeformer::finishGesture(const Scene& scene) { run(scene, std::nullopt, /*exact=*/true); }
+void SceneDeformer::updateGesture(const Scene& scene, std::optional<widgets::WidgetId> activeLattice) {
+  run(scene, activeLattice, Run::Gesture);
+}
 
-void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, bool exact) {
+void SceneDeformer::finishGesture(const Scene& scene) { run(scene, std::nullopt, Run::Finish); }
+
+void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, Run how) {
+  const bool exact = how == Run::Finish;
   const auto start = std::chrono::steady_clock::now();
   // 1. Sync every object's pipeline with the scene, in place (nothing is embedded yet), so that a
   //    throw in step 2 leaves each pipeline whole.
@@ -161,6 +166,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       std::optional<ffd::LatticeId> active;
       if (activeLattice && p->ids.count(*activeLattice)) active = p->ids.at(*activeLattice);
       p->pipeline->setActiveLattice(active);
+      p->pipeline->setUpdateMode(how == Run::Gesture ? ffd::UpdateMode::Delta : ffd::UpdateMode::Exact);
       toRun.push_back(p);
     }
     if (added) objects_[object.name] = std::move(added);
@@ -194,6 +200,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
     if (progress_) done += toEmbed[i];
     for (const auto& report : p.pipeline->lastReport()) {
       stats.reembeddedStages += report.reembedded ? 1 : 0;
+      stats.deltaStages += report.delta ? 1 : 0;
       stats.embedSeconds += report.embedSeconds;
     }
     if (const ffd::Embedding* first = p.pipeline->embedding(p.ids.at(p.stages.front().lattice))) {

@@ -87,6 +87,61 @@ TEST(Pipeline, EditingTheLastLatticeUpdatesIncrementally) {
   EXPECT_LT((out - expected).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+TEST(Pipeline, DeltaUpdatesAgreeWithExactOnesAndTheNextExactRunIsBitIdentical) {
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(3000, 5);
+  struct Chain {
+    Pipeline pipeline;
+    LatticeId parent, child;
+    explicit Chain(const Eigen::MatrixX3d& points) : pipeline(points) {
+      parent = pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4));
+      child = pipeline.addLattice(boxAt({0.2, 0.2, 0.2}, 0.6, 3), parent);
+      bend(pipeline.lattice(child), 0.2);
+      pipeline.update();
+      pipeline.setActiveLattice(parent);
+    }
+  };
+  Chain delta(Q), exact(Q), finished(Q);
+  delta.pipeline.setUpdateMode(UpdateMode::Delta);
+  finished.pipeline.setUpdateMode(UpdateMode::Delta);
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> pick(0, 63);
+  std::normal_distribution<double> move(0.0, 0.02);
+  const double size = 1.2;  // of the dragged lattice
+  for (int step = 1; step <= 200; ++step) {
+    // One or two control points of the parent per step, as a drag moves them.
+    const int moved = 1 + step % 2;
+    for (int k = 0; k < moved; ++k) {
+      const int f = pick(rng);
+      const Eigen::Vector3d to = exact.pipeline.lattice(exact.parent).controlPoints().row(f).transpose() +
+                                 Eigen::Vector3d(move(rng), move(rng), move(rng));
+      for (Chain* c : {&delta, &exact, &finished}) c->pipeline.lattice(c->parent).setControlPoint(f, to);
+    }
+    for (Chain* c : {&delta, &exact, &finished}) c->pipeline.update();
+    ASSERT_TRUE(delta.pipeline.lastReport()[0].delta) << step;
+    ASSERT_FALSE(exact.pipeline.lastReport()[0].delta) << step;
+    EXPECT_TRUE(delta.pipeline.lastReport()[1].reembedded);  // the child follows its moved input
+    EXPECT_LE((delta.pipeline.points() - exact.pipeline.points()).cwiseAbs().maxCoeff(), 1e-12 * size) << step;
+  }
+  EXPECT_GT((delta.pipeline.points() - exact.pipeline.points()).cwiseAbs().maxCoeff(), 0.0)
+      << "the deltas round differently from an exact evaluation (else this test proves nothing)";
+  // The next exact run evaluates the parent in full (and re-embeds the child on its new output):
+  // bit for bit what exact updates gave, whether an update() in Exact mode or reembedAll().
+  delta.pipeline.setUpdateMode(UpdateMode::Exact);
+  EXPECT_EQ(delta.pipeline.pointsToEmbed(), Q.rows());
+  delta.pipeline.update();
+  EXPECT_TRUE(delta.pipeline.lastReport()[0].outputChanged);
+  EXPECT_FALSE(delta.pipeline.lastReport()[0].delta);
+  EXPECT_TRUE(delta.pipeline.lastReport()[1].reembedded);
+  EXPECT_TRUE(delta.pipeline.points() == exact.pipeline.points());
+  EXPECT_EQ(finished.pipeline.pointsToEmbed(/*reembedAll=*/true), Q.rows());
+  finished.pipeline.reembedAll();
+  EXPECT_TRUE(finished.pipeline.points() == exact.pipeline.points());
+  // Once exact, a further exact run has nothing to do.
+  delta.pipeline.update();
+  EXPECT_FALSE(delta.pipeline.lastReport()[0].outputChanged);
+  EXPECT_EQ(delta.pipeline.pointsToEmbed(), 0);
+}
+
 TEST(Pipeline, ThrottlesReembeddingOfLatticesOtherThanTheActiveOne) {
   const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(2000, 4);
   for (ReembedThrottle throttle : {ReembedThrottle::immediate(), ReembedThrottle::everyN(3), ReembedThrottle::onDemand()}) {

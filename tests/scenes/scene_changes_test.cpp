@@ -1,5 +1,6 @@
 // Scene revisions and change sets (scene_changes.h), and the deformer consuming them: each edit
-// reports exactly what it changed; a drag step builds no lattice and embeds nothing; a look
+// reports exactly what it changed; a drag step builds no lattice and embeds nothing (and a
+// gesture step updates by deltas, made exact by the next exact update); a look
 // or a camera edit leaves the deformed points (and their revision) alone.
 #include "ffdkit/scenes/scene_changes.h"
 
@@ -162,6 +163,35 @@ TEST(SceneDeformer, ADragStepWritesControlPointsInPlaceAndBuildsNoLattice) {
   deformer.update(scene);
   EXPECT_EQ(deformer.points("a").rows(), scene.findObject("a")->mesh.points.rows());
   EXPECT_EQ(deformer.lastStats().latticesBuilt, 1);
+}
+
+TEST(SceneDeformer, GestureStepsUpdateByDeltasAndAnExactUpdateRestoresTheExactResult) {
+  Scene scene;
+  addObject(scene, sphere("a", 24));
+  AttachOptions options;
+  options.counts = {4, 4, 4};
+  const widgets::WidgetId lattice = attachNewLattice(scene, {"a"}, options);
+  SceneDeformer deformer;
+  deformer.update(scene);
+  for (int step = 1; step <= 5; ++step) {
+    Eigen::MatrixX3d p = scene.widgets.controlPoints(lattice);
+    p(21, 2) += 0.05;
+    p(42, 0) -= 0.03;
+    scene.widgets.setControlPoints(lattice, p);
+    deformer.updateGesture(scene, lattice);
+    EXPECT_EQ(deformer.lastStats().deltaStages, 1);
+    EXPECT_EQ(deformer.lastStats().latticesBuilt, 0);
+    EXPECT_EQ(deformer.lastStats().reembeddedStages, 0);
+    EXPECT_LE((deformer.points("a") - deformScene(scene).at("a")).cwiseAbs().maxCoeff(), 1e-13);
+  }
+  // Nothing moved since: an exact update still evaluates the lattice in full, bit for bit.
+  const std::uint64_t revision = deformer.revision("a");
+  deformer.update(scene);
+  EXPECT_EQ(deformer.lastStats().deltaStages, 0);
+  EXPECT_EQ(deformer.revision("a"), revision + 1);
+  EXPECT_TRUE(deformer.points("a") == deformScene(scene).at("a"));
+  deformer.finishGesture(scene);
+  EXPECT_EQ(deformer.revision("a"), revision + 1);  // nothing left to do
 }
 
 }  // namespace

@@ -440,7 +440,7 @@ void EditController::apply(const Eigen::Affine3d& motion) {
       }
     }
   }
-  deformer_.update(scene_, live_->targets.size() == 1 ? active : std::nullopt);
+  deformer_.updateGesture(scene_, live_->targets.size() == 1 ? active : std::nullopt);
   notify();
 }
 

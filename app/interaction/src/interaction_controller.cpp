@@ -123,7 +123,7 @@ void InteractionController::drag(const widgets::Ray& ray) {
     // World displacement -> lattice-local (world = frame * local), then HHK's least-norm change.
     const Eigen::Vector3d local = g.worldToLocal * (ray.at(*t) - g.grab);
     scene_.widgets.setControlPoints(g.lattice, g.controlStart + g.weights * local.transpose());
-    deformer_.update(scene_, dragLattice_);
+    deformer_.updateGesture(scene_, dragLattice_);
     notify();
     return;
   }
@@ -132,7 +132,7 @@ void InteractionController::drag(const widgets::Ray& ray) {
     return;
   }
   scene_.widgets.dragTo(ray);
-  deformer_.update(scene_, dragLattice_);
+  deformer_.updateGesture(scene_, dragLattice_);
   notify();
 }
 
@@ -145,7 +145,7 @@ bool InteractionController::setDragValue(double value) {
   const auto widget = scene_.widgets.gestureWidget();
   if (!widget || scene_.widgets.type(*widget) != WidgetType::Affine) return false;
   scene_.widgets.updateGesture(value);
-  deformer_.update(scene_, dragLattice_);
+  deformer_.updateGesture(scene_, dragLattice_);
   notify();
   return true;
 }

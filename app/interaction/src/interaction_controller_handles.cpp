@@ -40,7 +40,7 @@ void InteractionController::applyHandleMotion(const Eigen::Affine3d& motion) {
     return;
   }
   scene_.widgets.updateGesture(motion);
-  deformer_.update(scene_, dragLattice_);
+  deformer_.updateGesture(scene_, dragLattice_);
   notify();
 }
 

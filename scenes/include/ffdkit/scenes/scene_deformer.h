@@ -24,6 +24,9 @@ struct SceneDeformStats {
   /// Pipeline lattices built anew from the model (a new object, lattice tree or rest shape); a
   /// drag step writes control points into the existing ones and builds none.
   int latticesBuilt = 0;
+  /// Lattice stages updated by deltas (updateGesture): their points are exact to rounding only
+  /// until finishGesture() or update() evaluates them in full.
+  int deltaStages = 0;
 };
 
 /// Progress of SceneDeformer::update() / finishGesture(): the fraction in [0, 1] of the points the
@@ -62,8 +65,18 @@ class SceneDeformer {
   ///   never cancelled (only the embeddings not finished are computed again).
   void update(const Scene& scene, std::optional<widgets::WidgetId> activeLattice = std::nullopt);
 
-  /// Re-embeds every lattice that was throttled (call on gesture release): the exact result.
+  /// One step of a gesture (a drag, a live transform): as update(), except that a lattice whose
+  /// embedding is fresh and whose control points moved is updated by deltas (ffd::UpdateMode::Delta:
+  /// B_ijk(u,v,w) * dP_ijk per moved control point, one term per point instead of the (p+1)^3 of
+  /// an exact evaluation). Its points then agree with update()'s to ~1e-16 relative per step (the
+  /// rounding of the deltas accumulates slowly), not bit for bit: end the gesture with
+  /// finishGesture(), which evaluates those lattices exactly again (as does update()).
   /// Progress and cancel as update().
+  void updateGesture(const Scene& scene, std::optional<widgets::WidgetId> activeLattice = std::nullopt);
+
+  /// Re-embeds every lattice that was throttled and evaluates in full every lattice updated by
+  /// deltas (call on gesture release): the exact result, bit for bit that of update() calls
+  /// without updateGesture(). Progress and cancel as update().
   void finishGesture(const Scene& scene);
 
   /// Progress / cancel hook for the following update() and finishGesture() calls (empty: none).
@@ -84,9 +97,11 @@ class SceneDeformer {
   void reset();
 
  private:
-  // Syncs every object's pipeline with the scene, then runs it: incrementally (throttled
-  // stages approximate) or, when `exact`, re-embedding every stale stage.
-  void run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, bool exact);
+  // How run() evaluates: update(), updateGesture(), finishGesture().
+  enum class Run { Update, Gesture, Finish };
+  // Syncs every object's pipeline with the scene, then runs it: incrementally (throttled stages
+  // approximate; fresh ones by deltas for Gesture) or, for Finish, re-embedding every stale stage.
+  void run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, Run how);
 
   struct ObjectPipeline;
   std::map<std::string, std::unique_ptr<ObjectPipeline>> objects_;
