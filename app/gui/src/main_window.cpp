@@ -122,7 +122,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     s.view->requestRender();
   };
   d.controller->onStructureChanged = [this, refreshPanel] {
-    impl_->outliner->rebuild(impl_->scene);
+    impl_->outliner->sync(impl_->scene);
     refreshPanel();
   };
   d.commands.onChanged = [this, refreshPanel] {

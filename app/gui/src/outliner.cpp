@@ -1,5 +1,7 @@
 #include "outliner.h"
 
+#include <set>
+
 #include <QDropEvent>
 #include <QHeaderView>
 #include <QMimeData>
@@ -11,6 +13,7 @@ namespace {
 
 constexpr int kKindRole = Qt::UserRole;
 constexpr int kIdRole = Qt::UserRole + 1;
+constexpr int kDeformedByRole = Qt::UserRole + 2;  ///< a "deformed by" row: its lattice's id
 
 OutlinerEntry entryOf(const QTreeWidgetItem* item) {
   OutlinerEntry e;
@@ -23,6 +26,39 @@ OutlinerEntry entryOf(const QTreeWidgetItem* item) {
     case OutlinerEntry::Kind::Binding: e.binding.value = item->data(0, kIdRole).toUInt(); break;
   }
   return e;
+}
+
+QString qs(const std::string& s) { return QString::fromStdString(s); }
+
+// The text of a row (name, type) from the model: one home for rebuild and sync.
+QString latticeType(const widgets::WidgetModel& m, widgets::WidgetId lattice) {
+  const Eigen::Vector3i n = m.counts(lattice);
+  return Outliner::tr("lattice %1x%2x%3").arg(n.x()).arg(n.y()).arg(n.z());
+}
+
+QString widgetType(const widgets::WidgetModel& m, widgets::WidgetId id) {
+  switch (m.type(id)) {
+    case widgets::WidgetType::Lattice: return latticeType(m, id);
+    case widgets::WidgetType::Cell:
+      return Outliner::tr("%1 cell").arg(qs(std::string(cellKindName(m.cellSpec(id).kind))));
+    case widgets::WidgetType::Affine: {
+      const QString kind = qs(std::string(affineKindName(m.affineKind(id))));
+      return m.attachedCell(id) ? kind : Outliner::tr("free %1").arg(kind);
+    }
+  }
+  return {};
+}
+
+QString bindingText(const widgets::WidgetModel& m, widgets::BindingId id) {
+  const widgets::Binding& b = m.binding(id);
+  return qs(m.name(b.from) + (b.oneWay ? " -> " : " <-> ") + m.name(b.to));
+}
+
+bool setText(QTreeWidgetItem* item, const QString& name, const QString& type) {
+  if (item->text(0) == name && item->text(1) == type) return false;
+  item->setText(0, name);
+  item->setText(1, type);
+  return true;
 }
 
 bool same(const OutlinerEntry& a, const OutlinerEntry& b) {
@@ -60,49 +96,74 @@ void Outliner::rebuild(const scenes::Scene& scene) {
   programmatic_ = true;
   clear();
   const auto& m = scene.widgets;
+  auto widgetRow = [&](QTreeWidgetItem* parent, widgets::WidgetId id) {
+    return makeItem(parent, qs(m.name(id)), widgetType(m, id), OutlinerEntry::Kind::Widget, id.value);
+  };
   auto* objects = new QTreeWidgetItem(this, {tr("Objects")});
   for (const auto& object : scene.objects) {
-    auto* item = makeItem(objects, QString::fromStdString(object.name), tr("object"), OutlinerEntry::Kind::Object,
-                          QString::fromStdString(object.name));
+    auto* item = makeItem(objects, qs(object.name), tr("object"), OutlinerEntry::Kind::Object, qs(object.name));
     for (widgets::WidgetId lattice : scene.latticesDeforming(object.name))
-      new QTreeWidgetItem(item, {QString::fromStdString(m.name(lattice)), tr("deformed by")});
+      (new QTreeWidgetItem(item, {qs(m.name(lattice)), tr("deformed by")}))->setData(0, kDeformedByRole, lattice.value);
   }
   auto* tree = new QTreeWidgetItem(this, {tr("Widgets")});
   std::function<void(QTreeWidgetItem*, widgets::WidgetId)> addLattice = [&](QTreeWidgetItem* parent,
                                                                              widgets::WidgetId lattice) {
-    const Eigen::Vector3i n = m.counts(lattice);
-    auto* item = makeItem(parent, QString::fromStdString(m.name(lattice)),
-                          tr("lattice %1x%2x%3").arg(n.x()).arg(n.y()).arg(n.z()), OutlinerEntry::Kind::Widget,
-                          lattice.value);
+    auto* item = widgetRow(parent, lattice);
     for (widgets::WidgetId cell : m.cellsOf(lattice)) {
-      auto* cellItem = makeItem(item, QString::fromStdString(m.name(cell)),
-                                tr("%1 cell").arg(QString::fromStdString(std::string(cellKindName(m.cellSpec(cell).kind)))),
-                                OutlinerEntry::Kind::Widget, cell.value);
-      for (widgets::WidgetId affine : m.affinesOf(cell))
-        makeItem(cellItem, QString::fromStdString(m.name(affine)),
-                 QString::fromStdString(std::string(affineKindName(m.affineKind(affine)))), OutlinerEntry::Kind::Widget,
-                 affine.value);
+      auto* cellItem = widgetRow(item, cell);
+      for (widgets::WidgetId affine : m.affinesOf(cell)) widgetRow(cellItem, affine);
       for (widgets::WidgetId child : m.children(lattice))
         if (m.parentCell(child) == cell) addLattice(cellItem, child);
     }
   };
   for (widgets::WidgetId root : m.roots()) addLattice(tree, root);
   for (widgets::WidgetId affine : m.widgets(widgets::WidgetType::Affine))
-    if (!m.attachedCell(affine))
-      makeItem(tree, QString::fromStdString(m.name(affine)),
-               tr("free %1").arg(QString::fromStdString(std::string(affineKindName(m.affineKind(affine))))),
-               OutlinerEntry::Kind::Widget, affine.value);
+    if (!m.attachedCell(affine)) widgetRow(tree, affine);
   auto* bindings = new QTreeWidgetItem(this, {tr("Bindings")});
-  for (widgets::BindingId id : m.bindings()) {
-    const widgets::Binding& b = m.binding(id);
-    makeItem(bindings,
-             QString::fromStdString(m.name(b.from) + (b.oneWay ? " -> " : " <-> ") + m.name(b.to)),
-             QString::fromStdString(std::string(bindingKindName(b.kind))), OutlinerEntry::Kind::Binding, id.value);
-  }
+  for (widgets::BindingId id : m.bindings())
+    makeItem(bindings, bindingText(m, id), qs(std::string(bindingKindName(m.binding(id).kind))),
+             OutlinerEntry::Kind::Binding, id.value);
   for (auto* top : {objects, tree, bindings}) top->setFlags(top->flags() & ~Qt::ItemIsSelectable & ~Qt::ItemIsDragEnabled);
   expandAll();
   programmatic_ = false;
   select(keep);
+  mark_ = scenes::markOf(scene);
+  ++stats_.rebuilds;
+  for (QTreeWidgetItemIterator it(this); *it; ++it) ++stats_.rowsBuilt;
+}
+
+void Outliner::sync(const scenes::Scene& scene) {
+  const scenes::SceneChanges changes = scenes::changesSince(scene, mark_);
+  if (changes.widgetsReplaced || changes.structure || changes.widgets.structure) {
+    rebuild(scene);
+    return;
+  }
+  mark_ = scenes::markOf(scene);
+  // What a row shows: names and kinds of widgets (widgets), counts of lattices (frames: new
+  // counts), the direction of bindings (bindings).
+  std::set<widgets::WidgetId> touched(changes.widgets.widgets.begin(), changes.widgets.widgets.end());
+  touched.insert(changes.widgets.frames.begin(), changes.widgets.frames.end());
+  const std::set<widgets::BindingId> bindings(changes.widgets.bindings.begin(), changes.widgets.bindings.end());
+  if (touched.empty() && bindings.empty()) return;
+  const auto& m = scene.widgets;
+  for (QTreeWidgetItemIterator it(this); *it; ++it) {
+    QTreeWidgetItem* item = *it;
+    bool updated = false;
+    if (const QVariant lattice = item->data(0, kDeformedByRole); lattice.isValid()) {
+      const widgets::WidgetId id{lattice.toUInt()};
+      if (touched.count(id) != 0) updated = setText(item, qs(m.name(id)), tr("deformed by"));
+    } else if (item->data(0, kKindRole).isValid()) {
+      const OutlinerEntry e = entryOf(item);
+      if (e.kind == OutlinerEntry::Kind::Widget && touched.count(e.widget) != 0) {
+        updated = setText(item, qs(m.name(e.widget)), widgetType(m, e.widget));
+      } else if (e.kind == OutlinerEntry::Kind::Binding) {
+        const widgets::Binding& b = m.binding(e.binding);
+        if (bindings.count(e.binding) != 0 || touched.count(b.from) != 0 || touched.count(b.to) != 0)
+          updated = setText(item, bindingText(m, e.binding), item->text(1));
+      }
+    }
+    if (updated) ++stats_.rowsUpdated;
+  }
 }
 
 void Outliner::select(const std::vector<OutlinerEntry>& entries) {

@@ -19,6 +19,7 @@
 
 #include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/app/parts.h"
+#include "property_fields.h"
 
 namespace ffdkit::app {
 namespace {
@@ -104,12 +105,64 @@ void PropertyPanel::clearRows() {
     content_->hide();
     content_->deleteLater();
   }
+  fields_.clear();
   content_ = new QWidget;
   form_ = new QFormLayout(content_);
   static_cast<QVBoxLayout*>(layout())->insertWidget(0, content_);
 }
 
+std::string PropertyPanel::layoutOf(const std::vector<OutlinerEntry>& selection) const {
+  if (selection.empty()) return "none";
+  std::string key = std::to_string(selection.size()) + ":";
+  const OutlinerEntry& e = selection.front();
+  const auto& m = scene_.widgets;
+  switch (e.kind) {
+    case OutlinerEntry::Kind::Object: {
+      const scenes::SceneObject* object = scene_.findObject(e.object);
+      if (object == nullptr) return key + "gone";
+      return key + "object " + e.object + (object->mesh.triangles.rows() > 0 ? " surface" : "") +
+             (object->mesh.segments.rows() > 0 ? " curve" : "");
+    }
+    case OutlinerEntry::Kind::Binding: {
+      const auto all = m.bindings();
+      if (!e.binding.valid() || std::find(all.begin(), all.end(), e.binding) == all.end()) return key + "gone";
+      return key + widgets::toString(e.binding) + " " + std::string(bindingKindName(m.binding(e.binding).kind));
+    }
+    case OutlinerEntry::Kind::Widget: break;
+  }
+  if (!m.contains(e.widget)) return key + "gone";
+  key += widgets::toString(e.widget) + " " + std::string(widgetTypeName(m.type(e.widget)));
+  switch (m.type(e.widget)) {
+    case widgets::WidgetType::Affine: return key + " " + std::string(affineKindName(m.affineKind(e.widget)));
+    case widgets::WidgetType::Cell: return key;
+    case widgets::WidgetType::Lattice: break;
+  }
+  const auto& settings = m.latticeSettings(e.widget);
+  key += m.parentCell(e.widget) ? " child" : " root";
+  key += settings.cylinder ? " cylinder" : " box";
+  for (const ffd::AxisBasis& axis : settings.basis)
+    for (const ffd::AxisBasis& b : basisChoices(axis, axis.kind == ffd::AxisBasis::Kind::PeriodicBSpline))
+      key.append(1, ' ').append(basisName(b).toStdString());
+  return key;
+}
+
 void PropertyPanel::showSelection(const std::vector<OutlinerEntry>& selection) {
+  const scenes::SceneChanges changes = scenes::changesSince(scene_, mark_);
+  mark_ = scenes::markOf(scene_);
+  const std::string shape = layoutOf(selection);
+  const bool sameRows = !layout_.empty() && shape == layout_ && selection.size() == shown_.size() &&
+                        std::equal(selection.begin(), selection.end(), shown_.begin(), [](const auto& a, const auto& b) {
+                          return a.kind == b.kind && a.object == b.object && a.widget == b.widget && a.binding == b.binding;
+                        });
+  if (sameRows) {
+    if (changes.empty()) return;  // a hover, the same selection again
+    for (const auto& field : fields_)
+      if (field()) ++stats_.fieldsUpdated;
+    return;
+  }
+  shown_ = selection;
+  layout_ = shape;
+  ++stats_.rebuilds;
   clearRows();
   if (selection.empty()) {
     auto* hint = new QLabel(tr("Nothing selected. Click a glyph, a lattice point or a row of the outliner."));
@@ -138,7 +191,9 @@ void PropertyPanel::showSelection(const std::vector<OutlinerEntry>& selection) {
 
 void PropertyPanel::showAffine(widgets::WidgetId id) {
   const auto& m = scene_.widgets;
-  form_->addRow(tr("Name"), new QLabel(qs(m.name(id))));
+  auto* nameLabel = new QLabel(qs(m.name(id)));
+  fields_.push_back(textField(nameLabel, [this, id] { return qs(scene_.widgets.name(id)); }));
+  form_->addRow(tr("Name"), nameLabel);
   const widgets::AffineKind kind = m.affineKind(id);
   // Kind: the points stay, the variation restarts at 0 (WidgetModel::setAffineKind).
   auto* kindBox = new QComboBox;
@@ -155,11 +210,17 @@ void PropertyPanel::showAffine(widgets::WidgetId id) {
   });
   form_->addRow(tr("Kind"), kindBox);
   const auto cell = m.attachedCell(id);
-  form_->addRow(tr("Cell"), new QLabel(cell ? qs(m.name(*cell)) : tr("(free)")));
+  auto* cellLabel = new QLabel(cell ? qs(m.name(*cell)) : tr("(free)"));
+  fields_.push_back(textField(cellLabel, [this, id] {
+    const auto c = scene_.widgets.attachedCell(id);
+    return c ? qs(scene_.widgets.name(*c)) : tr("(free)");
+  }));
+  form_->addRow(tr("Cell"), cellLabel);
   const QString unit = kind == widgets::AffineKind::Translate ? tr("distance")
                        : kind == widgets::AffineKind::Rotate  ? tr("radians")
                                                               : tr("log scale");
   auto* variation = spin("variation", m.variation(id), -1e6, 1e6);
+  fields_.push_back(spinField(variation, [this, id] { return scene_.widgets.variation(id); }));
   connect(variation, &QDoubleSpinBox::valueChanged, this,
           [this, id](double v) { guarded([&] { controller_.setVariation(id, v); }); });
   form_->addRow(tr("Variation (%1)").arg(unit), variation);
@@ -171,6 +232,7 @@ void PropertyPanel::showAffine(widgets::WidgetId id) {
   row->setContentsMargins(0, 0, 0, 0);
   for (int axis = 0; axis < 3; ++axis) {
     auto* box = spin(QString("placement%1").arg("xyz"[axis]), placement.translation()[axis], -1e3, 1e3, 3);
+    fields_.push_back(spinField(box, [this, id, axis] { return scene_.widgets.placement(id).translation()[axis]; }));
     connect(box, &QDoubleSpinBox::valueChanged, this, [this, id, axis](double v) {
       guarded([&] {
         Eigen::Affine3d p = scene_.widgets.placement(id);
@@ -191,6 +253,10 @@ void PropertyPanel::showAffine(widgets::WidgetId id) {
   std::array<QDoubleSpinBox*, 3> boxes{};
   for (int i = 0; i < 3; ++i) {
     boxes[static_cast<std::size_t>(i)] = spin(QString("orientation%1").arg("zyx"[i]), euler[i], -360.0, 360.0, 2);
+    fields_.push_back(spinField(boxes[static_cast<std::size_t>(i)], [this, id, i] {
+      const Eigen::Matrix3d r = scene_.widgets.placement(id).rotation();
+      return r.eulerAngles(2, 1, 0)[i] * (180.0 / std::numbers::pi);
+    }));
     angles->addWidget(boxes[static_cast<std::size_t>(i)]);
   }
   for (auto* box : boxes)
@@ -217,6 +283,10 @@ void PropertyPanel::showAffine(widgets::WidgetId id) {
   for (const auto& part : partNames()) shape->addItem(qs(part), qs(part));
   const int current = shape->findData(partMesh(glyph.shape) ? qs(glyph.shape) : QString());
   shape->setCurrentIndex(std::max(0, current));
+  fields_.push_back(comboField(shape, [this, id, shape] {
+    const std::string& now = scene_.widgets.glyph(id).shape;
+    return std::max(0, shape->findData(partMesh(now) ? qs(now) : QString()));
+  }));
   connect(shape, &QComboBox::currentIndexChanged, this, [this, id, shape](int) {
     guarded([&] {
       widgets::Glyph g = scene_.widgets.glyph(id);
@@ -233,6 +303,7 @@ void PropertyPanel::showAffine(widgets::WidgetId id) {
   });
   form_->addRow(tr("Glyph / part"), shape);
   auto* size = spin("glyphSize", glyph.size, 0.001, 100.0, 3);
+  fields_.push_back(spinField(size, [this, id] { return scene_.widgets.glyph(id).size; }));
   connect(size, &QDoubleSpinBox::valueChanged, this, [this, id](double v) {
     guarded([&] {
       widgets::Glyph g = scene_.widgets.glyph(id);
@@ -247,13 +318,24 @@ void PropertyPanel::showBinding(widgets::BindingId id) {
   const auto& m = scene_.widgets;
   const widgets::Binding& b = m.binding(id);
   form_->addRow(tr("Binding"), new QLabel(qs(bindingKindName(b.kind))));
-  form_->addRow(tr("From"), new QLabel(qs(m.name(b.from))));
-  form_->addRow(tr("To"), new QLabel(qs(m.name(b.to))));
+  auto* from = new QLabel(qs(m.name(b.from)));
+  auto* to = new QLabel(qs(m.name(b.to)));
+  fields_.push_back(textField(from, [this, id] { return qs(scene_.widgets.name(scene_.widgets.binding(id).from)); }));
+  fields_.push_back(textField(to, [this, id] { return qs(scene_.widgets.name(scene_.widgets.binding(id).to)); }));
+  form_->addRow(tr("From"), from);
+  form_->addRow(tr("To"), to);
   // Direction: one way = only `from` drives `to` (for an attachment or a hierarchy: the cell
   // drives its widget or child lattice, which no longer move the cell).
   auto* oneWay = new QCheckBox(tr("one way (only '%1' drives)").arg(qs(m.name(b.from))));
   oneWay->setObjectName("oneWay");
   oneWay->setChecked(b.oneWay);
+  fields_.push_back(checkField(oneWay, [this, id] { return scene_.widgets.binding(id).oneWay; }));
+  fields_.push_back([this, id, oneWay] {
+    const QString now = tr("one way (only '%1' drives)").arg(qs(scene_.widgets.name(scene_.widgets.binding(id).from)));
+    if (oneWay->text() == now) return false;
+    oneWay->setText(now);
+    return true;
+  });
   connect(oneWay, &QCheckBox::toggled, this, [this, id, oneWay](bool checked) {
     if (!guarded([&] { controller_.setOneWay(id, checked); })) {
       const QSignalBlocker block(oneWay);
@@ -273,6 +355,10 @@ void PropertyPanel::showBinding(widgets::BindingId id) {
       button->setText(letter);
       button->setCheckable(true);
       button->setChecked(on[c]);
+      fields_.push_back(checkField(button, [this, id, c] {
+        const widgets::AffineMask mask = scene_.widgets.binding(id).mask;
+        return c == 0 ? mask.translate : c == 1 ? mask.rotate : mask.scale;
+      }));
       button->setToolTip(QStringList{tr("translation"), tr("rotation"), tr("scale")}[c]);
       connect(button, &QToolButton::toggled, this, [this, id, c](bool checked) {
         guarded([&] {
@@ -288,6 +374,7 @@ void PropertyPanel::showBinding(widgets::BindingId id) {
     return;
   }
   auto* gain = spin("gain", b.rule.gain, -1e4, 1e4);
+  fields_.push_back(spinField(gain, [this, id] { return scene_.widgets.binding(id).rule.gain; }));
   connect(gain, &QDoubleSpinBox::valueChanged, this, [this, id](double v) {
     guarded([&] {
       widgets::ConversionRule rule = scene_.widgets.binding(id).rule;
@@ -302,6 +389,10 @@ void PropertyPanel::showBinding(widgets::BindingId id) {
   const widgets::VariationRange range = b.rule.clamp.value_or(widgets::VariationRange{-1.0, 1.0});
   auto* lo = spin("clampMin", range.min, -1e6, 1e6);
   auto* hi = spin("clampMax", range.max, -1e6, 1e6);
+  fields_.push_back(checkField(clamp, [this, id] { return scene_.widgets.binding(id).rule.clamp.has_value(); }));
+  auto clampOf = [this, id] { return scene_.widgets.binding(id).rule.clamp.value_or(widgets::VariationRange{-1.0, 1.0}); };
+  fields_.push_back(spinField(lo, [clampOf] { return clampOf().min; }));
+  fields_.push_back(spinField(hi, [clampOf] { return clampOf().max; }));
   auto apply = [this, id, clamp, lo, hi] {
     guarded([&] {
       widgets::ConversionRule rule = scene_.widgets.binding(id).rule;
@@ -319,7 +410,9 @@ void PropertyPanel::showBinding(widgets::BindingId id) {
 
 void PropertyPanel::showLattice(widgets::WidgetId id) {
   const auto& m = scene_.widgets;
-  form_->addRow(tr("Lattice"), new QLabel(qs(m.name(id))));
+  auto* nameLabel = new QLabel(qs(m.name(id)));
+  fields_.push_back(textField(nameLabel, [this, id] { return qs(scene_.widgets.name(id)); }));
+  form_->addRow(tr("Lattice"), nameLabel);
   // Counts: the model resamples the lattice, keeping its deformation (WidgetModel::setLatticeCounts).
   const Eigen::Vector3i n = m.counts(id);
   auto* countsRow = new QWidget;
@@ -331,6 +424,7 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
     count->setRange(2, 64);
     count->setValue(n[axis]);
     count->setKeyboardTracking(false);
+    fields_.push_back(intSpinField(count, [this, id, axis] { return scene_.widgets.counts(id)[axis]; }));
     count->setToolTip(tr("points along %1").arg("uvw"[axis]));
     connect(count, &QSpinBox::valueChanged, this, [this, id, axis, count](int value) {
       const bool done = guarded([&] {
@@ -356,6 +450,8 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
     basis->setObjectName(QString("basis%1").arg("UVW"[axis]));
     for (const ffd::AxisBasis& b : choices) basis->addItem(basisName(b));
     basis->setCurrentIndex(basisIndex(choices, settings.basis[a]));
+    fields_.push_back(
+        comboField(basis, [this, id, a, choices] { return basisIndex(choices, scene_.widgets.latticeSettings(id).basis[a]); }));
     connect(basis, &QComboBox::currentIndexChanged, this, [this, id, a, choices, basis](int index) {
       if (index < 0) return;
       const bool done = guarded([&] {
@@ -374,6 +470,8 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
   outside->setObjectName("outside");
   outside->addItems({tr("identity"), tr("clamp edge"), tr("extrapolate"), tr("falloff")});
   outside->setCurrentIndex(static_cast<int>(settings.outside.kind));
+  fields_.push_back(
+      comboField(outside, [this, id] { return static_cast<int>(scene_.widgets.latticeSettings(id).outside.kind); }));
   connect(outside, &QComboBox::currentIndexChanged, this, [this, id](int index) {
     guarded([&] {
       widgets::LatticeSettings s = scene_.widgets.latticeSettings(id);
@@ -397,6 +495,7 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
     sizeRow->setContentsMargins(0, 0, 0, 0);
     for (int axis = 0; axis < 3; ++axis) {
       auto* position = spin(QString("latticePosition%1").arg("xyz"[axis]), frame.translation()[axis], -1e4, 1e4, 3);
+      fields_.push_back(spinField(position, [this, id, axis] { return scene_.widgets.latticeFrame(id).translation()[axis]; }));
       connect(position, &QDoubleSpinBox::valueChanged, this, [this, id, axis](double v) {
         guarded([&] {
           Eigen::Affine3d f = scene_.widgets.latticeFrame(id);
@@ -406,6 +505,7 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
       });
       row->addWidget(position);
       auto* size = spin(QString("latticeSize%1").arg("uvw"[axis]), linear.col(axis).norm(), 1e-4, 1e4, 3);
+      fields_.push_back(spinField(size, [this, id, axis] { return scene_.widgets.latticeFrame(id).linear().col(axis).norm(); }));
       connect(size, &QDoubleSpinBox::valueChanged, this, [this, id, axis](double v) {
         guarded([&] {
           Eigen::Affine3d f = scene_.widgets.latticeFrame(id);
@@ -418,41 +518,56 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
     form_->addRow(tr("Position"), placement);
     form_->addRow(tr("Size"), sizes);
   }
-  form_->addRow(tr("Cells"), new QLabel(QString::number(m.cellsOf(id).size())));
-  form_->addRow(tr("Parent"), new QLabel(parent ? qs(m.name(*parent)) : tr("(root)")));
+  addLabel(tr("Cells"), [this, id] { return QString::number(scene_.widgets.cellsOf(id).size()); });
+  addLabel(tr("Parent"), [this, id] {
+    const auto cell = scene_.widgets.parentCell(id);
+    return cell ? qs(scene_.widgets.name(*cell)) : tr("(root)");
+  });
   // A child lattice deforms what its root is attached to (the pipeline runs the whole tree).
-  widgets::WidgetId root = id;
-  while (const auto up = m.parentLattice(root)) root = *up;
-  QStringList objects;
-  for (const auto& a : scene_.attachments)
-    if (a.lattice == root)
-      for (const auto& o : a.objects) objects << qs(o);
-  QString deforms = objects.isEmpty() ? tr("(nothing)") : objects.join(", ");
-  if (root != id && !objects.isEmpty()) deforms += tr(" (through %1)").arg(qs(m.name(root)));
-  auto* deformsLabel = new QLabel(deforms);
-  deformsLabel->setObjectName("deforms");
-  form_->addRow(tr("Deforms"), deformsLabel);
+  addLabel(tr("Deforms"), [this, id] {
+    const auto& model = scene_.widgets;
+    widgets::WidgetId root = id;
+    while (const auto up = model.parentLattice(root)) root = *up;
+    QStringList objects;
+    for (const auto& a : scene_.attachments)
+      if (a.lattice == root)
+        for (const auto& o : a.objects) objects << qs(o);
+    QString deforms = objects.isEmpty() ? tr("(nothing)") : objects.join(", ");
+    if (root != id && !objects.isEmpty()) deforms += tr(" (through %1)").arg(qs(model.name(root)));
+    return deforms;
+  })->setObjectName("deforms");
+}
+
+QLabel* PropertyPanel::addLabel(const QString& title, std::function<QString()> text) {
+  auto* label = new QLabel(text());
+  fields_.push_back(textField(label, std::move(text)));
+  form_->addRow(title, label);
+  return label;
 }
 
 void PropertyPanel::showCell(widgets::WidgetId id) {
   const auto& m = scene_.widgets;
-  form_->addRow(tr("Cell"), new QLabel(qs(m.name(id))));
-  form_->addRow(tr("Kind"), new QLabel(qs(cellKindName(m.cellSpec(id).kind))));
-  form_->addRow(tr("Lattice"), new QLabel(qs(m.name(m.latticeOf(id)))));
-  form_->addRow(tr("Points"), new QLabel(QString::number(m.cellIndices(id).size())));
-  form_->addRow(tr("Widgets"), new QLabel(QString::number(m.affinesOf(id).size())));
+  addLabel(tr("Cell"), [&m, id] { return qs(m.name(id)); });
+  addLabel(tr("Kind"), [&m, id] { return qs(cellKindName(m.cellSpec(id).kind)); });
+  addLabel(tr("Lattice"), [&m, id] { return qs(m.name(m.latticeOf(id))); });
+  addLabel(tr("Points"), [&m, id] { return QString::number(m.cellIndices(id).size()); });
+  addLabel(tr("Widgets"), [&m, id] { return QString::number(m.affinesOf(id).size()); });
 }
 
 void PropertyPanel::showObject(const std::string& name) {
   const scenes::SceneObject* object = scene_.findObject(name);
   if (object == nullptr) return;
-  form_->addRow(tr("Object"), new QLabel(qs(name)));
-  form_->addRow(tr("Points"), new QLabel(QString::number(object->mesh.points.rows())));
-  form_->addRow(tr("Triangles"), new QLabel(QString::number(object->mesh.triangles.rows())));
-  form_->addRow(tr("Segments"), new QLabel(QString::number(object->mesh.segments.rows())));
-  QStringList lattices;
-  for (widgets::WidgetId l : scene_.latticesDeforming(name)) lattices << qs(scene_.widgets.name(l));
-  form_->addRow(tr("Deformed by"), new QLabel(lattices.isEmpty() ? tr("(nothing)") : lattices.join(", ")));
+  // The layout holds the object (layoutOf()): it exists whenever a field reads it.
+  auto mesh = [this, name]() -> const scenes::MeshData& { return scene_.findObject(name)->mesh; };
+  addLabel(tr("Object"), [name] { return qs(name); });
+  addLabel(tr("Points"), [mesh] { return QString::number(mesh().points.rows()); });
+  addLabel(tr("Triangles"), [mesh] { return QString::number(mesh().triangles.rows()); });
+  addLabel(tr("Segments"), [mesh] { return QString::number(mesh().segments.rows()); });
+  addLabel(tr("Deformed by"), [this, name] {
+    QStringList lattices;
+    for (widgets::WidgetId l : scene_.latticesDeforming(name)) lattices << qs(scene_.widgets.name(l));
+    return lattices.isEmpty() ? tr("(nothing)") : lattices.join(", ");
+  });
   // Looks (DisplaySettings): zebra stripes for surfaces; tube or line and a curvature comb for curves.
   auto setLook = [this, name](auto change) {
     guarded([&] {
@@ -462,11 +577,13 @@ void PropertyPanel::showObject(const std::string& name) {
     });
   };
   const scenes::DisplaySettings& d = object->display;
+  auto shown = [this, name]() -> const scenes::DisplaySettings& { return scene_.findObject(name)->display; };
   if (object->mesh.triangles.rows() > 0) {
     auto* style = new QComboBox;
     style->setObjectName("surfaceStyle");
     style->addItems({tr("shaded"), tr("zebra stripes")});
     style->setCurrentIndex(d.surfaceStyle == scenes::SurfaceStyle::Zebra ? 1 : 0);
+    fields_.push_back(comboField(style, [shown] { return shown().surfaceStyle == scenes::SurfaceStyle::Zebra ? 1 : 0; }));
     connect(style, &QComboBox::currentIndexChanged, this, [setLook](int index) {
       setLook([index](scenes::DisplaySettings& look) {
         look.surfaceStyle = index == 1 ? scenes::SurfaceStyle::Zebra : scenes::SurfaceStyle::Shaded;
@@ -479,6 +596,8 @@ void PropertyPanel::showObject(const std::string& name) {
     stripes->setValue(d.zebraStripes);
     stripes->setKeyboardTracking(false);
     stripes->setEnabled(d.surfaceStyle == scenes::SurfaceStyle::Zebra);
+    fields_.push_back(intSpinField(stripes, [shown] { return shown().zebraStripes; }));
+    fields_.push_back(enabledField(stripes, [shown] { return shown().surfaceStyle == scenes::SurfaceStyle::Zebra; }));
     connect(stripes, &QSpinBox::valueChanged, this,
             [setLook](int n) { setLook([n](scenes::DisplaySettings& look) { look.zebraStripes = n; }); });
     form_->addRow(tr("Stripes"), stripes);
@@ -488,6 +607,7 @@ void PropertyPanel::showObject(const std::string& name) {
     curve->addItem(tr("tube"), static_cast<int>(scenes::CurveStyle::Tube));
     curve->addItem(tr("line"), static_cast<int>(scenes::CurveStyle::Line));
     curve->setCurrentIndex(curve->findData(static_cast<int>(d.curveStyle)));
+    fields_.push_back(comboField(curve, [shown, curve] { return curve->findData(static_cast<int>(shown().curveStyle)); }));
     connect(curve, &QComboBox::currentIndexChanged, this, [setLook, curve](int index) {
       const auto chosen = static_cast<scenes::CurveStyle>(curve->itemData(index).toInt());
       setLook([chosen](scenes::DisplaySettings& look) { look.curveStyle = chosen; });
@@ -496,12 +616,15 @@ void PropertyPanel::showObject(const std::string& name) {
     auto* comb = new QCheckBox(tr("curvature comb"));
     comb->setObjectName("curvatureComb");
     comb->setChecked(d.curvatureComb);
+    fields_.push_back(checkField(comb, [shown] { return shown().curvatureComb; }));
     connect(comb, &QCheckBox::toggled, this,
             [setLook](bool on) { setLook([on](scenes::DisplaySettings& look) { look.curvatureComb = on; }); });
     form_->addRow(tr("Comb"), comb);
     auto* scale = spin("combScale", d.combScale, 0.001, 100.0, 3);
     scale->setSingleStep(0.01);
     scale->setEnabled(d.curvatureComb);
+    fields_.push_back(spinField(scale, [shown] { return shown().combScale; }));
+    fields_.push_back(enabledField(scale, [shown] { return shown().curvatureComb; }));
     connect(scale, &QDoubleSpinBox::valueChanged, this,
             [setLook](double v) { setLook([v](scenes::DisplaySettings& look) { look.combScale = v; }); });
     form_->addRow(tr("Comb scale"), scale);

@@ -1,12 +1,16 @@
 #pragma once
 
+#include <functional>
+#include <string>
 #include <vector>
 
 #include <QWidget>
 
+#include "ffdkit/scenes/scene_changes.h"
 #include "outliner.h"
 
 class QFormLayout;
+class QLabel;
 
 namespace ffdkit::app {
 
@@ -19,24 +23,41 @@ class InteractionController;
 /// curve). Every edit goes through the controller (one undoable command); an edit the
 /// model rejects is reported with `error` and its control shows the model's value again.
 /// Controls carry object names for tests ("kind", "oneWay", "countU", "basisV", ...).
+/// Change-driven: showing the same selection again after an edit, a drag or an undo rebuilds
+/// nothing while the rows it needs are the same (layoutOf()): it reads the scene's change set and,
+/// when something changed, puts the model's present value into each control whose value differs
+/// (signals blocked). Hover and selection of the same item change nothing.
 class PropertyPanel : public QWidget {
   Q_OBJECT
 
  public:
   PropertyPanel(InteractionController& controller, const scenes::Scene& scene, QWidget* parent = nullptr);
-  /// Shows the properties of `selection` (the first entry; several entries just list them).
+  /// Shows the properties of `selection` (the first entry; several entries just list them):
+  /// builds the rows for another selection or layout, else updates the changed fields in place.
   void showSelection(const std::vector<OutlinerEntry>& selection);
+
+  /// What the panel did, for tests: row sets built, controls whose shown value a sync changed.
+  struct Stats {
+    int rebuilds = 0;
+    int fieldsUpdated = 0;
+  };
+  const Stats& stats() const { return stats_; }
 
  signals:
   void error(const QString& message);
 
  private:
   void clearRows();
+  /// What decides the rows of `selection` (which item, its type, kind, the choices its combos
+  /// offer): the same layout takes in-place updates, another one a rebuild.
+  std::string layoutOf(const std::vector<OutlinerEntry>& selection) const;
   void showAffine(widgets::WidgetId id);
   void showBinding(widgets::BindingId id);
   void showLattice(widgets::WidgetId id);
   void showCell(widgets::WidgetId id);
   void showObject(const std::string& name);
+  /// A row "title: text()" whose text follows the model (a field).
+  QLabel* addLabel(const QString& title, std::function<QString()> text);
   /// Runs an edit; on an error reports it with `error` and returns false (the caller then puts
   /// its control back to the model's value).
   template <class F>
@@ -44,8 +65,15 @@ class PropertyPanel : public QWidget {
 
   InteractionController& controller_;
   const scenes::Scene& scene_;
-  QWidget* content_ = nullptr;  ///< replaced on every showSelection (deleted later: a row may be emitting)
+  QWidget* content_ = nullptr;  ///< replaced on a rebuild (deleted later: a row may be emitting)
   QFormLayout* form_ = nullptr;
+  /// The controls of the rows shown: each puts the model's present value into its control and
+  /// says whether the shown value changed.
+  std::vector<std::function<bool()>> fields_;
+  std::vector<OutlinerEntry> shown_;
+  std::string layout_;      ///< layoutOf(shown_) when built; empty: nothing built yet
+  scenes::SceneMark mark_;  ///< the scene as the fields show it
+  Stats stats_;
 };
 
 }  // namespace ffdkit::app
