@@ -1,0 +1,96 @@
+#pragma once
+
+// Internal to qi_fitting.cpp: the least-squares problem of a QI chain fit at fixed parameters u_i
+// (seed 003 eq. (19)), its residual and its Jacobian. Everything that does not depend on the design
+// vector (quadrature nodes and weights, cumulative Bernstein values at the nodes, where each data
+// point closes its integral) is computed once per fit; an evaluation keeps the per-node rotations,
+// so the Jacobian of an accepted step reuses them instead of integrating again.
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "ffdkit/geometry/quaternion/cumulative_bezier_quaternion.h"
+#include "ffdkit/geometry/quaternion/qi_chain.h"
+
+namespace ffdkit::geometry::quaternion::detail {
+
+/// The design vector, segment-major (spec §3.4): [eta (startVars) | w_01..w_0k, lambda_0 | ...],
+/// l = exp(lambda); planar w_ij = phi_ij e_z.
+struct QiFitLayout {
+  int segments = 0;
+  int degree = 2;
+  bool planar = false;
+  int startVars = 0;  ///< 0, 1 (planar Free start tangent) or 2 (spatial Free)
+  int omegaDim() const { return planar ? 1 : 3; }
+  int segmentVars() const { return degree * omegaDim() + 1; }
+  int offset(int seg) const { return startVars + seg * segmentVars(); }
+  int size() const { return offset(segments); }
+};
+
+/// State of one design vector: residual r (3 #P, point-major: C(u_i) - P_i), segment start points
+/// and orientations (segments + 1), and the per-node rotations E_j of the quadrature.
+struct QiFitEvaluation {
+  Eigen::VectorXd r;
+  std::vector<Eigen::Vector3d> p;
+  std::vector<Eigen::Quaterniond> q;
+  std::vector<Eigen::Quaterniond> e;  ///< node-major, degree per node, all segments
+  std::vector<Eigen::Vector3d> t;     ///< unit tangent per node
+};
+
+class QiFitProblem {
+ public:
+  /// points: #P x 3; breaks 0 = b_0 < ... < b_M = #P - 1; u: #P parameters with u_{b_j} = j.
+  QiFitProblem(const Eigen::MatrixX3d& points, const std::vector<int>& breaks, const Eigen::VectorXd& u,
+               QiFitLayout layout, ProductForm form, QiQuadrature quadrature, const Eigen::Vector3d& start,
+               const Eigen::Quaterniond& baseQ00, const Eigen::Vector3d& freeAxis1, const Eigen::Vector3d& freeAxis2);
+
+  const QiFitLayout& layout() const { return layout_; }
+  int size() const { return layout_.size(); }
+  std::vector<Eigen::Vector3d> omegas(const Eigen::VectorXd& x, int seg) const;
+  double length(const Eigen::VectorXd& x, int seg) const;
+  Eigen::Quaterniond q00(const Eigen::VectorXd& x) const;
+
+  /// Residual of the whole chain.
+  void evaluate(const Eigen::VectorXd& x, QiFitEvaluation& ev) const;
+  /// Residual rows of the points of segments >= from, from the start state ev.p[from], ev.q[from];
+  /// rows of earlier segments are left as they are.
+  void evaluateFrom(const Eigen::VectorXd& x, int from, QiFitEvaluation& ev) const;
+  /// Exact Jacobian (3 #P x size) at the x that `ev` was evaluated at, by the chain rule through
+  /// the frame rotations (left Jacobians of SO(3)); block lower-triangular: the rows of segment s
+  /// depend on the variables of segments <= s only (entries right of that are zero).
+  void analyticJacobian(const Eigen::VectorXd& x, const QiFitEvaluation& ev, Eigen::MatrixXd& j) const;
+  /// Forward differences, sqrt(eps) relative steps; a column of segment s recomputes segments >= s
+  /// only (spec §3.5). @return the number of partial evaluations.
+  int finiteDifferenceJacobian(const Eigen::VectorXd& x, const QiFitEvaluation& ev, Eigen::MatrixXd& j) const;
+  /// Residual rows [begin, end) of the points of segment seg (a break point belongs to the later one).
+  int rowBegin(int seg) const { return 3 * firstPoint(seg); }
+  int rowEnd(int seg) const { return 3 * (lastPoint(seg) + 1); }
+  const Eigen::Vector3d& start() const { return start_; }
+  ProductForm form() const { return form_; }
+  const QiQuadrature& quadrature() const { return quadrature_; }
+
+ private:
+  struct SegmentPlan {
+    std::vector<double> weight;  ///< Gauss-Legendre weight times half the panel width, per node
+    std::vector<double> basis;   ///< ~B_{j,k}(t) at each node, node-major (degree per node)
+    std::vector<int> closeAfter; ///< per output (data points lo..hi, then u = 1): nodes integrated before it
+    int firstNode = 0;           ///< index of this segment's first node in QiFitEvaluation::e / t
+  };
+  int firstPoint(int seg) const { return breaks_[seg]; }
+  int lastPoint(int seg) const { return seg + 1 == layout_.segments ? breaks_[seg + 1] : breaks_[seg + 1] - 1; }
+
+  const Eigen::MatrixX3d& points_;
+  std::vector<int> breaks_;
+  QiFitLayout layout_;
+  ProductForm form_;
+  QiQuadrature quadrature_;
+  Eigen::Vector3d start_;
+  Eigen::Quaterniond baseQ00_;
+  Eigen::Vector3d freeAxis1_, freeAxis2_;
+  std::vector<SegmentPlan> plans_;
+  int nodes_ = 0;
+};
+
+}  // namespace ffdkit::geometry::quaternion::detail
