@@ -2,16 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <string>
 
 #include <Eigen/Cholesky>
 
 #include "ffdkit/geometry/gauss_legendre.h"
-#include "ffdkit/geometry/quaternion/bernstein.h"
 #include "ffdkit/geometry/quaternion/quaternion_error.h"
-#include "ffdkit/geometry/quaternion/tangent_integration.h"
 #include "ffdkit/geometry/quaternion/unit_quaternion.h"
 #include "qi_fit_problem.h"
 
@@ -202,7 +199,7 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
     x[layout.offset(seg + 1) - 1] = std::log(l);
   }
 
-  // Levenberg-Marquardt with Marquardt scaling and forward differences (spec §3.5 [rec]).
+  // Levenberg-Marquardt with Marquardt scaling (spec §3.5 [rec]); analytic or forward-difference Jacobian.
   detail::QiFitEvaluation ev, trial;
   pb.evaluate(x, ev);
   const Eigen::VectorXd& r = ev.r;
