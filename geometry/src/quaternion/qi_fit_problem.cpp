@@ -18,8 +18,24 @@ namespace {
 // exp(b w) in the spec's convention (cos|v|, sin|v| v/|v|), v = b w, b >= 0, with |w| given.
 Eigen::Quaterniond scaledExp(const Eigen::Vector3d& w, double norm, double b) {
   const double theta = b * norm;
-  const double s = (theta < 1e-8 ? 1.0 - theta * theta / 6.0 : std::sin(theta) / theta) * b;
-  return Eigen::Quaterniond(std::cos(theta), s * w.x(), s * w.y(), s * w.z());
+  const double sine = std::sin(theta), cosine = std::cos(theta);  // one sincos
+  const double s = (theta < 1e-8 ? 1.0 - theta * theta / 6.0 : sine / theta) * b;
+  return Eigen::Quaterniond(cosine, s * w.x(), s * w.y(), s * w.z());
+}
+
+// Hamilton product, inline (the optimiser's inner loops run it a few thousand times per evaluation).
+inline Eigen::Quaterniond mul(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
+  return Eigen::Quaterniond(a.w() * b.w() - a.x() * b.x() - a.y() * b.y() - a.z() * b.z(),
+                            a.w() * b.x() + a.x() * b.w() + a.y() * b.z() - a.z() * b.y(),
+                            a.w() * b.y() - a.x() * b.z() + a.y() * b.w() + a.z() * b.x(),
+                            a.w() * b.z() + a.x() * b.y() - a.y() * b.x() + a.z() * b.w());
+}
+
+// R(q / |q|) e_x, the first column of the rotation matrix: the unit tangent of orientation q.
+inline Eigen::Vector3d rotatedUnitX(const Eigen::Quaterniond& q) {
+  const double inv = 1.0 / q.squaredNorm();
+  return Eigen::Vector3d((q.w() * q.w() + q.x() * q.x() - q.y() * q.y() - q.z() * q.z()) * inv,
+                         2.0 * (q.x() * q.y() + q.w() * q.z()) * inv, 2.0 * (q.x() * q.z() - q.w() * q.y()) * inv);
 }
 
 Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
@@ -36,26 +52,50 @@ Eigen::Matrix3d leftJacobian(const Eigen::Vector3d& phi) {
   return Eigen::Matrix3d::Identity() + ((1.0 - std::cos(a)) / (a * a)) * k + ((a - std::sin(a)) / (a * a * a)) * k * k;
 }
 
-// The same at phi = 2 theta w/|w| from e = exp(theta w/|w|) = (cos theta, sin theta w/|w|), whose
-// sine and cosine are already known: 1 - cos 2theta = 2 sin^2 theta, sin 2theta = 2 sin cos.
-Eigen::Matrix3d leftJacobianOfExp(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm, double b) {
-  const double theta = b * norm;
-  const Eigen::Matrix3d k = skew((2.0 * b) * w);
-  const double a = 2.0 * theta;
+// The same at phi = 2 b w from e = exp(b w) = (cos theta, sin theta w/|w|), theta = b |w|, whose sine
+// and cosine are known: 1 - cos 2theta = 2 sin^2 theta, sin 2theta = 2 sin theta cos theta. With
+// K = [phi]x, K^2 = phi phi^T - |phi|^2 I, so J_l = I + alpha K + beta (phi phi^T - a^2 I), a = |phi|.
+void leftJacobianCoefficients(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm, double b,
+                              double& alpha, double& beta) {
+  const double a = 2.0 * b * norm;
   if (a < 1e-3) {
     // Series: (1 - cos a)/a^2 = 1/2 - a^2/24 + ..., (a - sin a)/a^3 = 1/6 - a^2/120 + ...
-    const double a2 = a * a;
-    return Eigen::Matrix3d::Identity() + (0.5 - a2 / 24.0) * k + (1.0 / 6.0 - a2 / 120.0) * k * k;
+    alpha = 0.5 - a * a / 24.0;
+    beta = 1.0 / 6.0 - a * a / 120.0;
+    return;
   }
-  const double s = e.vec().dot(w) / norm;  // sin theta, signed
-  const double c = e.w();
-  const double alpha = 2.0 * s * s / (a * a);
-  const double beta = (a - 2.0 * s * c) / (a * a * a);
-  return Eigen::Matrix3d::Identity() + alpha * k + beta * k * k;
+  const double sine = e.vec().dot(w) / norm;  // sin theta, signed
+  alpha = 2.0 * sine * sine / (a * a);
+  beta = (a - 2.0 * sine * e.w()) / (a * a * a);
 }
 
-// -[t]x: -[t]x v = v x t.
-Eigen::Matrix3d minusCross(const Eigen::Vector3d& t) { return -skew(t); }
+Eigen::Matrix3d leftJacobianOfExp(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm, double b) {
+  double alpha, beta;
+  leftJacobianCoefficients(e, w, norm, b, alpha, beta);
+  const Eigen::Vector3d p = (2.0 * b) * w;
+  const double diag = 1.0 - beta * p.squaredNorm();
+  Eigen::Matrix3d m;
+  m(0, 0) = diag + beta * p.x() * p.x();
+  m(1, 1) = diag + beta * p.y() * p.y();
+  m(2, 2) = diag + beta * p.z() * p.z();
+  m(0, 1) = -alpha * p.z() + beta * p.x() * p.y();
+  m(1, 0) = alpha * p.z() + beta * p.x() * p.y();
+  m(0, 2) = alpha * p.y() + beta * p.x() * p.z();
+  m(2, 0) = -alpha * p.y() + beta * p.x() * p.z();
+  m(1, 2) = -alpha * p.x() + beta * p.y() * p.z();
+  m(2, 1) = alpha * p.x() + beta * p.y() * p.z();
+  return m;
+}
+
+// Its third column J_l e_z (planar fits: w along e_z).
+Eigen::Vector3d leftJacobianOfExpColumnZ(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm,
+                                         double b) {
+  double alpha, beta;
+  leftJacobianCoefficients(e, w, norm, b, alpha, beta);
+  const Eigen::Vector3d p = (2.0 * b) * w;
+  return Eigen::Vector3d(alpha * p.y() + beta * p.x() * p.z(), -alpha * p.x() + beta * p.y() * p.z(),
+                         1.0 - beta * (p.x() * p.x() + p.y() * p.y()));
+}
 
 }  // namespace
 
@@ -153,6 +193,7 @@ void QiFitProblem::evaluateFrom(const Eigen::VectorXd& x, int from, QiFitEvaluat
   ev.e.resize(static_cast<std::size_t>(nodes_) * k);
   ev.t.resize(nodes_);
   std::vector<double> norms(k);
+  const bool local = form_ == ProductForm::Local;
   for (int seg = from; seg < layout_.segments; ++seg) {
     const std::vector<Eigen::Vector3d> w = omegas(x, seg);
     for (int j = 0; j < k; ++j) norms[j] = w[j].norm();
@@ -171,9 +212,9 @@ void QiFitProblem::evaluateFrom(const Eigen::VectorXd& x, int from, QiFitEvaluat
         Eigen::Quaterniond q = q0;
         for (int j = 0; j < k; ++j) {
           e[j] = scaledExp(w[j], norms[j], b[j]);
-          q = form_ == ProductForm::Local ? Eigen::Quaterniond(q * e[j]) : Eigen::Quaterniond(e[j] * q);
+          q = local ? mul(q, e[j]) : mul(e[j], q);
         }
-        ev.t[at] = rotateFixedVector(q.normalized(), Eigen::Vector3d::UnitX());
+        ev.t[at] = rotatedUnitX(q);
         running += plan.weight[node] * ev.t[at];
       }
       if (out + 1 < plan.closeAfter.size()) {
@@ -192,17 +233,19 @@ void QiFitProblem::evaluateFrom(const Eigen::VectorXd& x, int from, QiFitEvaluat
   }
 }
 
-void QiFitProblem::analyticJacobian(const Eigen::VectorXd& x, const QiFitEvaluation& ev, Eigen::MatrixXd& jac) const {
+void QiFitProblem::analyticNormalEquations(const Eigen::VectorXd& x, const QiFitEvaluation& ev, Eigen::MatrixXd& a,
+                                           Eigen::VectorXd& g) const {
   const int nv = size();
   const int k = layout_.degree;
   const bool planar = layout_.planar;
-  const int od = layout_.omegaDim();
-  // Entries right of a segment's block stay zero, so they are cleared only when the shape changes.
-  if (jac.rows() != 3 * points_.rows() || jac.cols() != nv) jac.setZero(3 * points_.rows(), nv);
+  const int sv = layout_.segmentVars();
+  a.setZero(nv, nv);
+  g.setZero(nv);
   // dp, dphi: derivatives of the current segment's start point and start orientation (rotation
-  // vector of a left perturbation, world frame) with respect to all variables.
-  Eigen::Matrix<double, 3, Eigen::Dynamic> dp = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, nv);
-  Eigen::Matrix<double, 3, Eigen::Dynamic> dphi = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, nv);
+  // vector of a left perturbation, world frame) with respect to all variables, stacked as D (6 x nv).
+  Eigen::Matrix<double, 6, Eigen::Dynamic> d = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, nv);
+  auto dp = d.topRows<3>();
+  auto dphi = d.bottomRows<3>();
   if (layout_.startVars > 0) {
     const Eigen::Vector3d eta = layout_.startVars == 1 ? Eigen::Vector3d(x[0] * freeAxis1_)
                                                        : Eigen::Vector3d(x[0] * freeAxis1_ + x[1] * freeAxis2_);
@@ -210,10 +253,16 @@ void QiFitProblem::analyticJacobian(const Eigen::VectorXd& x, const QiFitEvaluat
     dphi.col(0) = 2.0 * jl * freeAxis1_;
     if (layout_.startVars == 2) dphi.col(1) = 2.0 * jl * freeAxis2_;
   }
-  // Running integrals per segment, 3 x cols: [d t / d w_1 .. d t / d w_k | d t / d phi0 | t].
-  const int ownCols = k * od;
-  const int cols = ownCols + 4;
-  Eigen::Matrix<double, 3, Eigen::Dynamic> acc(3, cols);
+  // Running integrals over the segment, 3 x (sv + 3): [d t / d w_1 .. d t / d w_k | t | d t / d phi0].
+  Eigen::Matrix<double, 3, Eigen::Dynamic> acc(3, sv + 3);
+  Eigen::Matrix<double, 3, Eigen::Dynamic> own(3, sv);
+  // Sums over the segment's points i of M_i^T M_i, M_i^T O_i, O_i^T O_i, M_i^T r_i, O_i^T r_i, where
+  // a point's Jacobian rows are [M_i D | O_i] with M_i = [I | G_i] (3 x 6) and O_i its own columns.
+  Eigen::Matrix<double, 6, 6> s66;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> c6(6, sv);
+  Eigen::MatrixXd oo(sv, sv);
+  Eigen::Matrix<double, 6, 1> b6;
+  Eigen::VectorXd gOwn(sv);
   std::vector<double> norms(k);
   std::vector<Eigen::Quaterniond> frame(k);
   for (int seg = 0; seg < layout_.segments; ++seg) {
@@ -224,15 +273,13 @@ void QiFitProblem::analyticJacobian(const Eigen::VectorXd& x, const QiFitEvaluat
     const SegmentPlan& plan = plans_[seg];
     const int off = layout_.offset(seg);
     acc.setZero();
+    s66.setZero();
+    c6.setZero();
+    oo.setZero();
+    b6.setZero();
+    gOwn.setZero();
     int node = 0;
     const int lo = firstPoint(seg);
-    const auto writeRows = [&](auto&& target) {
-      // target: 3 x nv; upstream columns through the start state, then this segment's own columns.
-      const Eigen::Matrix3d g = l * acc.block<3, 3>(0, ownCols);
-      target.leftCols(off) = dp.leftCols(off) + g.lazyProduct(dphi.leftCols(off));
-      target.middleCols(off, ownCols) = l * acc.leftCols(ownCols);
-      target.col(off + ownCols) = l * acc.col(ownCols + 3);  // d/d lambda = l * (d/dl)
-    };
     for (std::size_t out = 0; out < plan.closeAfter.size(); ++out) {
       for (; node < plan.closeAfter[out]; ++node) {
         const std::size_t at = static_cast<std::size_t>(plan.firstNode + node);
@@ -245,71 +292,98 @@ void QiFitProblem::analyticJacobian(const Eigen::VectorXd& x, const QiFitEvaluat
           Eigen::Quaterniond suffix = Eigen::Quaterniond::Identity();
           for (int j = k - 1; j >= 0; --j) {
             frame[j] = suffix;
-            suffix = suffix * e[j];
+            suffix = mul(suffix, e[j]);
           }
           full = suffix;
         } else {
           Eigen::Quaterniond prefix = q0;
           for (int j = 0; j < k; ++j) {
             frame[j] = prefix;
-            prefix = prefix * e[j];
+            prefix = mul(prefix, e[j]);
           }
         }
-        const Eigen::Matrix3d cross = minusCross(tan);
         const double wt = plan.weight[node];
         for (int j = 0; j < k; ++j) {
-          // d t / d w_j = -[t]x R(frame_j) J_l(2 b_j w_j) 2 b_j.
-          const Eigen::Matrix3d jl = leftJacobianOfExp(e[j], w[j], norms[j], b[j]);
-          const Eigen::Matrix3d rf = frame[j].normalized().toRotationMatrix();
+          // d t / d w_j = -[t]x R(frame_j) J_l(2 b_j w_j) 2 b_j; -[t]x v = v x t.
+          const double scale = wt * 2.0 * b[j];
+          // The last factor's frame is the identity in form A (k >= 1): no rotation to apply.
+          const bool identity = form_ == ProductForm::Global && j == k - 1;
           if (planar) {
-            acc.col(j) += (wt * 2.0 * b[j]) * (cross * (rf * jl.col(2)));
+            Eigen::Vector3d col = leftJacobianOfExpColumnZ(e[j], w[j], norms[j], b[j]);
+            if (!identity) col = frame[j].toRotationMatrix() * col;
+            acc.col(j) += scale * col.cross(tan);
           } else {
-            acc.block<3, 3>(0, 3 * j) += (wt * 2.0 * b[j]) * (cross * (rf * jl));
+            Eigen::Matrix3d m = leftJacobianOfExp(e[j], w[j], norms[j], b[j]);
+            if (!identity) m = frame[j].toRotationMatrix() * m;
+            for (int c = 0; c < 3; ++c) acc.col(3 * j + c) += scale * m.col(c).cross(tan);
           }
         }
+        acc.col(sv - 1) += wt * tan;
         if (form_ == ProductForm::Global) {
-          acc.block<3, 3>(0, ownCols) += wt * (cross * full.normalized().toRotationMatrix());
+          const Eigen::Matrix3d rfull = full.toRotationMatrix();
+          for (int c = 0; c < 3; ++c) acc.col(sv + c) += wt * rfull.col(c).cross(tan);
         } else {
-          acc.block<3, 3>(0, ownCols) += wt * cross;
+          for (int c = 0; c < 3; ++c) acc.col(sv + c) += wt * Eigen::Vector3d::Unit(c).cross(tan);
         }
-        acc.col(ownCols + 3) += wt * tan;
       }
+      const Eigen::Matrix3d gl = l * acc.rightCols<3>();
+      own = l * acc.leftCols(sv);  // the length column: d/d lambda = l (d/dl) = l int t
       if (out + 1 < plan.closeAfter.size()) {
-        const int i = lo + static_cast<int>(out);
-        writeRows(jac.middleRows(3 * i, 3));
+        const Eigen::Vector3d r = ev.r.segment<3>(3 * (lo + static_cast<int>(out)));
+        s66.topLeftCorner<3, 3>().diagonal().array() += 1.0;
+        s66.topRightCorner<3, 3>() += gl;
+        s66.bottomRightCorner<3, 3>() += gl.transpose() * gl;
+        c6.topRows<3>() += own;
+        c6.bottomRows<3>() += gl.transpose() * own;
+        oo.noalias() += own.transpose().lazyProduct(own);  // small: a plain loop beats GEMM here
+        b6.head<3>() += r;
+        b6.tail<3>() += gl.transpose() * r;
+        gOwn += own.transpose() * r;
       } else {
-        writeRows(dp);
+        // End of the segment: its rows enter the normal equations through D; then D moves on.
+        s66.bottomLeftCorner<3, 3>() = s66.topRightCorner<3, 3>().transpose();
+        if (off > 0) {
+          const auto du = d.leftCols(off);
+          const Eigen::Matrix<double, 6, Eigen::Dynamic> sdu = s66.lazyProduct(du);
+          a.topLeftCorner(off, off).noalias() += du.transpose().lazyProduct(sdu);
+          a.block(0, off, off, sv).noalias() += du.transpose().lazyProduct(c6);
+          g.head(off).noalias() += du.transpose() * b6;
+        }
+        a.block(off, off, sv, sv) += oo;
+        g.segment(off, sv) += gOwn;
+        dp.leftCols(off) += gl * dphi.leftCols(off);
+        dp.middleCols(off, sv) = own;
       }
     }
     // Start orientation of the next segment: q(1) = E_k(1)..E_1(1) q0 (A) or q0 E_1(1)..E_k(1) (B).
-    const int ownBegin = off;
     if (form_ == ProductForm::Global) {
       Eigen::Quaterniond f1 = Eigen::Quaterniond::Identity();
       for (int j = 0; j < k; ++j) f1 = quaternionExp(w[j]) * f1;
       dphi.leftCols(off) = f1.normalized().toRotationMatrix() * dphi.leftCols(off);
       Eigen::Quaterniond suffix = Eigen::Quaterniond::Identity();
       for (int j = k - 1; j >= 0; --j) {
-        const Eigen::Matrix3d d = suffix.normalized().toRotationMatrix() * leftJacobian(2.0 * w[j]) * 2.0;
+        const Eigen::Matrix3d dj = suffix.normalized().toRotationMatrix() * leftJacobian(2.0 * w[j]) * 2.0;
         if (planar) {
-          dphi.col(ownBegin + j) = d.col(2);
+          dphi.col(off + j) = dj.col(2);
         } else {
-          dphi.block<3, 3>(0, ownBegin + 3 * j) = d;
+          dphi.middleCols<3>(off + 3 * j) = dj;
         }
         suffix = suffix * quaternionExp(w[j]);
       }
     } else {
       Eigen::Quaterniond prefix = q0;
       for (int j = 0; j < k; ++j) {
-        const Eigen::Matrix3d d = prefix.normalized().toRotationMatrix() * leftJacobian(2.0 * w[j]) * 2.0;
+        const Eigen::Matrix3d dj = prefix.normalized().toRotationMatrix() * leftJacobian(2.0 * w[j]) * 2.0;
         if (planar) {
-          dphi.col(ownBegin + j) = d.col(2);
+          dphi.col(off + j) = dj.col(2);
         } else {
-          dphi.block<3, 3>(0, ownBegin + 3 * j) = d;
+          dphi.middleCols<3>(off + 3 * j) = dj;
         }
         prefix = prefix * quaternionExp(w[j]);
       }
     }
   }
+  a.triangularView<Eigen::StrictlyLower>() = a.transpose();
 }
 
 int QiFitProblem::finiteDifferenceJacobian(const Eigen::VectorXd& x, const QiFitEvaluation& ev,

@@ -57,10 +57,14 @@ class QiFitProblem {
   /// Residual rows of the points of segments >= from, from the start state ev.p[from], ev.q[from];
   /// rows of earlier segments are left as they are.
   void evaluateFrom(const Eigen::VectorXd& x, int from, QiFitEvaluation& ev) const;
-  /// Exact Jacobian (3 #P x size) at the x that `ev` was evaluated at, by the chain rule through
-  /// the frame rotations (left Jacobians of SO(3)); block lower-triangular: the rows of segment s
-  /// depend on the variables of segments <= s only (entries right of that are zero).
-  void analyticJacobian(const Eigen::VectorXd& x, const QiFitEvaluation& ev, Eigen::MatrixXd& j) const;
+  /// Gauss-Newton normal equations of the exact Jacobian J at the x that `ev` was evaluated at:
+  /// a = J^T J (size x size), g = J^T r. J follows by the chain rule through the frame rotations (left
+  /// Jacobians of SO(3)) and is never formed: the rows of a point i of segment s are [M_i D_s | O_i],
+  /// with D_s the derivative of the segment's start point and orientation (6 x the variables of
+  /// earlier segments), M_i = [I | G_i] (3 x 6) and O_i the segment's own columns, so the upstream
+  /// block of J^T J is D_s^T (sum_i M_i^T M_i) D_s, a 6 x 6 sum per segment.
+  void analyticNormalEquations(const Eigen::VectorXd& x, const QiFitEvaluation& ev, Eigen::MatrixXd& a,
+                               Eigen::VectorXd& g) const;
   /// Forward differences, sqrt(eps) relative steps; a column of segment s recomputes segments >= s
   /// only (spec §3.5). @return the number of partial evaluations.
   int finiteDifferenceJacobian(const Eigen::VectorXd& x, const QiFitEvaluation& ev, Eigen::MatrixXd& j) const;

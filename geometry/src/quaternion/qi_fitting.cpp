@@ -210,12 +210,18 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
   int iterations = 0;
   bool converged = false;
   std::string message;
-  Eigen::MatrixXd jac;
+  // Gauss-Newton normal equations a = J^T J, g = J^T r at the current x.
+  Eigen::MatrixXd a, jac;
+  Eigen::VectorXd g;
   const auto updateJacobian = [&] {
     if (options.jacobian == FitJacobian::Analytic) {
-      pb.analyticJacobian(x, ev, jac);
+      pb.analyticNormalEquations(x, ev, a, g);
     } else {
       evaluations += pb.finiteDifferenceJacobian(x, ev, jac);
+      a.setZero(jac.cols(), jac.cols());
+      a.selfadjointView<Eigen::Lower>().rankUpdate(jac.transpose());
+      a.triangularView<Eigen::StrictlyUpper>() = a.transpose();
+      g = jac.transpose() * r;
     }
   };
   updateJacobian();
@@ -227,10 +233,6 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
       message = "exact fit";
       break;
     }
-    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(jac.cols(), jac.cols());
-    a.selfadjointView<Eigen::Lower>().rankUpdate(jac.transpose());
-    a.triangularView<Eigen::StrictlyUpper>() = a.transpose();
-    const Eigen::VectorXd g = jac.transpose() * r;
     double cosine = 0.0;
     const double rn = std::sqrt(objective);
     for (int c = 0; c < a.cols(); ++c) {
