@@ -38,6 +38,18 @@ inline Eigen::Vector3d rotatedUnitX(const Eigen::Quaterniond& q) {
                          2.0 * (q.x() * q.y() + q.w() * q.z()) * inv, 2.0 * (q.x() * q.z() - q.w() * q.y()) * inv);
 }
 
+// R(q) of a unit quaternion, inline (Eigen's toRotationMatrix is an out-of-line call here).
+inline Eigen::Matrix3d rotationOf(const Eigen::Quaterniond& q) {
+  const double tx = 2.0 * q.x(), ty = 2.0 * q.y(), tz = 2.0 * q.z();
+  const double twx = tx * q.w(), twy = ty * q.w(), twz = tz * q.w();
+  const double txx = tx * q.x(), txy = ty * q.x(), txz = tz * q.x();
+  const double tyy = ty * q.y(), tyz = tz * q.y(), tzz = tz * q.z();
+  Eigen::Matrix3d r;
+  r << 1.0 - (tyy + tzz), txy - twz, txz + twy, txy + twz, 1.0 - (txx + tzz), tyz - twx, txz - twy, tyz + twx,
+      1.0 - (txx + tyy);
+  return r;
+}
+
 Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d k;
   k << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
@@ -55,7 +67,7 @@ Eigen::Matrix3d leftJacobian(const Eigen::Vector3d& phi) {
 // The same at phi = 2 b w from e = exp(b w) = (cos theta, sin theta w/|w|), theta = b |w|, whose sine
 // and cosine are known: 1 - cos 2theta = 2 sin^2 theta, sin 2theta = 2 sin theta cos theta. With
 // K = [phi]x, K^2 = phi phi^T - |phi|^2 I, so J_l = I + alpha K + beta (phi phi^T - a^2 I), a = |phi|.
-void leftJacobianCoefficients(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm, double b,
+inline void leftJacobianCoefficients(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm, double b,
                               double& alpha, double& beta) {
   const double a = 2.0 * b * norm;
   if (a < 1e-3) {
@@ -69,7 +81,7 @@ void leftJacobianCoefficients(const Eigen::Quaterniond& e, const Eigen::Vector3d
   beta = (a - 2.0 * sine * e.w()) / (a * a * a);
 }
 
-Eigen::Matrix3d leftJacobianOfExp(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm, double b) {
+inline Eigen::Matrix3d leftJacobianOfExp(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm, double b) {
   double alpha, beta;
   leftJacobianCoefficients(e, w, norm, b, alpha, beta);
   const Eigen::Vector3d p = (2.0 * b) * w;
@@ -88,7 +100,7 @@ Eigen::Matrix3d leftJacobianOfExp(const Eigen::Quaterniond& e, const Eigen::Vect
 }
 
 // Its third column J_l e_z (planar fits: w along e_z).
-Eigen::Vector3d leftJacobianOfExpColumnZ(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm,
+inline Eigen::Vector3d leftJacobianOfExpColumnZ(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm,
                                          double b) {
   double alpha, beta;
   leftJacobianCoefficients(e, w, norm, b, alpha, beta);
@@ -253,7 +265,7 @@ void QiFitProblem::analyticNormalEquations(const Eigen::VectorXd& x, const QiFit
     dphi.col(0) = 2.0 * jl * freeAxis1_;
     if (layout_.startVars == 2) dphi.col(1) = 2.0 * jl * freeAxis2_;
   }
-  // Running integrals over the segment, 3 x (sv + 3): [d t / d w_1 .. d t / d w_k | t | d t / d phi0].
+  // Running integrals over the segment, 3 x (sv + 3): [d t / d w_1 .. d t / d w_k | t | R(F) (form A)].
   Eigen::Matrix<double, 3, Eigen::Dynamic> acc(3, sv + 3);
   Eigen::Matrix<double, 3, Eigen::Dynamic> own(3, sv);
   // Sums over the segment's points i of M_i^T M_i, M_i^T O_i, O_i^T O_i, M_i^T r_i, O_i^T r_i, where
@@ -270,6 +282,7 @@ void QiFitProblem::analyticNormalEquations(const Eigen::VectorXd& x, const QiFit
     for (int j = 0; j < k; ++j) norms[j] = w[j].norm();
     const double l = length(x, seg);
     const Eigen::Quaterniond q0 = ev.q[seg];
+    const Eigen::Matrix3d minusCrossT0 = -skew(rotatedUnitX(q0));
     const SegmentPlan& plan = plans_[seg];
     const int off = layout_.offset(seg);
     acc.setZero();
@@ -303,6 +316,8 @@ void QiFitProblem::analyticNormalEquations(const Eigen::VectorXd& x, const QiFit
           }
         }
         const double wt = plan.weight[node];
+        double* column = acc.data();  // column-major 3 x (sv + 3)
+        const auto add = [&](int col, const Eigen::Vector3d& v) { Eigen::Map<Eigen::Vector3d>(column + 3 * col) += v; };
         for (int j = 0; j < k; ++j) {
           // d t / d w_j = -[t]x R(frame_j) J_l(2 b_j w_j) 2 b_j; -[t]x v = v x t.
           const double scale = wt * 2.0 * b[j];
@@ -310,23 +325,21 @@ void QiFitProblem::analyticNormalEquations(const Eigen::VectorXd& x, const QiFit
           const bool identity = form_ == ProductForm::Global && j == k - 1;
           if (planar) {
             Eigen::Vector3d col = leftJacobianOfExpColumnZ(e[j], w[j], norms[j], b[j]);
-            if (!identity) col = frame[j].toRotationMatrix() * col;
-            acc.col(j) += scale * col.cross(tan);
+            if (!identity) col = rotationOf(frame[j]) * col;
+            add(j, scale * col.cross(tan));
           } else {
             Eigen::Matrix3d m = leftJacobianOfExp(e[j], w[j], norms[j], b[j]);
-            if (!identity) m = frame[j].toRotationMatrix() * m;
-            for (int c = 0; c < 3; ++c) acc.col(3 * j + c) += scale * m.col(c).cross(tan);
+            if (!identity) m = rotationOf(frame[j]) * m;
+            for (int c = 0; c < 3; ++c) add(3 * j + c, scale * m.col(c).cross(tan));
           }
         }
-        acc.col(sv - 1) += wt * tan;
-        if (form_ == ProductForm::Global) {
-          const Eigen::Matrix3d rfull = full.toRotationMatrix();
-          for (int c = 0; c < 3; ++c) acc.col(sv + c) += wt * rfull.col(c).cross(tan);
-        } else {
-          for (int c = 0; c < 3; ++c) acc.col(sv + c) += wt * Eigen::Vector3d::Unit(c).cross(tan);
-        }
+        add(sv - 1, wt * tan);
+        // d t / d phi0 = -[t]x R(F) = R(F) (-[t0]x) in form A (t = R(F) t0, F = E_k..E_1): only R(F) is
+        // integrated. In form B it is -[t]x, whose integral is -[int t]x: nothing to add per node.
+        if (form_ == ProductForm::Global) Eigen::Map<Eigen::Matrix3d>(column + 3 * sv) += wt * rotationOf(full);
       }
-      const Eigen::Matrix3d gl = l * acc.rightCols<3>();
+      const Eigen::Matrix3d gl = form_ == ProductForm::Global ? Eigen::Matrix3d(l * acc.rightCols<3>() * minusCrossT0)
+                                                             : Eigen::Matrix3d(-l * skew(acc.col(sv - 1)));
       own = l * acc.leftCols(sv);  // the length column: d/d lambda = l (d/dl) = l int t
       if (out + 1 < plan.closeAfter.size()) {
         const Eigen::Vector3d r = ev.r.segment<3>(3 * (lo + static_cast<int>(out)));
