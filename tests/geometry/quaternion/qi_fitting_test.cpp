@@ -74,6 +74,51 @@ TEST(QiFitting, AnalyticAndFiniteDifferenceJacobiansReachTheSameFit) {
   }
 }
 
+// Residual C(u_i) - P_i (3 #P, point-major) of a chain with the fit's start, form and quadrature, the
+// fit's w and l, and one design variable moved by h: variable 4s + c (c < 3k) is component c % 3 of
+// w_{s, c / 3}, variable (3k + 1) s + 3k is lambda_s = log l_s.
+Eigen::VectorXd movedResidual(const FitDataset& d, const FitResult& fit, int var, double h) {
+  const QiChain& c = fit.curve;
+  const int k = c.segment(0).degree();
+  QiChain moved(c.segment(0).start(), c.segment(0).rotation().start(), c.form());
+  for (int s = 0; s < c.segmentCount(); ++s) {
+    std::vector<Eigen::Vector3d> w = c.segment(s).omegas();
+    double l = c.segment(s).length();
+    const int local = var - s * (3 * k + 1);
+    if (local >= 0 && local < 3 * k) w[local / 3][local % 3] += h;
+    if (local == 3 * k) l *= std::exp(h);
+    moved.appendSegment(w, l);
+  }
+  Eigen::VectorXd r(3 * d.points.rows());
+  for (Eigen::Index i = 0; i < d.points.rows(); ++i) {
+    r.segment<3>(3 * i) = moved.pointAtGlobal(fit.parameters[i]) - d.points.row(i).transpose();
+  }
+  return r;
+}
+
+TEST(QiFitting, SpatialFitsAreStationaryPointsOfTheObjective) {
+  // Seed 003 eq. (19) recomputed from the returned chain alone (QiChain quadrature, not the fit's):
+  // every partial derivative of R = |r|^2 by central differences is negligible against
+  // 2 |dr/dx_j| |r|, the scale of a gradient that would still move the fit (the cosine of MINPACK's
+  // gradient test; about 1e-1 at the initial curve). And R itself is the fit's: sum of e_i^2.
+  for (const FitDataset& d : {testdata::spiralNoisy(6), testdata::chain3dNoisy()}) {
+    const FitResult fit = fitQiChain(d.points, d.breaks);
+    ASSERT_TRUE(fit.converged) << fit.message;
+    const Eigen::VectorXd r = movedResidual(d, fit, -1, 0.0);
+    EXPECT_NEAR(r.squaredNorm(), fit.pointErrors.squaredNorm(), 1e-9 * r.squaredNorm());
+    const int vars = fit.curve.segmentCount() * (3 * fit.curve.segment(0).degree() + 1);
+    double worst = 0.0;
+    for (int v = 0; v < vars; ++v) {
+      const double h = 1e-5;
+      const Eigen::VectorXd plus = movedResidual(d, fit, v, h), minus = movedResidual(d, fit, v, -h);
+      const double dR = (plus.squaredNorm() - minus.squaredNorm()) / (2.0 * h);
+      const double scale = 2.0 * ((plus - minus) / (2.0 * h)).norm() * r.norm();
+      worst = std::max(worst, std::abs(dR) / scale);
+    }
+    EXPECT_LE(worst, 1e-6) << d.points.rows() << " points";
+  }
+}
+
 TEST(QiFitting, RecoversHelixWithTrueStartTangent) {
   // Spec 003 §5.3 / §6.11: D-HELIX, M = 3, true t0: rms 3.8e-7, kappa = 30/964 within 1e-6 relative.
   const FitDataset d = testdata::helix();
