@@ -58,6 +58,38 @@ static void BM_QiFit_points_164_segments_6(benchmark::State& state) {
 }
 BENCHMARK(BM_QiFit_points_164_segments_6)->Unit(benchmark::kMillisecond);
 
+// How the fit's cost grows: the same noisy conical spiral (1.5 turns, noise 0.5 % of its length)
+// sampled with `points` points and cut into `segments` equal runs of points. Per LM iteration the
+// work is one residual and one Jacobian sweep over the quadrature nodes (about 8 per data point plus
+// 64 per segment) and the normal equations; the iteration count depends on the data.
+static void BM_QiFitScaling(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const int segments = static_cast<int>(state.range(1));
+  Eigen::MatrixX3d p(n, 3);
+  std::mt19937 gen(164);
+  for (int i = 0; i < n; ++i) {
+    const double t = 3.0 * M_PI * i / (n - 1);
+    const double r = 50.0 - 3.0 * t;
+    p.row(i) << r * std::cos(t), r * std::sin(t), 6.0 * t;
+    for (int c = 0; c < 3; ++c) p(i, c) += 1.72066449 * (2.0 * (static_cast<double>(gen()) / 4294967296.0) - 1.0);
+  }
+  std::vector<int> breaks;
+  for (int s = 0; s <= segments; ++s) breaks.push_back(static_cast<int>(std::lround(static_cast<double>(s) * (n - 1) / segments)));
+  const q::FitResult check = q::fitQiChain(p, breaks);
+  if (!(check.rms < check.initialRms)) state.SkipWithError("fit did not improve on its initial curve");
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(q::fitQiChain(p, breaks));
+  }
+  state.counters["lm_iterations"] = check.iterations;
+  state.counters["seconds_per_lm_iteration"] = benchmark::Counter(check.iterations, benchmark::Counter::kIsIterationInvariantRate |
+                                                                                benchmark::Counter::kInvert);
+  state.counters["rms"] = check.rms;
+}
+BENCHMARK(BM_QiFitScaling)
+    ->ArgNames({"points", "segments"})
+    ->ArgsProduct({{82, 164, 328}, {3, 6, 12}})
+    ->Unit(benchmark::kMillisecond);
+
 // Seed 004 Fig. 15 analogue (spec O2): one quadratic end-condition optimisation.
 static void BM_SphereTangentFit_degree_2(benchmark::State& state) {
   q::SphereTangentSegmentSpec spec;
