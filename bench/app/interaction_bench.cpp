@@ -5,7 +5,8 @@
 // view's renderer has no window. Run:
 //   bench_interaction --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // Each benchmark checks once that its work did what it should (the view updated the points, the
-// hover built nothing, the undo embedded nothing) and aborts otherwise.
+// hover built nothing, the undo embedded nothing, the drag step updated by deltas) and aborts
+// otherwise.
 #include <map>
 #include <memory>
 
@@ -81,6 +82,7 @@ void BM_DragStep(benchmark::State& state) {
   }
   require(s.view->stats().pointUpdates >= before + int(state.iterations()) - 1, "the view did not follow the drag");
   require(s.deformer.lastStats().reembeddedStages == 0, "a drag step re-embedded");
+  require(s.deformer.lastStats().deltaStages == 1, "a drag step did not update by deltas");
   s.controller.release();
   state.counters["points"] = double(s.scene.objects.front().mesh.points.rows());
 }
@@ -127,7 +129,10 @@ void BM_UndoDrag(benchmark::State& state) {
 
 }  // namespace
 
-// Sphere resolution 1414: ~1M vertices; 4472: ~10M.
+// Sphere resolution 1414: ~1M vertices; 4472: ~10M. The drag step also at 10K and 100K vertices
+// (how its cost grows with the mesh).
 BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:100K/lattice:4x4x4-cubic")->Arg(447)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:10K/lattice:4x4x4-cubic")->Arg(141)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Hover)->Name("BM_Hover/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_UndoDrag)->Name("BM_UndoDrag/points:10M/lattice:4x4x4-cubic")->Arg(4472)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
