@@ -1,0 +1,408 @@
+#include "deform_kernels.h"
+
+#include <algorithm>
+
+#include "vector_clones.h"
+
+namespace ffdkit::ffd::detail {
+namespace {
+
+constexpr int kLanes = 8;
+constexpr int kMaxBasis = 33;
+
+// Eight lanes of doubles: one AVX-512 register, two AVX2 registers, or four SSE2 registers,
+// depending on the clone. GCC vector extensions keep the lane structure explicit.
+typedef double Lane __attribute__((vector_size(kLanes * sizeof(double))));
+
+// A broadcast (Lane{} + x would add +0.0 to x first: not foldable, since -0.0 + 0.0 = +0.0).
+FFDKIT_INLINE Lane splat(double x) {
+  Lane r;
+  for (int l = 0; l < kLanes; ++l) r[l] = x;
+  return r;
+}
+
+// The degree+1 basis values of eight parameters on one span (Cox-de Boor, The NURBS Book A2.2),
+// vectorised across lanes: the knots are the same for every lane of a cell. P >= 0 fixes the
+// degree at compile time (full unrolling); P < 0 reads it from the axis.
+template <int P>
+FFDKIT_INLINE void basisLanes(const AxisView& axis, int cell, Lane t, Lane* N) {
+  const int p = P >= 0 ? P : axis.degree;
+  const int s = axis.cellSpan[cell];
+  const double* U = axis.knots;
+  Lane left[kMaxBasis];
+  Lane right[kMaxBasis];
+  N[0] = splat(1.0);
+  for (int j = 1; j <= p; ++j) {
+    left[j] = t - U[s + 1 - j];
+    right[j] = U[s + j] - t;
+    Lane saved = splat(0.0);
+    for (int r = 0; r < j; ++r) {
+      const Lane temp = N[r] * (1.0 / (U[s + r + 1] - U[s + 1 - j + r]));
+      N[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    N[j] = saved;
+  }
+}
+
+FFDKIT_INLINE Lane loadLanes(const double* src, std::uint32_t q, int count) {
+  Lane x;
+  if (count == kLanes) {
+    __builtin_memcpy(&x, src + q, sizeof(Lane));
+  } else {
+    for (int l = 0; l < kLanes; ++l) x[l] = src[q + std::min(l, count - 1)];
+  }
+  return x;
+}
+
+// x = (t - origin) * scale, the cell's local parameter (AxisPolynomials).
+FFDKIT_INLINE Lane localLanes(const double* src, std::uint32_t q, int count, const double* cellPoly) {
+  return (loadLanes(src, q, count) - cellPoly[0]) * cellPoly[1];
+}
+
+// sum_k M[k] x^k by Horner's rule.
+template <int K>
+FFDKIT_INLINE Lane horner(const double* M, Lane x) {
+  Lane r = x * M[K] + M[K - 1];
+  for (int k = K - 2; k >= 0; --k) r = r * x + M[k];
+  return r;
+}
+
+FFDKIT_INLINE void storeLanes(const KernelInput& in, std::uint32_t q0, int count, bool blended, Lane dx, Lane dy, Lane dz,
+                              Store mode) {
+  if (blended) {
+    Lane s = splat(1.0);
+    for (int l = 0; l < kLanes; ++l) s[l] = in.blend[q0 + std::min(l, count - 1) - in.blendBegin];
+    dx *= s;
+    dy *= s;
+    dz *= s;
+  }
+  if (mode == Store::Displacement) {
+    // The tile's scratch, original order (a few hundred kB at most: stays in cache).
+    for (int l = 0; l < count; ++l) {
+      const std::uint32_t p = in.order[q0 + l] - in.outOffset;
+      in.ox[p] = dx[l];
+      in.oy[p] = dy[l];
+      in.oz[p] = dz[l];
+      in.evaluated[p] = 1;
+    }
+    return;
+  }
+  const bool accumulate = mode == Store::Accumulate;
+  if (!in.order && count == kLanes) {
+    // Identity order: contiguous vector loads and stores.
+    Lane x, y, z;
+    if (accumulate) {
+      __builtin_memcpy(&x, in.ox + q0, sizeof(Lane));
+      __builtin_memcpy(&y, in.oy + q0, sizeof(Lane));
+      __builtin_memcpy(&z, in.oz + q0, sizeof(Lane));
+    } else {
+      __builtin_memcpy(&x, in.qx + q0, sizeof(Lane));
+      __builtin_memcpy(&y, in.qy + q0, sizeof(Lane));
+      __builtin_memcpy(&z, in.qz + q0, sizeof(Lane));
+    }
+    x += dx;
+    y += dy;
+    z += dz;
+    __builtin_memcpy(in.ox + q0, &x, sizeof(Lane));
+    __builtin_memcpy(in.oy + q0, &y, sizeof(Lane));
+    __builtin_memcpy(in.oz + q0, &z, sizeof(Lane));
+    return;
+  }
+  for (int l = 0; l < count; ++l) {
+    const std::uint32_t q = q0 + l;
+    const std::size_t p = in.order ? in.order[q] : q;
+    if (accumulate) {
+      in.ox[p] += dx[l];
+      in.oy[p] += dy[l];
+      in.oz[p] += dz[l];
+    } else {
+      in.ox[p] = in.qx[p] + dx[l];
+      in.oy[p] = in.qy[p] + dy[l];
+      in.oz[p] = in.qz[p] + dz[l];
+    }
+  }
+}
+
+template <int P>
+FFDKIT_INLINE void denseBlockT(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end,
+                               bool blended, const double* Wx, const double* Wy, const double* Wz, Store mode) {
+  const int nu = (P >= 0 ? P : in.axis[0].degree) + 1;
+  const int nv = (P >= 0 ? P : in.axis[1].degree) + 1;
+  const int nw = (P >= 0 ? P : in.axis[2].degree) + 1;
+  Lane bu[kMaxBasis], bv[kMaxBasis], bw[kMaxBasis];
+  for (std::uint32_t q0 = begin; q0 < end; q0 += kLanes) {
+    const int count = static_cast<int>(std::min<std::uint32_t>(kLanes, end - q0));
+    basisLanes<P>(in.axis[0], cell[0], loadLanes(in.u, q0, count), bu);
+    basisLanes<P>(in.axis[1], cell[1], loadLanes(in.v, q0, count), bv);
+    basisLanes<P>(in.axis[2], cell[2], loadLanes(in.w, q0, count), bw);
+    Lane dx = splat(0.0), dy = splat(0.0), dz = splat(0.0);
+    int wi = 0;
+    for (int c = 0; c < nw; ++c) {
+      for (int b = 0; b < nv; ++b) {
+        Lane sx = splat(0.0), sy = splat(0.0), sz = splat(0.0);
+        for (int a = 0; a < nu; ++a, ++wi) {
+          sx += bu[a] * Wx[wi];
+          sy += bu[a] * Wy[wi];
+          sz += bu[a] * Wz[wi];
+        }
+        const Lane nn = bv[b] * bw[c];
+        dx += nn * sx;
+        dy += nn * sy;
+        dz += nn * sz;
+      }
+    }
+    storeLanes(in, q0, count, blended, dx, dy, dz, mode);
+  }
+}
+
+// Horner's rule over the tensor-product power form: rows in x, their sums in y, then z
+// (3 (K+1)^3 - 3 multiply-adds for the three coordinates; the (K+1)^2 rows of a coordinate
+// are independent chains of K multiply-adds, which keeps both FMA pipes busy).
+template <int K>
+FFDKIT_INLINE Lane hornerTensor(const double* C, Lane x, Lane y, Lane z) {
+  constexpr int n = K + 1;
+  Lane sumW = splat(0.0);
+  for (int c = K; c >= 0; --c) {
+    Lane sumV = horner<K>(C + (c * n + K) * n, x);
+    for (int b = K - 1; b >= 0; --b) sumV = sumV * y + horner<K>(C + (c * n + b) * n, x);
+    sumW = c == K ? sumV : sumW * z + sumV;
+  }
+  return sumW;
+}
+
+template <int K>
+FFDKIT_INLINE void powerBlockT(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end,
+                               bool blended, const double* C, Store mode) {
+  constexpr int set = (K + 1) * (K + 1) * (K + 1);
+  const double* pu = in.axis[0].poly->cell(cell[0]);
+  const double* pv = in.axis[1].poly->cell(cell[1]);
+  const double* pw = in.axis[2].poly->cell(cell[2]);
+  for (std::uint32_t q0 = begin; q0 < end; q0 += kLanes) {
+    const int count = static_cast<int>(std::min<std::uint32_t>(kLanes, end - q0));
+    const Lane x = localLanes(in.u, q0, count, pu);
+    const Lane y = localLanes(in.v, q0, count, pv);
+    const Lane z = localLanes(in.w, q0, count, pw);
+    const Lane dx = hornerTensor<K>(C, x, y, z);
+    const Lane dy = hornerTensor<K>(C + set, x, y, z);
+    const Lane dz = hornerTensor<K>(C + 2 * set, x, y, z);
+    storeLanes(in, q0, count, blended, dx, dy, dz, mode);
+  }
+}
+
+template <int K>
+FFDKIT_INLINE void sparsePowerT(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end,
+                                bool blended, const SparseTerm* terms, int termCount, Store mode) {
+  constexpr int n = K + 1;
+  const double* pu = in.axis[0].poly->cell(cell[0]);
+  const double* pv = in.axis[1].poly->cell(cell[1]);
+  const double* pw = in.axis[2].poly->cell(cell[2]);
+  for (std::uint32_t q0 = begin; q0 < end; q0 += kLanes) {
+    const int count = static_cast<int>(std::min<std::uint32_t>(kLanes, end - q0));
+    const Lane x = localLanes(in.u, q0, count, pu);
+    const Lane y = localLanes(in.v, q0, count, pv);
+    const Lane z = localLanes(in.w, q0, count, pw);
+    Lane dx = splat(0.0), dy = splat(0.0), dz = splat(0.0);
+    for (int i = 0; i < termCount; ++i) {
+      const SparseTerm& term = terms[i];
+      // Only the basis functions a term needs: one polynomial per axis.
+      const Lane weight = horner<K>(pu + 2 + term.a * n, x) * horner<K>(pv + 2 + term.b * n, y) *
+                          horner<K>(pw + 2 + term.c * n, z);
+      dx += weight * term.dx;
+      dy += weight * term.dy;
+      dz += weight * term.dz;
+    }
+    storeLanes(in, q0, count, blended, dx, dy, dz, mode);
+  }
+}
+
+FFDKIT_INLINE void sparseCoxDeBoor(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end,
+                                   bool blended, const SparseTerm* terms, int termCount, Store mode) {
+  Lane bu[kMaxBasis], bv[kMaxBasis], bw[kMaxBasis];
+  for (std::uint32_t q0 = begin; q0 < end; q0 += kLanes) {
+    const int count = static_cast<int>(std::min<std::uint32_t>(kLanes, end - q0));
+    basisLanes<-1>(in.axis[0], cell[0], loadLanes(in.u, q0, count), bu);
+    basisLanes<-1>(in.axis[1], cell[1], loadLanes(in.v, q0, count), bv);
+    basisLanes<-1>(in.axis[2], cell[2], loadLanes(in.w, q0, count), bw);
+    Lane dx = splat(0.0), dy = splat(0.0), dz = splat(0.0);
+    for (int i = 0; i < termCount; ++i) {
+      const SparseTerm& term = terms[i];
+      const Lane weight = bu[term.a] * bv[term.b] * bw[term.c];
+      dx += weight * term.dx;
+      dy += weight * term.dy;
+      dz += weight * term.dz;
+    }
+    storeLanes(in, q0, count, blended, dx, dy, dz, mode);
+  }
+}
+
+// (a0 + a1 x) * P(x) for a polynomial P of degree < degree (coefficients k = 0..degree).
+void mulLinear(long double a0, long double a1, const long double* P, int degree, long double* out) {
+  for (int k = degree; k >= 0; --k) out[k] = a0 * P[k] + (k > 0 ? a1 * P[k - 1] : 0.0L);
+}
+
+}  // namespace
+
+FFDKIT_VECTOR_CLONES
+void mergeTile(const KernelInput& in, std::uint32_t begin, std::uint32_t end, const double* sx, const double* sy,
+               const double* sz, const std::uint8_t* evaluated, Store mode) {
+  const bool accumulate = mode == Store::Accumulate;
+  const double* bx = accumulate ? in.ox : in.qx;
+  const double* by = accumulate ? in.oy : in.qy;
+  const double* bz = accumulate ? in.oz : in.qz;
+  constexpr std::uint64_t kAll = 0x0101010101010101ull;
+  std::uint32_t p = begin;
+  for (; p + kLanes <= end; p += kLanes) {
+    std::uint64_t flags;
+    __builtin_memcpy(&flags, evaluated + (p - begin), sizeof(flags));
+    if (flags == 0) continue;
+    if (flags == kAll) {
+      Lane x, y, z, dx, dy, dz;
+      __builtin_memcpy(&x, bx + p, sizeof(Lane));
+      __builtin_memcpy(&y, by + p, sizeof(Lane));
+      __builtin_memcpy(&z, bz + p, sizeof(Lane));
+      __builtin_memcpy(&dx, sx + (p - begin), sizeof(Lane));
+      __builtin_memcpy(&dy, sy + (p - begin), sizeof(Lane));
+      __builtin_memcpy(&dz, sz + (p - begin), sizeof(Lane));
+      x += dx;
+      y += dy;
+      z += dz;
+      __builtin_memcpy(in.ox + p, &x, sizeof(Lane));
+      __builtin_memcpy(in.oy + p, &y, sizeof(Lane));
+      __builtin_memcpy(in.oz + p, &z, sizeof(Lane));
+      continue;
+    }
+    for (std::uint32_t r = p; r < p + kLanes; ++r) {
+      if (!evaluated[r - begin]) continue;
+      in.ox[r] = bx[r] + sx[r - begin];
+      in.oy[r] = by[r] + sy[r - begin];
+      in.oz[r] = bz[r] + sz[r - begin];
+    }
+  }
+  for (; p < end; ++p) {
+    if (!evaluated[p - begin]) continue;
+    in.ox[p] = bx[p] + sx[p - begin];
+    in.oy[p] = by[p] + sy[p - begin];
+    in.oz[p] = bz[p] + sz[p - begin];
+  }
+}
+
+int powerDegree(const int degrees[3]) {
+  const int K = std::max({degrees[0], degrees[1], degrees[2]});
+  return K <= kMaxPowerDegree ? K : -1;
+}
+
+AxisPolynomials axisPolynomials(const AxisSpline& axis, int K) {
+  AxisPolynomials out;
+  out.degree = K;
+  const int n = K + 1;
+  const int p = axis.degree();
+  out.data.assign(static_cast<std::size_t>(axis.cellCount()) * out.stride(), 0.0);
+  const double* U = axis.knots().data();
+  for (int cell = 0; cell < axis.cellCount(); ++cell) {
+    const int s = axis.cellSpan(cell);
+    const long double ts = U[s];
+    const long double h = static_cast<long double>(U[s + 1]) - ts;
+    double* dst = out.data.data() + static_cast<std::size_t>(cell) * out.stride();
+    dst[0] = U[s];
+    dst[1] = 1.0 / (U[s + 1] - U[s]);
+    // The Cox-de Boor triangle of basisLanes with t = ts + h x: left_j = t - U[s+1-j] and
+    // right_j = U[s+j] - t are linear in x, every N a polynomial in x.
+    long double N[kMaxPowerDegree + 1][kMaxPowerDegree + 1] = {};
+    N[0][0] = 1.0L;
+    for (int j = 1; j <= p; ++j) {
+      long double saved[kMaxPowerDegree + 1] = {};
+      for (int r = 0; r < j; ++r) {
+        const long double inv = 1.0L / (static_cast<long double>(U[s + r + 1]) - U[s + 1 - j + r]);
+        long double temp[kMaxPowerDegree + 1] = {};
+        for (int k = 0; k < j; ++k) temp[k] = N[r][k] * inv;
+        long double rightTerm[kMaxPowerDegree + 1];
+        mulLinear(U[s + r + 1] - ts, -h, temp, j, rightTerm);  // right_(r+1) * temp
+        for (int k = 0; k <= j; ++k) N[r][k] = saved[k] + rightTerm[k];
+        mulLinear(ts - U[s + 1 - (j - r)], h, temp, j, saved);  // left_(j-r) * temp
+      }
+      for (int k = 0; k <= j; ++k) N[j][k] = saved[k];
+    }
+    for (int r = 0; r <= p; ++r)
+      for (int k = 0; k <= p; ++k) dst[2 + r * n + k] = static_cast<double>(N[r][k]);
+  }
+  return out;
+}
+
+void cellCoefficients(const AxisPolynomials axes[3], const int cell[3], const double* W, const int windowCounts[3],
+                      double* out) {
+  const int K = axes[0].degree;
+  const int n = K + 1;
+  const int nu = windowCounts[0], nv = windowCounts[1], nw = windowCounts[2];
+  const double* Mu = axes[0].cell(cell[0]) + 2;
+  const double* Mv = axes[1].cell(cell[1]) + 2;
+  const double* Mw = axes[2].cell(cell[2]) + 2;
+  const int windowSize = nu * nv * nw;
+  const int set = n * n * n;
+  constexpr int kMax = kMaxPowerDegree + 1;
+  for (int coord = 0; coord < 3; ++coord) {
+    const double* Wk = W + coord * windowSize;
+    double A[kMax][kMax][kMax] = {};  // [c][b][ka]
+    for (int c = 0; c < nw; ++c)
+      for (int b = 0; b < nv; ++b)
+        for (int ka = 0; ka < n; ++ka) {
+          double sum = 0.0;
+          for (int a = 0; a < nu; ++a) sum += Mu[a * n + ka] * Wk[(c * nv + b) * nu + a];
+          A[c][b][ka] = sum;
+        }
+    double B[kMax][kMax][kMax] = {};  // [c][kb][ka]
+    for (int c = 0; c < nw; ++c)
+      for (int kb = 0; kb < n; ++kb)
+        for (int ka = 0; ka < n; ++ka) {
+          double sum = 0.0;
+          for (int b = 0; b < nv; ++b) sum += Mv[b * n + kb] * A[c][b][ka];
+          B[c][kb][ka] = sum;
+        }
+    double* Ck = out + coord * set;
+    for (int kc = 0; kc < n; ++kc)
+      for (int kb = 0; kb < n; ++kb)
+        for (int ka = 0; ka < n; ++ka) {
+          double sum = 0.0;
+          for (int c = 0; c < nw; ++c) sum += Mw[c * n + kc] * B[c][kb][ka];
+          Ck[(kc * n + kb) * n + ka] = sum;
+        }
+  }
+}
+
+FFDKIT_VECTOR_CLONES
+void denseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
+                const double* Wx, const double* Wy, const double* Wz, Store mode) {
+  const int p = in.axis[0].degree;
+  if (p == in.axis[1].degree && p == in.axis[2].degree) {
+    switch (p) {
+      case 1: return denseBlockT<1>(in, cell, begin, end, blended, Wx, Wy, Wz, mode);
+      case 2: return denseBlockT<2>(in, cell, begin, end, blended, Wx, Wy, Wz, mode);
+      case 3: return denseBlockT<3>(in, cell, begin, end, blended, Wx, Wy, Wz, mode);
+      default: break;
+    }
+  }
+  denseBlockT<-1>(in, cell, begin, end, blended, Wx, Wy, Wz, mode);
+}
+
+FFDKIT_VECTOR_CLONES
+void powerBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
+                const double* C, Store mode) {
+  switch (in.axis[0].poly->degree) {
+    case 1: return powerBlockT<1>(in, cell, begin, end, blended, C, mode);
+    case 2: return powerBlockT<2>(in, cell, begin, end, blended, C, mode);
+    default: return powerBlockT<3>(in, cell, begin, end, blended, C, mode);
+  }
+}
+
+FFDKIT_VECTOR_CLONES
+void sparseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
+                 const SparseTerm* terms, int termCount, Store mode) {
+  if (!in.axis[0].poly) return sparseCoxDeBoor(in, cell, begin, end, blended, terms, termCount, mode);
+  switch (in.axis[0].poly->degree) {
+    case 1: return sparsePowerT<1>(in, cell, begin, end, blended, terms, termCount, mode);
+    case 2: return sparsePowerT<2>(in, cell, begin, end, blended, terms, termCount, mode);
+    default: return sparsePowerT<3>(in, cell, begin, end, blended, terms, termCount, mode);
+  }
+}
+
+}  // namespace ffdkit::ffd::detail
