@@ -4,199 +4,10 @@
 #include <string>
 #include <vector>
 
+#include "deform_kernels.h"
 #include "ffdkit/ffd/huge_pages.h"
-#include "vector_clones.h"
 
 namespace ffdkit::ffd {
-namespace detail {
-
-constexpr int kLanes = 8;
-constexpr int kMaxBasis = 33;
-
-// Eight lanes of doubles: one AVX-512 register, two AVX2 registers, or four SSE2 registers,
-// depending on the clone. GCC vector extensions keep the lane structure explicit.
-typedef double Lane __attribute__((vector_size(kLanes * sizeof(double))));
-
-// Everything a block kernel needs, flattened into plain arrays.
-struct AxisView {
-  const double* knots;
-  int degree;
-  const int* cellSpan;
-};
-
-struct KernelInput {
-  AxisView axis[3];
-  const double* u;
-  const double* v;
-  const double* w;
-  const std::uint32_t* order;  // null: identity
-  const double* blend;         // weights of the current Blended block, indexed by q - blendBegin
-  std::uint32_t blendBegin;
-  const double* qx;  // input columns (original order), null for updates
-  const double* qy;
-  const double* qz;
-  double* ox;  // output columns
-  double* oy;
-  double* oz;
-};
-
-FFDKIT_INLINE Lane splat(double x) { return Lane{} + x; }
-
-// The degree+1 basis values of eight parameters on one span (Cox-de Boor, The NURBS Book A2.2),
-// vectorised across lanes: the knots are the same for every lane of a cell. P >= 0 fixes the
-// degree at compile time (full unrolling); P < 0 reads it from the axis.
-template <int P>
-FFDKIT_INLINE void basisLanes(const AxisView& axis, int cell, Lane t, Lane* N) {
-  const int p = P >= 0 ? P : axis.degree;
-  const int s = axis.cellSpan[cell];
-  const double* U = axis.knots;
-  Lane left[kMaxBasis];
-  Lane right[kMaxBasis];
-  N[0] = splat(1.0);
-  for (int j = 1; j <= p; ++j) {
-    left[j] = t - U[s + 1 - j];
-    right[j] = U[s + j] - t;
-    Lane saved = splat(0.0);
-    for (int r = 0; r < j; ++r) {
-      const Lane temp = N[r] * (1.0 / (U[s + r + 1] - U[s + 1 - j + r]));
-      N[r] = saved + right[r + 1] * temp;
-      saved = left[j - r] * temp;
-    }
-    N[j] = saved;
-  }
-}
-
-FFDKIT_INLINE Lane loadLanes(const double* src, std::uint32_t q, int count) {
-  Lane x;
-  if (count == kLanes) {
-    __builtin_memcpy(&x, src + q, sizeof(Lane));
-  } else {
-    for (int l = 0; l < kLanes; ++l) x[l] = src[q + std::min(l, count - 1)];
-  }
-  return x;
-}
-
-FFDKIT_INLINE void storeLanes(const KernelInput& in, std::uint32_t q0, int count, bool blended, Lane dx, Lane dy, Lane dz,
-                       bool accumulate) {
-  if (blended) {
-    Lane s = splat(1.0);
-    for (int l = 0; l < kLanes; ++l) s[l] = in.blend[q0 + std::min(l, count - 1) - in.blendBegin];
-    dx *= s;
-    dy *= s;
-    dz *= s;
-  }
-  if (!in.order && count == kLanes) {
-    // Identity order: contiguous vector loads and stores.
-    Lane x, y, z;
-    if (accumulate) {
-      __builtin_memcpy(&x, in.ox + q0, sizeof(Lane));
-      __builtin_memcpy(&y, in.oy + q0, sizeof(Lane));
-      __builtin_memcpy(&z, in.oz + q0, sizeof(Lane));
-    } else {
-      __builtin_memcpy(&x, in.qx + q0, sizeof(Lane));
-      __builtin_memcpy(&y, in.qy + q0, sizeof(Lane));
-      __builtin_memcpy(&z, in.qz + q0, sizeof(Lane));
-    }
-    x += dx;
-    y += dy;
-    z += dz;
-    __builtin_memcpy(in.ox + q0, &x, sizeof(Lane));
-    __builtin_memcpy(in.oy + q0, &y, sizeof(Lane));
-    __builtin_memcpy(in.oz + q0, &z, sizeof(Lane));
-    return;
-  }
-  for (int l = 0; l < count; ++l) {
-    const std::uint32_t q = q0 + l;
-    const std::size_t p = in.order ? in.order[q] : q;
-    if (accumulate) {
-      in.ox[p] += dx[l];
-      in.oy[p] += dy[l];
-      in.oz[p] += dz[l];
-    } else {
-      in.ox[p] = in.qx[p] + dx[l];
-      in.oy[p] = in.qy[p] + dy[l];
-      in.oz[p] = in.qz[p] + dz[l];
-    }
-  }
-}
-
-// Dense block: d = sum_abc Bu_a Bv_b Bw_c W_abc over the cell window W (world displacements, or
-// their change); accumulate = false: out = Q + s d, true: out += s d.
-template <int P>
-FFDKIT_INLINE void denseBlockT(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
-                        const double* Wx, const double* Wy, const double* Wz, bool accumulate) {
-  const int nu = (P >= 0 ? P : in.axis[0].degree) + 1;
-  const int nv = (P >= 0 ? P : in.axis[1].degree) + 1;
-  const int nw = (P >= 0 ? P : in.axis[2].degree) + 1;
-  Lane bu[kMaxBasis], bv[kMaxBasis], bw[kMaxBasis];
-  for (std::uint32_t q0 = begin; q0 < end; q0 += kLanes) {
-    const int count = static_cast<int>(std::min<std::uint32_t>(kLanes, end - q0));
-    basisLanes<P>(in.axis[0], cell[0], loadLanes(in.u, q0, count), bu);
-    basisLanes<P>(in.axis[1], cell[1], loadLanes(in.v, q0, count), bv);
-    basisLanes<P>(in.axis[2], cell[2], loadLanes(in.w, q0, count), bw);
-    Lane dx = splat(0.0), dy = splat(0.0), dz = splat(0.0);
-    int wi = 0;
-    for (int c = 0; c < nw; ++c) {
-      for (int b = 0; b < nv; ++b) {
-        Lane sx = splat(0.0), sy = splat(0.0), sz = splat(0.0);
-        for (int a = 0; a < nu; ++a, ++wi) {
-          sx += bu[a] * Wx[wi];
-          sy += bu[a] * Wy[wi];
-          sz += bu[a] * Wz[wi];
-        }
-        const Lane nn = bv[b] * bw[c];
-        dx += nn * sx;
-        dy += nn * sy;
-        dz += nn * sz;
-      }
-    }
-    storeLanes(in, q0, count, blended, dx, dy, dz, accumulate);
-  }
-}
-
-FFDKIT_VECTOR_CLONES
-void denseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
-                const double* Wx, const double* Wy, const double* Wz, bool accumulate) {
-  const int p = in.axis[0].degree;
-  if (p == in.axis[1].degree && p == in.axis[2].degree) {
-    switch (p) {
-      case 1: return denseBlockT<1>(in, cell, begin, end, blended, Wx, Wy, Wz, accumulate);
-      case 2: return denseBlockT<2>(in, cell, begin, end, blended, Wx, Wy, Wz, accumulate);
-      case 3: return denseBlockT<3>(in, cell, begin, end, blended, Wx, Wy, Wz, accumulate);
-      default: break;
-    }
-  }
-  denseBlockT<-1>(in, cell, begin, end, blended, Wx, Wy, Wz, accumulate);
-}
-
-struct SparseTerm {
-  int a, b, c;
-  double dx, dy, dz;
-};
-
-// Sparse block: out += s * sum over changed control points of Bu_a Bv_b Bw_c dP.
-FFDKIT_VECTOR_CLONES
-void sparseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
-                 const SparseTerm* terms, int termCount) {
-  Lane bu[kMaxBasis], bv[kMaxBasis], bw[kMaxBasis];
-  for (std::uint32_t q0 = begin; q0 < end; q0 += kLanes) {
-    const int count = static_cast<int>(std::min<std::uint32_t>(kLanes, end - q0));
-    basisLanes<-1>(in.axis[0], cell[0], loadLanes(in.u, q0, count), bu);
-    basisLanes<-1>(in.axis[1], cell[1], loadLanes(in.v, q0, count), bv);
-    basisLanes<-1>(in.axis[2], cell[2], loadLanes(in.w, q0, count), bw);
-    Lane dx = splat(0.0), dy = splat(0.0), dz = splat(0.0);
-    for (int i = 0; i < termCount; ++i) {
-      const SparseTerm& term = terms[i];
-      const Lane weight = bu[term.a] * bv[term.b] * bw[term.c];
-      dx += weight * term.dx;
-      dy += weight * term.dy;
-      dz += weight * term.dz;
-    }
-    storeLanes(in, q0, count, blended, dx, dy, dz, true);
-  }
-}
-
-}  // namespace detail
 
 namespace {
 
@@ -260,6 +71,174 @@ void gatherWindow(const Lattice& lattice, const AxisTables& tables, const int ce
   }
 }
 
+
+int cellTotalOf(const Lattice& lattice) {
+  return lattice.axis(0).cellCount() * lattice.axis(1).cellCount() * lattice.axis(2).cellCount();
+}
+
+std::size_t flatCell(const Lattice& lattice, const int cell[3]) {
+  return cell[0] + static_cast<std::size_t>(lattice.axis(0).cellCount()) *
+                       (cell[1] + static_cast<std::size_t>(lattice.axis(1).cellCount()) * cell[2]);
+}
+
+void unflatCell(const Lattice& lattice, std::size_t flat, int cell[3]) {
+  const std::size_t cu = lattice.axis(0).cellCount(), cv = lattice.axis(1).cellCount();
+  cell[0] = static_cast<int>(flat % cu);
+  cell[1] = static_cast<int>((flat / cu) % cv);
+  cell[2] = static_cast<int>(flat / (cu * cv));
+}
+
+// What the block kernels read per cell for one field D of world displacements (#control x 3):
+// the power-form coefficient sets of the cells (lattices of degree <= 3, detail::powerBlock) or
+// their gathered windows (Cox-de Boor, detail::denseBlock). Coefficient sets are precomputed once
+// per call for the cells that have points to evaluate, in parallel, while they fit in
+// max(1 MiB, 16 bytes per evaluated point); past that (a lattice of many more cells than
+// points) each block computes its cell's set when the cell changes. Both give the same bits.
+class CellFields {
+ public:
+  CellFields(const Lattice& lattice, const AxisTables& tables, const Eigen::MatrixX3d& D)
+      : lattice_(lattice), tables_(tables), D_(D) {
+    const int degrees[3] = {lattice.axis(0).degree(), lattice.axis(1).degree(), lattice.axis(2).degree()};
+    K_ = detail::powerDegree(degrees);
+    for (int a = 0; a < 3; ++a) {
+      windowCounts_[a] = degrees[a] + 1;
+      if (K_ >= 0) poly_[a] = detail::axisPolynomials(lattice.axis(a), K_);
+    }
+  }
+  bool power() const { return K_ >= 0; }
+  const detail::AxisPolynomials* polynomials(int axis) const { return power() ? &poly_[axis] : nullptr; }
+  std::size_t setSize() const { return power() ? detail::coefficientSetSize(K_) : 0; }
+
+  // Plans the table for the cells of `flats` (distinct flat indices), given `work` points to evaluate.
+  void plan(std::vector<std::size_t> flats, Eigen::Index work) {
+    if (!power()) return;
+    const std::size_t bytes = flats.size() * setSize() * sizeof(double);
+    if (bytes > std::max<std::size_t>(std::size_t(1) << 20, 16 * static_cast<std::size_t>(work))) return;
+    slot_.assign(static_cast<std::size_t>(cellTotalOf(lattice_)), -1);
+    for (std::size_t i = 0; i < flats.size(); ++i) slot_[flats[i]] = static_cast<std::int32_t>(i);
+    flats_ = std::move(flats);
+    table_.resize(flats_.size() * setSize());
+  }
+  // Fills the planned table; call from every thread of a parallel region (work-shared, ends with a barrier).
+  void fillTable() {
+    std::vector<double> window;
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(flats_.size()); ++i) {
+      int cell[3];
+      unflatCell(lattice_, flats_[i], cell);
+      compute(cell, window, table_.data() + i * setSize());
+    }
+  }
+  // One thread's access to the cells' data, caching the last cell computed outside the table.
+  class Reader {
+   public:
+    explicit Reader(const CellFields& fields) : f_(fields) {}
+    // Power: the coefficient set of `cell`; Cox-de Boor: the window (x, y, z blocks).
+    const double* at(const int cell[3]) {
+      if (!f_.slot_.empty()) return f_.table_.data() + f_.slot_[flatCell(f_.lattice_, cell)] * f_.setSize();
+      if (!std::equal(cell, cell + 3, last_)) {
+        if (f_.power()) {
+          set_.resize(f_.setSize());
+          f_.compute(cell, window_, set_.data());
+        } else {
+          gatherWindow(f_.lattice_, f_.tables_, cell, f_.D_, window_);
+        }
+        std::copy(cell, cell + 3, last_);
+      }
+      return f_.power() ? set_.data() : window_.data();
+    }
+    std::size_t windowSize() const { return window_.size() / 3; }
+
+   private:
+    const CellFields& f_;
+    int last_[3] = {-1, -1, -1};
+    std::vector<double> window_, set_;
+  };
+
+ private:
+  void compute(const int cell[3], std::vector<double>& window, double* out) const {
+    gatherWindow(lattice_, tables_, cell, D_, window);
+    detail::cellCoefficients(poly_, cell, window.data(), windowCounts_, out);
+  }
+
+  const Lattice& lattice_;
+  const AxisTables& tables_;
+  const Eigen::MatrixX3d& D_;
+  int K_ = -1;
+  int windowCounts_[3] = {};
+  detail::AxisPolynomials poly_[3];
+  std::vector<std::int32_t> slot_;  // flat cell -> table row; empty: no table
+  std::vector<std::size_t> flats_;
+  std::vector<double> table_;
+};
+
+// One thread's scratch for a tile in random point order (see runTile).
+struct TileScratch {
+  std::vector<double> displacement = std::vector<double>(3 * Embedding::kTileSize);
+  std::vector<std::uint8_t> evaluated = std::vector<std::uint8_t>(Embedding::kTileSize);
+};
+
+// Evaluates the blocks [first, last) of one tile that `selected` picks: run(kernelInput, block,
+// store) for Evaluated and Blended blocks (with the block's blend weights set), frozen(block) for
+// Frozen ones. `mode` is Replace (out = Q + s d) or Accumulate (out += s d). A tile in random
+// point order (sorted by cell, so its original rows are read and written in random order, which
+// the hardware prefetcher cannot follow: each first touch of a line waits for memory) is done in
+// two passes: the kernels write s d into a cache-resident scratch of the tile's rows, then
+// detail::mergeTile streams the rows in original order.
+// Returns the number of points run.
+template <class Selected, class Run, class Frozen>
+Eigen::Index runTile(const detail::KernelInput& in, const Embedding& embedding, std::uint32_t first, std::uint32_t last,
+                     detail::Store mode, TileScratch& scratch, const Selected& selected, const Run& run,
+                     const Frozen& frozen) {
+  const auto& blocks = embedding.blocks();
+  if (first == last) return 0;
+  detail::KernelInput local = in;
+  const std::uint32_t begin = blocks[first].begin;
+  const std::uint32_t end = blocks[last - 1].end;
+  const bool twoPass = in.order != nullptr;
+  if (twoPass) {
+    double* s = scratch.displacement.data();
+    local.ox = s;
+    local.oy = s + Embedding::kTileSize;
+    local.oz = s + 2 * Embedding::kTileSize;
+    local.outOffset = begin;
+    local.evaluated = scratch.evaluated.data();
+    std::fill_n(scratch.evaluated.data(), end - begin, std::uint8_t(0));
+  }
+  Eigen::Index evaluated = 0;
+  for (std::uint32_t bi = first; bi < last; ++bi) {
+    const Embedding::Block& block = blocks[bi];
+    if (!selected(block)) continue;
+    if (block.kind == Embedding::BlockKind::Frozen) {
+      frozen(block);
+      continue;
+    }
+    const bool blended = block.kind == Embedding::BlockKind::Blended;
+    if (blended) {
+      local.blend = embedding.blendWeight().data() + block.blendOffset;
+      local.blendBegin = block.begin;
+    }
+    evaluated += block.end - block.begin;
+    run(local, block, blended, twoPass ? detail::Store::Displacement : mode);
+  }
+  if (twoPass && evaluated > 0) {
+    detail::mergeTile(in, begin, end, local.ox, local.oy, local.oz, scratch.evaluated.data(), mode);
+  }
+  return evaluated;
+}
+
+// One block through the kernel that matches the fields.
+void runBlock(const detail::KernelInput& in, CellFields::Reader& reader, const CellFields& fields, const int cell[3],
+              std::uint32_t begin, std::uint32_t end, bool blended, detail::Store mode) {
+  const double* data = reader.at(cell);
+  if (fields.power()) {
+    detail::powerBlock(in, cell, begin, end, blended, data, mode);
+  } else {
+    const std::size_t size = reader.windowSize();
+    detail::denseBlock(in, cell, begin, end, blended, data, data + size, data + 2 * size, mode);
+  }
+}
+
 }  // namespace
 
 Deformer::Deformer(Embedding embedding) : embedding_(std::move(embedding)) {}
@@ -289,64 +268,59 @@ const Eigen::MatrixX3d& Deformer::deformStale(const Lattice& lattice, const Eige
 
 Eigen::Index Deformer::evaluateBlocks(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input,
                                       const std::vector<char>* cellFilter) {
-  const Eigen::Index n = embedding_.pointCount();
   // World displacement of every control point: F.linear * (P - Pbar).
   const Eigen::MatrixX3d D = (lattice.controlPoints() - lattice.restPoints()) * lattice.frame().linear().transpose();
   const AxisTables tables = makeTables(lattice);
+  CellFields fields(lattice, tables, D);
   detail::KernelInput in = makeInput(lattice, embedding_, output_);
-  for (int a = 0; a < 3; ++a) in.axis[a].cellSpan = tables.span[a].data();
+  for (int a = 0; a < 3; ++a) {
+    in.axis[a].cellSpan = tables.span[a].data();
+    in.axis[a].poly = fields.polynomials(a);
+  }
   in.qx = input.col(0).data();
   in.qy = input.col(1).data();
   in.qz = input.col(2).data();
-  const int cells[2] = {lattice.axis(0).cellCount(), lattice.axis(1).cellCount()};
   const auto& blocks = embedding_.blocks();
   const auto& tiles = embedding_.tileBlocks();
   const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
-  auto inFilter = [&](const Embedding::Block& block) {
-    return !cellFilter ||
-           (*cellFilter)[block.cell[0] + cells[0] * (block.cell[1] + static_cast<std::size_t>(cells[1]) * block.cell[2])];
-  };
+  auto inFilter = [&](const Embedding::Block& block) { return !cellFilter || (*cellFilter)[flatCell(lattice, block.cell)]; };
+  // The points to evaluate and the cells they lie in.
+  Eigen::Index work = 0;
+  {
+    std::vector<char> used(static_cast<std::size_t>(cellTotalOf(lattice)), 0);
+    std::vector<std::size_t> flats;
+    for (const Embedding::Block& block : blocks) {
+      if (!inFilter(block)) continue;
+      work += block.end - block.begin;
+      if (block.kind == Embedding::BlockKind::Frozen) continue;
+      const std::size_t flat = flatCell(lattice, block.cell);
+      if (!used[flat]) flats.push_back(flat);
+      used[flat] = 1;
+    }
+    fields.plan(std::move(flats), work);
+  }
   // Few points to evaluate (a small incremental update): stay on this thread; waking OpenMP
   // workers costs more, and on a busy machine their spinning slows everything else down.
-  Eigen::Index work = n;
-  if (cellFilter) {
-    work = 0;
-    for (const Embedding::Block& block : blocks) work += inFilter(block) ? block.end - block.begin : 0;
-  }
   const bool parallel = parallel_ && work >= kParallelPoints;
   Eigen::Index evaluated = 0;
 #pragma omp parallel if (parallel) reduction(+ : evaluated)
   {
-    std::vector<double> W;
-    int lastCell[3] = {-1, -1, -1};
-    detail::KernelInput local = in;
+    fields.fillTable();
+    CellFields::Reader reader(fields);
+    TileScratch scratch;
+    auto run = [&](const detail::KernelInput& local, const Embedding::Block& block, bool blended, detail::Store mode) {
+      runBlock(local, reader, fields, block.cell, block.begin, block.end, blended, mode);
+    };
+    // Identity outside, Failed, beyond Falloff: the input unchanged.
+    auto frozen = [&](const Embedding::Block& block) {
+      for (std::uint32_t q = block.begin; q < block.end; ++q) {
+        const Eigen::Index p = in.order ? in.order[q] : q;
+        output_.row(p) = input.row(p);
+      }
+    };
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t t = 0; t < tileCount; ++t) {
-      for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
-        const Embedding::Block& block = blocks[bi];
-        if (!inFilter(block)) continue;
-        if (block.kind == Embedding::BlockKind::Frozen) {
-          // Identity outside, Failed, beyond Falloff: the input unchanged.
-          for (std::uint32_t q = block.begin; q < block.end; ++q) {
-            const Eigen::Index p = in.order ? in.order[q] : q;
-            output_.row(p) = input.row(p);
-          }
-          continue;
-        }
-        if (!std::equal(block.cell, block.cell + 3, lastCell)) {
-          gatherWindow(lattice, tables, block.cell, D, W);
-          std::copy(block.cell, block.cell + 3, lastCell);
-        }
-        const bool blended = block.kind == Embedding::BlockKind::Blended;
-        if (blended) {
-          local.blend = embedding_.blendWeight().data() + block.blendOffset;
-          local.blendBegin = block.begin;
-        }
-        evaluated += block.end - block.begin;
-        const std::size_t size = W.size() / 3;
-        detail::denseBlock(local, block.cell, block.begin, block.end, blended, W.data(), W.data() + size,
-                           W.data() + 2 * size, false);
-      }
+      evaluated += runTile(in, embedding_, tiles[t], tiles[t + 1], detail::Store::Replace, scratch, inFilter, run, frozen);
     }
   }
   return evaluated;
@@ -428,56 +402,55 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
               {ru, rv, rw, D(f, 0), D(f, 1), D(f, 2)});
         }
   }
-  std::vector<std::vector<double>> dense(cellTotal);
+  CellFields fields(lattice, tables, D);
+  // Most of a cell's window moved: the dense evaluation is cheaper than one term per point
+  // (a term costs about 1/16 of a dense power-form point, 1/3 of a dense Cox-de Boor one).
+  std::vector<char> dense(cellTotal, 0);
+  std::vector<std::size_t> denseCells;
   for (std::size_t cell = 0; cell < cellTotal; ++cell) {
-    // Most of the window moved: the dense contraction is cheaper than one term per point.
-    if (3 * terms[cell].size() > static_cast<std::size_t>(windowSize)) {
-      const int c[3] = {static_cast<int>(cell % cells[0]), static_cast<int>((cell / cells[0]) % cells[1]),
-                        static_cast<int>(cell / (static_cast<std::size_t>(cells[0]) * cells[1]))};
-      gatherWindow(lattice, tables, c, D, dense[cell]);
+    if ((fields.power() ? 16 : 3) * terms[cell].size() > static_cast<std::size_t>(windowSize)) {
+      dense[cell] = 1;
+      denseCells.push_back(cell);
     }
   }
 
   detail::KernelInput in = makeInput(lattice, embedding_, output_);
-  for (int a = 0; a < 3; ++a) in.axis[a].cellSpan = tables.span[a].data();
+  for (int a = 0; a < 3; ++a) {
+    in.axis[a].cellSpan = tables.span[a].data();
+    in.axis[a].poly = fields.polynomials(a);
+  }
   const auto& blocks = embedding_.blocks();
   const auto& tiles = embedding_.tileBlocks();
   const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
   Eigen::Index evaluated = 0;
   Eigen::Index work = 0;
   for (const Embedding::Block& block : blocks) {
-    const std::size_t cell = block.cell[0] + cells[0] * (block.cell[1] + static_cast<std::size_t>(cells[1]) * block.cell[2]);
-    if (block.kind != Embedding::BlockKind::Frozen && !terms[cell].empty()) work += block.end - block.begin;
+    if (block.kind != Embedding::BlockKind::Frozen && !terms[flatCell(lattice, block.cell)].empty())
+      work += block.end - block.begin;
   }
+  fields.plan(std::move(denseCells), work);
+  auto touched = [&](const Embedding::Block& block) {
+    return block.kind != Embedding::BlockKind::Frozen && !terms[flatCell(lattice, block.cell)].empty();
+  };
   const bool parallel = parallel_ && work >= kParallelPoints;
 #pragma omp parallel if (parallel) reduction(+ : evaluated)
   {
-    detail::KernelInput local = in;
+    fields.fillTable();
+    CellFields::Reader reader(fields);
+    TileScratch scratch;
+    auto run = [&](const detail::KernelInput& local, const Embedding::Block& block, bool blended, detail::Store mode) {
+      const std::size_t cell = flatCell(lattice, block.cell);
+      if (dense[cell]) {
+        runBlock(local, reader, fields, block.cell, block.begin, block.end, blended, mode);
+      } else {
+        detail::sparseBlock(local, block.cell, block.begin, block.end, blended, terms[cell].data(),
+                            static_cast<int>(terms[cell].size()), mode);
+      }
+    };
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t t = 0; t < tileCount; ++t) {
-      for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
-        const Embedding::Block& block = blocks[bi];
-        if (block.kind == Embedding::BlockKind::Frozen) continue;
-        const std::size_t cell =
-            block.cell[0] + cells[0] * (block.cell[1] + static_cast<std::size_t>(cells[1]) * block.cell[2]);
-        const auto& cellTerms = terms[cell];
-        if (cellTerms.empty()) continue;
-        evaluated += block.end - block.begin;
-        const bool blended = block.kind == Embedding::BlockKind::Blended;
-        if (blended) {
-          local.blend = embedding_.blendWeight().data() + block.blendOffset;
-          local.blendBegin = block.begin;
-        }
-        const std::vector<double>& W = dense[cell];
-        if (!W.empty()) {
-          const std::size_t size = W.size() / 3;
-          detail::denseBlock(local, block.cell, block.begin, block.end, blended, W.data(), W.data() + size,
-                             W.data() + 2 * size, true);
-        } else {
-          detail::sparseBlock(local, block.cell, block.begin, block.end, blended, cellTerms.data(),
-                              static_cast<int>(cellTerms.size()));
-        }
-      }
+      evaluated += runTile(in, embedding_, tiles[t], tiles[t + 1], detail::Store::Accumulate, scratch, touched, run,
+                           [](const Embedding::Block&) {});
     }
   }
   stats_.evaluatedPoints = evaluated;
