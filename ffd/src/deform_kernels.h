@@ -19,7 +19,7 @@ constexpr int kMaxPowerDegree = 3;
 int powerDegree(const int degrees[3]);
 
 /// Per cell of one axis, the basis functions that are non-zero on it as polynomials in the cell's
-/// local parameter x = (t - origin) * scale in [0, 1] (origin, scale: the cell's first knot and
+/// local parameter x = (t - origin) * scale in [-1/2, 1/2] (origin, scale: the cell's midpoint and
 /// the reciprocal of its length):  N_(span-p+r)(t) = sum_k M[r][k] x^k,  r, k in [0, K].
 /// Derived from the Cox-de Boor triangle (The NURBS Book A2.2) run on polynomials (in long
 /// double), rows and columns above the axis degree are zero. Layout per cell:
