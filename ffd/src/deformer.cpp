@@ -174,29 +174,45 @@ class CellFields {
 
 // One thread's scratch for a tile in random point order (see runTile).
 struct TileScratch {
-  std::vector<double> displacement = std::vector<double>(3 * Embedding::kTileSize);
-  std::vector<std::uint8_t> evaluated = std::vector<std::uint8_t>(Embedding::kTileSize);
+  std::vector<double> displacement;  // 3 x kTileSize, allocated on first use
+  std::vector<std::uint8_t> evaluated;
 };
 
 // Evaluates the blocks [first, last) of one tile that `selected` picks: run(kernelInput, block,
-// store) for Evaluated and Blended blocks (with the block's blend weights set), frozen(block) for
-// Frozen ones. `mode` is Replace (out = Q + s d) or Accumulate (out += s d). A tile in random
-// point order (sorted by cell, so its original rows are read and written in random order, which
-// the hardware prefetcher cannot follow: each first touch of a line waits for memory) is done in
-// two passes: the kernels write s d into a cache-resident scratch of the tile's rows, then
-// detail::mergeTile streams the rows in original order.
+// blended, store) for Evaluated and Blended blocks (with the block's blend weights set),
+// frozen(block) for Frozen ones. `mode` is Replace (out = Q + s d) or Accumulate (out += s d).
+// A tile in random point order (sorted by cell, so its original rows are read and written in
+// random order, which the hardware prefetcher cannot follow: each first touch of a line waits
+// for memory) with at least an eighth of its points to run is done in two passes: the kernels
+// write s d into a cache-resident scratch of the tile's rows, then detail::mergeTile streams the
+// rows in original order. Fewer points (a small incremental update) are written directly.
 // Returns the number of points run.
 template <class Selected, class Run, class Frozen>
 Eigen::Index runTile(const detail::KernelInput& in, const Embedding& embedding, std::uint32_t first, std::uint32_t last,
                      detail::Store mode, TileScratch& scratch, const Selected& selected, const Run& run,
                      const Frozen& frozen) {
   const auto& blocks = embedding.blocks();
-  if (first == last) return 0;
+  Eigen::Index work = 0;
+  bool anyFrozen = false;
+  for (std::uint32_t bi = first; bi < last; ++bi) {
+    const Embedding::Block& block = blocks[bi];
+    if (!selected(block)) continue;
+    if (block.kind == Embedding::BlockKind::Frozen) {
+      anyFrozen = true;
+    } else {
+      work += block.end - block.begin;
+    }
+  }
+  if (work == 0 && !anyFrozen) return 0;
   detail::KernelInput local = in;
   const std::uint32_t begin = blocks[first].begin;
   const std::uint32_t end = blocks[last - 1].end;
-  const bool twoPass = in.order != nullptr;
+  const bool twoPass = in.order != nullptr && 8 * work >= end - begin;
   if (twoPass) {
+    if (scratch.displacement.empty()) {
+      scratch.displacement.resize(3 * Embedding::kTileSize);
+      scratch.evaluated.resize(Embedding::kTileSize);
+    }
     double* s = scratch.displacement.data();
     local.ox = s;
     local.oy = s + Embedding::kTileSize;
@@ -205,7 +221,6 @@ Eigen::Index runTile(const detail::KernelInput& in, const Embedding& embedding, 
     local.evaluated = scratch.evaluated.data();
     std::fill_n(scratch.evaluated.data(), end - begin, std::uint8_t(0));
   }
-  Eigen::Index evaluated = 0;
   for (std::uint32_t bi = first; bi < last; ++bi) {
     const Embedding::Block& block = blocks[bi];
     if (!selected(block)) continue;
@@ -218,13 +233,10 @@ Eigen::Index runTile(const detail::KernelInput& in, const Embedding& embedding, 
       local.blend = embedding.blendWeight().data() + block.blendOffset;
       local.blendBegin = block.begin;
     }
-    evaluated += block.end - block.begin;
     run(local, block, blended, twoPass ? detail::Store::Displacement : mode);
   }
-  if (twoPass && evaluated > 0) {
-    detail::mergeTile(in, begin, end, local.ox, local.oy, local.oz, scratch.evaluated.data(), mode);
-  }
-  return evaluated;
+  if (twoPass) detail::mergeTile(in, begin, end, local.ox, local.oy, local.oz, scratch.evaluated.data(), mode);
+  return work;
 }
 
 // One block through the kernel that matches the fields.
