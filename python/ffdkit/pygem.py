@@ -5,9 +5,9 @@ A PyGeM script switches by changing its import line::
     from ffdkit.pygem import FFD      # instead of: from pygem import FFD
 
 The class keeps PyGeM's attributes, methods, ``.prm`` parameter files (byte-compatible output)
-and results; the deformation itself runs in ffdkit's C++ engine (closed-form embedding into a
-Bernstein box lattice, then the FFD map of Sederberg & Parry 1986, eq. 1), in parallel and
-without the Python interpreter lock.
+and results; the deformation itself runs in ffdkit's C++ engine (``ffd.boxBernsteinDeform``: one
+pass over the points, box coordinates then the Bernstein FFD map of Sederberg & Parry 1986,
+eq. 1), in parallel and without the Python interpreter lock.
 
 The lattice. PyGeM's box has its node (0, 0, 0) at ``box_origin``, edges of ``box_length``
 along the columns of ``rotation_matrix`` = Rx(ax) Ry(ay) Rz(az) (angles ``rot_angle`` in
@@ -30,6 +30,7 @@ _ffd = _ffdkit.ffd
 
 # Box coordinates (units of the box size) within this distance of a face count as on the face.
 _FACE_TOLERANCE = 1e-12
+_DEFORM_OPTIONS = _ffd.BoxBernsteinDeformOptions(faceTolerance=_FACE_TOLERANCE)
 
 
 def _rotation(angles_degrees):
@@ -145,30 +146,37 @@ class FFD:
         frame[:3, 3] = self.box_origin
         return frame
 
-    def _lattice(self, frame, policy):
+    def _displacements(self):
+        """The weights as (l*m*n, 3) displacements in box coordinates, row i + l*(j + m*k)."""
         counts = tuple(int(c) for c in self.n_control_points)
         weights = (self.array_mu_x, self.array_mu_y, self.array_mu_z)
         for name, mu in zip(("array_mu_x", "array_mu_y", "array_mu_z"), weights):
             if np.shape(mu) != counts:
                 raise ValueError("{} has shape {}, expected n_control_points {}".format(
                     name, np.shape(mu), counts))
-        lattice = _ffd.makeBoxLattice(counts=counts, bases=_ffd.AxisBasis.bernstein(), frame=frame,
-                                      outsidePolicy=policy)
         # ffdkit's flat index i + l*(j + m*k) is numpy's Fortran order of an (l, m, n) array; the
         # box is the unit cube in lattice coordinates, so a weight is a local displacement.
+        return counts, np.stack([np.asarray(mu, dtype=float).ravel(order="F") for mu in weights], axis=1)
+
+    def _lattice(self, frame, policy):
+        counts, displacements = self._displacements()
+        lattice = _ffd.makeBoxLattice(counts=counts, bases=_ffd.AxisBasis.bernstein(), frame=frame,
+                                      outsidePolicy=policy)
         control = lattice.controlPoints
-        for axis, mu in enumerate(weights):
-            control[:, axis] += np.asarray(mu, dtype=float).ravel(order="F")
+        control += displacements
         return lattice
 
     def __call__(self, src_pts):
         """Deform the points `src_pts` (n_points x 3, by row); return the deformed points.
 
         Points inside the box (box coordinates in [0, 1]^3) are deformed, the others returned
-        unchanged. The result is a new writable array (Fortran-ordered).
+        unchanged. The result is a new writable C-ordered array; `src_pts` is read in place
+        whatever its layout. One pass in C++ without the interpreter lock
+        (``ffdkit.ffd.boxBernsteinDeform``).
         """
-        lattice = self._lattice(self._frame(), _ffd.OutsidePolicy.identity())
-        return _ffd.deformPoints(lattice, src_pts, _ffd.EmbedOptions(boundaryEpsilon=_FACE_TOLERANCE))
+        counts, displacements = self._displacements()
+        lattice = _ffd.BoxBernsteinLattice(counts, self._frame(), displacements)
+        return _ffd.boxBernsteinDeform(lattice, src_pts, _DEFORM_OPTIONS)
 
     def control_points(self, deformed=True):
         """The control points of the lattice in physical coordinates (n_points x 3, by row,

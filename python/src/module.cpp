@@ -101,6 +101,7 @@ PYBIND11_MODULE(_ffdkit, module) {
 
   py::module_ ffdModule = module.def_submodule("ffd", "The FFD / EFFD engine (C++ namespace ffdkit::ffd).");
   python::bindFfd(ffdModule);
+  python::bindBoxBernstein(ffdModule);
   py::module_ widgetsModule = module.def_submodule("widgets", "The headless widget model (ffdkit::widgets).");
   python::bindWidgets(widgetsModule);
   py::module_ scenesModule =
