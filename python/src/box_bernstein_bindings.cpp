@@ -98,7 +98,7 @@ py::array boxBernsteinDeform(const ffd::BoxBernsteinLattice& lattice, const py::
   const auto [inFirst, inLast] = byteRange(in);
   const auto [outFirst, outLast] = byteRange(result);
   if (!same && inFirst <= outLast && outFirst <= inLast) {
-    throw py::value_error("out: overlaps points without being the same array (in place needs out=points)");
+    throw py::value_error("out: shares memory with points without being the same array (in place needs out=points)");
   }
   const Eigen::Map<const ffd::PointRows, 0, ffd::PointRowsStride> q(
       static_cast<const double*>(in.array.data()), in.rows, 3, ffd::PointRowsStride(in.rowStride, in.colStride));

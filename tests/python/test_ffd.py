@@ -143,6 +143,58 @@ def test_deform_matches_the_bernstein_formula_in_an_oriented_box():
         np.testing.assert_array_equal(ffd.deformPoints(lattice, variant), out)
 
 
+def test_box_bernstein_deform_matches_the_formula_for_any_input_layout():
+    frame = oriented_frame()
+    counts = (3, 4, 2)
+    l, m, n = counts
+    displacements = 0.2 * RNG.standard_normal((l * m * n, 3))
+    box = ffd.BoxBernsteinLattice(counts, frame, displacements)
+    np.testing.assert_array_equal(box.frame, frame)
+    uvw = RNG.random((3000, 3)) * 1.4 - 0.2
+    points = apply_frame(frame, uvw)
+    inside = np.all((uvw >= 0) & (uvw <= 1), axis=1)
+    # Rest grid (i/(l-1), j/(m-1), k/(n-1)) with flat index i + l*(j + m*k), plus the displacements.
+    grid = np.stack(np.meshgrid(*[np.linspace(0, 1, c) for c in counts], indexing="ij"), axis=-1)
+    control = grid.reshape((-1, 3), order="F") + displacements
+    expected = apply_frame(frame, bernstein_ffd(control, counts, uvw))
+    expected[~inside] = points[~inside]
+    out = ffd.boxBernsteinDeform(box, points)
+    assert out.shape == points.shape and out.flags.c_contiguous and out.flags.writeable
+    np.testing.assert_allclose(out, expected, rtol=0, atol=1e-12 * np.abs(expected).max())
+    np.testing.assert_array_equal(out[~inside], points[~inside])
+    rows = np.zeros((6000, 3))
+    rows[::2] = points
+    for variant in (np.asfortranarray(points), rows[::2], points.T.copy().T, points.tolist()):
+        np.testing.assert_array_equal(ffd.boxBernsteinDeform(box, variant), out)
+    np.testing.assert_array_equal(ffd.boxBernsteinDeform(box, points[0]), out[:1])  # one point
+
+
+def test_box_bernstein_deform_writes_into_out_or_in_place_and_checks_it():
+    box = ffd.BoxBernsteinLattice((2, 2, 2), None, np.full((8, 3), 0.1))
+    points = RNG.random((100, 3))
+    expected = ffd.boxBernsteinDeform(box, points)
+    np.testing.assert_allclose(expected, points + 0.1, atol=1e-15)  # a uniform shift of the unit box
+    target = np.empty((100, 3), order="F")
+    assert ffd.boxBernsteinDeform(box, points, out=target) is target
+    np.testing.assert_array_equal(target, expected)
+    moved = points.copy()
+    ffd.boxBernsteinDeform(box, moved, out=moved)
+    np.testing.assert_array_equal(moved, expected)
+    with pytest.raises(ValueError, match=r"out: expected a float64 array of shape \(100, 3\)"):
+        ffd.boxBernsteinDeform(box, points, out=np.empty((99, 3)))
+    frozen = np.empty((100, 3))
+    frozen.flags.writeable = False
+    with pytest.raises(ValueError, match="read-only"):
+        ffd.boxBernsteinDeform(box, points, out=frozen)
+    shared = np.zeros((200, 3))
+    with pytest.raises(ValueError, match="shares memory with points"):
+        ffd.boxBernsteinDeform(box, shared[:100], out=shared[50:150])
+    with pytest.raises(ffdkit.LatticeError, match=r"needs 2 to 33 points per axis, got \(1, 2, 2\)"):
+        ffd.boxBernsteinDeform(ffd.BoxBernsteinLattice((1, 2, 2)), points)
+    with pytest.raises(ValueError, match=r"expected a float64 array of shape \(N, 3\), got shape \(100, 2\)"):
+        ffd.boxBernsteinDeform(box, points[:, :2])
+
+
 def test_incremental_update_equals_a_full_deform():
     lattice = ffd.makeBoxLattice(counts=(6, 6, 6), bases=ffd.AxisBasis.bspline(3))
     points = RNG.random((5000, 3))
