@@ -15,14 +15,17 @@
 #include "ffdkit/ffd/lattice.h"
 
 #include "cell_locator.h"
+#include "cell_polynomials.h"
+#include "cylinder_start.h"
 #include "vector_clones.h"
 
 namespace ffdkit::ffd::detail {
 
 constexpr int kMaxBasis = 33;
 
-// x, y, z and a zero: one point of a cell window, one AVX register (two SSE2 registers).
-typedef double Xyz0 __attribute__((vector_size(4 * sizeof(double))));
+// x, y, z and a zero: one point of a cell window, one AVX register (two SSE2 registers). Aligned
+// to 32 explicitly for the same reason as Lane4 (cell_polynomials.h).
+typedef double Xyz0 __attribute__((vector_size(4 * sizeof(double)), aligned(32)));
 // Evaluates Xbar and its Jacobian on the rest lattice; one per thread-safe call, no allocation.
 class RestSolver {
  public:
@@ -33,16 +36,22 @@ class RestSolver {
         rest_(lattice.restPoints()),
         options_(options),
         locate_{CellLocator(lattice.axis(0)), CellLocator(lattice.axis(1)), CellLocator(lattice.axis(2))} {
+    cubic_ = true;
     for (int a = 0; a < 3; ++a) {
       axis_[a] = &lattice.axis(a);
       lo_[a] = axis_[a]->domainMin();
       hi_[a] = axis_[a]->domainMax();
+      cubic_ = cubic_ && CellPolynomials::supports(*axis_[a]);
+    }
+    if (cubic_) {
+      for (int a = 0; a < 3; ++a) poly_[a] = CellPolynomials(*axis_[a]);
     }
     range_ = hi_ - lo_;
     tol_ = options.tolerance * lattice.restSize();
     affineInverse_ = lattice.restAffineLinear().inverse();
     if (!affineInverse_.allFinite()) affineInverse_ = Eigen::Matrix3d::Identity();
     cylinder_ = lattice.cylinderRestShape();
+    if (cylinder_ && cubic_) cylinderStart_.emplace(lattice, *cylinder_, poly_[1], locate_[1]);
     restMin_ = rest_.colwise().minCoeff().transpose();
     restMax_ = rest_.colwise().maxCoeff().transpose();
     buildWindows();
@@ -55,6 +64,11 @@ class RestSolver {
   // computed for iterates Newton goes on from (not for the last, converged one).
   struct Basis {
     int cell[3];
+    // Degree <= 3 on every axis (cubic_): lane r of n4 / d4 for the r-th function of the cell,
+    // and s[c][b] = sum_a N_a(u) P_abc, the partial sums the Jacobian reuses.
+    Lane4 n4[3], d4[3];
+    Xyz0 s[4][4];
+    // Any degree: the Cox-de Boor values and derivatives.
     double N[3][kMaxBasis];
     double D[3][kMaxBasis];
   };
@@ -62,6 +76,7 @@ class RestSolver {
   // Xbar(uvw) (seed 001 eq. (6.1) on the rest points), filling `basis`. The x, y, z of a window
   // point share one vector register, so each basis product is one multiply-add for all three.
   FFDKIT_INLINE Eigen::Vector3d value(const Eigen::Vector3d& uvw, Basis& basis) const {
+    if (cubic_) return valueCubic(uvw, basis);
     for (int a = 0; a < 3; ++a) {
       const double t = axis_[a]->wrap(uvw[a]);
       basis.cell[a] = locate_[a](t);
@@ -82,8 +97,55 @@ class RestSolver {
     return Eigen::Vector3d(x[0], x[1], x[2]);
   }
 
+  // value() for degree <= 3 on every axis: the basis from the cells' polynomials, the window
+  // padded to 4 x 4 x 4 (zero rows beyond the degree), all loop bounds known to the compiler.
+  FFDKIT_INLINE Eigen::Vector3d valueCubic(const Eigen::Vector3d& uvw, Basis& basis) const {
+    for (int a = 0; a < 3; ++a) {
+      const double t = axis_[a]->wrap(uvw[a]);
+      basis.cell[a] = locate_[a](t);
+      poly_[a].evaluate(basis.cell[a], t, basis.n4[a], basis.d4[a]);
+    }
+    const Xyz0* W = window(basis);
+    const Lane4 nu = basis.n4[0], nv = basis.n4[1], nw = basis.n4[2];
+    Xyz0 x = {0, 0, 0, 0};
+    for (int c = 0; c < 4; ++c) {
+      Xyz0 y = {0, 0, 0, 0};
+      for (int b = 0; b < 4; ++b, W += 4) {
+        const Xyz0 s = nu[0] * W[0] + nu[1] * W[1] + nu[2] * W[2] + nu[3] * W[3];
+        basis.s[c][b] = s;
+        y += nv[b] * s;
+      }
+      x += nw[c] * y;
+    }
+    return Eigen::Vector3d(x[0], x[1], x[2]);
+  }
+
+  FFDKIT_INLINE Eigen::Matrix3d jacobianCubic(const Basis& basis) const {
+    const Xyz0* W = window(basis);
+    const Lane4 nv = basis.n4[1], nw = basis.n4[2];
+    const Lane4 du = basis.d4[0], dv = basis.d4[1], dw = basis.d4[2];
+    Xyz0 ju = {0, 0, 0, 0}, jv = ju, jw = ju;
+    for (int c = 0; c < 4; ++c) {
+      Xyz0 yu = {0, 0, 0, 0}, yv = yu, y = yu;
+      for (int b = 0; b < 4; ++b, W += 4) {
+        const Xyz0 su = du[0] * W[0] + du[1] * W[1] + du[2] * W[2] + du[3] * W[3];
+        const Xyz0 s = basis.s[c][b];
+        yu += nv[b] * su;
+        yv += dv[b] * s;
+        y += nv[b] * s;
+      }
+      ju += nw[c] * yu;
+      jv += nw[c] * yv;
+      jw += dw[c] * y;
+    }
+    Eigen::Matrix3d J;
+    J << ju[0], jv[0], jw[0], ju[1], jv[1], jw[1], ju[2], jv[2], jw[2];
+    return J;
+  }
+
   // dXbar/duvw at the point `basis` was filled for by value().
   FFDKIT_INLINE Eigen::Matrix3d jacobian(const Basis& basis) const {
+    if (cubic_) return jacobianCubic(basis);
     const int nu = axis_[0]->degree() + 1;
     const int nv = axis_[1]->degree() + 1;
     const int nw = axis_[2]->degree() + 1;
@@ -135,7 +197,7 @@ class RestSolver {
 
   FFDKIT_INLINE Eigen::Vector3d initialGuess(const Eigen::Vector3d& q) const {
     Eigen::Vector3d uvw;
-    if (interpolateInverse(q, uvw)) {
+    if (interpolateInverse(q, uvw) || (cylinderStart_ && cylinderStart_->guess(q, uvw))) {
       normalize(uvw);
       return uvw;
     }
@@ -238,7 +300,7 @@ class RestSolver {
 
   // Windows of the cell `basis` lies in.
   FFDKIT_INLINE const Xyz0* window(const Basis& basis) const {
-    return windows_.data() +
+    return &windows_.data()->point +
            windowSize_ * (basis.cell[0] + cells_[0] * (basis.cell[1] + static_cast<std::size_t>(cells_[1]) * basis.cell[2]));
   }
 
@@ -304,22 +366,28 @@ class RestSolver {
  private:
   // Each cell's rest control points, contiguous (x, y, z per point, a fastest): Newton evaluates
   // Xbar many times per point, and gathering through the lattice's index map dominated it.
+  // With cubic_, each window is padded to 4 x 4 x 4 with zero points (their basis lanes are zero).
   void buildWindows() {
     const int nu = axis_[0]->degree() + 1;
     const int nv = axis_[1]->degree() + 1;
     const int nw = axis_[2]->degree() + 1;
-    windowSize_ = static_cast<std::size_t>(nu) * nv * nw;
+    const int pad[3] = {cubic_ ? 4 - nu : 0, cubic_ ? 4 - nv : 0, cubic_ ? 4 - nw : 0};
+    windowSize_ = static_cast<std::size_t>(nu + pad[0]) * (nv + pad[1]) * (nw + pad[2]);
     for (int a = 0; a < 3; ++a) cells_[a] = axis_[a]->cellCount();
     windows_.reserve(windowSize_ * cells_[0] * cells_[1] * cells_[2]);
     for (int cw = 0; cw < cells_[2]; ++cw)
       for (int cv = 0; cv < cells_[1]; ++cv)
         for (int cu = 0; cu < cells_[0]; ++cu)
-          for (int c = 0; c < nw; ++c)
-            for (int b = 0; b < nv; ++b)
-              for (int a = 0; a < nu; ++a) {
+          for (int c = 0; c < nw + pad[2]; ++c)
+            for (int b = 0; b < nv + pad[1]; ++b)
+              for (int a = 0; a < nu + pad[0]; ++a) {
+                if (a >= nu || b >= nv || c >= nw) {
+                  windows_.push_back({Xyz0{0.0, 0.0, 0.0, 0.0}});
+                  continue;
+                }
                 const Eigen::Index f = lattice_.index(axis_[0]->controlIndex(cu, a), axis_[1]->controlIndex(cv, b),
                                                       axis_[2]->controlIndex(cw, c));
-                windows_.push_back(Xyz0{rest_(f, 0), rest_(f, 1), rest_(f, 2), 0.0});
+                windows_.push_back({Xyz0{rest_(f, 0), rest_(f, 1), rest_(f, 2), 0.0}});
               }
   }
 
@@ -381,8 +449,15 @@ class RestSolver {
   double tol_;
   Eigen::Matrix3d affineInverse_;
   std::optional<CylinderRestShape> cylinder_;
+  std::optional<CylinderStart> cylinderStart_;  // untouched cylinders with a cubic angular axis
   CellLocator locate_[3];
-  std::vector<Xyz0> windows_;
+  bool cubic_ = false;  // degree <= 3 on every axis: valueCubic / jacobianCubic
+  CellPolynomials poly_[3];
+  struct alignas(32) WindowPoint {  // a std::vector drops the typedef's alignment, a struct keeps it
+    Xyz0 point;
+  };
+  static_assert(sizeof(WindowPoint) == sizeof(Xyz0));
+  std::vector<WindowPoint> windows_;
   std::size_t windowSize_ = 0;
   int cells_[3] = {0, 0, 0};
   std::vector<Eigen::Vector3d> sampleUvw_;
