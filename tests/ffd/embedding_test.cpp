@@ -134,6 +134,141 @@ TEST(Embedding, CylindricalLatticeRoundTripsIncludingTheAxis) {
   }
 }
 
+// |a - b| with the periodic axis v compared modulo 1.
+double parameterDistance(const Lattice& lattice, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  double worst = 0.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    double d = std::abs(a[axis] - b[axis]);
+    if (lattice.axis(axis).periodic()) d = std::min(d, 1.0 - d);
+    worst = std::max(worst, d);
+  }
+  return worst;
+}
+
+// Untouched cylinders start Newton from the factored inverse (cylinder_start.h): every point must
+// get the parameters it was generated from, also across the seam v = 0 / 1, on the knots of the
+// angular axis, next to the axis of a solid cylinder, on the inner ring, and outside (beyond the
+// outer radius, below and above the height range: extrapolated, status Outside).
+TEST(Embedding, CylindersGetTheGeneratingParametersAcrossTheSeamAndNearTheAxis) {
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  struct Case {
+    Eigen::Vector3i counts;
+    int angularDegree;
+    double inner;
+  };
+  for (const Case& c : {Case{{3, 8, 4}, 3, 0.0}, Case{{3, 8, 4}, 3, 0.4}, Case{{4, 12, 3}, 2, 0.0},
+                        Case{{2, 6, 2}, 1, 0.25}, Case{{3, 5, 4}, 3, 0.0}}) {
+    CylindricalLatticeOptions options;
+    options.counts = c.counts;
+    options.bases[1] = AxisBasis::periodic(c.angularDegree);
+    options.innerRadius = c.inner;
+    options.outerRadius = 1.3;
+    options.zMin = -0.4;
+    options.zMax = 0.9;
+    options.frame = testing::randomFrame(rng);
+    const Lattice lattice = makeCylindricalLattice(options);
+    ASSERT_TRUE(lattice.cylinderRestShape().has_value());
+    const int n = 3000;
+    Eigen::MatrixX3d uvw = testing::randomParameters(lattice, n, rng);
+    const int cells = lattice.axis(1).cellCount();
+    for (int r = 0; r < 600; ++r) {
+      // The seam and the knots of the angular axis, exactly and a few ulp to either side.
+      const double knot = lattice.axis(1).cellMin(r % cells);
+      const double offsets[5] = {0.0, 1e-15, -1e-15, 1e-12, -1e-12};
+      uvw(r, 1) = knot + offsets[(r / cells) % 5];
+      if (uvw(r, 1) < 0.0) uvw(r, 1) += 1.0;
+    }
+    for (int r = 600; r < 700; ++r) uvw(r, 0) = c.inner == 0.0 ? 1e-7 * U(rng) : 0.0;  // axis / inner ring
+    for (int r = 700; r < 800; ++r) uvw(r, 2) = r % 2 ? 0.0 : 1.0;                      // bottom and top
+    const int outsideBegin = n - 300;
+    for (int r = outsideBegin; r < n; ++r) {
+      if (r % 3 == 0) uvw(r, 0) = 1.02 + 0.3 * U(rng);
+      if (r % 3 == 1) uvw(r, 2) = -0.02 - 0.3 * U(rng);
+      if (r % 3 == 2) uvw(r, 2) = 1.02 + 0.3 * U(rng);
+    }
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, uvw);
+    const Embedding e = embed(lattice, Q);
+    ASSERT_EQ(e.failedCount(), 0);
+    EXPECT_EQ(e.insideCount(), outsideBegin);
+    EXPECT_EQ(e.outsideCount(), n - outsideBegin);
+    const Eigen::MatrixX3d found = e.parameters();
+    for (int r = 0; r < n; ++r) {
+      ASSERT_EQ(e.status(r), r < outsideBegin ? PointStatus::Inside : PointStatus::Outside) << "point " << r;
+      if (c.inner == 0.0 && uvw(r, 0) < 1e-6) {
+        // Within 1e-6 of the axis the angle is ill-determined: check the point, not v.
+        const Eigen::Vector3d x = lattice.frame() * lattice.evaluateRest(found.row(r).transpose());
+        EXPECT_LT((x - Q.row(r).transpose()).norm(), 1e-12 * lattice.restSize()) << "point " << r;
+        EXPECT_LT(std::abs(found(r, 0) - uvw(r, 0)), 1e-12) << "point " << r;
+        continue;
+      }
+      ASSERT_LT(parameterDistance(lattice, found.row(r).transpose(), uvw.row(r).transpose()), 1e-12)
+          << "counts " << c.counts.transpose() << " inner " << c.inner << " point " << r << " generated from "
+          << uvw.row(r) << " found " << found.row(r);
+    }
+  }
+}
+
+// The cylinder hint only chooses the first guess: a hint that does not match the rest points
+// (here: the points were moved, then the hint set again) must still give converged parameters.
+TEST(Embedding, AWrongCylinderHintStillConverges) {
+  std::mt19937 rng(32);
+  CylindricalLatticeOptions options;
+  options.innerRadius = 0.3;
+  Lattice lattice = makeCylindricalLattice(options);
+  const CylinderRestShape hint = *lattice.cylinderRestShape();
+  Eigen::MatrixX3d rest = lattice.restPoints();
+  std::uniform_real_distribution<double> U(-0.05, 0.05);
+  for (Eigen::Index r = 0; r < rest.rows(); ++r)
+    for (int c = 0; c < 3; ++c) rest(r, c) += U(rng);
+  lattice.setRestPoints(rest);
+  ASSERT_FALSE(lattice.cylinderRestShape().has_value());
+  lattice.setCylinderRestShape(hint);
+  const Eigen::MatrixX3d uvw = testing::randomParameters(lattice, 2000, rng);
+  const Eigen::MatrixX3d Q = testing::restImages(lattice, uvw);
+  const Embedding e = embed(lattice, Q);
+  EXPECT_EQ(e.failedCount(), 0);
+  EXPECT_GE(e.insideCount(), 1998);
+  EXPECT_LT(roundTripError(lattice, e, Q), 1e-12);
+}
+
+// Degree <= 3 on every axis evaluates the rest map from the cells' polynomials (cell_polynomials.h):
+// user-shaped multi-cell lattices must give the generating parameters, also on and next to the
+// knots, where a point's cell changes.
+TEST(Embedding, CubicUserShapedLatticesGetTheGeneratingParametersOnAndBesideTheKnots) {
+  std::mt19937 rng(33);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  for (int trial = 0; trial < 12; ++trial) {
+    BoxLatticeOptions options;
+    for (int a = 0; a < 3; ++a) {
+      options.counts[a] = 3 + static_cast<int>(4 * U(rng));
+      options.bases[a] = AxisBasis::bspline(1 + trial % 3);
+    }
+    options.frame = testing::randomFrame(rng);
+    Lattice lattice = makeBoxLattice(options);
+    Eigen::MatrixX3d rest = lattice.restPoints();
+    for (Eigen::Index r = 0; r < rest.rows(); ++r)
+      for (int c = 0; c < 3; ++c) rest(r, c) += 0.08 / options.counts[c] * (2.0 * U(rng) - 1.0);
+    lattice.setRestPoints(rest);
+    Eigen::MatrixX3d uvw = testing::randomParameters(lattice, 2000, rng);
+    for (Eigen::Index r = 0; r < 1000; ++r) {
+      const int a = static_cast<int>(r % 3);
+      const AxisSpline& axis = lattice.axis(a);
+      const double offsets[5] = {0.0, 1e-15, -1e-15, 1e-11, -1e-11};
+      uvw(r, a) = std::clamp(axis.cellMin(static_cast<int>(r / 3) % axis.cellCount()) + offsets[(r / 7) % 5],
+                             axis.domainMin(), axis.domainMax());
+    }
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, uvw);
+    const Embedding e = embed(lattice, Q);
+    EXPECT_EQ(e.failedCount(), 0) << "trial " << trial;
+    const Eigen::MatrixX3d found = e.parameters();
+    for (Eigen::Index r = 0; r < uvw.rows(); ++r) {
+      ASSERT_LT((found.row(r) - uvw.row(r)).cwiseAbs().maxCoeff(), 1e-12)
+          << "trial " << trial << " point " << r << " generated from " << uvw.row(r) << " found " << found.row(r);
+    }
+  }
+}
+
 TEST(Embedding, ReportsOutsidePointsEpsilonInclusively) {
   BoxLatticeOptions options;
   const Lattice lattice = makeBoxLattice(options);
