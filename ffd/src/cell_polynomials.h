@@ -60,6 +60,16 @@ class CellPolynomials {
     }
   }
 
+  // Power coefficients of the cell's functions (lane r for the r-th function, index k for x^k)
+  // and the reciprocal of its width.
+  const Lane4* coefficients(int cell) const { return cells_[static_cast<std::size_t>(cell)].a; }
+  double scale(int cell) const { return cells_[static_cast<std::size_t>(cell)].scale; }
+  // The cell's local coordinate of t: in [0, 1] for t in the cell.
+  FFDKIT_INLINE double local(int cell, double t) const {
+    const Cell& k = cells_[static_cast<std::size_t>(cell)];
+    return (t - k.origin) * k.scale;
+  }
+
   // Values N and derivatives D = dN/dt of the basis functions non-zero on `cell` at t (already
   // wrapped on a periodic axis), lane r for the r-th function (AxisSpline::controlIndex(cell, r)).
   FFDKIT_INLINE void evaluate(int cell, double t, Lane4& N, Lane4& D) const {
