@@ -16,6 +16,7 @@
 
 #include "cell_locator.h"
 #include "cell_polynomials.h"
+#include "curvature_bound.h"
 #include "cylinder_start.h"
 #include "vector_clones.h"
 
@@ -23,9 +24,9 @@ namespace ffdkit::ffd::detail {
 
 constexpr int kMaxBasis = 33;
 
-// x, y, z and a zero: one point of a cell window, one AVX register (two SSE2 registers). Aligned
-// to 32 explicitly for the same reason as Lane4 (cell_polynomials.h).
-typedef double Xyz0 __attribute__((vector_size(4 * sizeof(double)), aligned(32)));
+// x, y, z and a zero: one point of a cell window, one AVX register (two SSE2 registers); the
+// type of cell_polynomials.h (aligned to 32 explicitly, see there).
+using Xyz0 = Lane4;
 // Evaluates Xbar and its Jacobian on the rest lattice; one per thread-safe call, no allocation.
 class RestSolver {
  public:
@@ -55,6 +56,7 @@ class RestSolver {
     restMin_ = rest_.colwise().minCoeff().transpose();
     restMax_ = rest_.colwise().maxCoeff().transpose();
     buildWindows();
+    if (cubic_) curvature_ = restCurvatureBound(lattice, poly_);
     if (!lattice.restIsAffine()) buildSamples();
     const bool periodic = axis_[0]->periodic() || axis_[1]->periodic() || axis_[2]->periodic();
     if (inverseGrid && !lattice.restIsAffine() && !cylinder_ && !periodic) buildInverseGrid();
@@ -239,6 +241,11 @@ class RestSolver {
         delta = -(JtJ + mu * Eigen::Matrix3d::Identity()).ldlt().solve(J.transpose() * F);
       }
       if (!delta.allFinite()) return false;
+      if (cubic_ && certified(basis[current], uvw, delta, F, J)) {
+        uvw += delta;
+        normalize(uvw);
+        return true;
+      }
       bool accepted = false;
       double step = 1.0;
       for (int halving = 0; halving < 30; ++halving, step *= 0.5) {
@@ -258,6 +265,28 @@ class RestSolver {
       if (!accepted) return f <= tol_;
     }
     return f <= tol_;
+  }
+
+  // Early exit: true when |Xbar(uvw + delta) - q| <= tol is certain without evaluating Xbar there
+  // (Newton's last evaluation only confirmed what the step size already told). uvw and uvw + delta
+  // must lie in the closure of the cell `basis` was filled for; there Xbar is one polynomial and
+  // Taylor's theorem gives |F(uvw + delta)| <= |F + J delta| + 1/2 sum_ab H_ab |delta_a| |delta_b|
+  // with H the curvature bound (curvature_bound.h); the rounding of F + J delta is added, and the
+  // bound must stay below half the tolerance.
+  FFDKIT_INLINE bool certified(const Basis& basis, const Eigen::Vector3d& uvw, const Eigen::Vector3d& delta,
+                               const Eigen::Vector3d& F, const Eigen::Matrix3d& J) const {
+    const Eigen::Vector3d d = delta.cwiseAbs();
+    const double taylor = 0.5 * d.dot(curvature_ * d);
+    if (!(taylor <= 0.25 * tol_)) return false;
+    constexpr double kRounding = 8.0 * std::numeric_limits<double>::epsilon();
+    const double linear = (F + J * delta).norm() + kRounding * (F.norm() + J.norm() * delta.norm());
+    if (!(taylor + linear <= 0.5 * tol_)) return false;
+    for (int a = 0; a < 3; ++a) {
+      const double x0 = poly_[a].local(basis.cell[a], uvw[a]);
+      const double x1 = poly_[a].local(basis.cell[a], uvw[a] + delta[a]);
+      if (!(x0 >= 0.0 && x0 <= 1.0 && x1 >= 0.0 && x1 <= 1.0)) return false;
+    }
+    return true;
   }
 
   // True when q lies outside the axis-aligned bounding box of the rest points (grown by the
@@ -452,6 +481,7 @@ class RestSolver {
   std::optional<CylinderStart> cylinderStart_;  // untouched cylinders with a cubic angular axis
   CellLocator locate_[3];
   bool cubic_ = false;  // degree <= 3 on every axis: valueCubic / jacobianCubic
+  Eigen::Matrix3d curvature_ = Eigen::Matrix3d::Zero();  // cubic_ only, see certified()
   CellPolynomials poly_[3];
   struct alignas(32) WindowPoint {  // a std::vector drops the typedef's alignment, a struct keeps it
     Xyz0 point;
