@@ -22,8 +22,8 @@ namespace ffdkit::ffd::detail {
 // (Bounds from the power coefficients instead were ~1000 x too large: they lose the cancellation.)
 // poly: the cell polynomials of the lattice's three axes (each of degree <= 3).
 inline Eigen::Matrix3d restCurvatureBound(const Lattice& lattice, const CellPolynomials poly[3]) {
-  const AxisSpline* axis[3] = {&lattice.axis(0), &lattice.axis(1), &lattice.axis(2)};
-  const int cells[3] = {axis[0]->cellCount(), axis[1]->cellCount(), axis[2]->cellCount()};
+  const AxisSpline* axes[3] = {&lattice.axis(0), &lattice.axis(1), &lattice.axis(2)};
+  const int cells[3] = {axes[0]->cellCount(), axes[1]->cellCount(), axes[2]->cellCount()};
   // Power to cubic Bernstein coefficients: x^a = sum_{i >= a} (C(i, a) / C(3, a)) B_i(x).
   static constexpr double kToBernstein[4][4] = {
       {1, 0, 0, 0}, {1, 1.0 / 3, 0, 0}, {1, 2.0 / 3, 1.0 / 3, 0}, {1, 1, 1, 1}};
@@ -38,9 +38,9 @@ inline Eigen::Matrix3d restCurvatureBound(const Lattice& lattice, const CellPoly
             for (int r = 0; r < 4; ++r) {
               Lane4& point = P[r + 4 * (s + 4 * t)];
               point = Lane4{0, 0, 0, 0};
-              if (r > axis[0]->degree() || s > axis[1]->degree() || t > axis[2]->degree()) continue;
-              const Eigen::Index f = lattice.index(axis[0]->controlIndex(cu, r), axis[1]->controlIndex(cv, s),
-                                                   axis[2]->controlIndex(cw, t));
+              if (r > axes[0]->degree() || s > axes[1]->degree() || t > axes[2]->degree()) continue;
+              const Eigen::Index f = lattice.index(axes[0]->controlIndex(cu, r), axes[1]->controlIndex(cv, s),
+                                                   axes[2]->controlIndex(cw, t));
               for (int c = 0; c < 3; ++c) point[c] = lattice.restPoints()(f, c);
             }
         // B[axis][i]: lane r = Bernstein coefficient i of the cell's r-th basis function.
