@@ -121,15 +121,45 @@ FFDKIT_INLINE void flushQueue(const Kernel& k, Queue& q, int count) {
   q.size -= count;
 }
 
+// Writes the rows r0 .. r0+count-1 of out (packed rows: one contiguous store).
+FFDKIT_INLINE void storeRows(const Kernel& k, Eigen::Index r0, int count, const double* x, const double* y,
+                             const double* z) {
+  if (k.outRow == 3 && k.outCol == 1 && count == kLanes) {
+    double packed[3 * kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      packed[3 * l] = x[l];
+      packed[3 * l + 1] = y[l];
+      packed[3 * l + 2] = z[l];
+    }
+    // Three vector stores (a plain memcpy of the 192 bytes becomes `rep movs`, slow to start).
+    for (int v = 0; v < 3; ++v) {
+      Lane part;
+      __builtin_memcpy(&part, packed + v * kLanes, sizeof(Lane));
+      __builtin_memcpy(k.out + 3 * r0 + v * kLanes, &part, sizeof(Lane));
+    }
+    return;
+  }
+  for (int l = 0; l < count; ++l) {
+    double* o = k.out + (r0 + l) * k.outRow;
+    o[0] = x[l];
+    o[k.outCol] = y[l];
+    o[2 * k.outCol] = z[l];
+  }
+}
+
 // One block of up to kLanes points starting at row r0 (count of them real; the other lanes repeat
-// the last point and are not stored): box coordinates, the inside test, out = q for every point,
-// inside points queued; insideLanes[l] counts the inside points of lane l.
+// the last point and are not stored): box coordinates and the inside test, then
+// - no point inside (or nothing displaced): out = q;
+// - every point inside (the usual case in a coherent mesh or a box around the object): the sum
+//   runs on the block itself and out is written once;
+// - some inside: out = q, and the inside points are queued for a full block of inside points.
+// insideLanes[l] counts the inside points of lane l.
 // Plain arrays and loops the compiler vectorises, not Lane comparisons: GCC 12 splits comparisons
 // of vector-extension types into scalar ones inside target_clones functions.
+template <int C>
 FFDKIT_INLINE void scanBlock(const Kernel& k, Eigen::Index r0, int count, Queue& q, std::int64_t* insideLanes) {
   double x[kLanes], y[kLanes], z[kLanes];
-  const bool packedIn = k.qRow == 3 && k.qCol == 1 && count == kLanes;
-  if (packedIn) {
+  if (k.qRow == 3 && k.qCol == 1 && count == kLanes) {
     // Packed rows (numpy's C order): one contiguous load, de-interleaved.
     double packed[3 * kLanes];
     __builtin_memcpy(packed, k.q + 3 * r0, sizeof(packed));
@@ -137,14 +167,6 @@ FFDKIT_INLINE void scanBlock(const Kernel& k, Eigen::Index r0, int count, Queue&
       x[l] = packed[3 * l];
       y[l] = packed[3 * l + 1];
       z[l] = packed[3 * l + 2];
-    }
-    if (k.outRow == 3 && k.outCol == 1 && !k.inPlace) {
-      // Three vector stores (a plain memcpy of the 192 bytes becomes `rep movs`, slow to start).
-      for (int v = 0; v < 3; ++v) {
-        Lane part;
-        __builtin_memcpy(&part, packed + v * kLanes, sizeof(Lane));
-        __builtin_memcpy(k.out + 3 * r0 + v * kLanes, &part, sizeof(Lane));
-      }
     }
   } else {
     for (int l = 0; l < kLanes; ++l) {
@@ -165,17 +187,27 @@ FFDKIT_INLINE void scanBlock(const Kernel& k, Eigen::Index r0, int count, Queue&
     // NaN compares false: outside. Non-short-circuit &, so that the loop vectorises.
     in[l] = (su[l] >= lo) & (su[l] <= hi) & (sv[l] >= lo) & (sv[l] <= hi) & (sw[l] >= lo) & (sw[l] <= hi) & (l < count);
   }
-  for (int l = 0; l < kLanes; ++l) insideLanes[l] += in[l];
-  // out = q (the result of outside points; inside ones are overwritten when their queue flushes).
-  if (!(packedIn && k.outRow == 3 && k.outCol == 1) && !k.inPlace) {
-    for (int l = 0; l < count; ++l) {
-      double* o = k.out + (r0 + l) * k.outRow;
-      o[0] = x[l];
-      o[k.outCol] = y[l];
-      o[2 * k.outCol] = z[l];
-    }
+  std::int64_t inside = 0;
+  for (int l = 0; l < kLanes; ++l) {
+    insideLanes[l] += in[l];
+    inside += in[l];
   }
-  if (k.rowCount == 0) return;
+  if (k.rowCount == 0 || inside == 0) {
+    if (!k.inPlace) storeRows(k, r0, count, x, y, z);
+    return;
+  }
+  if (inside == count) {
+    Lane dx, dy, dz;
+    displacementLanes<C>(k, loadLane(su), loadLane(sv), loadLane(sw), dx, dy, dz);
+    const Lane ox = loadLane(x) + dx, oy = loadLane(y) + dy, oz = loadLane(z) + dz;
+    double rx[kLanes], ry[kLanes], rz[kLanes];
+    __builtin_memcpy(rx, &ox, sizeof(Lane));
+    __builtin_memcpy(ry, &oy, sizeof(Lane));
+    __builtin_memcpy(rz, &oz, sizeof(Lane));
+    storeRows(k, r0, count, rx, ry, rz);
+    return;
+  }
+  if (!k.inPlace) storeRows(k, r0, count, x, y, z);
   for (int l = 0; l < count; ++l) {
     const int slot = q.size;
     q.value[0][slot] = su[l];
@@ -194,7 +226,7 @@ FFDKIT_INLINE Eigen::Index deformRangeT(const Kernel& k, Eigen::Index begin, Eig
   std::int64_t insideLanes[kLanes] = {};
   Queue q;
   for (Eigen::Index r = begin; r < end; r += kLanes) {
-    scanBlock(k, r, static_cast<int>(std::min<Eigen::Index>(kLanes, end - r)), q, insideLanes);
+    scanBlock<C>(k, r, static_cast<int>(std::min<Eigen::Index>(kLanes, end - r)), q, insideLanes);
     if (q.size >= kLanes) flushQueue<C>(k, q, kLanes);
   }
   if (q.size > 0) flushQueue<C>(k, q, q.size);

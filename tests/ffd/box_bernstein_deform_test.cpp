@@ -1,5 +1,6 @@
 #include "ffdkit/ffd/box_bernstein_deform.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -118,6 +119,39 @@ TEST(BoxBernsteinDeform, MatchesTheTripleSumForEqualCounts) {
   for (int c = 2; c <= 6; ++c) {
     SCOPED_TRACE(c);
     expectMatchesReference(randomLattice({c, c, c}, rng), 2000, 10 + c);
+  }
+}
+
+TEST(BoxBernsteinDeform, BlocksOfInsidePointsAndSortedPointsMatchTheTripleSum) {
+  // All inside: every block of eight is summed in place. Sorted along x: most blocks are all
+  // inside or all outside, the blocks at the faces mixed (queued).
+  std::mt19937 rng(17);
+  for (const Eigen::Vector3i& counts : {Eigen::Vector3i(4, 4, 4), Eigen::Vector3i(2, 3, 5)}) {
+    const BoxBernsteinLattice lattice = randomLattice(counts, rng);
+    for (const double grow : {0.0, 0.2}) {
+      std::uniform_real_distribution<double> U(-grow, 1.0 + grow);
+      Eigen::MatrixX3d s(4001, 3);
+      for (Eigen::Index r = 0; r < s.rows(); ++r) s.row(r) << U(rng), U(rng), U(rng);
+      if (grow > 0.0) {
+        std::vector<Eigen::Index> order(s.rows());
+        for (Eigen::Index r = 0; r < s.rows(); ++r) order[r] = r;
+        std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) { return s(a, 0) < s(b, 0); });
+        const Eigen::MatrixX3d unsorted = s;
+        for (Eigen::Index r = 0; r < s.rows(); ++r) s.row(r) = unsorted.row(order[r]);
+      }
+      Eigen::MatrixX3d q(s.rows(), 3);
+      for (Eigen::Index r = 0; r < s.rows(); ++r) q.row(r) = (lattice.frame * s.row(r).transpose()).transpose();
+      const Eigen::MatrixX3d out = deformed(lattice, q);
+      for (Eigen::Index r = 0; r < s.rows(); ++r) {
+        const Eigen::Vector3d sr = s.row(r).transpose();
+        if (insideBox(sr)) {
+          ASSERT_LE((out.row(r).transpose() - referencePoint(lattice, sr)).cwiseAbs().maxCoeff(), 1e-12 * scaleOf(q))
+              << "point " << r;
+        } else {
+          ASSERT_EQ(out.row(r), q.row(r)) << "outside point " << r;
+        }
+      }
+    }
   }
 }
 
