@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/mesh_io.h"
 
 namespace ffdkit::meshio::detail {
@@ -15,13 +16,13 @@ MeshData readPly(std::string_view bytes, const std::string& source);
 std::string writePly(const MeshData& mesh, PlyEncoding encoding);
 
 MeshData readObj(std::string_view bytes, const std::string& source);
-std::string writeObj(const MeshData& mesh);
+void writeObj(ByteSink& out, const MeshData& mesh);
 
 MeshData readStl(std::string_view bytes, const std::string& source);
 std::string writeStl(const MeshData& mesh);
 
 MeshData readXyz(std::string_view bytes, const std::string& source);
-std::string writeXyz(const MeshData& mesh);
+void writeXyz(ByteSink& out, const MeshData& mesh);
 
 MeshData readNpy(std::string_view bytes, const std::string& source);
 std::string writeNpy(const MeshData& mesh);

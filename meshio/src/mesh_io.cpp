@@ -120,19 +120,30 @@ MeshData readMesh(const std::filesystem::path& path) {
   return parse(bytes.view(), *format, source, path.parent_path());
 }
 
-std::string meshFileBytes(const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {
+namespace {
+
+/// The bytes of `mesh` in `format`, in order, into `out`. Text formats stream slice by slice.
+void writeMeshBytes(ByteSink& out, const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {
   switch (format) {
-    case MeshFormat::Obj: return detail::writeObj(mesh);
-    case MeshFormat::Ply: return detail::writePly(mesh, options.plyEncoding);
-    case MeshFormat::Stl: return detail::writeStl(mesh);
-    case MeshFormat::Xyz: return detail::writeXyz(mesh);
-    case MeshFormat::Npy: return detail::writeNpy(mesh);
-    case MeshFormat::Vtp: return detail::writeVtk(mesh, true);
-    case MeshFormat::Vtk: return detail::writeVtk(mesh, false);
+    case MeshFormat::Obj: return detail::writeObj(out, mesh);
+    case MeshFormat::Ply: return out.write(detail::writePly(mesh, options.plyEncoding));
+    case MeshFormat::Stl: return out.write(detail::writeStl(mesh));
+    case MeshFormat::Xyz: return detail::writeXyz(out, mesh);
+    case MeshFormat::Npy: return out.write(detail::writeNpy(mesh));
+    case MeshFormat::Vtp: return out.write(detail::writeVtk(mesh, true));
+    case MeshFormat::Vtk: return out.write(detail::writeVtk(mesh, false));
     case MeshFormat::Gltf:
     case MeshFormat::Glb: break;
   }
   throw MeshIoError("cannot write format '" + std::string(meshFormatExtension(format)) + "' (writes " + formatList(true) + ")");
+}
+
+}  // namespace
+
+std::string meshFileBytes(const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {
+  detail::StringSink bytes;
+  writeMeshBytes(bytes, mesh, format, options);
+  return std::move(bytes.text);
 }
 
 void writeMesh(std::ostream& out, const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {
@@ -142,19 +153,24 @@ void writeMesh(std::ostream& out, const MeshData& mesh, MeshFormat format, const
   if (!out) throw MeshIoError("<stream>: cannot write");
 }
 
-void writeMesh(const std::filesystem::path& path, const MeshData& mesh, const MeshWriteOptions& options) {
+StagedFile stageMesh(const std::filesystem::path& path, const MeshData& mesh, const MeshWriteOptions& options) {
   const auto format = meshFormatOf(path);
   if (!format || !isWritable(*format))
     throw MeshIoError(path.string() + ": cannot write format '" + path.extension().string() + "' (writes " + formatList(true) + ")");
   validateMesh(mesh, path.string());
-  std::string bytes;
   try {
-    bytes = meshFileBytes(mesh, *format, options);
+    return StagedFile(path, [&](ByteSink& out) { writeMeshBytes(out, mesh, *format, options); }, options.durable);
   } catch (const MeshIoError& e) {
     throw MeshIoError(path.string() + ": " + e.what());
+  } catch (const std::runtime_error& e) {  // the file's own steps, already naming the path
+    throw MeshIoError(e.what());
   }
+}
+
+void writeMesh(const std::filesystem::path& path, const MeshData& mesh, const MeshWriteOptions& options) {
+  StagedFile staged = stageMesh(path, mesh, options);
   try {
-    writeFileAtomically(path, bytes, options.durable);
+    staged.commit();
   } catch (const std::runtime_error& e) {
     throw MeshIoError(e.what());
   }

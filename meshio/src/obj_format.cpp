@@ -111,12 +111,11 @@ MeshData readObj(std::string_view bytes, const std::string& source) {
   return mesh;
 }
 
-std::string writeObj(const MeshData& mesh) {
+void writeObj(ByteSink& out, const MeshData& mesh) {
   const bool normals = mesh.hasNormals && mesh.triangles.rows() > 0;
-  std::string out = "# ffdkit\n";
-  out.reserve(std::size_t(mesh.points.rows()) * (normals ? 120 : 64) + std::size_t(mesh.triangles.rows()) * 40);
+  out.write("# ffdkit\n");
   auto rows = [&](std::string_view keyword, const Eigen::MatrixX3d& m) {
-    appendRows(out, m.rows(), keyword.size() + 3 * 25, [&](char* at, Eigen::Index i) {
+    writeRows(out, m.rows(), keyword.size() + 3 * 25, [&](char* at, Eigen::Index i) {
       at = std::copy(keyword.begin(), keyword.end(), at);
       for (int c = 0; c < 3; ++c) {
         *at++ = ' ';
@@ -128,27 +127,31 @@ std::string writeObj(const MeshData& mesh) {
   };
   rows("v", mesh.points);
   if (normals) rows("vn", vertexNormals(mesh.points, mesh.triangles));
-  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
-    out += 'f';
+  // "f a b c" or "f a//a b//b c//c": 1-based indices of at most 11 digits each.
+  writeRows(out, mesh.triangles.rows(), 2 + 3 * (normals ? 25 : 12), [&](char* at, Eigen::Index t) {
+    *at++ = 'f';
     for (int c = 0; c < 3; ++c) {
       const long long index = mesh.triangles(t, c) + 1LL;
-      out += ' ';
-      appendNumber(out, index);
+      *at++ = ' ';
+      at = std::to_chars(at, at + 12, index).ptr;
       if (normals) {
-        out += "//";
-        appendNumber(out, index);
+        *at++ = '/';
+        *at++ = '/';
+        at = std::to_chars(at, at + 12, index).ptr;
       }
     }
-    out += '\n';
-  }
-  for (Eigen::Index s = 0; s < mesh.segments.rows(); ++s) {
-    out += "l ";
-    appendNumber(out, mesh.segments(s, 0) + 1LL);
-    out += ' ';
-    appendNumber(out, mesh.segments(s, 1) + 1LL);
-    out += '\n';
-  }
-  return out;
+    *at++ = '\n';
+    return at;
+  });
+  writeRows(out, mesh.segments.rows(), 2 + 2 * 12 + 1, [&](char* at, Eigen::Index s) {
+    *at++ = 'l';
+    for (int c = 0; c < 2; ++c) {
+      *at++ = ' ';
+      at = std::to_chars(at, at + 12, mesh.segments(s, c) + 1LL).ptr;
+    }
+    *at++ = '\n';
+    return at;
+  });
 }
 
 }  // namespace ffdkit::meshio::detail

@@ -4,6 +4,7 @@
 // checked in one place.
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -21,6 +22,7 @@
 
 #include "ffdkit/ffd/huge_pages.h"
 
+#include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/mesh_data.h"
 
 namespace ffdkit::meshio::detail {
@@ -228,36 +230,59 @@ inline void appendNumber(std::string& out, long long value) {
 /// have room for 24 characters (the longest double, "-2.2250738585072014e-308").
 inline char* putNumber(char* at, double value) { return std::to_chars(at, at + 24, value).ptr; }
 
-/// Appends `rows` lines of text to `out`, row i written by `formatRow(cursor, i) -> end` with at
+/// Bytes collected in memory (meshFileBytes, the stream overload of writeMesh).
+class StringSink final : public ByteSink {
+ public:
+  void write(std::string_view bytes) override { text.append(bytes); }
+  std::string text;
+};
+
+/// Writes `rows` lines of text to `sink`, row i written by `formatRow(cursor, i) -> end` with at
 /// most `maxRowBytes` bytes. Shortest-round-trip formatting costs ~50 ns a number, so large
-/// blocks are cut into one slice per hardware thread, formatted side by side into buffers of
-/// their own and appended in order: the text is the same as a serial loop's.
+/// blocks are cut into slices of 65,536 rows formatted side by side by one thread per core,
+/// while this thread hands each finished slice to the sink in order (a file's disk write-back
+/// then overlaps the formatting of later slices). The text is the same as a serial loop's.
 template <class FormatRow>
-void appendRows(std::string& out, Eigen::Index rows, std::size_t maxRowBytes, FormatRow formatRow) {
+void writeRows(ByteSink& sink, Eigen::Index rows, std::size_t maxRowBytes, FormatRow formatRow) {
   constexpr Eigen::Index kRowsPerSlice = 65536;
-  const Eigen::Index hardware = std::max<Eigen::Index>(1, Eigen::Index(std::thread::hardware_concurrency()));
-  const Eigen::Index slices = std::clamp<Eigen::Index>(rows / kRowsPerSlice, 1, hardware);
+  const Eigen::Index slices = std::max<Eigen::Index>(1, (rows + kRowsPerSlice - 1) / kRowsPerSlice);
   struct Slice {
     std::unique_ptr<char[]> text;
     std::size_t size = 0;
+    std::atomic<bool> ready{false};
   };
   std::vector<Slice> done(static_cast<std::size_t>(slices));
-  auto format = [&](Eigen::Index s) {
-    const Eigen::Index first = rows * s / slices, last = rows * (s + 1) / slices;
-    Slice& slice = done[std::size_t(s)];
-    slice.text = std::make_unique_for_overwrite<char[]>(std::size_t(last - first) * maxRowBytes);
-    char* cursor = slice.text.get();
-    for (Eigen::Index i = first; i < last; ++i) cursor = formatRow(cursor, i);
-    slice.size = std::size_t(cursor - slice.text.get());
+  std::atomic<Eigen::Index> next{0};
+  auto format = [&] {
+    for (Eigen::Index s; (s = next.fetch_add(1)) < slices;) {
+      const Eigen::Index first = s * kRowsPerSlice, last = std::min(rows, first + kRowsPerSlice);
+      Slice& slice = done[std::size_t(s)];
+      slice.text = std::make_unique_for_overwrite<char[]>(std::size_t(last - first) * maxRowBytes);
+      char* cursor = slice.text.get();
+      for (Eigen::Index i = first; i < last; ++i) cursor = formatRow(cursor, i);
+      slice.size = std::size_t(cursor - slice.text.get());
+      slice.ready.store(true, std::memory_order_release);
+      slice.ready.notify_one();
+    }
   };
+  if (slices == 1) {
+    format();
+    sink.write({done[0].text.get(), done[0].size});
+    return;
+  }
+  const Eigen::Index hardware = std::max<Eigen::Index>(1, Eigen::Index(std::thread::hardware_concurrency()));
   std::vector<std::jthread> workers;
-  for (Eigen::Index s = 1; s < slices; ++s) workers.emplace_back(format, s);
-  format(0);
-  workers.clear();  // joins
-  std::size_t total = out.size();
-  for (const Slice& slice : done) total += slice.size;
-  out.reserve(total);
-  for (const Slice& slice : done) out.append(slice.text.get(), slice.size);
+  for (Eigen::Index t = 0; t < std::min(hardware, slices); ++t) workers.emplace_back(format);
+  try {
+    for (Slice& slice : done) {
+      slice.ready.wait(false, std::memory_order_acquire);
+      sink.write({slice.text.get(), slice.size});
+      slice.text.reset();
+    }
+  } catch (...) {
+    next.store(slices);  // the workers stop after their current slice; their destructors join
+    throw;
+  }
 }
 
 /// Appends the raw bytes of `value` in the given byte order.

@@ -32,9 +32,8 @@ MeshData readXyz(std::string_view bytes, const std::string& source) {
   return mesh;
 }
 
-std::string writeXyz(const MeshData& mesh) {
-  std::string out;
-  appendRows(out, mesh.points.rows(), 3 * 25, [&](char* at, Eigen::Index i) {
+void writeXyz(ByteSink& out, const MeshData& mesh) {
+  writeRows(out, mesh.points.rows(), 3 * 25, [&](char* at, Eigen::Index i) {
     at = putNumber(at, mesh.points(i, 0));
     *at++ = ' ';
     at = putNumber(at, mesh.points(i, 1));
@@ -43,7 +42,6 @@ std::string writeXyz(const MeshData& mesh) {
     *at++ = '\n';
     return at;
   });
-  return out;
 }
 
 namespace {

@@ -85,5 +85,35 @@ TEST_F(AtomicWrite, FailuresNameThePathAndTheStep) {
   }
 }
 
+TEST_F(AtomicWrite, AStreamedFileHoldsEveryPieceInOrder) {
+  const fs::path target = dir_ / "streamed.txt";
+  std::string expected;
+  StagedFile staged(target, [&](ByteSink& out) {
+    for (int piece = 0; piece < 300; ++piece) {
+      const std::string text = std::string(std::size_t(piece % 7) * 1000 + 1, char('a' + piece % 26)) + "\n";
+      expected += text;
+      out.write(text);
+    }
+    out.write("");  // an empty piece is allowed and writes nothing
+  });
+  EXPECT_FALSE(fs::exists(target));
+  staged.commit();
+  EXPECT_EQ(read(target), expected);
+  EXPECT_EQ(names(), std::vector<std::string>{"streamed.txt"});
+}
+
+TEST_F(AtomicWrite, AProducerThatFailsLeavesTheOldFileAndNoTemporary) {
+  const fs::path target = dir_ / "out.txt";
+  std::ofstream(target) << "old";
+  struct ProducerFailed {};
+  EXPECT_THROW(StagedFile(target, [](ByteSink& out) {
+                 out.write("half of the file");
+                 throw ProducerFailed{};
+               }),
+               ProducerFailed);
+  EXPECT_EQ(read(target), "old");
+  EXPECT_EQ(names(), std::vector<std::string>{"out.txt"});
+}
+
 }  // namespace
 }  // namespace ffdkit::meshio

@@ -111,6 +111,38 @@ TEST_F(MeshIo, LargeTextFilesAreTheSerialTextLineForLine) {
     EXPECT_FALSE(std::getline(lines, line)) << "extra text: " << line;
     std::istringstream in(text);
     EXPECT_EQ(readMesh(in, format).points, mesh.points);  // bit for bit
+    // A path write streams the slices into the file as they are formatted: the same bytes.
+    const std::filesystem::path file = dir_ / ("large" + std::string(meshFormatExtension(format)));
+    writeMesh(file, mesh);
+    std::ifstream written(file, std::ios::binary);
+    EXPECT_TRUE(std::equal(text.begin(), text.end(), std::istreambuf_iterator<char>(written), std::istreambuf_iterator<char>()));
+  }
+}
+
+// OBJ faces and lines are also formatted in slices: 200,003 faces and 70,001 lines, each checked.
+TEST_F(MeshIo, LargeObjFacesAndLinesAreTheSerialTextLineForLine) {
+  MeshData mesh;
+  mesh.points = Eigen::MatrixX3d::Random(200005, 3);
+  mesh.triangles.resize(200003, 3);
+  for (int t = 0; t < 200003; ++t) mesh.triangles.row(t) << t, t + 2, t + 1;
+  mesh.segments.resize(70001, 2);
+  for (int s = 0; s < 70001; ++s) mesh.segments.row(s) << s + 1, s;
+  for (bool normals : {false, true}) {
+    mesh.hasNormals = normals;
+    const std::string text = meshFileBytes(mesh, MeshFormat::Obj);
+    std::istringstream lines(text);
+    std::string line;
+    for (Eigen::Index i = 0; i < 1 + 2 * mesh.points.rows() - (normals ? 0 : mesh.points.rows()); ++i) std::getline(lines, line);
+    auto index = [&](int v) { return std::to_string(v + 1) + (normals ? "//" + std::to_string(v + 1) : ""); };
+    for (int t = 0; t < 200003; ++t) {
+      ASSERT_TRUE(std::getline(lines, line));
+      ASSERT_EQ(line, "f " + index(t) + " " + index(t + 2) + " " + index(t + 1)) << "face " << t;
+    }
+    for (int s = 0; s < 70001; ++s) {
+      ASSERT_TRUE(std::getline(lines, line));
+      ASSERT_EQ(line, "l " + std::to_string(s + 2) + " " + std::to_string(s + 1)) << "line " << s;
+    }
+    EXPECT_FALSE(std::getline(lines, line)) << "extra text: " << line;
   }
 }
 

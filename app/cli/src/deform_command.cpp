@@ -109,16 +109,7 @@ void onEveryRank(const BatchRanks& ranks, Work&& work) {
 void writeAll(const std::vector<std::pair<fs::path, scenes::MeshData>>& outputs, const BatchRanks& ranks) {
   std::vector<meshio::StagedFile> staged;
   onEveryRank(ranks, [&] {
-    for (const auto& [target, mesh] : outputs) {
-      const auto format = meshio::meshFormatOf(target);
-      if (!format || !meshio::isWritable(*format))
-        throw meshio::MeshIoError(target.string() + ": cannot write format '" + target.extension().string() + "'");
-      try {
-        staged.emplace_back(target, meshio::meshFileBytes(mesh, *format));
-      } catch (const meshio::MeshIoError& e) {
-        throw meshio::MeshIoError(target.string() + ": " + e.what());
-      }
-    }
+    for (const auto& [target, mesh] : outputs) staged.push_back(meshio::stageMesh(target, mesh));
   });
   for (auto& file : staged) file.commit();
 }

@@ -1,9 +1,25 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string_view>
 
 namespace ffdkit::meshio {
+
+/// Receives a file's bytes in order, piece by piece (a StagedFile's temporary file, or a
+/// string in memory), so that a writer can hand over what it has formatted while it formats
+/// the rest.
+class ByteSink {
+ public:
+  /// @throws std::runtime_error when the bytes cannot be stored (e.g. the disk is full).
+  virtual void write(std::string_view bytes) = 0;
+
+ protected:
+  ~ByteSink() = default;
+};
+
+/// Writes a whole file into the sink it is given.
+using ByteProducer = std::function<void(ByteSink&)>;
 
 /// A file written beside its destination and not yet in place: the constructor writes
 /// `content` to a hidden temporary file in `path`'s folder (flushed to disk when `durable`);
@@ -15,6 +31,12 @@ class StagedFile {
  public:
   /// @throws std::runtime_error naming the path and the failed step.
   StagedFile(const std::filesystem::path& path, std::string_view content, bool durable = true);
+  /// Streams the file: each piece `produce` writes goes to the temporary file at once and, when
+  /// `durable`, its write-back to disk starts then (sync_file_range), so the disk works while
+  /// later pieces are still being made and the final fsync waits only for the tail.
+  /// @throws std::runtime_error naming the path and the failed step, or what `produce` throws
+  ///         (the temporary file is removed either way).
+  StagedFile(const std::filesystem::path& path, const ByteProducer& produce, bool durable = true);
   ~StagedFile();
   StagedFile(StagedFile&& other) noexcept;
   StagedFile& operator=(StagedFile&&) = delete;

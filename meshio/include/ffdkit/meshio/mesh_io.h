@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 
+#include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/mesh_data.h"
 #include "ffdkit/meshio/mesh_format.h"
 
@@ -41,6 +42,11 @@ MeshData readMeshBytes(std::string_view bytes, MeshFormat format, const std::str
 /// left by killed writers are removed by the next write into the folder.
 /// @throws MeshIoError for an unknown extension, a mesh that fails validateMesh, or a failed write.
 void writeMesh(const std::filesystem::path& path, const MeshData& mesh, const MeshWriteOptions& options = {});
+
+/// writeMesh without the final rename: the complete file waits in its temporary beside `path`
+/// until commit() (a batch renames all its files only once every one is written). Text formats
+/// stream: slices go to the file while later ones are formatted. @throws MeshIoError as writeMesh.
+StagedFile stageMesh(const std::filesystem::path& path, const MeshData& mesh, const MeshWriteOptions& options = {});
 
 /// Writes a mesh of `format` to a stream.
 void writeMesh(std::ostream& out, const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options = {});
