@@ -152,7 +152,7 @@ TEST(GltfExport, MorphTargetsReproduceEveryKeyExactlyToFloat32) {
       const Eigen::MatrixXd base = accessorRows(model, primitive.attributes.at("POSITION"));
       for (std::size_t key = 0; key < 3; ++key) {
         const double t = animation.keyTimes[key];
-        const Eigen::MatrixX3d& exact = exactAt(scene, animation, t).at(object.name);
+        const Eigen::MatrixX3d exact = exactAt(scene, animation, t).at(object.name);
         // As a player computes it: base + 1 * delta in float32.
         const Eigen::MatrixXd delta = accessorRows(model, primitive.targets[key].at("POSITION"));
         const Eigen::MatrixXd posed = (base.cast<float>() + delta.cast<float>()).cast<double>();
