@@ -50,12 +50,7 @@ BoxCase makeCase(int count, Eigen::Index n, bool sparse) {
     for (Eigen::Index r = 0; r < box.displacements.rows(); ++r)
       for (int c = 0; c < 3; ++c) box.displacements(r, c) = N(rng);
   }
-  BoxLatticeOptions options;
-  options.counts = box.counts;
-  options.bases = {AxisBasis::bernstein(), AxisBasis::bernstein(), AxisBasis::bernstein()};
-  options.frame = box.frame;
-  Lattice lattice = makeBoxLattice(options);
-  lattice.setControlPoints(lattice.controlPoints() + box.displacements);
+  Lattice lattice = toLattice(box);
   std::uniform_real_distribution<double> U(-0.1, 1.1);
   PointRows rows(n, 3);
   for (Eigen::Index r = 0; r < n; ++r) rows.row(r) = (box.frame * Eigen::Vector3d(U(rng), U(rng), U(rng))).transpose();

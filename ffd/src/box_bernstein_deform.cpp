@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "ffdkit/ffd/box_lattice_options.h"
 #include "ffdkit/ffd/lattice_error.h"
 #include "vector_clones.h"
 
@@ -293,6 +294,16 @@ void checkInput(const BoxBernsteinLattice& lattice, Eigen::Index points, Eigen::
 }
 
 }  // namespace
+
+Lattice toLattice(const BoxBernsteinLattice& box) {
+  BoxLatticeOptions options;
+  options.counts = box.counts;
+  options.bases = {AxisBasis::bernstein(), AxisBasis::bernstein(), AxisBasis::bernstein()};
+  options.frame = box.frame;
+  Lattice lattice = makeBoxLattice(options);
+  if (box.displacements.size() > 0) lattice.setControlPoints(lattice.controlPoints() + box.displacements);
+  return lattice;
+}
 
 BoxBernsteinDeformResult boxBernsteinDeform(const BoxBernsteinLattice& lattice, const StridedPoints& points,
                                             StridedPointsOut out, const BoxBernsteinDeformOptions& options) {

@@ -158,12 +158,7 @@ TEST(BoxBernsteinDeform, BlocksOfInsidePointsAndSortedPointsMatchTheTripleSum) {
 TEST(BoxBernsteinDeform, AgreesWithTheEmbeddingAndDeformerPath) {
   std::mt19937 rng(13);
   const BoxBernsteinLattice box = randomLattice({4, 3, 5}, rng, 0.2);
-  BoxLatticeOptions options;
-  options.counts = box.counts;
-  options.bases = {AxisBasis::bernstein(), AxisBasis::bernstein(), AxisBasis::bernstein()};
-  options.frame = box.frame;
-  Lattice lattice = makeBoxLattice(options);
-  lattice.setControlPoints(lattice.controlPoints() + box.displacements);
+  Lattice lattice = toLattice(box);
   Eigen::MatrixX3d s, q;
   randomPoints(box, 20000, rng, s, q);
   EmbedOptions embedOptions;

@@ -3,6 +3,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "ffdkit/ffd/lattice.h"
+
 namespace ffdkit::ffd {
 
 /// N x 3 points, one per row, with any row and column strides (in doubles): a C-ordered numpy
@@ -25,6 +27,11 @@ struct BoxBernsteinLattice {
   /// (i/(l-1), j/(m-1), k/(n-1)), in box coordinates (fractions of each edge). Empty: all zero.
   Eigen::MatrixX3d displacements;
 };
+
+/// The same deformation as a general Lattice: Bernstein bases on the box, control points at
+/// their rest places plus the displacements (what embed() + Deformer::deform() evaluate, and
+/// what boxBernsteinDeform() equals inside the box). @throws LatticeError as makeBoxLattice.
+Lattice toLattice(const BoxBernsteinLattice& box);
 
 /// Options of boxBernsteinDeform().
 struct BoxBernsteinDeformOptions {
