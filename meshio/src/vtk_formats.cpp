@@ -1,7 +1,7 @@
 // VTK XML poly data (.vtp), read and written through VTK, and legacy poly data (.vtk), written
 // through VTK (legacy_vtk_format.cpp reads it): the one place VTK is used in meshio. VTK's XML
-// reader allocates what a file announces and trusts the data, so the announced counts are
-// checked against the file's size first, and the output is checked completely before anything
+// reader allocates what a file announces and trusts the data, so the announced counts and
+// compression headers are checked against the file's size first, and the output is checked completely before anything
 // uses it: every cell's offsets and point ids in range, every point finite; cells are then
 // triangulated here (fans, strips), not by a VTK filter.
 #include <vtkCallbackCommand.h>
@@ -23,6 +23,7 @@
 
 #include "formats.h"
 #include "parse_support.h"
+#include "vtk_xml_block_headers.h"
 
 namespace ffdkit::meshio::detail {
 namespace {
@@ -191,6 +192,7 @@ MeshData readVtp(std::string_view bytes, const std::string& source) {
       throw MeshIoError(source + ": " + std::string(bytes.substr(at, quote - at - 1)) + " announces more than a file of " +
                         std::to_string(bytes.size()) + " bytes can hold");
   }
+  checkVtkXmlBlockHeaders(bytes, source);
   return readWith<vtkXMLPolyDataReader>(bytes, source);
 }
 
