@@ -63,12 +63,12 @@ void bindSceneEditing(py::module_& m) {
               py::gil_scoped_release release;
               object.mesh = scenes::buildObjectMesh(object.source, ".");
             }
-            scenes::addObject(s, std::move(object));
+            s.addObject(std::move(object));
           },
           "name"_a, "path"_a, "up"_a = "z",
           "Adds an object read from a mesh file (the path is kept for the scene file, relative to the "
           "working folder here); up='y' turns a Y-up file upright as it is read.")
-      .def("removeObject", &scenes::removeObject, "name"_a,
+      .def("removeObject", &Scene::removeObject, "name"_a,
            "Removes an object and its place in every attachment.")
       .def(
           "attachNewLattice",
@@ -83,11 +83,11 @@ void bindSceneEditing(py::module_& m) {
           "objects"_a, "name"_a = "", "counts"_a = Eigen::Vector3i::Constant(3), "padding"_a = 0.05,
           "Adds a root lattice fitted around the objects (padded by `padding` of their diagonal) and "
           "attaches it to them; returns its WidgetId.")
-      .def("detachLattice", &scenes::detachLattice, "lattice"_a, "object"_a)
+      .def("detachLattice", &Scene::detach, "lattice"_a, "object"_a)
       .def(
           "detachLattice",
           [](Scene& s, const std::string& lattice, const std::string& object) {
-            scenes::detachLattice(s, s.widgets.find(lattice), object);
+            s.detach(s.widgets.find(lattice), object);
           },
           "lattice"_a, "object"_a, "The same, the lattice given by its name.")
       // ---- animation ----
@@ -98,7 +98,7 @@ void bindSceneEditing(py::module_& m) {
             trial.animation.framesPerSecond = fps;
             scenes::validateAnimation(trial);  // the range check's message, before anything changes
             s.animation.framesPerSecond = fps;
-            ++s.animationRevision;
+            s.touchAnimation();
           })
       .def_property(
           "frameRange", [](const Scene& s) { return std::make_pair(s.animation.firstFrame, s.animation.lastFrame); },
@@ -108,7 +108,7 @@ void bindSceneEditing(py::module_& m) {
                                     std::to_string(range.second));
             s.animation.firstFrame = range.first;
             s.animation.lastFrame = range.second;
-            ++s.animationRevision;
+            s.touchAnimation();
           },
           "(first, last) frame of the animation.")
       .def(

@@ -137,7 +137,7 @@ void bindSceneDocuments(py::module_& m) {
       .def(py::init<>())
       .def_readwrite("description", &scenes::Scene::description)
       .def_readwrite("widgets", &scenes::Scene::widgets)
-      .def_readonly("attachments", &scenes::Scene::attachments)
+      .def_property_readonly("attachments", &scenes::Scene::attachments)
       .def_readwrite("widgetFile", &scenes::Scene::widgetFile)
       .def("objectNames",
            [](const scenes::Scene& scene) {

@@ -52,6 +52,13 @@ Eigen::Affine3d placedAt(const Eigen::Vector3d& centre) {
 
 // A sphere with a 3x3x3 lattice fitted around it; a translate widget on the top face's centre
 // point, pulled up a little so that the deformation shows.
+void aimCamera(Scene& scene, const Eigen::Vector3d& position, const Eigen::Vector3d& focalPoint) {
+  scenes::Camera camera = scene.camera();
+  camera.position = position;
+  camera.focalPoint = focalPoint;
+  scene.setCamera(camera);
+}
+
 Scene makeDefault() {
   Scene scene;
   scene.description = "A sphere with a 3x3x3 lattice attached; drag the arrow on top.";
@@ -66,8 +73,7 @@ Scene makeDefault() {
   up.placement = Eigen::AngleAxisd(-std::numbers::pi / 2, Eigen::Vector3d::UnitY());  // local x -> world +z
   const auto pull = scene.widgets.addAffine(top, AffineKind::Translate, up);
   scene.widgets.setVariation(pull, 0.5);
-  scene.camera.position = {3.0, -3.8, 2.7};  // far enough to see the pulled arrow
-  scene.camera.focalPoint = {0.0, 0.0, 0.3};
+  aimCamera(scene, {3.0, -3.8, 2.7}, {0.0, 0.0, 0.3});  // far enough to see the pulled arrow
   // Three seconds at 24 fps: the arrow rises to the saved pull at 1 s, dips, comes back.
   keyVariation(scene, "pull", {{0, 0.0}, {24, 0.5}, {48, -0.2}, {72, 0.0}});
   return scene;
@@ -79,9 +85,8 @@ Scene withThesisModel(std::string description, widgets::WidgetModel model, widge
   scene.description = std::move(description);
   scene.widgets = std::move(model);
   scene.objects.push_back(std::move(object));
-  scene.attachments.push_back({root, {scene.objects.front().name}});
-  scene.camera.position = {2.9, -2.6, 2.3};
-  scene.camera.focalPoint = {0.5, 0.5, 0.5};
+  scene.attach(root, scene.objects.front().name);
+  aimCamera(scene, {2.9, -2.6, 2.3}, {0.5, 0.5, 0.5});
   return scene;
 }
 
@@ -94,8 +99,7 @@ Scene makePress() {
                                 primitiveObject("block", {.kind = scenes::PrimitiveKind::Cylinder, .resolution = 40, .size = 0.8,
                                                           .placement = placedAt({0.5, 0.5, 0.5})},
                                                 {0.55, 0.7, 0.85}));
-  scene.camera.position = {3.2, -2.9, 2.9};  // the crank above the lattice in view too
-  scene.camera.focalPoint = {0.5, 0.5, 0.8};
+  aimCamera(scene, {3.2, -2.9, 2.9}, {0.5, 0.5, 0.8});  // the crank above the lattice in view too
   // One turn of the handle in three seconds, at a steady speed (the clamp stops the face at 0.3).
   keyVariation(scene, "handle", {{0, 0.0}, {72, 2 * std::numbers::pi}}, scenes::Interpolation::Linear);
   return scene;
@@ -170,8 +174,7 @@ Scene makeHierarchy() {
                          primitiveObject("column", {.kind = scenes::PrimitiveKind::Cylinder, .resolution = 40, .size = 0.44,
                                                     .placement = placedAt({0.5, 0.5, 0.5}) * Eigen::Scaling(1.0, 1.0, 2.15)},
                                          {0.7, 0.55, 0.85}));
-  scene.camera.position = {3.4, -3.1, 3.0};
-  scene.camera.focalPoint = {0.5, 0.5, 0.8};
+  aimCamera(scene, {3.4, -3.1, 3.0}, {0.5, 0.5, 0.8});
   return scene;
 }
 
@@ -210,7 +213,7 @@ Scene makeCylinderTwist() {
   scene.widgets = std::move(model);
   scene.objects.push_back(primitiveObject("cylinder", {.kind = scenes::PrimitiveKind::Cylinder, .resolution = 48},
                                           {0.9, 0.6, 0.45}));
-  scene.attachments.push_back({scene.widgets.find("cylinder-lattice"), {"cylinder"}});
+  scene.attach(scene.widgets.find("cylinder-lattice"), "cylinder");
   return scene;
 }
 
@@ -256,8 +259,7 @@ Scene generatedScene(std::string description, std::string objectName, std::strin
   const auto pull = scene.widgets.addAffine(top, AffineKind::Translate, up);
   scene.widgets.setVariation(pull, std::round(100.0 * size) / 1000.0);
   const Eigen::Vector3d centre = 0.5 * (low + high);
-  scene.camera.focalPoint = centre;
-  scene.camera.position = centre + size * Eigen::Vector3d(0.9, -1.6, 1.1);
+  aimCamera(scene, centre + size * Eigen::Vector3d(0.9, -1.6, 1.1), centre);
   return scene;
 }
 
@@ -336,8 +338,7 @@ Scene makeG3Clothoids() {
   out.name = "pull";
   const auto pull = scene.widgets.addAffine(corner, AffineKind::Translate, out);  // local x = world +x
   scene.widgets.setVariation(pull, 3.0);
-  scene.camera.focalPoint = {12.3, 9.3, 1.5};
-  scene.camera.position = {35.0, -31.0, 30.0};
+  aimCamera(scene, {35.0, -31.0, 30.0}, {12.3, 9.3, 1.5});
   return scene;
 }
 

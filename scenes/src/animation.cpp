@@ -330,7 +330,7 @@ std::optional<Keyframe> setKey(Scene& scene, WidgetId widget, ChannelKind kind, 
                            " keys per channel");
     keys.insert(at, std::move(key));
   }
-  scene.animationRevision = ++scene.revision;
+  scene.touchAnimation();
   return replaced;
 }
 
@@ -345,7 +345,7 @@ std::optional<Keyframe> removeKey(Scene& scene, WidgetId widget, ChannelKind kin
   Keyframe removed = std::move(*at);
   channel->keys.erase(at);
   if (channel->keys.empty()) animation.channels.erase(channel);
-  scene.animationRevision = ++scene.revision;
+  scene.touchAnimation();
   return removed;
 }
 

@@ -165,8 +165,7 @@ std::size_t SceneDelta::bytes() const {
 void applySceneDelta(Scene& scene, const SceneDelta& delta, bool forward) {
   applyPatch(scene.widgets, delta.widgets, forward);
   if (delta.attachments) {
-    scene.attachments = forward ? delta.attachments->second : delta.attachments->first;
-    touchStructure(scene);
+    scene.setAttachments(forward ? delta.attachments->second : delta.attachments->first);
   }
 }
 

@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "ffdkit/scenes/lattice_fit.h"
-#include "ffdkit/scenes/scene_changes.h"
 
 namespace ffdkit::scenes {
 namespace {
@@ -35,9 +34,98 @@ SceneObject* Scene::findObject(const std::string& name) {
   return const_cast<SceneObject*>(static_cast<const Scene&>(*this).findObject(name));
 }
 
+SceneObject& Scene::object(const std::string& name) {
+  SceneObject* found = findObject(name);
+  if (found == nullptr) throw std::invalid_argument("scene: unknown object '" + name + "' (known: " + knownObjects(*this) + ")");
+  return *found;
+}
+
+void Scene::addObject(SceneObject object) {
+  if (object.name.empty()) throw std::invalid_argument("scene: an object needs a name");
+  if (findObject(object.name) != nullptr) throw std::invalid_argument("scene: an object named '" + object.name + "' exists");
+  const std::uint64_t r = stamp();
+  object.meshRevision = object.displayRevision = r;
+  structureRevision_ = r;
+  objects.push_back(std::move(object));
+}
+
+void Scene::removeObject(const std::string& name) {
+  auto it = std::find_if(objects.begin(), objects.end(), [&](const SceneObject& o) { return o.name == name; });
+  if (it == objects.end()) throw std::invalid_argument("scene: unknown object '" + name + "' (known: " + knownObjects(*this) + ")");
+  objects.erase(it);
+  for (Attachment& a : attachments_) std::erase(a.objects, name);
+  std::erase_if(attachments_, [](const Attachment& a) { return a.objects.empty(); });
+  structureRevision_ = stamp();
+}
+
+void Scene::renameObject(const std::string& from, const std::string& to) {
+  SceneObject& o = object(from);
+  if (to == from) return;
+  if (to.empty()) throw std::invalid_argument("scene: an object needs a name");
+  if (findObject(to) != nullptr) throw std::invalid_argument("scene: an object named '" + to + "' exists");
+  o.name = to;
+  for (Attachment& a : attachments_) std::replace(a.objects.begin(), a.objects.end(), from, to);
+  structureRevision_ = stamp();
+}
+
+void Scene::setObjectMesh(const std::string& name, MeshData mesh) {
+  SceneObject& o = object(name);
+  o.mesh = std::move(mesh);
+  o.meshRevision = stamp();
+}
+
+void Scene::setObjectDisplay(const std::string& name, const DisplaySettings& display) {
+  SceneObject& o = object(name);
+  o.display = display;
+  o.displayRevision = stamp();
+}
+
+void Scene::touchStructure() { structureRevision_ = stamp(); }
+
+void Scene::touchMesh(const std::string& name) { object(name).meshRevision = stamp(); }
+
+void Scene::touchAnimation() { animationRevision_ = stamp(); }
+
+void Scene::setAttachments(std::vector<Attachment> attachments) {
+  if (attachments == attachments_) return;
+  attachments_ = std::move(attachments);
+  structureRevision_ = stamp();
+}
+
+void Scene::attach(widgets::WidgetId lattice, const std::string& object) {
+  auto it = std::find_if(attachments_.begin(), attachments_.end(), [&](const Attachment& a) { return a.lattice == lattice; });
+  if (it == attachments_.end()) {
+    attachments_.push_back({lattice, {object}});
+  } else if (std::find(it->objects.begin(), it->objects.end(), object) == it->objects.end()) {
+    it->objects.push_back(object);
+  } else {
+    return;
+  }
+  structureRevision_ = stamp();
+}
+
+void Scene::detach(widgets::WidgetId lattice, const std::string& object) {
+  for (auto it = attachments_.begin(); it != attachments_.end(); ++it) {
+    if (it->lattice != lattice) continue;
+    auto o = std::find(it->objects.begin(), it->objects.end(), object);
+    if (o == it->objects.end()) continue;
+    it->objects.erase(o);
+    if (it->objects.empty()) attachments_.erase(it);
+    structureRevision_ = stamp();
+    return;
+  }
+  const std::string name = widgets.contains(lattice) ? widgets.name(lattice) : widgets::toString(lattice);
+  throw std::invalid_argument("detach: lattice '" + name + "' does not deform object '" + object + "'");
+}
+
+void Scene::dropStaleAttachments() {
+  if (std::erase_if(attachments_, [&](const Attachment& a) { return !widgets.contains(a.lattice); }) > 0)
+    structureRevision_ = stamp();
+}
+
 std::vector<widgets::WidgetId> Scene::latticesDeforming(const std::string& object) const {
   std::vector<widgets::WidgetId> result;
-  for (const auto& attachment : attachments)
+  for (const auto& attachment : attachments_)
     if (std::find(attachment.objects.begin(), attachment.objects.end(), object) != attachment.objects.end())
       result.push_back(attachment.lattice);
   return result;
@@ -50,6 +138,16 @@ std::vector<widgets::WidgetId> Scene::stagesDeforming(const std::string& object)
     stages.insert(stages.end(), tree.begin(), tree.end());
   }
   return stages;
+}
+
+void Scene::setCamera(const Camera& camera) {
+  camera_ = camera;
+  cameraRevision_ = stamp();
+}
+
+void Scene::setBackground(const Eigen::Vector3d& background) {
+  background_ = background;
+  cameraRevision_ = stamp();
 }
 
 MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path& baseDirectory,
@@ -87,23 +185,8 @@ widgets::WidgetId attachNewLattice(Scene& scene, const std::vector<std::string>&
   lattice.frame = fittedLatticeFrame(box, options.padding);
   lattice.settings = options.settings;
   const widgets::WidgetId id = scene.widgets.addLattice(lattice);
-  scene.attachments.push_back(Attachment{id, objects});
-  touchStructure(scene);
+  for (const std::string& object : objects) scene.attach(id, object);
   return id;
-}
-
-void detachLattice(Scene& scene, widgets::WidgetId lattice, const std::string& object) {
-  for (auto it = scene.attachments.begin(); it != scene.attachments.end(); ++it) {
-    if (it->lattice != lattice) continue;
-    auto o = std::find(it->objects.begin(), it->objects.end(), object);
-    if (o == it->objects.end()) continue;
-    it->objects.erase(o);
-    if (it->objects.empty()) scene.attachments.erase(it);
-    touchStructure(scene);
-    return;
-  }
-  const std::string name = scene.widgets.contains(lattice) ? scene.widgets.name(lattice) : widgets::toString(lattice);
-  throw std::invalid_argument("detach: lattice '" + name + "' does not deform object '" + object + "'");
 }
 
 void validateScene(const Scene& scene) {
@@ -113,7 +196,7 @@ void validateScene(const Scene& scene) {
     if (!names.insert(object.name).second) throw std::invalid_argument("scene: duplicate object name '" + object.name + "'");
   }
   std::set<std::pair<widgets::WidgetId, std::string>> pairs;
-  for (const auto& attachment : scene.attachments) {
+  for (const auto& attachment : scene.attachments()) {
     const widgets::WidgetId id = attachment.lattice;
     if (!scene.widgets.contains(id))
       throw std::invalid_argument("scene: an attachment holds lattice " + widgets::toString(id) +

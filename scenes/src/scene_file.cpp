@@ -383,7 +383,7 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
     (at / "animation").fail("'animation' needs format version 2 (this file says version " + version.dump() + ")");
   Scene scene;
   if (root.contains("description")) scene.description = text(root["description"], at / "description");
-  if (root.contains("background")) scene.background = colour(root["background"], at / "background");
+  if (root.contains("background")) scene.setBackground(colour(root["background"], at / "background"));
   const Json& objects = member(root, "objects", at);
   if (!objects.is_array()) (at / "objects").fail("expected an array");
   for (std::size_t i = 0; i < objects.size(); ++i) {
@@ -408,6 +408,7 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
   if (root.contains("attachments")) {
     const Json& list = root["attachments"];
     if (!list.is_array()) (at / "attachments").fail("expected an array");
+    std::vector<Attachment> attachments;
     for (std::size_t i = 0; i < list.size(); ++i) {
       const Location aat = at / "attachments" / i;
       checkKeys(list[i], {"lattice", "objects"}, aat);
@@ -422,23 +423,25 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
       const Json& names = member(list[i], "objects", aat);
       if (!names.is_array() || names.empty()) (aat / "objects").fail("expected a non-empty array of object names");
       for (std::size_t k = 0; k < names.size(); ++k) attachment.objects.push_back(text(names[k], aat / "objects" / k));
-      scene.attachments.push_back(std::move(attachment));
+      attachments.push_back(std::move(attachment));
     }
+    scene.setAttachments(std::move(attachments));
   }
   if (root.contains("camera")) {
     const Json& c = root["camera"];
     const Location cat = at / "camera";
     checkKeys(c, {"position", "focalPoint", "viewUp", "viewAngle"}, cat);
-    scene.camera.position = vector3(member(c, "position", cat), cat / "position");
-    scene.camera.focalPoint = vector3(member(c, "focalPoint", cat), cat / "focalPoint");
-    scene.camera.viewUp = vector3(member(c, "viewUp", cat), cat / "viewUp");
-    if (c.contains("viewAngle")) scene.camera.viewAngleDegrees = number(c["viewAngle"], cat / "viewAngle");
-    if ((scene.camera.position - scene.camera.focalPoint).norm() == 0.0)
-      cat.fail("camera position and focal point coincide");
-    if (scene.camera.viewUp.cross(scene.camera.focalPoint - scene.camera.position).norm() == 0.0)
+    Camera camera;
+    camera.position = vector3(member(c, "position", cat), cat / "position");
+    camera.focalPoint = vector3(member(c, "focalPoint", cat), cat / "focalPoint");
+    camera.viewUp = vector3(member(c, "viewUp", cat), cat / "viewUp");
+    if (c.contains("viewAngle")) camera.viewAngleDegrees = number(c["viewAngle"], cat / "viewAngle");
+    if ((camera.position - camera.focalPoint).norm() == 0.0) cat.fail("camera position and focal point coincide");
+    if (camera.viewUp.cross(camera.focalPoint - camera.position).norm() == 0.0)
       (cat / "viewUp").fail("view-up must be non-zero and not along the view direction");
-    if (scene.camera.viewAngleDegrees <= 0.0 || scene.camera.viewAngleDegrees >= 180.0)
+    if (camera.viewAngleDegrees <= 0.0 || camera.viewAngleDegrees >= 180.0)
       (cat / "viewAngle").fail("view angle must be in (0, 180) degrees");
+    scene.setCamera(camera);
   }
   try {
     validateScene(scene);
@@ -463,7 +466,7 @@ Json sceneJson(const Scene& scene) {
   root["format"] = "ffdkit-scene";
   root["version"] = kSceneFormatVersion;
   if (!scene.description.empty()) root["description"] = scene.description;
-  root["background"] = array3(scene.background);
+  root["background"] = array3(scene.background());
   Json objects = Json::array();
   for (const auto& object : scene.objects) {
     Json o;
@@ -515,17 +518,17 @@ Json sceneJson(const Scene& scene) {
     root["widgets"] = detail::widgetModelToJson(scene.widgets);
   }
   Json attachments = Json::array();
-  for (const auto& a : scene.attachments) {
+  for (const auto& a : scene.attachments()) {
     if (!scene.widgets.contains(a.lattice))
       throw std::invalid_argument("scene: an attachment holds lattice " + widgets::toString(a.lattice) +
                                   ", which the widget model does not have");
     attachments.push_back({{"lattice", scene.widgets.name(a.lattice)}, {"objects", a.objects}});
   }
   root["attachments"] = std::move(attachments);
-  root["camera"] = {{"position", array3(scene.camera.position)},
-                    {"focalPoint", array3(scene.camera.focalPoint)},
-                    {"viewUp", array3(scene.camera.viewUp)},
-                    {"viewAngle", scene.camera.viewAngleDegrees}};
+  root["camera"] = {{"position", array3(scene.camera().position)},
+                    {"focalPoint", array3(scene.camera().focalPoint)},
+                    {"viewUp", array3(scene.camera().viewUp)},
+                    {"viewAngle", scene.camera().viewAngleDegrees}};
   // Written only when there is something to say: a scene without keys stays as short as before.
   if (!isDefault(scene.animation)) root["animation"] = animationJson(scene);
   return root;

@@ -86,8 +86,10 @@ scenes::Scene circleCurveScene(double cameraDistance = 4.0) {
   for (int i = 0; i < 120; ++i) curve.mesh.segments.row(i) << i, (i + 1) % 120;
   curve.display.color = {0.9, 0.75, 0.1};
   scene.objects.push_back(curve);
-  scene.camera.position = {0.0, -cameraDistance, 0.0};
-  scene.camera.focalPoint = {0.0, 0.0, 0.0};
+  scenes::Camera camera = scene.camera();
+  camera.position = {0.0, -cameraDistance, 0.0};
+  camera.focalPoint = {0.0, 0.0, 0.0};
+  scene.setCamera(camera);
   return scene;
 }
 
@@ -141,8 +143,8 @@ class DisplayModesTest : public QObject {
     const scenes::Scene shaded = sphereScene(scenes::SurfaceStyle::Shaded);
     const scenes::Scene zebra = sphereScene(scenes::SurfaceStyle::Zebra);
     const QImage a = render(shaded), b = render(zebra);
-    const LineStats s = scanColumn(a, a.width() / 2, shaded.background);
-    const LineStats z = scanColumn(b, b.width() / 2, zebra.background);
+    const LineStats s = scanColumn(a, a.width() / 2, shaded.background());
+    const LineStats z = scanColumn(b, b.width() / 2, zebra.background());
     qInfo("shaded: %d object pixels, %d transitions; zebra: %d object pixels, %d stripe-coloured, %d transitions",
           s.objectPixels, s.transitions, z.objectPixels, z.stripePixels, z.transitions);
     QVERIFY(s.objectPixels > 100);
@@ -155,7 +157,7 @@ class DisplayModesTest : public QObject {
     // More stripes, more transitions.
     scenes::Scene dense = zebra;
     dense.objects[0].display.zebraStripes = 2 * zebra.objects[0].display.zebraStripes;
-    const LineStats d = scanColumn(render(dense), 200, zebra.background);
+    const LineStats d = scanColumn(render(dense), 200, zebra.background());
     QVERIFY2(d.transitions > 1.6 * z.transitions, qPrintable(QString("%1 vs %2").arg(d.transitions).arg(z.transitions)));
   }
 
@@ -189,7 +191,7 @@ class DisplayModesTest : public QObject {
 
     // The same shape as a mesh of its own (not deformed), same widgets drawn.
     scenes::Scene baked = deformedScene;
-    baked.attachments.clear();
+    baked.setAttachments({});
     baked.objects[0].mesh.points = deformer.points(baked.objects[0].name);
     const QImage expected = render(baked, 320, 320);
 
@@ -236,17 +238,17 @@ class DisplayModesTest : public QObject {
     };
     auto count = [&](const QImage& image) {
       Count c;
-      const Eigen::Vector3d along = colour - scene.background;
+      const Eigen::Vector3d along = colour - scene.background();
       for (int y = 0; y < image.height(); ++y)
         for (int x = 0; x < image.width(); ++x) {
           const QColor p = image.pixelColor(x, y);
-          if (distance(p, scene.background) < 0.05) continue;
+          if (distance(p, scene.background()) < 0.05) continue;
           ++c.drawn;
           c.coloured += distance(p, colour) < 0.1;
           // Edge pixels are antialiased: a mix of the two colours, never a shade of the colour.
           const Eigen::Vector3d rgb(p.redF(), p.greenF(), p.blueF());
-          const double t = std::clamp((rgb - scene.background).dot(along) / along.squaredNorm(), 0.0, 1.0);
-          c.blended += (scene.background + t * along - rgb).norm() < 0.05;
+          const double t = std::clamp((rgb - scene.background()).dot(along) / along.squaredNorm(), 0.0, 1.0);
+          c.blended += (scene.background() + t * along - rgb).norm() < 0.05;
         }
       return c;
     };
@@ -271,8 +273,8 @@ class DisplayModesTest : public QObject {
     int offTube = 0;
     for (int y = 0; y < lineImage.height(); ++y)
       for (int x = 0; x < lineImage.width(); ++x)
-        offTube += distance(lineImage.pixelColor(x, y), scene.background) >= 0.05 &&
-                   distance(tubeImage.pixelColor(x, y), scene.background) < 0.05;
+        offTube += distance(lineImage.pixelColor(x, y), scene.background()) >= 0.05 &&
+                   distance(tubeImage.pixelColor(x, y), scene.background()) < 0.05;
     QVERIFY2(offTube < line.drawn / 50, qPrintable(QString("%1 line pixels off the tube").arg(offTube)));
     QCOMPARE(tubeAgain, tubeImage);  // switching back restores the tube
 

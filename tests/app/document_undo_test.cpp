@@ -176,8 +176,8 @@ TEST(DocumentUndo, AThousandRandomOperationsUndoneAndRedoneGiveTheSameFiles) {
           break;
         }
         case 16:
-          if (!d.scene.attachments.empty()) {
-            const scenes::Attachment a = d.scene.attachments.back();
+          if (!d.scene.attachments().empty()) {
+            const scenes::Attachment a = d.scene.attachments().back();
             d.controller.detachLattice(a.lattice, a.objects.front());
           }
           break;
@@ -219,8 +219,8 @@ TEST(DocumentUndo, RenamingALatticeAndAWidgetKeepsEveryLinkKeyAndUndoStep) {
   d.controller.renameWidget(lattice, "cage");
   d.controller.renameWidget(push, "pull");
   EXPECT_EQ(d.commands.size(), 2u);
-  ASSERT_EQ(d.scene.attachments.size(), 1u);
-  EXPECT_EQ(d.scene.attachments.front().lattice, lattice);
+  ASSERT_EQ(d.scene.attachments().size(), 1u);
+  EXPECT_EQ(d.scene.attachments().front().lattice, lattice);
   EXPECT_EQ(d.scene.latticesDeforming(ball), std::vector<WidgetId>{lattice});
   EXPECT_EQ(d.scene.animation.channels.front().widget, push);
   EXPECT_NO_THROW(scenes::validateScene(d.scene));
@@ -230,7 +230,7 @@ TEST(DocumentUndo, RenamingALatticeAndAWidgetKeepsEveryLinkKeyAndUndoStep) {
   EXPECT_NE(renamed.find(R"("widget": "pull")"), std::string::npos);
   std::istringstream in(renamed);
   const scenes::Scene reread = scenes::readScene(in, "renamed.json");
-  EXPECT_EQ(reread.attachments.front().lattice, reread.widgets.find("cage"));
+  EXPECT_EQ(reread.attachments().front().lattice, reread.widgets.find("cage"));
   EXPECT_EQ(reread.animation.channels.front().widget, reread.widgets.find("pull"));
   EXPECT_EQ(scenes::sceneFileText(reread), renamed);
 
@@ -242,7 +242,7 @@ TEST(DocumentUndo, RenamingALatticeAndAWidgetKeepsEveryLinkKeyAndUndoStep) {
   const std::string dragged = scenes::sceneFileText(d.scene);
   // Detach by id, undo it.
   d.controller.detachLattice(lattice, ball);
-  EXPECT_TRUE(d.scene.attachments.empty());
+  EXPECT_TRUE(d.scene.attachments().empty());
   d.commands.undo();
   EXPECT_EQ(scenes::sceneFileText(d.scene), dragged);
 
@@ -254,7 +254,7 @@ TEST(DocumentUndo, RenamingALatticeAndAWidgetKeepsEveryLinkKeyAndUndoStep) {
   EXPECT_NE(d.scene.widgets.name(push), "pull");
   d.commands.undo();
   EXPECT_EQ(scenes::sceneFileText(d.scene), start);
-  EXPECT_EQ(d.scene.attachments.front().lattice, lattice);
+  EXPECT_EQ(d.scene.attachments().front().lattice, lattice);
   expectDeformerIsFresh(d);
   for (int step = 0; step < 3; ++step) d.commands.redo();  // the renames and the drag
   EXPECT_EQ(d.scene.widgets.name(lattice), "cage");

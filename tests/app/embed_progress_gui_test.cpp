@@ -66,7 +66,7 @@ class EmbedProgressGuiTest : public QObject {
     QVERIFY2(pressedCancel, qPrintable(QString("progress values seen: %1").arg(seen.size())));
     QCOMPARE(maximum, 1000);  // a determinate bar
     QVERIFY(!attached);
-    QVERIFY(w.scene().attachments.empty());
+    QVERIFY(w.scene().attachments().empty());
     QCOMPARE(w.commands().position(), commands);
     QCOMPARE(w.deformer().points(sphere), w.scene().findObject(sphere)->mesh.points);
     QVERIFY(std::is_sorted(seen.begin(), seen.end()));

@@ -89,18 +89,18 @@ class InteractionControllerTest : public QObject {
     Fixture f;
     QCOMPARE(f.commands.position(), std::size_t(4));
     QCOMPARE(f.scene.widgets.type(f.widget), widgets::WidgetType::Affine);
-    QCOMPARE(f.scene.attachments.size(), std::size_t(1));
+    QCOMPARE(f.scene.attachments().size(), std::size_t(1));
     QCOMPARE(f.scene.latticesDeforming(f.sphere).size(), std::size_t(1));
     // The lattice was fitted to the sphere's bounding box: the sphere's extent is inside it.
     const Eigen::MatrixX3d corners = f.scene.widgets.worldControlPoints(f.lattice);
     QVERIFY(corners.col(0).minCoeff() < -0.5 && corners.col(0).maxCoeff() > 0.5);
     f.commands.undo();  // attach
-    QVERIFY(f.scene.attachments.empty());
+    QVERIFY(f.scene.attachments().empty());
     f.commands.undo();  // widget
     QVERIFY(f.scene.widgets.widgets(widgets::WidgetType::Affine).empty());
     f.commands.redo();
     f.commands.redo();
-    QCOMPARE(f.scene.attachments.size(), std::size_t(1));
+    QCOMPARE(f.scene.attachments().size(), std::size_t(1));
     QVERIFY(f.scene.widgets.contains(f.widget));
   }
 

@@ -271,14 +271,14 @@ class LifecycleGuiTest : public QObject {
     const std::size_t steps = w.commands().position();
     key(w, Qt::Key_Delete);
     QVERIFY(w.scene().objects.empty());
-    QVERIFY(w.scene().attachments.empty());
+    QVERIFY(w.scene().attachments().empty());
     QCOMPARE(w.scene().widgets.roots().size(), std::size_t(1));  // the lattice stays
     QCOMPARE(w.commands().position(), steps + 1);
     QVERIFY(w.commands().undoDescription().find("sphere") != std::string::npos);
     key(w, Qt::Key_Z, Qt::ControlModifier);
     QCOMPARE(w.scene().objects.size(), std::size_t(1));
-    QCOMPARE(w.scene().attachments.size(), std::size_t(1));
-    QCOMPARE(w.scene().attachments.front().objects, std::vector<std::string>{"sphere"});
+    QCOMPARE(w.scene().attachments().size(), std::size_t(1));
+    QCOMPARE(w.scene().attachments().front().objects, std::vector<std::string>{"sphere"});
     // Deformed again, as before.
     QVERIFY((w.deformer().points("sphere") - scenes::deformScene(before).at("sphere")).cwiseAbs().maxCoeff() < 1e-12);
   }
@@ -305,8 +305,8 @@ class LifecycleGuiTest : public QObject {
       QCOMPARE(answers.answered(), 1);
     }
     QCOMPARE(w.scene().widgets.name(lattice), std::string("cage"));
-    QVERIFY(w.scene().attachments.front().lattice == lattice);
-    QCOMPARE(w.scene().widgets.name(w.scene().attachments.front().lattice), std::string("cage"));
+    QVERIFY(w.scene().attachments().front().lattice == lattice);
+    QCOMPARE(w.scene().widgets.name(w.scene().attachments().front().lattice), std::string("cage"));
     // An object: the attachment follows it too.
     clickRow(w, "torus");
     {
@@ -315,7 +315,7 @@ class LifecycleGuiTest : public QObject {
       QCOMPARE(answers.answered(), 1);
     }
     QVERIFY(w.scene().findObject("ring") != nullptr);
-    QCOMPARE(w.scene().attachments.front().objects, std::vector<std::string>{"ring"});
+    QCOMPARE(w.scene().attachments().front().objects, std::vector<std::string>{"ring"});
     // The binding holds: dragging the renamed widget moves its partner; the torus deforms.
     const Eigen::MatrixX3d torus = w.deformer().points("ring");
     const double backBefore = w.scene().widgets.variation(back);
@@ -328,7 +328,7 @@ class LifecycleGuiTest : public QObject {
     key(w, Qt::Key_Z, Qt::ControlModifier);
     key(w, Qt::Key_Z, Qt::ControlModifier);
     QVERIFY(w.scene().findObject("torus") != nullptr);
-    QCOMPARE(w.scene().attachments.front().objects, std::vector<std::string>{"torus"});
+    QCOMPARE(w.scene().attachments().front().objects, std::vector<std::string>{"torus"});
     // A name in use is refused with the model's message; nothing changes.
     const std::size_t steps = w.commands().position();
     clickRow(w, "front");
@@ -360,9 +360,9 @@ class LifecycleGuiTest : public QObject {
     ModalAnswers answers({chooseFile(FFDKIT_SOURCE_DIR "/widgets/examples/fig6-9.json")});
     action(w, "actionOpenWidgetFile")->trigger();
     QCOMPARE(answers.answered(), 1);
-    QCOMPARE(w.scene().attachments.size(), std::size_t(1));
-    QCOMPARE(w.scene().widgets.name(w.scene().attachments.front().lattice), std::string("parent"));
-    QCOMPARE(w.scene().attachments.front().objects, std::vector<std::string>{"sphere"});
+    QCOMPARE(w.scene().attachments().size(), std::size_t(1));
+    QCOMPARE(w.scene().widgets.name(w.scene().attachments().front().lattice), std::string("parent"));
+    QCOMPARE(w.scene().attachments().front().objects, std::vector<std::string>{"sphere"});
     // The parent's frame is the sphere's bounding box grown by 5 % of its diagonal per side.
     const Eigen::MatrixX3d& p = w.scene().findObject("sphere")->mesh.points;
     const Eigen::Vector3d lo = p.colwise().minCoeff(), hi = p.colwise().maxCoeff();
@@ -378,7 +378,7 @@ class LifecycleGuiTest : public QObject {
     // One undo step took the widgets and the attachment in.
     key(w, Qt::Key_Z, Qt::ControlModifier);
     key(w, Qt::Key_Z, Qt::ControlModifier);
-    QCOMPARE(w.scene().widgets.name(w.scene().attachments.front().lattice), std::string("lattice"));
+    QCOMPARE(w.scene().widgets.name(w.scene().attachments().front().lattice), std::string("lattice"));
   }
 
   void aWidgetFileWithNoObjectToTakeItSaysSoAndHowToAttach() {
@@ -391,7 +391,7 @@ class LifecycleGuiTest : public QObject {
     ModalAnswers answers({chooseFile(FFDKIT_SOURCE_DIR "/widgets/examples/fig6-9.json")});
     action(w, "actionOpenWidgetFile")->trigger();
     QCOMPARE(answers.answered(), 1);
-    QVERIFY(w.scene().attachments.empty());
+    QVERIFY(w.scene().attachments().empty());
     QVERIFY2(w.statusMessage().contains("Nothing is attached") && w.statusMessage().contains("Attach Lattice to Object"),
              qPrintable(w.statusMessage()));
   }

@@ -481,7 +481,7 @@ class MainWindowTest : public QObject {
     QVERIFY(maxDifference(w.deformer().points(sphere), model.points(sphere)) < 1e-12);
     QVERIFY(maxDifference(w.deformer().points(sphere), w.scene().objects.front().mesh.points) > 0.05);
     action(w, "actionUndo")->trigger();
-    QVERIFY(w.scene().attachments.empty());
+    QVERIFY(w.scene().attachments().empty());
   }
 
   void aGlyphIsReplacedByAPartFromThePropertyPanel() {
@@ -641,8 +641,8 @@ class MainWindowTest : public QObject {
     QCOMPARE(w.scene().objects.size(), std::size_t(1));
     QCOMPARE(w.scene().widgets.counts(w.scene().widgets.find("dropped")), Eigen::Vector3i(2, 3, 4));
     // The widget file's lattice went onto the only object.
-    QCOMPARE(w.scene().attachments.size(), std::size_t(1));
-    QCOMPARE(w.scene().attachments.front().objects, std::vector<std::string>{"triangle"});
+    QCOMPARE(w.scene().attachments().size(), std::size_t(1));
+    QCOMPARE(w.scene().attachments().front().objects, std::vector<std::string>{"triangle"});
     {
       // A scene replaces the modified document: asked first (Discard).
       ffdkit::app::testing::ModalAnswers discard({[](QWidget* modal) {

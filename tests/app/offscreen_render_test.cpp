@@ -25,8 +25,8 @@ class OffscreenRenderTest : public QObject {
     const QColor middle = image.pixelColor(160, 120);
     QVERIFY2(middle.red() > middle.blue() + 60, qPrintable(middle.name()));
     const QColor corner = image.pixelColor(2, 2);
-    QVERIFY(std::abs(corner.red() - int(255 * scene.background.x() + 0.5)) <= 2);
-    QVERIFY(std::abs(corner.blue() - int(255 * scene.background.z() + 0.5)) <= 2);
+    QVERIFY(std::abs(corner.red() - int(255 * scene.background().x() + 0.5)) <= 2);
+    QVERIFY(std::abs(corner.blue() - int(255 * scene.background().z() + 0.5)) <= 2);
   }
 
   void rejectsAbsurdSizesWithoutWriting() {

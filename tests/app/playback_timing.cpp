@@ -41,7 +41,7 @@ scenes::Scene keyedSphere(int resolution) {
   sphere.name = "sphere";
   sphere.source = scenes::PrimitiveOptions{.kind = scenes::PrimitiveKind::Sphere, .resolution = resolution};
   sphere.mesh = scenes::buildObjectMesh(sphere.source, ".");
-  scenes::addObject(scene, std::move(sphere));
+  scene.addObject(std::move(sphere));
   scenes::AttachOptions attach;
   attach.latticeName = "lattice";
   attach.counts = Eigen::Vector3i::Constant(4);

@@ -58,7 +58,7 @@ class VtkViewWidgetTest : public QObject {
     QVERIFY(middle.x() > 80.0f);
 
     // The corners show the scene's background colour.
-    const auto& bg = window.scene().background;
+    const auto& bg = window.scene().background();
     for (QPoint corner : {QPoint(4, 4), QPoint(image.width() - 5, image.height() - 5)}) {
       const QVector3D c = meanColour(image, corner, 2);
       QVERIFY2(std::abs(c.x() - 255.0 * bg.x()) < 3.0 && std::abs(c.y() - 255.0 * bg.y()) < 3.0 &&

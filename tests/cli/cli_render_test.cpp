@@ -17,7 +17,7 @@ TEST(CliRender, WritesAPngWithTheObjectsPixels) {
   TempDir dir;
   const fs::path scene = kSource / "scenes" / "examples" / "default";
   const scenes::Scene loaded = scenes::readScene(scene);
-  const Eigen::Vector3i background = (loaded.background * 255.0).array().round().cast<int>();
+  const Eigen::Vector3i background = (loaded.background() * 255.0).array().round().cast<int>();
   for (const char* camera : {"scene", "front", "top", "side", "iso"}) {
     const fs::path png = dir / (std::string(camera) + ".png");
     const CliResult r = runCli({"render", scene.string(), png.string(), "--size", "200x150", "--camera", camera});

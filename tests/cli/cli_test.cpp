@@ -44,7 +44,7 @@ Eigen::MatrixX3d libraryDeform(const widgets::WidgetModel& model, const MeshData
   object.name = "input";
   object.mesh = mesh;
   scene.objects.push_back(object);
-  for (auto root : model.roots()) scene.attachments.push_back({root, {"input"}});
+  for (auto root : model.roots()) scene.attach(root, "input");
   return scenes::deformScene(scene).at("input");
 }
 

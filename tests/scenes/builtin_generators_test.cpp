@@ -461,7 +461,7 @@ TEST(BuiltinGenerators, EveryGeneratedSampleSceneLoadsDeformsAndRoundTrips) {
     const Scene scene = readScene(path);
     EXPECT_FALSE(scene.description.empty());
     EXPECT_EQ(sceneFileText(scene), fileText(path));
-    ASSERT_EQ(scene.attachments.size(), 1u);
+    ASSERT_EQ(scene.attachments().size(), 1u);
     SceneDeformer deformer;
     deformer.update(scene);
     deformer.finishGesture(scene);

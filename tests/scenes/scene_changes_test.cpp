@@ -4,8 +4,12 @@
 // or a camera edit leaves the deformed points (and their revision) alone.
 #include "ffdkit/scenes/scene_changes.h"
 
+#include <functional>
+#include <set>
+
 #include <gtest/gtest.h>
 
+#include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/lattice_fit.h"
 #include "ffdkit/scenes/scene_deformer.h"
 
@@ -23,19 +27,19 @@ SceneObject sphere(const std::string& name, int resolution = 12) {
 TEST(SceneChanges, EachEditReportsWhatItChanged) {
   Scene scene;
   SceneMark mark = markOf(scene);
-  addObject(scene, sphere("a"));
+  scene.addObject(sphere("a"));
   SceneChanges c = changesSince(scene, mark);
   EXPECT_TRUE(c.structure);
   EXPECT_EQ(c.meshes, std::vector<std::string>{"a"});
   EXPECT_EQ(c.looks, std::vector<std::string>{"a"});
   EXPECT_FALSE(c.camera);
   EXPECT_TRUE(c.widgets.empty());
-  addObject(scene, sphere("b"));
+  scene.addObject(sphere("b"));
 
   mark = markOf(scene);
   DisplaySettings look;
   look.color = {0.1, 0.2, 0.3};
-  setObjectDisplay(scene, "b", look);
+  scene.setObjectDisplay("b", look);
   c = changesSince(scene, mark);
   EXPECT_EQ(c.looks, std::vector<std::string>{"b"});
   EXPECT_TRUE(c.meshes.empty());
@@ -45,13 +49,13 @@ TEST(SceneChanges, EachEditReportsWhatItChanged) {
   mark = markOf(scene);
   Camera camera;
   camera.position = {5, 5, 5};
-  setCamera(scene, camera);
+  scene.setCamera(camera);
   c = changesSince(scene, mark);
   EXPECT_TRUE(c.camera);
   EXPECT_TRUE(c.looks.empty() && c.meshes.empty() && !c.structure && c.widgets.empty());
 
   mark = markOf(scene);
-  setObjectMesh(scene, "a", sphere("a", 8).mesh);
+  scene.setObjectMesh("a", sphere("a", 8).mesh);
   c = changesSince(scene, mark);
   EXPECT_EQ(c.meshes, std::vector<std::string>{"a"});
   EXPECT_TRUE(c.looks.empty() && !c.structure && !c.camera);
@@ -71,13 +75,13 @@ TEST(SceneChanges, EachEditReportsWhatItChanged) {
   EXPECT_TRUE(c.widgets.frames.empty() && !c.structure && c.meshes.empty());
 
   mark = markOf(scene);
-  detachLattice(scene, lattice, "b");
+  scene.detach(lattice, "b");
   EXPECT_TRUE(changesSince(scene, mark).structure);
   mark = markOf(scene);
-  removeObject(scene, "a");  // the attachment loses its last object and goes
+  scene.removeObject("a");  // the attachment loses its last object and goes
   c = changesSince(scene, mark);
   EXPECT_TRUE(c.structure);
-  EXPECT_TRUE(scene.attachments.empty());
+  EXPECT_TRUE(scene.attachments().empty());
 
   mark = markOf(scene);
   scene.widgets = widgets::WidgetModel();  // replaced: its revisions are another history
@@ -85,13 +89,83 @@ TEST(SceneChanges, EachEditReportsWhatItChanged) {
   EXPECT_TRUE(changesSince(scene, markOf(scene)).empty());
 }
 
+// Which of a scene's stamps an edit moved: "structure", "camera", "animation", "widgets", and
+// "mesh:<name>" / "look:<name>" per object. A stamp moved when it is newer than the scene's
+// revision before the edit (the widget model counts its own revisions).
+std::set<std::string> stampsMovedBy(Scene& scene, const std::function<void()>& edit) {
+  const std::uint64_t before = scene.revision();
+  const std::uint64_t widgetsBefore = scene.widgets.revision();
+  edit();
+  std::set<std::string> moved;
+  if (scene.structureRevision() > before) moved.insert("structure");
+  if (scene.cameraRevision() > before) moved.insert("camera");
+  if (scene.animationRevision() > before) moved.insert("animation");
+  if (scene.widgets.revision() != widgetsBefore) moved.insert("widgets");
+  for (const SceneObject& o : scene.objects) {
+    if (o.meshRevision > before) moved.insert("mesh:" + o.name);
+    if (o.displayRevision > before) moved.insert("look:" + o.name);
+  }
+  // The scene's own revision moves exactly when one of its stamps did.
+  EXPECT_EQ(scene.revision() > before, !moved.empty() && moved != std::set<std::string>{"widgets"});
+  return moved;
+}
+
+using Stamps = std::set<std::string>;
+
+TEST(SceneRevisions, EachEditBumpsExactlyTheRevisionsItShould) {
+  Scene scene;
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.addObject(sphere("a")); }), (Stamps{"structure", "mesh:a", "look:a"}));
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.addObject(sphere("b")); }), (Stamps{"structure", "mesh:b", "look:b"}));
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setObjectMesh("a", sphere("a", 6).mesh); }), Stamps{"mesh:a"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.touchMesh("b"); }), Stamps{"mesh:b"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setObjectDisplay("b", DisplaySettings{.opacity = 0.5}); }), Stamps{"look:b"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setCamera(Camera{.viewAngleDegrees = 40.0}); }), Stamps{"camera"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setBackground({1.0, 1.0, 1.0}); }), Stamps{"camera"});
+
+  widgets::WidgetId lattice;
+  EXPECT_EQ(stampsMovedBy(scene, [&] { lattice = attachNewLattice(scene, {"a"}); }), (Stamps{"structure", "widgets"}));
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.attach(lattice, "b"); }), Stamps{"structure"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.attach(lattice, "b"); }), Stamps{});  // already attached
+  EXPECT_EQ(scene.latticesDeforming("b"), std::vector<widgets::WidgetId>{lattice});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.detach(lattice, "b"); }), Stamps{"structure"});
+  const std::vector<Attachment> attached = scene.attachments();
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setAttachments(attached); }), Stamps{});  // the same attachments
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setAttachments({}); }), Stamps{"structure"});
+  EXPECT_TRUE(scene.latticesDeforming("a").empty());
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setAttachments(attached); }), Stamps{"structure"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.renameObject("a", "c"); }), Stamps{"structure"});
+  EXPECT_EQ(scene.attachments().front().objects, std::vector<std::string>{"c"});  // the link follows
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.touchStructure(); }), Stamps{"structure"});
+
+  Keyframe key;
+  key.frame = scene.widgets.latticeFrame(lattice);
+  EXPECT_EQ(stampsMovedBy(scene, [&] { setKey(scene, lattice, ChannelKind::LatticeFrame, key); }), Stamps{"animation"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { removeKey(scene, lattice, ChannelKind::LatticeFrame, 0.0); }), Stamps{"animation"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.touchAnimation(); }), Stamps{"animation"});
+
+  // The widget model's edits are its own: the scene's revisions stay.
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.widgets.setLatticeCounts(lattice, {4, 4, 4}); }), Stamps{"widgets"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.widgets.remove(lattice); }), Stamps{"widgets"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.dropStaleAttachments(); }), Stamps{"structure"});
+  EXPECT_TRUE(scene.attachments().empty());
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.dropStaleAttachments(); }), Stamps{});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.removeObject("c"); }), Stamps{"structure"});
+
+  // Refused edits change nothing.
+  EXPECT_EQ(stampsMovedBy(scene, [&] { EXPECT_THROW(scene.renameObject("b", ""), std::invalid_argument); }), Stamps{});
+  scene.addObject(sphere("d"));
+  EXPECT_EQ(stampsMovedBy(scene, [&] { EXPECT_THROW(scene.renameObject("b", "d"), std::invalid_argument); }), Stamps{});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { EXPECT_THROW(scene.detach(lattice, "b"), std::invalid_argument); }), Stamps{});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { EXPECT_THROW(scene.setObjectMesh("x", {}), std::invalid_argument); }), Stamps{});
+}
+
 TEST(SceneChanges, EditsRefuseUnknownAndDuplicateObjects) {
   Scene scene;
-  addObject(scene, sphere("a"));
-  EXPECT_THROW(addObject(scene, sphere("a")), std::invalid_argument);
-  EXPECT_THROW(setObjectDisplay(scene, "nope", {}), std::invalid_argument);
-  EXPECT_THROW(removeObject(scene, "nope"), std::invalid_argument);
-  EXPECT_THROW(touchMesh(scene, "nope"), std::invalid_argument);
+  scene.addObject(sphere("a"));
+  EXPECT_THROW(scene.addObject(sphere("a")), std::invalid_argument);
+  EXPECT_THROW(scene.setObjectDisplay("nope", {}), std::invalid_argument);
+  EXPECT_THROW(scene.removeObject("nope"), std::invalid_argument);
+  EXPECT_THROW(scene.touchMesh("nope"), std::invalid_argument);
 }
 
 TEST(LatticeFit, PadsByTheDiagonalAndGivesFlatBoxesTheMinimumThickness) {
@@ -112,8 +186,8 @@ TEST(LatticeFit, PadsByTheDiagonalAndGivesFlatBoxesTheMinimumThickness) {
 
 TEST(SceneDeformer, ADragStepWritesControlPointsInPlaceAndBuildsNoLattice) {
   Scene scene;
-  addObject(scene, sphere("a"));
-  addObject(scene, sphere("b"));
+  scene.addObject(sphere("a"));
+  scene.addObject(sphere("b"));
   AttachOptions options;
   options.counts = {4, 4, 4};
   const widgets::WidgetId lattice = attachNewLattice(scene, {"a"}, options);
@@ -140,8 +214,8 @@ TEST(SceneDeformer, ADragStepWritesControlPointsInPlaceAndBuildsNoLattice) {
   // A look, a camera or nothing at all: no deformation.
   DisplaySettings look;
   look.opacity = 0.5;
-  setObjectDisplay(scene, "a", look);
-  setCamera(scene, Camera{});
+  scene.setObjectDisplay("a", look);
+  scene.setCamera(Camera{});
   deformer.update(scene);
   EXPECT_EQ(deformer.revision("a"), a0 + 3);
   EXPECT_EQ(deformer.lastStats().latticesBuilt, 0);
@@ -159,7 +233,7 @@ TEST(SceneDeformer, ADragStepWritesControlPointsInPlaceAndBuildsNoLattice) {
   EXPECT_EQ(deformer.revision("a"), a0 + 4);
 
   // A new mesh is noticed through its revision.
-  setObjectMesh(scene, "a", sphere("a", 6).mesh);
+  scene.setObjectMesh("a", sphere("a", 6).mesh);
   deformer.update(scene);
   EXPECT_EQ(deformer.points("a").rows(), scene.findObject("a")->mesh.points.rows());
   EXPECT_EQ(deformer.lastStats().latticesBuilt, 1);
@@ -167,7 +241,7 @@ TEST(SceneDeformer, ADragStepWritesControlPointsInPlaceAndBuildsNoLattice) {
 
 TEST(SceneDeformer, GestureStepsUpdateByDeltasAndAnExactUpdateRestoresTheExactResult) {
   Scene scene;
-  addObject(scene, sphere("a", 24));
+  scene.addObject(sphere("a", 24));
   AttachOptions options;
   options.counts = {4, 4, 4};
   const widgets::WidgetId lattice = attachNewLattice(scene, {"a"}, options);

@@ -81,10 +81,10 @@ TEST(SceneDeformer, DetachRestoresTheObjectsOwnPoints) {
   SceneDeformer deformer;
   deformer.update(scene);
   EXPECT_GT((deformer.points("sphere") - scene.objects[0].mesh.points).cwiseAbs().maxCoeff(), 0.1);
-  detachLattice(scene, lattice, "sphere");
+  scene.detach(lattice, "sphere");
   deformer.update(scene);
   EXPECT_EQ(deformer.points("sphere"), scene.objects[0].mesh.points);
-  EXPECT_THROW(detachLattice(scene, lattice, "sphere"), std::invalid_argument);
+  EXPECT_THROW(scene.detach(lattice, "sphere"), std::invalid_argument);
 }
 
 TEST(SceneDeformer, HierarchyRunsParentThenChild) {

@@ -236,13 +236,14 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
   const Eigen::AlignedBox3d box = r.fit ? objectsBox(scene, ranks) : Eigen::AlignedBox3d();
   onEveryRank(ranks, [&] {
     if (!r.inputs.empty()) {
-      scene.attachments.clear();
+      std::vector<scenes::Attachment> attachments;
       for (auto root : scene.widgets.roots()) {
         scenes::Attachment attachment{root, {}};
         for (const auto& object : scene.objects) attachment.objects.push_back(object.name);
-        scene.attachments.push_back(std::move(attachment));
+        attachments.push_back(std::move(attachment));
       }
-      if (scene.attachments.empty()) console.warn("the widget model has no lattice: the output equals the input");
+      scene.setAttachments(std::move(attachments));
+      if (scene.attachments().empty()) console.warn("the widget model has no lattice: the output equals the input");
     }
     if (r.fit) fitRoots(scene, box, r.padding);
     applySettings(scene.widgets, r.settings);

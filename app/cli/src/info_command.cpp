@@ -63,7 +63,7 @@ void infoScene(const fs::path& path, const Args& args) {
     std::printf("object %s: %s; %s\n", object.name.c_str(), sourceText(object.source).c_str(),
                 meshText(object.mesh).c_str());
   printWidgets(scene.widgets);
-  for (const auto& a : scene.attachments) {
+  for (const auto& a : scene.attachments()) {
     std::string objects;
     for (const auto& o : a.objects) objects += (objects.empty() ? "" : ", ") + o;
     std::printf("attachment: %s deforms %s\n", scene.widgets.name(a.lattice).c_str(), objects.c_str());

@@ -46,7 +46,7 @@ scenes::Camera presetCamera(const scenes::Scene& scene, const std::string& prese
   }
   if (box.isEmpty()) box.extend(Eigen::Vector3d::Zero());
   const double radius = std::max(0.5 * box.diagonal().norm(), 1e-6);
-  scenes::Camera camera = scene.camera;
+  scenes::Camera camera = scene.camera();
   const double halfAngle = 0.5 * camera.viewAngleDegrees * std::numbers::pi / 180.0;
   camera.focalPoint = box.center();
   camera.position = box.center() + towardsCamera * (1.1 * radius / std::sin(halfAngle));
@@ -88,7 +88,7 @@ int runRender(const Args& args) {
     if (!std::isnan(frame)) scenes::applyAnimationFrame(scene, frame);
     applySettings(scene.widgets, settings);
     if (preset != "scene" && !framed) {
-      scene.camera = presetCamera(scene, preset);  // framed once: the camera holds still over a sequence
+      scene.setCamera(presetCamera(scene, preset));  // framed once: the camera holds still over a sequence
       framed = true;
     }
     console.begin("render", "rendering " + std::to_string(options.width) + "x" + std::to_string(options.height));

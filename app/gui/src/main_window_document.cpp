@@ -54,7 +54,7 @@ void MainWindow::openScene(const std::filesystem::path& path) {
 
 void MainWindow::saveScene(const std::filesystem::path& path) {
   scenes::Scene copy = impl_->scene;
-  copy.camera = impl_->sceneView->camera();
+  copy.setCamera(impl_->sceneView->camera());
   copy.widgetFile.reset();
   scenes::writeScene(path, copy);
   impl_->commands.markClean();

@@ -282,7 +282,7 @@ void MainWindow::createMenus(QDockWidget* outlinerDock, QDockWidget* propertiesD
 
   QMenu* viewMenu = menuBar()->addMenu(tr("&View"));
   action(viewMenu, tr("&Reset Camera"), "actionResetCamera", [this] {
-    impl_->sceneView->applyCamera(impl_->scene.camera);
+    impl_->sceneView->applyCamera(impl_->scene.camera());
     impl_->view->requestRender();
   });
   d.navigation = new ViewNavigation(

@@ -529,7 +529,7 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
     widgets::WidgetId root = id;
     while (const auto up = model.parentLattice(root)) root = *up;
     QStringList objects;
-    for (const auto& a : scene_.attachments)
+    for (const auto& a : scene_.attachments())
       if (a.lattice == root)
         for (const auto& o : a.objects) objects << qs(o);
     QString deforms = objects.isEmpty() ? tr("(nothing)") : objects.join(", ");

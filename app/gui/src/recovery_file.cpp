@@ -28,9 +28,9 @@ scenes::Scene fileContent(const scenes::Scene& scene, const scenes::Camera& came
   scenes::Scene out;
   out.description = scene.description;
   out.widgets = scene.widgets;
-  out.attachments = scene.attachments;
-  out.camera = camera;
-  out.background = scene.background;
+  out.setAttachments(scene.attachments());
+  out.setCamera(camera);
+  out.setBackground(scene.background());
   out.objects.reserve(scene.objects.size());
   for (const scenes::SceneObject& object : scene.objects) {
     scenes::SceneObject copy;

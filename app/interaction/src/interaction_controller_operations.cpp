@@ -29,14 +29,7 @@ void fitAndAttachLattice(scenes::Scene& scene, WidgetId lattice, const std::stri
   const Eigen::AlignedBox3d bounds(object->mesh.points.colwise().minCoeff().transpose(),
                                    object->mesh.points.colwise().maxCoeff().transpose());
   scene.widgets.setLatticeFrame(lattice, scenes::fittedLatticeFrame(bounds, 0.05));
-  auto it = std::find_if(scene.attachments.begin(), scene.attachments.end(),
-                         [&](const scenes::Attachment& a) { return a.lattice == lattice; });
-  if (it == scene.attachments.end()) {
-    scene.attachments.push_back({lattice, {objectName}});
-  } else if (std::find(it->objects.begin(), it->objects.end(), objectName) == it->objects.end()) {
-    it->objects.push_back(objectName);
-  }
-  scenes::touchStructure(scene);
+  scene.attach(lattice, objectName);
   scenes::validateScene(scene);
 }
 
@@ -48,12 +41,12 @@ auto InteractionController::edit(const std::string& description, Change change, 
   // The model's data and the attachments before the change (transient: the command keeps only
   // the records that differ), and the objects there were.
   const widgets::WidgetModelData widgetsBefore = scene_.widgets.toData();
-  const std::vector<scenes::Attachment> attachmentsBefore = scene_.attachments;
+  const std::vector<scenes::Attachment> attachmentsBefore = scene_.attachments();
   const std::size_t objectsBefore = scene_.objects.size();
   auto deltaFromBefore = [&] {
     scenes::SceneDelta delta;
     delta.widgets = scenes::modelPatch(widgetsBefore, scene_.widgets.toData());
-    if (!(attachmentsBefore == scene_.attachments)) delta.attachments = std::pair(attachmentsBefore, scene_.attachments);
+    if (!(attachmentsBefore == scene_.attachments())) delta.attachments = std::pair(attachmentsBefore, scene_.attachments());
     return delta;
   };
   auto finish = [&] {
@@ -66,11 +59,11 @@ auto InteractionController::edit(const std::string& description, Change change, 
       if (!forward) {
         for (std::size_t i = 0; i < added; ++i) held->push_back(std::move(scene_.objects[objectsBefore + i]));
         scene_.objects.resize(objectsBefore);
-        if (added > 0) scenes::touchStructure(scene_);
+        if (added > 0) scene_.touchStructure();
       }
       scenes::applySceneDelta(scene_, *delta, forward);
       if (forward && added > 0) {
-        for (auto& object : *held) scenes::addObject(scene_, std::move(object));
+        for (auto& object : *held) scene_.addObject(std::move(object));
         held->clear();
       }
       pruneSelection();
@@ -121,7 +114,7 @@ void InteractionController::setDisplay(const std::vector<std::string>& objects,
   if (before == looks) return;
   auto restore = [this, objects](const std::vector<scenes::DisplaySettings>& set) {
     for (std::size_t i = 0; i < objects.size(); ++i)
-      if (scene_.findObject(objects[i]) != nullptr) scenes::setObjectDisplay(scene_, objects[i], set[i]);
+      if (scene_.findObject(objects[i]) != nullptr) scene_.setObjectDisplay(objects[i], set[i]);
     notify();
   };
   restore(looks);
@@ -214,7 +207,7 @@ void InteractionController::unbind(widgets::BindingId binding) {
 void InteractionController::removeWidget(WidgetId id) {
   edit("Remove " + scene_.widgets.name(id), [&] {
     scene_.widgets.remove(id);
-    std::erase_if(scene_.attachments, [&](const scenes::Attachment& a) { return !scene_.widgets.contains(a.lattice); });
+    scene_.dropStaleAttachments();
     selection_.clear();
     point_.reset();
   });
@@ -228,7 +221,7 @@ void InteractionController::attachLattice(WidgetId lattice, const std::string& o
 
 void InteractionController::detachLattice(WidgetId lattice, const std::string& object) {
   edit("Detach " + scene_.widgets.name(lattice) + " from " + object,
-       [&] { scenes::detachLattice(scene_, lattice, object); });
+       [&] { scene_.detach(lattice, object); });
 }
 
 std::string InteractionController::addPrimitive(const scenes::PrimitiveOptions& options) {
@@ -242,7 +235,7 @@ std::string InteractionController::addPrimitive(const scenes::PrimitiveOptions& 
         object.name = name;
         object.source = options;
         object.mesh = scenes::buildObjectMesh(object.source, ".");
-        scenes::addObject(scene_, std::move(object));
+        scene_.addObject(std::move(object));
         return name;
       });
 }
@@ -252,7 +245,7 @@ void InteractionController::addObject(scenes::SceneObject object) {
       "Import " + object.name,
       [&] {
         if (scene_.findObject(object.name) != nullptr) throw std::invalid_argument("object '" + object.name + "' exists");
-        scenes::addObject(scene_, std::move(object));
+        scene_.addObject(std::move(object));
       });
 }
 
@@ -311,14 +304,15 @@ void InteractionController::replaceWidgets(widgets::WidgetModel model, const std
     // Another model has its own ids: an attachment goes over to the new root of its lattice's
     // name, or goes.
     std::vector<std::pair<std::string, std::vector<std::string>>> named;
-    for (const scenes::Attachment& a : scene_.attachments) named.emplace_back(scene_.widgets.name(a.lattice), a.objects);
+    for (const scenes::Attachment& a : scene_.attachments()) named.emplace_back(scene_.widgets.name(a.lattice), a.objects);
     scene_.widgets = std::move(model);
-    scene_.attachments.clear();
+    std::vector<scenes::Attachment> attachments;
     const std::vector<WidgetId> roots = scene_.widgets.roots();
     for (auto& [name, objects] : named) {
       const auto root = std::find_if(roots.begin(), roots.end(), [&](WidgetId r) { return scene_.widgets.name(r) == name; });
-      if (root != roots.end()) scene_.attachments.push_back({*root, std::move(objects)});
+      if (root != roots.end()) attachments.push_back({*root, std::move(objects)});
     }
+    scene_.setAttachments(std::move(attachments));
     if (attachTo)
       for (WidgetId root : scene_.widgets.roots()) fitAndAttachLattice(scene_, root, *attachTo);
     selection_.clear();
@@ -337,22 +331,22 @@ void InteractionController::removeObjects(const std::vector<std::string>& object
   // The command holds the removed objects (with their places) while they are removed, and the
   // attachments before (a few names); scenes::removeObject drops each from its attachments.
   auto held = std::make_shared<std::vector<std::pair<std::size_t, scenes::SceneObject>>>();
-  const auto attachmentsBefore = std::make_shared<const std::vector<scenes::Attachment>>(scene_.attachments);
+  const auto attachmentsBefore = std::make_shared<const std::vector<scenes::Attachment>>(scene_.attachments());
   auto remove = [this, objects, held] {
     for (std::size_t i = scene_.objects.size(); i-- > 0;)
       if (std::find(objects.begin(), objects.end(), scene_.objects[i].name) != objects.end()) {
         const std::string name = scene_.objects[i].name;
         held->emplace_back(i, std::move(scene_.objects[i]));
         scene_.objects[i].name = name;  // the moved-from entry, which removeObject finds and erases
-        scenes::removeObject(scene_, name);
+        scene_.removeObject(name);
       }
   };
   auto putBack = [this, held, attachmentsBefore] {
     for (auto it = held->rbegin(); it != held->rend(); ++it)
       scene_.objects.insert(scene_.objects.begin() + static_cast<std::ptrdiff_t>(it->first), std::move(it->second));
     held->clear();
-    scene_.attachments = *attachmentsBefore;
-    scenes::touchStructure(scene_);
+    scene_.setAttachments(*attachmentsBefore);
+    scene_.touchStructure();
   };
   auto after = [this] {
     pruneSelection();
@@ -383,11 +377,8 @@ void InteractionController::renameObject(const std::string& object, const std::s
   if (name.empty()) throw std::invalid_argument("an object needs a name");
   if (scene_.findObject(name) != nullptr) throw std::invalid_argument("object name '" + name + "' is already used");
   if (dragging_) cancel();
-  // The attachments name objects (scenes::Attachment::objects): they follow.
   auto rename = [this](const std::string& from, const std::string& to) {
-    scene_.findObject(from)->name = to;
-    for (scenes::Attachment& a : scene_.attachments) std::replace(a.objects.begin(), a.objects.end(), from, to);
-    scenes::touchStructure(scene_);
+    scene_.renameObject(from, to);
     refresh();
     if (onStructureChanged) onStructureChanged();
   };

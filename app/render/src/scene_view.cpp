@@ -483,8 +483,8 @@ void SceneView::show(const scenes::Scene& scene, const scenes::SceneDeformer& de
   impl_->buildTransformer();
   impl_->buildWidgets(scene.widgets);
   impl_->updateWidgets(scene.widgets);
-  impl_->renderer->SetBackground(scene.background.x(), scene.background.y(), scene.background.z());
-  applyCamera(scene.camera);
+  impl_->renderer->SetBackground(scene.background().x(), scene.background().y(), scene.background().z());
+  applyCamera(scene.camera());
 }
 
 void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
@@ -513,7 +513,7 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
     impl_->buildObjects(scene, deformed);
   }
   impl_->updateWidgets(scene.widgets);
-  impl_->renderer->SetBackground(scene.background.x(), scene.background.y(), scene.background.z());
+  impl_->renderer->SetBackground(scene.background().x(), scene.background().y(), scene.background().z());
   // The clipping range from our own bounds: VTK's would visit every cell of a large mesh
   // (~40 ms per frame at 1M vertices).
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());

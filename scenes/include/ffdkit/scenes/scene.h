@@ -100,33 +100,92 @@ struct Camera {
 };
 
 /// A document: objects, the widget model whose lattices deform them, attachments, a camera.
-struct Scene {
+///
+/// Every edit of the parts outside the widget model goes through a member below that stamps what
+/// it changed with a new `revision()` (scene_changes.h turns the stamps into a change set); the
+/// widget model stamps its own edits (WidgetModel::changesSince). Read-only access is through
+/// the const accessors.
+class Scene {
+ public:
   std::string description;
   std::vector<SceneObject> objects;
+  /// Public: the model reports its own edits (revision(), changesSince); assigning another model
+  /// is another instance, which consumers take anew.
   widgets::WidgetModel widgets;
-  std::vector<Attachment> attachments;
-  Camera camera;
-  Eigen::Vector3d background{0.13, 0.15, 0.18};  ///< RGB in [0, 1]
   /// When set, the widget model lives in this widget file (relative to the scene's folder)
   /// and the scene file references it instead of holding the widgets inline.
   std::optional<std::string> widgetFile;
   /// Frame rate, frame range and keyed channels (animation.h evaluates and edits them).
   Animation animation;
-  /// Revisions of the parts outside the widget model (which keeps its own): `revision` grows with
-  /// every edit made through scene_changes.h, which stamps what it changed with it.
-  std::uint64_t revision = 0;
-  std::uint64_t structureRevision = 0;  ///< objects added / removed / renamed, attachments
-  std::uint64_t cameraRevision = 0;     ///< camera, background
-  std::uint64_t animationRevision = 0;  ///< keys, frame rate, frame range (animation.h edits)
 
+  // ---- revisions of the parts outside the widget model (which keeps its own) -----------------
+  /// Grows by one with every edit below; each stamps what it changed with the new value.
+  std::uint64_t revision() const { return revision_; }
+  std::uint64_t structureRevision() const { return structureRevision_; }  ///< objects added / removed / renamed, attachments
+  std::uint64_t cameraRevision() const { return cameraRevision_; }        ///< camera, background
+  std::uint64_t animationRevision() const { return animationRevision_; }  ///< keys, frame rate, frame range
+
+  // ---- objects: edits that stamp their revisions -----------------------------------------------
   /// The object with this name, or nullptr.
   const SceneObject* findObject(const std::string& name) const;
   SceneObject* findObject(const std::string& name);
+  /// Adds an object (stamps the structure and the object's mesh and look).
+  /// @throws std::invalid_argument for an empty or duplicate name.
+  void addObject(SceneObject object);
+  /// Removes an object and its place in every attachment (an attachment left with no object goes).
+  /// @throws std::invalid_argument for an unknown object.
+  void removeObject(const std::string& name);
+  /// Renames an object; the attachments naming it follow (stamps the structure).
+  /// @throws std::invalid_argument for an unknown object, or an empty or used name.
+  void renameObject(const std::string& from, const std::string& to);
+  /// Replaces an object's own points. @throws std::invalid_argument for an unknown object.
+  void setObjectMesh(const std::string& name, MeshData mesh);
+  /// Changes how an object looks (no geometry changes). @throws for an unknown object.
+  void setObjectDisplay(const std::string& name, const DisplaySettings& display);
+  /// After editing `objects` directly: stamps the structure.
+  void touchStructure();
+  /// After editing an object's mesh in place: stamps it. @throws for an unknown object.
+  void touchMesh(const std::string& name);
+  /// After editing `animation` directly: stamps it (animation.h's edits call it).
+  void touchAnimation();
+
+  // ---- attachments -------------------------------------------------------------------------
+  const std::vector<Attachment>& attachments() const { return attachments_; }
+  /// Replaces every attachment (a file read, an undo step); stamps the structure when they differ.
+  void setAttachments(std::vector<Attachment> attachments);
+  /// `lattice` deforms `object` too: appended to the lattice's attachment, or a new attachment at
+  /// the end. Stamps the structure unless it already did. Checks nothing (validateScene does).
+  void attach(widgets::WidgetId lattice, const std::string& object);
+  /// `lattice` stops deforming `object` (an attachment left with no object goes).
+  /// @throws std::invalid_argument if it was not attached.
+  void detach(widgets::WidgetId lattice, const std::string& object);
+  /// Drops the attachments whose lattice the widget model no longer has (after a removal).
+  void dropStaleAttachments();
   /// Root lattices deforming `object`, in attachment order.
   std::vector<widgets::WidgetId> latticesDeforming(const std::string& object) const;
   /// Every lattice deforming `object` in the order its pipeline runs them (spec §6): each attached
   /// root in attachment order followed by its subtree (WidgetModel::pipelineOrder(root)).
   std::vector<widgets::WidgetId> stagesDeforming(const std::string& object) const;
+
+  // ---- camera and background -----------------------------------------------------------------
+  const Camera& camera() const { return camera_; }
+  void setCamera(const Camera& camera);
+  /// RGB in [0, 1].
+  const Eigen::Vector3d& background() const { return background_; }
+  void setBackground(const Eigen::Vector3d& background);
+
+ private:
+  /// The next revision, which the caller stamps on what it changed.
+  std::uint64_t stamp() { return ++revision_; }
+  SceneObject& object(const std::string& name);
+
+  std::vector<Attachment> attachments_;
+  Camera camera_;
+  Eigen::Vector3d background_{0.13, 0.15, 0.18};
+  std::uint64_t revision_ = 0;
+  std::uint64_t structureRevision_ = 0;
+  std::uint64_t cameraRevision_ = 0;
+  std::uint64_t animationRevision_ = 0;
 };
 
 /// Builds an object's own points from its source. Mesh paths resolve against `baseDirectory`.

@@ -17,7 +17,7 @@ struct SceneMark {
   std::uint64_t widgets = 0;
 };
 
-/// What changed in a scene after a SceneMark: the change set the deformer, the view, the outliner
+/// What changed in a scene after a SceneMark (Scene's edits stamp what they change): the change set the deformer, the view, the outliner
 /// and the property panel read instead of comparing the document (seed STYLE "change-driven").
 struct SceneChanges {
   /// The widget model was replaced (a copy, a file): take every widget and lattice anew.
@@ -38,24 +38,5 @@ struct SceneChanges {
 SceneMark markOf(const Scene& scene);
 /// What changed after `mark`.
 SceneChanges changesSince(const Scene& scene, const SceneMark& mark);
-
-// ---- edits that stamp their revisions (Scene's fields may also be set directly while a scene is
-// built; a consumer that must notice such an edit needs one of these, or a touch* call) ----------
-
-/// Adds an object. @throws std::invalid_argument for an empty or duplicate name.
-void addObject(Scene& scene, SceneObject object);
-/// Removes an object and its place in every attachment (an attachment left with no object goes).
-/// @throws std::invalid_argument for an unknown object.
-void removeObject(Scene& scene, const std::string& name);
-/// Replaces an object's own points (and source, when given). @throws for an unknown object.
-void setObjectMesh(Scene& scene, const std::string& name, MeshData mesh);
-/// Changes how an object looks (no geometry changes). @throws for an unknown object.
-void setObjectDisplay(Scene& scene, const std::string& name, const DisplaySettings& display);
-void setCamera(Scene& scene, const Camera& camera);
-void setBackground(Scene& scene, const Eigen::Vector3d& background);
-/// After editing `scene.attachments` or `scene.objects` directly: stamps the structure.
-void touchStructure(Scene& scene);
-/// After editing an object's mesh in place: stamps it. @throws for an unknown object.
-void touchMesh(Scene& scene, const std::string& name);
 
 }  // namespace ffdkit::scenes
