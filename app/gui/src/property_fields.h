@@ -6,6 +6,8 @@
 // changed (PropertyPanel::Stats::fieldsUpdated counts those).
 
 #include <functional>
+#include <string>
+#include <string_view>
 
 #include <QAbstractButton>
 #include <QComboBox>
@@ -15,6 +17,21 @@
 #include <QSpinBox>
 
 namespace ffdkit::app {
+
+inline QString qs(const std::string& s) { return QString::fromStdString(s); }
+inline QString qs(std::string_view s) { return QString::fromStdString(std::string(s)); }
+
+/// A spin box named `name` (for tests) that reports a value when editing ends.
+inline QDoubleSpinBox* spin(const QString& name, double value, double lo, double hi, int decimals = 4) {
+  auto* box = new QDoubleSpinBox;
+  box->setObjectName(name);
+  box->setRange(lo, hi);
+  box->setDecimals(decimals);
+  box->setSingleStep(0.05);
+  box->setValue(value);
+  box->setKeyboardTracking(false);
+  return box;
+}
 
 template <class Get>
 std::function<bool()> spinField(QDoubleSpinBox* box, Get get) {

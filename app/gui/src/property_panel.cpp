@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <numbers>
-#include <exception>
 
 #include <QCheckBox>
 #include <QComboBox>
@@ -19,65 +18,10 @@
 
 #include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/app/parts.h"
+#include "lattice_bases.h"
 #include "property_fields.h"
 
 namespace ffdkit::app {
-namespace {
-
-QString qs(const std::string& s) { return QString::fromStdString(s); }
-QString qs(std::string_view s) { return QString::fromStdString(std::string(s)); }
-
-QDoubleSpinBox* spin(const QString& name, double value, double lo, double hi, int decimals = 4) {
-  auto* box = new QDoubleSpinBox;
-  box->setObjectName(name);
-  box->setRange(lo, hi);
-  box->setDecimals(decimals);
-  box->setSingleStep(0.05);
-  box->setValue(value);
-  box->setKeyboardTracking(false);
-  return box;
-}
-
-QString basisName(const ffd::AxisBasis& b) {
-  switch (b.kind) {
-    case ffd::AxisBasis::Kind::Bernstein: return "Bernstein";
-    case ffd::AxisBasis::Kind::BSpline:
-      return QString(b.knots.size() > 0 ? "B-spline deg %1, knots" : "B-spline deg %1").arg(b.degree);
-    case ffd::AxisBasis::Kind::PeriodicBSpline: return QString("periodic B-spline deg %1").arg(b.degree);
-  }
-  return "?";
-}
-
-// The bases a lattice axis offers: Bernstein and clamped B-splines of degree 1-3, or, for the
-// angular axis of a cylindrical lattice, periodic B-splines of degree 1-3; plus the current
-// basis when it is none of these (explicit knots, a higher degree), so the combo can show it.
-std::vector<ffd::AxisBasis> basisChoices(const ffd::AxisBasis& current, bool angular) {
-  std::vector<ffd::AxisBasis> out;
-  if (angular) {
-    for (int d = 1; d <= 3; ++d) out.push_back(ffd::AxisBasis::periodic(d));
-  } else {
-    out.push_back(ffd::AxisBasis::bernstein());
-    for (int d = 1; d <= 3; ++d) out.push_back(ffd::AxisBasis::bspline(d));
-  }
-  const bool listed = std::any_of(out.begin(), out.end(), [&](const ffd::AxisBasis& b) {
-    return b.kind == current.kind && (b.kind == ffd::AxisBasis::Kind::Bernstein || b.degree == current.degree) &&
-           current.knots.size() == 0;
-  });
-  if (!listed) out.push_back(current);
-  return out;
-}
-
-int basisIndex(const std::vector<ffd::AxisBasis>& choices, const ffd::AxisBasis& b) {
-  for (std::size_t i = 0; i < choices.size(); ++i) {
-    const ffd::AxisBasis& c = choices[i];
-    if (c.kind == b.kind && (c.kind == ffd::AxisBasis::Kind::Bernstein || c.degree == b.degree) &&
-        c.knots.size() == b.knots.size())
-      return static_cast<int>(i);
-  }
-  return -1;
-}
-
-}  // namespace
 
 PropertyPanel::PropertyPanel(InteractionController& controller, const scenes::Scene& scene, QWidget* parent)
     : QWidget(parent), controller_(controller), scene_(scene) {
@@ -86,17 +30,6 @@ PropertyPanel::PropertyPanel(InteractionController& controller, const scenes::Sc
   layout->setContentsMargins(0, 0, 0, 0);
   layout->addStretch();
   clearRows();
-}
-
-template <class F>
-bool PropertyPanel::guarded(F f) {
-  try {
-    f();
-    return true;
-  } catch (const std::exception& e) {
-    emit error(QString::fromStdString(e.what()));
-    return false;
-  }
 }
 
 void PropertyPanel::clearRows() {
@@ -406,136 +339,6 @@ void PropertyPanel::showBinding(widgets::BindingId id) {
   form_->addRow(tr("Clamp"), clamp);
   form_->addRow(tr("Clamp min"), lo);
   form_->addRow(tr("Clamp max"), hi);
-}
-
-void PropertyPanel::showLattice(widgets::WidgetId id) {
-  const auto& m = scene_.widgets;
-  auto* nameLabel = new QLabel(qs(m.name(id)));
-  fields_.push_back(textField(nameLabel, [this, id] { return qs(scene_.widgets.name(id)); }));
-  form_->addRow(tr("Lattice"), nameLabel);
-  // Counts: the model resamples the lattice, keeping its deformation (WidgetModel::setLatticeCounts).
-  const Eigen::Vector3i n = m.counts(id);
-  auto* countsRow = new QWidget;
-  auto* countsLayout = new QHBoxLayout(countsRow);
-  countsLayout->setContentsMargins(0, 0, 0, 0);
-  for (int axis = 0; axis < 3; ++axis) {
-    auto* count = new QSpinBox;
-    count->setObjectName(QString("count%1").arg("UVW"[axis]));
-    count->setRange(2, 64);
-    count->setValue(n[axis]);
-    count->setKeyboardTracking(false);
-    fields_.push_back(intSpinField(count, [this, id, axis] { return scene_.widgets.counts(id)[axis]; }));
-    count->setToolTip(tr("points along %1").arg("uvw"[axis]));
-    connect(count, &QSpinBox::valueChanged, this, [this, id, axis, count](int value) {
-      const bool done = guarded([&] {
-        Eigen::Vector3i c = scene_.widgets.counts(id);
-        c[axis] = value;
-        controller_.setLatticeCounts(id, c);
-      });
-      if (!done) {
-        const QSignalBlocker block(count);
-        count->setValue(scene_.widgets.counts(id)[axis]);
-      }
-    });
-    countsLayout->addWidget(count);
-  }
-  form_->addRow(tr("Counts (u v w)"), countsRow);
-  const auto& settings = m.latticeSettings(id);
-  form_->addRow(tr("Shape"), new QLabel(settings.cylinder ? tr("cylindrical (EFFD)") : tr("box")));
-  for (int axis = 0; axis < 3; ++axis) {
-    const auto a = static_cast<std::size_t>(axis);
-    const bool angular = settings.basis[a].kind == ffd::AxisBasis::Kind::PeriodicBSpline;
-    const std::vector<ffd::AxisBasis> choices = basisChoices(settings.basis[a], angular);
-    auto* basis = new QComboBox;
-    basis->setObjectName(QString("basis%1").arg("UVW"[axis]));
-    for (const ffd::AxisBasis& b : choices) basis->addItem(basisName(b));
-    basis->setCurrentIndex(basisIndex(choices, settings.basis[a]));
-    fields_.push_back(
-        comboField(basis, [this, id, a, choices] { return basisIndex(choices, scene_.widgets.latticeSettings(id).basis[a]); }));
-    connect(basis, &QComboBox::currentIndexChanged, this, [this, id, a, choices, basis](int index) {
-      if (index < 0) return;
-      const bool done = guarded([&] {
-        widgets::LatticeSettings s = scene_.widgets.latticeSettings(id);
-        s.basis[a] = choices[static_cast<std::size_t>(index)];
-        controller_.setLatticeSettings(id, s);
-      });
-      if (!done) {
-        const QSignalBlocker block(basis);
-        basis->setCurrentIndex(basisIndex(choices, scene_.widgets.latticeSettings(id).basis[a]));
-      }
-    });
-    form_->addRow(tr("Basis %1").arg("uvw"[axis]), basis);
-  }
-  auto* outside = new QComboBox;
-  outside->setObjectName("outside");
-  outside->addItems({tr("identity"), tr("clamp edge"), tr("extrapolate"), tr("falloff")});
-  outside->setCurrentIndex(static_cast<int>(settings.outside.kind));
-  fields_.push_back(
-      comboField(outside, [this, id] { return static_cast<int>(scene_.widgets.latticeSettings(id).outside.kind); }));
-  connect(outside, &QComboBox::currentIndexChanged, this, [this, id](int index) {
-    guarded([&] {
-      widgets::LatticeSettings s = scene_.widgets.latticeSettings(id);
-      s.outside.kind = static_cast<ffd::OutsidePolicy::Kind>(index);
-      if (s.outside.kind == ffd::OutsidePolicy::Kind::Falloff && !(s.outside.distance > 0.0)) s.outside.distance = 0.25;
-      controller_.setLatticeSettings(id, s);
-    });
-  });
-  form_->addRow(tr("Outside points"), outside);
-  const auto parent = m.parentCell(id);
-  if (!parent) {
-    // The transformer of a root lattice: position (its lower corner) and size per axis; the
-    // orientation is kept.
-    const Eigen::Affine3d frame = m.latticeFrame(id);
-    const Eigen::Matrix3d linear = frame.linear();
-    auto* placement = new QWidget;
-    auto* row = new QHBoxLayout(placement);
-    row->setContentsMargins(0, 0, 0, 0);
-    auto* sizes = new QWidget;
-    auto* sizeRow = new QHBoxLayout(sizes);
-    sizeRow->setContentsMargins(0, 0, 0, 0);
-    for (int axis = 0; axis < 3; ++axis) {
-      auto* position = spin(QString("latticePosition%1").arg("xyz"[axis]), frame.translation()[axis], -1e4, 1e4, 3);
-      fields_.push_back(spinField(position, [this, id, axis] { return scene_.widgets.latticeFrame(id).translation()[axis]; }));
-      connect(position, &QDoubleSpinBox::valueChanged, this, [this, id, axis](double v) {
-        guarded([&] {
-          Eigen::Affine3d f = scene_.widgets.latticeFrame(id);
-          f.translation()[axis] = v;
-          controller_.setLatticeFrame(id, f);
-        });
-      });
-      row->addWidget(position);
-      auto* size = spin(QString("latticeSize%1").arg("uvw"[axis]), linear.col(axis).norm(), 1e-4, 1e4, 3);
-      fields_.push_back(spinField(size, [this, id, axis] { return scene_.widgets.latticeFrame(id).linear().col(axis).norm(); }));
-      connect(size, &QDoubleSpinBox::valueChanged, this, [this, id, axis](double v) {
-        guarded([&] {
-          Eigen::Affine3d f = scene_.widgets.latticeFrame(id);
-          f.linear().col(axis) = f.linear().col(axis).normalized() * v;
-          controller_.setLatticeFrame(id, f);
-        });
-      });
-      sizeRow->addWidget(size);
-    }
-    form_->addRow(tr("Position"), placement);
-    form_->addRow(tr("Size"), sizes);
-  }
-  addLabel(tr("Cells"), [this, id] { return QString::number(scene_.widgets.cellsOf(id).size()); });
-  addLabel(tr("Parent"), [this, id] {
-    const auto cell = scene_.widgets.parentCell(id);
-    return cell ? qs(scene_.widgets.name(*cell)) : tr("(root)");
-  });
-  // A child lattice deforms what its root is attached to (the pipeline runs the whole tree).
-  addLabel(tr("Deforms"), [this, id] {
-    const auto& model = scene_.widgets;
-    widgets::WidgetId root = id;
-    while (const auto up = model.parentLattice(root)) root = *up;
-    QStringList objects;
-    for (const auto& a : scene_.attachments())
-      if (a.lattice == root)
-        for (const auto& o : a.objects) objects << qs(o);
-    QString deforms = objects.isEmpty() ? tr("(nothing)") : objects.join(", ");
-    if (root != id && !objects.isEmpty()) deforms += tr(" (through %1)").arg(qs(model.name(root)));
-    return deforms;
-  })->setObjectName("deforms");
 }
 
 QLabel* PropertyPanel::addLabel(const QString& title, std::function<QString()> text) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <exception>
 #include <functional>
 #include <string>
 #include <vector>
@@ -75,5 +76,16 @@ class PropertyPanel : public QWidget {
   scenes::SceneMark mark_;  ///< the scene as the fields show it
   Stats stats_;
 };
+
+template <class F>
+bool PropertyPanel::guarded(F f) {
+  try {
+    f();
+    return true;
+  } catch (const std::exception& e) {
+    emit error(QString::fromStdString(e.what()));
+    return false;
+  }
+}
 
 }  // namespace ffdkit::app
