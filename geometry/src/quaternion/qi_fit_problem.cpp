@@ -204,44 +204,159 @@ void QiFitProblem::evaluateFrom(const Eigen::VectorXd& x, int from, QiFitEvaluat
   ev.r.resize(3 * points_.rows());
   ev.e.resize(static_cast<std::size_t>(nodes_) * k);
   ev.t.resize(nodes_);
-  std::vector<double> norms(k);
-  const bool local = form_ == ProductForm::Local;
+  // The start orientations first: q_{s+1} = E_k(1)..E_1(1) q_s (A) or q_s E_1(1)..E_k(1) (B) needs
+  // no integral, so every segment's sweep below knows its start orientation and the sweeps are
+  // independent. Each writes its positions relative to its start point; one pass then chains them.
   for (int seg = from; seg < layout_.segments; ++seg) {
     const std::vector<Eigen::Vector3d> w = omegas(x, seg);
-    for (int j = 0; j < k; ++j) norms[j] = w[j].norm();
-    const double l = length(x, seg);
-    const Eigen::Quaterniond q0 = ev.q[seg];
-    const Eigen::Vector3d p0 = ev.p[seg];
-    const SegmentPlan& plan = plans_[seg];
-    Eigen::Vector3d running = Eigen::Vector3d::Zero();
-    int node = 0;
-    const int lo = firstPoint(seg);
-    for (std::size_t out = 0; out < plan.closeAfter.size(); ++out) {
-      for (; node < plan.closeAfter[out]; ++node) {
-        const std::size_t at = static_cast<std::size_t>(plan.firstNode + node);
-        Eigen::Quaterniond* e = &ev.e[at * k];
-        const double* b = &plan.basis[static_cast<std::size_t>(node) * k];
-        Eigen::Quaterniond q = q0;
-        for (int j = 0; j < k; ++j) {
-          e[j] = scaledExp(w[j], norms[j], b[j]);
-          q = local ? mul(q, e[j]) : mul(e[j], q);
-        }
-        ev.t[at] = rotatedUnitX(q);
-        running += plan.weight[node] * ev.t[at];
-      }
-      if (out + 1 < plan.closeAfter.size()) {
-        const int i = lo + static_cast<int>(out);
-        ev.r.segment<3>(3 * i) = p0 + l * running - points_.row(i).transpose();
-      } else {
-        ev.p[seg + 1] = p0 + l * running;
-      }
-    }
-    Eigen::Quaterniond q1 = q0;
+    Eigen::Quaterniond q1 = ev.q[seg];
     for (int j = 0; j < k; ++j) {
       const Eigen::Quaterniond e = quaternionExp(w[j]);
       q1 = form_ == ProductForm::Local ? Eigen::Quaterniond(q1 * e) : Eigen::Quaterniond(e * q1);
     }
     ev.q[seg + 1] = q1.normalized();
+  }
+  const int count = layout_.segments - from;
+#pragma omp parallel for schedule(static) if (parallel_ && count > 1 && nodes_ >= kParallelNodes)
+  for (int s = 0; s < count; ++s) sweepSegment(x, from + s, ev);
+  for (int seg = from; seg < layout_.segments; ++seg) {
+    const Eigen::Vector3d p0 = ev.p[seg];
+    for (int i = firstPoint(seg); i <= lastPoint(seg); ++i) {
+      ev.r.segment<3>(3 * i) = p0 + ev.r.segment<3>(3 * i) - points_.row(i).transpose();
+    }
+    ev.p[seg + 1] = p0 + ev.p[seg + 1];
+  }
+}
+
+void QiFitProblem::sweepSegment(const Eigen::VectorXd& x, int seg, QiFitEvaluation& ev) const {
+  const int k = layout_.degree;
+  const bool local = form_ == ProductForm::Local;
+  const std::vector<Eigen::Vector3d> w = omegas(x, seg);
+  std::vector<double> norms(k);
+  for (int j = 0; j < k; ++j) norms[j] = w[j].norm();
+  const double l = length(x, seg);
+  const Eigen::Quaterniond q0 = ev.q[seg];
+  const SegmentPlan& plan = plans_[seg];
+  Eigen::Vector3d running = Eigen::Vector3d::Zero();
+  int node = 0;
+  const int lo = firstPoint(seg);
+  for (std::size_t out = 0; out < plan.closeAfter.size(); ++out) {
+    for (; node < plan.closeAfter[out]; ++node) {
+      const std::size_t at = static_cast<std::size_t>(plan.firstNode + node);
+      Eigen::Quaterniond* e = &ev.e[at * k];
+      const double* b = &plan.basis[static_cast<std::size_t>(node) * k];
+      Eigen::Quaterniond q = q0;
+      for (int j = 0; j < k; ++j) {
+        e[j] = scaledExp(w[j], norms[j], b[j]);
+        q = local ? mul(q, e[j]) : mul(e[j], q);
+      }
+      ev.t[at] = rotatedUnitX(q);
+      running += plan.weight[node] * ev.t[at];
+    }
+    // Relative to the start point p0 (added by evaluateFrom, in the order p0 + l running - P_i).
+    if (out + 1 < plan.closeAfter.size()) {
+      ev.r.segment<3>(3 * (lo + static_cast<int>(out))) = l * running;
+    } else {
+      ev.p[seg + 1] = l * running;
+    }
+  }
+}
+
+void QiFitProblem::segmentNormalSums(const Eigen::VectorXd& x, const QiFitEvaluation& ev, int seg,
+                                     SegmentNormalSums& out) const {
+  const int k = layout_.degree;
+  const bool planar = layout_.planar;
+  const int sv = layout_.segmentVars();
+  // Running integrals over the segment, 3 x (sv + 3): [d t / d w_1 .. d t / d w_k | t | R(F) (form A)].
+  Eigen::Matrix<double, 3, Eigen::Dynamic> acc = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, sv + 3);
+  Eigen::Matrix<double, 3, Eigen::Dynamic>& own = out.own;
+  own.resize(3, sv);
+  // Sums over the segment's points i of M_i^T M_i, M_i^T O_i, O_i^T O_i, M_i^T r_i, O_i^T r_i, where
+  // a point's Jacobian rows are [M_i D | O_i] with M_i = [I | G_i] (3 x 6) and O_i its own columns.
+  Eigen::Matrix<double, 6, 6>& s66 = out.s66;
+  Eigen::Matrix<double, 6, Eigen::Dynamic>& c6 = out.c6;
+  Eigen::MatrixXd& oo = out.oo;
+  Eigen::Matrix<double, 6, 1>& b6 = out.b6;
+  Eigen::VectorXd& gOwn = out.gOwn;
+  s66.setZero();
+  c6.setZero(6, sv);
+  oo.setZero(sv, sv);
+  b6.setZero();
+  gOwn.setZero(sv);
+  std::vector<double> norms(k);
+  std::vector<Eigen::Quaterniond> frame(k);
+  const std::vector<Eigen::Vector3d> w = omegas(x, seg);
+  for (int j = 0; j < k; ++j) norms[j] = w[j].norm();
+  const double l = length(x, seg);
+  const Eigen::Quaterniond q0 = ev.q[seg];
+  const Eigen::Matrix3d minusCrossT0 = -skew(rotatedUnitX(q0));
+  const SegmentPlan& plan = plans_[seg];
+  int node = 0;
+  const int lo = firstPoint(seg);
+  for (std::size_t o = 0; o < plan.closeAfter.size(); ++o) {
+    for (; node < plan.closeAfter[o]; ++node) {
+      const std::size_t at = static_cast<std::size_t>(plan.firstNode + node);
+      const Eigen::Quaterniond* e = &ev.e[at * k];
+      const double* b = &plan.basis[static_cast<std::size_t>(node) * k];
+      const Eigen::Vector3d& tan = ev.t[at];
+      // Frames left of each factor: E_k..E_{j+1} (form A) or q0 E_1..E_{j-1} (form B).
+      Eigen::Quaterniond full = Eigen::Quaterniond::Identity();
+      if (form_ == ProductForm::Global) {
+        Eigen::Quaterniond suffix = Eigen::Quaterniond::Identity();
+        for (int j = k - 1; j >= 0; --j) {
+          frame[j] = suffix;
+          suffix = mul(suffix, e[j]);
+        }
+        full = suffix;
+      } else {
+        Eigen::Quaterniond prefix = q0;
+        for (int j = 0; j < k; ++j) {
+          frame[j] = prefix;
+          prefix = mul(prefix, e[j]);
+        }
+      }
+      const double wt = plan.weight[node];
+      double* column = acc.data();  // column-major 3 x (sv + 3)
+      const auto add = [&](int col, const Eigen::Vector3d& v) { Eigen::Map<Eigen::Vector3d>(column + 3 * col) += v; };
+      for (int j = 0; j < k; ++j) {
+        // d t / d w_j = -[t]x R(frame_j) J_l(2 b_j w_j) 2 b_j; -[t]x v = v x t.
+        const double scale = wt * 2.0 * b[j];
+        // The last factor's frame is the identity in form A (k >= 1): no rotation to apply.
+        const bool identity = form_ == ProductForm::Global && j == k - 1;
+        if (planar) {
+          Eigen::Vector3d col = leftJacobianOfExpColumnZ(e[j], w[j], norms[j], b[j]);
+          if (!identity) col = rotationOf(frame[j]) * col;
+          add(j, scale * col.cross(tan));
+        } else {
+          Eigen::Matrix3d m = leftJacobianOfExp(e[j], w[j], norms[j], b[j]);
+          if (!identity) m = rotationOf(frame[j]) * m;
+          for (int c = 0; c < 3; ++c) add(3 * j + c, scale * m.col(c).cross(tan));
+        }
+      }
+      add(sv - 1, wt * tan);
+      // d t / d phi0 = -[t]x R(F) = R(F) (-[t0]x) in form A (t = R(F) t0, F = E_k..E_1): only R(F) is
+      // integrated. In form B it is -[t]x, whose integral is -[int t]x: nothing to add per node.
+      if (form_ == ProductForm::Global) Eigen::Map<Eigen::Matrix3d>(column + 3 * sv) += wt * rotationOf(full);
+    }
+    const Eigen::Matrix3d gl = form_ == ProductForm::Global ? Eigen::Matrix3d(l * acc.rightCols<3>() * minusCrossT0)
+                                                           : Eigen::Matrix3d(-l * skew(acc.col(sv - 1)));
+    own = l * acc.leftCols(sv);  // the length column: d/d lambda = l (d/dl) = l int t
+    if (o + 1 < plan.closeAfter.size()) {
+      const Eigen::Vector3d r = ev.r.segment<3>(3 * (lo + static_cast<int>(o)));
+      s66.topLeftCorner<3, 3>().diagonal().array() += 1.0;
+      s66.topRightCorner<3, 3>() += gl;
+      s66.bottomRightCorner<3, 3>() += gl.transpose() * gl;
+      c6.topRows<3>() += own;
+      c6.bottomRows<3>() += gl.transpose() * own;
+      oo.noalias() += own.transpose().lazyProduct(own);  // small: a plain loop beats GEMM here
+      b6.head<3>() += r;
+      b6.tail<3>() += gl.transpose() * r;
+      gOwn += own.transpose() * r;
+    } else {
+      // End of the segment: G and the own columns of the end point, which carry D to the next one.
+      s66.bottomLeftCorner<3, 3>() = s66.topRightCorner<3, 3>().transpose();
+      out.gl = gl;
+    }
   }
 }
 
@@ -253,6 +368,11 @@ void QiFitProblem::analyticNormalEquations(const Eigen::VectorXd& x, const QiFit
   const int sv = layout_.segmentVars();
   a.setZero(nv, nv);
   g.setZero(nv);
+  // The node sweeps of the segments are independent (each needs only its start orientation and its
+  // residuals); the chain below combines their sums in segment order, whatever the thread count.
+  std::vector<SegmentNormalSums> sums(layout_.segments);
+#pragma omp parallel for schedule(static) if (parallel_ && layout_.segments > 1 && nodes_ >= kParallelNodes)
+  for (int seg = 0; seg < layout_.segments; ++seg) segmentNormalSums(x, ev, seg, sums[seg]);
   // dp, dphi: derivatives of the current segment's start point and start orientation (rotation
   // vector of a left perturbation, world frame) with respect to all variables, stacked as D (6 x nv).
   Eigen::Matrix<double, 6, Eigen::Dynamic> d = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, nv);
@@ -265,109 +385,23 @@ void QiFitProblem::analyticNormalEquations(const Eigen::VectorXd& x, const QiFit
     dphi.col(0) = 2.0 * jl * freeAxis1_;
     if (layout_.startVars == 2) dphi.col(1) = 2.0 * jl * freeAxis2_;
   }
-  // Running integrals over the segment, 3 x (sv + 3): [d t / d w_1 .. d t / d w_k | t | R(F) (form A)].
-  Eigen::Matrix<double, 3, Eigen::Dynamic> acc(3, sv + 3);
-  Eigen::Matrix<double, 3, Eigen::Dynamic> own(3, sv);
-  // Sums over the segment's points i of M_i^T M_i, M_i^T O_i, O_i^T O_i, M_i^T r_i, O_i^T r_i, where
-  // a point's Jacobian rows are [M_i D | O_i] with M_i = [I | G_i] (3 x 6) and O_i its own columns.
-  Eigen::Matrix<double, 6, 6> s66;
-  Eigen::Matrix<double, 6, Eigen::Dynamic> c6(6, sv);
-  Eigen::MatrixXd oo(sv, sv);
-  Eigen::Matrix<double, 6, 1> b6;
-  Eigen::VectorXd gOwn(sv);
-  std::vector<double> norms(k);
-  std::vector<Eigen::Quaterniond> frame(k);
   for (int seg = 0; seg < layout_.segments; ++seg) {
+    const SegmentNormalSums& s = sums[seg];
     const std::vector<Eigen::Vector3d> w = omegas(x, seg);
-    for (int j = 0; j < k; ++j) norms[j] = w[j].norm();
-    const double l = length(x, seg);
     const Eigen::Quaterniond q0 = ev.q[seg];
-    const Eigen::Matrix3d minusCrossT0 = -skew(rotatedUnitX(q0));
-    const SegmentPlan& plan = plans_[seg];
     const int off = layout_.offset(seg);
-    acc.setZero();
-    s66.setZero();
-    c6.setZero();
-    oo.setZero();
-    b6.setZero();
-    gOwn.setZero();
-    int node = 0;
-    const int lo = firstPoint(seg);
-    for (std::size_t out = 0; out < plan.closeAfter.size(); ++out) {
-      for (; node < plan.closeAfter[out]; ++node) {
-        const std::size_t at = static_cast<std::size_t>(plan.firstNode + node);
-        const Eigen::Quaterniond* e = &ev.e[at * k];
-        const double* b = &plan.basis[static_cast<std::size_t>(node) * k];
-        const Eigen::Vector3d& tan = ev.t[at];
-        // Frames left of each factor: E_k..E_{j+1} (form A) or q0 E_1..E_{j-1} (form B).
-        Eigen::Quaterniond full = Eigen::Quaterniond::Identity();
-        if (form_ == ProductForm::Global) {
-          Eigen::Quaterniond suffix = Eigen::Quaterniond::Identity();
-          for (int j = k - 1; j >= 0; --j) {
-            frame[j] = suffix;
-            suffix = mul(suffix, e[j]);
-          }
-          full = suffix;
-        } else {
-          Eigen::Quaterniond prefix = q0;
-          for (int j = 0; j < k; ++j) {
-            frame[j] = prefix;
-            prefix = mul(prefix, e[j]);
-          }
-        }
-        const double wt = plan.weight[node];
-        double* column = acc.data();  // column-major 3 x (sv + 3)
-        const auto add = [&](int col, const Eigen::Vector3d& v) { Eigen::Map<Eigen::Vector3d>(column + 3 * col) += v; };
-        for (int j = 0; j < k; ++j) {
-          // d t / d w_j = -[t]x R(frame_j) J_l(2 b_j w_j) 2 b_j; -[t]x v = v x t.
-          const double scale = wt * 2.0 * b[j];
-          // The last factor's frame is the identity in form A (k >= 1): no rotation to apply.
-          const bool identity = form_ == ProductForm::Global && j == k - 1;
-          if (planar) {
-            Eigen::Vector3d col = leftJacobianOfExpColumnZ(e[j], w[j], norms[j], b[j]);
-            if (!identity) col = rotationOf(frame[j]) * col;
-            add(j, scale * col.cross(tan));
-          } else {
-            Eigen::Matrix3d m = leftJacobianOfExp(e[j], w[j], norms[j], b[j]);
-            if (!identity) m = rotationOf(frame[j]) * m;
-            for (int c = 0; c < 3; ++c) add(3 * j + c, scale * m.col(c).cross(tan));
-          }
-        }
-        add(sv - 1, wt * tan);
-        // d t / d phi0 = -[t]x R(F) = R(F) (-[t0]x) in form A (t = R(F) t0, F = E_k..E_1): only R(F) is
-        // integrated. In form B it is -[t]x, whose integral is -[int t]x: nothing to add per node.
-        if (form_ == ProductForm::Global) Eigen::Map<Eigen::Matrix3d>(column + 3 * sv) += wt * rotationOf(full);
-      }
-      const Eigen::Matrix3d gl = form_ == ProductForm::Global ? Eigen::Matrix3d(l * acc.rightCols<3>() * minusCrossT0)
-                                                             : Eigen::Matrix3d(-l * skew(acc.col(sv - 1)));
-      own = l * acc.leftCols(sv);  // the length column: d/d lambda = l (d/dl) = l int t
-      if (out + 1 < plan.closeAfter.size()) {
-        const Eigen::Vector3d r = ev.r.segment<3>(3 * (lo + static_cast<int>(out)));
-        s66.topLeftCorner<3, 3>().diagonal().array() += 1.0;
-        s66.topRightCorner<3, 3>() += gl;
-        s66.bottomRightCorner<3, 3>() += gl.transpose() * gl;
-        c6.topRows<3>() += own;
-        c6.bottomRows<3>() += gl.transpose() * own;
-        oo.noalias() += own.transpose().lazyProduct(own);  // small: a plain loop beats GEMM here
-        b6.head<3>() += r;
-        b6.tail<3>() += gl.transpose() * r;
-        gOwn += own.transpose() * r;
-      } else {
-        // End of the segment: its rows enter the normal equations through D; then D moves on.
-        s66.bottomLeftCorner<3, 3>() = s66.topRightCorner<3, 3>().transpose();
-        if (off > 0) {
-          const auto du = d.leftCols(off);
-          const Eigen::Matrix<double, 6, Eigen::Dynamic> sdu = s66.lazyProduct(du);
-          a.topLeftCorner(off, off).noalias() += du.transpose().lazyProduct(sdu);
-          a.block(0, off, off, sv).noalias() += du.transpose().lazyProduct(c6);
-          g.head(off).noalias() += du.transpose() * b6;
-        }
-        a.block(off, off, sv, sv) += oo;
-        g.segment(off, sv) += gOwn;
-        dp.leftCols(off) += gl * dphi.leftCols(off);
-        dp.middleCols(off, sv) = own;
-      }
+    // The segment's rows enter the normal equations through D; then D moves on to its end.
+    if (off > 0) {
+      const auto du = d.leftCols(off);
+      const Eigen::Matrix<double, 6, Eigen::Dynamic> sdu = s.s66.lazyProduct(du);
+      a.topLeftCorner(off, off).noalias() += du.transpose().lazyProduct(sdu);
+      a.block(0, off, off, sv).noalias() += du.transpose().lazyProduct(s.c6);
+      g.head(off).noalias() += du.transpose() * s.b6;
     }
+    a.block(off, off, sv, sv) += s.oo;
+    g.segment(off, sv) += s.gOwn;
+    dp.leftCols(off) += s.gl * dphi.leftCols(off);
+    dp.middleCols(off, sv) = s.own;
     // Start orientation of the next segment: q(1) = E_k(1)..E_1(1) q0 (A) or q0 E_1(1)..E_k(1) (B).
     if (form_ == ProductForm::Global) {
       Eigen::Quaterniond f1 = Eigen::Quaterniond::Identity();

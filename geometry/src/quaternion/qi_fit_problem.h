@@ -74,6 +74,11 @@ class QiFitProblem {
   const Eigen::Vector3d& start() const { return start_; }
   ProductForm form() const { return form_; }
   const QiQuadrature& quadrature() const { return quadrature_; }
+  /// Run the per-segment sweeps of evaluate and analyticNormalEquations on the OpenMP threads (on by
+  /// default; they start only for fits of at least kParallelNodes nodes). The results are the same
+  /// bits with any thread count: each segment is computed alone, and the chain combines them in order.
+  void setParallel(bool parallel) { parallel_ = parallel; }
+  static constexpr int kParallelNodes = 512;
 
  private:
   struct SegmentPlan {
@@ -82,6 +87,21 @@ class QiFitProblem {
     std::vector<int> closeAfter; ///< per output (data points lo..hi, then u = 1): nodes integrated before it
     int firstNode = 0;           ///< index of this segment's first node in QiFitEvaluation::e / t
   };
+  /// One segment's share of the normal equations (its node sweep); the chain in
+  /// analyticNormalEquations combines them with D.
+  struct SegmentNormalSums {
+    Eigen::Matrix<double, 6, 6> s66;
+    Eigen::Matrix<double, 6, Eigen::Dynamic> c6;
+    Eigen::MatrixXd oo;
+    Eigen::Matrix<double, 6, 1> b6;
+    Eigen::VectorXd gOwn;
+    Eigen::Matrix3d gl;                       ///< G of the segment's end point
+    Eigen::Matrix<double, 3, Eigen::Dynamic> own;  ///< own columns of the segment's end point
+  };
+  /// The node sweep of one segment from its start orientation ev.q[seg]: rotations, tangents, and
+  /// positions relative to the segment's start point (residual rows l int t, end point in ev.p[seg + 1]).
+  void sweepSegment(const Eigen::VectorXd& x, int seg, QiFitEvaluation& ev) const;
+  void segmentNormalSums(const Eigen::VectorXd& x, const QiFitEvaluation& ev, int seg, SegmentNormalSums& out) const;
   int firstPoint(int seg) const { return breaks_[seg]; }
   int lastPoint(int seg) const { return seg + 1 == layout_.segments ? breaks_[seg + 1] : breaks_[seg + 1] - 1; }
 
@@ -95,6 +115,7 @@ class QiFitProblem {
   Eigen::Vector3d freeAxis1_, freeAxis2_;
   std::vector<SegmentPlan> plans_;
   int nodes_ = 0;
+  bool parallel_ = true;
 };
 
 }  // namespace ffdkit::geometry::quaternion::detail

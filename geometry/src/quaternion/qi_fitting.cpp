@@ -171,9 +171,10 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
     freeAxis1 = planar ? Eigen::Vector3d::UnitZ() : t0.unitOrthogonal();
     freeAxis2 = t0.cross(freeAxis1).normalized();
   }
-  const detail::QiFitProblem pb(points, breaks, u, layout, options.form, options.quadrature, points.row(0).transpose(),
+  detail::QiFitProblem pb(points, breaks, u, layout, options.form, options.quadrature, points.row(0).transpose(),
                                 minimalRotation(Eigen::Vector3d::UnitX(), t0, Eigen::Vector3d::UnitZ()), freeAxis1,
                                 freeAxis2);
+  pb.setParallel(options.parallel);
   Eigen::VectorXd x = Eigen::VectorXd::Zero(pb.size());
   const GaussLegendreRule rule = gaussLegendreRule(8);
   for (int seg = 0; seg < segments; ++seg) {

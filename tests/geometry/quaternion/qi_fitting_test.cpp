@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "ffdkit/geometry/quaternion/quaternion_error.h"
 #include "ffdkit/geometry/quaternion/unit_quaternion.h"
@@ -375,6 +378,41 @@ TEST(QiFitting, ConversionToBSplineKeepsShapeAndCurvature) {
   const Eigen::VectorXd kb = sampledBSplineCurvature(b, 20, true);
   const double rangeQ = kq.maxCoeff() - kq.minCoeff();
   EXPECT_NEAR(kb.maxCoeff() - kb.minCoeff(), rangeQ, 0.05 * rangeQ);
+}
+
+TEST(QiFitting, ThreadCountDoesNotChangeTheFit) {
+  // The segment sweeps run on the OpenMP threads; each segment is computed alone and the chain joins
+  // them in order, so 1, 2 or 3 threads and the serial path give the same bits (not merely close),
+  // along the whole iteration (the second case stops at its cap of 60 on the way).
+  FitOptions free;
+  free.startTangent = StartTangentMode::Free;
+  free.form = ProductForm::Local;
+  free.maxIterations = 60;
+  const std::vector<std::pair<FitDataset, FitOptions>> cases = {{testdata::spiralNoisy(6), FitOptions{}},
+                                                                {testdata::spiralNoisy(8), free}};
+  for (const auto& [d, options] : cases) {
+    FitOptions serial = options;
+    serial.parallel = false;
+    const FitResult reference = fitQiChain(d.points, d.breaks, serial);
+    ASSERT_GE(reference.iterations, 60) << reference.message;
+    const int before = omp_get_max_threads();
+    for (const int threads : {1, 2, 3}) {
+      omp_set_num_threads(threads);
+      const FitResult r = fitQiChain(d.points, d.breaks, options);
+      EXPECT_EQ(r.iterations, reference.iterations) << threads << " threads";
+      EXPECT_EQ(r.objectiveHistory, reference.objectiveHistory) << threads << " threads";
+      for (Eigen::Index i = 0; i < d.points.rows(); ++i) {
+        EXPECT_EQ(r.pointErrors[i], reference.pointErrors[i]) << "point " << i << ", " << threads << " threads";
+      }
+      for (int s = 0; s < r.curve.segmentCount(); ++s) {
+        EXPECT_EQ(r.curve.segment(s).length(), reference.curve.segment(s).length());
+        for (std::size_t j = 0; j < r.curve.segment(s).omegas().size(); ++j) {
+          EXPECT_EQ(r.curve.segment(s).omegas()[j], reference.curve.segment(s).omegas()[j]);
+        }
+      }
+    }
+    omp_set_num_threads(before);
+  }
 }
 
 TEST(QiFitting, ReportsAnIterationCapAsNotConverged) {

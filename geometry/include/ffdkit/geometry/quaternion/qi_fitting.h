@@ -51,6 +51,9 @@ struct FitOptions {
   double gradientTolerance = 1e-12;                      ///< |J^T r|_inf relative to R
   int maxIterations = 500;                               ///< LM iterations
   int maxFunctionEvaluations = 50000;
+  /// Sweep the segments on the OpenMP threads (fits of >= 512 quadrature nodes). The result is the
+  /// same bits with any thread count or with false: segments are computed alone and chained in order.
+  bool parallel = true;
 };
 
 struct FitResult {
