@@ -15,8 +15,27 @@ namespace ffdkit::geometry::quaternion::detail {
 
 namespace {
 
+// The node loops below run a few thousand times per evaluation: GCC left these small helpers as calls.
+#define FFDKIT_QI_INLINE inline __attribute__((always_inline))
+
+// Per-node scratch of the factors: fixed size for the common degrees (unrolled), a vector otherwise.
+template <typename T, int K>
+struct FactorArray {
+  explicit FactorArray(int) {}
+  T& operator[](int j) { return data[j]; }
+  const T& operator[](int j) const { return data[j]; }
+  T data[K];
+};
+template <typename T>
+struct FactorArray<T, 0> {
+  explicit FactorArray(int k) : data(k) {}
+  T& operator[](int j) { return data[j]; }
+  const T& operator[](int j) const { return data[j]; }
+  std::vector<T> data;
+};
+
 // exp(b w) in the spec's convention (cos|v|, sin|v| v/|v|), v = b w, b >= 0, with |w| given.
-Eigen::Quaterniond scaledExp(const Eigen::Vector3d& w, double norm, double b) {
+FFDKIT_QI_INLINE Eigen::Quaterniond scaledExp(const Eigen::Vector3d& w, double norm, double b) {
   const double theta = b * norm;
   const double sine = std::sin(theta), cosine = std::cos(theta);  // one sincos
   const double s = (theta < 1e-8 ? 1.0 - theta * theta / 6.0 : sine / theta) * b;
@@ -24,7 +43,7 @@ Eigen::Quaterniond scaledExp(const Eigen::Vector3d& w, double norm, double b) {
 }
 
 // Hamilton product, inline (the optimiser's inner loops run it a few thousand times per evaluation).
-inline Eigen::Quaterniond mul(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
+FFDKIT_QI_INLINE Eigen::Quaterniond mul(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   return Eigen::Quaterniond(a.w() * b.w() - a.x() * b.x() - a.y() * b.y() - a.z() * b.z(),
                             a.w() * b.x() + a.x() * b.w() + a.y() * b.z() - a.z() * b.y(),
                             a.w() * b.y() - a.x() * b.z() + a.y() * b.w() + a.z() * b.x(),
@@ -32,14 +51,14 @@ inline Eigen::Quaterniond mul(const Eigen::Quaterniond& a, const Eigen::Quaterni
 }
 
 // R(q / |q|) e_x, the first column of the rotation matrix: the unit tangent of orientation q.
-inline Eigen::Vector3d rotatedUnitX(const Eigen::Quaterniond& q) {
+FFDKIT_QI_INLINE Eigen::Vector3d rotatedUnitX(const Eigen::Quaterniond& q) {
   const double inv = 1.0 / q.squaredNorm();
   return Eigen::Vector3d((q.w() * q.w() + q.x() * q.x() - q.y() * q.y() - q.z() * q.z()) * inv,
                          2.0 * (q.x() * q.y() + q.w() * q.z()) * inv, 2.0 * (q.x() * q.z() - q.w() * q.y()) * inv);
 }
 
 // R(q) of a unit quaternion, inline (Eigen's toRotationMatrix is an out-of-line call here).
-inline Eigen::Matrix3d rotationOf(const Eigen::Quaterniond& q) {
+FFDKIT_QI_INLINE Eigen::Matrix3d rotationOf(const Eigen::Quaterniond& q) {
   const double tx = 2.0 * q.x(), ty = 2.0 * q.y(), tz = 2.0 * q.z();
   const double twx = tx * q.w(), twy = ty * q.w(), twz = tz * q.w();
   const double txx = tx * q.x(), txy = ty * q.x(), txz = tz * q.x();
@@ -50,7 +69,7 @@ inline Eigen::Matrix3d rotationOf(const Eigen::Quaterniond& q) {
   return r;
 }
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+FFDKIT_QI_INLINE Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d k;
   k << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
   return k;
@@ -67,7 +86,7 @@ Eigen::Matrix3d leftJacobian(const Eigen::Vector3d& phi) {
 // The same at phi = 2 b w from e = exp(b w) = (cos theta, sin theta w/|w|), theta = b |w|, whose sine
 // and cosine are known: 1 - cos 2theta = 2 sin^2 theta, sin 2theta = 2 sin theta cos theta. With
 // K = [phi]x, K^2 = phi phi^T - |phi|^2 I, so J_l = I + alpha K + beta (phi phi^T - a^2 I), a = |phi|.
-inline void leftJacobianCoefficients(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm, double b,
+FFDKIT_QI_INLINE void leftJacobianCoefficients(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm, double b,
                               double& alpha, double& beta) {
   const double a = 2.0 * b * norm;
   if (a < 1e-3) {
@@ -81,7 +100,7 @@ inline void leftJacobianCoefficients(const Eigen::Quaterniond& e, const Eigen::V
   beta = (a - 2.0 * sine * e.w()) / (a * a * a);
 }
 
-inline Eigen::Matrix3d leftJacobianOfExp(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm, double b) {
+FFDKIT_QI_INLINE Eigen::Matrix3d leftJacobianOfExp(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm, double b) {
   double alpha, beta;
   leftJacobianCoefficients(e, w, norm, b, alpha, beta);
   const Eigen::Vector3d p = (2.0 * b) * w;
@@ -100,7 +119,7 @@ inline Eigen::Matrix3d leftJacobianOfExp(const Eigen::Quaterniond& e, const Eige
 }
 
 // Its third column J_l e_z (planar fits: w along e_z).
-inline Eigen::Vector3d leftJacobianOfExpColumnZ(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm,
+FFDKIT_QI_INLINE Eigen::Vector3d leftJacobianOfExpColumnZ(const Eigen::Quaterniond& e, const Eigen::Vector3d& w, double norm,
                                          double b) {
   double alpha, beta;
   leftJacobianCoefficients(e, w, norm, b, alpha, beta);
@@ -229,10 +248,23 @@ void QiFitProblem::evaluateFrom(const Eigen::VectorXd& x, int from, QiFitEvaluat
 }
 
 void QiFitProblem::sweepSegment(const Eigen::VectorXd& x, int seg, QiFitEvaluation& ev) const {
-  const int k = layout_.degree;
+  if (layout_.degree == 2) {
+    sweepSegmentOfDegree<2>(x, seg, ev);
+  } else if (layout_.degree == 3) {
+    sweepSegmentOfDegree<3>(x, seg, ev);
+  } else {
+    sweepSegmentOfDegree<0>(x, seg, ev);
+  }
+}
+
+template <int K>
+void QiFitProblem::sweepSegmentOfDegree(const Eigen::VectorXd& x, int seg, QiFitEvaluation& ev) const {
+  const int k = K > 0 ? K : layout_.degree;
   const bool local = form_ == ProductForm::Local;
-  const std::vector<Eigen::Vector3d> w = omegas(x, seg);
-  std::vector<double> norms(k);
+  const std::vector<Eigen::Vector3d> wv = omegas(x, seg);
+  FactorArray<Eigen::Vector3d, K> w(k);
+  FactorArray<double, K> norms(k);
+  for (int j = 0; j < k; ++j) w[j] = wv[j];
   for (int j = 0; j < k; ++j) norms[j] = w[j].norm();
   const double l = length(x, seg);
   const Eigen::Quaterniond q0 = ev.q[seg];
@@ -264,7 +296,19 @@ void QiFitProblem::sweepSegment(const Eigen::VectorXd& x, int seg, QiFitEvaluati
 
 void QiFitProblem::segmentNormalSums(const Eigen::VectorXd& x, const QiFitEvaluation& ev, int seg,
                                      SegmentNormalSums& out) const {
-  const int k = layout_.degree;
+  if (layout_.degree == 2) {
+    segmentNormalSumsOfDegree<2>(x, ev, seg, out);
+  } else if (layout_.degree == 3) {
+    segmentNormalSumsOfDegree<3>(x, ev, seg, out);
+  } else {
+    segmentNormalSumsOfDegree<0>(x, ev, seg, out);
+  }
+}
+
+template <int K>
+void QiFitProblem::segmentNormalSumsOfDegree(const Eigen::VectorXd& x, const QiFitEvaluation& ev, int seg,
+                                             SegmentNormalSums& out) const {
+  const int k = K > 0 ? K : layout_.degree;
   const bool planar = layout_.planar;
   const int sv = layout_.segmentVars();
   // Running integrals over the segment, 3 x (sv + 3): [d t / d w_1 .. d t / d w_k | t | R(F) (form A)].
@@ -283,10 +327,14 @@ void QiFitProblem::segmentNormalSums(const Eigen::VectorXd& x, const QiFitEvalua
   oo.setZero(sv, sv);
   b6.setZero();
   gOwn.setZero(sv);
-  std::vector<double> norms(k);
-  std::vector<Eigen::Quaterniond> frame(k);
-  const std::vector<Eigen::Vector3d> w = omegas(x, seg);
-  for (int j = 0; j < k; ++j) norms[j] = w[j].norm();
+  FactorArray<double, K> norms(k);
+  FactorArray<Eigen::Quaterniond, K> frame(k);
+  const std::vector<Eigen::Vector3d> wv = omegas(x, seg);
+  FactorArray<Eigen::Vector3d, K> w(k);
+  for (int j = 0; j < k; ++j) {
+    w[j] = wv[j];
+    norms[j] = w[j].norm();
+  }
   const double l = length(x, seg);
   const Eigen::Quaterniond q0 = ev.q[seg];
   const Eigen::Matrix3d minusCrossT0 = -skew(rotatedUnitX(q0));
@@ -302,8 +350,9 @@ void QiFitProblem::segmentNormalSums(const Eigen::VectorXd& x, const QiFitEvalua
       // Frames left of each factor: E_k..E_{j+1} (form A) or q0 E_1..E_{j-1} (form B).
       Eigen::Quaterniond full = Eigen::Quaterniond::Identity();
       if (form_ == ProductForm::Global) {
-        Eigen::Quaterniond suffix = Eigen::Quaterniond::Identity();
-        for (int j = k - 1; j >= 0; --j) {
+        frame[k - 1] = Eigen::Quaterniond::Identity();
+        Eigen::Quaterniond suffix = e[k - 1];
+        for (int j = k - 2; j >= 0; --j) {
           frame[j] = suffix;
           suffix = mul(suffix, e[j]);
         }

@@ -102,6 +102,12 @@ class QiFitProblem {
   /// positions relative to the segment's start point (residual rows l int t, end point in ev.p[seg + 1]).
   void sweepSegment(const Eigen::VectorXd& x, int seg, QiFitEvaluation& ev) const;
   void segmentNormalSums(const Eigen::VectorXd& x, const QiFitEvaluation& ev, int seg, SegmentNormalSums& out) const;
+  /// The same with the degree fixed at compile time (K = 2, 3) or read from the layout (K = 0).
+  template <int K>
+  void sweepSegmentOfDegree(const Eigen::VectorXd& x, int seg, QiFitEvaluation& ev) const;
+  template <int K>
+  void segmentNormalSumsOfDegree(const Eigen::VectorXd& x, const QiFitEvaluation& ev, int seg,
+                                 SegmentNormalSums& out) const;
   int firstPoint(int seg) const { return breaks_[seg]; }
   int lastPoint(int seg) const { return seg + 1 == layout_.segments ? breaks_[seg + 1] : breaks_[seg + 1] - 1; }
 
