@@ -1,6 +1,9 @@
 #include "qi_fit_problem.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -130,6 +133,30 @@ FFDKIT_QI_INLINE Eigen::Vector3d leftJacobianOfExpColumnZ(const Eigen::Quaternio
 
 }  // namespace
 
+namespace {
+// Until when (steady clock, ns) threaded sweeps stay off after a fit saw them stall.
+std::atomic<std::int64_t> threadsStalledUntil{0};
+std::int64_t steadyNanoseconds() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+}  // namespace
+
+bool QiFitProblem::SweepGovernor::threaded() const {
+  if (off_ || serialSeconds_ < 0.0 || calls_ % 16 == 15) return false;
+  return steadyNanoseconds() >= threadsStalledUntil.load(std::memory_order_relaxed);
+}
+
+void QiFitProblem::SweepGovernor::record(bool threaded, double seconds) {
+  ++calls_;
+  if (!threaded) {
+    serialSeconds_ = seconds;
+  } else if (seconds > 3.0 * serialSeconds_ && ++strikes_ >= 2) {
+    off_ = true;
+    threadsStalledUntil.store(steadyNanoseconds() + 1'000'000'000, std::memory_order_relaxed);
+  }
+}
+
 QiFitProblem::QiFitProblem(const Eigen::MatrixX3d& points, const std::vector<int>& breaks, const Eigen::VectorXd& u,
                            QiFitLayout layout, ProductForm form, QiQuadrature quadrature, const Eigen::Vector3d& start,
                            const Eigen::Quaterniond& baseQ00, const Eigen::Vector3d& freeAxis1,
@@ -236,8 +263,15 @@ void QiFitProblem::evaluateFrom(const Eigen::VectorXd& x, int from, QiFitEvaluat
     ev.q[seg + 1] = q1.normalized();
   }
   const int count = layout_.segments - from;
-#pragma omp parallel for schedule(static) if (parallel_ && count > 1 && nodes_ >= kParallelNodes)
+  const bool eligible = parallel_ && count > 1 && nodes_ >= kParallelNodes && from == 0;
+  const bool threaded = eligible && evaluationGovernor_.threaded();
+  const auto begin = std::chrono::steady_clock::now();
+#pragma omp parallel for schedule(static) if (threaded)
   for (int s = 0; s < count; ++s) sweepSegment(x, from + s, ev);
+  if (eligible) {
+    evaluationGovernor_.record(threaded,
+                               std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
+  }
   for (int seg = from; seg < layout_.segments; ++seg) {
     const Eigen::Vector3d p0 = ev.p[seg];
     for (int i = firstPoint(seg); i <= lastPoint(seg); ++i) {
@@ -420,8 +454,14 @@ void QiFitProblem::analyticNormalEquations(const Eigen::VectorXd& x, const QiFit
   // The node sweeps of the segments are independent (each needs only its start orientation and its
   // residuals); the chain below combines their sums in segment order, whatever the thread count.
   std::vector<SegmentNormalSums> sums(layout_.segments);
-#pragma omp parallel for schedule(static) if (parallel_ && layout_.segments > 1 && nodes_ >= kParallelNodes)
+  const bool eligible = parallel_ && layout_.segments > 1 && nodes_ >= kParallelNodes;
+  const bool threaded = eligible && normalGovernor_.threaded();
+  const auto begin = std::chrono::steady_clock::now();
+#pragma omp parallel for schedule(static) if (threaded)
   for (int seg = 0; seg < layout_.segments; ++seg) segmentNormalSums(x, ev, seg, sums[seg]);
+  if (eligible) {
+    normalGovernor_.record(threaded, std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
+  }
   // dp, dphi: derivatives of the current segment's start point and start orientation (rotation
   // vector of a left perturbation, world frame) with respect to all variables, stacked as D (6 x nv).
   Eigen::Matrix<double, 6, Eigen::Dynamic> d = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, nv);
