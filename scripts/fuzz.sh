@@ -47,10 +47,12 @@ for t in "${targets[@]}"; do
   # -rss_limit_mb / -malloc_limit_mb: allocating what a file merely announces is a finding, in
   # ffdkit's readers and in what VTK's XML reader is handed (vtk_xml_block_headers.h).
   malloc_limit=1024
+  # -timeout: a unit running 60 s (wall) is a hang. ASan + coverage run a QI fit ~100x slower
+  # than a release build (30 ms -> 3 s of CPU), and on a loaded machine 10 s flagged such fits.
   # The CPU seconds are printed too: on a loaded machine the wall time overstates the work done.
   TIMEFORMAT='%U %S'
   { time "$build/tests/fuzz/$t" "$out/corpus" "$root/tests/fuzz/corpus/$t" -max_total_time="$seconds" "${runs_limit[@]}" \
-    -rss_limit_mb=2048 -malloc_limit_mb=$malloc_limit -timeout=10 -max_len=65536 -print_final_stats=1 \
+    -rss_limit_mb=2048 -malloc_limit_mb=$malloc_limit -timeout=60 -max_len=65536 -print_final_stats=1 \
     -artifact_prefix="$out/" >"$log" 2>&1 || status=$?; } 2>"$out/cpu-time"
   cpu=$(awk '{printf "%.0f", $1 + $2}' "$out/cpu-time")
   runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
