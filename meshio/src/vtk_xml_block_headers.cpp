@@ -40,26 +40,28 @@ int base64Value(char c) {
   if (c >= '0' && c <= '9') return c - '0' + 52;
   if (c == '+') return 62;
   if (c == '/') return 63;
+  if (c == '=') return 0;  // padding
   return -1;
 }
 
-// Decodes the first `count` bytes (rounded up to whole base64 groups) of the base64 text at
-// `text`; nullopt if the text is shorter or not base64 there.
+// The first `count` bytes of the base64 stream at `text` as VTK's vtkBase64InputStream reads
+// them: 4 characters give 3 bytes, or 1 ("xx=?") or 2 ("xxx=") where padded, and the stream
+// ends after a padded group or at a character that is not base64. nullopt if it ends first.
 std::optional<std::string> base64Prefix(std::string_view text, std::size_t count) {
-  const std::size_t chars = (count + 2) / 3 * 4;
-  if (text.size() < chars) return std::nullopt;
   std::string out;
-  out.reserve(chars / 4 * 3);
-  for (std::size_t i = 0; i < chars; i += 4) {
+  out.reserve(count + 2);
+  for (std::size_t i = 0; out.size() < count; i += 4) {
+    if (i + 4 > text.size()) return std::nullopt;
     std::uint32_t group = 0;
     for (std::size_t k = 0; k < 4; ++k) {
       const int v = base64Value(text[i + k]);
       if (v < 0) return std::nullopt;
       group = group << 6 | std::uint32_t(v);
     }
-    out += char(group >> 16);
-    out += char(group >> 8 & 0xff);
-    out += char(group & 0xff);
+    const int bytes = text[i + 2] == '=' ? 1 : text[i + 3] == '=' ? 2 : 3;
+    const char decoded[3] = {char(group >> 16), char(group >> 8 & 0xff), char(group & 0xff)};
+    out.append(decoded, std::size_t(bytes));
+    if (bytes < 3 && out.size() < count) return std::nullopt;
   }
   return out;
 }
