@@ -147,6 +147,12 @@ void checkVtkXmlBlockHeaders(std::string_view bytes, const std::string& source) 
     const std::string where = source + ":" + std::to_string(lineOf(bytes, at)) + ": DataArray \"" +
                               std::string(attribute(tag, "Name").value_or("")) + "\": ";
     const std::string ofTheFile = "a file of " + std::to_string(bytes.size()) + " bytes";
+    // VTK divides by the block size and indexes blocks by the last one's size: a header it can
+    // use has blocks of at least a byte, a last block no larger than the others, and no last
+    // block without blocks (fuzz_mesh_vtp: a block size of 0 made VTK divide by zero).
+    if ((blocks > 0 && blockSize == 0) || lastBlockSize > blockSize || (blocks == 0 && lastBlockSize != 0))
+      throw MeshIoError(where + "its compression header is inconsistent (" + std::to_string(blocks) + " blocks of " +
+                        std::to_string(blockSize) + " bytes, the last of " + std::to_string(lastBlockSize) + ")");
     if (blocks > bytes.size() / layout.wordSize)
       throw MeshIoError(where + "its compression header announces " + std::to_string(blocks) + " blocks, more than " + ofTheFile +
                         " can list");

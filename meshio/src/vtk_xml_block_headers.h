@@ -14,8 +14,9 @@
 namespace ffdkit::meshio::detail {
 
 /// Throws MeshIoError naming the file, the line and the DataArray whose compression header
-/// announces more blocks than the file's bytes can list, or blocks larger than the file could
-/// decompress to. Files without a compressor, ASCII arrays and headers too short to read are
+/// is inconsistent (blocks of 0 bytes, a last block larger than the others), announces more
+/// blocks than the file's bytes can list, blocks larger than the file could decompress to, or
+/// a block's compressed size larger than the file. Files without a compressor, ASCII arrays and headers too short to read are
 /// left to VTK (which reports them as read errors).
 void checkVtkXmlBlockHeaders(std::string_view bytes, const std::string& source);
 

@@ -280,6 +280,12 @@ TEST(VtkReaders, CompressionHeadersAreCheckedAgainstTheFileBeforeVtkAllocates) {
   EXPECT_ERROR(vtp(zlib32, "<DataArray type=\"Float32\" Name=\"P\" NumberOfComponents=\"3\" format=\"binary\">"
                            "AQAAAACAAADAAAAAXgArmat=</DataArray>"),
                MeshFormat::Vtp, "block 0 announces 2569732190 compressed bytes");
+  // Inconsistent headers VTK would divide by zero with, or index past its blocks by (1 block of
+  // 0 bytes, the last of 192; 1 block of 32768, the last of 65536; no blocks, a last of 192).
+  for (const char* bad : {"AQAAAAAAAADAAAAA", "AQAAAACAAAAAAAEA", "AAAAAACAAADAAAAA"})
+    EXPECT_ERROR(vtp(zlib32, std::string("<DataArray type=\"Float32\" Name=\"P\" NumberOfComponents=\"3\" format=\"binary\">") +
+                                 bad + "AAAAAA==</DataArray>"),
+                 MeshFormat::Vtp, "DataArray \"P\": its compression header is inconsistent");
   // A header too short to hold its three words is left to VTK, which reports it unread.
   EXPECT_ERROR(vtp(zlib32, "<DataArray type=\"Float32\" Name=\"P\" NumberOfComponents=\"3\" format=\"binary\">AQAA</DataArray>"),
                MeshFormat::Vtp, "test: cannot read");
