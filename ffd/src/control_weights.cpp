@@ -100,4 +100,54 @@ ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& em
   return result;
 }
 
+Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& embedding, Eigen::Index flat) {
+  embedding.checkLattice(lattice);
+  const Eigen::Vector3i g = lattice.gridIndex(flat);  // throws when out of range
+  const Eigen::Index n = embedding.pointCount();
+  Eigen::VectorXd result = Eigen::VectorXd::Zero(n);
+  int np[3];
+  for (int a = 0; a < 3; ++a) np[a] = lattice.axis(a).degree() + 1;
+  const auto& blocks = embedding.blocks();
+  const auto& tiles = embedding.tileBlocks();
+  const auto& order = embedding.order();
+  const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
+#pragma omp parallel if (n >= 16384)
+  {
+    std::vector<double> bu(static_cast<std::size_t>(np[0])), bv(static_cast<std::size_t>(np[1])),
+        bw(static_cast<std::size_t>(np[2]));
+    // Per axis, the window positions of the cell that hold the control point's index on that axis.
+    std::vector<int> at[3];
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t t = 0; t < tileCount; ++t) {
+      for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
+        const Embedding::Block& block = blocks[bi];
+        if (block.kind == Embedding::BlockKind::Frozen) continue;
+        bool inWindow = true;
+        for (int a = 0; a < 3; ++a) {
+          at[a].clear();
+          for (int r = 0; r < np[a]; ++r)
+            if (lattice.axis(a).controlIndex(block.cell[a], r) == g[a]) at[a].push_back(r);
+          inWindow = inWindow && !at[a].empty();
+        }
+        if (!inWindow) continue;
+        for (std::uint32_t q = block.begin; q < block.end; ++q) {
+          const Eigen::Index p = order.empty() ? q : order[q];
+          const double s = block.kind == Embedding::BlockKind::Blended
+                               ? embedding.blendWeight()[block.blendOffset + q - block.begin]
+                               : 1.0;
+          lattice.axis(0).basis(block.cell[0], embedding.sortedU()[q], bu.data());
+          lattice.axis(1).basis(block.cell[1], embedding.sortedV()[q], bv.data());
+          lattice.axis(2).basis(block.cell[2], embedding.sortedW()[q], bw.data());
+          double su = 0.0, sv = 0.0, sw = 0.0;
+          for (int r : at[0]) su += bu[std::size_t(r)];
+          for (int r : at[1]) sv += bv[std::size_t(r)];
+          for (int r : at[2]) sw += bw[std::size_t(r)];
+          result[p] = s * (su * sv * sw);
+        }
+      }
+    }
+  }
+  return result;
+}
+
 }  // namespace ffdkit::ffd

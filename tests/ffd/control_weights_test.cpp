@@ -87,6 +87,61 @@ TEST(ControlWeights, PruningKeepsTheLargestAndCountsWhatItDrops) {
   }
 }
 
+TEST(ControlWeights, OneControlPointsWeightIsHowFarItsMoveMovesEachPoint) {
+  // Independent of the kernel: the deformer's output when only control point f moves by dP,
+  // minus the output before, is weight[p] * F.linear() dP (the output is linear in P).
+  std::mt19937 rng(11);
+  std::vector<Lattice> lattices;
+  for (int t = 0; t < 6; ++t) lattices.push_back(testing::randomLattice(rng, t % 2 ? 0.2 : 0.0));
+  lattices.push_back(makeCylindricalLattice());  // periodic: windows wrap onto a control point
+  BoxLatticeOptions falloff;
+  falloff.outsidePolicy = OutsidePolicy::falloff(0.3);
+  lattices.push_back(makeBoxLattice(falloff));
+  BoxLatticeOptions identity;
+  identity.outsidePolicy = OutsidePolicy::identity();
+  lattices.push_back(makeBoxLattice(identity));
+  for (Lattice& lattice : lattices) {
+    Eigen::MatrixX3d uvw = testing::randomParameters(lattice, 300, rng);
+    uvw.topRows(100).array() = uvw.topRows(100).array() * 1.6 - 0.3;
+    Eigen::MatrixX3d Q(uvw.rows(), 3);
+    for (Eigen::Index p = 0; p < Q.rows(); ++p)
+      Q.row(p) = (lattice.frame() * lattice.evaluateRest(uvw.row(p).transpose())).transpose();
+    const Embedding embedding = embed(lattice, Q);
+    lattice.setControlPoints(moved(lattice, rng));
+    Deformer deformer(embedding);
+    const Eigen::MatrixX3d before = deformer.deform(lattice, Q);
+    int window = 1;
+    for (int a = 0; a < 3; ++a) window *= lattice.axis(a).degree() + 1;
+    const ControlWeights all = largestControlWeights(lattice, embedding, window);
+    const double scale = lattice.restSize() * lattice.frame().linear().norm();
+    std::uniform_int_distribution<Eigen::Index> pick(0, lattice.pointCount() - 1);
+    for (int trial = 0; trial < 4; ++trial) {
+      const Eigen::Index f = pick(rng);
+      const Eigen::VectorXd w = controlPointWeights(lattice, embedding, f);
+      ASSERT_EQ(w.size(), Q.rows());
+      const Eigen::Vector3d dP(0.3, -0.2, 0.25);
+      Lattice pushed = lattice;
+      pushed.setControlPoint(f, lattice.controlPoints().row(f).transpose() + dP);
+      const Eigen::MatrixX3d after = Deformer(embedding).deform(pushed, Q);
+      const Eigen::RowVector3d world = (lattice.frame().linear() * dP).transpose();
+      int supported = 0;
+      for (Eigen::Index p = 0; p < Q.rows(); ++p) {
+        EXPECT_LT((after.row(p) - before.row(p) - w[p] * world).norm(), 1e-12 * scale) << "point " << p;
+        double expected = 0.0;  // the window's weights that name f
+        for (int r = 0; r < window; ++r)
+          if (all.indices(p, r) == f) expected += all.weights(p, r);
+        EXPECT_NEAR(w[p], expected, 1e-15);
+        supported += w[p] != 0.0;
+      }
+      EXPECT_GT(supported, 0);
+    }
+  }
+  const Lattice lattice = makeBoxLattice();
+  const Embedding embedding = embed(lattice, Eigen::MatrixX3d::Constant(1, 3, 0.5));
+  EXPECT_THROW(controlPointWeights(lattice, embedding, 64), LatticeError);
+  EXPECT_THROW(controlPointWeights(lattice, embedding, -1), LatticeError);
+}
+
 TEST(ControlWeights, RejectsKBelowOneAndAStaleEmbedding) {
   Lattice lattice = makeBoxLattice();
   const Embedding embedding = embed(lattice, Eigen::MatrixX3d::Constant(1, 3, 0.5));

@@ -39,4 +39,14 @@ struct ControlWeights {
 /// @throws LatticeError if k < 1 or the embedding is stale for `lattice` (Embedding::checkLattice).
 ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& embedding, int k);
 
+/// The weight of one control point for every point of `embedding`: s * B_i(u) B_j(v) B_k(w) for
+/// control point `flat` = Lattice::index(i, j, k) (summed over the window positions a periodic
+/// axis wraps onto it), 0 for points outside its support and for points left unchanged. Since
+/// the output is linear in the control points (see ControlWeights), moving that control point by
+/// dP (lattice-local) moves point p by weight[p] * F.linear() dP, and nothing else changes: the
+/// motion of a gesture that drags one control point (the view's vertex normals follow it without
+/// recomputing them, app/render/src/gesture_normals.h). Memory: 8 bytes per point.
+/// @throws LatticeError if `flat` is out of range or the embedding is stale for `lattice`.
+Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& embedding, Eigen::Index flat);
+
 }  // namespace ffdkit::ffd
