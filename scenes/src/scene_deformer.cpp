@@ -5,6 +5,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "ffdkit/ffd/control_weights.h"
 #include "ffdkit/ffd/pipeline.h"
 
 namespace ffdkit::scenes {
@@ -76,6 +77,12 @@ struct SceneDeformer::ObjectPipeline {
   // Per stage: the model revisions its lattice in the pipeline was last synced to.
   std::map<widgets::WidgetId, std::pair<std::uint64_t, std::uint64_t>> synced;  // (frame, control)
   std::uint64_t revision = 0;  // of the output points (SceneDeformer::revision)
+  // The base of gestureMotion(): the revision of the output that the last stage's delta steps
+  // started from and that stage's (local) control points then; baseControl is empty when the
+  // output changed otherwise since (no motion to follow).
+  std::uint64_t baseRevision = 0;
+  Eigen::MatrixX3d baseControl;
+  bool moved = false;  // a delta step of the last stage ran since the base
 };
 
 SceneDeformer::SceneDeformer() = default;
@@ -137,6 +144,8 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       p->pipeline = std::move(pipeline);
       p->ids = std::move(ids);
       ++p->revision;
+      p->baseControl.resize(0, 3);  // the next run sets the base (it embeds every stage)
+      p->moved = false;
     } else {
       // In place: a stage whose revisions did not move is left alone; new control points are
       // written into the pipeline's lattice (the deformer then updates incrementally), a new frame
@@ -208,11 +217,24 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       stats.failedPoints += first->failedCount();
     }
     stats.deformedPoints += p.pipeline->inputPoints().rows();
-    for (const auto& report : p.pipeline->lastReport())
-      if (report.outputChanged) {
-        ++p.revision;
-        break;
+    const std::vector<ffd::StageReport>& reports = p.pipeline->lastReport();
+    if (std::any_of(reports.begin(), reports.end(), [](const ffd::StageReport& r) { return r.outputChanged; })) {
+      ++p.revision;
+      // Only the last stage changed, by deltas: the output moved linearly in its control points
+      // since the base. Anything else makes this output the new base.
+      const bool lastByDelta =
+          reports.back().delta && std::none_of(reports.begin(), reports.end() - 1, [](const ffd::StageReport& r) {
+            return r.outputChanged;
+          });
+      if (!lastByDelta || p.baseControl.size() == 0) {
+        p.baseRevision = p.revision;
+        p.baseControl = p.pipeline->lattice(reports.back().id).controlPoints();
+        p.moved = false;
+        if (lastByDelta) p.baseControl.resize(0, 3);  // moved from an unknown base: nothing to follow
+      } else {
+        p.moved = true;
       }
+    }
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats_ = stats;
@@ -229,6 +251,40 @@ std::uint64_t SceneDeformer::revision(const std::string& object) const {
   auto it = objects_.find(object);
   if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
   return it->second->revision;
+}
+
+std::optional<GestureMotion> SceneDeformer::gestureMotion(const std::string& object) const {
+  auto it = objects_.find(object);
+  if (it == objects_.end()) return std::nullopt;
+  const ObjectPipeline& p = *it->second;
+  if (!p.moved || p.baseControl.size() == 0 || p.stages.empty()) return std::nullopt;
+  const ffd::LatticeId last = p.pipeline->order().back();
+  const ffd::Lattice& lattice = p.pipeline->lattice(last);
+  if (lattice.controlPoints().rows() != p.baseControl.rows()) return std::nullopt;
+  GestureMotion motion;
+  motion.baseRevision = p.baseRevision;
+  for (const auto& [widget, id] : p.ids)
+    if (id == last) motion.lattice = widget;
+  std::vector<Eigen::Vector3d> moves;
+  for (Eigen::Index f = 0; f < lattice.controlPoints().rows(); ++f) {
+    if (lattice.controlPoints().row(f) == p.baseControl.row(f)) continue;
+    motion.controlPoints.push_back(f);
+    moves.push_back(lattice.frame().linear() * (lattice.controlPoints().row(f) - p.baseControl.row(f)).transpose());
+  }
+  motion.displacements.resize(static_cast<Eigen::Index>(moves.size()), 3);
+  for (std::size_t c = 0; c < moves.size(); ++c) motion.displacements.row(static_cast<Eigen::Index>(c)) = moves[c].transpose();
+  return motion;
+}
+
+Eigen::VectorXd SceneDeformer::controlWeights(const std::string& object, Eigen::Index controlPoint) const {
+  auto it = objects_.find(object);
+  if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
+  const ObjectPipeline& p = *it->second;
+  if (p.stages.empty()) throw std::invalid_argument("SceneDeformer: object '" + object + "' has no lattice");
+  const ffd::LatticeId last = p.pipeline->order().back();
+  const ffd::Embedding* embedding = p.pipeline->embedding(last);
+  if (!embedding) throw std::invalid_argument("SceneDeformer: object '" + object + "' is not embedded yet");
+  return ffd::controlPointWeights(p.pipeline->lattice(last), *embedding, controlPoint);
 }
 
 std::map<std::string, Eigen::MatrixX3d> deformScene(const Scene& scene) {

@@ -126,6 +126,89 @@ TEST(SceneDeformer, HierarchyRunsParentThenChild) {
   EXPECT_GT(childMotion, 0.05);
 }
 
+// The points a GestureMotion stands for: base + sum_c weight_c * displacement_c.
+Eigen::MatrixX3d followMotion(const SceneDeformer& deformer, const std::string& object, const Eigen::MatrixX3d& base,
+                              const GestureMotion& motion) {
+  Eigen::MatrixX3d out = base;
+  for (std::size_t c = 0; c < motion.controlPoints.size(); ++c)
+    out += deformer.controlWeights(object, motion.controlPoints[c]) * motion.displacements.row(Eigen::Index(c));
+  return out;
+}
+
+TEST(SceneDeformer, AGestureMotionIsLinearInTheControlPointsTheLastStageMovedByDeltas) {
+  Scene scene = sphereScene();
+  const auto lattice = attachNewLattice(scene, {"sphere"}, withCounts(4, 4, 4));
+  scene.widgets.setLatticeFrame(lattice, Eigen::Affine3d(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ())) *
+                                             scene.widgets.latticeFrame(lattice));
+  SceneDeformer deformer;
+  deformer.update(scene);
+  EXPECT_FALSE(deformer.gestureMotion("sphere"));
+  EXPECT_FALSE(deformer.gestureMotion("no such object"));
+  const Eigen::MatrixX3d base = deformer.points("sphere");
+  const std::uint64_t baseRevision = deformer.revision("sphere");
+  const Eigen::Affine3d frame = scene.widgets.latticeFrame(lattice);
+  Eigen::MatrixX3d control = scene.widgets.controlPoints(lattice);
+  const Eigen::Index f = 1 + 4 * (2 + 4 * 3), g = 2 + 4 * (1 + 4 * 2);
+  // Three steps of one control point, then a second one joins.
+  Eigen::Vector3d moved = Eigen::Vector3d::Zero();
+  for (int step = 1; step <= 4; ++step) {
+    const Eigen::Vector3d dP(0.02 * step, -0.01, 0.03);
+    moved += dP;
+    control.row(f) += dP.transpose();
+    if (step == 4) control(g, 2) += 0.1;
+    scene.widgets.setControlPoints(lattice, control);
+    deformer.updateGesture(scene, lattice);
+    ASSERT_EQ(deformer.lastStats().deltaStages, 1);
+    const std::optional<GestureMotion> motion = deformer.gestureMotion("sphere");
+    ASSERT_TRUE(motion) << "step " << step;
+    EXPECT_EQ(motion->baseRevision, baseRevision);
+    EXPECT_EQ(motion->lattice, lattice);
+    ASSERT_EQ(motion->controlPoints.size(), step == 4 ? 2u : 1u);
+    const Eigen::Index at = step == 4 ? 1 : 0;  // by flat index: g < f
+    EXPECT_EQ(motion->controlPoints[std::size_t(at)], f);
+    EXPECT_LE((Eigen::Vector3d(motion->displacements.row(at)) - frame.linear() * moved).norm(), 1e-15);
+    if (step == 4) {
+      EXPECT_EQ(motion->controlPoints[0], g);
+      EXPECT_LE((Eigen::Vector3d(motion->displacements.row(0)) - frame.linear() * Eigen::Vector3d(0, 0, 0.1)).norm(), 1e-15);
+    }
+    EXPECT_LE((followMotion(deformer, "sphere", base, *motion) - deformer.points("sphere")).cwiseAbs().maxCoeff(), 1e-14);
+  }
+  // The end of the gesture is the next base: nothing to follow.
+  deformer.finishGesture(scene);
+  EXPECT_FALSE(deformer.gestureMotion("sphere"));
+  control(f, 0) += 0.05;
+  scene.widgets.setControlPoints(lattice, control);
+  deformer.update(scene, lattice);  // an exact update is a base too
+  EXPECT_FALSE(deformer.gestureMotion("sphere"));
+}
+
+TEST(SceneDeformer, AGestureMotionIsOnlyFollowedThroughTheLastStage) {
+  // Fig. 6-9: parent, then child. Dragging the child (the last stage) is linear in its control
+  // points; dragging the parent moves the child's input, which the child evaluates again.
+  Scene scene = readScene(kExamples / "hierarchy");
+  const std::string object = scene.objects.at(0).name;
+  const auto parent = scene.widgets.find("parent");
+  const auto child = scene.widgets.find("child");
+  SceneDeformer deformer;
+  deformer.update(scene);
+  const Eigen::MatrixX3d base = deformer.points(object);
+  Eigen::MatrixX3d control = scene.widgets.controlPoints(child);
+  control(0, 0) -= 0.1;
+  scene.widgets.setControlPoints(child, control);
+  deformer.updateGesture(scene, child);
+  const std::optional<GestureMotion> motion = deformer.gestureMotion(object);
+  ASSERT_TRUE(motion);
+  EXPECT_EQ(motion->lattice, child);
+  ASSERT_EQ(motion->controlPoints.size(), 1u);
+  EXPECT_LE((followMotion(deformer, object, base, *motion) - deformer.points(object)).cwiseAbs().maxCoeff(), 1e-14);
+  deformer.finishGesture(scene);
+  Eigen::MatrixX3d top = scene.widgets.controlPoints(parent);
+  top(top.rows() - 1, 2) += 0.1;
+  scene.widgets.setControlPoints(parent, top);
+  deformer.updateGesture(scene, parent);
+  EXPECT_FALSE(deformer.gestureMotion(object));
+}
+
 TEST(SceneDeformer, CylindricalLatticeEmbedsTheWholeCylinderIncludingItsAxis) {
   // EFFD (Fig. 6-11): the cylinder lies inside its cylindrical lattice, caps and axis included.
   const Scene scene = readScene(kExamples / "cylinder-twist");

@@ -29,6 +29,17 @@ struct SceneDeformStats {
   int deltaStages = 0;
 };
 
+/// How an object's points moved during a gesture, when that motion is linear in a few control
+/// points of the object's last lattice stage (SceneDeformer::gestureMotion): the points equal the
+/// points at `baseRevision` plus sum_c weight_c(point) * displacements.row(c), with weight_c =
+/// SceneDeformer::controlWeights(object, controlPoints[c]) (up to the rounding of the deltas).
+struct GestureMotion {
+  std::uint64_t baseRevision = 0;  ///< SceneDeformer::revision(object) of the points the motion starts from
+  widgets::WidgetId lattice;       ///< the object's last lattice stage, the one whose control points moved
+  std::vector<Eigen::Index> controlPoints;  ///< flat indices (ffd::Lattice::index) that moved since the base
+  Eigen::MatrixX3d displacements;  ///< their WORLD displacements since the base (frame.linear() * dP), a row each
+};
+
 /// Progress of SceneDeformer::update() / finishGesture(): the fraction in [0, 1] of the points the
 /// call embeds (over all its objects and lattice stages), non-decreasing, 0.0 first and 1.0 once
 /// the call is complete (only these two when nothing needs embedding). Called on the thread that
@@ -92,6 +103,19 @@ class SceneDeformer {
   std::uint64_t revision(const std::string& object) const;
 
   const SceneDeformStats& lastStats() const { return stats_; }
+
+  /// The motion of an object's points since their last evaluation that was not a delta step of
+  /// its last lattice stage (updateGesture), when they moved since by such steps only: then the
+  /// motion is linear in the control points that moved (ffd::controlPointWeights) and a consumer
+  /// can follow it (the view's vertex normals: one cross product per vertex instead of a pass over
+  /// the triangles). nullopt when the points are at their base (update(), finishGesture(), a
+  /// re-embedding, a change of another stage) or the object is unknown.
+  std::optional<GestureMotion> gestureMotion(const std::string& object) const;
+  /// The weight of control point `controlPoint` of the object's last lattice stage for each of the
+  /// object's points (ffd::controlPointWeights on that stage's embedding).
+  /// @throws std::invalid_argument for an unknown object, one without lattices or not embedded yet;
+  ///   ffd::LatticeError for a control point out of range.
+  Eigen::VectorXd controlWeights(const std::string& object, Eigen::Index controlPoint) const;
 
   /// Forgets every embedding (after an object's mesh was replaced).
   void reset();
