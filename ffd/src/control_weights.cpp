@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "deform_kernels.h"
+
 namespace ffdkit::ffd {
 
 ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& embedding, int k) {
@@ -105,8 +107,17 @@ Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& emb
   const Eigen::Vector3i g = lattice.gridIndex(flat);  // throws when out of range
   const Eigen::Index n = embedding.pointCount();
   Eigen::VectorXd result = Eigen::VectorXd::Zero(n);
-  int np[3];
-  for (int a = 0; a < 3; ++a) np[a] = lattice.axis(a).degree() + 1;
+  int np[3], degrees[3];
+  for (int a = 0; a < 3; ++a) {
+    degrees[a] = lattice.axis(a).degree();
+    np[a] = degrees[a] + 1;
+  }
+  // Degree <= 3: the basis functions in the power form of each cell, as the deformer's kernels
+  // evaluate them (detail::axisPolynomials; K is the largest degree, the others padded with 0).
+  const int K = detail::powerDegree(degrees);
+  detail::AxisPolynomials poly[3];
+  if (K >= 0)
+    for (int a = 0; a < 3; ++a) poly[a] = detail::axisPolynomials(lattice.axis(a), K);
   const auto& blocks = embedding.blocks();
   const auto& tiles = embedding.tileBlocks();
   const auto& order = embedding.order();
@@ -115,8 +126,11 @@ Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& emb
   {
     std::vector<double> bu(static_cast<std::size_t>(np[0])), bv(static_cast<std::size_t>(np[1])),
         bw(static_cast<std::size_t>(np[2]));
-    // Per axis, the window positions of the cell that hold the control point's index on that axis.
+    // Per axis, the window positions of the cell that hold the control point's index on that
+    // axis (two or more where a periodic axis wraps), and the sum of their polynomials.
     std::vector<int> at[3];
+    double sum[3][detail::kMaxPowerDegree + 1];
+    double origin[3], scale[3];
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t t = 0; t < tileCount; ++t) {
       for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
@@ -128,21 +142,41 @@ Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& emb
           for (int r = 0; r < np[a]; ++r)
             if (lattice.axis(a).controlIndex(block.cell[a], r) == g[a]) at[a].push_back(r);
           inWindow = inWindow && !at[a].empty();
+          if (K < 0) continue;
+          const double* cell = poly[a].cell(block.cell[a]);
+          origin[a] = cell[0];
+          scale[a] = cell[1];
+          for (int k = 0; k <= K; ++k) {
+            sum[a][k] = 0.0;
+            for (int r : at[a]) sum[a][k] += cell[2 + r * (K + 1) + k];
+          }
         }
         if (!inWindow) continue;
+        const double* params[3] = {embedding.sortedU().data(), embedding.sortedV().data(), embedding.sortedW().data()};
         for (std::uint32_t q = block.begin; q < block.end; ++q) {
           const Eigen::Index p = order.empty() ? q : order[q];
           const double s = block.kind == Embedding::BlockKind::Blended
                                ? embedding.blendWeight()[block.blendOffset + q - block.begin]
                                : 1.0;
-          lattice.axis(0).basis(block.cell[0], embedding.sortedU()[q], bu.data());
-          lattice.axis(1).basis(block.cell[1], embedding.sortedV()[q], bv.data());
-          lattice.axis(2).basis(block.cell[2], embedding.sortedW()[q], bw.data());
-          double su = 0.0, sv = 0.0, sw = 0.0;
-          for (int r : at[0]) su += bu[std::size_t(r)];
-          for (int r : at[1]) sv += bv[std::size_t(r)];
-          for (int r : at[2]) sw += bw[std::size_t(r)];
-          result[p] = s * (su * sv * sw);
+          double product = 1.0;
+          if (K >= 0) {
+            for (int a = 0; a < 3; ++a) {
+              const double x = (params[a][q] - origin[a]) * scale[a];
+              double h = sum[a][K];
+              for (int k = K - 1; k >= 0; --k) h = h * x + sum[a][k];
+              product *= h;
+            }
+          } else {
+            lattice.axis(0).basis(block.cell[0], params[0][q], bu.data());
+            lattice.axis(1).basis(block.cell[1], params[1][q], bv.data());
+            lattice.axis(2).basis(block.cell[2], params[2][q], bw.data());
+            double su = 0.0, sv = 0.0, sw = 0.0;
+            for (int r : at[0]) su += bu[std::size_t(r)];
+            for (int r : at[1]) sv += bv[std::size_t(r)];
+            for (int r : at[2]) sw += bw[std::size_t(r)];
+            product = su * sv * sw;
+          }
+          result[p] = s * product;
         }
       }
     }

@@ -1,6 +1,10 @@
 // The view is change-driven (scene_view.h): hover and selection build no geometry and touch no
 // point or normal array; a drag step rewrites the points and normals of the objects that moved,
 // and only theirs. No GL draw: the renderer has no window.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 #include <gtest/gtest.h>
 
 #include <vtkNew.h>
@@ -88,6 +92,127 @@ TEST(SceneViewUpdates, ADragStepUpdatesThePointsOfTheObjectsThatMovedOnly) {
   const SceneViewStats released = s.view.stats();
   s.controller.hover(s.ray(0.5, 4.0), s.tolerance());
   expectNoGeometryWork(released, s.view.stats());
+}
+
+// Area-weighted vertex normals in double, written here from the definition (sum of the
+// triangles' (b - a) x (c - a) at each vertex, normalised): the exact normals of `points`.
+Eigen::MatrixX3d exactNormals(const Eigen::MatrixX3d& points, const Eigen::MatrixX3i& triangles) {
+  Eigen::MatrixX3d sums = Eigen::MatrixX3d::Zero(points.rows(), 3);
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+    const Eigen::Vector3d a = points.row(triangles(t, 0)), b = points.row(triangles(t, 1)), c = points.row(triangles(t, 2));
+    const Eigen::RowVector3d area = (b - a).cross(c - a).transpose();
+    for (int k = 0; k < 3; ++k) sums.row(triangles(t, k)) += area;
+  }
+  return sums.rowwise().normalized();
+}
+
+// The largest angle, in degrees, between corresponding rows.
+double maxAngleDegrees(const Eigen::MatrixX3f& drawn, const Eigen::MatrixX3d& exact) {
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < exact.rows(); ++i) {
+    const Eigen::Vector3d a = drawn.row(i).cast<double>().normalized();
+    const Eigen::Vector3d b = exact.row(i);
+    worst = std::max(worst, std::atan2(a.cross(b).norm(), a.dot(b)));
+  }
+  return worst * 180.0 / std::numbers::pi;
+}
+
+// A sphere in a 4x4x4 cubic B-spline lattice with a translate widget on an inner point of its
+// top layer (the BM_DragStep scene, smaller), drawn by a view that follows the controller.
+struct DragSession {
+  scenes::Scene scene;
+  scenes::SceneDeformer deformer;
+  scenes::CommandStack commands;
+  InteractionController controller{scene, deformer, commands};
+  vtkNew<vtkRenderer> renderer;
+  SceneView view{renderer};
+  widgets::WidgetId lattice, widget;
+  std::string sphere;
+
+  explicit DragSession(int resolution) {
+    scenes::PrimitiveOptions options;
+    options.resolution = resolution;
+    sphere = controller.addPrimitive(options);
+    NewLatticeOptions cubic;
+    cubic.counts = Eigen::Vector3i::Constant(4);
+    cubic.basis = {ffd::AxisBasis::bspline(3), ffd::AxisBasis::bspline(3), ffd::AxisBasis::bspline(3)};
+    lattice = controller.newLattice(cubic);
+    controller.attachLattice(lattice, sphere);
+    widget = controller.addAffineAtPoint({lattice, 1 + 4 * (1 + 4 * 3)}, widgets::AffineKind::Translate);
+    controller.clearSelection();
+    view.show(scene, deformer);
+    controller.onChanged = [this] { view.refresh(scene, deformer); };
+  }
+  widgets::Ray ray(double along) const {
+    const widgets::WidgetFrame f = scene.widgets.affineFrame(widget);
+    widgets::Ray r;
+    r.origin = f.frame.translation() + f.size * along * f.frame.linear().col(0) + 5.0 * f.frame.linear().col(2);
+    r.direction = -f.frame.linear().col(2);
+    return r;
+  }
+  double tolerance() const { return 0.05 * scene.widgets.affineFrame(widget).size; }
+  const Eigen::MatrixX3i& triangles() const { return scene.findObject(sphere)->mesh.triangles; }
+  // What a view built from scratch on the present state draws.
+  Eigen::MatrixX3f freshNormals() const {
+    vtkNew<vtkRenderer> other;
+    SceneView fresh(other);
+    fresh.show(scene, deformer);
+    return fresh.objectNormals(sphere);
+  }
+};
+
+TEST(SceneViewUpdates, DragNormalsFollowTheExactNormalsAndAreTheExactOnesAtRelease) {
+  // During a drag of one control point the view follows the normals along the motion
+  // (gesture_normals.h: N(t) = N(t0) + (D(t) - D(t0)) x W, exact up to float rounding) instead
+  // of recomputing them; at release it recomputes them. Two resolutions: the agreement is float
+  // rounding at both, it does not depend on the mesh.
+  for (const int resolution : {40, 120}) {
+    DragSession s(resolution);
+    const Eigen::MatrixX3d start = exactNormals(s.deformer.points(s.sphere), s.triangles());
+    ASSERT_EQ(s.controller.press(s.ray(0.5), s.tolerance()), InteractionController::PressResult::Widget);
+    const SceneViewStats pressed = s.view.stats();
+    double turned = 0.0;
+    for (int step = 1; step <= 8; ++step) {
+      s.controller.drag(s.ray(0.5 + 0.25 * step));  // up to two glyph sizes along the arrow
+      ASSERT_EQ(s.deformer.lastStats().deltaStages, 1);
+      const SceneViewStats now = s.view.stats();
+      EXPECT_EQ(now.normalUpdates, pressed.normalUpdates + step);
+      // The first step computes them (and what follows them), the next ones follow.
+      EXPECT_EQ(now.followedNormals, pressed.followedNormals + step - 1) << "step " << step;
+      const Eigen::MatrixX3d exact = exactNormals(s.deformer.points(s.sphere), s.triangles());
+      EXPECT_LT(maxAngleDegrees(s.view.objectNormals(s.sphere), exact), 1e-3)
+          << "resolution " << resolution << " step " << step;
+      turned = maxAngleDegrees(start.cast<float>(), exact);
+    }
+    EXPECT_GT(turned, 5.0) << "the drag should turn some normals visibly";
+    s.controller.release();
+    EXPECT_EQ(s.view.stats().followedNormals, pressed.followedNormals + 7);  // release recomputes
+    const Eigen::MatrixX3f released = s.view.objectNormals(s.sphere);
+    const Eigen::MatrixX3f fresh = s.freshNormals();
+    ASSERT_EQ(released.rows(), fresh.rows());
+    EXPECT_TRUE((released.array() == fresh.array()).all()) << "released normals are not bit for bit the exact ones";
+    EXPECT_LT(maxAngleDegrees(released, exactNormals(s.deformer.points(s.sphere), s.triangles())), 1e-3);
+  }
+}
+
+TEST(SceneViewUpdates, AGestureOfTwoControlPointsRecomputesTheNormalsAtEveryStep) {
+  // The followed form covers one control point; two (pairwise D x D' terms) are recomputed.
+  DragSession s(40);
+  const Eigen::Index f = 1 + 4 * (1 + 4 * 3), g = 2 + 4 * (2 + 4 * 3);
+  Eigen::MatrixX3d control = s.scene.widgets.controlPoints(s.lattice);
+  const SceneViewStats before = s.view.stats();
+  for (int step = 1; step <= 3; ++step) {
+    control(f, 2) += 0.05;
+    control(g, 0) += 0.04;
+    s.scene.widgets.setControlPoints(s.lattice, control);
+    s.deformer.updateGesture(s.scene, s.lattice);
+    ASSERT_TRUE(s.deformer.gestureMotion(s.sphere));
+    ASSERT_EQ(s.deformer.gestureMotion(s.sphere)->controlPoints.size(), 2u);
+    s.view.refresh(s.scene, s.deformer);
+    EXPECT_TRUE((s.view.objectNormals(s.sphere).array() == s.freshNormals().array()).all()) << "step " << step;
+  }
+  EXPECT_EQ(s.view.stats().normalUpdates, before.normalUpdates + 3);
+  EXPECT_EQ(s.view.stats().followedNormals, before.followedNormals);
 }
 
 }  // namespace

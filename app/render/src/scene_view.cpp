@@ -31,6 +31,7 @@
 
 #include "ffdkit/app/curvature_comb.h"
 #include "ffdkit/app/parts.h"
+#include "gesture_normals.h"
 #include "ffdkit/widgets/widget_model.h"
 #include "scene_view_shapes.h"
 
@@ -60,6 +61,7 @@ struct SceneView::Impl {
     VertexFaces vertexFaces;                  ///< of the triangles, for the normals
     Eigen::Vector3d restLo, restHi;           ///< bounding box of the object's own points
     std::vector<Eigen::Vector3f> faceNormals; ///< scratch
+    GestureNormals gestureNormals;            ///< the normals followed along a drag
     vtkSmartPointer<vtkPolyData> polyData;
     vtkSmartPointer<vtkActor> actor;
   };
@@ -499,8 +501,9 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
       ++impl_->stats.pointUpdates;
       if (auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals())) {
         ++impl_->stats.normalUpdates;
-        updateNormals(normals, scene.findObject(entry.name)->mesh.triangles, entry.vertexFaces, points,
-                      entry.faceNormals);
+        if (entry.gestureNormals.update(deformed, entry.name, scene.findObject(entry.name)->mesh.triangles,
+                                        entry.vertexFaces, points, entry.faceNormals, normals))
+          ++impl_->stats.followedNormals;
         if (auto* tcoords = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetTCoords()))
           updateZebraCoordinates(tcoords, normals, entry.display.zebraDirection, entry.display.zebraStripes);
       }
@@ -544,6 +547,19 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
 }
 
 void SceneView::setHighlights(const ViewHighlights& highlights) { impl_->highlights = highlights; }
+
+Eigen::MatrixX3f SceneView::objectNormals(const std::string& object) const {
+  for (const auto& entry : impl_->objects) {
+    if (entry.name != object) continue;
+    auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals());
+    if (!normals) break;
+    Eigen::MatrixX3f out(normals->GetNumberOfTuples(), 3);
+    for (Eigen::Index i = 0; i < out.rows(); ++i)
+      for (int c = 0; c < 3; ++c) out(i, c) = normals->GetPointer(0)[3 * i + c];
+    return out;
+  }
+  return {};
+}
 
 const SceneViewStats& SceneView::stats() const { return impl_->stats; }
 

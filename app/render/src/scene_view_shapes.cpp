@@ -50,16 +50,10 @@ VertexFaces vertexFaces(const Eigen::MatrixX3i& triangles, Eigen::Index pointCou
   return vf;
 }
 
-// Area-weighted vertex normals of a triangle mesh into `normals` (#points x 3 floats).
-// Done here rather than with vtkPolyDataNormals, which costs ~0.4 s per frame on 1M vertices
-// (it rebuilds cell links every time); a drag step has to stay within the engine's budget.
-void updateNormals(vtkFloatArray* normals, const Eigen::MatrixX3i& triangles, const VertexFaces& vf,
-                   const Eigen::MatrixX3d& points, std::vector<Eigen::Vector3f>& faceNormals) {
+void faceAreaVectors(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& points,
+                     std::vector<Eigen::Vector3f>& faceNormals) {
   const Eigen::Index n = points.rows();
   const Eigen::Index m = triangles.rows();
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(n);
-  float* out = normals->GetPointer(0);
   faceNormals.resize(static_cast<std::size_t>(m));
   const double* x = points.data();  // column-major: x, y, z columns
   const double* y = x + n;
@@ -71,17 +65,33 @@ void updateNormals(vtkFloatArray* normals, const Eigen::MatrixX3i& triangles, co
     const Eigen::Vector3d area = (Eigen::Vector3d(x[b], y[b], z[b]) - pa).cross(Eigen::Vector3d(x[c], y[c], z[c]) - pa);
     faceNormals[static_cast<std::size_t>(t)] = area.cast<float>();
   }
+}
+
+void gatherNormals(const VertexFaces& vf, const std::vector<Eigen::Vector3f>& faceNormals, Eigen::Index n, float* out,
+                   Eigen::Vector3f* sums) {
 #pragma omp parallel for schedule(static)
   for (Eigen::Index i = 0; i < n; ++i) {
     Eigen::Vector3f sum = Eigen::Vector3f::Zero();
     for (int k = vf.start[static_cast<std::size_t>(i)]; k < vf.start[static_cast<std::size_t>(i) + 1]; ++k)
       sum += faceNormals[static_cast<std::size_t>(vf.faces[static_cast<std::size_t>(k)])];
+    if (sums) sums[i] = sum;
     const float length = sum.norm();
     const Eigen::Vector3f v = length > 0.0f ? Eigen::Vector3f(sum / length) : Eigen::Vector3f::UnitZ();
     out[3 * i] = v.x();
     out[3 * i + 1] = v.y();
     out[3 * i + 2] = v.z();
   }
+}
+
+// Area-weighted vertex normals of a triangle mesh into `normals` (#points x 3 floats).
+// Done here rather than with vtkPolyDataNormals, which costs ~0.4 s per frame on 1M vertices
+// (it rebuilds cell links every time); a drag step has to stay within the engine's budget.
+void updateNormals(vtkFloatArray* normals, const Eigen::MatrixX3i& triangles, const VertexFaces& vf,
+                   const Eigen::MatrixX3d& points, std::vector<Eigen::Vector3f>& faceNormals) {
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(points.rows());
+  faceAreaVectors(triangles, points, faceNormals);
+  gatherNormals(vf, faceNormals, points.rows(), normals->GetPointer(0), nullptr);
   normals->Modified();
 }
 

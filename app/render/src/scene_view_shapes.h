@@ -30,6 +30,15 @@ struct VertexFaces {
 
 VertexFaces vertexFaces(const Eigen::MatrixX3i& triangles, Eigen::Index pointCount);
 
+/// The two passes of updateNormals: each triangle's area vector (b - a) x (c - a), in double,
+/// stored as float ...
+void faceAreaVectors(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& points,
+                     std::vector<Eigen::Vector3f>& faceNormals);
+/// ... then per vertex the sum over its triangles (vf), normalised into out[3 i .. 3 i + 2]
+/// (+z where the sum is 0); the sums themselves into `sums` when not null. No write races.
+void gatherNormals(const VertexFaces& vf, const std::vector<Eigen::Vector3f>& faceNormals, Eigen::Index n, float* out,
+                   Eigen::Vector3f* sums);
+
 /// Area-weighted vertex normals of a triangle mesh into `normals` (#points x 3 floats);
 /// `faceNormals` is scratch space kept between calls.
 void updateNormals(vtkFloatArray* normals, const Eigen::MatrixX3i& triangles, const VertexFaces& vf,

@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -32,6 +33,9 @@ struct SceneViewStats {
   int objectBuilds = 0;   ///< object actors made (show(), or a refresh after the objects changed)
   int pointUpdates = 0;   ///< object point arrays rewritten in place
   int normalUpdates = 0;  ///< object normal arrays recomputed in place
+  /// Of normalUpdates, those that followed a drag of one control point (one cross product per
+  /// vertex, exact to float rounding) instead of a pass over the triangles (app/render/src/gesture_normals.h).
+  int followedNormals = 0;
   int widgetBuilds = 0;   ///< rebuilds of the widget actors (the model changed)
   int overlayBuilds = 0;  ///< placements of the transformer's actors (another transformer)
 };
@@ -65,6 +69,9 @@ class SceneView {
   void setHighlights(const ViewHighlights& highlights);
 
   const SceneViewStats& stats() const;
+  /// The vertex normals drawn for `object`, #points x 3 (empty when it is not drawn or has no
+  /// triangles). For tests.
+  Eigen::MatrixX3f objectNormals(const std::string& object) const;
 
   /// Sets the renderer's camera from `camera` (clipping range reset to the scene).
   void applyCamera(const scenes::Camera& camera);

@@ -1,0 +1,64 @@
+#pragma once
+
+// Vertex normals that follow a drag instead of being recomputed from the triangles at every step
+// (private to ffdkit::render; SceneView::refresh uses it).
+//
+// During a gesture that moves ONE control point of an object's last lattice stage
+// (scenes::GestureMotion), every vertex moves by  x_v(t) = x_v(0) + beta_v D(t): the same world
+// displacement D(t) of the control point, scaled by the vertex's weight beta_v = s B_ijk(u,v,w)
+// (ffd::controlPointWeights), fixed during the gesture. A triangle's edges then move by
+// e1(t) = e1 + D dbeta1, e2(t) = e2 + D dbeta2 (dbeta1 = beta_b - beta_a, dbeta2 = beta_c - beta_a),
+// and its area vector is
+//     e1(t) x e2(t) = e1 x e2 + D x (dbeta1 e2 - dbeta2 e1)          (the D x D term is 0),
+// linear in D. Summed over the triangles of a vertex, the area-weighted normal (the one
+// updateNormals computes) is exactly
+//     N_v(t) = N_v(t0) + (D(t) - D(t0)) x W_v,   W_v = sum_f (dbeta1 e2 - dbeta2 e1)_f,
+// and W_v does not change along the motion (its own change is D (dbeta1 dbeta2 - dbeta2 dbeta1) = 0),
+// so it can be taken at any step t0 of it. This is the discrete, exact form of transforming a
+// normal by the cofactor of the deformation's Jacobian (Barr 1984, "Global and local deformations
+// of solid primitives", n' = det(J) J^-T n): with J = I + D grad(beta)^T the cofactor is
+// (1 + grad(beta).D) I - grad(beta) D^T, and on a triangle of area vector A_f with the gradient g_f
+// of the linear interpolant of beta, (dbeta1 e2 - dbeta2 e1) = A_f x g_f, so that
+// D x (A_f x g_f) = (g_f.D) A_f - g_f (D.A_f) is that cofactor's change applied to A_f, exactly.
+//
+// Cost per step: one cross product and a normalisation per vertex, 24 bytes read and 12 written,
+// instead of a pass over the triangles and a gather over each vertex's triangles. The first step of
+// a motion computes the exact normals and W (a pass over the triangles and a gather, once).
+// Motions of several control points (the general form has pairwise D_c x D_c' terms) and every
+// other change are recomputed exactly.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ffdkit/scenes/scene_deformer.h"
+#include "scene_view_shapes.h"
+
+namespace ffdkit::app {
+
+class GestureNormals {
+ public:
+  /// Writes the area-weighted vertex normals of `points` (the deformer's present points of
+  /// `object`, whose triangles are `triangles`) into `normals`: followed along the object's
+  /// gesture motion when it is one control point's and the same as the last call's (returns
+  /// true), else computed from the triangles (updateNormals' bits; returns false), keeping what the
+  /// next steps of a one-control-point motion need.
+  bool update(const scenes::SceneDeformer& deformer, const std::string& object, const Eigen::MatrixX3i& triangles,
+              const scene_view_shapes::VertexFaces& vf, const Eigen::MatrixX3d& points,
+              std::vector<Eigen::Vector3f>& faceScratch, vtkFloatArray* normals);
+
+  /// Forgets the motion (frees its 24 bytes per vertex).
+  void clear();
+
+ private:
+  bool active_ = false;
+  std::uint64_t baseRevision_ = 0;
+  widgets::WidgetId lattice_;
+  Eigen::Index controlPoint_ = -1;
+  Eigen::Vector3d startDisplacement_ = Eigen::Vector3d::Zero();  // D(t0)
+  std::vector<Eigen::Vector3f> sums_;    // N_v(t0), the unnormalised area-weighted normals
+  std::vector<Eigen::Vector3f> motion_;  // W_v
+};
+
+}  // namespace ffdkit::app
