@@ -168,7 +168,17 @@ void bindSceneDocuments(py::module_& m) {
       .def_readonly("deformedPoints", &scenes::SceneDeformStats::deformedPoints)
       .def_readonly("outsidePoints", &scenes::SceneDeformStats::outsidePoints)
       .def_readonly("failedPoints", &scenes::SceneDeformStats::failedPoints)
-      .def_readonly("embedSeconds", &scenes::SceneDeformStats::embedSeconds);
+      .def_readonly("embedSeconds", &scenes::SceneDeformStats::embedSeconds)
+      .def_readonly("latticesBuilt", &scenes::SceneDeformStats::latticesBuilt)
+      .def_readonly("deltaStages", &scenes::SceneDeformStats::deltaStages);
+
+  py::class_<scenes::GestureMotion>(m, "GestureMotion",
+                                    "How an object's points moved by delta steps of its last lattice stage since their "
+                                    "base: points = base + sum_c controlWeights(object, controlPoints[c]) * displacements[c].")
+      .def_readonly("baseRevision", &scenes::GestureMotion::baseRevision)
+      .def_readonly("lattice", &scenes::GestureMotion::lattice)
+      .def_readonly("controlPoints", &scenes::GestureMotion::controlPoints)
+      .def_readonly("displacements", &scenes::GestureMotion::displacements);
 
   py::class_<SceneDeformerHandle>(m, "SceneDeformer",
                                   "Evaluates a scene's lattice trees per object (scenes/scene_deformer.h).")
@@ -178,9 +188,27 @@ void bindSceneDocuments(py::module_& m) {
              h.run([&] { h.deformer.update(scene, active); });
            },
            "scene"_a, "activeLattice"_a = py::none(), "Brings every object's deformed points up to date (GIL released).")
+      .def("updateGesture",
+           [](SceneDeformerHandle& h, const scenes::Scene& scene, std::optional<widgets::WidgetId> active) {
+             h.run([&] { h.deformer.updateGesture(scene, active); });
+           },
+           "scene"_a, "activeLattice"_a = py::none(),
+           "One step of a gesture: as update(), but a lattice whose control points moved is updated by deltas "
+           "(exact to rounding only, until finishGesture() or update()). GIL released.")
       .def("finishGesture", [](SceneDeformerHandle& h, const scenes::Scene& scene) {
         h.run([&] { h.deformer.finishGesture(scene); });
-      }, "scene"_a)
+      }, "scene"_a, "Ends a gesture: evaluates every lattice updated by deltas in full (the exact result).")
+      .def("revision", [](const SceneDeformerHandle& h, const std::string& object) { return h.deformer.revision(object); },
+           "object"_a, "Grows whenever the object's deformed points change.")
+      .def("gestureMotion",
+           [](const SceneDeformerHandle& h, const std::string& object) { return h.deformer.gestureMotion(object); },
+           "object"_a, "The object's motion by delta steps of its last lattice stage since its base, or None.")
+      .def("controlWeights",
+           [](const SceneDeformerHandle& h, const std::string& object, Eigen::Index controlPoint) {
+             return h.deformer.controlWeights(object, controlPoint);
+           },
+           "object"_a, "controlPoint"_a,
+           "The weight of a control point of the object's last lattice stage for each of its points.")
       .def("setProgress",
            [](SceneDeformerHandle& h, const py::object& callback) {
              h.progress = PythonProgress(callback);

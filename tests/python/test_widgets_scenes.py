@@ -132,6 +132,40 @@ def test_scene_load_drive_and_deformed_points():
         deformer.points("nothing")
 
 
+def test_scene_deformer_gesture_steps_move_by_deltas_and_finish_exactly():
+    scene = scenes.readScene(ROOT / "scenes" / "examples" / "press")
+    model = scene.widgets
+    lattice = model.find("press-frame")
+    deformer = scenes.SceneDeformer()
+    deformer.update(scene)
+    base = np.array(deformer.points("block"))
+    base_revision = deformer.revision("block")
+    assert deformer.gestureMotion("block") is None
+    control = np.array(model.controlPoints(lattice))
+    moved = len(control) - 1  # a top corner of the 2x2x2 press lattice
+    linear = np.asarray(model.latticeFrame(lattice))[:3, :3]
+    for step in range(1, 4):
+        control[moved] += [0.01, 0.0, -0.02]
+        model.setControlPoints(lattice, control)
+        deformer.updateGesture(scene, lattice)
+        assert deformer.lastStats.deltaStages == 1
+        assert deformer.revision("block") == base_revision + step
+        motion = deformer.gestureMotion("block")
+        assert motion.baseRevision == base_revision and motion.lattice == lattice
+        assert motion.controlPoints == [moved]
+        np.testing.assert_allclose(motion.displacements[0], linear @ [0.01 * step, 0.0, -0.02 * step], atol=1e-15)
+        # Linear in the moved control point: base + weight * displacement (trilinear weights here).
+        weights = deformer.controlWeights("block", moved)
+        assert weights.shape == (len(base),) and weights.min() >= 0.0 and weights.max() <= 1.0
+        followed = base + np.outer(weights, motion.displacements[0])
+        np.testing.assert_allclose(deformer.points("block"), followed, rtol=0, atol=1e-13)
+    deformer.finishGesture(scene)
+    assert deformer.gestureMotion("block") is None
+    np.testing.assert_array_equal(deformer.points("block"), scenes.deformScene(scene)["block"])
+    with pytest.raises(ffdkit.LatticeError):
+        deformer.controlWeights("block", len(control))
+
+
 def test_scene_files_round_trip_and_report_errors(tmp_path):
     source = ROOT / "scenes" / "examples" / "hierarchy" / "scene.json"
     scene = scenes.readScene(source)
