@@ -1,5 +1,10 @@
 #include "gesture_normals.h"
 
+#include <algorithm>
+#include <limits>
+
+#include <Eigen/Core>
+
 namespace ffdkit::app {
 
 using scene_view_shapes::VertexFaces;
@@ -25,13 +30,13 @@ void faceMotionVectors(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d
   }
 }
 
-void gatherSums(const VertexFaces& vf, const std::vector<Eigen::Vector3f>& faces, Eigen::Index n, Eigen::Vector3f* sums) {
+void gatherSums(const VertexFaces& vf, const std::vector<Eigen::Vector3f>& faces, Eigen::MatrixX3f& sums) {
 #pragma omp parallel for schedule(static)
-  for (Eigen::Index i = 0; i < n; ++i) {
+  for (Eigen::Index i = 0; i < sums.rows(); ++i) {
     Eigen::Vector3f sum = Eigen::Vector3f::Zero();
     for (int k = vf.start[static_cast<std::size_t>(i)]; k < vf.start[static_cast<std::size_t>(i) + 1]; ++k)
       sum += faces[static_cast<std::size_t>(vf.faces[static_cast<std::size_t>(k)])];
-    sums[i] = sum;
+    sums.row(i) = sum.transpose();
   }
 }
 
@@ -39,8 +44,8 @@ void gatherSums(const VertexFaces& vf, const std::vector<Eigen::Vector3f>& faces
 
 void GestureNormals::clear() {
   active_ = false;
-  sums_ = {};
-  motion_ = {};
+  sums_.resize(0, 3);
+  motion_.resize(0, 3);
 }
 
 bool GestureNormals::update(const scenes::SceneDeformer& deformer, const std::string& object,
@@ -50,22 +55,35 @@ bool GestureNormals::update(const scenes::SceneDeformer& deformer, const std::st
   const std::optional<scenes::GestureMotion> motion = deformer.gestureMotion(object);
   const bool single = motion && motion->controlPoints.size() == 1;
   if (single && active_ && motion->baseRevision == baseRevision_ && motion->lattice == lattice_ &&
-      motion->controlPoints[0] == controlPoint_ && static_cast<Eigen::Index>(sums_.size()) == n) {
-    // N_v(t) = N_v(t0) + (D(t) - D(t0)) x W_v, normalised as gatherNormals does.
+      motion->controlPoints[0] == controlPoint_ && sums_.rows() == n) {
+    // N_v(t) = N_v(t0) + (D(t) - D(t0)) x W_v, normalised (+z for a zero sum, as gatherNormals).
     const Eigen::Vector3f d = (Eigen::Vector3d(motion->displacements.row(0)) - startDisplacement_).cast<float>();
+    const float dx = d.x(), dy = d.y(), dz = d.z();
     normals->SetNumberOfComponents(3);
     normals->SetNumberOfTuples(n);
     float* out = normals->GetPointer(0);
-    const Eigen::Vector3f* sums = sums_.data();
-    const Eigen::Vector3f* w = motion_.data();
+    // In chunks: the arithmetic on columns (Eigen vectorises it, sqrt included), then the
+    // interleaved store VTK wants.
+    constexpr Eigen::Index kChunk = 1024;
+    using Column = Eigen::Array<float, Eigen::Dynamic, 1, 0, kChunk, 1>;
+    using In = Eigen::Map<const Eigen::ArrayXf>;
+    const float *nx = sums_.col(0).data(), *ny = sums_.col(1).data(), *nz = sums_.col(2).data();
+    const float *wx = motion_.col(0).data(), *wy = motion_.col(1).data(), *wz = motion_.col(2).data();
+    const Eigen::Index chunks = (n + kChunk - 1) / kChunk;
 #pragma omp parallel for schedule(static)
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const Eigen::Vector3f sum = sums[i] + d.cross(w[i]);
-      const float length = sum.norm();
-      const Eigen::Vector3f v = length > 0.0f ? Eigen::Vector3f(sum / length) : Eigen::Vector3f::UnitZ();
-      out[3 * i] = v.x();
-      out[3 * i + 1] = v.y();
-      out[3 * i + 2] = v.z();
+    for (Eigen::Index c = 0; c < chunks; ++c) {
+      const Eigen::Index first = c * kChunk, m = std::min(kChunk, n - first);
+      const Column x = In(nx + first, m) + (dy * In(wz + first, m) - dz * In(wy + first, m));
+      const Column y = In(ny + first, m) + (dz * In(wx + first, m) - dx * In(wz + first, m));
+      const Column z = In(nz + first, m) + (dx * In(wy + first, m) - dy * In(wx + first, m));
+      const Column inverse = (x.square() + y.square() + z.square()).sqrt().inverse();  // inf for a zero sum
+      float* o = out + 3 * first;
+      for (Eigen::Index j = 0; j < m; ++j) {
+        const bool some = inverse[j] < std::numeric_limits<float>::infinity();
+        o[3 * j] = some ? x[j] * inverse[j] : 0.0f;
+        o[3 * j + 1] = some ? y[j] * inverse[j] : 0.0f;
+        o[3 * j + 2] = some ? z[j] * inverse[j] : 1.0f;
+      }
     }
     normals->Modified();
     return true;
@@ -78,12 +96,12 @@ bool GestureNormals::update(const scenes::SceneDeformer& deformer, const std::st
   // The first step of a one-control-point motion: the exact normals, and what follows them.
   normals->SetNumberOfComponents(3);
   normals->SetNumberOfTuples(n);
-  sums_.resize(static_cast<std::size_t>(n));
-  motion_.resize(static_cast<std::size_t>(n));
+  sums_.resize(n, 3);
+  motion_.resize(n, 3);
   scene_view_shapes::faceAreaVectors(triangles, points, faceScratch);
-  scene_view_shapes::gatherNormals(vf, faceScratch, n, normals->GetPointer(0), sums_.data());
+  scene_view_shapes::gatherNormals(vf, faceScratch, n, normals->GetPointer(0), &sums_);
   faceMotionVectors(triangles, points, deformer.controlWeights(object, motion->controlPoints[0]), faceScratch);
-  gatherSums(vf, faceScratch, n, motion_.data());
+  gatherSums(vf, faceScratch, motion_);
   normals->Modified();
   active_ = true;
   baseRevision_ = motion->baseRevision;

@@ -57,8 +57,9 @@ class GestureNormals {
   widgets::WidgetId lattice_;
   Eigen::Index controlPoint_ = -1;
   Eigen::Vector3d startDisplacement_ = Eigen::Vector3d::Zero();  // D(t0)
-  std::vector<Eigen::Vector3f> sums_;    // N_v(t0), the unnormalised area-weighted normals
-  std::vector<Eigen::Vector3f> motion_;  // W_v
+  // Columns (x, y, z: the per-step loop streams and vectorises over them):
+  Eigen::MatrixX3f sums_;    // N_v(t0), the unnormalised area-weighted normals
+  Eigen::MatrixX3f motion_;  // W_v
 };
 
 }  // namespace ffdkit::app

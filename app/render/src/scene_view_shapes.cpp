@@ -29,6 +29,8 @@ using widgets::GlyphShape;
 void setPoints(vtkPoints* vtkPts, const Eigen::MatrixX3d& points) {
   vtkPts->SetNumberOfPoints(points.rows());
   auto* data = static_cast<double*>(vtkPts->GetVoidPointer(0));
+  // Memory bound (a drag step rewrites every point of a large mesh): both cores' bandwidth.
+#pragma omp parallel for schedule(static) if (points.rows() >= 65536)
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     data[3 * i] = points(i, 0);
     data[3 * i + 1] = points(i, 1);
@@ -68,13 +70,13 @@ void faceAreaVectors(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& 
 }
 
 void gatherNormals(const VertexFaces& vf, const std::vector<Eigen::Vector3f>& faceNormals, Eigen::Index n, float* out,
-                   Eigen::Vector3f* sums) {
+                   Eigen::MatrixX3f* sums) {
 #pragma omp parallel for schedule(static)
   for (Eigen::Index i = 0; i < n; ++i) {
     Eigen::Vector3f sum = Eigen::Vector3f::Zero();
     for (int k = vf.start[static_cast<std::size_t>(i)]; k < vf.start[static_cast<std::size_t>(i) + 1]; ++k)
       sum += faceNormals[static_cast<std::size_t>(vf.faces[static_cast<std::size_t>(k)])];
-    if (sums) sums[i] = sum;
+    if (sums) sums->row(i) = sum.transpose();
     const float length = sum.norm();
     const Eigen::Vector3f v = length > 0.0f ? Eigen::Vector3f(sum / length) : Eigen::Vector3f::UnitZ();
     out[3 * i] = v.x();

@@ -35,9 +35,9 @@ VertexFaces vertexFaces(const Eigen::MatrixX3i& triangles, Eigen::Index pointCou
 void faceAreaVectors(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& points,
                      std::vector<Eigen::Vector3f>& faceNormals);
 /// ... then per vertex the sum over its triangles (vf), normalised into out[3 i .. 3 i + 2]
-/// (+z where the sum is 0); the sums themselves into `sums` when not null. No write races.
+/// (+z where the sum is 0); the sums themselves into the rows of `sums` (n x 3) when not null. No write races.
 void gatherNormals(const VertexFaces& vf, const std::vector<Eigen::Vector3f>& faceNormals, Eigen::Index n, float* out,
-                   Eigen::Vector3f* sums);
+                   Eigen::MatrixX3f* sums);
 
 /// Area-weighted vertex normals of a triangle mesh into `normals` (#points x 3 floats);
 /// `faceNormals` is scratch space kept between calls.
