@@ -1,5 +1,6 @@
 // The interactive path (issue 16): a drag step (model gesture, in-place deformation, the view's
-// point and normal arrays), a hover (highlights only) and an undo of a drag (model and deformer:
+// point and normal arrays; the normals followed along the motion after its first step, which
+// BM_DragFirstStep times), a hover (highlights only) and an undo of a drag (model and deformer:
 // the document core; the view then updates as in a drag step), on a sphere of
 // 1M (10M) vertices in a 4x4x4 cubic B-spline lattice with one point widget. No GL draw: the
 // view's renderer has no window. Run:
@@ -73,6 +74,7 @@ void BM_DragStep(benchmark::State& state) {
           "the press missed the widget");
   const Eigen::Vector3d axis = s.scene.widgets.affineFrame(s.widget).frame.linear().col(0);
   const int before = s.view->stats().pointUpdates;
+  const int followedBefore = s.view->stats().followedNormals;
   int step = 0;
   for (auto _ : state) {
     // Along the arrow: the widget moves by 0.01 .. 0.1 of its size, back and forth.
@@ -83,8 +85,36 @@ void BM_DragStep(benchmark::State& state) {
   require(s.view->stats().pointUpdates >= before + int(state.iterations()) - 1, "the view did not follow the drag");
   require(s.deformer.lastStats().reembeddedStages == 0, "a drag step re-embedded");
   require(s.deformer.lastStats().deltaStages == 1, "a drag step did not update by deltas");
+  // Every step but the first followed the normals along the motion (gesture_normals.h).
+  require(s.view->stats().followedNormals >= followedBefore + int(state.iterations()) - 1,
+          "the view recomputed the normals during the drag");
   s.controller.release();
   state.counters["points"] = double(s.scene.objects.front().mesh.points.rows());
+}
+
+// The first step of a drag: the view computes the normals from the triangles and what the next
+// steps follow them with (the moved control point's weights, W: gesture_normals.h). Press before
+// and release and undo after each step are not timed.
+void BM_DragFirstStep(benchmark::State& state) {
+  Session& s = session(static_cast<int>(state.range(0)));
+  const widgets::Ray grab = s.ray(0.5);
+  const Eigen::Vector3d axis = s.scene.widgets.affineFrame(s.widget).frame.linear().col(0);
+  const int followedBefore = s.view->stats().followedNormals;
+  for (auto _ : state) {
+    state.PauseTiming();
+    require(s.controller.press(grab, s.tolerance()) == app::InteractionController::PressResult::Widget,
+            "the press missed the widget");
+    widgets::Ray r = grab;
+    r.origin += 0.05 * s.scene.widgets.affineFrame(s.widget).size * axis;
+    state.ResumeTiming();
+    s.controller.drag(r);
+    state.PauseTiming();
+    require(s.deformer.lastStats().deltaStages == 1, "a drag step did not update by deltas");
+    s.controller.release();
+    s.commands.undo();
+    state.ResumeTiming();
+  }
+  require(s.view->stats().followedNormals == followedBefore, "a first drag step followed normals it had not computed");
 }
 
 void BM_Hover(benchmark::State& state) {
@@ -134,5 +164,6 @@ void BM_UndoDrag(benchmark::State& state) {
 BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:100K/lattice:4x4x4-cubic")->Arg(447)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:10K/lattice:4x4x4-cubic")->Arg(141)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DragFirstStep)->Name("BM_DragFirstStep/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Hover)->Name("BM_Hover/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_UndoDrag)->Name("BM_UndoDrag/points:10M/lattice:4x4x4-cubic")->Arg(4472)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
