@@ -2,7 +2,9 @@
 // The readers and writers of each format, from and to bytes in memory. Private to meshio;
 // mesh_io.cpp picks one by MeshFormat.
 
+#include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -14,6 +16,45 @@ namespace ffdkit::meshio::detail {
 
 MeshData readPly(std::string_view bytes, const std::string& source);
 std::string writePly(const MeshData& mesh, PlyEncoding encoding);
+/// The header writePly writes for these counts.
+std::string plyHeader(Eigen::Index vertices, bool normals, Eigen::Index triangles, Eigen::Index segments, PlyEncoding encoding);
+
+/// A binary PLY read in slices of its vertices (vertex_slices.h): the header parsed from the
+/// file's first bytes and its counts checked against the file's size, as readPly does. The
+/// vertex element must hold the first data (elements before it empty) and have scalar
+/// properties only, so that vertex i is the fixed-size record at vertexOffset() + i * recordBytes().
+class PlySlices {
+ public:
+  /// `prefix`: the file's first bytes, at least its header (readPly reads at most 1 MiB of
+  /// header). @throws MeshIoError naming the file: a malformed header, counts the file cannot
+  /// hold, or a layout without fixed-size vertex records (ASCII, a list property).
+  PlySlices(std::string_view prefix, std::uint64_t fileBytes, const std::string& source);
+  ~PlySlices();
+
+  long long vertexCount() const { return vertexCount_; }
+  std::uint64_t vertexOffset() const { return vertexOffset_; }
+  std::uint64_t recordBytes() const { return recordBytes_; }
+  std::uint64_t cellsOffset() const { return cellsOffset_; }  ///< just after the last vertex record
+  bool hasCells() const { return hasCells_; }                 ///< elements with items after the vertices
+  long long faceCount() const { return faceCount_; }
+  bool hasNormals() const;
+
+  /// The records of vertices [first, first + points.rows()) into `points`, checked as readPly
+  /// checks them (a failure names the vertex by its index in the file).
+  void decode(std::string_view records, long long first, Eigen::MatrixX3d& points) const;
+  /// The elements after the vertices (`tail`: the bytes from cellsOffset() to the file's end):
+  /// faces and edges checked against the vertex count, as readPly reads them; points left empty.
+  MeshData readCells(std::string_view tail) const;
+
+ private:
+  struct Layout;
+  std::unique_ptr<Layout> layout_;
+  std::string source_;
+  long long vertexCount_ = 0;
+  std::uint64_t vertexOffset_ = 0, recordBytes_ = 0, cellsOffset_ = 0;
+  bool hasCells_ = false;
+  long long faceCount_ = 0;
+};
 
 MeshData readObj(std::string_view bytes, const std::string& source);
 void writeObj(ByteSink& out, const MeshData& mesh);
@@ -23,9 +64,35 @@ std::string writeStl(const MeshData& mesh);
 
 MeshData readXyz(std::string_view bytes, const std::string& source);
 void writeXyz(ByteSink& out, const MeshData& mesh);
+/// The points of .xyz text that starts at line `firstLine` of the file, after `firstPoint` points
+/// (the numbers messages give); no points is not an error here.
+Eigen::MatrixX3d readXyzPoints(std::string_view bytes, const std::string& source, int firstLine, long long firstPoint);
+/// Newlines and point lines (neither blank nor a comment) of .xyz text, without parsing.
+struct XyzCounts {
+  long long lines = 0;
+  long long points = 0;
+};
+XyzCounts countXyz(std::string_view bytes);
 
 MeshData readNpy(std::string_view bytes, const std::string& source);
 std::string writeNpy(const MeshData& mesh);
+/// The header writeNpy writes for `rows` points.
+std::string npyHeader(Eigen::Index rows);
+/// Where an .npy file's data are and how they are laid out, from its header.
+struct NpyLayout {
+  std::size_t dataOffset = 0;
+  long long rows = 0;
+  std::size_t itemSize = 8;
+  bool bigEndian = false;
+  bool fortranOrder = false;
+};
+/// Parses and checks the header in `prefix` (the file's first bytes); the data must fill the
+/// rest of the `fileBytes` exactly. @throws MeshIoError as readNpy.
+NpyLayout readNpyHeader(std::string_view prefix, std::uint64_t fileBytes, const std::string& source);
+/// Rows [first, first + points.rows()) of a C-order array from their bytes, checked finite
+/// (a failure names the point by its index in the file).
+void decodeNpyRows(const NpyLayout& layout, std::string_view bytes, long long first, Eigen::MatrixX3d& points,
+                   const std::string& source);
 
 /// `folder`: where external buffers may be read from (nullopt: none allowed).
 MeshData readGltf(std::string_view bytes, bool binary, const std::string& source,

@@ -144,8 +144,9 @@ class TextCursor {
 /// Binary data read value by value; every read is checked against the bytes left.
 class ByteCursor {
  public:
-  ByteCursor(std::string_view bytes, const std::string& source, std::size_t offset = 0)
-      : bytes_(bytes), source_(source), pos_(offset) {}
+  /// `base`: where `bytes` start in the file (a slice of it), for the offsets in messages.
+  ByteCursor(std::string_view bytes, const std::string& source, std::size_t offset = 0, std::size_t base = 0)
+      : bytes_(bytes), source_(source), pos_(offset), base_(base) {}
 
   std::size_t offset() const { return pos_; }
   std::size_t bytesLeft() const { return bytes_.size() - pos_; }
@@ -154,7 +155,7 @@ class ByteCursor {
   /// Fails unless `n` more bytes are there; `where` names what needs them.
   void need(std::size_t n, const Where& where) const {
     if (n > bytesLeft())
-      fail("truncated: " + where.text() + " needs " + std::to_string(n) + " bytes at offset " + std::to_string(pos_) +
+      fail("truncated: " + where.text() + " needs " + std::to_string(n) + " bytes at offset " + std::to_string(base_ + pos_) +
            ", the file has " + std::to_string(bytesLeft()) + " left");
   }
   void skip(std::size_t n) { pos_ += n; }  // after need()
@@ -177,6 +178,7 @@ class ByteCursor {
   std::string_view bytes_;
   const std::string& source_;
   std::size_t pos_;
+  std::size_t base_;
 };
 
 /// Rows appended to an Eigen matrix whose capacity doubles; shrink() trims it to the rows added.

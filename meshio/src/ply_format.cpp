@@ -188,10 +188,11 @@ std::size_t minimumBytes(const Element& e, Encoding encoding) {
 // The data section: one value source for ASCII and binary, with the element's name in errors.
 class DataReader {
  public:
-  DataReader(std::string_view bytes, const Header& header, const std::string& source)
+  /// `base`: where `bytes` start in the file (the cells of a file read in slices), for messages.
+  DataReader(std::string_view bytes, const Header& header, const std::string& source, std::size_t base = 0)
       : encoding_(header.encoding),
         text_(bytes.substr(header.dataOffset), source, header.dataLine),
-        bytes_(bytes, source, header.dataOffset) {}
+        bytes_(bytes, source, header.dataOffset, base) {}
 
   template <class T>
   T value(Type type, const Where& where) {
@@ -272,8 +273,73 @@ class DataReader {
   ByteCursor bytes_;
 };
 
+bool isFixedSize(const Element& e) {
+  return std::none_of(e.properties.begin(), e.properties.end(), [](const Property& p) { return p.isList; });
+}
+
+// One binary value of `type` at `at` as a double (byte-swapped when `swap`).
+double loadValue(Type type, const char* at, bool swap) {
+  auto load = [&](auto value) {
+    char raw[sizeof(value)];
+    std::memcpy(raw, at, sizeof(value));
+    if (swap) std::reverse(raw, raw + sizeof(value));
+    std::memcpy(&value, raw, sizeof(value));
+    return double(value);
+  };
+  switch (type) {
+    case Type::Int8: return load(std::int8_t());
+    case Type::UInt8: return load(std::uint8_t());
+    case Type::Int16: return load(std::int16_t());
+    case Type::UInt16: return load(std::uint16_t());
+    case Type::Int32: return load(std::int32_t());
+    case Type::UInt32: return load(std::uint32_t());
+    case Type::Float32: return load(float());
+    case Type::Float64: return load(double());
+  }
+  return 0.0;
+}
+
+// The binary records of vertices [first, first + count) of `e` (scalar properties only), from
+// `at`, into rows 0..count-1 of `points`; every number is checked finite and a failure names
+// the vertex by its index in the file. float32 records (nearly every file) skip the per-value
+// dispatch.
+void decodeVertices(const Element& e, bool big, const char* at, long long first, long long count,
+                    Eigen::MatrixX3d& points, const ByteCursor& errors) {
+  const bool swap = big != (std::endian::native == std::endian::big);
+  const std::size_t stride = minimumBytes(e, Encoding::Little);
+  std::vector<int> column(e.properties.size());
+  std::vector<std::size_t> offset(e.properties.size());
+  bool allFloat = true;
+  for (std::size_t k = 0, o = 0; k < e.properties.size(); o += sizeOf(e.properties[k].type), ++k) {
+    const Role r = e.properties[k].role;
+    column[k] = r == Role::X ? 0 : r == Role::Y ? 1 : r == Role::Z ? 2 : -1;
+    offset[k] = o;
+    allFloat = allFloat && e.properties[k].type == Type::Float32;
+  }
+  auto fail = [&](long long i, std::size_t k) {
+    errors.fail(Where{"vertex", first + i, e.properties[k].name}.text() + ": non-finite number");
+  };
+  if (allFloat) {
+    for (long long i = 0; i < count; ++i, at += stride)
+      for (std::size_t k = 0; k < e.properties.size(); ++k) {
+        std::uint32_t w;
+        std::memcpy(&w, at + 4 * k, 4);
+        const float v = std::bit_cast<float>(swap ? __builtin_bswap32(w) : w);  // std::byteswap is C++23
+        if (!std::isfinite(v)) fail(i, k);
+        if (column[k] >= 0) points(i, column[k]) = v;
+      }
+    return;
+  }
+  for (long long i = 0; i < count; ++i, at += stride)
+    for (std::size_t k = 0; k < e.properties.size(); ++k) {
+      const double v = loadValue(e.properties[k].type, at + offset[k], swap);
+      if (!std::isfinite(v)) fail(i, k);
+      if (column[k] >= 0) points(i, column[k]) = v;
+    }
+}
+
 // The layouts nearly every binary file uses, read without a per-value dispatch: vertices of
-// float32 properties only, and faces of one "list uchar int" property. Same checks as the
+// scalar properties (decodeVertices), and faces of one "list uchar int" property. Same checks as the
 // general path: bytes before reading, finiteness, index range. Returns false for other layouts.
 bool readBinaryFast(const Element& e, bool big, ByteCursor& data, MeshData& mesh, TriangleSink& triangles, long long vertices) {
   const bool swap = big != (std::endian::native == std::endian::big);
@@ -283,23 +349,10 @@ bool readBinaryFast(const Element& e, bool big, ByteCursor& data, MeshData& mesh
     return swap ? __builtin_bswap32(w) : w;  // std::byteswap is C++23
   };
   if (e.name == "vertex") {
-    for (const Property& p : e.properties)
-      if (p.isList || p.type != Type::Float32) return false;
-    const std::size_t stride = 4 * e.properties.size();
+    if (!isFixedSize(e)) return false;
+    const std::size_t stride = minimumBytes(e, Encoding::Little);
     data.need(std::size_t(e.count) * stride, {"vertex", e.count - 1});
-    int column[16];
-    if (e.properties.size() > 16) return false;
-    for (std::size_t k = 0; k < e.properties.size(); ++k) {
-      const Role r = e.properties[k].role;
-      column[k] = r == Role::X ? 0 : r == Role::Y ? 1 : r == Role::Z ? 2 : -1;
-    }
-    const char* at = data.here();
-    for (long long i = 0; i < e.count; ++i, at += stride)
-      for (std::size_t k = 0; k < e.properties.size(); ++k) {
-        const float v = std::bit_cast<float>(word(at + 4 * k));
-        if (!std::isfinite(v)) data.fail(Where{"vertex", i, e.properties[k].name}.text() + ": non-finite number");
-        if (column[k] >= 0) mesh.points(i, column[k]) = v;
-      }
+    decodeVertices(e, big, data.here(), 0, e.count, mesh.points, data);
     data.skip(std::size_t(e.count) * stride);
     return true;
   }
@@ -332,16 +385,11 @@ bool readBinaryFast(const Element& e, bool big, ByteCursor& data, MeshData& mesh
   return false;
 }
 
-}  // namespace
-
-MeshData readPly(std::string_view bytes, const std::string& source) {
-  Header header = readHeader(bytes, source);
-  MeshData mesh;
-  assignRoles(header, source, mesh.hasNormals);
-
-  // Every count against the bytes left, before anything is allocated.
+// Every count against the bytes of data there are (`dataBytes`), before anything is allocated;
+// returns the vertex count.
+long long checkCounts(const Header& header, std::size_t dataBytes, const std::string& source) {
   std::size_t needed = 0;
-  const std::size_t available = bytes.size() - header.dataOffset + (header.encoding == Encoding::Ascii ? 1 : 0);
+  const std::size_t available = dataBytes + (header.encoding == Encoding::Ascii ? 1 : 0);
   long long vertexCount = 0;
   for (const Element& e : header.elements) {
     const std::size_t each = minimumBytes(e, header.encoding);
@@ -354,15 +402,17 @@ MeshData readPly(std::string_view bytes, const std::string& source) {
   }
   if (vertexCount > INT_MAX) throw MeshIoError(source + ": " + std::to_string(vertexCount) + " vertices is more than ffdkit indexes");
   if (vertexCount == 0) throw MeshIoError(source + ": the file has no vertices");
+  return vertexCount;
+}
 
-  mesh.points.resize(Eigen::Index(vertexCount), 3);
-  adviseHugePages(mesh.points);
-  Eigen::MatrixX3d normals;
+// The data of every element in the header's order (without the vertex element's when
+// `skipVertices`: `data` then starts after it) into `mesh`, whose points are sized.
+void readElements(const Header& header, DataReader& data, MeshData& mesh, long long vertexCount, bool skipVertices) {
   TriangleSink triangles;
   SegmentSink segments;
-  DataReader data(bytes, header, source);
   std::vector<long long> polygon;
   for (const Element& e : header.elements) {
+    if (skipVertices && e.name == "vertex") continue;
     if (e.name == "face") triangles = TriangleSink(Eigen::Index(e.count));
     if (e.name == "edge") segments = SegmentSink(Eigen::Index(e.count));
     if (header.encoding != Encoding::Ascii && e.count > 0 &&
@@ -421,26 +471,45 @@ MeshData readPly(std::string_view bytes, const std::string& source) {
   data.expectEnd();
   mesh.triangles = triangles.take();
   mesh.segments = segments.take();
+}
+
+}  // namespace
+
+MeshData readPly(std::string_view bytes, const std::string& source) {
+  Header header = readHeader(bytes, source);
+  MeshData mesh;
+  assignRoles(header, source, mesh.hasNormals);
+  const long long vertexCount = checkCounts(header, bytes.size() - header.dataOffset, source);
+  mesh.points.resize(Eigen::Index(vertexCount), 3);
+  adviseHugePages(mesh.points);
+  DataReader data(bytes, header, source);
+  readElements(header, data, mesh, vertexCount, false);
   return mesh;
+}
+
+std::string plyHeader(Eigen::Index vertices, bool normals, Eigen::Index triangles, Eigen::Index segments, PlyEncoding encoding) {
+  const bool ascii = encoding == PlyEncoding::Ascii;
+  std::string out = "ply\nformat ";
+  out += ascii ? "ascii" : encoding == PlyEncoding::BinaryBigEndian ? "binary_big_endian" : "binary_little_endian";
+  out += " 1.0\ncomment ffdkit\nelement vertex " + std::to_string(vertices) + "\n";
+  // ASCII keeps doubles (shortest text, exact); binary files keep float32, as most tools expect.
+  const char* real = ascii ? "double" : "float";
+  for (const char* axis : {"x", "y", "z"}) out.append("property ").append(real).append(" ").append(axis).append("\n");
+  if (normals)
+    for (const char* axis : {"nx", "ny", "nz"}) out.append("property float ").append(axis).append("\n");
+  if (triangles > 0)
+    out += "element face " + std::to_string(triangles) + "\nproperty list uchar int vertex_indices\n";
+  if (segments > 0)
+    out += "element edge " + std::to_string(segments) + "\nproperty int vertex1\nproperty int vertex2\n";
+  out += "end_header\n";
+  return out;
 }
 
 std::string writePly(const MeshData& mesh, PlyEncoding encoding) {
   const bool normals = mesh.hasNormals && mesh.triangles.rows() > 0;
   const Eigen::MatrixX3d n = normals ? vertexNormals(mesh.points, mesh.triangles) : Eigen::MatrixX3d();
   const bool ascii = encoding == PlyEncoding::Ascii;
-  std::string out = "ply\nformat ";
-  out += ascii ? "ascii" : encoding == PlyEncoding::BinaryBigEndian ? "binary_big_endian" : "binary_little_endian";
-  out += " 1.0\ncomment ffdkit\nelement vertex " + std::to_string(mesh.points.rows()) + "\n";
-  // ASCII keeps doubles (shortest text, exact); binary files keep float32, as most tools expect.
-  const char* real = ascii ? "double" : "float";
-  for (const char* axis : {"x", "y", "z"}) out.append("property ").append(real).append(" ").append(axis).append("\n");
-  if (normals)
-    for (const char* axis : {"nx", "ny", "nz"}) out.append("property float ").append(axis).append("\n");
-  if (mesh.triangles.rows() > 0)
-    out += "element face " + std::to_string(mesh.triangles.rows()) + "\nproperty list uchar int vertex_indices\n";
-  if (mesh.segments.rows() > 0)
-    out += "element edge " + std::to_string(mesh.segments.rows()) + "\nproperty int vertex1\nproperty int vertex2\n";
-  out += "end_header\n";
+  std::string out = plyHeader(mesh.points.rows(), normals, mesh.triangles.rows(), mesh.segments.rows(), encoding);
 
   if (ascii) {
     for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {
@@ -509,6 +578,63 @@ std::string writePly(const MeshData& mesh, PlyEncoding encoding) {
     put(std::int32_t(mesh.segments(s, 1)));
   }
   return out;
+}
+
+}  // namespace ffdkit::meshio::detail
+
+namespace ffdkit::meshio::detail {
+
+struct PlySlices::Layout {
+  Header header;
+  std::size_t vertexElement = 0;
+  bool hasNormals = false;
+};
+
+PlySlices::PlySlices(std::string_view prefix, std::uint64_t fileBytes, const std::string& source)
+    : layout_(std::make_unique<Layout>()), source_(source) {
+  Header& header = layout_->header;
+  header = readHeader(prefix, source);
+  assignRoles(header, source, layout_->hasNormals);
+  vertexCount_ = checkCounts(header, std::size_t(fileBytes) - header.dataOffset, source);
+  auto refuse = [&](const std::string& why) {
+    throw MeshIoError(source + ": cannot be read in slices of vertices: " + why);
+  };
+  if (header.encoding == Encoding::Ascii) refuse("an ASCII PLY has no fixed-size vertex records (write it as binary PLY)");
+  std::size_t& v = layout_->vertexElement;
+  while (header.elements[v].name != "vertex") {
+    if (header.elements[v].count > 0) refuse("element '" + header.elements[v].name + "' comes before the vertices");
+    ++v;
+  }
+  if (!isFixedSize(header.elements[v])) refuse("a vertex property is a list");
+  recordBytes_ = minimumBytes(header.elements[v], header.encoding);
+  vertexOffset_ = header.dataOffset;
+  cellsOffset_ = vertexOffset_ + std::uint64_t(vertexCount_) * recordBytes_;
+  for (const Element& e : header.elements) {
+    if (e.name == "face") faceCount_ += e.count;
+    if (&e > &header.elements[v] && e.count > 0) hasCells_ = true;
+  }
+}
+
+PlySlices::~PlySlices() = default;
+
+bool PlySlices::hasNormals() const { return layout_->hasNormals; }
+
+void PlySlices::decode(std::string_view records, long long first, Eigen::MatrixX3d& points) const {
+  const long long count = points.rows();
+  if (first < 0 || count < 0 || first + count > vertexCount_ || records.size() != std::size_t(count) * recordBytes_)
+    throw std::logic_error(source_ + ": vertex slice out of range");
+  const ByteCursor errors(records, source_, 0, std::size_t(vertexOffset_ + std::uint64_t(first) * recordBytes_));
+  decodeVertices(layout_->header.elements[layout_->vertexElement], layout_->header.encoding == Encoding::Big,
+                 records.data(), first, count, points, errors);
+}
+
+MeshData PlySlices::readCells(std::string_view tail) const {
+  Header header = layout_->header;
+  header.dataOffset = 0;
+  DataReader data(tail, header, source_, std::size_t(cellsOffset_));
+  MeshData cells;
+  readElements(header, data, cells, vertexCount_, true);
+  return cells;
 }
 
 }  // namespace ffdkit::meshio::detail

@@ -8,27 +8,46 @@
 
 namespace ffdkit::meshio::detail {
 
-MeshData readXyz(std::string_view bytes, const std::string& source) {
+Eigen::MatrixX3d readXyzPoints(std::string_view bytes, const std::string& source, int firstLine, long long firstPoint) {
   // One point per line at most: the line count bounds the first allocation by the file's size.
   PointSink points{Eigen::Index(std::count(bytes.begin(), bytes.end(), '\n') + 1)};
-  TextCursor text(bytes, source);
+  TextCursor text(bytes, source, firstLine);
   while (!text.atEnd()) {
     text.skipBlanks();
     if (text.atLineEnd(true)) {
       text.nextLine();
       continue;
     }
-    const Where where{"point", points.rows()};
+    const Where where{"point", firstPoint + points.rows()};
     const double x = text.number(where), y = text.number(where), z = text.number(where);
     text.skipBlanks();
     if (!text.atLineEnd(true)) text.fail(where.text() + ": expected three numbers \"x y z\", got more");
     points.add(x, y, z);
     text.nextLine();
   }
-  if (points.rows() == 0) throw MeshIoError(source + ": the file has no points");
-  if (points.rows() > INT_MAX) throw MeshIoError(source + ": more points than ffdkit indexes");
+  return points.take();
+}
+
+XyzCounts countXyz(std::string_view bytes) {
+  XyzCounts counts;
+  for (std::size_t at = 0; at < bytes.size();) {
+    std::size_t end = bytes.find('\n', at);
+    if (end == std::string_view::npos) end = bytes.size();
+    else ++counts.lines;
+    // A point line, as readXyzPoints decides: something before the line's end or a '#'.
+    std::size_t k = at;
+    while (k < end && (bytes[k] == ' ' || bytes[k] == '\t' || bytes[k] == '\r')) ++k;
+    if (k < end && bytes[k] != '\n' && bytes[k] != '#') ++counts.points;
+    at = end + (end < bytes.size() ? 1 : 0);
+  }
+  return counts;
+}
+
+MeshData readXyz(std::string_view bytes, const std::string& source) {
   MeshData mesh;
-  mesh.points = points.take();
+  mesh.points = readXyzPoints(bytes, source, 1, 0);
+  if (mesh.points.rows() == 0) throw MeshIoError(source + ": the file has no points");
+  if (mesh.points.rows() > INT_MAX) throw MeshIoError(source + ": more points than ffdkit indexes");
   return mesh;
 }
 
@@ -135,10 +154,10 @@ class DictParser {
 
 }  // namespace
 
-MeshData readNpy(std::string_view bytes, const std::string& source) {
-  ByteCursor data(bytes, source);
+NpyLayout readNpyHeader(std::string_view prefix, std::uint64_t fileBytes, const std::string& source) {
+  ByteCursor data(prefix, source);
   data.need(10, {"header"});
-  if (bytes.substr(0, 6) != "\x93NUMPY") data.fail("not a numpy .npy file");
+  if (prefix.substr(0, 6) != "\x93NUMPY") data.fail("not a numpy .npy file");
   data.skip(6);
   const int major = data.take<std::uint8_t>(false);
   data.skip(1);
@@ -151,7 +170,7 @@ MeshData readNpy(std::string_view bytes, const std::string& source) {
     headerLength = data.take<std::uint32_t>(false);
   }
   data.need(headerLength, {"header"});
-  const NpyHeader header = DictParser(bytes.substr(data.offset(), headerLength), data).parse();
+  const NpyHeader header = DictParser(prefix.substr(data.offset(), headerLength), data).parse();
   data.skip(headerLength);
 
   if (header.descr.size() != 3 || (header.descr[0] != '<' && header.descr[0] != '>' && header.descr[0] != '=') ||
@@ -159,30 +178,57 @@ MeshData readNpy(std::string_view bytes, const std::string& source) {
     data.fail("dtype '" + header.descr + "' is not a float array (expected <f4, <f8, >f4 or >f8)");
   if (header.shape.size() != 2 || header.shape[1] != 3)
     data.fail("expected an array of shape (N, 3)");
-  const bool big = header.descr[0] == '>';
-  const std::size_t itemSize = header.descr[2] == '4' ? 4 : 8;
+  NpyLayout layout;
+  layout.bigEndian = header.descr[0] == '>';
+  layout.itemSize = header.descr[2] == '4' ? 4 : 8;
+  layout.fortranOrder = header.fortranOrder;
+  layout.dataOffset = data.offset();
   const long long n = header.shape[0];
+  const std::size_t left = std::size_t(fileBytes) - data.offset();
   if (n == 0) data.fail("the file has no points");
-  if (std::size_t(n) > data.bytesLeft() / (3 * itemSize) || std::size_t(n) * 3 * itemSize != data.bytesLeft())
-    data.fail("shape (" + std::to_string(n) + ", 3) needs " + (std::size_t(n) > SIZE_MAX / 24 ? std::string("more") : std::to_string(std::size_t(n) * 3 * itemSize)) +
-              " bytes of data, the file has " + std::to_string(data.bytesLeft()));
+  if (std::size_t(n) > left / (3 * layout.itemSize) || std::size_t(n) * 3 * layout.itemSize != left)
+    data.fail("shape (" + std::to_string(n) + ", 3) needs " + (std::size_t(n) > SIZE_MAX / 24 ? std::string("more") : std::to_string(std::size_t(n) * 3 * layout.itemSize)) +
+              " bytes of data, the file has " + std::to_string(left));
   if (n > INT_MAX) data.fail("more points than ffdkit indexes");
+  layout.rows = n;
+  return layout;
+}
 
+void decodeNpyRows(const NpyLayout& layout, std::string_view bytes, long long first, Eigen::MatrixX3d& points,
+                   const std::string& source) {
+  ByteCursor data(bytes, source, 0, layout.dataOffset + std::size_t(first) * 3 * layout.itemSize);
+  data.need(std::size_t(points.rows()) * 3 * layout.itemSize, {"point", first + points.rows() - 1});
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double value = layout.itemSize == 4 ? double(data.take<float>(layout.bigEndian)) : data.take<double>(layout.bigEndian);
+      if (!std::isfinite(value)) data.fail(Where{"point", first + i}.text() + ": non-finite coordinate");
+      points(i, c) = value;
+    }
+}
+
+MeshData readNpy(std::string_view bytes, const std::string& source) {
+  const NpyLayout layout = readNpyHeader(bytes, bytes.size(), source);
+  const long long n = layout.rows;
   MeshData mesh;
   mesh.points.resize(Eigen::Index(n), 3);
+  if (!layout.fortranOrder) {
+    decodeNpyRows(layout, bytes.substr(layout.dataOffset), 0, mesh.points, source);
+    return mesh;
+  }
+  ByteCursor data(bytes, source, layout.dataOffset);
   for (long long k = 0; k < 3 * n; ++k) {
-    // C order: row by row; Fortran order: column by column.
-    const long long row = header.fortranOrder ? k % n : k / 3;
-    const int column = int(header.fortranOrder ? k / n : k % 3);
-    const double value = itemSize == 4 ? double(data.take<float>(big)) : data.take<double>(big);
+    // Fortran order: column by column.
+    const long long row = k % n;
+    const int column = int(k / n);
+    const double value = layout.itemSize == 4 ? double(data.take<float>(layout.bigEndian)) : data.take<double>(layout.bigEndian);
     if (!std::isfinite(value)) data.fail(Where{"point", row}.text() + ": non-finite coordinate");
     mesh.points(row, column) = value;
   }
   return mesh;
 }
 
-std::string writeNpy(const MeshData& mesh) {
-  std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(mesh.points.rows()) + ", 3), }";
+std::string npyHeader(Eigen::Index rows) {
+  std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", 3), }";
   // Magic, version 1.0, a 2-byte length, then the dictionary padded with spaces and a newline
   // so that the data start on a multiple of 64 bytes.
   const std::size_t total = (10 + dict.size() + 1 + 63) / 64 * 64;
@@ -190,6 +236,11 @@ std::string writeNpy(const MeshData& mesh) {
   std::string out("\x93NUMPY\x01\x00", 8);
   appendBinary(out, std::uint16_t(dict.size()), false);
   out += dict;
+  return out;
+}
+
+std::string writeNpy(const MeshData& mesh) {
+  std::string out = npyHeader(mesh.points.rows());
   out.reserve(out.size() + std::size_t(mesh.points.rows()) * 24);
   for (Eigen::Index i = 0; i < mesh.points.rows(); ++i)
     for (int c = 0; c < 3; ++c) appendBinary(out, mesh.points(i, c), false);
