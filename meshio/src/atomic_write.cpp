@@ -62,13 +62,14 @@ namespace {
 /// The temporary file's bytes as they arrive; a failed step throws naming `path` and the step.
 class TemporaryFileSink final : public ByteSink {
  public:
-  TemporaryFileSink(const std::filesystem::path& path, int fd, bool durable)
-      : path_(path), fd_(fd), durable_(durable) {}
+  /// `offset`: where the bytes go in the file (they follow one another from there).
+  TemporaryFileSink(const std::filesystem::path& path, int fd, bool durable, off_t offset = 0)
+      : path_(path), fd_(fd), durable_(durable), offset_(offset) {}
 
   void write(std::string_view bytes) override {
     const off_t first = offset_;
     while (!bytes.empty()) {
-      const ssize_t n = ::write(fd_, bytes.data(), bytes.size());
+      const ssize_t n = ::pwrite(fd_, bytes.data(), bytes.size(), offset_);
       if (n < 0) {
         if (errno == EINTR) continue;
         fail("write");
@@ -89,7 +90,7 @@ class TemporaryFileSink final : public ByteSink {
   const std::filesystem::path& path_;
   int fd_;
   bool durable_;
-  off_t offset_ = 0;
+  off_t offset_;
 };
 
 }  // namespace
@@ -141,6 +142,27 @@ void StagedFile::commit() {
     throw std::runtime_error(path_.string() + ": cannot write (rename: " + reason + ")");
   }
   temporary_.clear();
+}
+
+void writeStagedPart(const std::filesystem::path& temporary, const std::filesystem::path& destination,
+                     std::uint64_t offset, std::string_view bytes, bool durable) {
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) {
+    const std::string reason = std::strerror(errno);
+    throw std::runtime_error(destination.string() + ": cannot write (open the temporary file " + temporary.string() + ": " + reason + ")");
+  }
+  TemporaryFileSink sink(destination, fd, durable, off_t(offset));
+  try {
+    sink.write(bytes);
+    if (durable && ::fsync(fd) != 0) sink.fail("flush");
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  if (::close(fd) != 0) {
+    const std::string reason = std::strerror(errno);
+    throw std::runtime_error(destination.string() + ": cannot write (close: " + reason + ")");
+  }
 }
 
 void writeFileAtomically(const std::filesystem::path& path, std::string_view content, bool durable) {

@@ -102,6 +102,31 @@ TEST_F(AtomicWrite, AStreamedFileHoldsEveryPieceInOrder) {
   EXPECT_EQ(names(), std::vector<std::string>{"streamed.txt"});
 }
 
+TEST_F(AtomicWrite, PartsWrittenAtTheirOffsetsFillOneStagedFile) {
+  const fs::path target = dir_ / "joined.bin";
+  StagedFile staged(target, "head:");
+  // Out of order, as the ranks of a batch finish: each part at its offset, a child process too.
+  writeStagedPart(staged.temporary(), target, 5 + 6, "world!");
+  const pid_t child = ::fork();
+  if (child == 0) {
+    writeStagedPart(staged.temporary(), target, 5, "hello ");
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  EXPECT_FALSE(fs::exists(target));
+  staged.commit();
+  EXPECT_EQ(read(target), "head:hello world!");
+  EXPECT_EQ(names(), std::vector<std::string>{"joined.bin"});
+  try {
+    writeStagedPart(dir_ / ".gone.tmp-1-1", target, 0, "x");
+    FAIL() << "wrote into a temporary that does not exist";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(target.string() + ": cannot write (open the temporary file"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(AtomicWrite, AProducerThatFailsLeavesTheOldFileAndNoTemporary) {
   const fs::path target = dir_ / "out.txt";
   std::ofstream(target) << "old";

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string_view>
@@ -46,11 +47,20 @@ class StagedFile {
   /// Renames the temporary file over the destination. @throws std::runtime_error.
   void commit();
   const std::filesystem::path& destination() const { return path_; }
+  /// Where the bytes wait until commit() (other processes may fill parts of it: writeStagedPart).
+  const std::filesystem::path& temporary() const { return temporary_; }
 
  private:
   std::filesystem::path path_;
   std::filesystem::path temporary_;  ///< empty once committed or moved from
 };
+
+/// Writes `bytes` at `offset` into the temporary file of a StagedFile that another process (or
+/// this one) holds: each process of a batch writing its own part of one file, which the holder
+/// commits once every part is written. Flushed to disk before it returns when `durable`.
+/// @throws std::runtime_error naming `destination` (the file the temporary becomes) and the step.
+void writeStagedPart(const std::filesystem::path& temporary, const std::filesystem::path& destination,
+                     std::uint64_t offset, std::string_view bytes, bool durable = true);
 
 /// Writes `content` to `path` atomically: StagedFile(path, content, durable).commit(). A failure
 /// at any step removes the temporary file and leaves an existing `path` untouched.
