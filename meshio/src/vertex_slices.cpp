@@ -1,0 +1,204 @@
+// Reading and writing one point or mesh file in slices of its vertices (vertex_slices.h): each
+// slice's byte range is read with pread, and the format readers' own header checks and decoders
+// do the parsing, so a slice is checked exactly as the whole file would be.
+#include "ffdkit/meshio/vertex_slices.h"
+
+#include <cerrno>
+#include <cstring>
+#include <limits>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "formats.h"
+#include "parse_support.h"
+
+namespace ffdkit::meshio {
+
+namespace {
+
+/// The header of a PLY or npy file lies in its first bytes (readPly caps it at 1 MiB).
+constexpr std::uint64_t kHeaderPrefix = (1u << 20) + 2;
+
+}  // namespace
+
+struct VertexSliceReader::Impl {
+  std::string source;
+  MeshFormat format = MeshFormat::Xyz;
+  int fd = -1;
+  std::uint64_t size = 0;
+  std::unique_ptr<detail::PlySlices> ply;
+  detail::NpyLayout npy;
+
+  /// Bytes [offset, offset + length) of the file (the length checked against its size first).
+  std::string read(std::uint64_t offset, std::uint64_t length) const {
+    if (offset > size || length > size - offset)
+      throw MeshIoError(source + ": cannot read bytes " + std::to_string(offset) + ".." + std::to_string(offset + length) +
+                        ", the file has " + std::to_string(size));
+    std::string bytes;
+    bytes.resize(std::size_t(length));
+    ffd::adviseHugePages(bytes.data(), bytes.size());
+    std::size_t done = 0;
+    while (done < length) {
+      const ssize_t n = ::pread(fd, bytes.data() + done, std::size_t(length) - done, off_t(offset + done));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0)
+        throw MeshIoError(source + ": cannot read (" + (n < 0 ? std::strerror(errno) : "the file shrank while read") + ")");
+      done += std::size_t(n);
+    }
+    return bytes;
+  }
+
+  /// xyz: where part `part` of `parts` starts: just after the first newline at or after byte
+  /// part * size / parts - 1 (so a cut that falls on a line start stays there).
+  std::uint64_t partStart(int part, int parts) const {
+    if (part <= 0) return 0;
+    if (part >= parts) return size;
+    // floor(size * part / parts) without overflowing: size = q * parts + r.
+    const std::uint64_t cut = size / unsigned(parts) * unsigned(part) + size % unsigned(parts) * unsigned(part) / unsigned(parts);
+    constexpr std::uint64_t kChunk = 1 << 16;
+    for (std::uint64_t at = cut - 1; at < size; at += kChunk) {
+      const std::string chunk = read(at, std::min(kChunk, size - at));
+      const std::size_t newline = chunk.find('\n');
+      if (newline != std::string::npos) return at + newline + 1;
+    }
+    return size;
+  }
+};
+
+VertexSliceReader::VertexSliceReader(const std::filesystem::path& path) : impl_(std::make_unique<Impl>()) {
+  Impl& d = *impl_;
+  d.source = path.string();
+  const auto format = meshFormatOf(path);
+  if (!format || (*format != MeshFormat::Ply && *format != MeshFormat::Npy && *format != MeshFormat::Xyz))
+    throw MeshIoError(d.source + ": cannot be read in slices of vertices (binary .ply, .npy or .xyz can)");
+  d.format = *format;
+  d.fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (d.fd < 0) throw MeshIoError(d.source + ": cannot open (" + std::strerror(errno) + ")");
+  struct stat info {};
+  if (::fstat(d.fd, &info) != 0 || !S_ISREG(info.st_mode)) throw MeshIoError(d.source + ": not a regular file");
+  d.size = std::uint64_t(info.st_size);
+  if (d.format == MeshFormat::Xyz) return;
+  const std::string prefix = d.read(0, std::min(d.size, kHeaderPrefix));
+  if (d.format == MeshFormat::Ply) {
+    d.ply = std::make_unique<detail::PlySlices>(prefix, d.size, d.source);
+  } else {
+    d.npy = detail::readNpyHeader(prefix, d.size, d.source);
+    if (d.npy.fortranOrder)
+      throw MeshIoError(d.source + ": cannot be read in slices of vertices: a Fortran-order array keeps each coordinate apart");
+  }
+}
+
+VertexSliceReader::~VertexSliceReader() {
+  if (impl_->fd >= 0) ::close(impl_->fd);
+}
+
+MeshFormat VertexSliceReader::format() const { return impl_->format; }
+
+std::optional<std::int64_t> VertexSliceReader::vertexCount() const {
+  if (impl_->ply) return impl_->ply->vertexCount();
+  if (impl_->format == MeshFormat::Npy) return impl_->npy.rows;
+  return std::nullopt;
+}
+
+bool VertexSliceReader::hasNormalsAndFaces() const {
+  return impl_->ply && impl_->ply->hasNormals() && impl_->ply->faceCount() > 0;
+}
+
+Eigen::MatrixX3d VertexSliceReader::readVertices(std::int64_t first, std::int64_t last) const {
+  const Impl& d = *impl_;
+  const auto count = vertexCount();
+  if (!count || first < 0 || last < first || last > *count)
+    throw std::logic_error(d.source + ": vertex slice " + std::to_string(first) + ".." + std::to_string(last) + " out of range");
+  Eigen::MatrixX3d points(Eigen::Index(last - first), 3);
+  ffd::adviseHugePages(points);
+  if (d.ply) {
+    const std::string bytes = d.read(d.ply->vertexOffset() + std::uint64_t(first) * d.ply->recordBytes(),
+                                     std::uint64_t(last - first) * d.ply->recordBytes());
+    d.ply->decode(bytes, first, points);
+  } else {
+    const std::uint64_t row = 3 * d.npy.itemSize;
+    const std::string bytes = d.read(d.npy.dataOffset + std::uint64_t(first) * row, std::uint64_t(last - first) * row);
+    detail::decodeNpyRows(d.npy, bytes, first, points, d.source);
+  }
+  return points;
+}
+
+VertexSliceReader::TextPart VertexSliceReader::readXyzPart(int part, int parts) const {
+  const Impl& d = *impl_;
+  if (d.format != MeshFormat::Xyz) throw std::logic_error(d.source + ": not an .xyz file");
+  const std::uint64_t start = d.partStart(part, parts), end = std::max(start, d.partStart(part + 1, parts));
+  TextPart result;
+  result.text = d.read(start, end - start);
+  const detail::XyzCounts counts = detail::countXyz(result.text);
+  result.lines = counts.lines;
+  result.points = counts.points;
+  return result;
+}
+
+Eigen::MatrixX3d VertexSliceReader::parseXyzPart(const TextPart& part, std::int64_t linesBefore, std::int64_t pointsBefore) const {
+  if (linesBefore + 1 > std::numeric_limits<int>::max()) throw MeshIoError(impl_->source + ": more lines than ffdkit numbers");
+  return detail::readXyzPoints(part.text, impl_->source, int(linesBefore + 1), pointsBefore);
+}
+
+MeshData VertexSliceReader::readCells() const {
+  const Impl& d = *impl_;
+  if (!d.ply || !d.ply->hasCells()) return {};
+  const std::string tail = d.read(d.ply->cellsOffset(), d.size - d.ply->cellsOffset());
+  return d.ply->readCells(tail);
+}
+
+bool isSliceWritable(MeshFormat format) {
+  return format == MeshFormat::Ply || format == MeshFormat::Npy || format == MeshFormat::Xyz;
+}
+
+namespace {
+
+void requireSliceWritable(MeshFormat format) {
+  if (!isSliceWritable(format))
+    throw MeshIoError("cannot write '" + std::string(meshFormatExtension(format)) + "' in slices (.ply, .npy, .xyz can)");
+}
+
+/// The writer's bytes for a part of the file, without the header it starts with.
+std::string withoutHead(std::string bytes, std::size_t head) {
+  bytes.erase(0, head);
+  return bytes;
+}
+
+}  // namespace
+
+// The pieces are cut from what the whole-file writers write, so that they cannot differ from it.
+std::string slicedFileHead(MeshFormat format, std::int64_t vertices, const MeshData& cells) {
+  requireSliceWritable(format);
+  if (format == MeshFormat::Ply)
+    return detail::plyHeader(Eigen::Index(vertices), false, cells.triangles.rows(), cells.segments.rows(),
+                             PlyEncoding::BinaryLittleEndian);
+  if (format == MeshFormat::Npy) return detail::npyHeader(Eigen::Index(vertices));
+  return {};
+}
+
+std::string slicedFileVertices(MeshFormat format, const Eigen::MatrixX3d& points) {
+  requireSliceWritable(format);
+  MeshData slice;
+  slice.points = points;
+  if (format == MeshFormat::Ply)
+    return withoutHead(detail::writePly(slice, PlyEncoding::BinaryLittleEndian),
+                       detail::plyHeader(points.rows(), false, 0, 0, PlyEncoding::BinaryLittleEndian).size());
+  if (format == MeshFormat::Npy) return withoutHead(detail::writeNpy(slice), detail::npyHeader(points.rows()).size());
+  detail::StringSink text;
+  detail::writeXyz(text, slice);
+  return std::move(text.text);
+}
+
+std::string slicedFileTail(MeshFormat format, const MeshData& cells) {
+  requireSliceWritable(format);
+  if (format != MeshFormat::Ply || (cells.triangles.rows() == 0 && cells.segments.rows() == 0)) return {};
+  MeshData noPoints;
+  noPoints.triangles = cells.triangles;
+  noPoints.segments = cells.segments;
+  return withoutHead(detail::writePly(noPoints, PlyEncoding::BinaryLittleEndian),
+                     detail::plyHeader(0, false, cells.triangles.rows(), cells.segments.rows(), PlyEncoding::BinaryLittleEndian).size());
+}
+
+}  // namespace ffdkit::meshio
