@@ -87,6 +87,18 @@ std::int64_t BatchRanks::sum(std::int64_t value) const {
 #endif
 }
 
+std::int64_t BatchRanks::sumBefore(std::int64_t value) const {
+#if FFDKIT_HAS_MPI
+  if (!joined_) return 0;
+  long long v = value, before = 0;
+  MPI_Exscan(&v, &before, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+  return rank_ == 0 ? 0 : before;  // MPI leaves rank 0's result undefined
+#else
+  (void)value;
+  return 0;
+#endif
+}
+
 bool BatchRanks::allOk(bool ok) const {
 #if FFDKIT_HAS_MPI
   if (!joined_) return ok;

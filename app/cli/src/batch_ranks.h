@@ -1,6 +1,8 @@
 #pragma once
 
 #include <cstdint>
+#include <exception>
+#include <stdexcept>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -29,6 +31,9 @@ class BatchRanks {
   Eigen::AlignedBox3d unite(const Eigen::AlignedBox3d& box) const;
   /// The sum over ranks.
   std::int64_t sum(std::int64_t value) const;
+  /// The sum over the ranks before this one (0 on rank 0): where this rank's part of a file
+  /// starts when every rank writes its part after those of the ranks before it.
+  std::int64_t sumBefore(std::int64_t value) const;
   /// True when `ok` holds on every rank: the check each rank makes before a step that must not
   /// start while another rank failed (renaming the outputs), and that keeps a failed rank from
   /// leaving the others waiting in a later collective.
@@ -39,5 +44,22 @@ class BatchRanks {
   int size_ = 1;
   bool joined_ = false;
 };
+
+/// Runs `work` on this rank, then every rank learns whether all succeeded: this rank's own error
+/// propagates, and a rank whose work succeeded while another's failed throws too, so that no
+/// rank goes on to wait in a collective for one that left. A collective inside `work` must be
+/// reached by every rank (none may fail before it). One process: just `work`.
+template <class Work>
+void onEveryRank(const BatchRanks& ranks, Work&& work) {
+  std::exception_ptr error;
+  try {
+    work();
+  } catch (...) {
+    error = std::current_exception();
+  }
+  const bool ok = ranks.allOk(!error);
+  if (error) std::rethrow_exception(error);
+  if (!ok) throw std::runtime_error("another process of the mpirun batch failed (its message says why)");
+}
 
 }  // namespace ffdkit::cli

@@ -17,6 +17,7 @@
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/lattice_fit.h"
 #include "frames.h"
+#include "split_input.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
@@ -84,22 +85,6 @@ std::string uniqueName(const std::string& stem, std::set<std::string>& taken) {
   for (int k = 2; taken.count(name) != 0; ++k) name = wanted + "-" + std::to_string(k);
   taken.insert(name);
   return name;
-}
-
-/// Runs `work` on this rank, then every rank learns whether all succeeded: this rank's own error
-/// propagates, and a rank whose work succeeded while another's failed throws too, so that no
-/// rank goes on to wait in a collective for one that left. One process: just `work`.
-template <class Work>
-void onEveryRank(const BatchRanks& ranks, Work&& work) {
-  std::exception_ptr error;
-  try {
-    work();
-  } catch (...) {
-    error = std::current_exception();
-  }
-  const bool ok = ranks.allOk(!error);
-  if (error) std::rethrow_exception(error);
-  if (!ok) throw std::runtime_error("another process of the mpirun batch failed (its message says why)");
 }
 
 /// Writes every output of every rank or none: each mesh is staged in a hidden temporary file
@@ -193,11 +178,11 @@ DeformRequest parseRequest(const Args& args) {
   return r;
 }
 
-/// Reads the tool or scene and the inputs (in a batch: this rank's pieces), and builds the scene
-/// to evaluate: with INPUT files every root lattice deforms every input. `sourceOf` receives each
-/// input object's file.
+/// Reads the tool or scene and the inputs (in a batch: this rank's pieces, or its slice of the one
+/// INPUT into `split`), and builds the scene to evaluate: with INPUT files every root lattice
+/// deforms every input. `sourceOf` receives each input object's file.
 scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRanks& ranks,
-                        std::map<std::string, fs::path>& sourceOf) {
+                        std::map<std::string, fs::path>& sourceOf, std::optional<SplitInput>& split) {
   scenes::Scene scene;
   onEveryRank(ranks, [&] {
     if (r.widgetFile) {
@@ -211,19 +196,27 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
       if (r.frame) scenes::applyAnimationFrame(scene, parseFrame(*r.frame, scene.animation));
     }
   });
+  if (SplitInput::applies(r.inputs.size(), ranks)) {
+    console.begin("read", "reading a slice of " + r.inputs.front() + " per process");
+    split.emplace(fs::path(r.inputs.front()), ranks);
+  }
   onEveryRank(ranks, [&] {
     if (r.inputs.empty()) return;
     // Names from the whole list, so that every rank names the pieces as one process does.
     std::vector<std::string> names;
     std::set<std::string> taken;
     for (const auto& input : r.inputs) names.push_back(uniqueName(fs::path(input).stem().string(), taken));
-    const auto [first, last] = ownPieces(r.inputs.size(), ranks);
+    const auto [first, last] = split ? std::pair<std::size_t, std::size_t>(0, 1) : ownPieces(r.inputs.size(), ranks);
     std::vector<scenes::SceneObject> objects;
     for (std::size_t i = first; i < last; ++i) {
       const std::string& input = r.inputs[i];
-      console.begin("read", "reading " + input);
       scenes::SceneObject object;
-      object.mesh = meshio::readMesh(fs::path(input));
+      if (split) {
+        object.mesh.points = split->takePoints();
+      } else {
+        console.begin("read", "reading " + input);
+        object.mesh = meshio::readMesh(fs::path(input));
+      }
       object.name = names[i];
       object.source = scenes::MeshFileSource{fs::absolute(input).string()};
       sourceOf[object.name] = input;
@@ -311,13 +304,18 @@ int runDeform(const Args& args) {
   onEveryRank(ranks, [&] {
     request = parseRequest(args);
     if (ranks.size() > 1 && (!request.widgetFile || request.inputs.empty()))
-      throw UsageError("an mpirun batch takes --widgets TOOL and INPUT pieces (each rank deforms its share)");
+      throw UsageError("an mpirun batch takes --widgets TOOL and INPUT pieces (each rank deforms its share) "
+                       "or one INPUT (each rank deforms its slice)");
   });
   std::map<std::string, fs::path> sourceOf;
-  scenes::Scene scene = loadScene(request, console, ranks, sourceOf);
+  std::optional<SplitInput> split;
+  scenes::Scene scene = loadScene(request, console, ranks, sourceOf, split);
   bool intoFolder = false;
   std::vector<Output> targets;
-  onEveryRank(ranks, [&] { targets = plannedOutputs(request, scene, sourceOf, intoFolder); });
+  onEveryRank(ranks, [&] {
+    targets = plannedOutputs(request, scene, sourceOf, intoFolder);
+    if (split) split->checkTarget(targets.front().path);
+  });
   scenes::SceneDeformer deformer;
   std::vector<std::pair<fs::path, scenes::MeshData>> meshes;
   onEveryRank(ranks, [&] {
@@ -330,14 +328,20 @@ int runDeform(const Args& args) {
     }
   });
   const scenes::SceneDeformStats stats = deformer.lastStats();
-  console.begin("write", "writing " + std::to_string(meshes.size()) + " file(s)");
-  if (intoFolder) fs::create_directories(request.output);
-  writeAll(meshes, ranks);
-  console.end();
-
-  for (const auto& [path, mesh] : meshes)
-    console.say("wrote " + path.string() + " (" + std::to_string(mesh.points.rows()) + " points)");
-  if (ranks.size() > 1) console.say("mpirun batch: " + std::to_string(ranks.size()) + " processes wrote " +
+  console.begin("write", "writing " + std::to_string(split ? 1 : meshes.size()) + " file(s)");
+  if (split) {
+    split->write(meshes.front().first, meshes.front().second.points, ranks);
+    console.end();
+    console.say("wrote " + meshes.front().first.string() + " (" + std::to_string(split->totalPoints()) + " points, a slice from each of " +
+                std::to_string(ranks.size()) + " processes)");
+  } else {
+    if (intoFolder) fs::create_directories(request.output);
+    writeAll(meshes, ranks);
+    console.end();
+    for (const auto& [path, mesh] : meshes)
+      console.say("wrote " + path.string() + " (" + std::to_string(mesh.points.rows()) + " points)");
+  }
+  if (ranks.size() > 1 && !split) console.say("mpirun batch: " + std::to_string(ranks.size()) + " processes wrote " +
                                     std::to_string(ranks.sum(static_cast<std::int64_t>(meshes.size()))) + " file(s)");
   const std::int64_t failed = ranks.sum(stats.failedPoints);
   const std::int64_t outside = ranks.sum(stats.outsidePoints);
@@ -368,7 +372,9 @@ Command deformCommand() {
           "Nothing is written when anything fails.\n"
           "Batch: mpirun -n N ffdkit-cli deform --widgets TOOL PIECE... -o FOLDER: rank 0 reads TOOL\n"
           "and sends it to every rank; each rank reads, deforms and writes its contiguous share of\n"
-          "the PIECE files (--fit fits to the box of all pieces), as one process would (docs/scaling.md).\n",
+          "the PIECE files (--fit fits to the box of all pieces), as one process would (docs/scaling.md).\n"
+          "With one INPUT (binary .ply, .npy, .xyz) each rank reads, deforms and writes its slice of\n"
+          "the vertices into the one OUTPUT (.ply, .npy, .xyz); rank 0 also copies a PLY's faces.\n",
           {{"widgets", 'w', "FILE", "the widget file (deformation tool) to apply"},
            {"scene", 's', "SCENE", "the scene (file or sample folder) whose widget trees to apply"},
            {"output", 'o', "PATH", "output file, or folder for several outputs"},

@@ -1,0 +1,80 @@
+#include "split_input.h"
+
+#include <climits>
+#include <memory>
+#include <string>
+
+#include "args.h"
+#include "ffdkit/meshio/atomic_write.h"
+#include "ffdkit/meshio/mesh_format.h"
+
+namespace ffdkit::cli {
+
+namespace fs = std::filesystem;
+
+SplitInput::SplitInput(const fs::path& path, const BatchRanks& ranks) : path_(path) {
+  std::unique_ptr<meshio::VertexSliceReader> reader;
+  onEveryRank(ranks, [&] { reader = std::make_unique<meshio::VertexSliceReader>(path); });
+  normalsAndFaces_ = reader->hasNormalsAndFaces();
+  if (const auto count = reader->vertexCount()) {
+    // PLY, npy: fixed-size records, the count from the header (checked against the file's size).
+    const std::int64_t n = *count, r = ranks.rank(), size = ranks.size();
+    totalPoints_ = n;
+    onEveryRank(ranks, [&] {
+      points_ = reader->readVertices(r * n / size, (r + 1) * n / size);
+      if (ranks.leader()) cells_ = reader->readCells();
+    });
+    return;
+  }
+  // xyz: each rank's lines; the line and point numbers of the ranks before it number its own.
+  meshio::VertexSliceReader::TextPart part;
+  onEveryRank(ranks, [&] { part = reader->readXyzPart(ranks.rank(), ranks.size()); });
+  const std::int64_t linesBefore = ranks.sumBefore(part.lines);
+  const std::int64_t pointsBefore = ranks.sumBefore(part.points);
+  totalPoints_ = ranks.sum(part.points);
+  onEveryRank(ranks, [&] {
+    if (totalPoints_ == 0) throw meshio::MeshIoError(path.string() + ": the file has no points");
+    if (totalPoints_ > INT_MAX) throw meshio::MeshIoError(path.string() + ": more points than ffdkit indexes");
+    points_ = reader->parseXyzPart(part, linesBefore, pointsBefore);
+  });
+}
+
+void SplitInput::checkTarget(const fs::path& target) const {
+  const auto format = meshio::meshFormatOf(target);
+  if (!format || !meshio::isSliceWritable(*format))
+    throw UsageError("-o " + target.string() + ": an mpirun batch that splits one INPUT writes .ply, .npy or .xyz");
+  if (*format == meshio::MeshFormat::Ply && normalsAndFaces_)
+    throw UsageError(path_.string() + ": a mesh with normals cannot be written as PLY in slices (a vertex's normal "
+                     "needs its neighbours on other ranks): write .npy or .xyz, or deform it in one process");
+}
+
+void SplitInput::write(const fs::path& target, const Eigen::MatrixX3d& deformed, const BatchRanks& ranks) const {
+  const meshio::MeshFormat format = *meshio::meshFormatOf(target);
+  std::string head, slice, tail;
+  onEveryRank(ranks, [&] {
+    slice = meshio::slicedFileVertices(format, deformed);
+    if (ranks.leader()) {
+      head = meshio::slicedFileHead(format, totalPoints_, cells_);
+      tail = meshio::slicedFileTail(format, cells_);
+    }
+  });
+  ranks.broadcast(head);  // the header's length places every slice
+  const std::uint64_t offset = head.size() + std::uint64_t(ranks.sumBefore(std::int64_t(slice.size())));
+  const std::uint64_t tailOffset = head.size() + std::uint64_t(ranks.sum(std::int64_t(slice.size())));
+
+  std::optional<meshio::StagedFile> staged;
+  std::string temporary;
+  onEveryRank(ranks, [&] {
+    if (!ranks.leader()) return;
+    staged.emplace(target, head);
+    temporary = staged->temporary().string();
+  });
+  ranks.broadcast(temporary);
+  onEveryRank(ranks, [&] {
+    meshio::writeStagedPart(temporary, target, offset, slice);
+    if (ranks.leader() && !tail.empty()) meshio::writeStagedPart(temporary, target, tailOffset, tail);
+  });
+  if (ranks.leader()) staged->commit();
+}
+
+}  // namespace ffdkit::cli
