@@ -60,6 +60,12 @@ done
 "$mpiexec" -n 3 "$cli" "${deform[@]}" "$work/in.xyz" -o "$work/batch-xyz.ply"
 cmp "$work/single-xyz.ply" "$work/batch-xyz.ply" || fail "3 ranks wrote another PLY from .xyz than 1 process"
 
+# More ranks than lines: a rank with an empty slice writes nothing and the file is still whole.
+printf '0.1 0.2 0.3\n1.5 -0.5 0.25\n' > "$work/two.xyz"
+"$cli" "${deform[@]}" "$work/two.xyz" -o "$work/single-two.xyz"
+"$mpiexec" -n 3 "$cli" "${deform[@]}" "$work/two.xyz" -o "$work/batch-two.xyz"
+cmp "$work/single-two.xyz" "$work/batch-two.xyz" || fail "3 ranks on 2 lines wrote another file than 1 process"
+
 # Failures: every rank exits non-zero, nothing (not even a temporary) is left in the folder.
 mkdir "$work/failed"
 expect_failure() {  # NAME MESSAGE-THAT-EVERY-RANK-PRINTS|"" MESSAGE-OF-SOME-RANK

@@ -323,7 +323,8 @@ int runDeform(const Args& args) {
     for (const auto& target : targets) {
       scenes::MeshData mesh = std::move(scene.findObject(target.object)->mesh);  // the scene is done with
       mesh.points = deformer.points(target.object);
-      scenes::validateMesh(mesh, "deformed object '" + target.object + "'");
+      // A rank's slice of a split INPUT may be empty (more ranks than points or lines).
+      if (!split || mesh.points.rows() > 0) scenes::validateMesh(mesh, "deformed object '" + target.object + "'");
       meshes.emplace_back(target.path, std::move(mesh));
     }
   });
