@@ -297,7 +297,9 @@ void evaluate(scenes::Scene& scene, scenes::SceneDeformer& deformer, Console& co
 
 int runDeform(const Args& args) {
   // In an mpirun batch every rank runs this; rank 0 speaks for the batch.
-  const BatchRanks ranks;
+  // Static: MPI_Finalize (a fence of every rank) runs after main has printed this rank's error, so
+  // that no rank exits, and mpirun kills the others, before every failing rank has said why.
+  static const BatchRanks ranks;
   Console console(args.flag("quiet") || !ranks.leader(), args.flag("progress") && ranks.leader(),
                   args.flag("timings") && ranks.leader());
   DeformRequest request;
