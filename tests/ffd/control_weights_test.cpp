@@ -29,6 +29,16 @@ Eigen::MatrixX3d moved(const Lattice& lattice, std::mt19937& rng) {
   return P;
 }
 
+// 300 points in world coordinates: 200 inside the lattice and 100 around it (outside policies).
+Eigen::MatrixX3d pointsAround(const Lattice& lattice, std::mt19937& rng) {
+  Eigen::MatrixX3d uvw = testing::randomParameters(lattice, 300, rng);
+  uvw.topRows(100).array() = uvw.topRows(100).array() * 1.6 - 0.3;
+  Eigen::MatrixX3d Q(uvw.rows(), 3);
+  for (Eigen::Index p = 0; p < Q.rows(); ++p)
+    Q.row(p) = (lattice.frame() * lattice.evaluateRest(uvw.row(p).transpose())).transpose();
+  return Q;
+}
+
 TEST(ControlWeights, TheWholeWindowReproducesTheDeformerOnEveryBasisAndPolicy) {
   std::mt19937 rng(7);
   std::vector<Lattice> lattices;
@@ -42,12 +52,7 @@ TEST(ControlWeights, TheWholeWindowReproducesTheDeformerOnEveryBasisAndPolicy) {
   extrapolate.outsidePolicy = OutsidePolicy::extrapolate();
   lattices.push_back(makeBoxLattice(extrapolate));
   for (Lattice& lattice : lattices) {
-    // Points inside and around the lattice (outside policies), in world coordinates.
-    Eigen::MatrixX3d uvw = testing::randomParameters(lattice, 300, rng);
-    uvw.topRows(100).array() = uvw.topRows(100).array() * 1.6 - 0.3;
-    Eigen::MatrixX3d Q(uvw.rows(), 3);
-    for (Eigen::Index p = 0; p < Q.rows(); ++p)
-      Q.row(p) = (lattice.frame() * lattice.evaluateRest(uvw.row(p).transpose())).transpose();
+    const Eigen::MatrixX3d Q = pointsAround(lattice, rng);
     const Embedding embedding = embed(lattice, Q);
     lattice.setControlPoints(moved(lattice, rng));
     Deformer deformer(embedding);
@@ -101,11 +106,7 @@ TEST(ControlWeights, OneControlPointsWeightIsHowFarItsMoveMovesEachPoint) {
   identity.outsidePolicy = OutsidePolicy::identity();
   lattices.push_back(makeBoxLattice(identity));
   for (Lattice& lattice : lattices) {
-    Eigen::MatrixX3d uvw = testing::randomParameters(lattice, 300, rng);
-    uvw.topRows(100).array() = uvw.topRows(100).array() * 1.6 - 0.3;
-    Eigen::MatrixX3d Q(uvw.rows(), 3);
-    for (Eigen::Index p = 0; p < Q.rows(); ++p)
-      Q.row(p) = (lattice.frame() * lattice.evaluateRest(uvw.row(p).transpose())).transpose();
+    const Eigen::MatrixX3d Q = pointsAround(lattice, rng);
     const Embedding embedding = embed(lattice, Q);
     lattice.setControlPoints(moved(lattice, rng));
     Deformer deformer(embedding);
