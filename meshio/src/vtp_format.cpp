@@ -1,0 +1,152 @@
+// VTK XML poly data (.vtp), read by ffdkit (VTK's reader trusts the file: fuzz_mesh_vtp made it
+// write past its own arrays). Every Piece's points and its vertex, line, polygon and strip
+// cells, in order: the pieces are joined, each piece's point ids shifted by the points before
+// it. Polygons are fan-triangulated and strips split as VTK's triangle filter does; lines are
+// split into segments; vertex cells are checked and dropped. Writing stays with VTK
+// (vtk_formats.cpp).
+#include <climits>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "formats.h"
+#include "parse_support.h"
+#include "vtk_xml_arrays.h"
+#include "vtk_xml_tree.h"
+
+namespace ffdkit::meshio::detail {
+namespace {
+
+struct PieceReader {
+  const VtkXmlDocument& document;
+  const VtkXmlDataLayout& layout;
+  const std::string& source;
+
+  [[noreturn]] void fail(const XmlElement& element, const std::string& message) const {
+    throw MeshIoError(document.where(source, element) + message);
+  }
+
+  // A Piece's NumberOf... attribute (0 when absent).
+  std::size_t count(const XmlElement& piece, const char* name) const {
+    const auto text = piece.attribute(name);
+    if (!text) return 0;
+    unsigned long long value = 0;
+    const auto r = std::from_chars(text->data(), text->data() + text->size(), value);
+    if (r.ec != std::errc() || r.ptr != text->data() + text->size())
+      fail(piece, std::string("Piece: ") + name + "=\"" + std::string(*text) + "\" is not a count");
+    // A point or a cell takes at least one byte even compressed 1100:1 (vtk_xml_arrays.cpp).
+    if (value > 1100 * std::max<std::uint64_t>(document.bytes.size(), 1 << 16))
+      fail(piece, std::string("Piece: ") + name + " announces " + std::to_string(value) + ", more than a file of " +
+                      std::to_string(document.bytes.size()) + " bytes can hold");
+    return std::size_t(value);
+  }
+
+  const XmlElement& dataArray(const XmlElement& parent, std::string_view name, const char* what) const {
+    for (const XmlElement& c : parent.children)
+      if (c.name == "DataArray" && (name.empty() || c.attribute("Name") == name)) return c;
+    fail(parent, std::string(what) + ": no DataArray" + (name.empty() ? std::string() : " \"" + std::string(name) + "\""));
+  }
+
+  // Calls `cell(index, ids, size)` for each of the `cells` cells of `element` (Verts, Lines,
+  // Polys, Strips), each id checked against the piece's `points`.
+  template <class Cell>
+  void forEachCell(const XmlElement& piece, const char* elementName, const char* kind, std::size_t cells, std::size_t points,
+                   Cell&& cell) const {
+    if (cells == 0) return;
+    const XmlElement* element = piece.child(elementName);
+    if (element == nullptr) fail(piece, std::string("Piece: ") + std::to_string(cells) + " " + kind + " cells but no <" + elementName + ">");
+    const XmlElement& offsetsArray = dataArray(*element, "offsets", elementName);
+    const XmlElement& connectivityArray = dataArray(*element, "connectivity", elementName);
+    const std::vector<std::int64_t> offsets = readIntegerValues(document, layout, offsetsArray, cells, source);
+    std::int64_t previous = 0;
+    for (std::size_t c = 0; c < cells; ++c) {
+      if (offsets[c] < previous)
+        fail(offsetsArray, Where{kind, (long long)c}.text() + ": offset " + std::to_string(offsets[c]) + " is before the previous " +
+                               std::to_string(previous));
+      previous = offsets[c];
+    }
+    const std::vector<std::int64_t> ids = readIntegerValues(document, layout, connectivityArray, std::size_t(previous), source);
+    std::int64_t begin = 0;
+    for (std::size_t c = 0; c < cells; ++c) {
+      for (std::int64_t k = begin; k < offsets[c]; ++k)
+        if (ids[std::size_t(k)] < 0 || std::uint64_t(ids[std::size_t(k)]) >= points)
+          fail(connectivityArray, Where{kind, (long long)c}.text() + ": point id " + std::to_string(ids[std::size_t(k)]) +
+                                      " is outside 0.." + std::to_string((long long)points - 1));
+      cell(ids.data() + begin, std::size_t(offsets[c] - begin));
+      begin = offsets[c];
+    }
+  }
+};
+
+bool hasNormals(const XmlElement& piece) {
+  const XmlElement* pointData = piece.child("PointData");
+  if (pointData == nullptr) return false;
+  const auto name = pointData->attribute("Normals");
+  if (!name || name->empty()) return false;
+  for (const XmlElement& array : pointData->children)
+    if (array.name == "DataArray" && array.attribute("Name") == *name && array.attribute("NumberOfComponents") == std::string_view("3"))
+      return true;
+  return false;
+}
+
+}  // namespace
+
+MeshData readVtp(std::string_view bytes, const std::string& source) {
+  const VtkXmlDocument document = parseVtkXml(bytes, source);
+  const XmlElement& root = document.root;
+  const auto type = root.attribute("type").value_or("");
+  if (type != "PolyData")
+    throw MeshIoError(document.where(source, root) + "a VTK " + (type.empty() ? std::string("XML") : std::string(type)) +
+                      " file, not PolyData");
+  const VtkXmlDataLayout layout = VtkXmlDataLayout::of(document, source);
+  const XmlElement* polyData = root.child("PolyData");
+  if (polyData == nullptr) throw MeshIoError(document.where(source, root) + "VTKFile has no <PolyData>");
+  const PieceReader reader{document, layout, source};
+
+  PointSink points;
+  TriangleSink triangles;
+  SegmentSink segments;
+  bool normals = false;
+  for (const XmlElement& piece : polyData->children) {
+    if (piece.name != "Piece") continue;
+    const std::size_t pointCount = reader.count(piece, "NumberOfPoints");
+    const std::size_t verts = reader.count(piece, "NumberOfVerts"), lines = reader.count(piece, "NumberOfLines");
+    const std::size_t strips = reader.count(piece, "NumberOfStrips"), polys = reader.count(piece, "NumberOfPolys");
+    if (std::uint64_t(points.rows()) + pointCount > std::uint64_t(INT_MAX))
+      reader.fail(piece, "Piece: more points than ffdkit indexes (" + std::to_string(INT_MAX) + ")");
+    const int base = int(points.rows());
+    if (pointCount > 0) {
+      const XmlElement* pointsElement = piece.child("Points");
+      if (pointsElement == nullptr) reader.fail(piece, "Piece: " + std::to_string(pointCount) + " points but no <Points>");
+      const XmlElement& array = reader.dataArray(*pointsElement, "", "Points");
+      if (array.attribute("NumberOfComponents") != std::string_view("3"))
+        reader.fail(array, "DataArray \"" + std::string(array.attribute("Name").value_or("")) + "\": points need NumberOfComponents=\"3\"");
+      const std::vector<double> xyz = readRealValues(document, layout, array, 3 * pointCount, source);
+      for (std::size_t i = 0; i < pointCount; ++i) points.add(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+      normals = normals || hasNormals(piece);
+    }
+    reader.forEachCell(piece, "Verts", "vertex cell", verts, pointCount, [](const std::int64_t*, std::size_t) {});
+    reader.forEachCell(piece, "Lines", "line", lines, pointCount, [&](const std::int64_t* line, std::size_t n) {
+      for (std::size_t k = 0; k + 1 < n; ++k) segments.add(base + int(line[k]), base + int(line[k + 1]));
+    });
+    reader.forEachCell(piece, "Polys", "polygon", polys, pointCount, [&](const std::int64_t* polygon, std::size_t n) {
+      for (std::size_t k = 1; k + 1 < n; ++k) triangles.add(base + int(polygon[0]), base + int(polygon[k]), base + int(polygon[k + 1]));
+    });
+    reader.forEachCell(piece, "Strips", "strip", strips, pointCount, [&](const std::int64_t* strip, std::size_t n) {
+      for (std::size_t k = 0; k + 2 < n; ++k) {
+        if (k % 2 == 0) triangles.add(base + int(strip[k]), base + int(strip[k + 1]), base + int(strip[k + 2]));
+        else triangles.add(base + int(strip[k + 1]), base + int(strip[k]), base + int(strip[k + 2]));
+      }
+    });
+  }
+  MeshData mesh;
+  mesh.points = points.take();
+  if (mesh.points.rows() == 0) throw MeshIoError(source + ": the file has no points");
+  mesh.triangles = triangles.take();
+  mesh.segments = segments.take();
+  mesh.hasNormals = normals;
+  return mesh;
+}
+
+}  // namespace ffdkit::meshio::detail
