@@ -12,6 +12,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   nlohmann-json3-dev
   libfast-float-dev libtinygltf-dev
+  zlib1g-dev liblz4-dev liblzma-dev
   libvtk9-dev
   qt6-base-dev libqt6opengl6-dev
   libgl1-mesa-dev libgl1-mesa-dri libglx-mesa0 libegl-mesa0 mesa-utils
