@@ -70,7 +70,18 @@ class EncodedStream {
         continue;
       }
       if (ended_) return false;
-      // Whole groups straight into `out`, the last partial group through `pending_`.
+      // Whole groups straight into `out`: unpadded ones in a tight loop, then one at a time
+      // (padding, the end); the last partial group goes through `pending_`.
+      while (n >= 3 && data_.size() - pos_ >= 4) {
+        const auto* g = reinterpret_cast<const unsigned char*>(data_.data() + pos_);
+        const int a = kValue[g[0]], b = kValue[g[1]], c = kValue[g[2]], d = kValue[g[3]];
+        if ((a | b | c | d) < 0) break;
+        const std::uint32_t group = std::uint32_t(a) << 18 | std::uint32_t(b) << 12 | std::uint32_t(c) << 6 | std::uint32_t(d);
+        out[0] = static_cast<unsigned char>(group >> 16);
+        out[1] = static_cast<unsigned char>(group >> 8);
+        out[2] = static_cast<unsigned char>(group);
+        pos_ += 4, out += 3, n -= 3;
+      }
       while (n >= 3 && !ended_) {
         const int got = decodeGroup(out);
         if (got < 0) return false;
@@ -95,14 +106,17 @@ class EncodedStream {
   }
 
  private:
-  static int value(char c) {
-    if (c >= 'A' && c <= 'Z') return c - 'A';
-    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-    if (c >= '0' && c <= '9') return c - '0' + 52;
-    if (c == '+') return 62;
-    if (c == '/') return 63;
-    return -1;
-  }
+  // The 6-bit value of each base64 character; -1 for the rest ('=' included).
+  static constexpr std::array<std::int8_t, 256> kValue = [] {
+    std::array<std::int8_t, 256> table{};
+    table.fill(-1);
+    for (int i = 0; i < 26; ++i) table['A' + i] = std::int8_t(i), table['a' + i] = std::int8_t(26 + i);
+    for (int i = 0; i < 10; ++i) table['0' + i] = std::int8_t(52 + i);
+    table['+'] = 62;
+    table['/'] = 63;
+    return table;
+  }();
+  static int value(char c) { return kValue[static_cast<unsigned char>(c)]; }
 
   // Decodes the group at pos_ into out[0..3); returns the bytes it gave, or -1 at the end.
   int decodeGroup(unsigned char* out) {

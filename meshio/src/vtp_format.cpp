@@ -104,7 +104,7 @@ MeshData readVtp(std::string_view bytes, const std::string& source) {
   if (polyData == nullptr) throw MeshIoError(document.where(source, root) + "VTKFile has no <PolyData>");
   const PieceReader reader{document, layout, source};
 
-  PointSink points;
+  Eigen::MatrixX3d points;  // grown piece by piece once a piece's values are read (never from a count alone)
   TriangleSink triangles;
   SegmentSink segments;
   bool normals = false;
@@ -113,8 +113,6 @@ MeshData readVtp(std::string_view bytes, const std::string& source) {
     const std::size_t pointCount = reader.count(piece, "NumberOfPoints");
     const std::size_t verts = reader.count(piece, "NumberOfVerts"), lines = reader.count(piece, "NumberOfLines");
     const std::size_t strips = reader.count(piece, "NumberOfStrips"), polys = reader.count(piece, "NumberOfPolys");
-    if (std::uint64_t(points.rows()) + pointCount > std::uint64_t(INT_MAX))
-      reader.fail(piece, "Piece: more points than ffdkit indexes (" + std::to_string(INT_MAX) + ")");
     const int base = int(points.rows());
     if (pointCount > 0) {
       const XmlElement* pointsElement = piece.child("Points");
@@ -123,7 +121,12 @@ MeshData readVtp(std::string_view bytes, const std::string& source) {
       if (array.attribute("NumberOfComponents") != std::string_view("3"))
         reader.fail(array, "DataArray \"" + std::string(array.attribute("Name").value_or("")) + "\": points need NumberOfComponents=\"3\"");
       const std::vector<double> xyz = readRealValues(document, layout, array, 3 * pointCount, source);
-      for (std::size_t i = 0; i < pointCount; ++i) points.add(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+      if (std::uint64_t(points.rows()) + pointCount > std::uint64_t(INT_MAX))
+        reader.fail(piece, "Piece: more points than ffdkit indexes (" + std::to_string(INT_MAX) + ")");
+      points.conservativeResize(points.rows() + Eigen::Index(pointCount), Eigen::NoChange);
+      adviseHugePages(points);
+      points.bottomRows(Eigen::Index(pointCount)) = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+          xyz.data(), Eigen::Index(pointCount), 3);
       normals = normals || hasNormals(piece);
     }
     reader.forEachCell(piece, "Verts", "vertex cell", verts, pointCount, [](const std::int64_t*, std::size_t) {});
@@ -141,7 +144,7 @@ MeshData readVtp(std::string_view bytes, const std::string& source) {
     });
   }
   MeshData mesh;
-  mesh.points = points.take();
+  mesh.points = std::move(points);
   if (mesh.points.rows() == 0) throw MeshIoError(source + ": the file has no points");
   mesh.triangles = triangles.take();
   mesh.segments = segments.take();
