@@ -56,6 +56,7 @@ class EncodedStream {
 
   /// The next `n` bytes into `out`; false if the stream ends first.
   bool read(std::size_t n, unsigned char* out) {
+    if (n == 0) return true;  // `out` may be null (an empty vector's data)
     if (!base64_) {
       if (n > data_.size() - pos_) return false;
       std::memcpy(out, data_.data() + pos_, n);
