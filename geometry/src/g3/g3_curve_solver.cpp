@@ -28,6 +28,7 @@ const char* toString(G3SolveStatus status) {
     case G3SolveStatus::NonFinite: return "non-finite value";
     case G3SolveStatus::NonPositiveSpanLength: return "non-positive span length";
     case G3SolveStatus::LikelyInfeasible: return "likely infeasible (continuation failed)";
+    case G3SolveStatus::WorkLimit: return "work limit reached (the curve turns too much between its points)";
   }
   return "unknown";
 }
@@ -43,7 +44,9 @@ class System {
       : n_(static_cast<int>(points.rows()) - 1),
         conditions_(std::move(conditions)),
         rule_(gaussLegendreRule(options.quadratureNodes)),
-        maxTurn_(options.maxTurnPerPanel) {
+        maxTurn_(options.maxTurnPerPanel),
+        nodesPerPanel_(options.quadratureNodes),
+        maxTangentEvaluations_(options.maxTangentEvaluationsPerSpan * std::max(n_, 1)) {
     chords_.resize(n_, 2);
     for (int i = 0; i < n_; ++i) chords_.row(i) = points.row(i + 1) - points.row(i);
     h_ = chords_.rowwise().norm().maxCoeff();
@@ -64,6 +67,8 @@ class System {
   }
 
   int n() const { return n_; }
+  /// The tangent evaluations so far exceed the solve's budget.
+  bool overBudget() const { return tangentEvaluations_ > maxTangentEvaluations_; }
   int rows() const { return 2 * n_ + conditionRows_; }
   int cols() const { return 2 * n_ + 3; }
   int conditionRows() const { return conditionRows_; }
@@ -98,6 +103,7 @@ class System {
       jac->setZero(rows(), cols());
     }
     f.resize(rows());
+    tangentEvaluations_ += double(panels.sum()) * nodesPerPanel_;
     for (int i = 0; i < n_; ++i) {
       const Eigen::Vector4d eta = b.segment<4>(3 * i);
       if (jac) {
@@ -240,6 +246,9 @@ class System {
   std::vector<Condition> conditions_;
   GaussLegendreRule rule_;
   double maxTurn_;
+  int nodesPerPanel_;
+  double maxTangentEvaluations_;
+  mutable double tangentEvaluations_ = 0.0;  // the work done, summed over every evaluate()
   Eigen::MatrixX2d chords_;
   double h_ = 1.0;
   int conditionRows_ = 0;
@@ -286,6 +295,7 @@ NewtonOutcome newton(const System& sys, Eigen::VectorXd v, const Eigen::VectorXd
   double mu = -1.0;  // Levenberg-Marquardt damping, set from the first Jacobian
   double nu = 2.0;
   for (int it = 1; it <= maxIt; ++it) {
+    if (sys.overBudget()) return finish(G3SolveStatus::WorkLimit);
     out.iterations = it;
     sys.evaluate(v, panels, offset, f, &jac);
     const Eigen::MatrixXd scaledJac = scales.cwiseInverse().asDiagonal() * jac;
@@ -327,7 +337,7 @@ NewtonOutcome newton(const System& sys, Eigen::VectorXd v, const Eigen::VectorXd
         const Eigen::MatrixXd normal =
             over ? Eigen::MatrixXd(scaledJac.transpose() * scaledJac) : Eigen::MatrixXd(scaledJac * scaledJac.transpose());
         if (mu < 0.0) mu = 1e-8 * normal.diagonal().maxCoeff();
-        for (int attempt = 0; attempt < 60 && !accepted; ++attempt) {
+        for (int attempt = 0; attempt < 60 && !accepted && !sys.overBudget(); ++attempt) {
           Eigen::MatrixXd damped = normal;
           damped.diagonal().array() += mu;
           const Eigen::LDLT<Eigen::MatrixXd> ldlt(damped);
@@ -352,7 +362,7 @@ NewtonOutcome newton(const System& sys, Eigen::VectorXd v, const Eigen::VectorXd
       } else {
         // Armijo backtracking on ||scaled f||^2 (spec sec. 3.6).
         double lambda = 1.0;
-        while (lambda >= opt.lineSearchFloor) {
+        while (lambda >= opt.lineSearchFloor && !sys.overBudget()) {
           trial = v + lambda * step;
           if (spanLengthsPositive(trial, n)) {
             sys.evaluate(trial, panels, offset, trialF, nullptr);
@@ -365,6 +375,7 @@ NewtonOutcome newton(const System& sys, Eigen::VectorXd v, const Eigen::VectorXd
           lambda *= 0.5;
         }
       }
+      if (!accepted && sys.overBudget()) return finish(G3SolveStatus::WorkLimit);
       if (!accepted) {
         // At the rounding floor no step can decrease the residual any more.
         if (scaled.cwiseAbs().maxCoeff() <= 1e2 * opt.tolerance) return finish(G3SolveStatus::Converged);
@@ -402,10 +413,11 @@ G3SolveResult solveG3Curve(const Eigen::Ref<const Eigen::MatrixX2d>& points, con
                            const G3SolverOptions& options, const std::optional<Eigen::VectorXd>& initialGuess) {
   detail::validatePoints(points, "solveG3Curve");
   if (options.maxIterations < 1 || options.quadratureNodes < 2 || !(options.maxTurnPerPanel > 0.0) ||
-      !(options.tolerance > 0.0) || !(options.lineSearchFloor > 0.0) || !(options.minContinuationStep > 0.0)) {
+      !(options.tolerance > 0.0) || !(options.lineSearchFloor > 0.0) || !(options.minContinuationStep > 0.0) ||
+      !(options.maxTangentEvaluationsPerSpan > 0.0)) {
     throw G3InputError(
         "solveG3Curve options: need maxIterations >= 1, quadratureNodes >= 2 and positive "
-        "maxTurnPerPanel, tolerance, lineSearchFloor, minContinuationStep");
+        "maxTurnPerPanel, tolerance, lineSearchFloor, minContinuationStep, maxTangentEvaluationsPerSpan");
   }
   System sys(points, conditions, options);
   const int n = sys.n();
@@ -465,6 +477,7 @@ G3SolveResult solveG3Curve(const Eigen::Ref<const Eigen::MatrixX2d>& points, con
   const bool continuation = !options.paperMode && (options.continuation == ContinuationMode::Always ||
                                                    (options.continuation == ContinuationMode::OnFailure &&
                                                     outcome.status != G3SolveStatus::Converged &&
+                                                    outcome.status != G3SolveStatus::WorkLimit &&
                                                     // a rank-deficient system stays so along any path
                                                     outcome.status != G3SolveStatus::SingularJacobian));
   if (continuation) {
@@ -506,7 +519,7 @@ G3SolveResult solveG3Curve(const Eigen::Ref<const Eigen::MatrixX2d>& points, con
         first = false;
         if (lambda >= 1.0) break;
       } else {
-        if (first) {  // even the relaxed start fails: the interpolation itself is the problem
+        if (first || stage.status == G3SolveStatus::WorkLimit) {  // the relaxed start fails, or no work is left
           outcome = stage;
           status = stage.status;
           break;

@@ -365,6 +365,30 @@ TEST(G3CurveSolver, ContinuationReachesFeasibleTargetsAndFlagsFigure2dAsLikelyIn
   EXPECT_EQ(d.status, G3SolveStatus::LikelyInfeasible) << d.message;
 }
 
+// A point far from the others for the curvature targets makes the spans turn thousands of
+// radians, each integrated on 4096 quadrature panels: the solve stops at its work budget
+// (maxTangentEvaluationsPerSpan) instead of running on (fuzz_generator found this 4-point
+// curve taking 5 s in a release build). The infeasible figure 2d above, whose continuation
+// runs the most stages of the reference cases, stays within the budget.
+TEST(G3CurveSolver, StopsAtItsWorkBudgetWhenSpansTurnThousandsOfRadians) {
+  Eigen::MatrixX2d p(4, 2);
+  p << 0.6, 10.5, 4.0, 11.2, 7.2, 7.9, 10.6, 46728.0;
+  const std::vector<Condition> conditions = {Condition::curvature(0, -0.10923218), Condition::curvature(kLast, -0.16584946)};
+  const G3SolveResult r = solveG3Curve(p, conditions);
+  EXPECT_EQ(r.status, G3SolveStatus::WorkLimit) << r.message;
+  EXPECT_FALSE(r.converged);
+  EXPECT_FALSE(r.curve.has_value());
+  EXPECT_STREQ(toString(r.status), "work limit reached (the curve turns too much between its points)");
+  // The same points with a budget too small for any solve stop there too, and a budget is
+  // an option like the others: it must be positive.
+  G3SolverOptions tiny;
+  tiny.maxTangentEvaluationsPerSpan = 1.0;
+  EXPECT_EQ(solveG3Curve(testdata::figure2Points(), t1Conditions(), tiny).status, G3SolveStatus::WorkLimit);
+  G3SolverOptions none;
+  none.maxTangentEvaluationsPerSpan = 0.0;
+  EXPECT_THROW(solveG3Curve(testdata::figure2Points(), t1Conditions(), none), G3InputError);
+}
+
 // A feasible length (the T3 curve's length) with the same end curvatures solves.
 TEST(G3CurveSolver, SolvesAFeasibleTotalLengthCondition) {
   const G3SolveResult r = solveG3Curve(testdata::figure2Points(), {Condition::curvature(0, 0.0),

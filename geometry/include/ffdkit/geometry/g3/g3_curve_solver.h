@@ -45,6 +45,14 @@ struct G3SolverOptions {
   UnderdeterminedPolicy underdetermined = UnderdeterminedPolicy::MinimumNormFromInitialGuess;
   bool allowOverdetermined = false;  ///< > 3 condition rows: least squares if true, else throw
   double singularThreshold = 1e-13;  ///< reciprocal condition estimate below this: singular (failure)
+  /// Tangent evaluations (quadrature nodes: a sin/cos pair each) per span for the whole solve,
+  /// continuation included. Each span's panels follow its turning (maxTurnPerPanel, at most
+  /// 4096 of 16 nodes), so points far apart with steep curvature targets cost seconds per
+  /// solve: fuzz_generator found 4-point curves taking 5 s. A curve that turns a few radians
+  /// per span needs at most ~60,000 per span (30 continuation stages of 15 evaluations at 8
+  /// panels); past the budget the solve stops with WorkLimit, so a solve costs at most ~4 ms
+  /// per span.
+  double maxTangentEvaluationsPerSpan = 1e5;
 };
 
 enum class G3SolveStatus {
@@ -56,6 +64,7 @@ enum class G3SolveStatus {
   NonFinite,             ///< a NaN or infinity appeared
   NonPositiveSpanLength, ///< an undamped step made some Delta s_i <= 0 (paper mode)
   LikelyInfeasible,      ///< continuation step fell below minContinuationStep
+  WorkLimit,             ///< more than maxTangentEvaluationsPerSpan x spans were needed
 };
 
 /// Text for a status ("converged", "stalled", ...).
