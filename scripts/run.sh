@@ -16,5 +16,5 @@ fi
 mkdir -p "$root/out"
 shot="$root/out/default-scene.png"
 echo "run.sh: no display; running under Xvfb and saving a screenshot"
-xvfb-run -a -s "-screen 0 1280x1024x24" "$build/app/gui/ffdkit" "$scene" --screenshot "$shot"
+xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$build/app/gui/ffdkit" "$scene" --screenshot "$shot"
 echo "run.sh: screenshot of $scene saved to $shot"

@@ -35,7 +35,7 @@ export XDG_CONFIG_HOME="$user_folders/config" XDG_DATA_HOME="$user_folders/data"
 run=()
 if [ -z "${DISPLAY:-}" ]; then
   export QT_QPA_PLATFORM=xcb
-  run=(xvfb-run -a -s "-screen 0 1280x1024x24")
+  run=(xvfb-run -a -s "-screen 0 1280x1024x24 -noreset")
 fi
 
 mkdir -p "$root/docs/images"
