@@ -64,6 +64,7 @@ class CellPolynomials {
   // and the reciprocal of its width.
   const Lane4* coefficients(int cell) const { return cells_[static_cast<std::size_t>(cell)].a; }
   double scale(int cell) const { return cells_[static_cast<std::size_t>(cell)].scale; }
+  double origin(int cell) const { return cells_[static_cast<std::size_t>(cell)].origin; }
   // The cell's local coordinate of t: in [0, 1] for t in the cell.
   FFDKIT_INLINE double local(int cell, double t) const {
     const Cell& k = cells_[static_cast<std::size_t>(cell)];

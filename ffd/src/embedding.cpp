@@ -84,6 +84,83 @@ bool solveNewton(const detail::RestSolver& solver, const Eigen::Vector3d& q, Eig
   return true;
 }
 
+// Newton's first two steps over a run of points, batched across points (RestSolver::firstSteps):
+// the guesses, their residual norms, the first full steps and, where Newton stopped at the
+// second iterate, its result. Non-finite points get any finite values (solvePoint rejects them
+// before looking).
+struct FirstSteps {
+  static constexpr std::uint32_t kChunk = 256;  // points per run, a multiple of kBatch
+  alignas(64) double q[3][kChunk];
+  alignas(64) double guess[3][kChunk];
+  alignas(64) double step[3][kChunk];
+  alignas(64) double fGuess[kChunk];
+  alignas(64) double done[kChunk];
+  alignas(64) double result[3][kChunk];
+};
+
+FFDKIT_VECTOR_CLONES
+void firstSteps(const detail::RestSolver& solver, const Eigen::Affine3d& toLocal, const double* X, const double* Y,
+                const double* Z, std::uint32_t m, FirstSteps& out) {
+  constexpr int kBatch = detail::RestSolver::kBatch;
+  const std::uint32_t padded = (m + kBatch - 1) / kBatch * kBatch;
+  const Eigen::Vector3d mid = 0.5 * (solver.lo() + solver.hi());
+  for (std::uint32_t i = 0; i < padded; ++i) {
+    Eigen::Vector3d q = Eigen::Vector3d::Zero(), uvw = mid;
+    if (i < m) {
+      const Eigen::Vector3d x(X[i], Y[i], Z[i]);
+      if (x.allFinite()) {
+        q = toLocal * x;
+        uvw = solver.initialGuess(q);
+      }
+    }
+    for (int a = 0; a < 3; ++a) {
+      out.q[a][i] = q[a];
+      out.guess[a][i] = uvw[a];
+    }
+  }
+  for (std::uint32_t i = 0; i < padded; i += kBatch) {
+    const double* q[3] = {out.q[0] + i, out.q[1] + i, out.q[2] + i};
+    const double* uvw[3] = {out.guess[0] + i, out.guess[1] + i, out.guess[2] + i};
+    double* step[3] = {out.step[0] + i, out.step[1] + i, out.step[2] + i};
+    double* result[3] = {out.result[0] + i, out.result[1] + i, out.result[2] + i};
+    solver.firstSteps(q, uvw, out.fGuess + i, step, out.done + i, result);
+  }
+}
+
+// solveNewton() for point i of a run whose first steps firstSteps() took: the same iterates up
+// to rounding (the guess if it already converged, the second iterate's result if Newton stopped
+// there, else newton() from the full step when that lowers the residual, else newton() from the
+// guess with its halvings).
+FFDKIT_VECTOR_CLONES
+bool solveNewtonAfterStep(const detail::RestSolver& solver, const Eigen::Vector3d& q, const FirstSteps& s,
+                          std::uint32_t i, Eigen::Vector3d& uvw) {
+  if (s.fGuess[i] <= solver.tolerance()) {
+    uvw = Eigen::Vector3d(s.guess[0][i], s.guess[1][i], s.guess[2][i]);
+    return true;
+  }
+  if (s.done[i] != 0.0) {
+    uvw = Eigen::Vector3d(s.result[0][i], s.result[1][i], s.result[2][i]);
+    return true;
+  }
+  uvw = Eigen::Vector3d(s.step[0][i], s.step[1][i], s.step[2][i]);
+  if (uvw.allFinite()) {
+    solver.normalize(uvw);
+    switch (solver.newtonAfterStep(q, uvw, s.fGuess[i])) {
+      case detail::RestSolver::AfterStep::Converged:
+        return true;
+      case detail::RestSolver::AfterStep::Failed: {
+        Eigen::Vector3d restart = solver.nearestSample(q);
+        if (!solver.newton(q, restart)) return false;
+        uvw = restart;
+        return true;
+      }
+      case detail::RestSolver::AfterStep::Rejected:
+        break;
+    }
+  }
+  return solveNewton(solver, q, uvw);
+}
+
 }  // namespace
 
 PointStatus Embedding::status(Eigen::Index point) const {
@@ -134,6 +211,7 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
   const std::int64_t cellTotal = std::int64_t(cells[0]) * cells[1] * cells[2];
   const bool periodic[3] = {axes[0]->periodic(), axes[1]->periodic(), axes[2]->periodic()};
   const bool affine = lattice.restIsAffine();
+  const bool batched = !affine && solver.batchedFirstStep();  // Newton's first steps across points
   const Eigen::Matrix3d Ainv = lattice.restAffineLinear().inverse();
   const Eigen::Vector3d b = lattice.restAffineOffset();
 
@@ -154,7 +232,9 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
   std::atomic<bool> nonFinite{false};
 
   // Point p of a tile: (u, v, w), blend weight, (class, cell) key, status (seed 001 eq. (6.2)).
-  const auto solvePoint = [&](Eigen::Index p, std::uint32_t i, TileScratch& t) {
+  // first: the batched first Newton steps of the run point p belongs to (null: none), at `runIndex`.
+  const auto solvePoint = [&](Eigen::Index p, std::uint32_t i, TileScratch& t, const FirstSteps* first = nullptr,
+                              std::uint32_t runIndex = 0) {
     if (!points.row(p).allFinite()) {
       nonFinite.store(true, std::memory_order_relaxed);
       t.pu[i] = t.pv[i] = t.pw[i] = 0.0;
@@ -169,7 +249,7 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
     if (affine) {
       uvw = Ainv * (q - b);
     } else {
-      converged = solveNewton(solver, q, uvw);
+      converged = first ? solveNewtonAfterStep(solver, q, *first, runIndex, uvw) : solveNewton(solver, q, uvw);
     }
     PointStatus status = PointStatus::Inside;
     PointClass cls = PointClass::Evaluated;
@@ -382,6 +462,7 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
   {
     const bool caller = omp_get_thread_num() == 0;
     const auto scratch = std::make_unique<TileScratch>();
+    const auto first = batched ? std::make_unique<FirstSteps>() : nullptr;
     while (!stop.load(std::memory_order_relaxed)) {
       const std::int64_t tile = next.fetch_add(1, std::memory_order_relaxed);
       if (tile >= tileCount) break;
@@ -393,7 +474,18 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
         scratch->pu = scratch->u.data();
         scratch->pv = scratch->v.data();
         scratch->pw = scratch->w.data();
-        for (Eigen::Index p = begin; p < end; ++p) solvePoint(p, static_cast<std::uint32_t>(p - begin), *scratch);
+        if (batched) {
+          for (Eigen::Index run = begin; run < end; run += FirstSteps::kChunk) {
+            const std::uint32_t m = static_cast<std::uint32_t>(std::min<Eigen::Index>(end - run, FirstSteps::kChunk));
+            firstSteps(solver, toLocal, points.col(0).data() + run, points.col(1).data() + run,
+                       points.col(2).data() + run, m, *first);
+            for (std::uint32_t j = 0; j < m; ++j) {
+              solvePoint(run + j, static_cast<std::uint32_t>(run + j - begin), *scratch, first.get(), j);
+            }
+          }
+        } else {
+          for (Eigen::Index p = begin; p < end; ++p) solvePoint(p, static_cast<std::uint32_t>(p - begin), *scratch);
+        }
       }
       groupTile(tile, *scratch);
       const Eigen::Index done = finished.fetch_add(end - begin, std::memory_order_acq_rel) + (end - begin);

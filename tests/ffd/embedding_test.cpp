@@ -109,6 +109,57 @@ TEST(Embedding, NewtonFromTheTabulatedInverseAgreesWithNewtonFromTheAffineGuess)
   }
 }
 
+// Single-cell lattices of degree <= 3 (4x4x4 cubic, Bernstein up to 4 points per axis) take
+// Newton's first two steps for eight points at once (RestSolver::firstSteps): inside points get
+// their generating parameters, outside ones (parameters up to 30 % beyond the box) the status of
+// theirs, whether Newton stopped in the batch, went on one point at a time or restarted.
+TEST(Embedding, BatchedNewtonStepsGiveSingleCellLatticesTheGeneratingParameters) {
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const Eigen::Vector3i shapes[] = {{4, 4, 4}, {4, 3, 2}, {2, 4, 3}};
+  for (int trial = 0; trial < 6; ++trial) {
+    BoxLatticeOptions options;
+    options.counts = shapes[trial % 3];
+    for (int a = 0; a < 3; ++a) {
+      options.bases[a] = trial % 2 ? AxisBasis::bernstein() : AxisBasis::bspline(options.counts[a] - 1);
+    }
+    options.frame = testing::randomFrame(rng);
+    Lattice lattice = makeBoxLattice(options);
+    Eigen::MatrixX3d rest = lattice.restPoints();
+    for (Eigen::Index r = 0; r < rest.rows(); ++r)
+      for (int c = 0; c < 3; ++c) rest(r, c) += 0.25 / options.counts[c] * (2.0 * U(rng) - 1.0);
+    lattice.setRestPoints(rest);
+    ASSERT_FALSE(lattice.restIsAffine());
+    const Eigen::Index n = trial < 3 ? 70000 : 3001;  // with and without the tabulated inverse
+    Eigen::MatrixX3d uvw = testing::randomParameters(lattice, n, rng);
+    const Eigen::Vector3d lo = lattice.parameterMin(), hi = lattice.parameterMax();
+    for (Eigen::Index r = 0; r < n / 10; ++r) {  // a tenth within 30 % beyond the box, some on a face
+      const int a = static_cast<int>(r % 3);
+      uvw(r, a) = r % 7 == 0 ? hi[a] : lo[a] + (hi[a] - lo[a]) * (r % 2 ? 1.0 + 0.3 * U(rng) : -0.3 * U(rng));
+    }
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, uvw);
+    const Embedding e = embed(lattice, Q);
+    EXPECT_EQ(e.failedCount(), 0) << "trial " << trial;
+    const Eigen::MatrixX3d found = e.parameters();
+    const double eps = EmbedOptions{}.boundaryEpsilon;
+    for (Eigen::Index r = 0; r < n; ++r) {
+      bool inside = true, clear = true;  // clear: not within 1e-6 of the epsilon band
+      for (int a = 0; a < 3; ++a) {
+        const double t = (uvw(r, a) - lo[a]) / (hi[a] - lo[a]);
+        inside = inside && t >= -eps && t <= 1.0 + eps;
+        clear = clear && std::abs(std::abs(t - 0.5) - 0.5 - eps) > 1e-6;
+      }
+      if (!clear) continue;
+      ASSERT_EQ(e.status(r), inside ? PointStatus::Inside : PointStatus::Outside) << "trial " << trial << " point " << r;
+      if (inside) {
+        ASSERT_LT((found.row(r) - uvw.row(r)).cwiseAbs().maxCoeff(), 1e-9)
+            << "trial " << trial << " point " << r << " generated from " << uvw.row(r) << " found " << found.row(r);
+      }
+    }
+    EXPECT_LT(roundTripError(lattice, e, Q), 1e-12) << "trial " << trial;
+  }
+}
+
 TEST(Embedding, CylindricalLatticeRoundTripsIncludingTheAxis) {
   std::mt19937 rng(3);
   for (int inner : {0, 1}) {
