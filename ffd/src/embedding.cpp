@@ -84,6 +84,26 @@ bool solveNewton(const detail::RestSolver& solver, const Eigen::Vector3d& q, Eig
   return true;
 }
 
+// Nodes [begin, end) of the solver's tabulated inverse (RestSolver::solveGridNode).
+FFDKIT_VECTOR_CLONES
+void solveGridNodes(const detail::RestSolver& solver, std::int64_t begin, std::int64_t end, Eigen::Vector3d* uvw,
+                    char* valid) {
+  for (std::int64_t node = begin; node < end; ++node) valid[node] = solver.solveGridNode(node, uvw[node]);
+}
+
+// The solver's tabulated inverse, its nodes shared by the threads (one thread took a serial
+// tenth of a 10^6-point embedding).
+void buildInverseGrid(detail::RestSolver& solver, bool parallel) {
+  constexpr std::int64_t kNodes = detail::RestSolver::kGridNodes, kChunk = 64;
+  std::vector<Eigen::Vector3d> uvw(static_cast<std::size_t>(kNodes));
+  std::vector<char> valid(uvw.size(), 0);
+#pragma omp parallel for schedule(dynamic, 1) if (parallel)
+  for (std::int64_t chunk = 0; chunk < (kNodes + kChunk - 1) / kChunk; ++chunk) {
+    solveGridNodes(solver, chunk * kChunk, std::min(kNodes, (chunk + 1) * kChunk), uvw.data(), valid.data());
+  }
+  solver.setInverseGrid(std::move(uvw), std::move(valid));
+}
+
 // Newton's first two steps over a run of points, batched across points (RestSolver::firstSteps):
 // the guesses, their residual norms, the first full steps and, where Newton stopped at the
 // second iterate, its result. Non-finite points get any finite values (solvePoint rejects them
@@ -201,7 +221,9 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
     throw LatticeError("embed: at most 2^32-2 points, got " + std::to_string(n));
   }
   // The tabulated inverse (about 5000 Newton solves) pays for itself from a few 10^4 points on.
-  const detail::RestSolver solver(lattice, options, /*inverseGrid=*/n >= 4 * kParallelPoints);
+  detail::RestSolver gridSolver(lattice, options, /*inverseGrid=*/n >= 4 * kParallelPoints);
+  if (gridSolver.wantsInverseGrid()) buildInverseGrid(gridSolver, options.parallel);
+  const detail::RestSolver& solver = gridSolver;
   const Eigen::Affine3d toLocal = lattice.frame().inverse();
   const OutsidePolicy policy = lattice.outsidePolicy();
   const AxisSpline* axes[3] = {&lattice.axis(0), &lattice.axis(1), &lattice.axis(2)};
@@ -298,7 +320,8 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
     t.pw[i] = uvw[2];
     t.weight[i] = s;
     e.status_[p] = status;
-    const std::int64_t cell = locate[0](uvw[0]) + cells[0] * (locate[1](uvw[1]) + std::int64_t(cells[1]) * locate[2](uvw[2]));
+    const std::int64_t cell =
+        cellTotal == 1 ? 0 : locate[0](uvw[0]) + cells[0] * (locate[1](uvw[1]) + std::int64_t(cells[1]) * locate[2](uvw[2]));
     t.key[i] = static_cast<std::uint32_t>(static_cast<std::int64_t>(cls) * cellTotal + cell);
   };
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -59,8 +60,15 @@ class RestSolver {
     if (cubic_) curvature_ = restCurvatureBound(lattice, poly_);
     if (!lattice.restIsAffine()) buildSamples();
     const bool periodic = axis_[0]->periodic() || axis_[1]->periodic() || axis_[2]->periodic();
-    if (inverseGrid && !lattice.restIsAffine() && !cylinder_ && !periodic) buildInverseGrid();
+    wantsInverseGrid_ = inverseGrid && !lattice.restIsAffine() && !cylinder_ && !periodic;
+    gridMin_ = restMin_;
+    gridScale_ = Eigen::Vector3d::Constant(kGridCells).cwiseQuotient((restMax_ - restMin_).cwiseMax(1e-300));
   }
+
+  // Whether the caller should tabulate the inverse (solveGridNode below): the constructor was
+  // asked to and it applies. Left to the caller, which runs it on its threads and in the
+  // instruction set's clone (vector_clones.h).
+  bool wantsInverseGrid() const { return wantsInverseGrid_ && gridUvw_.empty(); }
 
   // The basis values and derivatives of one parameter point, kept so that the Jacobian is only
   // computed for iterates Newton goes on from (not for the last, converged one).
@@ -604,33 +612,30 @@ class RestSolver {
         }
   }
 
-  // The inverse map at the nodes of a kGridCells^3 grid over the rest points' bounding box:
-  // interpolated, it starts Newton about 1e-4 from the solution instead of 1e-2 (the affine
-  // fit), which saves about one of the four evaluations per point.
-  void buildInverseGrid() {
+ public:
+  // The tabulated inverse: the inverse map at the nodes of a kGridCells^3 grid over the rest
+  // points' bounding box. Interpolated, it starts Newton about 1e-4 from the solution instead of
+  // 1e-2 (the affine fit), which saves about one of the four evaluations per point. The caller
+  // solves the nodes (solveGridNode, independent, in any order and on any thread) and hands
+  // them to setInverseGrid; initialGuess does not use the grid before that.
+  static constexpr int kGridCells = 16;
+  static constexpr std::int64_t kGridNodes = std::int64_t(kGridCells + 1) * (kGridCells + 1) * (kGridCells + 1);
+  FFDKIT_INLINE bool solveGridNode(std::int64_t node, Eigen::Vector3d& uvw) const {
     constexpr int kNodes = kGridCells + 1;
-    gridMin_ = rest_.colwise().minCoeff().transpose();
-    const Eigen::Vector3d size = (rest_.colwise().maxCoeff().transpose() - gridMin_).cwiseMax(1e-300);
-    gridScale_ = Eigen::Vector3d::Constant(kGridCells).cwiseQuotient(size);
-    gridUvw_.resize(static_cast<std::size_t>(kNodes) * kNodes * kNodes);
-    gridValid_.assign(gridUvw_.size(), 0);
-    for (int k = 0; k < kNodes; ++k)
-      for (int j = 0; j < kNodes; ++j)
-        for (int i = 0; i < kNodes; ++i) {
-          const std::size_t node = i + kNodes * (j + static_cast<std::size_t>(kNodes) * k);
-          const Eigen::Vector3d q = gridMin_ + Eigen::Vector3d(i, j, k).cwiseQuotient(gridScale_);
-          Eigen::Vector3d uvw = initialGuess(q);
-          bool ok = newton(q, uvw);
-          if (!ok) {
-            uvw = nearestSample(q);
-            ok = newton(q, uvw);
-          }
-          gridUvw_[node] = uvw;
-          gridValid_[node] = ok;
-        }
+    const std::int64_t i = node % kNodes, j = node / kNodes % kNodes, k = node / (kNodes * kNodes);
+    const Eigen::Vector3d q = gridMin_ + Eigen::Vector3d(double(i), double(j), double(k)).cwiseQuotient(gridScale_);
+    uvw = initialGuess(q);
+    if (newton(q, uvw)) return true;
+    uvw = nearestSample(q);
+    return newton(q, uvw);
+  }
+  void setInverseGrid(std::vector<Eigen::Vector3d> uvw, std::vector<char> valid) {
+    gridUvw_ = std::move(uvw);
+    gridValid_ = std::move(valid);
   }
 
-  static constexpr int kGridCells = 16;
+ private:
+  bool wantsInverseGrid_ = false;
   Eigen::Vector3d gridMin_ = Eigen::Vector3d::Zero(), gridScale_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> gridUvw_;
   std::vector<char> gridValid_;
