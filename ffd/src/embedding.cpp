@@ -147,13 +147,15 @@ void firstSteps(const detail::RestSolver& solver, const Eigen::Affine3d& toLocal
   }
 }
 
-// solveNewton() for point i of a run whose first steps firstSteps() took: the same iterates up
-// to rounding (the guess if it already converged, the second iterate's result if Newton stopped
-// there, else newton() from the full step when that lowers the residual, else newton() from the
-// guess with its halvings).
+// solveNewton() for point i of a run whose first steps firstSteps() took (s; null: none): the
+// same iterates up to rounding (the guess if it already converged, the second iterate's result
+// if Newton stopped there, else newton() from the full step when that lowers the residual, else
+// newton() from the guess with its halvings).
 FFDKIT_VECTOR_CLONES
-bool solveNewtonAfterStep(const detail::RestSolver& solver, const Eigen::Vector3d& q, const FirstSteps& s,
-                          std::uint32_t i, Eigen::Vector3d& uvw) {
+bool solveNewtonAfterSteps(const detail::RestSolver& solver, const Eigen::Vector3d& q, const FirstSteps* first,
+                           std::uint32_t i, Eigen::Vector3d& uvw) {
+  if (!first) return solveNewton(solver, q, uvw);
+  const FirstSteps& s = *first;
   if (s.fGuess[i] <= solver.tolerance()) {
     uvw = Eigen::Vector3d(s.guess[0][i], s.guess[1][i], s.guess[2][i]);
     return true;
@@ -271,7 +273,7 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
     if (affine) {
       uvw = Ainv * (q - b);
     } else {
-      converged = first ? solveNewtonAfterStep(solver, q, *first, runIndex, uvw) : solveNewton(solver, q, uvw);
+      converged = first ? solveNewtonAfterSteps(solver, q, first, runIndex, uvw) : solveNewton(solver, q, uvw);
     }
     PointStatus status = PointStatus::Inside;
     PointClass cls = PointClass::Evaluated;
