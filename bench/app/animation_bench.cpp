@@ -37,10 +37,10 @@ struct Session {
 
   explicit Session(int resolution) {
     widget = bench::addSphereInCubicLattice(controller, resolution).widget;
-    scene.animation.lastFrame = 48;
+    scene.setFrameRange(scene.animation().firstFrame, 48);
     for (const auto& [frame, value] : {std::pair{0, 0.0}, {24, 0.3}, {48, 0.0}}) {
       scenes::Keyframe key;
-      key.time = scenes::frameTime(scene.animation, frame);
+      key.time = scenes::frameTime(scene.animation(), frame);
       key.variation = value;
       scenes::setKey(scene, widget, scenes::ChannelKind::Variation, key);
     }
@@ -64,19 +64,19 @@ Session& session(int resolution) {
 // One frame: the clock moves on by one frame period. The keyed value changes every frame except at
 // the peak; a frame whose value did not change costs nothing, so skip those few.
 void playFrames(benchmark::State& state, Session& s) {
-  const double period = 1.0 / s.scene.animation.framesPerSecond;
-  const std::uint64_t before = s.deformer.revision(s.scene.objects.front().name);
+  const double period = 1.0 / s.scene.animation().framesPerSecond;
+  const std::uint64_t before = s.deformer.revision(s.scene.objects().front().name);
   std::int64_t frames = 0;
   for (auto _ : state) {
     require(s.timeline.advance(period), "the clock did not reach the next frame");
     ++frames;
   }
-  const double seconds = scenes::frameTime(s.scene.animation, s.timeline.frame());
-  const double expected = scenes::evaluateVariation(s.scene.animation.channels.front().keys, seconds);
+  const double seconds = scenes::frameTime(s.scene.animation(), s.timeline.frame());
+  const double expected = scenes::evaluateVariation(s.scene.animation().channels.front().keys, seconds);
   require(std::abs(s.scene.widgets.variation(s.widget) - expected) < 1e-12, "the widget is not at the keyed value");
-  require(s.deformer.revision(s.scene.objects.front().name) > before, "the deformer did not follow");
+  require(s.deformer.revision(s.scene.objects().front().name) > before, "the deformer did not follow");
   require(s.deformer.lastStats().reembeddedStages == 0, "a frame re-embedded");
-  state.counters["points"] = double(s.scene.objects.front().mesh.points.rows());
+  state.counters["points"] = double(s.scene.objects().front().mesh.points.rows());
   state.counters["frames"] = double(frames);
 }
 

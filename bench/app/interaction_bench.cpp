@@ -89,7 +89,7 @@ void BM_DragStep(benchmark::State& state) {
   require(s.view->stats().followedNormals >= followedBefore + int(state.iterations()) - 1,
           "the view recomputed the normals during the drag");
   s.controller.release();
-  state.counters["points"] = double(s.scene.objects.front().mesh.points.rows());
+  state.counters["points"] = double(s.scene.objects().front().mesh.points.rows());
 }
 
 // The first step of a drag: the view computes the normals from the triangles and what the next
@@ -154,7 +154,7 @@ void BM_UndoDrag(benchmark::State& state) {
   }
   if (undone) s.commands.redo();
   s.controller.onChanged = std::move(redraw);
-  state.counters["points"] = double(s.scene.objects.front().mesh.points.rows());
+  state.counters["points"] = double(s.scene.objects().front().mesh.points.rows());
 }
 
 }  // namespace

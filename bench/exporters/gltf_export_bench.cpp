@@ -27,10 +27,10 @@ scenes::Scene bigScene(int resolution) {
   scenes::PrimitiveOptions sphere;
   sphere.resolution = resolution;
   const geometry::TriangleMesh mesh = scenes::makePrimitive(sphere);
-  scene.objects.at(0).source = sphere;
-  scene.objects.at(0).mesh.points = mesh.vertices;
-  scene.objects.at(0).mesh.triangles = mesh.triangles;
-  ++scene.objects.at(0).meshRevision;
+  scenes::MeshData data = scene.objects().at(0).mesh;
+  data.points = mesh.vertices;
+  data.triangles = mesh.triangles;
+  scene.setObjectMesh(scene.objects().at(0).name, std::move(data), sphere);
   return scene;
 }
 

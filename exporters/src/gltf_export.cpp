@@ -55,7 +55,7 @@ std::pair<double, Eigen::Index> maxDistance(const Eigen::MatrixX3d& a, const Eig
 // The meshes to write: the objects that have points.
 std::vector<const scenes::SceneObject*> exportedObjects(const scenes::Scene& scene) {
   std::vector<const scenes::SceneObject*> objects;
-  for (const auto& object : scene.objects)
+  for (const auto& object : scene.objects())
     if (object.mesh.points.rows() > 0) objects.push_back(&object);
   if (objects.empty()) throw GltfExportError("glTF export: the scene has no object with points");
   return objects;

@@ -13,7 +13,7 @@ KeyInterpolation segmentInterpolation(const scenes::Scene& scene, double start, 
   bool anyLinear = false;
   bool anySmooth = false;
   *jumps = false;
-  for (const scenes::Channel& channel : scene.animation.channels) {
+  for (const scenes::Channel& channel : scene.animation().channels) {
     if (!scene.widgets.contains(channel.widget)) continue;  // skipped by applyAnimation too
     const scenes::Keyframe* active = nullptr;
     for (const scenes::Keyframe& key : channel.keys)
@@ -31,7 +31,7 @@ KeyInterpolation segmentInterpolation(const scenes::Scene& scene, double start, 
 
 AnimationSource sceneAnimation(const scenes::Scene& scene) {
   AnimationSource source;
-  source.frameRate = scene.animation.framesPerSecond;
+  source.frameRate = scene.animation().framesPerSecond;
   source.keyTimes = scenes::keyTimes(scene);
   if (source.keyTimes.empty()) return source;
   for (const double t : source.keyTimes) {

@@ -25,7 +25,7 @@ SkinBinding bindSkin(const scenes::Scene& bind, int maxJoints) {
   // Joints: every lattice deforming some object, in the scene's pipeline order.
   for (const widgets::WidgetId lattice : bind.widgets.pipelineOrder()) {
     bool used = false;
-    for (const auto& object : bind.objects) {
+    for (const auto& object : bind.objects()) {
       const auto stages = bind.stagesDeforming(object.name);
       used = used || std::find(stages.begin(), stages.end(), lattice) != stages.end();
     }
@@ -44,7 +44,7 @@ SkinBinding bindSkin(const scenes::Scene& bind, int maxJoints) {
     Eigen::VectorXd total;  // sum over stages of s
   };
   std::vector<Pending> pending;
-  for (const auto& object : bind.objects) {
+  for (const auto& object : bind.objects()) {
     const std::vector<widgets::WidgetId> stages = bind.stagesDeforming(object.name);
     if (stages.empty()) continue;
     ObjectSkin skin;

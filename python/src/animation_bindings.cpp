@@ -92,23 +92,20 @@ void bindSceneEditing(py::module_& m) {
           "lattice"_a, "object"_a, "The same, the lattice given by its name.")
       // ---- animation ----
       .def_property(
-          "framesPerSecond", [](const Scene& s) { return s.animation.framesPerSecond; },
+          "framesPerSecond", [](const Scene& s) { return s.animation().framesPerSecond; },
           [](Scene& s, double fps) {
             Scene trial;
-            trial.animation.framesPerSecond = fps;
+            trial.setFrameRate(fps);
             scenes::validateAnimation(trial);  // the range check's message, before anything changes
-            s.animation.framesPerSecond = fps;
-            s.touchAnimation();
+            s.setFrameRate(fps);
           })
       .def_property(
-          "frameRange", [](const Scene& s) { return std::make_pair(s.animation.firstFrame, s.animation.lastFrame); },
+          "frameRange", [](const Scene& s) { return std::make_pair(s.animation().firstFrame, s.animation().lastFrame); },
           [](Scene& s, std::pair<int, int> range) {
             if (range.first > range.second)
               throw py::value_error("frameRange: first frame " + std::to_string(range.first) + " is after the last " +
                                     std::to_string(range.second));
-            s.animation.firstFrame = range.first;
-            s.animation.lastFrame = range.second;
-            s.touchAnimation();
+            s.setFrameRange(range.first, range.second);
           },
           "(first, last) frame of the animation.")
       .def(
@@ -139,7 +136,7 @@ void bindSceneEditing(py::module_& m) {
       .def(
           "keyValue",
           [](const Scene& s, WidgetId widget, ChannelKind kind, double seconds) {
-            const std::optional<Keyframe> key = scenes::keyAt(s.animation, widget, kind, seconds);
+            const std::optional<Keyframe> key = scenes::keyAt(s.animation(), widget, kind, seconds);
             return key ? valueOf(kind, *key) : py::none();
           },
           "widget"_a, "kind"_a, "seconds"_a)
@@ -155,7 +152,7 @@ void bindSceneEditing(py::module_& m) {
            "Sets the widget model to the animation at `seconds` through its own gestures (bindings "
            "propagate as in a drag; docs/animation.md). Re-deform with a SceneDeformer afterwards.")
       .def("applyAnimationFrame", &scenes::applyAnimationFrame, "frame"_a)
-      .def("frameTime", [](const Scene& s, double frame) { return scenes::frameTime(s.animation, frame); }, "frame"_a)
+      .def("frameTime", [](const Scene& s, double frame) { return scenes::frameTime(s.animation(), frame); }, "frame"_a)
       .def("validateAnimation", &scenes::validateAnimation);
 }
 

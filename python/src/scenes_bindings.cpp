@@ -128,7 +128,7 @@ void bindGenerators(py::module_& m) {
 void bindSceneDocuments(py::module_& m) {
   py::class_<scenes::SceneObject>(m, "SceneObject")
       .def_readonly("name", &scenes::SceneObject::name)
-      .def_readwrite("mesh", &scenes::SceneObject::mesh, "The object's own (undeformed) points.");
+      .def_readonly("mesh", &scenes::SceneObject::mesh, "The object's own (undeformed) points (Scene.setObjectMesh changes them).");
   py::class_<scenes::Attachment>(m, "Attachment")
       .def_readonly("lattice", &scenes::Attachment::lattice, "The root lattice's WidgetId (a rename keeps it).")
       .def_readonly("objects", &scenes::Attachment::objects);
@@ -142,11 +142,14 @@ void bindSceneDocuments(py::module_& m) {
       .def("objectNames",
            [](const scenes::Scene& scene) {
              std::vector<std::string> names;
-             for (const auto& object : scene.objects) names.push_back(object.name);
+             for (const auto& object : scene.objects()) names.push_back(object.name);
              return names;
            })
-      .def("findObject", py::overload_cast<const std::string&>(&scenes::Scene::findObject),
-           py::return_value_policy::reference_internal, "name"_a)
+      .def("findObject", &scenes::Scene::findObject, py::return_value_policy::reference_internal, "name"_a)
+      .def(
+          "setObjectMesh",
+          [](scenes::Scene& scene, const std::string& name, scenes::MeshData mesh) { scene.setObjectMesh(name, std::move(mesh)); },
+          "name"_a, "mesh"_a, "Replaces an object's own points (a deformer notices through the object's revision).")
       .def("latticesDeforming", &scenes::Scene::latticesDeforming, "object"_a)
       .def("validate", &scenes::validateScene);
 

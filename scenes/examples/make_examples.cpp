@@ -39,7 +39,7 @@ void keyVariation(Scene& scene, const char* widget, const std::vector<std::pair<
   const auto id = scene.widgets.find(widget);
   for (const auto& [frame, value] : keys) {
     scenes::Keyframe key;
-    key.time = scenes::frameTime(scene.animation, frame);
+    key.time = scenes::frameTime(scene.animation(), frame);
     key.variation = value;
     key.interpolation = interpolation;
     scenes::setKey(scene, id, scenes::ChannelKind::Variation, key);
@@ -52,6 +52,14 @@ Eigen::Affine3d placedAt(const Eigen::Vector3d& centre) {
 
 // A sphere with a 3x3x3 lattice fitted around it; a translate widget on the top face's centre
 // point, pulled up a little so that the deformation shows.
+// Changes the look of the scene's first object.
+template <class Change>
+void editLook(Scene& scene, Change change) {
+  scenes::DisplaySettings look = scene.objects().front().display;
+  change(look);
+  scene.setObjectDisplay(scene.objects().front().name, look);
+}
+
 void aimCamera(Scene& scene, const Eigen::Vector3d& position, const Eigen::Vector3d& focalPoint) {
   scenes::Camera camera = scene.camera();
   camera.position = position;
@@ -62,7 +70,7 @@ void aimCamera(Scene& scene, const Eigen::Vector3d& position, const Eigen::Vecto
 Scene makeDefault() {
   Scene scene;
   scene.description = "A sphere with a 3x3x3 lattice attached; drag the arrow on top.";
-  scene.objects.push_back(primitiveObject("sphere", {.kind = scenes::PrimitiveKind::Sphere, .resolution = 48},
+  scene.addObject(primitiveObject("sphere", {.kind = scenes::PrimitiveKind::Sphere, .resolution = 48},
                                           {0.85, 0.55, 0.30}));
   scenes::AttachOptions attach;
   attach.latticeName = "lattice";
@@ -84,8 +92,8 @@ Scene withThesisModel(std::string description, widgets::WidgetModel model, widge
   Scene scene;
   scene.description = std::move(description);
   scene.widgets = std::move(model);
-  scene.objects.push_back(std::move(object));
-  scene.attach(root, scene.objects.front().name);
+  scene.addObject(std::move(object));
+  scene.attach(root, scene.objects().front().name);
   aimCamera(scene, {2.9, -2.6, 2.3}, {0.5, 0.5, 0.5});
   return scene;
 }
@@ -211,7 +219,7 @@ Scene makeCylinderTwist() {
   Scene scene;
   scene.description = "Fig. 6-11: EFFD. A cylindrical lattice twisting a cylinder: the top ring turned 90 degrees drives the rings below by 2/3 and 1/3.";
   scene.widgets = std::move(model);
-  scene.objects.push_back(primitiveObject("cylinder", {.kind = scenes::PrimitiveKind::Cylinder, .resolution = 48},
+  scene.addObject(primitiveObject("cylinder", {.kind = scenes::PrimitiveKind::Cylinder, .resolution = 48},
                                           {0.9, 0.6, 0.45}));
   scene.attach(scene.widgets.find("cylinder-lattice"), "cylinder");
   return scene;
@@ -248,10 +256,10 @@ Scene generatedScene(std::string description, std::string objectName, std::strin
   const Eigen::Vector3d low = object.mesh.points.colwise().minCoeff();
   const Eigen::Vector3d high = object.mesh.points.colwise().maxCoeff();
   const double size = (high - low).norm();
-  scene.objects.push_back(std::move(object));
+  scene.addObject(std::move(object));
   scenes::AttachOptions attach;
   attach.latticeName = "lattice";
-  const auto lattice = scenes::attachNewLattice(scene, {scene.objects.front().name}, attach);
+  const auto lattice = scenes::attachNewLattice(scene, {scene.objects().front().name}, attach);
   const auto top = scene.widgets.addCell(lattice, CellSpec::point(1, 1, 2), "top");
   widgets::AffineOptions up;
   up.name = "pull";
@@ -272,7 +280,7 @@ Scene makeQiInterpolate() {
       "Seed 000: a G2 quaternion-integral curve through 7 points (Circle3 end tangents), in a lattice; its curvature "
       "comb follows the deformation.",
       "qi-curve", "qi-interpolate", std::move(p), {0.85, 0.35, 0.25});
-  scene.objects.front().display.curvatureComb = true;
+  editLook(scene, [](scenes::DisplaySettings& look) { look.curvatureComb = true; });
   return scene;
 }
 
@@ -327,7 +335,7 @@ Scene makeG3Clothoids() {
     object.source = scenes::GeneratedSource{"g3-curve", std::move(p), 1.0};
     object.display.color = colour;
     object.mesh = scenes::buildObjectMesh(object.source, ".");
-    scene.objects.push_back(std::move(object));
+    scene.addObject(std::move(object));
   }
   scenes::AttachOptions attach;
   attach.latticeName = "lattice";
@@ -392,7 +400,7 @@ Scene makeSigmaSplineSurface() {
       "Seed 001 ch. 3: a bicubic sigma-spline torus interpolating an 8 x 6 closed grid, in zebra stripes (reflection "
       "lines) that show its smoothness under the deformation.",
       "torus", "sigma-spline-surface", std::move(p), {0.85, 0.65, 0.35});
-  scene.objects.front().display.surfaceStyle = scenes::SurfaceStyle::Zebra;
+  editLook(scene, [](scenes::DisplaySettings& look) { look.surfaceStyle = scenes::SurfaceStyle::Zebra; });
   return scene;
 }
 

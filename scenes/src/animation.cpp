@@ -200,7 +200,7 @@ void applyAnimation(Scene& scene, double seconds) {
   if (!std::isfinite(seconds)) throw AnimationError("animation time must be finite, got " + number(seconds));
   WidgetModel& model = scene.widgets;
   if (model.gestureActive()) throw AnimationError("cannot evaluate the animation during a gesture");
-  const Animation& animation = scene.animation;
+  const Animation& animation = scene.animation();
   const auto live = [&](const Channel& c) {
     if (c.keys.empty() || !model.contains(c.widget)) return false;
     const auto kinds = keyableKinds(model, c.widget);
@@ -230,11 +230,11 @@ void applyAnimation(Scene& scene, double seconds) {
   }
 }
 
-void applyAnimationFrame(Scene& scene, double frame) { applyAnimation(scene, frameTime(scene.animation, frame)); }
+void applyAnimationFrame(Scene& scene, double frame) { applyAnimation(scene, frameTime(scene.animation(), frame)); }
 
 std::vector<double> keyTimes(const Scene& scene) {
   std::vector<double> times;
-  for (const Channel& c : scene.animation.channels) {
+  for (const Channel& c : scene.animation().channels) {
     if (!scene.widgets.contains(c.widget)) continue;
     for (const Keyframe& k : c.keys) times.push_back(k.time);
   }
@@ -245,7 +245,7 @@ std::vector<double> keyTimes(const Scene& scene) {
 
 std::vector<double> keyTimes(const Scene& scene, WidgetId widget) {
   std::vector<double> times;
-  for (const Channel& c : scene.animation.channels) {
+  for (const Channel& c : scene.animation().channels) {
     if (c.widget != widget) continue;
     for (const Keyframe& k : c.keys) times.push_back(k.time);
   }
@@ -308,7 +308,7 @@ std::optional<Keyframe> setKey(Scene& scene, WidgetId widget, ChannelKind kind, 
   detail::checkKeyable(scene.widgets, widget, kind);
   if (const std::string problem = detail::keyProblem(scene.widgets, widget, kind, key); !problem.empty())
     throw AnimationError(channelLabel(scene.widgets, widget, kind) + ": " + problem);
-  Animation& animation = scene.animation;
+  Animation& animation = scene.animation_;
   auto channel = std::find_if(animation.channels.begin(), animation.channels.end(),
                               [&](const Channel& c) { return c.widget == widget && c.kind == kind; });
   if (channel == animation.channels.end()) {
@@ -330,12 +330,12 @@ std::optional<Keyframe> setKey(Scene& scene, WidgetId widget, ChannelKind kind, 
                            " keys per channel");
     keys.insert(at, std::move(key));
   }
-  scene.touchAnimation();
+  scene.animationRevision_ = scene.stamp();
   return replaced;
 }
 
 std::optional<Keyframe> removeKey(Scene& scene, WidgetId widget, ChannelKind kind, double seconds) {
-  Animation& animation = scene.animation;
+  Animation& animation = scene.animation_;
   auto channel = std::find_if(animation.channels.begin(), animation.channels.end(),
                               [&](const Channel& c) { return c.widget == widget && c.kind == kind; });
   if (channel == animation.channels.end()) return std::nullopt;
@@ -345,12 +345,12 @@ std::optional<Keyframe> removeKey(Scene& scene, WidgetId widget, ChannelKind kin
   Keyframe removed = std::move(*at);
   channel->keys.erase(at);
   if (channel->keys.empty()) animation.channels.erase(channel);
-  scene.touchAnimation();
+  scene.animationRevision_ = scene.stamp();
   return removed;
 }
 
 void validateAnimation(const Scene& scene) {
-  const Animation& a = scene.animation;
+  const Animation& a = scene.animation();
   if (!(a.framesPerSecond > 0.0 && a.framesPerSecond <= kMaxFrameRate))
     throw AnimationError("frame rate must be in (0, " + number(kMaxFrameRate) + "] frames per second, got " +
                          number(a.framesPerSecond));

@@ -18,47 +18,52 @@ Overloaded(Ts...) -> Overloaded<Ts...>;
 
 std::string knownObjects(const Scene& scene) {
   std::string list;
-  for (const auto& o : scene.objects) list += (list.empty() ? "" : ", ") + o.name;
+  for (const auto& o : scene.objects()) list += (list.empty() ? "" : ", ") + o.name;
   return list.empty() ? "none" : list;
 }
 
 }  // namespace
 
 const SceneObject* Scene::findObject(const std::string& name) const {
-  for (const auto& object : objects)
+  for (const auto& object : objects_)
     if (object.name == name) return &object;
   return nullptr;
 }
 
-SceneObject* Scene::findObject(const std::string& name) {
-  return const_cast<SceneObject*>(static_cast<const Scene&>(*this).findObject(name));
-}
-
 SceneObject& Scene::object(const std::string& name) {
-  SceneObject* found = findObject(name);
-  if (found == nullptr) throw std::invalid_argument("scene: unknown object '" + name + "' (known: " + knownObjects(*this) + ")");
+  auto found = std::find_if(objects_.begin(), objects_.end(), [&](const SceneObject& o) { return o.name == name; });
+  if (found == objects_.end()) throw std::invalid_argument("scene: unknown object '" + name + "' (known: " + knownObjects(*this) + ")");
   return *found;
 }
 
-void Scene::addObject(SceneObject object) {
+void Scene::addObject(SceneObject object) { insertObject(objects_.size(), std::move(object)); }
+
+void Scene::insertObject(std::size_t position, SceneObject object) {
+  if (position > objects_.size())
+    throw std::invalid_argument("scene: no place " + std::to_string(position) + " among " + std::to_string(objects_.size()) + " objects");
   if (object.name.empty()) throw std::invalid_argument("scene: an object needs a name");
   if (findObject(object.name) != nullptr) throw std::invalid_argument("scene: an object named '" + object.name + "' exists");
   const std::uint64_t r = stamp();
   object.meshRevision = object.displayRevision = r;
   structureRevision_ = r;
-  objects.push_back(std::move(object));
+  objects_.insert(objects_.begin() + static_cast<std::ptrdiff_t>(position), std::move(object));
 }
 
-void Scene::removeObject(const std::string& name) {
-  auto it = std::find_if(objects.begin(), objects.end(), [&](const SceneObject& o) { return o.name == name; });
-  if (it == objects.end()) throw std::invalid_argument("scene: unknown object '" + name + "' (known: " + knownObjects(*this) + ")");
-  objects.erase(it);
+void Scene::removeObject(const std::string& name) { takeObject(name); }
+
+SceneObject Scene::takeObject(const std::string& objectName) {
+  const std::string name = objectName;  // `objectName` may be the object's own name, moved below
+  SceneObject& found = object(name);
+  SceneObject taken = std::move(found);
+  objects_.erase(objects_.begin() + (&found - objects_.data()));
   for (Attachment& a : attachments_) std::erase(a.objects, name);
   std::erase_if(attachments_, [](const Attachment& a) { return a.objects.empty(); });
   structureRevision_ = stamp();
+  return taken;
 }
 
-void Scene::renameObject(const std::string& from, const std::string& to) {
+void Scene::renameObject(const std::string& fromName, const std::string& to) {
+  const std::string from = fromName;  // `fromName` may be the object's own name, renamed below
   SceneObject& o = object(from);
   if (to == from) return;
   if (to.empty()) throw std::invalid_argument("scene: an object needs a name");
@@ -68,9 +73,10 @@ void Scene::renameObject(const std::string& from, const std::string& to) {
   structureRevision_ = stamp();
 }
 
-void Scene::setObjectMesh(const std::string& name, MeshData mesh) {
+void Scene::setObjectMesh(const std::string& name, MeshData mesh, std::optional<ObjectSource> source) {
   SceneObject& o = object(name);
   o.mesh = std::move(mesh);
+  if (source) o.source = std::move(*source);
   o.meshRevision = stamp();
 }
 
@@ -79,12 +85,6 @@ void Scene::setObjectDisplay(const std::string& name, const DisplaySettings& dis
   o.display = display;
   o.displayRevision = stamp();
 }
-
-void Scene::touchStructure() { structureRevision_ = stamp(); }
-
-void Scene::touchMesh(const std::string& name) { object(name).meshRevision = stamp(); }
-
-void Scene::touchAnimation() { animationRevision_ = stamp(); }
 
 void Scene::setAttachments(std::vector<Attachment> attachments) {
   if (attachments == attachments_) return;
@@ -150,6 +150,22 @@ void Scene::setBackground(const Eigen::Vector3d& background) {
   cameraRevision_ = stamp();
 }
 
+void Scene::setAnimation(Animation animation) {
+  animation_ = std::move(animation);
+  animationRevision_ = stamp();
+}
+
+void Scene::setFrameRate(double framesPerSecond) {
+  animation_.framesPerSecond = framesPerSecond;
+  animationRevision_ = stamp();
+}
+
+void Scene::setFrameRange(int first, int last) {
+  animation_.firstFrame = first;
+  animation_.lastFrame = last;
+  animationRevision_ = stamp();
+}
+
 MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path& baseDirectory,
                          const GeneratorRegistry& generators) {
   return std::visit(Overloaded{
@@ -191,7 +207,7 @@ widgets::WidgetId attachNewLattice(Scene& scene, const std::vector<std::string>&
 
 void validateScene(const Scene& scene) {
   std::set<std::string> names;
-  for (const auto& object : scene.objects) {
+  for (const auto& object : scene.objects()) {
     if (object.name.empty()) throw std::invalid_argument("scene: an object has an empty name");
     if (!names.insert(object.name).second) throw std::invalid_argument("scene: duplicate object name '" + object.name + "'");
   }

@@ -14,7 +14,7 @@ SceneChanges changesSince(const Scene& scene, const SceneMark& mark) {
   changes.structure = scene.structureRevision() > mark.scene;
   changes.camera = scene.cameraRevision() > mark.scene;
   changes.animation = scene.animationRevision() > mark.scene;
-  for (const SceneObject& o : scene.objects) {
+  for (const SceneObject& o : scene.objects()) {
     if (o.meshRevision > mark.scene) changes.meshes.push_back(o.name);
     if (o.displayRevision > mark.scene) changes.looks.push_back(o.name);
   }

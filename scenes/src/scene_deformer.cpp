@@ -112,7 +112,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   // Revisions compare within one widget model: another instance (a replaced model) syncs in full.
   const bool sameModel = widgetInstance_ == scene.widgets.instance();
   int latticesBuilt = 0;
-  for (const auto& object : scene.objects) {
+  for (const auto& object : scene.objects()) {
     names.insert(object.name);
     auto found = objects_.find(object.name);
     std::unique_ptr<ObjectPipeline> added;  // a new object enters objects_ once it is synced
@@ -291,7 +291,7 @@ std::map<std::string, Eigen::MatrixX3d> deformScene(const Scene& scene) {
   SceneDeformer deformer;
   deformer.finishGesture(scene);  // the exact result in one pass
   std::map<std::string, Eigen::MatrixX3d> result;
-  for (const auto& object : scene.objects) result[object.name] = deformer.points(object.name);
+  for (const auto& object : scene.objects()) result[object.name] = deformer.points(object.name);
   return result;
 }
 

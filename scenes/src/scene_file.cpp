@@ -224,9 +224,9 @@ Json affineJson(const Eigen::Affine3d& m) {
 }
 
 // "animation" (format version 2): frame rate, frame range, channels of keys naming their widget.
-void readAnimation(const Json& j, const Location& at, Scene& scene) {
+Animation readAnimation(const Json& j, const Location& at, const Scene& scene) {
   checkKeys(j, {"frameRate", "frames", "channels"}, at);
-  Animation& animation = scene.animation;
+  Animation animation;
   if (j.contains("frameRate")) {
     animation.framesPerSecond = number(j["frameRate"], at / "frameRate");
     if (!(animation.framesPerSecond > 0.0 && animation.framesPerSecond <= kMaxFrameRate))
@@ -247,7 +247,7 @@ void readAnimation(const Json& j, const Location& at, Scene& scene) {
     if (animation.firstFrame > animation.lastFrame)
       (at / "frames").fail("the first frame " + f[0].dump() + " is after the last " + f[1].dump());
   }
-  if (!j.contains("channels")) return;
+  if (!j.contains("channels")) return animation;
   const Json& list = j["channels"];
   const Location lat = at / "channels";
   detail::checkArray(list, lat);
@@ -322,10 +322,11 @@ void readAnimation(const Json& j, const Location& at, Scene& scene) {
     }
     animation.channels.push_back(std::move(channel));
   }
+  return animation;
 }
 
 Json animationJson(const Scene& scene) {
-  const Animation& animation = scene.animation;
+  const Animation& animation = scene.animation();
   Json a;
   a["frameRate"] = animation.framesPerSecond;
   a["frames"] = Json::array({animation.firstFrame, animation.lastFrame});
@@ -390,7 +391,7 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
     SceneObject object = readObject(objects[i], at / "objects" / i, options, generators);
     if (scene.findObject(object.name) != nullptr)
       (at / "objects" / i / "name").fail("duplicate object name '" + object.name + "'");
-    scene.objects.push_back(std::move(object));
+    scene.addObject(std::move(object));
   }
   if (root.contains("widgets") && root.contains("widgetFile"))
     at.fail("give the widgets inline ('widgets') or by reference ('widgetFile'), not both");
@@ -449,7 +450,7 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
     (at / "attachments").fail(e.what());
   }
   if (root.contains("animation")) {
-    readAnimation(root["animation"], at / "animation", scene);
+    scene.setAnimation(readAnimation(root["animation"], at / "animation", scene));
     try {
       validateAnimation(scene);
     } catch (const AnimationError& e) {
@@ -468,7 +469,7 @@ Json sceneJson(const Scene& scene) {
   if (!scene.description.empty()) root["description"] = scene.description;
   root["background"] = array3(scene.background());
   Json objects = Json::array();
-  for (const auto& object : scene.objects) {
+  for (const auto& object : scene.objects()) {
     Json o;
     o["name"] = object.name;
     if (const auto* primitive = std::get_if<PrimitiveOptions>(&object.source)) {
@@ -530,7 +531,7 @@ Json sceneJson(const Scene& scene) {
                     {"viewUp", array3(scene.camera().viewUp)},
                     {"viewAngle", scene.camera().viewAngleDegrees}};
   // Written only when there is something to say: a scene without keys stays as short as before.
-  if (!isDefault(scene.animation)) root["animation"] = animationJson(scene);
+  if (!isDefault(scene.animation())) root["animation"] = animationJson(scene);
   return root;
 }
 

@@ -70,7 +70,7 @@ TEST(CurvatureComb, AgreesWithAGeneratorsExactProfile) {
   // The qi-interpolate sample at rest: the discrete comb of its polyline against the
   // generator's exact curvature and principal normals at the same samples.
   const scenes::Scene scene = scenes::readScene(std::filesystem::path(FFDKIT_SOURCE_DIR "/scenes/examples/qi-interpolate"));
-  const scenes::SceneObject& curve = scene.objects.front();
+  const scenes::SceneObject& curve = scene.objects().front();
   const auto& source = std::get<scenes::GeneratedSource>(curve.source);
   const scenes::CurvatureProfile exact =
       scenes::builtinGenerators().profile(source.generator, source.parameters, source.density);

@@ -28,6 +28,14 @@ namespace {
 using app::testing::circle;
 
 // A scene with a single sphere (no widgets) seen from the default camera.
+// Changes the look of the scene's first object through the scene's edit (which stamps it).
+template <class Change>
+void editLook(scenes::Scene& scene, Change change) {
+  scenes::DisplaySettings look = scene.objects()[0].display;
+  change(look);
+  scene.setObjectDisplay(scene.objects()[0].name, look);
+}
+
 scenes::Scene sphereScene(scenes::SurfaceStyle style) {
   scenes::Scene scene;
   scenes::SceneObject sphere;
@@ -37,7 +45,7 @@ scenes::Scene sphereScene(scenes::SurfaceStyle style) {
   sphere.source = options;
   sphere.mesh = scenes::buildObjectMesh(sphere.source, ".");
   sphere.display.surfaceStyle = style;
-  scene.objects.push_back(sphere);
+  scene.addObject(sphere);
   return scene;
 }
 
@@ -85,7 +93,7 @@ scenes::Scene circleCurveScene(double cameraDistance = 4.0) {
   curve.mesh.segments.resize(120, 2);
   for (int i = 0; i < 120; ++i) curve.mesh.segments.row(i) << i, (i + 1) % 120;
   curve.display.color = {0.9, 0.75, 0.1};
-  scene.objects.push_back(curve);
+  scene.addObject(curve);
   scenes::Camera camera = scene.camera();
   camera.position = {0.0, -cameraDistance, 0.0};
   camera.focalPoint = {0.0, 0.0, 0.0};
@@ -156,7 +164,7 @@ class DisplayModesTest : public QObject {
 
     // More stripes, more transitions.
     scenes::Scene dense = zebra;
-    dense.objects[0].display.zebraStripes = 2 * zebra.objects[0].display.zebraStripes;
+    editLook(dense, [&](scenes::DisplaySettings& d) { d.zebraStripes = 2 * zebra.objects()[0].display.zebraStripes; });
     const LineStats d = scanColumn(render(dense), 200, zebra.background());
     QVERIFY2(d.transitions > 1.6 * z.transitions, qPrintable(QString("%1 vs %2").arg(d.transitions).arg(z.transitions)));
   }
@@ -165,7 +173,7 @@ class DisplayModesTest : public QObject {
     // The default sample: a sphere under a lattice with an arrow. Stretched by the arrow, its
     // stripes must be those of a mesh whose own points are the deformed points.
     scenes::Scene deformedScene = scenes::readScene(std::filesystem::path(FFDKIT_SOURCE_DIR "/scenes/examples/default"));
-    deformedScene.objects[0].display.surfaceStyle = scenes::SurfaceStyle::Zebra;
+    editLook(deformedScene, [&](scenes::DisplaySettings& d) { d.surfaceStyle = scenes::SurfaceStyle::Zebra; });
     const widgets::WidgetId arrow = deformedScene.widgets.widgets(widgets::WidgetType::Affine).front();
     const QImage rest = render(deformedScene, 320, 320);
 
@@ -192,7 +200,9 @@ class DisplayModesTest : public QObject {
     // The same shape as a mesh of its own (not deformed), same widgets drawn.
     scenes::Scene baked = deformedScene;
     baked.setAttachments({});
-    baked.objects[0].mesh.points = deformer.points(baked.objects[0].name);
+    scenes::MeshData bakedMesh = baked.objects()[0].mesh;
+    bakedMesh.points = deformer.points(baked.objects()[0].name);
+    baked.setObjectMesh(baked.objects()[0].name, std::move(bakedMesh));
     const QImage expected = render(baked, 320, 320);
 
     int differing = 0, fromRest = 0;
@@ -218,9 +228,9 @@ class DisplayModesTest : public QObject {
       return n;
     };
     const int without = combPixels(render(scene, 300, 300));
-    scene.objects[0].display.curvatureComb = true;
+    editLook(scene, [&](scenes::DisplaySettings& d) { d.curvatureComb = true; });
     const int with = combPixels(render(scene, 300, 300));
-    scene.objects[0].display.combScale = 0.4;
+    editLook(scene, [&](scenes::DisplaySettings& d) { d.combScale = 0.4; });
     const int longer = combPixels(render(scene, 300, 300));
     qInfo("comb pixels: off %d, on %d, scale 0.4 %d", without, with, longer);
     QCOMPARE(without, 0);
@@ -230,7 +240,7 @@ class DisplayModesTest : public QObject {
 
   void aCurveDrawnAsALineIsThinnerThanItsTubeAndInItsColour() {
     scenes::Scene scene = circleCurveScene();
-    const Eigen::Vector3d colour = scene.objects[0].display.color;
+    const Eigen::Vector3d colour = scene.objects()[0].display.color;
     struct Count {
       int drawn = 0;     ///< not background
       int coloured = 0;  ///< within 0.1 of the object's colour
@@ -254,9 +264,9 @@ class DisplayModesTest : public QObject {
     };
     LiveView view(500);
     const QImage tubeImage = view.draw(scene);
-    scene.objects[0].display.curveStyle = scenes::CurveStyle::Line;
+    editLook(scene, [&](scenes::DisplaySettings& d) { d.curveStyle = scenes::CurveStyle::Line; });
     const QImage lineImage = view.draw(scene);  // refresh(): the changed look rebuilds the actor
-    scene.objects[0].display.curveStyle = scenes::CurveStyle::Tube;
+    editLook(scene, [&](scenes::DisplaySettings& d) { d.curveStyle = scenes::CurveStyle::Tube; });
     const QImage tubeAgain = view.draw(scene);
     const Count tube = count(tubeImage), line = count(lineImage);
     qInfo("tube: %d pixels (%d in the object's colour, %d mixed with the background); line: %d pixels (%d, %d)",
@@ -279,7 +289,7 @@ class DisplayModesTest : public QObject {
     QCOMPARE(tubeAgain, tubeImage);  // switching back restores the tube
 
     // A fresh render of a scene saved with lines agrees with the live view.
-    scene.objects[0].display.curveStyle = scenes::CurveStyle::Line;
+    editLook(scene, [&](scenes::DisplaySettings& d) { d.curveStyle = scenes::CurveStyle::Line; });
     const Count fresh = count(render(scene, 500, 500));
     QVERIFY2(std::abs(fresh.drawn - line.drawn) < line.drawn / 20, qPrintable(QString::number(fresh.drawn)));
 
@@ -290,9 +300,9 @@ class DisplayModesTest : public QObject {
         for (int x = 0; x < image.width(); ++x) n += distance(image.pixelColor(x, y), app::kCombColour) < 0.15;
       return n;
     };
-    scene.objects[0].display.curvatureComb = true;
+    editLook(scene, [&](scenes::DisplaySettings& d) { d.curvatureComb = true; });
     const int combOnLine = combPixels(render(scene, 300, 300));
-    scene.objects[0].display.curveStyle = scenes::CurveStyle::Tube;
+    editLook(scene, [&](scenes::DisplaySettings& d) { d.curveStyle = scenes::CurveStyle::Tube; });
     const int combOnTube = combPixels(render(scene, 300, 300));
     qInfo("comb pixels: on a line %d, on a tube %d", combOnLine, combOnTube);
     QVERIFY(combOnTube > 300);
@@ -304,17 +314,18 @@ class DisplayModesTest : public QObject {
     const std::string plain = scenes::sceneFileText(scene);
     for (const char* key : {"surfaceStyle", "zebraStripes", "zebraDirection", "curvatureComb", "combScale", "curveStyle"})
       QVERIFY2(plain.find(key) == std::string::npos, key);
-    scenes::DisplaySettings& d = scene.objects[0].display;
+    scenes::DisplaySettings d = scene.objects()[0].display;
     d.surfaceStyle = scenes::SurfaceStyle::Zebra;
     d.zebraStripes = 7;
     d.zebraDirection = {1.0, 0.5, 0.0};
     d.curvatureComb = true;
     d.combScale = 0.125;
     d.curveStyle = scenes::CurveStyle::Line;
+    scene.setObjectDisplay(scene.objects()[0].name, d);
     const std::string text = scenes::sceneFileText(scene);
     std::istringstream in(text);
     const scenes::Scene back = scenes::readScene(in);
-    QVERIFY(back.objects[0].display == d);
+    QVERIFY(back.objects()[0].display == d);
     QCOMPARE(scenes::sceneFileText(back), text);
   }
 

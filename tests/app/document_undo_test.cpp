@@ -61,7 +61,7 @@ T pick(std::mt19937& random, const std::vector<T>& from) {
 
 void expectDeformerIsFresh(const Document& d) {
   const auto fresh = scenes::deformScene(d.scene);
-  for (const auto& object : d.scene.objects) {
+  for (const auto& object : d.scene.objects()) {
     const Eigen::MatrixX3d& live = d.deformer.points(object.name);
     ASSERT_EQ(live.rows(), fresh.at(object.name).rows()) << object.name;
     EXPECT_LE((live - fresh.at(object.name)).cwiseAbs().maxCoeff(), 1e-9) << object.name;
@@ -161,18 +161,18 @@ TEST(DocumentUndo, AThousandRandomOperationsUndoneAndRedoneGiveTheSameFiles) {
             d.controller.setAffineKind(pick(random, affines), static_cast<AffineKind>(std::uniform_int_distribution<int>(0, 2)(random)));
           break;
         case 13: {
-          scenes::DisplaySettings look = d.scene.objects.front().display;
+          scenes::DisplaySettings look = d.scene.objects().front().display;
           look.opacity = 0.5 + 0.5 * std::abs(unit(random));
-          d.controller.setDisplay({d.scene.objects.front().name}, {look});
+          d.controller.setDisplay({d.scene.objects().front().name}, {look});
           break;
         }
         case 14:
-          if (d.scene.objects.size() < 4) d.controller.addPrimitive(sphere);
+          if (d.scene.objects().size() < 4) d.controller.addPrimitive(sphere);
           break;
         case 15: {
           const WidgetId fresh = d.controller.newLattice({});
-          d.controller.attachLattice(fresh, pick(random, std::vector<std::string>{d.scene.objects.front().name,
-                                                                                   d.scene.objects.back().name}));
+          d.controller.attachLattice(fresh, pick(random, std::vector<std::string>{d.scene.objects().front().name,
+                                                                                   d.scene.objects().back().name}));
           break;
         }
         case 16:
@@ -206,7 +206,7 @@ TEST(DocumentUndo, AThousandRandomOperationsUndoneAndRedoneGiveTheSameFiles) {
 TEST(DocumentUndo, RenamingALatticeAndAWidgetKeepsEveryLinkKeyAndUndoStep) {
   Document d;
   const WidgetId push = smallScene(d);
-  const std::string ball = d.scene.objects.front().name;
+  const std::string ball = d.scene.objects().front().name;
   const WidgetId lattice = d.scene.latticesDeforming(ball).front();
   scenes::Keyframe key;
   key.time = 1.0;
@@ -222,7 +222,7 @@ TEST(DocumentUndo, RenamingALatticeAndAWidgetKeepsEveryLinkKeyAndUndoStep) {
   ASSERT_EQ(d.scene.attachments().size(), 1u);
   EXPECT_EQ(d.scene.attachments().front().lattice, lattice);
   EXPECT_EQ(d.scene.latticesDeforming(ball), std::vector<WidgetId>{lattice});
-  EXPECT_EQ(d.scene.animation.channels.front().widget, push);
+  EXPECT_EQ(d.scene.animation().channels.front().widget, push);
   EXPECT_NO_THROW(scenes::validateScene(d.scene));
   // The file names the renamed lattice and widget; reading it gives back the same links.
   const std::string renamed = scenes::sceneFileText(d.scene);
@@ -231,7 +231,7 @@ TEST(DocumentUndo, RenamingALatticeAndAWidgetKeepsEveryLinkKeyAndUndoStep) {
   std::istringstream in(renamed);
   const scenes::Scene reread = scenes::readScene(in, "renamed.json");
   EXPECT_EQ(reread.attachments().front().lattice, reread.widgets.find("cage"));
-  EXPECT_EQ(reread.animation.channels.front().widget, reread.widgets.find("pull"));
+  EXPECT_EQ(reread.animation().channels.front().widget, reread.widgets.find("pull"));
   EXPECT_EQ(scenes::sceneFileText(reread), renamed);
 
   // The renamed lattice still deforms the ball: a drag of the renamed widget moves it.

@@ -44,8 +44,11 @@ int main(int argc, char** argv) {
   controller.attachLattice(lattice, name);
   const double attachSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
 
-  if (argc > 3 && std::string(argv[3]) == "zebra")
-    scene.findObject(name)->display.surfaceStyle = scenes::SurfaceStyle::Zebra;
+  if (argc > 3 && std::string(argv[3]) == "zebra") {
+    scenes::DisplaySettings look = scene.findObject(name)->display;
+    look.surfaceStyle = scenes::SurfaceStyle::Zebra;
+    scene.setObjectDisplay(name, look);
+  }
 
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;

@@ -207,7 +207,7 @@ class LifecycleGuiTest : public QObject {
     ModalAnswers answers({clickButton(QMessageBox::Discard)});
     key(w, Qt::Key_N, Qt::ControlModifier);  // File > New Scene
     QCOMPARE(answers.answered(), 1);
-    QVERIFY(w.scene().objects.empty());
+    QVERIFY(w.scene().objects().empty());
     QVERIFY(w.scene().widgets.widgets().empty());
     QVERIFY(!w.isModified());
     QVERIFY(w.documentPath().empty());
@@ -227,7 +227,7 @@ class LifecycleGuiTest : public QObject {
     QCOMPARE(answers.answered(), 2);
     const scenes::Scene saved = scenes::readScene(doc);
     QCOMPARE(saved.widgets.variation(saved.widgets.find("pull")), moved);
-    QCOMPARE(w.scene().objects.front().name, std::string("torus"));  // the mirror scene is open
+    QCOMPARE(w.scene().objects().front().name, std::string("torus"));  // the mirror scene is open
     QVERIFY(!w.isModified());
   }
 
@@ -270,13 +270,13 @@ class LifecycleGuiTest : public QObject {
     clickRow(w, "sphere");
     const std::size_t steps = w.commands().position();
     key(w, Qt::Key_Delete);
-    QVERIFY(w.scene().objects.empty());
+    QVERIFY(w.scene().objects().empty());
     QVERIFY(w.scene().attachments().empty());
     QCOMPARE(w.scene().widgets.roots().size(), std::size_t(1));  // the lattice stays
     QCOMPARE(w.commands().position(), steps + 1);
     QVERIFY(w.commands().undoDescription().find("sphere") != std::string::npos);
     key(w, Qt::Key_Z, Qt::ControlModifier);
-    QCOMPARE(w.scene().objects.size(), std::size_t(1));
+    QCOMPARE(w.scene().objects().size(), std::size_t(1));
     QCOMPARE(w.scene().attachments().size(), std::size_t(1));
     QCOMPARE(w.scene().attachments().front().objects, std::vector<std::string>{"sphere"});
     // Deformed again, as before.
@@ -348,7 +348,7 @@ class LifecycleGuiTest : public QObject {
     ModalAnswers guard({clickButton(QMessageBox::Cancel)});
     action(w, "actionNewScene")->trigger();
     QCOMPARE(guard.answered(), 0);
-    QVERIFY(w.scene().objects.empty());
+    QVERIFY(w.scene().objects().empty());
   }
 
   // ---- 4. widget files ---------------------------------------------------------------------
@@ -386,7 +386,7 @@ class LifecycleGuiTest : public QObject {
     w.openScene(kExamples / "default");
     ModalAnswers primitive({[](QWidget* dialog) { qobject_cast<QDialog*>(dialog)->accept(); }});
     action(w, "actionAddPrimitive")->trigger();  // two objects, none selected
-    QCOMPARE(w.scene().objects.size(), std::size_t(2));
+    QCOMPARE(w.scene().objects().size(), std::size_t(2));
     clickRow(w, "lattice");  // a lattice selected, no object
     ModalAnswers answers({chooseFile(FFDKIT_SOURCE_DIR "/widgets/examples/fig6-9.json")});
     action(w, "actionOpenWidgetFile")->trigger();

@@ -159,7 +159,7 @@ Eigen::Index flat(int i, int j, int k) { return i + 3 * (j + 3 * k); }
 std::vector<WidgetId> buildSphereWithWidgets(MainWindow& w, const std::vector<Eigen::Index>& points) {
   std::vector<WidgetId> out;
   triggerWithDialog(w, "actionAddPrimitive");
-  if (w.scene().objects.size() != 1) return out;
+  if (w.scene().objects().size() != 1) return out;
   triggerWithDialog(w, "actionNewLattice");
   const auto roots = w.scene().widgets.roots();
   if (roots.size() != 1) return out;
@@ -204,7 +204,7 @@ class MainWindowTest : public QObject {
     const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2)});
     QCOMPARE(created.size(), std::size_t(1));
     const WidgetId arrow = created.front();
-    const std::string sphere = w.scene().objects.front().name;
+    const std::string sphere = w.scene().objects().front().name;
     QCOMPARE(w.scene().latticesDeforming(sphere).size(), std::size_t(1));
 
     // Hovering over the arrow highlights it.
@@ -389,10 +389,10 @@ class MainWindowTest : public QObject {
     const auto created = buildSphereWithWidgets(w, {flat(1, 1, 2)});
     QCOMPARE(created.size(), std::size_t(1));
     const auto& m = w.scene().widgets;
-    const std::string sphere = w.scene().objects.front().name;
+    const std::string sphere = w.scene().objects().front().name;
     const WidgetId lattice = m.latticeOf(created.front());
     dragArrow(w, created.front(), 0.3);
-    const Eigen::MatrixX3d rest = w.scene().objects.front().mesh.points;
+    const Eigen::MatrixX3d rest = w.scene().objects().front().mesh.points;
     const Eigen::MatrixX3d deformed = w.deformer().points(sphere);
     QVERIFY(maxDifference(deformed, rest) > 0.05);
     const Eigen::MatrixX3d control = m.controlPoints(lattice);
@@ -461,7 +461,7 @@ class MainWindowTest : public QObject {
     MainWindow::setBackgroundEmbedPoints(100);  // the test sphere counts as large
     triggerWithDialog(w, "actionAddPrimitive");
     triggerWithDialog(w, "actionNewLattice");
-    const std::string sphere = w.scene().objects.front().name;
+    const std::string sphere = w.scene().objects().front().name;
     const WidgetId lattice = w.scene().widgets.roots().front();
     w.controller().addAffineAtPoint({lattice, flat(1, 1, 2)}, widgets::AffineKind::Translate);
     w.controller().setVariation(w.scene().widgets.widgets(widgets::WidgetType::Affine).back(), 0.2);
@@ -479,7 +479,7 @@ class MainWindowTest : public QObject {
     model.update(w.scene());
     model.finishGesture(w.scene());
     QVERIFY(maxDifference(w.deformer().points(sphere), model.points(sphere)) < 1e-12);
-    QVERIFY(maxDifference(w.deformer().points(sphere), w.scene().objects.front().mesh.points) > 0.05);
+    QVERIFY(maxDifference(w.deformer().points(sphere), w.scene().objects().front().mesh.points) > 0.05);
     action(w, "actionUndo")->trigger();
     QVERIFY(w.scene().attachments().empty());
   }
@@ -502,7 +502,7 @@ class MainWindowTest : public QObject {
   void altDragSlidesTheLatticeOverTheObject() {
     MainWindow& w = *window_;
     QCOMPARE(buildSphereWithWidgets(w, {}).size(), std::size_t(0));
-    const std::string sphere = w.scene().objects.front().name;
+    const std::string sphere = w.scene().objects().front().name;
     const WidgetId lattice = w.scene().widgets.roots().front();
     const Eigen::MatrixX3d before = w.deformer().points(sphere);
     const Eigen::MatrixX3d latticeBefore = w.scene().widgets.worldControlPoints(lattice);
@@ -603,7 +603,7 @@ class MainWindowTest : public QObject {
     QTRY_VERIFY(allow->isChecked());
     QVERIFY(QSettings().value("allowMeshesOutsideSceneFolder").toBool());
     fresh.openScene(scene);
-    QCOMPARE(fresh.scene().objects.front().mesh.points.rows(), Eigen::Index(2));
+    QCOMPARE(fresh.scene().objects().front().mesh.points.rows(), Eigen::Index(2));
     QSettings().setValue("allowMeshesOutsideSceneFolder", false);
   }
 
@@ -629,16 +629,16 @@ class MainWindowTest : public QObject {
       QApplication::sendEvent(&w, &dropped);
     };
     drop(obj);
-    QCOMPARE(w.scene().objects.size(), std::size_t(1));
-    QCOMPARE(w.scene().objects.front().name, std::string("triangle"));
-    QCOMPARE(w.scene().objects.front().mesh.points.rows(), Eigen::Index(3));
+    QCOMPARE(w.scene().objects().size(), std::size_t(1));
+    QCOMPARE(w.scene().objects().front().name, std::string("triangle"));
+    QCOMPARE(w.scene().objects().front().mesh.points.rows(), Eigen::Index(3));
     // A widget file replaces the widgets; a scene opens.
     widgets::WidgetModel tool;
     tool.addLattice("dropped", Eigen::Vector3i(2, 3, 4));
     const QString json = dir.filePath("tool.json");
     scenes::writeWidgetFile(json.toStdString(), tool);
     drop(json);
-    QCOMPARE(w.scene().objects.size(), std::size_t(1));
+    QCOMPARE(w.scene().objects().size(), std::size_t(1));
     QCOMPARE(w.scene().widgets.counts(w.scene().widgets.find("dropped")), Eigen::Vector3i(2, 3, 4));
     // The widget file's lattice went onto the only object.
     QCOMPARE(w.scene().attachments().size(), std::size_t(1));
@@ -673,7 +673,7 @@ class MainWindowTest : public QObject {
     QVERIFY(zebra->isCheckable() && !zebra->isChecked());
     zebra->trigger();
     QVERIFY(zebra->isChecked());
-    QCOMPARE(w.scene().objects.front().display.surfaceStyle, scenes::SurfaceStyle::Zebra);
+    QCOMPARE(w.scene().objects().front().display.surfaceStyle, scenes::SurfaceStyle::Zebra);
     const QImage striped = w.view()->grabFramebuffer();
     QVERIFY(striped != shaded);
     const long dark = stripePixels(striped, app::kZebraDark, 0.1), light = stripePixels(striped, app::kZebraLight, 0.1);
@@ -693,12 +693,16 @@ class MainWindowTest : public QObject {
     QCOMPARE(w.view()->grabFramebuffer(), striped);
     action(w, "actionUndo")->trigger();  // the zebra
     QVERIFY(!zebra->isChecked());
-    QCOMPARE(w.scene().objects.front().display.surfaceStyle, scenes::SurfaceStyle::Shaded);
+    QCOMPARE(w.scene().objects().front().display.surfaceStyle, scenes::SurfaceStyle::Shaded);
     QCOMPARE(w.view()->grabFramebuffer(), shaded);
 
     w.openScene(FFDKIT_SOURCE_DIR "/scenes/examples/qi-interpolate");
     scenes::Scene plain = w.scene();
-    for (auto& o : plain.objects) o.display.curvatureComb = false;
+    for (const scenes::SceneObject& o : w.scene().objects()) {
+      scenes::DisplaySettings look = o.display;
+      look.curvatureComb = false;
+      plain.setObjectDisplay(o.name, look);
+    }
     w.setScene(plain);
     const QImage bare = w.view()->grabFramebuffer();
     QAction* comb = action(w, "actionCurvatureComb");
@@ -717,20 +721,20 @@ class MainWindowTest : public QObject {
   void stripeCountAndCombAreEditedInThePropertyPanel() {
     MainWindow& w = *window_;
     w.openScene(FFDKIT_SOURCE_DIR "/scenes/examples/sigma-spline-surface");
-    QCOMPARE(w.scene().objects.front().display.surfaceStyle, scenes::SurfaceStyle::Zebra);
+    QCOMPARE(w.scene().objects().front().display.surfaceStyle, scenes::SurfaceStyle::Zebra);
     QVERIFY(action(w, "actionZebra")->isChecked());
     clickRow(w, "torus");
     auto* stripes = w.findChild<QSpinBox*>("zebraStripes");
     QVERIFY(stripes != nullptr && stripes->isEnabled());
-    QCOMPARE(stripes->value(), w.scene().objects.front().display.zebraStripes);
+    QCOMPARE(stripes->value(), w.scene().objects().front().display.zebraStripes);
     const QImage before = w.view()->grabFramebuffer();
     stripes->setValue(3);
-    QCOMPARE(w.scene().objects.front().display.zebraStripes, 3);
+    QCOMPARE(w.scene().objects().front().display.zebraStripes, 3);
     QVERIFY(w.view()->grabFramebuffer() != before);
     auto* style = w.findChild<QComboBox*>("surfaceStyle");
     QVERIFY(style != nullptr);
     style->setCurrentIndex(0);
-    QCOMPARE(w.scene().objects.front().display.surfaceStyle, scenes::SurfaceStyle::Shaded);
+    QCOMPARE(w.scene().objects().front().display.surfaceStyle, scenes::SurfaceStyle::Shaded);
     QVERIFY(!action(w, "actionZebra")->isChecked());
     action(w, "actionUndo")->trigger();
     action(w, "actionUndo")->trigger();
@@ -744,14 +748,14 @@ class MainWindowTest : public QObject {
     QVERIFY(scale != nullptr);
     const QImage combed = w.view()->grabFramebuffer();
     scale->setValue(2.0 * scale->value());
-    QCOMPARE(w.scene().objects.front().display.combScale, 0.3);
+    QCOMPARE(w.scene().objects().front().display.combScale, 0.3);
     QVERIFY(w.view()->grabFramebuffer() != combed);
   }
 
   void aCurveIsSwitchedToALineInThePropertyPanelAndUndone() {
     MainWindow& w = *window_;
     w.openScene(FFDKIT_SOURCE_DIR "/scenes/examples/g3-curve");
-    const scenes::SceneObject& curve = w.scene().objects.front();
+    const scenes::SceneObject& curve = w.scene().objects().front();
     QVERIFY(curve.mesh.segments.rows() > 0 && curve.mesh.triangles.rows() == 0);
     QCOMPARE(curve.display.curveStyle, scenes::CurveStyle::Tube);
     clickRow(w, QString::fromStdString(curve.name));
@@ -762,7 +766,7 @@ class MainWindowTest : public QObject {
     const QString undoText = action(w, "actionUndo")->text();
     const QImage tube = w.view()->grabFramebuffer();
     style->setCurrentIndex(style->findText("line"));
-    QCOMPARE(w.scene().objects.front().display.curveStyle, scenes::CurveStyle::Line);
+    QCOMPARE(w.scene().objects().front().display.curveStyle, scenes::CurveStyle::Line);
     QVERIFY(action(w, "actionUndo")->text() != undoText);  // one undoable command
     const QImage line = w.view()->grabFramebuffer();
     QCOMPARE(line.size(), tube.size());
@@ -772,7 +776,7 @@ class MainWindowTest : public QObject {
     qInfo("curve as a line: %ld of %lld pixels changed", changed, static_cast<long long>(tube.width()) * tube.height());
     QVERIFY(changed > 500);
     action(w, "actionUndo")->trigger();
-    QCOMPARE(w.scene().objects.front().display.curveStyle, scenes::CurveStyle::Tube);
+    QCOMPARE(w.scene().objects().front().display.curveStyle, scenes::CurveStyle::Tube);
     QCOMPARE(action(w, "actionUndo")->text(), undoText);
     QCOMPARE(w.view()->grabFramebuffer(), tube);
   }
@@ -789,11 +793,13 @@ class MainWindowTest : public QObject {
       QVERIFY(!shot.isNull());
       const scenes::Scene full = w.scene();
       // For each object: the same view without it; the pixels that differ are the object's.
-      for (std::size_t i = 0; i < full.objects.size(); ++i) {
-        const scenes::SceneObject& object = full.objects[i];
+      for (std::size_t i = 0; i < full.objects().size(); ++i) {
+        const scenes::SceneObject& object = full.objects()[i];
         if (!object.display.visible) continue;
         scenes::Scene hidden = full;
-        hidden.objects[i].display.visible = false;
+        scenes::DisplaySettings look = object.display;
+        look.visible = false;
+        hidden.setObjectDisplay(object.name, look);
         w.setScene(hidden);
         const QImage bare = w.view()->grabFramebuffer();
         QCOMPARE(bare.size(), shot.size());

@@ -179,9 +179,9 @@ class NavigationGuiTest : public QObject {
     // Z up (the default): the file's coordinates as written; the import frames the object.
     QVERIFY(action(w, "actionImportZUp")->isChecked());
     dropFile(w, kColumn);
-    QCOMPARE(w.scene().objects.size(), std::size_t{1});
+    QCOMPARE(w.scene().objects().size(), std::size_t{1});
     const scenes::MeshData file = scenes::readMesh(kColumn);
-    QCOMPARE(w.scene().objects[0].mesh.points, file.points);
+    QCOMPARE(w.scene().objects()[0].mesh.points, file.points);
     expectFramed(w, w.deformer().points("y_up_column"), 0.4);
 
     // Y up: turned once as it is read; it stands on z = 0, 3 tall, its front (+z in the file)
@@ -189,8 +189,8 @@ class NavigationGuiTest : public QObject {
     action(w, "actionImportYUp")->trigger();
     QCOMPARE(QSettings().value("importUpAxis").toString(), QString("y"));
     dropFile(w, kColumn);
-    QCOMPARE(w.scene().objects.size(), std::size_t{2});
-    const scenes::SceneObject& column = w.scene().objects[1];
+    QCOMPARE(w.scene().objects().size(), std::size_t{2});
+    const scenes::SceneObject& column = w.scene().objects()[1];
     QCOMPARE(column.name, std::string("y_up_column2"));
     for (Eigen::Index i = 0; i < file.points.rows(); ++i) {
       QCOMPARE(column.mesh.points(i, 0), file.points(i, 0));
@@ -203,7 +203,7 @@ class NavigationGuiTest : public QObject {
     expectFramed(w, w.deformer().points("y_up_column2"), 0.4);
     // Undo removes it; the choice is remembered by the next window.
     action(w, "actionUndo")->trigger();
-    QCOMPARE(w.scene().objects.size(), std::size_t{1});
+    QCOMPARE(w.scene().objects().size(), std::size_t{1});
     window_.reset();
     window_ = openWindow(QSize(1100, 760));
     QVERIFY(action(*window_, "actionImportYUp")->isChecked());

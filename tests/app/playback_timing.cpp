@@ -49,10 +49,10 @@ scenes::Scene keyedSphere(int resolution) {
   const auto lattice = scenes::attachNewLattice(scene, {"sphere"}, attach);
   const auto cell = scene.widgets.addCell(lattice, widgets::CellSpec::point(1, 1, 3), "top");
   const auto pull = scene.widgets.addAffine(cell, widgets::AffineKind::Translate, "pull");
-  scene.animation.lastFrame = 48;
+  scene.setFrameRange(scene.animation().firstFrame, 48);
   for (const auto& [frame, value] : {std::pair{0, 0.0}, {24, 0.3}, {48, 0.0}}) {
     scenes::Keyframe key;
-    key.time = scenes::frameTime(scene.animation, frame);
+    key.time = scenes::frameTime(scene.animation(), frame);
     key.variation = value;
     scenes::setKey(scene, pull, scenes::ChannelKind::Variation, key);
   }
@@ -106,8 +106,8 @@ int main(int argc, char** argv) {
   const double elapsed = wall.nsecsElapsed() * 1e-9;
   const auto& stats = window.deformer().lastStats();
   std::printf("points %lld, played %.1f s at %g fps: %d timeline frames (%.1f fps), %d view paints (%.1f fps)\n",
-              static_cast<long long>(window.scene().objects.front().mesh.points.rows()), elapsed,
-              window.scene().animation.framesPerSecond, timeline->playedFrames(), timeline->playedFrames() / elapsed,
+              static_cast<long long>(window.scene().objects().front().mesh.points.rows()), elapsed,
+              window.scene().animation().framesPerSecond, timeline->playedFrames(), timeline->playedFrames() / elapsed,
               paints.paints - paintsBefore, (paints.paints - paintsBefore) / elapsed);
   std::printf("event loop: a 50 ms timer fired late by %.0f ms on average, %.0f ms at worst (%d ticks)\n",
               probes > 1 ? sumLate / (probes - 1) : 0.0, worstLate, probes);

@@ -39,7 +39,7 @@ class TimelineGuiTest : public QObject {
     QVERIFY(timeline);
     QWidget* bar = w->findChild<QWidget*>("timelineBar");
     QVERIFY(bar && bar->isVisible());
-    const scenes::Animation& a = scene.animation;
+    const scenes::Animation& a = scene.animation();
     QCOMPARE(a.lastFrame, 72);
 
     // Scrub with the mouse to frame 12: between the keys 0 (frame 0) and 0.5 (frame 24), both

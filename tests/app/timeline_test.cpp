@@ -25,14 +25,14 @@ TEST(Timeline, InsertAndDeleteKeyAreOneDeltaCommandEach) {
   const auto lattice = d.scene.widgets.find("lattice");
   d.controller.setSelection({pull, lattice});
   d.timeline.setFrame(10);
-  EXPECT_EQ(d.scene.widgets.variation(pull), scenes::evaluateVariation(d.scene.animation.channels[0].keys, 10.0 / 24));
+  EXPECT_EQ(d.scene.widgets.variation(pull), scenes::evaluateVariation(d.scene.animation().channels[0].keys, 10.0 / 24));
   d.scene.widgets.setVariation(pull, 0.7);
   const std::string before = scenes::sceneFileText(d.scene);
   EXPECT_EQ(d.timeline.insertKeys(), 2);  // pull's variation, the lattice's frame
   EXPECT_EQ(d.commands.size(), 1u);
   EXPECT_LT(d.commands.bytes(), 2000u);  // two keys, not a document
-  EXPECT_EQ(scenes::keyAt(d.scene.animation, pull, ChannelKind::Variation, 10.0 / 24)->variation, 0.7);
-  EXPECT_TRUE(scenes::keyAt(d.scene.animation, lattice, ChannelKind::LatticeFrame, 10.0 / 24));
+  EXPECT_EQ(scenes::keyAt(d.scene.animation(), pull, ChannelKind::Variation, 10.0 / 24)->variation, 0.7);
+  EXPECT_TRUE(scenes::keyAt(d.scene.animation(), lattice, ChannelKind::LatticeFrame, 10.0 / 24));
   EXPECT_EQ(d.timeline.keyFrames(), (std::vector<double>{0, 10, 24, 48, 72}));
   d.commands.undo();
   EXPECT_EQ(scenes::sceneFileText(d.scene), before);

@@ -25,11 +25,11 @@ TEST(CliExport, AFrameIsTheLibrarysDeformationAsFloat32) {
   scenes::Scene scene = scenes::readScene(kExamples / "press");
   // No --frame: the scene as saved, then --set on top.
   scene.widgets.setVariation(scene.widgets.find("handle"), 2.0);
-  const Eigen::MatrixX3d exact = scenes::deformScene(scene).at(scene.objects.at(0).name);
+  const Eigen::MatrixX3d exact = scenes::deformScene(scene).at(scene.objects().at(0).name);
   const scenes::MeshData read = scenes::readMesh(out);  // ffdkit's own (validating) glTF reader
   ASSERT_EQ(read.points.rows(), exact.rows());
   EXPECT_EQ(read.points, exact.cast<float>().cast<double>());
-  EXPECT_EQ(read.triangles, scene.objects.at(0).mesh.triangles);
+  EXPECT_EQ(read.triangles, scene.objects().at(0).mesh.triangles);
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"press.glb"});  // no temporary left
 }
 

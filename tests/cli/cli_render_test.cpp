@@ -49,7 +49,7 @@ TEST(CliRender, AMissingSceneFailsAndWritesNothing) {
 TEST(CliPlot, ANonCurveObjectOrUnknownGeneratorIsAClearError) {
   TempDir dir;
   const fs::path scene = kSource / "scenes" / "examples" / "default";
-  const std::string object = scenes::readScene(scene).objects.front().name;
+  const std::string object = scenes::readScene(scene).objects().front().name;
   const CliResult primitive = runCli({"plot", scene.string(), "--object", object, "-o", (dir / "p.png").string()});
   EXPECT_EQ(primitive.exitCode, 1) << describe(primitive);
   EXPECT_NE(primitive.err.find("not a generated curve"), std::string::npos) << primitive.err;
@@ -89,7 +89,7 @@ TEST(CliPlot, PlotsEveryGeneratedCurveOfTheSampleScenesAndRefusesSurfaces) {
   for (const auto& entry : fs::directory_iterator(kSource / "scenes" / "examples")) {
     if (!entry.is_directory()) continue;
     const scenes::Scene scene = scenes::readScene(entry.path());
-    for (const auto& object : scene.objects) {
+    for (const auto& object : scene.objects()) {
       const auto* generated = std::get_if<scenes::GeneratedSource>(&object.source);
       if (!generated) continue;
       const fs::path png = dir / (object.name + ".png");

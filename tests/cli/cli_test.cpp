@@ -43,7 +43,7 @@ Eigen::MatrixX3d libraryDeform(const widgets::WidgetModel& model, const MeshData
   scenes::SceneObject object;
   object.name = "input";
   object.mesh = mesh;
-  scene.objects.push_back(object);
+  scene.addObject(object);
   for (auto root : model.roots()) scene.attach(root, "input");
   return scenes::deformScene(scene).at("input");
 }
@@ -211,7 +211,7 @@ TEST(CliDeform, SeveralInputsGoIntoAFolderAndAScenesObjectsToo) {
   ASSERT_EQ(s.exitCode, 0) << describe(s);
   const scenes::Scene scene = scenes::readScene(press);
   const auto expected = scenes::deformScene(scene);
-  EXPECT_LT(maxDifference(scenes::readMesh(dir / "press.vtp").points, expected.at(scene.objects.front().name)), 1e-12);
+  EXPECT_LT(maxDifference(scenes::readMesh(dir / "press.vtp").points, expected.at(scene.objects().front().name)), 1e-12);
 }
 
 TEST(CliDeform, AScenesLatticesDeformInputFilesWhereTheyLie) {

@@ -85,7 +85,7 @@ TEST(GltfExport, FrameHoldsTheDeformedMeshAsFloat32ReadByTinygltfAndVtk) {
     const auto exact = exactAt(scene, animation, 0.75);
     const tinygltf::Model model = readGlb(path);
     test::expectValidStructure(model);
-    for (const auto& object : scene.objects) {
+    for (const auto& object : scene.objects()) {
       const auto& mesh = model.meshes.at(std::size_t(model.nodes.at(std::size_t(nodeNamed(model, object.name))).mesh));
       const Eigen::MatrixXd positions = accessorRows(model, mesh.primitives.at(0).attributes.at("POSITION"));
       const Eigen::MatrixX3d& points = exact.at(object.name);
@@ -116,7 +116,7 @@ TEST(GltfExport, FrameHoldsTheDeformedMeshAsFloat32ReadByTinygltfAndVtk) {
     for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem()) {
       auto* poly = vtkPolyData::SafeDownCast(it->GetCurrentDataObject());
       if (!poly) continue;
-      const Eigen::MatrixX3d& points = exact.at(scene.objects.at(0).name);
+      const Eigen::MatrixX3d& points = exact.at(scene.objects().at(0).name);
       ASSERT_EQ(poly->GetNumberOfPoints(), points.rows()) << name;
       for (vtkIdType v = 0; v < poly->GetNumberOfPoints(); v += 7) {
         double p[3];
@@ -145,7 +145,7 @@ TEST(GltfExport, MorphTargetsReproduceEveryKeyExactlyToFloat32) {
       EXPECT_EQ(report.interpolation, interpolation == KeyInterpolation::Constant ? "STEP" : "LINEAR");
       const tinygltf::Model model = readGlb(path);
       test::expectValidStructure(model);
-      const auto& object = scene.objects.at(0);
+      const auto& object = scene.objects().at(0);
       const auto& mesh = model.meshes.at(std::size_t(model.nodes.at(std::size_t(nodeNamed(model, object.name))).mesh));
       const auto& primitive = mesh.primitives.at(0);
       ASSERT_EQ(primitive.targets.size(), 3u);
@@ -242,7 +242,7 @@ double checkSkinAgainstFile(const scenes::Scene& scene, const AnimationSource& a
     const double t = report.samples.at(std::size_t(s)).time;
     EXPECT_EQ(times(s, 0), double(float(t)));
     const auto exact = exactAt(scene, animation, t);
-    for (const auto& object : scene.objects) {
+    for (const auto& object : scene.objects()) {
       const int node = nodeNamed(model, object.name);
       const Eigen::MatrixX3d skinned = skinnedFromFile(model, node, s);
       const double error = (skinned - exact.at(object.name)).rowwise().norm().maxCoeff();
@@ -282,7 +282,7 @@ TEST(GltfExport, SkinErrorRecomputedFromTheFileIsWithinTheReportedBoundOnEverySa
       // Honest, not loose: the file's worst error is the reported one (same data, same formula).
       EXPECT_GE(worst, report.maxError * (1 - 1e-6) - 1e-12) << name;
       // At the bind key (rest) every skin is exact to float32.
-      EXPECT_LE(report.samples.front().error4, roundingBound(scene.objects[0].mesh.points) * 4) << name;
+      EXPECT_LE(report.samples.front().error4, roundingBound(scene.objects()[0].mesh.points) * 4) << name;
     }
   }
 }
@@ -300,7 +300,7 @@ TEST(GltfExport, ASingleStageSkinWithTheWholeWindowIsExactToFloat32) {
   const GltfExportReport report = exportGltf(scene, animation, dir / "press.glb", options);
   for (const auto& sample : report.samples) {
     EXPECT_LT(sample.linearError, 1e-12);
-    EXPECT_LT(sample.error8, 8 * roundingBound(scene.objects[0].mesh.points));
+    EXPECT_LT(sample.error8, 8 * roundingBound(scene.objects()[0].mesh.points));
   }
   checkSkinAgainstFile(scene, animation, dir / "press.glb", report);
 }
@@ -396,7 +396,7 @@ TEST(GltfExport, VtksGltfPlayerShowsTheSkinAndTheMorphTargetsWithinTheReportedEr
   TempFolder dir;
   const scenes::Scene scene = sample("mirror");
   const AnimationSource animation = test::scaledVariations(scene);
-  const std::string object = scene.objects.at(0).name;
+  const std::string object = scene.objects().at(0).name;
   GltfExportOptions options;
   options.content = GltfContent::Skin;
   options.joints = 4;  // VTK 9.1 plays an 8-joint skin with JOINTS_0 / WEIGHTS_0 only (seen: its error is k = 4s)
@@ -406,7 +406,7 @@ TEST(GltfExport, VtksGltfPlayerShowsTheSkinAndTheMorphTargetsWithinTheReportedEr
   options.content = GltfContent::Morph;
   const GltfExportReport morph = exportGltf(scene, animation, dir / "morph.glb", options);
   // VTK evaluates in float32: a few ulps of the coordinates on top of the file's own error.
-  const double player = 8.0 * roundingBound(scene.objects.at(0).mesh.points);
+  const double player = 8.0 * roundingBound(scene.objects().at(0).mesh.points);
   for (const double t : animation.keyTimes) {
     const Eigen::MatrixX3d exact = exactAt(scene, animation, t).at(object);
     const Eigen::MatrixX3d skinned = vtkPlayed(dir / "skin.glb", t);
@@ -430,12 +430,12 @@ TEST(SceneAnimation, TheKeyedSamplesExportAsMorphTargetsAndSkinsWithinTheirRepor
     const scenes::Scene scene = sample(name);
     const AnimationSource animation = sceneAnimation(scene);
     ASSERT_GE(animation.keyTimes.size(), 2u) << name;
-    EXPECT_EQ(animation.frameRate, scene.animation.framesPerSecond);
+    EXPECT_EQ(animation.frameRate, scene.animation().framesPerSecond);
     GltfExportOptions options;
     options.content = GltfContent::Morph;
     const GltfExportReport morph = exportGltf(scene, animation, dir / "morph.glb", options);
     EXPECT_EQ(std::size_t(morph.morphTargets), animation.keyTimes.size());
-    EXPECT_LE(morph.maxError, 2.0 * roundingBound(scene.objects[0].mesh.points) * 4);
+    EXPECT_LE(morph.maxError, 2.0 * roundingBound(scene.objects()[0].mesh.points) * 4);
     options.content = GltfContent::Skin;
     options.tolerance = 10.0;
     options.raiseJoints = false;
@@ -509,7 +509,7 @@ double largestLinearError(const GltfExportReport& report) {
 
 TEST(GltfExport, OutsidePoliciesAndKeyedFramesAreMeasuredNotAssumed) {
   TempFolder dir;
-  const double rounding = 8 * roundingBound(sample("press").objects[0].mesh.points);
+  const double rounding = 8 * roundingBound(sample("press").objects()[0].mesh.points);
   for (const ffd::OutsidePolicy policy :
        {ffd::OutsidePolicy::falloff(0.2), ffd::OutsidePolicy::clampEdge(), ffd::OutsidePolicy::extrapolate()}) {
     scenes::Scene scene = shrunkPress();

@@ -14,9 +14,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.baseDirectory = "/nonexistent-ffdkit-fuzz-folder";
   try {
     ffdkit::scenes::Scene scene = ffdkit::scenes::readScene(in, "fuzz", options);
-    ffdkit::scenes::applyAnimationFrame(scene, scene.animation.firstFrame);
+    ffdkit::scenes::applyAnimationFrame(scene, scene.animation().firstFrame);
     for (double t : ffdkit::scenes::keyTimes(scene)) ffdkit::scenes::applyAnimation(scene, t);
-    ffdkit::scenes::applyAnimationFrame(scene, scene.animation.lastFrame);
+    ffdkit::scenes::applyAnimationFrame(scene, scene.animation().lastFrame);
   } catch (const std::runtime_error&) {
   } catch (const std::invalid_argument&) {
   }

@@ -21,7 +21,9 @@ const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
 // A sample scene without the keys it ships with.
 Scene sample(const char* name) {
   Scene scene = readScene(kExamples / name);
-  scene.animation.channels.clear();
+  scene.setAnimation(Animation{.framesPerSecond = scene.animation().framesPerSecond,
+                               .firstFrame = scene.animation().firstFrame,
+                               .lastFrame = scene.animation().lastFrame});
   return scene;
 }
 
@@ -117,7 +119,7 @@ TEST(Animation, EvaluationPropagatesBindingsAsADragDoes) {
   setKey(scene, a, ChannelKind::Variation, k1);
 
   widgets::WidgetModel dragged = start.widgets;  // the same value reached by a drag
-  const double value = evaluateVariation(scene.animation.channels.front().keys, 0.4);
+  const double value = evaluateVariation(scene.animation().channels.front().keys, 0.4);
   dragged.beginGesture(a);
   dragged.updateGesture(value - dragged.variation(a));
   dragged.endGesture();
@@ -186,11 +188,11 @@ TEST(Animation, SetKeyReplacesAtTheSameTimeAndRemoveKeyDropsEmptyChannels) {
   const auto replaced = setKey(scene, pull, ChannelKind::Variation, scalarKey(1.0 + 1e-12, 0.2, Interpolation::Linear));
   ASSERT_TRUE(replaced);
   EXPECT_EQ(replaced->variation, 0.1);
-  ASSERT_EQ(scene.animation.channels.size(), 1u);
-  EXPECT_EQ(scene.animation.channels[0].keys.size(), 1u);
+  ASSERT_EQ(scene.animation().channels.size(), 1u);
+  EXPECT_EQ(scene.animation().channels[0].keys.size(), 1u);
   EXPECT_FALSE(removeKey(scene, pull, ChannelKind::Variation, 2.0));
   EXPECT_EQ(removeKey(scene, pull, ChannelKind::Variation, 1.0)->variation, 0.2);
-  EXPECT_TRUE(scene.animation.channels.empty());
+  EXPECT_TRUE(scene.animation().channels.empty());
 }
 
 TEST(Animation, RefusesBadKeysWithClearErrors) {
@@ -220,7 +222,7 @@ TEST(Animation, RefusesBadKeysWithClearErrors) {
   EXPECT_NE(message([&] { setKey(scene, lattice, ChannelKind::LatticeFrame, flat); }).find("finite and invertible"),
             std::string::npos);
   EXPECT_NE(message([&] { applyAnimation(scene, INFINITY); }).find("must be finite"), std::string::npos);
-  EXPECT_TRUE(scene.animation.channels.empty());
+  EXPECT_TRUE(scene.animation().channels.empty());
 }
 
 TEST(Animation, AChildLatticeThatMovesItsParentCellCannotKeyItsFrame) {
@@ -239,16 +241,15 @@ Scene animatedDefault() {
   Scene scene = sample("default");
   const WidgetId pull = scene.widgets.find("pull");
   const WidgetId lattice = scene.widgets.find("lattice");
-  scene.animation.framesPerSecond = 30.0;
-  scene.animation.firstFrame = -5;
-  scene.animation.lastFrame = 90;
-  setKey(scene, pull, ChannelKind::Variation, scalarKey(frameTime(scene.animation, 0), 0.0, Interpolation::Smooth));
-  setKey(scene, pull, ChannelKind::Variation, scalarKey(frameTime(scene.animation, 7), 0.1 + 0.2, Interpolation::Constant));
-  setKey(scene, pull, ChannelKind::Variation, scalarKey(frameTime(scene.animation, 61), -1.0 / 3.0, Interpolation::Linear));
-  Keyframe frame = currentKey(scene, lattice, ChannelKind::LatticeFrame, frameTime(scene.animation, 11));
+  scene.setFrameRate(30.0);
+  scene.setFrameRange(-5, 90);
+  setKey(scene, pull, ChannelKind::Variation, scalarKey(frameTime(scene.animation(), 0), 0.0, Interpolation::Smooth));
+  setKey(scene, pull, ChannelKind::Variation, scalarKey(frameTime(scene.animation(), 7), 0.1 + 0.2, Interpolation::Constant));
+  setKey(scene, pull, ChannelKind::Variation, scalarKey(frameTime(scene.animation(), 61), -1.0 / 3.0, Interpolation::Linear));
+  Keyframe frame = currentKey(scene, lattice, ChannelKind::LatticeFrame, frameTime(scene.animation(), 11));
   frame.frame = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()) * frame.frame;
   setKey(scene, lattice, ChannelKind::LatticeFrame, frame);
-  Keyframe points = currentKey(scene, lattice, ChannelKind::ControlPoints, frameTime(scene.animation, 13), Interpolation::Linear);
+  Keyframe points = currentKey(scene, lattice, ChannelKind::ControlPoints, frameTime(scene.animation(), 13), Interpolation::Linear);
   points.points(4, 1) += 1e-7;
   setKey(scene, lattice, ChannelKind::ControlPoints, points);
   return scene;
@@ -261,14 +262,14 @@ TEST(AnimationFile, KeysRoundTripByteForByte) {
   std::istringstream in(text);
   const Scene again = readScene(in, "animated.json", {.baseDirectory = kExamples / "default"});
   EXPECT_EQ(sceneFileText(again), text);
-  ASSERT_EQ(again.animation.channels.size(), scene.animation.channels.size());
-  for (std::size_t c = 0; c < scene.animation.channels.size(); ++c) {
-    EXPECT_EQ(again.animation.channels[c].kind, scene.animation.channels[c].kind);
-    EXPECT_TRUE(again.animation.channels[c].keys == scene.animation.channels[c].keys);
+  ASSERT_EQ(again.animation().channels.size(), scene.animation().channels.size());
+  for (std::size_t c = 0; c < scene.animation().channels.size(); ++c) {
+    EXPECT_EQ(again.animation().channels[c].kind, scene.animation().channels[c].kind);
+    EXPECT_TRUE(again.animation().channels[c].keys == scene.animation().channels[c].keys);
   }
-  EXPECT_EQ(again.animation.framesPerSecond, 30.0);
-  EXPECT_EQ(again.animation.firstFrame, -5);
-  EXPECT_EQ(again.animation.lastFrame, 90);
+  EXPECT_EQ(again.animation().framesPerSecond, 30.0);
+  EXPECT_EQ(again.animation().firstFrame, -5);
+  EXPECT_EQ(again.animation().lastFrame, 90);
 }
 
 std::string errorOf(const std::string& text) {
@@ -337,7 +338,7 @@ TEST(AnimationFile, VersionOneFilesStillLoad) {
     SCOPED_TRACE(entry.path().filename().string());
     std::istringstream stream(text);
     const Scene scene = readScene(stream, entry.path().string(), {.baseDirectory = entry.path().parent_path()});
-    EXPECT_TRUE(scene.animation.empty());
+    EXPECT_TRUE(scene.animation().empty());
     EXPECT_NE(sceneFileText(scene).find("\"version\": 2"), std::string::npos);
     ++read;
   }
@@ -351,7 +352,7 @@ TEST(AnimationFile, VersionTwoFuzzSeedsLoadAndEvaluate) {
     if (entry.path().filename().string().find("-v2") == std::string::npos) continue;
     SCOPED_TRACE(entry.path().filename().string());
     Scene scene = readScene(entry.path());
-    ASSERT_FALSE(scene.animation.empty());
+    ASSERT_FALSE(scene.animation().empty());
     for (double t : keyTimes(scene)) applyAnimation(scene, t);
     ++read;
   }

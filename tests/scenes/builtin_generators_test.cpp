@@ -47,8 +47,8 @@ std::string fileText(const std::filesystem::path& path) {
 // The generated source of a sample scene's only object.
 GeneratedSource sampleSource(const std::string& folder) {
   const Scene scene = readScene(kExamples / folder);
-  EXPECT_EQ(scene.objects.size(), 1u);
-  return std::get<GeneratedSource>(scene.objects.front().source);
+  EXPECT_EQ(scene.objects().size(), 1u);
+  return std::get<GeneratedSource>(scene.objects().front().source);
 }
 
 // Message of the GeneratorError that generating raises ("" if none).
@@ -416,9 +416,9 @@ TEST(BuiltinGenerators, CurvesHaveCurvatureProfilesAndSurfacesDoNot) {
 TEST(BuiltinGenerators, ClothoidApproximationFollowsTheG3Curve) {
   // Seed 002 Fig. 5 (docs/geometry-g3.md): length about 74.6084 for both.
   const Scene scene = readScene(kExamples / "g3-clothoids");
-  ASSERT_EQ(scene.objects.size(), 2u);
+  ASSERT_EQ(scene.objects().size(), 2u);
   std::vector<double> lengths;
-  for (const auto& object : scene.objects) {
+  for (const auto& object : scene.objects()) {
     const auto& source = std::get<GeneratedSource>(object.source);
     const CurvatureProfile profile = builtinGenerators().profile(source.generator, source.parameters, source.density);
     lengths.push_back(profile.arcLength(profile.arcLength.size() - 1));
@@ -441,9 +441,9 @@ TEST(BuiltinGenerators, EveryGeneratorHasAWorkingExampleInItsDocumentation) {
                           generatorObject + "}]}");
     try {
       const Scene scene = readScene(in, "docs/generators.md");
-      const auto& source = std::get<GeneratedSource>(scene.objects.at(0).source);
+      const auto& source = std::get<GeneratedSource>(scene.objects().at(0).source);
       documented.push_back(source.generator);
-      EXPECT_GT(scene.objects[0].mesh.points.rows(), 16) << source.generator;
+      EXPECT_GT(scene.objects()[0].mesh.points.rows(), 16) << source.generator;
     } catch (const std::exception& e) {
       ADD_FAILURE() << generatorObject << ": " << e.what();
     }
@@ -466,7 +466,7 @@ TEST(BuiltinGenerators, EveryGeneratedSampleSceneLoadsDeformsAndRoundTrips) {
     deformer.update(scene);
     deformer.finishGesture(scene);
     EXPECT_EQ(deformer.lastStats().failedPoints, 0);
-    for (const auto& object : scene.objects) {
+    for (const auto& object : scene.objects()) {
       const Eigen::MatrixX3d& points = deformer.points(object.name);
       EXPECT_TRUE(points.allFinite());
       EXPECT_GT((points - object.mesh.points).cwiseAbs().maxCoeff(), 1e-3 * diagonal(object.mesh.points))

@@ -101,7 +101,7 @@ std::set<std::string> stampsMovedBy(Scene& scene, const std::function<void()>& e
   if (scene.cameraRevision() > before) moved.insert("camera");
   if (scene.animationRevision() > before) moved.insert("animation");
   if (scene.widgets.revision() != widgetsBefore) moved.insert("widgets");
-  for (const SceneObject& o : scene.objects) {
+  for (const SceneObject& o : scene.objects()) {
     if (o.meshRevision > before) moved.insert("mesh:" + o.name);
     if (o.displayRevision > before) moved.insert("look:" + o.name);
   }
@@ -117,7 +117,15 @@ TEST(SceneRevisions, EachEditBumpsExactlyTheRevisionsItShould) {
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.addObject(sphere("a")); }), (Stamps{"structure", "mesh:a", "look:a"}));
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.addObject(sphere("b")); }), (Stamps{"structure", "mesh:b", "look:b"}));
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setObjectMesh("a", sphere("a", 6).mesh); }), Stamps{"mesh:a"});
-  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.touchMesh("b"); }), Stamps{"mesh:b"});
+  const PrimitiveOptions cube{.kind = PrimitiveKind::Cube};
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setObjectMesh("b", buildObjectMesh(cube, "."), cube); }), Stamps{"mesh:b"});
+  EXPECT_EQ(std::get<PrimitiveOptions>(scene.findObject("b")->source).kind, PrimitiveKind::Cube);
+  SceneObject taken;
+  EXPECT_EQ(stampsMovedBy(scene, [&] { taken = scene.takeObject("b"); }), Stamps{"structure"});
+  EXPECT_EQ(taken.name, "b");
+  EXPECT_EQ(scene.findObject("b"), nullptr);
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.insertObject(0, std::move(taken)); }), (Stamps{"structure", "mesh:b", "look:b"}));
+  EXPECT_EQ(scene.objects().front().name, "b");
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setObjectDisplay("b", DisplaySettings{.opacity = 0.5}); }), Stamps{"look:b"});
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setCamera(Camera{.viewAngleDegrees = 40.0}); }), Stamps{"camera"});
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setBackground({1.0, 1.0, 1.0}); }), Stamps{"camera"});
@@ -135,13 +143,14 @@ TEST(SceneRevisions, EachEditBumpsExactlyTheRevisionsItShould) {
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setAttachments(attached); }), Stamps{"structure"});
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.renameObject("a", "c"); }), Stamps{"structure"});
   EXPECT_EQ(scene.attachments().front().objects, std::vector<std::string>{"c"});  // the link follows
-  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.touchStructure(); }), Stamps{"structure"});
 
   Keyframe key;
   key.frame = scene.widgets.latticeFrame(lattice);
   EXPECT_EQ(stampsMovedBy(scene, [&] { setKey(scene, lattice, ChannelKind::LatticeFrame, key); }), Stamps{"animation"});
   EXPECT_EQ(stampsMovedBy(scene, [&] { removeKey(scene, lattice, ChannelKind::LatticeFrame, 0.0); }), Stamps{"animation"});
-  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.touchAnimation(); }), Stamps{"animation"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setFrameRate(30.0); }), Stamps{"animation"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setFrameRange(-2, 48); }), Stamps{"animation"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setAnimation(Animation{}); }), Stamps{"animation"});
 
   // The widget model's edits are its own: the scene's revisions stay.
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.widgets.setLatticeCounts(lattice, {4, 4, 4}); }), Stamps{"widgets"});
@@ -165,7 +174,7 @@ TEST(SceneChanges, EditsRefuseUnknownAndDuplicateObjects) {
   EXPECT_THROW(scene.addObject(sphere("a")), std::invalid_argument);
   EXPECT_THROW(scene.setObjectDisplay("nope", {}), std::invalid_argument);
   EXPECT_THROW(scene.removeObject("nope"), std::invalid_argument);
-  EXPECT_THROW(scene.touchMesh("nope"), std::invalid_argument);
+  EXPECT_THROW(scene.setObjectMesh("nope", {}), std::invalid_argument);
 }
 
 TEST(LatticeFit, PadsByTheDiagonalAndGivesFlatBoxesTheMinimumThickness) {

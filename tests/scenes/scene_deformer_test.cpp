@@ -29,7 +29,7 @@ Scene sphereScene() {
   sphere.name = "sphere";
   sphere.source = PrimitiveOptions{.kind = PrimitiveKind::Sphere, .resolution = 16};
   sphere.mesh = buildObjectMesh(sphere.source, ".");
-  scene.objects.push_back(sphere);
+  scene.addObject(sphere);
   return scene;
 }
 
@@ -37,7 +37,7 @@ TEST(SceneDeformer, AnObjectWithNoLatticeKeepsItsPoints) {
   const Scene scene = sphereScene();
   SceneDeformer deformer;
   deformer.update(scene);
-  EXPECT_EQ(deformer.points("sphere"), scene.objects[0].mesh.points);
+  EXPECT_EQ(deformer.points("sphere"), scene.objects()[0].mesh.points);
 }
 
 TEST(SceneDeformer, AttachedLatticeAtRestReproducesThePoints) {
@@ -45,7 +45,7 @@ TEST(SceneDeformer, AttachedLatticeAtRestReproducesThePoints) {
   attachNewLattice(scene, {"sphere"}, withCounts(4, 3, 5));
   SceneDeformer deformer;
   deformer.update(scene);
-  EXPECT_LE((deformer.points("sphere") - scene.objects[0].mesh.points).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LE((deformer.points("sphere") - scene.objects()[0].mesh.points).cwiseAbs().maxCoeff(), 1e-12);
 }
 
 TEST(SceneDeformer, MovingEveryControlPointAffinelyMovesTheObjectAffinely) {
@@ -64,7 +64,7 @@ TEST(SceneDeformer, MovingEveryControlPointAffinelyMovesTheObjectAffinely) {
   const Eigen::Affine3d world = frame * local * frame.inverse();
   const Eigen::MatrixX3d& deformed = deformer.points("sphere");
   for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
-    const Eigen::Vector3d expected = world * Eigen::Vector3d(scene.objects[0].mesh.points.row(i));
+    const Eigen::Vector3d expected = world * Eigen::Vector3d(scene.objects()[0].mesh.points.row(i));
     EXPECT_LE((Eigen::Vector3d(deformed.row(i)) - expected).norm(), 1e-12) << "point " << i;
   }
   EXPECT_EQ(deformer.lastStats().reembeddedStages, 0) << "an edit of control points must not re-embed";
@@ -80,10 +80,10 @@ TEST(SceneDeformer, DetachRestoresTheObjectsOwnPoints) {
   scene.widgets.setControlPoints(lattice, points);
   SceneDeformer deformer;
   deformer.update(scene);
-  EXPECT_GT((deformer.points("sphere") - scene.objects[0].mesh.points).cwiseAbs().maxCoeff(), 0.1);
+  EXPECT_GT((deformer.points("sphere") - scene.objects()[0].mesh.points).cwiseAbs().maxCoeff(), 0.1);
   scene.detach(lattice, "sphere");
   deformer.update(scene);
-  EXPECT_EQ(deformer.points("sphere"), scene.objects[0].mesh.points);
+  EXPECT_EQ(deformer.points("sphere"), scene.objects()[0].mesh.points);
   EXPECT_THROW(scene.detach(lattice, "sphere"), std::invalid_argument);
 }
 
@@ -95,7 +95,7 @@ TEST(SceneDeformer, HierarchyRunsParentThenChild) {
   // alone.
   const Scene scene = readScene(kExamples / "hierarchy");
   const auto deformed = deformScene(scene);
-  const SceneObject& column = scene.objects.at(0);
+  const SceneObject& column = scene.objects().at(0);
   const Eigen::MatrixX3d& out = deformed.at(column.name);
   const ffd::Lattice parent = scene.widgets.ffdLattice(scene.widgets.find("parent"));
   const ffd::Lattice child = scene.widgets.ffdLattice(scene.widgets.find("child"));
@@ -217,7 +217,7 @@ TEST(SceneDeformer, CylindricalLatticeEmbedsTheWholeCylinderIncludingItsAxis) {
   EXPECT_EQ(deformer.lastStats().outsidePoints, 0);
   EXPECT_EQ(deformer.lastStats().failedPoints, 0);
   // The top cap is turned by the twist: its rim points moved, its centre stays on the axis.
-  const SceneObject& cylinder = scene.objects.at(0);
+  const SceneObject& cylinder = scene.objects().at(0);
   const Eigen::MatrixX3d& out = deformer.points(cylinder.name);
   for (Eigen::Index i = 0; i < out.rows(); ++i) {
     const Eigen::Vector3d q = cylinder.mesh.points.row(i);
@@ -235,7 +235,7 @@ TEST(SceneDeformer, EverySampleSceneDeformsToFinitePoints) {
     deformer.update(scene);
     deformer.finishGesture(scene);
     EXPECT_EQ(deformer.lastStats().failedPoints, 0);
-    for (const auto& object : scene.objects) {
+    for (const auto& object : scene.objects()) {
       const Eigen::MatrixX3d& points = deformer.points(object.name);
       EXPECT_TRUE(points.allFinite());
       EXPECT_GT((points - object.mesh.points).cwiseAbs().maxCoeff(), 1e-3) << "the sample should show a deformation";
@@ -250,17 +250,17 @@ Scene largeScene(Eigen::Index n) {
   Scene scene = readScene(kExamples / "hierarchy");
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> U(0.0, 1.0);
-  Eigen::MatrixX3d& column = scene.objects.at(0).mesh.points;
-  const Eigen::Vector3d lo = column.colwise().minCoeff();
-  const Eigen::Vector3d hi = column.colwise().maxCoeff();
-  Eigen::MatrixX3d random(n, 3);
+  MeshData column = scene.objects().at(0).mesh;
+  const Eigen::Vector3d lo = column.points.colwise().minCoeff();
+  const Eigen::Vector3d hi = column.points.colwise().maxCoeff();
+  column.points.resize(n, 3);
   for (Eigen::Index r = 0; r < n; ++r)
-    for (int c = 0; c < 3; ++c) random(r, c) = lo[c] + (hi[c] - lo[c]) * U(rng);
-  column = random;
-  SceneObject extra = scene.objects.at(0);
+    for (int c = 0; c < 3; ++c) column.points(r, c) = lo[c] + (hi[c] - lo[c]) * U(rng);
+  scene.setObjectMesh(scene.objects().at(0).name, std::move(column));
+  SceneObject extra = scene.objects().at(0);
   extra.name = "extra";
   extra.mesh.points.col(0).array() += 2.0 * (hi[0] - lo[0]);
-  scene.objects.push_back(extra);
+  scene.addObject(extra);
   AttachOptions box = withCounts(3, 3, 3);
   box.latticeName = "extra-box";
   const auto lattice = attachNewLattice(scene, {"extra"}, box);
@@ -271,7 +271,7 @@ Scene largeScene(Eigen::Index n) {
 }
 
 void expectSamePoints(const SceneDeformer& a, const SceneDeformer& b, const Scene& scene) {
-  for (const auto& object : scene.objects) EXPECT_EQ(a.points(object.name), b.points(object.name)) << object.name;
+  for (const auto& object : scene.objects()) EXPECT_EQ(a.points(object.name), b.points(object.name)) << object.name;
 }
 
 TEST(SceneDeformerProgress, GoesFromZeroToOneOverEveryObjectAndStageOnTheCallingThread) {

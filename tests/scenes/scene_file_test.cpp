@@ -44,8 +44,8 @@ TEST(SceneFile, LoadingReproducesControlPointsAndObjects) {
     const Scene scene = readScene(kExamples / name);
     std::istringstream again(sceneFileText(scene));
     const Scene copy = readScene(again, "copy", {.baseDirectory = kExamples / name});
-    ASSERT_EQ(copy.objects.size(), scene.objects.size());
-    for (std::size_t o = 0; o < scene.objects.size(); ++o) EXPECT_EQ(copy.objects[o].mesh.points, scene.objects[o].mesh.points);
+    ASSERT_EQ(copy.objects().size(), scene.objects().size());
+    for (std::size_t o = 0; o < scene.objects().size(); ++o) EXPECT_EQ(copy.objects()[o].mesh.points, scene.objects()[o].mesh.points);
     for (auto lattice : scene.widgets.widgets(widgets::WidgetType::Lattice))
       EXPECT_EQ(copy.widgets.worldControlPoints(copy.widgets.find(scene.widgets.name(lattice))),
                 scene.widgets.worldControlPoints(lattice));
@@ -62,7 +62,7 @@ TEST(SceneFile, MeshFilesAndWidgetFilesResolveNextToTheScene) {
   cloud.name = "cloud";
   cloud.source = MeshFileSource{"meshes/cloud.xyz"};
   cloud.mesh = buildObjectMesh(cloud.source, dir);
-  scene.objects.push_back(cloud);
+  scene.addObject(cloud);
   scene.widgetFile = "tool.widgets.json";
   writeScene(dir / "scene.json", scene);
   EXPECT_TRUE(std::filesystem::exists(dir / "tool.widgets.json"));
@@ -108,12 +108,12 @@ TEST(SceneFile, MeshPathsOutsideTheScenesFolderAreRefusedUnlessAllowed) {
     }
     SceneReadOptions allow;
     allow.allowMeshesOutsideFolder = true;
-    EXPECT_EQ(readScene(root / "shared" / "scene.json", allow).objects[0].mesh.points.rows(), 1);
+    EXPECT_EQ(readScene(root / "shared" / "scene.json", allow).objects()[0].mesh.points.rows(), 1);
   }
   for (const std::string& path : std::vector<std::string>{"meshes/ok.xyz", (root / "shared" / "meshes" / "ok.xyz").string(), "meshes/../meshes/ok.xyz"}) {
     SCOPED_TRACE(path);
     sceneWith(path);
-    EXPECT_EQ(readScene(root / "shared" / "scene.json").objects[0].mesh.points.rows(), 2);
+    EXPECT_EQ(readScene(root / "shared" / "scene.json").objects()[0].mesh.points.rows(), 2);
   }
   std::filesystem::remove_all(root);
 }
@@ -150,16 +150,16 @@ TEST(SceneFile, BadInputGetsLocatedErrors) {
 
 TEST(SceneFile, CurveStyleRoundTripsAndTheDefaultIsNotWritten) {
   Scene scene = readScene(kExamples / "default");
-  EXPECT_EQ(scene.objects.front().display.curveStyle, CurveStyle::Tube);
+  EXPECT_EQ(scene.objects().front().display.curveStyle, CurveStyle::Tube);
   EXPECT_EQ(sceneFileText(scene).find("curveStyle"), std::string::npos);  // older files keep their bytes
 
-  scene.objects.front().display.curveStyle = CurveStyle::Line;
+  scene.objects().front().display.curveStyle = CurveStyle::Line;
   const std::string text = sceneFileText(scene);
   EXPECT_NE(text.find("\"curveStyle\": \"line\""), std::string::npos) << text;
   std::istringstream in(text);
   const Scene back = readScene(in, "scene.json", {.baseDirectory = kExamples / "default"});
-  EXPECT_EQ(back.objects.front().display.curveStyle, CurveStyle::Line);
-  EXPECT_EQ(back.objects.front().display, scene.objects.front().display);
+  EXPECT_EQ(back.objects().front().display.curveStyle, CurveStyle::Line);
+  EXPECT_EQ(back.objects().front().display, scene.objects().front().display);
   EXPECT_EQ(sceneFileText(back), text);
 
   // "tube" spelled out reads as the default and is then omitted again.
@@ -167,7 +167,7 @@ TEST(SceneFile, CurveStyleRoundTripsAndTheDefaultIsNotWritten) {
   tube.replace(tube.find("\"line\""), 6, "\"tube\"");
   std::istringstream tubeIn(tube);
   const Scene tubeScene = readScene(tubeIn, "scene.json", {.baseDirectory = kExamples / "default"});
-  EXPECT_EQ(tubeScene.objects.front().display.curveStyle, CurveStyle::Tube);
+  EXPECT_EQ(tubeScene.objects().front().display.curveStyle, CurveStyle::Tube);
   EXPECT_EQ(sceneFileText(tubeScene).find("curveStyle"), std::string::npos);
 }
 

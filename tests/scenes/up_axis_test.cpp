@@ -48,14 +48,14 @@ TEST(UpAxis, TheSceneFileKeepsTheUpAxis) {
   options.allowMeshesOutsideFolder = true;
   std::istringstream in(text);
   const Scene scene = readScene(in, "column.json", options);
-  ASSERT_EQ(scene.objects.size(), 1u);
-  EXPECT_EQ(std::get<MeshFileSource>(scene.objects[0].source).up, UpAxis::Y);
-  EXPECT_NEAR(scene.objects[0].mesh.points.col(2).maxCoeff(), 3.0, 1e-15);  // read standing
+  ASSERT_EQ(scene.objects().size(), 1u);
+  EXPECT_EQ(std::get<MeshFileSource>(scene.objects()[0].source).up, UpAxis::Y);
+  EXPECT_NEAR(scene.objects()[0].mesh.points.col(2).maxCoeff(), 3.0, 1e-15);  // read standing
   std::ostringstream out;
   writeScene(out, scene);
   EXPECT_NE(out.str().find("\"up\": \"y\""), std::string::npos) << out.str();
   std::istringstream again(out.str());
-  EXPECT_EQ(readScene(again, "again.json", options).objects[0].mesh.points, scene.objects[0].mesh.points);
+  EXPECT_EQ(readScene(again, "again.json", options).objects()[0].mesh.points, scene.objects()[0].mesh.points);
 
   std::string bad = text;
   bad.replace(bad.find("\"up\": \"y\""), 9, "\"up\": \"x\"");

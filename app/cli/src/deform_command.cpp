@@ -54,7 +54,7 @@ Eigen::AlignedBox3d restBox(const widgets::WidgetModel& model) {
 /// max do not depend on the order, so a batch fits exactly as one process does).
 Eigen::AlignedBox3d objectsBox(const scenes::Scene& scene, const BatchRanks& ranks) {
   Eigen::AlignedBox3d box;
-  for (const auto& object : scene.objects) {
+  for (const auto& object : scene.objects()) {
     if (object.mesh.points.rows() == 0) continue;
     box.extend(Eigen::AlignedBox3d(object.mesh.points.colwise().minCoeff().transpose(),
                                    object.mesh.points.colwise().maxCoeff().transpose()));
@@ -193,7 +193,7 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
       scenes::SceneReadOptions options;
       options.allowMeshesOutsideFolder = r.allowOutsideMeshes;
       scene = scenes::readScene(*r.sceneFile, options);
-      if (r.frame) scenes::applyAnimationFrame(scene, parseFrame(*r.frame, scene.animation));
+      if (r.frame) scenes::applyAnimationFrame(scene, parseFrame(*r.frame, scene.animation()));
     }
   });
   if (SplitInput::applies(r.inputs.size(), ranks)) {
@@ -222,7 +222,8 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
       sourceOf[object.name] = input;
       objects.push_back(std::move(object));
     }
-    scene.objects = std::move(objects);
+    while (!scene.objects().empty()) scene.removeObject(scene.objects().back().name);
+    for (scenes::SceneObject& object : objects) scene.addObject(std::move(object));
   });
 
   console.begin("build scene", "building the scene");
@@ -232,7 +233,7 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
       std::vector<scenes::Attachment> attachments;
       for (auto root : scene.widgets.roots()) {
         scenes::Attachment attachment{root, {}};
-        for (const auto& object : scene.objects) attachment.objects.push_back(object.name);
+        for (const auto& object : scene.objects()) attachment.objects.push_back(object.name);
         attachments.push_back(std::move(attachment));
       }
       scene.setAttachments(std::move(attachments));
@@ -253,7 +254,7 @@ std::vector<Output> plannedOutputs(const DeformRequest& r, const scenes::Scene& 
   for (const auto& name : r.objects)
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   if (names.empty())
-    for (const auto& object : scene.objects) names.push_back(object.name);
+    for (const auto& object : scene.objects()) names.push_back(object.name);
   for (const auto& name : names)
     if (!scene.findObject(name)) throw std::runtime_error("--object: the scene has no object '" + name + "'");
   // In a batch a rank holds only its pieces (possibly none): decide as for the whole list.
@@ -284,7 +285,7 @@ std::vector<Output> plannedOutputs(const DeformRequest& r, const scenes::Scene& 
 /// whose input moved with their parent, re-embed here).
 void evaluate(scenes::Scene& scene, scenes::SceneDeformer& deformer, Console& console) {
   Eigen::Index pointCount = 0;
-  for (const auto& object : scene.objects) pointCount += object.mesh.points.rows();
+  for (const auto& object : scene.objects()) pointCount += object.mesh.points.rows();
   console.begin("embed", "embedding " + std::to_string(pointCount) + " points");
   const widgets::WidgetModelState current = scene.widgets.captureState();
   for (auto lattice : scene.widgets.widgets(widgets::WidgetType::Lattice))

@@ -48,7 +48,7 @@ int runExport(const Args& args) {
   exporters::AnimationSource animation = exporters::sceneAnimation(scene);
   if (options.content == exporters::GltfContent::Frame) {
     // The scene as saved, or its animation at --frame; then --set on top (as deform does).
-    if (const auto frame = args.value("frame")) scenes::applyAnimationFrame(scene, parseFrame(*frame, scene.animation));
+    if (const auto frame = args.value("frame")) scenes::applyAnimationFrame(scene, parseFrame(*frame, scene.animation()));
     animation = {};
   }
   // Morph / skin: --set gives widgets that are not keyed their values for the whole animation.

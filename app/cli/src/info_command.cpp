@@ -59,7 +59,7 @@ void infoScene(const fs::path& path, const Args& args) {
   std::printf("scene: %s\n", path.string().c_str());
   if (!scene.description.empty()) std::printf("description: %s\n", scene.description.c_str());
   if (scene.widgetFile) std::printf("widget file: %s\n", scene.widgetFile->c_str());
-  for (const auto& object : scene.objects)
+  for (const auto& object : scene.objects())
     std::printf("object %s: %s; %s\n", object.name.c_str(), sourceText(object.source).c_str(),
                 meshText(object.mesh).c_str());
   printWidgets(scene.widgets);
@@ -123,14 +123,14 @@ std::string check(const fs::path& path, const Args& args) {
     case FileKind::Scene: {
       const scenes::Scene scene = readSceneFile(path, args);
       scenes::validateScene(scene);
-      for (const auto& object : scene.objects)
+      for (const auto& object : scene.objects())
         scenes::validateMesh(object.mesh, path.string() + ": object '" + object.name + "'");
       const auto deformed = scenes::deformScene(scene);
       for (const auto& [name, points] : deformed) {
         if (!points.allFinite())
           throw std::runtime_error(path.string() + ": object '" + name + "' deforms to non-finite points");
       }
-      return format("scene, %zu objects, %zu lattices", scene.objects.size(),
+      return format("scene, %zu objects, %zu lattices", scene.objects().size(),
                     scene.widgets.widgets(widgets::WidgetType::Lattice).size());
     }
     case FileKind::Widgets: {

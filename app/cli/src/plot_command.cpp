@@ -38,7 +38,7 @@ int runPlot(const Args& args) {
     const scenes::SceneObject* found = scene.findObject(*object);
     if (!found) {
       std::string known;
-      for (const auto& o : scene.objects) known += (known.empty() ? "" : ", ") + o.name;
+      for (const auto& o : scene.objects()) known += (known.empty() ? "" : ", ") + o.name;
       throw std::runtime_error(args.positional()[0] + ": no object '" + *object + "' (objects: " + known + ")");
     }
     const auto* generated = std::get_if<scenes::GeneratedSource>(&found->source);

@@ -34,7 +34,7 @@ scenes::Camera presetCamera(const scenes::Scene& scene, const std::string& prese
   }
   Eigen::AlignedBox3d box;
   const auto deformed = scenes::deformScene(scene);
-  for (const auto& object : scene.objects) {
+  for (const auto& object : scene.objects()) {
     if (!object.display.visible) continue;
     const Eigen::MatrixX3d& points = deformed.at(object.name);
     for (Eigen::Index i = 0; i < points.rows(); ++i) box.extend(points.row(i).transpose());
@@ -77,10 +77,10 @@ int runRender(const Args& args) {
   // Frames: the animation at each frame, then --set on top (a setting overrides a key).
   std::vector<std::pair<double, std::filesystem::path>> frames;
   if (framesText) {
-    const FrameRange range = parseFrameRange(*framesText, scene.animation);
+    const FrameRange range = parseFrameRange(*framesText, scene.animation());
     for (int f = range.first; f <= range.last; ++f) frames.emplace_back(f, framePath(target, f));
   } else {
-    frames.emplace_back(frameText ? parseFrame(*frameText, scene.animation) : std::nan(""), target);
+    frames.emplace_back(frameText ? parseFrame(*frameText, scene.animation()) : std::nan(""), target);
   }
   bool framed = false;
   for (const auto& [frame, png] : frames) {

@@ -201,7 +201,7 @@ void MainWindow::setScene(scenes::Scene scene) {
   d.properties->showSelection({});
   d.syncLookActions();
   d.status->say(tr("%1 objects, %2 lattices")
-                    .arg(d.scene.objects.size())
+                    .arg(d.scene.objects().size())
                     .arg(d.scene.widgets.widgets(widgets::WidgetType::Lattice).size()));
   d.controller->refresh();
   d.view->requestRender();

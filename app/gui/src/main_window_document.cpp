@@ -227,8 +227,8 @@ void MainWindow::openWidgetFile(const std::filesystem::path& path) {
   std::optional<std::string> target;
   if (!d.selectedObjects.empty()) {
     target = d.selectedObjects.front();
-  } else if (d.scene.objects.size() == 1) {
-    target = d.scene.objects.front().name;
+  } else if (d.scene.objects().size() == 1) {
+    target = d.scene.objects().front().name;
   }
   if (model.roots().empty()) target.reset();
   d.controller->replaceWidgets(std::move(model), target);
@@ -261,7 +261,7 @@ void MainWindow::importMesh(const std::filesystem::path& path) {
 }
 
 void MainWindow::exportMesh(const std::filesystem::path& path) {
-  const auto& objects = impl_->scene.objects;
+  const auto& objects = impl_->scene.objects();
   if (objects.empty()) throw std::invalid_argument("the scene has no object to export");
   const std::string name = impl_->selectedObjects.empty() ? objects.front().name : impl_->selectedObjects.front();
   scenes::MeshData mesh = impl_->scene.findObject(name)->mesh;

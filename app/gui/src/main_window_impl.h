@@ -115,7 +115,7 @@ struct MainWindow::Impl {
   std::vector<std::string> lookTargets() const {
     if (!selectedObjects.empty()) return selectedObjects;
     std::vector<std::string> names;
-    for (const auto& o : scene.objects) names.push_back(o.name);
+    for (const auto& o : scene.objects()) names.push_back(o.name);
     return names;
   }
 

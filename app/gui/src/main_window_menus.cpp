@@ -227,7 +227,7 @@ void MainWindow::createMenus(QDockWidget* outlinerDock, QDockWidget* propertiesD
   };
   auto selectedObject = [this]() -> std::string {
     if (!impl_->selectedObjects.empty()) return impl_->selectedObjects.front();
-    if (impl_->scene.objects.size() == 1) return impl_->scene.objects.front().name;
+    if (impl_->scene.objects().size() == 1) return impl_->scene.objects().front().name;
     throw std::invalid_argument("select an object in the outliner");
   };
   QAction* attach = action(widgetsMenu, tr("&Attach Lattice to Object"), "actionAttach",

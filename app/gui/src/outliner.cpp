@@ -100,7 +100,7 @@ void Outliner::rebuild(const scenes::Scene& scene) {
     return makeItem(parent, qs(m.name(id)), widgetType(m, id), OutlinerEntry::Kind::Widget, id.value);
   };
   auto* objects = new QTreeWidgetItem(this, {tr("Objects")});
-  for (const auto& object : scene.objects) {
+  for (const auto& object : scene.objects()) {
     auto* item = makeItem(objects, qs(object.name), tr("object"), OutlinerEntry::Kind::Object, qs(object.name));
     for (widgets::WidgetId lattice : scene.latticesDeforming(object.name))
       (new QTreeWidgetItem(item, {qs(m.name(lattice)), tr("deformed by")}))->setData(0, kDeformedByRole, lattice.value);

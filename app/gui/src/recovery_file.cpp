@@ -31,8 +31,8 @@ scenes::Scene fileContent(const scenes::Scene& scene, const scenes::Camera& came
   out.setAttachments(scene.attachments());
   out.setCamera(camera);
   out.setBackground(scene.background());
-  out.objects.reserve(scene.objects.size());
-  for (const scenes::SceneObject& object : scene.objects) {
+  out.objects().reserve(scene.objects().size());
+  for (const scenes::SceneObject& object : scene.objects()) {
     scenes::SceneObject copy;
     copy.name = object.name;
     copy.source = object.source;
@@ -41,7 +41,7 @@ scenes::Scene fileContent(const scenes::Scene& scene, const scenes::Camera& came
     // no longer resolve.
     if (auto* file = std::get_if<scenes::MeshFileSource>(&copy.source); file && fs::path(file->path).is_relative())
       file->path = (origin.empty() ? fs::current_path() : fs::absolute(origin).parent_path()) / file->path;
-    out.objects.push_back(std::move(copy));
+    out.addObject(std::move(copy));
   }
   return out;
 }

@@ -34,12 +34,12 @@ class TimelineBar : public QWidget {
 
   /// The x (widget pixels) of `frame`, and the whole frame nearest to x.
   double xOf(double frame) const {
-    const auto& a = scene_.animation;
+    const auto& a = scene_.animation();
     const double span = std::max(1, a.lastFrame - a.firstFrame);
     return kMargin + (frame - a.firstFrame) / span * (width() - 2 * kMargin);
   }
   int frameAt(double x) const {
-    const auto& a = scene_.animation;
+    const auto& a = scene_.animation();
     const double span = std::max(1, a.lastFrame - a.firstFrame);
     return static_cast<int>(std::lround(a.firstFrame + (x - kMargin) / std::max(1.0, width() - 2.0 * kMargin) * span));
   }
@@ -49,7 +49,7 @@ class TimelineBar : public QWidget {
     QPainter p(this);
     p.setRenderHint(QPainter::Antialiasing);
     p.fillRect(rect(), palette().base());
-    const auto& a = scene_.animation;
+    const auto& a = scene_.animation();
     const int axis = height() - 12;
     // Ticks: a step of 1, 2, 5, 10, 20, 50, ... frames leaving at least 40 pixels between labels.
     int step = 1;
@@ -171,7 +171,7 @@ void TimelineWidget::goTo(int frame) {
 }
 
 void TimelineWidget::sync() {
-  const scenes::Animation& a = timeline_.scene().animation;
+  const scenes::Animation& a = timeline_.scene().animation();
   label_->setText(tr("frame %1  (%2..%3, %4 fps)")
                       .arg(timeline_.frame())
                       .arg(a.firstFrame)
@@ -187,7 +187,7 @@ void TimelineWidget::togglePlay() {
   if (timeline_.playing()) {
     playedFrames_ = 0;
     clock_.start();
-    playTimer_.start(std::max(1, static_cast<int>(std::lround(1000.0 / timeline_.scene().animation.framesPerSecond))));
+    playTimer_.start(std::max(1, static_cast<int>(std::lround(1000.0 / timeline_.scene().animation().framesPerSecond))));
   } else {
     playTimer_.stop();
     emit frameChanged();

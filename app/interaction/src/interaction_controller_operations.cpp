@@ -42,7 +42,7 @@ auto InteractionController::edit(const std::string& description, Change change, 
   // the records that differ), and the objects there were.
   const widgets::WidgetModelData widgetsBefore = scene_.widgets.toData();
   const std::vector<scenes::Attachment> attachmentsBefore = scene_.attachments();
-  const std::size_t objectsBefore = scene_.objects.size();
+  const std::size_t objectsBefore = scene_.objects().size();
   auto deltaFromBefore = [&] {
     scenes::SceneDelta delta;
     delta.widgets = scenes::modelPatch(widgetsBefore, scene_.widgets.toData());
@@ -54,12 +54,10 @@ auto InteractionController::edit(const std::string& description, Change change, 
     // Objects the change added (appended): moved out of the scene into `held` on undo, back on
     // redo; the command holds an object only while it is undone.
     auto held = std::make_shared<std::vector<scenes::SceneObject>>();
-    const std::size_t added = scene_.objects.size() - objectsBefore;
+    const std::size_t added = scene_.objects().size() - objectsBefore;
     auto apply = [this, delta, held, added, objectsBefore](bool forward) {
       if (!forward) {
-        for (std::size_t i = 0; i < added; ++i) held->push_back(std::move(scene_.objects[objectsBefore + i]));
-        scene_.objects.resize(objectsBefore);
-        if (added > 0) scene_.touchStructure();
+        for (std::size_t i = 0; i < added; ++i) held->push_back(scene_.takeObject(scene_.objects()[objectsBefore].name));
       }
       scenes::applySceneDelta(scene_, *delta, forward);
       if (forward && added > 0) {
@@ -88,7 +86,7 @@ auto InteractionController::edit(const std::string& description, Change change, 
   } catch (...) {
     // A failed edit leaves no trace.
     scenes::applySceneDelta(scene_, deltaFromBefore(), /*forward=*/false);
-    scene_.objects.resize(std::min(scene_.objects.size(), objectsBefore));
+    while (scene_.objects().size() > objectsBefore) scene_.removeObject(scene_.objects().back().name);
     pruneSelection();
     refresh();
     if (onStructureChanged) onStructureChanged();
@@ -329,24 +327,19 @@ void InteractionController::removeObjects(const std::vector<std::string>& object
   std::string description = "Delete " + objects.front();
   if (objects.size() > 1) description += " and " + std::to_string(objects.size() - 1) + " more";
   // The command holds the removed objects (with their places) while they are removed, and the
-  // attachments before (a few names); scenes::removeObject drops each from its attachments.
+  // attachments before (a few names); Scene::takeObject drops each from its attachments.
   auto held = std::make_shared<std::vector<std::pair<std::size_t, scenes::SceneObject>>>();
   const auto attachmentsBefore = std::make_shared<const std::vector<scenes::Attachment>>(scene_.attachments());
   auto remove = [this, objects, held] {
-    for (std::size_t i = scene_.objects.size(); i-- > 0;)
-      if (std::find(objects.begin(), objects.end(), scene_.objects[i].name) != objects.end()) {
-        const std::string name = scene_.objects[i].name;
-        held->emplace_back(i, std::move(scene_.objects[i]));
-        scene_.objects[i].name = name;  // the moved-from entry, which removeObject finds and erases
-        scene_.removeObject(name);
-      }
+    for (std::size_t i = scene_.objects().size(); i-- > 0;)
+      if (std::find(objects.begin(), objects.end(), scene_.objects()[i].name) != objects.end())
+        held->emplace_back(i, scene_.takeObject(scene_.objects()[i].name));
   };
   auto putBack = [this, held, attachmentsBefore] {
     for (auto it = held->rbegin(); it != held->rend(); ++it)
-      scene_.objects.insert(scene_.objects.begin() + static_cast<std::ptrdiff_t>(it->first), std::move(it->second));
+      scene_.insertObject(it->first, std::move(it->second));
     held->clear();
     scene_.setAttachments(*attachmentsBefore);
-    scene_.touchStructure();
   };
   auto after = [this] {
     pruneSelection();

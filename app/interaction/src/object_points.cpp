@@ -14,7 +14,7 @@ std::optional<ObjectPoint> pickObjectPoint(const scenes::Scene& scene, const sce
   const Eigen::Vector3d dir = ray.direction.normalized();
   std::optional<ObjectPoint> best;
   double bestT = std::numeric_limits<double>::infinity();
-  for (const scenes::SceneObject& object : scene.objects) {
+  for (const scenes::SceneObject& object : scene.objects()) {
     if (!object.display.visible) continue;
     const Eigen::MatrixX3d& points = deformed.points(object.name);
     const Eigen::MatrixX3i& triangles = object.mesh.triangles;

@@ -35,7 +35,7 @@ Eigen::AlignedBox3d selectionBounds(const scenes::Scene& scene, const scenes::Sc
 
 Eigen::AlignedBox3d sceneBounds(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
   std::vector<std::string> objects;
-  for (const scenes::SceneObject& o : scene.objects) objects.push_back(o.name);
+  for (const scenes::SceneObject& o : scene.objects()) objects.push_back(o.name);
   std::vector<widgets::WidgetId> widgets;
   for (auto type : {widgets::WidgetType::Lattice, widgets::WidgetType::Affine})
     for (widgets::WidgetId id : scene.widgets.widgets(type)) widgets.push_back(id);

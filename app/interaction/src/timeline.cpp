@@ -24,11 +24,11 @@ Timeline::Timeline(scenes::Scene& scene, scenes::CommandStack& commands, Interac
     : scene_(scene), commands_(commands), controller_(controller) {}
 
 int Timeline::frame() const {
-  return std::clamp(frame_, scene_.animation.firstFrame, scene_.animation.lastFrame);
+  return std::clamp(frame_, scene_.animation().firstFrame, scene_.animation().lastFrame);
 }
 
 void Timeline::setFrame(int frame) {
-  frame_ = std::clamp(frame, scene_.animation.firstFrame, scene_.animation.lastFrame);
+  frame_ = std::clamp(frame, scene_.animation().firstFrame, scene_.animation().lastFrame);
   clock_ = frame_;
   scenes::applyAnimationFrame(scene_, frame_);
   controller_.refresh();
@@ -62,7 +62,7 @@ std::vector<double> Timeline::keyFrames() const {
     times.erase(std::unique(times.begin(), times.end()), times.end());
   }
   std::vector<double> frames;
-  for (double t : times) frames.push_back(scenes::timeFrame(scene_.animation, t));
+  for (double t : times) frames.push_back(scenes::timeFrame(scene_.animation(), t));
   return frames;
 }
 
@@ -85,7 +85,7 @@ int Timeline::insertKeys() {
   if (channels.empty())
     throw std::invalid_argument("Insert Key: select an affine widget (its variation) or a lattice (its frame); a picked "
                                 "lattice point keys its lattice's control points");
-  const double time = scenes::frameTime(scene_.animation, frame());
+  const double time = scenes::frameTime(scene_.animation(), frame());
   std::vector<KeyChange> changes;
   for (const auto& [widget, kind] : channels) {
     Keyframe key = scenes::currentKey(scene_, widget, kind, time);
@@ -98,7 +98,7 @@ int Timeline::insertKeys() {
 }
 
 int Timeline::deleteKeys() {
-  const double time = scenes::frameTime(scene_.animation, frame());
+  const double time = scenes::frameTime(scene_.animation(), frame());
   std::vector<KeyChange> changes;
   for (const auto& [widget, kind] : selectedChannels()) {
     // A lattice keyed both ways: Delete Key removes whichever of its keys sit at this frame.
@@ -150,7 +150,7 @@ void Timeline::setPlaying(bool playing) {
 
 bool Timeline::advance(double seconds) {
   if (!playing_ || !(seconds >= 0.0)) return false;
-  const scenes::Animation& a = scene_.animation;
+  const scenes::Animation& a = scene_.animation();
   const double length = a.lastFrame - a.firstFrame + 1;  // frames shown per loop
   clock_ += seconds * a.framesPerSecond;
   if (clock_ >= a.lastFrame + 1) clock_ = a.firstFrame + std::fmod(clock_ - a.firstFrame, length);

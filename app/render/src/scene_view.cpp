@@ -200,7 +200,7 @@ struct SceneView::Impl {
 
   void buildObjects(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
     clearObjects();
-    for (const auto& object : scene.objects) {
+    for (const auto& object : scene.objects()) {
       if (!object.display.visible) continue;
       ObjectActor entry;
       entry.name = object.name;
@@ -285,7 +285,7 @@ struct SceneView::Impl {
   // True when the drawn objects are the scene's visible objects with the same point counts.
   bool sameObjects(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) const {
     std::size_t n = 0;
-    for (const auto& object : scene.objects) {
+    for (const auto& object : scene.objects()) {
       if (!object.display.visible) continue;
       if (n >= objects.size() || objects[n].name != object.name ||
           objects[n].pointCount != deformed.points(object.name).rows() || !(objects[n].display == object.display))

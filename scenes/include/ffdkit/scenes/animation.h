@@ -72,7 +72,7 @@ Eigen::MatrixX3d evaluatePoints(const std::vector<Keyframe>& keys, double second
 /// @throws AnimationError for a non-finite time or during a gesture; the model's WidgetError
 ///   unchanged (the model keeps the channels applied before it).
 void applyAnimation(Scene& scene, double seconds);
-/// applyAnimation at frameTime(scene.animation, frame).
+/// applyAnimation at frameTime(scene.animation(), frame).
 void applyAnimationFrame(Scene& scene, double frame);
 
 /// Every key time of the scene's animation (channels of existing widgets), sorted, unique.

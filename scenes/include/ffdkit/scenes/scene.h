@@ -99,7 +99,8 @@ struct Camera {
   double viewAngleDegrees = 30.0;
 };
 
-/// A document: objects, the widget model whose lattices deform them, attachments, a camera.
+/// A document: objects, the widget model whose lattices deform them, attachments, a camera, an
+/// animation.
 ///
 /// Every edit of the parts outside the widget model goes through a member below that stamps what
 /// it changed with a new `revision()` (scene_changes.h turns the stamps into a change set); the
@@ -108,15 +109,12 @@ struct Camera {
 class Scene {
  public:
   std::string description;
-  std::vector<SceneObject> objects;
   /// Public: the model reports its own edits (revision(), changesSince); assigning another model
   /// is another instance, which consumers take anew.
   widgets::WidgetModel widgets;
   /// When set, the widget model lives in this widget file (relative to the scene's folder)
   /// and the scene file references it instead of holding the widgets inline.
   std::optional<std::string> widgetFile;
-  /// Frame rate, frame range and keyed channels (animation.h evaluates and edits them).
-  Animation animation;
 
   // ---- revisions of the parts outside the widget model (which keeps its own) -----------------
   /// Grows by one with every edit below; each stamps what it changed with the new value.
@@ -125,29 +123,29 @@ class Scene {
   std::uint64_t cameraRevision() const { return cameraRevision_; }        ///< camera, background
   std::uint64_t animationRevision() const { return animationRevision_; }  ///< keys, frame rate, frame range
 
-  // ---- objects: edits that stamp their revisions -----------------------------------------------
+  // ---- objects -------------------------------------------------------------------------------
+  /// In the order they were added (the scene file's order).
+  const std::vector<SceneObject>& objects() const { return objects_; }
   /// The object with this name, or nullptr.
   const SceneObject* findObject(const std::string& name) const;
-  SceneObject* findObject(const std::string& name);
-  /// Adds an object (stamps the structure and the object's mesh and look).
+  /// Adds an object at the end (stamps the structure and the object's mesh and look).
   /// @throws std::invalid_argument for an empty or duplicate name.
   void addObject(SceneObject object);
+  /// The same at `position` (<= objects().size(); an undo puts an object back in its place).
+  void insertObject(std::size_t position, SceneObject object);
   /// Removes an object and its place in every attachment (an attachment left with no object goes).
   /// @throws std::invalid_argument for an unknown object.
   void removeObject(const std::string& name);
+  /// The same, handing the object over (an undoable removal keeps it).
+  SceneObject takeObject(const std::string& objectName);
   /// Renames an object; the attachments naming it follow (stamps the structure).
   /// @throws std::invalid_argument for an unknown object, or an empty or used name.
-  void renameObject(const std::string& from, const std::string& to);
-  /// Replaces an object's own points. @throws std::invalid_argument for an unknown object.
-  void setObjectMesh(const std::string& name, MeshData mesh);
+  void renameObject(const std::string& fromName, const std::string& to);
+  /// Replaces an object's own points, and its source when given (which the points then come
+  /// from). @throws std::invalid_argument for an unknown object.
+  void setObjectMesh(const std::string& name, MeshData mesh, std::optional<ObjectSource> source = {});
   /// Changes how an object looks (no geometry changes). @throws for an unknown object.
   void setObjectDisplay(const std::string& name, const DisplaySettings& display);
-  /// After editing `objects` directly: stamps the structure.
-  void touchStructure();
-  /// After editing an object's mesh in place: stamps it. @throws for an unknown object.
-  void touchMesh(const std::string& name);
-  /// After editing `animation` directly: stamps it (animation.h's edits call it).
-  void touchAnimation();
 
   // ---- attachments -------------------------------------------------------------------------
   const std::vector<Attachment>& attachments() const { return attachments_; }
@@ -174,12 +172,27 @@ class Scene {
   const Eigen::Vector3d& background() const { return background_; }
   void setBackground(const Eigen::Vector3d& background);
 
+  // ---- animation (animation.h evaluates it; its setKey / removeKey edit the keys) ------------
+  /// Frame rate, frame range and keyed channels.
+  const Animation& animation() const { return animation_; }
+  /// Replaces the whole animation (a file read). Checks nothing (validateAnimation does).
+  void setAnimation(Animation animation);
+  /// Frames per second. Checks nothing (validateAnimation does).
+  void setFrameRate(double framesPerSecond);
+  /// The first and last frame. Checks nothing (validateAnimation does).
+  void setFrameRange(int first, int last);
+
  private:
+  friend std::optional<Keyframe> setKey(Scene& scene, widgets::WidgetId widget, ChannelKind kind, Keyframe key);
+  friend std::optional<Keyframe> removeKey(Scene& scene, widgets::WidgetId widget, ChannelKind kind, double seconds);
+
   /// The next revision, which the caller stamps on what it changed.
   std::uint64_t stamp() { return ++revision_; }
   SceneObject& object(const std::string& name);
 
+  std::vector<SceneObject> objects_;
   std::vector<Attachment> attachments_;
+  Animation animation_;
   Camera camera_;
   Eigen::Vector3d background_{0.13, 0.15, 0.18};
   std::uint64_t revision_ = 0;

@@ -57,8 +57,7 @@ using SceneProgress = std::function<bool(double fraction)>;
 /// update is not looked at; new control points are written in place into the stage's lattice and
 /// deformed incrementally; a new frame moves the lattice and re-embeds it (per its throttle); no
 /// lattice is rebuilt for a drag step. An object's own points are taken as unchanged while its
-/// mesh keeps its address, size and SceneObject::meshRevision: after editing them in place, stamp
-/// them (scenes::touchMesh, setObjectMesh) or call reset().
+/// mesh keeps its address, size and SceneObject::meshRevision (Scene::setObjectMesh stamps it).
 class SceneDeformer {
  public:
   SceneDeformer();
