@@ -31,7 +31,6 @@ scenes::Scene fileContent(const scenes::Scene& scene, const scenes::Camera& came
   out.setAttachments(scene.attachments());
   out.setCamera(camera);
   out.setBackground(scene.background());
-  out.objects().reserve(scene.objects().size());
   for (const scenes::SceneObject& object : scene.objects()) {
     scenes::SceneObject copy;
     copy.name = object.name;
