@@ -153,7 +153,9 @@ TEST(SceneFile, CurveStyleRoundTripsAndTheDefaultIsNotWritten) {
   EXPECT_EQ(scene.objects().front().display.curveStyle, CurveStyle::Tube);
   EXPECT_EQ(sceneFileText(scene).find("curveStyle"), std::string::npos);  // older files keep their bytes
 
-  scene.objects().front().display.curveStyle = CurveStyle::Line;
+  DisplaySettings look = scene.objects().front().display;
+  look.curveStyle = CurveStyle::Line;
+  scene.setObjectDisplay(scene.objects().front().name, look);
   const std::string text = sceneFileText(scene);
   EXPECT_NE(text.find("\"curveStyle\": \"line\""), std::string::npos) << text;
   std::istringstream in(text);
