@@ -21,9 +21,9 @@ const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
 // A sample scene without the keys it ships with.
 Scene sample(const char* name) {
   Scene scene = readScene(kExamples / name);
-  scene.setAnimation(Animation{.framesPerSecond = scene.animation().framesPerSecond,
-                               .firstFrame = scene.animation().firstFrame,
-                               .lastFrame = scene.animation().lastFrame});
+  Animation unkeyed = scene.animation();
+  unkeyed.channels.clear();
+  scene.setAnimation(std::move(unkeyed));
   return scene;
 }
 

@@ -186,7 +186,7 @@ TEST(SceneDeformer, AGestureMotionIsOnlyFollowedThroughTheLastStage) {
   // Fig. 6-9: parent, then child. Dragging the child (the last stage) is linear in its control
   // points; dragging the parent moves the child's input, which the child evaluates again.
   Scene scene = readScene(kExamples / "hierarchy");
-  const std::string object = scene.objects.at(0).name;
+  const std::string object = scene.objects().at(0).name;
   const auto parent = scene.widgets.find("parent");
   const auto child = scene.widgets.find("child");
   SceneDeformer deformer;
