@@ -20,24 +20,10 @@ std::size_t stateBytes(const widgets::WidgetModelState& s) {
   return bytes;
 }
 
-bool sameBasis(const ffd::AxisBasis& a, const ffd::AxisBasis& b) {
-  return a.kind == b.kind && a.degree == b.degree && a.knots.size() == b.knots.size() && a.knots == b.knots;
-}
-
-bool sameSettings(const widgets::LatticeSettings& a, const widgets::LatticeSettings& b) {
-  for (std::size_t axis = 0; axis < 3; ++axis)
-    if (!sameBasis(a.basis[axis], b.basis[axis])) return false;
-  if (a.cylinder.has_value() != b.cylinder.has_value()) return false;
-  if (a.cylinder && (a.cylinder->innerRadius != b.cylinder->innerRadius || a.cylinder->outerRadius != b.cylinder->outerRadius ||
-                     a.cylinder->zMin != b.cylinder->zMin || a.cylinder->zMax != b.cylinder->zMax))
-    return false;
-  return a.outside == b.outside && a.reembed == b.reembed;
-}
-
 bool same(const widgets::LatticeData& a, const widgets::LatticeData& b) {
   return a.name == b.name && a.counts == b.counts && a.restPoints.rows() == b.restPoints.rows() &&
          a.restPoints == b.restPoints && a.controlPoints.rows() == b.controlPoints.rows() &&
-         a.controlPoints == b.controlPoints && a.frame.matrix() == b.frame.matrix() && sameSettings(a.settings, b.settings) &&
+         a.controlPoints == b.controlPoints && a.frame.matrix() == b.frame.matrix() && widgets::sameLatticeSettings(a.settings, b.settings) &&
          a.children == b.children;
 }
 bool same(const widgets::CellData& a, const widgets::CellData& b) {
@@ -155,7 +141,8 @@ void applyPatch(widgets::WidgetModel& model, const ModelPatch& p, bool forward) 
   patch(data.affines, p.affines, forward);
   patch(data.bindings, p.bindings, forward);
   if (p.rootOrder) data.rootOrder = forward ? p.rootOrder->second : p.rootOrder->first;
-  model = widgets::WidgetModel::fromData(data);
+  // In place: the model stays one instance and stamps only the records that differ.
+  model.assignData(data);
 }
 
 std::size_t SceneDelta::bytes() const {

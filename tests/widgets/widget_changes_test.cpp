@@ -164,6 +164,48 @@ TEST(WidgetChanges, RestoringAStateStampsOnlyWhatDiffers) {
   EXPECT_TRUE(r.m.changesSince(before).empty());
 }
 
+// assignData (an undo or redo of a structural edit) keeps the instance and stamps only the
+// records that differ; ids come back exactly.
+TEST(WidgetChanges, AssigningDataStampsOnlyTheRecordsThatDiffer) {
+  Rig r;
+  const WidgetModelData start = r.m.toData();
+  const WidgetId cell = r.m.addCell(r.root, CellSpec::point(2, 2, 0), "other");
+  const WidgetId widget = r.m.addAffine(cell, AffineKind::Translate, "other-push");
+  const BindingId attachment = r.m.bindingsOf(widget).front();
+  const WidgetModelData added = r.m.toData();
+  // Undo: the two widgets go; no lattice, frame or other widget is touched.
+  expectChanges(r.m, [&] { r.m.assignData(start); }, Expected().tree());
+  EXPECT_FALSE(r.m.contains(cell));
+  // Redo: they come back with their ids, and only they (and their binding) are stamped.
+  expectChanges(r.m, [&] { r.m.assignData(added); }, Expected().tree().own({cell, widget}).binding({attachment}));
+  EXPECT_EQ(r.m.name(widget), "other-push");
+  EXPECT_EQ(r.m.attachedCell(widget), cell);
+  // The same data again changes nothing.
+  expectChanges(r.m, [&] { r.m.assignData(added); }, Expected());
+  // Re-parenting undone: the child is bound again (its rest lattice in the world follows the parent).
+  r.m.unbind(r.hierarchy);
+  expectChanges(r.m, [&] { r.m.assignData(added); }, Expected().tree().frame({r.child}).binding({r.hierarchy}));
+  EXPECT_EQ(r.m.parentCell(r.child), r.top);
+  // New counts undone: the lattice's points and rest, and the cells whose points moved, are stamped.
+  const WidgetModelData beforeCounts = r.m.toData();
+  r.m.setLatticeCounts(r.root, Eigen::Vector3i(4, 3, 3));
+  expectChanges(r.m, [&] { r.m.assignData(beforeCounts); },
+                Expected().tree().control({r.root}).frame({r.root, r.child}).own({r.top, cell}));
+  EXPECT_EQ(r.m.toData().lattices.front().controlPoints, beforeCounts.lattices.front().controlPoints);
+  // Bad data is refused with its location and changes nothing.
+  WidgetModelData bad = added;
+  bad.cells.front().lattice = widget;
+  const std::uint64_t revision = r.m.revision();
+  try {
+    r.m.assignData(bad);
+    ADD_FAILURE() << "assignData accepted a cell on an affine widget";
+  } catch (const WidgetError& e) {
+    EXPECT_EQ(e.where(), "/cells/0/lattice");
+  }
+  EXPECT_EQ(r.m.revision(), revision);
+  EXPECT_TRUE(r.m.contains(widget));
+}
+
 TEST(WidgetChanges, QueriesChangeNothingAndCopiesAreNewInstances) {
   Rig r;
   const std::uint64_t before = r.m.revision();

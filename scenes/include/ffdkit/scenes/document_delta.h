@@ -28,10 +28,10 @@ StateDelta stateDelta(const widgets::WidgetModelState& before, const widgets::Wi
 
 /// What a structural edit changed in a widget model's data (WidgetModel::toData): the records
 /// (lattices, cells, affine widgets, bindings) added, removed or changed, each as (before,
-/// after) with nullopt for "absent", and the root order when it changed. Applying it rebuilds the
-/// model from its present data with these records swapped (WidgetModel::fromData): a new model
-/// instance, which the deformer syncs by value (a lattice whose rest shape and frame did not
-/// change is not re-embedded).
+/// after) with nullopt for "absent", and the root order when it changed. Applying it gives the
+/// model its present data with these records swapped, in place (WidgetModel::assignData): the
+/// same model instance, with just the widgets and bindings concerned stamped, so the deformer
+/// re-embeds only the stages concerned and the view redraws only the widgets concerned.
 struct ModelPatch {
   template <class Record>
   using Changes = std::vector<std::pair<std::optional<Record>, std::optional<Record>>>;

@@ -35,4 +35,8 @@ struct LatticeSettings {
   std::optional<ffd::CylinderRestShape> cylinder;
 };
 
+/// Whether two settings are equal: bases (kind, degree, knots), outside policy, re-embed policy
+/// and cylinder, compared exactly.
+bool sameLatticeSettings(const LatticeSettings& a, const LatticeSettings& b);
+
 }  // namespace ffdkit::widgets

@@ -295,6 +295,13 @@ class WidgetModel {
   /// Builds a model from data, validating ids, references, names, shapes and every binding as
   /// bind() would. Errors carry a location ("/bindings/2/to").
   static WidgetModel fromData(const WidgetModelData& data);
+  /// Makes this model hold `data` (validated as fromData validates it) IN PLACE: the same
+  /// instance, its revision history going on, one new revision stamped on just the widgets and
+  /// bindings whose records differ (added, removed, changed) and on the structure when the trees'
+  /// shape differs. Ids are the data's. An undo or redo of a structural edit goes through it, so
+  /// its consumers update only what it changed (changesSince) instead of taking a new model.
+  /// @throws GestureState during a gesture; WidgetError as fromData (the model is unchanged).
+  void assignData(const WidgetModelData& data);
 
  private:
   struct Impl;
