@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <vtkNew.h>
+#include <vtkActorCollection.h>
 #include <vtkRenderer.h>
 
 #include "ffdkit/app/interaction_controller.h"
@@ -92,6 +93,60 @@ TEST(SceneViewUpdates, ADragStepUpdatesThePointsOfTheObjectsThatMovedOnly) {
   const SceneViewStats released = s.view.stats();
   s.controller.hover(s.ray(0.5, 4.0), s.tolerance());
   expectNoGeometryWork(released, s.view.stats());
+}
+
+// Undo and redo of a structural edit go through the model in place (WidgetModel::assignData):
+// in a scene of three lattices, undoing the addition of one widget embeds nothing, builds no
+// lattice and no actor of any other widget, and leaves the actors a fresh view would draw.
+TEST(SceneViewUpdates, UndoAndRedoOfAddingAWidgetRedrawOnlyThatWidget) {
+  Session s;
+  for (const std::string& object : {s.moved, s.still}) {
+    NewLatticeOptions options;
+    options.counts = Eigen::Vector3i(3, 2, 2);
+    const widgets::WidgetId lattice = s.controller.newLattice(options);
+    s.controller.attachLattice(lattice, object);
+    s.controller.addAffineAtPoint({lattice, 1}, widgets::AffineKind::Translate);
+  }
+  s.controller.clearSelection();
+  ASSERT_EQ(s.scene.widgets.widgets(widgets::WidgetType::Lattice).size(), 3u);
+  auto actorsOfAFreshView = [&s] {
+    vtkNew<vtkRenderer> renderer;
+    SceneView fresh{renderer};
+    fresh.setHighlights(s.controller.highlights());
+    fresh.show(s.scene, s.deformer);
+    return renderer->GetActors()->GetNumberOfItems();
+  };
+  const std::size_t widgetsBefore = s.scene.widgets.widgets().size();
+  const int actorsBefore = s.renderer->GetActors()->GetNumberOfItems();
+  EXPECT_EQ(actorsBefore, actorsOfAFreshView());
+  s.controller.addAffineAtPoint({s.lattice, 2}, widgets::AffineKind::Translate);  // a cell and its widget
+  const std::size_t added = s.scene.widgets.widgets().size() - widgetsBefore;
+  ASSERT_EQ(added, 2u);
+  s.controller.clearSelection();
+  const int actorsAdded = s.renderer->GetActors()->GetNumberOfItems();
+  const std::uint64_t instance = s.scene.widgets.instance();
+
+  const SceneViewStats done = s.view.stats();
+  s.commands.undo();
+  EXPECT_EQ(s.scene.widgets.instance(), instance);
+  EXPECT_EQ(s.scene.widgets.widgets().size(), widgetsBefore);
+  EXPECT_EQ(s.deformer.lastStats().reembeddedStages, 0);
+  EXPECT_EQ(s.deformer.lastStats().latticesBuilt, 0);
+  const SceneViewStats undone = s.view.stats();
+  EXPECT_EQ(undone.widgetActorBuilds, done.widgetActorBuilds) << "no other widget is redrawn";
+  EXPECT_EQ(undone.objectBuilds, done.objectBuilds);
+  EXPECT_EQ(undone.pointUpdates, done.pointUpdates);
+  EXPECT_EQ(s.renderer->GetActors()->GetNumberOfItems(), actorsBefore);
+  EXPECT_EQ(s.renderer->GetActors()->GetNumberOfItems(), actorsOfAFreshView());
+
+  s.commands.redo();
+  EXPECT_EQ(s.deformer.lastStats().reembeddedStages, 0);
+  EXPECT_EQ(s.deformer.lastStats().latticesBuilt, 0);
+  const SceneViewStats redone = s.view.stats();
+  EXPECT_EQ(redone.widgetActorBuilds, undone.widgetActorBuilds + static_cast<int>(added)) << "just the two widgets back";
+  EXPECT_EQ(redone.objectBuilds, undone.objectBuilds);
+  EXPECT_EQ(s.renderer->GetActors()->GetNumberOfItems(), actorsAdded);
+  EXPECT_EQ(s.renderer->GetActors()->GetNumberOfItems(), actorsOfAFreshView());
 }
 
 // Area-weighted vertex normals in double, written here from the definition (sum of the

@@ -33,6 +33,7 @@
 #include "ffdkit/app/parts.h"
 #include "gesture_normals.h"
 #include "ffdkit/widgets/widget_model.h"
+#include "ffdkit/widgets/widget_redraw.h"
 #include "scene_view_shapes.h"
 
 namespace ffdkit::app {
@@ -67,8 +68,8 @@ struct SceneView::Impl {
   };
   vtkRenderer* renderer = nullptr;
   std::vector<ObjectActor> objects;
-  // Widget actors are rebuilt when the model changes (its instance or revision); a change of the
-  // highlights only recolours them, shows or hides the selected lattices' faces and moves the
+  // Widget actors are built for a new model instance, and for the widgets a change concerns when
+  // the model's revision moved (widgets::widgetsToRedraw); a change of the highlights only recolours them, shows or hides the selected lattices' faces and moves the
   // point marker: hover and selection build no geometry.
   enum class Role { Lattice, LatticeFaces, Cell, Glyph };
   struct WidgetActor {
@@ -408,6 +409,51 @@ struct SceneView::Impl {
     }
   }
 
+  // The actors of one widget: a lattice's points and edges and its faces, a cell's points, an
+  // affine widget's glyph at its frame.
+  void addWidgetActors(const widgets::WidgetModel& model, WidgetId id) {
+    ++stats.widgetActorBuilds;
+    switch (model.type(id)) {
+      case widgets::WidgetType::Lattice: {
+        const Eigen::MatrixX3d points = model.worldControlPoints(id);
+        const Eigen::Vector3d base{0.55, 0.8, 1.0};
+        auto actor = addWidgetActor(latticePolyData(points, model.counts(id)), id, Role::Lattice, base);
+        actor->GetProperty()->SetPointSize(9.0);
+        actor->GetProperty()->SetRenderPointsAsSpheres(true);
+        actor->GetProperty()->SetLighting(false);
+        auto faces = addWidgetActor(latticeFacesPolyData(points, model.counts(id)), id, Role::LatticeFaces, base);
+        faces->GetProperty()->SetOpacity(0.18);
+        faces->GetProperty()->SetLighting(false);
+        return;
+      }
+      case widgets::WidgetType::Cell: {
+        auto actor = addWidgetActor(pointsPolyData(model.cellWorldPoints(id)), id, Role::Cell, {1.0, 0.65, 0.2});
+        actor->GetProperty()->SetPointSize(14.0);
+        actor->GetProperty()->SetRenderPointsAsSpheres(true);
+        actor->GetProperty()->SetLighting(false);
+        return;
+      }
+      case widgets::WidgetType::Affine: {
+        const widgets::WidgetFrame frame = model.affineFrame(id);
+        vtkNew<vtkTransform> transform;
+        const AffineKind kind = model.affineKind(id);
+        Eigen::Matrix4d m = frame.frame.matrix();
+        m.topLeftCorner<3, 3>() *= frame.size;
+        // A free rotate widget (a handle) turns its glyph by its variation about its axis, so a
+        // crank follows the pointer; an attached one already turns with its cell.
+        if (kind == AffineKind::Rotate && !model.attachedCell(id))
+          m.topLeftCorner<3, 3>() *= Eigen::AngleAxisd(model.variation(id), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+        Eigen::Matrix<double, 4, 4, Eigen::RowMajor> rowMajor = m;
+        transform->SetMatrix(rowMajor.data());
+        auto actor = addWidgetActor(cachedGlyph(model.glyph(id), kind), id, Role::Glyph, kindColour(kind));
+        actor->SetUserTransform(transform);
+        actor->GetProperty()->SetSpecular(0.4);
+        actor->GetProperty()->SetSpecularPower(40);
+        return;
+      }
+    }
+  }
+
   void buildWidgets(const widgets::WidgetModel& model) {
     for (auto& actor : widgetActors) renderer->RemoveActor(actor);
     widgetActors.clear();
@@ -415,40 +461,8 @@ struct SceneView::Impl {
     widgetInstance = model.instance();
     widgetRevision = model.revision();
     ++stats.widgetBuilds;
-    for (WidgetId lattice : model.widgets(widgets::WidgetType::Lattice)) {
-      const Eigen::MatrixX3d points = model.worldControlPoints(lattice);
-      const Eigen::Vector3d base{0.55, 0.8, 1.0};
-      auto actor = addWidgetActor(latticePolyData(points, model.counts(lattice)), lattice, Role::Lattice, base);
-      actor->GetProperty()->SetPointSize(9.0);
-      actor->GetProperty()->SetRenderPointsAsSpheres(true);
-      actor->GetProperty()->SetLighting(false);
-      auto faces = addWidgetActor(latticeFacesPolyData(points, model.counts(lattice)), lattice, Role::LatticeFaces, base);
-      faces->GetProperty()->SetOpacity(0.18);
-      faces->GetProperty()->SetLighting(false);
-    }
-    for (WidgetId cell : model.widgets(widgets::WidgetType::Cell)) {
-      auto actor = addWidgetActor(pointsPolyData(model.cellWorldPoints(cell)), cell, Role::Cell, {1.0, 0.65, 0.2});
-      actor->GetProperty()->SetPointSize(14.0);
-      actor->GetProperty()->SetRenderPointsAsSpheres(true);
-      actor->GetProperty()->SetLighting(false);
-    }
-    for (WidgetId affine : model.widgets(widgets::WidgetType::Affine)) {
-      const widgets::WidgetFrame frame = model.affineFrame(affine);
-      vtkNew<vtkTransform> transform;
-      const AffineKind kind = model.affineKind(affine);
-      Eigen::Matrix4d m = frame.frame.matrix();
-      m.topLeftCorner<3, 3>() *= frame.size;
-      // A free rotate widget (a handle) turns its glyph by its variation about its axis, so a
-      // crank follows the pointer; an attached one already turns with its cell.
-      if (kind == AffineKind::Rotate && !model.attachedCell(affine))
-        m.topLeftCorner<3, 3>() *= Eigen::AngleAxisd(model.variation(affine), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      Eigen::Matrix<double, 4, 4, Eigen::RowMajor> rowMajor = m;
-      transform->SetMatrix(rowMajor.data());
-      auto actor = addWidgetActor(cachedGlyph(model.glyph(affine), kind), affine, Role::Glyph, kindColour(kind));
-      actor->SetUserTransform(transform);
-      actor->GetProperty()->SetSpecular(0.4);
-      actor->GetProperty()->SetSpecularPower(40);
-    }
+    for (widgets::WidgetType type : {widgets::WidgetType::Lattice, widgets::WidgetType::Cell, widgets::WidgetType::Affine})
+      for (WidgetId id : model.widgets(type)) addWidgetActors(model, id);
     // The picked-point marker: one point at the origin, placed by the actor's position.
     pointMarker = addWidgetActor(pointsPolyData(Eigen::RowVector3d::Zero()), kSelected);
     pointMarker->GetProperty()->SetPointSize(18.0);
@@ -462,10 +476,29 @@ struct SceneView::Impl {
     selectedRevision = 0;
   }
 
+  // The actors of the widgets a change concerns (widgets::widgetsToRedraw) anew, and those of the
+  // widgets the model no longer has gone; every other actor stays as it is.
+  void redrawWidgets(const widgets::WidgetModel& model, const std::vector<WidgetId>& redraw) {
+    widgetRevision = model.revision();
+    ++stats.widgetBuilds;
+    auto stale = [&](WidgetId id) { return !model.contains(id) || std::binary_search(redraw.begin(), redraw.end(), id); };
+    std::erase_if(widgets, [&](const WidgetActor& w) {
+      if (!stale(w.id)) return false;
+      renderer->RemoveActor(w.actor);
+      std::erase(widgetActors, w.actor);
+      return true;
+    });
+    for (WidgetId id : redraw) addWidgetActors(model, id);
+  }
+
   // Widget actors from the model when it changed; highlights always (no geometry).
   void updateWidgets(const widgets::WidgetModel& model) {
     updateTransformer();
-    if (!pointMarker || widgetInstance != model.instance() || widgetRevision != model.revision()) buildWidgets(model);
+    if (!pointMarker || widgetInstance != model.instance()) {
+      buildWidgets(model);
+    } else if (widgetRevision != model.revision()) {
+      redrawWidgets(model, widgets::widgetsToRedraw(model, model.changesSince(widgetRevision)));
+    }
     applyHighlights(model);
     updatePins();
   }

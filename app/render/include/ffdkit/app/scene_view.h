@@ -36,7 +36,10 @@ struct SceneViewStats {
   /// Of normalUpdates, those that followed a drag of one control point (one cross product per
   /// vertex, exact to float rounding) instead of a pass over the triangles (app/render/src/gesture_normals.h).
   int followedNormals = 0;
-  int widgetBuilds = 0;   ///< rebuilds of the widget actors (the model changed)
+  /// Updates of the widget actors (the model changed): all of them for a new model instance, those
+  /// of the widgets the change concerns otherwise (widgets::widgetsToRedraw).
+  int widgetBuilds = 0;
+  int widgetActorBuilds = 0;  ///< widgets whose actors were built, one per widget (a lattice's two count once)
   int overlayBuilds = 0;  ///< placements of the transformer's actors (another transformer)
 };
 
@@ -46,8 +49,9 @@ struct SceneViewStats {
 /// points, affine widgets as glyphs at their frames (arrow = translate, ring = rotate, cube =
 /// scale, or a part of the parts library), coloured by kind, with hover / selection / gesture
 /// highlights. Change-driven: refresh() rewrites the point array (and normals) of an object only
-/// when its deformed points moved (SceneDeformer::revision), rebuilds the widget actors only when
-/// the model changed (WidgetModel::instance / revision), and applies highlights by recolouring
+/// when its deformed points moved (SceneDeformer::revision), rebuilds the actors of just the widgets
+/// a model change concerns (WidgetModel::changesSince, widgets::widgetsToRedraw; all of them for
+/// another model instance), and applies highlights by recolouring
 /// and showing or hiding actors, so hover and selection build no geometry.
 class SceneView {
  public:
