@@ -1,7 +1,7 @@
 // The interactive path (issue 16): a drag step (model gesture, in-place deformation, the view's
 // point and normal arrays; the normals followed along the motion after its first step, which
-// BM_DragFirstStep times), a hover (highlights only) and an undo of a drag (model and deformer:
-// the document core; the view then updates as in a drag step), on a sphere of
+// BM_DragFirstStep times), a hover (highlights only), an undo of a drag (model and deformer:
+// the document core; the view then updates as in a drag step) and of adding a widget, on a sphere of
 // 1M (10M) vertices in a 4x4x4 cubic B-spline lattice with one point widget. No GL draw: the
 // view's renderer has no window. Run:
 //   bench_interaction --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
@@ -157,6 +157,41 @@ void BM_UndoDrag(benchmark::State& state) {
   state.counters["points"] = double(s.scene.objects().front().mesh.points.rows());
 }
 
+// Undo and redo of a structural edit (adding a point widget) in a scene of 1 + 8 lattices with
+// a widget each and 60 more point widgets on the first (148 widgets): the model takes the patch in place
+// (WidgetModel::assignData) and the view redraws the added cell and widget only. Model, deformer
+// and view.
+void BM_UndoAddWidget(benchmark::State& state) {
+  static std::unique_ptr<Session> made;
+  if (!made) {
+    made = std::make_unique<Session>(static_cast<int>(state.range(0)));
+    app::InteractionController& c = made->controller;
+    for (int i = 0; i < 8; ++i) {
+      app::NewLatticeOptions options;
+      options.counts = Eigen::Vector3i::Constant(3);
+      const widgets::WidgetId lattice = c.newLattice(options);
+      c.addAffineAtPoint({lattice, 13}, widgets::AffineKind::Translate);
+    }
+    for (Eigen::Index p = 0; p < 60; ++p) c.addAffineAtPoint({made->lattice, p}, widgets::AffineKind::Translate);
+    c.addAffineAtPoint({made->lattice, 63}, widgets::AffineKind::Translate);  // the edit undone and redone
+    c.clearSelection();
+  }
+  Session& s = *made;
+  const int builtBefore = s.view->stats().widgetActorBuilds;
+  bool undone = false;
+  for (auto _ : state) {
+    if (undone) s.commands.redo();
+    else s.commands.undo();
+    undone = !undone;
+    require(s.deformer.lastStats().reembeddedStages == 0 && s.deformer.lastStats().latticesBuilt == 0,
+            "an undo or redo of adding a widget re-embedded or built a lattice");
+  }
+  if (undone) s.commands.redo();
+  state.counters["widgets"] = double(s.scene.widgets.widgets().size());
+  state.counters["actorsBuiltPerStep"] =
+      double(s.view->stats().widgetActorBuilds - builtBefore) / double(state.iterations() + (undone ? 1 : 0));
+}
+
 }  // namespace
 
 // Sphere resolution 1414: ~1M vertices; 4472: ~10M. The drag step also at 10K and 100K vertices
@@ -166,4 +201,5 @@ BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:100K/lattice:4x4x4-cubic")->Arg
 BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:10K/lattice:4x4x4-cubic")->Arg(141)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DragFirstStep)->Name("BM_DragFirstStep/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Hover)->Name("BM_Hover/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_UndoAddWidget)->Name("BM_UndoAddWidget/points:100K/lattices:9/widgets:148")->Arg(447)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_UndoDrag)->Name("BM_UndoDrag/points:10M/lattice:4x4x4-cubic")->Arg(4472)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
