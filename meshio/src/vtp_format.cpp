@@ -4,6 +4,8 @@
 // it. Polygons are fan-triangulated and strips split as VTK's triangle filter does; lines are
 // split into segments; vertex cells are checked and dropped. Writing stays with VTK
 // (vtk_formats.cpp).
+#include <algorithm>
+#include <charconv>
 #include <climits>
 #include <cstdint>
 #include <limits>
@@ -48,8 +50,9 @@ struct PieceReader {
     fail(parent, std::string(what) + ": no DataArray" + (name.empty() ? std::string() : " \"" + std::string(name) + "\""));
   }
 
-  // Calls `cell(index, ids, size)` for each of the `cells` cells of `element` (Verts, Lines,
-  // Polys, Strips), each id checked against the piece's `points`.
+  // Calls `cell(ids, size)` for each of the `cells` cells of the piece's `elementName` (Verts,
+  // Lines, Polys, Strips), after checking the offsets run in order and every id is one of the
+  // piece's `points`.
   template <class Cell>
   void forEachCell(const XmlElement& piece, const char* elementName, const char* kind, std::size_t cells, std::size_t points,
                    Cell&& cell) const {
