@@ -40,14 +40,15 @@ ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& em
       for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
         const Embedding::Block& block = blocks[bi];
         if (block.kind == Embedding::BlockKind::Frozen) continue;  // no weights, total 0
+        const std::array<int, 3> cell = embedding.cellOf(block);
         // The cell's window of control indices, in the order Deformer's gatherWindow walks it.
         int wi = 0;
         for (int c = 0; c < np[2]; ++c)
           for (int b = 0; b < np[1]; ++b)
             for (int a = 0; a < np[0]; ++a, ++wi)
               index[std::size_t(wi)] = static_cast<std::int32_t>(
-                  lattice.index(lattice.axis(0).controlIndex(block.cell[0], a), lattice.axis(1).controlIndex(block.cell[1], b),
-                                lattice.axis(2).controlIndex(block.cell[2], c)));
+                  lattice.index(lattice.axis(0).controlIndex(cell[0], a), lattice.axis(1).controlIndex(cell[1], b),
+                                lattice.axis(2).controlIndex(cell[2], c)));
         // A periodic axis with fewer control points than its window wraps onto the same point
         // twice: first[r] is the first window position with index[r] (the weights add up there).
         std::vector<int> first(static_cast<std::size_t>(window));
@@ -61,9 +62,9 @@ ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& em
           const double s = block.kind == Embedding::BlockKind::Blended
                                ? embedding.blendWeight()[block.blendOffset + q - block.begin]
                                : 1.0;
-          lattice.axis(0).basis(block.cell[0], embedding.sortedU()[q], bu.data());
-          lattice.axis(1).basis(block.cell[1], embedding.sortedV()[q], bv.data());
-          lattice.axis(2).basis(block.cell[2], embedding.sortedW()[q], bw.data());
+          lattice.axis(0).basis(cell[0], embedding.sortedU()[q], bu.data());
+          lattice.axis(1).basis(cell[1], embedding.sortedV()[q], bv.data());
+          lattice.axis(2).basis(cell[2], embedding.sortedW()[q], bw.data());
           wi = 0;
           for (int c = 0; c < np[2]; ++c)
             for (int b = 0; b < np[1]; ++b)
@@ -136,14 +137,15 @@ Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& emb
       for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
         const Embedding::Block& block = blocks[bi];
         if (block.kind == Embedding::BlockKind::Frozen) continue;
+        const std::array<int, 3> blockCell = embedding.cellOf(block);
         bool inWindow = true;
         for (int a = 0; a < 3; ++a) {
           at[a].clear();
           for (int r = 0; r < np[a]; ++r)
-            if (lattice.axis(a).controlIndex(block.cell[a], r) == g[a]) at[a].push_back(r);
+            if (lattice.axis(a).controlIndex(blockCell[a], r) == g[a]) at[a].push_back(r);
           inWindow = inWindow && !at[a].empty();
           if (K < 0) continue;
-          const double* cell = poly[a].cell(block.cell[a]);
+          const double* cell = poly[a].cell(blockCell[a]);
           origin[a] = cell[0];
           scale[a] = cell[1];
           for (int k = 0; k <= K; ++k) {
@@ -167,9 +169,9 @@ Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& emb
               product *= h;
             }
           } else {
-            lattice.axis(0).basis(block.cell[0], params[0][q], bu.data());
-            lattice.axis(1).basis(block.cell[1], params[1][q], bv.data());
-            lattice.axis(2).basis(block.cell[2], params[2][q], bw.data());
+            lattice.axis(0).basis(blockCell[0], params[0][q], bu.data());
+            lattice.axis(1).basis(blockCell[1], params[1][q], bv.data());
+            lattice.axis(2).basis(blockCell[2], params[2][q], bw.data());
             double su = 0.0, sv = 0.0, sw = 0.0;
             for (int r : at[0]) su += bu[std::size_t(r)];
             for (int r : at[1]) sv += bv[std::size_t(r)];

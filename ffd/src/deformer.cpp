@@ -295,7 +295,7 @@ Eigen::Index Deformer::evaluateBlocks(const Lattice& lattice, const Eigen::Ref<c
   const auto& blocks = embedding_.blocks();
   const auto& tiles = embedding_.tileBlocks();
   const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
-  auto inFilter = [&](const Embedding::Block& block) { return !cellFilter || (*cellFilter)[flatCell(lattice, block.cell)]; };
+  auto inFilter = [&](const Embedding::Block& block) { return !cellFilter || (*cellFilter)[block.cell]; };
   // The points to evaluate and the cells they lie in.
   Eigen::Index work = 0;
   {
@@ -305,7 +305,7 @@ Eigen::Index Deformer::evaluateBlocks(const Lattice& lattice, const Eigen::Ref<c
       if (!inFilter(block)) continue;
       work += block.end - block.begin;
       if (block.kind == Embedding::BlockKind::Frozen) continue;
-      const std::size_t flat = flatCell(lattice, block.cell);
+      const std::size_t flat = block.cell;
       if (!used[flat]) flats.push_back(flat);
       used[flat] = 1;
     }
@@ -321,7 +321,7 @@ Eigen::Index Deformer::evaluateBlocks(const Lattice& lattice, const Eigen::Ref<c
     CellFields::Reader reader(fields);
     TileScratch scratch;
     auto run = [&](const detail::KernelInput& local, const Embedding::Block& block, bool blended, detail::Store mode) {
-      runBlock(local, reader, fields, block.cell, block.begin, block.end, blended, mode);
+      runBlock(local, reader, fields, embedding_.cellOf(block).data(), block.begin, block.end, blended, mode);
     };
     // Identity outside, Failed, beyond Falloff: the input unchanged.
     auto frozen = [&](const Embedding::Block& block) {
@@ -437,12 +437,12 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
   Eigen::Index evaluated = 0;
   Eigen::Index work = 0;
   for (const Embedding::Block& block : blocks) {
-    if (block.kind != Embedding::BlockKind::Frozen && !terms[flatCell(lattice, block.cell)].empty())
+    if (block.kind != Embedding::BlockKind::Frozen && !terms[block.cell].empty())
       work += block.end - block.begin;
   }
   fields.plan(std::move(denseCells), work);
   auto touched = [&](const Embedding::Block& block) {
-    return block.kind != Embedding::BlockKind::Frozen && !terms[flatCell(lattice, block.cell)].empty();
+    return block.kind != Embedding::BlockKind::Frozen && !terms[block.cell].empty();
   };
   const bool parallel = parallel_ && work >= kParallelPoints;
 #pragma omp parallel if (parallel) reduction(+ : evaluated)
@@ -451,11 +451,11 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
     CellFields::Reader reader(fields);
     TileScratch scratch;
     auto run = [&](const detail::KernelInput& local, const Embedding::Block& block, bool blended, detail::Store mode) {
-      const std::size_t cell = flatCell(lattice, block.cell);
+      const std::size_t cell = block.cell;
       if (dense[cell]) {
-        runBlock(local, reader, fields, block.cell, block.begin, block.end, blended, mode);
+        runBlock(local, reader, fields, embedding_.cellOf(block).data(), block.begin, block.end, blended, mode);
       } else {
-        detail::sparseBlock(local, block.cell, block.begin, block.end, blended, terms[cell].data(),
+        detail::sparseBlock(local, embedding_.cellOf(block).data(), block.begin, block.end, blended, terms[cell].data(),
                             static_cast<int>(terms[cell].size()), mode);
       }
     };

@@ -242,6 +242,8 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
   Embedding e;
   e.restRevision_ = lattice.restRevision();
   e.counts_ = lattice.counts();
+  e.cellsU_ = cells[0];
+  e.cellsV_ = cells[1];
   e.policy_ = policy;
   // Written once below, tile by tile in parallel: no zero fill first (see NoInitAllocator).
   e.status_.resize(static_cast<std::size_t>(n));
@@ -441,9 +443,7 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
       while (runEnd < m && key[order[runEnd]] == k) ++runEnd;
       const std::int64_t cell = k % cellTotal;
       Embedding::Block block{};
-      block.cell[0] = static_cast<int>(cell % cells[0]);
-      block.cell[1] = static_cast<int>((cell / cells[0]) % cells[1]);
-      block.cell[2] = static_cast<int>(cell / (std::int64_t(cells[0]) * cells[1]));
+      block.cell = static_cast<std::uint32_t>(cell);  // < 1e8 cells (Lattice's limit on control points)
       block.begin = static_cast<std::uint32_t>(begin + i);
       block.end = static_cast<std::uint32_t>(begin + runEnd);
       block.kind = static_cast<Embedding::BlockKind>(k / cellTotal);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -128,13 +129,21 @@ class Embedding {
     Frozen      ///< left unchanged: Identity outside, Failed, beyond the Falloff distance
   };
   struct Block {
-    int cell[3];               ///< cell index per axis
-    std::uint32_t begin;       ///< sorted positions [begin, end)
+    std::uint32_t cell;         ///< flat cell index i + cu (j + cv k) (cu, cv: cells along u, v; cellOf decodes it)
+    std::uint32_t begin;        ///< sorted positions [begin, end)
     std::uint32_t end;
-    BlockKind kind;
     std::uint32_t blendOffset;  ///< Blended only
+    BlockKind kind;
   };
+  // 20 bytes: many-cell lattices in random order make blocks of a few points each, and the
+  // embedding's memory per point (issue 21: <= 32 bytes) counts them.
+  static_assert(sizeof(Block) == 20);
   const std::vector<Block>& blocks() const { return blocks_; }
+  /// A block's cell index per axis.
+  std::array<int, 3> cellOf(const Block& block) const {
+    const std::uint32_t cu = std::uint32_t(cellsU_), cv = std::uint32_t(cellsV_);
+    return {int(block.cell % cu), int(block.cell / cu % cv), int(block.cell / cu / cv)};
+  }
   /// Blocks of tile t: [tileBlocks()[t], tileBlocks()[t+1]).
   const std::vector<std::uint32_t>& tileBlocks() const { return tileBlocks_; }
   const ParameterVector& sortedU() const { return u_; }
@@ -155,6 +164,7 @@ class Embedding {
   Eigen::Vector3i counts_ = Eigen::Vector3i::Zero();
   OutsidePolicy policy_{};
   std::vector<Block> blocks_;
+  int cellsU_ = 1, cellsV_ = 1;  // cells along u and v (Block::cell)
   std::vector<std::uint32_t> tileBlocks_{0};
   ParameterVector u_, v_, w_;
   IndexVector order_;
