@@ -83,6 +83,11 @@ struct SceneDeformer::ObjectPipeline {
   std::uint64_t baseRevision = 0;
   Eigen::MatrixX3d baseControl;
   bool moved = false;  // a delta step of the last stage ran since the base
+  // The last pipeline run changed the output by a delta step of the last stage only (no stage
+  // approximated or re-embedded): the next step that moves only that stage's control points can
+  // be deferred (deferred: run the pipeline when points() is asked for; see deferGesture).
+  bool deltaOnly = false;
+  bool deferred = false;
 };
 
 SceneDeformer::SceneDeformer() = default;
@@ -107,7 +112,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   const auto start = std::chrono::steady_clock::now();
   // 1. Sync every object's pipeline with the scene, in place (nothing is embedded yet), so that a
   //    throw in step 2 leaves each pipeline whole.
-  std::vector<ObjectPipeline*> toRun;
+  std::vector<ObjectPipeline*> toRun, deferred;
   std::set<std::string> names;
   // Revisions compare within one widget model: another instance (a replaced model) syncs in full.
   const bool sameModel = widgetInstance_ == scene.widgets.instance();
@@ -128,7 +133,10 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
     p->meshData = own.data();
     p->meshRows = own.rows();
     p->meshRevision = object.meshRevision;
+    bool onlyLastControl = sameModel;  // only the last stage's control points moved (or nothing)
+    bool lastControlMoved = false;
     if (!p->pipeline || inputChanged || stages != p->stages) {
+      onlyLastControl = false;
       // New object, new points or a new lattice tree: rebuild (embeddings follow on update).
       auto pipeline = std::make_unique<ffd::Pipeline>(own);
       std::map<widgets::WidgetId, ffd::LatticeId> ids;
@@ -155,6 +163,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
         const std::uint64_t controlRevision = scene.widgets.controlRevision(stage.lattice);
         auto& seen = p->synced[stage.lattice];
         if (sameModel && seen == std::pair(frameRevision, controlRevision)) continue;
+        if (!(stage == stages.back()) || seen.first != frameRevision) onlyLastControl = false;
         ffd::Lattice& current = p->pipeline->lattice(p->ids.at(stage.lattice));
         if (!sameModel || seen.first != frameRevision) {
           if (!sameRestShape(scene.widgets, stage.lattice, current)) {
@@ -166,7 +175,10 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
           }
         }
         const Eigen::MatrixX3d& control = scene.widgets.controlPoints(stage.lattice);
-        if (control != current.controlPoints()) current.setControlPoints(control);
+        if (control != current.controlPoints()) {
+          current.setControlPoints(control);
+          lastControlMoved = lastControlMoved || stage == stages.back();
+        }
         seen = {frameRevision, controlRevision};
       }
     }
@@ -176,7 +188,13 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       if (activeLattice && p->ids.count(*activeLattice)) active = p->ids.at(*activeLattice);
       p->pipeline->setActiveLattice(active);
       p->pipeline->setUpdateMode(how == Run::Gesture ? ffd::UpdateMode::Delta : ffd::UpdateMode::Exact);
-      toRun.push_back(p);
+      if (how == Run::Gesture && onlyLastControl && lastControlMoved && p->moved && p->deltaOnly) {
+        // Lazy (issue 16): the pipeline would update the last stage by deltas only; leave that to
+        // points() (one delta from the last evaluated control points) and report the motion.
+        deferred.push_back(p);
+      } else {
+        toRun.push_back(p);
+      }
     }
     if (added) objects_[object.name] = std::move(added);
   }
@@ -195,12 +213,24 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   if (progress_ && !goOn(0)) throw ffd::Cancelled("scene deformer: cancelled before any embedding");
   SceneDeformStats stats;
   stats.latticesBuilt = latticesBuilt;
+  for (ObjectPipeline* p : deferred) {
+    // Reported as the delta step it stands for (SceneDeformStats::deltaStages).
+    p->deferred = true;
+    ++p->revision;
+    ++stats.deltaStages;
+    stats.deformedPoints += p->pipeline->inputPoints().rows();
+    if (const ffd::Embedding* first = p->pipeline->embedding(p->ids.at(p->stages.front().lattice))) {
+      stats.outsidePoints += first->outsideCount();
+      stats.failedPoints += first->failedCount();
+    }
+  }
   Eigen::Index done = 0;
   for (std::size_t i = 0; i < toRun.size(); ++i) {
     ObjectPipeline& p = *toRun[i];
     ffd::EmbedProgress hook;
     if (progress_ && toEmbed[i] > 0) hook = [&goOn, done](Eigen::Index d, Eigen::Index) { return goOn(done + d); };
     // exact: re-embed every throttled stage too (one pipeline pass, not an update and then another).
+    p.deferred = false;  // this run includes the deferred delta
     if (exact) {
       p.pipeline->reembedAll(hook);
     } else {
@@ -218,6 +248,12 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
     }
     stats.deformedPoints += p.pipeline->inputPoints().rows();
     const std::vector<ffd::StageReport>& reports = p.pipeline->lastReport();
+    p.deltaOnly = !reports.empty() && reports.back().delta &&
+                  std::none_of(reports.begin(), reports.end(), [](const ffd::StageReport& r) {
+                    return r.approximate || r.reembedded;
+                  }) &&
+                  std::none_of(reports.begin(), reports.end() - 1,
+                               [](const ffd::StageReport& r) { return r.outputChanged; });
     if (std::any_of(reports.begin(), reports.end(), [](const ffd::StageReport& r) { return r.outputChanged; })) {
       ++p.revision;
       // Only the last stage changed, by deltas: the output moved linearly in its control points
@@ -244,7 +280,20 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
 const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const {
   auto it = objects_.find(object);
   if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
-  return it->second->pipeline->points();
+  ObjectPipeline& p = *it->second;
+  if (p.deferred) {
+    // The deferred gesture steps, as one delta step from the last evaluated control points (a
+    // fresh last stage in Delta mode: nothing embeds, nothing is cancelled).
+    p.pipeline->update();
+    p.deferred = false;
+  }
+  return p.pipeline->points();
+}
+
+Eigen::Index SceneDeformer::pointCount(const std::string& object) const {
+  auto it = objects_.find(object);
+  if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
+  return it->second->pipeline->inputPoints().rows();
 }
 
 std::uint64_t SceneDeformer::revision(const std::string& object) const {

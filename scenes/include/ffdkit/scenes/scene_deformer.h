@@ -95,8 +95,16 @@ class SceneDeformer {
   void setProgress(SceneProgress progress) { progress_ = std::move(progress); }
 
   /// Deformed points of an object (its own points if no lattice deforms it), #points x 3.
+  /// Gesture steps that only move the control points of the object's last lattice stage after a
+  /// delta step of it (the steps after a drag's first) are deferred: updateGesture() reports them
+  /// (revision, gestureMotion, lastStats().deltaStages) and this call applies them, as one delta
+  /// step from the last evaluated control points (a consumer that follows gestureMotion(), as the
+  /// view does, reads no points during a drag). Hence not thread-safe against other const calls.
   /// @throws std::invalid_argument for an object update() has not seen.
   const Eigen::MatrixX3d& points(const std::string& object) const;
+  /// points(object).rows() without applying deferred gesture steps.
+  /// @throws std::invalid_argument for an object update() has not seen.
+  Eigen::Index pointCount(const std::string& object) const;
   /// Grows whenever points(object) changes (a view updates the object's arrays when it moved).
   /// @throws std::invalid_argument for an object update() has not seen.
   std::uint64_t revision(const std::string& object) const;
