@@ -21,9 +21,11 @@
 // of the linear interpolant of beta, (dbeta1 e2 - dbeta2 e1) = A_f x g_f, so that
 // D x (A_f x g_f) = (g_f.D) A_f - g_f (D.A_f) is that cofactor's change applied to A_f, exactly.
 //
-// Cost per step: one cross product and a normalisation per vertex, 24 bytes read and 12 written,
-// instead of a pass over the triangles and a gather over each vertex's triangles. The first step of
-// a motion computes the exact normals and W (a pass over the triangles and a gather, once).
+// Cost per step (follow): one cross product and a normalisation per vertex, and the point moved by
+// beta_v times the step of D: 52 bytes read and 36 written, in one pass, instead of a pass over the
+// triangles, a gather over each vertex's triangles and a copy of the deformer's points (whose
+// delta step the deformer defers: SceneDeformer::points). The first step of a motion computes the
+// exact normals, W and beta (a pass over the triangles and a gather, once).
 // Motions of several control points (the general form has pairwise D_c x D_c' terms) and every
 // other change are recomputed exactly.
 
@@ -31,6 +33,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <vtkPoints.h>
 
 #include "ffdkit/scenes/scene_deformer.h"
 #include "scene_view_shapes.h"
@@ -39,16 +42,24 @@ namespace ffdkit::app {
 
 class GestureNormals {
  public:
+  /// A later step of the one-control-point motion update() last set up: moves the view's points
+  /// by x_v += beta_v (D(t) - D(t')) (t' the step last shown; beta_v in float, the points in
+  /// double as VTK holds them) and writes the followed normals, in one pass over the vertices on
+  /// both cores, without reading the deformer's points (SceneDeformer::points applies deferred
+  /// gesture steps: the view does not ask for them). Returns false, touching nothing, when the
+  /// object's motion is not that one (then call update() with the deformer's points).
+  bool follow(const scenes::SceneDeformer& deformer, const std::string& object, vtkPoints* points,
+              vtkFloatArray* normals);
+
   /// Writes the area-weighted vertex normals of `points` (the deformer's present points of
-  /// `object`, whose triangles are `triangles`) into `normals`: followed along the object's
-  /// gesture motion when it is one control point's and the same as the last call's (returns
-  /// true), else computed from the triangles (updateNormals' bits; returns false), keeping what the
-  /// next steps of a one-control-point motion need.
-  bool update(const scenes::SceneDeformer& deformer, const std::string& object, const Eigen::MatrixX3i& triangles,
+  /// `object`, whose triangles are `triangles`) into `normals`, computed from the triangles
+  /// (updateNormals' bits), keeping what follow() needs when the object's motion is one control
+  /// point's (its weights beta_v, W_v and N_v(t0)).
+  void update(const scenes::SceneDeformer& deformer, const std::string& object, const Eigen::MatrixX3i& triangles,
               const scene_view_shapes::VertexFaces& vf, const Eigen::MatrixX3d& points,
               std::vector<Eigen::Vector3f>& faceScratch, vtkFloatArray* normals);
 
-  /// Forgets the motion (frees its 24 bytes per vertex).
+  /// Forgets the motion (frees its 28 bytes per vertex).
   void clear();
 
  private:
@@ -57,9 +68,11 @@ class GestureNormals {
   widgets::WidgetId lattice_;
   Eigen::Index controlPoint_ = -1;
   Eigen::Vector3d startDisplacement_ = Eigen::Vector3d::Zero();  // D(t0)
+  Eigen::Vector3d shownDisplacement_ = Eigen::Vector3d::Zero();  // D(t') of the points shown
   // Columns (x, y, z: the per-step loop streams and vectorises over them):
   Eigen::MatrixX3f sums_;    // N_v(t0), the unnormalised area-weighted normals
   Eigen::MatrixX3f motion_;  // W_v
+  Eigen::VectorXf beta_;     // beta_v, the moved control point's weights
 };
 
 }  // namespace ffdkit::app

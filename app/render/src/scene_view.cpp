@@ -289,7 +289,7 @@ struct SceneView::Impl {
     for (const auto& object : scene.objects()) {
       if (!object.display.visible) continue;
       if (n >= objects.size() || objects[n].name != object.name ||
-          objects[n].pointCount != deformed.points(object.name).rows() || !(objects[n].display == object.display))
+          objects[n].pointCount != deformed.pointCount(object.name) || !(objects[n].display == object.display))
         return false;
       ++n;
     }
@@ -529,20 +529,24 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
       const std::uint64_t revision = deformed.revision(entry.name);
       if (revision == entry.pointsRevision) continue;
       entry.pointsRevision = revision;
-      const Eigen::MatrixX3d& points = deformed.points(entry.name);
-      setPoints(entry.polyData->GetPoints(), points);
+      auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals());
+      // A later step of a one-control-point drag: points and normals follow the motion in one pass.
+      const bool followed = normals && entry.gestureNormals.follow(deformed, entry.name, entry.polyData->GetPoints(), normals);
+      if (!followed) setPoints(entry.polyData->GetPoints(), deformed.points(entry.name));
       ++impl_->stats.pointUpdates;
-      if (auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals())) {
+      if (normals) {
         ++impl_->stats.normalUpdates;
-        if (entry.gestureNormals.update(deformed, entry.name, scene.findObject(entry.name)->mesh.triangles,
-                                        entry.vertexFaces, points, entry.faceNormals, normals))
+        if (followed)
           ++impl_->stats.followedNormals;
+        else
+          entry.gestureNormals.update(deformed, entry.name, scene.findObject(entry.name)->mesh.triangles,
+                                      entry.vertexFaces, deformed.points(entry.name), entry.faceNormals, normals);
         if (auto* tcoords = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetTCoords()))
           updateZebraCoordinates(tcoords, normals, entry.display.zebraDirection, entry.display.zebraStripes);
       }
       if (entry.comb)
         vtkPolyDataMapper::SafeDownCast(entry.comb->GetMapper())
-            ->SetInputData(combPolyData(entry.chains, points, entry.combFactor));
+            ->SetInputData(combPolyData(entry.chains, deformed.points(entry.name), entry.combFactor));
       entry.polyData->Modified();
     }
   } else {
