@@ -134,6 +134,25 @@ void BM_Hover(benchmark::State& state) {
   require(s.controller.hovered().has_value() == over, "the hover did not find the widget");
 }
 
+// Undoes and redoes the last command alternately, one step per iteration (ending redone),
+// requiring that no step re-embeds or builds a lattice; returns the steps taken.
+std::int64_t alternateUndoRedo(benchmark::State& state, Session& s, const char* failure) {
+  bool undone = false;
+  std::int64_t steps = 0;
+  for (auto _ : state) {
+    if (undone) s.commands.redo();
+    else s.commands.undo();
+    undone = !undone;
+    ++steps;
+    require(s.deformer.lastStats().reembeddedStages == 0 && s.deformer.lastStats().latticesBuilt == 0, failure);
+  }
+  if (undone) {
+    s.commands.redo();
+    ++steps;
+  }
+  return steps;
+}
+
 void BM_UndoDrag(benchmark::State& state) {
   Session& s = session(static_cast<int>(state.range(0)));
   // One drag gesture to undo and redo.
@@ -144,15 +163,7 @@ void BM_UndoDrag(benchmark::State& state) {
   // The document core's part: model and deformer (the view's share is BM_DragStep's).
   auto redraw = std::move(s.controller.onChanged);
   s.controller.onChanged = nullptr;
-  bool undone = false;
-  for (auto _ : state) {
-    if (undone) s.commands.redo();
-    else s.commands.undo();
-    undone = !undone;
-    require(s.deformer.lastStats().reembeddedStages == 0 && s.deformer.lastStats().latticesBuilt == 0,
-            "an undo or redo of a drag re-embedded or built a lattice");
-  }
-  if (undone) s.commands.redo();
+  alternateUndoRedo(state, s, "an undo or redo of a drag re-embedded or built a lattice");
   s.controller.onChanged = std::move(redraw);
   state.counters["points"] = double(s.scene.objects().front().mesh.points.rows());
 }
@@ -178,18 +189,9 @@ void BM_UndoAddWidget(benchmark::State& state) {
   }
   Session& s = *made;
   const int builtBefore = s.view->stats().widgetActorBuilds;
-  bool undone = false;
-  for (auto _ : state) {
-    if (undone) s.commands.redo();
-    else s.commands.undo();
-    undone = !undone;
-    require(s.deformer.lastStats().reembeddedStages == 0 && s.deformer.lastStats().latticesBuilt == 0,
-            "an undo or redo of adding a widget re-embedded or built a lattice");
-  }
-  if (undone) s.commands.redo();
+  const std::int64_t steps = alternateUndoRedo(state, s, "an undo or redo of adding a widget re-embedded or built a lattice");
   state.counters["widgets"] = double(s.scene.widgets.widgets().size());
-  state.counters["actorsBuiltPerStep"] =
-      double(s.view->stats().widgetActorBuilds - builtBefore) / double(state.iterations() + (undone ? 1 : 0));
+  state.counters["actorsBuiltPerStep"] = double(s.view->stats().widgetActorBuilds - builtBefore) / double(steps);
 }
 
 }  // namespace
