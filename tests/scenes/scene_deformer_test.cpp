@@ -182,6 +182,47 @@ TEST(SceneDeformer, AGestureMotionIsLinearInTheControlPointsTheLastStageMovedByD
   EXPECT_FALSE(deformer.gestureMotion("sphere"));
 }
 
+// The steps after a gesture's first that only move the last stage's control points are deferred
+// (updateGesture records them; points() applies them as one delta step from the last evaluated
+// control points): each is still reported (revision, motion, stats), pointCount() applies
+// nothing, and after several steps that nobody read the points are those of an exact evaluation
+// of the same scene, to the rounding of one delta step; the release is bit for bit exact.
+TEST(SceneDeformer, DeferredGestureStepsAreReportedAndAppliedWhenThePointsAreRead) {
+  Scene scene = sphereScene();
+  const auto lattice = attachNewLattice(scene, {"sphere"}, withCounts(4, 4, 4));
+  SceneDeformer deformer;
+  deformer.update(scene);
+  const Eigen::Index rows = scene.objects().front().mesh.points.rows();
+  Eigen::MatrixX3d control = scene.widgets.controlPoints(lattice);
+  const Eigen::Index f = 1 + 4 * (2 + 4 * 1);
+  std::uint64_t revision = deformer.revision("sphere");
+  Eigen::Vector3d moved = Eigen::Vector3d::Zero();
+  for (int step = 1; step <= 6; ++step) {
+    const Eigen::Vector3d dP(0.03, -0.02 * step, 0.01);
+    moved += dP;
+    control.row(f) += dP.transpose();
+    scene.widgets.setControlPoints(lattice, control);
+    deformer.updateGesture(scene, lattice);
+    EXPECT_EQ(deformer.lastStats().deltaStages, 1) << "step " << step;
+    EXPECT_GT(deformer.revision("sphere"), revision) << "step " << step;
+    revision = deformer.revision("sphere");
+    const std::optional<GestureMotion> motion = deformer.gestureMotion("sphere");
+    ASSERT_TRUE(motion) << "step " << step;
+    ASSERT_EQ(motion->controlPoints.size(), 1u);
+    EXPECT_LE((Eigen::Vector3d(motion->displacements.row(0)) - scene.widgets.latticeFrame(lattice).linear() * moved).norm(), 1e-14);
+    EXPECT_EQ(deformer.pointCount("sphere"), rows);
+  }
+  SceneDeformer fresh;
+  fresh.update(scene);
+  const Eigen::MatrixX3d read = deformer.points("sphere");  // applies the pending steps
+  EXPECT_EQ(deformer.revision("sphere"), revision);         // reading does not move the points again
+  EXPECT_GT((read - scene.objects().front().mesh.points).cwiseAbs().maxCoeff(), 0.01);
+  EXPECT_LE((read - fresh.points("sphere")).cwiseAbs().maxCoeff(), 1e-13);
+  EXPECT_EQ(deformer.points("sphere"), read);  // a second read applies nothing more
+  deformer.finishGesture(scene);
+  EXPECT_EQ(deformer.points("sphere"), fresh.points("sphere"));
+}
+
 TEST(SceneDeformer, AGestureMotionIsOnlyFollowedThroughTheLastStage) {
   // Fig. 6-9: parent, then child. Dragging the child (the last stage) is linear in its control
   // points; dragging the parent moves the child's input, which the child evaluates again.
