@@ -175,9 +175,12 @@ class Embedding {
 /// Xbar(u,v,w) = Q (seed 001 eq. (6.2)).
 /// - Affine rest map (box lattices, Lattice::restIsAffine()): closed form A^-1 (Q - b).
 /// - Otherwise damped Newton on Xbar(uvw) - Q with the analytic Jacobian, starting from the
-///   cylindrical coordinates (cylindrical lattices) or the least-squares affine fit of the rest
-///   lattice, restarting from the nearest sample of a coarse grid when that fails; near-singular
-///   Jacobians (the axis of a solid cylinder) fall back to a Levenberg-Marquardt step.
+///   factored inverse of an untouched cylinder, the tabulated inverse (large inputs), the
+///   cylindrical coordinates or the least-squares affine fit of the rest lattice; it stops as
+///   soon as a Taylor bound certifies the next residual and restarts from the nearest sample of
+///   a coarse grid when it fails; near-singular Jacobians (the axis of a solid cylinder) fall
+///   back to a Levenberg-Marquardt step. On single-cell lattices of degree <= 3 the first two
+///   steps run eight points at once (docs/ffd-engine.md, "Embedding (precompute) and Deformer").
 /// The lattice's OutsidePolicy decides what outside points will do.
 /// @param points  #points x 3, WORLD coordinates (lattice.frame() maps local to world), finite.
 /// @throws LatticeError on non-finite points or more than 2^32-1 points.
