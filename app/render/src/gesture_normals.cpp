@@ -11,33 +11,10 @@ using scene_view_shapes::VertexFaces;
 
 namespace {
 
-// Per triangle: dbeta1 e2 - dbeta2 e1 (see gesture_normals.h), in double, stored as float.
-void faceMotionVectors(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& points, const Eigen::VectorXd& beta,
-                       std::vector<Eigen::Vector3f>& out) {
-  const Eigen::Index n = points.rows();
-  const Eigen::Index m = triangles.rows();
-  out.resize(static_cast<std::size_t>(m));
-  const double* x = points.data();
-  const double* y = x + n;
-  const double* z = y + n;
-#pragma omp parallel for schedule(static)
-  for (Eigen::Index t = 0; t < m; ++t) {
-    const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
-    const Eigen::Vector3d pa(x[a], y[a], z[a]);
-    const Eigen::Vector3d e1 = Eigen::Vector3d(x[b], y[b], z[b]) - pa;
-    const Eigen::Vector3d e2 = Eigen::Vector3d(x[c], y[c], z[c]) - pa;
-    out[static_cast<std::size_t>(t)] = ((beta[b] - beta[a]) * e2 - (beta[c] - beta[a]) * e1).cast<float>();
-  }
-}
-
+// Per vertex: the sum of `faces` over its triangles, into the rows of `sums`.
 void gatherSums(const VertexFaces& vf, const std::vector<Eigen::Vector3f>& faces, Eigen::MatrixX3f& sums) {
 #pragma omp parallel for schedule(static)
-  for (Eigen::Index i = 0; i < sums.rows(); ++i) {
-    Eigen::Vector3f sum = Eigen::Vector3f::Zero();
-    for (int k = vf.start[static_cast<std::size_t>(i)]; k < vf.start[static_cast<std::size_t>(i) + 1]; ++k)
-      sum += faces[static_cast<std::size_t>(vf.faces[static_cast<std::size_t>(k)])];
-    sums.row(i) = sum.transpose();
-  }
+  for (Eigen::Index i = 0; i < sums.rows(); ++i) sums.row(i) = scene_view_shapes::vertexSum(vf, faces, i).transpose();
 }
 
 }  // namespace
@@ -123,7 +100,11 @@ void GestureNormals::update(const scenes::SceneDeformer& deformer, const std::st
   scene_view_shapes::faceAreaVectors(triangles, points, faceScratch);
   scene_view_shapes::gatherNormals(vf, faceScratch, n, normals->GetPointer(0), &sums_);
   const Eigen::VectorXd beta = deformer.controlWeights(object, motion->controlPoints[0]);
-  faceMotionVectors(triangles, points, beta, faceScratch);
+  // Per triangle: dbeta1 e2 - dbeta2 e1 (gesture_normals.h).
+  scene_view_shapes::perFace(triangles, points, faceScratch,
+                             [&](int a, int b, int c, const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) -> Eigen::Vector3d {
+                               return (beta[b] - beta[a]) * e2 - (beta[c] - beta[a]) * e1;
+                             });
   beta_ = beta.cast<float>();
   gatherSums(vf, faceScratch, motion_);
   normals->Modified();

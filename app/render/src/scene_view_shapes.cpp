@@ -54,28 +54,15 @@ VertexFaces vertexFaces(const Eigen::MatrixX3i& triangles, Eigen::Index pointCou
 
 void faceAreaVectors(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& points,
                      std::vector<Eigen::Vector3f>& faceNormals) {
-  const Eigen::Index n = points.rows();
-  const Eigen::Index m = triangles.rows();
-  faceNormals.resize(static_cast<std::size_t>(m));
-  const double* x = points.data();  // column-major: x, y, z columns
-  const double* y = x + n;
-  const double* z = y + n;
-#pragma omp parallel for schedule(static)
-  for (Eigen::Index t = 0; t < m; ++t) {
-    const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
-    const Eigen::Vector3d pa(x[a], y[a], z[a]);
-    const Eigen::Vector3d area = (Eigen::Vector3d(x[b], y[b], z[b]) - pa).cross(Eigen::Vector3d(x[c], y[c], z[c]) - pa);
-    faceNormals[static_cast<std::size_t>(t)] = area.cast<float>();
-  }
+  perFace(triangles, points, faceNormals,
+          [](int, int, int, const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) -> Eigen::Vector3d { return e1.cross(e2); });
 }
 
 void gatherNormals(const VertexFaces& vf, const std::vector<Eigen::Vector3f>& faceNormals, Eigen::Index n, float* out,
                    Eigen::MatrixX3f* sums) {
 #pragma omp parallel for schedule(static)
   for (Eigen::Index i = 0; i < n; ++i) {
-    Eigen::Vector3f sum = Eigen::Vector3f::Zero();
-    for (int k = vf.start[static_cast<std::size_t>(i)]; k < vf.start[static_cast<std::size_t>(i) + 1]; ++k)
-      sum += faceNormals[static_cast<std::size_t>(vf.faces[static_cast<std::size_t>(k)])];
+    const Eigen::Vector3f sum = vertexSum(vf, faceNormals, i);
     if (sums) sums->row(i) = sum.transpose();
     const float length = sum.norm();
     const Eigen::Vector3f v = length > 0.0f ? Eigen::Vector3f(sum / length) : Eigen::Vector3f::UnitZ();

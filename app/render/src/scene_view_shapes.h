@@ -30,6 +30,35 @@ struct VertexFaces {
 
 VertexFaces vertexFaces(const Eigen::MatrixX3i& triangles, Eigen::Index pointCount);
 
+/// out[t] = value(a, b, c, e1, e2) for each triangle t = (a, b, c) of `triangles` over
+/// `points` (#points x 3, column-major), with e1 = pb - pa, e2 = pc - pa in double; the result stored as float. In parallel, no write races.
+template <class FaceValue>
+void perFace(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& points, std::vector<Eigen::Vector3f>& out,
+             FaceValue value) {
+  const Eigen::Index n = points.rows();
+  const Eigen::Index m = triangles.rows();
+  out.resize(static_cast<std::size_t>(m));
+  const double* x = points.data();  // column-major: x, y, z columns
+  const double* y = x + n;
+  const double* z = y + n;
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index t = 0; t < m; ++t) {
+    const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
+    const Eigen::Vector3d pa(x[a], y[a], z[a]);
+    const Eigen::Vector3d e1 = Eigen::Vector3d(x[b], y[b], z[b]) - pa;
+    const Eigen::Vector3d e2 = Eigen::Vector3d(x[c], y[c], z[c]) - pa;
+    out[static_cast<std::size_t>(t)] = value(a, b, c, e1, e2).template cast<float>();
+  }
+}
+
+/// The sum of `faces` over the triangles of vertex i (vf).
+inline Eigen::Vector3f vertexSum(const VertexFaces& vf, const std::vector<Eigen::Vector3f>& faces, Eigen::Index i) {
+  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  for (int k = vf.start[static_cast<std::size_t>(i)]; k < vf.start[static_cast<std::size_t>(i) + 1]; ++k)
+    sum += faces[static_cast<std::size_t>(vf.faces[static_cast<std::size_t>(k)])];
+  return sum;
+}
+
 /// The two passes of updateNormals: each triangle's area vector (b - a) x (c - a), in double,
 /// stored as float ...
 void faceAreaVectors(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& points,
