@@ -5,6 +5,7 @@
 // evaluation; undo and redo are exact and embed nothing.
 #include <gtest/gtest.h>
 
+#include "drag_sphere.h"
 #include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/scenes/scene_deformer.h"
 
@@ -25,16 +26,10 @@ struct Document {
   // A sphere in a 4x4x4 cubic lattice (one Bernstein cell: every point moves with every control
   // point), a translate widget on an inner point of its top layer (as bench_interaction).
   Document() {
-    scenes::PrimitiveOptions sphere;
-    sphere.resolution = 48;
-    ball = controller.addPrimitive(sphere);
-    NewLatticeOptions cubic;
-    cubic.counts = Eigen::Vector3i::Constant(4);
-    cubic.basis = {ffd::AxisBasis::bspline(3), ffd::AxisBasis::bspline(3), ffd::AxisBasis::bspline(3)};
-    lattice = controller.newLattice(cubic);
-    controller.attachLattice(lattice, ball);
-    push = controller.addAffineAtPoint({lattice, 1 + 4 * (1 + 4 * 3)}, AffineKind::Translate);
-    controller.clearSelection();
+    const testing::DragSphere made = testing::addDragSphere(controller, 48);
+    ball = made.sphere;
+    lattice = made.lattice;
+    push = made.widget;
   }
   double latticeSize() const {
     const Eigen::MatrixX3d corners = scene.widgets.worldControlPoints(lattice);

@@ -13,6 +13,7 @@
 #include <vtkActorCollection.h>
 #include <vtkRenderer.h>
 
+#include "drag_sphere.h"
 #include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/app/scene_view.h"
 
@@ -260,16 +261,10 @@ struct DragSession {
   std::string sphere;
 
   explicit DragSession(int resolution) {
-    scenes::PrimitiveOptions options;
-    options.resolution = resolution;
-    sphere = controller.addPrimitive(options);
-    NewLatticeOptions cubic;
-    cubic.counts = Eigen::Vector3i::Constant(4);
-    cubic.basis = {ffd::AxisBasis::bspline(3), ffd::AxisBasis::bspline(3), ffd::AxisBasis::bspline(3)};
-    lattice = controller.newLattice(cubic);
-    controller.attachLattice(lattice, sphere);
-    widget = controller.addAffineAtPoint({lattice, 1 + 4 * (1 + 4 * 3)}, widgets::AffineKind::Translate);
-    controller.clearSelection();
+    const testing::DragSphere made = testing::addDragSphere(controller, resolution);
+    sphere = made.sphere;
+    lattice = made.lattice;
+    widget = made.widget;
     view.show(scene, deformer);
     controller.onChanged = [this] { view.refresh(scene, deformer); };
   }
