@@ -20,7 +20,8 @@
 namespace ffdkit::app {
 namespace {
 
-struct Session {
+// A document edited through the controller and drawn by a view (no window: no GL draw).
+struct ViewedDocument {
   scenes::Scene scene;
   scenes::SceneDeformer deformer;
   scenes::CommandStack commands;
@@ -28,6 +29,9 @@ struct Session {
   vtkNew<vtkRenderer> renderer;
   SceneView view{renderer};
   widgets::WidgetId lattice, widget;
+};
+
+struct Session : ViewedDocument {
   std::string moved, still;
 
   Session() {
@@ -250,14 +254,7 @@ double maxAngleDegrees(const Eigen::MatrixX3f& drawn, const Eigen::MatrixX3d& ex
 
 // A sphere in a 4x4x4 cubic B-spline lattice with a translate widget on an inner point of its
 // top layer (the BM_DragStep scene, smaller), drawn by a view that follows the controller.
-struct DragSession {
-  scenes::Scene scene;
-  scenes::SceneDeformer deformer;
-  scenes::CommandStack commands;
-  InteractionController controller{scene, deformer, commands};
-  vtkNew<vtkRenderer> renderer;
-  SceneView view{renderer};
-  widgets::WidgetId lattice, widget;
+struct DragSession : ViewedDocument {
   std::string sphere;
 
   explicit DragSession(int resolution) {
