@@ -4,13 +4,7 @@
 # batch with nothing written.
 #   mpi_deform_test.sh FFDKIT_CLI MPIEXEC WIDGET_FILE
 set -euo pipefail
-cli="$1"
-mpiexec="$2"
-tool="$3"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-# Open MPI refuses root unless told; --oversubscribe: the test machine may have fewer cores.
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+source "$(dirname "${BASH_SOURCE[0]}")/mpi_test_setup.sh" "$@"
 mpirun=("$mpiexec" -n 2)
 
 # Five pieces of different sizes and extents (uneven shares: rank 0 gets 2, rank 1 gets 3).

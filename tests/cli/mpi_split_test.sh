@@ -5,13 +5,7 @@
 # message, and nothing is written.
 #   mpi_split_test.sh FFDKIT_CLI MPIEXEC WIDGET_FILE
 set -euo pipefail
-cli="$1"
-mpiexec="$2"
-tool="$3"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-# Open MPI refuses root unless told; --oversubscribe: the test machine may have fewer cores.
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+source "$(dirname "${BASH_SOURCE[0]}")/mpi_test_setup.sh" "$@"
 fail() { echo "mpi_split_test: $*" >&2; exit 1; }
 
 # The same 5003 random points in the three formats: .xyz with comments and blank lines (so that
