@@ -15,7 +15,7 @@
 namespace ffdkit::meshio::detail {
 
 MeshData readPly(std::string_view bytes, const std::string& source);
-std::string writePly(const MeshData& mesh, PlyEncoding encoding);
+void writePly(ByteSink& out, const MeshData& mesh, PlyEncoding encoding);
 /// The header writePly writes for these counts.
 std::string plyHeader(Eigen::Index vertices, bool normals, Eigen::Index triangles, Eigen::Index segments, PlyEncoding encoding);
 
@@ -60,7 +60,7 @@ MeshData readObj(std::string_view bytes, const std::string& source);
 void writeObj(ByteSink& out, const MeshData& mesh);
 
 MeshData readStl(std::string_view bytes, const std::string& source);
-std::string writeStl(const MeshData& mesh);
+void writeStl(ByteSink& out, const MeshData& mesh);
 
 MeshData readXyz(std::string_view bytes, const std::string& source);
 void writeXyz(ByteSink& out, const MeshData& mesh);
@@ -75,7 +75,7 @@ struct XyzCounts {
 XyzCounts countXyz(std::string_view bytes);
 
 MeshData readNpy(std::string_view bytes, const std::string& source);
-std::string writeNpy(const MeshData& mesh);
+void writeNpy(ByteSink& out, const MeshData& mesh);
 /// The header writeNpy writes for `rows` points.
 std::string npyHeader(Eigen::Index rows);
 /// Where an .npy file's data are and how they are laid out, from its header.

@@ -122,36 +122,26 @@ MeshData readMesh(const std::filesystem::path& path) {
 
 namespace {
 
-/// The bytes of a format written as one block (the binary layouts and VTK's writers); text
-/// formats (OBJ, XYZ) stream instead and are not handled here.
-std::string blockFileBytes(const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {
+/// The bytes of `mesh` in `format`, in order, into `out`: the binary layouts stream through a
+/// small buffer (BinaryChunks), text formats slice by slice; VTK's writers make one block.
+void writeMeshBytes(ByteSink& out, const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {
   switch (format) {
-    case MeshFormat::Ply: return detail::writePly(mesh, options.plyEncoding);
-    case MeshFormat::Stl: return detail::writeStl(mesh);
-    case MeshFormat::Npy: return detail::writeNpy(mesh);
-    case MeshFormat::Vtp: return detail::writeVtk(mesh, true);
-    case MeshFormat::Vtk: return detail::writeVtk(mesh, false);
-    case MeshFormat::Obj:
-    case MeshFormat::Xyz:
+    case MeshFormat::Ply: return detail::writePly(out, mesh, options.plyEncoding);
+    case MeshFormat::Stl: return detail::writeStl(out, mesh);
+    case MeshFormat::Npy: return detail::writeNpy(out, mesh);
+    case MeshFormat::Obj: return detail::writeObj(out, mesh);
+    case MeshFormat::Xyz: return detail::writeXyz(out, mesh);
+    case MeshFormat::Vtp: return out.write(detail::writeVtk(mesh, true));
+    case MeshFormat::Vtk: return out.write(detail::writeVtk(mesh, false));
     case MeshFormat::Gltf:
     case MeshFormat::Glb: break;
   }
   throw MeshIoError("cannot write format '" + std::string(meshFormatExtension(format)) + "' (writes " + formatList(true) + ")");
 }
 
-bool isStreamedText(MeshFormat format) { return format == MeshFormat::Obj || format == MeshFormat::Xyz; }
-
-/// The bytes of `mesh` in `format`, in order, into `out`: text formats slice by slice.
-void writeMeshBytes(ByteSink& out, const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {
-  if (format == MeshFormat::Obj) return detail::writeObj(out, mesh);
-  if (format == MeshFormat::Xyz) return detail::writeXyz(out, mesh);
-  out.write(blockFileBytes(mesh, format, options));
-}
-
 }  // namespace
 
 std::string meshFileBytes(const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {
-  if (!isStreamedText(format)) return blockFileBytes(mesh, format, options);  // no copy of the block
   detail::StringSink bytes;
   writeMeshBytes(bytes, mesh, format, options);
   return std::move(bytes.text);

@@ -505,13 +505,14 @@ std::string plyHeader(Eigen::Index vertices, bool normals, Eigen::Index triangle
   return out;
 }
 
-std::string writePly(const MeshData& mesh, PlyEncoding encoding) {
+void writePly(ByteSink& sink, const MeshData& mesh, PlyEncoding encoding) {
   const bool normals = mesh.hasNormals && mesh.triangles.rows() > 0;
   const Eigen::MatrixX3d n = normals ? vertexNormals(mesh.points, mesh.triangles) : Eigen::MatrixX3d();
   const bool ascii = encoding == PlyEncoding::Ascii;
-  std::string out = plyHeader(mesh.points.rows(), normals, mesh.triangles.rows(), mesh.segments.rows(), encoding);
+  const std::string header = plyHeader(mesh.points.rows(), normals, mesh.triangles.rows(), mesh.segments.rows(), encoding);
 
   if (ascii) {
+    std::string out = header;
     for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {
       for (int c = 0; c < 3; ++c) {
         if (c > 0) out += ' ';
@@ -537,47 +538,26 @@ std::string writePly(const MeshData& mesh, PlyEncoding encoding) {
       appendNumber(out, (long long)mesh.segments(s, 1));
       out += '\n';
     }
-    return out;
+    sink.write(out);
+    return;
   }
 
-  // Binary: the body's size is known, so fill a buffer of that size without reallocating.
+  // Binary: fixed-size records streamed through one small buffer.
   const bool big = encoding == PlyEncoding::BinaryBigEndian;
-  const std::size_t vertexBytes = normals ? 24 : 12;
-  const std::size_t headerBytes = out.size();
-  const std::size_t total = headerBytes + std::size_t(mesh.points.rows()) * vertexBytes +
-                            std::size_t(mesh.triangles.rows()) * 13 + std::size_t(mesh.segments.rows()) * 8;
-  out.reserve(total);
-  adviseHugePages(out.data(), out.capacity());
-  out.resize(total);
-  char* cursor = out.data() + headerBytes;
-  auto put = [&](auto value) {
-    char raw[sizeof(value)];
-    std::memcpy(raw, &value, sizeof(value));
-    if (big != (std::endian::native == std::endian::big)) std::reverse(raw, raw + sizeof(value));
-    std::memcpy(cursor, raw, sizeof(value));
-    cursor += sizeof(value);
-  };
-  for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {
-    put(float(mesh.points(i, 0)));
-    put(float(mesh.points(i, 1)));
-    put(float(mesh.points(i, 2)));
-    if (normals) {
-      put(float(n(i, 0)));
-      put(float(n(i, 1)));
-      put(float(n(i, 2)));
-    }
-  }
-  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
-    *cursor++ = 3;
-    put(std::int32_t(mesh.triangles(t, 0)));
-    put(std::int32_t(mesh.triangles(t, 1)));
-    put(std::int32_t(mesh.triangles(t, 2)));
-  }
-  for (Eigen::Index s = 0; s < mesh.segments.rows(); ++s) {
-    put(std::int32_t(mesh.segments(s, 0)));
-    put(std::int32_t(mesh.segments(s, 1)));
-  }
-  return out;
+  BinaryChunks chunks(sink);
+  chunks.bytes(header);
+  chunks.records(mesh.points.rows(), normals ? 24 : 12, [&](char* at, Eigen::Index i) {
+    for (int c = 0; c < 3; ++c) at = storeBinary(at, float(mesh.points(i, c)), big);
+    for (int c = 0; normals && c < 3; ++c) at = storeBinary(at, float(n(i, c)), big);
+  });
+  chunks.records(mesh.triangles.rows(), 13, [&](char* at, Eigen::Index t) {
+    *at++ = 3;
+    for (int c = 0; c < 3; ++c) at = storeBinary(at, std::int32_t(mesh.triangles(t, c)), big);
+  });
+  chunks.records(mesh.segments.rows(), 8, [&](char* at, Eigen::Index s) {
+    for (int c = 0; c < 2; ++c) at = storeBinary(at, std::int32_t(mesh.segments(s, c)), big);
+  });
+  chunks.flush();
 }
 
 }  // namespace ffdkit::meshio::detail

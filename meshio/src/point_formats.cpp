@@ -239,12 +239,13 @@ std::string npyHeader(Eigen::Index rows) {
   return out;
 }
 
-std::string writeNpy(const MeshData& mesh) {
-  std::string out = npyHeader(mesh.points.rows());
-  out.reserve(out.size() + std::size_t(mesh.points.rows()) * 24);
-  for (Eigen::Index i = 0; i < mesh.points.rows(); ++i)
-    for (int c = 0; c < 3; ++c) appendBinary(out, mesh.points(i, c), false);
-  return out;
+void writeNpy(ByteSink& sink, const MeshData& mesh) {
+  BinaryChunks chunks(sink);
+  chunks.bytes(npyHeader(mesh.points.rows()));
+  chunks.records(mesh.points.rows(), 24, [&](char* at, Eigen::Index i) {
+    for (int c = 0; c < 3; ++c) at = storeBinary(at, mesh.points(i, c), false);
+  });
+  chunks.flush();
 }
 
 }  // namespace ffdkit::meshio::detail

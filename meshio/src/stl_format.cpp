@@ -150,23 +150,24 @@ MeshData readStl(std::string_view bytes, const std::string& source) {
   return looksAscii(bytes) ? readAsciiStl(bytes, source) : readBinaryStl(bytes, source);
 }
 
-std::string writeStl(const MeshData& mesh) {
+void writeStl(ByteSink& sink, const MeshData& mesh) {
   if (mesh.triangles.rows() == 0) throw MeshIoError("STL needs triangles");
-  std::string out(80, '\0');
-  std::memcpy(out.data(), "ffdkit binary STL", 17);
-  appendBinary(out, std::uint32_t(mesh.triangles.rows()), false);
-  out.reserve(out.size() + 50 * std::size_t(mesh.triangles.rows()));
-  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+  std::string header(80, '\0');
+  std::memcpy(header.data(), "ffdkit binary STL", 17);
+  appendBinary(header, std::uint32_t(mesh.triangles.rows()), false);
+  BinaryChunks chunks(sink);
+  chunks.bytes(header);
+  chunks.records(mesh.triangles.rows(), 50, [&](char* at, Eigen::Index t) {
     const Eigen::RowVector3d a = mesh.points.row(mesh.triangles(t, 0));
     const Eigen::RowVector3d b = mesh.points.row(mesh.triangles(t, 1));
     const Eigen::RowVector3d c = mesh.points.row(mesh.triangles(t, 2));
     const Eigen::RowVector3d n = (b - a).cross(c - a).normalized();
-    for (int k = 0; k < 3; ++k) appendBinary(out, std::isfinite(n[k]) ? float(n[k]) : 0.0f, false);
+    for (int k = 0; k < 3; ++k) at = storeBinary(at, std::isfinite(n[k]) ? float(n[k]) : 0.0f, false);
     for (const auto* p : {&a, &b, &c})
-      for (int k = 0; k < 3; ++k) appendBinary(out, float((*p)[k]), false);
-    appendBinary(out, std::uint16_t(0), false);
-  }
-  return out;
+      for (int k = 0; k < 3; ++k) at = storeBinary(at, float((*p)[k]), false);
+    storeBinary(at, std::uint16_t(0), false);
+  });
+  chunks.flush();
 }
 
 }  // namespace ffdkit::meshio::detail

@@ -160,10 +160,13 @@ void requireSliceWritable(MeshFormat format) {
     throw MeshIoError("cannot write '" + std::string(meshFormatExtension(format)) + "' in slices (.ply, .npy, .xyz can)");
 }
 
-/// The writer's bytes for a part of the file, without the header it starts with.
-std::string withoutHead(std::string bytes, std::size_t head) {
-  bytes.erase(0, head);
-  return bytes;
+/// What `write` writes for a part of the file, without the header it starts with.
+template <class Write>
+std::string withoutHead(Write write, std::size_t head) {
+  detail::StringSink bytes;
+  write(bytes);
+  bytes.text.erase(0, head);
+  return std::move(bytes.text);
 }
 
 }  // namespace
@@ -183,9 +186,10 @@ std::string slicedFileVertices(MeshFormat format, const Eigen::MatrixX3d& points
   MeshData slice;
   slice.points = points;
   if (format == MeshFormat::Ply)
-    return withoutHead(detail::writePly(slice, PlyEncoding::BinaryLittleEndian),
+    return withoutHead([&](ByteSink& out) { detail::writePly(out, slice, PlyEncoding::BinaryLittleEndian); },
                        detail::plyHeader(points.rows(), false, 0, 0, PlyEncoding::BinaryLittleEndian).size());
-  if (format == MeshFormat::Npy) return withoutHead(detail::writeNpy(slice), detail::npyHeader(points.rows()).size());
+  if (format == MeshFormat::Npy)
+    return withoutHead([&](ByteSink& out) { detail::writeNpy(out, slice); }, detail::npyHeader(points.rows()).size());
   detail::StringSink text;
   detail::writeXyz(text, slice);
   return std::move(text.text);
@@ -197,7 +201,7 @@ std::string slicedFileTail(MeshFormat format, const MeshData& cells) {
   MeshData noPoints;
   noPoints.triangles = cells.triangles;
   noPoints.segments = cells.segments;
-  return withoutHead(detail::writePly(noPoints, PlyEncoding::BinaryLittleEndian),
+  return withoutHead([&](ByteSink& out) { detail::writePly(out, noPoints, PlyEncoding::BinaryLittleEndian); },
                      detail::plyHeader(0, false, cells.triangles.rows(), cells.segments.rows(), PlyEncoding::BinaryLittleEndian).size());
 }
 

@@ -1,8 +1,10 @@
 // Round trips through every writable format, stream and path overloads, and write failures.
 #include "ffdkit/meshio/mesh_io.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -144,6 +146,73 @@ TEST_F(MeshIo, LargeObjFacesAndLinesAreTheSerialTextLineForLine) {
     }
     EXPECT_FALSE(std::getline(lines, line)) << "extra text: " << line;
   }
+}
+
+// Binary files stream through a 1 MiB buffer (records never straddle it): a mesh of several MiB
+// must be, record for record, what a serial loop appends, in both byte orders, and a path write
+// must hold the same bytes.
+TEST_F(MeshIo, LargeBinaryFilesAreTheSerialRecordsByteForByte) {
+  MeshData mesh;
+  mesh.points = Eigen::MatrixX3d::Random(100003, 3) * 7.0;
+  mesh.triangles.resize(100001, 3);
+  for (int t = 0; t < 100001; ++t) mesh.triangles.row(t) << t, t + 2, t + 1;
+  mesh.segments.resize(70001, 2);
+  for (int s = 0; s < 70001; ++s) mesh.segments.row(s) << s + 1, s;
+  auto append = [](std::string& out, auto value, bool big) {
+    char raw[sizeof(value)];
+    std::memcpy(raw, &value, sizeof(value));
+    if (big) std::reverse(raw, raw + sizeof(value));
+    out.append(raw, sizeof(value));
+  };
+  auto body = [](const std::string& file, const std::string& headerEnd) {
+    const std::size_t at = file.find(headerEnd);
+    return at == std::string::npos ? std::string() : file.substr(at + headerEnd.size());
+  };
+  for (bool normals : {false, true}) {
+    mesh.hasNormals = normals;
+    const Eigen::MatrixX3d n = vertexNormals(mesh.points, mesh.triangles);
+    for (bool big : {false, true}) {
+      SCOPED_TRACE(std::string("ply, normals ") + (normals ? "on" : "off") + (big ? ", big endian" : ", little endian"));
+      std::string expected;
+      for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {
+        for (int c = 0; c < 3; ++c) append(expected, float(mesh.points(i, c)), big);
+        for (int c = 0; normals && c < 3; ++c) append(expected, float(n(i, c)), big);
+      }
+      for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+        expected += char(3);
+        for (int c = 0; c < 3; ++c) append(expected, std::int32_t(mesh.triangles(t, c)), big);
+      }
+      for (Eigen::Index s = 0; s < mesh.segments.rows(); ++s)
+        for (int c = 0; c < 2; ++c) append(expected, std::int32_t(mesh.segments(s, c)), big);
+      const MeshWriteOptions options{.plyEncoding = big ? PlyEncoding::BinaryBigEndian : PlyEncoding::BinaryLittleEndian};
+      const std::string bytes = meshFileBytes(mesh, MeshFormat::Ply, options);
+      ASSERT_GT(expected.size(), std::size_t(2) << 20);  // spans several buffers
+      EXPECT_TRUE(body(bytes, "end_header\n") == expected);
+      const std::filesystem::path file = dir_ / "large.ply";
+      writeMesh(file, mesh, options);
+      std::ifstream written(file, std::ios::binary);
+      EXPECT_TRUE(std::equal(bytes.begin(), bytes.end(), std::istreambuf_iterator<char>(written), std::istreambuf_iterator<char>()));
+    }
+  }
+  std::string npy;
+  for (Eigen::Index i = 0; i < mesh.points.rows(); ++i)
+    for (int c = 0; c < 3; ++c) append(npy, mesh.points(i, c), false);
+  const std::string npyBytes = meshFileBytes(mesh, MeshFormat::Npy);
+  ASSERT_EQ(npyBytes.size() % 64, npy.size() % 64);  // the header is padded to 64 bytes
+  EXPECT_TRUE(npyBytes.substr(npyBytes.size() - npy.size()) == npy);
+  std::string stl;
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+    const Eigen::Vector3d a = mesh.points.row(mesh.triangles(t, 0)), b = mesh.points.row(mesh.triangles(t, 1)),
+                          c = mesh.points.row(mesh.triangles(t, 2));
+    const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
+    for (int k = 0; k < 3; ++k) append(stl, std::isfinite(normal[k]) ? float(normal[k]) : 0.0f, false);
+    for (const Eigen::Vector3d* p : {&a, &b, &c})
+      for (int k = 0; k < 3; ++k) append(stl, float((*p)[k]), false);
+    append(stl, std::uint16_t(0), false);
+  }
+  const std::string stlBytes = meshFileBytes(mesh, MeshFormat::Stl);
+  ASSERT_EQ(stlBytes.size(), 84 + stl.size());
+  EXPECT_TRUE(stlBytes.substr(84) == stl);
 }
 
 TEST_F(MeshIo, BinaryPlyOfBothByteOrdersReadsTheSame) {
