@@ -5,21 +5,41 @@
 #include <functional>
 #include <string>
 
+#include "ffdkit/ffd/huge_pages.h"
+
 namespace ffdkit::ffd {
 namespace {
 
-void checkPoints(const Eigen::Ref<const Eigen::MatrixX3d>& points) {
-  for (Eigen::Index r = 0; r < points.rows(); ++r) {
-    if (!points.row(r).allFinite()) throw LatticeError("pipeline: object point " + std::to_string(r) + " is not finite");
+/// The object's points copied into fresh memory backed by huge pages, by all cores, checking on
+/// the way that each is finite (one pass over them). A plain copy of 1M points faulted 6,000
+/// small pages on one core: 12-14 ms of the CLI's 1M-vertex deformation, against about 3 ms.
+Eigen::MatrixX3d finiteCopy(const Eigen::Ref<const Eigen::MatrixX3d>& points) {
+  const Eigen::Index n = points.rows();
+  Eigen::MatrixX3d copy(n, 3);
+  adviseHugePages(copy);
+  constexpr Eigen::Index kChunk = Eigen::Index(1) << 16;
+  const Eigen::Index chunks = (n + kChunk - 1) / kChunk;
+  Eigen::Index firstBad = n;
+#pragma omp parallel for schedule(static) reduction(min : firstBad) if (chunks > 1)
+  for (Eigen::Index c = 0; c < chunks; ++c) {
+    const Eigen::Index first = c * kChunk, count = std::min(kChunk, n - first);
+    copy.middleRows(first, count) = points.middleRows(first, count);
+    if (copy.middleRows(first, count).allFinite()) continue;
+    for (Eigen::Index r = first; r < first + count; ++r) {
+      if (!copy.row(r).allFinite()) {
+        firstBad = std::min(firstBad, r);
+        break;
+      }
+    }
   }
+  if (firstBad < n) throw LatticeError("pipeline: object point " + std::to_string(firstBad) + " is not finite");
+  return copy;
 }
 
 }  // namespace
 
 Pipeline::Pipeline(const Eigen::Ref<const Eigen::MatrixX3d>& points, const EmbedOptions& options)
-    : input_(points), options_(options) {
-  checkPoints(points);
-}
+    : input_(finiteCopy(points)), options_(options) {}
 
 Pipeline::Node& Pipeline::node(LatticeId id) {
   const auto it = nodes_.find(id);
@@ -86,8 +106,7 @@ std::vector<LatticeId> Pipeline::order() const {
 }
 
 void Pipeline::setPoints(const Eigen::Ref<const Eigen::MatrixX3d>& points) {
-  checkPoints(points);
-  input_ = points;
+  input_ = finiteCopy(points);
   inputVersion_ = ++versionCounter_;
   for (auto& [id, n] : nodes_) n.deformer.reset();  // the point count may have changed
   output_ = nullptr;
