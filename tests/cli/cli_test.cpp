@@ -256,7 +256,7 @@ TEST(CliDeform, TimingsAndProgressOnRequest) {
   ASSERT_EQ(r.exitCode, 0) << describe(r);
   for (const char* phase : {"read ", "build scene ", "embed ", "deform ", "write ", "total "})
     EXPECT_NE(r.out.find(phase), std::string::npos) << phase << "\n" << r.out;
-  EXPECT_NE(r.err.find("embedding"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("embedding and deforming"), std::string::npos) << r.err;
   // Not a terminal and no --progress: stderr stays clean.
   const CliResult quiet = runCli({"deform", "-w", (kWidgetExamples / "fig6-8.json").string(),
                                   (dir / "s.vtp").string(), "-o", (dir / "o.vtp").string()});
@@ -279,7 +279,7 @@ TEST(CliDeform, ShowsProgressWhenStderrIsATerminalUnlessQuiet) {
     return readText(dir / "tty.txt");
   };
   const std::string shown = onTerminal("");
-  EXPECT_NE(shown.find("embedding " + std::to_string(sphere(8).points.rows()) + " points ... "), std::string::npos)
+  EXPECT_NE(shown.find("embedding and deforming " + std::to_string(sphere(8).points.rows()) + " points ... "), std::string::npos)
       << shown;
   EXPECT_NE(shown.find("wrote "), std::string::npos) << shown;
   EXPECT_EQ(onTerminal(" --quiet").find_first_not_of("\r\n"), std::string::npos);

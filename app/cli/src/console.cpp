@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace ffdkit::cli {
@@ -34,15 +35,25 @@ void Console::end() {
   if (phase_.empty()) return;
   const double ms = std::chrono::duration<double, std::milli>(Clock::now() - stepStart_).count();
   if (progress_) std::fprintf(stderr, "%.0f ms\n", ms);
-  bool found = false;
-  for (auto& [phase, total] : split_) {
-    if (phase == phase_) {
+  book(phase_, std::max(0.0, ms - carved_));
+  carved_ = 0.0;
+  phase_.clear();
+}
+
+void Console::carve(const std::string& phase, double ms) {
+  if (phase_.empty()) return;
+  book(phase, ms);
+  carved_ += ms;
+}
+
+void Console::book(const std::string& phase, double ms) {
+  for (auto& [name, total] : split_) {
+    if (name == phase) {
       total += ms;
-      found = true;
+      return;
     }
   }
-  if (!found) split_.emplace_back(phase_, ms);
-  phase_.clear();
+  split_.emplace_back(phase, ms);
 }
 
 void Console::printTimings() const {

@@ -35,17 +35,22 @@ class Console {
   void begin(const std::string& phase, const std::string& what);
   /// Ends the current step.
   void end();
+  /// Books `ms` of the current step, measured inside it, to `phase` instead (listed before the
+  /// step's own phase the first time): one pass that embeds and deforms reports both shares.
+  void carve(const std::string& phase, double ms);
   /// Prints the split on stdout (with --timings; also with --quiet: it was asked for).
   void printTimings() const;
 
  private:
   using Clock = std::chrono::steady_clock;
+  void book(const std::string& phase, double ms);  ///< adds to the phase's total
   bool quiet_;
   bool progress_;
   bool timings_;
   Clock::time_point start_;
   std::string phase_;
   Clock::time_point stepStart_;
+  double carved_ = 0.0;  ///< milliseconds of the current step booked elsewhere (carve)
   std::vector<std::pair<std::string, double>> split_;  ///< phase, milliseconds, in first-seen order
 };
 

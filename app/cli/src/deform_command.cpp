@@ -279,21 +279,15 @@ std::vector<Output> plannedOutputs(const DeformRequest& r, const scenes::Scene& 
   return targets;
 }
 
-/// Evaluates in two timed steps with the same result as scenes::deformScene. "embed": one
-/// update with every lattice at rest (the embeddings, plus an identity pass). "deform": the
-/// edit from rest to the current control points, an exact incremental pass (child lattices,
-/// whose input moved with their parent, re-embed here).
+/// Evaluates the scene once, with the same result as scenes::deformScene: every lattice is
+/// embedded and the points deformed in one pass. The embedding's share of it (the pipeline
+/// times it) is reported as "embed", the rest (syncing the lattices, deforming) as "deform".
 void evaluate(scenes::Scene& scene, scenes::SceneDeformer& deformer, Console& console) {
   Eigen::Index pointCount = 0;
   for (const auto& object : scene.objects()) pointCount += object.mesh.points.rows();
-  console.begin("embed", "embedding " + std::to_string(pointCount) + " points");
-  const widgets::WidgetModelState current = scene.widgets.captureState();
-  for (auto lattice : scene.widgets.widgets(widgets::WidgetType::Lattice))
-    scene.widgets.setControlPoints(lattice, scene.widgets.restPoints(lattice));
+  console.begin("deform", "embedding and deforming " + std::to_string(pointCount) + " points");
   deformer.finishGesture(scene);
-  scene.widgets.restoreState(current);
-  console.begin("deform", "deforming " + std::to_string(pointCount) + " points");
-  deformer.finishGesture(scene);
+  console.carve("embed", 1e3 * deformer.lastStats().embedSeconds);
 }
 
 int runDeform(const Args& args) {
@@ -324,7 +318,9 @@ int runDeform(const Args& args) {
   onEveryRank(ranks, [&] {
     evaluate(scene, deformer, console);
     for (const auto& target : targets) {
-      scenes::MeshData mesh = std::move(scene.findObject(target.object)->mesh);  // the scene is done with
+      // The scene is done with the object: take its mesh (no copy) and write the deformed points
+      // into its own buffer.
+      scenes::MeshData mesh = scene.takeObject(target.object).mesh;
       mesh.points = deformer.points(target.object);
       // A rank's slice of a split INPUT may be empty (more ranks than points or lines).
       if (!split || mesh.points.rows() > 0) scenes::validateMesh(mesh, "deformed object '" + target.object + "'");
