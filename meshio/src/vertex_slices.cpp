@@ -160,13 +160,23 @@ void requireSliceWritable(MeshFormat format) {
     throw MeshIoError("cannot write '" + std::string(meshFormatExtension(format)) + "' in slices (.ply, .npy, .xyz can)");
 }
 
-/// What `write` writes for a part of the file, without the header it starts with.
+/// What `write` writes for a part of the file without the header it starts with (`head` bytes),
+/// into a string of `size` bytes reserved up front.
 template <class Write>
-std::string withoutHead(Write write, std::size_t head) {
-  detail::StringSink bytes;
-  write(bytes);
-  bytes.text.erase(0, head);
-  return std::move(bytes.text);
+std::string withoutHead(Write write, std::size_t head, std::size_t size) {
+  struct Rest final : ByteSink {
+    std::size_t skip = 0;
+    std::string text;
+    void write(std::string_view bytes) override {
+      const std::size_t n = std::min(skip, bytes.size());
+      skip -= n;
+      text.append(bytes.substr(n));
+    }
+  } rest;
+  rest.skip = head;
+  rest.text.reserve(size);
+  write(rest);
+  return std::move(rest.text);
 }
 
 }  // namespace
@@ -187,9 +197,11 @@ std::string slicedFileVertices(MeshFormat format, const Eigen::MatrixX3d& points
   slice.points = points;
   if (format == MeshFormat::Ply)
     return withoutHead([&](ByteSink& out) { detail::writePly(out, slice, PlyEncoding::BinaryLittleEndian); },
-                       detail::plyHeader(points.rows(), false, 0, 0, PlyEncoding::BinaryLittleEndian).size());
+                       detail::plyHeader(points.rows(), false, 0, 0, PlyEncoding::BinaryLittleEndian).size(),
+                       std::size_t(points.rows()) * 12);
   if (format == MeshFormat::Npy)
-    return withoutHead([&](ByteSink& out) { detail::writeNpy(out, slice); }, detail::npyHeader(points.rows()).size());
+    return withoutHead([&](ByteSink& out) { detail::writeNpy(out, slice); }, detail::npyHeader(points.rows()).size(),
+                       std::size_t(points.rows()) * 24);
   detail::StringSink text;
   detail::writeXyz(text, slice);
   return std::move(text.text);
@@ -202,7 +214,8 @@ std::string slicedFileTail(MeshFormat format, const MeshData& cells) {
   noPoints.triangles = cells.triangles;
   noPoints.segments = cells.segments;
   return withoutHead([&](ByteSink& out) { detail::writePly(out, noPoints, PlyEncoding::BinaryLittleEndian); },
-                     detail::plyHeader(0, false, cells.triangles.rows(), cells.segments.rows(), PlyEncoding::BinaryLittleEndian).size());
+                     detail::plyHeader(0, false, cells.triangles.rows(), cells.segments.rows(), PlyEncoding::BinaryLittleEndian).size(),
+                     std::size_t(cells.triangles.rows()) * 13 + std::size_t(cells.segments.rows()) * 8);
 }
 
 }  // namespace ffdkit::meshio
