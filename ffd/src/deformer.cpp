@@ -260,6 +260,12 @@ const Eigen::MatrixX3d& Deformer::deform(const Lattice& lattice, const Eigen::Re
   return deformStale(lattice, input);
 }
 
+Eigen::MatrixX3d Deformer::takePoints() {
+  deformed_ = false;
+  lastControl_.resize(0, 3);
+  return std::move(output_);
+}
+
 const Eigen::MatrixX3d& Deformer::deformStale(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input) {
   if (lattice.counts() != embedding_.latticeCounts()) embedding_.checkLattice(lattice);  // throws with the details
   const Eigen::Index n = embedding_.pointCount();

@@ -125,6 +125,26 @@ const Eigen::MatrixX3d& Pipeline::reembedAll(const EmbedProgress& progress) { re
 
 const Eigen::MatrixX3d& Pipeline::points() const { return output_ ? *output_ : input_; }
 
+Eigen::MatrixX3d Pipeline::takePoints() {
+  Eigen::MatrixX3d taken;
+  if (!output_) {
+    taken = input_;  // no stage ran: the output is the input, which the pipeline keeps
+  } else if (output_ == heldOutput_.get()) {
+    taken = std::move(*heldOutput_);
+  } else {
+    for (auto& [id, n] : nodes_) {
+      if (n.deformer && output_ == &n.deformer->points()) {
+        taken = n.deformer->takePoints();
+        break;
+      }
+    }
+  }
+  for (auto& [id, n] : nodes_) n.deformer.reset();
+  heldOutput_.reset();
+  output_ = nullptr;
+  return taken;
+}
+
 const Embedding* Pipeline::embedding(LatticeId id) const {
   const Node& n = node(id);
   return n.deformer ? &n.deformer->embedding() : nullptr;

@@ -290,6 +290,15 @@ const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const {
   return p.pipeline->points();
 }
 
+Eigen::MatrixX3d SceneDeformer::takePoints(const std::string& object) {
+  auto it = objects_.find(object);
+  if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
+  const std::unique_ptr<ObjectPipeline> p = std::move(it->second);
+  objects_.erase(it);
+  if (p->deferred) p->pipeline->update();  // the deferred gesture steps, as points() applies them
+  return p->pipeline->takePoints();
+}
+
 Eigen::Index SceneDeformer::pointCount(const std::string& object) const {
   auto it = objects_.find(object);
   if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
@@ -340,7 +349,7 @@ std::map<std::string, Eigen::MatrixX3d> deformScene(const Scene& scene) {
   SceneDeformer deformer;
   deformer.finishGesture(scene);  // the exact result in one pass
   std::map<std::string, Eigen::MatrixX3d> result;
-  for (const auto& object : scene.objects()) result[object.name] = deformer.points(object.name);
+  for (const auto& object : scene.objects()) result[object.name] = deformer.takePoints(object.name);
   return result;
 }
 

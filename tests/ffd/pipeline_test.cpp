@@ -71,6 +71,24 @@ TEST(Pipeline, OutputOfOneLatticeIsTheInputOfTheNext) {
   EXPECT_GT((out - swapped).cwiseAbs().maxCoeff(), 1e-3);
 }
 
+TEST(Pipeline, TakePointsHandsOverTheOutputAndTheNextRunEmbedsAgain) {
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(2000, 2);
+  Pipeline pipeline(Q);
+  EXPECT_EQ(pipeline.takePoints(), Q);  // no stage ran: the input, which stays
+  const LatticeId parent = pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4));
+  const LatticeId child = pipeline.addLattice(boxAt({0.2, 0.2, 0.2}, 0.6, 3), parent);
+  bend(pipeline.lattice(parent), 0.3);
+  bend(pipeline.lattice(child), -0.2);
+  const Eigen::MatrixX3d expected = sequential({&pipeline.lattice(parent), &pipeline.lattice(child)}, Q);
+  pipeline.update();
+  const Eigen::MatrixX3d taken = pipeline.takePoints();
+  EXPECT_LT((taken - expected).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_EQ(pipeline.points(), Q);
+  EXPECT_EQ(pipeline.embedding(parent), nullptr);
+  EXPECT_EQ(pipeline.update(), taken);  // bit for bit
+  for (const StageReport& report : pipeline.lastReport()) EXPECT_TRUE(report.reembedded);
+}
+
 TEST(Pipeline, EditingTheLastLatticeUpdatesIncrementally) {
   const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(2000, 3);
   Pipeline pipeline(Q);

@@ -87,6 +87,29 @@ TEST(SceneDeformer, DetachRestoresTheObjectsOwnPoints) {
   EXPECT_THROW(scene.detach(lattice, "sphere"), std::invalid_argument);
 }
 
+// takePoints hands over what points() gives; the object is then forgotten, and the next run
+// builds it again to the same bits. Through a two-stage tree, so the output is the child's.
+TEST(SceneDeformer, TakePointsHandsOverThePointsAndTheNextRunRebuildsTheObject) {
+  const Scene scene = readScene(kExamples / "hierarchy");
+  const std::string name = scene.objects().at(0).name;
+  SceneDeformer reference;
+  reference.finishGesture(scene);
+  const Eigen::MatrixX3d expected = reference.points(name);
+  ASSERT_GT((expected - scene.objects().at(0).mesh.points).cwiseAbs().maxCoeff(), 0.05) << "the sample deforms";
+  SceneDeformer deformer;
+  deformer.finishGesture(scene);
+  EXPECT_EQ(deformer.takePoints(name), expected);
+  EXPECT_THROW((void)deformer.points(name), std::invalid_argument);
+  EXPECT_THROW((void)deformer.takePoints(name), std::invalid_argument);
+  deformer.finishGesture(scene);
+  EXPECT_EQ(deformer.points(name), expected);
+  EXPECT_EQ(deformScene(scene).at(name), expected);
+  // An object no lattice deforms: its own points.
+  const Scene plain = sphereScene();
+  deformer.update(plain);
+  EXPECT_EQ(deformer.takePoints("sphere"), plain.objects()[0].mesh.points);
+}
+
 TEST(SceneDeformer, HierarchyRunsParentThenChild) {
   // Fig. 6-9 sample: the parent's top face lifted by 0.2 stretches z by 1.2; the child lattice
   // straddles that face and its bottom front edge is pushed (child-push 0.15), so the top of the

@@ -66,6 +66,9 @@ class Deformer {
 
   /// The last deformed points, #points x 3, world.
   const Eigen::MatrixX3d& points() const { return output_; }
+  /// points(), handed over without a copy; the deformer keeps its embedding but no output (call
+  /// deform() before the next update()).
+  Eigen::MatrixX3d takePoints();
   const DeformStats& lastStats() const { return stats_; }
   /// LOCAL control points of the last deform() / update() (what update() compares against);
   /// empty before the first deform().

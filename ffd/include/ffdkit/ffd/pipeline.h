@@ -127,6 +127,9 @@ class Pipeline {
 
   /// Output of the last update() (the object points before the first update()).
   const Eigen::MatrixX3d& points() const;
+  /// points(), handed over without a copy (for a caller done with the deformation). The pipeline
+  /// keeps its input and lattices but no output or embedding: the next run embeds every stage.
+  Eigen::MatrixX3d takePoints();
   /// Input object points.
   const Eigen::MatrixX3d& inputPoints() const { return input_; }
   /// Embedding of a lattice's input (null before its first update). @throws LatticeError on an unknown id.

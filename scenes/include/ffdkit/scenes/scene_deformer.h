@@ -102,6 +102,10 @@ class SceneDeformer {
   /// view does, reads no points during a drag). Hence not thread-safe against other const calls.
   /// @throws std::invalid_argument for an object update() has not seen.
   const Eigen::MatrixX3d& points(const std::string& object) const;
+  /// points(object), handed over without a copy, for a caller done with the deformation (the CLI
+  /// writes them, deformScene returns them). The deformer forgets the object: the next run builds
+  /// its pipeline again. @throws std::invalid_argument for an object update() has not seen.
+  Eigen::MatrixX3d takePoints(const std::string& object);
   /// points(object).rows() without applying deferred gesture steps.
   /// @throws std::invalid_argument for an object update() has not seen.
   Eigen::Index pointCount(const std::string& object) const;
