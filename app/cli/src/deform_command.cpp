@@ -318,12 +318,12 @@ int runDeform(const Args& args) {
   onEveryRank(ranks, [&] {
     evaluate(scene, deformer, console);
     for (const auto& target : targets) {
-      // The scene is done with the object: take its mesh (no copy) and write the deformed points
-      // into its own buffer.
+      // Both are done with the object: take its mesh and its deformed points (no copies).
       scenes::MeshData mesh = scene.takeObject(target.object).mesh;
-      mesh.points = deformer.points(target.object);
-      // A rank's slice of a split INPUT may be empty (more ranks than points or lines).
-      if (!split || mesh.points.rows() > 0) scenes::validateMesh(mesh, "deformed object '" + target.object + "'");
+      mesh.points = deformer.takePoints(target.object);
+      // A whole file is checked by its writer (stageMesh); a rank's slice of a split INPUT is
+      // checked here, unless empty (more ranks than points or lines).
+      if (split && mesh.points.rows() > 0) scenes::validateMesh(mesh, "deformed object '" + target.object + "'");
       meshes.emplace_back(target.path, std::move(mesh));
     }
   });
