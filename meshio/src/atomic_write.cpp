@@ -85,6 +85,7 @@ class TemporaryFileSink final : public ByteSink {
   [[noreturn]] void fail(const std::string& step) const {
     throw std::runtime_error(path_.string() + ": cannot write (" + step + ": " + std::strerror(errno) + ")");
   }
+  off_t offset() const { return offset_; }  ///< where the next bytes go
 
  private:
   const std::filesystem::path& path_;
@@ -146,6 +147,11 @@ void StagedFile::commit() {
 
 void writeStagedPart(const std::filesystem::path& temporary, const std::filesystem::path& destination,
                      std::uint64_t offset, std::string_view bytes, bool durable) {
+  writeStagedPart(temporary, destination, offset, [bytes](ByteSink& sink) { sink.write(bytes); }, durable);
+}
+
+std::uint64_t writeStagedPart(const std::filesystem::path& temporary, const std::filesystem::path& destination,
+                              std::uint64_t offset, const ByteProducer& produce, bool durable) {
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd < 0) {
     const std::string reason = std::strerror(errno);
@@ -153,7 +159,7 @@ void writeStagedPart(const std::filesystem::path& temporary, const std::filesyst
   }
   TemporaryFileSink sink(destination, fd, durable, off_t(offset));
   try {
-    sink.write(bytes);
+    produce(sink);
     if (durable && ::fsync(fd) != 0) sink.fail("flush");
   } catch (...) {
     ::close(fd);
@@ -163,6 +169,7 @@ void writeStagedPart(const std::filesystem::path& temporary, const std::filesyst
     const std::string reason = std::strerror(errno);
     throw std::runtime_error(destination.string() + ": cannot write (close: " + reason + ")");
   }
+  return std::uint64_t(sink.offset()) - offset;
 }
 
 void writeFileAtomically(const std::filesystem::path& path, std::string_view content, bool durable) {

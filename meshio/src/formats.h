@@ -16,6 +16,11 @@ namespace ffdkit::meshio::detail {
 
 MeshData readPly(std::string_view bytes, const std::string& source);
 void writePly(ByteSink& out, const MeshData& mesh, PlyEncoding encoding);
+/// Records of a binary PLY as writePly writes them (`normals` may be null):
+/// the vertex element, and the face and edge elements after it.
+class BinaryChunks;
+void writePlyVertices(BinaryChunks& chunks, const Eigen::MatrixX3d& points, const Eigen::MatrixX3d* normals, bool big);
+void writePlyCells(BinaryChunks& chunks, const Eigen::MatrixX3i& triangles, const Eigen::MatrixX2i& segments, bool big);
 /// The header writePly writes for these counts.
 std::string plyHeader(Eigen::Index vertices, bool normals, Eigen::Index triangles, Eigen::Index segments, PlyEncoding encoding);
 
@@ -76,6 +81,8 @@ XyzCounts countXyz(std::string_view bytes);
 
 MeshData readNpy(std::string_view bytes, const std::string& source);
 void writeNpy(ByteSink& out, const MeshData& mesh);
+/// The data records writeNpy writes after its header.
+void writeNpyRecords(BinaryChunks& chunks, const Eigen::MatrixX3d& points);
 /// The header writeNpy writes for `rows` points.
 std::string npyHeader(Eigen::Index rows);
 /// Where an .npy file's data are and how they are laid out, from its header.

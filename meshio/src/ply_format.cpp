@@ -546,18 +546,26 @@ void writePly(ByteSink& sink, const MeshData& mesh, PlyEncoding encoding) {
   const bool big = encoding == PlyEncoding::BinaryBigEndian;
   BinaryChunks chunks(sink);
   chunks.bytes(header);
-  chunks.records(mesh.points.rows(), normals ? 24 : 12, [&](char* at, Eigen::Index i) {
-    for (int c = 0; c < 3; ++c) at = storeBinary(at, float(mesh.points(i, c)), big);
-    for (int c = 0; normals && c < 3; ++c) at = storeBinary(at, float(n(i, c)), big);
-  });
-  chunks.records(mesh.triangles.rows(), 13, [&](char* at, Eigen::Index t) {
-    *at++ = 3;
-    for (int c = 0; c < 3; ++c) at = storeBinary(at, std::int32_t(mesh.triangles(t, c)), big);
-  });
-  chunks.records(mesh.segments.rows(), 8, [&](char* at, Eigen::Index s) {
-    for (int c = 0; c < 2; ++c) at = storeBinary(at, std::int32_t(mesh.segments(s, c)), big);
-  });
+  writePlyVertices(chunks, mesh.points, normals ? &n : nullptr, big);
+  writePlyCells(chunks, mesh.triangles, mesh.segments, big);
   chunks.flush();
+}
+
+void writePlyVertices(BinaryChunks& chunks, const Eigen::MatrixX3d& points, const Eigen::MatrixX3d* normals, bool big) {
+  chunks.records(points.rows(), normals ? 24 : 12, [&](char* at, Eigen::Index i) {
+    for (int c = 0; c < 3; ++c) at = storeBinary(at, float(points(i, c)), big);
+    for (int c = 0; normals && c < 3; ++c) at = storeBinary(at, float((*normals)(i, c)), big);
+  });
+}
+
+void writePlyCells(BinaryChunks& chunks, const Eigen::MatrixX3i& triangles, const Eigen::MatrixX2i& segments, bool big) {
+  chunks.records(triangles.rows(), 13, [&](char* at, Eigen::Index t) {
+    *at++ = 3;
+    for (int c = 0; c < 3; ++c) at = storeBinary(at, std::int32_t(triangles(t, c)), big);
+  });
+  chunks.records(segments.rows(), 8, [&](char* at, Eigen::Index s) {
+    for (int c = 0; c < 2; ++c) at = storeBinary(at, std::int32_t(segments(s, c)), big);
+  });
 }
 
 }  // namespace ffdkit::meshio::detail

@@ -242,10 +242,14 @@ std::string npyHeader(Eigen::Index rows) {
 void writeNpy(ByteSink& sink, const MeshData& mesh) {
   BinaryChunks chunks(sink);
   chunks.bytes(npyHeader(mesh.points.rows()));
-  chunks.records(mesh.points.rows(), 24, [&](char* at, Eigen::Index i) {
-    for (int c = 0; c < 3; ++c) at = storeBinary(at, mesh.points(i, c), false);
-  });
+  writeNpyRecords(chunks, mesh.points);
   chunks.flush();
+}
+
+void writeNpyRecords(BinaryChunks& chunks, const Eigen::MatrixX3d& points) {
+  chunks.records(points.rows(), 24, [&](char* at, Eigen::Index i) {
+    for (int c = 0; c < 3; ++c) at = storeBinary(at, points(i, c), false);
+  });
 }
 
 }  // namespace ffdkit::meshio::detail

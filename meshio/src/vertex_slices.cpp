@@ -160,28 +160,10 @@ void requireSliceWritable(MeshFormat format) {
     throw MeshIoError("cannot write '" + std::string(meshFormatExtension(format)) + "' in slices (.ply, .npy, .xyz can)");
 }
 
-/// What `write` writes for a part of the file without the header it starts with (`head` bytes),
-/// into a string of `size` bytes reserved up front.
-template <class Write>
-std::string withoutHead(Write write, std::size_t head, std::size_t size) {
-  struct Rest final : ByteSink {
-    std::size_t skip = 0;
-    std::string text;
-    void write(std::string_view bytes) override {
-      const std::size_t n = std::min(skip, bytes.size());
-      skip -= n;
-      text.append(bytes.substr(n));
-    }
-  } rest;
-  rest.skip = head;
-  rest.text.reserve(size);
-  write(rest);
-  return std::move(rest.text);
-}
-
 }  // namespace
 
-// The pieces are cut from what the whole-file writers write, so that they cannot differ from it.
+// The pieces are the records of the whole-file writers (writePlyVertices and writePlyCells,
+// writeNpyRecords, writeXyz), so that they cannot differ from them.
 std::string slicedFileHead(MeshFormat format, std::int64_t vertices, const MeshData& cells) {
   requireSliceWritable(format);
   if (format == MeshFormat::Ply)
@@ -191,31 +173,51 @@ std::string slicedFileHead(MeshFormat format, std::int64_t vertices, const MeshD
   return {};
 }
 
-std::string slicedFileVertices(MeshFormat format, const Eigen::MatrixX3d& points) {
+std::optional<std::uint64_t> slicedVerticesSize(MeshFormat format, Eigen::Index rows) {
   requireSliceWritable(format);
-  MeshData slice;
-  slice.points = points;
-  if (format == MeshFormat::Ply)
-    return withoutHead([&](ByteSink& out) { detail::writePly(out, slice, PlyEncoding::BinaryLittleEndian); },
-                       detail::plyHeader(points.rows(), false, 0, 0, PlyEncoding::BinaryLittleEndian).size(),
-                       std::size_t(points.rows()) * 12);
-  if (format == MeshFormat::Npy)
-    return withoutHead([&](ByteSink& out) { detail::writeNpy(out, slice); }, detail::npyHeader(points.rows()).size(),
-                       std::size_t(points.rows()) * 24);
-  detail::StringSink text;
-  detail::writeXyz(text, slice);
-  return std::move(text.text);
+  if (format == MeshFormat::Ply) return std::uint64_t(rows) * 12;
+  if (format == MeshFormat::Npy) return std::uint64_t(rows) * 24;
+  return std::nullopt;
+}
+
+void writeSlicedVertices(ByteSink& out, MeshFormat format, const Eigen::MatrixX3d& points) {
+  requireSliceWritable(format);
+  if (format == MeshFormat::Xyz) {
+    MeshData slice;
+    slice.points = points;
+    return detail::writeXyz(out, slice);
+  }
+  detail::BinaryChunks chunks(out);
+  if (format == MeshFormat::Ply) detail::writePlyVertices(chunks, points, nullptr, false);
+  else detail::writeNpyRecords(chunks, points);
+  chunks.flush();
+}
+
+std::string slicedFileVertices(MeshFormat format, const Eigen::MatrixX3d& points) {
+  detail::StringSink bytes;
+  if (const auto size = slicedVerticesSize(format, points.rows())) bytes.text.reserve(std::size_t(*size));
+  writeSlicedVertices(bytes, format, points);
+  return std::move(bytes.text);
+}
+
+std::uint64_t slicedTailSize(MeshFormat format, const MeshData& cells) {
+  requireSliceWritable(format);
+  if (format != MeshFormat::Ply) return 0;
+  return std::uint64_t(cells.triangles.rows()) * 13 + std::uint64_t(cells.segments.rows()) * 8;
+}
+
+void writeSlicedTail(ByteSink& out, MeshFormat format, const MeshData& cells) {
+  if (slicedTailSize(format, cells) == 0) return;
+  detail::BinaryChunks chunks(out);
+  detail::writePlyCells(chunks, cells.triangles, cells.segments, false);
+  chunks.flush();
 }
 
 std::string slicedFileTail(MeshFormat format, const MeshData& cells) {
-  requireSliceWritable(format);
-  if (format != MeshFormat::Ply || (cells.triangles.rows() == 0 && cells.segments.rows() == 0)) return {};
-  MeshData noPoints;
-  noPoints.triangles = cells.triangles;
-  noPoints.segments = cells.segments;
-  return withoutHead([&](ByteSink& out) { detail::writePly(out, noPoints, PlyEncoding::BinaryLittleEndian); },
-                     detail::plyHeader(0, false, cells.triangles.rows(), cells.segments.rows(), PlyEncoding::BinaryLittleEndian).size(),
-                     std::size_t(cells.triangles.rows()) * 13 + std::size_t(cells.segments.rows()) * 8);
+  detail::StringSink bytes;
+  bytes.text.reserve(std::size_t(slicedTailSize(format, cells)));
+  writeSlicedTail(bytes, format, cells);
+  return std::move(bytes.text);
 }
 
 }  // namespace ffdkit::meshio

@@ -197,6 +197,10 @@ TEST_F(VertexSlices, SlicedBytesEqualTheWholeFile) {
       bytes += slicedFileVertices(format, mesh.points.middleRows(part * n / 3, (part + 1) * n / 3 - part * n / 3));
     bytes += slicedFileTail(format, cells);
     EXPECT_EQ(bytes, meshFileBytes(mesh, format));
+    // The sizes a batch places the slices by (PLY, npy: before writing them).
+    if (const auto size = slicedVerticesSize(format, n)) EXPECT_EQ(*size, slicedFileVertices(format, mesh.points).size());
+    else EXPECT_EQ(format, MeshFormat::Xyz);
+    EXPECT_EQ(slicedTailSize(format, cells), slicedFileTail(format, cells).size());
   }
   EXPECT_FALSE(isSliceWritable(MeshFormat::Obj));
 }

@@ -2,6 +2,8 @@
 
 #include <climits>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "args.h"
@@ -50,17 +52,22 @@ void SplitInput::checkTarget(const fs::path& target) const {
 
 void SplitInput::write(const fs::path& target, const Eigen::MatrixX3d& deformed, const BatchRanks& ranks) const {
   const meshio::MeshFormat format = *meshio::meshFormatOf(target);
-  std::string head, slice, tail;
+  // PLY and npy slices have a known size and stream into the file at their place; xyz text is
+  // made first to know its size.
+  const std::optional<std::uint64_t> fixedSize = meshio::slicedVerticesSize(format, deformed.rows());
+  std::string head, text;
+  std::uint64_t tailSize = 0;
   onEveryRank(ranks, [&] {
-    slice = meshio::slicedFileVertices(format, deformed);
+    if (!fixedSize) text = meshio::slicedFileVertices(format, deformed);
     if (ranks.leader()) {
       head = meshio::slicedFileHead(format, totalPoints_, cells_);
-      tail = meshio::slicedFileTail(format, cells_);
+      tailSize = meshio::slicedTailSize(format, cells_);
     }
   });
+  const std::uint64_t sliceSize = fixedSize ? *fixedSize : text.size();
   ranks.broadcast(head);  // the header's length places every slice
-  const std::uint64_t offset = head.size() + std::uint64_t(ranks.sumBefore(std::int64_t(slice.size())));
-  const std::uint64_t tailOffset = head.size() + std::uint64_t(ranks.sum(std::int64_t(slice.size())));
+  const std::uint64_t offset = head.size() + std::uint64_t(ranks.sumBefore(std::int64_t(sliceSize)));
+  const std::uint64_t tailOffset = head.size() + std::uint64_t(ranks.sum(std::int64_t(sliceSize)));
 
   std::optional<meshio::StagedFile> staged;
   std::string temporary;
@@ -71,8 +78,21 @@ void SplitInput::write(const fs::path& target, const Eigen::MatrixX3d& deformed,
   });
   ranks.broadcast(temporary);
   onEveryRank(ranks, [&] {
-    meshio::writeStagedPart(temporary, target, offset, slice);
-    if (ranks.leader() && !tail.empty()) meshio::writeStagedPart(temporary, target, tailOffset, tail);
+    const auto check = [&](std::uint64_t written, std::uint64_t planned, const char* part) {
+      if (written != planned)
+        throw std::logic_error(target.string() + ": the " + part + " took " + std::to_string(written) + " bytes, " +
+                               std::to_string(planned) + " were planned");
+    };
+    check(meshio::writeStagedPart(temporary, target, offset,
+                                  [&](meshio::ByteSink& out) {
+                                    if (fixedSize) meshio::writeSlicedVertices(out, format, deformed);
+                                    else out.write(text);
+                                  }),
+          sliceSize, "slice of vertices");
+    if (ranks.leader() && tailSize > 0)
+      check(meshio::writeStagedPart(temporary, target, tailOffset,
+                                    [&](meshio::ByteSink& out) { meshio::writeSlicedTail(out, format, cells_); }),
+            tailSize, "faces and edges");
   });
   if (ranks.leader()) staged->commit();
 }

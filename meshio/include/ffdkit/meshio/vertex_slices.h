@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/mesh_data.h"
 #include "ffdkit/meshio/mesh_format.h"
 
@@ -75,7 +76,15 @@ bool isSliceWritable(MeshFormat format);
 std::string slicedFileHead(MeshFormat format, std::int64_t vertices, const MeshData& cells);
 /// The bytes of `points` (#P x 3) as consecutive vertices of the file.
 std::string slicedFileVertices(MeshFormat format, const Eigen::MatrixX3d& points);
+/// The same, written to `out` as they are made (PLY, npy: through a 1 MiB buffer).
+void writeSlicedVertices(ByteSink& out, MeshFormat format, const Eigen::MatrixX3d& points);
+/// How many bytes slicedFileVertices gives for `rows` points: PLY, npy: fixed-size records;
+/// xyz: nullopt (text of varying length).
+std::optional<std::uint64_t> slicedVerticesSize(MeshFormat format, Eigen::Index rows);
 /// The bytes after the last vertex (PLY: the faces and edges of `cells`; npy, xyz: none).
 std::string slicedFileTail(MeshFormat format, const MeshData& cells);
+/// The same, written to `out` as they are made; slicedTailSize bytes.
+void writeSlicedTail(ByteSink& out, MeshFormat format, const MeshData& cells);
+std::uint64_t slicedTailSize(MeshFormat format, const MeshData& cells);
 
 }  // namespace ffdkit::meshio
