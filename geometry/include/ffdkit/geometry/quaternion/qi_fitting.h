@@ -44,7 +44,8 @@ struct FitOptions {
   StartTangentMode startTangent = StartTangentMode::FromInitialCurve;
   Eigen::Vector3d givenStartTangent = Eigen::Vector3d::UnitX();  ///< Given mode only
   FitInitialCurve initialCurve = FitInitialCurve::LeastSquaresCubic;
-  /// GL-5 on >= 8 panels per segment (data parameters add breakpoints). Spec §4 recommends GL-8;
+  /// GL-5 per panel; the data parameters are the breakpoints, and gaps wider than 1/8 of a segment are
+  /// split evenly (so >= 8 panels per segment, none wider than spec §4's grid). Spec §4 recommends GL-8;
   /// its own accuracy table gives 1e-13 of l for GL-5 on 8 panels of a strongly twisted segment,
   /// and the fit's panels are narrower: the objective agrees with GL-24 on 64 panels to 1e-14 and
   /// the fitted curves with GL-8 fits to 3e-9 of the length (test), at 0.7 x the instructions.
