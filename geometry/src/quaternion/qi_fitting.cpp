@@ -228,6 +228,18 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
   updateJacobian();
   double mu = -1.0;
   double nu = 2.0;
+  // The secant tail (FitOptions::secantTail): S estimates sum r_i Hess r_i, the part of the Hessian of
+  // R / 2 that J^T J leaves out, from the steps s and the changes y of g = J^T r: S s ~ y - J^T J s
+  // (Dennis, Gay & Welsch 1981, NL2SOL's update with its sizing and its model switch). Far from the
+  // minimum the steps are too long for a secant to hold (S learnt from every step: 296 trials on the
+  // spiral instead of 106; from every step after the first short one: the 12-segment 328-point
+  // spiral ran into the 500 cap), so S learns only from accepted steps that lower R by less than
+  // kSecantTailStart of R. Trials on the 6-segment spiral for 1e-4 / 1e-5 / 1e-6 / 1e-7 / 1e-8: 88 /
+  // 86 / 90 / 81 / 81; below 1e-7 the overfitting 82-point 6-segment spiral stays at the 500 cap.
+  constexpr double kSecantTailStart = 1e-7;
+  bool haveSecant = false;
+  bool preferSecant = true;
+  Eigen::MatrixXd secant;
   while (true) {
     if (objective <= 1e-300) {
       converged = true;
@@ -253,6 +265,8 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
     if (mu < 0.0) mu = 1e-3;
     bool accepted = false;
     bool stop = false;
+    Eigen::VectorXd taken;    // the accepted step
+    bool secantPair = false;  // it updates S
     while (!accepted) {
       if (iterations >= options.maxIterations || evaluations >= options.maxFunctionEvaluations) {
         message = "iteration or evaluation cap reached";
@@ -260,8 +274,19 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
         break;
       }
       Eigen::MatrixXd damped = a;
+      const bool trySecant = haveSecant && preferSecant;
+      if (trySecant) damped += secant;
       damped.diagonal() += mu * diag;
-      const Eigen::VectorXd step = damped.ldlt().solve(-g);
+      Eigen::LDLT<Eigen::MatrixXd> ldlt(damped);
+      bool withSecant = trySecant;
+      if (withSecant && !(ldlt.info() == Eigen::Success && (ldlt.vectorD().array() > 0.0).all())) {
+        // J^T J + S + mu D is not positive definite: this step uses the Gauss-Newton model.
+        withSecant = false;
+        damped = a;
+        damped.diagonal() += mu * diag;
+        ldlt.compute(damped);
+      }
+      const Eigen::VectorXd step = ldlt.solve(-g);
       if (!step.allFinite()) {
         mu *= nu;
         nu *= 2.0;
@@ -279,11 +304,17 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
       ++evaluations;
       ++iterations;
       const double objn = rn2.allFinite() ? rn2.squaredNorm() : INFINITY;
-      const double predicted = -(step.dot(g) * 2.0 + step.dot(a * step));
+      const double predictedGN = -(step.dot(g) * 2.0 + step.dot(a * step));
+      const double predictedSecant = haveSecant ? predictedGN - step.dot(secant * step) : predictedGN;
+      const double predicted = withSecant ? predictedSecant : predictedGN;
       const double actual = objective - objn;
+      // NL2SOL's model switch: the next step uses the model that predicted this one's change better.
+      if (haveSecant) preferSecant = std::abs(predictedSecant - actual) < std::abs(predictedGN - actual);
       const double rho = predicted > 0.0 ? actual / predicted : -1.0;
       if (actual > 0.0 && rho > 0.0) {
         accepted = true;
+        taken = step;
+        secantPair = options.secantTail && actual < kSecantTailStart * objn;
         x = xn;
         std::swap(ev, trial);
         history.push_back(objn);
@@ -308,7 +339,24 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
       }
     }
     if (stop) break;
+    const Eigen::VectorXd gBefore = g;
     updateJacobian();
+    if (secantPair) {
+      const Eigen::VectorXd& s = taken;
+      const Eigen::VectorXd y = g - gBefore;
+      const double ys = y.dot(s);
+      if (ys > 0.0) {
+        if (!haveSecant) secant.setZero(s.size(), s.size());
+        const Eigen::VectorXd yh = y - a * s;  // the change of g that J^T J does not explain
+        // Sizing: shrink S where it overstates the curvature along s (NL2SOL).
+        const double sss = s.dot(secant * s);
+        if (haveSecant && sss != 0.0) secant *= std::min(1.0, std::abs(s.dot(yh)) / std::abs(sss));
+        // The symmetric secant update of Dennis, Gay & Welsch: S+ s = yh, S+ - S of rank two.
+        const Eigen::VectorXd z = yh - secant * s;
+        secant += (z * y.transpose() + y * z.transpose()) / ys - (z.dot(s) / (ys * ys)) * (y * y.transpose());
+        haveSecant = true;
+      }
+    }
   }
 
   QiChain chain = buildChain(pb, x);

@@ -451,6 +451,35 @@ TEST(QiFitting, ThreadCountDoesNotChangeTheFit) {
   }
 }
 
+TEST(QiFitting, SecantTailReachesTheMinimumInFewerSteps) {
+  // The minimum of R itself, independent of any stopping rule: plain Levenberg-Marquardt (no secant
+  // tail) with all three tolerances at 0 runs until its damping limit (148 trials on the spiral; R
+  // 431.0696863965289). The default fit must end there too: within 1e-13 of R on the 6-segment
+  // spiral, where plain LM with the default tolerances stops 1.6e-12 above it after 106 trials.
+  // On the other fits it must end no higher than plain LM with the default tolerances does.
+  struct Case {
+    FitDataset d;
+    double fromMinimum;  // allowed (R - Rmin) / Rmin of the default fit
+  };
+  const std::vector<Case> cases = {{testdata::spiralNoisy(6), 1e-13}, {testdata::spiralNoisy(8), 1e-12},
+                                   {testdata::chain3dNoisy(), 1e-12}};
+  for (const Case& c : cases) {
+    FitOptions plain;
+    plain.secantTail = false;
+    const FitResult lm = fitQiChain(c.d.points, c.d.breaks, plain);
+    plain.functionTolerance = plain.stepTolerance = plain.gradientTolerance = 0.0;
+    plain.maxIterations = 2000;
+    const FitResult longest = fitQiChain(c.d.points, c.d.breaks, plain);
+    const FitResult fit = fitQiChain(c.d.points, c.d.breaks);
+    ASSERT_TRUE(fit.converged) << fit.message;
+    ASSERT_TRUE(longest.converged) << longest.message;
+    const double rMin = longest.pointErrors.squaredNorm(), r = fit.pointErrors.squaredNorm();
+    EXPECT_LE(r, rMin * (1.0 + c.fromMinimum)) << c.d.points.rows() << " points";
+    EXPECT_LE(r, lm.pointErrors.squaredNorm()) << c.d.points.rows() << " points";
+    EXPECT_LT(fit.iterations, lm.iterations) << c.d.points.rows() << " points";
+  }
+}
+
 TEST(QiFitting, ReportsAnIterationCapAsNotConverged) {
   const FitDataset d = testdata::chain3dNoisy();
   FitOptions o;

