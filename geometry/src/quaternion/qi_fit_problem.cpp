@@ -151,7 +151,7 @@ void QiFitProblem::SweepGovernor::record(bool threaded, double seconds) {
   ++calls_;
   if (!threaded) {
     serialSeconds_ = seconds;
-  } else if (seconds > 3.0 * serialSeconds_ && ++strikes_ >= 2) {
+  } else if (seconds > serialSeconds_ && ++strikes_ >= 2) {
     off_ = true;
     threadsStalledUntil.store(steadyNanoseconds() + 1'000'000'000, std::memory_order_relaxed);
   }
