@@ -2,6 +2,7 @@
 // The readers and writers of each format, from and to bytes in memory. Private to meshio;
 // mesh_io.cpp picks one by MeshFormat.
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -17,7 +18,9 @@ namespace ffdkit::meshio::detail {
 MeshData readPly(std::string_view bytes, const std::string& source);
 void writePly(ByteSink& out, const MeshData& mesh, PlyEncoding encoding);
 /// Records of a binary PLY as writePly writes them (`normals` may be null):
-/// the vertex element, and the face and edge elements after it.
+/// the vertex element, and the face and edge elements after it. Their sizes in bytes: a vertex
+/// (float x, y, z; with normals twice that), a triangle (uchar 3, three int), an edge (two int).
+constexpr std::size_t kPlyVertexBytes = 12, kPlyTriangleBytes = 13, kPlyEdgeBytes = 8;
 class BinaryChunks;
 void writePlyVertices(BinaryChunks& chunks, const Eigen::MatrixX3d& points, const Eigen::MatrixX3d* normals, bool big);
 void writePlyCells(BinaryChunks& chunks, const Eigen::MatrixX3i& triangles, const Eigen::MatrixX2i& segments, bool big);
@@ -81,7 +84,8 @@ XyzCounts countXyz(std::string_view bytes);
 
 MeshData readNpy(std::string_view bytes, const std::string& source);
 void writeNpy(ByteSink& out, const MeshData& mesh);
-/// The data records writeNpy writes after its header.
+/// The data records writeNpy writes after its header: three little-endian doubles a point.
+constexpr std::size_t kNpyRecordBytes = 24;
 void writeNpyRecords(BinaryChunks& chunks, const Eigen::MatrixX3d& points);
 /// The header writeNpy writes for `rows` points.
 std::string npyHeader(Eigen::Index rows);

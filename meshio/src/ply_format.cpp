@@ -552,18 +552,18 @@ void writePly(ByteSink& sink, const MeshData& mesh, PlyEncoding encoding) {
 }
 
 void writePlyVertices(BinaryChunks& chunks, const Eigen::MatrixX3d& points, const Eigen::MatrixX3d* normals, bool big) {
-  chunks.records(points.rows(), normals ? 24 : 12, [&](char* at, Eigen::Index i) {
+  chunks.records(points.rows(), normals ? 2 * kPlyVertexBytes : kPlyVertexBytes, [&](char* at, Eigen::Index i) {
     for (int c = 0; c < 3; ++c) at = storeBinary(at, float(points(i, c)), big);
     for (int c = 0; normals && c < 3; ++c) at = storeBinary(at, float((*normals)(i, c)), big);
   });
 }
 
 void writePlyCells(BinaryChunks& chunks, const Eigen::MatrixX3i& triangles, const Eigen::MatrixX2i& segments, bool big) {
-  chunks.records(triangles.rows(), 13, [&](char* at, Eigen::Index t) {
+  chunks.records(triangles.rows(), kPlyTriangleBytes, [&](char* at, Eigen::Index t) {
     *at++ = 3;
     for (int c = 0; c < 3; ++c) at = storeBinary(at, std::int32_t(triangles(t, c)), big);
   });
-  chunks.records(segments.rows(), 8, [&](char* at, Eigen::Index s) {
+  chunks.records(segments.rows(), kPlyEdgeBytes, [&](char* at, Eigen::Index s) {
     for (int c = 0; c < 2; ++c) at = storeBinary(at, std::int32_t(segments(s, c)), big);
   });
 }

@@ -247,7 +247,7 @@ void writeNpy(ByteSink& sink, const MeshData& mesh) {
 }
 
 void writeNpyRecords(BinaryChunks& chunks, const Eigen::MatrixX3d& points) {
-  chunks.records(points.rows(), 24, [&](char* at, Eigen::Index i) {
+  chunks.records(points.rows(), kNpyRecordBytes, [&](char* at, Eigen::Index i) {
     for (int c = 0; c < 3; ++c) at = storeBinary(at, points(i, c), false);
   });
 }

@@ -175,8 +175,8 @@ std::string slicedFileHead(MeshFormat format, std::int64_t vertices, const MeshD
 
 std::optional<std::uint64_t> slicedVerticesSize(MeshFormat format, Eigen::Index rows) {
   requireSliceWritable(format);
-  if (format == MeshFormat::Ply) return std::uint64_t(rows) * 12;
-  if (format == MeshFormat::Npy) return std::uint64_t(rows) * 24;
+  if (format == MeshFormat::Ply) return std::uint64_t(rows) * detail::kPlyVertexBytes;
+  if (format == MeshFormat::Npy) return std::uint64_t(rows) * detail::kNpyRecordBytes;
   return std::nullopt;
 }
 
@@ -203,7 +203,8 @@ std::string slicedFileVertices(MeshFormat format, const Eigen::MatrixX3d& points
 std::uint64_t slicedTailSize(MeshFormat format, const MeshData& cells) {
   requireSliceWritable(format);
   if (format != MeshFormat::Ply) return 0;
-  return std::uint64_t(cells.triangles.rows()) * 13 + std::uint64_t(cells.segments.rows()) * 8;
+  return std::uint64_t(cells.triangles.rows()) * detail::kPlyTriangleBytes +
+         std::uint64_t(cells.segments.rows()) * detail::kPlyEdgeBytes;
 }
 
 void writeSlicedTail(ByteSink& out, MeshFormat format, const MeshData& cells) {

@@ -59,11 +59,11 @@ class StagedFile {
 /// this one) holds: each process of a batch writing its own part of one file, which the holder
 /// commits once every part is written. Flushed to disk before it returns when `durable`.
 /// @throws std::runtime_error naming `destination` (the file the temporary becomes) and the step.
+void writeStagedPart(const std::filesystem::path& temporary, const std::filesystem::path& destination,
+                     std::uint64_t offset, std::string_view bytes, bool durable = true);
 /// The same, streaming: what `produce` writes goes to the file at once. Returns the bytes written.
 std::uint64_t writeStagedPart(const std::filesystem::path& temporary, const std::filesystem::path& destination,
                               std::uint64_t offset, const ByteProducer& produce, bool durable = true);
-void writeStagedPart(const std::filesystem::path& temporary, const std::filesystem::path& destination,
-                     std::uint64_t offset, std::string_view bytes, bool durable = true);
 
 /// Writes `content` to `path` atomically: StagedFile(path, content, durable).commit(). A failure
 /// at any step removes the temporary file and leaves an existing `path` untouched.
