@@ -360,7 +360,21 @@ bool readBinaryFast(const Element& e, bool big, ByteCursor& data, MeshData& mesh
     if (e.properties.size() != 1) return false;
     const Property& p = e.properties[0];
     if (p.role != Role::FaceIndices || p.countType != Type::UInt8 || (p.type != Type::Int32 && p.type != Type::UInt32)) return false;
+    // vertices <= INT_MAX, so one unsigned compare rejects a negative int32 index too.
+    const std::uint32_t vertexCount = std::uint32_t(vertices);
     for (long long i = 0; i < e.count; ++i) {
+      // A run of triangles (count byte 3, nearly every face of nearly every file) as 13-byte
+      // records, without a call per face; the first face that is not a triangle with indices in
+      // range, or too near the end, goes through the general code below, which says what is wrong.
+      for (; i < e.count && data.bytesLeft() >= 13; ++i) {
+        const char* at = data.here();
+        if (static_cast<unsigned char>(*at) != 3) break;
+        const std::uint32_t a = word(at + 1), b = word(at + 5), c = word(at + 9);
+        if ((a >= vertexCount) | (b >= vertexCount) | (c >= vertexCount)) break;
+        triangles.add(int(a), int(b), int(c));
+        data.skip(13);
+      }
+      if (i == e.count) break;
       data.need(1, {"face", i, p.name});
       const int n = static_cast<unsigned char>(*data.here());
       data.skip(1);

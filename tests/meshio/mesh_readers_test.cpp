@@ -1,8 +1,11 @@
 // Each reader on small hand-written files whose content is known, and on bad files: every error
 // names the file, the element and (text formats) the line.
+#include <array>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -88,6 +91,49 @@ TEST(PlyReader, RejectsBadHeadersCountsAndValues) {
   b.replace(b.size() - 4, 4, std::string("\x00\x00\xc0\x7f", 4));
   EXPECT_ERROR(b, MeshFormat::Ply, "vertex 2 (z): non-finite number");
   EXPECT_ERROR(test::plyHeader("3", "0") + test::threeVertices().substr(0, 30), MeshFormat::Ply, "announces 3 items of at least 12 bytes");
+}
+
+// Binary faces: runs of triangles are read as 13-byte records, anything else face by face. A file
+// of 5,000 faces with quads and pentagons among the triangles must give the fan triangles in
+// order, and a bad face anywhere (an index out of range, negative, a count under 3, a list cut
+// by the end of the file) the message that names it.
+TEST(PlyReader, BinaryTriangleRunsMixedWithPolygonsAndBadFacesAnywhere) {
+  const int vertices = 3;
+  std::vector<std::vector<std::int32_t>> faces;
+  for (int f = 0; f < 5000; ++f) {
+    if (f % 997 == 5) faces.push_back({0, 1, 2, 1});
+    else if (f % 1499 == 7) faces.push_back({2, 1, 0, 1, 2});
+    else faces.push_back({f % 3, (f + 1) % 3, (f + 2) % 3});
+  }
+  auto file = [&](const std::vector<std::vector<std::int32_t>>& list) {
+    std::string b = test::plyHeader("3", std::to_string(list.size())) + test::threeVertices();
+    for (const auto& face : list) {
+      b += char(face.size());
+      for (std::int32_t i : face) test::appendLittleEndian(b, i);
+    }
+    return b;
+  };
+  std::vector<std::array<int, 3>> expected;
+  for (const auto& face : faces)
+    for (std::size_t k = 1; k + 1 < face.size(); ++k) expected.push_back({face[0], face[k], face[k + 1]});
+  const MeshData mesh = read(file(faces), MeshFormat::Ply);
+  ASSERT_EQ(mesh.triangles.rows(), Eigen::Index(expected.size()));
+  for (std::size_t t = 0; t < expected.size(); ++t)
+    ASSERT_TRUE(mesh.triangles(Eigen::Index(t), 0) == expected[t][0] && mesh.triangles(Eigen::Index(t), 1) == expected[t][1] &&
+                mesh.triangles(Eigen::Index(t), 2) == expected[t][2])
+        << "triangle " << t;
+  for (int bad : {0, 1, 2500, 4999}) {
+    SCOPED_TRACE("bad face " + std::to_string(bad));
+    auto broken = faces;
+    broken[std::size_t(bad)] = {0, vertices, 1};
+    EXPECT_ERROR(file(broken), MeshFormat::Ply, "face " + std::to_string(bad) + ": vertex index 3 is outside 0..2");
+    broken[std::size_t(bad)] = {0, 1, -7};
+    EXPECT_ERROR(file(broken), MeshFormat::Ply, "face " + std::to_string(bad) + ": vertex index -7 is outside 0..2");
+    broken[std::size_t(bad)] = {0, 1};
+    EXPECT_ERROR(file(broken), MeshFormat::Ply, "face " + std::to_string(bad) + ": a face needs at least 3 vertices, it has 2");
+  }
+  const std::string whole = file(faces);
+  EXPECT_ERROR(whole.substr(0, whole.size() - 2), MeshFormat::Ply, "face 4999 (vertex_indices): a list of 3 values runs past the end");
 }
 
 TEST(ObjReader, ReadsRelativeAndSlashedReferencesAndLines) {
