@@ -85,7 +85,7 @@ struct SceneDeformer::ObjectPipeline {
   bool moved = false;  // a delta step of the last stage ran since the base
   // The last pipeline run changed the output by a delta step of the last stage only (no stage
   // approximated or re-embedded): the next step that moves only that stage's control points can
-  // be deferred (deferred: run the pipeline when points() is asked for; see deferGesture).
+  // be deferred (deferred: run the pipeline when points() is asked for; see run()).
   bool deltaOnly = false;
   bool deferred = false;
 };
@@ -213,16 +213,20 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   if (progress_ && !goOn(0)) throw ffd::Cancelled("scene deformer: cancelled before any embedding");
   SceneDeformStats stats;
   stats.latticesBuilt = latticesBuilt;
+  // An object's points, and those of them its first stage left outside or failed to embed.
+  const auto countPoints = [&stats](const ObjectPipeline& p) {
+    stats.deformedPoints += p.pipeline->inputPoints().rows();
+    if (const ffd::Embedding* first = p.pipeline->embedding(p.ids.at(p.stages.front().lattice))) {
+      stats.outsidePoints += first->outsideCount();
+      stats.failedPoints += first->failedCount();
+    }
+  };
   for (ObjectPipeline* p : deferred) {
     // Reported as the delta step it stands for (SceneDeformStats::deltaStages).
     p->deferred = true;
     ++p->revision;
     ++stats.deltaStages;
-    stats.deformedPoints += p->pipeline->inputPoints().rows();
-    if (const ffd::Embedding* first = p->pipeline->embedding(p->ids.at(p->stages.front().lattice))) {
-      stats.outsidePoints += first->outsideCount();
-      stats.failedPoints += first->failedCount();
-    }
+    countPoints(*p);
   }
   Eigen::Index done = 0;
   for (std::size_t i = 0; i < toRun.size(); ++i) {
@@ -242,11 +246,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       stats.deltaStages += report.delta ? 1 : 0;
       stats.embedSeconds += report.embedSeconds;
     }
-    if (const ffd::Embedding* first = p.pipeline->embedding(p.ids.at(p.stages.front().lattice))) {
-      stats.outsidePoints += first->outsideCount();
-      stats.failedPoints += first->failedCount();
-    }
-    stats.deformedPoints += p.pipeline->inputPoints().rows();
+    countPoints(p);
     const std::vector<ffd::StageReport>& reports = p.pipeline->lastReport();
     p.deltaOnly = !reports.empty() && reports.back().delta &&
                   std::none_of(reports.begin(), reports.end(), [](const ffd::StageReport& r) {
@@ -277,10 +277,14 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   if (progress_ && !progress_(1.0)) throw ffd::Cancelled("scene deformer: cancelled at the end (all work kept)");
 }
 
-const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const {
+SceneDeformer::ObjectPipeline& SceneDeformer::pipelineOf(const std::string& object) const {
   auto it = objects_.find(object);
   if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
-  ObjectPipeline& p = *it->second;
+  return *it->second;
+}
+
+const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const {
+  ObjectPipeline& p = pipelineOf(object);
   if (p.deferred) {
     // The deferred gesture steps, as one delta step from the last evaluated control points (a
     // fresh last stage in Delta mode: nothing embeds, nothing is cancelled).
@@ -291,24 +295,16 @@ const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const {
 }
 
 Eigen::MatrixX3d SceneDeformer::takePoints(const std::string& object) {
-  auto it = objects_.find(object);
-  if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
-  const std::unique_ptr<ObjectPipeline> p = std::move(it->second);
-  objects_.erase(it);
-  if (p->deferred) p->pipeline->update();  // the deferred gesture steps, as points() applies them
-  return p->pipeline->takePoints();
+  (void)points(object);  // applies the deferred gesture steps (and throws for an unknown object)
+  return objects_.extract(object).mapped()->pipeline->takePoints();
 }
 
 Eigen::Index SceneDeformer::pointCount(const std::string& object) const {
-  auto it = objects_.find(object);
-  if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
-  return it->second->pipeline->inputPoints().rows();
+  return pipelineOf(object).pipeline->inputPoints().rows();
 }
 
 std::uint64_t SceneDeformer::revision(const std::string& object) const {
-  auto it = objects_.find(object);
-  if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
-  return it->second->revision;
+  return pipelineOf(object).revision;
 }
 
 std::optional<GestureMotion> SceneDeformer::gestureMotion(const std::string& object) const {
@@ -335,9 +331,7 @@ std::optional<GestureMotion> SceneDeformer::gestureMotion(const std::string& obj
 }
 
 Eigen::VectorXd SceneDeformer::controlWeights(const std::string& object, Eigen::Index controlPoint) const {
-  auto it = objects_.find(object);
-  if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
-  const ObjectPipeline& p = *it->second;
+  const ObjectPipeline& p = pipelineOf(object);
   if (p.stages.empty()) throw std::invalid_argument("SceneDeformer: object '" + object + "' has no lattice");
   const ffd::LatticeId last = p.pipeline->order().back();
   const ffd::Embedding* embedding = p.pipeline->embedding(last);

@@ -69,8 +69,9 @@ struct SceneView::Impl {
   vtkRenderer* renderer = nullptr;
   std::vector<ObjectActor> objects;
   // Widget actors are built for a new model instance, and for the widgets a change concerns when
-  // the model's revision moved (widgets::widgetsToRedraw); a change of the highlights only recolours them, shows or hides the selected lattices' faces and moves the
-  // point marker: hover and selection build no geometry.
+  // the model's revision moved (widgets::widgetsToRedraw); a change of the highlights only
+  // recolours them, shows or hides the selected lattices' faces and moves the point marker:
+  // hover and selection build no geometry.
   enum class Role { Lattice, LatticeFaces, Cell, Glyph };
   struct WidgetActor {
     vtkSmartPointer<vtkActor> actor;

@@ -31,7 +31,8 @@ struct VertexFaces {
 VertexFaces vertexFaces(const Eigen::MatrixX3i& triangles, Eigen::Index pointCount);
 
 /// out[t] = value(a, b, c, e1, e2) for each triangle t = (a, b, c) of `triangles` over
-/// `points` (#points x 3, column-major), with e1 = pb - pa, e2 = pc - pa in double; the result stored as float. In parallel, no write races.
+/// `points` (#points x 3, column-major), with e1 = pb - pa, e2 = pc - pa in double; the result
+/// stored as float. In parallel (each t written once).
 template <class FaceValue>
 void perFace(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& points, std::vector<Eigen::Vector3f>& out,
              FaceValue value) {

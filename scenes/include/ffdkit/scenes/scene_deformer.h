@@ -139,6 +139,8 @@ class SceneDeformer {
   void run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, Run how);
 
   struct ObjectPipeline;
+  // The object's pipeline. @throws std::invalid_argument for an object update() has not seen.
+  ObjectPipeline& pipelineOf(const std::string& object) const;
   std::map<std::string, std::unique_ptr<ObjectPipeline>> objects_;
   SceneDeformStats stats_;
   SceneProgress progress_;
