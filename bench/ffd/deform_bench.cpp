@@ -94,24 +94,38 @@ DeformCase& deformCase(const std::string& key, int count, AxisBasis basis, Eigen
   return *cache[key];
 }
 
-void BM_Deform(benchmark::State& state, int count, AxisBasis basis, Eigen::Index n, std::string key) {
+// Precision::Single also reports how far it lands from the double evaluation (max_diff_vs_double,
+// in the units of the unit-box lattice) and fails above 1e-6 (docs/ffd-engine.md).
+void BM_Deform(benchmark::State& state, int count, AxisBasis basis, Eigen::Index n, std::string key,
+               Precision precision) {
   DeformCase& c = deformCase(key, count, basis, n);
+  c.deformer->setPrecision(Precision::Double);
   c.deformer->deform(c.lattice, c.Q);
   check(c.lattice, *c.deformer, state);
+  if (precision == Precision::Single) {
+    const Eigen::MatrixX3d reference = c.deformer->points();
+    c.deformer->setPrecision(Precision::Single);
+    const double diff = (c.deformer->deform(c.lattice, c.Q) - reference).cwiseAbs().maxCoeff();
+    state.counters["max_diff_vs_double"] = diff;
+    if (!(diff <= 1e-6)) state.SkipWithError("single precision strays from the double evaluation");
+  }
   for (auto _ : state) {
     benchmark::DoNotOptimize(c.deformer->deform(c.lattice, c.Q).data());
     benchmark::ClobberMemory();
   }
+  c.deformer->setPrecision(Precision::Double);
   state.SetItemsProcessed(state.iterations() * n);
   state.counters["embed_bytes_per_point"] = double(c.deformer->embedding().memoryBytes()) / double(n);
 }
 
 // exact = true: Deformer::update(lattice, input), re-evaluating the touched cells (what Pipeline
 // uses); false: the multiply-add delta update(lattice).
-void BM_Update(benchmark::State& state, Eigen::Vector3i control, Eigen::Index n, std::string key, bool exact) {
+void BM_Update(benchmark::State& state, Eigen::Vector3i control, Eigen::Index n, std::string key, bool exact,
+               Precision precision) {
   DeformCase& c = deformCase(key, 8, AxisBasis::bspline(3), n);
   const Eigen::Index flat = c.lattice.index(control[0], control[1], control[2]);
   const Eigen::Vector3d base = c.lattice.controlPoints().row(flat).transpose();
+  c.deformer->setPrecision(precision);
   c.deformer->deform(c.lattice, c.Q);
   double step = 0.0;
   Eigen::Index evaluated = 0;
@@ -127,8 +141,10 @@ void BM_Update(benchmark::State& state, Eigen::Vector3i control, Eigen::Index n,
   // delta variant accumulates rounding over the thousands of updates of a benchmark run.
   const Eigen::MatrixX3d incremental = c.deformer->points();
   Deformer full(embed(c.lattice, c.Q));
+  full.setPrecision(precision);
   const double drift = (full.deform(c.lattice, c.Q) - incremental).rowwise().norm().maxCoeff();
   if (exact ? drift != 0.0 : drift > 1e-9) state.SkipWithError("incremental update disagrees with full evaluation");
+  c.deformer->setPrecision(Precision::Double);
   c.deformer->deform(c.lattice, c.Q);  // resynchronise for the next run
   state.counters["points_touched"] = double(evaluated);
   state.counters["max_diff_vs_full"] = drift;
@@ -222,8 +238,12 @@ const bool registered = [] {
   };
   for (Eigen::Index n = 1000; n <= 10000000; n *= 10) {
     const std::string key = name("BM_Deform", n, "4x4x4/basis:bspline3");
-    benchmark::RegisterBenchmark(key.c_str(), BM_Deform, 4, AxisBasis::bspline(3), n, key)
-        ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+    for (Precision precision : {Precision::Double, Precision::Single}) {
+      const bool single = precision == Precision::Single;
+      benchmark::RegisterBenchmark((key + (single ? "/precision:single" : "")).c_str(), BM_Deform, 4,
+                                   AxisBasis::bspline(3), n, key, precision)
+          ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+    }
   }
   const Eigen::Index million = 1000000;
   for (auto [count, basis, label] : {std::tuple{4, AxisBasis::bernstein(), "4x4x4/basis:bernstein"},
@@ -231,7 +251,14 @@ const bool registered = [] {
                                      std::tuple{10, AxisBasis::bspline(3), "10x10x10/basis:bspline3/order:grid"},
                                      std::tuple{8, AxisBasis::bspline(3), "8x8x8/basis:bspline3"}}) {
     const std::string key = name("BM_Deform", million, label);
-    benchmark::RegisterBenchmark(key.c_str(), BM_Deform, count, basis, million, key)
+    benchmark::RegisterBenchmark(key.c_str(), BM_Deform, count, basis, million, key, Precision::Double)
+        ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+  }
+  // The same jobs with the displacement in float32 (Precision::Single), as Blender computes.
+  for (auto [count, label] : {std::pair{8, "8x8x8/basis:bspline3"}}) {
+    const std::string key = name("BM_Deform", million, label);
+    benchmark::RegisterBenchmark((key + "/precision:single").c_str(), BM_Deform, count, AxisBasis::bspline(3),
+                                 million, key, Precision::Single)
         ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
   }
   for (const char* order : {"", "/order:grid"}) {
@@ -242,7 +269,13 @@ const bool registered = [] {
       for (bool exact : {true, false}) {
         benchmark::RegisterBenchmark(
             (name("BM_Update", million, lattice) + "/moved:" + label + (exact ? "/update:exact" : "/update:delta")).c_str(),
-            BM_Update, control, million, name("BM_Deform", million, lattice), exact)
+            BM_Update, control, million, name("BM_Deform", million, lattice), exact, Precision::Double)
+            ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+      }
+      if (*order == '\0' && label[0] == 'i') {
+        benchmark::RegisterBenchmark(
+            (name("BM_Update", million, lattice) + "/moved:" + label + "/update:exact/precision:single").c_str(),
+            BM_Update, control, million, name("BM_Deform", million, lattice), true, Precision::Single)
             ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
       }
     }

@@ -61,10 +61,10 @@ FFDKIT_INLINE Lane localLanes(const double* src, std::uint32_t q, int count, con
   return (loadLanes(src, q, count) - cellPoly[0]) * cellPoly[1];
 }
 
-// sum_k M[k] x^k by Horner's rule.
-template <int K>
-FFDKIT_INLINE Lane horner(const double* M, Lane x) {
-  Lane r = x * M[K] + M[K - 1];
+// sum_k M[k] x^k by Horner's rule (V: eight double lanes, or sixteen float lanes with float M).
+template <int K, class V, class S>
+FFDKIT_INLINE V horner(const S* M, V x) {
+  V r = x * M[K] + M[K - 1];
   for (int k = K - 2; k >= 0; --k) r = r * x + M[k];
   return r;
 }
@@ -160,12 +160,12 @@ FFDKIT_INLINE void denseBlockT(const KernelInput& in, const int cell[3], std::ui
 // Horner's rule over the tensor-product power form: rows in x, their sums in y, then z
 // (3 (K+1)^3 - 3 multiply-adds for the three coordinates; the (K+1)^2 rows of a coordinate
 // are independent chains of K multiply-adds, which keeps both FMA pipes busy).
-template <int K>
-FFDKIT_INLINE Lane hornerTensor(const double* C, Lane x, Lane y, Lane z) {
+template <int K, class V, class S>
+FFDKIT_INLINE V hornerTensor(const S* C, V x, V y, V z) {
   constexpr int n = K + 1;
-  Lane sumW = splat(0.0);
+  V sumW = x;  // overwritten at c == K
   for (int c = K; c >= 0; --c) {
-    Lane sumV = horner<K>(C + (c * n + K) * n, x);
+    V sumV = horner<K>(C + (c * n + K) * n, x);
     for (int b = K - 1; b >= 0; --b) sumV = sumV * y + horner<K>(C + (c * n + b) * n, x);
     sumW = c == K ? sumV : sumW * z + sumV;
   }
@@ -188,6 +188,58 @@ FFDKIT_INLINE void powerBlockT(const KernelInput& in, const int cell[3], std::ui
     const Lane dy = hornerTensor<K>(C + set, x, y, z);
     const Lane dz = hornerTensor<K>(C + 2 * set, x, y, z);
     storeLanes(in, q0, count, blended, dx, dy, dz, mode);
+  }
+}
+
+// Sixteen float lanes (one AVX-512 register) for Precision::Single, and the halves that map to
+// the eight double lanes of the stores.
+constexpr int kSingleLanes = 2 * kLanes;
+typedef float SingleLane __attribute__((vector_size(kSingleLanes * sizeof(float))));
+typedef float HalfLane __attribute__((vector_size(kLanes * sizeof(float))));
+
+// Sixteen local parameters: x computed in double exactly as the double kernel does, then rounded
+// to float (the only rounding of the parameters).
+FFDKIT_INLINE SingleLane localSingle(const double* src, std::uint32_t q, int count, const double* cellPoly) {
+  const HalfLane lo = __builtin_convertvector(localLanes(src, q, std::min(count, kLanes), cellPoly), HalfLane);
+  const HalfLane hi = count > kLanes
+                          ? __builtin_convertvector(localLanes(src, q + kLanes, count - kLanes, cellPoly), HalfLane)
+                          : lo;
+  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+
+FFDKIT_INLINE Lane lowHalf(SingleLane d) {
+  return __builtin_convertvector(__builtin_shufflevector(d, d, 0, 1, 2, 3, 4, 5, 6, 7), Lane);
+}
+FFDKIT_INLINE Lane highHalf(SingleLane d) {
+  return __builtin_convertvector(__builtin_shufflevector(d, d, 8, 9, 10, 11, 12, 13, 14, 15), Lane);
+}
+
+// powerBlockT in single precision: the cell's coefficients (C, rounded by the caller) and the
+// local parameters rounded to float, Horner's rule on sixteen float lanes (half the multiply-add instructions of eight double
+// lanes), the displacement widened to double and stored as the double kernel stores it.
+template <int K>
+FFDKIT_INLINE void powerBlockSingleT(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end,
+                                     bool blended, const float* C, Store mode) {
+  constexpr int set = (K + 1) * (K + 1) * (K + 1);
+  const double* pu = in.axis[0].poly->cell(cell[0]);
+  const double* pv = in.axis[1].poly->cell(cell[1]);
+  const double* pw = in.axis[2].poly->cell(cell[2]);
+  for (std::uint32_t q0 = begin; q0 < end; q0 += kSingleLanes) {
+    const int count = static_cast<int>(std::min<std::uint32_t>(kSingleLanes, end - q0));
+    const SingleLane x = localSingle(in.u, q0, count, pu);
+    const SingleLane y = localSingle(in.v, q0, count, pv);
+    const SingleLane z = localSingle(in.w, q0, count, pw);
+    // Hidden from the optimiser per step: else GCC hoists the 3 (K+1)^3 broadcasts out of the
+    // loop and spills them, and each multiply-add waits on a 64-byte reload instead of taking its
+    // coefficient as a 4-byte broadcast operand.
+    const float* c = C;
+    asm("" : "+r"(c));
+    const SingleLane dx = hornerTensor<K>(c, x, y, z);
+    const SingleLane dy = hornerTensor<K>(c + set, x, y, z);
+    const SingleLane dz = hornerTensor<K>(c + 2 * set, x, y, z);
+    storeLanes(in, q0, std::min(count, kLanes), blended, lowHalf(dx), lowHalf(dy), lowHalf(dz), mode);
+    if (count > kLanes)
+      storeLanes(in, q0 + kLanes, count - kLanes, blended, highHalf(dx), highHalf(dy), highHalf(dz), mode);
   }
 }
 
@@ -414,6 +466,16 @@ void powerBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, s
     case 1: return powerBlockT<1>(in, cell, begin, end, blended, C, mode);
     case 2: return powerBlockT<2>(in, cell, begin, end, blended, C, mode);
     default: return powerBlockT<3>(in, cell, begin, end, blended, C, mode);
+  }
+}
+
+FFDKIT_VECTOR_CLONES
+void powerBlockSingle(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
+                      const float* C, Store mode) {
+  switch (in.axis[0].poly->degree) {
+    case 1: return powerBlockSingleT<1>(in, cell, begin, end, blended, C, mode);
+    case 2: return powerBlockSingleT<2>(in, cell, begin, end, blended, C, mode);
+    default: return powerBlockSingleT<3>(in, cell, begin, end, blended, C, mode);
   }
 }
 

@@ -84,6 +84,12 @@ void denseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, s
 void powerBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
                 const double* C, Store mode);
 
+/// powerBlock in single precision (Precision::Single): C is the cell's coefficient set rounded
+/// to float; the local parameters are rounded too, Horner's rule runs on sixteen float lanes, and
+/// the displacement is widened to double before it is stored (so out = Q + s d adds in double).
+void powerBlockSingle(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
+                      const float* C, Store mode);
+
 struct SparseTerm {
   int a, b, c;
   double dx, dy, dz;

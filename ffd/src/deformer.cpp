@@ -96,8 +96,9 @@ void unflatCell(const Lattice& lattice, std::size_t flat, int cell[3]) {
 // points) each block computes its cell's set when the cell changes. Both give the same bits.
 class CellFields {
  public:
-  CellFields(const Lattice& lattice, const AxisTables& tables, const Eigen::MatrixX3d& D)
-      : lattice_(lattice), tables_(tables), D_(D) {
+  CellFields(const Lattice& lattice, const AxisTables& tables, const Eigen::MatrixX3d& D,
+             Precision precision = Precision::Double)
+      : lattice_(lattice), tables_(tables), D_(D), precision_(precision) {
     const int degrees[3] = {lattice.axis(0).degree(), lattice.axis(1).degree(), lattice.axis(2).degree()};
     K_ = detail::powerDegree(degrees);
     for (int a = 0; a < 3; ++a) {
@@ -106,6 +107,8 @@ class CellFields {
     }
   }
   bool power() const { return K_ >= 0; }
+  // Precision::Single on a power-form lattice: the kernels read float coefficient sets.
+  bool single() const { return power() && precision_ == Precision::Single; }
   const detail::AxisPolynomials* polynomials(int axis) const { return power() ? &poly_[axis] : nullptr; }
   std::size_t setSize() const { return power() ? detail::coefficientSetSize(K_) : 0; }
 
@@ -118,6 +121,7 @@ class CellFields {
     for (std::size_t i = 0; i < flats.size(); ++i) slot_[flats[i]] = static_cast<std::int32_t>(i);
     flats_ = std::move(flats);
     table_.resize(flats_.size() * setSize());
+    if (single()) tableSingle_.resize(table_.size());
   }
   // Fills the planned table; call from every thread of a parallel region (work-shared, ends with a barrier).
   void fillTable() {
@@ -127,6 +131,7 @@ class CellFields {
       int cell[3];
       unflatCell(lattice_, flats_[i], cell);
       compute(cell, window, table_.data() + i * setSize());
+      if (single()) round(table_.data() + i * setSize(), tableSingle_.data() + i * setSize());
     }
   }
   // One thread's access to the cells' data, caching the last cell computed outside the table.
@@ -147,12 +152,24 @@ class CellFields {
       }
       return f_.power() ? set_.data() : window_.data();
     }
+    // Precision::Single: the coefficient set of `cell` rounded to float (the bits of at(cell), rounded).
+    const float* single(const int cell[3]) {
+      if (!f_.slot_.empty()) return f_.tableSingle_.data() + f_.slot_[flatCell(f_.lattice_, cell)] * f_.setSize();
+      if (!std::equal(cell, cell + 3, lastSingle_)) {
+        setSingle_.resize(f_.setSize());
+        f_.round(at(cell), setSingle_.data());
+        std::copy(cell, cell + 3, lastSingle_);
+      }
+      return setSingle_.data();
+    }
     std::size_t windowSize() const { return window_.size() / 3; }
 
    private:
     const CellFields& f_;
     int last_[3] = {-1, -1, -1};
+    int lastSingle_[3] = {-1, -1, -1};
     std::vector<double> window_, set_;
+    std::vector<float> setSingle_;
   };
 
  private:
@@ -161,15 +178,21 @@ class CellFields {
     detail::cellCoefficients(poly_, cell, window.data(), windowCounts_, out);
   }
 
+  void round(const double* set, float* out) const {
+    for (std::size_t i = 0; i < setSize(); ++i) out[i] = static_cast<float>(set[i]);
+  }
+
   const Lattice& lattice_;
   const AxisTables& tables_;
   const Eigen::MatrixX3d& D_;
+  Precision precision_;
   int K_ = -1;
   int windowCounts_[3] = {};
   detail::AxisPolynomials poly_[3];
   std::vector<std::int32_t> slot_;  // flat cell -> table row; empty: no table
   std::vector<std::size_t> flats_;
   std::vector<double> table_;
+  std::vector<float> tableSingle_;  // Precision::Single: table_ rounded
 };
 
 // One thread's scratch for a tile in random point order (see runTile).
@@ -242,6 +265,7 @@ Eigen::Index runTile(const detail::KernelInput& in, const Embedding& embedding, 
 // One block through the kernel that matches the fields.
 void runBlock(const detail::KernelInput& in, CellFields::Reader& reader, const CellFields& fields, const int cell[3],
               std::uint32_t begin, std::uint32_t end, bool blended, detail::Store mode) {
+  if (fields.single()) return detail::powerBlockSingle(in, cell, begin, end, blended, reader.single(cell), mode);
   const double* data = reader.at(cell);
   if (fields.power()) {
     detail::powerBlock(in, cell, begin, end, blended, data, mode);
@@ -289,7 +313,7 @@ Eigen::Index Deformer::evaluateBlocks(const Lattice& lattice, const Eigen::Ref<c
   // World displacement of every control point: F.linear * (P - Pbar).
   const Eigen::MatrixX3d D = (lattice.controlPoints() - lattice.restPoints()) * lattice.frame().linear().transpose();
   const AxisTables tables = makeTables(lattice);
-  CellFields fields(lattice, tables, D);
+  CellFields fields(lattice, tables, D, precision_);
   detail::KernelInput in = makeInput(lattice, embedding_, output_);
   for (int a = 0; a < 3; ++a) {
     in.axis[a].cellSpan = tables.span[a].data();
@@ -420,7 +444,7 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
               {ru, rv, rw, D(f, 0), D(f, 1), D(f, 2)});
         }
   }
-  CellFields fields(lattice, tables, D);
+  CellFields fields(lattice, tables, D, precision_);
   // Most of a cell's window moved: the dense evaluation is cheaper than one term per point
   // (a term costs about 1/16 of a dense power-form point, 1/3 of a dense Cox-de Boor one).
   std::vector<char> dense(cellTotal, 0);

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -427,6 +428,91 @@ TEST(Deformer, ClampEdgeCarriesFarOutsidePointsOfUserShapedLatticesAlong) {
     lattice.setControlPoints(lattice.restPoints().rowwise() + tLocal.transpose());
     const Eigen::MatrixX3d out = deformer.deform(lattice, Q);
     EXPECT_LT(maxRowError(out, Q.rowwise() + t.transpose()), 1e-12) << "trial " << trial;
+  }
+}
+
+// Precision::Single: the displacement in float32. Its error is float rounding (2^-24 = 6e-8)
+// of the cell's power-form coefficients, of the local parameters and of Horner's steps, so it
+// scales with the displacement, not with the coordinates; held to 1e-6 of the largest
+// control-point displacement (the worst measured on these lattices is printed: 1.2e-7 of it).
+double largestDisplacement(const Lattice& lattice) {
+  return ((lattice.controlPoints() - lattice.restPoints()) * lattice.frame().linear().transpose())
+      .rowwise()
+      .norm()
+      .maxCoeff();
+}
+
+bool powerForm(const Lattice& lattice) {
+  return lattice.axis(0).degree() <= 3 && lattice.axis(1).degree() <= 3 && lattice.axis(2).degree() <= 3;
+}
+
+TEST(DeformerPrecision, SingleStaysWithinFloatRoundingOfTheDisplacementOfTheReferenceEvaluator) {
+  std::mt19937 rng(31);
+  double worst = 0.0;
+  int powerLattices = 0;
+  for (int t = 0; t < 30; ++t) {
+    Lattice lattice = testing::randomLattice(rng, t % 2 ? 0.2 : 0.0, 7);
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 1000, rng));
+    Deformer single(embed(lattice, Q));
+    single.setPrecision(Precision::Single);
+    Deformer twice(embed(lattice, Q));
+    lattice.setControlPoints(randomMove(lattice, 0.3, rng));
+    const Eigen::MatrixX3d out = single.deform(lattice, Q);
+    const Eigen::MatrixX3d ref = twice.deform(lattice, Q);
+    const double D = largestDisplacement(lattice);
+    const reference::Axis axes[3] = {referenceAxis(lattice.axis(0)), referenceAxis(lattice.axis(1)),
+                                     referenceAxis(lattice.axis(2))};
+    const Eigen::MatrixX3d uvw = single.embedding().parameters();
+    for (Eigen::Index r = 0; r < Q.rows(); ++r) {
+      const Eigen::Vector3d expected = lattice.frame() * reference::evaluate(axes, lattice.controlPoints(), uvw.row(r).transpose());
+      const double error = (out.row(r).transpose() - expected).norm();
+      ASSERT_LT(error, 1e-6 * D + 1e-12 * (1.0 + expected.norm())) << "trial " << t << " point " << r;
+      worst = std::max(worst, error / D);
+    }
+    if (powerForm(lattice)) {
+      ++powerLattices;
+      EXPECT_GT(maxRowError(out, ref), 0.0) << "trial " << t << ": the single-precision kernel did not run";
+    } else {
+      EXPECT_EQ(maxRowError(out, ref), 0.0) << "trial " << t << ": degrees above 3 are evaluated in double";
+    }
+  }
+  EXPECT_GE(powerLattices, 8);
+  std::printf("single precision: worst error %.3g of the largest control-point displacement\n", worst);
+}
+
+TEST(DeformerPrecision, SingleExactUpdatesAreBitIdenticalToASingleDeformAndDeltasStayClose) {
+  std::mt19937 rng(32);
+  for (auto [count, degree] : {std::pair{4, 3}, std::pair{8, 3}, std::pair{6, 2}}) {
+    BoxLatticeOptions options;
+    options.counts = {count, count, count};
+    options.bases = {AxisBasis::bspline(degree), AxisBasis::bspline(degree), AxisBasis::bspline(degree)};
+    options.frame = testing::randomFrame(rng);
+    Lattice lattice = makeBoxLattice(options);
+    // Enough points for the threaded two-pass tiles of a random point order.
+    const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 50000, rng));
+    Deformer exact(embed(lattice, Q)), delta(embed(lattice, Q)), full(embed(lattice, Q));
+    for (Deformer* d : {&exact, &delta, &full}) d->setPrecision(Precision::Single);
+    exact.deform(lattice, Q);
+    delta.deform(lattice, Q);
+    for (int step = 0; step < 4; ++step) {
+      Eigen::MatrixX3d P = lattice.controlPoints();
+      P.row(lattice.index(count / 2, count / 2 - step % 2, count / 2)) += Eigen::RowVector3d(0.05, -0.03, 0.02);
+      lattice.setControlPoints(P);
+      const Eigen::MatrixX3d ref = full.deform(lattice, Q);
+      EXPECT_EQ(maxRowError(exact.update(lattice, Q), ref), 0.0) << count << " step " << step;
+      if (count > 4) EXPECT_LT(exact.lastStats().evaluatedPoints, Q.rows()) << count;  // 4x4x4: one cell
+      EXPECT_LT(maxRowError(delta.update(lattice), ref), 1e-6 * largestDisplacement(lattice)) << count << " step " << step;
+    }
+  }
+}
+
+TEST(DeformerPrecision, SingleBlendsOutsidePointsAsDoubleDoes) {
+  for (OutsidePolicy policy : {OutsidePolicy::clampEdge(), OutsidePolicy::falloff(0.3)}) {
+    OutsideCase c = outsideCase(policy, AxisBasis::bspline(3));
+    Deformer single(embed(c.lattice, c.Q)), twice(embed(c.lattice, c.Q));
+    single.setPrecision(Precision::Single);
+    const double error = maxRowError(single.deform(c.lattice, c.Q), twice.deform(c.lattice, c.Q));
+    EXPECT_LT(error, 1e-6 * largestDisplacement(c.lattice));
   }
 }
 
