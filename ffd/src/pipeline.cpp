@@ -119,6 +119,16 @@ void Pipeline::setThrottle(const ReembedThrottle& throttle) {
   throttle_ = throttle;
 }
 
+void Pipeline::setPrecision(Precision precision) {
+  if (precision == precision_) return;
+  precision_ = precision;
+  for (auto& [id, n] : nodes_) {
+    if (!n.deformer) continue;
+    n.deformer->setPrecision(precision);
+    n.outputInexact = true;
+  }
+}
+
 const Eigen::MatrixX3d& Pipeline::update(const EmbedProgress& progress) { return run(false, progress); }
 
 const Eigen::MatrixX3d& Pipeline::reembedAll(const EmbedProgress& progress) { return run(true, progress); }
@@ -185,7 +195,7 @@ Eigen::Index Pipeline::pointsToEmbed(bool reembedAll) const {
     const Action action = decide(id, n, inputVersion, reembedAll);
     bool changed = action != Action::Keep;
     if (action == Action::Update)
-      changed = (n.deltaApplied && (reembedAll || mode_ == UpdateMode::Exact)) ||
+      changed = (n.outputInexact && (reembedAll || mode_ == UpdateMode::Exact)) ||
                 n.deformer->lastControlPoints() != n.lattice.controlPoints();
     if (action == Action::Reembed) total += input_.rows();
     inputVersion = changed || n.outputVersion == 0 ? ++counter : n.outputVersion;
@@ -226,17 +236,17 @@ const Eigen::MatrixX3d& Pipeline::run(bool forceEmbed, const EmbedProgress& prog
       StageReport report{id};
       const Action action = decide(id, n, inputVersion, forceEmbed);
       const bool exact = forceEmbed || mode_ == UpdateMode::Exact;
-      if (action == Action::Update && n.deltaApplied && exact) {
-        // Deltas since the last full evaluation: evaluate in full again (bit for bit what exact
-        // incremental updates would have given).
+      if (action == Action::Update && n.outputInexact && exact) {
+        // Deltas (or a new precision) since the last full evaluation: evaluate in full again (bit
+        // for bit what exact incremental updates would have given).
         n.deformer->deform(n.lattice, *input);
-        n.deltaApplied = false;
+        n.outputInexact = false;
         report.outputChanged = true;
       } else if (action == Action::Update && !exact) {
         n.deformer->update(n.lattice);
         report.outputChanged = n.deformer->lastStats().changedControlPoints > 0;
         report.delta = report.outputChanged;
-        n.deltaApplied = n.deltaApplied || report.outputChanged;
+        n.outputInexact = n.outputInexact || report.outputChanged;
       } else if (action == Action::Update) {
         n.deformer->update(n.lattice, *input);
         report.outputChanged = n.deformer->lastStats().changedControlPoints > 0;
@@ -255,10 +265,11 @@ const Eigen::MatrixX3d& Pipeline::run(bool forceEmbed, const EmbedProgress& prog
         done += input->rows();
         if (n.deformer && output_ == &n.deformer->points()) output_ = nullptr;
         n.deformer = std::make_unique<Deformer>(std::move(embedding));
+        n.deformer->setPrecision(precision_);
         n.embeddedRest = n.lattice.restRevision();
         n.embeddedInput = inputVersion;
         n.pending = 0;
-        n.deltaApplied = false;
+        n.outputInexact = false;
         n.deformer->deform(n.lattice, *input);
         report.reembedded = true;
         report.outputChanged = true;
@@ -266,7 +277,7 @@ const Eigen::MatrixX3d& Pipeline::run(bool forceEmbed, const EmbedProgress& prog
         ++n.pending;
         approximated.emplace_back(&n, inputVersion);
         n.deformer->deformStale(n.lattice, *input);
-        n.deltaApplied = false;
+        n.outputInexact = false;
         report.approximate = true;
         report.outputChanged = true;
       } else {  // Keep: this output, from a cancelled run, is what deformStale would compute again.

@@ -188,6 +188,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       if (activeLattice && p->ids.count(*activeLattice)) active = p->ids.at(*activeLattice);
       p->pipeline->setActiveLattice(active);
       p->pipeline->setUpdateMode(how == Run::Gesture ? ffd::UpdateMode::Delta : ffd::UpdateMode::Exact);
+      p->pipeline->setPrecision(precision_);
       if (how == Run::Gesture && onlyLastControl && lastControlMoved && p->moved && p->deltaOnly) {
         // Lazy (issue 16): the pipeline would update the last stage by deltas only; leave that to
         // points() (one delta from the last evaluated control points) and report the motion.

@@ -83,6 +83,7 @@ TEST(Cli, UsageErrorsExitTwoSayWhatAndWriteNothing) {
       {{"deform", "--widgets", tool, "in.ply", "-o", out, "--set", "push-front"}, "--set takes NAME=VALUE"},
       {{"deform", "--widgets", tool, "in.ply", "-o", out, "--set", "push-front=abc"}, "must be a finite number"},
       {{"deform", "--widgets", tool, "in.ply", "-o", out, "--format", "docx"}, "--format must be one of"},
+      {{"deform", "--widgets", tool, "in.ply", "-o", out, "--precision", "half"}, "--precision must be single or double"},
       {{"render", "scene.json", (dir / "a.png").string(), "--size", "12by4"}, "--size takes WIDTHxHEIGHT"},
       {{"render", "scene.json", (dir / "a.png").string(), "--camera", "fisheye"}, "--camera must be one of"},
       {{"render", "scene.json"}, "render takes a SCENE and an OUTPUT.png"},
@@ -134,6 +135,27 @@ TEST(CliDeform, SetChangesTheResultExactlyAsTheModelPredicts) {
   const Eigen::MatrixX3d written = scenes::readMesh(dir / "out.vtp").points;
   EXPECT_LT(maxDifference(written, expected), 1e-12);
   EXPECT_GT(maxDifference(written, unset), 0.05);  // the settings really moved the surface
+}
+
+// --precision single: float32 displacements, within the engine's bound (1e-6 of the largest
+// control-point move; the points' largest move stands in for it, which it cannot exceed) of the
+// library's double result, and not equal to it.
+TEST(CliDeform, SinglePrecisionStaysWithinItsBoundOfTheDoubleResult) {
+  TempDir dir;
+  const MeshData input = sphere(40);
+  scenes::writeMesh(dir / "sphere.vtp", input);
+  const fs::path tool = kWidgetExamples / "fig6-8.json";
+  const CliResult r = runCli({"deform", "-w", tool.string(), (dir / "sphere.vtp").string(), "-o",
+                              (dir / "out.vtp").string(), "--set", "push-front=0.25", "--precision", "single"});
+  ASSERT_EQ(r.exitCode, 0) << describe(r);
+  widgets::WidgetModel model = scenes::readWidgetFile(tool);
+  model.setVariation(model.find("push-front"), 0.25);
+  const Eigen::MatrixX3d expected = libraryDeform(model, input);
+  const double largestMove = maxDifference(expected, input.points);
+  ASSERT_GT(largestMove, 0.05);
+  const double error = maxDifference(scenes::readMesh(dir / "out.vtp").points, expected);
+  EXPECT_GT(error, 0.0);
+  EXPECT_LT(error, 1e-6 * largestMove);
 }
 
 TEST(CliDeform, UnknownSetNameFailsNamingTheAffineWidgetsAndWritesNothing) {

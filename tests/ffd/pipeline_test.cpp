@@ -89,6 +89,47 @@ TEST(Pipeline, TakePointsHandsOverTheOutputAndTheNextRunEmbedsAgain) {
   for (const StageReport& report : pipeline.lastReport()) EXPECT_TRUE(report.reembedded);
 }
 
+// Precision::Single reaches every stage, and a change of precision evaluates an embedded stage
+// in full at the next run without embedding it again (the stages after it see a new input).
+TEST(Pipeline, PrecisionReachesEveryStageAndAChangeEvaluatesThemInFull) {
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(20000, 4);
+  Pipeline pipeline(Q);
+  const LatticeId parent = pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4));
+  const LatticeId child = pipeline.addLattice(boxAt({0.2, 0.2, 0.2}, 0.6, 3), parent);
+  bend(pipeline.lattice(parent), 0.3);
+  bend(pipeline.lattice(child), -0.2);
+  const Eigen::MatrixX3d twice = pipeline.update();
+  pipeline.setPrecision(Precision::Single);
+  const Eigen::MatrixX3d once = pipeline.update();
+  EXPECT_FALSE(pipeline.lastReport()[0].reembedded);  // evaluated in full in its new precision
+  EXPECT_TRUE(pipeline.lastReport()[0].outputChanged);
+  EXPECT_TRUE(pipeline.lastReport()[1].reembedded);  // its input moved
+  // By hand: each stage a single-precision Deformer on the previous stage's output.
+  auto singleByHand = [&] {
+    Eigen::MatrixX3d points = Q;
+    for (LatticeId id : {parent, child}) {
+      Deformer deformer(embed(pipeline.lattice(id), points));
+      deformer.setPrecision(Precision::Single);
+      points = deformer.deform(pipeline.lattice(id), points);
+    }
+    return points;
+  };
+  EXPECT_LT((once - singleByHand()).cwiseAbs().maxCoeff(), 1e-12);
+  const double drift = (once - twice).cwiseAbs().maxCoeff();
+  EXPECT_GT(drift, 1e-10);  // float rounding of displacements of at most 0.3
+  EXPECT_LT(drift, 1e-6 * 0.3);
+  // An edit of the child stays single and incremental.
+  pipeline.lattice(child).setControlPoint(13, Eigen::Vector3d(0.5, 0.6, 0.7));
+  const Eigen::MatrixX3d edited = pipeline.update();
+  EXPECT_FALSE(pipeline.lastReport()[1].reembedded);
+  EXPECT_LT((edited - singleByHand()).cwiseAbs().maxCoeff(), 1e-12);
+  // Back to double: the double result again.
+  pipeline.setPrecision(Precision::Double);
+  const Eigen::MatrixX3d back = pipeline.update();
+  EXPECT_LT((back - sequential({&pipeline.lattice(parent), &pipeline.lattice(child)}, Q)).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_GT((back - edited).cwiseAbs().maxCoeff(), 1e-10);
+}
+
 TEST(Pipeline, EditingTheLastLatticeUpdatesIncrementally) {
   const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(2000, 3);
   Pipeline pipeline(Q);

@@ -134,6 +134,7 @@ struct DeformRequest {
   std::optional<std::string> format; ///< lower case, no dot
   bool allowOutsideMeshes = false;   ///< --allow-outside-meshes
   std::optional<std::string> frame;  ///< --frame T: the scene's animation at frame T
+  ffd::Precision precision = ffd::Precision::Double;  ///< --precision
 };
 
 DeformRequest parseRequest(const Args& args) {
@@ -162,6 +163,13 @@ DeformRequest parseRequest(const Args& args) {
     if (!r.fit) throw UsageError("--padding only applies with --fit");
     r.padding = parseNumber(*padding, "--padding");
     if (r.padding < 0.0) throw UsageError("--padding must be >= 0");
+  }
+  if (auto precision = args.value("precision")) {
+    if (*precision == "single") {
+      r.precision = ffd::Precision::Single;
+    } else if (*precision != "double") {
+      throw UsageError("--precision must be single or double; got '" + *precision + "'");
+    }
   }
   r.settings = parseSettings(args.values("set"));
   r.objects = args.values("object");
@@ -314,6 +322,7 @@ int runDeform(const Args& args) {
     if (split) split->checkTarget(targets.front().path);
   });
   scenes::SceneDeformer deformer;
+  deformer.setPrecision(request.precision);
   std::vector<std::pair<fs::path, scenes::MeshData>> meshes;
   onEveryRank(ranks, [&] {
     evaluate(scene, deformer, console);
@@ -384,6 +393,8 @@ Command deformCommand() {
            {"padding", '\0', "P", "with --fit: margin on every side, relative to the box diagonal (0.05)"},
            {"object", '\0', "NAME", "with --scene and no INPUT: write only this object", true},
            {"format", '\0', "EXT", "format of outputs written into a folder (default: the input's)"},
+           {"precision", '\0', "P", "double (default) or single: the displacements in float32, as Blender does "
+                                     "(within 1e-6 of the largest control-point move; docs/ffd-engine.md)"},
            allowOutsideMeshesOption(), quietOption(), progressOption(), timingsOption()},
           runDeform};
 }

@@ -99,6 +99,10 @@ class Pipeline {
   /// always exact.
   void setUpdateMode(UpdateMode mode) { mode_ = mode; }
   UpdateMode updateMode() const { return mode_; }
+  /// The arithmetic of every stage's deformation (Deformer::setPrecision; default Double). A
+  /// change makes the next run evaluate every embedded stage in full.
+  void setPrecision(Precision precision);
+  Precision precision() const { return precision_; }
 
   /// Runs the pipeline: stages whose embedding is fresh and whose input did not change are updated
   /// incrementally; stale stages are re-embedded or deformed approximately per the throttle.
@@ -148,9 +152,10 @@ class Pipeline {
     std::uint64_t embeddedInput = 0;
     std::uint64_t outputVersion = 0;
     int pending = 0;
-    // The output holds delta updates (UpdateMode::Delta) made since its last full evaluation:
-    // the next exact run evaluates it in full.
-    bool deltaApplied = false;
+    // The output is not the exact evaluation of its control points: it holds delta updates
+    // (UpdateMode::Delta) made since its last full evaluation, or the precision changed since.
+    // The next exact run evaluates it in full.
+    bool outputInexact = false;
     // Set when a run that deformed this stage approximately (throttled) was cancelled later on:
     // the input version and rest revision it used, so that the next run keeps that output
     // instead of recomputing it and bumping its version (Action::Keep). 0: none.
@@ -173,6 +178,7 @@ class Pipeline {
   std::optional<LatticeId> active_;
   ReembedThrottle throttle_;
   UpdateMode mode_ = UpdateMode::Exact;
+  Precision precision_ = Precision::Double;
   std::vector<StageReport> report_;
   const Eigen::MatrixX3d* output_ = nullptr;
   // The last completed output when the stage holding it may change before a run completes

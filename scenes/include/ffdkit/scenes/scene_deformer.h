@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "ffdkit/ffd/cancelled.h"
+#include "ffdkit/ffd/deformer.h"
 #include "ffdkit/scenes/scene.h"
 
 namespace ffdkit::scenes {
@@ -89,6 +90,11 @@ class SceneDeformer {
   /// without updateGesture(). Progress and cancel as update().
   void finishGesture(const Scene& scene);
 
+  /// The arithmetic of the following calls' deformations (ffd::Precision; default Double). A
+  /// change evaluates every lattice stage in full at the next call.
+  void setPrecision(ffd::Precision precision) { precision_ = precision; }
+  ffd::Precision precision() const { return precision_; }
+
   /// Progress / cancel hook for the following update() and finishGesture() calls (empty: none).
   /// A worker thread typically passes a lambda that stores the fraction in an std::atomic the
   /// GUI polls and returns !cancelFlag.load().
@@ -144,6 +150,7 @@ class SceneDeformer {
   std::map<std::string, std::unique_ptr<ObjectPipeline>> objects_;
   SceneDeformStats stats_;
   SceneProgress progress_;
+  ffd::Precision precision_ = ffd::Precision::Double;
   std::uint64_t widgetInstance_ = 0;  // the widget model last synced (WidgetModel::instance)
 };
 
