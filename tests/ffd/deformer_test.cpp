@@ -482,7 +482,9 @@ TEST(DeformerPrecision, SingleStaysWithinFloatRoundingOfTheDisplacementOfTheRefe
 
 TEST(DeformerPrecision, SingleExactUpdatesAreBitIdenticalToASingleDeformAndDeltasStayClose) {
   std::mt19937 rng(32);
-  for (auto [count, degree] : {std::pair{4, 3}, std::pair{8, 3}, std::pair{6, 2}}) {
+  // One cell; 8 cells (blocks of ~500 points per tile: the float kernel, two passes per tile);
+  // 125 cells (blocks of ~33 points per tile: the double kernel, see kSingleBlockPoints).
+  for (auto [count, degree] : {std::pair{4, 3}, std::pair{5, 3}, std::pair{4, 2}, std::pair{8, 3}}) {
     BoxLatticeOptions options;
     options.counts = {count, count, count};
     options.bases = {AxisBasis::bspline(degree), AxisBasis::bspline(degree), AxisBasis::bspline(degree)};
@@ -490,7 +492,7 @@ TEST(DeformerPrecision, SingleExactUpdatesAreBitIdenticalToASingleDeformAndDelta
     Lattice lattice = makeBoxLattice(options);
     // Enough points for the threaded two-pass tiles of a random point order.
     const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 50000, rng));
-    Deformer exact(embed(lattice, Q)), delta(embed(lattice, Q)), full(embed(lattice, Q));
+    Deformer exact(embed(lattice, Q)), delta(embed(lattice, Q)), full(embed(lattice, Q)), twice(embed(lattice, Q));
     for (Deformer* d : {&exact, &delta, &full}) d->setPrecision(Precision::Single);
     exact.deform(lattice, Q);
     delta.deform(lattice, Q);
@@ -500,7 +502,10 @@ TEST(DeformerPrecision, SingleExactUpdatesAreBitIdenticalToASingleDeformAndDelta
       lattice.setControlPoints(P);
       const Eigen::MatrixX3d ref = full.deform(lattice, Q);
       EXPECT_EQ(maxRowError(exact.update(lattice, Q), ref), 0.0) << count << " step " << step;
-      if (count > 4) EXPECT_LT(exact.lastStats().evaluatedPoints, Q.rows()) << count;  // 4x4x4: one cell
+      const double fromDouble = maxRowError(ref, twice.deform(lattice, Q));
+      if (count < 8) EXPECT_GT(fromDouble, 0.0) << count << ": the float kernel did not run";
+      if (count == 8) EXPECT_EQ(fromDouble, 0.0) << "short blocks keep the double kernel";
+      if (count == 8) EXPECT_LT(exact.lastStats().evaluatedPoints, Q.rows()) << count;  // the others: every cell
       EXPECT_LT(maxRowError(delta.update(lattice), ref), 1e-6 * largestDisplacement(lattice)) << count << " step " << step;
     }
   }

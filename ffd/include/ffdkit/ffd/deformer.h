@@ -27,9 +27,10 @@ enum class Precision {
   /// Blender's lattice modifier computes: its error scales with the displacement, not with the
   /// coordinates (at most 1.2e-7 of the largest control-point displacement measured; the tests
   /// hold it to 1e-6). For points that end in float32 anyway (binary PLY, STL, glTF, the
-  /// renderer). Faster where the kernel is bound by multiply-adds (one cell, or points in cell
-  /// order: 1M points, 4x4x4 cubic, 2.4 ms against 3.7 ms); no faster for many-cell lattices in
-  /// random point order, which are bound by memory (docs/ffd-engine.md).
+  /// renderer). Faster where the kernel is bound by multiply-adds (1M points, 4x4x4 cubic:
+  /// 2.4 ms against 3.7 ms). Blocks of fewer than 64 points of a cell in a tile (many-cell
+  /// lattices in random point order) keep the double kernel, which was faster there
+  /// (docs/ffd-engine.md); the choice is fixed per block, so exact updates stay bit-identical.
   Single
 };
 
