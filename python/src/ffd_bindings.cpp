@@ -339,6 +339,11 @@ void bindDeformation(py::module_& m) {
     withoutGil(PythonProgress(py::none()), [&] { return &(deformer.*evaluation)(lattice, q.ref()); });
     return viewOf(deformer.points(), self, false);
   };
+  py::enum_<ffd::Precision>(m, "Precision",
+                            "Arithmetic of the deformation: Double (default) or Single (float32 displacements, "
+                            "within 1e-6 of the largest control-point move; ffd/deformer.h).")
+      .value("Double", ffd::Precision::Double)
+      .value("Single", ffd::Precision::Single);
   py::class_<ffd::Deformer>(m, "Deformer", "Maps embedded points through a lattice (ffd/deformer.h).")
       .def(py::init<>())
       .def(py::init<ffd::Embedding>(), "embedding"_a, "Takes a copy of the embedding.")
@@ -376,6 +381,8 @@ void bindDeformation(py::module_& m) {
         return viewOf(self.cast<const ffd::Deformer&>().points(), self, false);
       })
       .def_property_readonly("lastStats", &ffd::Deformer::lastStats)
+      .def_property("precision", &ffd::Deformer::precision, &ffd::Deformer::setPrecision,
+                    "Precision of the following calls; change it only before a deform().")
       .def("setParallel", &ffd::Deformer::setParallel, "parallel"_a);
 }
 
@@ -434,6 +441,8 @@ void bindPipeline(py::module_& m) {
       .def("setActiveLattice", &ffd::Pipeline::setActiveLattice, "id"_a)
       .def("setThrottle", &ffd::Pipeline::setThrottle, "throttle"_a)
       .def_property_readonly("throttle", &ffd::Pipeline::throttle)
+      .def_property("precision", &ffd::Pipeline::precision, &ffd::Pipeline::setPrecision,
+                    "Precision of every stage; a change evaluates the embedded stages in full at the next run.")
       .def("update", [run](py::object self, const py::object& progress) { return run(self, false, progress); },
            "progress"_a = py::none(), "Runs the pipeline (GIL released); returns the deformed points (read-only view).")
       .def("reembedAll", [run](py::object self, const py::object& progress) { return run(self, true, progress); },

@@ -208,6 +208,27 @@ def test_incremental_update_equals_a_full_deform():
     np.testing.assert_array_equal(updated, full.deform(lattice, points))
 
 
+def test_single_precision_stays_within_its_bound_and_reaches_pipeline_stages():
+    lattice = ffd.makeBoxLattice(counts=(4, 4, 4), bases=ffd.AxisBasis.bspline(3))
+    points = RNG.random((20000, 3))
+    moves = 0.3 * (2 * RNG.random((lattice.pointCount, 3)) - 1)
+    lattice.controlPoints[:] += moves
+    double = ffd.Deformer.fromPoints(lattice, points)
+    assert double.precision == ffd.Precision.Double
+    expected = double.deform(lattice, points).copy()
+    single = ffd.Deformer.fromPoints(lattice, points)
+    single.precision = ffd.Precision.Single
+    out = single.deform(lattice, points)
+    largest_move = np.linalg.norm(moves, axis=1).max()
+    error = np.abs(out - expected).max()
+    assert 0 < error < 1e-6 * largest_move
+    pipeline = ffd.Pipeline(points)
+    pipeline.addLattice(lattice)
+    np.testing.assert_array_equal(pipeline.update(), expected)
+    pipeline.precision = ffd.Precision.Single
+    np.testing.assert_array_equal(pipeline.update(), out)
+
+
 def test_outside_policies_and_per_point_status():
     lattice = bernstein_box((3, 3, 3), policy=ffd.OutsidePolicy.identity())
     lattice.controlPoints[:] += 0.1
