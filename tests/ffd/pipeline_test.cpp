@@ -37,6 +37,15 @@ void bend(Lattice& lattice, double amount) {
   lattice.setControlPoints(P);
 }
 
+// A 4x4x4 parent lattice around the unit box bent by 0.3, and a 3x3x3 child inside it bent by -0.2.
+std::pair<LatticeId, LatticeId> addBentParentAndChild(Pipeline& pipeline) {
+  const LatticeId parent = pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4));
+  const LatticeId child = pipeline.addLattice(boxAt({0.2, 0.2, 0.2}, 0.6, 3), parent);
+  bend(pipeline.lattice(parent), 0.3);
+  bend(pipeline.lattice(child), -0.2);
+  return {parent, child};
+}
+
 TEST(Pipeline, RunsLatticesInPreOrderWithSiblingPriorities) {
   Pipeline pipeline(testing::uniformPointsInUnitBox(10, 1));
   const LatticeId a = pipeline.addLattice(boxAt({0, 0, 0}, 1.0));
@@ -59,10 +68,7 @@ TEST(Pipeline, RunsLatticesInPreOrderWithSiblingPriorities) {
 TEST(Pipeline, OutputOfOneLatticeIsTheInputOfTheNext) {
   const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(2000, 2);
   Pipeline pipeline(Q);
-  const LatticeId parent = pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4));
-  const LatticeId child = pipeline.addLattice(boxAt({0.2, 0.2, 0.2}, 0.6, 3), parent);
-  bend(pipeline.lattice(parent), 0.3);
-  bend(pipeline.lattice(child), -0.2);
+  const auto [parent, child] = addBentParentAndChild(pipeline);
   const Eigen::MatrixX3d out = pipeline.update();
   const Eigen::MatrixX3d expected = sequential({&pipeline.lattice(parent), &pipeline.lattice(child)}, Q);
   EXPECT_LT((out - expected).cwiseAbs().maxCoeff(), 1e-12);
@@ -75,10 +81,7 @@ TEST(Pipeline, TakePointsHandsOverTheOutputAndTheNextRunEmbedsAgain) {
   const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(2000, 2);
   Pipeline pipeline(Q);
   EXPECT_EQ(pipeline.takePoints(), Q);  // no stage ran: the input, which stays
-  const LatticeId parent = pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4));
-  const LatticeId child = pipeline.addLattice(boxAt({0.2, 0.2, 0.2}, 0.6, 3), parent);
-  bend(pipeline.lattice(parent), 0.3);
-  bend(pipeline.lattice(child), -0.2);
+  const auto [parent, child] = addBentParentAndChild(pipeline);
   const Eigen::MatrixX3d expected = sequential({&pipeline.lattice(parent), &pipeline.lattice(child)}, Q);
   pipeline.update();
   const Eigen::MatrixX3d taken = pipeline.takePoints();
@@ -94,10 +97,7 @@ TEST(Pipeline, TakePointsHandsOverTheOutputAndTheNextRunEmbedsAgain) {
 TEST(Pipeline, PrecisionReachesEveryStageAndAChangeEvaluatesThemInFull) {
   const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(20000, 4);
   Pipeline pipeline(Q);
-  const LatticeId parent = pipeline.addLattice(boxAt({-0.1, -0.1, -0.1}, 1.2, 4));
-  const LatticeId child = pipeline.addLattice(boxAt({0.2, 0.2, 0.2}, 0.6, 3), parent);
-  bend(pipeline.lattice(parent), 0.3);
-  bend(pipeline.lattice(child), -0.2);
+  const auto [parent, child] = addBentParentAndChild(pipeline);
   const Eigen::MatrixX3d twice = pipeline.update();
   pipeline.setPrecision(Precision::Single);
   const Eigen::MatrixX3d once = pipeline.update();
