@@ -215,8 +215,9 @@ FFDKIT_INLINE Lane highHalf(SingleLane d) {
 }
 
 // powerBlockT in single precision: the cell's coefficients (C, rounded by the caller) and the
-// local parameters rounded to float, Horner's rule on sixteen float lanes (half the multiply-add instructions of eight double
-// lanes), the displacement widened to double and stored as the double kernel stores it.
+// local parameters rounded to float, Horner's rule on sixteen float lanes (half the multiply-add
+// instructions of eight double lanes), the displacement widened to double and stored as the
+// double kernel stores it.
 template <int K>
 FFDKIT_INLINE void powerBlockSingleT(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end,
                                      bool blended, const float* C, Store mode) {
