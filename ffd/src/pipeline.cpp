@@ -10,29 +10,39 @@
 namespace ffdkit::ffd {
 namespace {
 
-/// The object's points copied into fresh memory backed by huge pages, by all cores, checking on
-/// the way that each is finite (one pass over them). A plain copy of 1M points faulted 6,000
-/// small pages on one core: 12-14 ms of the CLI's 1M-vertex deformation, against about 3 ms.
-Eigen::MatrixX3d finiteCopy(const Eigen::Ref<const Eigen::MatrixX3d>& points) {
-  const Eigen::Index n = points.rows();
-  Eigen::MatrixX3d copy(n, 3);
-  adviseHugePages(copy);
+/// Runs `chunk(first, count)` over the rows [0, n) in chunks of 2^16 on all cores; `chunk`
+/// returns the first row of its range that is not finite, or n. Throws for the first such row.
+template <class Chunk>
+void finiteByChunks(Eigen::Index n, const Chunk& chunk) {
   constexpr Eigen::Index kChunk = Eigen::Index(1) << 16;
   const Eigen::Index chunks = (n + kChunk - 1) / kChunk;
   Eigen::Index firstBad = n;
 #pragma omp parallel for schedule(static) reduction(min : firstBad) if (chunks > 1)
   for (Eigen::Index c = 0; c < chunks; ++c) {
-    const Eigen::Index first = c * kChunk, count = std::min(kChunk, n - first);
-    copy.middleRows(first, count) = points.middleRows(first, count);
-    if (copy.middleRows(first, count).allFinite()) continue;
-    for (Eigen::Index r = first; r < first + count; ++r) {
-      if (!copy.row(r).allFinite()) {
-        firstBad = std::min(firstBad, r);
-        break;
-      }
-    }
+    const Eigen::Index first = c * kChunk;
+    firstBad = std::min(firstBad, chunk(first, std::min(kChunk, n - first)));
   }
   if (firstBad < n) throw LatticeError("pipeline: object point " + std::to_string(firstBad) + " is not finite");
+}
+
+/// The first row of points.middleRows(first, count) that is not finite, or n.
+Eigen::Index firstNonFinite(const Eigen::MatrixX3d& points, Eigen::Index first, Eigen::Index count) {
+  if (points.middleRows(first, count).allFinite()) return points.rows();
+  for (Eigen::Index r = first; r < first + count; ++r)
+    if (!points.row(r).allFinite()) return r;
+  return points.rows();
+}
+
+/// The object's points copied into fresh memory backed by huge pages, by all cores, checking on
+/// the way that each is finite (one pass over them). A plain copy of 1M points faulted 6,000
+/// small pages on one core: 12-14 ms of the CLI's 1M-vertex deformation, against about 3 ms.
+Eigen::MatrixX3d finiteCopy(const Eigen::Ref<const Eigen::MatrixX3d>& points) {
+  Eigen::MatrixX3d copy(points.rows(), 3);
+  adviseHugePages(copy);
+  finiteByChunks(points.rows(), [&](Eigen::Index first, Eigen::Index count) {
+    copy.middleRows(first, count) = points.middleRows(first, count);
+    return firstNonFinite(copy, first, count);
+  });
   return copy;
 }
 
@@ -40,6 +50,15 @@ Eigen::MatrixX3d finiteCopy(const Eigen::Ref<const Eigen::MatrixX3d>& points) {
 
 Pipeline::Pipeline(const Eigen::Ref<const Eigen::MatrixX3d>& points, const EmbedOptions& options)
     : input_(finiteCopy(points)), options_(options) {}
+
+Pipeline Pipeline::adopting(Eigen::MatrixX3d&& points, const EmbedOptions& options) {
+  finiteByChunks(points.rows(), [&](Eigen::Index first, Eigen::Index count) {
+    return firstNonFinite(points, first, count);
+  });
+  Pipeline pipeline(Eigen::MatrixX3d(0, 3), options);
+  pipeline.input_ = std::move(points);
+  return pipeline;
+}
 
 Pipeline::Node& Pipeline::node(LatticeId id) {
   const auto it = nodes_.find(id);

@@ -80,6 +80,14 @@ void Scene::setObjectMesh(const std::string& name, MeshData mesh, std::optional<
   o.meshRevision = stamp();
 }
 
+Eigen::MatrixX3d Scene::takeObjectPoints(const std::string& name) {
+  SceneObject& o = object(name);
+  Eigen::MatrixX3d points = std::move(o.mesh.points);
+  o.mesh.points.resize(0, 3);
+  o.meshRevision = stamp();
+  return points;
+}
+
 void Scene::setObjectDisplay(const std::string& name, const DisplaySettings& display) {
   SceneObject& o = object(name);
   o.display = display;

@@ -107,7 +107,10 @@ void SceneDeformer::updateGesture(const Scene& scene, std::optional<widgets::Wid
 
 void SceneDeformer::finishGesture(const Scene& scene) { run(scene, std::nullopt, Run::Finish); }
 
-void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, Run how) {
+void SceneDeformer::finishGestureTakingPoints(Scene& scene) { run(scene, std::nullopt, Run::Finish, &scene); }
+
+void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, Run how,
+                        Scene* takeFrom) {
   const bool exact = how == Run::Finish;
   const auto start = std::chrono::steady_clock::now();
   // 1. Sync every object's pipeline with the scene, in place (nothing is embedded yet), so that a
@@ -138,7 +141,14 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
     if (!p->pipeline || inputChanged || stages != p->stages) {
       onlyLastControl = false;
       // New object, new points or a new lattice tree: rebuild (embeddings follow on update).
-      auto pipeline = std::make_unique<ffd::Pipeline>(own);
+      auto pipeline = takeFrom ? std::make_unique<ffd::Pipeline>(
+                                     ffd::Pipeline::adopting(takeFrom->takeObjectPoints(object.name)))
+                               : std::make_unique<ffd::Pipeline>(own);
+      if (takeFrom) {  // the object now holds no points: that is its mesh's state from here on
+        p->meshData = own.data();
+        p->meshRows = own.rows();
+        p->meshRevision = object.meshRevision;
+      }
       std::map<widgets::WidgetId, ffd::LatticeId> ids;
       p->synced.clear();
       for (const Stage& stage : stages) {

@@ -1,6 +1,7 @@
 #include "ffdkit/ffd/pipeline.h"
 
 #include <algorithm>
+#include <limits>
 #include <random>
 #include <thread>
 #include <utility>
@@ -90,6 +91,27 @@ TEST(Pipeline, TakePointsHandsOverTheOutputAndTheNextRunEmbedsAgain) {
   EXPECT_EQ(pipeline.embedding(parent), nullptr);
   EXPECT_EQ(pipeline.update(), taken);  // bit for bit
   for (const StageReport& report : pipeline.lastReport()) EXPECT_TRUE(report.reembedded);
+}
+
+TEST(Pipeline, AdoptingTakesThePointsOverWithoutACopyAndChecksThem) {
+  const Eigen::MatrixX3d Q = testing::uniformPointsInUnitBox(200000, 5);  // several chunks of the check
+  Pipeline copied(Q);
+  Eigen::MatrixX3d moved = Q;
+  const double* storage = moved.data();
+  Pipeline adopted = Pipeline::adopting(std::move(moved));
+  EXPECT_EQ(adopted.inputPoints().data(), storage);
+  for (Pipeline* p : {&copied, &adopted}) addBentParentAndChild(*p);
+  EXPECT_EQ(adopted.update(), copied.update());
+  for (Eigen::Index bad : {Eigen::Index(0), Eigen::Index(131071), Q.rows() - 1}) {
+    Eigen::MatrixX3d broken = Q;
+    broken(bad, 1) = std::numeric_limits<double>::quiet_NaN();
+    try {
+      (void)Pipeline::adopting(std::move(broken));
+      ADD_FAILURE() << "point " << bad << " is NaN";
+    } catch (const LatticeError& error) {
+      EXPECT_EQ(std::string(error.what()), "pipeline: object point " + std::to_string(bad) + " is not finite");
+    }
+  }
 }
 
 // Precision::Single reaches every stage, and a change of precision evaluates an embedded stage

@@ -110,6 +110,24 @@ TEST(SceneDeformer, TakePointsHandsOverThePointsAndTheNextRunRebuildsTheObject) 
   EXPECT_EQ(deformer.takePoints("sphere"), plain.objects()[0].mesh.points);
 }
 
+// finishGestureTakingPoints gives finishGesture's points bit for bit; the objects' points move
+// into the pipelines (Pipeline.AdoptingTakesThePointsOver...: no copy), the meshes keep their faces.
+TEST(SceneDeformer, FinishGestureTakingPointsMovesTheObjectsPointsIntoThePipelines) {
+  Scene scene = readScene(kExamples / "hierarchy");
+  const SceneObject& object = scene.objects().at(0);
+  const std::string name = object.name;
+  const Eigen::MatrixX3i faces = object.mesh.triangles;
+  SceneDeformer reference;
+  reference.finishGesture(scene);
+  const Eigen::MatrixX3d expected = reference.points(name);
+  SceneDeformer deformer;
+  deformer.finishGestureTakingPoints(scene);
+  EXPECT_EQ(scene.objects().at(0).mesh.points.rows(), 0);
+  EXPECT_EQ(scene.objects().at(0).mesh.triangles, faces);
+  EXPECT_EQ(deformer.lastStats().deformedPoints, expected.rows());
+  EXPECT_EQ(deformer.takePoints(name), expected);
+}
+
 TEST(SceneDeformer, HierarchyRunsParentThenChild) {
   // Fig. 6-9 sample: the parent's top face lifted by 0.2 stretches z by 1.2; the child lattice
   // straddles that face and its bottom front edge is pushed (child-push 0.15), so the top of the

@@ -288,13 +288,14 @@ std::vector<Output> plannedOutputs(const DeformRequest& r, const scenes::Scene& 
 }
 
 /// Evaluates the scene once, with the same result as scenes::deformScene: every lattice is
-/// embedded and the points deformed in one pass. The embedding's share of it (the pipeline
-/// times it) is reported as "embed", the rest (syncing the lattices, deforming) as "deform".
+/// embedded and the points deformed in one pass; the pipelines take the objects' points over
+/// (the scene's meshes keep their faces). The embedding's share of it (the pipeline times it) is
+/// reported as "embed", the rest (syncing the lattices, deforming) as "deform".
 void evaluate(scenes::Scene& scene, scenes::SceneDeformer& deformer, Console& console) {
   Eigen::Index pointCount = 0;
   for (const auto& object : scene.objects()) pointCount += object.mesh.points.rows();
   console.begin("deform", "embedding and deforming " + std::to_string(pointCount) + " points");
-  deformer.finishGesture(scene);
+  deformer.finishGestureTakingPoints(scene);
   console.carve("embed", 1e3 * deformer.lastStats().embedSeconds);
 }
 
@@ -327,7 +328,8 @@ int runDeform(const Args& args) {
   onEveryRank(ranks, [&] {
     evaluate(scene, deformer, console);
     for (const auto& target : targets) {
-      // Both are done with the object: take its mesh and its deformed points (no copies).
+      // Both are done with the object: take its mesh (its points are in the deformer) and its
+      // deformed points (no copies).
       scenes::MeshData mesh = scene.takeObject(target.object).mesh;
       mesh.points = deformer.takePoints(target.object);
       // A whole file is checked by its writer (stageMesh); a rank's slice of a split INPUT is

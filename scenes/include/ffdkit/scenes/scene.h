@@ -144,6 +144,10 @@ class Scene {
   /// Replaces an object's own points, and its source when given (which the points then come
   /// from). @throws std::invalid_argument for an unknown object.
   void setObjectMesh(const std::string& name, MeshData mesh, std::optional<ObjectSource> source = {});
+  /// Hands an object's own points over, leaving its mesh without points (its faces and the rest
+  /// stay): for a caller done with them (SceneDeformer::finishGestureTakingPoints).
+  /// @throws std::invalid_argument for an unknown object.
+  Eigen::MatrixX3d takeObjectPoints(const std::string& name);
   /// Changes how an object looks (no geometry changes). @throws for an unknown object.
   void setObjectDisplay(const std::string& name, const DisplaySettings& display);
 

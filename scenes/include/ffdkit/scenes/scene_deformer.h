@@ -95,6 +95,12 @@ class SceneDeformer {
   void setPrecision(ffd::Precision precision) { precision_ = precision; }
   ffd::Precision precision() const { return precision_; }
 
+  /// finishGesture(scene) for a caller done with the objects' own points (the CLI): an object
+  /// whose pipeline is built anew takes its points over from the scene (Scene::takeObjectPoints)
+  /// instead of copying them, so the scene's meshes are left without points; read the results
+  /// with takePoints(object). Progress and cancel as update().
+  void finishGestureTakingPoints(Scene& scene);
+
   /// Progress / cancel hook for the following update() and finishGesture() calls (empty: none).
   /// A worker thread typically passes a lambda that stores the fraction in an std::atomic the
   /// GUI polls and returns !cancelFlag.load().
@@ -142,7 +148,8 @@ class SceneDeformer {
   enum class Run { Update, Gesture, Finish };
   // Syncs every object's pipeline with the scene, then runs it: incrementally (throttled stages
   // approximate; fresh ones by deltas for Gesture) or, for Finish, re-embedding every stale stage.
-  void run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, Run how);
+  // takeFrom: the same scene, when a pipeline built anew may take the object's points over.
+  void run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, Run how, Scene* takeFrom = nullptr);
 
   struct ObjectPipeline;
   // The object's pipeline. @throws std::invalid_argument for an object update() has not seen.
