@@ -4,8 +4,10 @@
 #include <exception>
 
 #include "src/commands.h"
+#include "src/memory_reuse.h"
 
 int main(int argc, char** argv) {
+  ffdkit::cli::keepFreedMemoryForReuse();
   try {
     return ffdkit::cli::runCli(std::vector<std::string>(argv + 1, argv + argc));
   } catch (const std::exception& e) {
