@@ -43,6 +43,15 @@ Eigen::MatrixX3d randomMove(const Lattice& lattice, double amount, std::mt19937&
   return P;
 }
 
+// count^3 control points, B-splines of `degree` on every axis, a random frame.
+Lattice cubeOfBSplines(int count, int degree, std::mt19937& rng) {
+  BoxLatticeOptions options;
+  options.counts = {count, count, count};
+  options.bases = {AxisBasis::bspline(degree), AxisBasis::bspline(degree), AxisBasis::bspline(degree)};
+  options.frame = testing::randomFrame(rng);
+  return makeBoxLattice(options);
+}
+
 double maxRowError(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) {
   return (a - b).rowwise().norm().maxCoeff();
 }
@@ -285,11 +294,7 @@ TEST(Deformer, ManyPointsAndManyCellsMatchLatticeEvaluate) {
   // 64 cells; 24389 and 9261 cells (sorted by std::sort; more cells than the deformer keeps
   // per-cell coefficients for at once).
   for (auto [count, degree] : {std::pair{7, 3}, std::pair{30, 1}, std::pair{24, 3}}) {
-    BoxLatticeOptions options;
-    options.counts = {count, count, count};
-    options.bases = {AxisBasis::bspline(degree), AxisBasis::bspline(degree), AxisBasis::bspline(degree)};
-    options.frame = testing::randomFrame(rng);
-    Lattice lattice = makeBoxLattice(options);
+    Lattice lattice = cubeOfBSplines(count, degree, rng);
     const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 40000, rng));
     Deformer deformer(embed(lattice, Q));
     EXPECT_FALSE(deformer.embedding().order().empty());
@@ -485,11 +490,7 @@ TEST(DeformerPrecision, SingleExactUpdatesAreBitIdenticalToASingleDeformAndDelta
   // One cell; 8 cells (blocks of ~500 points per tile: the float kernel, two passes per tile);
   // 125 cells (blocks of ~33 points per tile: the double kernel, see kSingleBlockPoints).
   for (auto [count, degree] : {std::pair{4, 3}, std::pair{5, 3}, std::pair{4, 2}, std::pair{8, 3}}) {
-    BoxLatticeOptions options;
-    options.counts = {count, count, count};
-    options.bases = {AxisBasis::bspline(degree), AxisBasis::bspline(degree), AxisBasis::bspline(degree)};
-    options.frame = testing::randomFrame(rng);
-    Lattice lattice = makeBoxLattice(options);
+    Lattice lattice = cubeOfBSplines(count, degree, rng);
     // Enough points for the threaded two-pass tiles of a random point order.
     const Eigen::MatrixX3d Q = testing::restImages(lattice, testing::randomParameters(lattice, 50000, rng));
     Deformer exact(embed(lattice, Q)), delta(embed(lattice, Q)), full(embed(lattice, Q)), twice(embed(lattice, Q));
