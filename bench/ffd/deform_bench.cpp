@@ -255,7 +255,7 @@ const bool registered = [] {
         ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
   }
   // The same jobs with the displacement in float32 (Precision::Single), as Blender computes.
-  for (auto [count, label] : {std::pair{8, "8x8x8/basis:bspline3"}}) {
+  for (auto [count, label] : {std::pair{8, "8x8x8/basis:bspline3"}, std::pair{10, "10x10x10/basis:bspline3/order:grid"}}) {
     const std::string key = name("BM_Deform", million, label);
     benchmark::RegisterBenchmark((key + "/precision:single").c_str(), BM_Deform, count, AxisBasis::bspline(3),
                                  million, key, Precision::Single)
