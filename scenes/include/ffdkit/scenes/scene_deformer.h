@@ -98,7 +98,8 @@ class SceneDeformer {
   /// finishGesture(scene) for a caller done with the objects' own points (the CLI): an object
   /// whose pipeline is built anew takes its points over from the scene (Scene::takeObjectPoints)
   /// instead of copying them, so the scene's meshes are left without points; read the results
-  /// with takePoints(object). Progress and cancel as update().
+  /// with takePoints(object). Progress and cancel as update(); on any other throw (non-finite
+  /// points, a degenerate lattice) the points taken so far are lost with the call.
   void finishGestureTakingPoints(Scene& scene);
 
   /// Progress / cancel hook for the following update() and finishGesture() calls (empty: none).
