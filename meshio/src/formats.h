@@ -69,9 +69,13 @@ void writeObj(ByteSink& out, const MeshData& mesh);
 
 MeshData readStl(std::string_view bytes, const std::string& source);
 void writeStl(ByteSink& out, const MeshData& mesh);
+/// A binary STL triangle as writeStl writes it: normal and three corners (12 floats), attribute word.
+constexpr std::size_t kStlTriangleBytes = 50;
 
 MeshData readXyz(std::string_view bytes, const std::string& source);
 void writeXyz(ByteSink& out, const MeshData& mesh);
+/// The points of writeXyz (a line each), for a slice of a file.
+void writeXyzPoints(ByteSink& out, const Eigen::MatrixX3d& points);
 /// The points of .xyz text that starts at line `firstLine` of the file, after `firstPoint` points
 /// (the numbers messages give); no points is not an error here.
 Eigen::MatrixX3d readXyzPoints(std::string_view bytes, const std::string& source, int firstLine, long long firstPoint);

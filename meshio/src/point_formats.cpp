@@ -51,13 +51,15 @@ MeshData readXyz(std::string_view bytes, const std::string& source) {
   return mesh;
 }
 
-void writeXyz(ByteSink& out, const MeshData& mesh) {
-  writeRows(out, mesh.points.rows(), 3 * 25, [&](char* at, Eigen::Index i) {
-    at = putNumber(at, mesh.points(i, 0));
+void writeXyz(ByteSink& out, const MeshData& mesh) { writeXyzPoints(out, mesh.points); }
+
+void writeXyzPoints(ByteSink& out, const Eigen::MatrixX3d& points) {
+  writeRows(out, points.rows(), 3 * 25, [&](char* at, Eigen::Index i) {
+    at = putNumber(at, points(i, 0));
     *at++ = ' ';
-    at = putNumber(at, mesh.points(i, 1));
+    at = putNumber(at, points(i, 1));
     *at++ = ' ';
-    at = putNumber(at, mesh.points(i, 2));
+    at = putNumber(at, points(i, 2));
     *at++ = '\n';
     return at;
   });

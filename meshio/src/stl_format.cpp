@@ -66,7 +66,7 @@ MeshData readBinaryStl(std::string_view bytes, const std::string& source) {
   data.need(84, {"header"});
   data.skip(80);
   const std::uint64_t count = data.take<std::uint32_t>(false);
-  const std::uint64_t expected = 84 + 50 * count;
+  const std::uint64_t expected = 84 + kStlTriangleBytes * count;
   if (expected != bytes.size())
     data.fail("announces " + std::to_string(count) + " triangles (" + std::to_string(expected) + " bytes), the file has " +
               std::to_string(bytes.size()) + " bytes");
@@ -145,7 +145,7 @@ MeshData readStl(std::string_view bytes, const std::string& source) {
   if (bytes.size() >= 84) {
     std::uint32_t count = 0;
     std::memcpy(&count, bytes.data() + 80, 4);
-    if (84 + 50 * std::uint64_t(count) == bytes.size()) return readBinaryStl(bytes, source);
+    if (84 + kStlTriangleBytes * std::uint64_t(count) == bytes.size()) return readBinaryStl(bytes, source);
   }
   return looksAscii(bytes) ? readAsciiStl(bytes, source) : readBinaryStl(bytes, source);
 }
@@ -157,7 +157,7 @@ void writeStl(ByteSink& sink, const MeshData& mesh) {
   appendBinary(header, std::uint32_t(mesh.triangles.rows()), false);
   BinaryChunks chunks(sink);
   chunks.bytes(header);
-  chunks.records(mesh.triangles.rows(), 50, [&](char* at, Eigen::Index t) {
+  chunks.records(mesh.triangles.rows(), kStlTriangleBytes, [&](char* at, Eigen::Index t) {
     const Eigen::RowVector3d a = mesh.points.row(mesh.triangles(t, 0));
     const Eigen::RowVector3d b = mesh.points.row(mesh.triangles(t, 1));
     const Eigen::RowVector3d c = mesh.points.row(mesh.triangles(t, 2));

@@ -163,7 +163,7 @@ void requireSliceWritable(MeshFormat format) {
 }  // namespace
 
 // The pieces are the records of the whole-file writers (writePlyVertices and writePlyCells,
-// writeNpyRecords, writeXyz), so that they cannot differ from them.
+// writeNpyRecords, writeXyzPoints), so that they cannot differ from them.
 std::string slicedFileHead(MeshFormat format, std::int64_t vertices, const MeshData& cells) {
   requireSliceWritable(format);
   if (format == MeshFormat::Ply)
@@ -182,11 +182,7 @@ std::optional<std::uint64_t> slicedVerticesSize(MeshFormat format, Eigen::Index 
 
 void writeSlicedVertices(ByteSink& out, MeshFormat format, const Eigen::MatrixX3d& points) {
   requireSliceWritable(format);
-  if (format == MeshFormat::Xyz) {
-    MeshData slice;
-    slice.points = points;
-    return detail::writeXyz(out, slice);
-  }
+  if (format == MeshFormat::Xyz) return detail::writeXyzPoints(out, points);  // no copy of the slice
   detail::BinaryChunks chunks(out);
   if (format == MeshFormat::Ply) detail::writePlyVertices(chunks, points, nullptr, false);
   else detail::writeNpyRecords(chunks, points);

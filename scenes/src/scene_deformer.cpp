@@ -133,9 +133,6 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
     // compare it then, once, rather than rebuild.
     const bool inputChanged = !sameMesh && (!p->pipeline || p->pipeline->inputPoints().rows() != own.rows() ||
                                             p->pipeline->inputPoints() != own);
-    p->meshData = own.data();
-    p->meshRows = own.rows();
-    p->meshRevision = object.meshRevision;
     bool onlyLastControl = sameModel;  // only the last stage's control points moved (or nothing)
     bool lastControlMoved = false;
     if (!p->pipeline || inputChanged || stages != p->stages) {
@@ -144,11 +141,6 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       auto pipeline = takeFrom ? std::make_unique<ffd::Pipeline>(
                                      ffd::Pipeline::adopting(takeFrom->takeObjectPoints(object.name)))
                                : std::make_unique<ffd::Pipeline>(own);
-      if (takeFrom) {  // the object now holds no points: that is its mesh's state from here on
-        p->meshData = own.data();
-        p->meshRows = own.rows();
-        p->meshRevision = object.meshRevision;
-      }
       std::map<widgets::WidgetId, ffd::LatticeId> ids;
       p->synced.clear();
       for (const Stage& stage : stages) {
@@ -192,6 +184,10 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
         seen = {frameRevision, controlRevision};
       }
     }
+    // What the object holds now (no points, when the pipeline took them over), to recognise it next time.
+    p->meshData = own.data();
+    p->meshRows = own.rows();
+    p->meshRevision = object.meshRevision;
     if (!p->stages.empty()) {
       p->pipeline->setThrottle(throttleFor(scene.widgets.latticeSettings(p->stages.front().lattice)));
       std::optional<ffd::LatticeId> active;
