@@ -109,6 +109,22 @@ MeshData readMesh(std::istream& in, MeshFormat format, const std::string& source
   return readMeshBytes(bytes, format, sourceName);
 }
 
+MeshData readMeshBytes(std::string_view bytes, MeshFormat format, const std::string& sourceName,
+                       const MeshReadOptions& options) {
+  (void)options;  // threaded through the readers next
+  return readMeshBytes(bytes, format, sourceName);
+}
+
+MeshData readMesh(std::istream& in, MeshFormat format, const std::string& sourceName, const MeshReadOptions& options) {
+  (void)options;
+  return readMesh(in, format, sourceName);
+}
+
+MeshData readMesh(const std::filesystem::path& path, const MeshReadOptions& options) {
+  (void)options;
+  return readMesh(path);
+}
+
 MeshData readMesh(const std::filesystem::path& path) {
   const std::string source = path.string();
   const auto format = meshFormatOf(path);

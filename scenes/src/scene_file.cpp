@@ -188,7 +188,7 @@ SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions
     }
   }
   if (const auto* file = std::get_if<MeshFileSource>(&object.source);
-      file != nullptr && !options.allowMeshesOutsideFolder && !insideFolder(file->path, options.baseDirectory)) {
+      file != nullptr && !options.confinement.allowOutside && !insideFolder(file->path, options.baseDirectory)) {
     (at / "mesh" / "path")
         .fail("object '" + object.name + "': mesh file '" + file->path +
               "' is outside the scene's folder (a shared scene must not read other files; allow it with "

@@ -513,6 +513,16 @@ WidgetModel readWidgetFile(const std::filesystem::path& path) {
   return readWidgetFile(in, path.string());
 }
 
+WidgetModel readWidgetFile(std::istream& in, const std::string& sourceName, const WidgetReadOptions& options) {
+  (void)options;  // threaded through the reader next
+  return readWidgetFile(in, sourceName);
+}
+
+WidgetModel readWidgetFile(const std::filesystem::path& path, const WidgetReadOptions& options) {
+  (void)options;
+  return readWidgetFile(path);
+}
+
 std::string widgetFileText(const WidgetModel& model) { return detail::canonicalJsonText(detail::widgetModelToJson(model)); }
 
 void writeWidgetFile(std::ostream& out, const WidgetModel& model) { out << widgetFileText(model); }

@@ -107,7 +107,7 @@ TEST(SceneFile, MeshPathsOutsideTheScenesFolderAreRefusedUnlessAllowed) {
           << message;
     }
     SceneReadOptions allow;
-    allow.allowMeshesOutsideFolder = true;
+    allow.confinement.allowOutside = true;
     EXPECT_EQ(readScene(root / "shared" / "scene.json", allow).objects()[0].mesh.points.rows(), 1);
   }
   for (const std::string& path : std::vector<std::string>{"meshes/ok.xyz", (root / "shared" / "meshes" / "ok.xyz").string(), "meshes/../meshes/ok.xyz"}) {

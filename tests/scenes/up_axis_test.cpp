@@ -45,7 +45,7 @@ TEST(UpAxis, TheSceneFileKeepsTheUpAxis) {
   const std::string text = R"({"format": "ffdkit-scene", "version": 1, "objects": [
     {"name": "column", "mesh": {"path": ")" + kColumn.string() + R"(", "up": "y"}}]})";
   SceneReadOptions options;
-  options.allowMeshesOutsideFolder = true;
+  options.confinement.allowOutside = true;
   std::istringstream in(text);
   const Scene scene = readScene(in, "column.json", options);
   ASSERT_EQ(scene.objects().size(), 1u);

@@ -94,7 +94,7 @@ OptionSpec allowOutsideMeshesOption() {
 }
 scenes::Scene readSceneFile(const std::filesystem::path& path, const Args& args) {
   scenes::SceneReadOptions options;
-  options.allowMeshesOutsideFolder = args.flag("allow-outside-meshes");
+  options.confinement.allowOutside = args.flag("allow-outside-meshes");
   return scenes::readScene(path, options);
 }
 OptionSpec quietOption() { return {"quiet", 'q', "", "print nothing but errors and warnings"}; }

@@ -199,7 +199,7 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
     } else {
       console.begin("read", "reading " + r.sceneFile->string());
       scenes::SceneReadOptions options;
-      options.allowMeshesOutsideFolder = r.allowOutsideMeshes;
+      options.confinement.allowOutside = r.allowOutsideMeshes;
       scene = scenes::readScene(*r.sceneFile, options);
       if (r.frame) scenes::applyAnimationFrame(scene, parseFrame(*r.frame, scene.animation()));
     }

@@ -47,7 +47,7 @@ using namespace window_detail;
 
 void MainWindow::openScene(const std::filesystem::path& path) {
   scenes::SceneReadOptions options;
-  options.allowMeshesOutsideFolder = QSettings().value(kAllowOutsideMeshesKey, false).toBool();
+  options.confinement.allowOutside = QSettings().value(kAllowOutsideMeshesKey, false).toBool();
   setScene(scenes::readScene(path, options));
   setDocumentPath(std::filesystem::is_directory(path) ? path / "scene.json" : path);
 }
@@ -171,7 +171,7 @@ bool MainWindow::offerRecovery() {
     try {
       // The app's own recovery file: its mesh paths are the document's, wherever they lead.
       scenes::SceneReadOptions options;
-      options.allowMeshesOutsideFolder = true;
+      options.confinement.allowOutside = true;
       setScene(scenes::readScene(newest.scene, options));
       impl_->restoredUnsaved = true;
       setDocumentPath(newest.origin);

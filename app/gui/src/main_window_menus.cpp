@@ -107,7 +107,7 @@ void MainWindow::createMenus(QDockWidget* outlinerDock, QDockWidget* propertiesD
   action(file, tr("Export &glTF..."), "actionExportGltf", [this] { exportGltfInteractively(this, impl_->scene); });
   file->addSeparator();
   // A preference, off by default: a shared scene must not make the app read files outside the
-  // scene's folder (scenes::SceneReadOptions::allowMeshesOutsideFolder).
+  // scene's folder (scenes::SceneReadOptions::confinement).
   QAction* outside = file->addAction(tr("Allow Meshes &Outside a Scene's Folder"));
   outside->setObjectName("actionAllowOutsideMeshes");
   outside->setCheckable(true);

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "ffdkit/meshio/path_confinement.h"
+#include "ffdkit/meshio/read_limits.h"
 #include "ffdkit/scenes/generator.h"
 #include "ffdkit/scenes/scene.h"
 
@@ -28,9 +30,14 @@ struct SceneReadOptions {
   /// the scene file's folder).
   std::filesystem::path baseDirectory = ".";
   const GeneratorRegistry* generators = nullptr;  ///< nullptr: builtinGenerators()
-  /// false: a mesh path that leads outside `baseDirectory` (absolute, "..", or through a
-  /// symbolic link) is an error, so a shared scene cannot make a batch job read other files.
-  bool allowMeshesOutsideFolder = false;
+  /// The one rule for every path the scene names (mesh files, its widget file, and what those
+  /// name in turn): by default a path that leads outside `baseDirectory` (absolute, "..", or
+  /// through a symbolic link) is an error, so a shared scene cannot make a batch job read other
+  /// files (meshio/path_confinement.h).
+  meshio::PathConfinement confinement;
+  /// The budget of the whole scene: every mesh file, primitive, generator and lattice together
+  /// (meshio/read_limits.h). Over it, a SceneFileError names the object and what.
+  meshio::ReadLimits limits;
 };
 
 /// Reads a scene from JSON text; builds every object's points (primitives, mesh files,

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "ffdkit/meshio/read_limits.h"
 #include "ffdkit/widgets/widget_model.h"
 
 namespace ffdkit::scenes {
@@ -28,6 +29,15 @@ class WidgetFileError : public std::runtime_error {
 ///         WidgetModel::fromData reports (inconsistent loops...); nothing is returned half-read.
 widgets::WidgetModel readWidgetFile(std::istream& in, const std::string& sourceName = "<stream>");
 widgets::WidgetModel readWidgetFile(const std::filesystem::path& path);
+
+/// How a widget file is read: its budget (lattice control points, cells, widgets, bindings are
+/// charged before they are built; over it, a WidgetFileError says which lattice or list).
+struct WidgetReadOptions {
+  meshio::ReadLimits limits;             ///< the read's limits when `budget` is null
+  meshio::ReadBudget* budget = nullptr;  ///< a budget shared with an enclosing read (a scene's)
+};
+widgets::WidgetModel readWidgetFile(std::istream& in, const std::string& sourceName, const WidgetReadOptions& options);
+widgets::WidgetModel readWidgetFile(const std::filesystem::path& path, const WidgetReadOptions& options);
 
 /// The canonical JSON text of a model: fixed key order, 2-space indent, short numeric arrays on
 /// one line, shortest round-trip numbers, trailing newline. Reading it and writing again gives
