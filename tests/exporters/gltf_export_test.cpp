@@ -256,6 +256,18 @@ double checkSkinAgainstFile(const scenes::Scene& scene, const AnimationSource& a
   return worst;
 }
 
+// The largest skin error of each sample scene, in scene units, for k = 4 and k = 8 joints per
+// vertex (docs/export.md, "Errors of the sample scenes": the measured values there, rounded up
+// by at most 10 %). The error is recomputed from the written file by checkSkinAgainstFile, not
+// taken from the exporter's report, so these hold the exported file itself to a stated bound.
+struct SkinErrorBound {
+  double k4, k8;
+};
+const std::map<std::string, SkinErrorBound> kSkinErrorBounds = {
+    {"default", {0.102, 0.0287}}, {"press", {0.0237, 1.7e-7}},  {"vise", {0.055, 0.0149}},
+    {"mirror", {0.129, 0.0397}},  {"hierarchy", {0.235, 0.0734}}, {"cylinder-twist", {0.338, 0.137}},
+};
+
 TEST(GltfExport, SkinErrorRecomputedFromTheFileIsWithinTheReportedBoundOnEverySample) {
   TempFolder dir;
   for (const std::string& name : kSamples) {
@@ -279,6 +291,9 @@ TEST(GltfExport, SkinErrorRecomputedFromTheFileIsWithinTheReportedBoundOnEverySa
       std::printf("skin %-15s k = %d: largest error %.3g (all weights %.3g), %d joints, scale %g, size %.3g\n",
                   name.c_str(), k, report.maxError, linear, report.joints, report.jointScale, report.sceneSize);
       EXPECT_LE(worst, report.maxError * (1 + 1e-9) + 1e-15) << name;
+      // In scene units, against the documented bound (not only the exporter's own report).
+      const SkinErrorBound& bound = kSkinErrorBounds.at(name);
+      EXPECT_LE(worst, k == 4 ? bound.k4 : bound.k8) << name << " k = " << k;
       // Honest, not loose: the file's worst error is the reported one (same data, same formula).
       EXPECT_GE(worst, report.maxError * (1 - 1e-6) - 1e-12) << name;
       // At the bind key (rest) every skin is exact to float32.
