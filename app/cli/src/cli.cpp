@@ -89,14 +89,6 @@ FileKind fileKind(const std::filesystem::path& path) {
   return FileKind::Scene;
 }
 
-OptionSpec allowOutsideMeshesOption() {
-  return {"allow-outside-meshes", '\0', "", "let a scene read mesh files outside its own folder (refused by default)"};
-}
-scenes::Scene readSceneFile(const std::filesystem::path& path, const Args& args) {
-  scenes::SceneReadOptions options;
-  options.confinement.allowOutside = args.flag("allow-outside-meshes");
-  return scenes::readScene(path, options);
-}
 OptionSpec quietOption() { return {"quiet", 'q', "", "print nothing but errors and warnings"}; }
 OptionSpec progressOption() {
   return {"progress", '\0', "", "show progress of long steps on stderr even when it is not a terminal"};

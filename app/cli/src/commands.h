@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "args.h"
+#include "read_options.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/widgets/widget_model.h"
 
@@ -35,12 +36,6 @@ int runCli(const std::vector<std::string>& argv);
 enum class FileKind { Scene, Widgets, Mesh };
 /// By extension and, for .json, by its "format" member (a folder is a sample-scene folder).
 FileKind fileKind(const std::filesystem::path& path);
-
-/// --allow-outside-meshes (commands that read scenes): a scene may name mesh files outside its
-/// own folder; refused by default, so a shared scene cannot make a batch job read other files.
-OptionSpec allowOutsideMeshesOption();
-/// Reads a scene file or sample-scene folder, honouring --allow-outside-meshes.
-scenes::Scene readSceneFile(const std::filesystem::path& path, const Args& args);
 
 /// Options every command has.
 OptionSpec quietOption();

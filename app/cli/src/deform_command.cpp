@@ -100,7 +100,7 @@ void writeAll(const std::vector<std::pair<fs::path, scenes::MeshData>>& outputs,
 }
 
 /// The widget file, read once (by rank 0 of a batch) and sent to every rank.
-widgets::WidgetModel readTool(const fs::path& path, const BatchRanks& ranks) {
+widgets::WidgetModel readTool(const fs::path& path, const ReadSettings& read, const BatchRanks& ranks) {
   std::string text, error;
   if (ranks.leader()) {
     std::ifstream in(path, std::ios::binary);
@@ -111,7 +111,9 @@ widgets::WidgetModel readTool(const fs::path& path, const BatchRanks& ranks) {
   if (!error.empty()) throw scenes::WidgetFileError(error);
   ranks.broadcast(text);
   std::istringstream in(text);
-  return scenes::readWidgetFile(in, path.string());
+  scenes::WidgetReadOptions options;
+  options.limits = read.limits;
+  return scenes::readWidgetFile(in, path.string(), options);
 }
 
 /// The INPUT pieces this rank reads, deforms and writes: a contiguous share of the list.
@@ -132,7 +134,7 @@ struct DeformRequest {
   std::vector<VariationSetting> settings;
   std::vector<std::string> objects;  ///< --object: the scene objects to write ("" = all)
   std::optional<std::string> format; ///< lower case, no dot
-  bool allowOutsideMeshes = false;   ///< --allow-outside-meshes
+  ReadSettings read;                 ///< --max-memory, --max-points, --allow-outside
   std::optional<std::string> frame;  ///< --frame T: the scene's animation at frame T
   ffd::Precision precision = ffd::Precision::Double;  ///< --precision
 };
@@ -157,7 +159,7 @@ DeformRequest parseRequest(const Args& args) {
   if (r.frame && r.widgetFile) throw UsageError("--frame animates a scene; a widget file has no animation");
   if (r.widgetFile && r.inputs.empty()) throw UsageError("--widgets needs at least one INPUT mesh or point file");
   r.fit = args.flag("fit");
-  r.allowOutsideMeshes = args.flag("allow-outside-meshes");
+  r.read = readSettings(args);
   if (r.fit && r.inputs.empty()) throw UsageError("--fit fits the lattices to INPUT files; a scene's objects need none");
   if (auto padding = args.value("padding")) {
     if (!r.fit) throw UsageError("--padding only applies with --fit");
@@ -195,18 +197,16 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
   onEveryRank(ranks, [&] {
     if (r.widgetFile) {
       console.begin("read", "reading " + r.widgetFile->string());
-      scene.widgets = readTool(*r.widgetFile, ranks);
+      scene.widgets = readTool(*r.widgetFile, r.read, ranks);
     } else {
       console.begin("read", "reading " + r.sceneFile->string());
-      scenes::SceneReadOptions options;
-      options.confinement.allowOutside = r.allowOutsideMeshes;
-      scene = scenes::readScene(*r.sceneFile, options);
+      scene = readSceneFile(*r.sceneFile, r.read);
       if (r.frame) scenes::applyAnimationFrame(scene, parseFrame(*r.frame, scene.animation()));
     }
   });
   if (SplitInput::applies(r.inputs.size(), ranks)) {
     console.begin("read", "reading a slice of " + r.inputs.front() + " per process");
-    split.emplace(fs::path(r.inputs.front()), ranks);
+    split.emplace(fs::path(r.inputs.front()), r.read.limits, ranks);
   }
   onEveryRank(ranks, [&] {
     if (r.inputs.empty()) return;
@@ -223,7 +223,7 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
         object.mesh.points = split->takePoints();
       } else {
         console.begin("read", "reading " + input);
-        object.mesh = meshio::readMesh(fs::path(input));
+        object.mesh = readMeshFile(fs::path(input), r.read);
       }
       object.name = names[i];
       object.source = scenes::MeshFileSource{fs::absolute(input).string()};
@@ -386,7 +386,7 @@ Command deformCommand() {
           "the PIECE files (--fit fits to the box of all pieces), as one process would (docs/scaling.md).\n"
           "With one INPUT (binary .ply, .npy, .xyz) each rank reads, deforms and writes its slice of\n"
           "the vertices into the one OUTPUT (.ply, .npy, .xyz); rank 0 also copies a PLY's faces.\n",
-          {{"widgets", 'w', "FILE", "the widget file (deformation tool) to apply"},
+          withReadOptions({{"widgets", 'w', "FILE", "the widget file (deformation tool) to apply"},
            {"scene", 's', "SCENE", "the scene (file or sample folder) whose widget trees to apply"},
            {"output", 'o', "PATH", "output file, or folder for several outputs"},
            {"frame", '\0', "T", "with a scene: deform at frame T of its animation"},
@@ -397,7 +397,7 @@ Command deformCommand() {
            {"format", '\0', "EXT", "format of outputs written into a folder (default: the input's)"},
            {"precision", '\0', "P", "double (default) or single: the displacements in float32, as Blender does "
                                      "(within 1e-6 of the largest control-point move; docs/ffd-engine.md)"},
-           allowOutsideMeshesOption(), quietOption(), progressOption(), timingsOption()},
+           quietOption(), progressOption(), timingsOption()}),
           runDeform};
 }
 

@@ -42,8 +42,9 @@ int runExport(const Args& args) {
   options.normals = !args.flag("no-normals");
 
   const std::vector<VariationSetting> settings = parseSettings(args.values("set"));
+  const ReadSettings read = readSettings(args);
   console.begin("read", "reading " + args.positional()[0]);
-  scenes::Scene scene = readSceneFile(args.positional()[0], args);
+  scenes::Scene scene = readSceneFile(args.positional()[0], read);
   console.end();
   exporters::AnimationSource animation = exporters::sceneAnimation(scene);
   if (options.content == exporters::GltfContent::Frame) {
@@ -97,7 +98,7 @@ Command exportCommand() {
           "above --tolerance (default 0.001, scene units) 4 joints become 8, and if 8 still exceed it\n"
           "nothing is written (exit 1, the message gives the errors). --joints fixes k. See docs/export.md.\n"
           "The file is written atomically: nothing is left behind when anything fails.\n",
-          {{"output", 'o', "OUT.glb", "the .glb to write"},
+          withReadOptions({{"output", 'o', "OUT.glb", "the .glb to write"},
            {"frame", '\0', "F", "export the deformed meshes at frame F of the scene's animation"},
            {"morph", '\0', "", "export the animation as morph targets"},
            {"skin", '\0', "", "export the animation as a skin on the lattices' control points"},
@@ -105,7 +106,7 @@ Command exportCommand() {
            {"tolerance", '\0', "E", "with --skin: largest position error allowed (default 0.001)"},
            {"no-raise", '\0', "", "with --skin: refuse rather than raise 4 joints to 8"},
            {"no-normals", '\0', "", "write no NORMAL attributes"},
-           setOption(), allowOutsideMeshesOption(), quietOption(), progressOption(), timingsOption()},
+           setOption(), quietOption(), progressOption(), timingsOption()}),
           runExport};
 }
 

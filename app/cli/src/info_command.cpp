@@ -54,8 +54,8 @@ void printWidgets(const widgets::WidgetModel& model) {
   std::printf("bindings: %zu\n", model.bindings().size());
 }
 
-void infoScene(const fs::path& path, const Args& args) {
-  const scenes::Scene scene = readSceneFile(path, args);
+void infoScene(const fs::path& path, const ReadSettings& read) {
+  const scenes::Scene scene = readSceneFile(path, read);
   std::printf("scene: %s\n", path.string().c_str());
   if (!scene.description.empty()) std::printf("description: %s\n", scene.description.c_str());
   if (scene.widgetFile) std::printf("widget file: %s\n", scene.widgetFile->c_str());
@@ -76,14 +76,14 @@ void infoScene(const fs::path& path, const Args& args) {
               static_cast<long long>(stats.failedPoints));
 }
 
-void infoWidgets(const fs::path& path) {
-  const widgets::WidgetModel model = scenes::readWidgetFile(path);
+void infoWidgets(const fs::path& path, const ReadSettings& read) {
+  const widgets::WidgetModel model = readWidgetsFile(path, read);
   std::printf("widget file: %s\n", path.string().c_str());
   printWidgets(model);
 }
 
-void infoMesh(const fs::path& path) {
-  const scenes::MeshData mesh = scenes::readMesh(path);
+void infoMesh(const fs::path& path, const ReadSettings& read) {
+  const scenes::MeshData mesh = readMeshFile(path, read);
   std::printf("mesh: %s\n%s\n", path.string().c_str(), meshText(mesh).c_str());
 }
 
@@ -103,14 +103,15 @@ int runInfo(const Args& args) {
     return 0;
   }
   if (args.positional().empty()) throw UsageError("info takes one or more FILEs (or --generators)");
+  const ReadSettings read = readSettings(args);
   bool first = true;
   for (const auto& file : args.positional()) {
     if (!first) std::printf("\n");
     first = false;
     switch (fileKind(file)) {
-      case FileKind::Scene: infoScene(file, args); break;
-      case FileKind::Widgets: infoWidgets(file); break;
-      case FileKind::Mesh: infoMesh(file); break;
+      case FileKind::Scene: infoScene(file, read); break;
+      case FileKind::Widgets: infoWidgets(file, read); break;
+      case FileKind::Mesh: infoMesh(file, read); break;
     }
   }
   return 0;
@@ -118,10 +119,10 @@ int runInfo(const Args& args) {
 
 /// Checks one file completely: reads it, builds every object, validates references and meshes,
 /// and evaluates a scene (a degenerate lattice fails there). @throws on the first problem.
-std::string check(const fs::path& path, const Args& args) {
+std::string check(const fs::path& path, const ReadSettings& read) {
   switch (fileKind(path)) {
     case FileKind::Scene: {
-      const scenes::Scene scene = readSceneFile(path, args);
+      const scenes::Scene scene = readSceneFile(path, read);
       scenes::validateScene(scene);
       for (const auto& object : scene.objects())
         scenes::validateMesh(object.mesh, path.string() + ": object '" + object.name + "'");
@@ -134,13 +135,13 @@ std::string check(const fs::path& path, const Args& args) {
                     scene.widgets.widgets(widgets::WidgetType::Lattice).size());
     }
     case FileKind::Widgets: {
-      const widgets::WidgetModel model = scenes::readWidgetFile(path);
+      const widgets::WidgetModel model = readWidgetsFile(path, read);
       for (auto lattice : model.widgets(widgets::WidgetType::Lattice)) (void)model.ffdLattice(lattice);
       return format("widget file, %zu lattices, %zu affine widgets", model.widgets(widgets::WidgetType::Lattice).size(),
                     model.widgets(widgets::WidgetType::Affine).size());
     }
     case FileKind::Mesh: {
-      const scenes::MeshData mesh = scenes::readMesh(path);
+      const scenes::MeshData mesh = readMeshFile(path, read);
       scenes::validateMesh(mesh, path.string());
       return format("mesh, %lld points", static_cast<long long>(mesh.points.rows()));
     }
@@ -151,10 +152,11 @@ std::string check(const fs::path& path, const Args& args) {
 int runValidate(const Args& args) {
   if (args.positional().empty()) throw UsageError("validate takes one or more FILEs");
   const Console console(args.flag("quiet"), false, false);
+  const ReadSettings read = readSettings(args);  // a malformed limit: a usage error before any file
   int broken = 0;
   for (const auto& file : args.positional()) {
     try {
-      const std::string summary = check(file, args);
+      const std::string summary = check(file, read);
       console.say(file + ": ok (" + summary + ")");
     } catch (const std::exception& e) {
       std::fflush(stdout);
@@ -183,7 +185,7 @@ Command infoCommand() {
           "FILE: a scene (.json or a sample-scene folder), a widget file (.json with format\n"
           "\"ffdkit-widgets\") or a mesh / point file. Lists objects, lattices, affine widgets (the\n"
           "names --set takes) with their variations, attachments, and evaluates a scene.\n",
-          {{"generators", '\0', "", "list the registered curve and surface generators"}, allowOutsideMeshesOption(), quietOption()},
+          withReadOptions({{"generators", '\0', "", "list the registered curve and surface generators"}, quietOption()}),
           runInfo};
 }
 
@@ -194,7 +196,7 @@ Command validateCommand() {
           "Reads each file completely (a scene: its mesh files, generators, widgets and\n"
           "attachments, then evaluates it) and prints 'FILE: ok' or the problem, with line and\n"
           "column for malformed JSON. Exit status 1 when any file is broken. Writes nothing.\n",
-          {allowOutsideMeshesOption(), quietOption()},
+          withReadOptions({quietOption()}),
           runValidate};
 }
 

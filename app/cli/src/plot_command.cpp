@@ -34,7 +34,7 @@ int runPlot(const Args& args) {
   } else {
     if (!object || args.positional().size() != 1) throw UsageError("plot takes a SCENE and --object NAME (or --generator)");
     console.begin("read", "reading " + args.positional()[0]);
-    const scenes::Scene scene = readSceneFile(fs::path(args.positional()[0]), args);
+    const scenes::Scene scene = readSceneFile(fs::path(args.positional()[0]), readSettings(args));
     const scenes::SceneObject* found = scene.findObject(*object);
     if (!found) {
       std::string known;
@@ -73,13 +73,13 @@ Command plotCommand() {
           "density) or from a generator name and a JSON object of its parameters (as written in\n"
           "a scene file's \"parameters\"). Curvature is orange; torsion, for space curves, blue.\n"
           "ffdkit-cli info --generators lists the curve generators. Needs an X display (xvfb-run).\n",
-          {{"object", '\0', "NAME", "the generated curve object of SCENE"},
+          withReadOptions({{"object", '\0', "NAME", "the generated curve object of SCENE"},
            {"generator", 'g', "NAME", "a curve generator of the registry"},
            {"output", 'o', "PLOT.png", "the PNG to write"},
            {"density", '\0', "D", "sampling relative to the generator's default, (0, 64] (the object's, or 1)"},
            {"size", '\0', "WxH", "image size in pixels (900x520)"},
            {"title", '\0', "TEXT", "chart title (the object or generator name)"},
-           allowOutsideMeshesOption(), quietOption(), progressOption(), timingsOption()},
+           quietOption(), progressOption(), timingsOption()}),
           runPlot};
 }
 

@@ -71,9 +71,10 @@ int runRender(const Args& args) {
   const auto framesText = args.value("frames");
   if (frameText && framesText) throw UsageError("give --frame T or --frames A:B, not both");
   if (framesText) checkFramePattern(target);  // before reading anything
+  const ReadSettings read = readSettings(args);
 
   console.begin("read", "reading " + scenePath.string());
-  scenes::Scene scene = readSceneFile(scenePath, args);
+  scenes::Scene scene = readSceneFile(scenePath, read);
   // Frames: the animation at each frame, then --set on top (a setting overrides a key).
   std::vector<std::pair<double, std::filesystem::path>> frames;
   if (framesText) {
@@ -115,12 +116,12 @@ Command renderCommand() {
           "every frame from A to B into -o PATTERN, whose one %0Nd becomes the frame number\n"
           "(out_%04d.png -> out_0007.png). Frames must lie in the scene's frame range. --set values\n"
           "are applied after the animation at every frame.\n",
-          {{"size", '\0', "WxH", "image size in pixels (1024x768)"},
+          withReadOptions({{"size", '\0', "WxH", "image size in pixels (1024x768)"},
            {"output", 'o', "PATH", "the PNG (instead of OUTPUT.png), or with --frames a pattern with one %0Nd"},
            {"frame", '\0', "T", "render the animation at frame T (the scene's frame range)"},
            {"frames", '\0', "A:B", "render frames A..B into -o PATTERN (one PNG per frame)"},
            {"camera", '\0', "PRESET", "scene, front, top, side or iso (scene)"},
-           setOption(), allowOutsideMeshesOption(), quietOption(), progressOption(), timingsOption()},
+           setOption(), quietOption(), progressOption(), timingsOption()}),
           runRender};
 }
 

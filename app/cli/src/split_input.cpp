@@ -14,7 +14,20 @@ namespace ffdkit::cli {
 
 namespace fs = std::filesystem;
 
-SplitInput::SplitInput(const fs::path& path, const BatchRanks& ranks) : path_(path) {
+namespace {
+
+// Charges the file's `points` to a budget of `limits`; over it, a MeshIoError naming the file.
+void chargeWholeFile(const fs::path& path, std::int64_t points, const meshio::ReadLimits& limits) {
+  try {
+    meshio::ReadBudget(limits).chargePoints(static_cast<std::uint64_t>(points), "vertices");
+  } catch (const meshio::ReadLimitError& e) {
+    throw meshio::MeshIoError(path.string() + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+SplitInput::SplitInput(const fs::path& path, const meshio::ReadLimits& limits, const BatchRanks& ranks) : path_(path) {
   std::unique_ptr<meshio::VertexSliceReader> reader;
   onEveryRank(ranks, [&] { reader = std::make_unique<meshio::VertexSliceReader>(path); });
   normalsAndFaces_ = reader->hasNormalsAndFaces();
@@ -23,6 +36,7 @@ SplitInput::SplitInput(const fs::path& path, const BatchRanks& ranks) : path_(pa
     const std::int64_t n = *count, r = ranks.rank(), size = ranks.size();
     totalPoints_ = n;
     onEveryRank(ranks, [&] {
+      chargeWholeFile(path, n, limits);
       points_ = reader->readVertices(r * n / size, (r + 1) * n / size);
       if (ranks.leader()) cells_ = reader->readCells();
     });
@@ -37,6 +51,7 @@ SplitInput::SplitInput(const fs::path& path, const BatchRanks& ranks) : path_(pa
   onEveryRank(ranks, [&] {
     if (totalPoints_ == 0) throw meshio::MeshIoError(path.string() + ": the file has no points");
     if (totalPoints_ > INT_MAX) throw meshio::MeshIoError(path.string() + ": more points than ffdkit indexes");
+    chargeWholeFile(path, totalPoints_, limits);
     points_ = reader->parseXyzPart(part, linesBefore, pointsBefore);
   });
 }

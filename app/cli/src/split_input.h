@@ -8,6 +8,7 @@
 
 #include "batch_ranks.h"
 #include "ffdkit/meshio/mesh_data.h"
+#include "ffdkit/meshio/read_limits.h"
 #include "ffdkit/meshio/vertex_slices.h"
 
 namespace ffdkit::cli {
@@ -24,8 +25,10 @@ class SplitInput {
   static bool applies(std::size_t inputs, const BatchRanks& ranks) { return ranks.size() > 1 && inputs == 1; }
 
   /// Reads this rank's slice of `path` (rank 0 also the cells). Every rank fails when one does.
-  /// @throws meshio::MeshIoError naming the file, the element and (xyz) the line.
-  SplitInput(const std::filesystem::path& path, const BatchRanks& ranks);
+  /// The whole file's points are charged to `limits` before any slice is read, so that a batch
+  /// refuses what one process refuses, whatever the number of ranks.
+  /// @throws meshio::MeshIoError naming the file, the element and (xyz) the line, or the limit.
+  SplitInput(const std::filesystem::path& path, const meshio::ReadLimits& limits, const BatchRanks& ranks);
 
   /// This rank's points (#slice x 3), moved out.
   Eigen::MatrixX3d takePoints() { return std::move(points_); }
