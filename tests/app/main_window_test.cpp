@@ -575,7 +575,7 @@ class MainWindowTest : public QObject {
     QVERIFY(w.scene().widgets.roots()[0] == roots[0]);
   }
 
-  // File > Allow Meshes Outside a Scene's Folder: off, a scene naming "../cloud.xyz" is refused;
+  // File > Allow Files Outside a Scene's Folder: off, a scene naming "../cloud.xyz" is refused;
   // clicked on in the menu (and kept in the settings), the same scene opens.
   void meshesOutsideTheScenesFolderNeedThePreference() {
     QTemporaryDir dir;
@@ -583,12 +583,12 @@ class MainWindowTest : public QObject {
     std::filesystem::create_directories(dir.filePath("shared").toStdString());
     const std::filesystem::path scene = dir.filePath("shared/scene.json").toStdString();
     std::ofstream(scene) << R"({"format": "ffdkit-scene", "version": 1, "objects": [{"name": "c", "mesh": {"path": "../cloud.xyz"}}]})";
-    QSettings().setValue("allowMeshesOutsideSceneFolder", false);
+    QSettings().setValue("allowFilesOutsideSceneFolder", false);
     window_ = std::make_unique<MainWindow>();  // reads the preference
     MainWindow& fresh = *window_;
     fresh.show();
     QVERIFY(QTest::qWaitForWindowExposed(&fresh));
-    QAction* allow = action(fresh, "actionAllowOutsideMeshes");
+    QAction* allow = action(fresh, "actionAllowOutside");
     QVERIFY(!allow->isChecked());
     QVERIFY_EXCEPTION_THROWN(fresh.openScene(scene), std::runtime_error);
     // Open the File menu and click the preference.
@@ -601,10 +601,10 @@ class MainWindowTest : public QObject {
     QTRY_VERIFY(fileMenu->isVisible());
     QTest::mouseClick(fileMenu, Qt::LeftButton, Qt::NoModifier, fileMenu->actionGeometry(allow).center());
     QTRY_VERIFY(allow->isChecked());
-    QVERIFY(QSettings().value("allowMeshesOutsideSceneFolder").toBool());
+    QVERIFY(QSettings().value("allowFilesOutsideSceneFolder").toBool());
     fresh.openScene(scene);
     QCOMPARE(fresh.scene().objects().front().mesh.points.rows(), Eigen::Index(2));
-    QSettings().setValue("allowMeshesOutsideSceneFolder", false);
+    QSettings().setValue("allowFilesOutsideSceneFolder", false);
   }
 
   void droppedFilesOpenByKind() {

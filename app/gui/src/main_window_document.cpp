@@ -18,6 +18,7 @@
 #include "ffdkit/app/scene_bounds.h"
 #include "import_options.h"
 #include "main_window_impl.h"
+#include "read_preferences.h"
 
 namespace ffdkit::app {
 
@@ -46,9 +47,7 @@ bool opensAsScene(const std::filesystem::path& path) {
 using namespace window_detail;
 
 void MainWindow::openScene(const std::filesystem::path& path) {
-  scenes::SceneReadOptions options;
-  options.confinement.allowOutside = QSettings().value(kAllowOutsideMeshesKey, false).toBool();
-  setScene(scenes::readScene(path, options));
+  setScene(scenes::readScene(path, sceneReadOptions()));
   setDocumentPath(std::filesystem::is_directory(path) ? path / "scene.json" : path);
 }
 
@@ -105,7 +104,7 @@ void MainWindow::rebuildRecentMenu() {
       try {
         openAny(file);
       } catch (const std::exception& e) {
-        QMessageBox::critical(this, tr("Cannot open"), qs(e.what()));
+        QMessageBox::critical(this, tr("Cannot open"), qs(readErrorText(e.what())));
       }
     });
   }
@@ -169,8 +168,9 @@ bool MainWindow::offerRecovery() {
   bool restored = false;
   if (prompt.clickedButton() == restore) {
     try {
-      // The app's own recovery file: its mesh paths are the document's, wherever they lead.
-      scenes::SceneReadOptions options;
+      // The app's own recovery file: its mesh paths are the document's, wherever they lead;
+      // the read limits hold as for any read.
+      scenes::SceneReadOptions options = sceneReadOptions();
       options.confinement.allowOutside = true;
       setScene(scenes::readScene(newest.scene, options));
       impl_->restoredUnsaved = true;
@@ -179,7 +179,7 @@ bool MainWindow::offerRecovery() {
       impl_->status->say(tr("Restored the unsaved changes of %1").arg(what));
       restored = true;
     } catch (const std::exception& e) {
-      QMessageBox::critical(this, tr("Recover unsaved changes"), qs(e.what()));
+      QMessageBox::critical(this, tr("Recover unsaved changes"), qs(readErrorText(e.what())));
       return false;  // the file stays for another try
     }
   }
@@ -222,7 +222,7 @@ void MainWindow::renameSelection() {
 
 void MainWindow::openWidgetFile(const std::filesystem::path& path) {
   Impl& d = *impl_;
-  widgets::WidgetModel model = scenes::readWidgetFile(path);
+  widgets::WidgetModel model = scenes::readWidgetFile(path, widgetReadOptions());
   // Its lattices go onto the selected object (or the only one), fitted as Attach fits them.
   std::optional<std::string> target;
   if (!d.selectedObjects.empty()) {
@@ -249,7 +249,7 @@ void MainWindow::saveWidgetFile(const std::filesystem::path& path) {
 void MainWindow::importMesh(const std::filesystem::path& path) {
   scenes::SceneObject object;
   const scenes::UpAxis up = importUpAxis();  // File > Import Up Axis
-  object.mesh = scenes::readMesh(path);
+  object.mesh = scenes::readMesh(path, meshReadOptions());
   scenes::convertToZUp(object.mesh, up);  // once, here; the scene file says "up" so a reload does it again
   object.source = scenes::MeshFileSource{std::filesystem::absolute(path).string(), up};
   std::string base = path.stem().string();

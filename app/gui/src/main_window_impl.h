@@ -40,8 +40,6 @@ namespace window_detail {
 constexpr int kMaxRecent = 8;
 constexpr int kDefaultAutosaveMinutes = 2;
 constexpr double kPickPixels = 7.0;  // pick tolerance on screen
-/// QSettings key of File > Allow Meshes Outside a Scene's Folder (scenes::SceneReadOptions).
-constexpr const char* kAllowOutsideMeshesKey = "allowMeshesOutsideSceneFolder";
 
 inline QString qs(const std::string& s) { return QString::fromStdString(s); }
 

@@ -25,6 +25,7 @@
 #include "import_options.h"
 #include "keyboard_shortcuts.h"
 #include "main_window_impl.h"
+#include "read_preferences.h"
 
 namespace ffdkit::app {
 
@@ -67,7 +68,7 @@ void MainWindow::createMenus(QDockWidget* outlinerDock, QDockWidget* propertiesD
       try {
         apply(std::filesystem::path(path.toStdString()));
       } catch (const std::exception& e) {
-        QMessageBox::critical(this, text, qs(e.what()));
+        QMessageBox::critical(this, text, qs(readErrorText(e.what())));
       }
     });
   };
@@ -87,7 +88,7 @@ void MainWindow::createMenus(QDockWidget* outlinerDock, QDockWidget* propertiesD
     try {
       openScene(path.toStdString());
     } catch (const std::exception& e) {
-      QMessageBox::critical(this, tr("Open Scene"), qs(e.what()));
+      QMessageBox::critical(this, tr("Open Scene"), qs(readErrorText(e.what())));
     }
   });
   d.recentMenu = file->addMenu(tr("Open &Recent"));
@@ -106,13 +107,7 @@ void MainWindow::createMenus(QDockWidget* outlinerDock, QDockWidget* propertiesD
              [this](const std::filesystem::path& p) { exportMesh(p); });
   action(file, tr("Export &glTF..."), "actionExportGltf", [this] { exportGltfInteractively(this, impl_->scene); });
   file->addSeparator();
-  // A preference, off by default: a shared scene must not make the app read files outside the
-  // scene's folder (scenes::SceneReadOptions::confinement).
-  QAction* outside = file->addAction(tr("Allow Meshes &Outside a Scene's Folder"));
-  outside->setObjectName("actionAllowOutsideMeshes");
-  outside->setCheckable(true);
-  outside->setChecked(QSettings().value(kAllowOutsideMeshesKey, false).toBool());
-  connect(outside, &QAction::toggled, this, [](bool on) { QSettings().setValue(kAllowOutsideMeshesKey, on); });
+  addReadPreferenceActions(file, this);  // the confinement opt-out and the read limits
   file->addSeparator();
   action(file, tr("&Quit"), "actionQuit", [this] { close(); });
 
