@@ -257,8 +257,9 @@ Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>
   // closed-form embedding itself); embed() then throws for the first one.
   std::atomic<bool> nonFinite{false};
 
-  // Point p of a tile: (u, v, w), blend weight, (class, cell) key, status (seed 001 eq. (6.2)).
-  // first: the batched first Newton steps of the run point p belongs to (null: none), at `runIndex`.
+  // Point p of a tile: (u, v, w), blend weight, (class, cell) key, status (Kuriyama 1996,
+  // eq. (6.2)). first: the batched first Newton steps of the run point p belongs to (null: none), at
+  // `runIndex`.
   const auto solvePoint = [&](Eigen::Index p, std::uint32_t i, TileScratch& t, const FirstSteps* first = nullptr,
                               std::uint32_t runIndex = 0) {
     if (!points.row(p).allFinite()) {

@@ -1,4 +1,4 @@
-// Internal to ffd/: solves Xbar(u,v,w) = Q on a lattice's rest lattice (seed 001 eq. (6.2)).
+// Internal to ffd/: solves Xbar(u,v,w) = Q on a lattice's rest lattice (Kuriyama 1996, eq. (6.2)).
 #pragma once
 
 #include <algorithm>
@@ -84,8 +84,9 @@ class RestSolver {
     double D[3][kMaxBasis];
   };
 
-  // Xbar(uvw) (seed 001 eq. (6.1) on the rest points), filling `basis`. The x, y, z of a window
-  // point share one vector register, so each basis product is one multiply-add for all three.
+  // Xbar(uvw) (Kuriyama 1996, eq. (6.1) on the rest points), filling `basis`. The x, y, z of a
+  // window point share one vector register, so each basis product is one multiply-add for all
+  // three.
   FFDKIT_INLINE Eigen::Vector3d value(const Eigen::Vector3d& uvw, Basis& basis) const {
     if (cubic_) return valueCubic(uvw, basis);
     for (int a = 0; a < 3; ++a) {
@@ -268,7 +269,7 @@ class RestSolver {
   // Newton's first two steps for kBatch points at once, one point per vector lane (the per-point
   // solver keeps x, y, z in one register and evaluates the basis once per point and axis), the
   // same arithmetic as newton() up to rounding: F = Xbar(uvw) - q and J = dXbar/duvw at the
-  // guesses (seed 001 eq. (6.1) with the cell's basis polynomials of cell_polynomials.h),
+  // guesses (Kuriyama 1996, eq. (6.1) with the cell's basis polynomials of cell_polynomials.h),
   // fGuess = |F|, step = uvw - J^-1 F (normalised; NaN where J is nearly singular, where newton()
   // takes a Levenberg-Marquardt step), then at the step the same again: done = 1 where newton()
   // would stop at iteration 1 (the step's residual is within the tolerance, or the next step is

@@ -180,7 +180,7 @@ void bindLattice(py::module_& m) {
              }
              return toArray(std::move(out));
            },
-           "uvw"_a, "X(u,v,w) (seed 001 eq. (6.1)) for each row of uvw (N x 3), lattice-local.")
+           "uvw"_a, "X(u,v,w) (Kuriyama 1996, eq. (6.1)) for each row of uvw (N x 3), lattice-local.")
       .def("evaluateRest",
            [](const ffd::Lattice& l, const py::object& uvw) {
              const PointsArg parameters(uvw, "uvw");
@@ -302,7 +302,7 @@ void bindDeformation(py::module_& m) {
           return withoutGil(args.progress, [&] { return ffd::embed(lattice, q.ref(), args.embed); });
         },
         "lattice"_a, "points"_a, "options"_a = py::none(), "progress"_a = py::none(),
-        "Embeds WORLD points (N x 3) into the rest lattice (seed 001 eq. (6.2)); the GIL is released. "
+        "Embeds WORLD points (N x 3) into the rest lattice (Kuriyama 1996, eq. (6.2)); the GIL is released. "
         "progress(done, total) -> bool|None is called on this thread; False or an exception cancels "
         "(ffdkit.Cancelled, or the exception itself).");
 

@@ -55,7 +55,7 @@ Eigen::Affine3d affineArg(py::handle object, const char* what);
 py::array affineToArray(const Eigen::Affine3d& transform);
 
 /// Bridges a Python progress callback to the C++ progress hooks. The hook runs on the thread
-/// that called the C++ function (spec: never an OpenMP worker), takes the GIL for the call,
+/// that called the C++ function (never an OpenMP worker), takes the GIL for the call,
 /// treats a return value of None as "go on", and turns a Python exception (or Ctrl-C) into a
 /// cancel; call rethrowIfFailed() when ffd::Cancelled arrives to raise that exception instead.
 class PythonProgress {

@@ -1,5 +1,6 @@
-// ffdkit.widgets: the headless widget model of seed 001 ch. 6 (widgets/include/ffdkit/widgets).
-// Names mirror the C++ API; lattice points come back as numpy arrays (N x 3).
+// ffdkit.widgets: the headless widget model of Kuriyama 1996, ch. 6
+// (widgets/include/ffdkit/widgets). Names mirror the C++ API; lattice points come back as numpy
+// arrays (N x 3).
 
 #include <string>
 #include <utility>
@@ -174,7 +175,7 @@ void bindModel(py::module_& m) {
              return model.bind(a, b, options);
            },
            "a"_a, "b"_a, "rule"_a = py::none(), "mask"_a = py::none(), "oneWay"_a = false,
-           "Binds two widgets; the kind follows from their types (spec §5).")
+           "Binds two widgets; the kind follows from their types (Kuriyama 1996, sec. 6.2.2).")
       .def("unbind", &WidgetModel::unbind, "binding"_a)
       .def("remove", &WidgetModel::remove, "id"_a)
       .def("rename", &WidgetModel::rename, "id"_a, "name"_a)

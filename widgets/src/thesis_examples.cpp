@@ -46,8 +46,8 @@ Fig68 buildFig68() {
   Fig68 f;
   WidgetModel& m = f.model;
   f.lattice = m.addLattice("lattice", Eigen::Vector3i(2, 3, 2));
-  // Faces with normal y have axes x = lattice z, z = lattice y (spec §3); edges along x keep
-  // the lattice axes. Directions below are in those cell axes.
+  // Faces with normal y have axes x = lattice z, z = lattice y (Kuriyama 1996, sec. 6.2.1); edges
+  // along x keep the lattice axes. Directions below are in those cell axes.
   f.faceA = m.addCell(f.lattice, CellSpec::face(0, 0, 0, 1), "face-front");
   f.faceB = m.addCell(f.lattice, CellSpec::face(0, 2, 0, 1), "face-back");
   f.edgeA = m.addCell(f.lattice, CellSpec::edge(0, 0, 1, 0), "edge-front");

@@ -2,7 +2,7 @@
 
 namespace ffdkit::widgets {
 
-// Bindings: paths, loops, preparing, inserting and erasing (spec §5).
+// Bindings: paths, loops, preparing, inserting and erasing (Kuriyama 1996, sec. 6.2.2).
 
 std::vector<BindingId> WidgetModel::Impl::path(WidgetId a, WidgetId b) const {
   std::vector<BindingId> via(nodes.size());

@@ -27,7 +27,7 @@ WidgetFrame rigidPart(const Eigen::Affine3d& a) {
   return f;
 }
 
-// The local motion D(delta) of an affine widget in its own frame (spec §4).
+// The local motion D(delta) of an affine widget in its own frame (Kuriyama 1996, sec. 6.2.1).
 Eigen::Affine3d localMotion(AffineKind kind, double delta) {
   Eigen::Affine3d d = Eigen::Affine3d::Identity();
   switch (kind) {
@@ -38,8 +38,9 @@ Eigen::Affine3d localMotion(AffineKind kind, double delta) {
   return d;
 }
 
-// Cell <-> cell transfer (spec §5.3): the same translation vector, the same rotation about the
-// target's centroid, the same per-axis scale in the target's axes, as far as the mask allows.
+// Cell <-> cell transfer (Kuriyama 1996, sec. 6.2.2): the same translation vector, the same
+// rotation about the target's centroid, the same per-axis scale in the target's axes, as far as the
+// mask allows.
 Eigen::Affine3d transferMotion(const Eigen::Affine3d& m, const Eigen::Vector3d& sourceCentroid,
                                const Eigen::Matrix3d& sourceAxes, const Eigen::Vector3d& targetCentroid,
                                const Eigen::Matrix3d& targetAxes, AffineMask mask) {

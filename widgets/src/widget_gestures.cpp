@@ -2,7 +2,8 @@
 
 namespace ffdkit::widgets {
 
-// Gesture propagation (spec §4, §5): breadth-first over the bindings, from the gesture start.
+// Gesture propagation (Kuriyama 1996, secs. 6.2.1, 6.2.2): breadth-first over the bindings, from
+// the gesture start.
 
 WidgetModel::Impl::Step WidgetModel::Impl::makeStep(WidgetId id, int parent, BindingId via, bool forward) const {
   Step s;

@@ -41,9 +41,9 @@ inline Eigen::MatrixX3d gatherRows(const Eigen::MatrixX3d& points, const std::ve
 }
 // Rigid part and mean scale of an affine map (polar decomposition, via SVD).
 WidgetFrame rigidPart(const Eigen::Affine3d& a);
-// The local motion D(delta) of an affine widget in its own frame (spec §4).
+// The local motion D(delta) of an affine widget in its own frame (Kuriyama 1996, sec. 6.2.1).
 Eigen::Affine3d localMotion(AffineKind kind, double delta);
-// Cell <-> cell transfer (spec §5.3).
+// Cell <-> cell transfer (Kuriyama 1996, sec. 6.2.2).
 Eigen::Affine3d transferMotion(const Eigen::Affine3d& m, const Eigen::Vector3d& sourceCentroid,
                                const Eigen::Matrix3d& sourceAxes, const Eigen::Vector3d& targetCentroid,
                                const Eigen::Matrix3d& targetAxes, AffineMask mask);
@@ -312,9 +312,9 @@ struct WidgetModel::Impl {
   // Whether binding e carries motion from widget u to its other end during a gesture.
   static bool drives(const Binding& e, WidgetId u);
   // Refuses a binding that closes a loop along which one gesture could reach a widget twice
-  // (spec §5), unless the loop is consistent: all variation bindings whose gains multiply to 1,
-  // or all cell bindings with equal masks. Loops that propagation cannot run around (two
-  // widgets attached to different cells meet only at those cells) are harmless and accepted.
+  // (Kuriyama 1996, sec. 6.2.2), unless the loop is consistent: all variation bindings whose gains
+  // multiply to 1, or all cell bindings with equal masks. Loops that propagation cannot run around
+  // (two widgets attached to different cells meet only at those cells) are harmless and accepted.
   void checkLoop(const Binding& nb) const;
   // The exhaustive form of the loop rule for components of moderate size: with `nb` added, a
   // gesture started anywhere must not reach a widget along two routes that disagree (different

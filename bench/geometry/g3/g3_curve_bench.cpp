@@ -1,5 +1,5 @@
-// Benchmarks of the G3 curve topic on the paper's data (seed 002 Appendix 2). Each benchmark
-// checks its result once before timing (a wrong answer fast is no result).
+// Benchmarks of the G3 curve topic on the paper's data (Kuroda et al. 1997, Appendix 2). Each
+// benchmark checks its result once before timing (a wrong answer fast is no result).
 
 #include <cmath>
 #include <stdexcept>
@@ -15,13 +15,13 @@ namespace g3 = ffdkit::geometry::g3;
 
 namespace {
 
-// Fig. 3 (11 points, 10 spans, l.353) with the spec's T4 conditions (square system); the
+// Fig. 3 (11 points, 10 spans, app. 2) with the T4 conditions (square system); the
 // points are the tests' own (g3_test_data), so the benchmark times what the tests check.
 std::vector<g3::Condition> t4() {
   return {g3::Condition::curvature(0, 0.43212079), g3::Condition::curvature(g3::kLast, -0.40518471),
           g3::Condition::tangentAngle(0, 2.65)};
 }
-// Fig. 4 (21 points, 20 spans, l.354) with the T5 conditions.
+// Fig. 4 (21 points, 20 spans, app. 2) with the T5 conditions.
 std::vector<g3::Condition> t5() {
   return {g3::Condition::curvature(0, -0.08229731), g3::Condition::curvature(g3::kLast, -0.06879707),
           g3::Condition::tangentAngle(0, 0.83)};

@@ -16,7 +16,8 @@ Eigen::MatrixX3d sevenPoints() {
   return p;
 }
 
-// D-SPIRAL-N of seed 003 spec §5.2 (164 points, uniform noise 0.5% of the length, seed 164).
+// D-SPIRAL-N, a synthetic stand-in for the data of Sakiyama et al. 2001, sec. 3.7 (164 points,
+// uniform noise 0.5% of the length, seed 164).
 Eigen::MatrixX3d noisySpiral() {
   Eigen::MatrixX3d p(164, 3);
   std::mt19937 gen(164);
@@ -30,7 +31,7 @@ Eigen::MatrixX3d noisySpiral() {
 }
 }  // namespace
 
-// Seed 000 Ex. 3 size: 7 points, 6 segments, Circle3 rule, strict stop.
+// Miura 1998, Ex. 3 size: 7 points, 6 segments, Circle3 rule, strict stop.
 static void BM_QiInterpolate_points_7(benchmark::State& state) {
   const Eigen::MatrixX3d p = sevenPoints();
   q::InterpolationOptions o;
@@ -44,7 +45,8 @@ static void BM_QiInterpolate_points_7(benchmark::State& state) {
 }
 BENCHMARK(BM_QiInterpolate_points_7)->Unit(benchmark::kMillisecond);
 
-// Seed 003 Ex. (5) size: 164 noisy spiral points, 6 segments, 3D, default (LSQ-cubic) preset.
+// Sakiyama et al. 2001, Ex. (5) size: 164 noisy spiral points, 6 segments, 3D, default (LSQ-cubic)
+// preset.
 static void BM_QiFit_points_164_segments_6(benchmark::State& state) {
   const Eigen::MatrixX3d p = noisySpiral();
   const std::vector<int> breaks = {0, 27, 54, 82, 109, 136, 163};
@@ -90,7 +92,7 @@ BENCHMARK(BM_QiFitScaling)
     ->ArgsProduct({{82, 164, 328}, {3, 6, 12}})
     ->Unit(benchmark::kMillisecond);
 
-// Seed 004 Fig. 15 analogue (spec O2): one quadratic end-condition optimisation.
+// Sphere-tangent report, Fig. 15 analogue: one quadratic end-condition optimisation.
 static void BM_SphereTangentFit_degree_2(benchmark::State& state) {
   q::SphereTangentSegmentSpec spec;
   spec.endPoint = Eigen::Vector3d(1, 1, 1);

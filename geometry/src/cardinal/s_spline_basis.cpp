@@ -47,7 +47,8 @@ double beta2SplineBasis(double x, double beta2, int deriv, Limit side) {
   if (seg < 0 || seg > 3) return 0.0;
   const double v = beta2 + 12.0;
   const double local = y - seg;
-  // Segment polynomials of l.944 in the order b1, b0, b_{-1}, b_{-2} (spec §2.3).
+  // Segment polynomials of sec. 3.2.3 in the order b1, b0, b_{-1}, b_{-2} (Kuriyama 1996,
+  // sec. 3.2.3).
   const double coeffs[4][4] = {
       {0.0, 0.0, 0.0, 2.0},
       {2.0, 6.0, 3.0 * beta2 + 6.0, -(2.0 * beta2 + 6.0)},
@@ -63,7 +64,7 @@ Eigen::VectorXd sSplineCoefficients(double beta2, int halfWidth) {
     throw CardinalSplineError("sSplineCoefficients: halfWidth must be >= 1, got " +
                               std::to_string(halfWidth));
   }
-  // l.955-965: the decaying root of the characteristic equation and its normalisation.
+  // sec. 3.2.3: the decaying root of the characteristic equation and its normalisation.
   const double xi0 = (-(beta2 + 8.0) + std::sqrt((beta2 + 12.0) * (beta2 + 4.0))) / 4.0;
   const double kappa = std::sqrt((beta2 + 12.0) / (beta2 + 4.0));
   Eigen::VectorXd c(halfWidth + 1);
@@ -216,7 +217,8 @@ double SSplineBasis::evaluate(double x, int deriv, Limit side) const {
   const double w = supportRadius();
   Limit effective = side;
   if (deriv > 0 && side == Limit::Value) effective = Limit::FromRight;
-  // Open support |x| < w (spec §7 item 4); one-sided limits look just inside/outside the cut.
+  // Open support |x| < w (Kuriyama 1996, sec. 3.2.2); one-sided limits look just inside/outside the
+  // cut.
   if (effective == Limit::Value) {
     if (std::abs(x) >= w) return 0.0;
   } else if (effective == Limit::FromRight) {

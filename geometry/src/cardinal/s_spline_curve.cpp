@@ -47,7 +47,7 @@ Eigen::Vector3d SSplineCurve::extendedPoint(int i) const {
     case SSplineEnd::Open:
       return points_.row(std::clamp(i, 0, s)).transpose();
     case SSplineEnd::Tangent:
-      // l.996-998: mirror the data and shift by the tangent; applied recursively so that
+      // sec. 3.2.4: mirror the data and shift by the tangent; applied recursively so that
       // any index (also beyond 2s) is defined.
       if (i < 0) return extendedPoint(-i) - startTangent_;
       if (i > s) return extendedPoint(2 * s - i) + endTangent_;

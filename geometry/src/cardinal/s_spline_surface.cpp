@@ -44,8 +44,8 @@ SSplineSurface::SSplineSurface(const PointGrid& grid, const SSplineSurfaceOption
   vSpan_ = options.closedV ? grid.cols : grid.cols - 1;
   const int wU = options.halfWidthU + 1;
   const int wV = options.halfWidthV + 1;
-  // Extension in u for every row, then in v for every extended column (spec §2.6): for the
-  // open (repeat) and closed (wrap) rules this is a plain index map in each direction.
+  // Extension in u for every row, then in v for every extended column (Kuriyama 1996, sec. 3.2.4):
+  // for the open (repeat) and closed (wrap) rules this is a plain index map in each direction.
   extended_ = PointGrid(uSpan_ + 2 * wU + 1, vSpan_ + 2 * wV + 1);
   for (int i = 0; i < extended_.rows; ++i) {
     const int si = sourceIndex(i - wU, uSpan_, options.closedU);

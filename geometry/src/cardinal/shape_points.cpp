@@ -21,8 +21,8 @@ void checkPointCount(const SigmaKnots& knots, Eigen::Index rows, const char* whe
   }
 }
 
-// Data point i with the end extension of spec §3.4: periodic when closed, point reflection
-// through the end points when open (P_{-k} = 2P_0 - P_k, P_{n+k} = 2P_n - P_{n-k}).
+// Data point i with the end extension of Kuriyama 1996, sec. 3.3.4: periodic when closed, point
+// reflection through the end points when open (P_{-k} = 2P_0 - P_k, P_{n+k} = 2P_n - P_{n-k}).
 Eigen::Vector3d extendedPoint(const SigmaKnots& knots, const Eigen::MatrixX3d& points, int i) {
   const int n = knots.last();
   if (knots.closed()) return points.row(floorMod(i, n)).transpose();
@@ -251,7 +251,7 @@ SigmaSurfaceResult interpolateSigmaSurface(const SigmaKnots& knotsU, const Sigma
   if (options.mode != ShapeMode::Cubic) {
     s.Pu = localShapesAlongU(knotsU, points, options.mode);
     s.Pv = localShapesAlongV(knotsV, points, options.mode);
-    // l.1185-1193: Puv = (H_v(Pu) + H_u(Pv)) / 2.
+    // sec. 3.3.4: Puv = (H_v(Pu) + H_u(Pv)) / 2.
     const PointGrid a = localShapesAlongV(knotsV, s.Pu, options.mode);
     const PointGrid b = localShapesAlongU(knotsU, s.Pv, options.mode);
     s.Puv = PointGrid(a.rows, a.cols);
@@ -264,7 +264,8 @@ SigmaSurfaceResult interpolateSigmaSurface(const SigmaKnots& knotsU, const Sigma
   const SurfaceEndData& ends = options.ends;
   const int m = rows - 1;
   const int n = cols - 1;
-  // Cross-boundary derivative data, one row per curve (chord rule by default, spec §7 item 13).
+  // Cross-boundary derivative data, one row per curve (chord rule by default, Kuriyama 1996,
+  // sec. 3.2.2).
   Eigen::MatrixXd uStart = Eigen::MatrixXd::Zero(cols, 3), uEnd = uStart;
   Eigen::MatrixXd vStart = Eigen::MatrixXd::Zero(rows, 3), vEnd = vStart;
   if (!knotsU.closed()) {
@@ -284,7 +285,8 @@ SigmaSurfaceResult interpolateSigmaSurface(const SigmaKnots& knotsU, const Sigma
   s.Pv = unpackAlongV(solverV.solve(packAlongV(points), flatten(vStart), flatten(vEnd)));
 
   // u-route: the u-system on every v-shape column with (X, Y) = (Puv, Pv). Its end data are
-  // the v-shape values of the cross-boundary derivatives: the consistent rule of spec §3.5.
+  // the v-shape values of the cross-boundary derivatives: the consistent rule of
+  // Kuriyama 1996, sec. 3.3.5.
   Eigen::MatrixXd pvuStart = Eigen::MatrixXd::Zero(knotsV.shapeCount(), 3), pvuEnd = pvuStart;
   if (!knotsU.closed() && !options.thesisZeroCrossDefaults) {
     pvuStart = solverV.solve(uStart, asRow(twist[0]), asRow(twist[1]));

@@ -41,7 +41,7 @@ double basisSecondDerivative(const SigmaKnots& k, bool auxiliary, int slot, doub
 
 // Eq. (3.39): weights of (P_n, P_{n+2}, Pv_{n-1}, Pv_n, Pv_{n+1}, Pv_{n+2}) that minimise
 // int ||q''||^2 over the middle point. q'' is quadratic per interval, so 3-point
-// Gauss-Legendre per interval is exact (spec §3.7 step 5).
+// Gauss-Legendre per interval is exact (Kuriyama 1996, sec. 3.3.7).
 std::array<double, 6> middleRowWeights(const SigmaKnots& blendKnots) {
   const GaussLegendreRule rule = gaussLegendreRule(3);
   const auto integral = [&](bool auxA, int a, bool auxB, int b) {
@@ -96,7 +96,7 @@ BlendResult blendSurfaces(const SigmaSurface& first, const SigmaSurface& second,
   }
 
   std::vector<std::string> warnings;
-  // Step 1: common u knots (refinement keeps both shapes, spec §3.6).
+  // Step 1: common u knots (refinement keeps both shapes, Kuriyama 1996, sec. 3.3.6).
   const SigmaSurface r1 = refine(first, interiorKnotsOf(second.knotsU, first.knotsU), {});
   const SigmaSurface r2 = refine(second, interiorKnotsOf(first.knotsU, second.knotsU), {});
   if (r1.knotsU.last() != r2.knotsU.last()) {

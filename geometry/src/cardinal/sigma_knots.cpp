@@ -43,7 +43,7 @@ SigmaKnots::SigmaKnots(const Eigen::VectorXd& knots, const Eigen::VectorXd& beta
     beta2_ = beta2;
   }
   for (int i = 0; i < betaCount; ++i) {
-    // Negative tension can make D_i vanish (spec §7 item 20): rejected.
+    // Negative tension can make D_i vanish (Kuriyama 1996, sec. 3.2.2): rejected.
     if (!(beta2_[i] >= 0.0) || !std::isfinite(beta2_[i])) {
       throw CardinalSplineError("SigmaKnots: beta2[" + std::to_string(i) +
                                 "] must be finite and >= 0, got " + std::to_string(beta2_[i]));

@@ -52,7 +52,7 @@ SigmaCurve refine(const SigmaCurve& curve, const std::vector<double>& newKnots) 
     }
     const double left = oldKnots.knot(oldInterval);
     const double width = oldKnots.delta(oldInterval);
-    // l.1277-1291: split the quartic piece by de Casteljau at the new knots.
+    // sec. 3.3.6: split the quartic piece by de Casteljau at the new knots.
     pieces[static_cast<std::size_t>(i)] =
         quarticBezierPiece(curve.bezier(oldInterval), std::clamp((a - left) / width, 0.0, 1.0),
                            std::clamp((b - left) / width, 0.0, 1.0));
@@ -67,8 +67,8 @@ SigmaCurve refine(const SigmaCurve& curve, const std::vector<double>& newKnots) 
   }
   if (!k.closed()) {
     points.row(g) = pieces.back()[4].transpose();
-    // spec §3.6 (gap in the thesis): the open-end shape points from b1 of the first piece and
-    // b3 of the last, with the coefficients of the new knot vector.
+    // Kuriyama 1996, sec. 3.3.6 (gap in the thesis): the open-end shape points from b1 of the first
+    // piece and b3 of the last, with the coefficients of the new knot vector.
     const Eigen::RowVector3d start =
         (pieces.front()[1].transpose() - k.C1(0) * points.row(0) - k.Chat1(0) * shapes.row(0 - first)) /
         k.Chat4(-1);
@@ -113,7 +113,7 @@ SigmaSurface refine(const SigmaSurface& surface, const std::vector<double>& newU
   surface.validate();
   SigmaSurface out = surface;
   if (!newU.empty()) {
-    // Knot columns carry (P, Pu), shape columns (Pv, Puv) along u (spec §3.6).
+    // Knot columns carry (P, Pu), shape columns (Pv, Puv) along u (Kuriyama 1996, sec. 3.3.6).
     refineAlongU(surface.knotsU, newU, surface.P, surface.Pu, out.P, out.Pu, out.knotsU);
     refineAlongU(surface.knotsU, newU, surface.Pv, surface.Puv, out.Pv, out.Puv, out.knotsU);
   }

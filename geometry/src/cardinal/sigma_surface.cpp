@@ -41,8 +41,8 @@ QuarticPatch SigmaSurface::patch(int i, int j) const {
                               std::to_string(knotsU.intervalCount() - 1) + " x 0.." +
                               std::to_string(knotsV.intervalCount() - 1));
   }
-  // Step 1 (spec §3.3): the u-curve rule on interval i for the v-items that interval j uses:
-  // knot columns j, j+1 (data P, Pu) and shape columns j-1, j, j+1 (data Pv, Puv).
+  // Step 1 (Kuriyama 1996, sec. 3.3.3): the u-curve rule on interval i for the v-items that
+  // interval j uses: knot columns j, j+1 (data P, Pu) and shape columns j-1, j, j+1 (data Pv, Puv).
   const auto uBezier = [&](const PointGrid& knotData, const PointGrid& shapeData, int col) {
     return sigmaIntervalBezier(knotsU, i, knotData(pointSlot(knotsU, i), col),
                                knotData(pointSlot(knotsU, i + 1), col),

@@ -115,7 +115,8 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
   net.tolerance = tau;
   const double sinMin = std::sin(options.minimumCrossingAngleDegrees * std::numbers::pi / 180.0);
 
-  // --- pairwise intersections (closest points), §4.3 steps 1-2 ------------------------------
+  // --- pairwise intersections (closest points), Kuriyama 1996, sec. 5.3.3 steps 1-2
+  // ------------------------------
   std::vector<PairHit> hits;
   // Per-segment sample boxes: only segment pairs whose boxes come within the gate are compared.
   std::vector<double> step(nc, 0.0);
@@ -189,7 +190,8 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
           if (!isMin) continue;
           double s = params[a][r0 + i], t = params[b][c0 + j];
           refineClosestPoints(net.curves[a], net.curves[b], s, t);
-          // T-detection (§4.3): an open end within tau of the other curve is the cut point.
+          // T-detection (Kuriyama 1996, sec. 5.3.3): an open end within tau of the other curve is
+          // the cut point.
           if (snapToEnd(net.curves[a], s, tau)) refineOnOneCurve(net.curves[a].evaluate(s), net.curves[b], t);
           if (snapToEnd(net.curves[b], t, tau)) refineOnOneCurve(net.curves[b].evaluate(t), net.curves[a], s);
           const Eigen::Vector3d xa = net.curves[a].evaluate(s), xb = net.curves[b].evaluate(t);
@@ -318,7 +320,8 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
     throw CurveNetworkError(msg.str());
   }
 
-  // --- curve correction, §4.3 step 3 --------------------------------------------------------
+  // --- curve correction, Kuriyama 1996, sec. 5.3.3
+  // --------------------------------------------------------
   for (int c = 0; c < nc; ++c) {
     std::vector<double> ts;
     Eigen::MatrixX3d disp(onCurve[c].size(), 3);
@@ -342,7 +345,8 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
     }
   }
 
-  // --- free ends, edges, half-edges, §4.4 -----------------------------------------------------
+  // --- free ends, edges, half-edges, Kuriyama 1996, sec. 5.3.3
+  // -----------------------------------------------------
   for (int c = 0; c < nc; ++c) {
     const NetworkCurve& curve = net.curves[c];
     if (!curve.closed()) {
@@ -388,7 +392,8 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
     return h.sign * net.curves[h.curve].evaluate(h.tTo, 1);
   };
 
-  // --- vertex normals, N.1-N.4 (§4.5) -------------------------------------------------------
+  // --- vertex normals, N.1-N.4 (Kuriyama 1996, sec. 5.3.3)
+  // -------------------------------------------------------
   std::vector<int> orientation(nc, 0);  // +1: CCW about the plane normal, so T x n is outward
   for (int c = 0; c < nc; ++c) {
     if (!net.planes[c]) continue;
@@ -472,7 +477,8 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
     }
   }
 
-  // --- deterministic next (§4.6) -------------------------------------------------------------
+  // --- deterministic next (Kuriyama 1996, sec. 5.3.3)
+  // -------------------------------------------------------------
   const double epsS = options.straightAngleDegrees * std::numbers::pi / 180.0;
   auto turnAngle = [&](int hin, int hout) {
     const Eigen::Vector3d n = net.vertices[net.halfEdges[hin].to].normal;
@@ -514,7 +520,8 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
     }
   }
 
-  // --- runs (§4.7): break where another curve passes through or the curve ends ---------------
+  // --- runs (Kuriyama 1996, sec. 5.3.4): break where another curve passes through or the curve
+  // ends ---------------
   for (int c = 0; c < nc; ++c) {
     const NetworkCurve& curve = net.curves[c];
     auto isBreak = [&](int vi) {
@@ -707,7 +714,7 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
                               " is not supported: add a curve across it");
     }
     if (face.sides.size() == 2) {
-      // Rule (d): halve both sides, each half a sub-range of its run, T-junction style (A14).
+      // Rule (d): halve both sides, each half a sub-range of its run, T-junction style.
       std::vector<FaceSide> four;
       for (const FaceSide& s : face.sides) {
         const double mid = 0.5 * (s.rho0 + s.rho1);
@@ -731,7 +738,8 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
     for (int hh : cycle) net.halfEdges[hh].face = faceId;
     net.faces.push_back(face);
   }
-  // Rule (c): an open chain between two free ends closed by a virtual side (opt-in, §4.7 item 4).
+  // Rule (c): an open chain between two free ends closed by a virtual side (opt-in,
+  // Kuriyama 1996, sec. 5.3.4 item 4).
   for (const std::vector<int>& chain : openFaces) {
     Face face;
     face.halfEdges = chain;

@@ -15,7 +15,8 @@ double clampParameter(const NetworkCurve& c, double t) {
 }
 
 // Newton on f(s, t) = 1/2 |A(s) - B(t)|^2 from a sampled start; open curves are clamped to
-// their domain so that a free end near a curve is found as a T candidate (spec §4.3).
+// their domain so that a free end near a curve is found as a T candidate (Kuriyama 1996,
+// sec. 5.3.3).
 void refineClosestPoints(const NetworkCurve& ca, const NetworkCurve& cb, double& s, double& t) {
   for (int it = 0; it < 50; ++it) {
     const Eigen::Vector3d r = ca.evaluate(s) - cb.evaluate(t);

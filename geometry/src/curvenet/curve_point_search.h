@@ -1,6 +1,7 @@
 #pragma once
 // Private to curvenet: closest points on and between network curves, projections, end tests
-// (the numerics of buildCurveNetwork's intersection, vertex and normal stages, §4.3-4.5).
+// (the numerics of buildCurveNetwork's intersection, vertex and normal stages, Kuriyama 1996,
+// sec. 5.3.3-4.5).
 
 #include <vector>
 
@@ -14,7 +15,8 @@ namespace ffdkit::geometry::curvenet::detail {
 double clampParameter(const NetworkCurve& c, double t);
 
 // Newton on f(s, t) = 1/2 |A(s) - B(t)|^2 from a sampled start; open curves are clamped to
-// their domain so that a free end near a curve is found as a T candidate (spec §4.3).
+// their domain so that a free end near a curve is found as a T candidate (Kuriyama 1996,
+// sec. 5.3.3).
 void refineClosestPoints(const NetworkCurve& ca, const NetworkCurve& cb, double& s, double& t);
 
 // Moves t to an end of an open curve whose point lies within tau of c(t); true if it did.

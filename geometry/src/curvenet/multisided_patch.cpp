@@ -35,12 +35,12 @@ VectorJet runSweep(const CurveNetwork& net, int runId, const Jet& ut, const Jet&
   const NetworkCurve& guide = net.curves[run.curve];
   const Jet t = run.tStart + run.delta() * ut;
   const VectorJet c = compose(guide.evaluate(t.v), guide.evaluate(t.v, 1), guide.evaluate(t.v, 2), t);
-  // g of l.1761 with the influence weights of the physical transversal curves.
-  // A free end has no transversal: the single sweep of the other end (rule (c), l.2001-2003).
+  // g of sec. 5.2.1 with the influence weights of the physical transversal curves.
+  // A free end has no transversal: the single sweep of the other end (rule (c), sec. 5.2.4).
   if (run.atStart.members.empty()) return transversal(net, run.atEnd, v) + c;
   if (run.atEnd.members.empty()) return transversal(net, run.atStart, v) + c;
   if (run.affine) {
-    // S = C^-(v) M^-(u) + C^+(v) M^+(u) + C(u), row vectors (l.1767-1775).
+    // S = C^-(v) M^-(u) + C^+(v) M^+(u) + C(u), row vectors (sec. 5.2.1).
     const VectorJet a = transversal(net, run.atStart, v), b = transversal(net, run.atEnd, v);
     const Jet q = (run.delta() * run.delta()) * (ut * ut - ut);
     return (1.0 - ut) * a + ut * b + c + q * transform(run.cStart, a) + q * transform(run.cEnd, b);
@@ -80,7 +80,7 @@ VectorJet evaluatePatch(const CurveNetwork& net, int faceId, const NGonDomain& d
   const std::vector<Jet> b = domain.barycentric(p);
   std::vector<Jet> blend = domain.blend(b, options.blendingExponent);
   if (face.openRegion) {
-    // Rule (c), l.2005 (A13): the virtual side's weight goes to the first and the last real
+    // Rule (c), sec. 5.2.4: the virtual side's weight goes to the first and the last real
     // side, split by u~ of the virtual side, so the real weights still sum to 1.
     const Jet ut = domain.uTilde(n - 1, b);
     blend[0] = blend[0] + ut * blend[n - 1];
@@ -100,7 +100,7 @@ VectorJet evaluatePatch(const CurveNetwork& net, int faceId, const NGonDomain& d
     const Jet ut = domain.uTilde(i, b);
     const Jet d = domain.distance(i, b);
     // Open region: the single sweeps next to the virtual side take F = Delta of their one
-    // transversal side (spec §3.7 c).
+    // transversal side (Kuriyama 1996, sec. 5.2.4 c).
     Jet f = dPrev * (1.0 - ut) + dNext * ut;
     if (face.openRegion && i == 0) f = Jet::constant(dNext);
     if (face.openRegion && i == n - 2) f = Jet::constant(dPrev);

@@ -201,7 +201,7 @@ NetworkCurve interpolateCubicSpline(const Eigen::MatrixX3d& points, bool closed,
       h[k] = chord;
     }
   }
-  // Tangent system (2.3), l.463-477: rows for interior (or all, periodic) points. Tridiagonal
+  // Tangent system (2.3), sec. 2.3.2: rows for interior (or all, periodic) points. Tridiagonal
   // (cyclic when closed), so sparse: pen strokes can have many points.
   std::vector<Eigen::Triplet<double>> a;
   Eigen::MatrixX3d rhs(n, 3);

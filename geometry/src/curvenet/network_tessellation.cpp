@@ -175,7 +175,7 @@ NetworkMesh tessellateNetwork(const CurveNetwork& net, int pitch, const PatchOpt
     }
   }
   // Remove T-vertices: split a triangle whose edge lies on a run that another face sampled
-  // more finely (spec §5 "zipper-stitch").
+  // more finely (Kuriyama 1996, sec. 5.3.4 "zipper-stitch").
   std::map<int, std::vector<std::pair<int, double>>> runsOfVertex;
   for (auto& [run, list] : onRun) {
     std::sort(list.begin(), list.end());

@@ -70,7 +70,7 @@ std::vector<Jet> NGonDomain::blend(const std::vector<Jet>& b, int exponent) cons
   }
   std::vector<Jet> result(n_, Jet::constant(0.0));
   if (!(maxValue > 1e-300)) {
-    // Exactly at a vertex p_j (b_j = 1): the thesis' rule B_{j-1} = B_j = 1/2 (l.1813-1815).
+    // Exactly at a vertex p_j (b_j = 1): the thesis' rule B_{j-1} = B_j = 1/2 (sec. 5.2.2).
     int j = 0;
     for (int k = 1; k < n_; ++k) {
       if (b[k].v > b[j].v) j = k;

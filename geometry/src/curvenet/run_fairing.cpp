@@ -73,7 +73,7 @@ void assemble(const CurveNetwork& net, const curvenet::Run& run, const EnergySid
       Eigen::Vector3d m0, m1, m2, p0, p1, p2;
       transversalJet(net, run.atStart, side.sign * side.deltaStart, v, m0, m1, m2);
       transversalJet(net, run.atEnd, side.sign * side.deltaEnd, v, p0, p1, p2);
-      // psi_{-+,j}: uu, uv, vv derivatives (spec §3.4 explicit system).
+      // psi_{-+,j}: uu, uv, vv derivatives (Kuriyama 1996, sec. 5.2.1 explicit system).
       Eigen::Matrix<double, 6, 3> psi;  // rows a, columns (uu, uv, vv)
       for (int j = 0; j < 3; ++j) {
         psi.row(j) << 2 * d * d * m0[j], d * d * (2 * u - 1) * m1[j], d * d * (u * u - u) * m2[j];

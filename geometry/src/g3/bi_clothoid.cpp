@@ -13,7 +13,7 @@ namespace {
 
 constexpr double kMaxTurnPerPanel = 1.0;
 
-// Quadratic Bezier ordinates c_0..c_4 of the two arcs' tangent angle (spec sec. 4).
+// Quadratic Bezier ordinates c_0..c_4 of the two arcs' tangent angle (Kuroda et al. 1997, sec. 6).
 struct Ordinates {
   double c[5];
 };
@@ -22,7 +22,7 @@ Ordinates ordinates(const BiClothoidEnds& e, double s0, double s1) {
   Ordinates o;
   o.c[0] = e.startAngle;
   o.c[4] = e.endAngle;
-  o.c[1] = o.c[0] + 0.5 * e.startCurvature * s0;  // 1/2, not 2: spec A1
+  o.c[1] = o.c[0] + 0.5 * e.startCurvature * s0;  // 1/2, not 2: the printed formula of sec. 6 is misprinted
   o.c[3] = o.c[4] - 0.5 * e.endCurvature * s1;
   o.c[2] = (o.c[3] * s0 + o.c[1] * s1) / (s0 + s1);
   return o;
@@ -132,7 +132,8 @@ BiClothoidResult fitBiClothoid(const BiClothoidEnds& ends, double lengthGuess, c
       col += (j == 0 ? m0 : m1).head<2>();
       jac.col(j) = col;
     }
-    // Pseudo-inverse: the system is singular when the data are one clothoid (spec sec. 4).
+    // Pseudo-inverse: the system is singular when the data are one clothoid (
+    // Kuroda et al. 1997, sec. 6).
     const Eigen::Vector2d step = -Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix2d>(jac).solve(f);
     if (!step.allFinite()) break;
     double lambda = 1.0;

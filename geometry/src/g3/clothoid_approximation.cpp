@@ -105,7 +105,8 @@ ClothoidApproximation approximateByClothoids(const QuadraticCurvatureSpline& cur
     const double a1 = 3.0 * (b[1] - b[0]), a2 = 3.0 * (b[2] - 2.0 * b[1] + b[0]);
     const double a3 = b[3] - 3.0 * b[2] + 3.0 * b[1] - b[0];
     // On a clothoid span every split with sigma_0 + sigma_1 = length reproduces it and the 2x2
-    // Jacobian is singular: take the symmetric split directly (spec sec. 4, degenerate spans).
+    // Jacobian is singular: take the symmetric split directly (Kuroda et al. 1997, sec. 6,
+    // degenerate spans).
     const bool clothoidSpan = std::abs(a3) <= 1e-12 * (1.0 + std::abs(a1) + std::abs(a2));
     SpanApproximationError err;
     err.firstArc = static_cast<int>(out.arcs.size());
@@ -165,7 +166,7 @@ ClothoidApproximation approximateByClothoids(const QuadraticCurvatureSpline& cur
                                               out.arcs.begin() + err.firstArc + err.arcCount);
       const Eigen::MatrixX2d approx = sampleClothoidArcs(spanArcs, std::max(4, m / err.arcCount));
       err.hausdorff = hausdorff(original, approx);
-      // Curvature at proportional arc length (spec sec. 6.2, Fig. 5 numbers).
+      // Curvature at proportional arc length (Kuroda et al. 1997, sec. 6, Fig. 5).
       for (int k = 0; k <= m; ++k) {
         const double tau = static_cast<double>(k) / m;
         double sigma = tau * total;

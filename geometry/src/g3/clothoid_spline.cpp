@@ -21,7 +21,7 @@ inline double quadraticBezier(const Eigen::Vector3d& b, double t) {
 
 inline double turning(const Eigen::Vector3d& b) { return std::abs(b[1] - b[0]) + std::abs(b[2] - b[1]); }
 
-// b_0..b_{2n} from (Delta s, e) (spec sec. 2.3).
+// b_0..b_{2n} from (Delta s, e) (Kuroda et al. 1997, sec. 2).
 Eigen::VectorXd quadraticOrdinates(const Eigen::Ref<const Eigen::VectorXd>& ds, const Eigen::Ref<const Eigen::VectorXd>& e) {
   const Eigen::Index n = ds.size();
   Eigen::VectorXd b(2 * n + 1);

@@ -110,7 +110,7 @@ CubicSplineInitialGuess initialGuessFromCubicSpline(const Eigen::Ref<const Eigen
   const int n = static_cast<int>(points.rows()) - 1;
   const ParametricCubic cubic = fitNotAKnot(points);
   const auto& rule = detail::defaultRule();
-  constexpr int kTable = 64;  // arc-length table entries per span (spec: >= 32 for unwrapping)
+  constexpr int kTable = 64;  // arc-length table entries per span (>= 32 for unwrapping)
 
   // Table of (s, u, psi) at kTable+1 parameters per span; psi unwrapped along the curve.
   const int rows = n * kTable + 1;
@@ -151,7 +151,7 @@ CubicSplineInitialGuess initialGuessFromCubicSpline(const Eigen::Ref<const Eigen
   guess.tangentAtPoints[n] = tableAngle[rows - 1];
   guess.length = s;
 
-  // Span lengths came from the table's 64 panels of 16 nodes, finer than the spec's 16 x 16.
+  // Span lengths came from the table's 64 panels of 16 nodes, finer than 16 x 16.
   Eigen::VectorXd knots(n + 1);
   knots[0] = 0.0;
   for (int i = 0; i < n; ++i) knots[i + 1] = knots[i] + guess.spanLengths[i];

@@ -36,7 +36,7 @@ const char* toString(G3SolveStatus status) {
 namespace {
 
 // The interpolation system of eq. (3) plus the condition rows, with row scales that make
-// every residual dimensionless (spec sec. 3.7).
+// every residual dimensionless.
 class System {
  public:
   System(const Eigen::Ref<const Eigen::MatrixX2d>& points, std::vector<Condition> conditions,
@@ -75,7 +75,7 @@ class System {
   double h() const { return h_; }
   const Eigen::VectorXd& scales() const { return scales_; }
 
-  // Tangent targets move to the 2 pi branch nearest the initial guess (spec sec. 3.5 step 5).
+  // Tangent targets move to the 2 pi branch nearest the initial guess (Kuroda et al. 1997, sec. 4).
   void alignBranches(const Eigen::VectorXd& v) {
     const Eigen::VectorXd b = bezierOrdinatesFromDeBoor(v.head(n_), v.tail(n_ + 3));
     for (auto& c : conditions_) {
@@ -110,7 +110,7 @@ class System {
         const detail::SpanMoments m = detail::cubicSpanMoments(rule_, eta, panels[i]);
         f[2 * i] = ds[i] * m[0] - chords_(i, 0);
         f[2 * i + 1] = ds[i] * m[1] - chords_(i, 1);
-        // d f / d v = [v = Delta s_i] I - / + Delta s_i sum_k M_k d eta_k / d v (spec sec. 3.4)
+        // d f / d v = [v = Delta s_i] I - / + Delta s_i sum_k M_k d eta_k / d v
         auto rx = jac->row(2 * i);
         auto ry = jac->row(2 * i + 1);
         for (int k = 0; k < 4; ++k) {
@@ -308,7 +308,7 @@ NewtonOutcome newton(const System& sys, Eigen::VectorXd v, const Eigen::VectorXd
       if (qr.rank() < sys.cols()) return finish(G3SolveStatus::SingularJacobian);
       step = -qr.solve(scaled);
     } else {
-      // Minimum-norm Gauss-Newton step J^+ f (l.137); least squares when overdetermined.
+      // Minimum-norm Gauss-Newton step J^+ f (sec. 4); least squares when overdetermined.
       Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(scaledJac);
       if (cod.rank() < std::min(sys.rows(), sys.cols())) return finish(G3SolveStatus::SingularJacobian);
       step = -cod.solve(scaled);
@@ -360,7 +360,7 @@ NewtonOutcome newton(const System& sys, Eigen::VectorXd v, const Eigen::VectorXd
           nu *= 2.0;
         }
       } else {
-        // Armijo backtracking on ||scaled f||^2 (spec sec. 3.6).
+        // Armijo backtracking on ||scaled f||^2.
         double lambda = 1.0;
         while (lambda >= opt.lineSearchFloor && !sys.overBudget()) {
           trial = v + lambda * step;
@@ -456,7 +456,7 @@ G3SolveResult solveG3Curve(const Eigen::Ref<const Eigen::MatrixX2d>& points, con
   if (result.underdetermined) {
     std::ostringstream msg;
     msg << sys.conditionRows() << " condition row(s) < 3: the curve is the minimum-norm member of a "
-        << 3 - sys.conditionRows() << "-parameter family and depends on the initial guess (spec 3.8)";
+        << 3 - sys.conditionRows() << "-parameter family and depends on the initial guess";
     result.warnings.push_back(msg.str());
   }
   if (sys.conditionRows() > 3) {
@@ -485,7 +485,7 @@ G3SolveResult solveG3Curve(const Eigen::Ref<const Eigen::MatrixX2d>& points, con
     // so that the lambda = 0 problem is feasible; the guess itself may carry targets no
     // interpolating curve reaches (e.g. the cubic's length, shorter than any G3 curve's).
     // Targets then move from their values there to the requested ones:
-    // g(v) - (1 - lambda) g(v_start) (spec sec. 3.6).
+    // g(v) - (1 - lambda) g(v_start).
     const System bare(points, {}, options);
     G3SolverOptions bareOptions = options;
     bareOptions.globalization = Globalization::LineSearch;

@@ -12,7 +12,7 @@ namespace ffdkit::geometry::g3 {
 namespace {
 
 // One panel per radian of turning: 16 nodes then reproduce every reference value of the
-// spec to ~1e-15 (spec sec. 5).
+// tests to ~1e-15.
 constexpr double kMaxTurnPerPanel = 1.0;
 
 void validate(const Eigen::Ref<const Eigen::VectorXd>& spanLengths,

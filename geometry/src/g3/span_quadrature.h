@@ -1,7 +1,7 @@
 #pragma once
 // Internal: composite Gauss-Legendre integrals of the unit tangent over one span. Shared by
 // evaluation, the Newton residual / Jacobian and the bi-clothoid fit so that they all use the
-// same nodes (spec sec. 5).
+// same nodes.
 
 #include <algorithm>
 #include <cmath>
@@ -12,11 +12,11 @@
 
 namespace ffdkit::geometry::g3::detail {
 
-/// The default 16-point rule (spec sec. 5), built once.
+/// The default 16-point rule, built once.
 const GaussLegendreRule& defaultRule();
 
 /// Panel count P = max(1, ceil(V / maxTurn)), V bounding the total turning from the control
-/// polygon of psi (spec sec. 5).
+/// polygon of psi.
 inline int panelCount(double totalTurningBound, double maxTurnPerPanel) {
   const double p = std::ceil(totalTurningBound / maxTurnPerPanel);
   if (!(p >= 1.0)) return 1;
@@ -47,7 +47,7 @@ Eigen::Vector2d integrateTangent(const GaussLegendreRule& rule, Psi&& psi, doubl
 }
 
 /// I = integral_0^1 (cos, sin) psi and the Bernstein moments M(k) = integral_0^1 B^3_k (cos, sin)
-/// psi, for the analytic Jacobian (spec sec. 3.4). Layout: rows 0-1 I, rows 2+2k..3+2k M_k.
+/// psi, for the analytic Jacobian. Layout: rows 0-1 I, rows 2+2k..3+2k M_k.
 using SpanMoments = Eigen::Matrix<double, 10, 1>;
 SpanMoments cubicSpanMoments(const GaussLegendreRule& rule, const Eigen::Vector4d& b, int panels);
 

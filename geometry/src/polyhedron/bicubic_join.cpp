@@ -27,7 +27,7 @@ TriangleJoinRow triangleRowFromBicubic(const BicubicNet& p, double l1, double l2
   const Eigen::Vector3d d130 = 0.25 * p[0][0] + 0.75 * p[1][0];
   const Eigen::Vector3d d220 = 0.5 * (p[1][0] + p[2][0]);
   const Eigen::Vector3d d310 = 0.75 * p[2][0] + 0.25 * p[3][0];
-  // Eq. (4.20), l.1634-1639, as printed (spec §3.11).
+  // Eq. (4.20), sec. 4.3.3, as printed (Kuriyama 1996, sec. 4.3.3).
   TriangleJoinRow row;
   row.d031 = d040 - 0.75 * (l1 * (p[1][0] - p[0][0]) + (p[0][1] - p[0][0]));
   row.d301 = d310 - 0.75 * (l2 * (p[3][0] - p[2][0]) + (p[3][1] - p[3][0]));

@@ -152,7 +152,7 @@ CurveNetworkResult solveCurveNetwork(const PolygonMesh& mesh, const MeshTopology
     if (!(lengths > 0.0) || !(f.ts.cross(f.tc).norm() > options.degenerateFrameTolerance * lengths)) {
       result.message = "vertex " + std::to_string(v) +
                        ": tangent frame collapsed (T^s and T^c parallel or zero); expected a plane of legs. "
-                       "Check its tensions (e.g. alpha > 0 with beta = 0, spec §7-A6)";
+                       "Check its tensions (e.g. alpha > 0 with beta = 0, Kuriyama 1996, sec. 4.3.4)";
       result.frames.clear();
       return result;
     }

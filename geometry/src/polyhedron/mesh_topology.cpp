@@ -104,7 +104,7 @@ MeshTopology MeshTopology::build(const std::vector<std::vector<int>>& faces, int
   }
 
   // Rings: the next outgoing half-edge after v->w_i (face Q_i) is the twin of the half-edge
-  // entering v in Q_i, i.e. v->w_{i+1} (spec §2 ring convention).
+  // entering v in Q_i, i.e. v->w_{i+1} (Kuriyama 1996, sec. 4.3.1 ring convention).
   std::vector<std::vector<int>> outgoing(n);
   for (int he = 0; he < h; ++he) outgoing[t.from_[he]].push_back(he);
   t.rings_.assign(n, {});

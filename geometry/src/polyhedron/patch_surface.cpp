@@ -18,7 +18,7 @@ Eigen::Vector3d& subPointSlot(RationalQuarticTriangle& patch, int corner, int ot
 
 double boundaryKappa(int valence) {
   // Boundary edges need no G1; the mirrored ring of size M = 2 (N - 1) gives the regular value
-  // (spec §3.10).
+  // (Kuriyama 1996, sec. 4.2.1).
   return 0.75 * std::cos(2.0 * std::numbers::pi / (2.0 * (valence - 1)));
 }
 
@@ -66,7 +66,7 @@ PatchSurface PatchSurface::build(const PolygonMesh& mesh, const Tensions& tensio
     if (!s.triangulated_.splitPointInside[f]) {
       s.warnings_.push_back("face " + std::to_string(f) +
                             ": split point lies outside the face (concave face?); split it into convex faces "
-                            "for an intuitive shape (seed 001 l.1667)");
+                            "for an intuitive shape (Kuriyama 1996, sec. 4.3.4)");
     }
   }
   const TriangulatedNetwork& net = s.triangulated_;
@@ -89,7 +89,7 @@ PatchSurface PatchSurface::build(const PolygonMesh& mesh, const Tensions& tensio
     }
   }
 
-  // G1 scalars per half-edge (spec §3.6; default per-edge rule, §7-A1).
+  // G1 scalars per half-edge (Kuriyama 1996, sec. 4.3.1; default per-edge rule, sec. 4.2.2).
   s.g1_.assign(topo.halfEdgeCount(), {});
   for (int he = 0; he < topo.halfEdgeCount(); ++he) {
     const int p = topo.from(he);
@@ -140,7 +140,8 @@ PatchSurface PatchSurface::build(const PolygonMesh& mesh, const Tensions& tensio
     return 2.0 / 3.0 * ((1.0 - kp) * v[1] + kp * v[2]) + 1.0 / 3.0 * (kq * v[0] + (1.0 - kq) * v[1]);
   };
 
-  // Ring solves (spec §3.7-3.10): minimum-norm targets, then the per-edge projection (4.19).
+  // Ring solves (Kuriyama 1996, secs. 4.3.1, 4.2.1): minimum-norm targets, then the per-edge
+  // projection (4.19).
   std::vector<int> assigned(patchCount, 0);
   for (int p = 0; p < topo.vertexCount(); ++p) {
     const auto& ring = topo.ringHalfEdges(p);
@@ -153,7 +154,8 @@ PatchSurface PatchSurface::build(const PolygonMesh& mesh, const Tensions& tensio
       targets = ringTargets(r);
     } else {
       // Reflect the ring in the plane through P spanned by the boundary tangent and the
-      // tangent-plane normal, and solve it as a closed ring of size 2 (N - 1) (spec §3.10).
+      // tangent-plane normal, and solve it as a closed ring of size 2 (N - 1) (Kuriyama 1996,
+      // sec. 4.2.1).
       ringSize = 2 * (n - 1);
       const Eigen::Vector3d origin = net.points.row(p).transpose();
       Eigen::Vector3d normal = Eigen::Vector3d::Zero();

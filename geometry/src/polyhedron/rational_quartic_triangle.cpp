@@ -13,7 +13,7 @@ struct Blend {
   Eigen::Vector3d value, dx, dy;
 };
 
-// f(x, y; a, b) = x y (x a + y b) / (x + y) and its partials (spec §3.8).
+// f(x, y; a, b) = x y (x a + y b) / (x + y) and its partials (Kuriyama 1996, sec. 4.3.2).
 Blend blend(double x, double y, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const double s = x + y;
   if (s <= 0.0) return {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};

@@ -56,7 +56,7 @@ TriangulatedNetwork splitFaces(const PolygonMesh& mesh, const MeshTopology& topo
       const int heNext = topology.findHalfEdge(c[k], next), hePrev = topology.findHalfEdge(c[k], prev);
       double s = 0.0;
       if (rule == SplitLegRule::ThesisFaceBased) {
-        s = 1.0 / (2.0 * (1.0 - std::cos(2.0 * std::numbers::pi / m)));  // l.1449, n = sides (§7-A2)
+        s = 1.0 / (2.0 * (1.0 - std::cos(2.0 * std::numbers::pi / m)));  // sec. 4.2.2, n = sides (Kuriyama 1996, sec. 4.2.2)
       } else {
         const int n = topology.valence(c[k]);
         const double delta = topology.isBoundaryVertex(c[k]) ? std::numbers::pi / (n - 1) : 2.0 * std::numbers::pi / n;

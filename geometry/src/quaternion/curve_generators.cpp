@@ -126,7 +126,8 @@ QiInterpolateParams exampleQiInterpolateParams() {
 }
 
 QiFitParams exampleQiFitParams() {
-  // D-SINE-N of seed 003 spec §5.2: one period of 35 (x, sin x), uniform noise 0.5% of the length.
+  // D-SINE-N, a synthetic stand-in for the data of Sakiyama et al. 2001, sec. 3.7: one period of 35
+  // (x, sin x), uniform noise 0.5% of the length.
   QiFitParams p;
   p.points = Eigen::MatrixX3d::Zero(31, 3);
   std::mt19937 gen(12345);

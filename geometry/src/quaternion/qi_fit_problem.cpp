@@ -37,7 +37,7 @@ struct FactorArray<T, 0> {
   std::vector<T> data;
 };
 
-// exp(b w) in the spec's convention (cos|v|, sin|v| v/|v|), v = b w, b >= 0, with |w| given.
+// exp(b w) in the convention (cos|v|, sin|v| v/|v|), v = b w, b >= 0, with |w| given.
 FFDKIT_QI_INLINE Eigen::Quaterniond scaledExp(const Eigen::Vector3d& w, double norm, double b) {
   const double theta = b * norm;
   const double sine = std::sin(theta), cosine = std::cos(theta);  // one sincos
@@ -195,7 +195,7 @@ QiFitProblem::QiFitProblem(const Eigen::MatrixX3d& points, const std::vector<int
     }
     params.push_back(1.0);
     // Panels: the data parameters are breakpoints (each residual closes its integral there), and a gap
-    // wider than 1 / minPanels is split into equal parts, so no panel is wider than spec §4's uniform
+    // wider than 1 / minPanels is split into equal parts, so no panel is wider than the uniform
     // grid. Unlike the union with that grid (cumulativeGaussLegendre, QiChain), dense data add no cuts:
     // the spiral's 27 points per segment give 27 panels instead of 34 (a fifth fewer nodes to sweep per
     // evaluation), and the objective still equals GL-24 on 64 panels to 1e-13 on the 3 / 6 / 12-segment

@@ -1,10 +1,10 @@
 #pragma once
 
 // Internal to qi_fitting.cpp: the least-squares problem of a QI chain fit at fixed parameters u_i
-// (seed 003 eq. (19)), its residual and its Jacobian. Everything that does not depend on the design
-// vector (quadrature nodes and weights, cumulative Bernstein values at the nodes, where each data
-// point closes its integral) is computed once per fit; an evaluation keeps the per-node rotations,
-// so the Jacobian of an accepted step reuses them instead of integrating again.
+// (Sakiyama et al. 2001, eq. (19)), its residual and its Jacobian. Everything that does not depend
+// on the design vector (quadrature nodes and weights, cumulative Bernstein values at the nodes,
+// where each data point closes its integral) is computed once per fit; an evaluation keeps the
+// per-node rotations, so the Jacobian of an accepted step reuses them instead of integrating again.
 
 #include <vector>
 
@@ -16,8 +16,8 @@
 
 namespace ffdkit::geometry::quaternion::detail {
 
-/// The design vector, segment-major (spec §3.4): [eta (startVars) | w_01..w_0k, lambda_0 | ...],
-/// l = exp(lambda); planar w_ij = phi_ij e_z.
+/// The design vector, segment-major (Sakiyama et al. 2001, sec. 3.5): [eta (startVars) |
+/// w_01..w_0k, lambda_0 | ...], l = exp(lambda); planar w_ij = phi_ij e_z.
 struct QiFitLayout {
   int segments = 0;
   int degree = 2;
@@ -66,7 +66,7 @@ class QiFitProblem {
   void analyticNormalEquations(const Eigen::VectorXd& x, const QiFitEvaluation& ev, Eigen::MatrixXd& a,
                                Eigen::VectorXd& g) const;
   /// Forward differences, sqrt(eps) relative steps; a column of segment s recomputes segments >= s
-  /// only (spec §3.5). @return the number of partial evaluations.
+  /// only (Sakiyama et al. 2001, sec. 3.5.1). @return the number of partial evaluations.
   int finiteDifferenceJacobian(const Eigen::VectorXd& x, const QiFitEvaluation& ev, Eigen::MatrixXd& j) const;
   /// Residual rows [begin, end) of the points of segment seg (a break point belongs to the later one).
   int rowBegin(int seg) const { return 3 * firstPoint(seg); }

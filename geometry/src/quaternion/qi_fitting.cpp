@@ -70,8 +70,8 @@ Eigen::Vector3d halfAngleOmega(const Eigen::Vector3d& a, const Eigen::Vector3d& 
 }
 
 // Uniform cubic B-spline interpolating the points at x = 0..N-1 with the paper's end condition
-// Q_0 = Q_1, Q_{N+1} = Q_N (seed 003 eqs. (11)-(12)), solved directly instead of by Gauss-Seidel
-// (eqs. (14)-(16) converge to the same controls; spec §7 A14).
+// Q_0 = Q_1, Q_{N+1} = Q_N (Sakiyama et al. 2001, eqs. (11)-(12)), solved directly instead of by
+// Gauss-Seidel (eqs. (14)-(16) converge to the same controls; Sakiyama et al. 2001, sec. 3.4.1).
 UniformCubicBSpline interpolatingCubicBSpline(const Eigen::MatrixX3d& points) {
   const int n = static_cast<int>(points.rows());
   Eigen::VectorXd lower = Eigen::VectorXd::Constant(n, 1.0), diag = Eigen::VectorXd::Constant(n, 4.0),
@@ -136,8 +136,9 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
   }
   const bool planar = options.dimension == FitDimension::Planar || (options.dimension == FitDimension::Auto && flat);
 
-  // The baseline: least-squares cubic at the same breaks and u_i (spec §3.7). It is also the default
-  // initial curve (spec §3.6 (b)); the paper preset interpolates instead (§3.6 (a)).
+  // The baseline: least-squares cubic at the same breaks and u_i (Sakiyama et al. 2001, sec. 3.7).
+  // It is also the default initial curve (Sakiyama et al. 2001, sec. 3.4); the paper preset
+  // interpolates instead (sec. 3.4.1).
   UniformCubicBSpline baseline = fitLeastSquaresCubicBSpline(points, u, segments);
   const bool interpolating = options.initialCurve == FitInitialCurve::InterpolatingCubic;
   const UniformCubicBSpline init = interpolating ? interpolatingCubicBSpline(points) : baseline;
@@ -189,7 +190,8 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
       }
       prev = next;
     }
-    // Eq. (18) read as the arc length of the initial curve over the segment (spec §7 A12).
+    // Eq. (18) read as the arc length of the initial curve over the segment (
+    // Sakiyama et al. 2001, sec. 3.4.2).
     double l = 0.0;
     const double a = toInit(seg), b = toInit(seg + 1.0);
     const int panels = std::max(4, static_cast<int>(std::ceil(b - a)) * 2);
@@ -200,7 +202,8 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
     x[layout.offset(seg + 1) - 1] = std::log(l);
   }
 
-  // Levenberg-Marquardt with Marquardt scaling (spec §3.5 [rec]); analytic or forward-difference Jacobian.
+  // Levenberg-Marquardt with Marquardt scaling (Sakiyama et al. 2001, sec. 3.5.1 [rec]); analytic
+  // or forward-difference Jacobian.
   detail::QiFitEvaluation ev, trial;
   pb.evaluate(x, ev);
   const Eigen::VectorXd& r = ev.r;

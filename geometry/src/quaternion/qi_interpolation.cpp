@@ -64,7 +64,8 @@ Eigen::MatrixX3d cubicSplineDerivatives(const Eigen::MatrixX3d& points, bool nat
 
 namespace {
 
-// Variable layout of spec §3.3: x = [a01, b01, (ai0, bi0, ai1, bi1)_{i=1..n-1}, l_0..l_{n-1}].
+// Variable layout of Miura 1998, sec. 5: x = [a01, b01, (ai0, bi0, ai1, bi1)_{i=1..n-1},
+// l_0..l_{n-1}].
 struct Layout {
   int n;
   int size() const { return 5 * n - 2; }
@@ -107,7 +108,8 @@ struct System {
   Eigen::MatrixXd jacobian;
 };
 
-// Residual of eqs. (60)-(62) and, when wanted, its Jacobian (spec §3.3) from one Simpson sweep.
+// Residual of eqs. (60)-(62) and, when wanted, its Jacobian (Miura 1998, sec. 5) from one Simpson
+// sweep.
 System evaluate(const Layout& lay, const Eigen::VectorXd& x, QiAngles start, QiAngles end, const Eigen::MatrixX3d& q,
                 int intervals, bool wantJacobian) {
   const Unpacked u = unpack(lay, x, start, end);
@@ -223,7 +225,8 @@ InterpolationResult interpolateQi(const Eigen::MatrixX3d& points, const Interpol
       throw QuaternionCurveError(msg.str());
     }
   }
-  // Normalised data: P_0 at the origin, mean chord 1 (the method is scale-invariant, spec §4).
+  // Normalised data: P_0 at the origin, mean chord 1 (the method is scale-invariant,
+  // Miura 1998, sec. 5.1).
   Eigen::MatrixX3d q = (points.rowwise() - points.row(0)) / meanChord;
 
   Eigen::Vector3d ts = Eigen::Vector3d::UnitX();
@@ -252,7 +255,7 @@ InterpolationResult interpolateQi(const Eigen::MatrixX3d& points, const Interpol
       break;
   }
 
-  // Initial guess from the uniform-knot cubic spline (spec §3.5).
+  // Initial guess from the uniform-knot cubic spline (Miura 1998, sec. 5.2).
   const bool natural = options.endRule == EndTangentRule::NaturalSpline;
   const Eigen::MatrixX3d d = cubicSplineDerivatives(q, natural, ts * (q.row(1) - q.row(0)).norm(),
                                                     te * (q.row(n) - q.row(n - 1)).norm());

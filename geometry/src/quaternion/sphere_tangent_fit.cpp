@@ -19,7 +19,7 @@ Eigen::Vector3d polarPoint(double theta, double phi) {
 
 namespace {
 
-// The maximum of f = 1/2 |a - b|^2 over unit a, b: returned for infeasible trials (spec §3 step 8).
+// The maximum of f = 1/2 |a - b|^2 over unit a, b: returned for infeasible trials.
 constexpr double kPenalty = 2.0;
 
 // Great-arc point between e_x and v, with a fixed detour through e_y when v is antipodal to e_x.
@@ -85,7 +85,8 @@ SphereTangentFitResult fitSphereTangentSegment(const SphereTangentSegmentSpec& s
         << ")";
     throw QuaternionCurveError(msg.str());
   }
-  // Canonical frame: P_a = 0, V_a = e_x (seed 004 l.597-621; twist fixed by FromTwoVectors, spec A11).
+  // Canonical frame: P_a = 0, V_a = e_x (Sphere-tangent report, sec. 5; the twist the paper leaves
+  // free is fixed by FromTwoVectors).
   Canonical c;
   c.toCanonical = Eigen::Quaterniond::FromTwoVectors(spec.startTangent.normalized(), Eigen::Vector3d::UnitX());
   c.endPoint = c.toCanonical * chord;
@@ -99,8 +100,9 @@ SphereTangentFitResult fitSphereTangentSegment(const SphereTangentSegmentSpec& s
   }
   if (options.initialThetaPhi) x0 = *options.initialThetaPhi;
 
-  // Nelder-Mead, coefficients 1 / 2 / 0.5 / 0.5 (spec §3 step 5), from one or several starts
-  // (spec §3 step 6); the first start that solves the problem wins, else the lowest f.
+  // Nelder-Mead, coefficients 1 / 2 / 0.5 / 0.5 (Sphere-tangent report, sec. 5), from one or
+  // several starts (Sphere-tangent report, sec. 5); the first start that solves the problem wins,
+  // else the lowest f.
   SphereTangentFitResult result;
   const auto f = [&](const Eigen::Vector2d& x) {
     ++result.evaluations;

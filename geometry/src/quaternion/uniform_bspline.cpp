@@ -13,7 +13,8 @@
 namespace ffdkit::geometry::quaternion {
 
 namespace {
-// Uniform cubic blending functions (seed 003 eq. (13)) and their derivatives at tau in [0, 1].
+// Uniform cubic blending functions (Sakiyama et al. 2001, eq. (13)) and their derivatives at tau in
+// [0, 1].
 Eigen::Vector4d blending(double t, int order) {
   const double s = 1.0 - t;
   switch (order) {

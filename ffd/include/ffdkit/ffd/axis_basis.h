@@ -8,7 +8,7 @@
 
 namespace ffdkit::ffd {
 
-/// What basis one lattice axis uses (seed 001 eq. (6.1), l.2351: Bernstein or B-spline).
+/// What basis one lattice axis uses (Kuriyama 1996, sec. 6.3.2, eq. (6.1): Bernstein or B-spline).
 /// A description, independent of the number of control points; a Lattice resolves it into an
 /// AxisSpline for its count. Value type; cheap to copy.
 struct AxisBasis {

@@ -9,7 +9,8 @@
 
 namespace ffdkit::ffd {
 
-/// Options for makeBoxLattice(): an oriented box lattice (the default FFD lattice, seed 001 l.2367).
+/// Options for makeBoxLattice(): an oriented box lattice (the default FFD lattice,
+/// Kuriyama 1996, sec. 6.3.2).
 struct BoxLatticeOptions {
   Eigen::Vector3i counts{4, 4, 4};                  ///< (l, m, n), each >= 2.
   std::array<AxisBasis, 3> bases{AxisBasis::bspline(3), AxisBasis::bspline(3),

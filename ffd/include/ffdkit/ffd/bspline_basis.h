@@ -30,7 +30,7 @@ Eigen::VectorXd bsplineBasis(const Eigen::Ref<const Eigen::VectorXd>& knots, int
 
 /// Greville abscissae g_i = (t_(i+1) + ... + t_(i+degree)) / degree, i = 0..count-1: control points
 /// placed at g_i make the spline reproduce the identity map (linear precision), which is what makes
-/// a box lattice's rest map affine (spec widgets-and-ffd.md §2).
+/// a box lattice's rest map affine (Kuriyama 1996, sec. 6.3.2).
 Eigen::VectorXd grevilleAbscissae(const Eigen::Ref<const Eigen::VectorXd>& knots, int count, int degree);
 
 }  // namespace ffdkit::ffd

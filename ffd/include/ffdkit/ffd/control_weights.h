@@ -11,8 +11,8 @@ namespace ffdkit::ffd {
 
 /// The FFD of each embedded point as a weighted sum of control-point displacements, pruned to
 /// the k largest weights. Deformer writes  out = Q + s * F.linear() * sum_ijk B_i(u) B_j(v) B_k(w) (P_ijk - Pbar_ijk)
-/// (seed 001 eq. (6.1) with the partition of unity, see deformer.h): for a fixed embedding the
-/// output is linear in the control points, with weight w_ijk = s * B_i(u) B_j(v) B_k(w) on the
+/// (Kuriyama 1996, eq. (6.1) with the partition of unity, see deformer.h): for a fixed embedding
+/// the output is linear in the control points, with weight w_ijk = s * B_i(u) B_j(v) B_k(w) on the
 /// world displacement F.linear() (P_ijk - Pbar_ijk). That is a linear-blend skin whose joints are
 /// the control points (translation only); glTF export prunes it to 4 or 8 joints per vertex.
 struct ControlWeights {

@@ -11,8 +11,8 @@
 namespace ffdkit::ffd {
 
 /// Options for makeCylindricalLattice(): an EFFD cylindrical lattice (Coquillart 1990;
-/// seed 001 l.2367, Fig. 6-11). Axes: u = radius, v = angle (periodic), w = height, in the
-/// lattice-local frame whose z axis is the cylinder axis.
+/// Kuriyama 1996, sec. 6.3.2, Fig. 6-11). Axes: u = radius, v = angle (periodic), w = height, in
+/// the lattice-local frame whose z axis is the cylinder axis.
 struct CylindricalLatticeOptions {
   Eigen::Vector3i counts{3, 8, 4};  ///< (radial >= 2, angular >= degree+1, height >= 2).
   std::array<AxisBasis, 3> bases{AxisBasis::bspline(3), AxisBasis::periodic(3),

@@ -34,7 +34,7 @@ enum class Precision {
   Single
 };
 
-/// The per-frame half of FFD (the mapping of seed 001 l.2359-2367, eq. (6.1)): given an
+/// The per-frame half of FFD (the mapping of Kuriyama 1996, sec. 6.3.2, eq. (6.1)): given an
 /// Embedding, maps the embedded points through the lattice's current control points.
 ///
 /// Each output point is written as  out = Q + s * F.linear() * sum_ijk B_i(u) B_j(v) B_k(w) (P_ijk - Pbar_ijk)
@@ -62,8 +62,8 @@ class Deformer {
 
   /// Full evaluation with an embedding whose rest lattice has moved since (lattice.restRevision()
   /// differs; the counts must match): out = input + s * F.linear() * sum B (P - Pbar) with the old
-  /// (u,v,w). This is the throttled-re-embedding approximation of seed 001 l.2377, used by
-  /// Pipeline for lattices other than the one being edited; exact when the embedding is fresh.
+  /// (u,v,w). This is the throttled-re-embedding approximation of Kuriyama 1996, sec. 6.3.2, used
+  /// by Pipeline for lattices other than the one being edited; exact when the embedding is fresh.
   /// @throws LatticeError if the lattice counts differ from the embedding's or input has the wrong size.
   const Eigen::MatrixX3d& deformStale(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input);
 

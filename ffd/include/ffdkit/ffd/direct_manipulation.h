@@ -8,7 +8,7 @@
 
 namespace ffdkit::ffd {
 
-/// One non-zero term of X(u,v,w) = sum_ijk B_i(u) B_j(v) B_k(w) P_ijk (seed 001 eq. (6.1)):
+/// One non-zero term of X(u,v,w) = sum_ijk B_i(u) B_j(v) B_k(w) P_ijk (Kuriyama 1996, eq. (6.1)):
 /// the control point's flat index and its tensor-product weight B_i(u) B_j(v) B_k(w).
 struct BasisWeight {
   Eigen::Index point = 0;

@@ -16,7 +16,7 @@
 
 namespace ffdkit::ffd {
 
-/// Per-point result of embedding (seed 001 eq. (6.2)).
+/// Per-point result of embedding (Kuriyama 1996, eq. (6.2)).
 enum class PointStatus : std::uint8_t {
   Inside,   ///< Xbar(u,v,w) = Q with (u,v,w) in the parameter box (epsilon-inclusive).
   Outside,  ///< outside the rest lattice; handled by the lattice's OutsidePolicy.
@@ -78,7 +78,7 @@ struct NoInitAllocator : std::allocator<T> {
 };
 
 /// The (u,v,w) parameters of a set of object points in one lattice's rest lattice: the
-/// precompute half of FFD (seed 001 l.2359-2367: computed once when the object is attached,
+/// precompute half of FFD (Kuriyama 1996, sec. 6.3.2: computed once when the object is attached,
 /// again only when the rest lattice moves relative to the object; editing never re-embeds).
 ///
 /// Internally the points are grouped by lattice cell so that deformation streams the same
@@ -172,7 +172,7 @@ class Embedding {
 };
 
 /// Embeds object points into the lattice's rest lattice: for each Q find (u,v,w) with
-/// Xbar(u,v,w) = Q (seed 001 eq. (6.2)).
+/// Xbar(u,v,w) = Q (Kuriyama 1996, eq. (6.2)).
 /// - Affine rest map (box lattices, Lattice::restIsAffine()): closed form A^-1 (Q - b).
 /// - Otherwise damped Newton on Xbar(uvw) - Q with the analytic Jacobian, starting from the
 ///   factored inverse of an untouched cylinder, the tabulated inverse (large inputs), the

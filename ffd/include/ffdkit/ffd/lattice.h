@@ -15,8 +15,8 @@
 
 namespace ffdkit::ffd {
 
-/// An FFD lattice: l x m x n control points P_ijk (seed 001 l.2343-2351), a basis per axis, the
-/// rest lattice Pbar (the control points before any edit, eq. (6.2)), a frame placing the
+/// An FFD lattice: l x m x n control points P_ijk (Kuriyama 1996, sec. 6.3.2), a basis per axis,
+/// the rest lattice Pbar (the control points before any edit, eq. (6.2)), a frame placing the
 /// lattice-local coordinates in the world, and the outside-point policy.
 ///
 /// Layout: control points are stored one per row of a pointCount x 3 matrix in lattice-LOCAL
@@ -84,7 +84,7 @@ class Lattice {
   /// for an older restRevision are stale.
   std::uint64_t restRevision() const { return restRevision_; }
 
-  /// X(u,v,w) = sum_ijk B_i(u) B_j(v) B_k(w) P_ijk, lattice-local (seed 001 eq. (6.1)).
+  /// X(u,v,w) = sum_ijk B_i(u) B_j(v) B_k(w) P_ijk, lattice-local (Kuriyama 1996, eq. (6.1)).
   /// Parameters outside the box evaluate the end polynomial pieces; periodic axes wrap.
   Eigen::Vector3d evaluate(const Eigen::Vector3d& uvw) const;
   /// Xbar(u,v,w): eq. (6.1) on the rest lattice (the left side of eq. (6.2)).
@@ -131,7 +131,8 @@ class Lattice {
 /// Default box lattice: rest points fill the local box [boxMin, boxMax] (unit box by default)
 /// at the Greville abscissae of each axis (a regular grid for Bernstein and clamped uniform
 /// B-splines of degree 1 and of degree count-1; otherwise the points next to each face sit closer to it),
-/// so that the rest map is affine and embedding is closed form (spec §2). frame = options.frame.
+/// so that the rest map is affine and embedding is closed form (Kuriyama 1996, sec. 6.3.2). frame =
+/// options.frame.
 /// @throws LatticeError on counts < 2, bad bases, boxMax <= boxMin on an axis, non-finite input,
 ///         or a periodic axis (use makeCylindricalLattice for closed axes).
 Lattice makeBoxLattice(const BoxLatticeOptions& options = {});

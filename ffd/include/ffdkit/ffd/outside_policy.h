@@ -2,7 +2,7 @@
 
 namespace ffdkit::ffd {
 
-/// What happens to an object point outside the rest lattice (spec widgets-and-ffd.md §2).
+/// What happens to an object point outside the rest lattice (Kuriyama 1996, sec. 6.3.2).
 /// The boundary test is epsilon-inclusive: a point on a face of the lattice is inside.
 struct OutsidePolicy {
   enum class Kind {

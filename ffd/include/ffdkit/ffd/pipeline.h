@@ -22,8 +22,9 @@ struct LatticeId {
 };
 
 /// When lattices other than the one being edited are re-embedded after their input points or
-/// their rest lattice moved (seed 001 l.2377). Between re-embeddings such a lattice deforms its
-/// new input with its old (u,v,w) (Deformer::deformStale), which is exact while it is at rest.
+/// their rest lattice moved (Kuriyama 1996, sec. 6.3.2). Between re-embeddings such a lattice
+/// deforms its new input with its old (u,v,w) (Deformer::deformStale), which is exact while it is
+/// at rest.
 struct ReembedThrottle {
   enum class Kind {
     Immediate,  ///< re-embed on every update (exact, slowest)
@@ -61,7 +62,7 @@ struct StageReport {
   double embedSeconds = 0.0;   ///< wall time spent in embed() (0 unless reembedded)
 };
 
-/// The FFD pipeline of one object (seed 001 l.2373-2377, Fig. 6-7): a tree of lattices
+/// The FFD pipeline of one object (Kuriyama 1996, sec. 6.3.2, Fig. 6-7): a tree of lattices
 /// evaluated in pre-order (parent before children, siblings by ascending priority, then by
 /// insertion), the output points of one lattice being the input points of the next.
 /// Owns its lattices (value semantics); edit them through lattice(id) or setLattice(id, ...).

@@ -5,7 +5,7 @@
 
 namespace ffdkit::widgets {
 
-/// The three affine widget kinds of seed 001 l.2260: each carries one scalar variation
+/// The three affine widget kinds of Kuriyama 1996, sec. 6.2.1: each carries one scalar variation
 /// (distance, angle in radians, or log of the scale factor).
 enum class AffineKind { Translate, Rotate, Scale };
 

@@ -7,7 +7,7 @@
 namespace ffdkit::widgets {
 
 /// Which affine components (translation, rotation, scale) a binding carries: the 拘束条件 of
-/// seed 001 l.2282. For an attachment it says which components of the cell's motion the
+/// Kuriyama 1996, sec. 6.2.2. For an attachment it says which components of the cell's motion the
 /// affine widget follows; for a cell <-> cell binding which components are copied.
 struct AffineMask {
   bool translate = true;

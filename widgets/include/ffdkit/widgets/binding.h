@@ -8,8 +8,8 @@
 
 namespace ffdkit::widgets {
 
-/// The four binding kinds of spec §5 (束縛関係, seed 001 l.2270-2310), decided by the kinds of
-/// the two widgets bound (l.2400):
+/// The four binding kinds of Kuriyama 1996, sec. 6.2.2 (束縛関係), decided by the kinds of
+/// the two widgets bound (sec. 6.4):
 /// - Attachment: cell -> affine widget; the widget drives the cell's points and follows the
 ///   cell's masked motion.
 /// - Variation: affine -> affine; the variation change is carried through a ConversionRule.
@@ -27,7 +27,7 @@ struct VariationRange {
   friend bool operator==(const VariationRange&, const VariationRange&) = default;
 };
 
-/// Conversion rule of an affine <-> affine binding (変換則, l.2286):
+/// Conversion rule of an affine <-> affine binding (変換則, sec. 6.2.2):
 ///   delta_to = gain * delta_from   (and delta_from = delta_to / gain when driven backwards).
 /// Variations are additive scalars (distance, angle in rad, log scale), so converting distance
 /// to angle to log-scale is a gain with units: rad per unit, unit per rad, ...
@@ -41,7 +41,7 @@ struct ConversionRule {
   std::optional<VariationRange> clamp;
 
   /// A screw: `distancePerTurn` of translation per full turn (2 pi rad) of a rotate widget,
-  /// for a binding from the rotate widget to the translate widget (seed 001 Fig. 6-10).
+  /// for a binding from the rotate widget to the translate widget (Kuriyama 1996, Fig. 6-10).
   static ConversionRule screw(double distancePerTurn);
   friend bool operator==(const ConversionRule&, const ConversionRule&) = default;
 };

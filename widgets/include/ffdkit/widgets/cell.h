@@ -11,7 +11,7 @@
 
 namespace ffdkit::widgets {
 
-/// Cell kinds (幾何胞体, seed 001 l.2258): Point, Edge and Face of the thesis, plus Slab (all
+/// Cell kinds (幾何胞体, Kuriyama 1996, sec. 6.2.1): Point, Edge and Face of the thesis, plus Slab (all
 /// points of one index plane), Box (the 8 corners of one grid hexahedron) and Custom (any list).
 enum class CellKind { Point, Edge, Face, Slab, Box, Custom };
 
@@ -19,7 +19,7 @@ enum class CellKind { Point, Edge, Face, Slab, Box, Custom };
 std::string_view cellKindName(CellKind kind);
 std::optional<CellKind> parseCellKind(std::string_view name);
 
-/// Default attachment mask per cell kind (spec §4, seed 001 l.2280):
+/// Default attachment mask per cell kind (Kuriyama 1996, sec. 6.2.1, sec. 6.2.2):
 /// Point {T}; Edge, Face, Slab, Box {T, R}; Custom {T}.
 AffineMask defaultAttachmentMask(CellKind kind);
 
@@ -51,14 +51,14 @@ struct CellSpec {
 ///         duplicate custom indices.
 std::vector<Eigen::Index> cellPointIndices(const Eigen::Vector3i& counts, const CellSpec& spec);
 
-/// Rest frame of a cell (spec §3): origin at the centroid of `restPoints` (#cell x 3, in the
-/// order of cellPointIndices); axes: Point and Custom the lattice axes; Edge x along the edge;
-/// Face, Slab x along the first grid direction and z along the normal; Box x, y along the
+/// Rest frame of a cell (Kuriyama 1996, sec. 6.2.1): origin at the centroid of `restPoints` (#cell
+/// x 3, in the order of cellPointIndices); axes: Point and Custom the lattice axes; Edge x along
+/// the edge; Face, Slab x along the first grid direction and z along the normal; Box x, y along the
 /// first two grid directions. `spec` supplies the grid layout; `counts` the lattice counts.
 Eigen::Isometry3d cellRestFrame(const CellSpec& spec, const Eigen::Vector3i& counts,
                                 const Eigen::Ref<const Eigen::MatrixX3d>& restPoints);
 
-/// Current affine elements of a cell against its rest points (spec §3):
+/// Current affine elements of a cell against its rest points (Kuriyama 1996, sec. 6.2.1):
 ///   A = Translate(c̄ + translation) * rotation * E diag(scale) E^T * Translate(-c̄),
 /// with c̄ the rest centroid and E the rest frame's rotation. Scale is per cell axis.
 struct CellAffine {
@@ -70,7 +70,8 @@ struct CellAffine {
   Eigen::Affine3d matrix(const Eigen::Isometry3d& restFrame, AffineMask mask = AffineMask::trs()) const;
 };
 
-/// Fits CellAffine from the current points (#cell x 3) against the rest points (spec §3):
+/// Fits CellAffine from the current points (#cell x 3) against the rest points (Kuriyama 1996,
+/// sec. 6.2.1):
 /// Point: translation only. Edge: centroid translation, minimal rotation of the edge direction,
 /// scale = (length ratio, 1, 1). Face/Slab/Box/Custom: centroid translation, Kabsch rotation
 /// (Kabsch 1976), per-axis least-squares scale in the cell's own axes (1 on a degenerate axis).

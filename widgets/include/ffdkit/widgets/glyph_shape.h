@@ -2,9 +2,9 @@
 
 namespace ffdkit::widgets {
 
-/// The default glyph shapes (spec §7: arrow = translate, ring = rotate, cube = scale) in glyph
-/// sizes (WidgetFrame::size, the widget frame's axes): the one home of the glyph-size mapping, so
-/// that what WidgetModel::pick hits is what app::SceneView draws.
+/// The default glyph shapes (Kuriyama 1996, sec. 6.4: arrow = translate, ring = rotate, cube =
+/// scale) in glyph sizes (WidgetFrame::size, the widget frame's axes): the one home of the
+/// glyph-size mapping, so that what WidgetModel::pick hits is what app::SceneView draws.
 struct GlyphShape {
   /// The arrow runs from the widget's origin along +x for this many sizes.
   static constexpr double arrowLength = 1.0;

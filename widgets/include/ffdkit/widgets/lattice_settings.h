@@ -10,7 +10,8 @@
 
 namespace ffdkit::widgets {
 
-/// How often lattices other than the dragged one are re-embedded (spec §6, seed 001 l.2377).
+/// How often lattices other than the dragged one are re-embedded (Kuriyama 1996, sec. 6.2.3,
+/// sec. 6.3.2).
 enum class ReembedKind { Immediate, EveryN, OnRelease };
 struct ReembedPolicy {
   ReembedKind kind = ReembedKind::Immediate;
@@ -21,16 +22,17 @@ struct ReembedPolicy {
 std::string_view reembedKindName(ReembedKind kind);  // "immediate", "every-n", "on-release"
 std::optional<ReembedKind> parseReembedKind(std::string_view name);
 
-/// Per-lattice FFD settings that a widget file carries (spec §2, §6, §8), in the FFD engine's
-/// own types: the model stores them and WidgetModel::ffdLattice hands them to ffd::Lattice.
+/// Per-lattice FFD settings that a widget file carries (Kuriyama 1996, secs. 6.3.2, 6.2.3, 6.3.3),
+/// in the FFD engine's own types: the model stores them and WidgetModel::ffdLattice hands them to
+/// ffd::Lattice.
 struct LatticeSettings {
   /// Per axis (u, v, w). Bernstein by default (Sederberg & Parry FFD): valid for any count.
   std::array<ffd::AxisBasis, 3> basis{ffd::AxisBasis::bernstein(), ffd::AxisBasis::bernstein(),
                                       ffd::AxisBasis::bernstein()};
   ffd::OutsidePolicy outside{};
   ReembedPolicy reembed{};
-  /// Set for a cylindrical (EFFD) rest lattice (seed 001 Fig. 6-11): the analytic cylinder its
-  /// rest points sample, which gives Newton embedding its initial guess (radius, angle,
+  /// Set for a cylindrical (EFFD) rest lattice (Kuriyama 1996, Fig. 6-11): the analytic cylinder
+  /// its rest points sample, which gives Newton embedding its initial guess (radius, angle,
   /// height). Without it, points near the axis can converge to the mirrored angle.
   std::optional<ffd::CylinderRestShape> cylinder;
 };

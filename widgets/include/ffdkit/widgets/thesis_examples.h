@@ -6,7 +6,7 @@
 
 namespace ffdkit::widgets {
 
-/// The deformation tools of seed 001 ch. 6's figures (spec §9), built with the scripting API.
+/// The deformation tools of the figures of Kuriyama 1996, sec. 6.5, built with the scripting API.
 /// Tests reproduce the figures from them, widgets/examples/*.json hold them as widget files,
 /// and the app can offer them as starting points. Each returns the model and the ids a script
 /// needs.

@@ -14,8 +14,8 @@
 
 namespace ffdkit::widgets {
 
-/// Glyph of an affine widget (spec §7): the default shape per kind is "arrow" (translate),
-/// "ring" (rotate), "cube" (scale); any other name refers to a part of a parts library
+/// Glyph of an affine widget (Kuriyama 1996, sec. 6.4): the default shape per kind is "arrow"
+/// (translate), "ring" (rotate), "cube" (scale); any other name refers to a part of a parts library
 /// (crank handle, lever, screw...) that the renderer resolves. `size` is in widget units.
 struct Glyph {
   std::string shape;
@@ -26,8 +26,9 @@ struct Glyph {
   }
 };
 
-/// Plain data of a whole widget model: what a widget file holds (spec §8). Lists are in id
-/// order. WidgetModel::toData / WidgetModel::fromData convert; fromData validates everything.
+/// Plain data of a whole widget model: what a widget file holds (Kuriyama 1996, sec. 6.3.3). Lists
+/// are in id order. WidgetModel::toData / WidgetModel::fromData convert; fromData validates
+/// everything.
 struct LatticeData {
   WidgetId id;
   std::string name;

@@ -10,7 +10,7 @@ enum class WidgetErrorCode {
   UnknownWidget,    ///< an id or name that the model does not hold
   InvalidArgument,  ///< a value out of range (zero gain, bad counts, index outside the grid...)
   InvalidBinding,   ///< a pair of widgets that cannot be bound, or a self binding
-  InconsistentLoop, ///< a binding that would close an inconsistent loop (spec §5)
+  InconsistentLoop, ///< a binding that would close an inconsistent loop (Kuriyama 1996, sec. 6.2.2)
   GestureState,     ///< begin without end, update without begin...
 };
 

@@ -35,7 +35,7 @@ std::string toString(BindingId id);
 std::optional<WidgetId> parseWidgetId(std::string_view text);
 std::optional<BindingId> parseBindingId(std::string_view text);
 
-/// The three widget families of seed 001 ch. 6 (l.2260, l.2314).
+/// The three widget families of Kuriyama 1996, ch. 6 (sec. 6.2.1, sec. 6.2.3).
 enum class WidgetType { Lattice, Cell, Affine };
 std::string_view widgetTypeName(WidgetType type);
 

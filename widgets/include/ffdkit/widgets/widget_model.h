@@ -34,8 +34,8 @@ struct LatticeOptions {
 
 struct AffineOptions {
   std::string name;  ///< unique; "" -> "<kind><N>"
-  /// Relative to the cell's rest frame (origin at the cell centroid, axes of spec §3): a
-  /// translate widget moves along placement's x, a rotate widget turns about its z. For a
+  /// Relative to the cell's rest frame (origin at the cell centroid, axes of Kuriyama 1996,
+  /// sec. 6.2.1): a translate widget moves along placement's x, a rotate widget turns about its z. For a
   /// free widget (no cell) this is its world frame.
   Eigen::Affine3d placement = Eigen::Affine3d::Identity();
   std::optional<AffineMask> mask;  ///< attachment mask; default by cell kind
@@ -69,15 +69,17 @@ struct WidgetModelState {
   std::vector<std::pair<WidgetId, double>> variations;
 };
 
-/// The headless widget model of seed 001 ch. 6 (spec §3-§6): lattice widgets that own their
-/// lattice's control points, cell widgets on them, affine widgets attached to cells, bindings,
-/// and gestures propagated breadth-first. A regular value type: copy it to snapshot everything
-/// (a copy does not carry an active gesture; its points are those of the moment it was taken).
+/// The headless widget model of Kuriyama 1996, ch. 6 (secs. 6.2.1-6.2.3): lattice widgets that own
+/// their lattice's control points, cell widgets on them, affine widgets attached to cells,
+/// bindings, and gestures propagated breadth-first. A regular value type: copy it to snapshot
+/// everything (a copy does not carry an active gesture; its points are those of the moment it was
+/// taken).
 ///
 /// Frames. A lattice's control points are lattice-local; world = latticeFrame(lattice) * local.
-/// An attached affine widget's frame is F = L * mask(A_cell) * C0 * O (spec §4): L the lattice
-/// frame, A_cell the cell's fitted affine elements, C0 the cell's rest frame, O the placement.
-/// Motions use F's rigid part (polar decomposition), so distances and angles are world-true.
+/// An attached affine widget's frame is F = L * mask(A_cell) * C0 * O (Kuriyama 1996, sec. 6.2.1):
+/// L the lattice frame, A_cell the cell's fitted affine elements, C0 the cell's rest frame, O the
+/// placement. Motions use F's rigid part (polar decomposition), so distances and angles are
+/// world-true.
 ///
 /// Every throwing member throws WidgetError and leaves the model unchanged.
 class WidgetModel {
@@ -216,7 +218,7 @@ class WidgetModel {
   std::vector<WidgetId> children(WidgetId lattice) const;  ///< sibling order
   std::vector<WidgetId> roots() const;                     ///< sibling order
   /// The lattices in pre-order (parent before children, siblings in order): the order in which
-  /// the FFD pipeline deforms (spec §6, seed 001 l.2375).
+  /// the FFD pipeline deforms (Kuriyama 1996, sec. 6.2.3, sec. 6.3.2).
   std::vector<WidgetId> pipelineOrder() const;
   /// The lattice `root` and its subtree in the same pre-order (the one traversal every pipeline,
   /// the deformer and the controller use). @throws UnknownWidget, InvalidArgument (not a lattice).
@@ -229,7 +231,7 @@ class WidgetModel {
   const std::vector<Eigen::Index>& cellIndices(WidgetId cell) const;
   Eigen::MatrixX3d cellWorldPoints(WidgetId cell) const;
   Eigen::Isometry3d cellRestFrame(WidgetId cell) const;   ///< lattice-local
-  CellAffine cellAffine(WidgetId cell) const;             ///< lattice-local fit (spec §3)
+  CellAffine cellAffine(WidgetId cell) const;             ///< lattice-local fit (Kuriyama 1996, sec. 6.2.1)
   /// The cell's current frame in the world (rigid) with its mean scale as size.
   WidgetFrame cellFrame(WidgetId cell) const;
   std::vector<WidgetId> affinesOf(WidgetId cell) const;
@@ -240,7 +242,7 @@ class WidgetModel {
   const Eigen::Affine3d& placement(WidgetId affine) const;
   double variation(WidgetId affine) const;
   const Glyph& glyph(WidgetId affine) const;
-  /// World frame (rigid) and glyph size of an affine widget (spec §4).
+  /// World frame (rigid) and glyph size of an affine widget (Kuriyama 1996, sec. 6.2.1).
   WidgetFrame affineFrame(WidgetId affine) const;
   /// The full (not necessarily rigid) frame an affine widget's placement is relative to:
   /// L * mask(A_cell) * C0 for an attached widget, the identity for a free one; so the widget's
@@ -249,7 +251,8 @@ class WidgetModel {
   /// placementBase^-1 * M * placementBase * placement.
   Eigen::Affine3d placementBase(WidgetId affine) const;
 
-  // ---- gestures (spec §4, §5) -------------------------------------------------------------
+  // ---- gestures (Kuriyama 1996, secs. 6.2.1, 6.2.2)
+  // -------------------------------------------------------------
   /// Starts a gesture on a widget: records the gesture-start state and the breadth-first
   /// visiting order over the bindings. @throws GestureState if one is active; UnknownWidget.
   void beginGesture(WidgetId id);

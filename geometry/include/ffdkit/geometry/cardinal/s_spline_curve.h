@@ -6,7 +6,7 @@
 
 namespace ffdkit::geometry::cardinal {
 
-/// How an S-spline supplies the data beyond its ends (seed 001 l.975-998).
+/// How an S-spline supplies the data beyond its ends (Kuriyama 1996, sec. 3.2.4).
 enum class SSplineEnd {
   Open,     ///< P_i = P_0 for i < 0, P_i = P_s for i > s
   Closed,   ///< P_i = P_{i mod s}; the input holds s distinct points (P_s := P_0)
@@ -20,16 +20,17 @@ struct SSplineCurveOptions {
   Eigen::Vector3d startTangent = Eigen::Vector3d::Zero();  ///< dP_0 for SSplineEnd::Tangent
   Eigen::Vector3d endTangent = Eigen::Vector3d::Zero();    ///< dP_s for SSplineEnd::Tangent
   /// Divide the tangents by lambda_w so that they set the end derivative up to the
-  /// truncation residue (spec §7 item 6). false is the thesis behaviour.
+  /// truncation residue (Kuriyama 1996, sec. 3.2.4). false is the thesis behaviour.
   bool scaleTangent = false;
-  int degree = 3;      ///< odd B-spline degree; 5..9 need beta2 = 0 (spec §2.2)
-  /// false: the unclipped variant of spec §2.5 (exactly C2 / G2-beta, approximate interpolation).
+  int degree = 3;      ///< odd B-spline degree; 5..9 need beta2 = 0 (Kuriyama 1996, sec. 3.2.2)
+  /// false: an unclipped variant, not in the thesis (exactly C2 / G2-beta, approximate
+  /// interpolation).
   bool clipped = true;
 };
 
 /// S-spline curve Q(x) = sum_i P_i S_i(x), x in [0, s] (open) or [0, s) periodic (closed);
 /// data point P_k sits at x = k. Interpolates exactly: Q(k) = P_k.
-/// @see seed 001 eq. (3.11), l.969-1008; spec §2.6.
+/// @see Kuriyama 1996, sec. 3.2.4, eq. (3.11).
 class SSplineCurve {
  public:
   /// points: #P x 3. Open/tangent need >= 2 points (s >= 1); closed needs >= 3 distinct points.

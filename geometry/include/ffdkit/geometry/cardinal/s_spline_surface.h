@@ -19,7 +19,7 @@ struct SSplineSurfaceOptions {
 };
 
 /// Tensor-product S-spline surface Q(u,v) = sum_j [sum_i P_ij S_i(u)] S_j(v) (eq. 3.11):
-/// Q(i, j) = P_ij exactly. Open ends repeat the boundary rows/columns (l.975-979).
+/// Q(i, j) = P_ij exactly. Open ends repeat the boundary rows/columns (sec. 3.2.4).
 /// The extended grid is built once; evaluation costs (2w)^2 basis products.
 class SSplineSurface {
  public:

@@ -14,14 +14,14 @@ namespace ffdkit::geometry::cardinal {
 
 /// How the shape (auxiliary) control points Phat of a sigma-spline are chosen by default.
 enum class ShapeMode {
-  Midpoint,   ///< Phat_i = (P_i + P_{i+1}) / 2 (Fig. 3-13, l.1195); open ends by point reflection
-  Heuristic,  ///< eq. (3.26), similarity invariant, local (l.1155-1201, spec §3.4)
-  Cubic,      ///< the unique shape points making every interval cubic (eq. 3.28/3.33, spec §3.5)
+  Midpoint,   ///< Phat_i = (P_i + P_{i+1}) / 2 (Fig. 3-13, sec. 3.3.4); open ends by point reflection
+  Heuristic,  ///< eq. (3.26), similarity invariant, local (sec. 3.3.4, Kuriyama 1996, sec. 3.3.4)
+  Cubic,      ///< the unique shape points making every interval cubic (eq. 3.28/3.33, Kuriyama 1996, sec. 3.3.5)
 };
 
 /// End derivatives for the cubic mode, with respect to the LOCAL parameter of the end
 /// interval (Q'(t_0) = startSlope / Delta_0). Unset: chord rule P_1 - P_0 and P_n - P_{n-1}
-/// (spec §7 item 13). Ignored for closed curves.
+/// (Kuriyama 1996, sec. 3.2.2). Ignored for closed curves.
 struct EndSlopes {
   std::optional<Eigen::Vector3d> start;
   std::optional<Eigen::Vector3d> end;
@@ -60,7 +60,7 @@ SigmaCurve interpolateSigmaCurve(const SigmaKnots& knots, const Eigen::MatrixX3d
                                  ShapeMode mode = ShapeMode::Cubic, const EndSlopes& slopes = {});
 
 /// End data of the bicubic mode; everything is in local parameters of the end intervals.
-/// Unset fields take the defaults of spec §3.5: chord rule for the cross-boundary
+/// Unset fields take the defaults of Kuriyama 1996, sec. 3.3.5: chord rule for the cross-boundary
 /// derivatives, 0 for the corner twists.
 struct SurfaceEndData {
   std::optional<Eigen::MatrixX3d> uStart;  ///< dQ/du at u = t_0 for every v-knot j (#Pcols x 3)
@@ -75,8 +75,8 @@ struct SigmaSurfaceOptions {
   ShapeMode mode = ShapeMode::Cubic;
   SurfaceEndData ends;  ///< Cubic mode only
   /// Cubic mode: use the thesis's literal zero for the twist-like end data of the Pv rows
-  /// (l.1265) instead of the consistent rule (spec §7 item 12). For fidelity tests only:
-  /// the result is then not bicubic.
+  /// (sec. 3.3.5) instead of the consistent rule (Kuriyama 1996, sec. 3.3.5). For fidelity tests
+  /// only: the result is then not bicubic.
   bool thesisZeroCrossDefaults = false;
   /// Cubic mode: also compute Puv by the v-route and report the difference.
   bool crossCheckRoutes = false;
@@ -90,8 +90,8 @@ struct SigmaSurfaceResult {
 
 /// Interpolating sigma-spline surface through the grid P (knotsU.pointCount() x
 /// knotsV.pointCount()) with default shape grids: Pu along u per knot row, Pv along v per knot
-/// column, Puv by the heuristic average (Heuristic/Midpoint, l.1185-1193) or by the bicubic
-/// rule with consistent cross-end data (Cubic, spec §3.5).
+/// column, Puv by the heuristic average (Heuristic/Midpoint, sec. 3.3.4) or by the bicubic
+/// rule with consistent cross-end data (Cubic, Kuriyama 1996, sec. 3.3.5).
 /// @throws CardinalSplineError on size mismatch.
 SigmaSurfaceResult interpolateSigmaSurface(const SigmaKnots& knotsU, const SigmaKnots& knotsV,
                                            const PointGrid& points,

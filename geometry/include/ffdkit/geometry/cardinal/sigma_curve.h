@@ -15,7 +15,7 @@ using QuarticBezier = std::array<Eigen::Vector3d, 5>;
 /// b0 = P_i, b2 = Phat_i, b4 = P_{i+1},
 /// b1 = C_{i,1} P_i + Chat_{i,1} Phat_i + Chat_{i-1,4} Phat_{i-1},
 /// b3 = C_{i+1,0} P_{i+1} + Chat_{i,3} Phat_i + Chat_{i+1,0} Phat_{i+1}.
-/// @see spec §3.2 ("per-interval Bezier form"), seed 001 eq. (3.17)-(3.24).
+/// @see Kuriyama 1996, sec. 3.3.2, eqs. (3.17)-(3.24) (in per-interval Bezier form).
 QuarticBezier sigmaIntervalBezier(const SigmaKnots& knots, int i, const Eigen::Vector3d& p0,
                                   const Eigen::Vector3d& p1, const Eigen::Vector3d& shapePrev,
                                   const Eigen::Vector3d& shape, const Eigen::Vector3d& shapeNext);

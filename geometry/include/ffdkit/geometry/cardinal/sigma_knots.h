@@ -9,7 +9,8 @@ namespace ffdkit::geometry::cardinal {
 struct SigmaKnotsOptions {
   bool closed = false;  ///< periodic knots: t_n is the period end, beta2 has n entries
   /// Open ends only: widths of the phantom intervals Delta_{-1} and Delta_n, which the
-  /// thesis leaves undefined (spec §7 item 10). Unset: Delta_{-1} = Delta_0, Delta_n = Delta_{n-1}.
+  /// thesis leaves undefined (Kuriyama 1996, sec. 3.2.2). Unset: Delta_{-1} = Delta_0, Delta_n =
+  /// Delta_{n-1}.
   std::optional<double> phantomBefore;
   std::optional<double> phantomAfter;
 };
@@ -18,7 +19,7 @@ struct SigmaKnotsOptions {
 /// quartic B-splines) with a tension beta2_i >= 0 per knot, and the basis coefficients of
 /// eq. (3.18)-(3.23) (D_i, C_{i,0}, C_{i,1}, Chat_{i,0,1,3,4}). Indices may run one past the
 /// ends: open knots use the phantom widths, closed knots wrap modulo n.
-/// @see seed 001 l.1070-1124; spec §3.2.
+/// @see Kuriyama 1996, sec. 3.3.2, sec. 3.3.2.
 class SigmaKnots {
  public:
   /// knots: n+1 strictly increasing values (n >= 1 open, n >= 3 closed), gaps

@@ -16,8 +16,9 @@ SigmaKnots refinedKnots(const SigmaKnots& knots, const std::vector<double>& newK
 
 /// Knot insertion for a sigma-spline curve: the geometry is unchanged. Each quartic piece is
 /// split by de Casteljau; Ptilde_i = b0, Phattilde_i = b2 of the new pieces; open-end shape
-/// points solve b1 of the first and b3 of the last piece (spec §3.6, §7 item 14).
-/// @see seed 001 l.1277-1291.
+/// points solve b1 of the first and b3 of the last piece (Kuriyama 1996, secs. 3.3.6, 3.2.2 item
+/// 14).
+/// @see Kuriyama 1996, sec. 3.3.6.
 SigmaCurve refine(const SigmaCurve& curve, const std::vector<double>& newKnots);
 
 /// Knot insertion for a sigma-spline surface in u and v (row by row, then column by column).

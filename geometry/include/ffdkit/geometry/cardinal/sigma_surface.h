@@ -20,7 +20,7 @@ using QuarticPatch = std::array<std::array<Eigen::Vector3d, 5>, 5>;
 ///             Pv knotsU.pointCount() x knotsV.shapeCount(),
 ///             Puv knotsU.shapeCount() x knotsV.shapeCount();
 /// shape rows/columns are offset by shapeFirst() (grid index r <-> shape index r + shapeFirst()).
-/// Q(t^u_i, t^v_j) = P_ij for any shape grids. @see seed 001 l.1126-1153; spec §3.3.
+/// Q(t^u_i, t^v_j) = P_ij for any shape grids. @see Kuriyama 1996, sec. 3.3.3, sec. 3.3.3.
 struct SigmaSurface {
   SigmaKnots knotsU;
   SigmaKnots knotsV;
@@ -29,7 +29,8 @@ struct SigmaSurface {
   /// @throws CardinalSplineError if the grid sizes do not match the knots.
   void validate() const;
 
-  /// Patch over u-interval i and v-interval j (computed in two curve steps, spec §3.3).
+  /// Patch over u-interval i and v-interval j (computed in two curve steps, Kuriyama 1996,
+  /// sec. 3.3.3).
   QuarticPatch patch(int i, int j) const;
 
   /// d^du/du d^dv/dv Q(u, v) in global parameters (du, dv in 0..4). Closed directions

@@ -23,7 +23,7 @@ struct CurveDescription {
   int degree = 3;                     ///< BSpline only
   std::vector<double> knots;          ///< BSpline only, see bsplineCurve()
   std::optional<Plane> plane;         ///< drawing plane; default: fitted if the curve is planar
-  double influence = 1.0;             ///< w_c > 0 of the sweep weights g (l.1759-1761)
+  double influence = 1.0;             ///< w_c > 0 of the sweep weights g (sec. 5.2.1)
 };
 
 /// A whole network, plain data.
@@ -31,9 +31,10 @@ struct CurveNetworkDescription {
   std::vector<CurveDescription> curves;
 };
 
-/// Options of network construction (spec §4.3-4.6).
+/// Options of network construction (Kuriyama 1996, sec. 5.3.3).
 struct CurveNetworkOptions {
-  /// tau: two curves closer than this intersect. 0 -> 0.01 x bounding-box diagonal (spec §4.3).
+  /// tau: two curves closer than this intersect. 0 -> 0.01 x bounding-box diagonal (
+  /// Kuriyama 1996, sec. 5.3.3).
   double intersectionTolerance = 0.0;
   /// Crossing angle below which two curves count as tangent / near-coincident (error), degrees.
   double minimumCrossingAngleDegrees = 2.0;
@@ -43,7 +44,8 @@ struct CurveNetworkOptions {
   /// thesis' rule N.1-N.4 (e.g. a sheet of straight curves): normals get n . hint >= 0 there.
   Eigen::Vector3d orientationHint = Eigen::Vector3d::UnitZ();
   /// Rule (c): fill every open chain that runs from a free end to a free end, closed by a
-  /// virtual side (spec §3.7 c, §4.7 item 4: only when the user asks). false: report them.
+  /// virtual side (Kuriyama 1996, sec. 5.2.4 c, sec. 5.3.4 item 4: only when the user asks). false:
+  /// report them.
   bool fillOpenRegions = false;
 };
 
@@ -63,12 +65,12 @@ struct NetworkVertex {
   enum class Kind {
     Crossing,   ///< two curves cross
     TJunction,  ///< an open curve ends on a curve passing through
-    Multiple,   ///< >= 3 curves (spec §3.7 a)
+    Multiple,   ///< >= 3 curves (Kuriyama 1996, sec. 5.2.4 a)
     FreeEnd     ///< the free end of an open curve (not an intersection)
   };
   Kind kind = Kind::Crossing;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< tangent-plane normal, §4.5
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< tangent-plane normal, Kuriyama 1996, sec. 5.3.3
   bool normalFromRule = false;  ///< true: N.1-N.4; false: propagated or from the hint
   std::vector<CurvePoint> curves;  ///< one entry per curve through or ending at the vertex
 };
@@ -82,7 +84,7 @@ struct HalfEdge {
   double tFrom = 0.0, tTo = 0.0;
   int sign = 1;
   int twin = -1;
-  int next = -1;   ///< deterministic next (§4.6), -1 at a dead end
+  int next = -1;   ///< deterministic next (Kuriyama 1996, sec. 5.3.3), -1 at a dead end
   int face = -1;   ///< -1: not on a face (dangling, or on an open chain)
   int run = -1;    ///< the run of its edge (a dangling piece is a run of its own)
   bool dangling = false;
@@ -95,19 +97,21 @@ struct Transversal {
   int vertex = -1;
   std::vector<CurvePoint> members;
   std::vector<int> directions;  ///< +-1 per member
-  double influence = 1.0;       ///< mean influence of the members (w of g, l.1761)
+  double influence = 1.0;       ///< mean influence of the members (w of g, sec. 5.2.1)
 };
 
-/// A run (spec §4.7): the maximal piece of one curve between vertices where another curve
-/// passes through (or the curve ends). It carries the sweep shared by the faces on both sides.
+/// A run (Kuriyama 1996, sec. 5.3.4): the maximal piece of one curve between vertices where another
+/// curve passes through (or the curve ends). It carries the sweep shared by the faces on both
+/// sides.
 struct Run {
   int curve = -1;
   double tStart = 0.0, tEnd = 0.0;  ///< tEnd > tStart, increasing curve parameter
   int vertexStart = -1, vertexEnd = -1;
   std::vector<int> edges;           ///< half-edges with sign +1, in order
   Transversal atStart, atEnd;
-  /// Affine-matrix variant (§3.4): M-+(u) = c-+ (u^2 - Delta u) + l-+(u) I, shared by both faces.
-  /// Off (parallel sweeps with influence weights, §3.3) unless set by fairRunSweeps().
+  /// Affine-matrix variant (Kuriyama 1996, sec. 5.2.1): M-+(u) = c-+ (u^2 - Delta u) + l-+(u) I,
+  /// shared by both faces. Off (parallel sweeps with influence weights, Kuriyama 1996, sec. 5.2.1)
+  /// unless set by fairRunSweeps().
   bool affine = false;
   Eigen::Matrix3d cStart = Eigen::Matrix3d::Zero();  ///< c_- (start transversal), row j col k
   Eigen::Matrix3d cEnd = Eigen::Matrix3d::Zero();    ///< c_+ (end transversal)
@@ -168,7 +172,7 @@ struct CurveNetwork {
 /// request open regions closed by a virtual side (rule (c)).
 /// Non-fatal findings go to CurveNetwork::notes: near misses (two curves within 3 tau that do
 /// not meet), open regions left empty, orientations taken from the hint, ambiguous turns.
-/// @see seed 001 l.2127-2173 (IF3D a.1-a.4, L.1-L.8, N.1-N.4), l.1946-2028, spec §3.7, §4.3-4.7.
+/// @see Kuriyama 1996, secs. 5.3.3, 5.3.4 (IF3D a.1-a.4, L.1-L.8, N.1-N.4), sec. 5.2.4.
 /// @throws CurveInputError for a curve that cannot be built; CurveNetworkError naming the
 ///   curve(s) and the place for: a curve meeting no other curve (with its nearest miss), two
 ///   curves that are tangent or nearly coincident, a correction that cannot meet the

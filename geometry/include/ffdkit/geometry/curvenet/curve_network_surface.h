@@ -13,7 +13,7 @@ struct CurveNetworkSurfaceParams {
   CurveNetworkDescription network;   ///< the curves (>= 2)
   CurveNetworkOptions networkOptions;  ///< tolerance tau (0: 1% of the diagonal), angles, hint
   PatchOptions patch;                ///< blending exponent m (default 3)
-  bool fairing = false;              ///< affine-matrix sweeps with thin-plate fairing (§3.4)
+  bool fairing = false;              ///< affine-matrix sweeps with thin-plate fairing (Kuriyama 1996, sec. 5.2.1)
 
   /// @throws std::invalid_argument naming the offending field.
   void validate() const;

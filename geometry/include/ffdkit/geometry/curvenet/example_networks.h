@@ -7,8 +7,9 @@
 
 namespace ffdkit::geometry::curvenet {
 
-/// The height field of the spec's prototype (§10), used to lift planar fixtures into 3D:
-/// H = 0.3x^2 - 0.2xy + 0.25y^2 + 0.1x^3 + 0.05y^3 + 0.2x^2y - 0.15xy^2 + 0.1 sin 2x cos 1.5y.
+/// The height field of an independent prototype used for cross-checks, used to lift planar fixtures
+/// into 3D: H = 0.3x^2 - 0.2xy + 0.25y^2 + 0.1x^3 + 0.05y^3 + 0.2x^2y - 0.15xy^2 + 0.1 sin 2x cos
+/// 1.5y.
 double prototypeHeight(double x, double y);
 
 /// F3 (Fig. 5-4): 3 closed cubic splines through 8 points at 45 deg on the unit circles in the

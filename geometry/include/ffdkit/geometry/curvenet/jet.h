@@ -6,7 +6,7 @@ namespace ffdkit::geometry::curvenet {
 
 /// A scalar with its first and second partial derivatives in the domain coordinates (x, y):
 /// the patch evaluator is written once over jets so that values, tangents (G1 tests, normals)
-/// and curvatures (G2 tests) come from the same code. @see spec §5 "Derivatives".
+/// and curvatures (G2 tests) come from the same code. @see Kuriyama 1996, sec. 5.3.4 "Derivatives".
 struct Jet {
   double v = 0.0, x = 0.0, y = 0.0, xx = 0.0, xy = 0.0, yy = 0.0;
 

@@ -11,16 +11,17 @@ namespace ffdkit::geometry::curvenet {
 /// Options of the N-sided patch.
 struct PatchOptions {
   /// m of B_i^m. Default m = n + 1 = 3 for C^2 cubic networks: G^3 on regular edges, G^2 with
-  /// the special rules (spec §3.6 (ii)-(iii), A2). m = 1 loses G^2 (negative control P7).
+  /// the special rules (Kuriyama 1996, sec. 5.2.3 (ii)-(iii)). m = 1 loses G^2 (negative control
+  /// P7).
   int blendingExponent = 3;
 };
 
-/// The sweep of a run (spec §3.3, eq. (5.2), seed 001 l.1745-1761), shared by the faces on both
+/// The sweep of a run (Kuriyama 1996, sec. 5.2.1, eq. (5.2)), shared by the faces on both
 /// sides: F(u~, v) = g-(u~) C^-(v) + g+(u~) C^+(v) + K(tStart + Delta u~), with C^-+ the
-/// transversal(s) at the run's start/end reparametrised outward from the vertex (A1), v > 0 on
+/// transversal(s) at the run's start/end reparametrised outward from the vertex, v > 0 on
 /// the left of the run, v < 0 on the right (the transversal continued through the vertex).
-/// Both transversals take the same v, in their own parameter units (spec key rule, A8).
-/// u~ and v are jets in the domain coordinates.
+/// Both transversals take the same v, in their own parameter units (the thesis leaves the units
+/// open). u~ and v are jets in the domain coordinates.
 VectorJet runSweep(const CurveNetwork& network, int run, const Jet& uTilde, const Jet& v);
 
 /// The patch of face `face` at domain point p of the regular N-gon (N = #sides), with first

@@ -21,11 +21,11 @@ struct Plane {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
 };
 
-/// Knot spacing for interpolating a polyline. @see seed 001 l.2109-2125, spec §4.2, A15.
+/// Knot spacing for interpolating a polyline. @see Kuriyama 1996, secs. 5.3.1, 5.3.3.
 enum class KnotSpacing {
-  ChordLength,     ///< dt_k proportional to |P_{k+1} - P_k| (l.2115)
-  Centripetal,     ///< dt_k proportional to |P_{k+1} - P_k|^(1/2) (l.2119, read as in A15)
-  AffineInvariant  ///< Nielson-Foley: dt_k = sqrt(d^T S^-1 d), S the in-plane covariance (l.2121)
+  ChordLength,     ///< dt_k proportional to |P_{k+1} - P_k| (sec. 5.3.3)
+  Centripetal,     ///< dt_k proportional to |P_{k+1} - P_k|^(1/2) (sec. 5.3.3)
+  AffineInvariant  ///< Nielson-Foley: dt_k = sqrt(d^T S^-1 d), S the in-plane covariance (sec. 5.3.3)
 };
 
 /// One segment of a piecewise polynomial: K(t) = sum_j coefficients.row(j) (t - t0)^j on [t0, t1].
@@ -39,7 +39,7 @@ struct CurveSegment {
 /// B-spline and every interpolating spline converts to this exactly).
 ///
 /// Evaluation is defined for every real t: a closed curve is periodic, an open curve is
-/// continued by the polynomial of its end segment (spec A7: the transversal sweeps reach past a
+/// continued by the polynomial of its end segment (sec. 5.2.1: the transversal sweeps reach past a
 /// segment's far vertex and must not be clamped).
 class NetworkCurve {
  public:
@@ -70,9 +70,9 @@ class NetworkCurve {
   bool closed_ = false;
 };
 
-/// C^2 cubic spline through the rows of points (the ch. 2 tangent system (2.3), seed 001
-/// l.463-477; Hermite segments l.473). Open curves use natural end conditions, closed curves the
-/// periodic system (the last point must not repeat the first). Parameters start at 0.
+/// C^2 cubic spline through the rows of points (the ch. 2 tangent system (2.3),
+/// Kuriyama 1996 sec. 2.3.2; Hermite segments sec. 2.3.2). Open curves use natural end conditions, closed curves
+/// the periodic system (the last point must not repeat the first). Parameters start at 0.
 /// @param points #P x 3, #P >= 2 (open) or >= 3 (closed); consecutive points distinct.
 /// @throws CurveInputError on too few or repeated points.
 NetworkCurve interpolateCubicSpline(const Eigen::MatrixX3d& points, bool closed,
@@ -90,9 +90,9 @@ NetworkCurve bsplineCurve(const Eigen::MatrixX3d& controlPoints, int degree,
 /// nullopt for a straight or a non-planar curve.
 std::optional<Plane> fitCurvePlane(const NetworkCurve& curve, double relativeTolerance = 1e-9);
 
-/// Displacement spline for curve correction (spec §4.3 step 3): a cubic spline on the curve's
-/// breakpoints (C^2; periodic for a closed curve) whose coefficients are the minimum-norm ones
-/// with D(parameters[k]) = displacements.row(k).
+/// Displacement spline for curve correction (Kuriyama 1996, sec. 5.3.3): a cubic spline on the
+/// curve's breakpoints (C^2; periodic for a closed curve) whose coefficients are the minimum-norm
+/// ones with D(parameters[k]) = displacements.row(k).
 NetworkCurve correctionSpline(const NetworkCurve& curve, const std::vector<double>& parameters,
                               const Eigen::MatrixX3d& displacements);
 

@@ -11,9 +11,10 @@
 
 namespace ffdkit::geometry::curvenet {
 
-/// The concentric-ring lattice of a regular N-gon (spec §5): 1 + N P (P + 1) / 2 points and
-/// N P^2 CCW triangles. Point (r, k, j), r = 1..P, j = 0..r-1, is row 1 + N r (r - 1) / 2 + k r + j
-/// at (r / P) [(1 - j / r) p_k + (j / r) p_{k+1}]; row 0 is the centre; ring P is the boundary.
+/// The concentric-ring lattice of a regular N-gon (Kuriyama 1996, sec. 5.3.4): 1 + N P (P + 1) / 2
+/// points and N P^2 CCW triangles. Point (r, k, j), r = 1..P, j = 0..r-1, is row 1 + N r (r - 1) /
+/// 2 + k r + j at (r / P) [(1 - j / r) p_k + (j / r) p_{k+1}]; row 0 is the centre; ring P is the
+/// boundary.
 struct NGonLattice {
   Eigen::MatrixX2d points;
   Eigen::MatrixX3i triangles;
@@ -30,13 +31,13 @@ struct NetworkMesh {
 
 /// Tessellates every face with its lattice of the given pitch and welds the whole network:
 /// network vertices are shared by key, boundary samples by (run, sample index), so faces with
-/// equal pitch share their boundary vertices bitwise (spec §5, P13). Where faces sample one run
-/// differently (the stem side of a T-junction, two-curve regions), the triangles of the coarser
-/// side are split at the other side's boundary vertices, so the mesh has no T-vertices.
+/// equal pitch share their boundary vertices bitwise (Kuriyama 1996, sec. 5.3.4, P13). Where faces
+/// sample one run differently (the stem side of a T-junction, two-curve regions), the triangles of
+/// the coarser side are split at the other side's boundary vertices, so the mesh has no T-vertices.
 /// Boundary vertices are evaluated on the curve itself; their normals come from the patch,
 /// corner normals from the network vertex (A6; at free ends and two-curve midpoints from the
 /// patch just inside). The virtual side of an open region is a free boundary of its face.
-/// @see seed 001 l.2177-2181 (b.1-b.5), spec §5.
+/// @see Kuriyama 1996, sec. 5.3.4 (b.1-b.5).
 /// @throws std::invalid_argument if pitch < 1.
 NetworkMesh tessellateNetwork(const CurveNetwork& network, int pitch,
                               const PatchOptions& options = {});

@@ -12,8 +12,8 @@ namespace ffdkit::geometry::curvenet {
 /// coordinates, the per-side orthogonal variables and the transfinite blending functions.
 /// Vertices p_k = (cos th_k, sin th_k), th_k = -pi/2 - pi/N + 2 pi k / N (CCW, edge e_0 at the
 /// bottom); edge e_k = [p_k, p_{k+1}] carries side k. Indices are cyclic mod N.
-/// @see seed 001 l.761-775 (barycentrics), eq. (5.1) l.1739-1743, eq. (5.3) l.1800-1815;
-///      spec §3.1, §3.2, §3.5.
+/// @see Kuriyama 1996, sec. 2.4.2 (barycentrics), eq. (5.1) sec. 5.2.1, eq. (5.3) sec. 5.2.2;
+///      Kuriyama 1996, secs. 2.4.2, 5.2.1, 5.2.2.
 class NGonDomain {
  public:
   /// @throws std::invalid_argument if sides < 3.
@@ -27,14 +27,14 @@ class NGonDomain {
   std::vector<Jet> barycentric(const Eigen::Vector2d& p) const;
 
   /// u~_i of eq. (5.1): 0 at p_i, 1 at p_{i+1} along e_i; for odd N the 0/0 at the opposite
-  /// vertex is guarded with 0.5 (B_i = 0 there, spec §3.2).
+  /// vertex is guarded with 0.5 (B_i = 0 there, Kuriyama 1996, sec. 5.2.1).
   Jet uTilde(int i, const std::vector<Jet>& b) const;
 
   /// d_i = 1 - b_i - b_{i+1}: zero on e_i, the distance-like factor of v_i = F_i(u~) d_i.
   Jet distance(int i, const std::vector<Jet>& b) const;
 
   /// B_i^m = (b_i b_{i+1})^m / sum_k (b_k b_{k+1})^m, eq. (5.3), with the thesis' 1/2 rule at
-  /// exact vertex hits (l.1813-1815). The products are scaled by their maximum first (the scale
+  /// exact vertex hits (sec. 5.2.2). The products are scaled by their maximum first (the scale
   /// cancels) so that high m does not underflow.
   std::vector<Jet> blend(const std::vector<Jet>& b, int exponent) const;
 

@@ -8,7 +8,7 @@
 
 namespace ffdkit::geometry::curvenet {
 
-/// Options of the affine-matrix fairing (spec §3.4, seed 001 l.1763-1792).
+/// Options of the affine-matrix fairing (Kuriyama 1996, sec. 5.2.1, sec. 5.2.1).
 struct FairingOptions {
   int quadraturePoints = 16;  ///< Gauss-Legendre points per direction on [0, 1]^2 (>= 4)
 };
@@ -28,9 +28,9 @@ struct FairingResult {
   double totalAfter = 0.0;
 };
 
-/// Switches every run with two transversals to the affine-matrix sweep of §3.4 and chooses its
-/// 18 coefficients c-+ (shared by the faces on both sides, so G^n is kept, A9) by minimising
-/// E_i + E-bar_i (l.1781-1792): three 6 x 6 systems with one shared matrix, solved with a
+/// Switches every run with two transversals to the affine-matrix sweep of Kuriyama 1996, sec. 5.2.1
+/// and chooses its 18 coefficients c-+ (shared by the faces on both sides, so G^n is kept) by
+/// minimising E_i + E-bar_i (sec. 5.2.1): three 6 x 6 systems with one shared matrix, solved with a
 /// complete orthogonal decomposition (minimum norm when a transversal coordinate vanishes).
 /// Runs seen by no face, or ending at a free end, keep the parallel sweep.
 /// The energy uses the face's own adjacent side lengths Delta_-+ as in S~_i (A8: for the

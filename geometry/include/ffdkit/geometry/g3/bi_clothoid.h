@@ -19,7 +19,7 @@ struct BiClothoidEnds {
 };
 
 struct BiClothoidOptions {
-  double tolerance = 1e-13;  ///< max chord residual / |chord| (spec sec. 4 step 3)
+  double tolerance = 1e-13;  ///< max chord residual / |chord| (Kuroda et al. 1997, sec. 6)
   int maxIterations = 20;    ///< Newton iterations
 };
 
@@ -35,14 +35,15 @@ struct BiClothoidResult {
 /// lengths; fitBiClothoid chooses them so that it is ends.endPoint. Ordinates
 /// c_0 = psi_a, c_1 = c_0 + kappa_a sigma_0 / 2, c_3 = c_4 - kappa_b sigma_1 / 2,
 /// c_2 = (c_3 sigma_0 + c_1 sigma_1) / (sigma_0 + sigma_1), c_4 = psi_b.
-/// The factor 1/2 corrects the misprinted "2 kappa" of seed 002 l.214 (spec A1; code l.338-339).
+/// The factor 1/2 corrects the misprinted "2 kappa" of Kuroda et al. 1997, sec. 6 (the Mathematica
+/// code of app. 1 has 1/2).
 /// @throws G3InputError unless sigma0, sigma1 > 0 and finite.
 std::array<ClothoidArc, 2> makeBiClothoid(const BiClothoidEnds& ends, double sigma0, double sigma1);
 
-/// Solves sigma_0 int e^{i psi_0} + sigma_1 int e^{i psi_1} = chord (seed 002 l.216-218) by Newton
-/// with the analytic 2x2 Jacobian and a pseudo-inverse step (singular when the data are a single
-/// clothoid), from sigma_0 = sigma_1 = lengthGuess / 2 (l.342), halving steps to keep sigma > 0.
-/// Never throws for unreachable data: converged = false then.
+/// Solves sigma_0 int e^{i psi_0} + sigma_1 int e^{i psi_1} = chord (Kuroda et al. 1997, sec. 6) by
+/// Newton with the analytic 2x2 Jacobian and a pseudo-inverse step (singular when the data are a
+/// single clothoid), from sigma_0 = sigma_1 = lengthGuess / 2 (app. 1), halving steps to keep sigma
+/// > 0. Never throws for unreachable data: converged = false then.
 /// @throws G3InputError for non-finite ends, coincident end points or lengthGuess <= 0.
 BiClothoidResult fitBiClothoid(const BiClothoidEnds& ends, double lengthGuess, const BiClothoidOptions& options = {});
 

@@ -10,14 +10,16 @@ namespace ffdkit::geometry::g3 {
 ///   spanLengths  n     Delta s_0..Delta s_{n-1}, all > 0 (not checked here: callers validate)
 ///   deBoor       n+3   d_{-1}..d_{n+1}
 ///   returns      3n+1  b_0..b_{3n}; b_{3i} = psi(s_i)
-/// @see seed 002 l.103-111 (Boehm, ref. 12), appendix getb3 l.301-310.
+/// @see Kuroda et al. 1997, sec. 3 (Boehm, ref. 12), appendix getb3 app. 1.
 Eigen::VectorXd bezierOrdinatesFromDeBoor(const Eigen::Ref<const Eigen::VectorXd>& spanLengths,
                                           const Eigen::Ref<const Eigen::VectorXd>& deBoor);
 
 /// Analytic derivative of bezierOrdinatesFromDeBoor with respect to the unknown vector
-/// v = (Delta s_0..Delta s_{n-1}, d_{-1}..d_{n+1}) (the paper's text order, seed 002 l.94).
+/// v = (Delta s_0..Delta s_{n-1}, d_{-1}..d_{n+1}) (the paper's text order,
+/// Kuroda et al. 1997, sec. 3).
 ///   returns (3n+1) x (2n+3), row k = d b_k / d v.
-/// Uses the weight form b_{3i+1} = (1-alpha_i) d_i + alpha_i d_{i+1}, ... of the spec (sec. 2.3, 3.4).
+/// Uses the weight form b_{3i+1} = (1-alpha_i) d_i + alpha_i d_{i+1}, ... (Farin;
+/// Kuroda et al. 1997, sec. 2).
 Eigen::MatrixXd bezierOrdinateJacobian(const Eigen::Ref<const Eigen::VectorXd>& spanLengths,
                                        const Eigen::Ref<const Eigen::VectorXd>& deBoor);
 

@@ -13,7 +13,7 @@ namespace ffdkit::geometry::g3 {
 
 struct ClothoidApproximationOptions {
   /// 1: a bi-clothoid per span (2 arcs); 2: each span split once more (4 arcs, the paper's
-  /// refinement, l.192); k: 2^k arcs per span.
+  /// refinement, sec. 6); k: 2^k arcs per span.
   int subdivisionLevels = 1;
   /// Measure Hausdorff distance and curvature deviation per span (costs O(samples^2) per span).
   bool measureErrors = true;
@@ -38,15 +38,15 @@ struct ClothoidApproximation {
   bool converged = true;
   double maxHausdorff = 0.0;
   double maxCurvatureDeviation = 0.0;
-  /// Spans whose arcs are more than 2 % longer or shorter than the span (spec sec. 7 item 11
-  /// treats that as a warning, not a failure).
+  /// Spans whose arcs are more than 2 % longer or shorter than the span (
+  /// Kuroda et al. 1997 treats that as a warning, not a failure).
   std::vector<std::string> warnings;
 };
 
-/// Replaces each span of a G3 curve by clothoid arcs (seed 002 l.190-220, spec sec. 4):
+/// Replaces each span of a G3 curve by clothoid arcs (Kuroda et al. 1997, sec. 6):
 /// level 1 fits a bi-clothoid to the span's end points, angles and curvatures; each further
 /// level splits every piece at the point of the G3 curve at the same proportional arc length as
-/// the bi-clothoid junction (spec A11: t* = sigma_0/(sigma_0+sigma_1)) and fits both halves.
+/// the bi-clothoid junction (sec. 6: t* = sigma_0/(sigma_0+sigma_1)) and fits both halves.
 /// A span that is a clothoid (|a_3| <= 1e-12 (1 + |a_1| + |a_2|)) is reproduced exactly with
 /// sigma_0 = sigma_1 = Delta s_i / 2 (the 2x2 system is singular there).
 /// @throws G3InputError for subdivisionLevels < 1 or > 8, or errorSamplesPerSpan < 8.

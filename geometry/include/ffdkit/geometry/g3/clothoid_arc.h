@@ -7,7 +7,8 @@ namespace ffdkit::geometry::g3 {
 /// A clothoid (Euler spiral) arc: curvature linear in arc length,
 /// psi(sigma) = startAngle + startCurvature sigma + sharpness sigma^2 / 2, sigma in [0, length].
 /// Positions integrate (cos psi, sin psi) by composite Gauss-Legendre rather than Fresnel
-/// integrals, which cancel badly for small sharpness (spec sec. 4, "Clothoid arc evaluation").
+/// integrals, which cancel badly for small sharpness (Kuroda et al. 1997, sec. 6, "Clothoid arc
+/// evaluation").
 struct ClothoidArc {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
   double startAngle = 0.0;      ///< rad

@@ -11,11 +11,11 @@
 
 namespace ffdkit::geometry::g3 {
 
-/// The comparison curve of the paper (l.56, Figs. 2(b), 4(a)): a G2 interpolating clothoid
+/// The comparison curve of the paper (sec. 2, Figs. 2(b), 4(a)): a G2 interpolating clothoid
 /// spline whose curvature is continuous and piecewise linear in arc length, i.e. psi(s) is a
 /// C^1 clamped quadratic B-spline with de Boor ordinates e_{-1}..e_n (n+2 of them) and Bezier
 /// ordinates b_{2i+1} = e_i, b_{2i} = (Delta s_i e_{i-1} + Delta s_{i-1} e_i) / (Delta s_{i-1} + Delta s_i)
-/// (spec sec. 2.3, last item). Its dkappa/ds jumps at the knots: it is not G3.
+/// (Kuroda et al. 1997, sec. 2, last item). Its dkappa/ds jumps at the knots: it is not G3.
 class ClothoidSpline {
  public:
   /// spanStarts (n+1) x 2 (p_0..p_n), spanLengths n (> 0), deBoor n+2 (e_{-1}..e_n).
@@ -72,7 +72,7 @@ struct ClothoidSplineResult {
 /// used; Levenberg-Marquardt, continuation and paper mode are not). The initial guess comes
 /// from initialGuessFromCubicSpline.
 /// @throws G3InputError for invalid points or non-finite curvatures.
-/// @see seed 002 l.56 (the clothoid spline the paper compares with), spec sec. 2.3.
+/// @see Kuroda et al. 1997, sec. 2 (the clothoid spline the paper compares with).
 ClothoidSplineResult solveClothoidSpline(const Eigen::Ref<const Eigen::MatrixX2d>& points, double startCurvature,
                                          double endCurvature, const G3SolverOptions& options = {});
 

@@ -12,15 +12,15 @@ namespace ffdkit::geometry::g3 {
 inline constexpr int kLast = -1;
 
 /// A user-supplied side condition g(v) = 0 (B8). v = (Delta s_0..Delta s_{n-1}, d_{-1}..d_{n+1})
-/// in the paper's text order (seed 002 l.94); the function returns g(v) and writes dg/dv
-/// (1 x (2n+3)) into gradient.
+/// in the paper's text order (Kuroda et al. 1997, sec. 3); the function returns g(v) and writes
+/// dg/dv (1 x (2n+3)) into gradient.
 using CustomConditionFunction =
     std::function<double(const Eigen::VectorXd& v, Eigen::Ref<Eigen::RowVectorXd> gradient)>;
 
 /// One boundary or side condition of the G3 interpolation system, as rows g(v) = 0 stacked
-/// under the 2n interpolation equations (seed 002 l.113-121; spec sec. 2.6, table B1..B10).
+/// under the 2n interpolation equations (Kuroda et al. 1997, sec. 3, table B1..B10).
 /// Plain data except for Custom. At most 3 rows in total make the system square; fewer leave a
-/// one-parameter family (min-norm Newton, spec sec. 3.8).
+/// one-parameter family (min-norm Newton as in Kuroda et al. 1997, sec. 4).
 struct Condition {
   enum class Kind {
     TangentAngle,       ///< B1: psi(s_index) = value (rad); matched on the nearest 2 pi branch
@@ -44,7 +44,7 @@ struct Condition {
   static Condition tangentAngle(int pointIndex, double radians) { return {Kind::TangentAngle, pointIndex, kLast, radians, {}, {}}; }
   /// B2 (ends) / B3 (interior): curvature at point i.
   static Condition curvature(int pointIndex, double kappa) { return {Kind::Curvature, pointIndex, kLast, kappa, {}, {}}; }
-  /// B4: radius of curvature at point i, written without dividing by kappa (spec A12).
+  /// B4: radius of curvature at point i, written without dividing by kappa (sec. 3).
   static Condition radiusOfCurvature(int pointIndex, double rho) { return {Kind::RadiusOfCurvature, pointIndex, kLast, rho, {}, {}}; }
   static Condition clothoidSpan(int span) { return {Kind::ClothoidSpan, span, kLast, 0.0, {}, {}}; }
   static Condition circularArcSpan(int span) { return {Kind::CircularArcSpan, span, kLast, 0.0, {}, {}}; }

@@ -17,7 +17,7 @@ struct G3CurveParams {
   /// Data points p_0..p_n in the plane, n >= 1, consecutive points distinct.
   std::vector<Eigen::Vector2d> points;
   /// Boundary / side conditions; default: the paper's appendix default B10 (kappa_0 = kappa_n = 0
-  /// in linear form, 2 rows, min-norm solution). Prefer 3 rows for a unique curve (spec 3.8).
+  /// in linear form, 2 rows, min-norm solution). Prefer 3 rows for a unique curve.
   std::vector<Condition> conditions = {Condition::naturalEnds()};
   G3SolverOptions solver;  ///< defaults: damped Newton, continuation on failure
   /// 0: the G3 curve itself; k >= 1: its clothoid approximation with 2^k arcs per span

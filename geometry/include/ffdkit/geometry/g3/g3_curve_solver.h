@@ -13,18 +13,20 @@ namespace ffdkit::geometry::g3 {
 
 /// What to do when fewer than 3 condition rows leave a one-parameter family of solutions.
 enum class UnderdeterminedPolicy {
-  MinimumNormFromInitialGuess,  ///< the paper's pseudo-inverse Newton (l.137): nearest member
+  MinimumNormFromInitialGuess,  ///< the paper's pseudo-inverse Newton (sec. 4): nearest member
   Reject,                       ///< throw G3InputError
 };
 
-/// When to use continuation on the condition targets (spec sec. 3.6).
+/// When to use continuation on the condition targets (not in the paper, which runs a fixed 4
+/// steps).
 enum class ContinuationMode {
   Off,        ///< plain damped Newton only
   OnFailure,  ///< plain damped Newton first; continuation if it fails
   Always,     ///< continuation from the start
 };
 
-/// How a Newton step is safeguarded far from the solution (spec sec. 3.4, 3.6).
+/// How a Newton step is safeguarded far from the solution (our addition to the iteration of Kuroda
+/// et al. 1997, sec. 4).
 enum class Globalization {
   None,                ///< full steps (paper mode always uses full steps)
   LineSearch,          ///< Armijo backtracking on the scaled residual 2-norm, step halving
@@ -34,13 +36,13 @@ enum class Globalization {
 struct G3SolverOptions {
   int maxIterations = 30;          ///< Newton iterations per solve (per continuation stage)
   double tolerance = 1e-12;        ///< max scaled residual: interpolation rows and lengths / h,
-                                   ///< curvatures * h, angles in rad (spec sec. 3.7)
+                                   ///< curvatures * h, angles in rad
   Globalization globalization = Globalization::LineSearch;
   double lineSearchFloor = 1e-6;   ///< smallest step fraction before reporting failure
-  bool paperMode = false;          ///< exactly 4 undamped pseudo-inverse steps (l.283, spec A9)
+  bool paperMode = false;          ///< exactly 4 undamped pseudo-inverse steps (app. 1)
   ContinuationMode continuation = ContinuationMode::OnFailure;
   double minContinuationStep = 1e-4;  ///< below this lambda step: "likely infeasible"
-  int quadratureNodes = 16;        ///< Gauss-Legendre nodes per panel (spec sec. 5)
+  int quadratureNodes = 16;        ///< Gauss-Legendre nodes per panel (the paper integrates with Mathematica, app. 1)
   double maxTurnPerPanel = 1.0;    ///< rad of turning per quadrature panel
   UnderdeterminedPolicy underdetermined = UnderdeterminedPolicy::MinimumNormFromInitialGuess;
   bool allowOverdetermined = false;  ///< > 3 condition rows: least squares if true, else throw
@@ -89,9 +91,9 @@ struct G3SolveResult {
 };
 
 /// Solves for the G3 curve with piecewise quadratic curvature through points p_0..p_n:
-/// 2n interpolation equations (eq. (3), l.97-101) plus the condition rows, by Newton /
-/// Gauss-Newton with the analytic Jacobian (l.139-145, spec sec. 3.4), minimum-norm steps
-/// when underdetermined (l.137), Armijo line search and optional continuation (spec sec. 3.6).
+/// 2n interpolation equations (eq. (3), sec. 3) plus the condition rows, by Newton /
+/// Gauss-Newton with the analytic Jacobian (sec. 4, Kuroda et al. 1997), minimum-norm steps
+/// when underdetermined (sec. 4), Armijo line search and optional continuation (our additions).
 ///   points        (n+1) x 2, n >= 1, consecutive points distinct
 ///   conditions    see Condition; tangent targets are moved to the 2 pi branch nearest the guess
 ///   initialGuess  optional 2n+3 vector v^(0); default initialGuessFromCubicSpline
@@ -99,7 +101,7 @@ struct G3SolveResult {
 /// @throws G3InputError for invalid points, out-of-range condition indices, a guess of the
 ///   wrong size or with Delta s <= 0, too many rows without allowOverdetermined, or fewer
 ///   than 3 rows under UnderdeterminedPolicy::Reject.
-/// @see seed 002 eq. (3)-(5), l.90-147.
+/// @see Kuroda et al. 1997, secs. 3, 4, eq. (3)-(5).
 G3SolveResult solveG3Curve(const Eigen::Ref<const Eigen::MatrixX2d>& points,
                            const std::vector<Condition>& conditions,
                            const G3SolverOptions& options = {},

@@ -18,7 +18,7 @@ struct CurveSamples {
 /// B-spline with a knot at each data point, so its curvature is C^1 piecewise quadratic in s
 /// (a G3 curve). Positions integrate r' = (cos psi, sin psi) by composite Gauss-Legendre from
 /// the start of the span that holds s, so errors do not accumulate along the curve.
-/// @see seed 002 eq. (1)-(2) l.42-54, l.66-111; spec sec. 2 and 5.
+/// @see Kuroda et al. 1997, secs. 2, 3, eq. (1)-(2); Kuroda et al. 1997 and 5.
 class QuadraticCurvatureSpline {
  public:
   /// A curve starting at `start`, span starts found by chaining the span integrals.
@@ -44,7 +44,7 @@ class QuadraticCurvatureSpline {
   /// s_0 = 0 .. s_n = length(): the arc lengths of the data points (n+1 values).
   const Eigen::VectorXd& knots() const { return knots_; }
   /// d_{-1}..d_{n+1} (n+3 values). In the standard clamped convention the knot vector is
-  /// {0,0,0,0,s_1..s_{n-1},L,L,L,L} (n+7 entries); both describe the same spline (spec A6).
+  /// {0,0,0,0,s_1..s_{n-1},L,L,L,L} (n+7 entries); both describe the same spline (sec. 6).
   const Eigen::VectorXd& deBoor() const { return deBoor_; }
   /// b_0..b_{3n} (3n+1 values); span i uses b_{3i}..b_{3i+3}.
   const Eigen::VectorXd& bezierOrdinates() const { return bezier_; }

@@ -14,11 +14,11 @@ namespace ffdkit::geometry::polyhedron {
 using BicubicNet = std::array<std::array<Eigen::Vector3d, 4>, 4>;
 
 /// The triangle points next to a shared boundary that make a rational quartic triangle G1 to
-/// a bicubic patch along the bicubic's row w = 0 and the triangle's edge w = 0 (seed 001
-/// §3.11, eq. (4.20), l.1604-1643; spec §3.11 and §7-A8). The edge is shared as
+/// a bicubic patch along the bicubic's row w = 0 and the triangle's edge w = 0 (
+/// Kuriyama 1996 Kuriyama 1996, sec. 4.3.3, eq. (4.20)). The edge is shared as
 /// D_{i,4-i,0} = i/4 P_{i-1,0} + (1 - i/4) P_{i,0}, so D_040 = P_00 (triangle corner B) and
 /// D_400 = P_30 (corner A). The tangent-plane multiplier is lambda = l1 v + l2 u (l1 at the
-/// P_00 end), as the printed formulas expand (§7-A8).
+/// P_00 end), as the printed formulas expand (Kuriyama 1996, sec. 4.3.3).
 struct TriangleJoinRow {
   Eigen::Vector3d d031, d301;    ///< boundary points of the triangle's other two edges
   Eigen::Vector3d dw121, dw211;  ///< the w-edge sub-points
@@ -32,7 +32,7 @@ TriangleJoinRow triangleRowFromBicubic(const BicubicNet& net, double l1, double 
 /// `triangle`, leaving its other control points as they are.
 void joinTriangleToBicubic(RationalQuarticTriangle& triangle, const BicubicNet& net, double l1, double l2);
 
-/// The other direction (l.1641): given the triangle (its w = 0 edge must be the elevated
+/// The other direction (sec. 4.3.3): given the triangle (its w = 0 edge must be the elevated
 /// P_00..P_30, which is taken from `row0`) compute the bicubic's second row P_01..P_31.
 /// Always solvable.
 std::array<Eigen::Vector3d, 4> bicubicSecondRowFromTriangle(const RationalQuarticTriangle& triangle,
@@ -45,7 +45,7 @@ std::array<Eigen::Vector3d, 4> bicubicSecondRowFromTriangle(const RationalQuarti
 RationalQuarticTriangle relabelled(const RationalQuarticTriangle& patch, const std::array<int, 3>& order);
 
 /// A bicubic patch joined G1 to an open patch surface across its boundary curve from network
-/// vertex a to b (l.1641, "given the triangle, compute the second row"): row 0 is the network
+/// vertex a to b (sec. 4.3.3, "given the triangle, compute the second row"): row 0 is the network
 /// cubic (P_00 = a, P_30 = b), row 1 comes from bicubicSecondRowFromTriangle with the triangle
 /// relabelled so that the curve is its w = 0 edge, rows 2 and 3 are the caller's (they do not
 /// affect G1). lambda = l1 v + l2 u as in eq. (4.20).

@@ -10,7 +10,7 @@ namespace ffdkit::geometry::polyhedron {
 /// boundary. Every directed edge (a, b) of the mesh is a half-edge; a half-edge with no face
 /// (face() == -1) lies outside a boundary edge.
 ///
-/// Vertex rings follow seed 001 l.1552 (spec §2): at vertex v, ring edge e_i = ringHalfEdges(v)[i]
+/// Vertex rings follow Kuriyama 1996, sec. 4.3.1: at vertex v, ring edge e_i = ringHalfEdges(v)[i]
 /// runs v -> w_i, counter-clockwise seen from outside, and face(e_i) is the patch/face Q_i lying
 /// between e_i and e_{i+1}. A boundary vertex's ring starts and ends at its two boundary edges,
 /// so face(e_last) == -1.

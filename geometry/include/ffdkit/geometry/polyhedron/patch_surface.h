@@ -15,33 +15,35 @@
 
 namespace ffdkit::geometry::polyhedron {
 
-/// Where the G1 weight omega and end scalars kappa of each curve come from (spec §3.6, §7-A1).
+/// Where the G1 weight omega and end scalars kappa of each curve come from (Kuriyama 1996,
+/// sec. 4.3.1).
 enum class G1Scalars {
   /// Per half-edge from the actual legs: omega t_{i+1} + (1 - omega) t_{i-1} = (4/3) kappa t_i
   /// (least squares, exact since the legs are coplanar). G1 with any split-leg rule. Default.
   PerEdge,
-  /// The thesis constants omega = 1/2, kappa = (3/4) cos(2 pi / N) (l.1529-1543). G1 only with
-  /// SplitLegRule::RegularVertexBased; with the face-based rule the normals jump (spec §5.3).
+  /// The thesis constants omega = 1/2, kappa = (3/4) cos(2 pi / N) (sec. 4.3.1). G1 only with
+  /// SplitLegRule::RegularVertexBased; with the face-based rule the normals jump (measured by
+  /// tests/geometry/polyhedron).
   ThesisConstants,
 };
 
 struct PatchSurfaceOptions {
-  SplitLegRule splitRule = SplitLegRule::ThesisFaceBased;  ///< spec default (S2)
-  G1Scalars g1Scalars = G1Scalars::PerEdge;               ///< spec default
+  SplitLegRule splitRule = SplitLegRule::ThesisFaceBased;  ///< the thesis rule (sec. 4.2.2)
+  G1Scalars g1Scalars = G1Scalars::PerEdge;               ///< default
   CurveNetworkOptions network;                            ///< frame overrides, solver tolerances
   /// Largest accepted least-squares residual of the per-edge omega/kappa fit, relative to |t_i|.
   double legFitTolerance = 1e-9;
 };
 
-/// G1 scalars of one half-edge P -> P' of the triangulated network (spec §3.6).
+/// G1 scalars of one half-edge P -> P' of the triangulated network (Kuriyama 1996, sec. 4.3.1).
 struct EdgeG1Scalars {
   double omega = 0.5;  ///< weight of the patch face(he) in (4.13)-(4.16); the twin has 1 - omega
   double kappa = 0.0;  ///< end scalar kappa_{P,e} (thesis 1 - beta at P, gamma at P')
 };
 
-/// Polyhedron -> G1 surface of rational quartic triangular patches (seed 001 ch. 4,
-/// l.1368-1716): curve network (§3.1-3.3), face splitting (§3.4), boundary control points
-/// (§3.5), per-edge G1 scalars (§3.6) and the ring solves of the sub-points (§3.7-3.10).
+/// Polyhedron -> G1 surface of rational quartic triangular patches (Kuriyama 1996, ch. 4,
+/// secs. 4, 4.4): curve network (sec. 4.2.1), face splitting (sec. 4.2.2), boundary control points
+/// and per-edge G1 scalars (sec. 4.3.1) and the ring solves of the sub-points (secs. 4.3.1-4.3.2).
 /// One patch per triangle of triangulated().triangles, in the same order.
 class PatchSurface {
  public:
@@ -63,7 +65,7 @@ class PatchSurface {
   /// Cubic Bezier control points V0..V3 of the network curve from vertex a to vertex b
   /// (triangulated-network ids). @throws PolyhedronError if a, b are not joined.
   std::array<Eigen::Vector3d, 4> curve(int a, int b) const;
-  /// Human-readable notes, e.g. split points outside a concave face (l.1667).
+  /// Human-readable notes, e.g. split points outside a concave face (sec. 4.3.4).
   const std::vector<std::string>& warnings() const { return warnings_; }
 
  private:

@@ -9,7 +9,7 @@
 namespace ffdkit::geometry::polyhedron {
 
 /// A polyhedron as the designer models it: vertices and polygonal faces, closed or open.
-/// Faces need not be planar (seed 001 l.1709) but must be consistently oriented,
+/// Faces need not be planar (Kuriyama 1996, sec. 4.4) but must be consistently oriented,
 /// counter-clockwise seen from outside.
 struct PolygonMesh {
   Eigen::MatrixX3d vertices;             ///< #V x 3, one vertex per row
@@ -24,8 +24,9 @@ struct PolygonMesh {
 ///  - degenerate faces: an edge shorter than `relativeTolerance * L` or a vector area below
 ///    `relativeTolerance * L^2` (L = bounding-box diagonal);
 ///  - vertices of valence 2 (closed or on the boundary): their tangent frame T^s is
-///    undetermined (spec §4 step 1, §7-A12). Remove such a vertex or merge it into its edge.
-/// @see spec polyhedron-triangular-patches §4 step 1
+///    undetermined (Kuriyama 1996, sec. 4.2.2 does not cover it). Remove such a vertex or merge it
+//into its edge.
+/// @see Kuriyama 1996, sec. 4.2
 MeshTopology validatePolygonMesh(const PolygonMesh& mesh, double relativeTolerance = 1e-12);
 
 /// Bounding-box diagonal of the vertices (0 for an empty mesh); the length scale L of tolerances.

@@ -22,7 +22,7 @@ struct PolyhedronSurfaceParams {
   Tensions tensions;
   /// Split-leg rule; default the thesis face-based rule (S2).
   SplitLegRule splitRule = SplitLegRule::ThesisFaceBased;
-  /// G1 scalars; default per-edge (the spec's G1 configuration).
+  /// G1 scalars; default per-edge (the G1 configuration).
   G1Scalars g1Scalars = G1Scalars::PerEdge;
 };
 

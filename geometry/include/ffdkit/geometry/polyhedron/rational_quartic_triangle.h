@@ -13,7 +13,7 @@ struct PatchDerivatives {
 };
 
 /// Quartic triangular Bezier patch whose three interior control points are rational blends
-/// of two sub-points each (seed 001 eq. (4.11)-(4.12), (4.18), l.1494-1502, l.1572-1583):
+/// of two sub-points each (Kuriyama 1996, secs. 4.3.1, 4.3.2, eq. (4.11)-(4.12), (4.18)):
 ///   D211 = (v D^w_211 + w D^v_211) / (v + w),  D121 = (u D^w_121 + w D^u_121) / (u + w),
 ///   D112 = (u D^v_112 + v D^u_112) / (u + v).
 /// D^s belongs to the edge s = 0 and is the only interior point in that edge's cross-boundary
@@ -41,10 +41,11 @@ struct RationalQuarticTriangle {
   /// Slot (0, 1, 2) of network vertex `vertex` among `corners`, or -1.
   int cornerSlot(int vertex) const;
 
-  /// Q(u, v, w) (spec §3.8 evaluation form).
+  /// Q(u, v, w) (Kuriyama 1996, sec. 4.3.2 evaluation form).
   Eigen::Vector3d evaluate(double u, double v, double w) const;
   /// Q and its homogeneous partials; the blends use the analytic partials of
-  /// f(x, y; a, b) = x y (x a + y b) / (x + y), defined as 0 where x + y = 0 (spec §3.8).
+  /// f(x, y; a, b) = x y (x a + y b) / (x + y), defined as 0 where x + y = 0 (Kuriyama 1996,
+  /// sec. 4.3.2).
   PatchDerivatives evaluateWithPartials(double u, double v, double w) const;
   /// Unit normal (Q_u - Q_w) x (Q_v - Q_w), outward for a counter-clockwise (A, B, C); the zero
   /// vector where the patch is singular (e.g. a collapsed corner), never NaN.

@@ -4,7 +4,8 @@
 
 namespace ffdkit::geometry::polyhedron {
 
-/// Largest normal jump across the interior curves of a surface (spec §6 property 5).
+/// Largest normal jump across the interior curves of a surface (G1 holds across them by
+/// Kuriyama 1996, sec. 4.3.1).
 struct NormalJumpReport {
   double maxAngle = 0.0;    ///< radians, atan2(|n1 x n2|, n1 . n2) with analytic normals
   double minCosine = 1.0;   ///< smallest n1 . n2 (> 0: no folds)

@@ -9,19 +9,19 @@
 
 namespace ffdkit::geometry::polyhedron {
 
-/// Shape tensions of the curve network, in the thesis scaling of functional S1 (seed 001
-/// eq. (4.3)-(4.4), l.1405-1420; spec §3.2): a vertex tension alpha_v >= 0 shortens every
-/// tangent leg at v (the surface tightens and becomes pointed there, l.1659); an edge tension
-/// beta_e >= 0 straightens the cubic along e. alpha = 0, beta = 1 everywhere is Nielson's
-/// minimum-norm network (l.1405).
+/// Shape tensions of the curve network, in the thesis scaling of functional S1 (
+/// Kuriyama 1996 eq. (4.3)-(4.4), sec. 4.2.1; Kuriyama 1996, sec. 4.2.1): a vertex tension alpha_v >= 0 shortens
+/// every tangent leg at v (the surface tightens and becomes pointed there, sec. 4.3.4); an edge
+/// tension beta_e >= 0 straightens the cubic along e. alpha = 0, beta = 1 everywhere is Nielson's
+/// minimum-norm network (sec. 4.2.1).
 struct Tensions {
   double defaultAlpha = 0.0;                      ///< alpha_v of vertices not in vertexAlpha
   double defaultBeta = 1.0;                       ///< beta_e of edges not in edgeBeta
   std::map<int, double> vertexAlpha;              ///< vertex index -> alpha_v
   std::map<std::pair<int, int>, double> edgeBeta;  ///< (a, b) in either order -> beta_e
-  /// Thesis per-end tensions beta^v_i (l.1414): (v, w) -> the tension of edge {v, w} at v's end.
-  /// The edge gets the mean of its two ends, the exact minimiser of (4.3) (spec §7-A4); an end
-  /// not listed keeps the edge's value from edgeBeta / defaultBeta.
+  /// Thesis per-end tensions beta^v_i (sec. 4.2.1): (v, w) -> the tension of edge {v, w} at v's
+  /// end. The edge gets the mean of its two ends, the exact minimiser of (4.3) (Kuriyama 1996,
+  /// sec. 4.2.1); an end not listed keeps the edge's value from edgeBeta / defaultBeta.
   std::map<std::pair<int, int>, double> endBeta;
 };
 

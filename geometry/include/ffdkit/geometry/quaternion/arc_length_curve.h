@@ -48,7 +48,8 @@ CurveProfile sampleProfile(const ArcLengthCurve& curve, int samples);
 Polyline toPolyline(const ArcLengthCurve& curve, int samples);
 
 /// A curvature comb: for each profile sample, the tooth tip point - scale * kappa * N (the
-/// convention of seed 003's radius-of-curvature combs is outward, away from the centre).
+/// convention of Sakiyama et al. 2001's radius-of-curvature combs is outward, away from the
+/// centre).
 /// @return #samples x 3 tooth tips; the tooth roots are profile.points.
 Eigen::MatrixX3d curvatureCombTips(const CurveProfile& profile, double scale);
 

@@ -7,17 +7,19 @@
 
 namespace ffdkit::geometry::quaternion {
 
-/// Order of the cumulative exponential product (seed 003 spec §7 A1). The two forms coincide
-/// when all angular-derivative vectors are parallel (e.g. planar curves) and differ otherwise.
+/// Order of the cumulative exponential product (Sakiyama et al. 2001, sec. 2.2). The two forms
+/// coincide when all angular-derivative vectors are parallel (e.g. planar curves) and differ
+/// otherwise.
 enum class ProductForm {
-  Global,  ///< q(t) = exp(w_n ~B_n) ... exp(w_1 ~B_1) q_0 ("form A", seed 003 l.67, normative there)
-  Local,   ///< q(t) = q_0 exp(w_1 ~B_1) ... exp(w_n ~B_n) (Kim et al., "form B", seed 004 eq. (14))
+  Global,  ///< q(t) = exp(w_n ~B_n) ... exp(w_1 ~B_1) q_0 ("form A", Sakiyama et al. 2001, sec. 2.2, normative there)
+  Local,   ///< q(t) = q_0 exp(w_1 ~B_1) ... exp(w_n ~B_n) (Kim et al., "form B", Sphere-tangent report, eq. (14))
 };
 
 /// Kim-Kim-Shin's cumulative Bezier unit quaternion curve of degree n on t in [0, 1]:
 /// a product of exponentials of the angular-derivative vectors w_i weighted by the cumulative
-/// Bernstein basis. It is NOT Shoemake's slerp / de Casteljau curve (seed 004 l.345-347).
-/// q(0) = q_0; q(1) = the last control. @see seed 004 eqs. (13)-(15) l.295-345; seed 003 l.67.
+/// Bernstein basis. It is NOT Shoemake's slerp / de Casteljau curve (Sphere-tangent report,
+/// sec. 3.2). q(0) = q_0; q(1) = the last control. @see Sphere-tangent report, sec. 3.2, eqs. (13)-(15);
+/// Sakiyama et al. 2001, sec. 2.2.
 class CumulativeBezierQuaternion {
  public:
   /// q0: start quaternion (used as given, not normalised); omegas: w_1..w_n (n >= 1).
@@ -38,8 +40,8 @@ class CumulativeBezierQuaternion {
 
   /// q(t).
   Eigen::Quaterniond value(double t) const;
-  /// dq/dt, analytic (seed 004 spec §2.3): sum over i of the product with (0, w_i ~B_i'(t))
-  /// inserted at factor i.
+  /// dq/dt, analytic (Sphere-tangent report, sec. 3.2): sum over i of the product with (0, w_i
+  /// ~B_i'(t)) inserted at factor i.
   Eigen::Quaterniond derivative(double t) const;
   /// q(t) and dq/dt in one pass.
   void evaluate(double t, Eigen::Quaterniond& q, Eigen::Quaterniond& dq) const;

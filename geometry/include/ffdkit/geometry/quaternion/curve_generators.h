@@ -23,14 +23,14 @@ struct CurveSampling {
   int samples = 256;  ///< polyline points, equally spaced in arc length (>= 2)
 };
 
-/// `qi-interpolate` (seed 000): G2 QI curve through points.
+/// `qi-interpolate` (Miura 1998): G2 QI curve through points.
 struct QiInterpolateParams {
   Eigen::MatrixX3d points;        ///< #P x 3, #P >= 2 (>= 3 for Circle3); default: empty (must be set)
   InterpolationOptions options;   ///< end rule (default Circle3), Newton settings
   void validate() const;          ///< @throws QuaternionCurveError
 };
 
-/// `qi-fit` (seed 003): G1 chain of QI segments fitted to (noisy) points.
+/// `qi-fit` (Sakiyama et al. 2001): G1 chain of QI segments fitted to (noisy) points.
 struct QiFitParams {
   Eigen::MatrixX3d points;        ///< #P x 3
   std::vector<int> breaks;        ///< 0 = b_0 < ... < b_M = #P - 1, one segment per interval
@@ -38,7 +38,7 @@ struct QiFitParams {
   void validate() const;          ///< @throws QuaternionCurveError
 };
 
-/// `sphere-tangent` (seed 004): one segment between given end points and tangents.
+/// `sphere-tangent` (Sphere-tangent report): one segment between given end points and tangents.
 struct SphereTangentParams {
   SphereTangentSegmentSpec segment;  ///< end conditions, degree 2 or 3
   NelderMeadOptions options;         ///< simplex settings
@@ -63,8 +63,8 @@ CurveProfile profileQiFit(const QiFitParams& params, const CurveSampling& sampli
 CurveProfile profileSphereTangent(const SphereTangentParams& params, const CurveSampling& sampling = {});
 
 /// Parameter sets of the example scenes (see docs/geometry-quaternion.md).
-QiInterpolateParams exampleQiInterpolateParams();  ///< 7 points, Circle3 (seed 000 Ex. 3 size)
-QiFitParams exampleQiFitParams();                  ///< noisy sine, 31 points, 4 segments (seed 003 Ex. 1)
-SphereTangentParams exampleSphereTangentParams();  ///< quadratic fit (1,1,1) / (0,0,1) (seed 004 Fig. 15)
+QiInterpolateParams exampleQiInterpolateParams();  ///< 7 points, Circle3 (Miura 1998, Ex. 3 size)
+QiFitParams exampleQiFitParams();                  ///< noisy sine, 31 points, 4 segments (Sakiyama et al. 2001, Ex. 1)
+SphereTangentParams exampleSphereTangentParams();  ///< quadratic fit (1,1,1) / (0,0,1) (Sphere-tangent report, Fig. 15)
 
 }  // namespace ffdkit::geometry::quaternion

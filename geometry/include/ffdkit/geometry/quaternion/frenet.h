@@ -8,7 +8,7 @@ namespace ffdkit::geometry::quaternion {
 
 /// Torsion of an arc-length curve of total length L from its unit tangent T(t), t = s/L, and the
 /// t-derivatives Tt, Ttt: tau = det(T, Tt, Ttt) / (L |Tt|^2). Returns 0 where |Tt| < 1e-8
-/// (cusp of the tangent path: tau undefined there). @see seed 004 spec §2.7.
+/// (cusp of the tangent path: tau undefined there). @see Sphere-tangent report, sec. 1.
 double torsionFromTangentDerivatives(const Eigen::Vector3d& T, const Eigen::Vector3d& Tt, const Eigen::Vector3d& Ttt,
                                      double L);
 

@@ -11,16 +11,18 @@
 namespace ffdkit::geometry::quaternion {
 
 /// Quadrature for QI chains: composite Gauss-Legendre with `order` points on at least
-/// `minPanels` equal panels per segment (seed 003 spec §4: GL-8, nsub = 8).
+/// `minPanels` equal panels per segment (GL-8, nsub = 8: our choice; the paper does not say how it
+/// integrates).
 struct QiQuadrature {
   int order = 8;      ///< Gauss-Legendre points per panel
   int minPanels = 8;  ///< uniform panels per segment (data parameters add breakpoints)
 };
 
-/// One Bezier-type QI segment of seed 003: start point P, start orientation q_0, angular-derivative
-/// vectors w_1..w_k (world frame), length l; local parameter u = s / l in [0, 1] and tangent
-/// t(u) = q(u) v0 q(u)^-1 with the cumulative quaternion q of CumulativeBezierQuaternion.
-/// @see seed 003 eq. (4) l.53-69; spec §2.3.
+/// One Bezier-type QI segment of Sakiyama et al. 2001: start point P, start orientation q_0,
+/// angular-derivative vectors w_1..w_k (world frame), length l; local parameter u = s / l in [0, 1]
+/// and tangent t(u) = q(u) v0 q(u)^-1 with the cumulative quaternion q of
+/// CumulativeBezierQuaternion.
+/// @see Sakiyama et al. 2001, sec. 2.2, eq. (4).
 class QiChainSegment {
  public:
   /// @throws QuaternionCurveError if length <= 0 or omegas is empty.
@@ -52,7 +54,7 @@ class QiChainSegment {
   Eigen::Vector3d point(double u) const;
   /// Positions at sorted local parameters in [0, 1] (one cumulative sweep): #u x 3.
   Eigen::MatrixX3d points(const Eigen::VectorXd& sortedU) const;
-  /// P + l int_0^1 t and q(1): where the next segment starts (seed 003 eqs. (6), (8)).
+  /// P + l int_0^1 t and q(1): where the next segment starts (Sakiyama et al. 2001, eqs. (6), (8)).
   Eigen::Vector3d endPoint() const;
   Eigen::Quaterniond endOrientation() const;
 
@@ -65,7 +67,7 @@ class QiChainSegment {
 };
 
 /// A G1 chain of QiChainSegment: segment i+1 starts at the end point and end orientation of
-/// segment i (seed 003 eqs. (5)-(8) l.71-91). G2 is NOT enforced (l.99-107).
+/// segment i (Sakiyama et al. 2001, sec. 2.2, eqs. (5)-(8)). G2 is NOT enforced (sec. 2.2).
 class QiChain : public ArcLengthCurve {
  public:
   /// Empty chain starting at `start` with orientation q00.
@@ -81,7 +83,8 @@ class QiChain : public ArcLengthCurve {
   const std::vector<QiChainSegment>& segments() const { return segments_; }
   ProductForm form() const { return form_; }
 
-  /// Position at the global parameter u in [0, M] (segment floor(u), seed 003 eq. (5)).
+  /// Position at the global parameter u in [0, M] (segment floor(u), Sakiyama et al. 2001,
+  /// eq. (5)).
   Eigen::Vector3d pointAtGlobal(double u) const;
   /// Arc length at the global parameter u.
   double arcLengthAtGlobal(double u) const;

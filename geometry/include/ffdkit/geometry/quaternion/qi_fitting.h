@@ -10,21 +10,22 @@
 
 namespace ffdkit::geometry::quaternion {
 
-/// Which initial curve seeds the QI fit (seed 003 spec §3.6).
+/// Which initial curve seeds the QI fit (Sakiyama et al. 2001, sec. 3.4).
 enum class FitInitialCurve {
-  LeastSquaresCubic,   ///< LSQ uniform cubic at the same breaks and u_i (default; spec [rec] (b))
+  LeastSquaresCubic,   ///< LSQ uniform cubic at the same breaks and u_i (default; our choice)
   InterpolatingCubic,  ///< the paper's interpolating uniform cubic with Q_0 = Q_1 (eqs. (11)-(16));
                        ///< with StartTangentMode::FromInitialCurve this is the "paper" preset
 };
 
-/// How the chain's start tangent (q_00) is chosen (seed 003 spec §3.4, §7 A9).
+/// How the chain's start tangent (q_00) is chosen (Sakiyama et al. 2001, sec. 3.4; the paper leaves
+/// it open).
 enum class StartTangentMode {
   FromInitialCurve,  ///< fixed to the initial curve's tangent at u = 0 (the paper's implicit choice)
   Given,             ///< fixed to FitOptions::givenStartTangent
   Free,              ///< optimised (+2 variables, planar +1), starting from the initial curve
 };
 
-/// Planar or spatial parameterisation (seed 003 spec §3.4).
+/// Planar or spatial parameterisation (Sakiyama et al. 2001, sec. 3.1).
 enum class FitDimension {
   Auto,     ///< Planar when all points share one z, Spatial otherwise
   Planar,   ///< w_ij = phi_ij e_z: planar result, exactly linear curvature per segment for k = 2
@@ -40,15 +41,16 @@ enum class FitJacobian {
 struct FitOptions {
   int degree = 2;                                        ///< k, degree of each segment's quaternion curve
   FitDimension dimension = FitDimension::Auto;
-  ProductForm form = ProductForm::Global;                ///< form A (spec §7 A1)
+  ProductForm form = ProductForm::Global;                ///< form A (Sakiyama et al. 2001, sec. 2.2)
   StartTangentMode startTangent = StartTangentMode::FromInitialCurve;
   Eigen::Vector3d givenStartTangent = Eigen::Vector3d::UnitX();  ///< Given mode only
   FitInitialCurve initialCurve = FitInitialCurve::LeastSquaresCubic;
   /// GL-5 per panel; the data parameters are the breakpoints, and gaps wider than 1/8 of a segment are
-  /// split evenly (so >= 8 panels per segment, none wider than spec §4's grid). Spec §4 recommends GL-8;
-  /// its own accuracy table gives 1e-13 of l for GL-5 on 8 panels of a strongly twisted segment,
-  /// and the fit's panels are narrower: the objective agrees with GL-24 on 64 panels to 1e-14 and
-  /// the fitted curves with GL-8 fits to 3e-9 of the length (test), at 0.7 x the instructions.
+  /// split evenly (so >= 8 panels per segment, none wider than a uniform grid of GL-8 panels). The
+  /// paper is silent on quadrature; GL-8 is our choice; its own accuracy table gives 1e-13 of l for
+  /// GL-5 on 8 panels of a strongly twisted segment, and the fit's panels are narrower: the
+  /// objective agrees with GL-24 on 64 panels to 1e-14 and the fitted curves with GL-8 fits to 3e-9
+  /// of the length (test), at 0.7 x the instructions.
   QiQuadrature quadrature{5, 8};
   FitJacobian jacobian = FitJacobian::Analytic;
   double functionTolerance = 1e-12;                      ///< relative reduction of R
@@ -75,19 +77,20 @@ struct FitResult {
   Eigen::VectorXd pointErrors;         ///< e_i = |C(u_i) - P_i|
   double rms = 0.0;
   double maxError = 0.0;
-  double rmsPercent = 0.0;             ///< 100 rms / L (seed 003 Table 1)
+  double rmsPercent = 0.0;             ///< 100 rms / L (Sakiyama et al. 2001, Table 1)
   double maxPercent = 0.0;
   double initialRms = 0.0;             ///< rms of the initial guess
   bool converged = false;              ///< an LM stopping test was met (not the evaluation cap)
   int iterations = 0;
   int functionEvaluations = 0;         ///< residual evaluations (forward-difference columns included)
   std::vector<double> objectiveHistory;  ///< accepted R = sum e_i^2, non-increasing
-  UniformCubicBSpline baseline;        ///< LSQ cubic B-spline, same spans and u_i (seed 003's comparison)
+  UniformCubicBSpline baseline;        ///< LSQ cubic B-spline, same spans and u_i (Sakiyama et al. 2001's comparison)
   std::string message;                 ///< which stopping test fired, or why it failed
 };
 
 /// Chord-length parameters within segments: u_{b_j} = j, linear in cumulative chord between
-/// breaks. @see seed 003 eqs. (9)-(10), corrected per spec §7 A6-A7.
+/// breaks. @see Sakiyama et al. 2001, eqs. (9)-(10), (sec. 3.3), with the misprinted indices
+/// corrected.
 /// @throws QuaternionCurveError if breaks are not 0 = b_0 < ... < b_M = #P - 1.
 Eigen::VectorXd chordLengthParameters(const Eigen::MatrixX3d& points, const std::vector<int>& breaks);
 
@@ -99,7 +102,7 @@ Eigen::VectorXd chordLengthParameters(const Eigen::MatrixX3d& points, const std:
 /// u_{b_j} = j.
 /// @return the chain and the fit record; an LM run stopped by the evaluation cap has converged = false.
 /// @throws QuaternionCurveError on invalid input (breaks, sizes, degree < 1, Planar with non-planar data).
-/// @see seed 003 eqs. (4)-(19) l.53-217; spec §3.
+/// @see Sakiyama et al. 2001, secs. 2.2, 3.5.1, eqs. (4)-(19).
 FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& breaks, const FitOptions& options = {},
                      const Eigen::VectorXd* userParameters = nullptr);
 

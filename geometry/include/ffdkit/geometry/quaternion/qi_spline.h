@@ -7,14 +7,14 @@
 
 namespace ffdkit::geometry::quaternion {
 
-/// How a chain of seed-000 segments places each segment (spec §3.7).
+/// How a chain of Miura 1998 segments places each segment (sec. 5.3).
 enum class SegmentPlacement {
-  Anchored,  ///< segment i starts at its own data point P_i (seed 000 eq. (60))
-  Chained,   ///< segment i starts at the computed end of segment i-1 (seed 000 Fig. 4, l.402)
+  Anchored,  ///< segment i starts at its own data point P_i (Miura 1998, eq. (60))
+  Chained,   ///< segment i starts at the computed end of segment i-1 (Miura 1998, Fig. 4, sec. 5.3)
 };
 
 /// A G2 chain of BezierQiSegment, evaluated by arc length s in [0, sum l_i] or by the global
-/// parameter u = i + t in [0, n] that the paper plots against (seed 000 l.414).
+/// parameter u = i + t in [0, n] that the paper plots against (Miura 1998, sec. 5.3).
 class QiSpline : public ArcLengthCurve {
  public:
   /// @throws QuaternionCurveError if segments is empty.

@@ -8,7 +8,7 @@
 
 namespace ffdkit::geometry::quaternion {
 
-/// How direction controls on S^2 make a tangent path (seed 004 spec §2.4-2.5, §7 A1).
+/// How direction controls on S^2 make a tangent path (Sphere-tangent report, secs. 2.2, 4, sec. 4).
 enum class SphereCurveKind {
   KimPure,        ///< Kim's cumulative Bezier quaternion on the pure controls (0, V_i), tangent
                   ///< = normalised vector part (normative; the paper's construction)
@@ -16,12 +16,14 @@ enum class SphereCurveKind {
 };
 
 /// A unit-tangent path T(t), t in [0, 1], on the unit sphere given by Bezier direction controls
-/// V_0..V_n (n >= 1). T(0) = V_0 and T(1) = V_n. @see seed 004 eqs. (13)-(15), l.466-499, l.623-636.
+/// V_0..V_n (n >= 1). T(0) = V_0 and T(1) = V_n. @see Sphere-tangent report, secs. 4, 5,
+/// eqs. (13)-(15).
 class SphereBezierTangent {
  public:
   /// directions: n + 1 >= 2 non-zero vectors (normalised here).
   /// @throws QuaternionCurveError for fewer than 2 controls, a zero control, or consecutive controls
-  ///   closer than 1e-9 rad to antipodal (the arc / log is undefined; seed 004 spec §7 A15).
+  ///   closer than 1e-9 rad to antipodal (the arc / log is undefined; Sphere-tangent report,
+  //sec. 4).
   explicit SphereBezierTangent(std::vector<Eigen::Vector3d> directions, SphereCurveKind kind = SphereCurveKind::KimPure);
 
   int degree() const { return static_cast<int>(directions_.size()) - 1; }
@@ -30,7 +32,7 @@ class SphereBezierTangent {
 
   /// Unit tangent T(t).
   Eigen::Vector3d tangent(double t) const;
-  /// dT/dt: analytic for KimPure (from q', spec §4), 5-point differences for ShoemakeSlerp.
+  /// dT/dt: analytic for KimPure (from q'), 5-point differences for ShoemakeSlerp.
   Eigen::Vector3d tangentDt(double t) const;
   /// d^2T/dt^2 by a 5-point difference of tangentDt (h = 1e-4, one-sided near the ends).
   Eigen::Vector3d tangentDtt(double t) const;

@@ -10,7 +10,7 @@
 
 namespace ffdkit::geometry::quaternion {
 
-/// End conditions of one tangent-integral segment (seed 004 l.583-654), world frame.
+/// End conditions of one tangent-integral segment (Sphere-tangent report, sec. 5), world frame.
 struct SphereTangentSegmentSpec {
   Eigen::Vector3d startPoint = Eigen::Vector3d::Zero();      ///< P_a
   Eigen::Vector3d startTangent = Eigen::Vector3d::UnitX();   ///< V_a, any non-zero length
@@ -22,7 +22,8 @@ struct SphereTangentSegmentSpec {
   SphereCurveKind kind = SphereCurveKind::KimPure;
 };
 
-/// Downhill simplex settings (seed 004 l.654; spec §3 step 5: absolute tolerances, NOT NR's relative one).
+/// Downhill simplex settings (Sphere-tangent report, sec. 5; ours: absolute tolerances, NOT NR's
+/// relative one).
 struct NelderMeadOptions {
   double initialStep = 0.2;         ///< simplex edge in (theta, phi), radians
   double functionTolerance = 1e-24; ///< on f_max - f_min
@@ -51,16 +52,17 @@ struct SphereTangentFitResult {
 };
 
 /// The chart p(theta, phi) = (cos theta cos phi, sin theta, cos theta sin phi), p(0, 0) = e_x
-/// (seed 004 eq. (18) l.593-595, letters rebuilt per spec §7 A6).
+/// (Sphere-tangent report, sec. 5, eq. (18), its Greek letters, lost in print, rebuilt from the
+/// text).
 Eigen::Vector3d polarPoint(double theta, double phi);
 
 /// Finds the free middle control V_1 (chart angles) so that the segment from P_a with tangent V_a
 /// ends at P_c with tangent V_c: canonical frame (P_a = 0, V_a = e_x), f(theta, phi) =
 /// 1/2 |P_e/|P_e| - P_c/|P_c||^2 minimised by Nelder-Mead, then uniform scaling to L* = |P_c|/|P_e|.
 /// @return converged = false with a message (and no curve) when no solution was found, e.g. when
-///   the simplex is pulled to antipodal controls (spec O5); never a silently wrong curve.
+///   the simplex is pulled to antipodal controls; never a silently wrong curve.
 /// @throws QuaternionCurveError on invalid input: P_c = P_a, zero tangents, degree not 2 or 3.
-/// @see seed 004 l.583-690; spec §3.
+/// @see Sphere-tangent report, sec. 5, sec. 5.
 SphereTangentFitResult fitSphereTangentSegment(const SphereTangentSegmentSpec& spec, const NelderMeadOptions& options = {});
 
 }  // namespace ffdkit::geometry::quaternion

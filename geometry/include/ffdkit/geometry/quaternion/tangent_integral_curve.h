@@ -10,15 +10,17 @@
 
 namespace ffdkit::geometry::quaternion {
 
-/// Composite Gauss-Legendre used for tangent integral curves (seed 004 spec §4: 64 panels x 8).
+/// Composite Gauss-Legendre used for tangent integral curves (64 panels x 8; the report does not
+/// say how it integrates).
 struct TangentQuadrature {
   int panels = 64;
   int order = 8;
 };
 
 /// Tangent integral curve C(s) = P0 + int_0^s T(u / L) du, s in [0, L], from a unit-tangent path on
-/// S^2 (seed 004 eq. (17) l.472-493, with the denominator read as the total length L, spec §7 A2).
-/// kappa = |T_t| / L, tau = det(T, T_t, T_tt) / (L |T_t|^2) (spec §2.7).
+/// S^2 (Sphere-tangent report, sec. 4, eq. (17), with the denominator read as the total length L,
+/// as in eq. (16) of sec. 3.3). kappa = |T_t| / L, tau = det(T, T_t, T_tt) / (L |T_t|^2)
+/// (Sphere-tangent report, sec. 1).
 class TangentIntegralCurve : public ArcLengthCurve {
  public:
   /// @throws QuaternionCurveError if length <= 0.
@@ -45,8 +47,9 @@ class TangentIntegralCurve : public ArcLengthCurve {
   TangentQuadrature quadrature_;
 };
 
-/// Miura's unit quaternion integral curve, the baseline of seed 004 (eq. (16) l.349-407):
-/// tangent R_{q(t)} v for a cumulative Bezier quaternion q with general controls and a fixed unit v.
+/// Miura's unit quaternion integral curve, the baseline of Sphere-tangent report (eq. (16)
+/// sec. 3.3): tangent R_{q(t)} v for a cumulative Bezier quaternion q with general controls and a fixed
+/// unit v.
 class QuaternionIntegralCurve : public ArcLengthCurve {
  public:
   /// @throws QuaternionCurveError if length <= 0 or v = 0.

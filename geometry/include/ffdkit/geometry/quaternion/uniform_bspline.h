@@ -7,9 +7,9 @@
 namespace ffdkit::geometry::quaternion {
 
 /// Floating uniform cubic B-spline with knots at the integers, domain x in [0, spans], spans + 3
-/// control points; span m uses controls m..m+3 with the uniform blending functions of seed 003
-/// eq. (13). The baseline of seed 003's comparisons (spec §3.7) and the target of the QI -> B-spline
-/// conversion (spec §3.8).
+/// control points; span m uses controls m..m+3 with the uniform blending functions of Sakiyama
+/// et al. 2001 eq. (13). The baseline of the paper's comparisons (sec. 3.7) and the target of the QI
+/// -> B-spline conversion (Sakiyama et al. 2001, sec. 3.6).
 class UniformCubicBSpline {
  public:
   /// control: (spans + 3) x 3. @throws QuaternionCurveError if fewer than 4 control points.
@@ -32,12 +32,13 @@ class UniformCubicBSpline {
 };
 
 /// Least-squares uniform cubic B-spline with `spans` spans through points P_i at parameters u_i in
-/// [0, spans] (QR). points: #P x 3, u: #P. @see seed 003 spec §3.7 (baseline: same spans and u_i).
+/// [0, spans] (QR). points: #P x 3, u: #P. @see Sakiyama et al. 2001, sec. 3.7 (baseline: same
+/// spans and u_i).
 /// @throws QuaternionCurveError if sizes differ, spans < 1 or the system is rank deficient.
 UniformCubicBSpline fitLeastSquaresCubicBSpline(const Eigen::MatrixX3d& points, const Eigen::VectorXd& u, int spans);
 
 /// Converts any arc-length curve to a uniform cubic B-spline: `samples` arc-uniform samples at
-/// x_i = s_i / L * spans, least squares. @see seed 003 eqs. (25)-(26) l.264-282, spec §3.8.
+/// x_i = s_i / L * spans, least squares. @see Sakiyama et al. 2001, sec. 3.6, eqs. (25)-(26).
 UniformCubicBSpline convertToCubicBSpline(const ArcLengthCurve& curve, int spans, int samples);
 
 }  // namespace ffdkit::geometry::quaternion
