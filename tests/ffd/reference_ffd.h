@@ -3,7 +3,7 @@
 // An independent, deliberately straightforward FFD evaluator for the tests: the textbook
 // definitions (Bernstein: binomial formula; B-spline: the recursive Cox-de Boor definition
 // N_(i,0) = [t_i <= u < t_(i+1)], with 0/0 = 0) and a full triple sum over every control point
-// (seed 001 eq. (6.1)). It shares no code with the engine.
+// (Kuriyama 1996, eq. (6.1)). It shares no code with the engine.
 
 #include <cmath>
 #include <random>

@@ -1,4 +1,4 @@
-// Affine <-> affine bindings driven backwards (spec §5: "the reverse uses 1/gain"; binding.h: the
+// Affine <-> affine bindings driven backwards (Kuriyama 1996, sec. 6.2.2: the reverse uses 1/gain; binding.h: the
 // clamp bounds the `to` widget only when the binding drives it). Every expectation is written out
 // from the lattice geometry, not read back through the model.
 #include <numbers>

@@ -1,4 +1,4 @@
-// The worked examples of seed 001 ch. 6 (spec §9), reproduced numerically.
+// The worked examples of Kuriyama 1996, sec. 6.5 (Figs. 6-8 to 6-11), reproduced numerically.
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -46,7 +46,7 @@ TEST(ThesisFigure6_2, ExactControlPoints) {
   EXPECT_DOUBLE_EQ(m.controlPoints(fig.lattice)(6, 0), 0.5);
   EXPECT_DOUBLE_EQ(m.controlPoints(fig.lattice)(8, 2), 0.25);
 
-  // The widgets keep their place on their cells (l.2266): the ring stays at the face centroid,
+  // The widgets keep their place on their cells (Kuriyama 1996, sec. 6.2.1): the ring stays at the face centroid,
   // turned with it; the arrow moved with its edge.
   const WidgetFrame ring = m.affineFrame(fig.faceRotate);
   EXPECT_TRUE(ring.frame.translation().isApprox(Eigen::Vector3d(0.25, 0.25, 1.0), 1e-14));
@@ -83,7 +83,7 @@ TEST(ThesisFigure6_8, BoundOppositeWidgetsDeformMirrorSymmetrically) {
   EXPECT_DOUBLE_EQ(m.variation(fig.edgeTranslateB), m.variation(fig.edgeTranslateA));
 }
 
-// FFD of world points through the lattices in pipeline order (spec §6): each lattice embeds
+// FFD of world points through the lattices in pipeline order (Kuriyama 1996, sec. 6.2.3): each lattice embeds
 // the previous output in its current rest lattice.
 Eigen::MatrixX3d runPipeline(const WidgetModel& m, const std::vector<WidgetId>& order, Eigen::MatrixX3d points) {
   for (WidgetId id : order) {
@@ -95,7 +95,7 @@ Eigen::MatrixX3d runPipeline(const WidgetModel& m, const std::vector<WidgetId>& 
 }
 
 // Independent FFD of a 2x2x2 Bernstein lattice: trilinear interpolation of its 8 local control
-// points (seed 001 eq. (6.1) with B_0(t) = 1 - t, B_1(t) = t), flat index i + 2 (j + 2 k).
+// points (Kuriyama 1996, eq. (6.1) with B_0(t) = 1 - t, B_1(t) = t), flat index i + 2 (j + 2 k).
 Eigen::Vector3d trilinear(const Eigen::MatrixX3d& p, const Eigen::Vector3d& uvw) {
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
   for (int k = 0; k < 2; ++k)
@@ -109,7 +109,7 @@ Eigen::Vector3d trilinear(const Eigen::MatrixX3d& p, const Eigen::Vector3d& uvw)
 
 // One lattice of the pipeline, computed by hand: a 2x2x2 lattice whose rest points are the unit
 // box in its local frame, so the embedding of a world point q is frame^-1 q; points outside the
-// (epsilon-grown) box are left unchanged (the default Identity policy, spec §2).
+// (epsilon-grown) box are left unchanged (the default Identity policy, Kuriyama 1996, sec. 6.3.2).
 Eigen::Vector3d handFfd(const Eigen::Affine3d& frame, const Eigen::MatrixX3d& local, const Eigen::Vector3d& q,
                         bool* inside = nullptr) {
   const Eigen::Vector3d uvw = frame.inverse() * q;
@@ -120,7 +120,7 @@ Eigen::Vector3d handFfd(const Eigen::Affine3d& frame, const Eigen::MatrixX3d& lo
 
 // Fig. 6-9: a 2x2x2 lattice whose top face carries a child lattice; point widgets bound to
 // each other and edge widgets of the two lattices bound. The expectations are written from the
-// widget semantics (spec §4-§6) and a hand-made trilinear FFD; they hold wherever the child sits
+// widget semantics (Kuriyama 1996, sec. 6.2) and a hand-made trilinear FFD; they hold wherever the child sits
 // on the face (only its start frame is read from the fixture).
 TEST(ThesisFigure6_9, ParentFaceCarriesTheChildLattice) {
   Fig69 fig = buildFig69();

@@ -485,7 +485,7 @@ TEST(WidgetModel, RenameMovesTheNameAndOnlyChangesOnANewName) {
 }
 
 TEST(WidgetModel, AffineFramesStayRigidInANonUniformlyScaledLattice) {
-  // A widget's world frame is the rigid part of L * mask(A_cell) * C0 * O (spec §4): with a lattice
+  // A widget's world frame is the rigid part of L * mask(A_cell) * C0 * O (Kuriyama 1996, sec. 6.2.1): with a lattice
   // frame scaled (1, 2, 3) it must still be a rotation, located at the cell's world centroid.
   WidgetModel m;
   LatticeOptions o;

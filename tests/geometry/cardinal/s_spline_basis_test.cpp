@@ -10,7 +10,7 @@ namespace ffdkit::geometry::cardinal {
 namespace {
 
 TEST(SSplineCoefficients, ReproduceTable3_1) {
-  // seed 001 Table 3-1 (l.946-953), printed to 6 decimals.
+  // Kuriyama 1996, Table 3-1 (sec. 3.2.3), printed to 6 decimals.
   const double beta2[4] = {0.0, 5.0, 25.0, 100.0};
   const double table[4][5] = {
       {1.732051, -0.464102, 0.124356, -0.033321, 0.008928},
@@ -72,14 +72,14 @@ TEST(Beta2SplineBasis, SecondDerivativeJumpsByBeta2TimesSlope) {
 }
 
 TEST(SSplineBasis, CardinalAtKnotsAndFigureValues) {
-  // spec T3 (Fig. 3-1/3-2, beta2 = 0, w = 4).
+  // Case T3 (Fig. 3-1/3-2, beta2 = 0, w = 4).
   const SSplineBasis s(0.0, 4);
   const double x[10] = {0, .25, .5, .75, 1, 1.5, 2, 2.5, 3, 3.5};
   const double expected[10] = {1, 0.881430, 0.600481, 0.269291, 0,
                                -0.127405, 0, 0.034138, 0, -0.009097};
   for (int k = 0; k < 10; ++k) EXPECT_NEAR(s.evaluate(x[k]), expected[k], 5e-7) << x[k];
   for (int j = -6; j <= 6; ++j) EXPECT_NEAR(s.evaluate(j), j == 0 ? 1.0 : 0.0, 1e-14) << j;
-  // spec T4 (beta2 = 5, w = 4).
+  // Case T4 (beta2 = 5, w = 4).
   const SSplineBasis s5(5.0, 4);
   const double x5[6] = {0, .5, 1, 1.5, 2, 2.5};
   const double e5[6] = {1, 0.559127, 0, -0.068449, 0, 0.010792};
@@ -87,7 +87,7 @@ TEST(SSplineBasis, CardinalAtKnotsAndFigureValues) {
 }
 
 TEST(SSplineBasis, TruncationJumpsMatchSpecTable) {
-  // spec §2.4 columns A (value just inside the cut) and B (slope there), 2 significant digits.
+  // Prototype table, columns A (value just inside the cut) and B (slope there), 2 significant digits.
   struct Row { double beta2; int w; double a, b; };
   const Row rows[] = {{0, 4, 3.99e-4, 1.67e-2}, {5, 4, 1.6e-5, 1.9e-3},
                       {25, 3, -8.4e-7, -6.8e-4}, {100, 2, 1.2e-7, 1.0e-3}, {0, 3, -1.5e-3, -6.2e-2}};
@@ -109,7 +109,7 @@ TEST(SSplineCoefficientsOddDegree, CubicAgreesWithClosedForm) {
 }
 
 TEST(SSplineCoefficientsOddDegree, QuinticMatchesSpec) {
-  // spec §2.2 [D]: c_0..c_4 = 2.842171, -1.321729, 0.573326, -0.247042, 0.106378.
+  // Prototype values (eqs. (3.4)-(3.9) of Kuriyama 1996, sec. 3.2.2): c_0..c_4 = 2.842171, -1.321729, 0.573326, -0.247042, 0.106378.
   const Eigen::VectorXd c = sSplineCoefficientsOddDegree(5, 4);
   const double expected[5] = {2.842171, -1.321729, 0.573326, -0.247042, 0.106378};
   for (int i = 0; i < 5; ++i) EXPECT_NEAR(c[i], expected[i], 5e-7) << i;
@@ -130,7 +130,7 @@ TEST(SSplineBasis, QuinticIsCardinalAndSmoothInside) {
 }
 
 TEST(SSplineBasis, CoefficientSumsAndUnclippedInterpolationErrorMatchSpecTable) {
-  // spec §2.4 columns D (sum of c_i over |i| <= w) and F (worst knot-interpolation error of
+  // Prototype table, columns D (sum of c_i over |i| <= w) and F (worst knot-interpolation error of
   // the unclipped variant).
   struct Row { double beta2; int w; double d, f; };
   const Row rows[] = {{0, 4, 1.003774, 1.5e-3}, {5, 4, 1.000231, 1.0e-4}, {25, 3, 0.999971, 1.4e-5},
@@ -154,7 +154,7 @@ TEST(SSplineBasis, IsEven) {
 }
 
 TEST(SSplineBasis, TangentFactorMatchesSpec) {
-  // spec §2.6: lambda_w = 0.646171, 0.410191, 0.171390, 0.055575.
+  // Kuriyama 1996, sec. 3.2.4, computed by the prototype: lambda_w = 0.646171, 0.410191, 0.171390, 0.055575.
   EXPECT_NEAR(SSplineBasis(0.0, 4).tangentFactor(), 0.646171, 5e-7);
   EXPECT_NEAR(SSplineBasis(5.0, 4).tangentFactor(), 0.410191, 5e-7);
   EXPECT_NEAR(SSplineBasis(25.0, 3).tangentFactor(), 0.171390, 5e-7);

@@ -32,7 +32,7 @@ TEST(SSplineCurve, InterpolatesExactlyForAllEndRules) {
 }
 
 TEST(SSplineCurve, ClosedSquareMidpointsMatchSpec) {
-  // spec T5: unit square, Q(0.5) for beta2 = 0, 5, 25, 100 with widths 4, 4, 3, 2.
+  // Case T5: unit square, Q(0.5) for beta2 = 0, 5, 25, 100 with widths 4, 4, 3, 2.
   Eigen::MatrixX3d p(4, 3);
   p << 1, 1, 0, -1, 1, 0, -1, -1, 0, 1, -1, 0;
   const double beta2[4] = {0, 5, 25, 100};
@@ -84,7 +84,7 @@ TEST(SSplineCurve, LocalSupportIsTwoHalfWidths) {
 }
 
 TEST(SSplineCurve, ApproximatelyAffineInvariantWithinTruncationError) {
-  // P5: sum_k S_k(x) deviates from 1 by at most column E of spec §2.4 (3.8e-3 for beta2 = 0,
+  // P5: sum_k S_k(x) deviates from 1 by at most column E of the prototype table (3.8e-3 for beta2 = 0,
   // w = 4), so an affine map commutes with the curve up to that relative error.
   const Eigen::MatrixX3d p = randomPoints(15, 3);
   Eigen::Matrix3d a;
@@ -108,7 +108,7 @@ TEST(SSplineCurve, ApproximatelyAffineInvariantWithinTruncationError) {
 }
 
 TEST(SSplineCurve, TangentEndConditionGivesLambdaTimesTangentPlusEdgeTerm) {
-  // spec §2.6 / P18: Q'(0+) = lambda_w dP0 + S_0'(-w+) P_w.
+  // Kuriyama 1996, sec. 3.2.4 / P18: Q'(0+) = lambda_w dP0 + S_0'(-w+) P_w.
   const Eigen::MatrixX3d p = randomPoints(10, 4);
   SSplineCurveOptions o;
   o.end = SSplineEnd::Tangent;
@@ -128,15 +128,15 @@ TEST(SSplineCurve, TangentEndConditionGivesLambdaTimesTangentPlusEdgeTerm) {
 }
 
 TEST(SSplineCurve, SecondDerivativeJumpsAtKnotsByTruncationTerm) {
-  // spec §2.4: the S-spline is only approximately C2. At knot x the cut terms k = x -+ w leave
+  // Kuriyama 1996, sec. 3.2.2: the S-spline is only approximately C2. At knot x the cut terms k = x -+ w leave
   // Q''(x+) - Q''(x-) = S_0''(w-) (P_{x+w} - P_{x-w}) with the closed form
   // S_0''(w-) = c_{w-1} B''(1) + c_w B''(0), computed here from the closed form c_i =
-  // sqrt(3) (sqrt(3) - 2)^i (spec T2) and the cubic B-spline's B''(0) = -2, B''(1) = 1:
+  // sqrt(3) (sqrt(3) - 2)^i (case T2) and the cubic B-spline's B''(0) = -2, B''(1) = 1:
   // -0.0511777 for beta2 = 0, w = 4, and 0.190998 for w = 3.
-  // The spec's column C prints -5.28e-2 and 2.0e-1 there: 3.2 % and 4.7 % off, while columns A
+  // The prototype table's column C prints -5.28e-2 and 2.0e-1 there: 3.2 % and 4.7 % off, while columns A
   // (= -c_{w+1} B(1)) and B (= c_{w-1} B'(1)), derived the same way, agree with the code to 3
   // digits. A one-sided second difference of the code's S_0 (below) confirms the closed form, so
-  // the code is right and column C of spec §2.4 is wrong (likely a rough numerical estimate).
+  // the code is right and column C of the prototype table is wrong (likely a rough numerical estimate).
   const auto c = [](int i) { return std::sqrt(3.0) * std::pow(std::sqrt(3.0) - 2.0, i); };
   const double columnC4 = c(3) - 2.0 * c(4), columnC3 = c(2) - 2.0 * c(3);
   EXPECT_NEAR(columnC4, -0.0511777, 1e-7);
@@ -187,7 +187,7 @@ TEST(SSplineCurve, QuinticVersionInterpolatesAndIsSmootherWithWiderSupport) {
 }
 
 TEST(SSplineCurve, ScaledTangentSetsTheEndDerivativeUpToTheEdgeTerm) {
-  // spec §7 item 6: scaleTangent pre-divides dP0 by lambda_w.
+  // The end rule of Kuriyama 1996, sec. 3.2.4: scaleTangent pre-divides dP0 by lambda_w.
   const Eigen::MatrixX3d p = randomPoints(10, 7);
   SSplineCurveOptions o;
   o.end = SSplineEnd::Tangent;

@@ -62,7 +62,7 @@ TEST(HeuristicShapePoints, SimilarityButNotAffineInvariant) {
 }
 
 TEST(HeuristicShapePoints, MovingAPointChangesOnlyNearbyShapePoints) {
-  // spec §3.4: moving P_k changes Phat_{k-2..k+1} only.
+  // Kuriyama 1996, sec. 3.3.4: moving P_k changes Phat_{k-2..k+1} only.
   std::srand(32);
   const Eigen::MatrixX3d p = Eigen::MatrixX3d::Random(12, 3);
   const SigmaKnots k = SigmaKnots::uniform(11);
@@ -226,7 +226,7 @@ TEST(CubicShapePoints, ClosedCircleMatchesSpecT14) {
 }
 
 TEST(SigmaSurfaceShapePoints, BicubicRoutesAgreeAndPatchesAreBicubic) {
-  // P11 and P8 for surfaces, with the consistent cross-end rule (spec §3.5).
+  // P11 and P8 for surfaces, with the consistent cross-end rule (Kuriyama 1996, sec. 3.3.5).
   std::srand(36);
   Eigen::VectorXd tu(5), tv(6);
   tu << 0, 1, 2.5, 3, 4.5;
@@ -364,7 +364,7 @@ TEST(SigmaSurfaceShapePoints, BicubicModeIsTheTensorProductSplineOfItsEndData) {
   for (double u = 0.0; u <= 4.5; u += 0.125)
     for (double v = 0.0; v <= 6.0; v += 0.125) worst = std::max(worst, (s.evaluate(u, v) - ref.evaluate(u, v)).norm());
   EXPECT_LT(worst, 1e-12);
-  // The negative control of spec §7 item 12: the thesis' literal zero cross-end data make the
+  // The negative control (Kuriyama 1996, sec. 3.3.5): the thesis' literal zero cross-end data make the
   // two routes disagree, and the surface is no longer that spline.
   o.thesisZeroCrossDefaults = true;
   const SigmaSurface literal = interpolateSigmaSurface(ku, kv, g, o).surface;
@@ -375,7 +375,7 @@ TEST(SigmaSurfaceShapePoints, BicubicModeIsTheTensorProductSplineOfItsEndData) {
 }
 
 TEST(SigmaSurfaceShapePoints, ThesisZeroDefaultBreaksTheRouteAgreement) {
-  // spec §7 item 12: with the literal zero cross-end data the two routes differ.
+  // Kuriyama 1996, sec. 3.3.5: with the literal zero cross-end data the two routes differ.
   std::srand(37);
   PointGrid g(5, 5);
   for (auto& q : g.data) q = Eigen::Vector3d::Random();

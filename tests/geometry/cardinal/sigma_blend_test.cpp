@@ -11,7 +11,7 @@
 namespace ffdkit::geometry::cardinal {
 namespace {
 
-// A closed-in-u, open-in-v surface of two horizontal sections (spec T16): points of the
+// A closed-in-u, open-in-v surface of two horizontal sections (case T16): points of the
 // section at radius r(angle index) for heights z0, z1; u knots from the interval widths.
 SigmaSurface sectionSurface(const std::vector<double>& widths,
                             const std::function<double(int)>& radius, double z0, double z1) {
@@ -108,7 +108,7 @@ TEST(SigmaBlend, CircleToVaseHasFourteenKnots) {
 }
 
 TEST(SigmaBlend, UniformMiddleWeightsMatchSpec) {
-  // All four v-intervals around the blend are 10 wide: spec §3.7 step 5 weights.
+  // All four v-intervals around the blend are 10 wide: the blending weights of Kuriyama 1996, sec. 3.3.7.
   const BlendResult r = blendSurfaces(circle(0, 1), star(3, 4));
   const double expected[6] = {1.0 / 8, 1.0 / 8, -3.0 / 32, 15.0 / 32, 15.0 / 32, -3.0 / 32};
   double sum = 0.0;
@@ -160,7 +160,7 @@ TEST(SigmaBlend, JunctionTensionKeepsOriginalsAndGivesG2Beta) {
 }
 
 TEST(SigmaBlend, WarnsWhenTensionsDifferAtASharedUKnot) {
-  // spec §7 item 17: surface 2 has tension at a u-knot that surface 1 lacks.
+  // Kuriyama 1996, sec. 3.3.7 claims only G1 here: surface 2 has tension at a u-knot that surface 1 lacks.
   const SigmaSurface a = circle(0, 1);
   SigmaSurface b = star(3, 4);
   Eigen::VectorXd beta2 = Eigen::VectorXd::Zero(10);

@@ -1,7 +1,7 @@
 #pragma once
 
 // Shared helpers for the cardinal tests: basis functions read off curves with unit data, and
-// an independent clamped cubic spline (Hermite form, seed 001 eq. 2.3) as an oracle.
+// an independent clamped cubic spline (Hermite form, Kuriyama 1996, sec. 2.3.2) as an oracle.
 
 #include <Eigen/Dense>
 

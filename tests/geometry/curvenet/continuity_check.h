@@ -12,11 +12,11 @@
 
 namespace ffdkit::geometry::curvenet::testing {
 
-/// Largest mismatches across the shared edges of a network (spec P4, P5, P6).
+/// Largest mismatches across the shared edges of a network (properties P4, P5, P6).
 struct EdgeMismatch {
   double position = 0.0;   ///< |Q_f - Q_g| at matched parameters
   double angle = 0.0;      ///< angle between unit normals, rad
-  double curvature = 0.0;  ///< |kappa_f(w) - kappa_g(w)| / (1 + |kappa| L) * L  (spec P6 scale)
+  double curvature = 0.0;  ///< |kappa_f(w) - kappa_g(w)| / (1 + |kappa| L) * L  (the P6 scale)
   double boundary = 0.0;   ///< |Q - K(t)| on the side (P1)
   int pairs = 0;           ///< number of (face, face) side pairs compared
 };

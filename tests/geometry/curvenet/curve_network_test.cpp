@@ -64,7 +64,7 @@ TEST(CurveNetwork, SphereOctantsHaveSixVerticesTwelveEdgesEightTriangles) {  // 
   }
 }
 
-TEST(CurveNetwork, FacesAreTracedCounterClockwiseAboutTheOutwardNormal) {  // §4.6
+TEST(CurveNetwork, FacesAreTracedCounterClockwiseAboutTheOutwardNormal) {  // Kuriyama 1996, sec. 5.3.3
   const CurveNetwork net = buildCurveNetwork(sphereOctantNetwork());
   for (const Face& f : net.faces) {
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), area = Eigen::Vector3d::Zero();

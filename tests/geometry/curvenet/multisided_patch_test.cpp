@@ -41,7 +41,7 @@ TEST(MultisidedPatch, SphereOctantsInterpolateAndJoinG2OnAllTwelveEdges) {  // F
   EXPECT_LT(farthest, 0.05);
 }
 
-TEST(MultisidedPatch, BSplineCurveWithAGapIsCorrectedAndStillJoinsG2) {  // §4.3 step 3
+TEST(MultisidedPatch, BSplineCurveWithAGapIsCorrectedAndStillJoinsG2) {  // Kuriyama 1996, sec. 5.3.3
   CurveNetworkDescription d = sphereOctantNetwork();
   // A periodic uniform cubic B-spline passes through (P_{k-1} + 4 P_k + P_{k+1}) / 6 at its
   // knots: scale its control circle so it misses the other two curves by 0.003.
@@ -98,7 +98,7 @@ TEST(MultisidedPatch, PentagonTriangleAndQuadJoinG2ForAnyInfluenceWeight) {  // 
   }
 }
 
-// The reading the spec warns against (A8): each transversal normalised separately,
+// The other reading of the thesis: each transversal normalised separately,
 // C^-(Delta_{i-1} d) and C^+(Delta_{i+1} d), instead of one shared v.
 VectorJet separatelyNormalisedPatch(const CurveNetwork& net, int f, const NGonDomain& d, const Eigen::Vector2d& p) {
   const Face& face = net.faces[f];
@@ -232,7 +232,7 @@ CurveNetworkDescription lShapeNetwork(bool split) {
 
 TEST(MultisidedPatch, ConcaveRegionIsReportedAndSplittingItGivesUnfoldedQuads) {  // F5
   const CurveNetwork concave = buildCurveNetwork(lShapeNetwork(false));
-  EXPECT_TRUE(concave.faces.empty()) << "a reflex corner is never traced (§4.6)";
+  EXPECT_TRUE(concave.faces.empty()) << "a reflex corner is never traced (Kuriyama 1996, sec. 5.3.3)";
   EXPECT_FALSE(concave.openChains.empty());
   const CurveNetwork split = buildCurveNetwork(lShapeNetwork(true));
   ASSERT_EQ(split.faces.size(), 2u);
@@ -306,7 +306,7 @@ TEST(MultisidedPatch, WithoutAveragingAMultiplePointBreaksG1) {  // P7 negative 
   EXPECT_LE(sharedEdgeMismatch(net, {}, 1e-3).angle, 1e-9);
 }
 
-TEST(MultisidedPatch, SpecialRulesNeedExponentThreeForG2) {  // spec §3.6 (iii), A12, P7
+TEST(MultisidedPatch, SpecialRulesNeedExponentThreeForG2) {  // Kuriyama 1996, sec. 5.2.3 (iii), P7
   PatchOptions m2;
   m2.blendingExponent = 2;
   const CurveNetwork tee = buildCurveNetwork(tJunctionNetwork());

@@ -84,7 +84,7 @@ void expectCrackFree(const NetworkMesh& m, const std::function<bool(const Eigen:
   EXPECT_GT(boundary, 0);
 }
 
-TEST(NetworkTessellation, TJunctionMeshIsStitchedWithoutCracks) {  // F8, §5 zipper
+TEST(NetworkTessellation, TJunctionMeshIsStitchedWithoutCracks) {  // F8, Kuriyama 1996, sec. 5.3.4, zipper
   const CurveNetwork net = buildCurveNetwork(tJunctionNetwork());
   const NetworkMesh m = tessellateNetwork(net, 5);
   expectCrackFree(m, [](const Eigen::Vector3d& p) {

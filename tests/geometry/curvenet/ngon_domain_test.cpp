@@ -48,7 +48,7 @@ TEST(NGonDomain, BarycentricAtVertexIsKronecker) {
   }
 }
 
-TEST(NGonDomain, UTildeIsUniformAlongItsEdgeAndZeroOneOnNeighbours) {  // §3.1-3.2
+TEST(NGonDomain, UTildeIsUniformAlongItsEdgeAndZeroOneOnNeighbours) {  // Kuriyama 1996, secs. 2.4.2, 5.2.1
   for (int n = 3; n <= 8; ++n) {
     const NGonDomain d(n);
     for (int i = 0; i < n; ++i) {

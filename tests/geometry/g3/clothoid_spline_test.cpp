@@ -28,7 +28,7 @@ TEST(ClothoidSpline, SolvesReferenceCaseT2Figure2b) {
   }
 }
 
-// Property 4 (spec sec. 7): a clothoid spline is G2 but must fail the G3 test (jumps up to 0.166).
+// Property 4: a clothoid spline is G2 but must fail the G3 test (jumps up to 0.166).
 TEST(ClothoidSpline, IsG2ButFailsTheCurvatureDerivativeContinuityTest) {
   const ClothoidSplineResult r = solveClothoidSpline(testdata::figure2Points(), -0.10923218, -0.16584946);
   ASSERT_TRUE(r.converged);

@@ -418,7 +418,7 @@ TEST(G3CurveSolver, PaperModeTakesExactlyFourUndampedSteps) {
   EXPECT_EQ(full.iterations, 5);
 }
 
-// Underdetermined (2-condition) examples: min-norm, compared loosely (spec sec. 3.8).
+// Underdetermined (2-condition) examples: min-norm, compared loosely.
 TEST(G3CurveSolver, SolvesTheTwoConditionFiguresWithMinimumNormSteps) {
   struct Case {
     const char* name;

@@ -34,7 +34,7 @@ Fixture randomFixture(unsigned seed) {
   return f;
 }
 
-// Residual |lambda X + Y + Z| and tangent-plane angle along the shared edge (spec §6 property 15).
+// Residual |lambda X + Y + Z| and tangent-plane angle along the shared edge (property 15).
 std::pair<double, double> joinDefect(const Fixture& f) {
   double residual = 0.0, angle = 0.0;
   for (int k = 0; k <= 20; ++k) {

@@ -59,7 +59,7 @@ TEST(PatchSurface, IsG1AcrossEveryInteriorCurveOfEveryReferenceMesh) {
 // Normal jump across the interior curves measured from positions only: on each of the two
 // patches at an edge point, the tangent along the edge (central difference) and the tangent into
 // the patch towards its third corner (one-sided, second order) give a normal; the angle between
-// the two sides' normals is the jump (spec §6 property 5), independent of the library's analytic
+// the two sides' normals is the jump (property 5), independent of the library's analytic
 // normals and of surface_diagnostics.
 struct SampledJump {
   double maxAngle = 0.0;
@@ -112,7 +112,7 @@ TEST(PatchSurface, SampledNormalsAgreeAcrossEveryInteriorCurve) {
     EXPECT_LE(jump.maxGap, 1e-12 * (1.0 + s.mesh().vertices.cwiseAbs().maxCoeff())) << m.name;
     EXPECT_LE(jump.maxAngle, 1e-6) << m.name;  // finite differences: O(h^2) + round-off / h
   }
-  // The measure sees a real crease: the thesis' literal G1 constants on the cube (spec §5.3).
+  // The measure sees a real crease: the thesis' literal G1 constants on the cube.
   PatchSurfaceOptions literal;
   literal.g1Scalars = G1Scalars::ThesisConstants;
   EXPECT_GT(sampledNormalJump(PatchSurface::build(cubeMesh(), {}, literal)).maxAngle, 0.2);
@@ -186,7 +186,7 @@ TEST(PatchSurface, SatisfiesTheEdgeConditionsOfEquations413To416) {
       ASSERT_NEAR(omega + s.g1Scalars()[twin].omega, 1.0, 1e-12) << m.name;
       const double kp = s.g1Scalars()[he].kappa, kq = s.g1Scalars()[twin].kappa;
       const auto v = s.curve(p, q);
-      // First inner rows of Q = face(he) and Q' = face(twin), ordered from P (spec §3.6).
+      // First inner rows of Q = face(he) and Q' = face(twin), ordered from P (Kuriyama 1996, sec. 4.3.1).
       auto row = [&](const RationalQuarticTriangle& patch) {
         const int a = patch.cornerSlot(p), b = patch.cornerSlot(q), x = 3 - a - b;
         const Eigen::Vector3d px = net.points.row(patch.corners[x]).transpose();
@@ -231,7 +231,7 @@ TEST(PatchSurface, LiteralThesisConstantsBreakG1ButTheRegularSplitRuleRestoresTh
   // Spec §5.3: S2 with the thesis omega = 1/2, kappa = 3/4 cos(2 pi / N) is not G1.
   PatchSurfaceOptions literal;
   literal.g1Scalars = G1Scalars::ThesisConstants;
-  // Tetra/octa flip normals (spec: 3.10 / 3.03 rad; the exact value near pi depends on the samples).
+  // Tetra/octa flip normals (prototype: 3.10 / 3.03 rad; the exact value near pi depends on the samples).
   EXPECT_GT(maxNormalJump(PatchSurface::build(tetrahedronMesh(), {}, literal)).maxAngle, 2.5);
   EXPECT_GT(maxNormalJump(PatchSurface::build(octahedronMesh(), {}, literal)).maxAngle, 2.5);
   EXPECT_NEAR(maxNormalJump(PatchSurface::build(cubeMesh(), {}, literal)).maxAngle, 0.31, 0.01);
@@ -318,7 +318,7 @@ TEST(PatchSurface, WithFrozenFramesMovingAVertexOnlyChangesNearbyPatches) {
     }
   }
   // Patches (O_b, 3, 4), (O_b, 4, 5), (O_f, 3, 4), (O_f', 4, 5) stay; the ring solves around every
-  // vertex of the moved faces change the other 32 (31 measurably; the spec's prototype reports 26).
+  // vertex of the moved faces change the other 32 (31 measurably; an independent prototype reports 26).
   EXPECT_EQ(untouched, 4);
   EXPECT_GE(changed, 26);
   EXPECT_EQ(changedAtV, atV);

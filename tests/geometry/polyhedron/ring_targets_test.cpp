@@ -36,7 +36,7 @@ TEST(RingTargets, SolvesOddRingsExactlyAndEvenRingsUpToTheAlternatingDefect) {
   const Eigen::MatrixX3d g = ringTargets(r6);
   Eigen::RowVector3d alternating = Eigen::RowVector3d::Zero();
   for (int i = 0; i < 6; ++i) alternating += ((i % 2) ? -1.0 : 1.0) * g.row(i);
-  EXPECT_LE(alternating.norm(), 1e-12);  // the thesis symmetry constraint (l.1594)
+  EXPECT_LE(alternating.norm(), 1e-12);  // the thesis symmetry constraint (Kuriyama 1996, sec. 4.3.2)
 }
 
 TEST(RingTargets, IsTranslationInvariant) {

@@ -22,7 +22,7 @@ TEST(BezierQiSegment, TangentIsUnitAndEqualsRotatedXAxis) {
     EXPECT_NEAR(seg.tangent(t).norm(), 1.0, 1e-14);
     EXPECT_LE((seg.tangent(t) - rotateFixedVector(q, Eigen::Vector3d::UnitX())).norm(), 1e-14);
     EXPECT_NEAR(q.norm(), 1.0, 1e-15);
-    EXPECT_NEAR(q.x(), 0.0, 1e-15);  // q(t) lies on the great 2-sphere x = 0 (seed 000 l.203)
+    EXPECT_NEAR(q.x(), 0.0, 1e-15);  // q(t) lies on the great 2-sphere x = 0 (Miura 1998, sec. 3.3)
   }
 }
 

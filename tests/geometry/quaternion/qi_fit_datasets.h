@@ -9,7 +9,7 @@
 
 namespace ffdkit::geometry::quaternion::testdata {
 
-/// A synthetic data set of seed 003 spec §5.2, with its breaks and (when known) its true u.
+/// A synthetic stand-in for the data of Sakiyama et al. 2001, sec. 3.7, with its breaks and (when known) its true u.
 struct FitDataset {
   Eigen::MatrixX3d points;
   std::vector<int> breaks;

@@ -154,7 +154,7 @@ TEST(QiFitting, SpatialFitIsEquivariantUnderRigidMotion) {
   const FitResult moved = fitQiChain((d.points * rot.transpose()).rowwise() + shift, d.breaks);
   EXPECT_NEAR(moved.rms, base.rms, 1e-8 * base.rms);
   EXPECT_NEAR(moved.curve.length(), base.curve.length(), 1e-8 * base.curve.length());
-  // Point by point (spec 003 §6.12): the same parameters, the same error at every point, and the
+  // Point by point (checkable property 12): the same parameters, the same error at every point, and the
   // moved curve's point at each u_i is the rigid image of the base curve's. The two LM runs stop
   // at slightly different iterates (about 1e-8 L apart here), hence 1e-7 L; a fit that is not
   // equivariant misses by orders of magnitude more.
@@ -264,7 +264,7 @@ TEST(QiFitting, RecoversKnownSpatialChainExactly) {
 TEST(QiFitting, QuadratureOrdersAboveSixtyFourFitLikeLowOrders) {
   // The analytic Jacobian once read its Gauss-Legendre rule from a 65-slot table, past its end for
   // orders above 64. A high order integrates the same smooth integrand, so the fit must agree with
-  // the exact recovery of the known chain (spec 003 §6.11).
+  // the exact recovery of the known chain (checkable property 11).
   const FitDataset d = testdata::chain2d();
   FitOptions o;
   o.startTangent = StartTangentMode::Given;
@@ -388,10 +388,10 @@ QiChain withQuadrature(const QiChain& c, QiQuadrature quadrature) {
 }
 
 TEST(QiFitting, GaussLegendreFiveFitsLikeTheSpecsEight) {
-  // The fit integrates with GL-5 per panel (spec §4 recommends GL-8). (1) Its objective is the exact
+  // The fit integrates with GL-5 per panel (the library default is GL-8). (1) Its objective is the exact
   // one: the same chain integrated with GL-24 on 64 panels gives the same R to 1e-12. (2) The fit
   // is the GL-8 fit: rms to 1e-9, and the curves 1e-8 of their length apart (a GL-8 and a GL-12 fit
-  // of the spiral are 3.5e-9 apart: the flat valley of spec §3.5 leaves that much at the stop).
+  // of the spiral are 3.5e-9 apart: the flat valley of the objective (Sakiyama et al. 2001, sec. 3.5.1) leaves that much at the stop).
   for (const FitDataset& d : {testdata::spiralNoisy(6), testdata::chain3dNoisy()}) {
     const FitResult fit = fitQiChain(d.points, d.breaks);
     ASSERT_TRUE(fit.converged) << fit.message;

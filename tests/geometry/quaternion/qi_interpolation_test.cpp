@@ -30,7 +30,7 @@ InterpolationOptions withRule(EndTangentRule rule) {
   return o;
 }
 
-// Curvature at the global parameter u = i (the joints), as in spec 000 §6's table.
+// Curvature at the global parameter u = i (the joints), as in the prototype's table.
 std::vector<double> jointCurvatures(const QiSpline& c) {
   std::vector<double> k;
   const int n = static_cast<int>(c.segments().size());
@@ -97,11 +97,11 @@ TEST(QiInterpolation, NewtonConvergesQuadraticallyWithinSixIterations) {
 
 TEST(QiInterpolation, InitialResidualIsNearSpecHistories) {
   // Spec 000 §6 initial |f|^2 with the exact mid rule and spline lengths, printed to 2 digits
-  // (+-2 %). Ours is |f|^2 of the data normalised to mean chord c = 1 (spec §4); the prototype's
+  // (+-2 %). Ours is |f|^2 of the data normalised to mean chord c = 1 (Miura 1998, sec. 5.2); the prototype's
   // histories are those of the raw data, where the F rows (lengths) scale by c and the G, H rows
   // (angle per length) by 1 / c. So raw = c^2 |F_n|^2 + c^-2 |GH_n|^2 and the normalised value
   // lies in [raw / c^2, raw * c^2] (c = 1.109 for P4, 1.050 for P7): that band, plus the
-  // rounding, is what the spec supports. The start is dominated by the G, H rows (the joints'
+  // rounding, is what the prototype supports. The start is dominated by the G, H rows (the joints'
   // tangents are exact, the lengths nearly so), so ours is raw * c^2 to within 4 % (measured:
   // 0.973, 0.994, 0.991, 1.004).
   const std::vector<double> initial = {2.5e-3, 8.2e-3, 1.4e-1, 8.1e-2};
@@ -109,7 +109,7 @@ TEST(QiInterpolation, InitialResidualIsNearSpecHistories) {
   for (std::size_t k = 0; k < refs.size(); ++k) {
     const InterpolationResult r = interpolateQi(refs[k].points, withRule(refs[k].rule));
     const double c = r.meanChord, f0 = r.residualHistory.front();
-    std::printf("[initial |f|^2] %s: %.4g, spec %.2g, spec c^2 %.4g (ratio %.4f)\n", refs[k].name, f0, initial[k],
+    std::printf("[initial |f|^2] %s: %.4g, prototype %.2g, prototype c^2 %.4g (ratio %.4f)\n", refs[k].name, f0, initial[k],
                 initial[k] * c * c, f0 / (initial[k] * c * c));
     EXPECT_GE(f0, 0.98 * initial[k] / (c * c)) << refs[k].name;
     EXPECT_LE(f0, 1.02 * initial[k] * c * c) << refs[k].name;
@@ -212,7 +212,7 @@ TEST(QiInterpolation, ReproducesExactHelix) {
       EXPECT_NEAR(seg.torsion(t), k * std::cos(gamma), 1e-8);
     }
   }
-  // Circle3 on the same points is not exact (spec: l = 0.998896, 1.000363, 1.000363, 0.998896).
+  // Circle3 on the same points is not exact (prototype: l = 0.998896, 1.000363, 1.000363, 0.998896).
   const InterpolationResult c3 = interpolateQi(p, withRule(EndTangentRule::Circle3));
   const std::vector<double> expected = {0.998896, 1.000363, 1.000363, 0.998896};
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(c3.curve.segments()[i].length(), expected[i], 1e-6);
@@ -291,7 +291,7 @@ TEST(QiInterpolation, ReversingThePointsTracesTheSameCurveBackwards) {
 }
 
 TEST(QiInterpolation, GeneralRotationChangesTheCurve) {
-  // The x axis is preferred (spec 000 §6.15): rotation invariance must not hold.
+  // The x axis is preferred (Miura 1998, sec. 5.2): rotation invariance must not hold.
   const Eigen::MatrixX3d p = p7();
   const Eigen::Matrix3d r = Eigen::AngleAxisd(0.9, Eigen::Vector3d(0.3, 1.0, 0.5).normalized()).toRotationMatrix();
   const InterpolationResult base = interpolateQi(p, withRule(EndTangentRule::Circle3));

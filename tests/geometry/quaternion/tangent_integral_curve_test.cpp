@@ -48,7 +48,7 @@ TEST(SphereBezierTangent, PureControlOmegasMatchClosedForm) {
     const Eigen::Vector3d expected = angleBetween(v[i - 1], v[i]) * v[i].cross(v[i - 1]).normalized();
     EXPECT_LE((path.quaternionCurve().omegas()[i - 1] - expected).norm(), 1e-14);
   }
-  EXPECT_NEAR(path.realPart(0.5), 0.1464466094, 1e-9);  // Kim leaves w = 0 between the ends (spec R4)
+  EXPECT_NEAR(path.realPart(0.5), 0.1464466094, 1e-9);  // Kim leaves w = 0 between the ends (case R4)
 }
 
 TEST(SphereBezierTangent, RejectsAntipodalNeighbours) {
@@ -144,7 +144,7 @@ TEST(SphereBezierTangent, KimLeavesTheGreatSphereByTheReferenceMaxW) {
   // Spec 004 §5 R4 / R5 / R6: max |w| = 0.1464466094 (= sin^2(pi/8), at t = 0.5), 0.0227155, 0.0489421.
   EXPECT_NEAR(maxRealPart(SphereBezierTangent(r4())), std::pow(std::sin(M_PI / 8), 2), 1e-9);
   EXPECT_NEAR(maxRealPart(SphereBezierTangent(r5())), 0.0227155, 5e-7);
-  // R6: the true maximum is 0.0489438 (at t = 0.39322); the spec's 0.0489421 is the largest
+  // R6: the true maximum is 0.0489438 (at t = 0.39322); the prototype's 0.0489421 is the largest
   // value on the grid t = k / 200 (at t = 0.395), which undershoots a peak between samples.
   const SphereBezierTangent path6(r6());
   EXPECT_NEAR(maxRealPart(path6), 0.0489438, 5e-7);

@@ -39,7 +39,7 @@ TEST(UnitQuaternion, ExpAndLogAreSmoothAtZero) {
 }
 
 TEST(UnitQuaternion, LogKeepsTheSignOfW) {
-  // -q is the opposite tangent for pure controls (seed 004 A7): no hemisphere flip.
+  // -q is the opposite tangent for pure controls (Sphere-tangent report, sec. 3.2): no hemisphere flip.
   const Eigen::Quaterniond q(-0.6, 0.8, 0.0, 0.0);
   EXPECT_NEAR(quaternionLog(q).x(), std::atan2(0.8, -0.6), 1e-15);
   EXPECT_THROW(quaternionLog(Eigen::Quaterniond(-1.0, 0.0, 0.0, 0.0)), QuaternionCurveError);
