@@ -65,7 +65,7 @@ def medians(function, repeat):
         function()
         cpus.append(time.process_time() - cpu)
         walls.append(time.perf_counter() - wall)
-    return statistics.median(walls), statistics.median(cpus)
+    return statistics.median(walls), statistics.median(cpus), walls
 
 
 def main():
@@ -73,6 +73,8 @@ def main():
     parser.add_argument("--points", type=int, default=1_000_000)
     parser.add_argument("--repeat", type=int, default=11)
     parser.add_argument("--no-numpy", action="store_true", help="skip the (slow) plain numpy row")
+    parser.add_argument("--samples", action="store_true",
+                        help="also print every run's wall time per row (for scripts/bench.sh)")
     args = parser.parse_args()
 
     rng = np.random.default_rng(1)
@@ -107,9 +109,11 @@ def main():
     for name, function in rows:
         function()  # warm up (first-touch page faults, thread pool)
         repeat = args.repeat if not name.startswith("plain") else max(3, args.repeat // 4)
-        wall, cpu = medians(function, repeat)
+        wall, cpu, walls = medians(function, repeat)
         kept.clear()
         print("{:<52} {:6.2f} ms {:9.2f} ms".format(name, 1e3 * wall, 1e3 * cpu))
+        if args.samples:
+            print("samples ms [{}]: {}".format(name.strip(), " ".join("{:.3f}".format(1e3 * w) for w in walls)))
     result = params(points)
     scale = np.abs(points).max()
     print("max |FFD - general engine| / max |x| = {:.1e}".format(
