@@ -82,7 +82,7 @@ class QiFitProblem {
 
   /// Chooses, call by call, between the threaded and the serial sweep by their measured times. A
   /// sweep takes 50-150 us, so on a machine whose cores are busy a thread that waits for a core
-  /// stalls the whole region (5-20 ms per region measured at load 10 on 2 cores, against 50-75 us
+  /// stalls the whole region (milliseconds per region on 2 busy cores, against 50-75 us
   /// serial). Both ways give the same bits, so the choice only moves time: the first sweep of a fit
   /// is serial, then threaded with a serial one every 16 calls; two threaded sweeps slower than the
   /// serial one switch threads off for the rest of the fit and, for all fits, for one second. (With
