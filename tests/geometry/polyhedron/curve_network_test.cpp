@@ -26,7 +26,7 @@ Solved solve(const PolygonMesh& mesh, const Tensions& tensions = {}) {
   return s;
 }
 
-// Spec §5.2: t_{v->w} = c Pi_v (P_w - P_v), with Pi_v the projection onto the plane normal to P_v.
+// Kuriyama 1996, sec. 4.2.1: t_{v->w} = c Pi_v (P_w - P_v), with Pi_v the projection onto the plane normal to P_v.
 void expectProjectedLegs(const Solved& s, double factor, double tolerance) {
   for (int he = 0; he < s.topology.halfEdgeCount(); ++he) {
     const Eigen::Vector3d pv = s.mesh.vertices.row(s.topology.from(he)).transpose();
@@ -102,7 +102,7 @@ TEST(CurveNetwork, LegsAtAVertexAreCoplanar) {
 }
 
 TEST(CurveNetwork, VertexTensionMonotonicallyShortensLegs) {
-  // Spec §6 property 9: cube vertex, alpha = 0, 0.5, 1, ..., 100, 1e4.
+  // Property 9: cube vertex, alpha = 0, 0.5, 1, ..., 100, 1e4.
   const std::vector<double> alphas = {0.0, 0.5, 1.0, 2.0, 5.0, 10.0, 100.0, 1e4};
   std::vector<double> sums;
   for (double alpha : alphas) {
@@ -137,7 +137,7 @@ TEST(CurveNetwork, EdgeTensionMonotonicallyLowersEdgePseudoNorm) {
 }
 
 TEST(CurveNetwork, LargeEdgeTensionStraightensTheCurve) {
-  // Spec §6 property 10: cube, beta = 100: (0.6655, -0.0051, -0.0051) vs (2/3, 0, 0).
+  // Property 10 (prototype values): cube, beta = 100: (0.6655, -0.0051, -0.0051) vs (2/3, 0, 0).
   Tensions t;
   t.edgeBeta[{0, 1}] = 100.0;
   const Solved s = solve(cubeMesh(), t);
@@ -220,7 +220,7 @@ TEST(CurveNetwork, FrameOverridesAreKeptAndTheRestIsSolved) {
 }
 
 TEST(CurveNetwork, ReportsCollapsedFrameInsteadOfReturningIt) {
-  // Spec §7-A6: alpha > 0 with beta = 0 on all but one edge collapses the frame to rank 1.
+  // Kuriyama 1996, sec. 4.2.1: alpha > 0 with beta = 0 on all but one edge collapses the frame to rank 1.
   Tensions t;
   t.vertexAlpha[0] = 10.0;
   const PolygonMesh mesh = cubeMesh();

@@ -228,7 +228,7 @@ TEST(PatchSurface, OddValenceCornersAreNonRationalAndEvenOnesGenerallyAreNot) {
 }
 
 TEST(PatchSurface, LiteralThesisConstantsBreakG1ButTheRegularSplitRuleRestoresThem) {
-  // Spec §5.3: S2 with the thesis omega = 1/2, kappa = 3/4 cos(2 pi / N) is not G1.
+  // The thesis split rule (sec. 4.2.2) with the thesis omega = 1/2, kappa = 3/4 cos(2 pi / N) is not G1.
   PatchSurfaceOptions literal;
   literal.g1Scalars = G1Scalars::ThesisConstants;
   // Tetra/octa flip normals (prototype: 3.10 / 3.03 rad; the exact value near pi depends on the samples).
@@ -281,7 +281,7 @@ TEST(PatchSurface, CommutesWithRigidMotionAndUniformScaling) {
 }
 
 TEST(PatchSurface, WithFrozenFramesMovingAVertexOnlyChangesNearbyPatches) {
-  // Spec §4 "Locality" / §7-A9: patches with no corner on a face containing v, nor on its split point,
+  // Locality: patches with no corner on a face containing v, nor on its split point,
   // are bit-identical.
   const PolygonMesh mesh = hexagonalPrismMesh();
   const PatchSurface before = PatchSurface::build(mesh);
@@ -476,7 +476,7 @@ namespace ffdkit::geometry::polyhedron {
 namespace {
 
 TEST(PatchSurface, PerEdgeWeightIsTheRatioOfSplitLegFactors) {
-  // Spec §3.6: omega = s_a / (s_a + s_b) on an original edge between faces a, b, 1/2 on split
+  // Kuriyama 1996, sec. 4.3.1: omega = s_a / (s_a + s_b) on an original edge between faces a, b, 1/2 on split
   // edges; a is the face across the edge: omega s_Q = (1 - omega) s_Q' keeps the split legs'
   // components off t_i in balance.
   const PatchSurface s = PatchSurface::build(hexagonalPrismMesh());

@@ -100,7 +100,7 @@ Eigen::VectorXd movedResidual(const FitDataset& d, const FitResult& fit, int var
 }
 
 TEST(QiFitting, SpatialFitsAreStationaryPointsOfTheObjective) {
-  // Seed 003 eq. (19) recomputed from the returned chain alone (QiChain quadrature, not the fit's):
+  // Sakiyama et al. 2001, eq. (19), recomputed from the returned chain alone (QiChain quadrature, not the fit's):
   // every partial derivative of R = |r|^2 by central differences is negligible against
   // 2 |dr/dx_j| |r|, the scale of a gradient that would still move the fit (the cosine of MINPACK's
   // gradient test; 0.7 at the initial curve). And R itself is the fit's: sum of e_i^2.
