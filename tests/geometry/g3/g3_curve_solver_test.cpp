@@ -188,7 +188,7 @@ std::array<Eigen::Vector2d, 4> oneSidedDerivatives(const QuadraticCurvatureSplin
 }
 
 TEST(G3CurveSolver, SolvedCurvesAreG3AtEveryJointBySampledPositions) {
-  // Spec 002: the curvature is C1 at every interior knot (G3). From the left and from the right
+  // Kuroda et al. 1997, sec. 2: the curvature is C1 at every interior knot (G3). From the left and from the right
   // of each joint: positions meet (G0), kappa = x' y'' - y' x'' and its derivative
   // x' y''' - y' x''' agree (the speed is 1 in arc length).
   struct Case {

@@ -27,7 +27,7 @@ TEST(BezierQiSegment, TangentIsUnitAndEqualsRotatedXAxis) {
 }
 
 TEST(BezierQiSegment, OmegaEqualsConjugateTimesDerivative) {
-  // Spec 000 §6.3: the corrected eq. (68) equals q^-1 q' from central differences.
+  // Property 3: the corrected eq. (68) equals q^-1 q' from central differences.
   const BezierQiSegment seg = twistedSegment();
   const double h = 1e-5;
   for (double t : {0.05, 0.3, 0.62, 0.95}) {
@@ -75,7 +75,7 @@ TEST(BezierQiSegment, AnglesFromTangentInvertTheClosedForm) {
 }
 
 TEST(BezierQiSegment, ConstantBetaAndLinearAlphaGiveAHelix) {
-  // Spec 000 §2.4 special case: kappa = |a'| sin 2b / l, tau = a' cos 2b / l.
+  // Miura 1998, sec. 3.3, special case: kappa = |a'| sin 2b / l, tau = a' cos 2b / l.
   const double gamma = 1.0, k = 0.8;
   const BezierQiSegment seg(Eigen::Vector3d::Zero(), 1.0, {0.0, k / 2, k}, {gamma / 2, gamma / 2, gamma / 2});
   for (double t : {0.0, 0.4, 1.0}) {

@@ -95,7 +95,7 @@ TEST(QiChainSegment, CurvatureAndTorsionMatchFiniteDifferences) {
 }
 
 TEST(QiChainSegment, QuadratureConvergesOnATwistedSegment) {
-  // Spec 003 §6.9: GL-8 on 8 panels vs GL-20 on 256 panels, <= 1e-12 l.
+  // Property 9: GL-8 on 8 panels vs GL-20 on 256 panels, <= 1e-12 l.
   const QiChainSegment coarse = twisted({8, 8});
   const QiChainSegment fine = twisted({20, 256});
   for (double u : {0.3, 0.5, 1.0}) {

@@ -30,7 +30,7 @@ double rmsOf(const Eigen::VectorXd& e) { return std::sqrt(e.squaredNorm() / stat
 
 // Fitting, 3 x 4 + 0: planar fits.
 TEST(QiFitting, ReproducesReferenceRmsOnNoisyPlanarData) {
-  // Spec 003 §5.3 "lsq" preset (the default options), within 1%.
+  // Prototype reference "lsq" preset (the default options), within 1%.
   const FitResult sine = fitQiChain(testdata::sineNoisy().points, testdata::sineNoisy().breaks);
   EXPECT_TRUE(sine.converged) << sine.message;
   EXPECT_NEAR(sine.rms, 0.6787, 0.01 * 0.6787);
@@ -53,7 +53,7 @@ TEST(QiFitting, ReproducesReferenceRmsOnNoisySpatialData) {
 }
 
 TEST(QiFitting, AnalyticAndFiniteDifferenceJacobiansReachTheSameFit) {
-  // Spec 003 §5.3: D-CHAIN3D-N lsq+free 1.3249, lsq form B 1.4554; D-CHAIN2D-N lsq+free 0.65183.
+  // Prototype reference: D-CHAIN3D-N lsq+free 1.3249, lsq form B 1.4554; D-CHAIN2D-N lsq+free 0.65183.
   struct Case {
     FitDataset d;
     ProductForm form;
@@ -123,7 +123,7 @@ TEST(QiFitting, SpatialFitsAreStationaryPointsOfTheObjective) {
 }
 
 TEST(QiFitting, RecoversHelixWithTrueStartTangent) {
-  // Spec 003 §5.3 / §6.11: D-HELIX, M = 3, true t0: rms 3.8e-7, kappa = 30/964 within 1e-6 relative.
+  // Prototype reference / property 11: D-HELIX, M = 3, true t0: rms 3.8e-7, kappa = 30/964 within 1e-6 relative.
   const FitDataset d = testdata::helix();
   FitOptions o;
   o.startTangent = StartTangentMode::Given;
@@ -138,7 +138,7 @@ TEST(QiFitting, RecoversHelixWithTrueStartTangent) {
 }
 
 TEST(QiFitting, NoisySpiralWithEightSegmentsMatchesReference) {
-  // Spec 003 §5.3 D-SPIRAL-N M8 lsq 1.5573 (10% allowed, §6.13); QI beats the B-spline (1.6119).
+  // Prototype reference D-SPIRAL-N M8 lsq 1.5573 (10 % allowed); QI beats the B-spline (1.6119).
   const FitDataset d = testdata::spiralNoisy(8);
   const FitResult r = fitQiChain(d.points, d.breaks);
   EXPECT_TRUE(r.converged) << r.message;
@@ -169,7 +169,7 @@ TEST(QiFitting, SpatialFitIsEquivariantUnderRigidMotion) {
 }
 
 TEST(QiFitting, ReproducesTheSpiralRows) {
-  // Spec 003 §5.3 D-SPIRAL M16: lsq 9.96e-3 and paper 8.62e-3 (10 % allowed, §6.13), lsq+free
+  // Prototype reference D-SPIRAL M16: lsq 9.96e-3 and paper 8.62e-3 (10 % allowed), lsq+free
   // rms <= 1e-4 absolute; B-spline baseline 0.08395; lengths 344.19 / 344.18 / 344.17.
   // D-SPIRAL-N M16: lsq 1.3634, lsq+free 1.3460 (10 %), baseline 1.50307.
   const FitDataset d = testdata::spiral(16);
@@ -197,7 +197,7 @@ TEST(QiFitting, ReproducesTheSpiralRows) {
 }
 
 TEST(QiFitting, PaperPresetReproducesReferenceRows) {
-  // Spec 003 §5.3 "paper" preset (interpolating cubic, Q_0 = Q_1, fixed start from it; LM):
+  // Prototype reference "paper" preset (interpolating cubic, Q_0 = Q_1, fixed start from it; LM):
   // D-SINE B1 0.07811, B2 0.14427, D-CHAIN2D (chord u) 0.03092, D-HELIX M = 3 0.1400.
   FitOptions paper;
   paper.initialCurve = FitInitialCurve::InterpolatingCubic;
@@ -229,7 +229,7 @@ TEST(QiFitting, ObjectiveNeverIncreasesAndEndsBelowStart) {
 }
 
 TEST(QiFitting, RecoversKnownPlanarChainExactly) {
-  // Spec 003 §6.11: true u and the Given true start tangent.
+  // Property 11: true u and the Given true start tangent.
   const FitDataset d = testdata::chain2d();
   FitOptions o;
   o.startTangent = StartTangentMode::Given;
@@ -325,7 +325,7 @@ Comparison compare(const char* name, const FitDataset& d, bool planar) {
 }
 
 TEST(QiFitting, BeatsBSplineBaselineInErrorAndCurvatureVariation) {
-  // Spec 003 §6.14-15 and §5.3: reference BS rms 1.8565 / 1.18592 / 1.6967, QI rms 0.6787 /
+  // Properties 14-15 and the prototype reference: reference BS rms 1.8565 / 1.18592 / 1.6967, QI rms 0.6787 /
   // 0.65204 / 1.6213; TV: D-SINE-N QI intra 0.1186 vs BS 0.1456, D-CHAIN2D-N 0.0504 vs 0.0709,
   // D-SPIRAL-N M6 QI 7 extrema / TV 0.143 vs BS 13 / 0.218.
   const Comparison sine = compare("D-SINE-N", testdata::sineNoisy(), true);
@@ -363,7 +363,7 @@ TEST(QiFitting, PlanarSegmentsHaveExactlyLinearCurvature) {
 }
 
 TEST(QiFitting, ConversionToBSplineKeepsShapeAndCurvature) {
-  // Spec 003 §6.16: 200 arc-uniform samples, 117 spans.
+  // Property 16: 200 arc-uniform samples, 117 spans.
   const FitDataset c2 = testdata::chain2dNoisy();
   const FitResult r = fitQiChain(c2.points, c2.breaks);
   const UniformCubicBSpline b = convertToCubicBSpline(r.curve, 117, 200);

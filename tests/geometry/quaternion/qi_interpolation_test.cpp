@@ -96,7 +96,7 @@ TEST(QiInterpolation, NewtonConvergesQuadraticallyWithinSixIterations) {
 }
 
 TEST(QiInterpolation, InitialResidualIsNearSpecHistories) {
-  // Spec 000 §6 initial |f|^2 with the exact mid rule and spline lengths, printed to 2 digits
+  // Prototype initial |f|^2 with the exact mid rule and spline lengths, printed to 2 digits
   // (+-2 %). Ours is |f|^2 of the data normalised to mean chord c = 1 (Miura 1998, sec. 5.2); the prototype's
   // histories are those of the raw data, where the F rows (lengths) scale by c and the G, H rows
   // (angle per length) by 1 / c. So raw = c^2 |F_n|^2 + c^-2 |GH_n|^2 and the normalised value
@@ -141,7 +141,7 @@ TEST(QiInterpolation, InterpolatesPointsWithPrescribedEndTangentsAndG2Joints) {
 }
 
 TEST(QiInterpolation, AnalyticJacobianMatchesCentralDifferences) {
-  // Spec 000 §6.16 at a generic (non-solution) point of P7's unknowns.
+  // Property 16 at a generic (non-solution) point of P7's unknowns.
   const Eigen::MatrixX3d p = p7();
   const int n = 6;
   Eigen::VectorXd x(5 * n - 2);
@@ -185,7 +185,7 @@ TEST(QiInterpolation, SegmentLengthIsArcLength) {
 }
 
 TEST(QiInterpolation, ReproducesExactHelix) {
-  // Spec 000 §6.11.
+  // Property 11.
   const double gamma = 1.0, k = 0.8;
   Eigen::MatrixX3d p(5, 3);
   for (int i = 0; i < 5; ++i) {
@@ -219,7 +219,7 @@ TEST(QiInterpolation, ReproducesExactHelix) {
 }
 
 TEST(QiInterpolation, ReproducesExactPlanarClothoid) {
-  // Spec 000 §6.12: phi(s) = 0.2 + 0.1 s + 0.3 s^2 in the plane x = 0; points at s = 0, 1, 2.3, 3.1.
+  // Property 12: phi(s) = 0.2 + 0.1 s + 0.3 s^2 in the plane x = 0; points at s = 0, 1, 2.3, 3.1.
   const auto phi = [](double s) { return 0.2 + 0.1 * s + 0.3 * s * s; };
   const std::vector<double> sj = {0.0, 1.0, 2.3, 3.1};
   const GaussLegendreRule rule = gaussLegendreRule(20);

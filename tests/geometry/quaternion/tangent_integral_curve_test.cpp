@@ -141,7 +141,7 @@ double maxRealPart(const SphereBezierTangent& path) {
 }
 
 TEST(SphereBezierTangent, KimLeavesTheGreatSphereByTheReferenceMaxW) {
-  // Spec 004 §5 R4 / R5 / R6: max |w| = 0.1464466094 (= sin^2(pi/8), at t = 0.5), 0.0227155, 0.0489421.
+  // Prototype cases R4 / R5 / R6: max |w| = 0.1464466094 (= sin^2(pi/8), at t = 0.5), 0.0227155, 0.0489421.
   EXPECT_NEAR(maxRealPart(SphereBezierTangent(r4())), std::pow(std::sin(M_PI / 8), 2), 1e-9);
   EXPECT_NEAR(maxRealPart(SphereBezierTangent(r5())), 0.0227155, 5e-7);
   // R6: the true maximum is 0.0489438 (at t = 0.39322); the prototype's 0.0489421 is the largest
@@ -156,7 +156,7 @@ TEST(SphereBezierTangent, KimLeavesTheGreatSphereByTheReferenceMaxW) {
 }
 
 TEST(TangentIntegralCurve, TorsionIsCurvatureTimesGeodesicCurvature) {
-  // Spec 004 §6.7: tau = kappa * kappa_g, with the geodesic curvature of the tangent path on S^2,
+  // Property 7: tau = kappa * kappa_g, with the geodesic curvature of the tangent path on S^2,
   // kappa_g = det(T, T_t, T_tt) / |T_t|^3, here from central differences of T alone.
   for (const auto& controls : {r4(), r5(), r6()}) {
     const TangentIntegralCurve c = unitCurve(controls);
@@ -248,7 +248,7 @@ TEST(TangentIntegralCurve, QuadratureConvergesWith64Panels) {
 }
 
 TEST(QuaternionIntegralCurve, MiuraHelixAndThreeDimensionalClothoid) {
-  // Spec 004 R7 and R8.
+  // Prototype cases R7 and R8.
   const Eigen::Vector3d v = Eigen::Vector3d(1, 0, 1).normalized();
   const auto make = [&](double a1) {
     const std::vector<Eigen::Quaterniond> q = {Eigen::Quaterniond::Identity(),

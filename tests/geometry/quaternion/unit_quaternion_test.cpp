@@ -46,7 +46,7 @@ TEST(UnitQuaternion, LogKeepsTheSignOfW) {
 }
 
 TEST(UnitQuaternion, SlerpSphereMidpointAvoidsEigenNegation) {
-  // Spec 004 R9: Eigen's slerp would give (0.894, -0.447, 0).
+  // Case R9: Eigen's slerp would give (0.894, -0.447, 0).
   const Eigen::Vector3d m = slerpSphere(Eigen::Vector3d::UnitX(), Eigen::Vector3d(-0.6, 0.8, 0.0), 0.5);
   EXPECT_LE((m - Eigen::Vector3d(0.4472135955, 0.8944271910, 0.0)).norm(), 1e-10);
   EXPECT_THROW(slerpSphere(Eigen::Vector3d::UnitX(), -Eigen::Vector3d::UnitX(), 0.5), QuaternionCurveError);
