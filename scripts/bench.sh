@@ -42,7 +42,9 @@ case "$reps" in '' | *[!0-9]* | 0) echo "bench.sh: --repetitions needs a positiv
 
 if [ "$do_build" = 1 ]; then
   FFDKIT_BUILD_DIR="$build" "$root/scripts/build.sh" --target bench_ffd --target bench_meshio \
-    --target bench_geometry_quaternion --target bench_interaction --target bench_animation --target ffdkit-cli --target ffdkit_python
+    --target bench_geometry_quaternion --target bench_interaction --target bench_animation --target bench_exporters \
+    --target bench_geometry_cardinal --target bench_geometry_curvenet --target bench_geometry_g3 \
+    --target bench_geometry_polyhedron --target ffdkit-cli --target ffdkit_python
 fi
 
 # The Python with numpy (Debian's, which scripts/setup-deps.sh installs it into).
@@ -78,6 +80,13 @@ gbench interaction app/bench_interaction '^BM_DragStep/points:1M/|^BM_DragFirstS
 gbench animation app/bench_animation '^BM_(Animation|Playback)Frame'
 gbench meshio meshio/bench_meshio '^BM_(Read|Write)Mesh/format:(ply|xyz)/vertices:1000000/'
 gbench quaternion geometry/quaternion/bench_geometry_quaternion '^BM_QiFit_points_164_segments_6$' OMP_NUM_THREADS=1
+# Every benchmark of the generated-geometry topics and of the glTF export (the page's second table).
+gbench all_cardinal geometry/cardinal/bench_geometry_cardinal '.'
+gbench all_curvenet geometry/curvenet/bench_geometry_curvenet '.'
+gbench all_g3 geometry/g3/bench_geometry_g3 '.'
+gbench all_polyhedron geometry/polyhedron/bench_geometry_polyhedron '.'
+gbench all_quaternion geometry/quaternion/bench_geometry_quaternion '.'
+gbench all_exporters exporters/bench_exporters '.'
 
 # ---- End to end: ffdkit-cli deform on a 1,000,000-vertex binary PLY ---------------------------
 cli="$build/app/cli/ffdkit-cli"
@@ -330,6 +339,26 @@ for i, r in enumerate(rows, 1):
     else:
         med, rng = r["note"], ""
     w("| %d | %s | %s | %s | %s | %s | %s |" % (i, r["what"], med, rng, r["goal"], verdict(r), r["peer"]))
+w("")
+w("## Generated geometry and export")
+w("")
+w("Every benchmark of `bench_geometry_*` and `bench_exporters` (wall time; no goals). The names")
+w("carry the sizes; what each times is in the topic's guide ([generators.md](generators.md),")
+w("[export.md](export.md)).")
+w("")
+w("| program | benchmark | median | range |")
+w("|---|---|---|---|")
+for key, program in (("all_cardinal", "bench_geometry_cardinal"), ("all_curvenet", "bench_geometry_curvenet"),
+                     ("all_g3", "bench_geometry_g3"), ("all_polyhedron", "bench_geometry_polyhedron"),
+                     ("all_quaternion", "bench_geometry_quaternion"), ("all_exporters", "bench_exporters")):
+    runs = gbench_runs(key)
+    if runs is None:
+        w("| %s | not built | | |" % program)
+        continue
+    for name, samples in runs.items():
+        w("| %s | `%s` | %s | %s-%s |" % (program, name, fmt(statistics.median(samples)), fmt(min(samples)), fmt(max(samples))))
+w("")
+w("Command: `OMP_WAIT_POLICY=passive %s/bench/<topic>/<program> --benchmark_repetitions=%d`." % (rel_build, reps))
 w("")
 w("## Commands")
 w("")
