@@ -78,7 +78,7 @@ embed='^BM_EmbedBox/points:1000000/lattice:4x4x4/basis:bspline3/|^BM_EmbedNewton
 gbench ffd bench_ffd "$kernel|$update|$embed"
 gbench interaction app/bench_interaction '^BM_DragStep/points:1M/|^BM_DragFirstStep/points:1M/|^BM_Hover/points:1M/|^BM_UndoDrag/points:10M/'
 gbench animation app/bench_animation '^BM_(Animation|Playback)Frame'
-gbench meshio meshio/bench_meshio '^BM_(Read|Write)Mesh/format:(ply|xyz)/vertices:1000000/'
+gbench meshio meshio/bench_meshio '^BM_(Read|Write)Mesh/format:[a-z]+/vertices:1000000/'
 gbench quaternion geometry/quaternion/bench_geometry_quaternion '^BM_QiFit_points_164_segments_6$' OMP_NUM_THREADS=1
 # Every benchmark of the generated-geometry topics and of the glTF export (the page's second table).
 gbench all_cardinal geometry/cardinal/bench_geometry_cardinal '.'
@@ -300,10 +300,12 @@ add("`ffdkit.pygem.FFD(points)`, 1M points, 4x4x4 Bernstein, 58 % inside a rotat
 
 # CLI
 cli_cmd = env["FFDKIT_BENCH_CLI"].replace(build + "/", rel_build + "/")
+cli_row = len(rows) + 1
 for key, what, goal in (("total", "end to end: `ffdkit-cli deform` of a 1M-vertex binary PLY (read, embed, deform, write)", 150.0),
                         ("read", "  of which reading the PLY", 60.0), ("embed", "  of which embedding", 5.0),
                         ("deform", "  of which deforming", 7.0), ("write", "  of which writing", 50.0)):
-    add(what, cli.get(key), "" if cli.get(key) else "not built", cli_cmd, "<= %g ms" % goal, goal,
+    add(what, cli.get(key), "" if cli.get(key) else "not built",
+        cli_cmd if key == "total" else "the `--timings` split of the runs of row %d" % cli_row, "<= %g ms" % goal, goal,
         readme="CLI: deform a 1M-vertex PLY file, end to end" if key == "total" else None)
 
 
@@ -342,15 +344,17 @@ for i, r in enumerate(rows, 1):
 w("")
 w("## Generated geometry and export")
 w("")
-w("Every benchmark of `bench_geometry_*` and `bench_exporters` (wall time; no goals). The names")
-w("carry the sizes; what each times is in the topic's guide ([generators.md](generators.md),")
-w("[export.md](export.md)).")
+w("Every benchmark of `bench_geometry_*` and `bench_exporters`, and every mesh format's read and")
+w("write at 1M vertices (wall time; a write is durable: fsync and rename). The names carry the")
+w("sizes; what each times is in the topic's guide ([generators.md](generators.md),")
+w("[export.md](export.md), [robustness.md](robustness.md)).")
 w("")
 w("| program | benchmark | median | range |")
 w("|---|---|---|---|")
 for key, program in (("all_cardinal", "bench_geometry_cardinal"), ("all_curvenet", "bench_geometry_curvenet"),
                      ("all_g3", "bench_geometry_g3"), ("all_polyhedron", "bench_geometry_polyhedron"),
-                     ("all_quaternion", "bench_geometry_quaternion"), ("all_exporters", "bench_exporters")):
+                     ("all_quaternion", "bench_geometry_quaternion"), ("all_exporters", "bench_exporters"),
+                     ("meshio", "bench_meshio")):
     runs = gbench_runs(key)
     if runs is None:
         w("| %s | not built | | |" % program)
@@ -358,7 +362,8 @@ for key, program in (("all_cardinal", "bench_geometry_cardinal"), ("all_curvenet
     for name, samples in runs.items():
         w("| %s | `%s` | %s | %s-%s |" % (program, name, fmt(statistics.median(samples)), fmt(min(samples)), fmt(max(samples))))
 w("")
-w("Command: `OMP_WAIT_POLICY=passive %s/bench/<topic>/<program> --benchmark_repetitions=%d`." % (rel_build, reps))
+w("Command: `OMP_WAIT_POLICY=passive %s/bench/<topic>/<program> --benchmark_repetitions=%d` (bench_meshio:" % (rel_build, reps))
+w("`--benchmark_filter=vertices:1000000`).")
 w("")
 w("## Commands")
 w("")
@@ -367,7 +372,7 @@ w("1000 x 1000 grid `grid.ply` that `scripts/bench.sh` writes (1,000,000 vertice
 w("triangles, 38 MB).")
 w("")
 for i, r in enumerate(rows, 1):
-    w("%d. `%s`" % (i, r["command"]))
+    w("%d. %s" % (i, r["command"] if r["command"].startswith("the ") else "`%s`" % r["command"]))
 w("")
 w("Blender's lattice modifier on the job of row 1: `%s` (%s)." % (
     env["FFDKIT_BENCH_BLENDER"].replace(build, rel_build),
