@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "json_text.h"
+
 namespace ffdkit::scenes {
 namespace {
 
@@ -34,10 +36,14 @@ double GeneratorParameters::number(const std::string& name, double fallback) con
 }
 
 int GeneratorParameters::integer(const std::string& name, int fallback) const {
+  return integer(name, fallback, -1'000'000'000, 1'000'000'000);
+}
+
+int GeneratorParameters::integer(const std::string& name, int fallback, int lo, int hi) const {
   const double* value = typed<double>(values_, name, "a whole number");
   if (value == nullptr) return fallback;
-  if (!std::isfinite(*value) || *value != std::floor(*value) || std::abs(*value) > 1e9)
-    throw GeneratorError("parameter '" + name + "': expected a whole number, got " + std::to_string(*value));
+  if (const std::string problem = detail::integerProblem(*value, lo, hi); !problem.empty())
+    throw GeneratorError("parameter '" + name + "': " + problem);
   return static_cast<int>(*value);
 }
 
@@ -129,6 +135,36 @@ MeshData GeneratorRegistry::generate(const std::string& name, const GeneratorPar
   } catch (const std::exception& e) {
     throw GeneratorError("generator '" + name + "': " + e.what());
   }
+}
+
+MeshData GeneratorRegistry::generate(const std::string& name, const GeneratorParameters& parameters, double density,
+                                     meshio::ReadBudget& budget) const {
+  const Generator& generator = get(name);
+  const std::string what = "generator '" + name + "'";
+  try {
+    if (generator.pointBound) {
+      if (!(density > 0.0) || !std::isfinite(density) || density > 64.0)
+        throw GeneratorError("density must be in (0, 64], got " + std::to_string(density));
+      parameters.checkKnown(generator.parameterNames);
+      const std::uint64_t bound = generator.pointBound(parameters, density);
+      budget.chargePoints(bound, "up to " + std::to_string(bound) + " points");
+      budget.chargeBytes(bound, kGeneratedBytesPerPoint, "their triangles or segments and working copies");
+    }
+  } catch (const GeneratorError& e) {
+    throw GeneratorError(what + ": " + e.what());
+  } catch (const std::exception& e) {
+    throw GeneratorError(what + ": " + e.what());
+  }
+  MeshData mesh = generate(name, parameters, density);
+  if (!generator.pointBound) {
+    try {
+      budget.chargePoints(std::uint64_t(mesh.points.rows()), "its points");
+      budget.chargeBytes(std::uint64_t(mesh.points.rows()), kGeneratedBytesPerPoint, "their triangles or segments and working copies");
+    } catch (const std::exception& e) {
+      throw GeneratorError(what + ": " + e.what());
+    }
+  }
+  return mesh;
 }
 
 CurvatureProfile GeneratorRegistry::profile(const std::string& name, const GeneratorParameters& parameters,

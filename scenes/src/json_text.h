@@ -5,9 +5,12 @@
 #include <cstdint>
 #include <initializer_list>
 #include <string>
+#include <string_view>
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
+
+#include "ffdkit/meshio/read_limits.h"
 
 namespace ffdkit::scenes::detail {
 
@@ -22,15 +25,31 @@ std::string canonicalJsonText(const Json& value);
 /// "line:column" (1-based) of byte offset `byte` in `text`, for parse-error messages.
 std::string lineColumn(const std::string& text, std::size_t byte);
 
-/// Parses `content`; a syntax error becomes `Error("<source>:<line>:<column>: syntax error ...")`.
+/// An upper bound of the bytes nlohmann's document of `content` takes (values, containers with
+/// their growth slack, object keys, long strings), counted by a parse that builds nothing. A
+/// compact file ("[0,0,0,...]") makes a document about ten times its size: a read charges this
+/// before it builds the document. Malformed text is counted up to the error (the real parse
+/// then reports it).
+std::uint64_t parsedJsonBytes(const std::string& content);
+
+/// Parses `content` after charging its document (parsedJsonBytes) to `budget`; a syntax error
+/// becomes `Error("<source>:<line>:<column>: syntax error ...")`, a budget overrun
+/// `Error("<source>: the parsed JSON of ...")`. Messages never quote the text (nlohmann's
+/// "last read: '...'" is dropped): the position is enough, and the text may be another file's.
 template <class Error>
-Json parseJson(const std::string& content, const std::string& sourceName) {
+Json parseJson(const std::string& content, const std::string& sourceName, meshio::ReadBudget& budget) {
+  try {
+    budget.chargeBytes(1, parsedJsonBytes(content), "the parsed JSON of " + std::to_string(content.size()) + " bytes");
+  } catch (const meshio::ReadLimitError& e) {
+    throw Error(sourceName + ": " + e.what());
+  }
   try {
     return Json::parse(content);
   } catch (const Json::parse_error& e) {
     // nlohmann's message starts "[json.exception.parse_error.101] parse error at line ..."; keep its tail.
     std::string message = e.what();
     if (auto pos = message.find("syntax error"); pos != std::string::npos) message = message.substr(pos);
+    if (auto pos = message.find("; last read: "); pos != std::string::npos) message.erase(pos);
     throw Error(sourceName + ":" + lineColumn(content, e.byte == 0 ? 0 : e.byte - 1) + ": " + message);
   } catch (const Json::out_of_range& e) {
     // A number beyond double range ("1e400") is refused by the parser this way, without a position.
@@ -38,6 +57,12 @@ Json parseJson(const std::string& content, const std::string& sourceName) {
     if (auto pos = message.find("] "); pos != std::string::npos) message = message.substr(pos + 2);
     throw Error(sourceName + ": " + message);
   }
+}
+
+template <class Error>
+Json parseJson(const std::string& content, const std::string& sourceName) {
+  meshio::ReadBudget budget;
+  return parseJson<Error>(content, sourceName, budget);
 }
 
 /// Where a value sits in the document being read (a JSON pointer), for error messages:
@@ -52,6 +77,27 @@ struct JsonLocation {
   std::string where() const { return *source + " " + (pointer.empty() ? "/" : pointer); }
   [[noreturn]] void fail(const std::string& message) const { throw Error(where() + ": " + message); }
 };
+
+/// Charges `count` points to `budget`; over it, an error at `at` with the budget's message.
+template <class E>
+void chargePoints(meshio::ReadBudget& budget, std::uint64_t count, std::string_view what, const JsonLocation<E>& at) {
+  try {
+    budget.chargePoints(count, what);
+  } catch (const meshio::ReadLimitError& e) {
+    at.fail(e.what());
+  }
+}
+
+/// Charges `count` items of `bytesEach` bytes to `budget`; over it, an error at `at`.
+template <class E>
+void chargeBytes(meshio::ReadBudget& budget, std::uint64_t count, std::uint64_t bytesEach, std::string_view what,
+                 const JsonLocation<E>& at) {
+  try {
+    budget.chargeBytes(count, bytesEach, what);
+  } catch (const meshio::ReadLimitError& e) {
+    at.fail(e.what());
+  }
+}
 
 template <class E>
 const Json& member(const Json& object, const char* key, const JsonLocation<E>& at) {
@@ -92,12 +138,27 @@ double number(const Json& j, const JsonLocation<E>& at) {
   return v;
 }
 
+/// The one rule for every integer a scene file, a widget file, a keyframe or a generator
+/// parameter holds (frames, counts, indices, stripes, degrees, sample counts): a whole number
+/// in [lo, hi]. Returns why `value` breaks it ("" when it does not):
+/// "expected an integer in [3, 4096], got 5.5". A JSON value must be written as an integer
+/// (5.5, 5.0 and 1e3 are refused; so are int64 min and uint64 max when out of range).
+std::string integerProblem(const Json& value, std::int64_t lo, std::int64_t hi);
+/// The same rule for a number already read as a double (generator parameters, which a scene
+/// holds as numbers): a whole number in [lo, hi].
+std::string integerProblem(double value, std::int64_t lo, std::int64_t hi);
+
+/// The integer `j`, checked by integerProblem; the error names its location.
 template <class E>
-int integer(const Json& j, const JsonLocation<E>& at) {
-  if (!j.is_number_integer()) at.fail(std::string("expected an integer, got ") + j.type_name());
-  const auto v = j.get<std::int64_t>();
-  if (v < -1'000'000'000 || v > 1'000'000'000) at.fail("integer out of range");
-  return static_cast<int>(v);
+std::int64_t integerIn(const Json& j, std::int64_t lo, std::int64_t hi, const JsonLocation<E>& at) {
+  if (const std::string problem = integerProblem(j, lo, hi); !problem.empty()) at.fail(problem);
+  return j.is_number_unsigned() ? static_cast<std::int64_t>(j.get<std::uint64_t>()) : j.get<std::int64_t>();
+}
+
+/// integerIn for values that are ints: [lo, hi] within int's range.
+template <class E>
+int intIn(const Json& j, int lo, int hi, const JsonLocation<E>& at) {
+  return static_cast<int>(integerIn(j, lo, hi, at));
 }
 
 template <class E>

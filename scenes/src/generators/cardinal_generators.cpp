@@ -28,13 +28,13 @@ const std::vector<std::pair<std::string, c::BlendPart>> kParts = {
 };
 
 c::CurveSampling curveSampling(const GeneratorParameters& p, double density) {
-  return {scaledCount(positiveInteger(p, "samples-per-span", c::CurveSampling{}.samplesPerSpan), density, 1)};
+  return {scaledCount(p.integer("samples-per-span", c::CurveSampling{}.samplesPerSpan, 1, kMaxSamples), density, 1)};
 }
 
 c::SurfaceSampling surfaceSampling(const GeneratorParameters& p, double density) {
   const c::SurfaceSampling base;
-  return {scaledCount(positiveInteger(p, "samples-per-span-u", base.samplesPerSpanU), density, 1),
-          scaledCount(positiveInteger(p, "samples-per-span-v", base.samplesPerSpanV), density, 1)};
+  return {scaledCount(p.integer("samples-per-span-u", base.samplesPerSpanU, 1, kMaxSamples), density, 1),
+          scaledCount(p.integer("samples-per-span-v", base.samplesPerSpanV, 1, kMaxSamples), density, 1)};
 }
 
 CurvatureProfile toProfile(const c::CurvatureSamples& s) {
@@ -47,7 +47,7 @@ c::PointGrid grid(const GeneratorParameters& p, const std::string& prefix) {
   const Eigen::MatrixX3d points = points3(p, prefix + "points", 4);
   const std::string columnsName = prefix + "columns";
   if (!p.has(columnsName)) throw GeneratorError("missing parameter '" + columnsName + "' (points per grid row)");
-  const int columns = positiveInteger(p, columnsName, 0, 2);
+  const int columns = p.integer(columnsName, 0, 2, kMaxCount);
   if (points.rows() % columns != 0)
     throw GeneratorError("parameter '" + prefix + "points': " + std::to_string(points.rows()) +
                          " points do not fill rows of '" + columnsName + "' = " + std::to_string(columns));
@@ -61,11 +61,11 @@ c::SSplineCurveParams sSplineCurve(const GeneratorParameters& p) {
   params.points = points3(p, "points", 2);
   auto& o = params.options;
   o.beta2 = p.number("beta2", o.beta2);
-  o.halfWidth = positiveInteger(p, "half-width", o.halfWidth);
+  o.halfWidth = p.integer("half-width", o.halfWidth, 1, kMaxHalfWidth);
   o.end = choice(p, "end", o.end, kEnds);
   o.startTangent = vector3(p, "start-tangent", o.startTangent);
   o.endTangent = vector3(p, "end-tangent", o.endTangent);
-  o.degree = positiveInteger(p, "degree", o.degree);
+  o.degree = p.integer("degree", o.degree, 1, kMaxDegree);
   o.clipped = p.flag("clipped", o.clipped);
   if (o.end != c::SSplineEnd::Tangent && (p.has("start-tangent") || p.has("end-tangent")))
     throw GeneratorError("parameters 'start-tangent' and 'end-tangent' are used only with end 'tangent'");
@@ -95,10 +95,10 @@ c::SSplineSurfaceParams sSplineSurface(const GeneratorParameters& p) {
   auto& o = params.options;
   o.beta2U = p.number("beta2-u", o.beta2U);
   o.beta2V = p.number("beta2-v", o.beta2V);
-  o.halfWidthU = positiveInteger(p, "half-width-u", o.halfWidthU);
-  o.halfWidthV = positiveInteger(p, "half-width-v", o.halfWidthV);
-  o.degreeU = positiveInteger(p, "degree-u", o.degreeU);
-  o.degreeV = positiveInteger(p, "degree-v", o.degreeV);
+  o.halfWidthU = p.integer("half-width-u", o.halfWidthU, 1, kMaxHalfWidth);
+  o.halfWidthV = p.integer("half-width-v", o.halfWidthV, 1, kMaxHalfWidth);
+  o.degreeU = p.integer("degree-u", o.degreeU, 1, kMaxDegree);
+  o.degreeV = p.integer("degree-v", o.degreeV, 1, kMaxDegree);
   o.closedU = p.flag("closed-u", o.closedU);
   o.closedV = p.flag("closed-v", o.closedV);
   params.validate();
@@ -136,6 +136,33 @@ c::SplineBlendParams splineBlend(const GeneratorParameters& p) {
   return params;
 }
 
+// ---- point bounds (Generator::pointBound): a direction of n data points has at most n spans
+// (n - 1 open, n closed), sampled at samples-per-span each.
+
+std::uint64_t curveBound(const GeneratorParameters& p, double density) {
+  return samplesAlong(std::uint64_t(p.rows("points", 3).rows()), curveSampling(p, density).samplesPerSpan);
+}
+
+// Rows (along u) and columns (along v) of the grid `<prefix>points`, without building it.
+std::pair<std::uint64_t, std::uint64_t> gridShape(const GeneratorParameters& p, const std::string& prefix) {
+  const c::PointGrid g = grid(p, prefix);
+  return {std::uint64_t(g.rows), std::uint64_t(g.cols)};
+}
+
+std::uint64_t surfaceBound(const GeneratorParameters& p, double density) {
+  const c::SurfaceSampling s = surfaceSampling(p, density);
+  const auto [rows, columns] = gridShape(p, "");
+  return boundProduct(samplesAlong(rows, s.samplesPerSpanU), samplesAlong(columns, s.samplesPerSpanV));
+}
+
+// The composite joins the two grids' columns with two blend spans between them.
+std::uint64_t blendBound(const GeneratorParameters& p, double density) {
+  const c::SurfaceSampling s = surfaceSampling(p, density);
+  const auto [rows1, columns1] = gridShape(p, "first-");
+  const auto [rows2, columns2] = gridShape(p, "second-");
+  return boundProduct(samplesAlong(std::max(rows1, rows2), s.samplesPerSpanU), samplesAlong(columns1 + columns2 + 2, s.samplesPerSpanV));
+}
+
 std::vector<std::string> withPrefix(const std::string& prefix, const std::vector<std::string>& names) {
   std::vector<std::string> result;
   for (const auto& name : names) result.push_back(prefix + name);
@@ -159,6 +186,7 @@ void addCardinalGenerators(GeneratorRegistry& registry) {
                      double density) { return polylineMesh(c::generateSSplineCurve(sSplineCurve(p), curveSampling(p, density))); },
       .profile = [](const GeneratorParameters& p,
                     double density) { return toProfile(c::sSplineCurveCurvature(sSplineCurve(p), curveSampling(p, density))); },
+      .pointBound = curveBound,
   });
   registry.add({
       .name = "sigma-spline-curve",
@@ -169,6 +197,7 @@ void addCardinalGenerators(GeneratorRegistry& registry) {
                      double density) { return polylineMesh(c::generateSigmaSplineCurve(sigmaSplineCurve(p), curveSampling(p, density))); },
       .profile = [](const GeneratorParameters& p,
                     double density) { return toProfile(c::sigmaSplineCurveCurvature(sigmaSplineCurve(p), curveSampling(p, density))); },
+      .pointBound = curveBound,
   });
   registry.add({
       .name = "s-spline-surface",
@@ -178,6 +207,7 @@ void addCardinalGenerators(GeneratorRegistry& registry) {
       .generate = [](const GeneratorParameters& p,
                      double density) { return triangleMesh(c::generateSSplineSurface(sSplineSurface(p), surfaceSampling(p, density))); },
       .profile = {},
+      .pointBound = surfaceBound,
   });
   registry.add({
       .name = "sigma-spline-surface",
@@ -188,6 +218,7 @@ void addCardinalGenerators(GeneratorRegistry& registry) {
             return triangleMesh(c::generateSigmaSplineSurface(sigmaSplineSurface(p, ""), surfaceSampling(p, density)));
           },
       .profile = {},
+      .pointBound = surfaceBound,
   });
   registry.add({
       .name = "spline-blend",
@@ -198,6 +229,7 @@ void addCardinalGenerators(GeneratorRegistry& registry) {
       .generate = [](const GeneratorParameters& p,
                      double density) { return triangleMesh(c::generateSplineBlend(splineBlend(p), surfaceSampling(p, density))); },
       .profile = {},
+      .pointBound = blendBound,
   });
 }
 

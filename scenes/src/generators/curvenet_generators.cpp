@@ -27,7 +27,7 @@ cn::CurveNetworkDescription network(const GeneratorParameters& p) {
   if (!explicitCurves) throw GeneratorError("missing parameter 'network' (an example network) or 'points' + 'curve-sizes'");
   const Eigen::MatrixX3d points = p.rows("points", 3);
   if (!p.has("curve-sizes")) throw GeneratorError("missing parameter 'curve-sizes' (points per curve)");
-  const std::vector<int> sizes = integers(p, "curve-sizes");
+  const std::vector<int> sizes = integers(p, "curve-sizes", 0, kMaxCount);
   cn::CurveNetworkDescription result;
   Eigen::Index start = 0;
   for (std::size_t c = 0; c < sizes.size(); ++c) {
@@ -46,7 +46,7 @@ cn::CurveNetworkDescription network(const GeneratorParameters& p) {
   if (start != points.rows())
     throw GeneratorError("parameter 'curve-sizes': the sizes add up to " + std::to_string(start) + ", but 'points' has " +
                          std::to_string(points.rows()) + " points");
-  const std::vector<int> closed = integers(p, "closed-curves");
+  const std::vector<int> closed = integers(p, "closed-curves", 0, kMaxCount);
   for (std::size_t i = 0; i < closed.size(); ++i) {
     if (closed[i] < 0 || closed[i] >= static_cast<int>(result.curves.size()))
       throw GeneratorError("parameter 'closed-curves' entry " + std::to_string(i) + ": no curve " + std::to_string(closed[i]));
@@ -64,10 +64,28 @@ cn::CurveNetworkSurfaceParams surfaceParams(const GeneratorParameters& p) {
   o.straightAngleDegrees = p.number("straight-angle", o.straightAngleDegrees);
   o.orientationHint = vector3(p, "orientation-hint", o.orientationHint);
   o.fillOpenRegions = p.flag("fill-open-regions", o.fillOpenRegions);
-  params.patch.blendingExponent = positiveInteger(p, "blending-exponent", params.patch.blendingExponent);
+  params.patch.blendingExponent = p.integer("blending-exponent", params.patch.blendingExponent, 1, kMaxDegree);
   params.fairing = p.flag("fairing", params.fairing);
   params.validate();
   return params;
+}
+
+int pitch(const GeneratorParameters& p, double density) { return scaledCount(p.integer("pitch", 8, 1, kMaxSamples), density, 1); }
+
+/// pointBound: the network is built (cheap beside its tessellation); a face of N sides is an
+/// N-gon lattice of 1 + N P (P + 1) / 2 points at pitch P, plus at most N P points where a
+/// T-junction splits a side at its neighbour's samples.
+std::uint64_t pointBound(const GeneratorParameters& p, double density) {
+  const cn::CurveNetworkSurfaceParams params = surfaceParams(p);
+  const std::uint64_t P = std::uint64_t(pitch(p, density));
+  const cn::CurveNetwork network = cn::buildCurveNetwork(params.network, params.networkOptions);
+  std::uint64_t total = 0;
+  for (const cn::Face& face : network.faces) {
+    const std::uint64_t N = face.sides.size();
+    const std::uint64_t points = 1 + boundProduct(N, boundProduct(P, P + 1) / 2) + boundProduct(N, P);
+    total = points > std::numeric_limits<std::uint64_t>::max() - total ? std::numeric_limits<std::uint64_t>::max() : total + points;
+  }
+  return total;
 }
 
 }  // namespace
@@ -81,10 +99,10 @@ void addCurvenetGenerators(GeneratorRegistry& registry) {
                          "blending-exponent", "fairing", "pitch"},
       .generate =
           [](const GeneratorParameters& p, double density) {
-            const int pitch = scaledCount(positiveInteger(p, "pitch", 8), density, 1);
-            return triangleMesh(cn::generateCurveNetworkSurface(surfaceParams(p), pitch));
+            return triangleMesh(cn::generateCurveNetworkSurface(surfaceParams(p), pitch(p, density)));
           },
       .profile = {},
+      .pointBound = pointBound,
   });
 }
 

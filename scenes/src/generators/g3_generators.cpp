@@ -12,8 +12,7 @@ namespace g3 = geometry::g3;
 
 /// A point index of a condition row: -1 means the last point (kLast).
 int conditionIndex(double x, const std::string& where) {
-  const int index = wholeNumber(x, where);
-  if (index < -1) throw GeneratorError(where + ": expected an index >= 0 or -1 (the last), got " + std::to_string(index));
+  const int index = wholeNumber(x, where, -1, kMaxCount);
   return index == -1 ? g3::kLast : index;
 }
 
@@ -37,10 +36,10 @@ g3::G3CurveParams curveParams(const GeneratorParameters& p) {
   addIndexed(p, "tangent-angles", conditions, &g3::Condition::tangentAngle);
   addIndexed(p, "curvatures", conditions, &g3::Condition::curvature);
   addIndexed(p, "radii-of-curvature", conditions, &g3::Condition::radiusOfCurvature);
-  const std::vector<int> clothoids = integers(p, "clothoid-spans");
+  const std::vector<int> clothoids = integers(p, "clothoid-spans", -1, kMaxCount);
   for (std::size_t i = 0; i < clothoids.size(); ++i)
     conditions.push_back(g3::Condition::clothoidSpan(conditionIndex(clothoids[i], "parameter 'clothoid-spans' entry " + std::to_string(i))));
-  const std::vector<int> arcs = integers(p, "circular-arc-spans");
+  const std::vector<int> arcs = integers(p, "circular-arc-spans", -1, kMaxCount);
   for (std::size_t i = 0; i < arcs.size(); ++i)
     conditions.push_back(g3::Condition::circularArcSpan(conditionIndex(arcs[i], "parameter 'circular-arc-spans' entry " + std::to_string(i))));
   if (p.has("total-length")) conditions.push_back(g3::Condition::totalLength(p.number("total-length", 0.0)));
@@ -54,17 +53,25 @@ g3::G3CurveParams curveParams(const GeneratorParameters& p) {
   if (p.flag("natural-ends", conditions.empty())) conditions.insert(conditions.begin(), g3::Condition::naturalEnds());
   params.conditions = std::move(conditions);
 
-  params.clothoidLevels = p.integer("clothoid-levels", params.clothoidLevels);
-  if (params.clothoidLevels < 0 || params.clothoidLevels > 8)
-    throw GeneratorError("parameter 'clothoid-levels': expected 0..8, got " + std::to_string(params.clothoidLevels));
+  params.clothoidLevels = p.integer("clothoid-levels", params.clothoidLevels, 0, 8);
   params.z = p.number("z", params.z);
   params.solver.allowOverdetermined = p.flag("allow-overdetermined", params.solver.allowOverdetermined);
-  params.solver.maxIterations = positiveInteger(p, "max-iterations", params.solver.maxIterations);
+  params.solver.maxIterations = p.integer("max-iterations", params.solver.maxIterations, 1, kMaxIterations);
   return params;
 }
 
 g3::G3CurveSampling sampling(const GeneratorParameters& p, double density) {
-  return {scaledCount(positiveInteger(p, "samples-per-span", g3::G3CurveSampling{}.samplesPerSpan), density, 2)};
+  return {scaledCount(p.integer("samples-per-span", g3::G3CurveSampling{}.samplesPerSpan, 1, kMaxSamples), density, 2)};
+}
+
+/// pointBound: at most one span per point, samples-per-span each; the clothoid output has 2^k
+/// arcs per span of max(2, samples-per-span / 2^k) samples each.
+std::uint64_t pointBound(const GeneratorParameters& p, double density) {
+  const std::uint64_t spans = std::uint64_t(p.rows("points", 2).rows());
+  const int perSpan = sampling(p, density).samplesPerSpan;
+  const int levels = p.integer("clothoid-levels", g3::G3CurveParams{}.clothoidLevels, 0, 8);
+  if (levels == 0) return samplesAlong(spans, perSpan);
+  return samplesAlong(boundProduct(spans, std::uint64_t(1) << levels), std::max(2, perSpan >> levels));
 }
 
 /// Planar profile: signed curvature, no torsion, normal (-sin psi, cos psi) in the plane z.
@@ -96,6 +103,7 @@ void addG3Generators(GeneratorRegistry& registry) {
       .generate = [](const GeneratorParameters& p,
                      double density) { return polylineMesh(g3::generateG3Curve(curveParams(p), sampling(p, density))); },
       .profile = profile,
+      .pointBound = pointBound,
   });
 }
 

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -16,6 +18,7 @@
 
 #include "ffdkit/geometry/tessellation.h"
 #include "ffdkit/scenes/generator.h"
+#include "../json_text.h"
 
 namespace ffdkit::scenes::generators {
 
@@ -29,13 +32,23 @@ inline int scaledCount(int base, double density, int minimum) {
   return std::max(minimum, static_cast<int>(std::min(scaled, 1e8)));
 }
 
-/// A positive whole-number parameter (a base sample count).
-inline int positiveInteger(const GeneratorParameters& p, const std::string& name, int fallback, int minimum = 1) {
-  const int value = p.integer(name, fallback);
-  if (value < minimum)
-    throw GeneratorError("parameter '" + name + "': expected a whole number >= " + std::to_string(minimum) +
-                         ", got " + std::to_string(value));
-  return value;
+/// The ranges of the built-ins' integer parameters. Sample counts go as high as the read's budget
+/// lets them (pointBound is charged before generating); iterations are time, not memory.
+inline constexpr int kMaxSamples = 100'000'000;
+inline constexpr int kMaxCount = 100'000'000;  ///< indices, sizes, grid columns
+inline constexpr int kMaxIterations = 100'000;
+inline constexpr int kMaxHalfWidth = 10'000;
+inline constexpr int kMaxDegree = 99;
+
+/// a * b, or the largest value when it does not fit: a bound that overflows is over any budget.
+inline std::uint64_t boundProduct(std::uint64_t a, std::uint64_t b) {
+  if (a != 0 && b > std::numeric_limits<std::uint64_t>::max() / a) return std::numeric_limits<std::uint64_t>::max();
+  return a * b;
+}
+
+/// The samples along a direction of `spans` spans at `perSpan` samples each, end included.
+inline std::uint64_t samplesAlong(std::uint64_t spans, int perSpan) {
+  return std::min(boundProduct(spans, std::uint64_t(perSpan)), std::numeric_limits<std::uint64_t>::max() - 1) + 1;
 }
 
 /// A name from a fixed list, mapped to an enum value; the error lists the known names.
@@ -84,19 +97,18 @@ inline Eigen::VectorXd vectorX(const GeneratorParameters& p, const std::string& 
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
 
-/// A whole number read from a list or row entry; `where` names it in the error.
-inline int wholeNumber(double x, const std::string& where) {
-  if (x != std::floor(x) || std::abs(x) > 1e9)
-    throw GeneratorError(where + ": expected a whole number, got " + std::to_string(x));
+/// A whole number in [lo, hi] read from a list or row entry; `where` names it in the error.
+inline int wholeNumber(double x, const std::string& where, int lo, int hi) {
+  if (const std::string problem = detail::integerProblem(x, lo, hi); !problem.empty()) throw GeneratorError(where + ": " + problem);
   return static_cast<int>(x);
 }
 
-/// A list of whole numbers (indices, counts); empty when absent.
-inline std::vector<int> integers(const GeneratorParameters& p, const std::string& name) {
+/// A list of whole numbers in [lo, hi] (indices, counts); empty when absent.
+inline std::vector<int> integers(const GeneratorParameters& p, const std::string& name, int lo, int hi) {
   std::vector<int> result;
   const std::vector<double> values = p.numbers(name);
   for (std::size_t i = 0; i < values.size(); ++i)
-    result.push_back(wholeNumber(values[i], "parameter '" + name + "' entry " + std::to_string(i)));
+    result.push_back(wholeNumber(values[i], "parameter '" + name + "' entry " + std::to_string(i), lo, hi));
   return result;
 }
 

@@ -19,12 +19,17 @@ const std::vector<std::pair<std::string, ph::G1Scalars>> kScalars = {
 };
 
 /// "sphere" and "torus" take `resolution` [a, b]: segments x rings, around x tube.
-ph::PolygonMesh parametricMesh(const GeneratorParameters& p, const std::string& name) {
-  std::vector<int> resolution = integers(p, "resolution");
+std::pair<int, int> parametricResolution(const GeneratorParameters& p) {
+  std::vector<int> resolution = integers(p, "resolution", 2, 1'000'000);
   if (resolution.empty()) resolution = {12, 6};
   if (resolution.size() != 2)
     throw GeneratorError("parameter 'resolution': expected 2 whole numbers, got " + std::to_string(resolution.size()));
-  return name == "sphere" ? ph::sphereMesh(resolution[0], resolution[1]) : ph::torusMesh(resolution[0], resolution[1]);
+  return {resolution[0], resolution[1]};
+}
+
+ph::PolygonMesh parametricMesh(const GeneratorParameters& p, const std::string& name) {
+  const auto [a, b] = parametricResolution(p);
+  return name == "sphere" ? ph::sphereMesh(a, b) : ph::torusMesh(a, b);
 }
 
 ph::PolygonMesh explicitMesh(const GeneratorParameters& p) {
@@ -36,7 +41,7 @@ ph::PolygonMesh explicitMesh(const GeneratorParameters& p) {
     const std::string where = "parameter 'faces' row " + std::to_string(f);
     std::vector<int> face;
     for (double x : faces[f]) {
-      const int index = wholeNumber(x, where);
+      const int index = wholeNumber(x, where, 0, kMaxCount);
       if (index < 0 || index >= mesh.vertices.rows())
         throw GeneratorError(where + ": vertex index " + std::to_string(index) + " out of range 0.." +
                              std::to_string(mesh.vertices.rows() - 1));
@@ -77,15 +82,38 @@ ph::PolyhedronSurfaceParams surfaceParams(const GeneratorParameters& p) {
   t.defaultBeta = p.number("default-beta", t.defaultBeta);
   const Eigen::MatrixXd alpha = p.rows("vertex-alpha", 2, false);
   for (Eigen::Index r = 0; r < alpha.rows(); ++r)
-    t.vertexAlpha[wholeNumber(alpha(r, 0), "parameter 'vertex-alpha' row " + std::to_string(r))] = alpha(r, 1);
+    t.vertexAlpha[wholeNumber(alpha(r, 0), "parameter 'vertex-alpha' row " + std::to_string(r), 0, kMaxCount)] = alpha(r, 1);
   const Eigen::MatrixXd beta = p.rows("edge-beta", 3, false);
   for (Eigen::Index r = 0; r < beta.rows(); ++r) {
     const std::string where = "parameter 'edge-beta' row " + std::to_string(r);
-    t.edgeBeta[{wholeNumber(beta(r, 0), where), wholeNumber(beta(r, 1), where)}] = beta(r, 2);
+    t.edgeBeta[{wholeNumber(beta(r, 0), where, 0, kMaxCount), wholeNumber(beta(r, 1), where, 0, kMaxCount)}] = beta(r, 2);
   }
   params.splitRule = choice(p, "split-rule", params.splitRule, kSplitRules);
   params.g1Scalars = choice(p, "g1-scalars", params.g1Scalars, kScalars);
   return params;
+}
+
+int samplesPerPatchSide(const GeneratorParameters& p, double density) {
+  return scaledCount(p.integer("samples-per-patch-side", ph::PolyhedronSurfaceSampling{}.samplesPerPatchSide, 1, kMaxSamples),
+                     density, 1);
+}
+
+/// pointBound: one patch per corner of every face (a face of m sides splits into m triangles),
+/// each sampled at (n + 1)(n + 2) / 2 points; a parametric sphere or torus is bounded from its
+/// resolution before its polyhedron is built (a x b faces of at most 4 sides).
+std::uint64_t pointBound(const GeneratorParameters& p, double density) {
+  const bool explicitPolyhedron = p.has("vertices") || p.has("faces");
+  const std::string builtin = p.text("builtin-mesh", ph::PolyhedronSurfaceParams{}.builtinMesh);
+  std::uint64_t patches = 0;
+  if (!explicitPolyhedron && (builtin == "sphere" || builtin == "torus")) {
+    const auto [a, b] = parametricResolution(p);
+    patches = boundProduct(4, boundProduct(std::uint64_t(a), std::uint64_t(b)));
+  } else {
+    const ph::PolygonMesh mesh = ph::resolvePolyhedron(surfaceParams(p));
+    for (const auto& face : mesh.faces) patches += face.size();
+  }
+  const std::uint64_t n = std::uint64_t(samplesPerPatchSide(p, density));
+  return boundProduct(patches, boundProduct(n + 1, n + 2) / 2);
 }
 
 }  // namespace
@@ -98,10 +126,10 @@ void addPolyhedronGenerators(GeneratorRegistry& registry) {
                          "vertex-alpha", "edge-beta", "split-rule", "g1-scalars", "samples-per-patch-side"},
       .generate =
           [](const GeneratorParameters& p, double density) {
-            const int base = positiveInteger(p, "samples-per-patch-side", ph::PolyhedronSurfaceSampling{}.samplesPerPatchSide);
-            return triangleMesh(ph::generatePolyhedronSurface(surfaceParams(p), {scaledCount(base, density, 1)}));
+            return triangleMesh(ph::generatePolyhedronSurface(surfaceParams(p), {samplesPerPatchSide(p, density)}));
           },
       .profile = {},
+      .pointBound = pointBound,
   });
 }
 

@@ -37,8 +37,11 @@ const std::vector<std::pair<std::string, q::ProductForm>> kForms = {
 };
 
 q::CurveSampling sampling(const GeneratorParameters& p, double density) {
-  return {scaledCount(positiveInteger(p, "samples", q::CurveSampling{}.samples, 2), density, 2)};
+  return {scaledCount(p.integer("samples", q::CurveSampling{}.samples, 2, kMaxSamples), density, 2)};
 }
+
+// pointBound: the curve is sampled at exactly `samples` points (scaled by density).
+std::uint64_t samplesBound(const GeneratorParameters& p, double density) { return std::uint64_t(sampling(p, density).samples); }
 
 CurvatureProfile toProfile(const q::CurveProfile& profile) {
   return {profile.arcLength, profile.curvature, profile.torsion, profile.points, profile.normals};
@@ -56,17 +59,17 @@ q::QiInterpolateParams interpolateParams(const GeneratorParameters& p) {
   if (o.endRule != q::EndTangentRule::User && (p.has("start-tangent") || p.has("end-tangent")))
     throw GeneratorError("parameters 'start-tangent' and 'end-tangent' are used only with end-rule 'user'");
   o.stopMode = choice(p, "stop-mode", o.stopMode, kStopModes);
-  o.maxIterations = positiveInteger(p, "max-iterations", o.maxIterations);
+  o.maxIterations = p.integer("max-iterations", o.maxIterations, 1, kMaxIterations);
   return params;
 }
 
 q::QiFitParams fitParams(const GeneratorParameters& p) {
   q::QiFitParams params;
   params.points = points3(p, "points", 2);
-  params.breaks = integers(p, "breaks");
+  params.breaks = integers(p, "breaks", 0, kMaxCount);
   if (params.breaks.empty()) params.breaks = {0, static_cast<int>(params.points.rows()) - 1};
   auto& o = params.options;
-  o.degree = positiveInteger(p, "degree", o.degree);
+  o.degree = p.integer("degree", o.degree, 1, kMaxDegree);
   o.dimension = choice(p, "dimension", o.dimension, kDimensions);
   o.form = choice(p, "form", o.form, kForms);
   o.startTangent = choice(p, "start-tangent-mode", o.startTangent, kStartModes);
@@ -74,7 +77,7 @@ q::QiFitParams fitParams(const GeneratorParameters& p) {
   if ((o.startTangent == q::StartTangentMode::Given) != p.has("start-tangent"))
     throw GeneratorError("parameter 'start-tangent' goes with start-tangent-mode 'given' (and is required by it)");
   o.initialCurve = choice(p, "initial-curve", o.initialCurve, kInitialCurves);
-  o.maxIterations = positiveInteger(p, "max-iterations", o.maxIterations);
+  o.maxIterations = p.integer("max-iterations", o.maxIterations, 1, kMaxIterations);
   return params;
 }
 
@@ -85,15 +88,12 @@ q::SphereTangentParams sphereTangentParams(const GeneratorParameters& p) {
   s.startTangent = vector3(p, "start-tangent", s.startTangent);
   s.endPoint = vector3(p, "end-point", s.endPoint);
   s.endTangent = vector3(p, "end-tangent", s.endTangent);
-  s.degree = p.integer("degree", s.degree);
-  if (s.degree != 2 && s.degree != 3) throw GeneratorError("parameter 'degree': expected 2 or 3, got " + std::to_string(s.degree));
+  s.degree = p.integer("degree", s.degree, 2, 3);
   if (auto v = optionalVector3(p, "second-control")) {
     if (s.degree != 3) throw GeneratorError("parameter 'second-control': only with degree 3");
     s.fixedSecondControl = *v;
   }
-  params.options.multiStarts = p.integer("multi-starts", params.options.multiStarts);
-  if (params.options.multiStarts < 1 || params.options.multiStarts > 7)
-    throw GeneratorError("parameter 'multi-starts': expected 1..7, got " + std::to_string(params.options.multiStarts));
+  params.options.multiStarts = p.integer("multi-starts", params.options.multiStarts, 1, 7);
   return params;
 }
 
@@ -108,6 +108,7 @@ void addQuaternionGenerators(GeneratorRegistry& registry) {
                      double density) { return polylineMesh(q::generateQiInterpolate(interpolateParams(p), sampling(p, density))); },
       .profile = [](const GeneratorParameters& p,
                     double density) { return toProfile(q::profileQiInterpolate(interpolateParams(p), sampling(p, density))); },
+      .pointBound = samplesBound,
   });
   registry.add({
       .name = "qi-fit",
@@ -118,6 +119,7 @@ void addQuaternionGenerators(GeneratorRegistry& registry) {
                      double density) { return polylineMesh(q::generateQiFit(fitParams(p), sampling(p, density))); },
       .profile = [](const GeneratorParameters& p,
                     double density) { return toProfile(q::profileQiFit(fitParams(p), sampling(p, density))); },
+      .pointBound = samplesBound,
   });
   registry.add({
       .name = "sphere-tangent",
@@ -128,6 +130,7 @@ void addQuaternionGenerators(GeneratorRegistry& registry) {
                      double density) { return polylineMesh(q::generateSphereTangent(sphereTangentParams(p), sampling(p, density))); },
       .profile = [](const GeneratorParameters& p,
                     double density) { return toProfile(q::profileSphereTangent(sphereTangentParams(p), sampling(p, density))); },
+      .pointBound = samplesBound,
   });
 }
 

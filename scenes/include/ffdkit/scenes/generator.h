@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "ffdkit/meshio/read_limits.h"
 #include "ffdkit/scenes/mesh_io.h"
 
 namespace ffdkit::scenes {
@@ -29,7 +30,10 @@ class GeneratorParameters {
 
   /// The value, or `fallback` when absent. @throws GeneratorError when present with another type.
   double number(const std::string& name, double fallback) const;
-  int integer(const std::string& name, int fallback) const;  ///< a number with no fraction
+  int integer(const std::string& name, int fallback) const;  ///< a whole number in [-1e9, 1e9]
+  /// A whole number in [lo, hi] (the rule scene files apply to every integer):
+  /// "parameter 'samples': expected an integer in [2, 100000000], got 10.5".
+  int integer(const std::string& name, int fallback, int lo, int hi) const;
   bool flag(const std::string& name, bool fallback) const;
   std::string text(const std::string& name, const std::string& fallback) const;
   std::vector<double> numbers(const std::string& name, std::vector<double> fallback = {}) const;
@@ -70,6 +74,11 @@ struct Generator {
   std::function<MeshData(const GeneratorParameters&, double density)> generate;
   /// Curves only (empty for surfaces): the curvature profile at the same sampling.
   std::function<CurvatureProfile(const GeneratorParameters&, double density)> profile;
+  /// An upper bound of the points `generate` makes from these parameters at `density`, found
+  /// from the counts in the parameters and the sampling without generating, so that a reader
+  /// can charge it to its budget first. Empty for a generator that cannot say: its points are
+  /// then charged once generated.
+  std::function<std::uint64_t(const GeneratorParameters&, double density)> pointBound;
 };
 
 /// Generators by name. Not a singleton: builtinGenerators() builds the registry of every
@@ -87,6 +96,13 @@ class GeneratorRegistry {
   /// indices in range, not empty). @throws GeneratorError naming the generator.
   MeshData generate(const std::string& name, const GeneratorParameters& parameters, double density = 1.0) const;
 
+  /// generate() as part of a read: the generator's pointBound (its points, and per point
+  /// kGeneratedBytesPerPoint for its triangles or segments and working copies) is charged to
+  /// `budget` before it runs. @throws GeneratorError naming the generator, with the budget's
+  /// message when the bound is over it.
+  MeshData generate(const std::string& name, const GeneratorParameters& parameters, double density,
+                    meshio::ReadBudget& budget) const;
+
   /// The curvature profile of a curve generator. @throws GeneratorError for a surface
   /// generator or bad parameters, naming the generator.
   CurvatureProfile profile(const std::string& name, const GeneratorParameters& parameters, double density = 1.0) const;
@@ -94,6 +110,11 @@ class GeneratorRegistry {
  private:
   std::map<std::string, Generator> generators_;
 };
+
+/// Bytes a generated point costs beyond its coordinates, charged with it: about two triangles
+/// (or one segment) of indices, the normals and parameters a tessellation computes beside the
+/// points, and the copy into the object's mesh.
+inline constexpr std::uint64_t kGeneratedBytesPerPoint = 96;
 
 /// The registry with every generator of the geometry topics.
 const GeneratorRegistry& builtinGenerators();
