@@ -77,6 +77,62 @@ Eigen::Vector3d onCircle(double radius, double turn, double z) {
   return {radius * std::cos(2 * kPi * turn), radius * std::sin(2 * kPi * turn), z};
 }
 
+// The parametric grids of the unit primitive: calls grid(nu, nv, f) for each, f(u, v) for u, v in
+// [0, 1]. The one home of each kind's shape, for building (makePrimitive) and for counting
+// (primitiveSize).
+template <class Grid>
+void primitiveGrids(PrimitiveKind kind, int n, Grid&& grid) {
+  const double r = 0.5;  // unit-size primitives fill [-0.5, 0.5]^3
+  switch (kind) {
+    case PrimitiveKind::Sphere:
+      grid(n, std::max(2, n / 2), [&](double u, double v) {
+        const double polar = kPi * (1.0 - v);  // v = 0 south pole, v = 1 north pole
+        return onCircle(r * std::sin(polar), u, r * std::cos(polar));
+      });
+      break;
+    case PrimitiveKind::Cylinder: {
+      const int rings = std::max(1, n / 4);
+      grid(n, n, [&](double u, double v) { return onCircle(r, u, v - r); });
+      grid(n, rings, [&](double u, double v) { return onCircle(r * (1 - v), u, r); });
+      grid(n, rings, [&](double u, double v) { return onCircle(r * v, u, -r); });
+      break;
+    }
+    case PrimitiveKind::Cone: {
+      const int rings = std::max(1, n / 4);
+      grid(n, n, [&](double u, double v) { return onCircle(r * (1 - v), u, v - r); });
+      grid(n, rings, [&](double u, double v) { return onCircle(r * v, u, -r); });
+      break;
+    }
+    case PrimitiveKind::Torus: {
+      const double tube = 0.15, centre = r - tube;
+      grid(n, std::max(3, n / 2), [&](double u, double v) {
+        const double ring = centre + tube * std::cos(2 * kPi * v);
+        return onCircle(ring, u, tube * std::sin(2 * kPi * v));
+      });
+      break;
+    }
+    case PrimitiveKind::Plane:
+      grid(n, n, [&](double u, double v) { return Eigen::Vector3d(u - r, v - r, 0.0); });
+      break;
+    case PrimitiveKind::Cube:
+      // Each face is an n x n grid so that a lattice has vertices to move.
+      for (int axis = 0; axis < 3; ++axis) {
+        for (double side : {-1.0, 1.0}) {
+          const int a = (axis + 1) % 3, c = (axis + 2) % 3;
+          grid(n, n, [&](double u, double v) {
+            Eigen::Vector3d p;
+            p[axis] = side * r;
+            // Swap the in-face axes on the negative side so that every face faces outwards.
+            p[side > 0 ? a : c] = u - r;
+            p[side > 0 ? c : a] = v - r;
+            return p;
+          });
+        }
+      }
+      break;
+  }
+}
+
 }  // namespace
 
 std::string_view primitiveKindName(PrimitiveKind kind) {
@@ -99,6 +155,16 @@ std::optional<PrimitiveKind> parsePrimitiveKind(std::string_view name) {
   return std::nullopt;
 }
 
+PrimitiveSize primitiveSize(const PrimitiveOptions& options) {
+  PrimitiveSize size;
+  if (options.resolution < 3) return size;
+  primitiveGrids(options.kind, options.resolution, [&](int nu, int nv, const auto&) {
+    size.vertices += std::uint64_t(nu + 1) * std::uint64_t(nv + 1);
+    size.triangles += 2 * std::uint64_t(nu) * std::uint64_t(nv);
+  });
+  return size;
+}
+
 geometry::TriangleMesh makePrimitive(const PrimitiveOptions& options) {
   const int n = options.resolution;
   if (n < 3) {
@@ -112,56 +178,8 @@ geometry::TriangleMesh makePrimitive(const PrimitiveOptions& options) {
   if (!options.placement.matrix().allFinite()) {
     throw std::invalid_argument("primitive placement has non-finite entries");
   }
-  const double r = 0.5;  // unit-size primitives fill [-0.5, 0.5]^3
   MeshBuilder b(1e-9);
-  switch (options.kind) {
-    case PrimitiveKind::Sphere:
-      b.grid(n, std::max(2, n / 2), [&](double u, double v) {
-        const double polar = kPi * (1.0 - v);  // v = 0 south pole, v = 1 north pole
-        return onCircle(r * std::sin(polar), u, r * std::cos(polar));
-      });
-      break;
-    case PrimitiveKind::Cylinder: {
-      const int rings = std::max(1, n / 4);
-      b.grid(n, n, [&](double u, double v) { return onCircle(r, u, v - r); });
-      b.grid(n, rings, [&](double u, double v) { return onCircle(r * (1 - v), u, r); });
-      b.grid(n, rings, [&](double u, double v) { return onCircle(r * v, u, -r); });
-      break;
-    }
-    case PrimitiveKind::Cone: {
-      const int rings = std::max(1, n / 4);
-      b.grid(n, n, [&](double u, double v) { return onCircle(r * (1 - v), u, v - r); });
-      b.grid(n, rings, [&](double u, double v) { return onCircle(r * v, u, -r); });
-      break;
-    }
-    case PrimitiveKind::Torus: {
-      const double tube = 0.15, centre = r - tube;
-      b.grid(n, std::max(3, n / 2), [&](double u, double v) {
-        const double ring = centre + tube * std::cos(2 * kPi * v);
-        return onCircle(ring, u, tube * std::sin(2 * kPi * v));
-      });
-      break;
-    }
-    case PrimitiveKind::Plane:
-      b.grid(n, n, [&](double u, double v) { return Eigen::Vector3d(u - r, v - r, 0.0); });
-      break;
-    case PrimitiveKind::Cube:
-      // Each face is an n x n grid so that a lattice has vertices to move.
-      for (int axis = 0; axis < 3; ++axis) {
-        for (double side : {-1.0, 1.0}) {
-          const int a = (axis + 1) % 3, c = (axis + 2) % 3;
-          b.grid(n, n, [&](double u, double v) {
-            Eigen::Vector3d p;
-            p[axis] = side * r;
-            // Swap the in-face axes on the negative side so that every face faces outwards.
-            p[side > 0 ? a : c] = u - r;
-            p[side > 0 ? c : a] = v - r;
-            return p;
-          });
-        }
-      }
-      break;
-  }
+  primitiveGrids(options.kind, n, [&](int nu, int nv, const auto& f) { b.grid(nu, nv, f); });
   return b.finish(options.placement * Eigen::Scaling(options.size));
 }
 

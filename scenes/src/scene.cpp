@@ -176,21 +176,39 @@ void Scene::setFrameRange(int first, int last) {
 
 MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path& baseDirectory,
                          const GeneratorRegistry& generators) {
-  return std::visit(Overloaded{
-                        [](const PrimitiveOptions& primitive) {
-                          const geometry::TriangleMesh mesh = makePrimitive(primitive);
-                          return MeshData{mesh.vertices, mesh.triangles, {}, false};
-                        },
-                        [&](const MeshFileSource& file) {
-                          const std::filesystem::path path(file.path);
-                          MeshData mesh = readMesh(path.is_absolute() ? path : baseDirectory / path);
-                          convertToZUp(mesh, file.up);
-                          return mesh;
-                        },
-                        [&](const GeneratedSource& generated) {
-                          return generators.generate(generated.generator, generated.parameters, generated.density);
-                        }},
-                    source);
+  return buildObjectMesh(source, baseDirectory, ObjectMeshOptions{.generators = &generators, .confinement = {.allowOutside = true}});
+}
+
+MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path& baseDirectory,
+                         const ObjectMeshOptions& options) {
+  meshio::ReadBudget ownBudget;
+  meshio::ReadBudget& budget = options.budget != nullptr ? *options.budget : ownBudget;
+  const GeneratorRegistry& generators = options.generators != nullptr ? *options.generators : builtinGenerators();
+  return std::visit(
+      Overloaded{[&](const PrimitiveOptions& primitive) {
+                   const PrimitiveSize size = primitiveSize(primitive);
+                   const std::string what = "primitive " + std::string(primitiveKindName(primitive.kind)) + " at resolution " +
+                                            std::to_string(primitive.resolution);
+                   budget.chargePoints(size.vertices, what + ": up to " + std::to_string(size.vertices) + " vertices");
+                   budget.chargeBytes(size.triangles, 3 * sizeof(int), what + ": its triangles");
+                   // The welding storage lives only while the primitive is built.
+                   const std::uint64_t building = size.vertices * kPrimitiveWeldBytesPerVertex +
+                                                  size.triangles * kPrimitiveBuildBytesPerTriangle;
+                   budget.chargeBytes(1, building, what + ": welding its seams");
+                   const geometry::TriangleMesh mesh = makePrimitive(primitive);
+                   budget.releaseBytes(building);
+                   return MeshData{mesh.vertices, mesh.triangles, {}, false};
+                 },
+                 [&](const MeshFileSource& file) {
+                   const std::filesystem::path path = meshio::confinedPath(baseDirectory, file.path, "mesh file", options.confinement);
+                   MeshData mesh = readMesh(path, meshio::MeshReadOptions{.limits = budget.limits(), .budget = &budget, .confinement = options.confinement});
+                   convertToZUp(mesh, file.up);
+                   return mesh;
+                 },
+                 [&](const GeneratedSource& generated) {
+                   return generators.generate(generated.generator, generated.parameters, generated.density, budget);
+                 }},
+      source);
 }
 
 widgets::WidgetId attachNewLattice(Scene& scene, const std::vector<std::string>& objects, const AttachOptions& options) {

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <new>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -22,6 +25,8 @@ using detail::Json;
 
 using Location = detail::JsonLocation<SceneFileError>;
 using detail::checkKeys;
+using detail::integerIn;
+using detail::intIn;
 using detail::member;
 using detail::number;
 using detail::text;
@@ -33,6 +38,9 @@ Eigen::Vector3d colour(const Json& value, const Location& at) {
   return c;
 }
 
+constexpr int kMaxPrimitiveResolution = 4096;
+constexpr int kMaxZebraStripes = 256;
+
 PrimitiveOptions readPrimitive(const Json& j, const Location& at) {
   checkKeys(j, {"kind", "resolution", "size", "placement"}, at);
   PrimitiveOptions options;
@@ -41,10 +49,7 @@ PrimitiveOptions readPrimitive(const Json& j, const Location& at) {
   if (!parsed) (at / "kind").fail("unknown primitive '" + kind + "' (known: sphere, cylinder, cube, cone, torus, plane)");
   options.kind = *parsed;
   if (j.contains("resolution")) {
-    const Json& r = j["resolution"];
-    if (!r.is_number_integer() || r.get<long long>() < 3 || r.get<long long>() > 4096)
-      (at / "resolution").fail("expected an integer in [3, 4096], got " + r.dump());
-    options.resolution = r.get<int>();
+    options.resolution = intIn(j["resolution"], 3, kMaxPrimitiveResolution, at / "resolution");
   }
   if (j.contains("size")) {
     options.size = number(j["size"], at / "size");
@@ -89,20 +94,8 @@ Json writeParameter(const ParameterValue& value) {
   return std::visit([](const auto& v) { return Json(v); }, value);
 }
 
-// Whether `path` (relative to `folder`, or absolute) names a file inside `folder`, after ".."
-// and symbolic links are resolved.
-bool insideFolder(const std::filesystem::path& path, const std::filesystem::path& folder) {
-  std::error_code ec;
-  const std::filesystem::path root = std::filesystem::weakly_canonical(folder.empty() ? "." : folder, ec);
-  if (ec) return false;
-  const std::filesystem::path full = std::filesystem::weakly_canonical(path.is_absolute() ? path : folder / path, ec);
-  if (ec) return false;
-  const auto [end, ignored] = std::mismatch(root.begin(), root.end(), full.begin(), full.end());
-  return end == root.end();
-}
-
 SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions& options,
-                       const GeneratorRegistry& generators) {
+                       const GeneratorRegistry& generators, meshio::ReadBudget& budget) {
   checkKeys(j, {"name", "primitive", "mesh", "generator", "display"}, at);
   SceneObject object;
   object.name = text(member(j, "name", at), at / "name");
@@ -163,10 +156,7 @@ SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions
       else (dat / "surfaceStyle").fail("unknown surface style '" + style + "' (known: shaded, zebra)");
     }
     if (d.contains("zebraStripes")) {
-      const Json& n = d["zebraStripes"];
-      if (!n.is_number_integer() || n.get<long long>() < 1 || n.get<long long>() > 256)
-        (dat / "zebraStripes").fail("expected an integer in [1, 256], got " + n.dump());
-      object.display.zebraStripes = static_cast<int>(n.get<long long>());
+      object.display.zebraStripes = intIn(d["zebraStripes"], 1, kMaxZebraStripes, dat / "zebraStripes");
     }
     if (d.contains("zebraDirection")) {
       object.display.zebraDirection = vector3(d["zebraDirection"], dat / "zebraDirection");
@@ -187,15 +177,13 @@ SceneObject readObject(const Json& j, const Location& at, const SceneReadOptions
       else (dat / "curveStyle").fail("unknown curve style '" + style + "' (known: tube, line)");
     }
   }
-  if (const auto* file = std::get_if<MeshFileSource>(&object.source);
-      file != nullptr && !options.confinement.allowOutside && !insideFolder(file->path, options.baseDirectory)) {
-    (at / "mesh" / "path")
-        .fail("object '" + object.name + "': mesh file '" + file->path +
-              "' is outside the scene's folder (a shared scene must not read other files; allow it with "
-              "--allow-outside-meshes or the app's preference)");
-  }
   try {
-    object.mesh = buildObjectMesh(object.source, options.baseDirectory, generators);
+    object.mesh = buildObjectMesh(object.source, options.baseDirectory,
+                                  ObjectMeshOptions{.generators = &generators, .budget = &budget, .confinement = options.confinement});
+  } catch (const meshio::PathOutsideFolderError& e) {
+    (at / "mesh" / "path").fail("object '" + object.name + "': " + e.what());
+  } catch (const std::bad_alloc&) {
+    throw;  // readScene's entry point names it with the budget
   } catch (const std::exception& e) {
     at.fail("object '" + object.name + "': " + e.what());
   }
@@ -224,7 +212,7 @@ Json affineJson(const Eigen::Affine3d& m) {
 }
 
 // "animation" (format version 2): frame rate, frame range, channels of keys naming their widget.
-Animation readAnimation(const Json& j, const Location& at, const Scene& scene) {
+Animation readAnimation(const Json& j, const Location& at, const Scene& scene, meshio::ReadBudget& budget) {
   checkKeys(j, {"frameRate", "frames", "channels"}, at);
   Animation animation;
   if (j.contains("frameRate")) {
@@ -235,15 +223,11 @@ Animation readAnimation(const Json& j, const Location& at, const Scene& scene) {
   if (j.contains("frames")) {
     const Json& f = j["frames"];
     if (!f.is_array() || f.size() != 2) (at / "frames").fail("expected [first, last] frame numbers");
-    for (std::size_t k = 0; k < 2; ++k) {
-      const bool inRange = f[k].is_number_unsigned() ? f[k].get<unsigned long long>() <= kMaxFrameMagnitude
-                                                     : f[k].is_number_integer() && std::llabs(f[k].get<long long>()) <= kMaxFrameMagnitude;
-      if (!inRange)
-        (at / "frames" / k).fail("expected an integer frame within +-" + std::to_string(kMaxFrameMagnitude) + ", got " +
-                                 f[k].dump());
-    }
-    animation.firstFrame = f[0].get<int>();
-    animation.lastFrame = f[1].get<int>();
+    const auto frame = [&](std::size_t k) {
+      return static_cast<int>(integerIn(f[k], -std::int64_t(kMaxFrameMagnitude), std::int64_t(kMaxFrameMagnitude), at / "frames" / k));
+    };
+    animation.firstFrame = frame(0);
+    animation.lastFrame = frame(1);
     if (animation.firstFrame > animation.lastFrame)
       (at / "frames").fail("the first frame " + f[0].dump() + " is after the last " + f[1].dump());
   }
@@ -284,6 +268,8 @@ Animation readAnimation(const Json& j, const Location& at, const Scene& scene) {
       kat.fail("at most " + std::to_string(kMaxKeysPerChannel) + " keys per channel, got " + std::to_string(keys.size()));
     const Eigen::Index pointCount =
         channel.kind == ChannelKind::ControlPoints ? scene.widgets.controlPoints(channel.widget).rows() : 0;
+    // The keys are charged before they are built: each its own record, a control-point key its points.
+    detail::chargeBytes(budget, keys.size(), sizeof(Keyframe), "the keys of channel " + std::to_string(i), kat);
     for (std::size_t k = 0; k < keys.size(); ++k) {
       const Json& kj = keys[k];
       const Location kloc = kat / k;
@@ -308,6 +294,8 @@ Animation readAnimation(const Json& j, const Location& at, const Scene& scene) {
                                 "'), got " + std::to_string(value.size()));
           values += 3 * value.size();
           if (values > kMaxKeyValues) (kloc / "value").fail("the keys hold more than " + std::to_string(kMaxKeyValues) + " numbers");
+          detail::chargeBytes(budget, std::uint64_t(pointCount), 3 * sizeof(double), "a key of " + std::to_string(pointCount) + " control points",
+                              kloc / "value");
           key.points.resize(pointCount, 3);
           for (std::size_t p = 0; p < value.size(); ++p) key.points.row(Eigen::Index(p)) = vector3(value[p], kloc / "value" / p).transpose();
           break;
@@ -364,7 +352,7 @@ bool isDefault(const Animation& animation) {
          animation.firstFrame == defaults.firstFrame && animation.lastFrame == defaults.lastFrame;
 }
 
-Scene readSceneJson(const Json& root, const std::string& source, const SceneReadOptions& options) {
+Scene readSceneJson(const Json& root, const std::string& source, const SceneReadOptions& options, meshio::ReadBudget& budget) {
   const GeneratorRegistry& generators = options.generators != nullptr ? *options.generators : builtinGenerators();
   const Location at{&source, ""};
   checkKeys(root, {"format", "version", "description", "background", "objects", "widgets", "widgetFile",
@@ -373,13 +361,12 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
   if (text(member(root, "format", at), at / "format") != "ffdkit-scene")
     (at / "format").fail("not an ffdkit scene (expected \"ffdkit-scene\")");
   const Json& version = member(root, "version", at);
-  if (!version.is_number_integer()) (at / "version").fail("expected an integer");
-  if (version.get<long long>() > kSceneFormatVersion || version.get<long long>() < 1) {
+  const int fileVersion = intIn(version, 1, std::numeric_limits<int>::max(), at / "version");
+  if (fileVersion > kSceneFormatVersion) {
     (at / "version").fail("format version " + version.dump() + " is not supported by this build (reads 1.." +
                           std::to_string(kSceneFormatVersion) + ")");
   }
   // Migration: version 1 (before animation) reads as version 2 without keys; nothing else changed.
-  const long long fileVersion = version.get<long long>();
   if (fileVersion < 2 && root.contains("animation"))
     (at / "animation").fail("'animation' needs format version 2 (this file says version " + version.dump() + ")");
   Scene scene;
@@ -388,7 +375,7 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
   const Json& objects = member(root, "objects", at);
   if (!objects.is_array()) (at / "objects").fail("expected an array");
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    SceneObject object = readObject(objects[i], at / "objects" / i, options, generators);
+    SceneObject object = readObject(objects[i], at / "objects" / i, options, generators, budget);
     if (scene.findObject(object.name) != nullptr)
       (at / "objects" / i / "name").fail("duplicate object name '" + object.name + "'");
     scene.addObject(std::move(object));
@@ -397,11 +384,16 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
     at.fail("give the widgets inline ('widgets') or by reference ('widgetFile'), not both");
   try {
     if (root.contains("widgets")) {
-      scene.widgets = detail::widgetModelFromJson(root["widgets"], source, "/widgets");
+      scene.widgets = detail::widgetModelFromJson(root["widgets"], source, "/widgets", budget);
     } else if (root.contains("widgetFile")) {
       scene.widgetFile = text(root["widgetFile"], at / "widgetFile");
-      const std::filesystem::path file(*scene.widgetFile);
-      scene.widgets = readWidgetFile(file.is_absolute() ? file : options.baseDirectory / file);
+      std::filesystem::path file;
+      try {
+        file = meshio::confinedPath(options.baseDirectory, *scene.widgetFile, "widget file", options.confinement);
+      } catch (const meshio::PathOutsideFolderError& e) {
+        (at / "widgetFile").fail(e.what());
+      }
+      scene.widgets = readWidgetFile(file, WidgetReadOptions{.limits = budget.limits(), .budget = &budget});
     }
   } catch (const WidgetFileError& e) {
     throw SceneFileError(std::string(e.what()) + (root.contains("widgetFile") ? " (widget file of " + source + ")" : ""));
@@ -450,7 +442,7 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
     (at / "attachments").fail(e.what());
   }
   if (root.contains("animation")) {
-    scene.setAnimation(readAnimation(root["animation"], at / "animation", scene));
+    scene.setAnimation(readAnimation(root["animation"], at / "animation", scene, budget));
     try {
       validateAnimation(scene);
     } catch (const AnimationError& e) {
@@ -537,9 +529,34 @@ Json sceneJson(const Scene& scene) {
 
 }  // namespace
 
+namespace {
+
+// Reads the text of a scene from `in` after charging `knownSize` bytes (the file's size, when
+// known) or, for a stream of unknown size, what it held; then the whole scene against the same
+// budget. The one place that turns a failed allocation, or a budget overrun that escaped a located
+// check, into a SceneFileError.
+Scene readSceneStream(std::istream& in, std::optional<std::uint64_t> knownSize, const std::string& sourceName,
+                      const SceneReadOptions& options) {
+  meshio::ReadBudget budget(options.limits);
+  try {
+    if (knownSize) budget.chargeBytes(*knownSize, 1, "the text of the scene file");
+    const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!knownSize) budget.chargeBytes(content.size(), 1, "the text of the scene file");
+    return readSceneJson(detail::parseJson<SceneFileError>(content, sourceName, budget), sourceName, options, budget);
+  } catch (const std::bad_alloc&) {
+    // The budget counts what the file asks for; this is the machine running out before it.
+    throw SceneFileError(sourceName + ": out of memory while reading the scene (the read had charged " +
+                         meshio::byteSizeText(budget.bytesCharged()) + " of its limit of " +
+                         meshio::byteSizeText(budget.limits().maxMemoryBytes) + "; a lower --max-memory refuses it earlier)");
+  } catch (const meshio::ReadLimitError& e) {
+    throw SceneFileError(sourceName + ": " + e.what());
+  }
+}
+
+}  // namespace
+
 Scene readScene(std::istream& in, const std::string& sourceName, const SceneReadOptions& options) {
-  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return readSceneJson(detail::parseJson<SceneFileError>(content, sourceName), sourceName, options);
+  return readSceneStream(in, std::nullopt, sourceName, options);
 }
 
 Scene readScene(const std::filesystem::path& path, SceneReadOptions options) {
@@ -547,7 +564,9 @@ Scene readScene(const std::filesystem::path& path, SceneReadOptions options) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneFileError(file.string() + ": cannot open scene file");
   options.baseDirectory = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
-  return readScene(in, file.string(), options);
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  return readSceneStream(in, ec ? std::nullopt : std::optional<std::uint64_t>(size), file.string(), options);
 }
 
 Scene readScene(const std::filesystem::path& path) { return readScene(path, SceneReadOptions{}); }

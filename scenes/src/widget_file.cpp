@@ -2,6 +2,10 @@
 
 #include <fstream>
 #include <initializer_list>
+#include <iterator>
+#include <limits>
+#include <new>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -24,7 +28,8 @@ using detail::boolean;
 using detail::checkArray;
 using detail::checkKeys;
 using detail::checkObject;
-using detail::integer;
+using detail::integerIn;
+using detail::intIn;
 using detail::member;
 using detail::number;
 using detail::text;
@@ -43,10 +48,17 @@ BindingId bindingId(const Json& j, const Location& at) {
   return *id;
 }
 
-Eigen::Vector3i vector3i(const Json& j, const Location& at) {
+// Points per lattice axis, and grid indices along one: what a file may ask for before the budget
+// counts the whole lattice (WidgetModel keeps a lattice's flat point indices in int).
+constexpr int kMaxLatticeAxisCount = 1'000'000;
+constexpr std::uint64_t kMaxLatticePoints = std::numeric_limits<int>::max();
+constexpr int kMaxBasisDegree = 32;  // the B-spline evaluation's fixed-size tables (ffd/bspline_basis)
+
+// Three integers, each in [lo, hi].
+Eigen::Vector3i vector3i(const Json& j, int lo, int hi, const Location& at) {
   checkArray(j, at);
   if (j.size() != 3) at.fail("expected 3 integers, got " + std::to_string(j.size()) + " values");
-  return {integer(j[0], at / 0), integer(j[1], at / 1), integer(j[2], at / 2)};
+  return {intIn(j[0], lo, hi, at / 0), intIn(j[1], lo, hi, at / 1), intIn(j[2], lo, hi, at / 2)};
 }
 
 Eigen::MatrixX3d points(const Json& j, const Location& at) {
@@ -109,8 +121,9 @@ ffd::AxisBasis readBasis(const Json& j, const Location& at) {
     if (j.contains("degree") || j.contains("knots")) at.fail("a Bernstein basis takes no degree or knots");
     return b;
   }
-  if (kind == "bspline") b = ffd::AxisBasis::bspline(integer(member(j, "degree", at), at / "degree"));
-  else if (kind == "periodic-bspline") b = ffd::AxisBasis::periodic(integer(member(j, "degree", at), at / "degree"));
+  if (kind == "bspline") b = ffd::AxisBasis::bspline(intIn(member(j, "degree", at), 1, kMaxBasisDegree, at / "degree"));
+  else if (kind == "periodic-bspline")
+    b = ffd::AxisBasis::periodic(intIn(member(j, "degree", at), 1, kMaxBasisDegree, at / "degree"));
   else (at / "kind").fail("unknown basis '" + kind + "' (known: bernstein, bspline, periodic-bspline)");
   if (j.contains("knots")) {
     if (kind != "bspline") (at / "knots").fail("only a bspline basis takes explicit knots");
@@ -127,38 +140,75 @@ CellSpec readCellSpec(const Json& j, CellKind kind, const Location& at) {
   s.kind = kind;
   switch (kind) {
     case CellKind::Point:
-    case CellKind::Box: s.base = vector3i(member(j, "base", at), at / "base"); break;
+    case CellKind::Box: s.base = vector3i(member(j, "base", at), 0, kMaxLatticeAxisCount - 1, at / "base"); break;
     case CellKind::Edge:
     case CellKind::Face:
-      s.base = vector3i(member(j, "base", at), at / "base");
-      s.axis = integer(member(j, "axis", at), at / "axis");
+      s.base = vector3i(member(j, "base", at), 0, kMaxLatticeAxisCount - 1, at / "base");
+      s.axis = intIn(member(j, "axis", at), 0, 2, at / "axis");
       break;
     case CellKind::Slab: {
-      s.axis = integer(member(j, "axis", at), at / "axis");
-      if (s.axis < 0 || s.axis > 2) (at / "axis").fail("axis must be 0, 1 or 2, got " + std::to_string(s.axis));
-      s.base[s.axis] = integer(member(j, "plane", at), at / "plane");
+      s.axis = intIn(member(j, "axis", at), 0, 2, at / "axis");
+      s.base[s.axis] = intIn(member(j, "plane", at), 0, kMaxLatticeAxisCount - 1, at / "plane");
       break;
     }
     case CellKind::Custom: {
       const Json& idx = member(j, "indices", at);
       checkArray(idx, at / "indices");
-      for (std::size_t i = 0; i < idx.size(); ++i) s.indices.push_back(integer(idx[i], at / "indices" / i));
+      s.indices.reserve(idx.size());
+      for (std::size_t i = 0; i < idx.size(); ++i)
+        s.indices.push_back(integerIn(idx[i], 0, std::int64_t(kMaxLatticePoints) - 1, at / "indices" / i));
       break;
     }
   }
   return s;
 }
 
-WidgetModelData readData(const Json& root, const Location& at) {
+// What a file's widgets cost beyond their points (names, frames, glyphs, revisions: the model's
+// node of each widget, and the reader's copy of it), charged per widget and per binding.
+constexpr std::uint64_t kWidgetNodeBytes = 1024;
+constexpr std::uint64_t kBindingBytes = 256;
+// Bytes per lattice point beyond the point itself (chargePoints counts 24): its rest point, and
+// the reader's copies of both that live until the model is built.
+constexpr std::uint64_t kLatticePointCopyBytes = 3 * 3 * sizeof(double);
+// Bytes per point of a cell: its flat index and its rest position.
+constexpr std::uint64_t kCellPointBytes = sizeof(Eigen::Index) + 3 * sizeof(double);
+
+// The control points of a lattice of `counts`, charged before its arrays are built.
+void chargeLattice(const Eigen::Vector3i& counts, const std::string& name, meshio::ReadBudget& budget, const Location& at) {
+  const std::uint64_t n = std::uint64_t(counts.x()) * std::uint64_t(counts.y()) * std::uint64_t(counts.z());
+  const std::string what = "lattice '" + name + "' asks for " + std::to_string(counts.x()) + " x " + std::to_string(counts.y()) +
+                           " x " + std::to_string(counts.z()) + " = " + std::to_string(n) + " control points";
+  if (n > kMaxLatticePoints) at.fail(what + ", more than a lattice holds (" + std::to_string(kMaxLatticePoints) + ")");
+  detail::chargePoints(budget, n, what, at);
+  detail::chargeBytes(budget, n, kLatticePointCopyBytes, "lattice '" + name + "': its rest points and the reader's copies", at);
+}
+
+// The points of a cell (its flat indices and rest positions), known from its spec and lattice.
+std::uint64_t cellPointCount(const CellSpec& spec, const WidgetModelData& d, WidgetId lattice) {
+  switch (spec.kind) {
+    case CellKind::Point: return 1;
+    case CellKind::Edge: return 2;
+    case CellKind::Face: return 4;
+    case CellKind::Box: return 8;
+    case CellKind::Custom: return spec.indices.size();
+    case CellKind::Slab:
+      for (const LatticeData& l : d.lattices)
+        if (l.id == lattice && spec.axis >= 0 && spec.axis <= 2)
+          return std::uint64_t(l.counts[(spec.axis + 1) % 3]) * std::uint64_t(l.counts[(spec.axis + 2) % 3]);
+      return 0;  // an unknown lattice: WidgetModel::fromData names it
+  }
+  return 0;
+}
+
+WidgetModelData readData(const Json& root, const Location& at, meshio::ReadBudget& budget) {
   checkObject(root, at);
   checkKeys(root, {"format", "version", "lattices", "rootOrder", "cells", "affines", "bindings"}, at);
   const std::string format = text(member(root, "format", at), at / "format");
   if (format != kFormatName) (at / "format").fail("expected '" + std::string(kFormatName) + "', got '" + format + "'");
-  const int version = integer(member(root, "version", at), at / "version");
+  const int version = intIn(member(root, "version", at), 1, std::numeric_limits<int>::max(), at / "version");
   if (version > kWidgetFileVersion)
     (at / "version").fail("widget file version " + std::to_string(version) + " is newer than this build reads (" +
                           std::to_string(kWidgetFileVersion) + "); update ffdkit");
-  if (version < 1) (at / "version").fail("unknown widget file version " + std::to_string(version));
 
   WidgetModelData d;
   auto list = [&](const char* key) -> const Json& {
@@ -168,6 +218,7 @@ WidgetModelData readData(const Json& root, const Location& at) {
     return root[key];
   };
   const Json& lattices = list("lattices");
+  detail::chargeBytes(budget, lattices.size(), kWidgetNodeBytes, "lattices", at / "lattices");
   for (std::size_t i = 0; i < lattices.size(); ++i) {
     const Json& j = lattices[i];
     const Location li = at / "lattices" / i;
@@ -176,7 +227,8 @@ WidgetModelData readData(const Json& root, const Location& at) {
     LatticeData l;
     l.id = widgetId(member(j, "id", li), li / "id");
     l.name = text(member(j, "name", li), li / "name");
-    l.counts = vector3i(member(j, "counts", li), li / "counts");
+    l.counts = vector3i(member(j, "counts", li), 2, kMaxLatticeAxisCount, li / "counts");
+    chargeLattice(l.counts, l.name, budget, li / "counts");
     if (j.contains("basis")) {
       const Json& b = j["basis"];
       checkArray(b, li / "basis");
@@ -208,7 +260,7 @@ WidgetModelData readData(const Json& root, const Location& at) {
       checkKeys(r, {"policy", "n"}, lr);
       const std::string policy = text(member(r, "policy", lr), lr / "policy");
       l.settings.reembed.kind = named(parseReembedKind(policy), policy, "re-embed policy", "immediate, every-n, on-release", lr / "policy");
-      if (l.settings.reembed.kind == ReembedKind::EveryN) l.settings.reembed.everyN = integer(member(r, "n", lr), lr / "n");
+      if (l.settings.reembed.kind == ReembedKind::EveryN) l.settings.reembed.everyN = intIn(member(r, "n", lr), 1, 1'000'000, lr / "n");
       else if (r.contains("n")) (lr / "n").fail("only the every-n policy takes n");
     }
     if (j.contains("cylinder")) {
@@ -234,7 +286,6 @@ WidgetModelData readData(const Json& root, const Location& at) {
       l.restPoints = points(j["rest"], li / "rest");
     } else {
       // The default box lattice of these bases (Greville abscissae for B-splines).
-      if ((l.counts.array() < 2).any()) (li / "counts").fail("lattice needs >= 2 points per axis");
       ffd::BoxLatticeOptions box;
       box.counts = l.counts;
       box.bases = l.settings.basis;
@@ -250,6 +301,7 @@ WidgetModelData readData(const Json& root, const Location& at) {
   }
 
   const Json& cells = list("cells");
+  detail::chargeBytes(budget, cells.size(), kWidgetNodeBytes, "cells", at / "cells");
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const Json& j = cells[i];
     const Location ci = at / "cells" / i;
@@ -269,10 +321,12 @@ WidgetModelData readData(const Json& root, const Location& at) {
       case CellKind::Custom: checkKeys(j, {"id", "name", "lattice", "kind", "indices"}, ci); break;
     }
     c.spec = readCellSpec(j, k, ci);
+    detail::chargeBytes(budget, cellPointCount(c.spec, d, c.lattice), kCellPointBytes, "cell '" + c.name + "': its points", ci);
     d.cells.push_back(std::move(c));
   }
 
   const Json& affines = list("affines");
+  detail::chargeBytes(budget, affines.size(), kWidgetNodeBytes, "affine widgets", at / "affines");
   for (std::size_t i = 0; i < affines.size(); ++i) {
     const Json& j = affines[i];
     const Location ai = at / "affines" / i;
@@ -299,6 +353,7 @@ WidgetModelData readData(const Json& root, const Location& at) {
   }
 
   const Json& bindings = list("bindings");
+  detail::chargeBytes(budget, bindings.size(), kBindingBytes, "bindings", at / "bindings");
   for (std::size_t i = 0; i < bindings.size(); ++i) {
     const Json& j = bindings[i];
     const Location bi = at / "bindings" / i;
@@ -486,9 +541,10 @@ Json toJson(const WidgetModelData& d) {
 
 namespace detail {
 
-widgets::WidgetModel widgetModelFromJson(const Json& root, const std::string& sourceName, const std::string& pointer) {
+widgets::WidgetModel widgetModelFromJson(const Json& root, const std::string& sourceName, const std::string& pointer,
+                                         meshio::ReadBudget& budget) {
   const Location at{&sourceName, pointer};
-  const WidgetModelData data = readData(root, at);
+  const WidgetModelData data = readData(root, at, budget);
   try {
     return WidgetModel::fromData(data);
   } catch (const WidgetError& e) {
@@ -501,26 +557,47 @@ Json widgetModelToJson(const widgets::WidgetModel& model) { return toJson(model.
 
 }  // namespace detail
 
-WidgetModel readWidgetFile(std::istream& in, const std::string& sourceName) {
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return detail::widgetModelFromJson(detail::parseJson<WidgetFileError>(buffer.str(), sourceName), sourceName, "");
+WidgetModel readWidgetFile(std::istream& in, const std::string& sourceName) { return readWidgetFile(in, sourceName, {}); }
+
+WidgetModel readWidgetFile(const std::filesystem::path& path) { return readWidgetFile(path, WidgetReadOptions{}); }
+
+namespace {
+
+// Reads the text of a widget file from `in` after charging `knownSize` bytes (the file's size,
+// when known) or, for a stream of unknown size, what it held; then the model against the same
+// budget. The one place that turns a failed allocation, or a budget overrun that escaped a
+// located check, into a WidgetFileError.
+WidgetModel readWidgetStream(std::istream& in, std::optional<std::uint64_t> knownSize, const std::string& sourceName,
+                             const WidgetReadOptions& options) {
+  meshio::ReadBudget ownBudget(options.limits);
+  meshio::ReadBudget& budget = options.budget != nullptr ? *options.budget : ownBudget;
+  try {
+    if (knownSize) budget.chargeBytes(*knownSize, 1, "the text of the widget file");
+    const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!knownSize) budget.chargeBytes(content.size(), 1, "the text of the widget file");
+    return detail::widgetModelFromJson(detail::parseJson<WidgetFileError>(content, sourceName, budget), sourceName, "", budget);
+  } catch (const std::bad_alloc&) {
+    // The budget counts what the file asks for; this is the machine running out before it.
+    throw WidgetFileError(sourceName + ": out of memory while reading the widget file (the read had charged " +
+                          meshio::byteSizeText(budget.bytesCharged()) + " of its limit of " +
+                          meshio::byteSizeText(budget.limits().maxMemoryBytes) + "; a lower --max-memory refuses it earlier)");
+  } catch (const meshio::ReadLimitError& e) {
+    throw WidgetFileError(sourceName + ": " + e.what());
+  }
 }
 
-WidgetModel readWidgetFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw WidgetFileError(path.string() + ": cannot open the widget file for reading");
-  return readWidgetFile(in, path.string());
-}
+}  // namespace
 
 WidgetModel readWidgetFile(std::istream& in, const std::string& sourceName, const WidgetReadOptions& options) {
-  (void)options;  // threaded through the reader next
-  return readWidgetFile(in, sourceName);
+  return readWidgetStream(in, std::nullopt, sourceName, options);
 }
 
 WidgetModel readWidgetFile(const std::filesystem::path& path, const WidgetReadOptions& options) {
-  (void)options;
-  return readWidgetFile(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw WidgetFileError(path.string() + ": cannot open the widget file for reading");
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  return readWidgetStream(in, ec ? std::nullopt : std::optional<std::uint64_t>(size), path.string(), options);
 }
 
 std::string widgetFileText(const WidgetModel& model) { return detail::canonicalJsonText(detail::widgetModelToJson(model)); }

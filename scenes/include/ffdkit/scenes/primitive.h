@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string_view>
 
@@ -27,6 +28,20 @@ struct PrimitiveOptions {
   /// World placement applied after building (rotation, translation, scale).
   Eigen::Affine3d placement = Eigen::Affine3d::Identity();
 };
+
+/// What makePrimitive builds, counted from the options without building: its grids' vertices
+/// before the seams and poles are welded, and their triangles before collapsed ones are
+/// dropped (upper bounds; exact for a plane). Zero for a resolution < 3.
+struct PrimitiveSize {
+  std::uint64_t vertices = 0;
+  std::uint64_t triangles = 0;
+};
+PrimitiveSize primitiveSize(const PrimitiveOptions& options);
+
+/// Bytes makePrimitive holds per vertex while it welds (its lookup map's node and the point
+/// beside it) and per triangle (its list before the mesh), freed when it returns.
+inline constexpr std::uint64_t kPrimitiveWeldBytesPerVertex = 96;
+inline constexpr std::uint64_t kPrimitiveBuildBytesPerTriangle = 12;
 
 /// A closed (or, for Plane, open) triangle mesh of the primitive.
 /// @throws std::invalid_argument for resolution < 3 or size <= 0 / non-finite.

@@ -205,10 +205,29 @@ class Scene {
   std::uint64_t animationRevision_ = 0;
 };
 
-/// Builds an object's own points from its source. Mesh paths resolve against `baseDirectory`.
-/// @throws MeshIoError / GeneratorError / std::invalid_argument naming the object.
+/// Builds an object's own points from its source. Mesh paths resolve against `baseDirectory`
+/// and are not confined (the caller chose them); the build has the default ReadLimits.
+/// @throws MeshIoError / GeneratorError / std::invalid_argument naming the object;
+///   meshio::ReadLimitError over the limits.
 MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path& baseDirectory,
                          const GeneratorRegistry& generators = builtinGenerators());
+
+/// How an object's points are built as part of a read (a scene file's objects).
+struct ObjectMeshOptions {
+  const GeneratorRegistry* generators = nullptr;  ///< nullptr: builtinGenerators()
+  /// Charged before anything is built: a primitive's vertices and triangles from its resolution
+  /// (primitiveSize), a mesh file's contents (meshio::MeshReadOptions), a generator's pointBound.
+  /// nullptr: a budget of the default ReadLimits for this object alone.
+  meshio::ReadBudget* budget = nullptr;
+  /// The rule for a mesh file's path (relative to `baseDirectory`) and the files it names.
+  meshio::PathConfinement confinement;
+};
+
+/// buildObjectMesh against a budget and the confinement rule.
+/// @throws MeshIoError / GeneratorError / std::invalid_argument naming what failed;
+///   meshio::ReadLimitError naming the primitive over the budget; meshio::PathOutsideFolderError.
+MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path& baseDirectory,
+                         const ObjectMeshOptions& options);
 
 struct AttachOptions {
   std::string latticeName;                           ///< "" -> "lattice<N>"
