@@ -739,7 +739,7 @@ CurveNetwork buildCurveNetwork(const CurveNetworkDescription& description,
     net.faces.push_back(face);
   }
   // Rule (c): an open chain between two free ends closed by a virtual side (opt-in,
-  // Kuriyama 1996, sec. 5.3.4 item 4).
+  // Kuriyama 1996, sec. 5.2.4 (c)).
   for (const std::vector<int>& chain : openFaces) {
     Face face;
     face.halfEdges = chain;

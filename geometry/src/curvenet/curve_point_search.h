@@ -1,7 +1,7 @@
 #pragma once
 // Private to curvenet: closest points on and between network curves, projections, end tests
 // (the numerics of buildCurveNetwork's intersection, vertex and normal stages, Kuriyama 1996,
-// sec. 5.3.3-4.5).
+// secs. 5.3.3-5.3.4).
 
 #include <vector>
 

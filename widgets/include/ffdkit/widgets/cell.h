@@ -19,7 +19,7 @@ enum class CellKind { Point, Edge, Face, Slab, Box, Custom };
 std::string_view cellKindName(CellKind kind);
 std::optional<CellKind> parseCellKind(std::string_view name);
 
-/// Default attachment mask per cell kind (Kuriyama 1996, sec. 6.2.1, sec. 6.2.2):
+/// Default attachment mask per cell kind (Kuriyama 1996, secs. 6.2.1, 6.2.2):
 /// Point {T}; Edge, Face, Slab, Box {T, R}; Custom {T}.
 AffineMask defaultAttachmentMask(CellKind kind);
 

@@ -35,7 +35,7 @@ std::string toString(BindingId id);
 std::optional<WidgetId> parseWidgetId(std::string_view text);
 std::optional<BindingId> parseBindingId(std::string_view text);
 
-/// The three widget families of Kuriyama 1996, ch. 6 (sec. 6.2.1, sec. 6.2.3).
+/// The three widget families of Kuriyama 1996, ch. 6 (secs. 6.2.1, 6.2.3).
 enum class WidgetType { Lattice, Cell, Affine };
 std::string_view widgetTypeName(WidgetType type);
 

@@ -218,7 +218,7 @@ class WidgetModel {
   std::vector<WidgetId> children(WidgetId lattice) const;  ///< sibling order
   std::vector<WidgetId> roots() const;                     ///< sibling order
   /// The lattices in pre-order (parent before children, siblings in order): the order in which
-  /// the FFD pipeline deforms (Kuriyama 1996, sec. 6.2.3, sec. 6.3.2).
+  /// the FFD pipeline deforms (Kuriyama 1996, secs. 6.2.3, 6.3.2).
   std::vector<WidgetId> pipelineOrder() const;
   /// The lattice `root` and its subtree in the same pre-order (the one traversal every pipeline,
   /// the deformer and the controller use). @throws UnknownWidget, InvalidArgument (not a lattice).

@@ -38,7 +38,7 @@ struct BlendResult {
 /// row minimises int ||q''||^2 per column (eq. 3.36-3.39). Both surfaces are first refined to
 /// the union of their u knots (Kuriyama 1996, sec. 3.3.6). The originals are reproduced exactly;
 /// with all beta2 = 0 the composite is C2 across v_n and v_{n+2} (G1 otherwise, sec. 3.3.7).
-/// @see Kuriyama 1996, sec. 3.3.7, sec. 3.3.7.
+/// @see Kuriyama 1996, sec. 3.3.7.
 /// @throws CardinalSplineError if a surface is closed in v, the u closedness or u ranges differ.
 BlendResult blendSurfaces(const SigmaSurface& first, const SigmaSurface& second,
                           const BlendOptions& options = {});

@@ -19,7 +19,7 @@ struct SigmaKnotsOptions {
 /// quartic B-splines) with a tension beta2_i >= 0 per knot, and the basis coefficients of
 /// eq. (3.18)-(3.23) (D_i, C_{i,0}, C_{i,1}, Chat_{i,0,1,3,4}). Indices may run one past the
 /// ends: open knots use the phantom widths, closed knots wrap modulo n.
-/// @see Kuriyama 1996, sec. 3.3.2, sec. 3.3.2.
+/// @see Kuriyama 1996, sec. 3.3.2.
 class SigmaKnots {
  public:
   /// knots: n+1 strictly increasing values (n >= 1 open, n >= 3 closed), gaps

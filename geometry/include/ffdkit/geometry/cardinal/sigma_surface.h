@@ -20,7 +20,7 @@ using QuarticPatch = std::array<std::array<Eigen::Vector3d, 5>, 5>;
 ///             Pv knotsU.pointCount() x knotsV.shapeCount(),
 ///             Puv knotsU.shapeCount() x knotsV.shapeCount();
 /// shape rows/columns are offset by shapeFirst() (grid index r <-> shape index r + shapeFirst()).
-/// Q(t^u_i, t^v_j) = P_ij for any shape grids. @see Kuriyama 1996, sec. 3.3.3, sec. 3.3.3.
+/// Q(t^u_i, t^v_j) = P_ij for any shape grids. @see Kuriyama 1996, sec. 3.3.3.
 struct SigmaSurface {
   SigmaKnots knotsU;
   SigmaKnots knotsV;

@@ -44,7 +44,7 @@ struct CurveNetworkOptions {
   /// thesis' rule N.1-N.4 (e.g. a sheet of straight curves): normals get n . hint >= 0 there.
   Eigen::Vector3d orientationHint = Eigen::Vector3d::UnitZ();
   /// Rule (c): fill every open chain that runs from a free end to a free end, closed by a
-  /// virtual side (Kuriyama 1996, sec. 5.2.4 c, sec. 5.3.4 item 4: only when the user asks). false:
+  /// virtual side (Kuriyama 1996, secs. 5.2.4 (c), 5.3.4: only when the user asks). false:
   /// report them.
   bool fillOpenRegions = false;
 };
@@ -65,7 +65,7 @@ struct NetworkVertex {
   enum class Kind {
     Crossing,   ///< two curves cross
     TJunction,  ///< an open curve ends on a curve passing through
-    Multiple,   ///< >= 3 curves (Kuriyama 1996, sec. 5.2.4 a)
+    Multiple,   ///< >= 3 curves (Kuriyama 1996, sec. 5.2.4 (a))
     FreeEnd     ///< the free end of an open curve (not an intersection)
   };
   Kind kind = Kind::Crossing;

@@ -8,7 +8,7 @@
 
 namespace ffdkit::geometry::curvenet {
 
-/// Options of the affine-matrix fairing (Kuriyama 1996, sec. 5.2.1, sec. 5.2.1).
+/// Options of the affine-matrix fairing (Kuriyama 1996, sec. 5.2.1).
 struct FairingOptions {
   int quadraturePoints = 16;  ///< Gauss-Legendre points per direction on [0, 1]^2 (>= 4)
 };

@@ -21,7 +21,7 @@ enum class SplitLegRule {
   RegularVertexBased,
 };
 
-/// The curve network after face splitting (Kuriyama 1996, sec. 4.2.2, sec. 4.2.2): vertices
+/// The curve network after face splitting (Kuriyama 1996, sec. 4.2.2): vertices
 /// 0..V-1 are the polyhedron vertices, V + f is the split point O_f of face f; every face
 /// (c_0..c_{m-1}) becomes the triangles (O_f, c_k, c_{k+1}).
 struct TriangulatedNetwork {

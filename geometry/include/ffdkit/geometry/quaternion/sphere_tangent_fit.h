@@ -62,7 +62,7 @@ Eigen::Vector3d polarPoint(double theta, double phi);
 /// @return converged = false with a message (and no curve) when no solution was found, e.g. when
 ///   the simplex is pulled to antipodal controls; never a silently wrong curve.
 /// @throws QuaternionCurveError on invalid input: P_c = P_a, zero tangents, degree not 2 or 3.
-/// @see Sphere-tangent report, sec. 5, sec. 5.
+/// @see Sphere-tangent report, sec. 5.
 SphereTangentFitResult fitSphereTangentSegment(const SphereTangentSegmentSpec& spec, const NelderMeadOptions& options = {});
 
 }  // namespace ffdkit::geometry::quaternion
