@@ -297,7 +297,7 @@ class BadInputGuiTest : public QObject {
     const fs::path root = dir.path().toStdString();
     fs::create_directories(root / "shared");
     fs::copy_file(fs::path(FFDKIT_SOURCE_DIR) / "widgets" / "examples" / "fig6-8.json", root / "tool.json");
-    std::ofstream(root / "shared" / "scene.json") << R"({"format": "ffdkit-scene", "version": 1, "widgetFile": "../tool.json"})";
+    std::ofstream(root / "shared" / "scene.json") << R"({"format": "ffdkit-scene", "version": 1, "objects": [], "widgetFile": "../tool.json"})";
     Shown refused = openThroughTheMenus(w, root / "shared" / "scene.json", OpenAs::Scene);
     QCOMPARE(refused.messages.size(), 1);
     const QString message = refused.messages.front();

@@ -106,7 +106,7 @@ TEST(CliConfinement, ASceneWhoseWidgetFileIsOutsideIsRefusedAndAllowOutsideReads
   ASSERT_FALSE(tool.empty());
   std::ofstream(dir / "tool.json") << tool;
   std::ofstream(dir / "shared" / "scene.json")
-      << R"({"format": "ffdkit-scene", "version": 1, "widgetFile": "../tool.json"})";
+      << R"({"format": "ffdkit-scene", "version": 1, "objects": [], "widgetFile": "../tool.json"})";
   const std::string scene = (dir / "shared" / "scene.json").string();
   const std::string out = (dir / "out.xyz").string();
   writeCloud(dir / "shared" / "cloud.xyz", 100);
@@ -136,7 +136,7 @@ TEST(CliConfinement, TheRefusalNeverQuotesTheOtherFile) {
   fs::create_directories(dir / "shared");
   std::ofstream(dir / "secret.txt") << "password=hunter2\n";
   std::ofstream(dir / "shared" / "scene.json")
-      << R"({"format": "ffdkit-scene", "version": 1, "widgetFile": "../secret.txt"})";
+      << R"({"format": "ffdkit-scene", "version": 1, "objects": [], "widgetFile": "../secret.txt"})";
   writeMeshScene(dir / "shared" / "mesh-scene.json", "../secret.txt");
   for (const char* scene : {"scene.json", "mesh-scene.json"}) {
     SCOPED_TRACE(scene);
