@@ -1,0 +1,341 @@
+#include "json_mutator.h"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace ffdkit::fuzz {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// Deeper documents are left to byte mutation: writing them back (recursive) could overflow the stack.
+constexpr int kMaxDepth = 128;
+
+// A value of the document and where it sits.
+struct Node {
+  Json* value;
+  Json* parent;     // null for the root
+  std::string key;  // its name, when the parent is an object
+  int depth;
+};
+
+bool collect(Json& value, Json* parent, std::string key, int depth, std::vector<Node>& out) {
+  if (depth > kMaxDepth) return false;
+  out.push_back({&value, parent, std::move(key), depth});
+  if (value.is_object()) {
+    for (auto it = value.begin(); it != value.end(); ++it)
+      if (!collect(it.value(), &value, it.key(), depth + 1, out)) return false;
+  } else if (value.is_array()) {
+    for (auto& element : value)
+      if (!collect(element, &value, {}, depth + 1, out)) return false;
+  }
+  return true;
+}
+
+// Numbers at the edges of what a reader converts: counts, indices, sizes, coordinates.
+const std::vector<Json>& boundaryNumbers() {
+  static const std::vector<Json> numbers = {
+      Json(0), Json(-1), Json(1), Json(2), Json(3), Json(4), Json(7), Json(8), Json(16), Json(255), Json(256),
+      Json(65535), Json(65536), Json(1000), Json(100000), Json(1000000), Json(1000000000),
+      Json(std::numeric_limits<std::int32_t>::max()), Json(std::int64_t(std::numeric_limits<std::int32_t>::max()) + 1),
+      Json(std::numeric_limits<std::int32_t>::min()), Json(std::int64_t(1) << 32), Json(std::int64_t(1) << 53),
+      Json(std::numeric_limits<std::int64_t>::max()), Json(std::numeric_limits<std::int64_t>::min()),
+      Json(std::numeric_limits<std::uint64_t>::max()), Json(1e308), Json(-1e308), Json(1.7976931348623157e308),
+      Json(5e-324), Json(1e-300), Json(1e-9), Json(0.5), Json(-0.5), Json(1.5), Json(2.5), Json(-0.0), Json(1e15),
+      Json(0.1), Json(1.0 / 3.0)};
+  return numbers;
+}
+
+// Number text that is not JSON (or not representable), which a strict reader must refuse.
+constexpr const char* kRawNumbers[] = {"NaN",   "-NaN",  "nan",   "Infinity", "-Infinity",  "inf",
+                                       "1e999", "-1e999", "1e-999", "18446744073709551616",
+                                       "-9223372036854775809", "99999999999999999999999999999", "0x10", "1.",
+                                       ".5",    "01",    "1e",    "-",        "+1",         "1e+",
+                                       "-0",    "2e308"};
+
+// Strings that a reader may take as a path or a name.
+const std::vector<std::string>& interestingStrings() {
+  static const std::vector<std::string> strings = {
+      "../x",
+      "../../../../../../../../etc/passwd",
+      "/etc/passwd",
+      "/dev/zero",
+      "/dev/urandom",
+      "/proc/self/mem",
+      "..",
+      ".",
+      "",
+      " ",
+      "/",
+      "./",
+      "a/../../b.obj",
+      "sub/../../x.ply",
+      "mesh.obj/..",
+      "~/x.obj",
+      "C:\\Windows\\win.ini",
+      "\\\\server\\share\\x.obj",
+      "file:///etc/passwd",
+      std::string("x.obj\0.json", 11),
+      "nonexistent.ply",
+      "mesh.stl",
+      "mesh.vtp",
+      "scene.json",
+      "tool.json",
+      "%s%n%x%p",
+      "\xff\xfe",
+      "w0",
+      "w-1",
+      "l0",
+      std::string(300, 'a') + ".obj",
+      std::string(5000, 'x'),
+      std::string(64, '/'),
+  };
+  return strings;
+}
+
+class Mutation {
+ public:
+  Mutation(Json& document, std::uint64_t seed) : document_(document), rng_(seed) {}
+
+  // One mutation; false when the document is too deep or the chosen mutation did not apply.
+  bool once() {
+    nodes_.clear();
+    if (!collect(document_, nullptr, {}, 0, nodes_)) return false;
+    switch (below(8)) {
+      case 0:
+      case 1: return number();
+      case 2:
+      case 3: return array();
+      case 4: return string();
+      case 5: return key();
+      default: return value();
+    }
+  }
+
+  // The document as text, with the raw number texts in place of their placeholders.
+  std::string text() const {
+    std::string text = document_.dump(-1, ' ', false, Json::error_handler_t::replace);
+    for (std::size_t i = 0; i < raw_.size(); ++i) {
+      std::string placeholder(1, '"');
+      placeholder.append(placeholder_(i)).push_back('"');
+      const std::size_t at = text.find(placeholder);
+      if (at != std::string::npos) text.replace(at, placeholder.size(), raw_[i]);
+    }
+    return text;
+  }
+
+ private:
+  static std::string placeholder_(std::size_t i) { return std::string("ffdkit-fuzz-raw-").append(std::to_string(i)); }
+
+  std::size_t below(std::size_t n) { return n == 0 ? 0 : std::size_t(rng_() % n); }
+  template <class T, std::size_t N>
+  const T& pick(const T (&items)[N]) { return items[below(N)]; }
+  template <class T>
+  const T& pick(const std::vector<T>& items) { return items[below(items.size())]; }
+
+  template <class Predicate>
+  Node* someNode(Predicate predicate) {
+    std::vector<Node*> matches;
+    for (Node& node : nodes_)
+      if (predicate(node)) matches.push_back(&node);
+    return matches.empty() ? nullptr : matches[below(matches.size())];
+  }
+
+  bool number() {
+    Node* node = someNode([](const Node& n) { return n.value->is_number(); });
+    if (!node) return false;
+    Json& v = *node->value;
+    const double x = v.get<double>();
+    switch (below(6)) {
+      case 0:
+      case 1: v = pick(boundaryNumbers()); break;
+      case 2:
+        raw_.push_back(pick(kRawNumbers));
+        v = placeholder_(raw_.size() - 1);
+        break;
+      case 3:  // a fraction where a count or an index is expected
+        v = v.is_number_integer() ? x + 0.5 : std::floor(x);
+        break;
+      case 4: {
+        const double nudged[] = {x + 1, x - 1, -x, 2 * x, x * 1000, x / 2, x * 1e100};
+        v = pick(nudged);
+        if (v.get<double>() == std::floor(v.get<double>()) && std::abs(v.get<double>()) < 9e15)
+          v = std::int64_t(v.get<double>());
+        break;
+      }
+      default: v = -(std::int64_t(below(4)) + 1); break;
+    }
+    return true;
+  }
+
+  bool array() {
+    Node* node = someNode([](const Node& n) { return n.value->is_array(); });
+    if (!node) return false;
+    Json& a = *node->value;
+    const std::size_t n = a.size();
+    switch (below(8)) {
+      case 0:  // duplicate an element
+        if (n == 0) return false;
+        {
+          const std::size_t i = below(n);
+          Json copy = a[i];
+          a.insert(a.begin() + std::ptrdiff_t(i), std::move(copy));
+        }
+        return true;
+      case 1:  // drop an element
+        if (n == 0) return false;
+        a.erase(a.begin() + std::ptrdiff_t(below(n)));
+        return true;
+      case 2:  // repeat an element many times
+        if (n == 0) return false;
+        {
+          const Json copy = a[below(n)];
+          for (std::size_t k = 2 + below(62); k > 0; --k) a.push_back(copy);
+        }
+        return true;
+      case 3:  // keep one or two elements (a 3-vector that is short)
+        while (a.size() > 1 + below(2)) a.erase(a.end() - 1);
+        return true;
+      case 4:
+        a = Json::array();
+        return true;
+      case 5:  // swap two elements (order-dependent references, keys out of order)
+        if (n < 2) return false;
+        std::swap(a[below(n)], a[below(n)]);
+        return true;
+      case 6: {  // huge counts in a small numeric array: [1000, 1000, 100], [2147483647, 2, 2]
+        if (n == 0 || n > 4) return false;
+        for (const Json& e : a)
+          if (!e.is_number()) return false;
+        const std::int64_t big[] = {1000, 100000, 1000000, 2147483647, 1 << 20, 46341, 0, -1, 1, 2, 100, 3};
+        for (Json& e : a) e = pick(big);
+        return true;
+      }
+      default:  // one more element like the last
+        a.push_back(n == 0 ? Json(0) : Json(a[n - 1]));
+        return true;
+    }
+  }
+
+  bool string() {
+    Node* node = someNode([](const Node& n) { return n.value->is_string(); });
+    if (!node) return false;
+    Json& s = *node->value;
+    switch (below(4)) {
+      case 0:
+      case 1: s = pick(interestingStrings()); break;
+      case 2: {  // a name from elsewhere: references to the wrong widget, lattice or object
+        Node* other = someNode([](const Node& n) { return n.value->is_string(); });
+        s = *other->value;
+        break;
+      }
+      default: {
+        static const char* const kSuffixes[] = {"1", "x", "/..", ".json", "\n", " "};
+        s = s.get<std::string>() + pick(kSuffixes);
+        break;
+      }
+    }
+    return true;
+  }
+
+  bool key() {
+    Node* member = someNode([](const Node& n) { return n.parent && n.parent->is_object(); });
+    if (!member) return false;
+    Json& object = *member->parent;
+    switch (below(3)) {
+      case 0:  // drop it
+        object.erase(member->key);
+        return true;
+      case 1: {  // rename it: to a key used elsewhere, or to a near miss
+        Node* other = someNode([](const Node& n) { return n.parent && n.parent->is_object(); });
+        static const char* const kNearMisses[] = {"s", "_", "X", " "};
+        std::string name = below(2) ? other->key : member->key + pick(kNearMisses);
+        if (object.contains(name)) return false;
+        Json value = std::move(*member->value);
+        object.erase(member->key);
+        object[name] = std::move(value);
+        return true;
+      }
+      default: {  // copy it into another object
+        Node* target = someNode([](const Node& n) { return n.value->is_object(); });
+        if (!target) return false;
+        Json value = *member->value;
+        (*target->value)[member->key] = std::move(value);
+        return true;
+      }
+    }
+  }
+
+  bool value() {
+    Node* node = nodes_.size() > 1 ? &nodes_[1 + below(nodes_.size() - 1)] : &nodes_[0];
+    if (below(2)) {  // another part of the document: an object where a number was, a list for a name
+      Json copy = *pick(nodes_).value;
+      *node->value = std::move(copy);
+    } else {
+      static const Json kinds[] = {Json(nullptr), Json(true), Json(false), Json::object(), Json::array(),
+                                   Json(""),      Json(0),    Json("x"),   Json::array({Json::array()}),
+                                   Json::array({0, 0, 0})};
+      *node->value = pick(kinds);
+    }
+    return true;
+  }
+
+  Json& document_;
+  std::mt19937_64 rng_;
+  std::vector<Node> nodes_;
+  std::vector<std::string> raw_;
+};
+
+std::optional<Json> parse(std::string_view text) {
+  Json document = Json::parse(text.begin(), text.end(), nullptr, false);
+  if (document.is_discarded()) return std::nullopt;
+  return document;
+}
+
+}  // namespace
+
+std::optional<std::string> mutateJson(std::string_view text, std::uint64_t seed, std::size_t maxSize) {
+  const std::optional<Json> original = parse(text);
+  if (!original) return std::nullopt;
+  const std::string unchanged = original->dump(-1, ' ', false, Json::error_handler_t::replace);
+  std::mt19937_64 rng(seed);
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    Json document = *original;
+    Mutation mutation(document, rng());
+    bool changed = false;
+    for (std::size_t k = 1 + rng() % 4; k > 0; --k) changed = mutation.once() || changed;
+    if (!changed) continue;
+    std::string result = mutation.text();
+    if (result != unchanged && result.size() <= maxSize) return result;
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> crossOverJson(std::string_view first, std::string_view second, std::uint64_t seed,
+                                         std::size_t maxSize) {
+  std::optional<Json> a = parse(first);
+  std::optional<Json> b = parse(second);
+  if (!a || !b) return std::nullopt;
+  std::vector<Node> into, from;
+  if (!collect(*a, nullptr, {}, 0, into) || !collect(*b, nullptr, {}, 0, from)) return std::nullopt;
+  std::mt19937_64 rng(seed);
+  Node& target = into[rng() % into.size()];
+  std::vector<const Node*> sameKey;
+  for (const Node& node : from)
+    if (!target.key.empty() && node.key == target.key) sameKey.push_back(&node);
+  const Node& source = sameKey.empty() ? from[rng() % from.size()] : *sameKey[rng() % sameKey.size()];
+  Json copy = *source.value;
+  *target.value = std::move(copy);
+  std::string result = a->dump(-1, ' ', false, Json::error_handler_t::replace);
+  if (result.size() > maxSize) return std::nullopt;
+  return result;
+}
+
+}  // namespace ffdkit::fuzz

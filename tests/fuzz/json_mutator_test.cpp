@@ -1,0 +1,132 @@
+#include "json_mutator.h"
+
+#include <cstdint>
+#include <set>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace ffdkit::fuzz {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr const char* kScene =
+    R"({"version":2,"objects":[{"name":"cube","mesh":"cube.obj","points":[0.25,1,2]}],)"
+    R"("widgets":{"lattices":[{"id":"w0","counts":[3,3,3],"degree":2}]},"bindings":[{"from":"w0","to":"cube"}]})";
+
+// The texts of 4000 mutations of kScene, by seed.
+std::set<std::string> manyMutations(std::size_t maxSize = 1 << 16) {
+  std::set<std::string> texts;
+  for (std::uint64_t seed = 0; seed < 4000; ++seed)
+    if (auto text = mutateJson(kScene, seed, maxSize)) texts.insert(*text);
+  return texts;
+}
+
+bool anyContains(const std::set<std::string>& texts, const std::string& part) {
+  for (const std::string& text : texts)
+    if (text.find(part) != std::string::npos) return true;
+  return false;
+}
+
+TEST(JsonMutator, LeavesTextThatIsNotJsonToByteMutation) {
+  EXPECT_FALSE(mutateJson("{\"a\": [1, 2", 1, 1000));
+  EXPECT_FALSE(mutateJson("", 1, 1000));
+  EXPECT_FALSE(crossOverJson("{}", "[1,", 1, 1000));
+}
+
+TEST(JsonMutator, IsDeterministicPerSeedAndChangesTheDocument) {
+  for (std::uint64_t seed = 0; seed < 200; ++seed) {
+    const auto first = mutateJson(kScene, seed, 1 << 16);
+    ASSERT_TRUE(first) << "seed " << seed;
+    EXPECT_EQ(first, mutateJson(kScene, seed, 1 << 16)) << "seed " << seed;
+    EXPECT_NE(*first, Json::parse(kScene).dump()) << "seed " << seed;
+  }
+}
+
+TEST(JsonMutator, StaysWithinTheMaximumSize) {
+  const std::size_t maxSize = std::string(kScene).size() + 20;
+  std::size_t produced = 0;
+  for (const std::string& text : manyMutations(maxSize)) {
+    EXPECT_LE(text.size(), maxSize);
+    ++produced;
+  }
+  EXPECT_GT(produced, 500u);  // most mutations fit; the long strings and repeats do not
+}
+
+TEST(JsonMutator, MostResultsAreJsonAndSomeCarryNumbersThatAreNot) {
+  std::size_t json = 0, other = 0;
+  for (const std::string& text : manyMutations()) (Json::accept(text) ? json : other)++;
+  EXPECT_GT(json, 5 * other);
+  EXPECT_GT(other, 50u);
+}
+
+TEST(JsonMutator, ReachesBoundaryNumbers) {
+  const std::set<std::string> texts = manyMutations();
+  for (const char* number : {":0,", "-1", "9223372036854775807", "-9223372036854775808", "18446744073709551615",
+                             "2147483647", "1e+308", "0.5", "NaN", "1e999", "18446744073709551616"})
+    EXPECT_TRUE(anyContains(texts, number)) << number;
+  // A count of 3 made a fraction: "counts":[3.5,...
+  EXPECT_TRUE(anyContains(texts, "3.5")) << "integer + 0.5";
+}
+
+TEST(JsonMutator, ChangesArrayLengthsAndSetsHugeCounts) {
+  std::set<std::size_t> lengths;
+  bool hugeCounts = false;
+  for (const std::string& text : manyMutations()) {
+    const Json document = Json::parse(text, nullptr, false);
+    if (document.is_discarded() || !document.is_object() || !document.contains("widgets")) continue;
+    const Json& widgets = document["widgets"];
+    if (!widgets.is_object() || !widgets.contains("lattices") || !widgets["lattices"].is_array() ||
+        widgets["lattices"].empty() || !widgets["lattices"][0].is_object())
+      continue;
+    const Json& lattice = widgets["lattices"][0];
+    if (!lattice.contains("counts") || !lattice["counts"].is_array()) continue;
+    lengths.insert(lattice["counts"].size());
+    for (const Json& count : lattice["counts"])
+      if (count.is_number_integer() && count.get<std::int64_t>() >= 1000) hugeCounts = true;
+  }
+  EXPECT_TRUE(lengths.count(0) && lengths.count(1) && lengths.count(2) && lengths.count(4)) << "dropped and duplicated";
+  EXPECT_TRUE(*lengths.rbegin() > 10) << "repeated";
+  EXPECT_TRUE(hugeCounts);
+}
+
+TEST(JsonMutator, PutsPathsAndOtherNamesIntoStrings) {
+  const std::set<std::string> texts = manyMutations();
+  EXPECT_TRUE(anyContains(texts, R"(:"../x")"));
+  EXPECT_TRUE(anyContains(texts, R"(:"/etc/passwd")"));
+  EXPECT_TRUE(anyContains(texts, std::string(300, 'a') + ".obj"));
+  EXPECT_TRUE(anyContains(texts, R"("to":"w0")")) << "a name from elsewhere in the document";
+}
+
+TEST(JsonMutator, RenamesDropsAndCopiesKeys) {
+  bool dropped = false, renamed = false, copied = false;
+  for (const std::string& text : manyMutations()) {
+    const Json document = Json::parse(text, nullptr, false);
+    if (document.is_discarded() || !document.is_object()) continue;
+    if (!document.contains("version") && document.contains("objects")) dropped = true;
+    if (document.contains("versions")) renamed = true;
+    if (document.contains("degree") || document.contains("mesh")) copied = true;  // from a nested object
+  }
+  EXPECT_TRUE(dropped);
+  EXPECT_TRUE(renamed);
+  EXPECT_TRUE(copied);
+}
+
+TEST(JsonMutator, CrossOverGraftsAValueOfTheSecondDocument) {
+  const std::string first = R"({"counts":[2,2,2],"name":"a"})";
+  const std::string second = R"({"counts":[9,8,7],"other":{"deep":[1]}})";
+  std::set<std::string> texts;
+  for (std::uint64_t seed = 0; seed < 300; ++seed)
+    if (auto text = crossOverJson(first, second, seed, 1000)) {
+      EXPECT_TRUE(Json::accept(*text)) << *text;
+      texts.insert(*text);
+    }
+  EXPECT_TRUE(texts.count(R"({"counts":[9,8,7],"name":"a"})")) << "the value with the same key";
+  EXPECT_TRUE(anyContains(texts, R"({"deep":[1]})"));
+  EXPECT_FALSE(crossOverJson(first, second, 1, 5));
+}
+
+}  // namespace
+}  // namespace ffdkit::fuzz
