@@ -4,9 +4,10 @@
 # out/fuzz/<target>/corpus, crashes to out/fuzz/<target>/ (copy each into
 # tests/fuzz/regressions/<target>/ once fixed: the corpus tests then run it on every CI run).
 #   scripts/fuzz.sh [SECONDS] [TARGET...]      e.g. scripts/fuzz.sh 1800 fuzz_mesh_ply
-# FFDKIT_FUZZ_RUNS=N also stops a target after N executions (whichever comes first), e.g. the
-# closing campaign of issue 17: FFDKIT_FUZZ_RUNS=10000000 scripts/fuzz.sh 1800.
-# Prints executions and time per target; exits 1 if any target found a crash.
+# FFDKIT_FUZZ_RUNS=N also stops a target after N executions (whichever comes first), e.g.
+# FFDKIT_FUZZ_RUNS=10000000 FFDKIT_JOBS=1 scripts/fuzz.sh 3600 fuzz_scene_file.
+# FFDKIT_FUZZ_SKIP_BUILD=1 runs the targets as built (while build-fuzz/ builds other targets).
+# Prints executions, wall and CPU seconds per target; exits 1 if any target found a crash.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-60}"
@@ -15,20 +16,22 @@ build="${FFDKIT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 jobs="${FFDKIT_JOBS:-$(nproc)}"
 "$root/scripts/setup-deps.sh" --fuzz
 
-all=(fuzz_mesh_ply fuzz_mesh_obj fuzz_mesh_stl fuzz_mesh_xyz fuzz_mesh_npy fuzz_mesh_gltf fuzz_mesh_glb
+all=(fuzz_mesh_ply fuzz_mesh_obj fuzz_mesh_stl fuzz_mesh_xyz fuzz_mesh_npy fuzz_mesh_gltf fuzz_mesh_glb fuzz_mesh_roundtrip
      fuzz_mesh_vtp fuzz_mesh_vtk fuzz_widget_file fuzz_scene_file fuzz_generator)
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then targets=("${all[@]}"); fi
 
-if [ ! -f "$build/CMakeCache.txt" ]; then
-  generator=()
-  if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
-  CC=clang CXX=clang++ cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DFFDKIT_FUZZ=ON -DFFDKIT_BUILD_GUI=OFF -DFFDKIT_BUILD_BENCH=OFF
+if [ -z "${FFDKIT_FUZZ_SKIP_BUILD:-}" ]; then
+  if [ ! -f "$build/CMakeCache.txt" ]; then
+    generator=()
+    if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+    CC=clang CXX=clang++ cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+      -DFFDKIT_FUZZ=ON -DFFDKIT_BUILD_GUI=OFF -DFFDKIT_BUILD_BENCH=OFF
+  fi
+  build_args=()
+  for t in "${targets[@]}"; do build_args+=(--target "$t"); done
+  cmake --build "$build" --parallel "$jobs" "${build_args[@]}"
 fi
-build_args=()
-for t in "${targets[@]}"; do build_args+=(--target "$t"); done
-cmake --build "$build" --parallel "$jobs" "${build_args[@]}"
 
 # allocator_may_return_null: an absurd allocation inside VTK's XML reader (the size a binary
 # block's header announces) fails as in a release build (bad_alloc, reported as an error);
@@ -38,27 +41,29 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 runs_limit=()
 if [ -n "${FFDKIT_FUZZ_RUNS:-}" ]; then runs_limit=(-runs="$FFDKIT_FUZZ_RUNS"); fi
 found=0
-printf '%-20s %12s %8s %8s %s\n' target executions seconds cpu-s result
+printf '%-20s %12s %8s %8s %8s %s\n' target executions seconds cpu-s exec/s result
 for t in "${targets[@]}"; do
   out="$root/out/fuzz/$t"
   mkdir -p "$out/corpus"
   log="$out/fuzz.log"
   status=0
   # -rss_limit_mb / -malloc_limit_mb: allocating what a file merely announces is a finding (every
-  # reader, VTP's included since session 7, checks a count against the bytes there first).
+  # reader checks a count against the bytes there, and charges its read budget, first).
   malloc_limit=1024
   # -timeout: a unit running 60 s (wall) is a hang. ASan + coverage run a QI fit ~100x slower
-  # than a release build (30 ms -> 3 s of CPU), and on a loaded machine 10 s flagged such fits.
-  # The CPU seconds are printed too: on a loaded machine the wall time overstates the work done.
-  TIMEFORMAT='%U %S'
+  # than a release build (30 ms -> 3 s of CPU), so a shorter limit flags fits that are not hangs.
+  # The CPU seconds are printed too: when other work shares the cores, the wall time overstates
+  # the work done.
+  TIMEFORMAT='%R %U %S'
   { time "$build/tests/fuzz/$t" "$out/corpus" "$root/tests/fuzz/corpus/$t" -max_total_time="$seconds" "${runs_limit[@]}" \
     -rss_limit_mb=2048 -malloc_limit_mb=$malloc_limit -timeout=60 -max_len=65536 -print_final_stats=1 \
     -artifact_prefix="$out/" >"$log" 2>&1 || status=$?; } 2>"$out/cpu-time"
-  cpu=$(awk '{printf "%.0f", $1 + $2}' "$out/cpu-time")
+  time=$(awk '{printf "%.0f", $1}' "$out/cpu-time")
+  cpu=$(awk '{printf "%.0f", $2 + $3}' "$out/cpu-time")
   runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
-  time=$(grep -o 'Done [0-9]* runs in [0-9]* second' "$log" | grep -o 'in [0-9]*' | grep -o '[0-9]*' || echo "$seconds")
+  rate=$(awk -v r="$runs" -v t="$time" 'BEGIN { if (r ~ /^[0-9]+$/ && t > 0) printf "%.0f", r / t; else print "?" }')
   result=ok
   if [ "$status" -ne 0 ]; then result="CRASH (see $log)"; found=1; fi
-  printf '%-20s %12s %8s %8s %s\n' "$t" "$runs" "$time" "$cpu" "$result"
+  printf '%-20s %12s %8s %8s %8s %s\n' "$t" "$runs" "$time" "$cpu" "$rate" "$result"
 done
 exit $found
