@@ -1,6 +1,8 @@
 #pragma once
 // The readers and writers of each format, from and to bytes in memory. Private to meshio;
-// mesh_io.cpp picks one by MeshFormat.
+// mesh_io.cpp picks one by MeshFormat. Every reader charges what it allocates for the file to
+// `budget` first (ReadBudget::chargePoints for points, chargeBytes for cells and decoded data);
+// a ReadLimitError or std::bad_alloc it lets through becomes a MeshIoError in mesh_io.cpp.
 
 #include <cstddef>
 #include <cstdint>
@@ -15,7 +17,7 @@
 
 namespace ffdkit::meshio::detail {
 
-MeshData readPly(std::string_view bytes, const std::string& source);
+MeshData readPly(std::string_view bytes, const std::string& source, ReadBudget& budget);
 void writePly(ByteSink& out, const MeshData& mesh, PlyEncoding encoding);
 /// Records of a binary PLY as writePly writes them (`normals` may be null):
 /// the vertex element, and the face and edge elements after it. Their sizes in bytes: a vertex
@@ -52,7 +54,7 @@ class PlySlices {
   void decode(std::string_view records, long long first, Eigen::MatrixX3d& points) const;
   /// The elements after the vertices (`tail`: the bytes from cellsOffset() to the file's end):
   /// faces and edges checked against the vertex count, as readPly reads them; points left empty.
-  MeshData readCells(std::string_view tail) const;
+  MeshData readCells(std::string_view tail, ReadBudget& budget) const;
 
  private:
   struct Layout;
@@ -64,21 +66,22 @@ class PlySlices {
   long long faceCount_ = 0;
 };
 
-MeshData readObj(std::string_view bytes, const std::string& source);
+MeshData readObj(std::string_view bytes, const std::string& source, ReadBudget& budget);
 void writeObj(ByteSink& out, const MeshData& mesh);
 
-MeshData readStl(std::string_view bytes, const std::string& source);
+MeshData readStl(std::string_view bytes, const std::string& source, ReadBudget& budget);
 void writeStl(ByteSink& out, const MeshData& mesh);
 /// A binary STL triangle as writeStl writes it: normal and three corners (12 floats), attribute word.
 constexpr std::size_t kStlTriangleBytes = 50;
 
-MeshData readXyz(std::string_view bytes, const std::string& source);
+MeshData readXyz(std::string_view bytes, const std::string& source, ReadBudget& budget);
 void writeXyz(ByteSink& out, const MeshData& mesh);
 /// The points of writeXyz (a line each), for a slice of a file.
 void writeXyzPoints(ByteSink& out, const Eigen::MatrixX3d& points);
 /// The points of .xyz text that starts at line `firstLine` of the file, after `firstPoint` points
 /// (the numbers messages give); no points is not an error here.
-Eigen::MatrixX3d readXyzPoints(std::string_view bytes, const std::string& source, int firstLine, long long firstPoint);
+Eigen::MatrixX3d readXyzPoints(std::string_view bytes, const std::string& source, int firstLine, long long firstPoint,
+                               ReadBudget& budget);
 /// Newlines and point lines (neither blank nor a comment) of .xyz text, without parsing.
 struct XyzCounts {
   long long lines = 0;
@@ -86,7 +89,7 @@ struct XyzCounts {
 };
 XyzCounts countXyz(std::string_view bytes);
 
-MeshData readNpy(std::string_view bytes, const std::string& source);
+MeshData readNpy(std::string_view bytes, const std::string& source, ReadBudget& budget);
 void writeNpy(ByteSink& out, const MeshData& mesh);
 /// The data records writeNpy writes after its header: three little-endian doubles a point.
 constexpr std::size_t kNpyRecordBytes = 24;
@@ -109,12 +112,21 @@ NpyLayout readNpyHeader(std::string_view prefix, std::uint64_t fileBytes, const 
 void decodeNpyRows(const NpyLayout& layout, std::string_view bytes, long long first, Eigen::MatrixX3d& points,
                    const std::string& source);
 
-/// `folder`: where external buffers may be read from (nullopt: none allowed).
+/// `folder`: the folder of the glTF file, against which every URI it names is resolved and
+/// confined (confinedPath with `confinement`); nullopt (a stream): no external file is read.
 MeshData readGltf(std::string_view bytes, bool binary, const std::string& source,
-                  const std::optional<std::filesystem::path>& folder);
+                  const std::optional<std::filesystem::path>& folder, const PathConfinement& confinement, ReadBudget& budget);
 
-MeshData readLegacyVtk(std::string_view bytes, const std::string& source);
-MeshData readVtp(std::string_view bytes, const std::string& source);
+MeshData readLegacyVtk(std::string_view bytes, const std::string& source, ReadBudget& budget);
+MeshData readVtp(std::string_view bytes, const std::string& source, ReadBudget& budget);
 std::string writeVtk(const MeshData& mesh, bool xml);
+
+/// The largest magnitude a double may have and still round to a finite float32 (FLT_MAX plus
+/// half its last place: 2^128 - 2^103; a tie rounds to even, which is infinity).
+constexpr double kFloat32RoundingLimit = 340282356779733661637539395458142568448.0;
+/// Checks that every coordinate of `points` rounds to a finite float32, before a writer that
+/// stores float32 writes anything. `firstIndex`: the index of row 0 in the whole mesh (a slice).
+/// @throws MeshIoError "vertex 17 (x) = 1e+39 does not fit the float32 coordinates of binary PLY".
+void requireFloat32Points(const Eigen::MatrixX3d& points, std::string_view formatName, long long firstIndex = 0);
 
 }  // namespace ffdkit::meshio::detail

@@ -1,8 +1,12 @@
 // glTF 2.0 (.gltf JSON, .glb binary) through tinygltf (Debian's libtinygltf-dev), which parses
 // the JSON and loads the buffers; everything read from a buffer is bounds-checked here first:
 // accessor and buffer-view ranges, strides, index ranges, finiteness. All meshes of the default
-// scene are merged with their node transforms applied. Images are never decoded; external
-// buffers are read only from the file's own folder.
+// scene are merged with their node transforms applied; what the node tree instantiates (each
+// mesh's primitives times the nodes that instance it) is counted and charged to the read's
+// budget before anything is merged. Images are never decoded; every external file a URI names
+// goes through the one confinement rule (path_confinement.h). A required extension, or morph
+// targets with weights (which would move the points), is an error: the reader would drop them.
+#include <algorithm>
 #include <climits>
 #include <set>
 
@@ -104,9 +108,78 @@ Eigen::Affine3d nodeTransform(const Context& c, const tinygltf::Node& node, int 
   return t;
 }
 
+// a * b and a + b, saturating: a count that overflows is over any limit.
+std::uint64_t product(std::uint64_t a, std::uint64_t b) {
+  std::uint64_t r = 0;
+  return __builtin_mul_overflow(a, b, &r) ? UINT64_MAX : r;
+}
+std::uint64_t sum(std::uint64_t a, std::uint64_t b) { return b > UINT64_MAX - a ? UINT64_MAX : a + b; }
+
+// The elements of accessor `index`, or 0 when it does not exist (view() says so when merging).
+std::uint64_t accessorCount(const tinygltf::Model& m, int index) {
+  return index >= 0 && std::size_t(index) < m.accessors.size() ? m.accessors[std::size_t(index)].count : 0;
+}
+
+// What one instance of a primitive adds: its points, and its cells' bytes in the merged mesh.
+struct PrimitiveSize {
+  std::uint64_t points = 0, triangles = 0, segments = 0;
+};
+PrimitiveSize primitiveSize(const tinygltf::Model& m, const tinygltf::Primitive& p) {
+  PrimitiveSize size;
+  const auto position = p.attributes.find("POSITION");
+  size.points = position == p.attributes.end() ? 0 : accessorCount(m, position->second);
+  const std::uint64_t n = p.indices >= 0 ? accessorCount(m, p.indices) : size.points;
+  switch (p.mode) {
+    case TINYGLTF_MODE_TRIANGLES: size.triangles = n / 3; break;
+    case TINYGLTF_MODE_TRIANGLE_STRIP: case TINYGLTF_MODE_TRIANGLE_FAN: size.triangles = n > 2 ? n - 2 : 0; break;
+    case TINYGLTF_MODE_LINE: size.segments = n / 2; break;
+    case TINYGLTF_MODE_LINE_STRIP: size.segments = n > 1 ? n - 1 : 0; break;
+    case TINYGLTF_MODE_LINE_LOOP: size.segments = n; break;
+    default: break;
+  }
+  return size;
+}
+
 class Merger {
  public:
-  explicit Merger(const Context& c) : c_(c) {}
+  explicit Merger(const Context& c) : c_(c), instances_(c.model.meshes.size(), 0) {}
+
+  /// Walks the node tree counting the instances of each mesh (nothing is merged), then charges
+  /// what they instantiate to `budget` and sizes the merged mesh for exactly that.
+  template <class Roots>
+  void plan(Roots&& walkRoots, ReadBudget& budget) {
+    counting_ = true;
+    walkRoots();
+    counting_ = false;
+    visited_.clear();
+    PrimitiveSize total;
+    std::uint64_t largest = 0;
+    std::string what;
+    for (std::size_t m = 0; m < instances_.size(); ++m) {
+      if (instances_[m] == 0) continue;
+      PrimitiveSize one;
+      for (const tinygltf::Primitive& p : c_.model.meshes[m].primitives) {
+        const PrimitiveSize s = primitiveSize(c_.model, p);
+        one = {sum(one.points, s.points), sum(one.triangles, s.triangles), sum(one.segments, s.segments)};
+      }
+      const std::uint64_t points = product(instances_[m], one.points);
+      total = {sum(total.points, points), sum(total.triangles, product(instances_[m], one.triangles)),
+               sum(total.segments, product(instances_[m], one.segments))};
+      if (points >= largest) {
+        largest = points;
+        what = "mesh " + std::to_string(m) + " (" + std::to_string(c_.model.meshes[m].primitives.size()) + " primitives, " +
+               std::to_string(one.points) + " points) instanced by " + std::to_string(instances_[m]) + " nodes";
+      }
+    }
+    const std::string scene = "the scene's nodes instantiate " + std::to_string(total.points) + " points; the most: " + what;
+    budget.chargePoints(total.points, scene);
+    budget.chargeBytes(total.triangles, TriangleSink::kRowBytes, "the scene's triangles");
+    budget.chargeBytes(total.segments, SegmentSink::kRowBytes, "the scene's segments");
+    if (total.points > std::uint64_t(INT_MAX)) c_.fail(scene + ", more than ffdkit indexes");
+    points_ = PointSink(Eigen::Index(total.points));
+    triangles_ = TriangleSink(Eigen::Index(total.triangles));
+    segments_ = SegmentSink(Eigen::Index(total.segments));
+  }
 
   void node(int index, const Eigen::Affine3d& parent, int depth) {
     if (index < 0 || std::size_t(index) >= c_.model.nodes.size()) c_.fail("node " + std::to_string(index) + " does not exist");
@@ -114,15 +187,27 @@ class Merger {
     // and either could make the walk endless or exponential).
     if (depth > 256 || !visited_.insert(index).second) c_.fail("node " + std::to_string(index) + " is reached twice (the nodes must form trees)");
     const tinygltf::Node& n = c_.model.nodes[std::size_t(index)];
-    const Eigen::Affine3d world = parent * nodeTransform(c_, n, index);
-    if (n.mesh >= 0) mesh(n.mesh, world);
-    else if (n.mesh != -1) c_.fail("node " + std::to_string(index) + ": mesh " + std::to_string(n.mesh) + " does not exist");
+    const Eigen::Affine3d world = counting_ ? parent : parent * nodeTransform(c_, n, index);
+    if (n.mesh >= 0) {
+      if (std::size_t(n.mesh) < c_.model.meshes.size() && hasWeights(n.weights) && morphs(c_.model.meshes[std::size_t(n.mesh)]))
+        c_.fail("node " + std::to_string(index) + ": morph target weights would move the points of mesh " + std::to_string(n.mesh) +
+                " (ffdkit does not apply morph targets)");
+      mesh(n.mesh, world);
+    } else if (n.mesh != -1) {
+      c_.fail("node " + std::to_string(index) + ": mesh " + std::to_string(n.mesh) + " does not exist");
+    }
     for (int child : n.children) node(child, world, depth + 1);
   }
 
   void mesh(int index, const Eigen::Affine3d& world) {
     if (std::size_t(index) >= c_.model.meshes.size()) c_.fail("mesh " + std::to_string(index) + " does not exist");
+    if (counting_) {
+      ++instances_[std::size_t(index)];
+      return;
+    }
     const tinygltf::Mesh& m = c_.model.meshes[std::size_t(index)];
+    if (hasWeights(m.weights) && morphs(m))
+      c_.fail("mesh " + std::to_string(index) + ": morph target weights would move its points (ffdkit does not apply morph targets)");
     for (std::size_t p = 0; p < m.primitives.size(); ++p) primitive(m.primitives[p], world, "mesh " + std::to_string(index) + " primitive " + std::to_string(p));
   }
 
@@ -200,7 +285,16 @@ class Merger {
     }
   }
 
+  static bool hasWeights(const std::vector<double>& weights) {
+    return std::any_of(weights.begin(), weights.end(), [](double w) { return w != 0.0; });
+  }
+  static bool morphs(const tinygltf::Mesh& m) {
+    return std::any_of(m.primitives.begin(), m.primitives.end(), [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
+  }
+
   const Context& c_;
+  bool counting_ = false;
+  std::vector<std::uint64_t> instances_;  // per mesh: the nodes that instance it
   std::set<int> visited_;
   PointSink points_;
   TriangleSink triangles_;
@@ -213,43 +307,74 @@ bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int
   return true;
 }
 
-// External files only from the glTF file's own folder (a shared file must not read others).
-struct Folder {
-  std::optional<fs::path> root;
-  bool contains(const std::string& path) const {
-    if (!root) return false;
-    std::error_code ec;
-    const fs::path full = fs::weakly_canonical(fs::path(path), ec);
-    if (ec) return false;
-    const auto [end, ignored] = std::mismatch(root->begin(), root->end(), full.begin(), full.end());
-    return end == root->end();
+// Every external file a glTF names (buffers, images) through the one confinement rule, charged
+// to the read's budget before it is read. A refusal is kept here and thrown after tinygltf
+// returns (no exception crosses tinygltf), and never quotes the refused file's bytes.
+struct ExternalFiles {
+  std::optional<fs::path> root;  ///< the glTF file's folder, absolute; none for a stream
+  PathConfinement confinement;
+  ReadBudget& budget;
+  std::optional<std::string> refusal;
+
+  // The URI as the file names it, from the path tinygltf joined to `root` ("<root>/<uri>").
+  std::string named(const std::string& joined) const {
+    const std::string prefix = root ? root->string() + "/" : std::string();
+    return root && joined.starts_with(prefix) ? joined.substr(prefix.size()) : joined;
+  }
+
+  // The path tinygltf joined, checked; nullopt after a refusal.
+  std::optional<fs::path> allowed(const std::string& joined) {
+    if (!root) {
+      refuse("external file '" + joined + "': a glTF read from a stream or from memory cannot name other files");
+      return std::nullopt;
+    }
+    try {
+      return confinedPath(*root, named(joined), "external file", confinement);
+    } catch (const PathOutsideFolderError& e) {
+      refuse(e.what());
+      return std::nullopt;
+    }
+  }
+  void refuse(std::string message) {
+    if (!refusal) refusal = std::move(message);
   }
 };
 
-bool fileExists(const std::string& path, void* folder) {
-  return static_cast<Folder*>(folder)->contains(path) && fs::is_regular_file(path);
+bool fileExists(const std::string& path, void* files) {
+  const auto full = static_cast<ExternalFiles*>(files)->allowed(path);
+  std::error_code ec;
+  return full && fs::is_regular_file(*full, ec);
 }
 std::string expandPath(const std::string& path, void*) { return path; }
-bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* folder) {
-  if (!static_cast<Folder*>(folder)->contains(path)) {
-    *err += "external file '" + path + "' is outside the glTF file's folder (or the glTF came from a stream)\n";
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* context) {
+  auto& files = *static_cast<ExternalFiles*>(context);
+  const auto full = files.allowed(path);
+  if (!full) {
+    *err += "external file refused\n";
     return false;
   }
   std::error_code ec;
-  const auto size = fs::file_size(path, ec);
-  if (ec || size > (std::uintmax_t(1) << 32)) {
-    *err += "cannot read external file '" + path + "'\n";
+  const auto size = fs::file_size(*full, ec);
+  if (ec) {
+    *err += "cannot read external file '" + files.named(path) + "'\n";
     return false;
   }
-  std::FILE* f = std::fopen(path.c_str(), "rb");
+  try {
+    files.budget.chargeBytes(size, 1, "external file '" + files.named(path) + "'");
+  } catch (const ReadLimitError& e) {
+    files.refuse(e.what());
+    *err += "external file refused\n";
+    return false;
+  }
+  std::FILE* f = std::fopen(full->c_str(), "rb");
   if (f == nullptr) {
-    *err += "cannot open external file '" + path + "'\n";
+    *err += "cannot open external file '" + files.named(path) + "'\n";
     return false;
   }
   out->resize(std::size_t(size));
   const bool ok = std::fread(out->data(), 1, out->size(), f) == out->size();
   std::fclose(f);
-  if (!ok) *err += "cannot read external file '" + path + "'\n";
+  if (!ok) *err += "cannot read external file '" + files.named(path) + "'\n";
   return ok;
 }
 bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
@@ -265,35 +390,43 @@ std::string firstLine(std::string text) {
 
 }  // namespace
 
-MeshData readGltf(std::string_view bytes, bool binary, const std::string& source, const std::optional<fs::path>& folder) {
+MeshData readGltf(std::string_view bytes, bool binary, const std::string& source, const std::optional<fs::path>& folder,
+                  const PathConfinement& confinement, ReadBudget& budget) {
   if (bytes.size() > UINT_MAX) throw MeshIoError(source + ": glTF files over 4 GB are not supported");
-  Folder allowed;
+  ExternalFiles files{std::nullopt, confinement, budget, std::nullopt};
   if (folder) {
     std::error_code ec;
-    allowed.root = fs::weakly_canonical(folder->empty() ? fs::path(".") : *folder, ec);
-    if (ec) allowed.root.reset();
+    files.root = fs::weakly_canonical(fs::absolute(folder->empty() ? fs::path(".") : *folder, ec), ec);
+    if (ec) files.root.reset();
   }
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skipImage, nullptr);
-  loader.SetFsCallbacks({fileExists, expandPath, readWholeFile, refuseWrite, &allowed});
+  loader.SetFsCallbacks({fileExists, expandPath, readWholeFile, refuseWrite, &files});
   tinygltf::Model model;
   std::string error, warning;
-  const std::string base = allowed.root ? allowed.root->string() : std::string();
+  const std::string base = files.root ? files.root->string() : std::string();
   const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                        unsigned(bytes.size()), base)
                          : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), unsigned(bytes.size()), base);
+  if (files.refusal) throw MeshIoError(source + ": " + *files.refusal);
   if (!ok) throw MeshIoError(source + ": cannot read glTF (" + firstLine(error.empty() ? warning : error) + ")");
 
   const Context context{model, source};
+  if (!model.extensionsRequired.empty())
+    context.fail("requires the extension '" + model.extensionsRequired.front() + "', which ffdkit does not read");
   Merger merger(context);
-  if (!model.scenes.empty()) {
-    const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
-    if (std::size_t(scene) >= model.scenes.size()) context.fail("default scene " + std::to_string(scene) + " does not exist");
-    for (int node : model.scenes[std::size_t(scene)].nodes) merger.node(node, Eigen::Affine3d::Identity(), 0);
-  } else {
-    // No scene: every mesh, untransformed (the glTF spec leaves such files to the application).
-    for (std::size_t m = 0; m < model.meshes.size(); ++m) merger.mesh(int(m), Eigen::Affine3d::Identity());
-  }
+  const auto walk = [&] {
+    if (!model.scenes.empty()) {
+      const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+      if (std::size_t(scene) >= model.scenes.size()) context.fail("default scene " + std::to_string(scene) + " does not exist");
+      for (int node : model.scenes[std::size_t(scene)].nodes) merger.node(node, Eigen::Affine3d::Identity(), 0);
+    } else {
+      // No scene: every mesh, untransformed (the glTF spec leaves such files to the application).
+      for (std::size_t m = 0; m < model.meshes.size(); ++m) merger.mesh(int(m), Eigen::Affine3d::Identity());
+    }
+  };
+  merger.plan(walk, budget);
+  walk();
   return merger.take();
 }
 

@@ -3,6 +3,7 @@
 // ASCII and BINARY (big-endian), POINTS, then VERTICES / LINES / POLYGONS / TRIANGLE_STRIPS in
 // the classic layout (n, size, then "count id id ...") or the 5.x layout (OFFSETS and
 // CONNECTIVITY arrays). POINT_DATA, CELL_DATA and FIELD end the geometry (only NORMALS is noted).
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <tuple>
@@ -106,8 +107,10 @@ class LegacyCursor {
   int line_ = 1;
 };
 
-// Each cell as a list of point ids, checked against `points`.
-std::vector<std::vector<int>> readCells(LegacyCursor& in, const char* kind, long long points) {
+// Calls `cell(ids, size, index)` for each cell, its point ids checked against `points`. The
+// section's values are held while they are read (charged to `budget`, given back after).
+template <class Cell>
+void readCells(LegacyCursor& in, const char* kind, long long points, ReadBudget& budget, Cell&& onCell) {
   const long long first = in.count({kind}), second = in.count({kind});
   const std::size_t minimum = in.binary ? 4 : 2;
   auto checkFits = [&](long long n) {
@@ -121,7 +124,6 @@ std::vector<std::vector<int>> readCells(LegacyCursor& in, const char* kind, long
       in.fail(Where{kind, cell}.text() + ": point id " + std::to_string(value) + " is outside 0.." + std::to_string(points - 1));
     return int(value);
   };
-  std::vector<std::vector<int>> cells;
   const auto start = in.mark();
   if (in.word() == "OFFSETS") {
     // 5.x: `first` offsets (cells + 1) and `second` connectivity entries.
@@ -129,6 +131,7 @@ std::vector<std::vector<int>> readCells(LegacyCursor& in, const char* kind, long
     if (!LegacyCursor::known(offsetType, false)) in.fail(std::string(kind) + ": unknown OFFSETS type '" + std::string(offsetType) + "'");
     checkFits(first);
     if (in.binary) in.startBinary();
+    budget.chargeBytes(std::uint64_t(first), sizeof(long long), std::string(kind) + " offsets");
     std::vector<long long> offsets(static_cast<std::size_t>(first));
     for (long long k = 0; k < first; ++k) offsets[std::size_t(k)] = in.integer(offsetType, {kind, -1, "offsets"});
     if (in.word() != "CONNECTIVITY") in.fail(std::string(kind) + ": expected CONNECTIVITY");
@@ -138,39 +141,43 @@ std::vector<std::vector<int>> readCells(LegacyCursor& in, const char* kind, long
     if (in.binary) in.startBinary();
     if (first > 0 && (offsets[0] != 0 || offsets.back() != second))
       in.fail(std::string(kind) + ": the offsets do not run from 0 to " + std::to_string(second));
+    budget.chargeBytes(std::uint64_t(second), sizeof(int), std::string(kind) + " connectivity");
     std::vector<int> connectivity(static_cast<std::size_t>(second));
     for (long long k = 0; k < second; ++k) connectivity[std::size_t(k)] = id(in.integer(idType, {kind, -1, "connectivity"}), -1);
     for (long long c = 0; c + 1 < first; ++c) {
       const long long a = offsets[std::size_t(c)], b = offsets[std::size_t(c + 1)];
       if (b < a || b > second) in.fail(Where{kind, c}.text() + ": offset " + std::to_string(b) + " out of order");
-      cells.emplace_back(connectivity.begin() + a, connectivity.begin() + b);
+      onCell(connectivity.data() + a, std::size_t(b - a), c);
     }
-    return cells;
+    budget.releaseBytes(std::uint64_t(first) * sizeof(long long) + std::uint64_t(second) * sizeof(int));
+    return;
   }
   // Classic: `first` cells in `second` integers, each cell "count id id ...".
   in.reset(start);
   checkFits(second);
   if (in.binary) in.startBinary();
+  budget.chargeBytes(std::uint64_t(second), sizeof(long long), std::string(kind) + " cell list");
   std::vector<long long> values;
   values.reserve(std::size_t(second));
   while ((long long)values.size() < second) values.push_back(in.integer("int", {kind}));
+  std::vector<int> ids;
   std::size_t k = 0;
   for (long long c = 0; c < first; ++c) {
     if (k >= values.size()) in.fail(Where{kind, c}.text() + ": the cell list ends early (" + std::to_string(second) + " values)");
     const long long n = values[k++];
     if (n < 0 || std::size_t(n) > values.size() - k)
       in.fail(Where{kind, c}.text() + ": " + std::to_string(n) + " points run past the cell list");
-    std::vector<int> cell;
-    for (long long j = 0; j < n; ++j) cell.push_back(id(values[k++], c));
-    cells.push_back(std::move(cell));
+    ids.clear();
+    for (long long j = 0; j < n; ++j) ids.push_back(id(values[k++], c));
+    onCell(ids.data(), ids.size(), c);
   }
   if (k != values.size()) in.fail(std::string(kind) + ": " + std::to_string(values.size() - k) + " values after the last cell");
-  return cells;
+  budget.releaseBytes(std::uint64_t(second) * sizeof(long long));
 }
 
 }  // namespace
 
-MeshData readLegacyVtk(std::string_view bytes, const std::string& source) {
+MeshData readLegacyVtk(std::string_view bytes, const std::string& source, ReadBudget& budget) {
   LegacyCursor in(bytes, source);
   if (in.line().substr(0, 22) != "# vtk DataFile Version") in.fail("not a legacy VTK file (no '# vtk DataFile Version' line)");
   (void)in.line();  // the title
@@ -182,55 +189,69 @@ MeshData readLegacyVtk(std::string_view bytes, const std::string& source) {
   if (dataset != "POLYDATA") in.fail("only POLYDATA data sets are read, got '" + std::string(dataset.substr(0, 40)) + "'");
 
   MeshData mesh;
-  TriangleSink triangles;
-  SegmentSink segments;
+  TriangleSink triangles(0, &budget, "POLYGONS and TRIANGLE_STRIPS (their triangles)");
+  SegmentSink segments(0, &budget, "LINES (their segments)");
   bool havePoints = false;
-  for (std::string_view keyword = in.word(); !keyword.empty(); keyword = in.word()) {
-    if (keyword == "POINTS") {
-      if (havePoints) in.fail("a second POINTS section");
-      const long long n = in.count({"POINTS"});
-      const std::string_view type = in.word();
-      if (!LegacyCursor::known(type, true)) in.fail("POINTS: unknown type '" + std::string(type.substr(0, 40)) + "'");
-      if (n == 0) in.fail("the file has no points");
-      if (n > INT_MAX || std::size_t(n) > in.bytesLeft() / (3 * (in.binary ? LegacyCursor::sizeOf(type) : 2)))
-        in.fail("POINTS: " + std::to_string(n) + " points do not fit in the " + std::to_string(in.bytesLeft()) + " bytes left");
-      if (in.binary) in.startBinary();
-      mesh.points.resize(Eigen::Index(n), 3);
-      for (long long i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c) {
-          const double v = in.value(type, {"point", i});
-          if (!std::isfinite(v)) in.fail(Where{"point", i}.text() + ": non-finite coordinate");
-          mesh.points(i, c) = v;
-        }
-      havePoints = true;
-    } else if (keyword == "VERTICES" || keyword == "LINES" || keyword == "POLYGONS" || keyword == "TRIANGLE_STRIPS") {
-      if (!havePoints) in.fail(std::string(keyword) + " before POINTS");
-      const char* kind = keyword == "VERTICES" ? "vertex cell" : keyword == "LINES" ? "line" : keyword == "POLYGONS" ? "polygon" : "strip";
-      for (const auto& cell : readCells(in, kind, mesh.points.rows())) {
-        if (keyword == "LINES") {
-          for (std::size_t k = 0; k + 1 < cell.size(); ++k) segments.add(cell[k], cell[k + 1]);
-        } else if (keyword == "POLYGONS") {
-          for (std::size_t k = 1; k + 1 < cell.size(); ++k) triangles.add(cell[0], cell[k], cell[k + 1]);
-        } else if (keyword == "TRIANGLE_STRIPS") {
-          for (std::size_t k = 0; k + 2 < cell.size(); ++k) {
-            if (k % 2 == 0) triangles.add(cell[k], cell[k + 1], cell[k + 2]);
-            else triangles.add(cell[k + 1], cell[k], cell[k + 2]);
+  std::vector<std::string_view> cellSections;  // each read once: VTK's reader keeps only the last
+  // The budget's refusal names the line of the section.
+  try {
+    for (std::string_view keyword = in.word(); !keyword.empty(); keyword = in.word()) {
+      if (keyword == "POINTS") {
+        if (havePoints) in.fail("a second POINTS section");
+        const long long n = in.count({"POINTS"});
+        const std::string_view type = in.word();
+        if (!LegacyCursor::known(type, true)) in.fail("POINTS: unknown type '" + std::string(type.substr(0, 40)) + "'");
+        if (n == 0) in.fail("the file has no points");
+        if (n > INT_MAX || std::size_t(n) > in.bytesLeft() / (3 * (in.binary ? LegacyCursor::sizeOf(type) : 2)))
+          in.fail("POINTS: " + std::to_string(n) + " points do not fit in the " + std::to_string(in.bytesLeft()) + " bytes left");
+        if (in.binary) in.startBinary();
+        budget.chargePoints(std::uint64_t(n), "POINTS");
+        mesh.points.resize(Eigen::Index(n), 3);
+        for (long long i = 0; i < n; ++i)
+          for (int c = 0; c < 3; ++c) {
+            const double v = in.value(type, {"point", i});
+            if (!std::isfinite(v)) in.fail(Where{"point", i}.text() + ": non-finite coordinate");
+            mesh.points(i, c) = v;
           }
+        havePoints = true;
+      } else if (keyword == "VERTICES" || keyword == "LINES" || keyword == "POLYGONS" || keyword == "TRIANGLE_STRIPS") {
+        if (!havePoints) in.fail(std::string(keyword) + " before POINTS");
+        if (std::find(cellSections.begin(), cellSections.end(), keyword) != cellSections.end())
+          in.fail("a second " + std::string(keyword) + " section");
+        cellSections.push_back(keyword);
+        const char* kind = keyword == "VERTICES" ? "vertex cell" : keyword == "LINES" ? "line" : keyword == "POLYGONS" ? "polygon" : "strip";
+        // A cell too short to give a segment or a triangle is an error, not a silent drop.
+        const std::size_t fewest = keyword == "VERTICES" ? 1 : keyword == "LINES" ? 2 : 3;
+        readCells(in, kind, mesh.points.rows(), budget, [&](const int* cell, std::size_t size, long long index) {
+          if (size < fewest)
+            in.fail(Where{kind, index}.text() + ": needs at least " + std::to_string(fewest) + " points, it has " + std::to_string(size));
+          if (keyword == "LINES") {
+            for (std::size_t k = 0; k + 1 < size; ++k) segments.add(cell[k], cell[k + 1]);
+          } else if (keyword == "POLYGONS") {
+            for (std::size_t k = 1; k + 1 < size; ++k) triangles.add(cell[0], cell[k], cell[k + 1]);
+          } else if (keyword == "TRIANGLE_STRIPS") {
+            for (std::size_t k = 0; k + 2 < size; ++k) {
+              if (k % 2 == 0) triangles.add(cell[k], cell[k + 1], cell[k + 2]);
+              else triangles.add(cell[k + 1], cell[k], cell[k + 2]);
+            }
+          }
+        });
+      } else if (keyword == "METADATA") {
+        // Array information: lines up to the next blank line.
+        for (std::string_view l = in.line(); in.bytesLeft() > 0;) {
+          l = in.line();
+          if (l.find_first_not_of(" \t\r") == std::string_view::npos) break;
         }
+      } else if (keyword == "POINT_DATA" || keyword == "CELL_DATA" || keyword == "FIELD") {
+        // Attributes are not read; only whether the points have normals.
+        mesh.hasNormals = keyword == "POINT_DATA" && bytes.find("\nNORMALS ") != std::string_view::npos;
+        break;
+      } else {
+        in.fail("unknown section '" + std::string(keyword.substr(0, 40)) + "'");
       }
-    } else if (keyword == "METADATA") {
-      // Array information: lines up to the next blank line.
-      for (std::string_view l = in.line(); in.bytesLeft() > 0;) {
-        l = in.line();
-        if (l.find_first_not_of(" \t\r") == std::string_view::npos) break;
-      }
-    } else if (keyword == "POINT_DATA" || keyword == "CELL_DATA" || keyword == "FIELD") {
-      // Attributes are not read; only whether the points have normals.
-      mesh.hasNormals = keyword == "POINT_DATA" && bytes.find("\nNORMALS ") != std::string_view::npos;
-      break;
-    } else {
-      in.fail("unknown section '" + std::string(keyword.substr(0, 40)) + "'");
     }
+  } catch (const ReadLimitError& e) {
+    in.fail(e.what());
   }
   if (!havePoints) throw MeshIoError(source + ": the file has no points");
   mesh.triangles = triangles.take();

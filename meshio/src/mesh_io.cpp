@@ -1,6 +1,11 @@
 #include "ffdkit/meshio/mesh_io.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <new>
+#include <stdexcept>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
@@ -65,20 +70,78 @@ FileBytes readFileBytes(const std::filesystem::path& path) {
   return bytes;
 }
 
-MeshData parse(std::string_view bytes, MeshFormat format, const std::string& source,
-               const std::optional<std::filesystem::path>& folder) {
+MeshData parseWith(std::string_view bytes, MeshFormat format, const std::string& source,
+                   const std::optional<std::filesystem::path>& folder, const MeshReadOptions& options, ReadBudget& budget) {
   switch (format) {
-    case MeshFormat::Obj: return detail::readObj(bytes, source);
-    case MeshFormat::Ply: return detail::readPly(bytes, source);
-    case MeshFormat::Stl: return detail::readStl(bytes, source);
-    case MeshFormat::Xyz: return detail::readXyz(bytes, source);
-    case MeshFormat::Npy: return detail::readNpy(bytes, source);
-    case MeshFormat::Gltf: return detail::readGltf(bytes, false, source, folder);
-    case MeshFormat::Glb: return detail::readGltf(bytes, true, source, folder);
-    case MeshFormat::Vtp: return detail::readVtp(bytes, source);
-    case MeshFormat::Vtk: return detail::readLegacyVtk(bytes, source);
+    case MeshFormat::Obj: return detail::readObj(bytes, source, budget);
+    case MeshFormat::Ply: return detail::readPly(bytes, source, budget);
+    case MeshFormat::Stl: return detail::readStl(bytes, source, budget);
+    case MeshFormat::Xyz: return detail::readXyz(bytes, source, budget);
+    case MeshFormat::Npy: return detail::readNpy(bytes, source, budget);
+    case MeshFormat::Gltf: return detail::readGltf(bytes, false, source, folder, options.confinement, budget);
+    case MeshFormat::Glb: return detail::readGltf(bytes, true, source, folder, options.confinement, budget);
+    case MeshFormat::Vtp: return detail::readVtp(bytes, source, budget);
+    case MeshFormat::Vtk: return detail::readLegacyVtk(bytes, source, budget);
   }
   throw MeshIoError(source + ": unknown format");
+}
+
+// The one place where what a reader lets through becomes its documented error: the budget's
+// refusal and a failed allocation get the file in front (the budget's message names the element
+// or array), and nothing else than a MeshIoError leaves a reader.
+MeshData parseMesh(std::string_view bytes, MeshFormat format, const std::string& source,
+                   const std::optional<std::filesystem::path>& folder, const MeshReadOptions& options) {
+  ReadBudget own(options.limits);
+  ReadBudget& budget = options.budget != nullptr ? *options.budget : own;
+  try {
+    return parseWith(bytes, format, source, folder, options, budget);
+  } catch (const ReadLimitError& e) {
+    throw MeshIoError(source + ": " + e.what());
+  } catch (const PathOutsideFolderError& e) {
+    throw MeshIoError(source + ": " + e.what());
+  } catch (const std::bad_alloc&) {
+    throw MeshIoError(source + ": out of memory while reading (the read had charged " + byteSizeText(budget.bytesCharged()) +
+                      " of its limit of " + byteSizeText(budget.limits().maxMemoryBytes) +
+                      "; a smaller --max-memory refuses such a file before it allocates)");
+  } catch (const std::length_error&) {
+    throw MeshIoError(source + ": out of memory while reading (a size beyond what can be allocated)");
+  }
+}
+
+}  // namespace
+
+namespace detail {
+
+void requireFloat32Points(const Eigen::MatrixX3d& points, std::string_view formatName, long long firstIndex) {
+  // One vectorised test of the whole block; the offending row is looked for only when it fails.
+  if (points.size() == 0 || points.cwiseAbs().maxCoeff() < kFloat32RoundingLimit) return;
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!(std::abs(points(i, c)) < kFloat32RoundingLimit)) {
+        std::string value;
+        appendNumber(value, points(i, c));
+        static constexpr std::string_view kAxes[] = {"x", "y", "z"};
+        throw MeshIoError(Where{"vertex", firstIndex + i, kAxes[c]}.text() + " = " + value +
+                          " does not fit the float32 coordinates of " + std::string(formatName) +
+                          " (its largest magnitude is 3.4028235e+38); write .ply as ASCII, .npy, .obj, .vtp or .vtk");
+      }
+}
+
+}  // namespace detail
+
+namespace {
+
+// Checks, before anything is written, that `mesh` fits what `format` can hold: binary PLY and
+// STL keep float32 coordinates, STL a 32-bit triangle count (indices are int32 in MeshData, as
+// PLY and VTK store them).
+void requireRepresentable(const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {
+  if (format == MeshFormat::Ply && options.plyEncoding != PlyEncoding::Ascii)
+    detail::requireFloat32Points(mesh.points, "binary PLY");
+  if (format == MeshFormat::Stl) {
+    if (std::uint64_t(mesh.triangles.rows()) > std::numeric_limits<std::uint32_t>::max())
+      throw MeshIoError(std::to_string(mesh.triangles.rows()) + " triangles do not fit the 32-bit triangle count of binary STL");
+    detail::requireFloat32Points(mesh.points, "binary STL");
+  }
 }
 
 }  // namespace
@@ -100,40 +163,45 @@ std::string_view meshFormatExtension(MeshFormat format) {
 bool isWritable(MeshFormat format) { return format != MeshFormat::Gltf && format != MeshFormat::Glb; }
 
 MeshData readMeshBytes(std::string_view bytes, MeshFormat format, const std::string& sourceName) {
-  return parse(bytes, format, sourceName, std::nullopt);
+  return readMeshBytes(bytes, format, sourceName, MeshReadOptions{});
 }
 
 MeshData readMesh(std::istream& in, MeshFormat format, const std::string& sourceName) {
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw MeshIoError(sourceName + ": cannot read the stream");
-  return readMeshBytes(bytes, format, sourceName);
+  return readMesh(in, format, sourceName, MeshReadOptions{});
 }
 
 MeshData readMeshBytes(std::string_view bytes, MeshFormat format, const std::string& sourceName,
                        const MeshReadOptions& options) {
-  (void)options;  // threaded through the readers next
-  return readMeshBytes(bytes, format, sourceName);
+  return parseMesh(bytes, format, sourceName, std::nullopt, options);
 }
 
 MeshData readMesh(std::istream& in, MeshFormat format, const std::string& sourceName, const MeshReadOptions& options) {
-  (void)options;
-  return readMesh(in, format, sourceName);
+  std::string bytes;
+  try {
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::bad_alloc&) {
+    throw MeshIoError(sourceName + ": out of memory while reading the stream");
+  }
+  if (in.bad()) throw MeshIoError(sourceName + ": cannot read the stream");
+  return readMeshBytes(bytes, format, sourceName, options);
 }
+
+MeshData readMesh(const std::filesystem::path& path) { return readMesh(path, MeshReadOptions{}); }
 
 MeshData readMesh(const std::filesystem::path& path, const MeshReadOptions& options) {
-  (void)options;
-  return readMesh(path);
-}
-
-MeshData readMesh(const std::filesystem::path& path) {
   const std::string source = path.string();
   const auto format = meshFormatOf(path);
   if (!format)
     throw MeshIoError(source + ": unknown mesh format '" + path.extension().string() + "' (reads " + formatList(false) + ")");
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw MeshIoError(source + ": no such file");
-  const FileBytes bytes = readFileBytes(path);
-  return parse(bytes.view(), *format, source, path.parent_path());
+  FileBytes bytes;
+  try {
+    bytes = readFileBytes(path);
+  } catch (const std::bad_alloc&) {
+    throw MeshIoError(source + ": out of memory while reading the file's bytes");
+  }
+  return parseMesh(bytes.view(), *format, source, path.parent_path(), options);
 }
 
 namespace {
@@ -141,6 +209,7 @@ namespace {
 /// The bytes of `mesh` in `format`, in order, into `out`: the binary layouts stream through a
 /// small buffer (BinaryChunks), text formats slice by slice; VTK's writers make one block.
 void writeMeshBytes(ByteSink& out, const MeshData& mesh, MeshFormat format, const MeshWriteOptions& options) {
+  requireRepresentable(mesh, format, options);
   switch (format) {
     case MeshFormat::Ply: return detail::writePly(out, mesh, options.plyEncoding);
     case MeshFormat::Stl: return detail::writeStl(out, mesh);

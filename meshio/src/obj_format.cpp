@@ -49,60 +49,65 @@ int vertexReference(TextCursor& text, const Where& where, long long vertices) {
 
 }  // namespace
 
-MeshData readObj(std::string_view bytes, const std::string& source) {
+MeshData readObj(std::string_view bytes, const std::string& source, ReadBudget& budget) {
   TextCursor text(bytes, source);
-  PointSink points;
-  TriangleSink triangles;
-  SegmentSink segments;
+  PointSink points(0, &budget, "OBJ vertices");
+  TriangleSink triangles(0, &budget, "OBJ faces (their triangles)");
+  SegmentSink segments(0, &budget, "OBJ lines (their segments)");
   MeshData mesh;
   long long faces = 0, lines = 0;
   std::vector<int> polygon;
-  while (!text.atEnd()) {
-    text.skipBlanks();
-    if (text.atLineEnd(true)) {
-      text.nextLine();
-      continue;
-    }
-    const std::string_view keyword = text.word();
-    if (keyword == "v") {
-      if (points.rows() == INT_MAX) text.fail("more vertices than ffdkit indexes");
-      const Where where{"vertex", points.rows()};
-      const double x = text.number(where), y = text.number(where), z = text.number(where);
-      // An optional w, or an r g b colour: numbers too, and nothing else.
-      for (int extra = 0; extra < 3; ++extra) {
-        text.skipBlanks();
-        if (text.atLineEnd(true)) break;
-        (void)text.number(where);
+  // The budget's refusal names the statement's line.
+  try {
+    while (!text.atEnd()) {
+      text.skipBlanks();
+      if (text.atLineEnd(true)) {
+        text.nextLine();
+        continue;
       }
-      points.add(x, y, z);
-      text.endLine(where, true);
-    } else if (keyword == "vn") {
-      mesh.hasNormals = true;
-      text.nextLine();
-    } else if (keyword == "f" || keyword == "l") {
-      const bool face = keyword == "f";
-      const Where where{face ? "face" : "line", face ? faces : lines};
-      polygon.clear();
-      for (;;) {
-        text.skipBlanks();
-        if (text.atLineEnd(true)) break;
-        polygon.push_back(vertexReference(text, where, points.rows()));
-      }
-      if (face) {
-        if (polygon.size() < 3) text.fail(where.text() + ": a face needs at least 3 vertices, it has " + std::to_string(polygon.size()));
-        for (std::size_t k = 1; k + 1 < polygon.size(); ++k) triangles.add(polygon[0], polygon[k], polygon[k + 1]);
-        ++faces;
+      const std::string_view keyword = text.word();
+      if (keyword == "v") {
+        if (points.rows() == INT_MAX) text.fail("more vertices than ffdkit indexes");
+        const Where where{"vertex", points.rows()};
+        const double x = text.number(where), y = text.number(where), z = text.number(where);
+        // An optional w, or an r g b colour: numbers too, and nothing else.
+        for (int extra = 0; extra < 3; ++extra) {
+          text.skipBlanks();
+          if (text.atLineEnd(true)) break;
+          (void)text.number(where);
+        }
+        points.add(x, y, z);
+        text.endLine(where, true);
+      } else if (keyword == "vn") {
+        mesh.hasNormals = true;
+        text.nextLine();
+      } else if (keyword == "f" || keyword == "l") {
+        const bool face = keyword == "f";
+        const Where where{face ? "face" : "line", face ? faces : lines};
+        polygon.clear();
+        for (;;) {
+          text.skipBlanks();
+          if (text.atLineEnd(true)) break;
+          polygon.push_back(vertexReference(text, where, points.rows()));
+        }
+        if (face) {
+          if (polygon.size() < 3) text.fail(where.text() + ": a face needs at least 3 vertices, it has " + std::to_string(polygon.size()));
+          for (std::size_t k = 1; k + 1 < polygon.size(); ++k) triangles.add(polygon[0], polygon[k], polygon[k + 1]);
+          ++faces;
+        } else {
+          if (polygon.size() < 2) text.fail(where.text() + ": a line needs at least 2 vertices, it has " + std::to_string(polygon.size()));
+          for (std::size_t k = 0; k + 1 < polygon.size(); ++k) segments.add(polygon[k], polygon[k + 1]);
+          ++lines;
+        }
+        text.nextLine();
+      } else if (skippedStatement(keyword)) {
+        text.nextLine();
       } else {
-        if (polygon.size() < 2) text.fail(where.text() + ": a line needs at least 2 vertices, it has " + std::to_string(polygon.size()));
-        for (std::size_t k = 0; k + 1 < polygon.size(); ++k) segments.add(polygon[k], polygon[k + 1]);
-        ++lines;
+        text.fail("unknown statement '" + std::string(keyword.substr(0, 40)) + "'");
       }
-      text.nextLine();
-    } else if (skippedStatement(keyword)) {
-      text.nextLine();
-    } else {
-      text.fail("unknown statement '" + std::string(keyword.substr(0, 40)) + "'");
     }
+  } catch (const ReadLimitError& e) {
+    text.fail(e.what());
   }
   if (points.rows() == 0) throw MeshIoError(source + ": the file has no vertices");
   mesh.points = points.take();

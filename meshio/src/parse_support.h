@@ -15,6 +15,7 @@
 #include <string_view>
 #include <system_error>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include <fast_float/fast_float.h>
@@ -24,6 +25,7 @@
 
 #include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/mesh_data.h"
+#include "ffdkit/meshio/read_limits.h"
 
 namespace ffdkit::meshio::detail {
 
@@ -182,29 +184,80 @@ class ByteCursor {
 };
 
 /// Rows appended to an Eigen matrix whose capacity doubles; shrink() trims it to the rows added.
+/// With a budget, every row of capacity is charged to it before it is allocated (as a point,
+/// when the sink holds points, and `extraBytesPerRow` more for what the reader keeps beside each
+/// row), and the capacity never grows past what the budget has left: a read over its limit
+/// fails at the first row too many, whatever the first capacity guessed. take() gives back the
+/// charge of the capacity it trims.
 template <class Matrix>
 class RowSink {
  public:
-  explicit RowSink(Eigen::Index capacity = 0) {
-    matrix_.resize(capacity, Matrix::ColsAtCompileTime);
+  static constexpr std::uint64_t kRowBytes = sizeof(typename Matrix::Scalar) * std::uint64_t(Matrix::ColsAtCompileTime);
+
+  /// `capacity`: a first guess (clamped to the budget). `what` names the rows in the budget's
+  /// message ("OBJ vertices") and must outlive the sink.
+  explicit RowSink(Eigen::Index capacity = 0, ReadBudget* budget = nullptr, std::string_view what = {},
+                   std::uint64_t extraBytesPerRow = 0)
+      : budget_(budget), what_(what), extraBytes_(extraBytesPerRow) {
+    reserveTo(budget_ == nullptr ? capacity : std::min(capacity, affordableRows()));
     adviseHugePages(matrix_);
   }
   template <class... Values>
   void add(Values... values) {
-    if (rows_ == matrix_.rows()) matrix_.conservativeResize(std::max<Eigen::Index>(16, 2 * rows_), Eigen::NoChange);
+    if (rows_ == matrix_.rows()) grow();
     Eigen::Index c = 0;
     ((matrix_(rows_, c++) = values), ...);
     ++rows_;
   }
   Eigen::Index rows() const { return rows_; }
   Matrix take() {
-    if (rows_ != matrix_.rows()) matrix_.conservativeResize(rows_, Eigen::NoChange);
+    if (rows_ != matrix_.rows()) {
+      const std::uint64_t trimmed = std::uint64_t(matrix_.rows() - rows_);
+      matrix_.conservativeResize(rows_, Eigen::NoChange);
+      if (budget_ != nullptr) release(trimmed);
+    }
     return std::move(matrix_);
   }
 
  private:
-  Matrix matrix_;
+  static constexpr bool kPoints = std::is_same_v<Matrix, Eigen::MatrixX3d>;
+
+  // The rows the budget can still pay for.
+  Eigen::Index affordableRows() const {
+    const ReadLimits& limits = budget_->limits();
+    const std::uint64_t each = kRowBytes + extraBytes_;
+    const std::uint64_t bytesLeft = limits.maxMemoryBytes - std::min(limits.maxMemoryBytes, budget_->bytesCharged());
+    std::uint64_t rows = bytesLeft / each;
+    if constexpr (kPoints) rows = std::min(rows, limits.maxPoints - std::min(limits.maxPoints, budget_->pointsCharged()));
+    return Eigen::Index(std::min<std::uint64_t>(rows, std::uint64_t(1) << 40));
+  }
+  void grow() {
+    Eigen::Index capacity = std::max<Eigen::Index>(16, 2 * rows_);
+    // One row past what is left, when nothing is: its charge throws the budget's error.
+    if (budget_ != nullptr) capacity = rows_ + std::min(capacity - rows_, std::max<Eigen::Index>(1, affordableRows()));
+    reserveTo(capacity);
+  }
+  void reserveTo(Eigen::Index capacity) {
+    if (capacity <= matrix_.rows()) return;
+    const std::uint64_t added = std::uint64_t(capacity - matrix_.rows());
+    if (budget_ != nullptr) {
+      if constexpr (kPoints) budget_->chargePoints(added, what_);
+      else budget_->chargeBytes(added, kRowBytes, what_);
+      if (extraBytes_ > 0) budget_->chargeBytes(added, extraBytes_, what_);
+    }
+    matrix_.conservativeResize(capacity, Eigen::NoChange);
+  }
+  void release(std::uint64_t rows) {
+    if constexpr (kPoints) budget_->releasePoints(rows);
+    else budget_->releaseBytes(rows * kRowBytes);
+    budget_->releaseBytes(rows * extraBytes_);
+  }
+
+  Matrix matrix_ = Matrix(0, Matrix::ColsAtCompileTime);
   Eigen::Index rows_ = 0;
+  ReadBudget* budget_ = nullptr;
+  std::string_view what_;
+  std::uint64_t extraBytes_ = 0;
 };
 
 using PointSink = RowSink<Eigen::MatrixX3d>;

@@ -1,7 +1,10 @@
 // Stanford PLY (Turk 1994): an ASCII header declaring elements and their properties, then the
 // data in ASCII or binary (either byte order). Reads "vertex" (x y z, optional nx ny nz),
 // "face" (a list of vertex indices, fan-triangulated) and "edge" (vertex1 vertex2); other
-// elements are checked and skipped.
+// elements are checked and skipped. Every declared element and property is accounted for: a
+// property named twice in an element, an element named twice, an edge without vertex1 or
+// vertex2, a face without its index list, or connectivity ffdkit does not read (tristrips) is an
+// error at its header line, never a column left unset or cells silently dropped.
 #include <array>
 #include <climits>
 #include <vector>
@@ -137,16 +140,23 @@ Header readHeader(std::string_view bytes, const std::string& source) {
   return header;
 }
 
-// Gives every property its role and checks the elements ffdkit reads have what they need.
+// Gives every property its role and checks the elements ffdkit reads have what they need:
+// each element named once, each property named once in its element, and each role ffdkit
+// reads filled (so that no coordinate or index is left to whatever memory held).
 void assignRoles(Header& header, const std::string& source, bool& hasNormals) {
   auto fail = [&](const Element& e, const std::string& message) {
     throw MeshIoError(source + ":" + std::to_string(e.headerLine) + ": element '" + e.name + "': " + message);
   };
-  int vertexElements = 0;
-  for (Element& e : header.elements) {
+  for (std::size_t k = 0; k < header.elements.size(); ++k) {
+    Element& e = header.elements[k];
+    for (std::size_t before = 0; before < k; ++before)
+      if (header.elements[before].name == e.name)
+        fail(e, "declared a second time (the first is on line " + std::to_string(header.elements[before].headerLine) + ")");
+    for (std::size_t p = 0; p < e.properties.size(); ++p)
+      for (std::size_t q = 0; q < p; ++q)
+        if (e.properties[q].name == e.properties[p].name) fail(e, "property '" + e.properties[p].name + "' is declared twice");
     if (e.count > 0 && e.properties.empty()) fail(e, "has no properties");
     if (e.name == "vertex") {
-      ++vertexElements;
       int found = 0, normals = 0;
       for (Property& p : e.properties) {
         static constexpr std::pair<std::string_view, Role> slots[] = {
@@ -161,20 +171,29 @@ void assignRoles(Header& header, const std::string& source, bool& hasNormals) {
       if (found != 3) fail(e, "needs the properties x, y and z");
       hasNormals = normals == 3;
     } else if (e.name == "face") {
+      int lists = 0;
       for (Property& p : e.properties)
         if (p.name == "vertex_indices" || p.name == "vertex_index") {
           if (!p.isList || !isInteger(p.type)) fail(e, "'" + p.name + "' must be a list of integers");
           p.role = Role::FaceIndices;
+          ++lists;
         }
+      if (lists == 0) fail(e, "needs a 'vertex_indices' list");
+      if (lists > 1) fail(e, "has both 'vertex_indices' and 'vertex_index' (one list of vertex indices)");
     } else if (e.name == "edge") {
+      bool first = false, second = false;
       for (Property& p : e.properties) {
-        if (p.name == "vertex1") p.role = Role::Edge0;
-        if (p.name == "vertex2") p.role = Role::Edge1;
+        if (p.name == "vertex1") p.role = Role::Edge0, first = true;
+        if (p.name == "vertex2") p.role = Role::Edge1, second = true;
         if (p.role != Role::Ignore && (p.isList || !isInteger(p.type))) fail(e, "'" + p.name + "' must be an integer");
       }
+      if (!first || !second) fail(e, std::string("needs the properties vertex1 and vertex2 (") + (first ? "vertex2" : second ? "vertex1" : "both") + " missing)");
+    } else if (e.name == "tristrips" && e.count > 0) {
+      fail(e, "triangle strips are not read (convert them to a 'face' element)");
     }
   }
-  if (vertexElements != 1) throw MeshIoError(source + ": a PLY mesh needs exactly one 'vertex' element");
+  if (std::none_of(header.elements.begin(), header.elements.end(), [](const Element& e) { return e.name == "vertex"; }))
+    throw MeshIoError(source + ": a PLY mesh needs a 'vertex' element");
 }
 
 // The fewest bytes one element can take, so that a count can be checked before allocating.
@@ -421,21 +440,21 @@ long long checkCounts(const Header& header, std::size_t dataBytes, const std::st
 
 // The data of every element in the header's order (without the vertex element's when
 // `skipVertices`: `data` then starts after it) into `mesh`, whose points are sized.
-void readElements(const Header& header, DataReader& data, MeshData& mesh, long long vertexCount, bool skipVertices) {
+void readElements(const Header& header, DataReader& data, MeshData& mesh, long long vertexCount, bool skipVertices,
+                  ReadBudget& budget) {
   TriangleSink triangles;
   SegmentSink segments;
   std::vector<long long> polygon;
   for (const Element& e : header.elements) {
     if (skipVertices && e.name == "vertex") continue;
-    if (e.name == "face") triangles = TriangleSink(Eigen::Index(e.count));
-    if (e.name == "edge") segments = SegmentSink(Eigen::Index(e.count));
+    if (e.name == "face") triangles = TriangleSink(Eigen::Index(e.count), &budget, "element 'face' (its triangles)");
+    if (e.name == "edge") segments = SegmentSink(Eigen::Index(e.count), &budget, "element 'edge'");
     if (header.encoding != Encoding::Ascii && e.count > 0 &&
         readBinaryFast(e, header.encoding == Encoding::Big, data.binary(), mesh, triangles, vertexCount))
       continue;
     const char* kind = e.name == "vertex" ? "vertex" : e.name == "face" ? "face" : e.name == "edge" ? "edge" : e.name.c_str();
     for (long long i = 0; i < e.count; ++i) {
-      long long edge[2] = {-1, -1};
-      bool haveFace = false;
+      long long edge[2] = {-1, -1};  // assignRoles requires both
       for (const Property& p : e.properties) {
         const Where where{kind, i, p.name};
         if (p.isList) {
@@ -456,7 +475,6 @@ void readElements(const Header& header, DataReader& data, MeshData& mesh, long l
             }
             if (n < 3) data.fail(Where{kind, i}.text() + ": a face needs at least 3 vertices, it has " + std::to_string(n));
             for (long long k = 1; k + 1 < n; ++k) triangles.add(int(polygon[0]), int(polygon[std::size_t(k)]), int(polygon[std::size_t(k + 1)]));
-            haveFace = true;
           } else {
             for (long long k = 0; k < n; ++k) (void)data.value<double>(p.type, where);
           }
@@ -477,8 +495,7 @@ void readElements(const Header& header, DataReader& data, MeshData& mesh, long l
           default: (void)data.value<double>(p.type, where); break;  // normals are recomputed on write
         }
       }
-      if (e.name == "face" && !haveFace) data.fail("element 'face' has no 'vertex_indices' list");
-      if (edge[0] >= 0 && edge[1] >= 0) segments.add(int(edge[0]), int(edge[1]));
+      if (e.name == "edge") segments.add(int(edge[0]), int(edge[1]));
       data.endElement({kind, i});
     }
   }
@@ -489,15 +506,16 @@ void readElements(const Header& header, DataReader& data, MeshData& mesh, long l
 
 }  // namespace
 
-MeshData readPly(std::string_view bytes, const std::string& source) {
+MeshData readPly(std::string_view bytes, const std::string& source, ReadBudget& budget) {
   Header header = readHeader(bytes, source);
   MeshData mesh;
   assignRoles(header, source, mesh.hasNormals);
   const long long vertexCount = checkCounts(header, bytes.size() - header.dataOffset, source);
+  budget.chargePoints(std::uint64_t(vertexCount), "element 'vertex'");
   mesh.points.resize(Eigen::Index(vertexCount), 3);
   adviseHugePages(mesh.points);
   DataReader data(bytes, header, source);
-  readElements(header, data, mesh, vertexCount, false);
+  readElements(header, data, mesh, vertexCount, false, budget);
   return mesh;
 }
 
@@ -630,12 +648,12 @@ void PlySlices::decode(std::string_view records, long long first, Eigen::MatrixX
                  records.data(), first, count, points, errors);
 }
 
-MeshData PlySlices::readCells(std::string_view tail) const {
+MeshData PlySlices::readCells(std::string_view tail, ReadBudget& budget) const {
   Header header = layout_->header;
   header.dataOffset = 0;
   DataReader data(tail, header, source_, std::size_t(cellsOffset_));
   MeshData cells;
-  readElements(header, data, cells, vertexCount_, true);
+  readElements(header, data, cells, vertexCount_, true, budget);
   return cells;
 }
 

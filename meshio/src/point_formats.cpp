@@ -8,22 +8,29 @@
 
 namespace ffdkit::meshio::detail {
 
-Eigen::MatrixX3d readXyzPoints(std::string_view bytes, const std::string& source, int firstLine, long long firstPoint) {
-  // One point per line at most: the line count bounds the first allocation by the file's size.
-  PointSink points{Eigen::Index(std::count(bytes.begin(), bytes.end(), '\n') + 1)};
+Eigen::MatrixX3d readXyzPoints(std::string_view bytes, const std::string& source, int firstLine, long long firstPoint,
+                               ReadBudget& budget) {
   TextCursor text(bytes, source, firstLine);
-  while (!text.atEnd()) {
-    text.skipBlanks();
-    if (text.atLineEnd(true)) {
+  // One point per line at most: the line count bounds the first allocation by the file's size
+  // (and the budget bounds it too; the budget's refusal names the line).
+  const auto lines = Eigen::Index(std::count(bytes.begin(), bytes.end(), '\n') + 1);
+  PointSink points(lines, &budget, "xyz points");
+  try {
+    while (!text.atEnd()) {
+      text.skipBlanks();
+      if (text.atLineEnd(true)) {
+        text.nextLine();
+        continue;
+      }
+      const Where where{"point", firstPoint + points.rows()};
+      const double x = text.number(where), y = text.number(where), z = text.number(where);
+      text.skipBlanks();
+      if (!text.atLineEnd(true)) text.fail(where.text() + ": expected three numbers \"x y z\", got more");
+      points.add(x, y, z);
       text.nextLine();
-      continue;
     }
-    const Where where{"point", firstPoint + points.rows()};
-    const double x = text.number(where), y = text.number(where), z = text.number(where);
-    text.skipBlanks();
-    if (!text.atLineEnd(true)) text.fail(where.text() + ": expected three numbers \"x y z\", got more");
-    points.add(x, y, z);
-    text.nextLine();
+  } catch (const ReadLimitError& e) {
+    text.fail(e.what());
   }
   return points.take();
 }
@@ -43,9 +50,9 @@ XyzCounts countXyz(std::string_view bytes) {
   return counts;
 }
 
-MeshData readXyz(std::string_view bytes, const std::string& source) {
+MeshData readXyz(std::string_view bytes, const std::string& source, ReadBudget& budget) {
   MeshData mesh;
-  mesh.points = readXyzPoints(bytes, source, 1, 0);
+  mesh.points = readXyzPoints(bytes, source, 1, 0, budget);
   if (mesh.points.rows() == 0) throw MeshIoError(source + ": the file has no points");
   if (mesh.points.rows() > INT_MAX) throw MeshIoError(source + ": more points than ffdkit indexes");
   return mesh;
@@ -87,6 +94,8 @@ class DictParser {
       if (peek() == '}') break;
       const std::string key = quoted();
       expect(':');
+      if ((key == "descr" && descr) || (key == "fortran_order" && order) || (key == "shape" && shape))
+        fail("'" + key + "' is given twice");
       skipSpaces();
       if (key == "descr") {
         h.descr = quoted();
@@ -208,9 +217,10 @@ void decodeNpyRows(const NpyLayout& layout, std::string_view bytes, long long fi
     }
 }
 
-MeshData readNpy(std::string_view bytes, const std::string& source) {
+MeshData readNpy(std::string_view bytes, const std::string& source, ReadBudget& budget) {
   const NpyLayout layout = readNpyHeader(bytes, bytes.size(), source);
   const long long n = layout.rows;
+  budget.chargePoints(std::uint64_t(n), "shape (" + std::to_string(n) + ", 3)");
   MeshData mesh;
   mesh.points.resize(Eigen::Index(n), 3);
   if (!layout.fortranOrder) {

@@ -30,11 +30,16 @@ struct CornerHash {
   }
 };
 
-// Corners to shared points.
+// Corners to shared points. The budget pays for the points, the triangles and the index of
+// corners (a hash node and a bucket per point, kIndexBytesPerPoint).
 class CornerMerger {
  public:
-  explicit CornerMerger(Eigen::Index triangles) : points_(triangles), triangles_(triangles) {
-    index_.reserve(std::size_t(triangles));
+  static constexpr std::uint64_t kIndexBytesPerPoint = sizeof(std::pair<const Corner, int>) + 2 * sizeof(void*) + sizeof(void*);
+
+  CornerMerger(Eigen::Index triangles, ReadBudget& budget)
+      : points_(triangles, &budget, "STL corners (merged into points)", kIndexBytesPerPoint),
+        triangles_(triangles, &budget, "STL triangles") {
+    index_.reserve(std::size_t(triangles));  // buckets: at most 8 bytes per 50 of the file
   }
   int point(const Corner& c) {
     const auto [it, added] = index_.try_emplace(c, int(points_.rows()));
@@ -61,7 +66,7 @@ bool looksAscii(std::string_view bytes) {
   return bytes.substr(i, 5) == "solid";
 }
 
-MeshData readBinaryStl(std::string_view bytes, const std::string& source) {
+MeshData readBinaryStl(std::string_view bytes, const std::string& source, ReadBudget& budget) {
   ByteCursor data(bytes, source);
   data.need(84, {"header"});
   data.skip(80);
@@ -72,7 +77,7 @@ MeshData readBinaryStl(std::string_view bytes, const std::string& source) {
               std::to_string(bytes.size()) + " bytes");
   if (count == 0) data.fail("the file has no triangles");
   if (3 * count > std::uint64_t(INT_MAX)) data.fail(std::to_string(count) + " triangles is more than ffdkit indexes");
-  CornerMerger merger{Eigen::Index(count)};
+  CornerMerger merger(Eigen::Index(count), budget);
   for (std::uint64_t t = 0; t < count; ++t) {
     data.skip(12);  // the facet normal: recomputed from the corners when written
     int ids[3];
@@ -96,10 +101,10 @@ void expectWord(TextCursor& text, std::string_view word, const Where& where) {
   if (got != word) text.fail(where.text() + ": expected '" + std::string(word) + "', got '" + std::string(got.substr(0, 40)) + "'");
 }
 
-MeshData readAsciiStl(std::string_view bytes, const std::string& source) {
+MeshData readAsciiStl(std::string_view bytes, const std::string& source, ReadBudget& budget) {
   TextCursor text(bytes, source);
   // Each facet takes well over 50 characters: a cheap bound for the first allocation.
-  CornerMerger merger{Eigen::Index(bytes.size() / 64)};
+  CornerMerger merger(Eigen::Index(bytes.size() / 64), budget);
   long long t = 0;
   auto nextWord = [&]() -> std::string_view {
     for (;;) {
@@ -140,14 +145,14 @@ MeshData readAsciiStl(std::string_view bytes, const std::string& source) {
 
 }  // namespace
 
-MeshData readStl(std::string_view bytes, const std::string& source) {
+MeshData readStl(std::string_view bytes, const std::string& source, ReadBudget& budget) {
   // A binary file may also start with "solid": its size decides first.
   if (bytes.size() >= 84) {
     std::uint32_t count = 0;
     std::memcpy(&count, bytes.data() + 80, 4);
-    if (84 + kStlTriangleBytes * std::uint64_t(count) == bytes.size()) return readBinaryStl(bytes, source);
+    if (84 + kStlTriangleBytes * std::uint64_t(count) == bytes.size()) return readBinaryStl(bytes, source, budget);
   }
-  return looksAscii(bytes) ? readAsciiStl(bytes, source) : readBinaryStl(bytes, source);
+  return looksAscii(bytes) ? readAsciiStl(bytes, source, budget) : readBinaryStl(bytes, source, budget);
 }
 
 void writeStl(ByteSink& sink, const MeshData& mesh) {

@@ -24,7 +24,9 @@ constexpr std::uint64_t kHeaderPrefix = (1u << 20) + 2;
 }  // namespace
 
 struct VertexSliceReader::Impl {
+  explicit Impl(const ReadLimits& limits) : budget(limits) {}
   std::string source;
+  ReadBudget budget;  // what the slices read through this reader allocate
   MeshFormat format = MeshFormat::Xyz;
   int fd = -1;
   std::uint64_t size = 0;
@@ -67,7 +69,24 @@ struct VertexSliceReader::Impl {
   }
 };
 
-VertexSliceReader::VertexSliceReader(const std::filesystem::path& path) : impl_(std::make_unique<Impl>()) {
+namespace {
+
+// What a slice reader lets through becomes its documented error (as readMesh's parseMesh does).
+template <class Read>
+auto readingSlice(const std::string& source, Read&& read) {
+  try {
+    return read();
+  } catch (const ReadLimitError& e) {
+    throw MeshIoError(source + ": " + e.what());
+  } catch (const std::bad_alloc&) {
+    throw MeshIoError(source + ": out of memory while reading a slice");
+  }
+}
+
+}  // namespace
+
+VertexSliceReader::VertexSliceReader(const std::filesystem::path& path, const ReadLimits& limits)
+    : impl_(std::make_unique<Impl>(limits)) {
   Impl& d = *impl_;
   d.source = path.string();
   const auto format = meshFormatOf(path);
@@ -111,6 +130,12 @@ Eigen::MatrixX3d VertexSliceReader::readVertices(std::int64_t first, std::int64_
   const auto count = vertexCount();
   if (!count || first < 0 || last < first || last > *count)
     throw std::logic_error(d.source + ": vertex slice " + std::to_string(first) + ".." + std::to_string(last) + " out of range");
+  return readingSlice(d.source, [&] { return readSlice(first, last); });
+}
+
+Eigen::MatrixX3d VertexSliceReader::readSlice(std::int64_t first, std::int64_t last) const {
+  Impl& d = *impl_;
+  d.budget.chargePoints(std::uint64_t(last - first), "vertices " + std::to_string(first) + ".." + std::to_string(last));
   Eigen::MatrixX3d points(Eigen::Index(last - first), 3);
   ffd::adviseHugePages(points);
   if (d.ply) {
@@ -139,14 +164,18 @@ VertexSliceReader::TextPart VertexSliceReader::readXyzPart(int part, int parts) 
 
 Eigen::MatrixX3d VertexSliceReader::parseXyzPart(const TextPart& part, std::int64_t linesBefore, std::int64_t pointsBefore) const {
   if (linesBefore + 1 > std::numeric_limits<int>::max()) throw MeshIoError(impl_->source + ": more lines than ffdkit numbers");
-  return detail::readXyzPoints(part.text, impl_->source, int(linesBefore + 1), pointsBefore);
+  return readingSlice(impl_->source, [&] {
+    return detail::readXyzPoints(part.text, impl_->source, int(linesBefore + 1), pointsBefore, impl_->budget);
+  });
 }
 
 MeshData VertexSliceReader::readCells() const {
   const Impl& d = *impl_;
   if (!d.ply || !d.ply->hasCells()) return {};
-  const std::string tail = d.read(d.ply->cellsOffset(), d.size - d.ply->cellsOffset());
-  return d.ply->readCells(tail);
+  return readingSlice(d.source, [&] {
+    const std::string tail = d.read(d.ply->cellsOffset(), d.size - d.ply->cellsOffset());
+    return d.ply->readCells(tail, impl_->budget);
+  });
 }
 
 bool isSliceWritable(MeshFormat format) {
@@ -183,6 +212,7 @@ std::optional<std::uint64_t> slicedVerticesSize(MeshFormat format, Eigen::Index 
 void writeSlicedVertices(ByteSink& out, MeshFormat format, const Eigen::MatrixX3d& points) {
   requireSliceWritable(format);
   if (format == MeshFormat::Xyz) return detail::writeXyzPoints(out, points);  // no copy of the slice
+  if (format == MeshFormat::Ply) detail::requireFloat32Points(points, "binary PLY (vertices numbered from the slice's first)");
   detail::BinaryChunks chunks(out);
   if (format == MeshFormat::Ply) detail::writePlyVertices(chunks, points, nullptr, false);
   else detail::writeNpyRecords(chunks, points);

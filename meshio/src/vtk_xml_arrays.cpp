@@ -200,8 +200,17 @@ bool decompress(VtkXmlDataLayout::Compressor compressor, const unsigned char* in
   return false;
 }
 
-// Exactly `needed` bytes of a binary array's data, in the file's byte order.
-std::vector<unsigned char> binaryBytes(const ArrayContext& context, std::size_t needed) {
+// Exactly `needed` bytes of a binary array's data, in the file's byte order, charged to both of
+// `budget`'s budgets before they are allocated (the caller gives `held` back: releaseDecoded).
+std::vector<unsigned char> binaryBytes(const ArrayContext& context, std::size_t needed, ArrayBudget& budget) {
+  const auto charge = [&](std::uint64_t bytes) {
+    try {
+      budget.decoded.chargeBytes(bytes, 1, "decoded data (every piece's arrays count, also where they share a block)");
+      budget.held.chargeBytes(bytes, 1, "decoded data");
+    } catch (const ReadLimitError& e) {
+      context.fail(e.what());
+    }
+  };
   const VtkXmlDataLayout& layout = context.layout;
   const auto format = context.array.attribute("format");
   std::string_view data;
@@ -239,6 +248,7 @@ std::vector<unsigned char> binaryBytes(const ArrayContext& context, std::size_t 
     if (needed > stream.maxBytesLeft())
       context.fail("announces " + std::to_string(size) + " bytes, more than the " + std::to_string(stream.maxBytesLeft()) +
                    " that follow");
+    charge(needed);
     out.resize(needed);
     if (!stream.read(needed, out.data())) context.fail("the data end before its " + std::to_string(needed) + " bytes");
     return out;
@@ -264,6 +274,11 @@ std::vector<unsigned char> binaryBytes(const ArrayContext& context, std::size_t 
     context.fail(std::to_string(needed) + " bytes needed, more than " + context.ofTheFile() + " can decompress to");
   const auto compressedSizes = readHeader(std::size_t(blocks), "list of block sizes");
   if (base64) stream.restart();
+  // The blocks that hold the `needed` bytes, decompressed whole, in one allocation.
+  const std::uint64_t blocksNeeded = needed == 0 ? 0 : (needed + blockSize - 1) / blockSize;
+  const std::uint64_t decompressed = std::min(total, blocksNeeded * blockSize);
+  charge(decompressed);
+  out.reserve(std::size_t(decompressed));
 
   std::vector<unsigned char> compressed;
   for (std::uint64_t b = 0; b < blocks && out.size() < needed; ++b) {
@@ -282,6 +297,13 @@ std::vector<unsigned char> binaryBytes(const ArrayContext& context, std::size_t 
   }
   out.resize(needed);
   return out;
+}
+
+// Frees an array's decoded bytes and gives their charge back to the read's budget (the decoded
+// total keeps them).
+void releaseDecoded(std::vector<unsigned char>& raw, ArrayBudget& budget) {
+  budget.held.releaseBytes(raw.capacity());
+  std::vector<unsigned char>().swap(raw);
 }
 
 // Converts `count` raw values of `type` (file byte order) with `convert(value, index)`.
@@ -370,7 +392,7 @@ VtkXmlDataLayout VtkXmlDataLayout::of(const VtkXmlDocument& document, const std:
 }
 
 std::vector<double> readRealValues(const VtkXmlDocument& document, const VtkXmlDataLayout& layout, const XmlElement& array,
-                                   std::size_t count, const std::string& source) {
+                                   std::size_t count, const std::string& source, ArrayBudget& budget) {
   const ArrayContext context{document, layout, array, source};
   const ScalarType type = checkedType(context);
   std::vector<double> values;
@@ -400,14 +422,15 @@ std::vector<double> readRealValues(const VtkXmlDocument& document, const VtkXmlD
     return values;
   }
   if (count > std::numeric_limits<std::size_t>::max() / 8) context.fail(std::to_string(count) + " values needed, more than memory can hold");
-  const std::vector<unsigned char> raw = binaryBytes(context, count * type.size);
+  std::vector<unsigned char> raw = binaryBytes(context, count * type.size, budget);
   values.resize(count);
   forEachRawValue(raw, type, layout.bigEndian, count, [&](auto v, std::size_t i) { keep(double(v), i); });
+  releaseDecoded(raw, budget);
   return values;
 }
 
 std::vector<std::int64_t> readIntegerValues(const VtkXmlDocument& document, const VtkXmlDataLayout& layout, const XmlElement& array,
-                                            std::size_t count, const std::string& source) {
+                                            std::size_t count, const std::string& source, ArrayBudget& budget) {
   const ArrayContext context{document, layout, array, source};
   const ScalarType type = checkedType(context);
   if (type.isFloat) context.fail("an index array of type " + std::string(array.attribute("type").value_or("")) + ", not integers");
@@ -423,7 +446,7 @@ std::vector<std::int64_t> readIntegerValues(const VtkXmlDocument& document, cons
     values.resize(count);
     return values;
   }
-  const std::vector<unsigned char> raw = binaryBytes(context, count * type.size);
+  std::vector<unsigned char> raw = binaryBytes(context, count * type.size, budget);
   values.resize(count);
   forEachRawValue(raw, type, layout.bigEndian, count, [&](auto v, std::size_t i) {
     if constexpr (std::is_same_v<decltype(v), std::uint64_t>) {
@@ -435,6 +458,7 @@ std::vector<std::int64_t> readIntegerValues(const VtkXmlDocument& document, cons
       values[i] = std::int64_t(v);
     }
   });
+  releaseDecoded(raw, budget);
   return values;
 }
 

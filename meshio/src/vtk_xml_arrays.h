@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "ffdkit/meshio/read_limits.h"
 #include "vtk_xml_tree.h"
 
 namespace ffdkit::meshio::detail {
@@ -34,15 +35,27 @@ struct VtkXmlDataLayout {
   static VtkXmlDataLayout of(const VtkXmlDocument& document, const std::string& source);
 };
 
-/// The DataArray's first `count` values as doubles (any numeric type), each finite.
+/// What decoding the binary arrays of one read costs. `held`: the read's budget, charged with an
+/// array's decoded bytes while they are converted and given them back after. `decoded`: every
+/// byte decoded in the read, never given back, against the same limits: pieces whose arrays
+/// alias one compressed block each count in full, so a small file cannot make the reader
+/// decompress without end.
+struct ArrayBudget {
+  explicit ArrayBudget(ReadBudget& read) : held(read), decoded(read.limits()) {}
+  ReadBudget& held;
+  ReadBudget decoded;
+};
+
+/// The DataArray's first `count` values as doubles (any numeric type), each finite. The
+/// returned values are the caller's to charge.
 /// @throws MeshIoError naming the file, the line and the array: fewer values than `count`, an
 /// unknown type, a header inconsistent with the data, a block that does not decompress, a
 /// non-finite value.
 std::vector<double> readRealValues(const VtkXmlDocument& document, const VtkXmlDataLayout& layout, const XmlElement& array,
-                                   std::size_t count, const std::string& source);
+                                   std::size_t count, const std::string& source, ArrayBudget& budget);
 
 /// The DataArray's first `count` values as integers (integer types only).
 std::vector<std::int64_t> readIntegerValues(const VtkXmlDocument& document, const VtkXmlDataLayout& layout, const XmlElement& array,
-                                            std::size_t count, const std::string& source);
+                                            std::size_t count, const std::string& source, ArrayBudget& budget);
 
 }  // namespace ffdkit::meshio::detail

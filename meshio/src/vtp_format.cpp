@@ -2,8 +2,10 @@
 // write past its own arrays). Every Piece's points and its vertex, line, polygon and strip
 // cells, in order: the pieces are joined, each piece's point ids shifted by the points before
 // it. Polygons are fan-triangulated and strips split as VTK's triangle filter does; lines are
-// split into segments; vertex cells are checked and dropped. Writing stays with VTK
-// (vtk_formats.cpp).
+// split into segments; vertex cells are checked and dropped. Every element a Piece declares is
+// read once: a second <Points>, <Polys> (or Verts, Lines, Strips) in one Piece, a Points with
+// more than one DataArray, a polygon of fewer than 3 points or a line of fewer than 2 is an
+// error, never ignored. Writing stays with VTK (vtk_formats.cpp).
 #include <algorithm>
 #include <charconv>
 #include <climits>
@@ -24,6 +26,7 @@ struct PieceReader {
   const VtkXmlDocument& document;
   const VtkXmlDataLayout& layout;
   const std::string& source;
+  ArrayBudget& budget;
 
   [[noreturn]] void fail(const XmlElement& element, const std::string& message) const {
     throw MeshIoError(document.where(source, element) + message);
@@ -44,10 +47,39 @@ struct PieceReader {
     return std::size_t(value);
   }
 
+  // The one DataArray named `name` (any name when empty) of `parent`; a second is an error.
   const XmlElement& dataArray(const XmlElement& parent, std::string_view name, const char* what) const {
+    const XmlElement* found = nullptr;
     for (const XmlElement& c : parent.children)
-      if (c.name == "DataArray" && (name.empty() || c.attribute("Name") == name)) return c;
-    fail(parent, std::string(what) + ": no DataArray" + (name.empty() ? std::string() : " \"" + std::string(name) + "\""));
+      if (c.name == "DataArray" && (name.empty() || c.attribute("Name") == name)) {
+        if (found != nullptr)
+          fail(c, std::string(what) + ": a second DataArray" + (name.empty() ? std::string() : " \"" + std::string(name) + "\"") +
+                      " (one is read)");
+        found = &c;
+      }
+    if (found == nullptr)
+      fail(parent, std::string(what) + ": no DataArray" + (name.empty() ? std::string() : " \"" + std::string(name) + "\""));
+    return *found;
+  }
+
+  // The piece's one child element `name`, or null; a second is an error.
+  const XmlElement* onlyChild(const XmlElement& piece, const char* name) const {
+    const XmlElement* found = nullptr;
+    for (const XmlElement& c : piece.children)
+      if (c.name == name) {
+        if (found != nullptr) fail(c, std::string("Piece: a second <") + name + "> (one is read)");
+        found = &c;
+      }
+    return found;
+  }
+
+  // Charges `count` values of `bytesEach` held while a piece is read, naming the element.
+  void charge(const XmlElement& element, std::uint64_t count, std::uint64_t bytesEach, const std::string& what) const {
+    try {
+      budget.held.chargeBytes(count, bytesEach, what);
+    } catch (const ReadLimitError& e) {
+      fail(element, e.what());
+    }
   }
 
   // Calls `cell(ids, size)` for each of the `cells` cells of the piece's `elementName` (Verts,
@@ -56,12 +88,13 @@ struct PieceReader {
   template <class Cell>
   void forEachCell(const XmlElement& piece, const char* elementName, const char* kind, std::size_t cells, std::size_t points,
                    Cell&& cell) const {
+    const XmlElement* element = onlyChild(piece, elementName);
     if (cells == 0) return;
-    const XmlElement* element = piece.child(elementName);
     if (element == nullptr) fail(piece, std::string("Piece: ") + std::to_string(cells) + " " + kind + " cells but no <" + elementName + ">");
     const XmlElement& offsetsArray = dataArray(*element, "offsets", elementName);
     const XmlElement& connectivityArray = dataArray(*element, "connectivity", elementName);
-    const std::vector<std::int64_t> offsets = readIntegerValues(document, layout, offsetsArray, cells, source);
+    charge(offsetsArray, cells, sizeof(std::int64_t), std::string(elementName) + " offsets");
+    const std::vector<std::int64_t> offsets = readIntegerValues(document, layout, offsetsArray, cells, source, budget);
     std::int64_t previous = 0;
     for (std::size_t c = 0; c < cells; ++c) {
       if (offsets[c] < previous)
@@ -69,16 +102,18 @@ struct PieceReader {
                                std::to_string(previous));
       previous = offsets[c];
     }
-    const std::vector<std::int64_t> ids = readIntegerValues(document, layout, connectivityArray, std::size_t(previous), source);
+    charge(connectivityArray, std::uint64_t(previous), sizeof(std::int64_t), std::string(elementName) + " connectivity");
+    const std::vector<std::int64_t> ids = readIntegerValues(document, layout, connectivityArray, std::size_t(previous), source, budget);
     std::int64_t begin = 0;
     for (std::size_t c = 0; c < cells; ++c) {
       for (std::int64_t k = begin; k < offsets[c]; ++k)
         if (ids[std::size_t(k)] < 0 || std::uint64_t(ids[std::size_t(k)]) >= points)
           fail(connectivityArray, Where{kind, (long long)c}.text() + ": point id " + std::to_string(ids[std::size_t(k)]) +
                                       " is outside 0.." + std::to_string((long long)points - 1));
-      cell(ids.data() + begin, std::size_t(offsets[c] - begin));
+      cell(ids.data() + begin, std::size_t(offsets[c] - begin), c, connectivityArray);
       begin = offsets[c];
     }
+    budget.held.releaseBytes((std::uint64_t(cells) + std::uint64_t(previous)) * sizeof(std::int64_t));
   }
 };
 
@@ -95,7 +130,7 @@ bool hasNormals(const XmlElement& piece) {
 
 }  // namespace
 
-MeshData readVtp(std::string_view bytes, const std::string& source) {
+MeshData readVtp(std::string_view bytes, const std::string& source, ReadBudget& readBudget) {
   const VtkXmlDocument document = parseVtkXml(bytes, source);
   const XmlElement& root = document.root;
   const auto type = root.attribute("type").value_or("");
@@ -105,11 +140,12 @@ MeshData readVtp(std::string_view bytes, const std::string& source) {
   const VtkXmlDataLayout layout = VtkXmlDataLayout::of(document, source);
   const XmlElement* polyData = root.child("PolyData");
   if (polyData == nullptr) throw MeshIoError(document.where(source, root) + "VTKFile has no <PolyData>");
-  const PieceReader reader{document, layout, source};
+  ArrayBudget budget(readBudget);
+  const PieceReader reader{document, layout, source, budget};
 
   Eigen::MatrixX3d points;  // grown piece by piece once a piece's values are read (never from a count alone)
-  TriangleSink triangles;
-  SegmentSink segments;
+  TriangleSink triangles(0, &readBudget, "polygons and strips (their triangles)");
+  SegmentSink segments(0, &readBudget, "lines (their segments)");
   bool normals = false;
   for (const XmlElement& piece : polyData->children) {
     if (piece.name != "Piece") continue;
@@ -117,29 +153,49 @@ MeshData readVtp(std::string_view bytes, const std::string& source) {
     const std::size_t verts = reader.count(piece, "NumberOfVerts"), lines = reader.count(piece, "NumberOfLines");
     const std::size_t strips = reader.count(piece, "NumberOfStrips"), polys = reader.count(piece, "NumberOfPolys");
     const int base = int(points.rows());
+    const XmlElement* pointsElement = reader.onlyChild(piece, "Points");
     if (pointCount > 0) {
-      const XmlElement* pointsElement = piece.child("Points");
       if (pointsElement == nullptr) reader.fail(piece, "Piece: " + std::to_string(pointCount) + " points but no <Points>");
       const XmlElement& array = reader.dataArray(*pointsElement, "", "Points");
       if (array.attribute("NumberOfComponents") != std::string_view("3"))
         reader.fail(array, "DataArray \"" + std::string(array.attribute("Name").value_or("")) + "\": points need NumberOfComponents=\"3\"");
-      const std::vector<double> xyz = readRealValues(document, layout, array, 3 * pointCount, source);
       if (std::uint64_t(points.rows()) + pointCount > std::uint64_t(INT_MAX))
         reader.fail(piece, "Piece: more points than ffdkit indexes (" + std::to_string(INT_MAX) + ")");
+      try {
+        readBudget.chargePoints(pointCount, "Piece: NumberOfPoints=" + std::to_string(pointCount));
+      } catch (const ReadLimitError& e) {
+        reader.fail(piece, e.what());
+      }
+      reader.charge(array, pointCount, 3 * sizeof(double), "Points values");
+      const std::vector<double> xyz = readRealValues(document, layout, array, 3 * pointCount, source, budget);
       points.conservativeResize(points.rows() + Eigen::Index(pointCount), Eigen::NoChange);
       adviseHugePages(points);
       points.bottomRows(Eigen::Index(pointCount)) = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
           xyz.data(), Eigen::Index(pointCount), 3);
+      readBudget.releaseBytes(std::uint64_t(pointCount) * 3 * sizeof(double));
       normals = normals || hasNormals(piece);
     }
-    reader.forEachCell(piece, "Verts", "vertex cell", verts, pointCount, [](const std::int64_t*, std::size_t) {});
-    reader.forEachCell(piece, "Lines", "line", lines, pointCount, [&](const std::int64_t* line, std::size_t n) {
+    // A cell too short to give what it is read as (a segment, a triangle) is an error, not a drop.
+    const auto fewest = [&](std::size_t n, std::size_t least, const char* kind, std::size_t c, const XmlElement& array) {
+      if (n < least)
+        reader.fail(array, Where{kind, (long long)c}.text() + ": needs at least " + std::to_string(least) + " points, it has " +
+                               std::to_string(n));
+    };
+    reader.forEachCell(piece, "Verts", "vertex cell", verts, pointCount,
+                       [&](const std::int64_t*, std::size_t n, std::size_t c, const XmlElement& a) { fewest(n, 1, "vertex cell", c, a); });
+    reader.forEachCell(piece, "Lines", "line", lines, pointCount,
+                       [&](const std::int64_t* line, std::size_t n, std::size_t c, const XmlElement& a) {
+      fewest(n, 2, "line", c, a);
       for (std::size_t k = 0; k + 1 < n; ++k) segments.add(base + int(line[k]), base + int(line[k + 1]));
     });
-    reader.forEachCell(piece, "Polys", "polygon", polys, pointCount, [&](const std::int64_t* polygon, std::size_t n) {
+    reader.forEachCell(piece, "Polys", "polygon", polys, pointCount,
+                       [&](const std::int64_t* polygon, std::size_t n, std::size_t c, const XmlElement& a) {
+      fewest(n, 3, "polygon", c, a);
       for (std::size_t k = 1; k + 1 < n; ++k) triangles.add(base + int(polygon[0]), base + int(polygon[k]), base + int(polygon[k + 1]));
     });
-    reader.forEachCell(piece, "Strips", "strip", strips, pointCount, [&](const std::int64_t* strip, std::size_t n) {
+    reader.forEachCell(piece, "Strips", "strip", strips, pointCount,
+                       [&](const std::int64_t* strip, std::size_t n, std::size_t c, const XmlElement& a) {
+      fewest(n, 3, "strip", c, a);
       for (std::size_t k = 0; k + 2 < n; ++k) {
         if (k % 2 == 0) triangles.add(base + int(strip[k]), base + int(strip[k + 1]), base + int(strip[k + 2]));
         else triangles.add(base + int(strip[k + 1]), base + int(strip[k]), base + int(strip[k + 2]));

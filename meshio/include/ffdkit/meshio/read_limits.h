@@ -53,6 +53,12 @@ class ReadBudget {
   /// once its values are copied out).
   void releaseBytes(std::uint64_t bytes) { bytes_ = bytes > bytes_ ? 0 : bytes_ - bytes; }
 
+  /// Gives back points charged for capacity a reader trimmed away (and their bytes).
+  void releasePoints(std::uint64_t count) {
+    points_ = count > points_ ? 0 : points_ - count;
+    releaseBytes(count > (std::uint64_t(-1) / 24) ? std::uint64_t(-1) : 24 * count);
+  }
+
  private:
   ReadLimits limits_;
   std::uint64_t bytes_ = 0;

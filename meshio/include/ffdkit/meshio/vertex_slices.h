@@ -11,6 +11,7 @@
 #include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/mesh_data.h"
 #include "ffdkit/meshio/mesh_format.h"
+#include "ffdkit/meshio/read_limits.h"
 
 namespace ffdkit::meshio {
 
@@ -23,10 +24,11 @@ namespace ffdkit::meshio {
 /// and the vertex (xyz: also the line) by its place in the whole file.
 class VertexSliceReader {
  public:
-  /// Opens `path`; PLY and npy: reads and checks the header against the file's size.
+  /// Opens `path`; PLY and npy: reads and checks the header against the file's size. What the
+  /// slices read through this reader allocate is charged to one budget of `limits`.
   /// @throws MeshIoError naming the file: not readable in slices (another format, ASCII PLY, a
   ///         list vertex property, a Fortran-order array) or a malformed header.
-  explicit VertexSliceReader(const std::filesystem::path& path);
+  explicit VertexSliceReader(const std::filesystem::path& path, const ReadLimits& limits = {});
   ~VertexSliceReader();
   VertexSliceReader(const VertexSliceReader&) = delete;
   VertexSliceReader& operator=(const VertexSliceReader&) = delete;
@@ -62,6 +64,7 @@ class VertexSliceReader {
   MeshData readCells() const;
 
  private:
+  Eigen::MatrixX3d readSlice(std::int64_t first, std::int64_t last) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
