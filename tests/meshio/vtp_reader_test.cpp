@@ -269,7 +269,8 @@ TEST(VtpReader, ChecksCellsAndPoints) {
   EXPECT_VTP_ERROR(vtp("", kTriangle, polys("0 1 2 0 1 2", "6 3"), "", "NumberOfPoints=\"3\" NumberOfPolys=\"2\""),
                    "polygon 1: offset 3 is before the previous 6");
   EXPECT_VTP_ERROR(vtp("", kTriangle, polys("0 1 2", "9223372036854775807"), "", oneTriangle),
-                   "DataArray \"connectivity\": 9223372036854775807 values needed, more than memory can hold");
+                   "test:8: Polys connectivity: 9223372036854775807 items of 8 bytes need 16.0 EiB; with what this read holds "
+                   "already (80 bytes) that is over the read limit of 4.0 GiB (--max-memory)");
   EXPECT_VTP_ERROR(vtp("", kTriangle, polys("0 x 2", "3"), "", oneTriangle), "value 1: expected a number, got 'x'");
   EXPECT_VTP_ERROR(vtp("", kTriangle, "", "", oneTriangle), "Piece: 1 polygon cells but no <Polys>");
   // Points: finite, three components, present.
