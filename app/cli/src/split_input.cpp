@@ -29,7 +29,7 @@ void chargeWholeFile(const fs::path& path, std::int64_t points, const meshio::Re
 
 SplitInput::SplitInput(const fs::path& path, const meshio::ReadLimits& limits, const BatchRanks& ranks) : path_(path) {
   std::unique_ptr<meshio::VertexSliceReader> reader;
-  onEveryRank(ranks, [&] { reader = std::make_unique<meshio::VertexSliceReader>(path); });
+  onEveryRank(ranks, [&] { reader = std::make_unique<meshio::VertexSliceReader>(path, limits); });
   normalsAndFaces_ = reader->hasNormalsAndFaces();
   if (const auto count = reader->vertexCount()) {
     // PLY, npy: fixed-size records, the count from the header (checked against the file's size).
