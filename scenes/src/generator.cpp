@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 
 #include "json_text.h"
 
@@ -132,6 +133,8 @@ MeshData GeneratorRegistry::generate(const std::string& name, const GeneratorPar
     throw GeneratorError("generator '" + name + "': " + e.what());
   } catch (const MeshIoError& e) {
     throw GeneratorError(e.what());
+  } catch (const std::bad_alloc&) {
+    throw GeneratorError("generator '" + name + "': out of memory while generating (a read charges its pointBound first)");
   } catch (const std::exception& e) {
     throw GeneratorError("generator '" + name + "': " + e.what());
   }

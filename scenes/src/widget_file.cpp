@@ -51,7 +51,7 @@ BindingId bindingId(const Json& j, const Location& at) {
 // Points per lattice axis, and grid indices along one: what a file may ask for before the budget
 // counts the whole lattice (WidgetModel keeps a lattice's flat point indices in int).
 constexpr int kMaxLatticeAxisCount = 1'000'000;
-constexpr std::uint64_t kMaxLatticePoints = std::numeric_limits<int>::max();
+constexpr std::uint64_t kMaxLatticePoints = 100'000'000;  // ffd::Lattice's own cap (ffd/src/lattice.cpp)
 constexpr int kMaxBasisDegree = 32;  // the B-spline evaluation's fixed-size tables (ffd/bspline_basis)
 
 // Three integers, each in [lo, hi].
