@@ -102,7 +102,8 @@ TEST(SceneFile, MeshPathsOutsideTheScenesFolderAreRefusedUnlessAllowed) {
       ADD_FAILURE() << "expected an error";
     } catch (const SceneFileError& e) {
       const std::string message = e.what();
-      EXPECT_NE(message.find("scene.json /objects/0/mesh/path: object 'm': mesh file '" + path + "' is outside the scene's folder"),
+      EXPECT_NE(message.find("scene.json /objects/0/mesh/path: object 'm': mesh file '" + path +
+                             "' is outside the folder of the file that names it"),
                 std::string::npos)
           << message;
     }
