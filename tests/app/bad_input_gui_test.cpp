@@ -9,6 +9,7 @@
 // File > Allow Files Outside a Scene's Folder.
 #include <QDialogButtonBox>
 #include <QFileDialog>
+#include <QFileSystemModel>
 #include <QLabel>
 #include <QLineEdit>
 #include <QMenu>
@@ -79,13 +80,25 @@ class Answerer : public QObject {
       ++shown_.fileDialogs;
       auto* name = dialog->findChild<QLineEdit*>("fileNameEdit");
       if (name == nullptr) return fail(dialog, "a file dialog without a name field");
+      // The dialog lists its folder in a thread and updates its name field as the rows arrive:
+      // type once they are all there, or what is typed may be overwritten.
+      auto* files = dialog->findChild<QFileSystemModel*>();
+      if (files == nullptr) return fail(dialog, "a file dialog without a file system model");
+      const QModelIndex folder = files->index(dialog->directory().absolutePath());
+      QTest::qWaitFor([&] { return dialog->isVisible() && !files->canFetchMore(folder) && files->rowCount(folder) > 0; }, 10000);
+      QTest::qWait(20);
       name->setFocus();
       name->selectAll();
       QTest::keyClicks(name, QString::fromStdString(path_.string()));
+      QWidget* popup = QApplication::activePopupWidget();
+      const QString popupName = popup ? popup->metaObject()->className() : QString("none");
+      auto* box = dialog->findChild<QDialogButtonBox*>("buttonBox");
+      const bool enabled = box && box->button(QDialogButtonBox::Open) && box->button(QDialogButtonBox::Open)->isEnabled();
       QTest::keyClick(name, Qt::Key_Return);
-      // The name field's completer may take the first Enter to close its list: a second one.
-      if (dialog->isVisible()) QTest::keyClick(name, Qt::Key_Return);
-      if (dialog->isVisible()) fail(dialog, "the file dialog did not take the typed path");
+      if (dialog->isVisible())
+        fail(dialog, "the file dialog did not take the typed path: field '" + name->text().toStdString() + "', popup " +
+                         popupName.toStdString() + ", open button " + (enabled ? "enabled" : "disabled") + ", focus " +
+                         (QApplication::focusWidget() ? QApplication::focusWidget()->objectName().toStdString() : "none"));
       return;
     }
     if (auto* box = qobject_cast<QMessageBox*>(modal)) {
