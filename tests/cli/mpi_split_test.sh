@@ -89,4 +89,12 @@ awk 'NR == 4000 { print "1 2 oops"; next } { print }' "$work/in.xyz" > "$work/ba
 single_error="$("$cli" "${deform[@]}" "$work/bad.xyz" -o "$work/x.xyz" 2>&1 || true)"
 [[ "$single_error" == *"bad.xyz:4000: point "*"expected a number, got 'oops'"* ]] || fail "one process said: $single_error"
 expect_failure bad.xyz "" "${single_error#ffdkit-cli deform: error: }"
-echo "mpi_split_test: 2 ranks write one .xyz, .npy and .ply file bit for bit as 1 process; bad files fail on every rank"
+# Over --max-points: every rank refuses the whole file before it reads a slice, as one process
+# refuses it, whatever the number of ranks.
+cp "$work/in.npy" "$work/big.npy"
+cp "$work/in.xyz" "$work/big.xyz"
+"$cli" "${deform[@]}" --max-points 5000 "$work/big.npy" -o "$work/x.npy" 2> /dev/null && fail "one process read big.npy over --max-points"
+deform+=(--max-points 5000)
+expect_failure big.npy "big.npy: vertices: 5003 points over the read limit of 5000 points (--max-points)" "big.npy"
+expect_failure big.xyz "big.xyz: vertices: 5003 points over the read limit of 5000 points (--max-points)" "big.xyz"
+echo "mpi_split_test: 2 ranks write one .xyz, .npy and .ply file bit for bit as 1 process; bad files and files over --max-points fail on every rank"
