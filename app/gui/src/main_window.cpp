@@ -21,6 +21,7 @@
 
 #include "keyboard_shortcuts.h"
 #include "main_window_impl.h"
+#include "read_preferences.h"
 
 namespace ffdkit::app {
 
@@ -314,7 +315,7 @@ void MainWindow::dropEvent(QDropEvent* event) {
     try {
       openAny(file);
     } catch (const std::exception& e) {
-      QMessageBox::critical(this, tr("Cannot open"), qs(e.what()));
+      QMessageBox::critical(this, tr("Cannot open"), qs(readErrorText(e.what())));
     }
   }
   event->acceptProposedAction();
