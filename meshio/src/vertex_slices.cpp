@@ -155,7 +155,8 @@ VertexSliceReader::TextPart VertexSliceReader::readXyzPart(int part, int parts) 
   if (d.format != MeshFormat::Xyz) throw std::logic_error(d.source + ": not an .xyz file");
   const std::uint64_t start = d.partStart(part, parts), end = std::max(start, d.partStart(part + 1, parts));
   TextPart result;
-  result.text = d.read(start, end - start);
+  // The part's bytes: a failed allocation is a MeshIoError too.
+  result.text = readingSlice(d.source, [&] { return d.read(start, end - start); });
   const detail::XyzCounts counts = detail::countXyz(result.text);
   result.lines = counts.lines;
   result.points = counts.points;
