@@ -333,6 +333,21 @@ TEST(HostileRound3, AReadSharesTheBudgetItIsGiven) {
   EXPECT_CONTAINS(error, "test:3: xyz points: 1 points; with the 5 this read holds already that is over the read limit of 5 points");
 }
 
+TEST(HostileRound3, SlicesReadAgainstTheReadersLimits) {
+  TempFolder dir;
+  const fs::path path = dir.path() / "triangle.ply";
+  writeMesh(path, triangleAt(1.0));
+  const VertexSliceReader reader(path, ReadLimits{std::uint64_t(4) << 30, 2});
+  EXPECT_EQ(reader.readVertices(0, 2).rows(), 2);
+  try {
+    reader.readVertices(2, 3);
+    ADD_FAILURE() << "read";
+  } catch (const MeshIoError& e) {
+    EXPECT_CONTAINS(e.what(), path.string() + ": vertices 2..3: 1 points; with the 2 this read holds already that is over the read "
+                                              "limit of 2 points (--max-points)");
+  }
+}
+
 // A failed allocation leaves a reader as its documented error. The child process gets an
 // address-space limit a little above what it uses, and a read whose budget allows far more:
 // the instanced glTF's 100M points (2.4 GB) cannot be allocated.
