@@ -392,7 +392,10 @@ with open(out_path, "w") as f:
 print("bench.sh: wrote %s" % out_path)
 
 if readme_path:
-    table = ["| operation | median | goal | peer |", "|---|---|---|---|"]
+    table = ["%s, %s cores, %s, commit %s%s:" % (
+        env["FFDKIT_BENCH_DATE"], env["FFDKIT_BENCH_CORES"], env["FFDKIT_BENCH_CPU"], env["FFDKIT_BENCH_COMMIT"].split()[0],
+        "; the machine was busy with other work, so these are slower than on an idle one" if busy else ""), "",
+        "| operation | median | goal | peer |", "|---|---|---|---|"]
     for r in rows:
         if r["readme"]:
             med = fmt(statistics.median(r["samples"])) if r["samples"] else r["note"]
