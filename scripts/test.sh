@@ -3,7 +3,9 @@
 # CTest under Xvfb. Then the sanitizer stage (FFDKIT_SANITIZE_STAGE=0 skips it): the core
 # libraries and the CLI built again with ASan + UBSan at -O1 (build-sanitize/, no Qt window, no
 # Python module, no benchmarks) and every `core` test run under them: unit, CLI and file tests,
-# and every fuzz target over its corpus and saved crash inputs. Prints CTest's summaries; exits
+# and every fuzz target over its corpus and saved crash inputs. Then the app's sanitizer stage
+# (FFDKIT_SANITIZE_APP_STAGE=0 skips it): the window built with ASan + UBSan (build-sanitize-app/)
+# and the monkey test's random GUI actions run under them. Prints CTest's summaries; exits
 # non-zero on any failure or sanitizer report.
 #   scripts/test.sh [extra ctest arguments, e.g. -L core]
 set -euo pipefail
@@ -42,4 +44,23 @@ if [ "${FFDKIT_SANITIZE_STAGE:-1}" = "1" ]; then
   UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1" \
     ctest --test-dir "$sanitize" --output-on-failure --parallel "$jobs" --timeout 900 -L core
   echo "sanitizer stage: build $((built - stage_start)) s, tests $(($(date +%s) - built)) s"
+fi
+
+# The window under the sanitizers (FFDKIT_SANITIZE_APP_STAGE=0 skips it): the app's libraries and
+# the monkey test built with ASan + UBSan at -O1 in build-sanitize-app/, then
+# FFDKIT_SANITIZE_MONKEY_ACTIONS (default 1000) seeded random GUI actions with real events under
+# Xvfb (tests/app/monkey_gui_test.cpp). Leaks are not checked (Qt, VTK and Mesa keep
+# process-lifetime singletons); any ASan error or UBSan report fails. Cost: docs/robustness.md.
+if [ "${FFDKIT_SANITIZE_APP_STAGE:-1}" = "1" ]; then
+  sanitize_app="${FFDKIT_SANITIZE_APP_BUILD_DIR:-$root/build-sanitize-app}"
+  stage_start=$(date +%s)
+  FFDKIT_BUILD_DIR="$sanitize_app" "$root/scripts/build.sh" --target monkey_gui_test -DFFDKIT_SANITIZE=ON \
+    -DFFDKIT_BUILD_BENCH=OFF -DFFDKIT_BUILD_PYTHON=OFF "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG"
+  built=$(date +%s)
+  # The binary itself, not through CTest: its 300 s test timeout is the release build's.
+  ASAN_OPTIONS="halt_on_error=1:detect_leaks=0" \
+  UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1" \
+  FFDKIT_MONKEY_ACTIONS="${FFDKIT_SANITIZE_MONKEY_ACTIONS:-1000}" \
+    xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$sanitize_app/tests/app/monkey_gui_test"
+  echo "sanitizer app stage: build $((built - stage_start)) s, monkey test $(($(date +%s) - built)) s"
 fi
