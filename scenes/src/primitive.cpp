@@ -165,6 +165,14 @@ PrimitiveSize primitiveSize(const PrimitiveOptions& options) {
   return size;
 }
 
+void chargePrimitive(meshio::ReadBudget& budget, const PrimitiveOptions& options) {
+  const PrimitiveSize size = primitiveSize(options);
+  const std::string what =
+      "primitive " + std::string(primitiveKindName(options.kind)) + " at resolution " + std::to_string(options.resolution);
+  budget.chargePoints(size.vertices, what + ": up to " + std::to_string(size.vertices) + " vertices");
+  budget.chargeBytes(size.triangles, 3 * sizeof(int), what + ": its triangles");
+}
+
 geometry::TriangleMesh makePrimitive(const PrimitiveOptions& options) {
   const int n = options.resolution;
   if (n < 3) {

@@ -186,15 +186,13 @@ MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path
   const GeneratorRegistry& generators = options.generators != nullptr ? *options.generators : builtinGenerators();
   return std::visit(
       Overloaded{[&](const PrimitiveOptions& primitive) {
-                   const PrimitiveSize size = primitiveSize(primitive);
-                   const std::string what = "primitive " + std::string(primitiveKindName(primitive.kind)) + " at resolution " +
-                                            std::to_string(primitive.resolution);
-                   budget.chargePoints(size.vertices, what + ": up to " + std::to_string(size.vertices) + " vertices");
-                   budget.chargeBytes(size.triangles, 3 * sizeof(int), what + ": its triangles");
+                   chargePrimitive(budget, primitive);
                    // The welding storage lives only while the primitive is built.
+                   const PrimitiveSize size = primitiveSize(primitive);
                    const std::uint64_t building = size.vertices * kPrimitiveWeldBytesPerVertex +
                                                   size.triangles * kPrimitiveBuildBytesPerTriangle;
-                   budget.chargeBytes(1, building, what + ": welding its seams");
+                   budget.chargeBytes(1, building,
+                                      "primitive " + std::string(primitiveKindName(primitive.kind)) + ": welding its seams");
                    const geometry::TriangleMesh mesh = makePrimitive(primitive);
                    budget.releaseBytes(building);
                    return MeshData{mesh.vertices, mesh.triangles, {}, false};

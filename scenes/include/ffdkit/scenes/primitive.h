@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "ffdkit/geometry/tessellation.h"
+#include "ffdkit/meshio/read_limits.h"
 
 namespace ffdkit::scenes {
 
@@ -37,6 +38,11 @@ struct PrimitiveSize {
   std::uint64_t triangles = 0;
 };
 PrimitiveSize primitiveSize(const PrimitiveOptions& options);
+
+/// Charges what makePrimitive keeps (primitiveSize: its vertices as points, its triangles) to
+/// `budget`, before it is built. @throws meshio::ReadLimitError naming the primitive:
+/// "primitive sphere at resolution 4096: up to 8394753 vertices: ... (--max-points)".
+void chargePrimitive(meshio::ReadBudget& budget, const PrimitiveOptions& options);
 
 /// Bytes makePrimitive holds per vertex while it welds (its lookup map's node and the point
 /// beside it) and per triangle (its list before the mesh), freed when it returns.

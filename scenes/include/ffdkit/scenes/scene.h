@@ -220,7 +220,7 @@ struct ObjectMeshOptions {
   /// nullptr: a budget of the default ReadLimits for this object alone.
   meshio::ReadBudget* budget = nullptr;
   /// The rule for a mesh file's path (relative to `baseDirectory`) and the files it names.
-  meshio::PathConfinement confinement;
+  meshio::PathConfinement confinement{};
 };
 
 /// buildObjectMesh against a budget and the confinement rule.

@@ -34,10 +34,10 @@ struct SceneReadOptions {
   /// name in turn): by default a path that leads outside `baseDirectory` (absolute, "..", or
   /// through a symbolic link) is an error, so a shared scene cannot make a batch job read other
   /// files (meshio/path_confinement.h).
-  meshio::PathConfinement confinement;
+  meshio::PathConfinement confinement{};
   /// The budget of the whole scene: every mesh file, primitive, generator and lattice together
   /// (meshio/read_limits.h). Over it, a SceneFileError names the object and what.
-  meshio::ReadLimits limits;
+  meshio::ReadLimits limits{};
 };
 
 /// Reads a scene from JSON text; builds every object's points (primitives, mesh files,

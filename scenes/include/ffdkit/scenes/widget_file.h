@@ -33,7 +33,7 @@ widgets::WidgetModel readWidgetFile(const std::filesystem::path& path);
 /// How a widget file is read: its budget (lattice control points, cells, widgets, bindings are
 /// charged before they are built; over it, a WidgetFileError says which lattice or list).
 struct WidgetReadOptions {
-  meshio::ReadLimits limits;             ///< the read's limits when `budget` is null
+  meshio::ReadLimits limits{};           ///< the read's limits when `budget` is null
   meshio::ReadBudget* budget = nullptr;  ///< a budget shared with an enclosing read (a scene's)
 };
 widgets::WidgetModel readWidgetFile(std::istream& in, const std::string& sourceName, const WidgetReadOptions& options);
