@@ -98,6 +98,25 @@ TEST(CliReadLimits, MaxMemoryOneKibibyteRefusesAHundredPoints) {
   EXPECT_FALSE(fs::exists(dir / "out.xyz"));
 }
 
+// plot samples a generated curve again (at --density): its points count against the limit before
+// anything is sampled or drawn (so no display is needed to see the refusal).
+TEST(CliReadLimits, APlotOverMaxPointsIsRefusedBeforeItSamples) {
+  TempDir dir;
+  const std::string scene = (kSource / "scenes" / "examples" / "qi-interpolate").string();
+  const std::string png = (dir / "plot.png").string();
+  const CliResult dense = runCli({"plot", scene, "--object", "qi-curve", "--density", "64", "--max-points", "1000", "-o", png});
+  EXPECT_EQ(dense.exitCode, 1) << describe(dense);
+  EXPECT_TRUE(contains(dense.err, "qi-interpolate: object 'qi-curve': generator 'qi-interpolate': ")) << describe(dense);
+  EXPECT_TRUE(contains(dense.err, "over the read limit of 1000 points (--max-points)")) << describe(dense);
+  std::ofstream(dir / "parameters.json") << R"({"points": [[0, 3, 0], [1, 2.8, 0.3], [1.8, 2.2, 0.9], [2.2, 1.3, 1.2]]})";
+  const CliResult generator =
+      runCli({"plot", "--generator", "qi-interpolate", (dir / "parameters.json").string(), "--max-points", "100", "-o", png});
+  EXPECT_EQ(generator.exitCode, 1) << describe(generator);
+  EXPECT_TRUE(contains(generator.err, "parameters.json: generator 'qi-interpolate': ")) << describe(generator);
+  EXPECT_TRUE(contains(generator.err, "over the read limit of 100 points (--max-points)")) << describe(generator);
+  EXPECT_FALSE(fs::exists(png));
+}
+
 // The scene in shared/ names ../tool.json; the tool holds a name that must not reach a message.
 TEST(CliConfinement, ASceneWhoseWidgetFileIsOutsideIsRefusedAndAllowOutsideReadsIt) {
   TempDir dir;

@@ -2,6 +2,7 @@
 #include "commands.h"
 #include "console.h"
 #include "ffdkit/app/curve_plot.h"
+#include "ffdkit/scenes/generator.h"
 #include "ffdkit/scenes/scene_file.h"
 
 namespace ffdkit::cli {
@@ -9,6 +10,26 @@ namespace ffdkit::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+/// The profile of `name` at `density`, its points charged first to a budget of the read options'
+/// limits as a scene's generated object is (--density can ask for more than the scene did).
+/// @throws std::runtime_error naming `source` and the limit when its bound is over them.
+scenes::CurvatureProfile boundedProfile(const scenes::GeneratorRegistry& registry, const std::string& name,
+                                        const scenes::GeneratorParameters& parameters, double density,
+                                        const ReadSettings& read, const std::string& source) {
+  const scenes::Generator& generator = registry.get(name);
+  if (generator.pointBound) {
+    meshio::ReadBudget budget(read.limits);
+    const std::uint64_t points = generator.pointBound(parameters, density);
+    try {
+      budget.chargePoints(points, "generator '" + name + "'");
+      budget.chargeBytes(points, scenes::kGeneratedBytesPerPoint, "generator '" + name + "' samples");
+    } catch (const meshio::ReadLimitError& e) {
+      throw std::runtime_error(source + ": " + e.what());
+    }
+  }
+  return registry.profile(name, parameters, density);
+}
 
 int runPlot(const Args& args) {
   Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
@@ -21,6 +42,7 @@ int runPlot(const Args& args) {
   const auto generator = args.value("generator");
   const auto object = args.value("object");
   const auto& registry = scenes::builtinGenerators();
+  const ReadSettings read = readSettings(args);
 
   scenes::CurvatureProfile profile;
   if (generator) {
@@ -29,12 +51,12 @@ int runPlot(const Args& args) {
     console.begin("read", "reading " + args.positional()[0]);
     const scenes::GeneratorParameters parameters = scenes::readGeneratorParameters(fs::path(args.positional()[0]));
     console.begin("profile", "sampling " + *generator);
-    profile = registry.profile(*generator, parameters, density);
+    profile = boundedProfile(registry, *generator, parameters, density, read, args.positional()[0]);
     options.title = *generator;
   } else {
     if (!object || args.positional().size() != 1) throw UsageError("plot takes a SCENE and --object NAME (or --generator)");
     console.begin("read", "reading " + args.positional()[0]);
-    const scenes::Scene scene = readSceneFile(fs::path(args.positional()[0]), readSettings(args));
+    const scenes::Scene scene = readSceneFile(fs::path(args.positional()[0]), read);
     const scenes::SceneObject* found = scene.findObject(*object);
     if (!found) {
       std::string known;
@@ -49,7 +71,8 @@ int runPlot(const Args& args) {
                                ", not a generated curve: only curve generators have a curvature profile");
     console.begin("profile", "sampling " + generated->generator);
     if (!args.value("density")) density = generated->density;
-    profile = registry.profile(generated->generator, generated->parameters, density);
+    profile = boundedProfile(registry, generated->generator, generated->parameters, density, read,
+                             args.positional()[0] + ": object '" + *object + "'");
     options.title = *object + " (" + generated->generator + ")";
   }
   if (auto title = args.value("title")) options.title = *title;
