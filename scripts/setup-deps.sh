@@ -16,7 +16,7 @@ packages=(
   libvtk9-dev
   qt6-base-dev libqt6opengl6-dev
   libgl1-mesa-dev libgl1-mesa-dri libglx-mesa0 libegl-mesa0 mesa-utils
-  xvfb xauth
+  xvfb xauth libxcb1-dev
   python3
   pybind11-dev python3-dev python3-numpy python3-pytest
 )

@@ -123,7 +123,11 @@ bool MainWindow::saveInteractively(bool askForPath) {
     saveScene(path);
     return true;
   } catch (const std::exception& e) {
-    QMessageBox::critical(this, tr("Save Scene"), qs(e.what()));
+    // A scene is written beside its file and renamed over it only when whole (writeScene): a
+    // failure (a full disk, too) leaves the file as it was.
+    QMessageBox::critical(this, tr("Save Scene"),
+                          tr("%1\n\nThe scene was not saved: the file on disk is as it was, and the edits are "
+                             "still open.").arg(qs(e.what())));
     return false;
   }
 }
