@@ -148,7 +148,7 @@ void MainWindow::createMenus(QDockWidget* outlinerDock, QDockWidget* propertiesD
     startAutosaveTimer();
   });
 
-  // The thesis operations (seed 001 §6.4).
+  // The thesis operations (Kuriyama 1996, sec. 6.4).
   QMenu* widgetsMenu = menuBar()->addMenu(tr("&Widgets"));
   QAction* newLattice = action(widgetsMenu, tr("New &Lattice..."), "actionNewLattice", [this] {
     QDialog dialog(this);
@@ -233,7 +233,7 @@ void MainWindow::createMenus(QDockWidget* outlinerDock, QDockWidget* propertiesD
   action(widgetsMenu, tr("&Detach Lattice from Object"), "actionDetach", [this, selectedLattice, selectedObject] {
     impl_->controller->detachLattice(selectedLattice(), selectedObject());
   });
-  // Direct manipulation (spec §10): a mode, because a drag on an object otherwise orbits.
+  // Direct manipulation (Hsu, Hughes & Kaufman 1992): a mode, because a drag on an object otherwise orbits.
   d.directManipulation = action(widgetsMenu, tr("&Direct Manipulation"), "actionDirectManipulation", [this] {
     impl_->status->say(impl_->directManipulation->isChecked()
                            ? tr("Direct manipulation: drag a point of an object; its lattice follows")
