@@ -19,7 +19,7 @@ struct CellFromSelection {
 };
 
 /// The cell of kind `kind` whose points are exactly `indices` (flat grid indices of a lattice of
-/// `counts` points per axis; any order, no duplicates), spec §3 / seed 001 l.2258:
+/// `counts` points per axis; any order, no duplicates), Kuriyama 1996, sec. 6.2.1:
 /// - Point: one point. Edge: two neighbours along one axis (grid indices differ by 1 in one
 ///   index only). Face: the 4 corners of one grid quad (two axes span one step each, the third
 ///   is constant). Slab: every point of one index plane. Box: the 8 corners of one grid
@@ -39,7 +39,7 @@ std::optional<widgets::CellSpec> classifySelection(const Eigen::Vector3i& counts
 
 /// Why a new affine widget of `kind` (at its default placement, the cell's centre) would do
 /// nothing on a cell of `cellKind`, or nullopt if it acts: a rotate or scale widget on a point
-/// cell turns or sizes the point about itself, which moves nothing (seed 001 l.2280 gives point
+/// cell turns or sizes the point about itself, which moves nothing (Kuriyama 1996, sec. 6.2.2 gives point
 /// cells the mask {T}). Adding one is refused with this reason rather than left a silent no-op.
 std::optional<std::string> affineRefusal(widgets::AffineKind kind, widgets::CellKind cellKind);
 
