@@ -19,7 +19,7 @@
 
 namespace ffdkit::app {
 
-/// Options of InteractionController::newLattice (seed 001 l.2389): counts and bases per axis,
+/// Options of InteractionController::newLattice (Kuriyama 1996, sec. 6.4): counts and bases per axis,
 /// box (unit box at the origin) or cylindrical (EFFD, axes radius / angle / height).
 struct NewLatticeOptions {
   Eigen::Vector3i counts = Eigen::Vector3i::Constant(3);
@@ -72,7 +72,7 @@ class InteractionController {
   bool setDragValue(double value);
   void release();
 
-  /// Direct manipulation (spec §10; Hsu, Hughes & Kaufman 1992): grabs the point of a deformed
+  /// Direct manipulation (Hsu, Hughes & Kaufman 1992): grabs the point of a deformed
   /// object under the ray (the nearest vertex of the first triangle hit; for curves and point
   /// clouds the nearest vertex within `tolerance`) and begins dragging it in the plane through
   /// it facing the ray. Each drag() gives the lattice that moves that point the least-norm
@@ -113,7 +113,7 @@ class InteractionController {
   void clearSelection();
   std::optional<widgets::WidgetId> hovered() const { return hovered_; }
 
-  // ---- transformer manipulator (seed 001 l.2264) -------------------------------------------
+  // ---- transformer manipulator (Kuriyama 1996, sec. 6.2.1) --------------------------------
   /// The manipulator of the selection: shown when exactly one affine widget or lattice widget is
   /// selected; at the widget's frame (an affine widget, 2.5 glyph sizes, uniform size handles)
   /// or at the lattice's centre along its axes (size handles per axis). Its drags set an affine
@@ -162,7 +162,7 @@ class InteractionController {
   void setGlyph(widgets::WidgetId affine, const widgets::Glyph& glyph);
   /// Makes an affine widget a translate / rotate / scale widget (its variation restarts at 0).
   void setAffineKind(widgets::WidgetId affine, widgets::AffineKind kind);
-  /// One-way: only the binding's `from` end drives its `to` end (spec §5).
+  /// One-way: only the binding's `from` end drives its `to` end (Kuriyama 1996, sec. 6.2.2).
   void setOneWay(widgets::BindingId binding, bool oneWay);
   void setMask(widgets::BindingId binding, widgets::AffineMask mask);
   void setRule(widgets::BindingId binding, const widgets::ConversionRule& rule);
