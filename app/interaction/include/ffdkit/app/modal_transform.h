@@ -57,7 +57,7 @@ struct SnapSteps {
 
 /// The maths of one modal transform (G / R / S): the world motion of a selection about a pivot
 /// from the pointer ray, an axis constraint, a typed value and snapping. Computed from the start
-/// ray each time (no drift; spec §4's rule for gestures).
+/// ray each time (no drift; the rule for gestures of widget-model.md).
 /// - Move: free, in the view plane through the pivot; along an axis, by the closest point of the
 ///   axis line to the ray; in a plane (excluded axis), by the ray's hit of that plane. Typed:
 ///   one number moves along the constraint axis (x when free), "a,b,c" by that vector.
