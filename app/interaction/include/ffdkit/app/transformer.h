@@ -9,7 +9,7 @@
 
 namespace ffdkit::app {
 
-/// The handles of a transformer manipulator (seed 001 l.2264: the user sets an affine widget's
+/// The handles of a transformer manipulator (Kuriyama 1996, sec. 6.2.1: the user sets an affine widget's
 /// placement, or a lattice widget's frame, with a transformer). Move along an axis, turn about
 /// an axis, size along an axis (a lattice) or uniformly (an affine widget: any size handle).
 enum class TransformerHandle { MoveX, MoveY, MoveZ, TurnX, TurnY, TurnZ, SizeX, SizeY, SizeZ };
@@ -47,7 +47,7 @@ std::optional<TransformerHandle> pickTransformer(const Transformer& transformer,
                                                  double tolerance);
 
 /// One drag of one handle: the world motion since the press, computed from the press state
-/// only (no drift; spec §4's rule for gestures, applied to the manipulator).
+/// only (no drift; the rule for gestures, applied to the manipulator).
 /// - Move: along the axis line, by the change of the closest point to the ray.
 /// - Turn: about the axis through the origin, by the unwrapped angle of the ray's hit in the
 ///   plane normal to the axis (several turns accumulate).
