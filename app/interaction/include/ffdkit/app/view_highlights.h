@@ -21,7 +21,7 @@ struct LatticePointRef {
 struct ViewHighlights {
   std::optional<widgets::WidgetId> hovered;
   std::vector<widgets::WidgetId> selected;
-  std::vector<widgets::WidgetId> visited;  ///< widgets the active gesture moves (spec §5)
+  std::vector<widgets::WidgetId> visited;  ///< widgets the active gesture moves (its bindings)
   std::optional<LatticePointRef> point;    ///< a picked lattice point
   std::vector<LatticePointRef> selectedPoints;  ///< a lattice's edit mode: its selected points
   std::optional<Transformer> transformer;  ///< the manipulator of the selection, if shown
