@@ -1,4 +1,4 @@
-// The interaction controller, direct manipulation (spec §10): a drag on a point of an object
+// The interaction controller, direct manipulation (Hsu, Hughes & Kaufman 1992): a drag on a point of an object
 // moves its lattice by the least-norm change (HHK 1992), with pinned points held.
 #include "ffdkit/app/interaction_controller.h"
 
