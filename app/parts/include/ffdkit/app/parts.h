@@ -9,7 +9,7 @@
 
 namespace ffdkit::app {
 
-/// The parts library (seed 001 l.2421): shapes that replace an affine widget's default glyph
+/// The parts library (Kuriyama 1996, sec. 6.4): shapes that replace an affine widget's default glyph
 /// (Glyph::shape names a part). Each part is built procedurally from primitives, fits the
 /// box [-0.5, 0.5]^3 before the glyph's size scales it, and has its handle axis along +x
 /// (translate, lever) or its turning axis along +z (crank, screw, wheel), like the glyphs.
