@@ -10,7 +10,7 @@ namespace ffdkit::scenes {
 /// invertible and whose embedding is well posed.
 inline constexpr double kMinimumLatticeThickness = 1e-3;
 
-/// The box a lattice fitted to `bounds` spans (spec §7 "attach"; the GUI's Attach, scenes::
+/// The box a lattice fitted to `bounds` spans (Kuriyama 1996, sec. 6.4, "attach"; the GUI's Attach, scenes::
 /// attachNewLattice and ffdkit-cli deform --fit): `bounds` grown by padding x its diagonal on
 /// every side, then each axis widened about its centre to at least kMinimumLatticeThickness x the
 /// diagonal. @throws std::invalid_argument for an empty box or a negative / non-finite padding.
