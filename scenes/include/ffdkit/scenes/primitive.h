@@ -11,7 +11,7 @@
 
 namespace ffdkit::scenes {
 
-/// Primitives for trying a widget out (seed 001 l.2417).
+/// Primitives for trying a widget out (Kuriyama 1996, sec. 6.4).
 enum class PrimitiveKind { Sphere, Cylinder, Cube, Cone, Torus, Plane };
 
 /// Stable lower-case name used in files and the UI ("sphere", "cylinder", ...).
