@@ -18,7 +18,7 @@
 
 namespace ffdkit::scenes {
 
-/// An object read from a mesh or point file (seed 001 l.2385).
+/// An object read from a mesh or point file (Kuriyama 1996, sec. 6.4).
 struct MeshFileSource {
   std::string path;  ///< as written in the scene file: relative to the scene file's folder, or absolute
   /// The file's up axis: a Y-up file's points are turned to Z-up as they are read (up_axis.h).
@@ -37,7 +37,7 @@ struct GeneratedSource {
 using ObjectSource = std::variant<PrimitiveOptions, MeshFileSource, GeneratedSource>;
 
 /// How a surface is drawn: shaded in its colour, or with zebra (reflection-line) stripes that
-/// show the smoothness of the deformed surface (seed 001 l.1721).
+/// show the smoothness of the deformed surface (Kuriyama 1996, sec. 5.1).
 enum class SurfaceStyle { Shaded, Zebra };
 
 /// How a curve is drawn: a shaded tube around the polyline, or the polyline itself as unlit
@@ -83,7 +83,7 @@ struct SceneObject {
 };
 
 /// A root lattice widget (with its whole subtree of child lattices) deforming some objects:
-/// for each object the lattices run in pre-order (spec §6, seed 001 l.2375). The lattice is held
+/// for each object the lattices run in pre-order (Kuriyama 1996, secs. 6.2.3, 6.3.2). The lattice is held
 /// by its id, which a rename keeps (the scene file writes its name, scene-file-format.md).
 struct Attachment {
   widgets::WidgetId lattice;         ///< a ROOT lattice widget of the scene's model
@@ -165,7 +165,7 @@ class Scene {
   void dropStaleAttachments();
   /// Root lattices deforming `object`, in attachment order.
   std::vector<widgets::WidgetId> latticesDeforming(const std::string& object) const;
-  /// Every lattice deforming `object` in the order its pipeline runs them (spec §6): each attached
+  /// Every lattice deforming `object` in the order its pipeline runs them (Kuriyama 1996, sec. 6.2.3): each attached
   /// root in attachment order followed by its subtree (WidgetModel::pipelineOrder(root)).
   std::vector<widgets::WidgetId> stagesDeforming(const std::string& object) const;
 
@@ -237,7 +237,7 @@ struct AttachOptions {
   double padding = 0.05;
 };
 
-/// Attach (spec §7): adds a root lattice whose frame maps the local unit box onto the
+/// Attach (Kuriyama 1996, sec. 6.4): adds a root lattice whose frame maps the local unit box onto the
 /// bounding box of the named objects (fittedLatticeFrame, lattice_fit.h: padded; a flat or
 /// degenerate box gets the minimum thickness), and attaches it to them.
 /// @return the new lattice. @throws std::invalid_argument for unknown objects or no points.
