@@ -47,8 +47,8 @@ struct GestureMotion {
 /// runs the call, about every ffd::kEmbedProgressChunk embedded points. Return false to cancel.
 using SceneProgress = std::function<bool(double fraction)>;
 
-/// Evaluates a scene: for each object, its attached lattice trees in pre-order (spec §6,
-/// seed 001 l.2373-2377), on the FFD engine's pipeline. Precompute apart from per-frame work:
+/// Evaluates a scene: for each object, its attached lattice trees in pre-order (Kuriyama
+/// 1996, secs. 6.2.3, 6.3.2), on the FFD engine's pipeline. Precompute apart from per-frame work:
 /// embeddings are built on the first update and again only when a lattice's rest shape or
 /// frame moves; an edit of control points is an incremental update.
 ///
