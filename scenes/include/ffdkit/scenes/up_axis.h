@@ -9,7 +9,7 @@
 namespace ffdkit::scenes {
 
 /// The up axis a mesh file was written with. ffdkit's world is Z-up; OBJ files from many
-/// modellers and every glTF file (glTF 2.0 spec §3.4: "+Y up, +Z forward") are Y-up.
+/// modellers and every glTF file (the glTF 2.0 specification, sec. 3.4: "+Y up, +Z forward") are Y-up.
 enum class UpAxis { Z, Y };
 
 /// "z" / "y" (the scene file's `up` key).
