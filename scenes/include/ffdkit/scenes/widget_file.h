@@ -11,7 +11,7 @@
 namespace ffdkit::scenes {
 
 /// The widget file format this build reads and writes (docs/widget-file-format.md): a whole
-/// reusable deformation tool (spec §8, seed 001 l.2381, l.2425): lattice tree, bases, rest
+/// reusable deformation tool (Kuriyama 1996, secs. 6.3.3, 6.4): lattice tree, bases, rest
 /// shape, current control points, cells, affine widgets, bindings, outside and re-embed policy.
 inline constexpr int kWidgetFileVersion = 1;
 
