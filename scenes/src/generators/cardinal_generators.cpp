@@ -1,5 +1,5 @@
 // s-spline-curve, sigma-spline-curve, s-spline-surface, sigma-spline-surface, spline-blend:
-// the cardinal splines of seed 001 chapter 3 (docs/geometry-cardinal.md) as scene generators.
+// the cardinal splines of Kuriyama 1996, ch. 3 (docs/geometry-cardinal.md) as scene generators.
 #include "ffdkit/geometry/cardinal/generators.h"
 #include "generator_support.h"
 
@@ -179,7 +179,7 @@ std::vector<std::string> concat(std::vector<std::string> a, const std::vector<st
 void addCardinalGenerators(GeneratorRegistry& registry) {
   registry.add({
       .name = "s-spline-curve",
-      .summary = "interpolating S-spline curve with tension (seed 001 ch. 3, eq. 3.9)",
+      .summary = "interpolating S-spline curve with tension (Kuriyama 1996, eq. (3.9))",
       .parameterNames = {"points", "beta2", "half-width", "end", "start-tangent", "end-tangent", "degree", "clipped",
                          "samples-per-span"},
       .generate = [](const GeneratorParameters& p,
@@ -190,7 +190,7 @@ void addCardinalGenerators(GeneratorRegistry& registry) {
   });
   registry.add({
       .name = "sigma-spline-curve",
-      .summary = "interpolating sigma-spline curve on arbitrary knots with per-knot tension (seed 001 ch. 3)",
+      .summary = "interpolating sigma-spline curve on arbitrary knots with per-knot tension (Kuriyama 1996, ch. 3)",
       .parameterNames = {"points", "knots", "spacing", "beta2", "closed", "shape", "start-slope", "end-slope",
                          "samples-per-span"},
       .generate = [](const GeneratorParameters& p,
@@ -201,7 +201,7 @@ void addCardinalGenerators(GeneratorRegistry& registry) {
   });
   registry.add({
       .name = "s-spline-surface",
-      .summary = "tensor-product S-spline surface interpolating a point grid (seed 001 eq. 3.11)",
+      .summary = "tensor-product S-spline surface interpolating a point grid (Kuriyama 1996, eq. (3.11))",
       .parameterNames = {"points", "columns", "beta2-u", "beta2-v", "half-width-u", "half-width-v", "degree-u", "degree-v",
                          "closed-u", "closed-v", "samples-per-span-u", "samples-per-span-v"},
       .generate = [](const GeneratorParameters& p,
@@ -211,7 +211,7 @@ void addCardinalGenerators(GeneratorRegistry& registry) {
   });
   registry.add({
       .name = "sigma-spline-surface",
-      .summary = "tensor-product sigma-spline surface interpolating a point grid (seed 001 ch. 3)",
+      .summary = "tensor-product sigma-spline surface interpolating a point grid (Kuriyama 1996, ch. 3)",
       .parameterNames = concat(kSigmaSurfaceNames, {"samples-per-span-u", "samples-per-span-v"}),
       .generate =
           [](const GeneratorParameters& p, double density) {
@@ -222,7 +222,7 @@ void addCardinalGenerators(GeneratorRegistry& registry) {
   });
   registry.add({
       .name = "spline-blend",
-      .summary = "two sigma-spline surfaces joined by a C2 blend across v (seed 001 Fig. 3-18)",
+      .summary = "two sigma-spline surfaces joined by a C2 blend across v (Kuriyama 1996, Fig. 3-18)",
       .parameterNames = concat(concat(withPrefix("first-", kSigmaSurfaceNames), withPrefix("second-", kSigmaSurfaceNames)),
                                {"gap-before", "gap-after", "junction-beta2", "part", "samples-per-span-u",
                                 "samples-per-span-v"}),
