@@ -1,4 +1,4 @@
-// curve-network-surface: the surface interpolating a network of curves of seed 001 chapter 5
+// curve-network-surface: the surface interpolating a network of curves of Kuriyama 1996, ch. 5
 // (docs/geometry-curvenet.md) as a scene generator.
 #include "ffdkit/geometry/curvenet/curve_network_surface.h"
 #include "ffdkit/geometry/curvenet/example_networks.h"
@@ -93,7 +93,7 @@ std::uint64_t pointBound(const GeneratorParameters& p, double density) {
 void addCurvenetGenerators(GeneratorRegistry& registry) {
   registry.add({
       .name = "curve-network-surface",
-      .summary = "surface interpolating a network of curves by multi-sided sweep patches (seed 001 ch. 5)",
+      .summary = "surface interpolating a network of curves by multi-sided sweep patches (Kuriyama 1996, ch. 5)",
       .parameterNames = {"network", "points", "curve-sizes", "closed-curves", "intersection-tolerance",
                          "minimum-crossing-angle", "straight-angle", "orientation-hint", "fill-open-regions",
                          "blending-exponent", "fairing", "pitch"},
