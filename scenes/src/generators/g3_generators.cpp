@@ -1,4 +1,4 @@
-// g3-curve: the G3 curve of seed 002 (quadratic curvature, optional clothoid approximation;
+// g3-curve: the G3 curve of Kuroda et al. 1997 (quadratic curvature, optional clothoid approximation;
 // docs/geometry-g3.md) as a scene generator.
 #include <cmath>
 
@@ -96,7 +96,7 @@ CurvatureProfile profile(const GeneratorParameters& p, double density) {
 void addG3Generators(GeneratorRegistry& registry) {
   registry.add({
       .name = "g3-curve",
-      .summary = "planar G3 curve with piecewise quadratic curvature through points, or its clothoid approximation (seed 002)",
+      .summary = "planar G3 curve with piecewise quadratic curvature through points, or its clothoid approximation (Kuroda et al. 1997)",
       .parameterNames = {"points", "natural-ends", "tangent-angles", "curvatures", "radii-of-curvature", "clothoid-spans",
                          "circular-arc-spans", "total-length", "span-lengths", "clothoid-levels", "z",
                          "allow-overdetermined", "max-iterations", "samples-per-span"},
