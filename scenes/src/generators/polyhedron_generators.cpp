@@ -1,4 +1,4 @@
-// polyhedron-surface: the G1 triangular-patch surface over a polyhedron of seed 001 chapter 4
+// polyhedron-surface: the G1 triangular-patch surface over a polyhedron of Kuriyama 1996, ch. 4
 // (docs/geometry-polyhedron.md) as a scene generator.
 #include "ffdkit/geometry/polyhedron/builtin_meshes.h"
 #include "ffdkit/geometry/polyhedron/polyhedron_surface_generator.h"
@@ -121,7 +121,7 @@ std::uint64_t pointBound(const GeneratorParameters& p, double density) {
 void addPolyhedronGenerators(GeneratorRegistry& registry) {
   registry.add({
       .name = "polyhedron-surface",
-      .summary = "G1 surface of triangular patches over a polyhedron's curve network, with tensions (seed 001 ch. 4)",
+      .summary = "G1 surface of triangular patches over a polyhedron's curve network, with tensions (Kuriyama 1996, ch. 4)",
       .parameterNames = {"builtin-mesh", "resolution", "vertices", "faces", "default-alpha", "default-beta",
                          "vertex-alpha", "edge-beta", "split-rule", "g1-scalars", "samples-per-patch-side"},
       .generate =
