@@ -1,4 +1,4 @@
-// qi-interpolate, qi-fit, sphere-tangent: the quaternion curves of seeds 000, 003, 004
+// qi-interpolate, qi-fit, sphere-tangent: the quaternion curves of Miura 1998, Sakiyama et al. 2001 and the sphere-tangent report
 // (docs/geometry-quaternion.md) as scene generators.
 #include "ffdkit/geometry/quaternion/curve_generators.h"
 #include "generator_support.h"
@@ -102,7 +102,7 @@ q::SphereTangentParams sphereTangentParams(const GeneratorParameters& p) {
 void addQuaternionGenerators(GeneratorRegistry& registry) {
   registry.add({
       .name = "qi-interpolate",
-      .summary = "G2 curve through points by quadratic quaternion-integral segments (seed 000)",
+      .summary = "G2 curve through points by quadratic quaternion-integral segments (Miura 1998)",
       .parameterNames = {"points", "end-rule", "start-tangent", "end-tangent", "stop-mode", "max-iterations", "samples"},
       .generate = [](const GeneratorParameters& p,
                      double density) { return polylineMesh(q::generateQiInterpolate(interpolateParams(p), sampling(p, density))); },
@@ -112,7 +112,7 @@ void addQuaternionGenerators(GeneratorRegistry& registry) {
   });
   registry.add({
       .name = "qi-fit",
-      .summary = "G1 chain of quaternion-integral segments fitted to (noisy) points (seed 003)",
+      .summary = "G1 chain of quaternion-integral segments fitted to (noisy) points (Sakiyama et al. 2001)",
       .parameterNames = {"points", "breaks", "degree", "dimension", "form", "start-tangent-mode", "start-tangent",
                          "initial-curve", "max-iterations", "samples"},
       .generate = [](const GeneratorParameters& p,
@@ -123,7 +123,7 @@ void addQuaternionGenerators(GeneratorRegistry& registry) {
   });
   registry.add({
       .name = "sphere-tangent",
-      .summary = "one tangent-integral segment between given end points and tangents (seed 004)",
+      .summary = "one tangent-integral segment between given end points and tangents (sphere-tangent report)",
       .parameterNames = {"start-point", "start-tangent", "end-point", "end-tangent", "degree", "second-control",
                          "multi-starts", "samples"},
       .generate = [](const GeneratorParameters& p,
