@@ -409,7 +409,7 @@ class EditModeGuiTest : public QObject {
     QVERIFY(m.latticeFrame(roots[1]).matrix().isApprox(b0.matrix(), 1e-15));
   }
 
-  // Fig. 6-2 (seed 001 §6.4, spec §9) from an empty scene with the GUI alone: a new 3x3x3
+  // Fig. 6-2 (Kuriyama 1996, secs. 6.4, 6.5) from an empty scene with the GUI alone: a new 3x3x3
   // lattice; in its edit mode the face (0..1, 0..1, 2), the edge (0..1, 2, 0) and the point
   // (2, 2, 0) made cells; a rotate widget on the face, translate widgets on the edge and the
   // point; the point's arrow turned up with its transformer (-90 degrees about y, typed); the
