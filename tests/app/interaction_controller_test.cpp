@@ -493,7 +493,7 @@ class InteractionControllerTest : public QObject {
     QVERIFY(!f.controller.dragging());
   }
 
-  // A lattice tree (spec §6): a child lattice around the sphere's top cap, bound to the top slab
+  // A lattice tree (Kuriyama 1996, sec. 6.2.3): a child lattice around the sphere's top cap, bound to the top slab
   // of the sphere's lattice. A point of the cap (inside the child) is moved by the child; a
   // point at the bottom (outside it: the identity outside policy leaves it alone) by the parent.
   // Both land on the pointer.
