@@ -515,7 +515,7 @@ class MainWindowTest : public QObject {
     const Eigen::RowVector3d shift = w.scene().widgets.worldControlPoints(lattice).row(0) - latticeBefore.row(0);
     QVERIFY(shift.norm() > 0.1);
     QVERIFY(maxDifference(w.scene().widgets.worldControlPoints(lattice), latticeBefore.rowwise() + shift) < 1e-9);
-    // Moving a lattice's frame moves its rest lattice too (spec §6): the object is re-embedded
+    // Moving a lattice's frame moves its rest lattice too (Kuriyama 1996, sec. 6.2.3): the object is re-embedded
     // and, with the control points at rest, stays where it was.
     QVERIFY(maxDifference(w.deformer().points(sphere), before) < 1e-9);
     action(w, "actionUndo")->trigger();
