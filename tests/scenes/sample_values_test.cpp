@@ -1,7 +1,7 @@
 // The committed sample files (scenes/examples/*/scene.json, widgets/examples/*.json) are written
 // by code (make_examples.cpp, FFDKIT_WRITE_WIDGET_EXAMPLES), and the tests that compare them
 // with that code only prove the code agrees with itself. These tests pin what the files hold to
-// values written out here from the widget semantics (spec widgets-and-ffd §4, §5, §9): the rest
+// values written out here from the widget semantics (Kuriyama 1996, secs. 6.2.1, 6.2.2, 6.5): the rest
 // grid, the moved cells, and the rings of the twist in closed form.
 #include <cmath>
 #include <filesystem>
