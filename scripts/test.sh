@@ -20,7 +20,7 @@ jobs="${FFDKIT_JOBS:-$(nproc)}"
 # resets when its last client leaves, and a connection opened during the reset fails; render
 # tests without a Qt window (QTEST_GUILESS_MAIN) open and close VTK windows one after another,
 # and on a loaded machine the next one landed in the reset: VTK aborts on "bad X server
-# connection" (display_modes_test failed 6 runs in 6 at load 11; with -noreset 0 in 6).
+# connection" (display_modes_test failed every run on a busy machine; with -noreset none did).
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
 export QT_QPA_PLATFORM=xcb
 # OpenMP threads that spin while idle would starve the other tests running beside them.
