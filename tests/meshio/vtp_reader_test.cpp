@@ -316,7 +316,7 @@ TEST(VtpReader, RefusesMalformedXml) {
                    "DataArray \"P\": its offset 99 is past the 3 bytes of appended data");
 }
 
-// The inputs that crashed VTK's reader or made it allocate gigabytes (fuzz_mesh_vtp, session 6):
+// The inputs that crashed VTK's reader or made it allocate gigabytes (found by fuzz_mesh_vtp):
 // each is an error naming the file, or a mesh whose every index and point checks (one has a
 // broken Normals array, which ffdkit does not read). The fuzz corpus tests run them too.
 TEST(VtpReader, TheFuzzFindingsThatBrokeVtksReaderAreErrorsOrCheckedMeshes) {
