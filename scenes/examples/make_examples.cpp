@@ -271,30 +271,30 @@ Scene generatedScene(std::string description, std::string objectName, std::strin
   return scene;
 }
 
-// Seed 000 Ex. 3 size: a G2 quaternion-integral curve through 7 points (docs/geometry-quaternion.md).
+// Miura 1998, Ex. 3 size: a G2 quaternion-integral curve through 7 points (docs/geometry-quaternion.md).
 Scene makeQiInterpolate() {
   GeneratorParameters p;
   p.set("points", rowsOf(geometry::quaternion::exampleQiInterpolateParams().points));
   p.set("end-rule", std::string("circle3"));
   Scene scene = generatedScene(
-      "Seed 000: a G2 quaternion-integral curve through 7 points (Circle3 end tangents), in a lattice; its curvature "
+      "Miura 1998: a G2 quaternion-integral curve through 7 points (Circle3 end tangents), in a lattice; its curvature "
       "comb follows the deformation.",
       "qi-curve", "qi-interpolate", std::move(p), {0.85, 0.35, 0.25});
   editLook(scene, [](scenes::DisplaySettings& look) { look.curvatureComb = true; });
   return scene;
 }
 
-// Seed 003 Ex. 1: a noisy sine fitted by 4 quaternion-integral segments.
+// Sakiyama et al. 2001, Ex. 1: a noisy sine fitted by 4 quaternion-integral segments.
 Scene makeQiFit() {
   const auto example = geometry::quaternion::exampleQiFitParams();
   GeneratorParameters p;
   p.set("points", rowsOf(example.points));
   p.set("breaks", std::vector<double>(example.breaks.begin(), example.breaks.end()));
-  return generatedScene("Seed 003 Ex. 1: 31 noisy points of a sine fitted by a G1 chain of 4 quaternion-integral segments.",
+  return generatedScene("Sakiyama et al. 2001, Ex. 1: 31 noisy points of a sine fitted by a G1 chain of 4 quaternion-integral segments.",
                         "fitted-sine", "qi-fit", std::move(p), {0.3, 0.55, 0.85});
 }
 
-// Seed 004 Fig. 15 analogue: one segment from (0,0,0) along x to (1,1,1) along z.
+// Sphere-tangent report, Fig. 15 analogue: one segment from (0,0,0) along x to (1,1,1) along z.
 Scene makeSphereTangent() {
   GeneratorParameters p;
   p.set("start-point", std::vector<double>{0, 0, 0});
@@ -302,27 +302,27 @@ Scene makeSphereTangent() {
   p.set("end-point", std::vector<double>{1, 1, 1});
   p.set("end-tangent", std::vector<double>{0, 0, 1});
   p.set("degree", 2.0);
-  return generatedScene("Seed 004: a tangent-integral curve from (0,0,0) along x to (1,1,1) along z (quadratic path on S^2).",
+  return generatedScene("Sphere-tangent report: a tangent-integral curve from (0,0,0) along x to (1,1,1) along z (quadratic path on S^2).",
                         "space-curve", "sphere-tangent", std::move(p), {0.55, 0.35, 0.8});
 }
 
-// Seed 002 Fig. 2(c): the G3 curve with both end curvatures and the start angle given.
+// Kuroda et al. 1997, Fig. 2(c): the G3 curve with both end curvatures and the start angle given.
 Scene makeG3Curve() {
   GeneratorParameters p;
   p.set("points", Rows{{0.6, 10.5}, {4, 11.2}, {7.2, 7.9}, {10.6, 5.7}, {13.9, 8.9}, {16.3, 14}, {19.8, 17.4}, {23.3, 16.6}});
   p.set("curvatures", Rows{{0, -0.10923218}, {-1, -0.16584946}});
   p.set("tangent-angles", Rows{{0, 0.546728}});
-  return generatedScene("Seed 002 Fig. 2(c): a G3 curve (piecewise quadratic curvature) through 8 points, length 31.944.",
+  return generatedScene("Kuroda et al. 1997, Fig. 2(c): a G3 curve (piecewise quadratic curvature) through 8 points, length 31.944.",
                         "g3-curve", "g3-curve", std::move(p), {0.2, 0.6, 0.45});
 }
 
-// Seed 002 Fig. 5: the G3 curve of 12 points with natural ends and its 4-clothoid
+// Kuroda et al. 1997, Fig. 5: the G3 curve of 12 points with natural ends and its 4-clothoid
 // approximation (clothoid-levels 2), one above the other, in one lattice.
 Scene makeG3Clothoids() {
   const Rows points = {{6, 2}, {3.5, 7.5}, {8, 11}, {11.5, 8.5}, {9.5, 4.5}, {6, 9},
                        {6, 15}, {13, 17.5}, {20.5, 13}, {17.5, 7}, {14.5, 2}, {20, 1}};
   Scene scene;
-  scene.description = "Seed 002 Fig. 5: a G3 curve (below) and its 4-clothoid-per-span approximation (above), one lattice.";
+  scene.description = "Kuroda et al. 1997, Fig. 5: a G3 curve (below) and its 4-clothoid-per-span approximation (above), one lattice.";
   for (const auto& [name, levels, z, colour] :
        {std::tuple{"g3-curve", 0.0, 0.0, Eigen::Vector3d(0.2, 0.6, 0.45)}, std::tuple{"clothoids", 2.0, 3.0, Eigen::Vector3d(0.85, 0.45, 0.2)}}) {
     GeneratorParameters p;
@@ -350,24 +350,24 @@ Scene makeG3Clothoids() {
   return scene;
 }
 
-// Seed 001 Fig. 3-7: the closed S-spline through the corners of a square, tension 5.
+// Kuriyama 1996, Fig. 3-7: the closed S-spline through the corners of a square, tension 5.
 Scene makeSSplineCurve() {
   GeneratorParameters p;
   p.set("points", Rows{{1, 1, 0}, {-1, 1, 0}, {-1, -1, 0}, {1, -1, 0}});
   p.set("end", std::string("closed"));
   p.set("beta2", 5.0);
   p.set("samples-per-span", 32.0);
-  return generatedScene("Seed 001 Fig. 3-7: a closed S-spline through the corners of a square, tension beta2 = 5.",
+  return generatedScene("Kuriyama 1996, Fig. 3-7: a closed S-spline through the corners of a square, tension beta2 = 5.",
                         "s-spline", "s-spline-curve", std::move(p), {0.8, 0.5, 0.2});
 }
 
-// Seed 001 Fig. 3-15: a sigma-spline with cubic shape points through 6 points.
+// Kuriyama 1996, Fig. 3-15: a sigma-spline with cubic shape points through 6 points.
 Scene makeSigmaSplineCurve() {
   GeneratorParameters p;
   p.set("points", Rows{{0, 0, 0}, {1, 1, 0}, {2, 0, 0}, {3, 1, 0}, {4, 0, 0}, {6, 2, 0}});
   p.set("shape", std::string("cubic"));
   p.set("samples-per-span", 32.0);
-  return generatedScene("Seed 001 Fig. 3-15: a sigma-spline curve with cubic shape points through 6 points.",
+  return generatedScene("Kuriyama 1996, Fig. 3-15: a sigma-spline curve with cubic shape points through 6 points.",
                         "sigma-spline", "sigma-spline-curve", std::move(p), {0.25, 0.45, 0.8});
 }
 
@@ -379,11 +379,11 @@ Scene makeSSplineSurface() {
   GeneratorParameters p;
   p.set("points", points);
   p.set("columns", 9.0);
-  return generatedScene("Seed 001 ch. 3: an S-spline surface interpolating a 9 x 9 wavy grid.", "sheet", "s-spline-surface",
+  return generatedScene("Kuriyama 1996, ch. 3: an S-spline surface interpolating a 9 x 9 wavy grid.", "sheet", "s-spline-surface",
                         std::move(p), {0.5, 0.75, 0.55});
 }
 
-// Seed 001 ch. 3: a bicubic sigma-spline torus, closed in u and v.
+// Kuriyama 1996, ch. 3: a bicubic sigma-spline torus, closed in u and v.
 Scene makeSigmaSplineSurface() {
   Rows points;
   for (int i = 0; i < 8; ++i)
@@ -397,14 +397,14 @@ Scene makeSigmaSplineSurface() {
   p.set("closed-u", true);
   p.set("closed-v", true);
   Scene scene = generatedScene(
-      "Seed 001 ch. 3: a bicubic sigma-spline torus interpolating an 8 x 6 closed grid, in zebra stripes (reflection "
+      "Kuriyama 1996, ch. 3: a bicubic sigma-spline torus interpolating an 8 x 6 closed grid, in zebra stripes (reflection "
       "lines) that show its smoothness under the deformation.",
       "torus", "sigma-spline-surface", std::move(p), {0.85, 0.65, 0.35});
   editLook(scene, [](scenes::DisplaySettings& look) { look.surfaceStyle = scenes::SurfaceStyle::Zebra; });
   return scene;
 }
 
-// Seed 001 Fig. 3-18/3-19: a circle and a star joined by a C2 blend: a vase.
+// Kuriyama 1996, Fig. 3-18/3-19: a circle and a star joined by a C2 blend: a vase.
 Scene makeSplineBlend() {
   Rows circle, star;
   for (int i = 0; i < 4; ++i) {
@@ -429,26 +429,26 @@ Scene makeSplineBlend() {
   p.set("second-knots-u", std::vector<double>{0, 4, 8, 12, 16, 20, 24, 28, 32, 36, 40});
   p.set("second-knots-v", std::vector<double>{0, 10});
   p.set("part", std::string("composite"));
-  return generatedScene("Seed 001 Fig. 3-19: a circle and a star (sigma-spline surfaces) joined by a C2 blend: a vase.",
+  return generatedScene("Kuriyama 1996, Fig. 3-19: a circle and a star (sigma-spline surfaces) joined by a C2 blend: a vase.",
                         "vase", "spline-blend", std::move(p), {0.45, 0.6, 0.85});
 }
 
-// Seed 001 Fig. 4-13: the hexagonal prism's G1 patch surface, its top ring's edges tightened.
+// Kuriyama 1996, Fig. 4-13: the hexagonal prism's G1 patch surface, its top ring's edges tightened.
 Scene makePolyhedronSurface() {
   GeneratorParameters p;
   p.set("builtin-mesh", std::string("hexagonal-prism"));
   p.set("edge-beta", Rows{{6, 7, 10}, {7, 8, 10}, {8, 9, 10}, {9, 10, 10}, {10, 11, 10}, {11, 6, 10}});
-  return generatedScene("Seed 001 Fig. 4-13: the G1 triangular-patch surface of a hexagonal prism, top edges at tension 10.",
+  return generatedScene("Kuriyama 1996, Fig. 4-13: the G1 triangular-patch surface of a hexagonal prism, top edges at tension 10.",
                         "prism-surface", "polyhedron-surface", std::move(p), {0.75, 0.45, 0.6});
 }
 
-// Seed 001 Fig. 5-4: three great circles cut the sphere into octants; each octant is a
+// Kuriyama 1996, Fig. 5-4: three great circles cut the sphere into octants; each octant is a
 // three-sided patch of the curve-network surface.
 Scene makeCurveNetworkSurface() {
   GeneratorParameters p;
   p.set("network", std::string("sphere-octants"));
   p.set("pitch", 8.0);
-  return generatedScene("Seed 001 Fig. 5-4: a surface interpolating three great circles (eight three-sided patches).",
+  return generatedScene("Kuriyama 1996, Fig. 5-4: a surface interpolating three great circles (eight three-sided patches).",
                         "octant-sphere", "curve-network-surface", std::move(p), {0.6, 0.7, 0.35});
 }
 

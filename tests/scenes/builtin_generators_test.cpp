@@ -333,7 +333,7 @@ TEST(BuiltinGenerators, AnExplicitPolyhedronIsAccepted) {
 }
 
 TEST(BuiltinGenerators, AFailingSolveIsAnErrorNotAWrongMesh) {
-  // Seed 002 Fig. 2(d): no curve with zero end curvatures is that short (docs/geometry-g3.md).
+  // Kuroda et al. 1997, Fig. 2(d): no curve with zero end curvatures is that short (docs/geometry-g3.md).
   const std::string g3 = errorOf("g3-curve", fig2dSetUp());
   EXPECT_NE(g3.find("generator 'g3-curve'"), std::string::npos) << g3;
   EXPECT_NE(g3.find("g3:"), std::string::npos) << "the solver's own message is kept: " << g3;
@@ -345,7 +345,7 @@ TEST(BuiltinGenerators, AFailingSolveIsAnErrorNotAWrongMesh) {
   const std::string polyhedron = errorOf("polyhedron-surface", flat);
   EXPECT_NE(polyhedron.find("generator 'polyhedron-surface'"), std::string::npos) << polyhedron;
   EXPECT_NE(polyhedron.find("valence 2"), std::string::npos) << polyhedron;
-  // Seed 004 O5: end conditions the quadratic tangent path cannot meet (docs/geometry-quaternion.md).
+  // Sphere-tangent report, sec. 5: end conditions the quadratic tangent path cannot meet (docs/geometry-quaternion.md).
   GeneratorParameters unreachable;
   unreachable.set("end-point", std::vector<double>{1, 0.5, 0.5});
   unreachable.set("end-tangent", std::vector<double>{0, -1, 0});
@@ -414,7 +414,7 @@ TEST(BuiltinGenerators, CurvesHaveCurvatureProfilesAndSurfacesDoNot) {
 }
 
 TEST(BuiltinGenerators, ClothoidApproximationFollowsTheG3Curve) {
-  // Seed 002 Fig. 5 (docs/geometry-g3.md): length about 74.6084 for both.
+  // Kuroda et al. 1997, Fig. 5 (docs/geometry-g3.md): length about 74.6084 for both.
   const Scene scene = readScene(kExamples / "g3-clothoids");
   ASSERT_EQ(scene.objects().size(), 2u);
   std::vector<double> lengths;
