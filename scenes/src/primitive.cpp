@@ -3,16 +3,26 @@
 #include <array>
 #include <cmath>
 #include <functional>
-#include <map>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace ffdkit::scenes {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+
+// Hash of a weld cell (three rounded coordinates).
+struct CellHash {
+  std::size_t operator()(const std::array<long long, 3>& key) const {
+    std::size_t h = std::hash<long long>()(key[0]);
+    h = h * 0x9E3779B97F4A7C15ull + std::hash<long long>()(key[1]);
+    h = h * 0x9E3779B97F4A7C15ull + std::hash<long long>()(key[2]);
+    return h ^ (h >> 29);
+  }
+};
 
 // Collects triangles from parametric grids and welds coincident vertices, so that seams
 // (the sphere's date line, the cube's edges, a cap's rim) share their vertices and the
@@ -68,7 +78,9 @@ class MeshBuilder {
 
  private:
   double weldTolerance_;
-  std::map<std::array<long long, 3>, int> ids_;
+  // Hashed, not ordered: the vertex order is the order of first insertion either way, and a
+  // sphere at resolution 4096 welds 8.4M vertices.
+  std::unordered_map<std::array<long long, 3>, int, CellHash> ids_;
   std::vector<Eigen::Vector3d> points_;
   std::vector<std::array<int, 3>> triangles_;
 };
