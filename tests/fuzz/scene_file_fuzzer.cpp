@@ -1,10 +1,14 @@
 // Fuzz target: the scene-file reader (objects, primitives, generators, widgets, attachments,
 // animation) and the evaluation of what it read at the ends of the frame range and at its first
-// keys. Reads against a small budget (SceneReadOptions::limits), so that a primitive, generator
-// or lattice that a few bytes make big is refused before it is computed: what matters here is
-// every path through the reader, at over a thousand inputs a second, not how a big scene
-// deforms. Mesh paths resolve against a folder that does not exist, under the default
-// confinement rule, so no file outside the input is read.
+// keys. What matters here is every path through the reader and the scene, at over a thousand
+// inputs a second, not how a big scene deforms, so one input is kept cheap:
+// - the read has a small budget (SceneReadOptions::limits): a primitive, mesh, generator or
+//   lattice that a few bytes make big is refused before it is computed;
+// - generators are stand-ins: each builtin generator's name, parameter names and point bound,
+//   but a small curve or surface instead of its solve or fit (a sphere-tangent or curve-network
+//   solve takes up to a second under ASan and coverage). fuzz_generator runs the real ones.
+// Mesh paths resolve against a folder that does not exist, under the default confinement rule,
+// so no file outside the input is read.
 #include <algorithm>
 #include <cstdint>
 #include <sstream>
@@ -12,6 +16,7 @@
 #include <vector>
 
 #include "ffdkit/scenes/animation.h"
+#include "ffdkit/scenes/generator.h"
 #include "ffdkit/scenes/scene_file.h"
 
 namespace {
@@ -19,11 +24,52 @@ namespace {
 // The keys evaluated per input: a scene with thousands of keys costs no more than one with eight.
 constexpr std::size_t kKeysEvaluated = 8;
 
+// A polyline of `n` points (a curve generator's stand-in) or a strip of 2 x `n` points (a surface's).
+ffdkit::meshio::MeshData standIn(bool curve, int n) {
+  ffdkit::meshio::MeshData mesh;
+  const int rows = curve ? 1 : 2;
+  mesh.points.resize(rows * n, 3);
+  for (int r = 0; r < rows; ++r)
+    for (int i = 0; i < n; ++i) mesh.points.row(r * n + i) << 0.1 * i, 0.05 * i * i, 0.3 * r;
+  if (curve) {
+    mesh.segments.resize(n - 1, 2);
+    for (int i = 0; i + 1 < n; ++i) mesh.segments.row(i) << i, i + 1;
+  } else {
+    mesh.triangles.resize(2 * (n - 1), 3);
+    for (int i = 0; i + 1 < n; ++i) {
+      mesh.triangles.row(2 * i) << i, i + 1, n + i;
+      mesh.triangles.row(2 * i + 1) << i + 1, n + i + 1, n + i;
+    }
+  }
+  return mesh;
+}
+
+const ffdkit::scenes::GeneratorRegistry& standInGenerators() {
+  static const ffdkit::scenes::GeneratorRegistry registry = [] {
+    ffdkit::scenes::GeneratorRegistry result;
+    const auto& builtin = ffdkit::scenes::builtinGenerators();
+    for (const std::string& name : builtin.names()) {
+      ffdkit::scenes::Generator generator = builtin.get(name);
+      const bool curve = bool(generator.profile);
+      auto bound = generator.pointBound;
+      generator.generate = [curve, bound](const ffdkit::scenes::GeneratorParameters& parameters, double density) {
+        const std::uint64_t most = bound ? bound(parameters, density) : 16;
+        return standIn(curve, int(std::clamp<std::uint64_t>(most, 2, 16)));
+      };
+      result.add(std::move(generator));
+    }
+    return result;
+  }();
+  return registry;
+}
+
 ffdkit::scenes::SceneReadOptions smallRead() {
   ffdkit::scenes::SceneReadOptions options;
   options.baseDirectory = "/nonexistent-ffdkit-fuzz-folder";
-  options.limits.maxPoints = 20'000;
-  options.limits.maxMemoryBytes = 16u << 20;
+  options.generators = &standInGenerators();
+  // Every sample scene reads within these (the largest, s-spline-surface, bounds 5,329 points).
+  options.limits.maxPoints = 6'000;
+  options.limits.maxMemoryBytes = 8u << 20;
   return options;
 }
 
