@@ -1,9 +1,10 @@
 // The document lifecycle under a real window and real events (Xvfb): the modified flag in the
-// title, Save / Discard / Cancel before Quit, Open, New and closing; Save As; New Scene, Delete
-// Object and Rename (F2); widget files attached to the selected object; autosave, and after a
-// SIGKILL the next start restoring the edits.
+// title; Save / Discard / Cancel before Quit, Open, New and the window manager's close; Save As;
+// New Scene, Delete Object and Rename (F2); widget files attached to the selected object;
+// autosave, and the real application, killed with SIGKILL, offering the edits when started again.
 #include <QAction>
 #include <QDialogButtonBox>
+#include <QElapsedTimer>
 #include <QFileDialog>
 #include <QInputDialog>
 #include <QLineEdit>
@@ -17,13 +18,17 @@
 #include <QTreeWidget>
 #include <QWindow>
 
-#include <cstdio>
+#include <cstdint>
 #include <filesystem>
+#include <optional>
+#include <utility>
 
 #include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/app/recovery_file.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "gui_test_support.h"
+#include "lifecycle_dialog_answers.h"
+#include "lifecycle_window_manager.h"
 
 using namespace ffdkit;
 using namespace ffdkit::app::testing;
@@ -38,59 +43,6 @@ namespace fs = std::filesystem;
 QString shownTitle(MainWindow& w) {
   QApplication::processEvents();
   return w.windowHandle() != nullptr ? w.windowHandle()->title() : QString();
-}
-
-// Clicks a message box's button with the mouse.
-ModalAnswers::Handler clickButton(QMessageBox::StandardButton which) {
-  return [which](QWidget* modal) {
-    auto* box = qobject_cast<QMessageBox*>(modal);
-    QVERIFY2(box != nullptr, qPrintable(modal->metaObject()->className()));
-    QTest::mouseClick(box->button(which), Qt::LeftButton);
-  };
-}
-
-ModalAnswers::Handler clickButtonNamed(const QString& text) {
-  return [text](QWidget* modal) {
-    auto* box = qobject_cast<QMessageBox*>(modal);
-    QVERIFY(box != nullptr);
-    for (QAbstractButton* button : box->buttons())
-      if (button->text() == text) {
-        QTest::mouseClick(button, Qt::LeftButton);
-        return;
-      }
-    QFAIL(qPrintable("no button " + text));
-  };
-}
-
-// Types a path into a file dialog and presses Enter.
-ModalAnswers::Handler chooseFile(const fs::path& path) {
-  return [path](QWidget* modal) {
-    auto* dialog = qobject_cast<QFileDialog*>(modal);
-    QVERIFY2(dialog != nullptr, qPrintable(modal->metaObject()->className()));
-    dialog->selectFile(QString::fromStdString(path.string()));
-    static_cast<QDialog*>(dialog)->accept();  // public through QDialog, virtual: QFileDialog::accept
-  };
-}
-
-// Answers a Save As dialog opened on the document's own file with `path`. The dialog lists its
-// folder asynchronously (QFileSystemModel's gatherer thread) and updates its selection as the
-// rows arrive, which can overwrite a name chosen earlier: accept() then asked whether to replace
-// the open file, a nested modal nobody answered (the test hung at random under load). So wait
-// until the folder, which holds the open file, is listed; then type the new path and accept.
-ModalAnswers::Handler chooseSavePath(const fs::path& path) {
-  return [path](QWidget* modal) {
-    auto* dialog = qobject_cast<QFileDialog*>(modal);
-    QVERIFY2(dialog != nullptr, qPrintable(modal->metaObject()->className()));
-    auto* files = dialog->findChild<QFileSystemModel*>();
-    auto* name = dialog->findChild<QLineEdit*>("fileNameEdit");
-    QVERIFY(files != nullptr && name != nullptr);
-    const QModelIndex folder = files->index(QString::fromStdString(path.parent_path().string()));
-    QTRY_VERIFY_WITH_TIMEOUT(files->rowCount(folder) > 0 && !files->canFetchMore(folder), 20000);
-    name->selectAll();
-    QTest::keyClicks(name, QString::fromStdString(path.filename().string()));
-    QCOMPARE(dialog->selectedFiles(), QStringList{QString::fromStdString(path.string())});
-    static_cast<QDialog*>(dialog)->accept();  // public through QDialog, virtual: QFileDialog::accept
-  };
 }
 
 // Types `text` as the new name in the rename dialog and presses Enter.
@@ -118,23 +70,59 @@ fs::path copySample(const QTemporaryDir& dir, const char* sample, const char* fi
   return path;
 }
 
-// The child process of killedAppRestoresItsEditsOnTheNextStart: opens the scene, drags the
-// arrow, waits for the autosave, prints the arrow's variation and waits to be killed.
-int editAndWaitToBeKilled(const char* scenePath) {
-  auto window = openWindow(QSize(1000, 760));
-  if (!window) return 2;
-  MainWindow& w = *window;
-  w.openScene(scenePath);
-  w.view()->grabFramebuffer();
-  dragArrow(w, w.scene().widgets.find("pull"), 0.3);
-  if (!w.isModified()) return 3;
-  const fs::path recovery = app::RecoveryFile().path();
-  if (!fs::exists(recovery)) return 4;
-  std::printf("edited %.17g\n", variation(w, "pull"));
-  std::fflush(stdout);
-  return QApplication::exec();  // until SIGKILL
+constexpr std::uint32_t kKeyReturn = 0xff0d;  // X11 keysyms (keysymdef.h)
+constexpr std::uint32_t kKeyDelete = 0xffff;
+
+// The close button of the window's frame: the window manager's WM_DELETE_WINDOW message,
+// through the X server, to the window (not a call of close()).
+void closeFromWindowManager(MainWindow& w) {
+  WindowManager manager;
+  QVERIFY2(manager.connected(), "no X server at $DISPLAY");
+  const auto window = WindowManager::Window(w.winId());
+  QVERIFY(manager.takesDeleteWindow(window));
+  manager.requestClose(window);
 }
 
+// The shown window of process `pid` titled `title`, once it appears (within `ms`).
+std::optional<WindowManager::Window> waitForWindow(WindowManager& manager, qint64 pid, const std::string& title,
+                                                   int ms = 60000) {
+  QElapsedTimer clock;
+  clock.start();
+  while (clock.elapsed() < ms) {
+    if (const auto window = manager.findWindow(pid, title)) return window;
+    QTest::qWait(50);
+  }
+  std::string shown;
+  for (WindowManager::Window window : manager.windowsOf(pid)) shown += " '" + manager.title(window) + "'";
+  qWarning("no window '%s' of process %lld; it shows:%s", title.c_str(), static_cast<long long>(pid), shown.c_str());
+  return std::nullopt;
+}
+
+// Gives the window the keyboard focus (as a window manager does when it is clicked) and types a
+// key into it.
+void typeInto(WindowManager& manager, WindowManager::Window window, std::uint32_t keysym, std::uint16_t modifiers = 0) {
+  manager.focus(window);
+  QTRY_COMPARE(manager.focused(), window);
+  QVERIFY(manager.typeKey(window, keysym, modifiers));
+}
+
+// The application's recovery folder under the test's XDG_DATA_HOME (RecoveryFile's default
+// directory as the app, named "ffdkit", finds it).
+fs::path appRecoveryFolder() { return fs::path(qEnvironmentVariable("XDG_DATA_HOME").toStdString()) / "ffdkit" / "recovery"; }
+
+bool hasWidget(const scenes::Scene& scene, const std::string& name) {
+  for (WidgetId id : scene.widgets.widgets())
+    if (scene.widgets.name(id) == name) return true;
+  return false;
+}
+
+// The names of a folder's entries, sorted (to see that no temporary file is left).
+QStringList entries(const fs::path& folder) {
+  QStringList names;
+  for (const auto& entry : fs::directory_iterator(folder)) names << QString::fromStdString(entry.path().filename().string());
+  names.sort();
+  return names;
+}
 }  // namespace
 
 class LifecycleGuiTest : public QObject {
@@ -171,74 +159,96 @@ class LifecycleGuiTest : public QObject {
     QCOMPARE(shownTitle(w), QString("press/scene.json - ffdkit"));
   }
 
-  void quitWithChangesAsksAndCancelKeepsEverything() {
+  // Save / Discard / Cancel before each of the four ways to leave a document with unsaved
+  // changes: Quit (Ctrl+Q), Open (Ctrl+O, its file dialog answered), New (Ctrl+N) and the window
+  // manager closing the window (a WM_DELETE_WINDOW message through the X server).
+  void unsavedChangesPrompt_data() {
+    QTest::addColumn<QString>("leave");
+    QTest::addColumn<int>("answer");
+    const std::pair<const char*, QMessageBox::StandardButton> answers[] = {
+        {"save", QMessageBox::Save}, {"discard", QMessageBox::Discard}, {"cancel", QMessageBox::Cancel}};
+    for (const char* leave : {"quit", "open", "new", "windowManagerClose"})
+      for (const auto& [name, button] : answers)
+        QTest::newRow(qPrintable(QString("%1/%2").arg(leave, name))) << QString(leave) << int(button);
+  }
+
+  // Save: the file holds the edits, byte for byte as writeScene writes the document, and the
+  // action goes on. Discard: the file untouched, the action goes on. Cancel: nothing changes.
+  void unsavedChangesPrompt() {
+    QFETCH(QString, leave);
+    QFETCH(int, answer);
+    const auto button = QMessageBox::StandardButton(answer);
     MainWindow& w = *window_;
-    const fs::path doc = copySample(dir_, "default", "doc.json");
-    const std::string bytes = slurp(doc);
+    const QTemporaryDir dir;
+    const fs::path folder = dir.path().toStdString();
+    const fs::path doc = copySample(dir, "default", "doc.json");
+    const std::string before = slurp(doc);
     w.openScene(doc);
     dragArrow(w, w.scene().widgets.find("pull"), 0.2);
     const double moved = variation(w, "pull");
     QVERIFY(std::abs(moved - 0.7) < 0.02);
-    {
-      ModalAnswers answers({clickButton(QMessageBox::Cancel)});
-      key(w, Qt::Key_Q, Qt::ControlModifier);  // File > Quit
-      QCOMPARE(answers.answered(), 1);
-    }
-    QVERIFY(w.isVisible());
-    QCOMPARE(variation(w, "pull"), moved);
     QVERIFY(w.isModified());
-    QCOMPARE(slurp(doc), bytes);
-    // Closing the window asks the same; Cancel keeps it open.
-    {
-      ModalAnswers answers({clickButton(QMessageBox::Cancel)});
-      QVERIFY(!w.close());
-      QCOMPARE(answers.answered(), 1);
+    // What Save must write: the document seen through the view's camera, widgets inline.
+    scenes::Scene document = w.scene();
+    document.setCamera(w.sceneView().camera());
+    document.widgetFile.reset();
+    const fs::path reference = folder / "reference" / "doc.json";
+    fs::create_directories(reference.parent_path());
+    scenes::writeScene(reference, document);
+    const std::string edited = slurp(reference);
+    QVERIFY(edited != before);
+
+    const fs::path other = kExamples / "mirror" / "scene.json";
+    std::vector<ModalAnswers::Handler> handlers{clickButton(button)};
+    if (leave == "open" && button != QMessageBox::Cancel) handlers.push_back(chooseFile(other));
+    const int dialogs = int(handlers.size());
+    ModalAnswers answers(std::move(handlers));
+    if (leave == "quit") {
+      key(w, Qt::Key_Q, Qt::ControlModifier);
+    } else if (leave == "open") {
+      key(w, Qt::Key_O, Qt::ControlModifier);
+    } else if (leave == "new") {
+      key(w, Qt::Key_N, Qt::ControlModifier);
+    } else {
+      closeFromWindowManager(w);
+      if (QTest::currentTestFailed()) return;
     }
-    QVERIFY(w.isVisible());
-    QCOMPARE(variation(w, "pull"), moved);
-  }
+    QTRY_VERIFY2_WITH_TIMEOUT(answers.answered() == dialogs,
+                              qPrintable(QString("%1 of %2 dialogs answered; the window is %3, %4")
+                                             .arg(answers.answered()).arg(dialogs)
+                                             .arg(w.isVisible() ? "shown" : "hidden")
+                                             .arg(w.isModified() ? "modified" : "not modified")),
+                              20000);
+    const bool closes = leave == "quit" || leave == "windowManagerClose";
+    if (closes && button != QMessageBox::Cancel) QTRY_VERIFY_WITH_TIMEOUT(!w.isVisible(), 10000);
+    QTest::qWait(50);  // anything still queued (the window system's close) is handled
+    QCOMPARE(slurp(doc), button == QMessageBox::Save ? edited : before);
+    QCOMPARE(entries(folder), (QStringList{"doc.json", "reference"}));  // no temporary left
 
-  void newSceneWithChangesAndDiscardDropsThem() {
-    MainWindow& w = *window_;
-    const fs::path doc = copySample(dir_, "default", "doc.json");
-    const std::string bytes = slurp(doc);
-    w.openScene(doc);
-    dragArrow(w, w.scene().widgets.find("pull"), 0.2);
-    ModalAnswers answers({clickButton(QMessageBox::Discard)});
-    key(w, Qt::Key_N, Qt::ControlModifier);  // File > New Scene
-    QCOMPARE(answers.answered(), 1);
-    QVERIFY(w.scene().objects().empty());
-    QVERIFY(w.scene().widgets.widgets().empty());
-    QVERIFY(!w.isModified());
-    QVERIFY(w.documentPath().empty());
-    QCOMPARE(shownTitle(w), QString("untitled - ffdkit"));
-    QCOMPARE(slurp(doc), bytes);
-    QVERIFY(!w.commands().canUndo());
-  }
-
-  void openWithChangesAndSaveWritesThemFirst() {
-    MainWindow& w = *window_;
-    const fs::path doc = copySample(dir_, "default", "doc.json");
-    w.openScene(doc);
-    dragArrow(w, w.scene().widgets.find("pull"), 0.2);
-    const double moved = variation(w, "pull");
-    ModalAnswers answers({clickButton(QMessageBox::Save), chooseFile(kExamples / "mirror" / "scene.json")});
-    key(w, Qt::Key_O, Qt::ControlModifier);  // File > Open Scene
-    QCOMPARE(answers.answered(), 2);
-    const scenes::Scene saved = scenes::readScene(doc);
-    QCOMPARE(saved.widgets.variation(saved.widgets.find("pull")), moved);
-    QCOMPARE(w.scene().objects().front().name, std::string("torus"));  // the mirror scene is open
-    QVERIFY(!w.isModified());
-  }
-
-  void closingWithChangesAndDiscardCloses() {
-    MainWindow& w = *window_;
-    w.openScene(copySample(dir_, "default", "doc.json"));
-    dragArrow(w, w.scene().widgets.find("pull"), 0.2);
-    ModalAnswers answers({clickButton(QMessageBox::Discard)});
-    QVERIFY(w.close());
-    QCOMPARE(answers.answered(), 1);
-    QVERIFY(!w.isVisible());
+    if (button == QMessageBox::Cancel) {
+      QVERIFY(w.isVisible());
+      QVERIFY(w.isModified());
+      QCOMPARE(variation(w, "pull"), moved);
+      QCOMPARE(w.documentPath(), doc);
+      QCOMPARE(shownTitle(w), QString("doc.json* - ffdkit"));
+      QVERIFY(fs::exists(app::RecoveryFile().path()));  // still protected against a crash
+      return;
+    }
+    if (closes) {
+      QVERIFY(!w.isVisible());
+      QVERIFY(!fs::exists(app::RecoveryFile().path()));  // closed properly: nothing to recover
+    } else if (leave == "open") {
+      QCOMPARE(w.documentPath(), other);
+      QCOMPARE(w.scene().objects().front().name, std::string("torus"));
+      QVERIFY(!w.isModified());
+    } else {
+      QVERIFY(w.scene().objects().empty());
+      QVERIFY(w.scene().widgets.widgets().empty());
+      QVERIFY(w.documentPath().empty());
+      QCOMPARE(shownTitle(w), QString("untitled - ffdkit"));
+      QVERIFY(!w.isModified());
+      QVERIFY(!w.commands().canUndo());
+    }
   }
 
   void saveAsUpdatesTheTitleAndTheRecentFiles() {
@@ -398,43 +408,58 @@ class LifecycleGuiTest : public QObject {
 
   // ---- 2. autosave and recovery --------------------------------------------------------------
 
-  void killedAppRestoresItsEditsOnTheNextStart() {
+  // The real application, started twice: the first run deletes a widget with the Delete key and
+  // is killed (SIGKILL) after its autosave; the second run, started as a user starts it (no
+  // arguments), offers the edits from main(); Return takes the prompt's default, Restore; Ctrl+S
+  // saves the restored document to its own file; Ctrl+Q quits cleanly.
+  void aKilledAppOffersItsEditsWhenStartedAgain() {
     window_.reset();
+    WindowManager manager;
+    QVERIFY2(manager.connected(), "no X server at $DISPLAY");
     const fs::path doc = copySample(dir_, "default", "doc.json");
     const std::string bytes = slurp(doc);
-    QProcess child;
-    child.setProcessChannelMode(QProcess::ForwardedErrorChannel);
-    child.start(QCoreApplication::applicationFilePath(), {"--edit-and-wait", QString::fromStdString(doc.string())});
-    QVERIFY(child.waitForStarted());
-    QByteArray out;
-    for (int i = 0; i < 600 && !out.contains('\n'); ++i) {
-      child.waitForReadyRead(200);
-      out += child.readAllStandardOutput();
-      QVERIFY2(child.state() == QProcess::Running, qPrintable("child exited " + QString::number(child.exitCode())));
-    }
-    QVERIFY2(out.startsWith("edited "), out.constData());
-    const double edited = out.mid(7).trimmed().toDouble();
-    QVERIFY(std::abs(edited - 0.8) < 0.02);
-    child.kill();  // SIGKILL: no close event, no cleanup
-    QVERIFY(child.waitForFinished());
-    QCOMPARE(child.exitStatus(), QProcess::CrashExit);
-    QCOMPARE(slurp(doc), bytes);  // nothing was saved
+    const scenes::Scene original = scenes::readScene(doc);
+    QVERIFY(hasWidget(original, "pull"));
 
-    // The next start offers the edits; Restore brings them back, with the file's name.
-    window_ = openWindow(QSize(1000, 760));
-    QVERIFY(window_ != nullptr);
-    MainWindow& w = *window_;
-    ModalAnswers answers({clickButtonNamed(QObject::tr("Restore"))});
-    QVERIFY(w.offerRecovery());
-    QCOMPARE(answers.answered(), 1);
-    QCOMPARE(variation(w, "pull"), edited);
-    QCOMPARE(w.documentPath(), doc);
-    QVERIFY(w.isModified());
-    QCOMPARE(shownTitle(w), QString("doc.json* - ffdkit"));
-    // The dead process's files are gone: a second start offers nothing.
-    ModalAnswers guard({clickButtonNamed(QObject::tr("Discard"))});
-    QVERIFY(!w.offerRecovery());
-    QCOMPARE(guard.answered(), 0);
+    QProcess first;
+    first.setProcessChannelMode(QProcess::ForwardedChannels);
+    first.start(FFDKIT_APP, {QString::fromStdString(doc.string()), "--select", "pull"});
+    QVERIFY(first.waitForStarted());
+    const auto firstWindow = waitForWindow(manager, first.processId(), "doc.json - ffdkit");
+    QVERIFY(firstWindow.has_value());
+    typeInto(manager, *firstWindow, kKeyDelete);  // deletes the selected widget
+    QTRY_COMPARE_WITH_TIMEOUT(manager.title(*firstWindow), std::string("doc.json* - ffdkit"), 20000);
+    const fs::path autosaved = appRecoveryFolder() / (std::to_string(first.processId()) + ".json");
+    QTRY_VERIFY_WITH_TIMEOUT(fs::exists(autosaved), 20000);
+    first.kill();  // SIGKILL: no close event, no cleanup
+    QVERIFY(first.waitForFinished());
+    QCOMPARE(first.exitStatus(), QProcess::CrashExit);
+    QCOMPARE(slurp(doc), bytes);  // nothing was saved
+    QVERIFY(fs::exists(autosaved));
+
+    QProcess second;
+    second.setProcessChannelMode(QProcess::ForwardedChannels);
+    second.start(FFDKIT_APP, {});
+    QVERIFY(second.waitForStarted());
+    const auto prompt = waitForWindow(manager, second.processId(), "Recover unsaved changes");
+    QVERIFY(prompt.has_value());
+    typeInto(manager, *prompt, kKeyReturn);  // Restore
+    // The restored document: its own file's name, modified.
+    const auto secondWindow = waitForWindow(manager, second.processId(), "doc.json* - ffdkit", 20000);
+    QVERIFY(secondWindow.has_value());
+    typeInto(manager, *secondWindow, 's', XCB_MOD_MASK_CONTROL);
+    QTRY_COMPARE_WITH_TIMEOUT(manager.title(*secondWindow), std::string("doc.json - ffdkit"), 20000);
+    // The file holds the edit: the sample's widgets but the deleted one.
+    const scenes::Scene saved = scenes::readScene(doc);
+    QVERIFY(!hasWidget(saved, "pull"));
+    QCOMPARE(saved.widgets.widgets().size(), original.widgets.widgets().size() - 1);
+    QCOMPARE(saved.objects().size(), original.objects().size());
+    typeInto(manager, *secondWindow, 'q', XCB_MOD_MASK_CONTROL);
+    QVERIFY(second.waitForFinished(20000));
+    QCOMPARE(second.exitStatus(), QProcess::NormalExit);
+    QCOMPARE(second.exitCode(), 0);
+    // The killed run's files went with the restore, the second run's with its clean exit.
+    QCOMPARE(entries(appRecoveryFolder()), QStringList());
   }
 
   void aCleanCloseLeavesNothingToRecover() {
@@ -456,14 +481,6 @@ class LifecycleGuiTest : public QObject {
   QTemporaryDir dir_;
 };
 
-int main(int argc, char** argv) {
-  static TemporaryUserFolders folders;
-  if (argc == 3 && std::string(argv[1]) == "--edit-and-wait") {
-    QSurfaceFormat::setDefaultFormat(app::VtkViewWidget::defaultFormat());
-    QApplication app(argc, argv);
-    return editAndWaitToBeKilled(argv[2]);
-  }
-  return runGuiTest<LifecycleGuiTest>(argc, argv);
-}
+int main(int argc, char** argv) { return runGuiTest<LifecycleGuiTest>(argc, argv); }
 
 #include "lifecycle_gui_test.moc"

@@ -90,13 +90,13 @@ class WindowManager {
     event.data.data32[0] = wmDeleteWindow_;
     event.data.data32[1] = XCB_CURRENT_TIME;
     xcb_send_event(connection_, 0, window, XCB_EVENT_MASK_NO_EVENT, reinterpret_cast<const char*>(&event));
-    xcb_flush(connection_);
+    sync();
   }
 
   /// The keyboard focus to `window`, as a click-to-focus window manager gives it.
   void focus(Window window) {
     xcb_set_input_focus(connection_, XCB_INPUT_FOCUS_POINTER_ROOT, window, XCB_CURRENT_TIME);
-    xcb_flush(connection_);
+    sync();
   }
 
   /// The window that has the keyboard focus.
@@ -125,7 +125,7 @@ class WindowManager {
       event.same_screen = 1;
       xcb_send_event(connection_, 0, window, XCB_EVENT_MASK_NO_EVENT, reinterpret_cast<const char*>(&event));
     }
-    xcb_flush(connection_);
+    sync();
     return true;
   }
 
@@ -135,6 +135,13 @@ class WindowManager {
   };
   template <class T>
   using Reply = std::unique_ptr<T, FreeReply>;
+
+  // Returns once the server has carried out every request sent so far (a round trip), so what
+  // was sent reaches the client even if this connection closes next.
+  void sync() {
+    const Reply<xcb_get_input_focus_reply_t> reply(
+        xcb_get_input_focus_reply(connection_, xcb_get_input_focus(connection_), nullptr));
+  }
 
   xcb_atom_t atom(const char* name) {
     const Reply<xcb_intern_atom_reply_t> reply(xcb_intern_atom_reply(
