@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "ffdkit/meshio/atomic_write.h"
+#include "ffdkit/meshio/read_failures.h"
 #include "formats.h"
 #include "parse_support.h"
 
@@ -100,9 +101,7 @@ MeshData parseMesh(std::string_view bytes, MeshFormat format, const std::string&
   } catch (const PathOutsideFolderError& e) {
     throw MeshIoError(source + ": " + e.what());
   } catch (const std::bad_alloc&) {
-    throw MeshIoError(source + ": out of memory while reading (the read had charged " + byteSizeText(budget.bytesCharged()) +
-                      " of its limit of " + byteSizeText(budget.limits().maxMemoryBytes) +
-                      "; a smaller --max-memory refuses such a file before it allocates)");
+    throw MeshIoError(source + ": " + outOfMemoryText(budget, ""));
   } catch (const std::length_error&) {
     throw MeshIoError(source + ": out of memory while reading (a size beyond what can be allocated)");
   }

@@ -1,5 +1,7 @@
 #include "ffdkit/meshio/read_limits.h"
 
+#include "ffdkit/meshio/read_failures.h"
+
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -95,6 +97,15 @@ std::string byteSizeText(std::uint64_t bytes) {
     }
     std::snprintf(text, sizeof text, "%.1f %s", value, units[unit]);
   }
+  return text;
+}
+
+std::string outOfMemoryText(const ReadBudget& budget, std::string_view what) {
+  std::string text = "out of memory while reading";
+  if (!what.empty()) text.append(" ").append(what);
+  text.append(" (the read had charged ").append(byteSizeText(budget.bytesCharged()));
+  text.append(" of its limit of ").append(byteSizeText(budget.limits().maxMemoryBytes));
+  text.append("; a lower --max-memory refuses such a file before it allocates)");
   return text;
 }
 

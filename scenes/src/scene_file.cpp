@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ffdkit/meshio/atomic_write.h"
+#include "ffdkit/meshio/read_failures.h"
 #include "ffdkit/scenes/animation.h"
 #include "animation_checks.h"
 #include "ffdkit/scenes/widget_file.h"
@@ -559,19 +560,12 @@ namespace {
 Scene readSceneStream(std::istream& in, std::optional<std::uint64_t> knownSize, const std::string& sourceName,
                       const SceneReadOptions& options) {
   meshio::ReadBudget budget(options.limits);
-  try {
+  return meshio::convertReadFailures<SceneFileError>(sourceName, "the scene", budget, [&] {
     if (knownSize) budget.chargeBytes(*knownSize, 1, "the text of the scene file");
     const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (!knownSize) budget.chargeBytes(content.size(), 1, "the text of the scene file");
     return readSceneJson(detail::parseJson<SceneFileError>(content, sourceName, budget), sourceName, options, budget);
-  } catch (const std::bad_alloc&) {
-    // The budget counts what the file asks for; this is the machine running out before it.
-    throw SceneFileError(sourceName + ": out of memory while reading the scene (the read had charged " +
-                         meshio::byteSizeText(budget.bytesCharged()) + " of its limit of " +
-                         meshio::byteSizeText(budget.limits().maxMemoryBytes) + "; a lower --max-memory refuses it earlier)");
-  } catch (const meshio::ReadLimitError& e) {
-    throw SceneFileError(sourceName + ": " + e.what());
-  }
+  });
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "ffdkit/ffd/lattice.h"
 #include "ffdkit/meshio/atomic_write.h"
+#include "ffdkit/meshio/read_failures.h"
 #include "json_text.h"
 #include "widget_json.h"
 
@@ -571,19 +572,12 @@ WidgetModel readWidgetStream(std::istream& in, std::optional<std::uint64_t> know
                              const WidgetReadOptions& options) {
   meshio::ReadBudget ownBudget(options.limits);
   meshio::ReadBudget& budget = options.budget != nullptr ? *options.budget : ownBudget;
-  try {
+  return meshio::convertReadFailures<WidgetFileError>(sourceName, "the widget file", budget, [&] {
     if (knownSize) budget.chargeBytes(*knownSize, 1, "the text of the widget file");
     const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (!knownSize) budget.chargeBytes(content.size(), 1, "the text of the widget file");
     return detail::widgetModelFromJson(detail::parseJson<WidgetFileError>(content, sourceName, budget), sourceName, "", budget);
-  } catch (const std::bad_alloc&) {
-    // The budget counts what the file asks for; this is the machine running out before it.
-    throw WidgetFileError(sourceName + ": out of memory while reading the widget file (the read had charged " +
-                          meshio::byteSizeText(budget.bytesCharged()) + " of its limit of " +
-                          meshio::byteSizeText(budget.limits().maxMemoryBytes) + "; a lower --max-memory refuses it earlier)");
-  } catch (const meshio::ReadLimitError& e) {
-    throw WidgetFileError(sourceName + ": " + e.what());
-  }
+  });
 }
 
 }  // namespace
