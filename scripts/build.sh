@@ -6,6 +6,9 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${FFDKIT_BUILD_DIR:-$root/build}"
 jobs="${FFDKIT_JOBS:-$(nproc)}"
+# ccache: paths below the checkout are hashed relative to the build folder, so a second build
+# folder or another clone of the same sources (CI's) reuses what this one compiled.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$root}"
 
 targets=()
 options=()
