@@ -95,13 +95,10 @@ MeshData parseMesh(std::string_view bytes, MeshFormat format, const std::string&
   ReadBudget own(options.limits);
   ReadBudget& budget = options.budget != nullptr ? *options.budget : own;
   try {
-    return parseWith(bytes, format, source, folder, options, budget);
-  } catch (const ReadLimitError& e) {
-    throw MeshIoError(source + ": " + e.what());
+    return convertReadFailures<MeshIoError>(source, "", budget,
+                                            [&] { return parseWith(bytes, format, source, folder, options, budget); });
   } catch (const PathOutsideFolderError& e) {
     throw MeshIoError(source + ": " + e.what());
-  } catch (const std::bad_alloc&) {
-    throw MeshIoError(source + ": " + outOfMemoryText(budget, ""));
   } catch (const std::length_error&) {
     throw MeshIoError(source + ": out of memory while reading (a size beyond what can be allocated)");
   }

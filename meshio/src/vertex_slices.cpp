@@ -3,6 +3,8 @@
 // do the parsing, so a slice is checked exactly as the whole file would be.
 #include "ffdkit/meshio/vertex_slices.h"
 
+#include "ffdkit/meshio/read_failures.h"
+
 #include <cerrno>
 #include <cstring>
 #include <limits>
@@ -71,16 +73,10 @@ struct VertexSliceReader::Impl {
 
 namespace {
 
-// What a slice reader lets through becomes its documented error (as readMesh's parseMesh does).
+// What a slice reader lets through becomes its documented error, as in readMesh.
 template <class Read>
-auto readingSlice(const std::string& source, Read&& read) {
-  try {
-    return read();
-  } catch (const ReadLimitError& e) {
-    throw MeshIoError(source + ": " + e.what());
-  } catch (const std::bad_alloc&) {
-    throw MeshIoError(source + ": out of memory while reading a slice");
-  }
+auto readingSlice(const std::string& source, const ReadBudget& budget, Read&& read) {
+  return convertReadFailures<MeshIoError>(source, "a slice", budget, std::forward<Read>(read));
 }
 
 }  // namespace
@@ -130,7 +126,7 @@ Eigen::MatrixX3d VertexSliceReader::readVertices(std::int64_t first, std::int64_
   const auto count = vertexCount();
   if (!count || first < 0 || last < first || last > *count)
     throw std::logic_error(d.source + ": vertex slice " + std::to_string(first) + ".." + std::to_string(last) + " out of range");
-  return readingSlice(d.source, [&] { return readSlice(first, last); });
+  return readingSlice(d.source, d.budget, [&] { return readSlice(first, last); });
 }
 
 Eigen::MatrixX3d VertexSliceReader::readSlice(std::int64_t first, std::int64_t last) const {
@@ -156,7 +152,7 @@ VertexSliceReader::TextPart VertexSliceReader::readXyzPart(int part, int parts) 
   const std::uint64_t start = d.partStart(part, parts), end = std::max(start, d.partStart(part + 1, parts));
   TextPart result;
   // The part's bytes: a failed allocation is a MeshIoError too.
-  result.text = readingSlice(d.source, [&] { return d.read(start, end - start); });
+  result.text = readingSlice(d.source, d.budget, [&] { return d.read(start, end - start); });
   const detail::XyzCounts counts = detail::countXyz(result.text);
   result.lines = counts.lines;
   result.points = counts.points;
@@ -165,7 +161,7 @@ VertexSliceReader::TextPart VertexSliceReader::readXyzPart(int part, int parts) 
 
 Eigen::MatrixX3d VertexSliceReader::parseXyzPart(const TextPart& part, std::int64_t linesBefore, std::int64_t pointsBefore) const {
   if (linesBefore + 1 > std::numeric_limits<int>::max()) throw MeshIoError(impl_->source + ": more lines than ffdkit numbers");
-  return readingSlice(impl_->source, [&] {
+  return readingSlice(impl_->source, impl_->budget, [&] {
     return detail::readXyzPoints(part.text, impl_->source, int(linesBefore + 1), pointsBefore, impl_->budget);
   });
 }
@@ -173,7 +169,7 @@ Eigen::MatrixX3d VertexSliceReader::parseXyzPart(const TextPart& part, std::int6
 MeshData VertexSliceReader::readCells() const {
   const Impl& d = *impl_;
   if (!d.ply || !d.ply->hasCells()) return {};
-  return readingSlice(d.source, [&] {
+  return readingSlice(d.source, d.budget, [&] {
     const std::string tail = d.read(d.ply->cellsOffset(), d.size - d.ply->cellsOffset());
     return d.ply->readCells(tail, impl_->budget);
   });
