@@ -17,7 +17,7 @@ packages=(
   qt6-base-dev libqt6opengl6-dev
   libgl1-mesa-dev libgl1-mesa-dri libglx-mesa0 libegl-mesa0 mesa-utils
   xvfb xauth libxcb1-dev
-  python3
+  python3 doxygen
   pybind11-dev python3-dev python3-numpy python3-pytest
 )
 if [ "${1:-}" = "--fuzz" ]; then
