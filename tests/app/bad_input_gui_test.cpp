@@ -35,6 +35,7 @@
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/scenes/widget_file.h"
 #include "gui_test_support.h"
+#include "lifecycle_dialog_answers.h"
 
 using namespace ffdkit;
 using namespace ffdkit::app::testing;
@@ -82,25 +83,8 @@ class Answerer : public QObject {
     modal->setProperty("ffdkitAnswered", true);
     if (auto* dialog = qobject_cast<QFileDialog*>(modal)) {
       ++shown_.fileDialogs;
-      auto* name = dialog->findChild<QLineEdit*>("fileNameEdit");
-      if (name == nullptr) return fail(dialog, "a file dialog without a name field");
-      // The dialog lists its folder in a thread and updates its name field as the rows arrive:
-      // type once they are all there, and again if what was typed was overwritten all the same.
-      auto* files = dialog->findChild<QFileSystemModel*>();
-      if (files == nullptr) return fail(dialog, "a file dialog without a file system model");
-      const QModelIndex folder = files->index(dialog->directory().absolutePath());
-      (void)QTest::qWaitFor(  // a listing that takes longer only costs a retyping below
-          [&] { return dialog->isVisible() && !files->canFetchMore(folder) && files->rowCount(folder) > 0; }, 10000);
-      const QString typed = QString::fromStdString(path_.string());
-      for (int attempt = 0; attempt < 5 && dialog->isVisible(); ++attempt) {
-        QTest::qWait(20 * (attempt + 1));
-        name->setFocus();
-        name->selectAll();
-        QTest::keyClicks(name, typed);
-        if (name->text() == typed) QTest::keyClick(name, Qt::Key_Return);
-      }
-      if (dialog->isVisible())
-        fail(dialog, "the file dialog did not take the typed path: its name field holds '" + name->text().toStdString() + "'");
+      const QString failure = typeFilePath(dialog, path_);
+      if (!failure.isEmpty()) fail(dialog, failure.toStdString());
       return;
     }
     if (auto* box = qobject_cast<QMessageBox*>(modal)) {

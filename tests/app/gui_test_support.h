@@ -6,7 +6,9 @@
 #include <QAction>
 #include <QApplication>
 #include <QFile>
+#include <QElapsedTimer>
 #include <QMouseEvent>
+#include <QPointer>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
@@ -156,7 +158,12 @@ class ModalAnswers : public QObject {
   explicit ModalAnswers(std::vector<Handler> handlers) : handlers_(handlers.begin(), handlers.end()) {
     connect(&poll_, &QTimer::timeout, this, [this] {
       QWidget* modal = QApplication::activeModalWidget();
-      if (modal == nullptr || modal->property("ffdkitAnswered").toBool() || handlers_.empty()) return;
+      if (modal == nullptr) return;
+      if (modal->property("ffdkitAnswered").toBool()) {
+        closeIfStuck(modal);
+        return;
+      }
+      if (handlers_.empty()) return;
       modal->setProperty("ffdkitAnswered", true);
       Handler handler = std::move(handlers_.front());
       handlers_.pop_front();
@@ -168,9 +175,26 @@ class ModalAnswers : public QObject {
   int answered() const { return answered_; }
 
  private:
+  /// A dialog still open 10 s after its answer would block the test until CTest kills it: it
+  /// fails the test, saying which dialog, and closes it.
+  void closeIfStuck(QWidget* modal) {
+    if (modal != stuck_) {
+      stuck_ = modal;
+      since_.start();
+      return;
+    }
+    if (since_.elapsed() < 10000) return;
+    const QString what = QString("%1 '%2' stayed open after its answer").arg(modal->metaObject()->className(), modal->windowTitle());
+    QTest::qFail(qPrintable(what), __FILE__, __LINE__);
+    modal->close();
+    stuck_ = nullptr;
+  }
+
   QTimer poll_;
   std::deque<Handler> handlers_;
   int answered_ = 0;
+  QPointer<QWidget> stuck_;
+  QElapsedTimer since_;
 };
 
 /// main() of a GUI test: VTK's surface format and temporary user folders before the

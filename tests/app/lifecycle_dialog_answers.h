@@ -38,13 +38,38 @@ inline ModalAnswers::Handler readMessage(QString* shown, QMessageBox::Icon icon)
   };
 }
 
-/// Chooses `path` in a file dialog and accepts it.
+/// Types `path` into a file dialog's name field and presses Return, as a user does; returns what
+/// went wrong, or an empty string once the dialog has closed. The dialog lists its folder in a
+/// thread and updates its name field as the rows arrive, which can overwrite what was typed, and
+/// a shown dialog whose name field has the focus ignores selectFile() (the dialog then opened
+/// its own folder on accept and stayed open): so it types once the listing is there, and again
+/// while the dialog stays open.
+inline QString typeFilePath(QFileDialog* dialog, const std::filesystem::path& path) {
+  auto* name = dialog->findChild<QLineEdit*>("fileNameEdit");
+  auto* files = dialog->findChild<QFileSystemModel*>();
+  if (name == nullptr || files == nullptr) return "a file dialog without a name field or a file system model";
+  const QModelIndex folder = files->index(dialog->directory().absolutePath());
+  (void)QTest::qWaitFor(  // a listing that takes longer only costs a retyping below
+      [&] { return dialog->isVisible() && !files->canFetchMore(folder) && files->rowCount(folder) > 0; }, 10000);
+  const QString typed = QString::fromStdString(path.string());
+  for (int attempt = 0; attempt < 5 && dialog->isVisible(); ++attempt) {
+    QTest::qWait(20 * (attempt + 1));
+    name->setFocus();
+    name->selectAll();
+    QTest::keyClicks(name, typed);
+    if (name->text() == typed) QTest::keyClick(name, Qt::Key_Return);
+  }
+  if (dialog->isVisible()) return "the file dialog did not take the typed path: its name field holds '" + name->text() + "'";
+  return {};
+}
+
+/// Chooses `path` in an open-file dialog by typing it, as a user does.
 inline ModalAnswers::Handler chooseFile(const std::filesystem::path& path) {
   return [path](QWidget* modal) {
     auto* dialog = qobject_cast<QFileDialog*>(modal);
     QVERIFY2(dialog != nullptr, qPrintable(modal->metaObject()->className()));
-    dialog->selectFile(QString::fromStdString(path.string()));
-    static_cast<QDialog*>(dialog)->accept();  // public through QDialog, virtual: QFileDialog::accept
+    const QString failure = typeFilePath(dialog, path);
+    QVERIFY2(failure.isEmpty(), qPrintable(failure));
   };
 }
 
