@@ -14,7 +14,7 @@ packages=(
   libfast-float-dev libtinygltf-dev
   zlib1g-dev liblz4-dev liblzma-dev
   libvtk9-dev
-  qt6-base-dev libqt6opengl6-dev
+  qt6-base-dev libqt6opengl6-dev libqt6svg6
   libgl1-mesa-dev libgl1-mesa-dri libglx-mesa0 libegl-mesa0 mesa-utils
   xvfb xauth libxcb1-dev
   python3 doxygen
