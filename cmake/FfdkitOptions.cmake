@@ -29,16 +29,22 @@ function(ffdkit_target_defaults target)
                          -Wno-unused-parameter)
 endfunction()
 
-# ffdkit_add_library(NAME module SOURCES ... DEPS ...): one library target per module,
-# exported as ffdkit::<module>, public headers under <module>/include/ffdkit/<module>/; installed
-# with its headers and exported in the ffdkit CMake package (cmake/FfdkitInstall.cmake).
+# ffdkit_add_module_library(module SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...]
+#   [HEADER_ONLY_DEPS ...]): one library target per module, ffdkit_<module> with the alias
+# ffdkit::<module>, public headers under <module>/include/ffdkit/<module>/; installed with its
+# headers and exported in the ffdkit CMake package (cmake/FfdkitInstall.cmake). HEADER_ONLY_DEPS
+# are used privately and only while building (nlohmann-json, fast_float): the installed package
+# does not look for them.
 function(ffdkit_add_module_library module)
-  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS;HEADER_ONLY_DEPS" ${ARGN})
   add_library(ffdkit_${module} ${ARG_SOURCES})
   add_library(ffdkit::${module} ALIAS ffdkit_${module})
   target_include_directories(ffdkit_${module} PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>)
   target_link_libraries(ffdkit_${module} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  foreach(dep IN LISTS ARG_HEADER_ONLY_DEPS)
+    target_link_libraries(ffdkit_${module} PRIVATE $<BUILD_INTERFACE:${dep}>)
+  endforeach()
   # Position-independent: the static libraries also go into the Python module (a shared object)
   # and into shared libraries of projects that use the installed package.
   set_target_properties(ffdkit_${module} PROPERTIES POSITION_INDEPENDENT_CODE ON)

@@ -26,7 +26,7 @@ if [ -z "${FFDKIT_FUZZ_SKIP_BUILD:-}" ]; then
     generator=()
     if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
     CC=clang CXX=clang++ cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DFFDKIT_FUZZ=ON -DFFDKIT_BUILD_GUI=OFF -DFFDKIT_BUILD_BENCH=OFF
+      -DFFDKIT_FUZZ=ON -DFFDKIT_BUILD_APP=OFF -DFFDKIT_BUILD_BENCH=OFF
   fi
   build_args=()
   for t in "${targets[@]}"; do build_args+=(--target "$t"); done

@@ -34,7 +34,7 @@ if [ "${FFDKIT_SANITIZE_STAGE:-1}" = "1" ]; then
   sanitize="${FFDKIT_SANITIZE_BUILD_DIR:-$root/build-sanitize}"
   stage_start=$(date +%s)
   # -O1: enough for the sanitizers' checks, and quicker to compile than -O3.
-  FFDKIT_BUILD_DIR="$sanitize" "$root/scripts/build.sh" -DFFDKIT_SANITIZE=ON -DFFDKIT_BUILD_GUI=OFF \
+  FFDKIT_BUILD_DIR="$sanitize" "$root/scripts/build.sh" -DFFDKIT_SANITIZE=ON -DFFDKIT_BUILD_APP=OFF \
     -DFFDKIT_BUILD_BENCH=OFF "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG"
   built=$(date +%s)
   # halt_on_error: the first report fails the test. Leaks are not checked: VTK and tinygltf keep
