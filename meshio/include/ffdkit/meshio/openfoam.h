@@ -1,0 +1,148 @@
+#pragma once
+// OpenFOAM polyMesh: a case folder (its constant/polyMesh) or a polyMesh folder, read to deform
+// its points and check its cells, and written back by pass-through. `points` is read in ASCII or
+// binary, plain or gzip-compressed (`points.gz`); `faces`, `owner`, `neighbour` and `boundary`
+// are read for the cell check and never rewritten. The written `points` file is the read one
+// byte for byte except the coordinate values (FoamFile header, comments, layout kept); every
+// other file of the folder is copied unchanged. File layout: OpenFOAM User Guide, sec. 5.1
+// ("Mesh description") and sec. 4.2 ("Basic input/output file format").
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ffdkit/meshio/mesh_data.h"
+#include "ffdkit/meshio/path_confinement.h"
+#include "ffdkit/meshio/read_limits.h"
+
+namespace ffdkit::meshio {
+
+/// The cells of a polyMesh as OpenFOAM describes them, by their faces: face f has the points
+/// faceVertices[faceStarts[f] .. faceStarts[f + 1]) in order; its area vector (right-hand rule)
+/// points out of cell owner[f]; the first neighbour.size() faces are internal and point into
+/// cell neighbour[f], the others are boundary faces.
+struct PolyMeshCells {
+  std::vector<std::int64_t> faceStarts;    ///< #F + 1 offsets into faceVertices, faceStarts[0] = 0
+  std::vector<std::int32_t> faceVertices;  ///< point indices, >= 3 per face
+  std::vector<std::int32_t> owner;         ///< #F cell indices
+  std::vector<std::int32_t> neighbour;     ///< #internal faces cell indices
+  std::int64_t cellCount = 0;              ///< 1 + the largest cell index in owner and neighbour
+
+  std::int64_t faceCount() const { return std::int64_t(owner.size()); }
+};
+
+/// A boundary patch of the `boundary` file (read to check it against the faces).
+struct PolyMeshPatch {
+  std::string name;
+  std::string type;
+  std::int64_t startFace = 0;
+  std::int64_t faceCount = 0;
+};
+
+/// How one OpenFOAM file stores its list, from its FoamFile header.
+struct FoamFileLayout {
+  bool binary = false;     ///< `format binary;`
+  bool bigEndian = false;  ///< binary: `arch "MSB;..."`
+  int labelBytes = 4;      ///< binary: `arch "...;label=32|64;..."`
+  int scalarBytes = 8;     ///< binary: `arch "...;scalar=32|64"`
+  std::string className;   ///< `class`: vectorField, faceList, faceCompactList, labelList, ...
+};
+
+/// A `points` file as it was read: its (decompressed) bytes and where its list is, so that the
+/// writer can give back the same bytes with other coordinate values.
+struct FoamPointsFile {
+  std::string bytes;            ///< the whole file, decompressed
+  FoamFileLayout layout;
+  std::size_t listBegin = 0;    ///< just after the list's '('
+  std::size_t listEnd = 0;      ///< at the list's ')'
+  int listLine = 1;             ///< the line of listBegin (ASCII)
+  bool gzip = false;            ///< read from points.gz: written compressed too
+  std::string fileName;         ///< "points" or "points.gz"
+};
+
+/// How a polyMesh is read: the read budget and the rule for symbolic links in the folder.
+struct OpenFoamReadOptions {
+  ReadLimits limits;             ///< the read's limits when `budget` is null
+  ReadBudget* budget = nullptr;  ///< a budget shared with an enclosing read, or null
+  /// A file of the polyMesh that is a symbolic link leading outside the folder given is refused
+  /// unless allowOutside.
+  PathConfinement confinement;
+  /// Read faces, owner, neighbour and boundary (false: the points only, e.g. to copy them).
+  bool readCells = true;
+};
+
+/// An OpenFOAM mesh as read: its points, its cells and its points file for the writer.
+struct OpenFoamMesh {
+  std::filesystem::path root;      ///< the folder given: a case folder or a polyMesh folder
+  std::filesystem::path polyMesh;  ///< root/constant/polyMesh, or root itself
+  Eigen::MatrixX3d points;         ///< #P x 3
+  PolyMeshCells cells;
+  std::vector<PolyMeshPatch> patches;
+  FoamPointsFile pointsFile;
+};
+
+/// Whether `folder` holds an OpenFOAM mesh: constant/polyMesh/points[.gz] below it, or
+/// points[.gz] and faces[.gz] in it.
+bool isOpenFoamMeshFolder(const std::filesystem::path& folder);
+
+/// The polyMesh folder of `folder` (a case or a polyMesh folder). @throws MeshIoError when
+/// `folder` holds no polyMesh.
+std::filesystem::path openFoamPolyMeshFolder(const std::filesystem::path& folder);
+
+/// Reads the polyMesh of a case folder or of a polyMesh folder. Validates while it parses: list
+/// sizes against the bytes left before anything is allocated (and charged to the budget),
+/// point indices of faces and cell indices in range, owner sized as faces, finite coordinates,
+/// patches inside the boundary faces; a gzip file's decompressed bytes are charged as they come
+/// (a compressed file that expands past --max-memory is refused). A decomposed case
+/// (processor* folders) is refused.
+/// @throws MeshIoError naming the file and the line (ASCII) or the record (binary).
+OpenFoamMesh readOpenFoamMesh(const std::filesystem::path& folder, const OpenFoamReadOptions& options = {});
+
+/// The list of a `points` file (vectorField) in `bytes` (decompressed). `points`, when not null,
+/// receives what the writer needs.  @throws MeshIoError "points:24: point 3: expected ')'...".
+Eigen::MatrixX3d readFoamPoints(std::string_view bytes, const std::string& source, ReadBudget& budget,
+                                FoamPointsFile* points = nullptr);
+/// The faces of a `faces` file (faceList or faceCompactList) into cells.faceStarts and
+/// cells.faceVertices, each point index checked against `pointCount`. @throws MeshIoError.
+void readFoamFaces(std::string_view bytes, const std::string& source, std::int64_t pointCount, ReadBudget& budget,
+                   PolyMeshCells& cells);
+/// A labelList (`owner`, `neighbour`): every label in [0, maxLabel]. @throws MeshIoError.
+std::vector<std::int32_t> readFoamLabels(std::string_view bytes, const std::string& source, std::int64_t maxLabel,
+                                         ReadBudget& budget);
+/// The patches of a `boundary` file, checked to lie in [firstBoundaryFace, faceCount).
+std::vector<PolyMeshPatch> readFoamBoundary(std::string_view bytes, const std::string& source,
+                                            std::int64_t firstBoundaryFace, std::int64_t faceCount);
+
+/// The bytes of `original` with the coordinates of `points` (#P x 3, as many points as it has)
+/// in its list: everything else byte for byte as read. ASCII values are written as the shortest
+/// text that reads back as the value, and a value that did not change keeps its text; binary
+/// values in the file's scalar size and byte order. Uncompressed. @throws MeshIoError for a
+/// point count that differs or a value a float32 file cannot hold.
+std::string foamPointsBytes(const FoamPointsFile& original, const Eigen::MatrixX3d& points);
+
+struct OpenFoamWriteOptions {
+  /// Flush the new files to disk before the folder is renamed into place.
+  bool durable = true;
+};
+
+/// Writes `mesh`'s folder (mesh.root: a whole case or a polyMesh folder) to `output` with
+/// `points` as the coordinates: every file copied unchanged but the points file, which is
+/// foamPointsBytes (compressed again when it was read from points.gz). All or nothing: the copy
+/// is made in a hidden folder beside `output` and renamed onto it (an existing `output` folder is
+/// exchanged with it atomically and then removed), so `output` is the old folder or the complete
+/// new one. A symbolic link in the folder that leads outside it is refused, as is an `output`
+/// inside the folder. @throws MeshIoError naming the file and the step.
+void writeOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points, const std::filesystem::path& output,
+                       const OpenFoamWriteOptions& options = {});
+
+/// The bytes of a gzip-compressed file, inflated; every growth of the result is charged to the
+/// budget first, so a small file that expands past the limit is refused. @throws MeshIoError.
+std::string gunzipBytes(std::string_view compressed, const std::string& source, ReadBudget& budget);
+/// `bytes` gzip-compressed (zlib's default level). @throws MeshIoError.
+std::string gzipBytes(std::string_view bytes, const std::string& source);
+
+}  // namespace ffdkit::meshio

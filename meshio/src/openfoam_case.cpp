@@ -1,0 +1,282 @@
+// An OpenFOAM case or polyMesh folder: finding its files, reading them into an OpenFoamMesh, and
+// writing the folder back with new points, all or nothing.
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cstdio>
+#include <cstring>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "ffdkit/meshio/atomic_write.h"
+#include "ffdkit/meshio/openfoam.h"
+#include "ffdkit/meshio/read_failures.h"
+
+namespace ffdkit::meshio {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool hasFile(const fs::path& folder, const std::string& name) {
+  std::error_code ec;
+  return fs::is_regular_file(folder / name, ec) || fs::is_regular_file(folder / (name + ".gz"), ec);
+}
+
+bool isPolyMeshFolder(const fs::path& folder) { return hasFile(folder, "points") && hasFile(folder, "faces"); }
+
+// The file `name` of the polyMesh folder, or `name.gz`; empty when neither is there.
+fs::path meshFile(const fs::path& polyMesh, const std::string& name) {
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(polyMesh / name, ec))) return polyMesh / name;
+  if (fs::exists(fs::symlink_status(polyMesh / (name + ".gz"), ec))) return polyMesh / (name + ".gz");
+  return {};
+}
+
+std::string readWholeFile(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw MeshIoError(path.string() + ": cannot open (" + std::strerror(errno) + ")");
+  struct stat info {};
+  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+    ::close(fd);
+    throw MeshIoError(path.string() + ": not a regular file");
+  }
+  std::string bytes;
+  bytes.resize(std::size_t(info.st_size));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      ::close(fd);
+      throw MeshIoError(path.string() + ": cannot read (" + (n < 0 ? std::strerror(errno) : "the file shrank while read") + ")");
+    }
+    done += std::size_t(n);
+  }
+  ::close(fd);
+  return bytes;
+}
+
+// The bytes of one polyMesh file (inflated when it is .gz), after the confinement rule: a file
+// that is a symbolic link out of `root` is refused.
+std::string meshFileBytes(const fs::path& path, const fs::path& root, const OpenFoamReadOptions& options,
+                          ReadBudget& budget) {
+  if (!options.confinement.allowOutside && !isInsideFolder(path, root))
+    throw MeshIoError(path.string() + ": a symbolic link that leads outside the folder " + root.string() +
+                      " (refused: a case must not make ffdkit read other files; allow it with --allow-outside)");
+  std::string bytes = readWholeFile(path);
+  if (path.extension() == ".gz") return gunzipBytes(bytes, path.string(), budget);
+  return bytes;
+}
+
+fs::path requiredFile(const fs::path& polyMesh, const std::string& name) {
+  fs::path path = meshFile(polyMesh, name);
+  if (path.empty())
+    throw MeshIoError(polyMesh.string() + ": no '" + name + "' file (nor " + name +
+                      ".gz): an OpenFOAM polyMesh needs points, faces, owner, neighbour and boundary");
+  return path;
+}
+
+void refuseDecomposedCase(const fs::path& root) {
+  std::error_code ec;
+  for (fs::directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind("processor", 0) == 0 && it->is_directory(ec))
+      throw MeshIoError(root.string() + ": a decomposed case (" + name +
+                        "/): ffdkit reads the whole mesh in constant/polyMesh; run reconstructParMesh or remove the "
+                        "processor folders");
+  }
+}
+
+// Every cell owns or neighbours at least 4 faces (a tetrahedron has 4).
+void checkCellFaces(const PolyMeshCells& cells, const fs::path& owner, ReadBudget& budget) {
+  budget.chargeBytes(std::uint64_t(cells.cellCount), sizeof(std::int32_t), "cells: face counts");
+  std::vector<std::int32_t> faces(std::size_t(cells.cellCount), 0);
+  for (std::int32_t c : cells.owner) ++faces[std::size_t(c)];
+  for (std::int32_t c : cells.neighbour) ++faces[std::size_t(c)];
+  for (std::size_t c = 0; c < faces.size(); ++c)
+    if (faces[c] < 4)
+      throw MeshIoError(owner.string() + ": cell " + std::to_string(c) + " has " + std::to_string(faces[c]) +
+                        " face(s) in owner and neighbour; a cell needs at least 4");
+  budget.releaseBytes(std::uint64_t(cells.cellCount) * sizeof(std::int32_t));
+}
+
+// The body of readOpenFoamMesh, charging `budget`.
+OpenFoamMesh readMeshFolder(const fs::path& folder, const OpenFoamReadOptions& options, ReadBudget& budget) {
+  OpenFoamMesh mesh;
+  mesh.root = folder;
+  mesh.polyMesh = openFoamPolyMeshFolder(folder);
+  refuseDecomposedCase(folder);
+
+  const fs::path pointsPath = requiredFile(mesh.polyMesh, "points");
+  std::string pointsBytes = meshFileBytes(pointsPath, folder, options, budget);
+  mesh.points = readFoamPoints(pointsBytes, pointsPath.string(), budget, &mesh.pointsFile);
+  mesh.pointsFile.bytes = std::move(pointsBytes);
+  mesh.pointsFile.gzip = pointsPath.extension() == ".gz";
+  mesh.pointsFile.fileName = pointsPath.filename().string();
+  if (!options.readCells) return mesh;
+
+  const fs::path facesPath = requiredFile(mesh.polyMesh, "faces");
+  readFoamFaces(meshFileBytes(facesPath, folder, options, budget), facesPath.string(), mesh.points.rows(), budget,
+                mesh.cells);
+  const std::int64_t faceCount = std::int64_t(mesh.cells.faceStarts.size()) - 1;
+
+  const fs::path ownerPath = requiredFile(mesh.polyMesh, "owner");
+  mesh.cells.owner = readFoamLabels(meshFileBytes(ownerPath, folder, options, budget), ownerPath.string(), INT32_MAX - 1, budget);
+  if (std::int64_t(mesh.cells.owner.size()) != faceCount)
+    throw MeshIoError(ownerPath.string() + ": " + std::to_string(mesh.cells.owner.size()) + " owner cells for the " +
+                      std::to_string(faceCount) + " faces of " + facesPath.filename().string() + " (one per face)");
+
+  const fs::path neighbourPath = requiredFile(mesh.polyMesh, "neighbour");
+  mesh.cells.neighbour =
+      readFoamLabels(meshFileBytes(neighbourPath, folder, options, budget), neighbourPath.string(), INT32_MAX - 1, budget);
+  if (std::int64_t(mesh.cells.neighbour.size()) > faceCount)
+    throw MeshIoError(neighbourPath.string() + ": " + std::to_string(mesh.cells.neighbour.size()) +
+                      " neighbour cells for " + std::to_string(faceCount) + " faces (at most one per face)");
+
+  std::int32_t lastCell = -1;
+  for (std::int32_t c : mesh.cells.owner) lastCell = std::max(lastCell, c);
+  for (std::int32_t c : mesh.cells.neighbour) lastCell = std::max(lastCell, c);
+  mesh.cells.cellCount = std::int64_t(lastCell) + 1;
+  if (mesh.cells.cellCount == 0) throw MeshIoError(ownerPath.string() + ": the mesh has no cells");
+  for (std::size_t f = 0; f < mesh.cells.neighbour.size(); ++f)
+    if (mesh.cells.neighbour[f] == mesh.cells.owner[f])
+      throw MeshIoError(neighbourPath.string() + ": face " + std::to_string(f) + " has cell " +
+                        std::to_string(mesh.cells.owner[f]) + " on both sides");
+  checkCellFaces(mesh.cells, ownerPath, budget);
+  // What the cell check allocates per cell (centres, volumes, a first centre estimate, a count).
+  budget.chargeBytes(std::uint64_t(mesh.cells.cellCount), 64, "cells: centres and volumes of the cell check");
+
+  const fs::path boundaryPath = requiredFile(mesh.polyMesh, "boundary");
+  mesh.patches = readFoamBoundary(meshFileBytes(boundaryPath, folder, options, budget), boundaryPath.string(),
+                                  std::int64_t(mesh.cells.neighbour.size()), faceCount);
+  return mesh;
+}
+
+void writeFileBytes(const fs::path& path, std::string_view bytes, bool durable) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) throw MeshIoError(path.string() + ": cannot create (" + std::strerror(errno) + ")");
+  while (!bytes.empty()) {
+    const ssize_t n = ::write(fd, bytes.data(), bytes.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string why = std::strerror(errno);
+      ::close(fd);
+      throw MeshIoError(path.string() + ": cannot write (" + why + ")");
+    }
+    bytes.remove_prefix(std::size_t(n));
+  }
+  if ((durable && ::fsync(fd) != 0) || ::close(fd) != 0)
+    throw MeshIoError(path.string() + ": cannot write (" + std::strerror(errno) + ")");
+}
+
+void syncPath(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+// Copies the folder `from` to `to` (which exists), but `skip`; a symbolic link is copied as the
+// file it leads to, which must be inside `root`.
+void copyFolder(const fs::path& from, const fs::path& to, const fs::path& root, const fs::path& skip, bool durable) {
+  for (const fs::directory_entry& entry : fs::directory_iterator(from)) {
+    const fs::path target = to / entry.path().filename();
+    if (entry.path() == skip) continue;
+    const fs::file_status link = entry.symlink_status();
+    if (fs::is_symlink(link)) {
+      if (!isInsideFolder(entry.path(), root))
+        throw MeshIoError(entry.path().string() + ": a symbolic link that leads outside the folder " + root.string() +
+                          " (refused: the written case would hold another file's bytes)");
+      if (fs::is_directory(entry.path()))
+        throw MeshIoError(entry.path().string() + ": a symbolic link to a folder (not copied; make it a folder)");
+    }
+    if (fs::is_directory(entry.status())) {
+      fs::create_directory(target);
+      copyFolder(entry.path(), target, root, skip, durable);
+    } else if (fs::is_regular_file(entry.status())) {
+      fs::copy_file(entry.path(), target);
+      if (durable) syncPath(target);
+    } else {
+      throw MeshIoError(entry.path().string() + ": neither a file nor a folder (not copied)");
+    }
+  }
+  if (durable) syncPath(to);
+}
+
+}  // namespace
+
+bool isOpenFoamMeshFolder(const fs::path& folder) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) return false;
+  return hasFile(folder / "constant" / "polyMesh", "points") || isPolyMeshFolder(folder);
+}
+
+fs::path openFoamPolyMeshFolder(const fs::path& folder) {
+  const fs::path inCase = folder / "constant" / "polyMesh";
+  std::error_code ec;
+  if (fs::is_directory(inCase, ec)) return inCase;
+  if (isPolyMeshFolder(folder)) return folder;
+  throw MeshIoError(folder.string() + ": not an OpenFOAM case (no constant/polyMesh) nor a polyMesh folder (points and faces)");
+}
+
+OpenFoamMesh readOpenFoamMesh(const fs::path& folder, const OpenFoamReadOptions& options) {
+  ReadBudget own(options.limits);
+  ReadBudget& budget = options.budget != nullptr ? *options.budget : own;
+  try {
+    return convertReadFailures<MeshIoError>(folder.string(), "the polyMesh", budget,
+                                            [&] { return readMeshFolder(folder, options, budget); });
+  } catch (const std::length_error&) {
+    throw MeshIoError(folder.string() + ": out of memory while reading (a size beyond what can be allocated)");
+  } catch (const fs::filesystem_error& e) {
+    throw MeshIoError(folder.string() + ": " + e.what());
+  }
+}
+
+void writeOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points, const fs::path& outputGiven,
+                       const OpenFoamWriteOptions& options) {
+  const fs::path output = outputGiven.filename().empty() ? outputGiven.parent_path() : outputGiven;
+  std::error_code ec;
+  const fs::path root = fs::weakly_canonical(mesh.root, ec);
+  const fs::path target = fs::weakly_canonical(fs::absolute(output), ec);
+  if (target != root && isInsideFolder(target, root))
+    throw MeshIoError(output.string() + ": the output folder is inside the folder it copies (" + mesh.root.string() + ")");
+  if (fs::exists(output) && !fs::is_directory(output))
+    throw MeshIoError(output.string() + ": exists and is not a folder");
+  // The points bytes first: a point count or value the file cannot hold fails before any copy.
+  std::string bytes = foamPointsBytes(mesh.pointsFile, points);
+  if (mesh.pointsFile.gzip) bytes = gzipBytes(bytes, mesh.pointsFile.fileName);
+
+  const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
+  const fs::path temporary = temporaryPathBeside(output);
+  try {
+    fs::create_directories(parent);
+    fs::create_directory(temporary);
+    const fs::path pointsPath = mesh.polyMesh / mesh.pointsFile.fileName;
+    copyFolder(mesh.root, temporary, mesh.root, pointsPath, options.durable);
+    const fs::path relativePolyMesh = fs::relative(mesh.polyMesh, mesh.root);
+    writeFileBytes(temporary / relativePolyMesh / mesh.pointsFile.fileName, bytes, options.durable);
+    if (options.durable) syncPath(temporary / relativePolyMesh);
+    if (!fs::exists(output)) {
+      if (::rename(temporary.c_str(), output.c_str()) != 0)
+        throw MeshIoError(output.string() + ": cannot rename the finished copy into place (" + std::strerror(errno) + ")");
+    } else {
+      // Atomic exchange: `output` is the old folder or the whole new one at every moment.
+      if (::renameat2(AT_FDCWD, temporary.c_str(), AT_FDCWD, output.c_str(), RENAME_EXCHANGE) != 0)
+        throw MeshIoError(output.string() + ": cannot exchange the finished copy with the existing folder (" +
+                          std::strerror(errno) + ")");
+      fs::remove_all(temporary, ec);  // the old folder
+    }
+    if (options.durable) syncPath(parent);
+  } catch (const fs::filesystem_error& e) {
+    fs::remove_all(temporary, ec);
+    throw MeshIoError(output.string() + ": cannot write the case (" + e.what() + ")");
+  } catch (...) {
+    fs::remove_all(temporary, ec);
+    throw;
+  }
+}
+
+}  // namespace ffdkit::meshio
