@@ -140,7 +140,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
 
   // Each face's pyramids about the two cell centres, its non-orthogonality and skewness.
   q.minPyramidVolume = std::numeric_limits<double>::infinity();
-  double sumNonOrthogonality = 0.0;
+  double sumCosines = 0.0;
   for (std::int64_t f = 0; f < faces; ++f) {
     const FaceGeometry face = faceGeometry(points, cells, f);
     const std::size_t own = std::size_t(cells.owner[std::size_t(f)]);
@@ -164,13 +164,15 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
       const double cosine = d.dot(face.area) / (d.norm() * face.area.norm() + kRootVerySmall);
       const double degrees = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
       q.maxNonOrthogonality = std::max(q.maxNonOrthogonality, degrees);
-      sumNonOrthogonality += degrees;
+      sumCosines += cosine;
       q.maxSkewness = std::max(q.maxSkewness, faceSkewness(points, cells, f, face, ownCentre, &neiCentre));
     } else {
       q.maxSkewness = std::max(q.maxSkewness, faceSkewness(points, cells, f, face, ownCentre, nullptr));
     }
   }
-  if (internal > 0) q.meanNonOrthogonality = sumNonOrthogonality / double(internal);
+  // checkMesh's average: the angle of the mean cosine (not the mean angle).
+  if (internal > 0)
+    q.meanNonOrthogonality = std::acos(std::clamp(sumCosines / double(internal), -1.0, 1.0)) * 180.0 / std::numbers::pi;
   if (faces == 0) q.minPyramidVolume = 0.0;
   if (nCells == 0) q.minVolume = q.maxVolume = 0.0;
   for (std::size_t c = 0; c < nCells; ++c)

@@ -18,6 +18,7 @@
 #include "ffdkit/scenes/lattice_fit.h"
 #include "frames.h"
 #include "split_input.h"
+#include "volume_mesh.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
@@ -136,6 +137,8 @@ struct DeformRequest {
   std::optional<std::string> format; ///< lower case, no dot
   ReadSettings read;                 ///< --max-memory, --max-points, --allow-outside
   std::optional<std::string> frame;  ///< --frame T: the scene's animation at frame T
+  bool allowInverted = false;        ///< --allow-inverted: write a volume mesh with bad cells
+  bool quality = false;              ///< --quality: a volume mesh's cell check before and after
   ffd::Precision precision = ffd::Precision::Double;  ///< --precision
 };
 
@@ -159,6 +162,8 @@ DeformRequest parseRequest(const Args& args) {
   if (r.frame && r.widgetFile) throw UsageError("--frame animates a scene; a widget file has no animation");
   if (r.widgetFile && r.inputs.empty()) throw UsageError("--widgets needs at least one INPUT mesh or point file");
   r.fit = args.flag("fit");
+  r.allowInverted = args.flag("allow-inverted");
+  r.quality = args.flag("quality");
   r.read = readSettings(args);
   if (r.fit && r.inputs.empty()) throw UsageError("--fit fits the lattices to INPUT files; a scene's objects need none");
   if (auto padding = args.value("padding")) {
@@ -192,7 +197,8 @@ DeformRequest parseRequest(const Args& args) {
 /// INPUT into `split`), and builds the scene to evaluate: with INPUT files every root lattice
 /// deforms every input. `sourceOf` receives each input object's file.
 scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRanks& ranks,
-                        std::map<std::string, fs::path>& sourceOf, std::optional<SplitInput>& split) {
+                        std::map<std::string, fs::path>& sourceOf, std::optional<SplitInput>& split,
+                        std::optional<VolumeMeshInput>& volume) {
   scenes::Scene scene;
   onEveryRank(ranks, [&] {
     if (r.widgetFile) {
@@ -207,6 +213,10 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
   if (SplitInput::applies(r.inputs.size(), ranks)) {
     console.begin("read", "reading a slice of " + r.inputs.front() + " per process");
     split.emplace(fs::path(r.inputs.front()), r.read.limits, ranks);
+  } else if (VolumeMeshInput::applies(r.inputs)) {
+    console.begin("read", "reading the OpenFOAM mesh " + r.inputs.front());
+    volume.emplace(fs::path(r.inputs.front()), r.read);
+    if (r.quality) console.say("cell check before: " + meshio::cellQualityText(volume->check(volume->mesh().points)));
   }
   onEveryRank(ranks, [&] {
     if (r.inputs.empty()) return;
@@ -221,6 +231,8 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
       scenes::SceneObject object;
       if (split) {
         object.mesh.points = split->takePoints();
+      } else if (volume) {
+        object.mesh.points = volume->takePoints();
       } else {
         console.begin("read", "reading " + input);
         object.mesh = readMeshFile(fs::path(input), r.read);
@@ -309,17 +321,22 @@ int runDeform(const Args& args) {
   DeformRequest request;
   onEveryRank(ranks, [&] {
     request = parseRequest(args);
+    if (ranks.size() > 1 && VolumeMeshInput::applies(request.inputs))
+      throw UsageError("an mpirun batch does not take an OpenFOAM case yet: run one process on the reconstructed case");
     if (ranks.size() > 1 && (!request.widgetFile || request.inputs.empty()))
       throw UsageError("an mpirun batch takes --widgets TOOL and INPUT pieces (each rank deforms its share) "
                        "or one INPUT (each rank deforms its slice)");
   });
   std::map<std::string, fs::path> sourceOf;
   std::optional<SplitInput> split;
-  scenes::Scene scene = loadScene(request, console, ranks, sourceOf, split);
+  std::optional<VolumeMeshInput> volume;
+  scenes::Scene scene = loadScene(request, console, ranks, sourceOf, split, volume);
   bool intoFolder = false;
   std::vector<Output> targets;
   onEveryRank(ranks, [&] {
-    targets = plannedOutputs(request, scene, sourceOf, intoFolder);
+    // A volume mesh is written as a folder: -o names it.
+    targets = volume ? std::vector<Output>{{scene.objects().front().name, request.output}}
+                     : plannedOutputs(request, scene, sourceOf, intoFolder);
     if (split) split->checkTarget(targets.front().path);
   });
   scenes::SceneDeformer deformer;
@@ -339,8 +356,18 @@ int runDeform(const Args& args) {
     }
   });
   const scenes::SceneDeformStats stats = deformer.lastStats();
-  console.begin("write", "writing " + std::to_string(split ? 1 : meshes.size()) + " file(s)");
-  if (split) {
+  if (!volume) console.begin("write", "writing " + std::to_string(split ? 1 : meshes.size()) + " file(s)");
+  if (volume) {
+    const auto& [path, mesh] = meshes.front();
+    console.begin("check", "checking " + std::to_string(volume->mesh().cells.cellCount) + " cells");
+    const meshio::CellQuality quality = volume->check(mesh.points);
+    if (request.quality) console.say("cell check after: " + meshio::cellQualityText(quality));
+    console.begin("write", "writing " + path.string());
+    volume->write(mesh.points, quality, path, request.allowInverted, console);
+    console.end();
+    console.say("wrote " + path.string() + " (" + std::to_string(mesh.points.rows()) + " points, " +
+                std::to_string(quality.cellCount) + " cells" + (quality.ok() ? ", all valid)" : ")"));
+  } else if (split) {
     split->write(meshes.front().first, meshes.front().second.points, ranks);
     console.end();
     console.say("wrote " + meshes.front().first.string() + " (" + std::to_string(split->totalPoints()) + " points, a slice from each of " +
@@ -377,9 +404,12 @@ Command deformCommand() {
           "the scene's own objects are deformed and written (--object picks some). A scene may also\n"
           "be given as the first INPUT. --frame T first sets the scene's animation to frame T (in its\n"
           "frame range; docs/animation.md); --set values apply after it.\n"
-          "INPUT: .obj .ply .stl .vtp .vtk .gltf .glb .xyz .npy. OUTPUT: a file when there is one\n"
-          "result (its extension picks the format: .obj .ply .stl .vtp .vtk .xyz .npy), else a folder that\n"
-          "receives NAME.EXT per object. Normals are recomputed when the input had them.\n"
+          "INPUT: .obj .ply .stl .vtp .vtk .gltf .glb .xyz .npy, or an OpenFOAM case or polyMesh folder.\n"
+          "OUTPUT: a file when there is one result (its extension picks the format: .obj .ply .stl .vtp\n"
+          ".vtk .xyz .npy), else a folder that receives NAME.EXT per object. Normals are recomputed when\n"
+          "the input had them. An OpenFOAM case is written to the folder OUTPUT, every file copied\n"
+          "unchanged but the points, after its cells are checked: inverted or zero-volume cells refuse\n"
+          "the write unless --allow-inverted (docs/volume-meshes.md).\n"
           "Nothing is written when anything fails.\n"
           "Batch: mpirun -n N ffdkit-cli deform --widgets TOOL PIECE... -o FOLDER: rank 0 reads TOOL\n"
           "and sends it to every rank; each rank reads, deforms and writes its contiguous share of\n"
@@ -395,6 +425,9 @@ Command deformCommand() {
            {"padding", '\0', "P", "with --fit: margin on every side, relative to the box diagonal (0.05)"},
            {"object", '\0', "NAME", "with --scene and no INPUT: write only this object", true},
            {"format", '\0', "EXT", "format of outputs written into a folder (default: the input's)"},
+           {"allow-inverted", '\0', "", "with an OpenFOAM case: write it even when deformed cells are inverted or "
+                                          "of zero volume (says how many)"},
+           {"quality", '\0', "", "with an OpenFOAM case: print the cell check before and after"},
            {"precision", '\0', "P", "double (default) or single: the displacements in float32, as Blender does "
                                      "(within 1e-6 of the largest control-point move; docs/ffd-engine.md)"},
            quietOption(), progressOption(), timingsOption()}),

@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "console.h"
+#include "volume_mesh.h"
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
@@ -104,10 +105,15 @@ int runInfo(const Args& args) {
   }
   if (args.positional().empty()) throw UsageError("info takes one or more FILEs (or --generators)");
   const ReadSettings read = readSettings(args);
+  const std::optional<fs::path> tool = args.value("widgets");
   bool first = true;
   for (const auto& file : args.positional()) {
     if (!first) std::printf("\n");
     first = false;
+    if (isVolumeMesh(file)) {
+      infoVolumeMesh(file, read, args.flag("quality"), tool ? &*tool : nullptr);
+      continue;
+    }
     switch (fileKind(file)) {
       case FileKind::Scene: infoScene(file, read); break;
       case FileKind::Widgets: infoWidgets(file, read); break;
@@ -120,6 +126,7 @@ int runInfo(const Args& args) {
 /// Checks one file completely: reads it, builds every object, validates references and meshes,
 /// and evaluates a scene (a degenerate lattice fails there). @throws on the first problem.
 std::string check(const fs::path& path, const ReadSettings& read) {
+  if (isVolumeMesh(path)) return checkVolumeMesh(path, read);
   switch (fileKind(path)) {
     case FileKind::Scene: {
       const scenes::Scene scene = readSceneFile(path, read);
@@ -184,8 +191,13 @@ Command infoCommand() {
           "ffdkit-cli info FILE...\n       ffdkit-cli info --generators",
           "FILE: a scene (.json or a sample-scene folder), a widget file (.json with format\n"
           "\"ffdkit-widgets\") or a mesh / point file. Lists objects, lattices, affine widgets (the\n"
-          "names --set takes) with their variations, attachments, and evaluates a scene.\n",
-          withReadOptions({{"generators", '\0', "", "list the registered curve and surface generators"}, quietOption()}),
+          "names --set takes) with their variations, attachments, and evaluates a scene. An OpenFOAM\n"
+          "case or polyMesh folder: its counts and patches; --quality adds the cell check (volumes,\n"
+          "face pyramids, non-orthogonality, skewness), --widgets TOOL the same check after TOOL deforms it.\n",
+          withReadOptions({{"generators", '\0', "", "list the registered curve and surface generators"},
+                           {"quality", '\0', "", "an OpenFOAM case: print its cell check"},
+                           {"widgets", 'w', "TOOL", "an OpenFOAM case: also check its cells as TOOL deforms them"},
+                           quietOption()}),
           runInfo};
 }
 
@@ -194,7 +206,8 @@ Command validateCommand() {
           "check scene, widget and mesh files; report every broken one",
           "ffdkit-cli validate FILE...",
           "Reads each file completely (a scene: its mesh files, generators, widgets and\n"
-          "attachments, then evaluates it) and prints 'FILE: ok' or the problem, with line and\n"
+          "attachments, then evaluates it; an OpenFOAM case: its polyMesh and the check of its cells)\n"
+          "and prints 'FILE: ok' or the problem, with line and\n"
           "column for malformed JSON. Exit status 1 when any file is broken. Writes nothing.\n",
           withReadOptions({quietOption()}),
           runValidate};

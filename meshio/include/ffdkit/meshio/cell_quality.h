@@ -31,7 +31,7 @@ struct CellQuality {
   double totalVolume = 0.0;
   double minPyramidVolume = 0.0;     ///< the worst face pyramid, owner or neighbour side
   double maxNonOrthogonality = 0.0;  ///< degrees, over internal faces
-  double meanNonOrthogonality = 0.0; ///< degrees
+  double meanNonOrthogonality = 0.0; ///< degrees: the angle of the mean cosine, as checkMesh's average
   double maxSkewness = 0.0;          ///< checkMesh's normalised skewness (its limit is 4)
   /// Cells of volume < 1e-300 (checkMesh: "Number of negative volume cells").
   std::int64_t negativeVolumeCells = 0;

@@ -1,0 +1,63 @@
+#pragma once
+// Volume meshes in the CLI: an OpenFOAM case or polyMesh folder given to deform, info or validate
+// (docs/volume-meshes.md). Its points are deformed like any INPUT's; before anything is written
+// its cells are checked (meshio/cell_quality.h) and a mesh with inverted or zero-volume cells is
+// refused unless --allow-inverted.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "console.h"
+#include "ffdkit/meshio/cell_quality.h"
+#include "ffdkit/meshio/openfoam.h"
+#include "read_options.h"
+
+namespace ffdkit::cli {
+
+/// Whether `path` is a volume mesh the CLI reads (an OpenFOAM case or polyMesh folder).
+bool isVolumeMesh(const std::filesystem::path& path);
+
+/// A volume mesh given as deform's INPUT: read once, its points handed to the deformation, its
+/// deformed points checked and written back by pass-through.
+class VolumeMeshInput {
+ public:
+  /// Whether `inputs` is one volume mesh. @throws UsageError when a volume mesh comes with
+  /// other INPUTs (a case is deformed on its own).
+  static bool applies(const std::vector<std::string>& inputs);
+
+  /// Reads the mesh (points, faces, owner, neighbour, boundary). @throws meshio::MeshIoError.
+  VolumeMeshInput(const std::filesystem::path& folder, const ReadSettings& read);
+
+  /// The points read (#P x 3), moved out: call once.
+  Eigen::MatrixX3d takePoints();
+  /// The cell check of the points as read (before takePoints).
+  meshio::CellQuality qualityBefore() const;
+
+  /// The cell check of `deformed` (#P x 3) over the mesh's cells.
+  meshio::CellQuality check(const Eigen::MatrixX3d& deformed) const;
+  /// Writes the folder with `deformed` as its points to `output` when `quality` (check() of the
+  /// same points) passes, or when `allowInverted` (and says so on stderr).
+  /// @throws std::runtime_error naming the bad cells when they fail and !allowInverted (nothing
+  /// written), meshio::MeshIoError when the write fails (nothing written).
+  void write(const Eigen::MatrixX3d& deformed, const meshio::CellQuality& quality, const std::filesystem::path& output,
+             bool allowInverted, const Console& console) const;
+
+  const meshio::OpenFoamMesh& mesh() const { return mesh_; }
+
+ private:
+  meshio::OpenFoamMesh mesh_;
+};
+
+/// `info` of a volume mesh: counts, patches, the points' format, and with `quality` the cell
+/// check; with a `tool` (a widget file) also the check after the tool deforms the mesh.
+void infoVolumeMesh(const std::filesystem::path& folder, const ReadSettings& read, bool quality,
+                    const std::filesystem::path* tool);
+
+/// `validate` of a volume mesh: reads it and checks its cells. Returns the summary line.
+/// @throws std::runtime_error naming the bad cells.
+std::string checkVolumeMesh(const std::filesystem::path& folder, const ReadSettings& read);
+
+}  // namespace ffdkit::cli
