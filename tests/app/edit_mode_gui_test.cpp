@@ -17,6 +17,7 @@
 #include "ffdkit/app/edit_controller.h"
 #include "ffdkit/app/interaction_controller.h"
 #include "ffdkit/widgets/thesis_examples.h"
+#include "fig62_steps.h"
 #include "gui_test_support.h"
 
 using namespace ffdkit;
@@ -26,39 +27,6 @@ using namespace ffdkit::app::testing;
 
 namespace {
 
-Eigen::Index flat(int i, int j, int k) { return i + 3 * (j + 3 * k); }
-
-// Accepts the dialog the action opens (New Lattice: 3x3x3 Bernstein by default).
-void triggerWithDialog(MainWindow& w, const char* name) {
-  bool seen = false;
-  QTimer::singleShot(0, [&] {
-    auto* dialog = qobject_cast<QDialog*>(QApplication::activeModalWidget());
-    if (dialog == nullptr) return;
-    seen = true;
-    dialog->accept();
-  });
-  action(w, name)->trigger();
-  QVERIFY2(seen, name);
-}
-
-// An oblique view of the unit box in which no two of its 27 grid points share a pixel.
-void lookAtUnitBox(MainWindow& w) {
-  scenes::Camera camera;
-  camera.focalPoint = {0.5, 0.5, 0.5};
-  camera.position = camera.focalPoint + 1.6 * Eigen::Vector3d(2.0, -3.2, 1.6);
-  w.sceneView().applyCamera(camera);
-  w.view()->grabFramebuffer();
-}
-
-// A new 3 x 3 x 3 lattice (Widgets > New Lattice), seen from lookAtUnitBox, in edit mode (Tab).
-WidgetId newLatticeInEditMode(MainWindow& w) {
-  triggerWithDialog(w, "actionNewLattice");
-  const WidgetId lattice = w.scene().widgets.roots().front();
-  lookAtUnitBox(w);
-  pressKey(w, Qt::Key_Tab);
-  return lattice;
-}
-
 // True when every grid point of the unit box is drawn inside the view.
 bool unitBoxInView(MainWindow& w) {
   for (int k = 0; k < 3; ++k)
@@ -67,19 +35,6 @@ bool unitBoxInView(MainWindow& w) {
         if (!w.view()->rect().adjusted(4, 4, -4, -4).contains(toWidget(w, Eigen::Vector3d(0.5 * i, 0.5 * j, 0.5 * k))))
           return false;
   return true;
-}
-
-// Clicks lattice point `index` of `lattice` in the view.
-void clickPoint(MainWindow& w, WidgetId lattice, Eigen::Index index, Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
-  click(w, toWidget(w, w.scene().widgets.worldControlPoints(lattice).row(index).transpose()), modifiers);
-}
-
-// Types `text` on the view, key by key.
-void typeKeys(MainWindow& w, const std::string& text) {
-  for (char c : text) {
-    const Qt::Key key = c == '.' ? Qt::Key_Period : c == '-' ? Qt::Key_Minus : static_cast<Qt::Key>(Qt::Key_0 + (c - '0'));
-    pressKey(w, key);
-  }
 }
 
 QString countText(MainWindow& w) { return w.findChild<QLabel*>("editCount")->text(); }
@@ -420,20 +375,14 @@ class EditModeGuiTest : public QObject {
     const auto& m = w.scene().widgets;
     const WidgetId lattice = newLatticeInEditMode(w);
     auto makeCell = [&](const std::vector<Eigen::Index>& points, const char* add) {
-      pressKey(w, Qt::Key_A, Qt::AltModifier);
-      for (Eigen::Index p : points) clickPoint(w, lattice, p, Qt::ShiftModifier);
-      if (editOf(w).points().count() != static_cast<Eigen::Index>(points.size())) return WidgetId();  // a click missed
-      pressKey(w, Qt::Key_M, Qt::ControlModifier);
-      action(w, add)->trigger();
-      return m.widgets(widgets::WidgetType::Affine).back();
+      return selectPoints(w, lattice, points) ? makeCellWithWidget(w, add) : WidgetId();  // invalid: a click missed
     };
-    const WidgetId ring = makeCell({flat(0, 0, 2), flat(1, 0, 2), flat(0, 1, 2), flat(1, 1, 2)}, "actionAddRotate");
-    const WidgetId edgeArrow = makeCell({flat(0, 2, 0), flat(1, 2, 0)}, "actionAddTranslate");
-    const WidgetId pointArrow = makeCell({flat(2, 2, 0)}, "actionAddTranslate");
+    const WidgetId ring = makeCell(fig62FacePoints(), "actionAddRotate");
+    const WidgetId edgeArrow = makeCell(fig62EdgePoints(), "actionAddTranslate");
+    const WidgetId pointArrow = makeCell(fig62PointPoints(), "actionAddTranslate");
     // docs/app.md's picture (with FFDKIT_DOC_IMAGES=<folder>): the face's points selected again.
     if (const QString folder = qEnvironmentVariable("FFDKIT_DOC_IMAGES"); !folder.isEmpty()) {
-      pressKey(w, Qt::Key_A, Qt::AltModifier);
-      for (Eigen::Index p : {flat(0, 0, 2), flat(1, 0, 2), flat(0, 1, 2), flat(1, 1, 2)}) clickPoint(w, lattice, p, Qt::ShiftModifier);
+      QVERIFY(selectPoints(w, lattice, fig62FacePoints()));
       QVERIFY(w.grab().save(folder + "/edit-mode.png"));
     }
     QVERIFY(ring.valid() && edgeArrow.valid() && pointArrow.valid());
@@ -441,41 +390,13 @@ class EditModeGuiTest : public QObject {
     QCOMPARE(m.widgets(widgets::WidgetType::Affine).size(), std::size_t(3));
 
     // The point's arrow turned up: its transformer's y ring, dragged a little, then -90 typed.
-    w.selectWidget(m.name(pointArrow));
-    w.view()->grabFramebuffer();
-    const app::Transformer t = *w.controller().transformer();
-    const Eigen::Vector3d o = t.frame.translation(), ty = t.frame.linear().col(1);
-    const Eigen::Vector3d tx = t.frame.linear().col(0), tz = t.frame.linear().col(2);
-    const double r = app::TransformerLayout::turnRadius * t.size;
-    const double a = 0.6;
-    const QPoint ringAt = toWidget(w, o + r * (std::cos(a) * tz + std::sin(a) * tx));
-    const QPoint ringTo = toWidget(w, o + r * (std::cos(a + 0.2) * tz + std::sin(a + 0.2) * tx));
-    sendMouse(w.view(), QEvent::MouseButtonPress, ringAt, Qt::LeftButton, Qt::LeftButton);
-    QCOMPARE(w.controller().transformerHandle(), std::optional(app::TransformerHandle::TurnY));
-    sendMouse(w.view(), QEvent::MouseMove, ringTo, Qt::NoButton, Qt::LeftButton);
-    typeKeys(w, "-90");
-    pressKey(w, Qt::Key_Return);
-    sendMouse(w.view(), QEvent::MouseButtonRelease, ringTo, Qt::LeftButton, Qt::NoButton);
+    turnWithTransformerRingY(w, pointArrow, "-90");
     QVERIFY((m.affineFrame(pointArrow).frame.linear().col(0) - Eigen::Vector3d::UnitZ()).norm() < 1e-15);
-    (void)ty;
 
     // Each widget dragged by its glyph, the amount typed while the button is down.
-    auto dragTyped = [&](WidgetId widget, const std::string& amount) {
-      const widgets::WidgetFrame f = m.affineFrame(widget);
-      const bool turn = m.affineKind(widget) == widgets::AffineKind::Rotate;
-      const Eigen::Vector3d grab = f.frame * (turn ? Eigen::Vector3d(0, f.size, 0) : Eigen::Vector3d(0.6 * f.size, 0, 0));
-      const Eigen::Vector3d moved = f.frame * (turn ? Eigen::Vector3d(-0.3 * f.size, f.size, 0) : Eigen::Vector3d(0.9 * f.size, 0, 0));
-      w.controller().clearSelection();
-      sendMouse(w.view(), QEvent::MouseButtonPress, toWidget(w, grab), Qt::LeftButton, Qt::LeftButton);
-      QCOMPARE(w.controller().selection(), std::vector{widget});
-      sendMouse(w.view(), QEvent::MouseMove, toWidget(w, moved), Qt::NoButton, Qt::LeftButton);
-      typeKeys(w, amount);
-      sendMouse(w.view(), QEvent::MouseMove, toWidget(w, grab), Qt::NoButton, Qt::LeftButton);  // the typed value rules
-      sendMouse(w.view(), QEvent::MouseButtonRelease, toWidget(w, grab), Qt::LeftButton, Qt::NoButton);
-    };
-    dragTyped(ring, "5");
-    dragTyped(edgeArrow, "0.5");
-    dragTyped(pointArrow, "0.25");
+    dragTyped(w, ring, "5");
+    dragTyped(w, edgeArrow, "0.5");
+    dragTyped(w, pointArrow, "0.25");
 
     widgets::Fig62 fixture = widgets::buildFig62();
     fixture.model.applyVariation(fixture.faceRotate, 5.0 * std::numbers::pi / 180.0);
