@@ -154,7 +154,7 @@ class Embedding {
   const std::vector<double>& blendWeight() const { return blend_; }
 
  private:
-  friend Embedding embed(const Lattice&, const Eigen::Ref<const Eigen::MatrixX3d>&, const EmbedOptions&);
+  friend Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points, const EmbedOptions& options);
 
   StatusVector status_;
   Eigen::Index inside_ = 0;
