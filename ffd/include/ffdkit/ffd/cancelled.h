@@ -12,6 +12,7 @@ namespace ffdkit::ffd {
 /// documented where the callback is taken (EmbedOptions::progress, Pipeline::update()).
 class Cancelled : public std::runtime_error {
  public:
+  /// A cancellation with `message` (what was stopped, and what was kept).
   explicit Cancelled(const std::string& message) : std::runtime_error(message) {}
 };
 

@@ -48,8 +48,10 @@ enum class Precision {
 class Deformer {
  public:
   Deformer() = default;
+  /// A deformer for the points of `embedding` (taken over; no output until deform()).
   explicit Deformer(Embedding embedding);
 
+  /// The embedding the deformer evaluates.
   const Embedding& embedding() const { return embedding_; }
 
   /// Full evaluation of every point.
@@ -86,6 +88,7 @@ class Deformer {
   /// points(), handed over without a copy; the deformer keeps its embedding but no output (call
   /// deform() before the next update()).
   Eigen::MatrixX3d takePoints();
+  /// Work of the last deform() / update() (points evaluated, control points changed).
   const DeformStats& lastStats() const { return stats_; }
   /// LOCAL control points of the last deform() / update() (what update() compares against);
   /// empty before the first deform().
@@ -96,6 +99,7 @@ class Deformer {
   /// The precision of the following calls (default Double). An exact update() is bit-identical
   /// to a deform() of the same precision; change it only before a deform().
   void setPrecision(Precision precision) { precision_ = precision; }
+  /// The precision of the following calls.
   Precision precision() const { return precision_; }
 
  private:

@@ -37,7 +37,9 @@ class Lattice {
           const Eigen::Ref<const Eigen::MatrixX3d>& restPoints,
           const Eigen::Affine3d& frame = Eigen::Affine3d::Identity());
 
+  /// Control points per axis (l, m, n).
   Eigen::Vector3i counts() const { return counts_; }
+  /// Number of control points, l*m*n.
   Eigen::Index pointCount() const { return static_cast<Eigen::Index>(counts_.prod()); }
   /// Flat index = i + l*(j + m*k). No range check (use gridIndex / setControlPoint for checked access).
   Eigen::Index index(int i, int j, int k) const {
@@ -48,9 +50,11 @@ class Lattice {
 
   /// Per-axis basis, as given and as resolved (knots, cells, Greville abscissae).
   const AxisBasis& basis(int axis) const { return axes_[axis].basis(); }
+  /// The resolved spline of axis `axis` (0, 1, 2).
   const AxisSpline& axis(int axis) const { return axes_[axis]; }
   /// Parameter box: per axis [domainMin, domainMax] ([0, 1] for default bases).
   Eigen::Vector3d parameterMin() const;
+  /// Upper corner of the parameter box (see parameterMin()).
   Eigen::Vector3d parameterMax() const;
 
   /// Current control points P, pointCount x 3, lattice-local.
@@ -73,6 +77,7 @@ class Lattice {
   /// @throws LatticeError on a non-finite or singular frame. Bumps restRevision().
   void setFrame(const Eigen::Affine3d& frame);
 
+  /// What happens to points outside the rest lattice.
   const OutsidePolicy& outsidePolicy() const { return policy_; }
   /// @throws LatticeError for Falloff with distance <= 0 or non-finite. Bumps restRevision()
   /// (embeddings carry the policy's precomputed data).
@@ -99,6 +104,7 @@ class Lattice {
   bool restIsAffine() const { return restAffine_; }
   /// A and b of the affine rest map (meaningful only if restIsAffine()).
   const Eigen::Matrix3d& restAffineLinear() const { return restA_; }
+  /// b of the affine rest map (see restAffineLinear()).
   const Eigen::Vector3d& restAffineOffset() const { return restB_; }
   /// Diagonal of the rest lattice's bounding box (> 0): the length scale for tolerances.
   double restSize() const { return restSize_; }
@@ -106,6 +112,7 @@ class Lattice {
   /// Set by makeCylindricalLattice: the cylinder the rest lattice was built from, used only as the
   /// Newton initial guess. Cleared by setRestPoints(). Does not change restRevision().
   const std::optional<CylinderRestShape>& cylinderRestShape() const { return cylinder_; }
+  /// Sets or clears the cylinder of cylinderRestShape().
   void setCylinderRestShape(const std::optional<CylinderRestShape>& shape) { cylinder_ = shape; }
 
  private:

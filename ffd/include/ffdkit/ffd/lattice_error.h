@@ -12,6 +12,7 @@ namespace ffdkit::ffd {
 /// Checked in release builds too.
 class LatticeError : public std::invalid_argument {
  public:
+  /// An error with `message`, which says what was expected and what came.
   explicit LatticeError(const std::string& message) : std::invalid_argument(message) {}
 };
 
