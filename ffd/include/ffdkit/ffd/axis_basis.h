@@ -12,17 +12,19 @@ namespace ffdkit::ffd {
 /// A description, independent of the number of control points; a Lattice resolves it into an
 /// AxisSpline for its count. Value type; cheap to copy.
 struct AxisBasis {
+  /// The kind of basis along one axis.
   enum class Kind {
     Bernstein,      ///< degree count-1, parameter domain [0, 1] (Sederberg & Parry 1986).
     BSpline,        ///< clamped; uniform knots unless `knots` is given.
     PeriodicBSpline ///< closed axis (the angle of a cylindrical lattice), uniform knots, domain [0, 1).
   };
 
-  Kind kind = Kind::BSpline;
+  Kind kind = Kind::BSpline;  ///< Bernstein, clamped B-spline (default) or periodic B-spline.
   int degree = 3;          ///< B-spline degree, 1 <= degree <= count-1 (ignored for Bernstein).
   Eigen::VectorXd knots;   ///< BSpline only: explicit non-decreasing knots of length count+degree+1,
                            ///< empty = clamped uniform on [0, 1]. The domain is [knots[degree], knots[count]].
 
+  /// The Bernstein (Bezier) basis of degree count-1 (Sederberg & Parry 1986).
   static AxisBasis bernstein() { return AxisBasis{Kind::Bernstein, 0, {}}; }
   /// Clamped uniform B-spline (the default basis) of the given degree.
   static AxisBasis bspline(int degree = 3) { return AxisBasis{Kind::BSpline, degree, {}}; }
@@ -30,6 +32,7 @@ struct AxisBasis {
   static AxisBasis bsplineWithKnots(int degree, Eigen::VectorXd knots) {
     return AxisBasis{Kind::BSpline, degree, std::move(knots)};
   }
+  /// A periodic (closed) uniform B-spline of the given degree, for an angular axis.
   static AxisBasis periodic(int degree = 3) { return AxisBasis{Kind::PeriodicBSpline, degree, {}}; }
 };
 
@@ -44,17 +47,27 @@ class AxisSpline {
   /// (wrong length, decreasing, non-finite, empty domain). `axisName` goes into the message.
   AxisSpline(const AxisBasis& basis, int count, const char* axisName = "axis");
 
+  /// The basis as given.
   const AxisBasis& basis() const { return basis_; }
+  /// Number of control points along the axis.
   int count() const { return count_; }
+  /// Polynomial degree (count-1 for Bernstein).
   int degree() const { return degree_; }
+  /// True for a periodic (closed) axis.
   bool periodic() const { return periodic_; }
+  /// Lower end of the parameter domain.
   double domainMin() const { return lo_; }
+  /// Upper end of the parameter domain.
   double domainMax() const { return hi_; }
+  /// Number of cells (non-empty knot spans inside the domain).
   int cellCount() const { return static_cast<int>(cellSpan_.size()); }
+  /// The full knot vector.
   const std::vector<double>& knots() const { return knots_; }
   /// Knot index of the span of cell c.
   int cellSpan(int cell) const { return cellSpan_[cell]; }
+  /// Lower parameter of cell `cell`.
   double cellMin(int cell) const { return knots_[cellSpan_[cell]]; }
+  /// Upper parameter of cell `cell`.
   double cellMax(int cell) const { return knots_[cellSpan_[cell] + 1]; }
   /// Cell containing t; t outside the domain goes to the first / last cell (extrapolation).
   /// Periodic axes wrap t into [0, 1) first (see wrap()).

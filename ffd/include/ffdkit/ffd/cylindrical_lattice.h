@@ -22,9 +22,9 @@ struct CylindricalLatticeOptions {
   double outerRadius = 1.0;  ///< > innerRadius. The control ring radius: the B-spline ring itself
                              ///< lies slightly inside it between control points.
   double zMin = 0.0;         ///< local height range, zMax > zMin.
-  double zMax = 1.0;
+  double zMax = 1.0;  ///< upper end of the height range.
   Eigen::Affine3d frame = Eigen::Affine3d::Identity();  ///< world = frame * local.
-  OutsidePolicy outsidePolicy{};
+  OutsidePolicy outsidePolicy{};  ///< what happens to points outside the cylinder.
 };
 
 /// A cylindrical lattice: rest point (i, j, k) = (r_i cos t_j, r_i sin t_j, z_k) with r_i, z_k

@@ -11,8 +11,8 @@ namespace ffdkit::ffd {
 /// One non-zero term of X(u,v,w) = sum_ijk B_i(u) B_j(v) B_k(w) P_ijk (Kuriyama 1996, eq. (6.1)):
 /// the control point's flat index and its tensor-product weight B_i(u) B_j(v) B_k(w).
 struct BasisWeight {
-  Eigen::Index point = 0;
-  double weight = 0.0;
+  Eigen::Index point = 0;  ///< flat index of the control point.
+  double weight = 0.0;  ///< its basis weight B_ijk(u,v,w) at the point.
 };
 
 /// The non-zero weights of the lattice's basis at parameters `uvw`, (degree_u+1)(degree_v+1)

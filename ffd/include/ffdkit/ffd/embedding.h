@@ -87,18 +87,26 @@ struct NoInitAllocator : std::allocator<T> {
 /// point for many-cell lattices in random point order), + 8 bytes per ClampEdge/Falloff point.
 class Embedding {
  public:
+  /// Per-point parameters (one axis), in sorted order, allocated without zeroing.
   using ParameterVector = std::vector<double, NoInitAllocator<double>>;
+  /// Point indices (32-bit), allocated without zeroing.
   using IndexVector = std::vector<std::uint32_t, NoInitAllocator<std::uint32_t>>;
+  /// Per-point statuses, allocated without zeroing.
   using StatusVector = std::vector<PointStatus, NoInitAllocator<PointStatus>>;
 
   Embedding() = default;
 
+  /// Number of embedded points.
   Eigen::Index pointCount() const { return static_cast<Eigen::Index>(status_.size()); }
   /// Status of point `point` (original order). @throws LatticeError on a bad index.
   PointStatus status(Eigen::Index point) const;
+  /// Status of every point, original order.
   const StatusVector& statuses() const { return status_; }
+  /// Points inside the rest lattice.
   Eigen::Index insideCount() const { return inside_; }
+  /// Points outside the rest lattice (handled by the outside policy).
   Eigen::Index outsideCount() const { return outside_; }
+  /// Points whose Newton embedding did not converge (left unchanged by deformation).
   Eigen::Index failedCount() const { return failed_; }
 
   /// Parameters used to evaluate each point, pointCount x 3, original order: the Newton / closed-form
@@ -109,7 +117,9 @@ class Embedding {
 
   /// The lattice state this embedding was built for.
   std::uint64_t restRevision() const { return restRevision_; }
+  /// Control-point counts of the lattice this embedding was built for.
   Eigen::Vector3i latticeCounts() const { return counts_; }
+  /// The outside policy this embedding was built for.
   const OutsidePolicy& outsidePolicy() const { return policy_; }
   /// @throws LatticeError if `lattice` is not the one (same counts, same restRevision) this embedding
   /// was built for: "embedding is stale: built for rest revision 12, lattice is at 15; re-embed".
@@ -122,22 +132,25 @@ class Embedding {
   // kTileSize consecutive points (original order); inside a tile they are sorted by
   // (kind, lattice cell) into blocks, so that a block streams one cell's control points over
   // its points while reads and writes in original order stay within the tile (cache-local).
-  static constexpr std::uint32_t kTileSize = 4096;
+  static constexpr std::uint32_t kTileSize = 4096;  ///< Points per tile.
+  /// How the points of a block are evaluated.
   enum class BlockKind : std::uint8_t {
     Evaluated,  ///< inside points, and Extrapolate outside points
     Blended,    ///< ClampEdge / Falloff outside points: weight blendWeight()[blendOffset + q - begin]
     Frozen      ///< left unchanged: Identity outside, Failed, beyond the Falloff distance
   };
+  /// A run of sorted points of one tile that share a lattice cell and a BlockKind.
   struct Block {
     std::uint32_t cell;         ///< flat cell index i + cu (j + cv k) (cu, cv: cells along u, v; cellOf decodes it)
     std::uint32_t begin;        ///< sorted positions [begin, end)
-    std::uint32_t end;
+    std::uint32_t end;  ///< end of the block's sorted positions (one past the last).
     std::uint32_t blendOffset;  ///< Blended only
-    BlockKind kind;
+    BlockKind kind;  ///< how the block's points are evaluated.
   };
   // 20 bytes: many-cell lattices in random order make blocks of a few points each, and the
   // embedding's memory per point (issue 21: <= 32 bytes) counts them.
   static_assert(sizeof(Block) == 20);
+  /// The blocks of every tile, tile after tile.
   const std::vector<Block>& blocks() const { return blocks_; }
   /// A block's cell index per axis.
   std::array<int, 3> cellOf(const Block& block) const {
@@ -146,11 +159,15 @@ class Embedding {
   }
   /// Blocks of tile t: [tileBlocks()[t], tileBlocks()[t+1]).
   const std::vector<std::uint32_t>& tileBlocks() const { return tileBlocks_; }
+  /// Parameter u of each point, sorted order.
   const ParameterVector& sortedU() const { return u_; }
+  /// Parameter v of each point, sorted order.
   const ParameterVector& sortedV() const { return v_; }
+  /// Parameter w of each point, sorted order.
   const ParameterVector& sortedW() const { return w_; }
   /// Original index of sorted position q; empty when the sorted order is the original order.
   const IndexVector& order() const { return order_; }
+  /// Blend weights of the Blended blocks' points (ClampEdge / Falloff).
   const std::vector<double>& blendWeight() const { return blend_; }
 
  private:

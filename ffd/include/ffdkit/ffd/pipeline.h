@@ -17,7 +17,8 @@ namespace ffdkit::ffd {
 
 /// Typed handle of a lattice in a Pipeline.
 struct LatticeId {
-  int value = -1;
+  int value = -1;  ///< index of the lattice in its Pipeline; -1: none.
+  /// Ordered by value.
   auto operator<=>(const LatticeId&) const = default;
 };
 
@@ -26,16 +27,20 @@ struct LatticeId {
 /// deforms its new input with its old (u,v,w) (Deformer::deformStale), which is exact while it is
 /// at rest.
 struct ReembedThrottle {
+  /// The throttle's rule.
   enum class Kind {
     Immediate,  ///< re-embed on every update (exact, slowest)
     EveryN,     ///< re-embed on every n-th update that finds the lattice stale
     OnDemand    ///< re-embed only in reembedAll() (e.g. on gesture release)
   };
-  Kind kind = Kind::Immediate;
+  Kind kind = Kind::Immediate;  ///< the rule.
   int n = 1;  ///< EveryN only, >= 1
 
+  /// Re-embed on every update.
   static ReembedThrottle immediate() { return {Kind::Immediate, 1}; }
+  /// Re-embed on every n-th update that finds the lattice stale (n >= 1).
   static ReembedThrottle everyN(int n) { return {Kind::EveryN, n}; }
+  /// Re-embed only in reembedAll().
   static ReembedThrottle onDemand() { return {Kind::OnDemand, 1}; }
 };
 
@@ -54,7 +59,7 @@ enum class UpdateMode {
 
 /// What one lattice did in the last update().
 struct StageReport {
-  LatticeId id;
+  LatticeId id;  ///< the lattice.
   bool reembedded = false;     ///< a new embedding was computed
   bool approximate = false;    ///< deformed with a stale embedding (throttled)
   bool outputChanged = false;  ///< its output points differ from the previous update
@@ -85,8 +90,11 @@ class Pipeline {
 
   /// @throws LatticeError on an unknown id.
   Lattice& lattice(LatticeId id);
+  /// The lattice `id` (read-only). @throws LatticeError on an unknown id.
   const Lattice& lattice(LatticeId id) const;
+  /// Replaces lattice `id`. @throws LatticeError on an unknown id.
   void setLattice(LatticeId id, const Lattice& lattice) { this->lattice(id) = lattice; }
+  /// The parent lattice of `id` (none for a root). @throws LatticeError on an unknown id.
   std::optional<LatticeId> parent(LatticeId id) const;
 
   /// The lattices in evaluation (pre-)order.
@@ -97,15 +105,19 @@ class Pipeline {
 
   /// The lattice being edited is always re-embedded immediately; the others follow the throttle.
   void setActiveLattice(std::optional<LatticeId> id) { active_ = id; }
+  /// Sets when lattices other than the active one re-embed (default Immediate).
   void setThrottle(const ReembedThrottle& throttle);
+  /// The re-embedding throttle.
   const ReembedThrottle& throttle() const { return throttle_; }
   /// How the following update() calls evaluate fresh stages (default Exact); reembedAll() is
   /// always exact.
   void setUpdateMode(UpdateMode mode) { mode_ = mode; }
+  /// How update() evaluates fresh stages.
   UpdateMode updateMode() const { return mode_; }
   /// The arithmetic of every stage's deformation (Deformer::setPrecision; default Double). A
   /// change makes the next run evaluate every embedded stage in full.
   void setPrecision(Precision precision);
+  /// The arithmetic of the stages' deformation.
   Precision precision() const { return precision_; }
 
   /// Runs the pipeline: stages whose embedding is fresh and whose input did not change are updated

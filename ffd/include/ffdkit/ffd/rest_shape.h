@@ -8,10 +8,10 @@ namespace ffdkit::ffd {
 /// periodic parameter v, z in [zMin, zMax] to w. Only used as the initial guess of Newton
 /// embedding.
 struct CylinderRestShape {
-  double innerRadius = 0.0;
-  double outerRadius = 1.0;
-  double zMin = 0.0;
-  double zMax = 1.0;
+  double innerRadius = 0.0;  ///< radius of the innermost ring of control points (>= 0).
+  double outerRadius = 1.0;  ///< radius of the outermost ring.
+  double zMin = 0.0;  ///< lower end of the height range (local z).
+  double zMax = 1.0;  ///< upper end of the height range.
 };
 
 }  // namespace ffdkit::ffd
