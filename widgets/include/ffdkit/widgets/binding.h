@@ -22,9 +22,9 @@ std::optional<BindingKind> parseBindingKind(std::string_view name);
 
 /// Closed range of a variation (distance, angle in rad, or log scale factor).
 struct VariationRange {
-  double min = 0.0;
-  double max = 0.0;
-  friend bool operator==(const VariationRange&, const VariationRange&) = default;
+  double min = 0.0;  ///< lower end
+  double max = 0.0;  ///< upper end (>= min)
+  friend bool operator==(const VariationRange&, const VariationRange&) = default;  ///< equal when both ends are
 };
 
 /// Conversion rule of an affine <-> affine binding (変換則, sec. 6.2.2):
@@ -34,37 +34,38 @@ struct VariationRange {
 /// `clamp` bounds the accumulated variation of the `to` widget (a vise jaw stops); it applies
 /// when the binding drives its `to` end.
 struct ConversionRule {
+  /// A rule with this gain and, optionally, a clamp range.
   ConversionRule(double gainValue = 1.0, std::optional<VariationRange> clampRange = std::nullopt)
       : gain(gainValue), clamp(clampRange) {}
 
   double gain = 1.0;  ///< != 0, finite
-  std::optional<VariationRange> clamp;
+  std::optional<VariationRange> clamp;  ///< bounds of the `to` widget's accumulated variation; none: unbounded
 
   /// A screw: `distancePerTurn` of translation per full turn (2 pi rad) of a rotate widget,
   /// for a binding from the rotate widget to the translate widget (Kuriyama 1996, Fig. 6-10).
   static ConversionRule screw(double distancePerTurn);
-  friend bool operator==(const ConversionRule&, const ConversionRule&) = default;
+  friend bool operator==(const ConversionRule&, const ConversionRule&) = default;  ///< equal when gain and clamp are
 };
 
 /// One binding. `from` and `to` follow the kind's order above. Two-way unless `oneWay`, in
 /// which case only `from` drives `to` (for Attachment: the widget only follows its cell).
 struct Binding {
-  BindingId id;
-  BindingKind kind = BindingKind::Variation;
-  WidgetId from;
-  WidgetId to;
+  BindingId id;  ///< the binding's id
+  BindingKind kind = BindingKind::Variation;  ///< decided by the kinds of the two widgets
+  WidgetId from;  ///< the driving end
+  WidgetId to;  ///< the driven end
   AffineMask mask = AffineMask::tr();  ///< Attachment, CellMotion, Hierarchy
   ConversionRule rule;                 ///< Variation only
-  bool oneWay = false;
-  friend bool operator==(const Binding&, const Binding&) = default;
+  bool oneWay = false;  ///< only `from` drives `to`
+  friend bool operator==(const Binding&, const Binding&) = default;  ///< equal when every field is
 };
 
 /// Options of WidgetModel::bind. The kind is decided by the widgets; `mask` defaults by kind:
 /// Attachment by cell kind (defaultAttachmentMask), CellMotion {T, R}, Hierarchy {T, R, S}.
 struct BindingOptions {
-  ConversionRule rule;
-  std::optional<AffineMask> mask;
-  bool oneWay = false;
+  ConversionRule rule;  ///< Variation bindings: the conversion rule
+  std::optional<AffineMask> mask;  ///< none: the default mask of the kind
+  bool oneWay = false;  ///< only the first widget drives the second
 };
 
 }  // namespace ffdkit::widgets

@@ -25,7 +25,7 @@ AffineMask defaultAttachmentMask(CellKind kind);
 
 /// Which lattice points a cell groups. Grid indices are (i, j, k), flat = i + l*(j + m*k).
 struct CellSpec {
-  CellKind kind = CellKind::Point;
+  CellKind kind = CellKind::Point;  ///< which points the cell groups
   /// Point: the point. Edge: its lower end. Face, Box: the lower corner.
   /// Slab: only base[axis] is used (the index of the plane).
   Eigen::Vector3i base = Eigen::Vector3i::Zero();
@@ -34,14 +34,20 @@ struct CellSpec {
   /// Custom: flat point indices, at least one, no duplicates.
   std::vector<Eigen::Index> indices;
 
+  /// The point (i, j, k).
   static CellSpec point(int i, int j, int k);
+  /// The edge from (i, j, k) to the next point along axis `alongAxis` (0, 1, 2).
   static CellSpec edge(int i, int j, int k, int alongAxis);
+  /// The quad with lower corner (i, j, k) in the plane normal to axis `normalAxis`.
   static CellSpec face(int i, int j, int k, int normalAxis);
+  /// Every point of the plane `planeIndex` normal to axis `normalAxis`.
   static CellSpec slab(int normalAxis, int planeIndex);
+  /// The 2x2x2 points with lower corner (i, j, k).
   static CellSpec box(int i, int j, int k);
+  /// Any points, by flat index (at least one, no duplicates).
   static CellSpec custom(std::vector<Eigen::Index> flatIndices);
 
-  friend bool operator==(const CellSpec&, const CellSpec&) = default;
+  friend bool operator==(const CellSpec&, const CellSpec&) = default;  ///< equal when every field is
 };
 
 /// Flat indices of the cell's points in a lattice of `counts` points per axis, in a fixed
@@ -62,9 +68,9 @@ Eigen::Isometry3d cellRestFrame(const CellSpec& spec, const Eigen::Vector3i& cou
 ///   A = Translate(c̄ + translation) * rotation * E diag(scale) E^T * Translate(-c̄),
 /// with c̄ the rest centroid and E the rest frame's rotation. Scale is per cell axis.
 struct CellAffine {
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  ///< moves the rest centroid, lattice-local
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< turns about the rest centroid
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();  ///< per cell axis
 
   /// The masked matrix mask(A) about the rest frame (components left out are identity).
   Eigen::Affine3d matrix(const Eigen::Isometry3d& restFrame, AffineMask mask = AffineMask::trs()) const;

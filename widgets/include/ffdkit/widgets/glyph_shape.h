@@ -8,12 +8,12 @@ namespace ffdkit::widgets {
 struct GlyphShape {
   /// The arrow runs from the widget's origin along +x for this many sizes.
   static constexpr double arrowLength = 1.0;
-  static constexpr double arrowShaftRadius = 0.04;
-  static constexpr double arrowTipRadius = 0.1;
-  static constexpr double arrowTipLength = 0.25;
+  static constexpr double arrowShaftRadius = 0.04;  ///< shaft radius
+  static constexpr double arrowTipRadius = 0.1;  ///< tip cone radius
+  static constexpr double arrowTipLength = 0.25;  ///< tip cone length
   /// The ring lies in the widget's xy plane about z.
   static constexpr double ringRadius = 1.0;
-  static constexpr double ringTubeRadius = 0.05;
+  static constexpr double ringTubeRadius = 0.05;  ///< tube radius
   /// The cube is centred on the origin.
   static constexpr double cubeHalfWidth = 0.15;
   /// How far beyond the pick tolerance a ray may pass an arrow or a ring and still hit it: the

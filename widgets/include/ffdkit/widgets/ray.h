@@ -9,9 +9,10 @@ namespace ffdkit::widgets {
 /// A world-space ray from the camera through the mouse: origin + t * direction, t >= 0.
 /// The GUI builds it from a mouse position; the model never sees pixels (STYLE 9).
 struct Ray {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< world start point
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< need not be unit; normalised on use
 
+  /// The point at distance t along the (normalised) direction.
   Eigen::Vector3d at(double t) const { return origin + t * direction.normalized(); }
 };
 

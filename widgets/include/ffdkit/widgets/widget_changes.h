@@ -33,6 +33,7 @@ struct WidgetChanges {
   /// Bindings whose mask, conversion rule or direction changed.
   std::vector<BindingId> bindings;
 
+  /// True when nothing changed.
   bool empty() const {
     return !structure && controlPoints.empty() && frames.empty() && widgets.empty() && bindings.empty();
   }

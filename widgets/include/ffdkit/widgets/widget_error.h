@@ -19,8 +19,11 @@ enum class WidgetErrorCode {
 /// the error comes from WidgetModel::fromData, else empty; what() already includes it.
 class WidgetError : public std::runtime_error {
  public:
+  /// An error of kind `code`; `where` is a location in WidgetModelData, if any.
   WidgetError(WidgetErrorCode code, const std::string& message, std::string where = {});
+  /// What went wrong.
   WidgetErrorCode code() const { return code_; }
+  /// Location in WidgetModelData ("/cells/3/lattice"), or empty.
   const std::string& where() const { return where_; }
   /// The message without the location prefix.
   const std::string& message() const { return message_; }

@@ -12,20 +12,22 @@ namespace ffdkit::widgets {
 /// Stable handle of a widget (lattice, cell or affine widget) inside one WidgetModel.
 /// Ids are never reused within a model; files write them as "w<N>".
 struct WidgetId {
-  static constexpr std::uint32_t kInvalid = std::numeric_limits<std::uint32_t>::max();
-  std::uint32_t value = kInvalid;
+  static constexpr std::uint32_t kInvalid = std::numeric_limits<std::uint32_t>::max();  ///< the value of an invalid id
+  std::uint32_t value = kInvalid;  ///< the widget's number in its model
 
+  /// True unless default-constructed.
   constexpr bool valid() const { return value != kInvalid; }
-  friend constexpr auto operator<=>(const WidgetId&, const WidgetId&) = default;
+  friend constexpr auto operator<=>(const WidgetId&, const WidgetId&) = default;  ///< ordered by value
 };
 
 /// Stable handle of a binding inside one WidgetModel; files write it as "b<N>".
 struct BindingId {
-  static constexpr std::uint32_t kInvalid = std::numeric_limits<std::uint32_t>::max();
-  std::uint32_t value = kInvalid;
+  static constexpr std::uint32_t kInvalid = std::numeric_limits<std::uint32_t>::max();  ///< the value of an invalid id
+  std::uint32_t value = kInvalid;  ///< the binding's number in its model
 
+  /// True unless default-constructed.
   constexpr bool valid() const { return value != kInvalid; }
-  friend constexpr auto operator<=>(const BindingId&, const BindingId&) = default;
+  friend constexpr auto operator<=>(const BindingId&, const BindingId&) = default;  ///< ordered by value
 };
 
 /// "w12" / "b3"; "none" for an invalid id.

@@ -23,15 +23,17 @@
 
 namespace ffdkit::widgets {
 
+/// Options of WidgetModel::addLattice.
 struct LatticeOptions {
   std::string name;                                          ///< unique; "" -> "lattice<N>"
   Eigen::Vector3i counts = Eigen::Vector3i::Constant(2);     ///< (l, m, n), each >= 2
   Eigen::Affine3d frame = Eigen::Affine3d::Identity();       ///< world = frame * local
   /// pointCount x 3 lattice-local rest points; empty -> the regular grid of the unit box [0,1]^3.
   Eigen::MatrixX3d restPoints;
-  LatticeSettings settings;
+  LatticeSettings settings;  ///< bases, outside policy, re-embedding
 };
 
+/// Options of WidgetModel::addAffine and addFreeAffine.
 struct AffineOptions {
   std::string name;  ///< unique; "" -> "<kind><N>"
   /// Relative to the cell's rest frame (origin at the cell centroid, axes of Kuriyama 1996,
@@ -44,19 +46,21 @@ struct AffineOptions {
 
 /// A rigid world frame plus a size: what a renderer needs to draw a glyph or a cell axis triad.
 struct WidgetFrame {
-  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();  ///< rigid world frame
   double size = 1.0;  ///< glyph size in world units (glyph.size times the frame's scale)
 };
 
+/// What WidgetModel::pick considers.
 struct PickOptions {
   double tolerance = 0.02;  ///< world units: how far from a thin glyph a ray may pass
-  bool affines = true;
-  bool cells = true;
+  bool affines = true;  ///< affine widgets' glyphs
+  bool cells = true;  ///< cells' points, edges and faces
   bool lattices = false;    ///< the lattice's world bounding box
 };
 
+/// The widget a ray hit, where.
 struct PickResult {
-  WidgetId id;
+  WidgetId id;  ///< the widget hit
   double t = 0.0;                           ///< along the unit ray direction
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< world hit point
 };
@@ -64,9 +68,9 @@ struct PickResult {
 /// The mutable part of a model, for undo: control points, variations, lattice frames.
 /// Cheap to copy; valid for restoreState only on a model with the same widgets.
 struct WidgetModelState {
-  std::vector<std::pair<WidgetId, Eigen::MatrixX3d>> controlPoints;
+  std::vector<std::pair<WidgetId, Eigen::MatrixX3d>> controlPoints;  ///< local control points per lattice
   std::vector<std::pair<WidgetId, Eigen::Affine3d>> latticeFrames;  ///< root frame / child placement
-  std::vector<std::pair<WidgetId, double>> variations;
+  std::vector<std::pair<WidgetId, double>> variations;  ///< variation per affine widget
 };
 
 /// The headless widget model of Kuriyama 1996, ch. 6 (secs. 6.2.1-6.2.3): lattice widgets that own
@@ -86,9 +90,13 @@ class WidgetModel {
  public:
   WidgetModel();
   ~WidgetModel();
+  /// A deep copy (without an active gesture).
   WidgetModel(const WidgetModel&);
+  /// A deep copy (without an active gesture).
   WidgetModel& operator=(const WidgetModel&);
+  /// Moves the model.
   WidgetModel(WidgetModel&&) noexcept;
+  /// Moves the model.
   WidgetModel& operator=(WidgetModel&&) noexcept;
 
   // ---- building -------------------------------------------------------------------------
@@ -121,22 +129,30 @@ class WidgetModel {
   BindingId bind(WidgetId a, WidgetId b, const ConversionRule& rule);
   /// Shorthand: a binding with this mask (attachment, cell <-> cell, hierarchy; two-way).
   BindingId bind(WidgetId a, WidgetId b, AffineMask mask);
+  /// Removes a binding (not an Attachment's cell-widget link of a widget being removed). @throws UnknownWidget.
   void unbind(BindingId binding);
   /// Removes a widget and its bindings. A lattice takes its cells and their attached affine
   /// widgets along; its child lattices become roots at their current world frame. A cell's
   /// attached widgets become free at their current world frame.
   void remove(WidgetId id);
 
+  /// Renames a widget. @throws InvalidArgument for an empty or duplicate name.
   void rename(WidgetId id, std::string name);
+  /// Sets an affine widget's placement, relative to its cell's rest frame (free widget: its world frame).
   void setPlacement(WidgetId affine, const Eigen::Affine3d& placement);
+  /// Sets an affine widget's glyph.
   void setGlyph(WidgetId affine, const Glyph& glyph);
   /// Changes what an affine widget does (translate / rotate / scale). The points stay where they
   /// are and the variation restarts at 0 (a distance is no angle); a glyph of the old kind's
   /// default shape becomes the new kind's (a library part stays). Bindings are kept.
   void setAffineKind(WidgetId affine, AffineKind kind);
+  /// Sets the affine parts a binding passes. @throws InvalidBinding for a Variation binding.
   void setMask(BindingId binding, AffineMask mask);
+  /// Sets a Variation binding's conversion rule. @throws InvalidArgument for a zero or non-finite gain.
   void setRule(BindingId binding, const ConversionRule& rule);
+  /// Makes a binding one-way (only `from` drives `to`) or two-way.
   void setOneWay(BindingId binding, bool oneWay);
+  /// Sets a lattice's bases, outside policy and re-embedding policy.
   void setLatticeSettings(WidgetId lattice, const LatticeSettings& settings);
   /// Changes a lattice's point counts to (l, m, n), each >= 2, keeping its deformation as well as
   /// the new lattice can hold it (like resizing a Blender lattice):
@@ -169,15 +185,21 @@ class WidgetModel {
   void resetLattice(WidgetId lattice);
 
   // ---- queries --------------------------------------------------------------------------
+  /// True if the model holds widget `id`.
   bool contains(WidgetId id) const;
+  /// Lattice, cell or affine. @throws UnknownWidget.
   WidgetType type(WidgetId id) const;
+  /// The widget's unique name. @throws UnknownWidget.
   const std::string& name(WidgetId id) const;
   /// The widget of that name. @throws UnknownWidget naming the known names.
   WidgetId find(std::string_view name) const;
   std::vector<WidgetId> widgets() const;                   ///< all, in id order
+  /// The widgets of one type, in id order.
   std::vector<WidgetId> widgets(WidgetType type) const;
   std::vector<BindingId> bindings() const;                 ///< in id order
+  /// The bindings with `id` at either end, in id order.
   std::vector<BindingId> bindingsOf(WidgetId id) const;
+  /// The binding `id`. @throws UnknownWidget.
   const Binding& binding(BindingId id) const;
   // ---- revisions and change sets (widget_changes.h) ----------------------------------------
   /// Grows by one with every mutation; each item the mutation changed is stamped with it.
@@ -202,18 +224,23 @@ class WidgetModel {
   WidgetChanges changesSince(std::uint64_t since) const;
 
   // lattices
+  /// Control points per axis (l, m, n).
   Eigen::Vector3i counts(WidgetId lattice) const;
   const Eigen::MatrixX3d& controlPoints(WidgetId lattice) const;  ///< local, pointCount x 3
   const Eigen::MatrixX3d& restPoints(WidgetId lattice) const;     ///< local, pointCount x 3
+  /// Control points in the world, pointCount x 3.
   Eigen::MatrixX3d worldControlPoints(WidgetId lattice) const;
   Eigen::MatrixX3d worldRestPoints(WidgetId lattice) const;       ///< rest shape at the current frame
   /// world = latticeFrame * local. Root: its frame. Child: parentFrame * mask(A_cell) * C0 * placement.
   Eigen::Affine3d latticeFrame(WidgetId lattice) const;
+  /// Bases, outside policy and re-embedding policy of a lattice.
   const LatticeSettings& latticeSettings(WidgetId lattice) const;
   /// The FFD engine's lattice for a lattice widget: counts, bases, outside policy, rest and
   /// current control points, and its current world frame (what the FFD pipeline deforms with).
   ffd::Lattice ffdLattice(WidgetId lattice) const;
+  /// The cell a child lattice rides on (none for a root).
   std::optional<WidgetId> parentCell(WidgetId lattice) const;
+  /// The lattice of parentCell() (none for a root).
   std::optional<WidgetId> parentLattice(WidgetId lattice) const;
   std::vector<WidgetId> children(WidgetId lattice) const;  ///< sibling order
   std::vector<WidgetId> roots() const;                     ///< sibling order
@@ -223,24 +250,34 @@ class WidgetModel {
   /// The lattice `root` and its subtree in the same pre-order (the one traversal every pipeline,
   /// the deformer and the controller use). @throws UnknownWidget, InvalidArgument (not a lattice).
   std::vector<WidgetId> pipelineOrder(WidgetId root) const;
+  /// The lattice's cells, in id order.
   std::vector<WidgetId> cellsOf(WidgetId lattice) const;
 
   // cells
   WidgetId latticeOf(WidgetId cellOrAffine) const;  ///< invalid for a free affine widget
+  /// Which points the cell groups, as given.
   const CellSpec& cellSpec(WidgetId cell) const;
+  /// Flat indices of the cell's points (cellPointIndices order).
   const std::vector<Eigen::Index>& cellIndices(WidgetId cell) const;
+  /// The cell's points in the world, #cell x 3.
   Eigen::MatrixX3d cellWorldPoints(WidgetId cell) const;
   Eigen::Isometry3d cellRestFrame(WidgetId cell) const;   ///< lattice-local
   CellAffine cellAffine(WidgetId cell) const;             ///< lattice-local fit (Kuriyama 1996, sec. 6.2.1)
   /// The cell's current frame in the world (rigid) with its mean scale as size.
   WidgetFrame cellFrame(WidgetId cell) const;
+  /// The affine widgets attached to the cell, in id order.
   std::vector<WidgetId> affinesOf(WidgetId cell) const;
 
   // affine widgets
+  /// Translate, rotate or scale.
   AffineKind affineKind(WidgetId affine) const;
+  /// The cell the widget is attached to (none for a free widget).
   std::optional<WidgetId> attachedCell(WidgetId affine) const;
+  /// Placement relative to the cell's rest frame (free widget: world frame).
   const Eigen::Affine3d& placement(WidgetId affine) const;
+  /// Accumulated variation: distance, angle (rad) or log scale factor.
   double variation(WidgetId affine) const;
+  /// How the widget is drawn and picked.
   const Glyph& glyph(WidgetId affine) const;
   /// World frame (rigid) and glyph size of an affine widget (Kuriyama 1996, sec. 6.2.1).
   WidgetFrame affineFrame(WidgetId affine) const;
@@ -262,10 +299,13 @@ class WidgetModel {
   void updateGesture(double variationDelta);
   /// Cell or lattice widget: its world motion since the start (an affine map of world space).
   void updateGesture(const Eigen::Affine3d& worldMotion);
+  /// Ends the gesture: its changes stay. @throws GestureState if none is active.
   void endGesture();
   /// Restores the gesture-start state.
   void cancelGesture();
+  /// True between beginGesture() and endGesture() / cancelGesture().
   bool gestureActive() const;
+  /// The widget of the active gesture (none when no gesture is active).
   std::optional<WidgetId> gestureWidget() const;
   /// Widgets that the active gesture visits, in visiting order (for highlighting).
   std::vector<WidgetId> gestureVisitOrder() const;
@@ -291,9 +331,11 @@ class WidgetModel {
   void applyMotion(WidgetId id, const Eigen::Affine3d& worldMotion);
 
   // ---- state and data ---------------------------------------------------------------------
+  /// Control points, variations and lattice frames, for undo (restoreState()).
   WidgetModelState captureState() const;
   /// @throws InvalidArgument if the state names other widgets or shapes than this model holds.
   void restoreState(const WidgetModelState& state);
+  /// The whole model as plain data (what a widget file holds).
   WidgetModelData toData() const;
   /// Builds a model from data, validating ids, references, names, shapes and every binding as
   /// bind() would. Errors carry a location ("/bindings/2/to").
