@@ -57,7 +57,7 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
 
   editAction_ = addAction(widgetsMenu, tr("&Edit Lattice Points"), "actionEditMode", true, {});
   editAction_->setCheckable(true);
-  editAction_->setToolTip(tr("Edit the selected lattice's points: select, move, turn, size, make cells (Tab)"));
+  editAction_->setToolTip(tr("Edit the selected lattice's points: select, move, turn, size, make cells"));
   connect(editAction_, &QAction::triggered, this, [this](bool on) { toggleEditMode(on); });
   toolbar->addAction(editAction_);
 

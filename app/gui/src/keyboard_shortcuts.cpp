@@ -7,6 +7,8 @@
 #include <QDialog>
 #include <QHeaderView>
 #include <QKeyEvent>
+#include <QSet>
+#include <QStringList>
 #include <QTableWidget>
 #include <QVBoxLayout>
 
@@ -96,13 +98,23 @@ bool matchesShortcut(const QKeyEvent& event, std::string_view action) {
 }
 
 void applyKeyboardShortcuts(QObject* root) {
+  QSet<QAction*> tipped;  // an action with several rows gets its keys in its tooltip once
   for (const KeyboardShortcut& s : kShortcuts) {
     if (!isAction(s)) continue;
     auto* action = root->findChild<QAction*>(QString::fromLatin1(s.action));
     if (action == nullptr)
       throw std::logic_error(std::string("keyboard shortcut ") + s.keys + ": no action '" + s.action + "'");
     action->setShortcuts(shortcutsOf(s.action));
+    if (!tipped.contains(action)) action->setToolTip(withShortcutText(action->toolTip(), s.action));
+    tipped.insert(action);
   }
+}
+
+QString withShortcutText(const QString& tip, std::string_view action) {
+  QStringList keys;
+  for (const KeyboardShortcut& s : kShortcuts)
+    if (action == s.action) keys << shortcutKeysText(s);
+  return keys.isEmpty() ? tip : tip + " (" + keys.join(", ") + ")";
 }
 
 QString shortcutKeysText(const KeyboardShortcut& shortcut) {

@@ -50,7 +50,13 @@ QList<QKeySequence> shortcutsOf(std::string_view action);
 /// keypad's key of the same name (as Qt's shortcut map does); a "Num+" row only the keypad's.
 bool matchesShortcut(const QKeyEvent& event, std::string_view action);
 
-/// Gives every QAction below `root` named in the table its keys (QAction::setShortcuts).
+/// `tip` followed by `action`'s keys as a person reads them, "Undo (Ctrl+Z)", "Frame the
+/// selection (F, Numpad .)"; `tip` alone when the action has no keys. The one way a tooltip
+/// names keys, so a tooltip cannot disagree with the table.
+QString withShortcutText(const QString& tip, std::string_view action);
+
+/// Gives every QAction below `root` named in the table its keys (QAction::setShortcuts), and
+/// its tooltip the keys (withShortcutText).
 /// @throws std::logic_error naming the row when a row's action ("action...") is not found, so a
 ///   renamed action cannot silently lose its keys.
 void applyKeyboardShortcuts(QObject* root);

@@ -137,8 +137,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     s.redo->setText(s.commands.canRedo() ? tr("&Redo %1").arg(redoStep) : tr("&Redo"));
     s.undo->setIconText(tr("Undo"));
     s.redo->setIconText(tr("Redo"));
-    s.undo->setToolTip(s.commands.canUndo() ? tr("Undo %1 (Ctrl+Z)").arg(undoStep) : tr("Nothing to undo"));
-    s.redo->setToolTip(s.commands.canRedo() ? tr("Redo %1 (Ctrl+Shift+Z)").arg(redoStep) : tr("Nothing to redo"));
+    s.undo->setToolTip(s.commands.canUndo() ? withShortcutText(tr("Undo %1").arg(undoStep), "actionUndo") : tr("Nothing to undo"));
+    s.redo->setToolTip(s.commands.canRedo() ? withShortcutText(tr("Redo %1").arg(redoStep), "actionRedo") : tr("Nothing to redo"));
     s.status->clearStale();  // what was said was about the document before this change
     setWindowModified(s.modified());
     s.autosave();

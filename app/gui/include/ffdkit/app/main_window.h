@@ -9,9 +9,12 @@
 #include "ffdkit/scenes/command_stack.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
+#include "ffdkit/widgets/affine_kind.h"
 #include "ffdkit/widgets/widget_id.h"
 
+class QAction;
 class QDockWidget;
+class QMenu;
 class QTreeWidget;
 
 namespace ffdkit::app {
@@ -100,6 +103,26 @@ class MainWindow : public QMainWindow {
   /// The menus, their actions, the toolbar, the edit mode's input and the timeline dock
   /// (main_window_menus.cpp); `refreshPanel` shows the selection in the property panel.
   void createMenus(QDockWidget* outlinerDock, QDockWidget* propertiesDock, const std::function<void()>& refreshPanel);
+  void createFileMenu();
+  void createEditMenu();
+  /// The thesis operations (Kuriyama 1996, sec. 6.4): lattices, affine widgets, bindings,
+  /// attachment, direct manipulation, primitives.
+  QMenu* createWidgetsMenu();
+  QMenu* createViewMenu(QDockWidget* outlinerDock, QDockWidget* propertiesDock);
+  /// The operations toolbar, the edit mode's actions on it, and View > Toolbar Text Under Icons.
+  void createOperationsToolbar(QMenu* widgetsMenu, QMenu* viewMenu);
+  /// A menu action named `name` whose slot's exceptions are shown in the status line.
+  QAction* addMenuAction(QMenu* menu, const QString& text, const char* name, std::function<void()> slot);
+  /// A menu action that asks for a file (to save or to open) and applies `apply` to it; a
+  /// failure is shown in a message box.
+  QAction* addFileAction(QMenu* menu, const QString& text, const char* name, bool save, const QString& filter,
+                         std::function<void(const std::filesystem::path&)> apply);
+  /// Widgets > New Lattice: its dialog, then the lattice.
+  void newLatticeInteractively();
+  /// Widgets > Add Primitive: its dialog, then the object.
+  void addPrimitiveInteractively();
+  /// Widgets > Add Translate/Rotate/Scale Widget at the picked lattice point or selected cell.
+  void addAffineWidget(widgets::AffineKind kind);
   /// Asks Save / Discard / Cancel when the document has unsaved changes.
   /// @return false if the user cancelled (or a save failed): keep everything.
   bool maybeSave();
