@@ -111,22 +111,6 @@ class Answerer : public QObject {
   QTimer poll_;
 };
 
-/// Clicks the menu bar's title of the menu that holds `action`, then the action in the open menu.
-void clickMenuItem(MainWindow& w, QAction* item) {
-  QMenu* menu = nullptr;
-  QAction* title = nullptr;
-  for (QAction* a : w.menuBar()->actions())
-    if (a->menu() != nullptr && a->menu()->actions().contains(item)) title = a, menu = a->menu();
-  QVERIFY2(menu != nullptr, qPrintable(item->objectName()));
-  if (QApplication::activeWindow() != &w) {
-    w.activateWindow();
-    QVERIFY(QTest::qWaitForWindowActive(&w));
-  }
-  QTest::mouseClick(w.menuBar(), Qt::LeftButton, Qt::NoModifier, w.menuBar()->actionGeometry(title).center());
-  QTRY_VERIFY(menu->isVisible());
-  QTest::mouseClick(menu, Qt::LeftButton, Qt::NoModifier, menu->actionGeometry(item).center());
-}
-
 /// Opens `path` as `as` through the window's menus (a scene by its shortcut, Ctrl+O).
 Shown openThroughTheMenus(MainWindow& w, const fs::path& path, OpenAs as) {
   Shown shown;

@@ -7,6 +7,8 @@
 #include <QApplication>
 #include <QFile>
 #include <QElapsedTimer>
+#include <QMenu>
+#include <QMenuBar>
 #include <QMouseEvent>
 #include <QPointer>
 #include <QSurfaceFormat>
@@ -85,21 +87,39 @@ inline void dragArrow(MainWindow& w, widgets::WidgetId affine, double distance) 
   dragWorld(w, grab, grab + distance * x);
 }
 
-/// A key pressed (and released) on the 3D view of the active window, as a user types it:
-/// window shortcuts (menu actions) get it first. The window is activated first: Qt gives
-/// window shortcuts only to the active window.
-inline void pressKey(MainWindow& w, Qt::Key key, Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
-  if (QApplication::activeWindow() != &w) {
-    w.activateWindow();
+/// Makes `w` the active window, as a click on it would: Qt gives window shortcuts, menus and
+/// tooltips only to the active window.
+inline void activate(QWidget& w) {
+  if (QApplication::activeWindow() == &w) return;
+  w.activateWindow();
 #if QT_VERSION < QT_VERSION_CHECK(6, 5, 0)
-    // Another test's window on the same display (CTest runs GUI tests in parallel in one Xvfb)
-    // may hold the X focus: make this one Qt's active window regardless.
-    QApplication::setActiveWindow(&w);
+  // Another test's window on the same display (CTest runs GUI tests in parallel in one Xvfb)
+  // may hold the X focus: make this one Qt's active window regardless.
+  QApplication::setActiveWindow(&w);
 #endif
-    if (!QTest::qWaitForWindowActive(&w)) qWarning("the window did not become active");
-  }
+  if (!QTest::qWaitForWindowActive(&w)) qWarning("the window did not become active");
+}
+
+/// A key pressed (and released) on the 3D view of the active window, as a user types it:
+/// window shortcuts (menu actions) get it first. The window is activated first.
+inline void pressKey(MainWindow& w, Qt::Key key, Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
+  activate(w);
   w.view()->setFocus();
   QTest::keyClick(w.view(), key, modifiers);
+}
+
+/// Clicks the menu bar's title of the menu that holds `item`, then `item` in the open menu, with
+/// the mouse, as a user does.
+inline void clickMenuItem(MainWindow& w, QAction* item) {
+  QMenu* menu = nullptr;
+  QAction* title = nullptr;
+  for (QAction* a : w.menuBar()->actions())
+    if (a->menu() != nullptr && a->menu()->actions().contains(item)) title = a, menu = a->menu();
+  QVERIFY2(menu != nullptr, qPrintable(item->objectName()));
+  activate(w);
+  QTest::mouseClick(w.menuBar(), Qt::LeftButton, Qt::NoModifier, w.menuBar()->actionGeometry(title).center());
+  QTRY_VERIFY(menu->isVisible());
+  QTest::mouseClick(menu, Qt::LeftButton, Qt::NoModifier, menu->actionGeometry(item).center());
 }
 
 /// The window's action of that object name (fatal if there is none).
