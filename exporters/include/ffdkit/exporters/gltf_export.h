@@ -43,8 +43,9 @@ struct AnimationSource {
   std::function<void(scenes::Scene&, double t)> setTime;
 };
 
+/// What exportGltf writes and how.
 struct GltfExportOptions {
-  GltfContent content = GltfContent::Frame;
+  GltfContent content = GltfContent::Frame;  ///< a frame, morph targets or a skin
   double time = 0.0;     ///< Frame: the time of the frame (ignored without AnimationSource::setTime)
   bool normals = true;   ///< write NORMAL for triangle meshes (Morph: normal deltas per target too)
   /// Skin: joints per vertex, 4 (JOINTS_0 / WEIGHTS_0) or 8 (also JOINTS_1 / WEIGHTS_1).
@@ -59,19 +60,20 @@ struct GltfExportOptions {
 
 /// The error of one sampled time (skin: per k; morph: the float32 rounding at the key).
 struct GltfSampleError {
-  double time = 0.0;
+  double time = 0.0;  ///< the sampled time
   double error4 = 0.0;       ///< skin with 4 joints per vertex (morph / frame: the error of the file)
   double error8 = 0.0;       ///< skin with 8 joints per vertex
   double linearError = 0.0;  ///< skin with every weight kept: what no k removes
   std::string object;        ///< where the largest error of the chosen k is
-  Eigen::Index vertex = -1;
+  Eigen::Index vertex = -1;  ///< the vertex of the largest error (-1: none)
 };
 
+/// What exportGltf wrote.
 struct GltfExportReport {
-  GltfContent content = GltfContent::Frame;
-  int objects = 0;
-  Eigen::Index vertices = 0;
-  Eigen::Index triangles = 0;
+  GltfContent content = GltfContent::Frame;  ///< a frame, morph targets or a skin
+  int objects = 0;  ///< meshes written
+  Eigen::Index vertices = 0;  ///< vertices written, all meshes
+  Eigen::Index triangles = 0;  ///< triangles written, all meshes
   int morphTargets = 0;        ///< Morph: per mesh
   std::string interpolation;   ///< Morph / Skin: the sampler's ("STEP" or "LINEAR"); "" for Frame
   int joints = 0;              ///< Skin: joint nodes (control points + the static joint)

@@ -27,7 +27,7 @@ struct SkinJoint {
 /// lattice; ffd/control_weights.h), written as a convex skin: joint weights w / c, the static
 /// joint 1 - sum w / c, and joint translations c D (c = SkinBinding::jointScale).
 struct ObjectSkin {
-  std::string object;
+  std::string object;  ///< the object's name in the scene
   /// #vertices x kMax indices into SkinBinding::joints by decreasing weight (0: the static joint).
   Eigen::Matrix<std::int32_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> joints;
   /// #vertices x kMax weights of the full model (not renormalised; all of a vertex's weights,
@@ -38,7 +38,7 @@ struct ObjectSkin {
   /// every sample: kept here so that no sample copies an embedding; mutable because a deformer
   /// reuses its output buffer).
   std::vector<widgets::WidgetId> stages;
-  mutable std::vector<ffd::Deformer> deformers;
+  mutable std::vector<ffd::Deformer> deformers;  ///< one per stage, holding its bind-state embedding
 };
 
 /// Joints and vertex weights of every lattice-deformed object of a scene.
@@ -49,7 +49,7 @@ struct SkinBinding {
   /// weights stay convex.
   double jointScale = 1.0;
   int maxJoints = 0;  ///< kMax, the columns of ObjectSkin::joints
-  std::vector<ObjectSkin> objects;
+  std::vector<ObjectSkin> objects;  ///< one per lattice-deformed object
   /// Index of each lattice's first joint in `joints` (its control points follow in flat order).
   std::map<widgets::WidgetId, int> firstJoint;
 };
@@ -69,9 +69,9 @@ Eigen::MatrixX3d jointTranslations(const SkinBinding& binding, const scenes::Sce
 /// and rounded to float32 with the largest weight taking up the rounding (the float sum is 1 to
 /// within one float ulp). Shapes #vertices x k.
 struct PrunedSkin {
-  int k = 0;
-  Eigen::Matrix<std::uint16_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> joints;
-  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> weights;
+  int k = 0;  ///< joints kept per vertex
+  Eigen::Matrix<std::uint16_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> joints;  ///< #vertices x k joint indices (glTF JOINTS_n)
+  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> weights;  ///< #vertices x k weights summing to 1 (glTF WEIGHTS_n)
 };
 PrunedSkin pruneSkin(const ObjectSkin& skin, int k);
 

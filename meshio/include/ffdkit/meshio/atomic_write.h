@@ -39,6 +39,7 @@ class StagedFile {
   ///         (the temporary file is removed either way).
   StagedFile(const std::filesystem::path& path, const ByteProducer& produce, bool durable = true);
   ~StagedFile();
+  /// Takes over `other`'s temporary file.
   StagedFile(StagedFile&& other) noexcept;
   StagedFile& operator=(StagedFile&&) = delete;
   StagedFile(const StagedFile&) = delete;
@@ -46,6 +47,7 @@ class StagedFile {
 
   /// Renames the temporary file over the destination. @throws std::runtime_error.
   void commit();
+  /// The file commit() writes.
   const std::filesystem::path& destination() const { return path_; }
   /// Where the bytes wait until commit() (other processes may fill parts of it: writeStagedPart).
   const std::filesystem::path& temporary() const { return temporary_; }

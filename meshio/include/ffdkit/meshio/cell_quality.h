@@ -17,6 +17,7 @@
 
 namespace ffdkit::meshio {
 
+/// Options of the cell-quality check.
 struct CellQualityOptions {
   /// How many ids of bad cells the result lists (the first ones, in cell order).
   std::size_t listedIds = 10;
@@ -24,11 +25,11 @@ struct CellQualityOptions {
 
 /// What the check found. The counts are the two checkMesh reports for folded cells.
 struct CellQuality {
-  std::int64_t cellCount = 0;
-  std::int64_t faceCount = 0;
+  std::int64_t cellCount = 0;  ///< cells of the mesh
+  std::int64_t faceCount = 0;  ///< faces of the mesh
   double minVolume = 0.0;    ///< the smallest cell volume (negative for an inverted cell)
-  double maxVolume = 0.0;
-  double totalVolume = 0.0;
+  double maxVolume = 0.0;  ///< the largest cell volume
+  double totalVolume = 0.0;  ///< sum of the cell volumes
   double minPyramidVolume = 0.0;     ///< the worst face pyramid, owner or neighbour side
   double maxNonOrthogonality = 0.0;  ///< degrees, over internal faces
   double meanNonOrthogonality = 0.0; ///< degrees: the angle of the mean cosine, as checkMesh's average
@@ -41,6 +42,7 @@ struct CellQuality {
   std::int64_t badCells = 0;
   std::vector<std::int64_t> firstBadCells;  ///< their first ids (CellQualityOptions::listedIds)
 
+  /// True when no cell is bad.
   bool ok() const { return badCells == 0; }
   /// min / max cell volume (0 when the largest is not positive).
   double volumeRatio() const { return maxVolume > 0.0 ? minVolume / maxVolume : 0.0; }

@@ -16,8 +16,9 @@ namespace ffdkit::meshio {
 /// The byte layout of a written PLY file.
 enum class PlyEncoding { BinaryLittleEndian, BinaryBigEndian, Ascii };
 
+/// Options of writeMesh.
 struct MeshWriteOptions {
-  PlyEncoding plyEncoding = PlyEncoding::BinaryLittleEndian;
+  PlyEncoding plyEncoding = PlyEncoding::BinaryLittleEndian;  ///< PLY only: binary little-endian (default), big-endian or ASCII
   /// Path writes only: flush the file to disk (fsync) before the rename, so that a power loss
   /// cannot leave a renamed but empty file. A killed process never leaves a partial file either way.
   bool durable = true;

@@ -32,15 +32,16 @@ struct PolyMeshCells {
   std::vector<std::int32_t> neighbour;     ///< #internal faces cell indices
   std::int64_t cellCount = 0;              ///< 1 + the largest cell index in owner and neighbour
 
+  /// Number of faces, #F.
   std::int64_t faceCount() const { return std::int64_t(owner.size()); }
 };
 
 /// A boundary patch of the `boundary` file (read to check it against the faces).
 struct PolyMeshPatch {
-  std::string name;
-  std::string type;
-  std::int64_t startFace = 0;
-  std::int64_t faceCount = 0;
+  std::string name;  ///< the patch's name
+  std::string type;  ///< its type (patch, wall, symmetry, ...)
+  std::int64_t startFace = 0;  ///< its first face
+  std::int64_t faceCount = 0;  ///< its number of faces
 };
 
 /// How one OpenFOAM file stores its list, from its FoamFile header.
@@ -56,7 +57,7 @@ struct FoamFileLayout {
 /// writer can give back the same bytes with other coordinate values.
 struct FoamPointsFile {
   std::string bytes;            ///< the whole file, decompressed
-  FoamFileLayout layout;
+  FoamFileLayout layout;  ///< how its list is stored
   std::size_t listBegin = 0;    ///< just after the list's '('
   std::size_t listEnd = 0;      ///< at the list's ')'
   int listLine = 1;             ///< the line of listBegin (ASCII)
@@ -80,9 +81,9 @@ struct OpenFoamMesh {
   std::filesystem::path root;      ///< the folder given: a case folder or a polyMesh folder
   std::filesystem::path polyMesh;  ///< root/constant/polyMesh, or root itself
   Eigen::MatrixX3d points;         ///< #P x 3
-  PolyMeshCells cells;
-  std::vector<PolyMeshPatch> patches;
-  FoamPointsFile pointsFile;
+  PolyMeshCells cells;  ///< faces, owner and neighbour
+  std::vector<PolyMeshPatch> patches;  ///< the boundary patches
+  FoamPointsFile pointsFile;  ///< the points file as read, for the writer
 };
 
 /// Whether `folder` holds an OpenFOAM mesh: constant/polyMesh/points[.gz] below it, or
@@ -124,6 +125,7 @@ std::vector<PolyMeshPatch> readFoamBoundary(std::string_view bytes, const std::s
 /// point count that differs or a value a float32 file cannot hold.
 std::string foamPointsBytes(const FoamPointsFile& original, const Eigen::MatrixX3d& points);
 
+/// Options of the OpenFOAM writer.
 struct OpenFoamWriteOptions {
   /// Flush the new files to disk before the folder is renamed into place.
   bool durable = true;

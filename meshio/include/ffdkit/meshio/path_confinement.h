@@ -13,6 +13,7 @@
 
 namespace ffdkit::meshio {
 
+/// The rule for paths a file names (meshes of a scene, buffers of a glTF file, files of a polyMesh).
 struct PathConfinement {
   /// false (the default): a named path that leads outside the naming file's folder is refused.
   bool allowOutside = false;

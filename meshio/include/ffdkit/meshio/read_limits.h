@@ -33,10 +33,14 @@ class ReadLimitError : public std::runtime_error {
 /// What one read has charged so far against its limits. Not thread-safe: one read, one budget.
 class ReadBudget {
  public:
+  /// A budget for one read with these limits.
   explicit ReadBudget(ReadLimits limits = {}) : limits_(limits) {}
 
+  /// The read's limits.
   const ReadLimits& limits() const { return limits_; }
+  /// Bytes charged so far.
   std::uint64_t bytesCharged() const { return bytes_; }
+  /// Points charged so far.
   std::uint64_t pointsCharged() const { return points_; }
 
   /// Charges `count` items of `bytesEach` bytes, before they are allocated. `what` names them

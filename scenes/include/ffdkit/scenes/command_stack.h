@@ -11,7 +11,7 @@ namespace ffdkit::scenes {
 /// translate2") and the two ways to get from one state to the other. A command holds the delta
 /// it applied (what changed, before and after), never a copy of the document or of a mesh.
 struct Command {
-  std::string description;
+  std::string description;  ///< for the Edit menu: "Drag translate1"
   std::function<void()> undo;  ///< puts the document back as it was before the change
   std::function<void()> redo;  ///< applies the change again
   /// Commands with the same non-empty key pushed one right after the other merge into one step
@@ -43,7 +43,9 @@ class CommandStack {
                  [restore, after] { restore(after); }, std::string(), 2 * sizeof(State)});
   }
 
+  /// True when there is a command to undo.
   bool canUndo() const { return position_ > 0; }
+  /// True when there is a command to redo.
   bool canRedo() const { return position_ < commands_.size(); }
   /// Undoes the last applied command. @throws std::logic_error if there is none.
   void undo();
@@ -52,8 +54,10 @@ class CommandStack {
 
   /// Description of what undo() / redo() would do; empty if nothing.
   std::string undoDescription() const;
+  /// Description of what redo() would do; empty if nothing.
   std::string redoDescription() const;
 
+  /// Commands kept (undoable and redoable).
   std::size_t size() const { return commands_.size(); }
   /// Bytes held by every command kept (undoable and redoable): the undo memory.
   std::size_t bytes() const;
@@ -61,7 +65,9 @@ class CommandStack {
   std::size_t position() const { return position_; }
   /// True when the document differs from the last markClean() (e.g. the last save).
   bool isDirty() const { return cleanPosition_ != position_; }
+  /// The document is clean (saved) at the present position.
   void markClean() { cleanPosition_ = position_; }
+  /// Drops every command (a new or reopened document).
   void clear();
 
   /// Called after every push, undo, redo and clear (the GUI refreshes its menus).

@@ -15,9 +15,10 @@ namespace ffdkit::scenes {
 /// write them in place (WidgetModel::restoreState), which stamps only what differs, so the
 /// deformer re-embeds nothing unless a frame changed.
 struct StateDelta {
-  widgets::WidgetModelState before;
-  widgets::WidgetModelState after;
+  widgets::WidgetModelState before;  ///< the changed items as they were
+  widgets::WidgetModelState after;  ///< the same items as they are after the change
 
+  /// True when nothing changed.
   bool empty() const { return before.controlPoints.empty() && before.latticeFrames.empty() && before.variations.empty(); }
   /// Heap and inline bytes held.
   std::size_t bytes() const;
@@ -34,16 +35,19 @@ StateDelta stateDelta(const widgets::WidgetModelState& before, const widgets::Wi
 /// re-embeds only the stages concerned and the view redraws only the widgets concerned.
 struct ModelPatch {
   template <class Record>
+  /// (before, after) pairs of records; nullopt: absent.
   using Changes = std::vector<std::pair<std::optional<Record>, std::optional<Record>>>;
-  Changes<widgets::LatticeData> lattices;
-  Changes<widgets::CellData> cells;
-  Changes<widgets::AffineData> affines;
-  Changes<widgets::Binding> bindings;
-  std::optional<std::pair<std::vector<widgets::WidgetId>, std::vector<widgets::WidgetId>>> rootOrder;
+  Changes<widgets::LatticeData> lattices;  ///< lattices added, removed or changed
+  Changes<widgets::CellData> cells;  ///< cells added, removed or changed
+  Changes<widgets::AffineData> affines;  ///< affine widgets added, removed or changed
+  Changes<widgets::Binding> bindings;  ///< bindings added, removed or changed
+  std::optional<std::pair<std::vector<widgets::WidgetId>, std::vector<widgets::WidgetId>>> rootOrder;  ///< root order before and after, when it changed
 
+  /// True when nothing changed.
   bool empty() const {
     return lattices.empty() && cells.empty() && affines.empty() && bindings.empty() && !rootOrder;
   }
+  /// Heap and inline bytes held.
   std::size_t bytes() const;
 };
 
@@ -57,10 +61,12 @@ void applyPatch(widgets::WidgetModel& model, const ModelPatch& patch, bool forwa
 /// A document edit's delta: its widget patch and, when they changed, the attachments before and
 /// after (a few names each). Objects added or removed are kept by the command that moved them.
 struct SceneDelta {
-  ModelPatch widgets;
-  std::optional<std::pair<std::vector<Attachment>, std::vector<Attachment>>> attachments;
+  ModelPatch widgets;  ///< the widget model's records that changed
+  std::optional<std::pair<std::vector<Attachment>, std::vector<Attachment>>> attachments;  ///< attachments before and after, when they changed
 
+  /// True when nothing changed.
   bool empty() const { return widgets.empty() && !attachments; }
+  /// Heap and inline bytes held.
   std::size_t bytes() const;
 };
 

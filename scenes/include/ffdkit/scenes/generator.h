@@ -22,10 +22,14 @@ using ParameterValue = std::variant<bool, double, std::string, std::vector<doubl
 class GeneratorParameters {
  public:
   GeneratorParameters() = default;
+  /// Parameters with these values.
   explicit GeneratorParameters(std::map<std::string, ParameterValue> values) : values_(std::move(values)) {}
 
+  /// True when parameter `name` is present.
   bool has(const std::string& name) const { return values_.count(name) != 0; }
+  /// Sets parameter `name`.
   void set(const std::string& name, ParameterValue value) { values_[name] = std::move(value); }
+  /// Every parameter by name.
   const std::map<std::string, ParameterValue>& values() const { return values_; }
 
   /// The value, or `fallback` when absent. @throws GeneratorError when present with another type.
@@ -34,8 +38,11 @@ class GeneratorParameters {
   /// A whole number in [lo, hi] (the rule scene files apply to every integer):
   /// "parameter 'samples': expected an integer in [2, 100000000], got 10.5".
   int integer(const std::string& name, int fallback, int lo, int hi) const;
+  /// A true / false parameter, or `fallback` when absent. @throws GeneratorError for another type.
   bool flag(const std::string& name, bool fallback) const;
+  /// A text parameter, or `fallback` when absent. @throws GeneratorError for another type.
   std::string text(const std::string& name, const std::string& fallback) const;
+  /// A list of numbers, or `fallback` when absent. @throws GeneratorError for another type.
   std::vector<double> numbers(const std::string& name, std::vector<double> fallback = {}) const;
   /// Rows of `columns` numbers as a #rows x columns matrix (e.g. points, columns = 3).
   /// @throws GeneratorError when absent and `required`, or a row has another length.
@@ -70,8 +77,8 @@ struct CurvatureProfile {
 struct Generator {
   std::string name;     ///< as used in scene files, e.g. "qi-interpolate"
   std::string summary;  ///< one line for `ffdkit-cli info` and the GUI
-  std::vector<std::string> parameterNames;
-  std::function<MeshData(const GeneratorParameters&, double density)> generate;
+  std::vector<std::string> parameterNames;  ///< the parameters it accepts (others are refused)
+  std::function<MeshData(const GeneratorParameters&, double density)> generate;  ///< builds the curve or surface at `density`
   /// Curves only (empty for surfaces): the curvature profile at the same sampling.
   std::function<CurvatureProfile(const GeneratorParameters&, double density)> profile;
   /// An upper bound of the points `generate` makes from these parameters at `density`, found
@@ -89,7 +96,9 @@ class GeneratorRegistry {
   void add(Generator generator);
   /// @throws GeneratorError naming the unknown generator and the known ones.
   const Generator& get(const std::string& name) const;
+  /// True when a generator of that name is registered.
   bool contains(const std::string& name) const { return generators_.count(name) != 0; }
+  /// The registered names, sorted.
   std::vector<std::string> names() const;
 
   /// Runs a generator: checks parameter names, runs it, validates the mesh (finite points,

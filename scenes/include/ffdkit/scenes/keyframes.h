@@ -38,7 +38,7 @@ struct Keyframe {
   Eigen::Affine3d frame = Eigen::Affine3d::Identity();   ///< ChannelKind::LatticeFrame: world = frame * local
   Eigen::MatrixX3d points;                               ///< ChannelKind::ControlPoints: local, pointCount x 3
 
-  friend bool operator==(const Keyframe& a, const Keyframe& b) {
+  friend bool operator==(const Keyframe& a, const Keyframe& b) {  ///< equal when every field is (the matrices compared entry by entry)
     return a.time == b.time && a.interpolation == b.interpolation && a.variation == b.variation &&
            a.frame.matrix() == b.frame.matrix() && a.points.rows() == b.points.rows() && a.points == b.points;
   }
@@ -46,9 +46,9 @@ struct Keyframe {
 
 /// The keys of one property of one widget, strictly increasing in time.
 struct Channel {
-  widgets::WidgetId widget;
-  ChannelKind kind = ChannelKind::Variation;
-  std::vector<Keyframe> keys;
+  widgets::WidgetId widget;  ///< the keyed widget (an affine widget or a lattice)
+  ChannelKind kind = ChannelKind::Variation;  ///< which property is keyed
+  std::vector<Keyframe> keys;  ///< strictly increasing in time
 };
 
 /// Limits a scene's animation must keep (files are untrusted input: a reader refuses more).
@@ -64,11 +64,12 @@ inline constexpr double kMaxKeyTime = 1.0e7;              ///< |time| in seconds
 struct Animation {
   double framesPerSecond = 24.0;  ///< (0, kMaxFrameRate]
   int firstFrame = 0;             ///< first <= last
-  int lastFrame = 72;
+  int lastFrame = 72;  ///< last frame of the range
   /// Evaluated in this order within each kind (applyAnimation, animation.h); at most one channel
   /// per widget and kind.
   std::vector<Channel> channels;
 
+  /// True when nothing is keyed.
   bool empty() const { return channels.empty(); }
 };
 

@@ -19,8 +19,9 @@ std::string_view primitiveKindName(PrimitiveKind kind);
 /// Inverse of primitiveKindName; std::nullopt for an unknown name.
 std::optional<PrimitiveKind> parsePrimitiveKind(std::string_view name);
 
+/// What makePrimitive builds: a sphere, cube, cylinder, cone, torus or plane, and its sampling.
 struct PrimitiveOptions {
-  PrimitiveKind kind = PrimitiveKind::Sphere;
+  PrimitiveKind kind = PrimitiveKind::Sphere;  ///< which primitive
   /// Subdivisions around (and along, where it applies); >= 3.
   int resolution = 32;
   /// Size of the primitive's bounding box before `placement`: the unit-size primitive is
@@ -34,8 +35,8 @@ struct PrimitiveOptions {
 /// before the seams and poles are welded, and their triangles before collapsed ones are
 /// dropped (upper bounds; exact for a plane). Zero for a resolution < 3.
 struct PrimitiveSize {
-  std::uint64_t vertices = 0;
-  std::uint64_t triangles = 0;
+  std::uint64_t vertices = 0;  ///< vertices before welding (an upper bound)
+  std::uint64_t triangles = 0;  ///< triangles before collapsed ones are dropped (an upper bound)
 };
 PrimitiveSize primitiveSize(const PrimitiveOptions& options);
 

@@ -29,7 +29,7 @@ struct MeshFileSource {
 /// its parameters so that it can be regenerated at another sampling density.
 struct GeneratedSource {
   std::string generator;  ///< a name in the generator registry, e.g. "qi-interpolate"
-  GeneratorParameters parameters;
+  GeneratorParameters parameters;  ///< the generator's parameters, by name
   double density = 1.0;   ///< sampling relative to the generator's default, (0, 64]
 };
 
@@ -48,7 +48,7 @@ enum class CurveStyle { Tube, Line };
 struct DisplaySettings {
   Eigen::Vector3d color{0.85, 0.55, 0.30};  ///< RGB in [0, 1]
   double opacity = 1.0;                     ///< in [0, 1]
-  bool visible = true;
+  bool visible = true;  ///< drawn in the view
   /// Surfaces only (objects with triangles); curves and point clouds ignore it.
   SurfaceStyle surfaceStyle = SurfaceStyle::Shaded;
   /// Zebra: dark/light stripe pairs over the angle 0..pi between the vertex normal and
@@ -67,19 +67,19 @@ struct DisplaySettings {
   /// unlit, in `color`, 2 pixels wide. The curvature comb is drawn the same for both.
   CurveStyle curveStyle = CurveStyle::Tube;
 
-  friend bool operator==(const DisplaySettings&, const DisplaySettings&) = default;
+  friend bool operator==(const DisplaySettings&, const DisplaySettings&) = default;  ///< equal when every field is
 };
 
 /// A deformable object: its source, its own points (built from the source on load), its look.
 struct SceneObject {
   std::string name;  ///< unique within the scene
-  ObjectSource source;
-  DisplaySettings display;
+  ObjectSource source;  ///< where its own points come from
+  DisplaySettings display;  ///< how it is drawn
   MeshData mesh;     ///< the object's own points; the widget trees deform copies of them
   /// Scene revisions (scene_changes.h) of the last change of `mesh` / `display`; stamped by the
   /// scene edit functions, read by the deformer and the view instead of comparing the data.
   std::uint64_t meshRevision = 0;
-  std::uint64_t displayRevision = 0;
+  std::uint64_t displayRevision = 0;  ///< see meshRevision
 };
 
 /// A root lattice widget (with its whole subtree of child lattices) deforming some objects:
@@ -88,15 +88,15 @@ struct SceneObject {
 struct Attachment {
   widgets::WidgetId lattice;         ///< a ROOT lattice widget of the scene's model
   std::vector<std::string> objects;  ///< names of the objects it deforms
-  friend bool operator==(const Attachment&, const Attachment&) = default;
+  friend bool operator==(const Attachment&, const Attachment&) = default;  ///< equal when lattice and objects are
 };
 
 /// The view's camera, in world coordinates.
 struct Camera {
-  Eigen::Vector3d position{2.4, -3.0, 2.0};
-  Eigen::Vector3d focalPoint{0.0, 0.0, 0.0};
-  Eigen::Vector3d viewUp{0.0, 0.0, 1.0};
-  double viewAngleDegrees = 30.0;
+  Eigen::Vector3d position{2.4, -3.0, 2.0};  ///< eye position
+  Eigen::Vector3d focalPoint{0.0, 0.0, 0.0};  ///< the point looked at
+  Eigen::Vector3d viewUp{0.0, 0.0, 1.0};  ///< up direction of the view
+  double viewAngleDegrees = 30.0;  ///< vertical view angle
 };
 
 /// A document: objects, the widget model whose lattices deform them, attachments, a camera, an
@@ -108,7 +108,7 @@ struct Camera {
 /// the const accessors.
 class Scene {
  public:
-  std::string description;
+  std::string description;  ///< a line or two about the scene, shown by `ffdkit-cli info`
   /// Public: the model reports its own edits (revision(), changesSince); assigning another model
   /// is another instance, which consumers take anew.
   widgets::WidgetModel widgets;
@@ -152,6 +152,7 @@ class Scene {
   void setObjectDisplay(const std::string& name, const DisplaySettings& display);
 
   // ---- attachments -------------------------------------------------------------------------
+  /// Which root lattices deform which objects.
   const std::vector<Attachment>& attachments() const { return attachments_; }
   /// Replaces every attachment (a file read, an undo step); stamps the structure when they differ.
   void setAttachments(std::vector<Attachment> attachments);
@@ -170,10 +171,13 @@ class Scene {
   std::vector<widgets::WidgetId> stagesDeforming(const std::string& object) const;
 
   // ---- camera and background -----------------------------------------------------------------
+  /// The view's camera.
   const Camera& camera() const { return camera_; }
+  /// Sets the camera; stamps the camera as changed.
   void setCamera(const Camera& camera);
   /// RGB in [0, 1].
   const Eigen::Vector3d& background() const { return background_; }
+  /// Sets the background colour (RGB in [0, 1]); stamps the camera as changed.
   void setBackground(const Eigen::Vector3d& background);
 
   // ---- animation (animation.h evaluates it; its setKey / removeKey edit the keys) ------------
@@ -229,9 +233,10 @@ struct ObjectMeshOptions {
 MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path& baseDirectory,
                          const ObjectMeshOptions& options);
 
+/// Options of attachNewLattice: the new lattice's name, counts, settings and margin.
 struct AttachOptions {
   std::string latticeName;                           ///< "" -> "lattice<N>"
-  Eigen::Vector3i counts = Eigen::Vector3i::Constant(3);
+  Eigen::Vector3i counts = Eigen::Vector3i::Constant(3);  ///< control points per axis, each >= 2
   widgets::LatticeSettings settings;                 ///< bases, outside policy, re-embed policy
   /// Grown around the objects' bounding box on every side, relative to its diagonal.
   double padding = 0.05;

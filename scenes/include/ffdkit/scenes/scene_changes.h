@@ -12,9 +12,9 @@ namespace ffdkit::scenes {
 /// Where a consumer last looked at a scene: the scene's own revision and the widget model's
 /// instance and revision (SceneChanges says what changed after it).
 struct SceneMark {
-  std::uint64_t scene = 0;
+  std::uint64_t scene = 0;  ///< the scene's revision
   std::uint64_t widgetInstance = 0;  ///< 0: never looked
-  std::uint64_t widgets = 0;
+  std::uint64_t widgets = 0;  ///< the widget model's revision
 };
 
 /// What changed in a scene after a SceneMark (Scene's edits stamp what they change): the change set the deformer, the view, the outliner
@@ -29,6 +29,7 @@ struct SceneChanges {
   std::vector<std::string> meshes;  ///< objects whose own points (or source) changed
   std::vector<std::string> looks;   ///< objects whose DisplaySettings changed
 
+  /// True when nothing changed.
   bool empty() const {
     return !widgetsReplaced && widgets.empty() && !structure && !camera && !animation && meshes.empty() && looks.empty();
   }

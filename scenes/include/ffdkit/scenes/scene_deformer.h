@@ -18,7 +18,7 @@ namespace ffdkit::scenes {
 struct SceneDeformStats {
   double seconds = 0.0;           ///< wall time of the update
   int reembeddedStages = 0;       ///< lattice stages that (re)computed their embedding
-  Eigen::Index deformedPoints = 0;
+  Eigen::Index deformedPoints = 0;  ///< object points deformed
   Eigen::Index outsidePoints = 0; ///< object points outside their first lattice
   Eigen::Index failedPoints = 0;  ///< points whose Newton embedding failed (left unchanged)
   double embedSeconds = 0.0;      ///< part of `seconds` spent computing embeddings (the rest: syncing, deforming)
@@ -63,7 +63,9 @@ class SceneDeformer {
  public:
   SceneDeformer();
   ~SceneDeformer();
+  /// Moves the deformer.
   SceneDeformer(SceneDeformer&&) noexcept;
+  /// Moves the deformer.
   SceneDeformer& operator=(SceneDeformer&&) noexcept;
 
   /// Brings every object's deformed points up to date with `scene`.
@@ -93,6 +95,7 @@ class SceneDeformer {
   /// The arithmetic of the following calls' deformations (ffd::Precision; default Double). A
   /// change evaluates every lattice stage in full at the next call.
   void setPrecision(ffd::Precision precision) { precision_ = precision; }
+  /// The arithmetic of the following updates.
   ffd::Precision precision() const { return precision_; }
 
   /// finishGesture(scene) for a caller done with the objects' own points (the CLI): an object
@@ -126,6 +129,7 @@ class SceneDeformer {
   /// @throws std::invalid_argument for an object update() has not seen.
   std::uint64_t revision(const std::string& object) const;
 
+  /// Timing and work of the last update().
   const SceneDeformStats& lastStats() const { return stats_; }
 
   /// The motion of an object's points since their last evaluation that was not a delta step of
