@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test (unit, render and GUI tests) through
-# CTest under Xvfb. Then the sanitizer stage (FFDKIT_SANITIZE_STAGE=0 skips it): the core
+# CTest under Xvfb. Then the no-app stage (FFDKIT_NOAPP_STAGE=0 skips it): the libraries, the CLI
+# and the Python module built without Qt (-DFFDKIT_BUILD_APP=OFF, build-noapp/) and their tests,
+# install and consumer tests run. Then the sanitizer stage (FFDKIT_SANITIZE_STAGE=0 skips it): the core
 # libraries and the CLI built again with ASan + UBSan at -O1 (build-sanitize/, no Qt window, no
 # Python module, no benchmarks) and every `core` test run under them: unit, CLI and file tests,
 # and every fuzz target over its corpus and saved crash inputs. Then the app's sanitizer stage
@@ -30,6 +32,25 @@ xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
 
 # Cost (docs/robustness.md): a build of ~300 steps (from a warm compiler cache a few minutes) and
 # ~80 s of tests on 2 cores.
+
+# The library without the window (FFDKIT_NOAPP_STAGE=0 skips it): configured with
+# -DFFDKIT_BUILD_APP=OFF in build-noapp/ (no Qt looked for or linked; no benchmarks), built (the
+# compiler cache serves what the main build compiled) and every test that configuration
+# registers run: the libraries', the CLI's, the Python module's, and the install tree, the
+# per-component consumer projects and the Debian package as a user without Qt gets them.
+if [ "${FFDKIT_NOAPP_STAGE:-1}" = "1" ]; then
+  noapp="${FFDKIT_NOAPP_BUILD_DIR:-$root/build-noapp}"
+  stage_start=$(date +%s)
+  FFDKIT_BUILD_DIR="$noapp" "$root/scripts/build.sh" -DFFDKIT_BUILD_APP=OFF -DFFDKIT_BUILD_BENCH=OFF
+  if grep -q "^Qt6_DIR:" "$noapp/CMakeCache.txt"; then
+    echo "no-app stage: the configuration without the window looked for Qt ($noapp/CMakeCache.txt)" >&2
+    exit 1
+  fi
+  built=$(date +%s)
+  xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
+    ctest --test-dir "$noapp" --output-on-failure --parallel "$jobs" --timeout 600 "$@"
+  echo "no-app stage: build $((built - stage_start)) s, tests $(($(date +%s) - built)) s"
+fi
 if [ "${FFDKIT_SANITIZE_STAGE:-1}" = "1" ]; then
   sanitize="${FFDKIT_SANITIZE_BUILD_DIR:-$root/build-sanitize}"
   stage_start=$(date +%s)

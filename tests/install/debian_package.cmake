@@ -1,5 +1,7 @@
-# cmake -DBUILD_DIR -DOUT -DPYTHON_DIR -P debian_package.cmake: `cpack -G DEB` on the build tree,
-# then the package must hold the libraries, headers, CMake package, programs and Python module.
+# cmake -DBUILD_DIR -DOUT -DWITH_APP -DPYTHON_DIR -P debian_package.cmake: `cpack -G DEB` on the
+# build tree, then the package must hold the libraries, headers, CMake package, programs and Python
+# module (the window only WITH_APP), and is unpacked into OUT/root for the consumer projects
+# (deb_consumer_<component>, tests/install/CMakeLists.txt).
 file(REMOVE_RECURSE "${OUT}")
 execute_process(COMMAND cpack -G DEB --config "${BUILD_DIR}/CPackConfig.cmake" -B "${OUT}"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE log)
@@ -14,8 +16,13 @@ endif()
 execute_process(COMMAND dpkg-deb --contents ${debs} OUTPUT_VARIABLE contents RESULT_VARIABLE rc)
 execute_process(COMMAND dpkg-deb --field ${debs} Package Depends OUTPUT_VARIABLE fields)
 message(STATUS "${debs}:\n${fields}")
-foreach(file ./usr/include/ffdkit/ffd/lattice.h ./usr/lib/libffdkit_scenes.a ./usr/lib/cmake/ffdkit/ffdkitConfig.cmake
-             ./usr/bin/ffdkit-cli ./usr/bin/ffdkit ./usr/${PYTHON_DIR}/ffdkit/pygem.py ./usr/${PYTHON_DIR}/ffdkit/_ffdkit)
+set(expected ./usr/include/ffdkit/ffd/lattice.h ./usr/lib/libffdkit_scenes.a ./usr/lib/cmake/ffdkit/ffdkitConfig.cmake
+             ./usr/lib/cmake/ffdkit/ffdkit-ffd-targets.cmake ./usr/bin/ffdkit-cli ./usr/${PYTHON_DIR}/ffdkit/pygem.py
+             ./usr/${PYTHON_DIR}/ffdkit/_ffdkit)
+if(WITH_APP)
+  list(APPEND expected ./usr/bin/ffdkit)
+endif()
+foreach(file IN LISTS expected)
   string(FIND "${contents}" "${file}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "${debs} lacks ${file}")
@@ -27,3 +34,10 @@ foreach(dependency libeigen3-dev libvtk9-dev python3-numpy libc6)
     message(FATAL_ERROR "${debs} does not depend on ${dependency}:\n${fields}")
   endif()
 endforeach()
+if(NOT WITH_APP AND fields MATCHES "libqt")
+  message(FATAL_ERROR "${debs} of a build without the window depends on Qt:\n${fields}")
+endif()
+execute_process(COMMAND dpkg-deb -x ${debs} "${OUT}/root" RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "dpkg-deb -x ${debs} failed (${rc})")
+endif()
