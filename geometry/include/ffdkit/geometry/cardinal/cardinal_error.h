@@ -9,6 +9,7 @@ namespace ffdkit::geometry::cardinal {
 /// tension, ...). The message says what was expected, what came and where.
 class CardinalSplineError : public std::invalid_argument {
  public:
+  /// An error with the message `what`.
   explicit CardinalSplineError(const std::string& what) : std::invalid_argument(what) {}
 };
 

@@ -25,6 +25,7 @@
 
 namespace ffdkit::geometry::cardinal {
 
+/// How densely a curve is sampled.
 struct CurveSampling {
   int samplesPerSpan = 16;  ///< sub-intervals per knot interval (>= 1)
 };
@@ -37,6 +38,7 @@ enum class KnotSpacing {
 
 // ---- S-spline ------------------------------------------------------------------------------
 
+/// Parameters of the S-spline curve generator.
 struct SSplineCurveParams {
   Eigen::MatrixX3d points;       ///< data points, one per row (>= 2 open, >= 3 closed)
   SSplineCurveOptions options;   ///< beta2 = 0, halfWidth = 4, open ends by default
@@ -51,9 +53,11 @@ Polyline generateSSplineCurve(const SSplineCurveParams& params, const CurveSampl
 CurvatureSamples sSplineCurveCurvature(const SSplineCurveParams& params,
                                        const CurveSampling& sampling = {});
 
+/// Parameters of the S-spline surface generator.
 struct SSplineSurfaceParams {
   PointGrid points;               ///< >= 2 x 2 grid (>= 3 along closed directions)
   SSplineSurfaceOptions options;  ///< beta2 = 0, halfWidth = 4, open in u and v by default
+  /// @throws CardinalSplineError with the field name on invalid data.
   void validate() const;
 };
 
@@ -65,14 +69,16 @@ SurfaceTessellation generateSSplineSurfaceWithNormals(const SSplineSurfaceParams
 
 // ---- sigma-spline --------------------------------------------------------------------------
 
+/// Parameters of the sigma-spline curve generator.
 struct SigmaSplineCurveParams {
   Eigen::MatrixX3d points;  ///< interpolation points (>= 2 open, >= 3 closed, distinct when closed)
   Eigen::VectorXd knots;    ///< #points values (open) or #points + 1 (closed); empty: `spacing`
-  KnotSpacing spacing = KnotSpacing::Uniform;
+  KnotSpacing spacing = KnotSpacing::Uniform;  ///< knot placement when `knots` is empty
   Eigen::VectorXd beta2;    ///< tension per knot (#points values), empty = all 0
-  bool closed = false;
+  bool closed = false;  ///< a closed (periodic) curve
   ShapeMode shape = ShapeMode::Cubic;  ///< how the shape points are chosen
   EndSlopes endSlopes;                 ///< cubic mode, open curves; default chord rule
+  /// @throws CardinalSplineError with the field name on invalid data.
   void validate() const;
 };
 
@@ -83,16 +89,18 @@ Polyline generateSigmaSplineCurve(const SigmaSplineCurveParams& params,
 CurvatureSamples sigmaSplineCurveCurvature(const SigmaSplineCurveParams& params,
                                            const CurveSampling& sampling = {});
 
+/// Parameters of the sigma-spline surface generator.
 struct SigmaSplineSurfaceParams {
   PointGrid points;         ///< interpolation grid (>= 2 per open direction, >= 3 closed)
   Eigen::VectorXd knotsU;   ///< rows (+1 if closed) values; empty: `spacing`
   Eigen::VectorXd knotsV;   ///< cols (+1 if closed) values; empty: `spacing`
-  KnotSpacing spacing = KnotSpacing::Uniform;
+  KnotSpacing spacing = KnotSpacing::Uniform;  ///< knot placement when knotsU / knotsV are empty
   Eigen::VectorXd beta2U;   ///< tension per u-knot, empty = 0
   Eigen::VectorXd beta2V;   ///< tension per v-knot, empty = 0
-  bool closedU = false;
-  bool closedV = false;
+  bool closedU = false;  ///< periodic along u
+  bool closedV = false;  ///< periodic along v
   SigmaSurfaceOptions shape;  ///< ShapeMode::Cubic (bicubic, consistent corner rule) by default
+  /// @throws CardinalSplineError with the field name on invalid data.
   void validate() const;
 };
 
@@ -109,11 +117,13 @@ enum class BlendPart {
   BlendOnly,  ///< the two blend intervals only
 };
 
+/// Parameters of the spline-blend generator: two sigma-spline surfaces joined by a blend.
 struct SplineBlendParams {
   SigmaSplineSurfaceParams first;   ///< must be open in v
   SigmaSplineSurfaceParams second;  ///< must be open in v, same u range/closedness as first
   BlendOptions blend;               ///< gaps default to the neighbouring v-intervals
-  BlendPart part = BlendPart::Composite;
+  BlendPart part = BlendPart::Composite;  ///< the composite or the blend alone
+  /// @throws CardinalSplineError with the field name on invalid data.
   void validate() const;
 };
 

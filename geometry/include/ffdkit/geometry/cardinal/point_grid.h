@@ -16,11 +16,14 @@ struct PointGrid {
   std::vector<Eigen::Vector3d> data;  ///< rows * cols points, data[i * cols + j]
 
   PointGrid() = default;
+  /// A grid of rowCount x colCount points at the origin.
   PointGrid(int rowCount, int colCount)
       : rows(rowCount), cols(colCount),
         data(static_cast<std::size_t>(rowCount) * colCount, Eigen::Vector3d::Zero()) {}
 
+  /// Point (i, j).
   Eigen::Vector3d& operator()(int i, int j) { return data[static_cast<std::size_t>(i) * cols + j]; }
+  /// Point (i, j), read-only.
   const Eigen::Vector3d& operator()(int i, int j) const {
     return data[static_cast<std::size_t>(i) * cols + j];
   }

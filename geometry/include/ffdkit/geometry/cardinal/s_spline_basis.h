@@ -59,11 +59,15 @@ class SSplineBasis {
   explicit SSplineBasis(double beta2 = 0.0, int halfWidth = 4, int degree = 3,
                         bool clipped = true);
 
+  /// Tension beta2.
   double beta2() const { return beta2_; }
+  /// B-spline degree (odd).
   int degree() const { return degree_; }
+  /// True for the thesis's clipped basis.
   bool clipped() const { return clipped_; }
   /// S_0 vanishes for |x| >= supportRadius(): w when clipped, else w + k - 1 + (m+1)/2.
   double supportRadius() const;
+  /// Truncation half-width w.
   int halfWidth() const { return halfWidth_; }
   /// c_0..c_w (degree 3) or c_0..c_{w+k-2} (degree m = 2k-1 > 3, see evaluate).
   const Eigen::VectorXd& coefficients() const { return c_; }

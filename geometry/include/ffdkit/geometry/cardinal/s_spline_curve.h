@@ -13,10 +13,11 @@ enum class SSplineEnd {
   Tangent,  ///< P_i = P_{-i} - dP_0 (i < 0), P_i = P_{2s-i} + dP_s (i > s)
 };
 
+/// Options of an S-spline curve.
 struct SSplineCurveOptions {
   double beta2 = 0.0;  ///< tension (>= 0); 0 gives the uniform cubic B-spline version
   int halfWidth = 4;   ///< truncation half-width w (the thesis's n); support is 2w spans
-  SSplineEnd end = SSplineEnd::Open;
+  SSplineEnd end = SSplineEnd::Open;  ///< how the ends are treated
   Eigen::Vector3d startTangent = Eigen::Vector3d::Zero();  ///< dP_0 for SSplineEnd::Tangent
   Eigen::Vector3d endTangent = Eigen::Vector3d::Zero();    ///< dP_s for SSplineEnd::Tangent
   /// Divide the tangents by lambda_w so that they set the end derivative up to the
@@ -39,8 +40,11 @@ class SSplineCurve {
 
   /// Parameter range end s (open: #P - 1; closed: #P).
   double parameterEnd() const { return static_cast<double>(span_); }
+  /// True for a closed (periodic) curve.
   bool closed() const { return options_.end == SSplineEnd::Closed; }
+  /// The basis the curve uses.
   const SSplineBasis& basis() const { return basis_; }
+  /// The data points, #P x 3.
   const Eigen::MatrixX3d& points() const { return points_; }
 
   /// Extended data P_i for any integer i (end rule applied).

@@ -7,6 +7,7 @@
 
 namespace ffdkit::geometry::cardinal {
 
+/// Options of an S-spline surface.
 struct SSplineSurfaceOptions {
   double beta2U = 0.0;   ///< tension along u (rows)
   double beta2V = 0.0;   ///< tension along v (columns)
@@ -29,6 +30,7 @@ class SSplineSurface {
 
   double uEnd() const { return uSpan_; }  ///< u range [0, uEnd]
   double vEnd() const { return vSpan_; }  ///< v range [0, vEnd]
+  /// The options the surface was built with.
   const SSplineSurfaceOptions& options() const { return options_; }
 
   /// d^du/du d^dv/dv Q(u, v), du, dv in 0..3, in knot-index units. Derivatives are
@@ -39,8 +41,12 @@ class SSplineSurface {
   /// #us*#vs x 3 with row iu * #vs + iv. Shares the basis values along each axis, so it costs
   /// O(#us * #vs * 2w) instead of O(#us * #vs * (2w)^2) for repeated evaluate() calls.
   struct GridSamples {
+    ///@{
+    /// Q, Q_u and Q_v at the grid's samples.
     Eigen::MatrixX3d points, du, dv;
+    ///@}
   };
+  /// Q, Q_u and Q_v on the tensor grid us x vs (see GridSamples).
   GridSamples sampleGrid(const Eigen::VectorXd& us, const Eigen::VectorXd& vs) const;
 
  private:

@@ -23,8 +23,8 @@ enum class ShapeMode {
 /// interval (Q'(t_0) = startSlope / Delta_0). Unset: chord rule P_1 - P_0 and P_n - P_{n-1}
 /// (Kuriyama 1996, sec. 3.2.2). Ignored for closed curves.
 struct EndSlopes {
-  std::optional<Eigen::Vector3d> start;
-  std::optional<Eigen::Vector3d> end;
+  std::optional<Eigen::Vector3d> start;  ///< start slope; unset: the chord rule
+  std::optional<Eigen::Vector3d> end;  ///< end slope; unset: the chord rule
 };
 
 /// Precomputed factorisation of the cubic-mode system (3.28) + (3.33) (or cyclic (3.28)) for
@@ -41,6 +41,7 @@ class CubicShapeSolver {
   Eigen::MatrixXd solve(const Eigen::MatrixXd& values, const Eigen::MatrixXd& startSlope,
                         const Eigen::MatrixXd& endSlope) const;
 
+  /// The knots the solver was factored for.
   const SigmaKnots& knots() const { return knots_; }
 
  private:
@@ -71,8 +72,9 @@ struct SurfaceEndData {
   std::optional<std::array<Eigen::Vector3d, 4>> twists;
 };
 
+/// How the shape points of a sigma-spline surface are chosen.
 struct SigmaSurfaceOptions {
-  ShapeMode mode = ShapeMode::Cubic;
+  ShapeMode mode = ShapeMode::Cubic;  ///< how the shape points are chosen
   SurfaceEndData ends;  ///< Cubic mode only
   /// Cubic mode: use the thesis's literal zero for the twist-like end data of the Pv rows
   /// (sec. 3.3.5) instead of the consistent rule (Kuriyama 1996, sec. 3.3.5). For fidelity tests
@@ -82,8 +84,9 @@ struct SigmaSurfaceOptions {
   bool crossCheckRoutes = false;
 };
 
+/// A sigma-spline surface with its shape points.
 struct SigmaSurfaceResult {
-  SigmaSurface surface;
+  SigmaSurface surface;  ///< the surface
   /// max |Puv(u-route) - Puv(v-route)| when crossCheckRoutes (else 0).
   double routeDiscrepancy = 0.0;
 };

@@ -9,6 +9,7 @@
 
 namespace ffdkit::geometry::cardinal {
 
+/// Options of a blend between two sigma-spline surfaces.
 struct BlendOptions {
   /// Width of the blend's first v-interval [v_n, v_{n+1}]; unset: surface 1's last v-interval.
   std::optional<double> gapBefore;
@@ -18,6 +19,7 @@ struct BlendOptions {
   std::array<double, 3> junctionBeta2 = {0.0, 0.0, 0.0};
 };
 
+/// The blend and the composite surface.
 struct BlendResult {
   /// The blend surface alone, on v in [v_n, v_{n+2}] (its open v-knots carry the neighbouring
   /// widths as phantoms, so it is exactly the composite restricted to the blend region).

@@ -35,8 +35,11 @@ class SigmaCurve {
   /// @throws CardinalSplineError on size mismatch.
   SigmaCurve(SigmaKnots knots, Eigen::MatrixX3d points, Eigen::MatrixX3d shapePoints);
 
+  /// The knots and tensions.
   const SigmaKnots& knots() const { return knots_; }
+  /// The interpolation points, knots.pointCount() x 3.
   const Eigen::MatrixX3d& points() const { return points_; }
+  /// The shape points, knots.shapeCount() x 3.
   const Eigen::MatrixX3d& shapePoints() const { return shape_; }
 
   Eigen::Vector3d point(int i) const;  ///< P_i (closed: modulo n)

@@ -6,13 +6,14 @@
 
 namespace ffdkit::geometry::cardinal {
 
+/// Options of SigmaKnots.
 struct SigmaKnotsOptions {
   bool closed = false;  ///< periodic knots: t_n is the period end, beta2 has n entries
   /// Open ends only: widths of the phantom intervals Delta_{-1} and Delta_n, which the
   /// thesis leaves undefined (Kuriyama 1996, sec. 3.2.2). Unset: Delta_{-1} = Delta_0, Delta_n =
   /// Delta_{n-1}.
   std::optional<double> phantomBefore;
-  std::optional<double> phantomAfter;
+  std::optional<double> phantomAfter;  ///< Delta_n; see phantomBefore
 };
 
 /// Simple knots t_0 < ... < t_n of a sigma-spline (each a triple knot of the underlying
@@ -32,12 +33,17 @@ class SigmaKnots {
   static SigmaKnots uniform(int n, bool closed = false);
 
   int last() const { return n_; }  ///< n
+  /// True for periodic knots.
   bool closed() const { return options_.closed; }
+  /// The knots t_0 .. t_n.
   const Eigen::VectorXd& knots() const { return t_; }
   /// beta2 per knot: n+1 (open) or n (closed) values.
   const Eigen::VectorXd& beta2Values() const { return beta2_; }
+  /// The options the knots were built with.
   const SigmaKnotsOptions& options() const { return options_; }
+  /// First knot t_0.
   double start() const { return t_[0]; }
+  /// Last knot t_n.
   double end() const { return t_[n_]; }
 
   double knot(int i) const;   ///< t_i, wrapping by the period for closed knots
@@ -54,6 +60,7 @@ class SigmaKnots {
   int pointCount() const { return closed() ? n_ : n_ + 1; }  ///< interpolation points
   int shapeCount() const { return closed() ? n_ : n_ + 2; }  ///< shape points
   int shapeFirst() const { return closed() ? 0 : -1; }       ///< index of shape row 0
+  /// Number of knot intervals n.
   int intervalCount() const { return n_; }
 
   /// Interval index i with x in [t_i, t_{i+1}) and the local parameter s = (x - t_i)/Delta_i.

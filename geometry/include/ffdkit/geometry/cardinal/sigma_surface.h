@@ -22,9 +22,12 @@ using QuarticPatch = std::array<std::array<Eigen::Vector3d, 5>, 5>;
 /// shape rows/columns are offset by shapeFirst() (grid index r <-> shape index r + shapeFirst()).
 /// Q(t^u_i, t^v_j) = P_ij for any shape grids. @see Kuriyama 1996, sec. 3.3.3.
 struct SigmaSurface {
-  SigmaKnots knotsU;
-  SigmaKnots knotsV;
+  SigmaKnots knotsU;  ///< knots and tensions along u
+  SigmaKnots knotsV;  ///< knots and tensions along v
+  ///@{
+  /// The interpolation grid P and the shape grids Pu, Pv, Puv (sizes above).
   PointGrid P, Pu, Pv, Puv;
+  ///@}
 
   /// @throws CardinalSplineError if the grid sizes do not match the knots.
   void validate() const;

@@ -8,6 +8,7 @@
 
 namespace ffdkit::geometry::cardinal {
 
+/// How densely a surface is sampled.
 struct SurfaceSampling {
   int samplesPerSpanU = 8;  ///< sub-intervals per knot interval along u (>= 1)
   int samplesPerSpanV = 8;  ///< sub-intervals per knot interval along v (>= 1)
@@ -20,7 +21,7 @@ struct SurfaceTessellation {
   Eigen::MatrixX3d normals;   ///< #V x 3, unit; triangles are counter-clockwise around them
   Eigen::MatrixX2d parameters;  ///< #V x 2, the (u, v) of each vertex
   int verticesU = 0;  ///< vertex grid size along u (vertex index = iu * verticesV + iv)
-  int verticesV = 0;
+  int verticesV = 0;  ///< vertex grid size along v
 };
 
 /// @throws CardinalSplineError if a sampling count is < 1.

@@ -8,10 +8,16 @@ namespace ffdkit::geometry::curvenet {
 /// the patch evaluator is written once over jets so that values, tangents (G1 tests, normals)
 /// and curvatures (G2 tests) come from the same code. @see Kuriyama 1996, sec. 5.3.4 "Derivatives".
 struct Jet {
+  ///@{
+  /// The value, its first partials in x and y, and its second partials.
   double v = 0.0, x = 0.0, y = 0.0, xx = 0.0, xy = 0.0, yy = 0.0;
+  ///@}
 
+  /// A constant: all derivatives zero.
   static Jet constant(double c) { return Jet{c, 0, 0, 0, 0, 0}; }
+  /// The coordinate x at x0.
   static Jet variableX(double x0) { return Jet{x0, 1, 0, 0, 0, 0}; }
+  /// The coordinate y at y0.
   static Jet variableY(double y0) { return Jet{y0, 0, 1, 0, 0, 0}; }
 };
 
@@ -49,9 +55,12 @@ inline Jet operator/(const Jet& u, const Jet& w) {
 
 /// A point of R^3 with its first and second partial derivatives in (x, y).
 struct VectorJet {
+  ///@{
+  /// The point, its first partials in x and y, and its second partials.
   Eigen::Vector3d v = Eigen::Vector3d::Zero(), x = Eigen::Vector3d::Zero(),
                   y = Eigen::Vector3d::Zero(), xx = Eigen::Vector3d::Zero(),
                   xy = Eigen::Vector3d::Zero(), yy = Eigen::Vector3d::Zero();
+  ///@}
 };
 
 inline VectorJet operator+(const VectorJet& a, const VectorJet& b) {

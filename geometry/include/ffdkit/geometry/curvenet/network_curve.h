@@ -17,8 +17,8 @@ class CurveInputError : public std::invalid_argument {
 
 /// A plane through `origin` with unit `normal`: the plane a network curve was drawn in.
 struct Plane {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< a point of the plane
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit normal
 };
 
 /// Knot spacing for interpolating a polyline. @see Kuriyama 1996, secs. 5.3.1, 5.3.3.
@@ -30,8 +30,8 @@ enum class KnotSpacing {
 
 /// One segment of a piecewise polynomial: K(t) = sum_j coefficients.row(j) (t - t0)^j on [t0, t1].
 struct CurveSegment {
-  double t0 = 0.0;
-  double t1 = 1.0;
+  double t0 = 0.0;  ///< start parameter
+  double t1 = 1.0;  ///< end parameter
   Eigen::MatrixX3d coefficients;  ///< (degree + 1) x 3, power basis in (t - t0)
 };
 
@@ -47,10 +47,15 @@ class NetworkCurve {
   /// @throws CurveInputError if segments is empty or not contiguous.
   NetworkCurve(std::vector<CurveSegment> segments, bool closed);
 
+  /// Start of the parameter range.
   double tMin() const { return segments_.front().t0; }
+  /// End of the parameter range.
   double tMax() const { return segments_.back().t1; }
+  /// Parameter length, tMax() - tMin() (the period of a closed curve).
   double period() const { return tMax() - tMin(); }
+  /// True for a closed (periodic) curve.
   bool closed() const { return closed_; }
+  /// The polynomial pieces, in order.
   const std::vector<CurveSegment>& segments() const { return segments_; }
 
   /// d^k K / dt^k at t, k = 0..3.

@@ -16,15 +16,15 @@ namespace ffdkit::geometry::curvenet {
 /// 2 + k r + j at (r / P) [(1 - j / r) p_k + (j / r) p_{k+1}]; row 0 is the centre; ring P is the
 /// boundary.
 struct NGonLattice {
-  Eigen::MatrixX2d points;
-  Eigen::MatrixX3i triangles;
+  Eigen::MatrixX2d points;  ///< #points x 2 in the domain
+  Eigen::MatrixX3i triangles;  ///< #triangles x 3 point indices, counter-clockwise
 };
 /// @throws std::invalid_argument if pitch < 1.
 NGonLattice ngonLattice(const NGonDomain& domain, int pitch);
 
 /// A tessellated network with per-vertex unit normals (for shading and zebra display).
 struct NetworkMesh {
-  TriangleMesh mesh;
+  TriangleMesh mesh;  ///< points and triangles
   Eigen::MatrixX3d normals;        ///< #V x 3, unit, outward
   std::vector<int> triangleFace;   ///< face of each triangle
 };

@@ -19,7 +19,9 @@ class NGonDomain {
   /// @throws std::invalid_argument if sides < 3.
   explicit NGonDomain(int sides);
 
+  /// Number of sides N.
   int sides() const { return n_; }
+  /// Vertex p_k of the regular N-gon.
   Eigen::Vector2d vertex(int k) const;
 
   /// b_i(p), i = 0..N-1, as jets in (x, y). Computed in product form (never a / (a a)) so it is

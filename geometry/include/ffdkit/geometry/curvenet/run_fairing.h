@@ -16,16 +16,17 @@ struct FairingOptions {
 /// Per run: the thin-plate energy E + E-bar of the normalised sub-surfaces on both sides at
 /// c = 0 and at the optimum.
 struct RunFairing {
-  int run = -1;
-  double energyBefore = 0.0;
-  double energyAfter = 0.0;
+  int run = -1;  ///< the run's index in the network
+  double energyBefore = 0.0;  ///< energy at c = 0
+  double energyAfter = 0.0;  ///< energy at the optimum
   int sides = 0;  ///< faces (0..2) whose sub-surface entered the energy
 };
 
+/// What fairRunSweeps did: the energy per run and in total.
 struct FairingResult {
-  std::vector<RunFairing> runs;
-  double totalBefore = 0.0;
-  double totalAfter = 0.0;
+  std::vector<RunFairing> runs;  ///< one entry per run
+  double totalBefore = 0.0;  ///< sum of the energies at c = 0
+  double totalAfter = 0.0;  ///< sum of the energies at the optimum
 };
 
 /// Switches every run with two transversals to the affine-matrix sweep of Kuriyama 1996, sec. 5.2.1
