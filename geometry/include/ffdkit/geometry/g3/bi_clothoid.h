@@ -10,23 +10,25 @@ namespace ffdkit::geometry::g3 {
 
 /// End data a bi-clothoid must match: points, tangent angles (rad, unwrapped) and curvatures.
 struct BiClothoidEnds {
-  Eigen::Vector2d startPoint = Eigen::Vector2d::Zero();
-  Eigen::Vector2d endPoint = Eigen::Vector2d::Zero();
-  double startAngle = 0.0;
-  double endAngle = 0.0;
-  double startCurvature = 0.0;
-  double endCurvature = 0.0;
+  Eigen::Vector2d startPoint = Eigen::Vector2d::Zero();  ///< start point
+  Eigen::Vector2d endPoint = Eigen::Vector2d::Zero();  ///< end point
+  double startAngle = 0.0;  ///< tangent angle at the start (rad)
+  double endAngle = 0.0;  ///< tangent angle at the end (rad)
+  double startCurvature = 0.0;  ///< curvature at the start (1/length)
+  double endCurvature = 0.0;  ///< curvature at the end (1/length)
 };
 
+/// Options of fitBiClothoid's Newton iteration.
 struct BiClothoidOptions {
   double tolerance = 1e-13;  ///< max chord residual / |chord| (Kuroda et al. 1997, sec. 6)
   int maxIterations = 20;    ///< Newton iterations
 };
 
+/// The fitted bi-clothoid and how the fit went.
 struct BiClothoidResult {
   std::array<ClothoidArc, 2> arcs;  ///< G2-joined: arcs[1] starts where arcs[0] ends
-  bool converged = false;
-  int iterations = 0;
+  bool converged = false;  ///< the residual reached the tolerance
+  int iterations = 0;  ///< Newton iterations taken
   double residual = 0.0;  ///< |sigma_0 I_0 + sigma_1 I_1 - chord| at the result
 };
 

@@ -11,6 +11,7 @@
 
 namespace ffdkit::geometry::g3 {
 
+/// Options of the clothoid approximation of a curve.
 struct ClothoidApproximationOptions {
   /// 1: a bi-clothoid per span (2 arcs); 2: each span split once more (4 arcs, the paper's
   /// refinement, sec. 6); k: 2^k arcs per span.
@@ -24,20 +25,21 @@ struct ClothoidApproximationOptions {
 /// How well the arcs of one span reproduce it.
 struct SpanApproximationError {
   int firstArc = 0;            ///< index into ClothoidApproximation::arcs
-  int arcCount = 0;
+  int arcCount = 0;  ///< clothoid arcs used
   double hausdorff = 0.0;      ///< symmetric Hausdorff distance, sampled
   double maxCurvatureDeviation = 0.0;  ///< max |kappa_arcs - kappa|, at proportional arc length
   double lengthDeviation = 0.0;        ///< (sum of arc lengths - Delta s_i) / Delta s_i
   bool converged = true;               ///< every bi-clothoid fit of the span converged
 };
 
+/// A curve approximated by clothoid arcs, with its errors.
 struct ClothoidApproximation {
   std::vector<ClothoidArc> arcs;               ///< in curve order, G2-joined
   std::vector<SpanApproximationError> spans;   ///< one per span of the G3 curve
   std::vector<double> junctionFractions;       ///< bi-clothoid junction sigma_0/(sigma_0+sigma_1), level 1, per span
-  bool converged = true;
-  double maxHausdorff = 0.0;
-  double maxCurvatureDeviation = 0.0;
+  bool converged = true;  ///< every arc met the tolerances
+  double maxHausdorff = 0.0;  ///< largest Hausdorff distance of an arc from the curve
+  double maxCurvatureDeviation = 0.0;  ///< largest curvature difference from the curve
   /// Spans whose arcs are more than 2 % longer or shorter than the span (
   /// Kuroda et al. 1997 treats that as a warning, not a failure).
   std::vector<std::string> warnings;

@@ -24,19 +24,26 @@ class ClothoidSpline {
                                        const Eigen::Ref<const Eigen::VectorXd>& spanLengths,
                                        const Eigen::Ref<const Eigen::VectorXd>& deBoor);
 
+  /// Number of spans n.
   int spanCount() const { return static_cast<int>(spanLengths_.size()); }
+  /// Total arc length.
   double length() const { return knots_[knots_.size() - 1]; }
+  /// Arc length of each span, Delta s_0..Delta s_{n-1}.
   const Eigen::VectorXd& spanLengths() const { return spanLengths_; }
   const Eigen::VectorXd& knots() const { return knots_; }            ///< s_0..s_n
   const Eigen::VectorXd& deBoor() const { return deBoor_; }          ///< e_{-1}..e_n
   const Eigen::VectorXd& bezierOrdinates() const { return bezier_; } ///< b_0..b_{2n}
+  /// Start point of each span, p_0..p_n, (n+1) x 2.
   const Eigen::MatrixX2d& spanStarts() const { return spanStarts_; }
 
   /// Evaluations at s in [0, length()]; dkappa/ds is the span's constant sharpness (the span on
   /// the right at an interior knot). @throws G3InputError outside the curve.
   double tangentAngle(double s) const;
+  /// Curvature at arc length s.
   double curvature(double s) const;
+  /// dkappa/ds at arc length s.
   double curvatureDerivative(double s) const;
+  /// Position at arc length s.
   Eigen::Vector2d position(double s) const;
   /// Sharpness (dkappa/ds) of span i.
   double sharpness(int span) const;
@@ -53,14 +60,15 @@ class ClothoidSpline {
   Eigen::MatrixX2d spanStarts_;
 };
 
+/// A solved clothoid spline and how the solve went.
 struct ClothoidSplineResult {
-  G3SolveStatus status = G3SolveStatus::MaxIterations;
-  bool converged = false;
-  int iterations = 0;
+  G3SolveStatus status = G3SolveStatus::MaxIterations;  ///< how the solve ended
+  bool converged = false;  ///< status == Converged
+  int iterations = 0;  ///< Newton iterations taken
   double residualNorm = 0.0;       ///< ||f||_2 unscaled
   double scaledResidualInf = 0.0;  ///< as G3SolveResult
-  std::vector<double> residualHistory;
-  std::string message;
+  std::vector<double> residualHistory;  ///< residual norm before the first and after each iteration
+  std::string message;  ///< why it failed, empty on success
   Eigen::VectorXd unknowns;        ///< (Delta s_0..Delta s_{n-1}, e_{-1}..e_n), last iterate
   std::optional<ClothoidSpline> curve;  ///< set only when converged
 };

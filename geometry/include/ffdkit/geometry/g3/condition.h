@@ -22,6 +22,7 @@ using CustomConditionFunction =
 /// Plain data except for Custom. At most 3 rows in total make the system square; fewer leave a
 /// one-parameter family (min-norm Newton as in Kuroda et al. 1997, sec. 4).
 struct Condition {
+  /// The kind of condition (the rows of Kuroda et al. 1997, table B1..B10).
   enum class Kind {
     TangentAngle,       ///< B1: psi(s_index) = value (rad); matched on the nearest 2 pi branch
     Curvature,          ///< B2/B3: kappa(s_index) = value (1/length)
@@ -33,7 +34,7 @@ struct Condition {
     Custom,             ///< B8: custom(v) = 0
   };
 
-  Kind kind = Kind::NaturalEnds;
+  Kind kind = Kind::NaturalEnds;  ///< which condition
   int index = 0;       ///< point index 0..n or span index 0..n-1; kLast for the last one
   int lastIndex = kLast;  ///< Length only: last span of the summed range (inclusive)
   double value = 0.0;  ///< the target (rad, 1/length or length)
@@ -46,11 +47,17 @@ struct Condition {
   static Condition curvature(int pointIndex, double kappa) { return {Kind::Curvature, pointIndex, kLast, kappa, {}, {}}; }
   /// B4: radius of curvature at point i, written without dividing by kappa (sec. 3).
   static Condition radiusOfCurvature(int pointIndex, double rho) { return {Kind::RadiusOfCurvature, pointIndex, kLast, rho, {}, {}}; }
+  /// B5: span `span` has linear curvature (a clothoid).
   static Condition clothoidSpan(int span) { return {Kind::ClothoidSpan, span, kLast, 0.0, {}, {}}; }
+  /// B6: span `span` has constant curvature (a circular arc).
   static Condition circularArcSpan(int span) { return {Kind::CircularArcSpan, span, kLast, 0.0, {}, {}}; }
+  /// B7: the total arc length is `length`.
   static Condition totalLength(double length) { return {Kind::Length, 0, kLast, length, {}, {}}; }
+  /// B7: spans firstSpan..lastSpan have arc length `length` together.
   static Condition partialLength(int firstSpan, int lastSpan, double length) { return {Kind::Length, firstSpan, lastSpan, length, {}, {}}; }
+  /// B10: natural ends, the appendix default.
   static Condition naturalEnds() { return {Kind::NaturalEnds, 0, kLast, 0.0, {}, {}}; }
+  /// B8: a condition custom(v) = 0 of your own, named `label` in messages.
   static Condition customCondition(std::string label, CustomConditionFunction function) {
     return {Kind::Custom, 0, kLast, 0.0, std::move(function), std::move(label)};
   }

@@ -33,18 +33,19 @@ enum class Globalization {
   LevenbergMarquardt,  ///< J^T (J J^T + mu I)^{-1} f, adaptive mu; -> min-norm step as mu -> 0
 };
 
+/// Options of the G3 curve solver (Kuroda et al. 1997).
 struct G3SolverOptions {
   int maxIterations = 30;          ///< Newton iterations per solve (per continuation stage)
   double tolerance = 1e-12;        ///< max scaled residual: interpolation rows and lengths / h,
                                    ///< curvatures * h, angles in rad
-  Globalization globalization = Globalization::LineSearch;
+  Globalization globalization = Globalization::LineSearch;  ///< how Newton steps are kept from diverging
   double lineSearchFloor = 1e-6;   ///< smallest step fraction before reporting failure
   bool paperMode = false;          ///< exactly 4 undamped pseudo-inverse steps (app. 1)
-  ContinuationMode continuation = ContinuationMode::OnFailure;
+  ContinuationMode continuation = ContinuationMode::OnFailure;  ///< when to solve by continuation from an easier problem
   double minContinuationStep = 1e-4;  ///< below this lambda step: "likely infeasible"
   int quadratureNodes = 16;        ///< Gauss-Legendre nodes per panel (the paper integrates with Mathematica, app. 1)
   double maxTurnPerPanel = 1.0;    ///< rad of turning per quadrature panel
-  UnderdeterminedPolicy underdetermined = UnderdeterminedPolicy::MinimumNormFromInitialGuess;
+  UnderdeterminedPolicy underdetermined = UnderdeterminedPolicy::MinimumNormFromInitialGuess;  ///< how a system with fewer than 3 condition rows is solved
   bool allowOverdetermined = false;  ///< > 3 condition rows: least squares if true, else throw
   double singularThreshold = 1e-13;  ///< reciprocal condition estimate below this: singular (failure)
   /// Tangent evaluations (quadrature nodes: a sin/cos pair each) per span for the whole solve,
@@ -72,9 +73,10 @@ enum class G3SolveStatus {
 /// Text for a status ("converged", "stalled", ...).
 const char* toString(G3SolveStatus status);
 
+/// How a G3 solve went.
 struct G3SolveResult {
-  G3SolveStatus status = G3SolveStatus::MaxIterations;
-  bool converged = false;
+  G3SolveStatus status = G3SolveStatus::MaxIterations;  ///< how the solve ended
+  bool converged = false;  ///< status == Converged
   int iterations = 0;             ///< Newton iterations, summed over continuation stages
   int continuationStages = 0;     ///< 0 when no continuation was used
   double residualNorm = 0.0;      ///< ||f||_2, unscaled, at the last iterate

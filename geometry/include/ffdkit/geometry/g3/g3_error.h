@@ -9,6 +9,7 @@ namespace ffdkit::geometry::g3 {
 /// message says what was expected, what came and where.
 class G3InputError : public std::invalid_argument {
  public:
+  /// An error with the message `what` (prefixed "g3: ").
   explicit G3InputError(const std::string& what) : std::invalid_argument("g3: " + what) {}
 };
 
@@ -16,6 +17,7 @@ class G3InputError : public std::invalid_argument {
 /// set-up). Thrown by the generator only; the solver itself reports failures in its result.
 class G3SolveError : public std::runtime_error {
  public:
+  /// An error with the message `what` (prefixed "g3: ").
   explicit G3SolveError(const std::string& what) : std::runtime_error("g3: " + what) {}
 };
 

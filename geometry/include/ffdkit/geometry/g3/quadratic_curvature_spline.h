@@ -37,9 +37,13 @@ class QuadraticCurvatureSpline {
                                                  const Eigen::Ref<const Eigen::VectorXd>& spanLengths,
                                                  const Eigen::Ref<const Eigen::VectorXd>& deBoor);
 
+  /// Number of spans n.
   int spanCount() const { return static_cast<int>(spanLengths_.size()); }
+  /// Total arc length.
   double length() const { return knots_[knots_.size() - 1]; }
+  /// Arc length of span `span`, Delta s_i.
   double spanLength(int span) const;
+  /// Arc length of each span, Delta s_0..Delta s_{n-1}.
   const Eigen::VectorXd& spanLengths() const { return spanLengths_; }
   /// s_0 = 0 .. s_n = length(): the arc lengths of the data points (n+1 values).
   const Eigen::VectorXd& knots() const { return knots_; }
@@ -60,10 +64,13 @@ class QuadraticCurvatureSpline {
   /// Evaluations at arc length s in [0, length()] (a tolerance of 1e-12 L is clamped).
   /// @throws G3InputError when s is outside the curve.
   double tangentAngle(double s) const;
+  /// Curvature at arc length s.
   double curvature(double s) const;
+  /// dkappa/ds at arc length s.
   double curvatureDerivative(double s) const;
   /// d^2 kappa / ds^2 = 6 a_3 / Delta s_i^3, constant per span (jumps at knots).
   double curvatureSecondDerivative(double s) const;
+  /// Position at arc length s.
   Eigen::Vector2d position(double s) const;
 
   /// Delta s_i * integral_0^1 (cos psi_i, sin psi_i) dt: the chord the span produces, with

@@ -20,8 +20,14 @@ using BicubicNet = std::array<std::array<Eigen::Vector3d, 4>, 4>;
 /// D_400 = P_30 (corner A). The tangent-plane multiplier is lambda = l1 v + l2 u (l1 at the
 /// P_00 end), as the printed formulas expand (Kuriyama 1996, sec. 4.3.3).
 struct TriangleJoinRow {
-  Eigen::Vector3d d031, d301;    ///< boundary points of the triangle's other two edges
-  Eigen::Vector3d dw121, dw211;  ///< the w-edge sub-points
+  ///@{
+  /// Boundary points of the triangle's other two edges.
+  Eigen::Vector3d d031, d301;
+  ///@}
+  ///@{
+  /// The w-edge sub-points.
+  Eigen::Vector3d dw121, dw211;
+  ///@}
 };
 
 /// Given the bicubic net and l1, l2 (any reals; 0 makes the cross legs opposite), the
@@ -59,7 +65,10 @@ RationalQuarticTriangle boundaryPatchForJoin(const PatchSurface& surface, int a,
 
 /// S(u, w) and its partials d/du, d/dw.
 struct BicubicPoint {
+  ///@{
+  /// S(u, w), dS/du and dS/dw.
   Eigen::Vector3d point, du, dw;
+  ///@}
 };
 BicubicPoint evaluateBicubic(const BicubicNet& net, double u, double w);
 

@@ -16,8 +16,8 @@ namespace ffdkit::geometry::polyhedron {
 /// Tangent-plane frame (T^s_v, T^c_v) of a vertex: its legs are
 /// t_{v->w_i} = T^s sin(theta_i) + T^c cos(theta_i) (Kuriyama 1996, sec. 4.2.1, eq. (4.2)).
 struct Frame {
-  Eigen::Vector3d ts = Eigen::Vector3d::Zero();
-  Eigen::Vector3d tc = Eigen::Vector3d::Zero();
+  Eigen::Vector3d ts = Eigen::Vector3d::Zero();  ///< T^s_v
+  Eigen::Vector3d tc = Eigen::Vector3d::Zero();  ///< T^c_v
 };
 
 /// Ring angle theta of outgoing half-edge `he` at its vertex: 2 pi i / n at closed vertices,
@@ -36,6 +36,7 @@ struct NetworkSystem {
 NetworkSystem assembleNetworkSystem(const PolygonMesh& mesh, const MeshTopology& topology,
                                     const ResolvedTensions& tensions);
 
+/// Options of the curve-network solve.
 struct CurveNetworkOptions {
   /// Vertices whose frame is fixed by the designer instead of solved (Kuriyama 1996, sec. 4.3.2):
   /// with all frames fixed, moving a vertex only changes nearby patches.
@@ -52,7 +53,7 @@ struct CurveNetworkResult {
   bool converged = false;        ///< false: `message` says why (singular system, collapsed frame)
   double relativeResidual = 0.0;  ///< ||K X - F|| / max(||F||, tiny)
   int iterations = 0;            ///< 1: the solve is direct (Eigen::SimplicialLDLT)
-  std::string message;
+  std::string message;  ///< why it failed, empty on success
   std::vector<Frame> frames;     ///< #V
   Eigen::MatrixX3d legs;         ///< #halfEdges x 3: t_{from -> to} per half-edge (Bezier offset)
 };

@@ -27,6 +27,7 @@ enum class G1Scalars {
   ThesisConstants,
 };
 
+/// Options of PatchSurface::build.
 struct PatchSurfaceOptions {
   SplitLegRule splitRule = SplitLegRule::ThesisFaceBased;  ///< the thesis rule (sec. 4.2.2)
   G1Scalars g1Scalars = G1Scalars::PerEdge;               ///< default
@@ -54,11 +55,17 @@ class PatchSurface {
   static PatchSurface build(const PolygonMesh& mesh, const Tensions& tensions = {},
                             const PatchSurfaceOptions& options = {});
 
+  /// The polyhedron the surface was built from.
   const PolygonMesh& mesh() const { return mesh_; }
+  /// Its half-edge topology.
   const MeshTopology& topology() const { return topology_; }
+  /// The tensions, resolved per edge.
   const ResolvedTensions& tensions() const { return tensions_; }
+  /// The solved curve network.
   const CurveNetworkResult& network() const { return network_; }
+  /// The network after face splitting.
   const TriangulatedNetwork& triangulated() const { return triangulated_; }
+  /// The triangular patches, one per triangle of triangulated().
   const std::vector<RationalQuarticTriangle>& patches() const { return patches_; }
   /// Per half-edge of triangulated().topology.
   const std::vector<EdgeG1Scalars>& g1Scalars() const { return g1_; }

@@ -10,6 +10,7 @@ namespace ffdkit::geometry::polyhedron {
 /// ...). The message says what was expected, what came and where (vertex, edge or face index).
 class PolyhedronError : public std::runtime_error {
  public:
+  /// An error with `message`.
   explicit PolyhedronError(const std::string& message) : std::runtime_error(message) {}
 };
 

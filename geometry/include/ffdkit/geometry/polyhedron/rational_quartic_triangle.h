@@ -8,8 +8,11 @@ namespace ffdkit::geometry::polyhedron {
 
 /// Values and homogeneous partial derivatives of a triangular patch at (u, v, w).
 struct PatchDerivatives {
-  Eigen::Vector3d point;
-  Eigen::Vector3d du, dv, dw;  ///< d/du, d/dv, d/dw of the homogeneous form
+  Eigen::Vector3d point;  ///< the point
+  ///@{
+  /// d/du, d/dv, d/dw of the homogeneous form.
+  Eigen::Vector3d du, dv, dw;
+  ///@}
 };
 
 /// Quartic triangular Bezier patch whose three interior control points are rational blends
@@ -24,9 +27,18 @@ struct RationalQuarticTriangle {
   /// Control points D_ijk (i the power of u, j of v) at index(i, j); the three interior
   /// slots (ijk != 0) are unused and stay zero.
   std::array<Eigen::Vector3d, 15> d;
+  ///@{
+  /// Sub-points of D211 for the edges w = 0 and v = 0.
   Eigen::Vector3d dw211 = Eigen::Vector3d::Zero(), dv211 = Eigen::Vector3d::Zero();
+  ///@}
+  ///@{
+  /// Sub-points of D121 for the edges w = 0 and u = 0.
   Eigen::Vector3d dw121 = Eigen::Vector3d::Zero(), du121 = Eigen::Vector3d::Zero();
+  ///@}
+  ///@{
+  /// Sub-points of D112 for the edges v = 0 and u = 0.
   Eigen::Vector3d dv112 = Eigen::Vector3d::Zero(), du112 = Eigen::Vector3d::Zero();
+  ///@}
 
   RationalQuarticTriangle() { d.fill(Eigen::Vector3d::Zero()); }
 
@@ -37,6 +49,7 @@ struct RationalQuarticTriangle {
   /// corner slot `other` (e.g. (0, 1) -> D^w_211, (2, 1) -> D^u_112).
   /// @throws std::invalid_argument unless corner, other are distinct slots in 0..2.
   Eigen::Vector3d& subPoint(int corner, int other);
+  /// Sub-point at corner slot `corner` for the edge towards `other`, read-only.
   const Eigen::Vector3d& subPoint(int corner, int other) const;
   /// Slot (0, 1, 2) of network vertex `vertex` among `corners`, or -1.
   int cornerSlot(int vertex) const;

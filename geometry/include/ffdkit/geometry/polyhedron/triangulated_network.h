@@ -25,7 +25,7 @@ enum class SplitLegRule {
 /// 0..V-1 are the polyhedron vertices, V + f is the split point O_f of face f; every face
 /// (c_0..c_{m-1}) becomes the triangles (O_f, c_k, c_{k+1}).
 struct TriangulatedNetwork {
-  int originalVertexCount = 0;
+  int originalVertexCount = 0;  ///< V, the polyhedron's vertex count
   Eigen::MatrixX3d points;          ///< (V + F) x 3
   Eigen::MatrixX3i triangles;       ///< sum_f m_f rows (O_f, c_k, c_{k+1}), counter-clockwise
   std::vector<int> triangleFace;    ///< originating polyhedron face of each triangle

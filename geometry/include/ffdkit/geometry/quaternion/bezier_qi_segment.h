@@ -9,8 +9,8 @@ namespace ffdkit::geometry::quaternion {
 
 /// Polar coordinates (alpha = angle, beta = radius) of a control quaternion in the jk-plane.
 struct QiAngles {
-  double alpha = 0.0;
-  double beta = 0.0;
+  double alpha = 0.0;  ///< angle in the jk-plane
+  double beta = 0.0;  ///< radius in the jk-plane
 };
 
 /// Closed-form unit tangent T(alpha, beta) = (cos 2b, sin a sin 2b, -cos a sin 2b), equal to
@@ -46,17 +46,25 @@ class BezierQiSegment {
   BezierQiSegment(const Eigen::Vector3d& start, double length, const std::array<double, 3>& alpha,
                   const std::array<double, 3>& beta, int simpsonIntervals = 100);
 
+  /// Start point of the segment.
   const Eigen::Vector3d& start() const { return start_; }
+  /// Arc length of the segment.
   double length() const { return length_; }
+  /// The three alpha control values.
   const std::array<double, 3>& alphaControls() const { return alpha_; }
+  /// The three beta control values.
   const std::array<double, 3>& betaControls() const { return beta_; }
+  /// Simpson intervals of the position integral.
   int simpsonIntervals() const { return simpsonIntervals_; }
 
   /// alpha(t), beta(t) and their t-derivatives (first, second).
   QiAngles angles(double t) const;
+  /// First t-derivatives of alpha and beta.
   QiAngles anglesDot(double t) const;
+  /// Second t-derivatives of alpha and beta.
   QiAngles anglesDDot(double t) const;
 
+  /// The unit quaternion q(t) of the segment.
   Eigen::Quaterniond quaternion(double t) const;
   /// Angular velocity omega(t) (t-rate, pure quaternion as a 3-vector) with q' = q omega, the
   /// corrected i-component -sin^2(beta) alpha' (the paper's eq. (68) in app. A.1 is misprinted).

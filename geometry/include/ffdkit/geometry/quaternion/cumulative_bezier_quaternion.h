@@ -33,9 +33,13 @@ class CumulativeBezierQuaternion {
   static CumulativeBezierQuaternion fromControls(const std::vector<Eigen::Quaterniond>& controls,
                                                  ProductForm form = ProductForm::Local);
 
+  /// Degree, the number of angular-derivative vectors.
   int degree() const { return static_cast<int>(omegas_.size()); }
+  /// Global or local product form.
   ProductForm form() const { return form_; }
+  /// The start orientation q0.
   const Eigen::Quaterniond& start() const { return q0_; }
+  /// The angular-derivative vectors omega_1..omega_k.
   const std::vector<Eigen::Vector3d>& omegas() const { return omegas_; }
 
   /// q(t).

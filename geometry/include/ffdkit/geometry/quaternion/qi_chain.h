@@ -30,15 +30,22 @@ class QiChainSegment {
                  double length, ProductForm form = ProductForm::Global,
                  const Eigen::Vector3d& v0 = Eigen::Vector3d::UnitX(), QiQuadrature quadrature = {});
 
+  /// Start point of the segment.
   const Eigen::Vector3d& start() const { return start_; }
+  /// Arc length l of the segment.
   double length() const { return length_; }
+  /// The segment's quaternion curve q(u).
   const CumulativeBezierQuaternion& rotation() const { return rotation_; }
+  /// Its angular-derivative vectors.
   const std::vector<Eigen::Vector3d>& omegas() const { return rotation_.omegas(); }
+  /// Its degree.
   int degree() const { return rotation_.degree(); }
+  /// The vector v0 that q(u) rotates into the tangent.
   const Eigen::Vector3d& fixedVector() const { return v0_; }
 
   /// q(u), renormalised.
   Eigen::Quaterniond orientation(double u) const;
+  /// Unit tangent t(u) = q(u) v0 q(u)^-1.
   Eigen::Vector3d tangent(double u) const;
   /// World angular velocity Omega(u) = 2 vec(q' q^-1) (u-rate): dt/du = Omega x t.
   Eigen::Vector3d angularVelocity(double u) const;
@@ -56,6 +63,7 @@ class QiChainSegment {
   Eigen::MatrixX3d points(const Eigen::VectorXd& sortedU) const;
   /// P + l int_0^1 t and q(1): where the next segment starts (Sakiyama et al. 2001, eqs. (6), (8)).
   Eigen::Vector3d endPoint() const;
+  /// q(1): the orientation the next segment starts with.
   Eigen::Quaterniond endOrientation() const;
 
  private:
@@ -78,9 +86,13 @@ class QiChain : public ArcLengthCurve {
   /// @throws QuaternionCurveError if length <= 0 or omegas is empty.
   void appendSegment(std::vector<Eigen::Vector3d> omegas, double length);
 
+  /// Number of segments.
   int segmentCount() const { return static_cast<int>(segments_.size()); }
+  /// Segment i.
   const QiChainSegment& segment(int i) const { return segments_[i]; }
+  /// Every segment, in order.
   const std::vector<QiChainSegment>& segments() const { return segments_; }
+  /// Global or local product form.
   ProductForm form() const { return form_; }
 
   /// Position at the global parameter u in [0, M] (segment floor(u), Sakiyama et al. 2001,

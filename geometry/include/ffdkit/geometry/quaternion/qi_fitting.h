@@ -38,13 +38,14 @@ enum class FitJacobian {
   ForwardDifference,  ///< sqrt(eps) forward differences, recomputing segments >= the perturbed one
 };
 
+/// Options of fitQiChain.
 struct FitOptions {
   int degree = 2;                                        ///< k, degree of each segment's quaternion curve
-  FitDimension dimension = FitDimension::Auto;
+  FitDimension dimension = FitDimension::Auto;  ///< planar or spatial fit; Auto: planar when the points are
   ProductForm form = ProductForm::Global;                ///< form A (Sakiyama et al. 2001, sec. 2.2)
-  StartTangentMode startTangent = StartTangentMode::FromInitialCurve;
+  StartTangentMode startTangent = StartTangentMode::FromInitialCurve;  ///< how the start tangent is chosen
   Eigen::Vector3d givenStartTangent = Eigen::Vector3d::UnitX();  ///< Given mode only
-  FitInitialCurve initialCurve = FitInitialCurve::LeastSquaresCubic;
+  FitInitialCurve initialCurve = FitInitialCurve::LeastSquaresCubic;  ///< where Levenberg-Marquardt starts
   /// GL-5 per panel; the data parameters are the breakpoints, and gaps wider than 1/8 of a segment are
   /// split evenly (so >= 8 panels per segment, none wider than a uniform grid of GL-8 panels). The
   /// paper is silent on quadrature; GL-8 is our choice; its own accuracy table gives 1e-13 of l for
@@ -52,12 +53,12 @@ struct FitOptions {
   /// objective agrees with GL-24 on 64 panels to 1e-14 and the fitted curves with GL-8 fits to 3e-9
   /// of the length (test), at 0.7 x the instructions.
   QiQuadrature quadrature{5, 8};
-  FitJacobian jacobian = FitJacobian::Analytic;
+  FitJacobian jacobian = FitJacobian::Analytic;  ///< analytic or forward-difference Jacobian
   double functionTolerance = 1e-12;                      ///< relative reduction of R
   double stepTolerance = 1e-12;                          ///< relative step size
   double gradientTolerance = 1e-12;                      ///< |J^T r|_inf relative to R
   int maxIterations = 500;                               ///< LM iterations
-  int maxFunctionEvaluations = 50000;
+  int maxFunctionEvaluations = 50000;  ///< cap on residual evaluations
   /// Near the minimum, add a structured secant estimate S of the second-order term sum r_i Hess r_i
   /// to J^T J, as NL2SOL does (Dennis, Gay & Welsch 1981): the fit's residuals are large, so
   /// Gauss-Newton alone ends linearly. S learns from accepted steps that lower R by less than 1e-7 of
@@ -70,18 +71,20 @@ struct FitOptions {
   bool parallel = true;
 };
 
+/// The fitted chain and the fit's record.
 struct FitResult {
+  /// A result holding the fitted chain and the baseline B-spline.
   FitResult(QiChain c, UniformCubicBSpline b) : curve(std::move(c)), baseline(std::move(b)) {}
   QiChain curve;                       ///< the fitted G1 chain, world units
   Eigen::VectorXd parameters;          ///< u_i used, in [0, M]
   Eigen::VectorXd pointErrors;         ///< e_i = |C(u_i) - P_i|
-  double rms = 0.0;
-  double maxError = 0.0;
+  double rms = 0.0;  ///< root mean square of the point errors
+  double maxError = 0.0;  ///< largest point error
   double rmsPercent = 0.0;             ///< 100 rms / L (Sakiyama et al. 2001, Table 1)
-  double maxPercent = 0.0;
+  double maxPercent = 0.0;  ///< 100 maxError / L
   double initialRms = 0.0;             ///< rms of the initial guess
   bool converged = false;              ///< an LM stopping test was met (not the evaluation cap)
-  int iterations = 0;
+  int iterations = 0;  ///< LM iterations taken
   int functionEvaluations = 0;         ///< residual evaluations (forward-difference columns included)
   std::vector<double> objectiveHistory;  ///< accepted R = sum e_i^2, non-increasing
   UniformCubicBSpline baseline;        ///< LSQ cubic B-spline, same spans and u_i (Sakiyama et al. 2001's comparison)
@@ -110,9 +113,9 @@ FitResult fitQiChain(const Eigen::MatrixX3d& points, const std::vector<int>& bre
 /// each (segments or spans, both ends included): total variation sum |d kappa| over all consecutive
 /// samples, the same within pieces only, and the number of interior local extrema within pieces.
 struct CurvatureFairness {
-  double totalVariation = 0.0;
-  double intraVariation = 0.0;
-  int interiorExtrema = 0;
+  double totalVariation = 0.0;  ///< sum of |d kappa| over all consecutive samples
+  double intraVariation = 0.0;  ///< the same within pieces only
+  int interiorExtrema = 0;  ///< interior local extrema within pieces
 };
 CurvatureFairness curvatureFairness(const Eigen::VectorXd& kappa, int samplesPerPiece);
 

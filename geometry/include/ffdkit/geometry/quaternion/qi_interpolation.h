@@ -23,28 +23,31 @@ enum class StopMode {
   Paper,   ///< |f|^2 < paperEpsilon = 5e-4 on normalised data, as in Miura 1998, sec. 5.2
 };
 
+/// Options of interpolateQi.
 struct InterpolationOptions {
   EndTangentRule endRule = EndTangentRule::Circle3;       ///< Circle3 also works for collinear points
   Eigen::Vector3d startTangent = Eigen::Vector3d::Zero();  ///< User rule only: non-zero, any length
   Eigen::Vector3d endTangent = Eigen::Vector3d::Zero();    ///< User rule only: non-zero, any length
   int simpsonIntervals = 100;         ///< even; the paper's "100 equal parts" (sec. 5.1)
-  StopMode stopMode = StopMode::Strict;
+  StopMode stopMode = StopMode::Strict;  ///< Strict (tolerance on |f|) or Paper (the paper's epsilon)
   double paperEpsilon = 5e-4;         ///< on |f|^2, Paper mode
   double strictTolerance = 1e-12;     ///< on |f|_inf, Strict mode (normalised units)
-  int maxIterations = 50;
+  int maxIterations = 50;  ///< Newton steps at most
   bool pureNewton = false;            ///< true: undamped Newton as in the paper; false: step halving
-  AngleEquivalence equivalence = AngleEquivalence::Full;
+  AngleEquivalence equivalence = AngleEquivalence::Full;  ///< which control angles count as equivalent
 };
 
+/// The interpolating curve and how the solve went.
 struct InterpolationResult {
+  /// A result holding curve `c`.
   explicit InterpolationResult(QiSpline c) : curve(std::move(c)) {}
   QiSpline curve;                        ///< anchored at the data points, in world units
-  bool converged = false;
+  bool converged = false;  ///< the stopping test was met
   int iterations = 0;                    ///< Newton steps taken
   double residual = 0.0;                 ///< final |f|^2 (normalised units, as the paper reports)
   std::vector<double> residualHistory;   ///< |f|^2 before the first step and after each step
   Eigen::Vector3d startTangent = Eigen::Vector3d::UnitX();  ///< the unit end tangents that were imposed
-  Eigen::Vector3d endTangent = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d endTangent = Eigen::Vector3d::UnitX();  ///< see startTangent
   double meanChord = 1.0;                ///< the normalisation scale c
   std::string message;                   ///< why it failed, empty on success
 };
@@ -68,8 +71,8 @@ InterpolationResult interpolateQi(const Eigen::MatrixX3d& points, const Interpol
 /// @return f (3n position rows, then G_i, H_i interleaved) and its analytic Jacobian (5n-2 square).
 /// @throws QuaternionCurveError if the sizes do not match or simpsonIntervals is not positive and even.
 struct QiInterpolationSystem {
-  Eigen::VectorXd residual;
-  Eigen::MatrixXd jacobian;
+  Eigen::VectorXd residual;  ///< f
+  Eigen::MatrixXd jacobian;  ///< df/d(unknowns), square
 };
 QiInterpolationSystem qiInterpolationSystem(const Eigen::MatrixX3d& points, const Eigen::VectorXd& unknowns,
                                             QiAngles start, QiAngles end, int simpsonIntervals = 100);

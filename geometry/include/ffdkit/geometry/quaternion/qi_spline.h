@@ -20,7 +20,9 @@ class QiSpline : public ArcLengthCurve {
   /// @throws QuaternionCurveError if segments is empty.
   explicit QiSpline(std::vector<BezierQiSegment> segments, SegmentPlacement placement = SegmentPlacement::Anchored);
 
+  /// The segments, in order.
   const std::vector<BezierQiSegment>& segments() const { return segments_; }
+  /// Where segments start: anchored at the data points or chained end to end.
   SegmentPlacement placement() const { return placement_; }
   /// Start point of segment i under the placement.
   const Eigen::Vector3d& segmentStart(int i) const { return starts_[i]; }

@@ -9,6 +9,7 @@ namespace ffdkit::geometry::quaternion {
 /// expected, what came, and where (function / parameter).
 class QuaternionCurveError : public std::invalid_argument {
  public:
+  /// An error with `message`.
   explicit QuaternionCurveError(const std::string& message) : std::invalid_argument(message) {}
 };
 

@@ -26,8 +26,11 @@ class SphereBezierTangent {
   //sec. 4).
   explicit SphereBezierTangent(std::vector<Eigen::Vector3d> directions, SphereCurveKind kind = SphereCurveKind::KimPure);
 
+  /// Degree n (one less than the number of directions).
   int degree() const { return static_cast<int>(directions_.size()) - 1; }
+  /// How the curve on the sphere is built.
   SphereCurveKind kind() const { return kind_; }
+  /// The control directions V_0..V_n (unit).
   const std::vector<Eigen::Vector3d>& directions() const { return directions_; }
 
   /// Unit tangent T(t).

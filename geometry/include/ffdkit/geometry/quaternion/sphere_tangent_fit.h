@@ -19,7 +19,7 @@ struct SphereTangentSegmentSpec {
   int degree = 2;                                            ///< 2 (paper default) or 3 (Fig. 17)
   std::optional<Eigen::Vector3d> fixedSecondControl;         ///< cubic: V_2 in the world frame
                                                              ///< (default slerp(V_a, V_c; 2/3))
-  SphereCurveKind kind = SphereCurveKind::KimPure;
+  SphereCurveKind kind = SphereCurveKind::KimPure;  ///< how the curve on the sphere is built
 };
 
 /// Downhill simplex settings (Sphere-tangent report, sec. 5; ours: absolute tolerances, NOT NR's
@@ -29,7 +29,7 @@ struct NelderMeadOptions {
   double functionTolerance = 1e-24; ///< on f_max - f_min
   double simplexTolerance = 1e-12;  ///< on the simplex diameter
   double successThreshold = 1e-20;  ///< f <= this counts as solved (angle error ~1.4e-10 rad)
-  int maxIterations = 5000;
+  int maxIterations = 5000;  ///< simplex iterations at most
   int stallIterations = 300;        ///< stop when the best f has not decreased for this many iterations
   std::optional<Eigen::Vector2d> initialThetaPhi;  ///< default: the great-arc midpoint of V_a, V_c
   int multiStarts = 1;              ///< 1..7 starts (the guess, arc points at 1/4 and 3/4, +-0.5 rad
@@ -37,11 +37,12 @@ struct NelderMeadOptions {
   TangentQuadrature quadrature;     ///< fixed rule so f stays smooth for the simplex
 };
 
+/// The fitted tangent path and how the simplex search went.
 struct SphereTangentFitResult {
   bool converged = false;      ///< f <= successThreshold
   double objective = 2.0;      ///< f = 1/2 |P_e/|P_e| - V_s|^2 at the best vertex
-  int iterations = 0;
-  int evaluations = 0;
+  int iterations = 0;  ///< simplex iterations taken
+  int evaluations = 0;  ///< objective evaluations
   Eigen::Vector2d thetaPhi = Eigen::Vector2d::Zero();  ///< chart coordinates of V_1 (canonical frame, eq. (18))
   std::vector<Eigen::Vector3d> controlsWorld;          ///< V_0..V_n, world frame
   double length = 0.0;                                 ///< L* = |P_c| / |P_e| (canonical frame)

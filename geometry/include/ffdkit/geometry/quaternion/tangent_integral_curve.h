@@ -13,8 +13,8 @@ namespace ffdkit::geometry::quaternion {
 /// Composite Gauss-Legendre used for tangent integral curves (64 panels x 8; the report does not
 /// say how it integrates).
 struct TangentQuadrature {
-  int panels = 64;
-  int order = 8;
+  int panels = 64;  ///< Gauss-Legendre panels over [0, 1]
+  int order = 8;  ///< nodes per panel
 };
 
 /// Tangent integral curve C(s) = P0 + int_0^s T(u / L) du, s in [0, L], from a unit-tangent path on
@@ -27,7 +27,9 @@ class TangentIntegralCurve : public ArcLengthCurve {
   TangentIntegralCurve(SphereBezierTangent tangentPath, double length, const Eigen::Vector3d& start = Eigen::Vector3d::Zero(),
                        TangentQuadrature quadrature = {});
 
+  /// The unit-tangent path on the sphere.
   const SphereBezierTangent& tangentPath() const { return path_; }
+  /// Start point P0.
   const Eigen::Vector3d& start() const { return start_; }
 
   double length() const override { return length_; }

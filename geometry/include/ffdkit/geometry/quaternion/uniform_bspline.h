@@ -15,10 +15,13 @@ class UniformCubicBSpline {
   /// control: (spans + 3) x 3. @throws QuaternionCurveError if fewer than 4 control points.
   explicit UniformCubicBSpline(Eigen::MatrixX3d control);
 
+  /// Number of spans (control points - 3).
   int spans() const { return static_cast<int>(control_.rows()) - 3; }
+  /// The control points, (spans + 3) x 3.
   const Eigen::MatrixX3d& control() const { return control_; }
   /// Position (order 0) or x-derivative of order 1..3 at x (clamped to the domain).
   Eigen::Vector3d derivative(double x, int order) const;
+  /// Position at x (clamped to the domain).
   Eigen::Vector3d point(double x) const { return derivative(x, 0); }
   /// Unsigned curvature |C' x C''| / |C'|^3.
   double curvature(double x) const;
