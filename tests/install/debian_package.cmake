@@ -1,4 +1,4 @@
-# cmake -DBUILD_DIR -DOUT -DWITH_APP -DPYTHON_DIR -P debian_package.cmake: `cpack -G DEB` on the
+# cmake -DBUILD_DIR -DOUT -DWITH_APP -DWITH_VTK -DPYTHON_DIR -P debian_package.cmake: `cpack -G DEB` on the
 # build tree, then the package must hold the libraries, headers, CMake package, programs and Python
 # module (the window only WITH_APP), and is unpacked into OUT/root for the consumer projects
 # (deb_consumer_<component>, tests/install/CMakeLists.txt).
@@ -28,7 +28,11 @@ foreach(file IN LISTS expected)
     message(FATAL_ERROR "${debs} lacks ${file}")
   endif()
 endforeach()
-foreach(dependency libeigen3-dev libvtk9-dev python3-numpy libc6)
+set(dependencies libeigen3-dev libtinygltf-dev liblz4-dev python3-numpy libc6)
+if(WITH_VTK)
+  list(APPEND dependencies libvtk9-dev)
+endif()
+foreach(dependency IN LISTS dependencies)
   string(FIND "${fields}" "${dependency}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "${debs} does not depend on ${dependency}:\n${fields}")
@@ -36,6 +40,9 @@ foreach(dependency libeigen3-dev libvtk9-dev python3-numpy libc6)
 endforeach()
 if(NOT WITH_APP AND fields MATCHES "libqt")
   message(FATAL_ERROR "${debs} of a build without the window depends on Qt:\n${fields}")
+endif()
+if(NOT WITH_VTK AND fields MATCHES "libvtk")
+  message(FATAL_ERROR "${debs} of a build without VTK depends on VTK:\n${fields}")
 endif()
 execute_process(COMMAND dpkg-deb -x ${debs} "${OUT}/root" RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)

@@ -1,6 +1,7 @@
-# cmake -DBUILD_DIR -DPREFIX -DWITH_APP -DPYTHON_DIR -P install_tree.cmake: a fresh install, then
-# the files a user needs must be there, private headers must not, and in a build without the
-# window (WITH_APP off) neither the CLI nor the Python module may link Qt.
+# cmake -DBUILD_DIR -DPREFIX -DWITH_APP -DWITH_VTK -DPYTHON_DIR -P install_tree.cmake: a fresh
+# install, then the files a user needs must be there, private headers must not, and in a build
+# without the window (WITH_APP off) neither the CLI nor the Python module may link Qt (nor VTK,
+# WITH_VTK off).
 file(REMOVE_RECURSE "${PREFIX}")
 execute_process(COMMAND ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${PREFIX}" RESULT_VARIABLE rc
                 OUTPUT_QUIET)
@@ -42,6 +43,9 @@ if(NOT WITH_APP)
     endif()
     if(libraries MATCHES "libQt")
       message(FATAL_ERROR "${binary} of a build without the window links Qt:\n${libraries}")
+    endif()
+    if(NOT WITH_VTK AND libraries MATCHES "libvtk")
+      message(FATAL_ERROR "${binary} of a build without VTK links VTK:\n${libraries}")
     endif()
   endforeach()
 endif()
