@@ -1,0 +1,124 @@
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "ffdkit/ffd/closed_surface.h"
+#include "ffdkit/ffd/deformer.h"
+#include "ffdkit/ffd/embedding.h"
+#include "ffdkit/ffd/lattice.h"
+
+namespace ffdkit::ffd {
+
+/// Which control-point coordinates a constraint solve may change: #controlPoints x 3 (row =
+/// Lattice::index, column = lattice-LOCAL axis), true = free. Default: all free.
+using ControlMask = Eigen::Matrix<bool, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+/// Options of ShapeConstraints::solve.
+struct ShapeSolveOptions {
+  /// Stop when every constraint's residual is <= tolerance times its scale: |V - V*| / |V*| for
+  /// the volume, |a . x' - b| / (sum |a_j x'_j| + |b|) for a linear row, the same with the
+  /// surface's size for the centroid.
+  double tolerance = 1e-12;
+  /// With a volume or centroid: also stop only when the last step changed the control change by
+  /// <= stationarity times its norm (the Lagrange condition: the change is parallel to the
+  /// constraints' gradients; it converges linearly, the constraint residual quadratically).
+  double stationarity = 1e-10;
+  int maxIterations = 40;  ///< Newton steps before giving up (ConstraintError).
+};
+
+/// What ShapeConstraints::solve did.
+struct ShapeSolveResult {
+  Eigen::MatrixX3d change;    ///< #controlPoints x 3 lattice-local: add to lattice.controlPoints().
+  int iterations = 0;         ///< Newton steps taken (0: the constraints already held).
+  double volume = 0.0;        ///< enclosed volume after the change (world), when a volume is kept
+  double volumeRelativeError = 0.0;  ///< |V - V*| / |V*| after the change (0 without a volume)
+  double largestRelativeResidual = 0.0;  ///< the largest scaled residual over all constraints
+  double lastStep = 0.0;  ///< |change after the last step - change before it| / |change|
+};
+
+/// Constraints on the deformed shape of one set of points embedded in one lattice, and the
+/// smallest control change (least norm over the free control coordinates, lattice-local) that
+/// meets them: the direct-manipulation machinery (Hsu, Hughes & Kaufman 1992, eqs. (4)-(6))
+/// with general constraints.
+/// - linear:     A x' = b over the deformed WORLD points x' (flattened, column 3p + c is
+///               coordinate c of point p): points pinned, weighted sums, any linear functional;
+/// - barycentre: the mean of the deformed points (linear);
+/// - centroid:   the centroid of the solid a closed surface bounds (quartic / cubic);
+/// - volume:     the volume a closed surface bounds, a cubic polynomial in the control points
+///               (each deformed vertex is linear in them, Sederberg & Parry 1986, eq. (1), and the
+///               volume is sum det[a, b, c] / 6 over triangles).
+/// The deformed points are x' = x + F.linear() sum_i s B_i (dP_i) (deformer.h), so linear
+/// constraints are linear in the control change dP. solve() runs Newton on the Lagrange system
+/// of   min |dP|^2  subject to  c(P + dP) = 0  in its minimum-norm form: each step solves the
+/// linearised constraints J (dP_new - dP) = -c for the dP_new of least norm,
+///   dP_new = J^T (J J^T)^+ (J dP - c),
+/// whose fixed points are exactly the Lagrange points (dP parallel to the rows of J); linear
+/// constraints hold after the first step, the volume's error falls quadratically.
+///
+/// Precompute (constructor): the embedding, the rows of J of the linear constraints (constant),
+/// the surface's vertex-to-triangle table. Each Newton step: one deformation of the points, one
+/// pass over the triangles for the volume and its gradient, one adjoint pass (the transpose of
+/// the deformation) to carry the gradient to the control points.
+class ShapeConstraints {
+ public:
+  /// @param lattice the lattice whose control points will change (its rest lattice and frame fix
+  ///                the embedding; solve() checks it is still the same).
+  /// @param points  #points x 3 WORLD points before deformation (the object's rest points).
+  /// @throws LatticeError like embed().
+  ShapeConstraints(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points,
+                   const EmbedOptions& embedOptions = {});
+
+  Eigen::Index pointCount() const { return points_.rows(); }
+  const Embedding& embedding() const { return deformer_.embedding(); }
+
+  /// Restricts the solve to the free control coordinates (#controlPoints x 3, lattice-local).
+  /// @throws ConstraintError on a wrong row count.
+  void setFreeControls(const ControlMask& free);
+  const ControlMask& freeControls() const { return free_; }
+
+  /// Adds the rows A x' = b. @param A  m x 3*#points; @param b  m.
+  /// @throws ConstraintError on sizes that differ or non-finite entries.
+  void addLinear(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A, const Eigen::Ref<const Eigen::VectorXd>& b);
+  /// Keeps the mean of the deformed points at `target` (world); three linear rows.
+  void keepBarycentre(const Eigen::Vector3d& target);
+  /// Keeps the volume the closed surface over these points bounds at `target` (world units^3).
+  /// @throws ConstraintError when the surface is open or its vertex count is not pointCount(),
+  ///         or the target is not finite and non-zero.
+  void keepVolume(const ClosedSurface& surface, double target);
+  /// Keeps the centroid of the solid the closed surface bounds at `target` (world).
+  void keepCentroid(const ClosedSurface& surface, const Eigen::Vector3d& target);
+
+  /// The least-norm control change meeting every constraint from `lattice`'s current control
+  /// points (the lattice is not changed). Also callable with no constraint (change 0).
+  /// @throws LatticeError if `lattice` is not the one embedded (Embedding::checkLattice).
+  /// @throws ConstraintError when the constraints cannot be met with the free controls (the
+  ///         linearised system is inconsistent: e.g. a volume with no free control that changes
+  ///         it, two contradicting rows) or Newton has not converged after maxIterations.
+  ShapeSolveResult solve(const Lattice& lattice, const ShapeSolveOptions& options = {});
+
+  /// The deformed points of the last solve() (world, #points x 3), after its change.
+  const Eigen::MatrixX3d& deformedPoints() const { return deformer_.points(); }
+
+ private:
+  Lattice lattice_;  // the embedded lattice (bases, frame; its control points are not used)
+  Eigen::MatrixX3d points_;
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();  // mean of points_: volumes are measured about it
+  Deformer deformer_;
+  ControlMask free_;
+  // Linear rows: J rows (flattened #controlPoints*3, local), right sides, the A rows kept for
+  // their residual.
+  std::vector<Eigen::VectorXd> linearRows_;
+  std::vector<Eigen::SparseVector<double>> linearA_;
+  std::vector<double> linearB_;
+  std::shared_ptr<const ClosedSurface> volumeSurface_;
+  double volumeTarget_ = 0.0;
+  std::shared_ptr<const ClosedSurface> centroidSurface_;
+  Eigen::Vector3d centroidTarget_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace ffdkit::ffd

@@ -1,0 +1,285 @@
+#include "ffdkit/ffd/fold_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <Eigen/LU>
+
+namespace ffdkit::ffd {
+namespace {
+
+double binomial(int n, int k) {
+  double b = 1.0;
+  for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
+  return b;
+}
+
+double bernstein(int degree, int k, double x) {
+  return binomial(degree, k) * std::pow(x, k) * std::pow(1.0 - x, degree - k);
+}
+
+// Per cell of one axis, the Bernstein coefficients of the basis functions non-zero there:
+// E(r, k) = coefficient of B_k^p(x) (x = the cell's local coordinate in [0, 1]) in the r-th
+// function (AxisSpline::controlIndex(cell, r)). A Bernstein axis is its own Bezier form; a
+// B-spline piece is found by collocation at p+1 interior points (exact up to rounding: both
+// sides are polynomials of degree p).
+std::vector<Eigen::MatrixXd> bezierExtraction(const AxisSpline& axis) {
+  const int p = axis.degree();
+  std::vector<Eigen::MatrixXd> out(static_cast<std::size_t>(axis.cellCount()));
+  Eigen::MatrixXd collocation(p + 1, p + 1);
+  for (int j = 0; j <= p; ++j)
+    for (int k = 0; k <= p; ++k) collocation(j, k) = bernstein(p, k, (j + 0.5) / (p + 1));
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(collocation);
+  std::vector<double> values(static_cast<std::size_t>(p + 1));
+  for (int c = 0; c < axis.cellCount(); ++c) {
+    if (axis.basis().kind == AxisBasis::Kind::Bernstein) {
+      out[std::size_t(c)] = Eigen::MatrixXd::Identity(p + 1, p + 1);
+      continue;
+    }
+    Eigen::MatrixXd N(p + 1, p + 1);  // N(j, r): function r at sample j
+    for (int j = 0; j <= p; ++j) {
+      const double t = axis.cellMin(c) + (j + 0.5) / (p + 1) * (axis.cellMax(c) - axis.cellMin(c));
+      axis.basis(c, t, values.data());
+      for (int r = 0; r <= p; ++r) N(j, r) = values[std::size_t(r)];
+    }
+    out[std::size_t(c)] = lu.solve(N).transpose();
+  }
+  return out;
+}
+
+// A trivariate array of values indexed i + n0 (j + n1 k), n = degree + 1 per axis.
+struct Dims {
+  int n[3];
+  int size() const { return n[0] * n[1] * n[2]; }
+  int at(int i, int j, int k) const { return i + n[0] * (j + n[1] * k); }
+};
+
+// Splits a Bernstein patch (coefficients c, dims d) at the midpoint of `axis` by de Casteljau.
+void split(const std::vector<double>& c, const Dims& d, int axis, std::vector<double>& left, std::vector<double>& right) {
+  left.assign(c.size(), 0.0);
+  right.assign(c.size(), 0.0);
+  const int len = d.n[axis];
+  const int stride = axis == 0 ? 1 : axis == 1 ? d.n[0] : d.n[0] * d.n[1];
+  double line[64];
+  for (int k = 0; k < d.n[2]; ++k)
+    for (int j = 0; j < d.n[1]; ++j)
+      for (int i = 0; i < d.n[0]; ++i) {
+        const int idx[3] = {i, j, k};
+        if (idx[axis] != 0) continue;
+        const int base = d.at(i, j, k);
+        for (int r = 0; r < len; ++r) line[r] = c[std::size_t(base + r * stride)];
+        for (int level = 0; level < len; ++level) {
+          left[std::size_t(base + level * stride)] = line[0];
+          right[std::size_t(base + (len - 1 - level) * stride)] = line[len - 1 - level];
+          for (int r = 0; r < len - 1 - level; ++r) line[r] = 0.5 * (line[r] + line[r + 1]);
+        }
+      }
+}
+
+struct Verdict {
+  CellFolding folding;
+  Eigen::Vector3d witness;  // cell-local coordinates
+};
+
+// sign * patch on the box [lo, lo + width]^3 of the cell's local coordinates.
+Verdict classify(const std::vector<double>& c, const Dims& d, const Eigen::Vector3d& lo, double width, int depth,
+                 int maxDepth) {
+  if (*std::min_element(c.begin(), c.end()) > 0.0) return {CellFolding::Positive, {}};
+  for (int corner = 0; corner < 8; ++corner) {
+    const int i = (corner & 1) ? d.n[0] - 1 : 0, j = (corner & 2) ? d.n[1] - 1 : 0, k = (corner & 4) ? d.n[2] - 1 : 0;
+    if (c[std::size_t(d.at(i, j, k))] <= 0.0)
+      return {CellFolding::Folds, lo + width * Eigen::Vector3d(corner & 1 ? 1 : 0, corner & 2 ? 1 : 0, corner & 4 ? 1 : 0)};
+  }
+  if (depth >= maxDepth) return {CellFolding::Unknown, {}};
+  std::vector<double> parts[8], l, r;
+  parts[0] = c;
+  for (int axis = 0, count = 1; axis < 3; ++axis, count *= 2)
+    for (int q = count - 1; q >= 0; --q) {
+      split(parts[q], d, axis, l, r);
+      parts[2 * q] = std::move(l);
+      parts[2 * q + 1] = std::move(r);
+    }
+  // parts[q]: bit 2 = u half, bit 1 = v half, bit 0 = w half (the first axis split is the most
+  // significant bit of the final index).
+  bool unknown = false;
+  for (int q = 0; q < 8; ++q) {
+    const Eigen::Vector3d childLo = lo + 0.5 * width * Eigen::Vector3d((q >> 2) & 1, (q >> 1) & 1, q & 1);
+    const Verdict v = classify(parts[q], d, childLo, 0.5 * width, depth + 1, maxDepth);
+    if (v.folding == CellFolding::Folds) return v;
+    unknown = unknown || v.folding == CellFolding::Unknown;
+  }
+  return {unknown ? CellFolding::Unknown : CellFolding::Positive, {}};
+}
+
+// The patch of one cell given the per-axis extraction matrices.
+JacobianDeterminantPatch patchOf(const Lattice& lattice, const std::array<int, 3>& cell,
+                                 const std::vector<Eigen::MatrixXd>* extraction) {
+  int p[3];
+  double width[3];
+  JacobianDeterminantPatch patch;
+  for (int a = 0; a < 3; ++a) {
+    p[a] = lattice.axis(a).degree();
+    patch.parameterMin[a] = lattice.axis(a).cellMin(cell[a]);
+    patch.parameterMax[a] = lattice.axis(a).cellMax(cell[a]);
+    width[a] = patch.parameterMax[a] - patch.parameterMin[a];
+  }
+  const Eigen::MatrixXd& Eu = extraction[0][std::size_t(cell[0])];
+  const Eigen::MatrixXd& Ev = extraction[1][std::size_t(cell[1])];
+  const Eigen::MatrixXd& Ew = extraction[2][std::size_t(cell[2])];
+  // The cell's Bezier net b (3 coordinates), one axis at a time.
+  const Dims net{{p[0] + 1, p[1] + 1, p[2] + 1}};
+  std::vector<Eigen::Vector3d> window(std::size_t(net.size())), t1(window.size()), t2(window.size()), b(window.size());
+  for (int k = 0; k <= p[2]; ++k)
+    for (int j = 0; j <= p[1]; ++j)
+      for (int i = 0; i <= p[0]; ++i)
+        window[std::size_t(net.at(i, j, k))] =
+            lattice.controlPoints()
+                .row(lattice.index(lattice.axis(0).controlIndex(cell[0], i), lattice.axis(1).controlIndex(cell[1], j),
+                                   lattice.axis(2).controlIndex(cell[2], k)))
+                .transpose();
+  for (int k = 0; k <= p[2]; ++k)
+    for (int j = 0; j <= p[1]; ++j)
+      for (int i = 0; i <= p[0]; ++i) {
+        Eigen::Vector3d s = Eigen::Vector3d::Zero();
+        for (int r = 0; r <= p[0]; ++r) s += Eu(r, i) * window[std::size_t(net.at(r, j, k))];
+        t1[std::size_t(net.at(i, j, k))] = s;
+      }
+  for (int k = 0; k <= p[2]; ++k)
+    for (int j = 0; j <= p[1]; ++j)
+      for (int i = 0; i <= p[0]; ++i) {
+        Eigen::Vector3d s = Eigen::Vector3d::Zero();
+        for (int r = 0; r <= p[1]; ++r) s += Ev(r, j) * t1[std::size_t(net.at(i, r, k))];
+        t2[std::size_t(net.at(i, j, k))] = s;
+      }
+  for (int k = 0; k <= p[2]; ++k)
+    for (int j = 0; j <= p[1]; ++j)
+      for (int i = 0; i <= p[0]; ++i) {
+        Eigen::Vector3d s = Eigen::Vector3d::Zero();
+        for (int r = 0; r <= p[2]; ++r) s += Ew(r, k) * t2[std::size_t(net.at(i, j, r))];
+        b[std::size_t(net.at(i, j, k))] = s;
+      }
+  // Derivative nets in scaled Bernstein form (coefficient times C(d0,i) C(d1,j) C(d2,k)), so
+  // that a product is a plain convolution: sum f~_a g~_b lands on f~g~_(a+b).
+  Dims dd[3];
+  std::vector<Eigen::Vector3d> D[3];
+  for (int a = 0; a < 3; ++a) {
+    dd[a] = net;
+    dd[a].n[a] -= 1;
+    D[a].resize(std::size_t(dd[a].size()));
+    for (int k = 0; k < dd[a].n[2]; ++k)
+      for (int j = 0; j < dd[a].n[1]; ++j)
+        for (int i = 0; i < dd[a].n[0]; ++i) {
+          int next[3] = {i, j, k};
+          next[a] += 1;
+          const double scaledBinomials = binomial(dd[a].n[0] - 1, i) * binomial(dd[a].n[1] - 1, j) *
+                                         binomial(dd[a].n[2] - 1, k);
+          D[a][std::size_t(dd[a].at(i, j, k))] =
+              (p[a] / width[a] * scaledBinomials) *
+              (b[std::size_t(net.at(next[0], next[1], next[2]))] - b[std::size_t(net.at(i, j, k))]);
+        }
+  }
+  const Dims out{{3 * p[0], 3 * p[1], 3 * p[2]}};
+  // Offsets in the output's strides: index(a) + index(b) = index(a + b) (the map is linear).
+  const auto offsets = [&out](const Dims& d) {
+    std::vector<int> o(std::size_t(d.size()));
+    for (int k = 0; k < d.n[2]; ++k)
+      for (int j = 0; j < d.n[1]; ++j)
+        for (int i = 0; i < d.n[0]; ++i) o[std::size_t(d.at(i, j, k))] = out.at(i, j, k);
+    return o;
+  };
+  const std::vector<int> ou = offsets(dd[0]), ov = offsets(dd[1]), ow = offsets(dd[2]);
+  std::vector<Eigen::Vector3d> cross(std::size_t(out.size()), Eigen::Vector3d::Zero());
+  for (std::size_t a = 0; a < D[1].size(); ++a)
+    for (std::size_t c = 0; c < D[2].size(); ++c) cross[std::size_t(ov[a] + ow[c])] += D[1][a].cross(D[2][c]);
+  patch.coefficients = Eigen::VectorXd::Zero(out.size());
+  // X_v x X_w has degrees (2p, 2q-1, 2r-1): its entries sit at the offsets of those indices.
+  Dims crossDims{{2 * p[0] + 1, 2 * p[1], 2 * p[2]}};
+  const std::vector<int> oc = offsets(crossDims);
+  for (std::size_t a = 0; a < D[0].size(); ++a)
+    for (std::size_t c = 0; c < oc.size(); ++c)
+      patch.coefficients[ou[a] + oc[std::size_t(c)]] += D[0][a].dot(cross[std::size_t(oc[c])]);
+  for (int k = 0; k < out.n[2]; ++k)
+    for (int j = 0; j < out.n[1]; ++j)
+      for (int i = 0; i < out.n[0]; ++i)
+        patch.coefficients[out.at(i, j, k)] /=
+            binomial(out.n[0] - 1, i) * binomial(out.n[1] - 1, j) * binomial(out.n[2] - 1, k);
+  patch.degrees = {out.n[0] - 1, out.n[1] - 1, out.n[2] - 1};
+  return patch;
+}
+
+}  // namespace
+
+double JacobianDeterminantPatch::value(const Eigen::Vector3d& uvw) const {
+  double basis[3][32];
+  for (int a = 0; a < 3; ++a) {
+    const double x = (uvw[a] - parameterMin[a]) / (parameterMax[a] - parameterMin[a]);
+    for (int k = 0; k <= degrees[a]; ++k) basis[a][k] = bernstein(degrees[a], k, x);
+  }
+  double sum = 0.0;
+  Eigen::Index at = 0;
+  for (int k = 0; k <= degrees[2]; ++k)
+    for (int j = 0; j <= degrees[1]; ++j)
+      for (int i = 0; i <= degrees[0]; ++i) sum += coefficients[at++] * basis[0][i] * basis[1][j] * basis[2][k];
+  return sum;
+}
+
+JacobianDeterminantPatch jacobianDeterminantPatch(const Lattice& lattice, const std::array<int, 3>& cell) {
+  std::vector<Eigen::MatrixXd> extraction[3];
+  for (int a = 0; a < 3; ++a) {
+    if (cell[a] < 0 || cell[a] >= lattice.axis(a).cellCount())
+      throw LatticeError("jacobianDeterminantPatch: cell (" + std::to_string(cell[0]) + ", " + std::to_string(cell[1]) +
+                         ", " + std::to_string(cell[2]) + ") out of range, the lattice has (" +
+                         std::to_string(lattice.axis(0).cellCount()) + ", " + std::to_string(lattice.axis(1).cellCount()) +
+                         ", " + std::to_string(lattice.axis(2).cellCount()) + ") cells");
+    if (lattice.axis(a).degree() > 10)
+      throw LatticeError("jacobianDeterminantPatch: degree " + std::to_string(lattice.axis(a).degree()) +
+                         " on axis " + std::to_string(a) + " above 10");
+    extraction[a] = bezierExtraction(lattice.axis(a));
+  }
+  return patchOf(lattice, cell, extraction);
+}
+
+FoldCheckResult checkFolding(const Lattice& lattice, const FoldCheckOptions& options) {
+  if (options.maxDepth < 0 || options.maxDepth > 10)
+    throw LatticeError("checkFolding: maxDepth must be in [0, 10], got " + std::to_string(options.maxDepth));
+  std::vector<Eigen::MatrixXd> extraction[3];
+  FoldCheckResult result;
+  for (int a = 0; a < 3; ++a) {
+    if (lattice.axis(a).degree() > 10)
+      throw LatticeError("checkFolding: degree " + std::to_string(lattice.axis(a).degree()) + " on axis " +
+                         std::to_string(a) + " above 10");
+    extraction[a] = bezierExtraction(lattice.axis(a));
+    result.cellCounts[std::size_t(a)] = lattice.axis(a).cellCount();
+  }
+  const Eigen::Vector3d centre = 0.5 * (lattice.parameterMin() + lattice.parameterMax());
+  result.orientation = lattice.restJacobian(centre).determinant() < 0.0 ? -1 : 1;
+  const int cu = result.cellCounts[0], cv = result.cellCounts[1], cw = result.cellCounts[2];
+  const std::int64_t cellCount = std::int64_t(cu) * cv * cw;
+  result.cells.assign(std::size_t(cellCount), CellFolding::Unknown);
+  result.lowerBound.assign(std::size_t(cellCount), 0.0);
+  result.witness.assign(std::size_t(cellCount), Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+#pragma omp parallel for schedule(dynamic, 1) if (cellCount >= 8)
+  for (std::int64_t flat = 0; flat < cellCount; ++flat) {
+    const std::array<int, 3> cell = {int(flat % cu), int(flat / cu % cv), int(flat / cu / cv)};
+    const JacobianDeterminantPatch patch = patchOf(lattice, cell, extraction);
+    std::vector<double> signedCoefficients(patch.coefficients.data(), patch.coefficients.data() + patch.coefficients.size());
+    for (double& c : signedCoefficients) c *= result.orientation;
+    const Dims d{{patch.degrees[0] + 1, patch.degrees[1] + 1, patch.degrees[2] + 1}};
+    result.lowerBound[std::size_t(flat)] = *std::min_element(signedCoefficients.begin(), signedCoefficients.end());
+    const Verdict v = classify(signedCoefficients, d, Eigen::Vector3d::Zero(), 1.0, 0, options.maxDepth);
+    result.cells[std::size_t(flat)] = v.folding;
+    if (v.folding == CellFolding::Folds)
+      result.witness[std::size_t(flat)] =
+          patch.parameterMin + (patch.parameterMax - patch.parameterMin).cwiseProduct(v.witness);
+  }
+  for (CellFolding c : result.cells) {
+    result.positiveCount += c == CellFolding::Positive;
+    result.foldsCount += c == CellFolding::Folds;
+    result.unknownCount += c == CellFolding::Unknown;
+  }
+  return result;
+}
+
+}  // namespace ffdkit::ffd

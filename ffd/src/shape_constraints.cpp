@@ -1,0 +1,317 @@
+#include "ffdkit/ffd/shape_constraints.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <Eigen/QR>
+
+namespace ffdkit::ffd {
+namespace {
+
+constexpr Eigen::Index kParallelPoints = 16384;
+
+// The transpose of the deformation's linear part: for a world gradient g (#points x 3) of some
+// function of the deformed points, its gradient with respect to the LOCAL control points,
+//   G_i = F.linear()^T sum_p s_p B_i(u_p, v_p, w_p) g_p   (#controlPoints x 3),
+// since x'_p = x_p + F.linear() sum_i s_p B_i (dP_i) (deformer.h). Walks the embedding's blocks
+// like Deformer: per block, the cell's window accumulates sum_p s B g, then scatters.
+Eigen::MatrixX3d adjointDeform(const Lattice& lattice, const Embedding& embedding,
+                               const Eigen::Ref<const Eigen::MatrixX3d>& g) {
+  const Eigen::Index n = embedding.pointCount();
+  int np[3];
+  for (int a = 0; a < 3; ++a) np[a] = lattice.axis(a).degree() + 1;
+  const int window = np[0] * np[1] * np[2];
+  const auto& blocks = embedding.blocks();
+  const auto& tiles = embedding.tileBlocks();
+  const auto& order = embedding.order();
+  const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
+  Eigen::MatrixX3d total = Eigen::MatrixX3d::Zero(lattice.pointCount(), 3);
+#pragma omp parallel if (n >= kParallelPoints)
+  {
+    Eigen::MatrixX3d local = Eigen::MatrixX3d::Zero(lattice.pointCount(), 3);
+    std::vector<double> bu(static_cast<std::size_t>(np[0])), bv(static_cast<std::size_t>(np[1])),
+        bw(static_cast<std::size_t>(np[2]));
+    // acc(a + np0 (b + np1 c), :) = sum over the block's points of s bu[a] bv[b] bw[c] g.
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> acc(window, 3);
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> vw(np[1] * np[2], 3);
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t t = 0; t < tileCount; ++t) {
+      for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
+        const Embedding::Block& block = blocks[bi];
+        if (block.kind == Embedding::BlockKind::Frozen) continue;
+        const std::array<int, 3> cell = embedding.cellOf(block);
+        acc.setZero();
+        for (std::uint32_t q = block.begin; q < block.end; ++q) {
+          const Eigen::Index p = order.empty() ? q : order[q];
+          const double s = block.kind == Embedding::BlockKind::Blended
+                               ? embedding.blendWeight()[block.blendOffset + q - block.begin]
+                               : 1.0;
+          lattice.axis(0).basis(cell[0], embedding.sortedU()[q], bu.data());
+          lattice.axis(1).basis(cell[1], embedding.sortedV()[q], bv.data());
+          lattice.axis(2).basis(cell[2], embedding.sortedW()[q], bw.data());
+          const Eigen::RowVector3d sg = s * g.row(p);
+          for (int c = 0; c < np[2]; ++c)
+            for (int b = 0; b < np[1]; ++b) vw.row(b + np[1] * c) = (bv[std::size_t(b)] * bw[std::size_t(c)]) * sg;
+          for (int bc = 0; bc < np[1] * np[2]; ++bc)
+            for (int a = 0; a < np[0]; ++a) acc.row(a + np[0] * bc) += bu[std::size_t(a)] * vw.row(bc);
+        }
+        int wi = 0;
+        for (int c = 0; c < np[2]; ++c)
+          for (int b = 0; b < np[1]; ++b)
+            for (int a = 0; a < np[0]; ++a, ++wi)
+              local.row(lattice.index(lattice.axis(0).controlIndex(cell[0], a), lattice.axis(1).controlIndex(cell[1], b),
+                                      lattice.axis(2).controlIndex(cell[2], c))) += acc.row(wi);
+      }
+    }
+#pragma omp critical
+    total += local;
+  }
+  return total * lattice.frame().linear();  // rows: (L^T G_i^T)^T = G_i L
+}
+
+// Flattened #controlPoints*3 vector (row-major: 3 i + c) of a #controlPoints x 3 matrix.
+Eigen::VectorXd flatten(const Eigen::MatrixX3d& m) {
+  Eigen::VectorXd out(m.rows() * 3);
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (int c = 0; c < 3; ++c) out[3 * i + c] = m(i, c);
+  return out;
+}
+
+// Per-vertex volume gradient sum (x_b x x_c) / 6 over the triangles (v, b, c) at v; `volume`
+// gets sum_v x_v . gradient_v / 3 (each triangle's determinant counted three times).
+Eigen::MatrixX3d volumeGradient(const Eigen::MatrixX3d& x, const ClosedSurface& surface, double& volume) {
+  const Eigen::Index n = x.rows();
+  Eigen::MatrixX3d g(n, 3);
+  const auto& offsets = surface.pairOffsets();
+  const auto& pairs = surface.pairs();
+  double sum = 0.0;
+#pragma omp parallel for reduction(+ : sum) schedule(static) if (n >= kParallelPoints)
+  for (Eigen::Index v = 0; v < n; ++v) {
+    Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+    for (int e = offsets[v]; e < offsets[v + 1]; ++e)
+      acc += x.row(pairs(e, 0)).transpose().cross(x.row(pairs(e, 1)).transpose());
+    acc /= 6.0;
+    g.row(v) = acc.transpose();
+    sum += x.row(v).dot(acc.transpose());
+  }
+  volume = sum / 3.0;
+  return g;
+}
+
+// The centroid's residual M - t V (3 values; M = sum det (a + b + c) / 24, V = sum det / 6) and
+// its per-vertex gradients, one #points x 3 matrix per component.
+void centroidResidual(const Eigen::MatrixX3d& x, const ClosedSurface& surface, const Eigen::Vector3d& target,
+                      Eigen::Vector3d& residual, Eigen::MatrixX3d gradient[3]) {
+  const Eigen::Index n = x.rows();
+  for (int k = 0; k < 3; ++k) gradient[k].setZero(n, 3);
+  const auto& offsets = surface.pairOffsets();
+  const auto& pairs = surface.pairs();
+  double r0 = 0.0, r1 = 0.0, r2 = 0.0;
+#pragma omp parallel for reduction(+ : r0, r1, r2) schedule(static) if (n >= kParallelPoints)
+  for (Eigen::Index v = 0; v < n; ++v) {
+    const Eigen::Vector3d a = x.row(v).transpose();
+    Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();  // column k: gradient of component k at v
+    Eigen::Vector3d value = Eigen::Vector3d::Zero();
+    for (int e = offsets[v]; e < offsets[v + 1]; ++e) {
+      const Eigen::Vector3d b = x.row(pairs(e, 0)).transpose(), c = x.row(pairs(e, 1)).transpose();
+      const Eigen::Vector3d bc = b.cross(c);
+      const double det = a.dot(bc);
+      const Eigen::Vector3d sum = a + b + c;
+      // d/da [det (a+b+c)_k / 24 - t_k det / 6] = bc ((a+b+c)_k / 24 - t_k / 6) + det e_k / 24.
+      for (int k = 0; k < 3; ++k) {
+        grad.col(k) += bc * (sum[k] / 24.0 - target[k] / 6.0);
+        grad(k, k) += det / 24.0;
+      }
+      value += det * (sum / 24.0 - target / 6.0);  // each triangle seen from its 3 vertices
+    }
+    for (int k = 0; k < 3; ++k) gradient[k].row(v) = grad.col(k).transpose();
+    r0 += value[0];
+    r1 += value[1];
+    r2 += value[2];
+  }
+  residual = Eigen::Vector3d(r0, r1, r2) / 3.0;
+}
+
+void checkSurface(const ClosedSurface& surface, Eigen::Index points, const char* what) {
+  if (surface.vertexCount() != points)
+    throw ConstraintError(std::string(what) + ": the surface has " + std::to_string(surface.vertexCount()) +
+                          " vertices, the constrained object " + std::to_string(points) + " points");
+}
+
+}  // namespace
+
+ShapeConstraints::ShapeConstraints(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points,
+                                   const EmbedOptions& embedOptions)
+    : lattice_(lattice), points_(points), deformer_(embed(lattice, points, embedOptions)) {
+  free_.setConstant(lattice.pointCount(), 3, true);
+  if (points_.rows() > 0) origin_ = points_.colwise().mean().transpose();
+}
+
+void ShapeConstraints::setFreeControls(const ControlMask& free) {
+  if (free.rows() != free_.rows())
+    throw ConstraintError("setFreeControls: mask has " + std::to_string(free.rows()) + " rows, the lattice " +
+                          std::to_string(free_.rows()) + " control points");
+  free_ = free;
+}
+
+void ShapeConstraints::addLinear(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A,
+                                 const Eigen::Ref<const Eigen::VectorXd>& b) {
+  const Eigen::Index n = points_.rows();
+  if (A.cols() != 3 * n)
+    throw ConstraintError("addLinear: A has " + std::to_string(A.cols()) + " columns, expected 3 x " +
+                          std::to_string(n) + " points = " + std::to_string(3 * n));
+  if (A.rows() != b.size())
+    throw ConstraintError("addLinear: A has " + std::to_string(A.rows()) + " rows but b " + std::to_string(b.size()) +
+                          " values");
+  if (!b.allFinite()) throw ConstraintError("addLinear: b must be finite");
+  for (Eigen::Index r = 0; r < A.outerSize(); ++r) {
+    Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(n, 3);
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, r); it; ++it) {
+      if (!std::isfinite(it.value()))
+        throw ConstraintError("addLinear: A(" + std::to_string(r) + ", " + std::to_string(it.col()) + ") is not finite");
+      g(it.col() / 3, it.col() % 3) += it.value();
+    }
+    // Rows J = A d x'/d dP: the adjoint of the deformation applied to the row (constant).
+    linearRows_.push_back(flatten(adjointDeform(lattice_, deformer_.embedding(), g)));
+    linearA_.push_back(A.row(r));
+    linearB_.push_back(b[r]);
+  }
+}
+
+void ShapeConstraints::keepBarycentre(const Eigen::Vector3d& target) {
+  if (!target.allFinite()) throw ConstraintError("keepBarycentre: target must be finite");
+  const Eigen::Index n = points_.rows();
+  if (n == 0) throw ConstraintError("keepBarycentre: no points");
+  Eigen::SparseMatrix<double, Eigen::RowMajor> A(3, 3 * n);
+  A.reserve(Eigen::VectorXi::Constant(3, int(n)));
+  for (int c = 0; c < 3; ++c)
+    for (Eigen::Index p = 0; p < n; ++p) A.insert(c, 3 * p + c) = 1.0 / double(n);
+  addLinear(A, target);
+}
+
+void ShapeConstraints::keepVolume(const ClosedSurface& surface, double target) {
+  checkSurface(surface, points_.rows(), "keepVolume");
+  if (!std::isfinite(target) || target == 0.0)
+    throw ConstraintError("keepVolume: the target volume must be finite and non-zero, got " + std::to_string(target));
+  volumeSurface_ = std::make_shared<ClosedSurface>(surface);
+  volumeTarget_ = target;
+}
+
+void ShapeConstraints::keepCentroid(const ClosedSurface& surface, const Eigen::Vector3d& target) {
+  checkSurface(surface, points_.rows(), "keepCentroid");
+  if (!target.allFinite()) throw ConstraintError("keepCentroid: target must be finite");
+  centroidSurface_ = std::make_shared<ClosedSurface>(surface);
+  centroidTarget_ = target;
+}
+
+ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolveOptions& options) {
+  deformer_.embedding().checkLattice(lattice);
+  const Eigen::Index controls = lattice.pointCount();
+  // The free coordinates, in flattened order 3 i + c.
+  std::vector<Eigen::Index> freeIndex;
+  for (Eigen::Index i = 0; i < controls; ++i)
+    for (int c = 0; c < 3; ++c)
+      if (free_(i, c)) freeIndex.push_back(3 * i + c);
+  const Eigen::Index f = Eigen::Index(freeIndex.size());
+  const Eigen::Index linearCount = Eigen::Index(linearRows_.size());
+  const Eigen::Index m = linearCount + (volumeSurface_ ? 1 : 0) + (centroidSurface_ ? 3 : 0);
+
+  ShapeSolveResult result;
+  result.change.setZero(controls, 3);
+  Eigen::VectorXd delta = Eigen::VectorXd::Zero(f);  // the free part of the change
+  Lattice current = lattice;
+  const double size = lattice.restSize();
+  for (int iteration = 0;; ++iteration) {
+    Eigen::MatrixX3d moved = lattice.controlPoints() + result.change;
+    current.setControlPoints(moved);
+    // Volume and centroid are translation invariant: measured about the object's mean so that
+    // the divergence-theorem sums do not lose digits to the distance from the world origin.
+    const Eigen::MatrixX3d& deformed = deformer_.deform(current, points_);
+    const Eigen::MatrixX3d& x = deformed;
+    Eigen::MatrixX3d centred;
+    if (volumeSurface_ || centroidSurface_) centred = deformed.rowwise() - origin_.transpose();
+    // Residuals c, their scales and the rows of J over the free coordinates.
+    Eigen::VectorXd c(m), scale(m);
+    Eigen::MatrixXd J(m, f);
+    for (Eigen::Index r = 0; r < linearCount; ++r) {
+      double value = -linearB_[std::size_t(r)], magnitude = std::abs(linearB_[std::size_t(r)]);
+      for (Eigen::SparseVector<double>::InnerIterator it(linearA_[std::size_t(r)]); it; ++it) {
+        const double term = it.value() * x(it.index() / 3, it.index() % 3);
+        value += term;
+        magnitude += std::abs(term);
+      }
+      c[r] = value;
+      scale[r] = magnitude > 0.0 ? magnitude : 1.0;
+      for (Eigen::Index k = 0; k < f; ++k) J(r, k) = linearRows_[std::size_t(r)][freeIndex[std::size_t(k)]];
+    }
+    Eigen::Index row = linearCount;
+    if (volumeSurface_) {
+      double volume = 0.0;
+      const Eigen::MatrixX3d g = volumeGradient(centred, *volumeSurface_, volume);
+      const Eigen::VectorXd gradient = flatten(adjointDeform(lattice_, deformer_.embedding(), g));
+      c[row] = volume - volumeTarget_;
+      scale[row] = std::abs(volumeTarget_);
+      for (Eigen::Index k = 0; k < f; ++k) J(row, k) = gradient[freeIndex[std::size_t(k)]];
+      result.volume = volume;
+      result.volumeRelativeError = std::abs(c[row]) / scale[row];
+      ++row;
+    }
+    if (centroidSurface_) {
+      Eigen::Vector3d residual;
+      Eigen::MatrixX3d g[3];
+      centroidResidual(centred, *centroidSurface_, centroidTarget_ - origin_, residual, g);
+      // Scale: the volume times the surface's size (the units of M - t V).
+      double volume = 0.0;
+      volumeGradient(centred, *centroidSurface_, volume);
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::VectorXd gradient = flatten(adjointDeform(lattice_, deformer_.embedding(), g[k]));
+        c[row] = residual[k];
+        scale[row] = std::max(std::abs(volume), 1e-300) * (size + (centroidTarget_ - origin_).norm());
+        for (Eigen::Index j = 0; j < f; ++j) J(row, j) = gradient[freeIndex[std::size_t(j)]];
+        ++row;
+      }
+    }
+    result.largestRelativeResidual = m > 0 ? (c.array().abs() / scale.array()).maxCoeff() : 0.0;
+    if (!std::isfinite(result.largestRelativeResidual))
+      throw ConstraintError("shape constraints: the residual is not finite after " + std::to_string(iteration) +
+                            " Newton steps (the deformation degenerated)");
+    const bool nonlinear = volumeSurface_ || centroidSurface_;
+    if (result.largestRelativeResidual <= options.tolerance &&
+        (!nonlinear || iteration == 0 || result.lastStep <= options.stationarity)) {
+      result.iterations = iteration;
+      return result;
+    }
+    if (iteration >= options.maxIterations)
+      throw ConstraintError("shape constraints not met after " + std::to_string(iteration) +
+                            " Newton steps: largest relative residual " + std::to_string(result.largestRelativeResidual) +
+                            (volumeSurface_ ? ", volume relative error " + std::to_string(result.volumeRelativeError) : ""));
+    // Minimum-norm Newton step: delta_new = J^T (J J^T)^+ (J delta - c).
+    const Eigen::VectorXd rhs = J * delta - c;
+    const Eigen::MatrixXd gram = J * J.transpose();
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(gram);
+    const Eigen::VectorXd y = cod.solve(rhs);
+    // Inconsistent rows (no free control moves a constrained quantity, or rows that contradict
+    // each other) leave a residual the pseudo-inverse cannot remove.
+    const double miss = (gram * y - rhs).norm();
+    if (!(miss <= 1e-9 * (rhs.norm() + c.norm()) + 1e-300)) {
+      Eigen::Index worst = 0;
+      ((gram * y - rhs).array().abs()).maxCoeff(&worst);
+      const std::string which = worst < linearCount ? "linear constraint " + std::to_string(worst)
+                                : (volumeSurface_ && worst == linearCount) ? "the volume"
+                                                                          : "the centroid";
+      throw ConstraintError("shape constraints cannot be met with the free control points: " + which +
+                            " is not reachable (the constraints contradict each other or no free control changes it)");
+    }
+    const Eigen::VectorXd next = J.transpose() * y;
+    result.lastStep = (next - delta).norm() / std::max(next.norm(), 1e-300);
+    delta = next;
+    result.change.setZero();
+    for (Eigen::Index k = 0; k < f; ++k) {
+      const Eigen::Index at = freeIndex[std::size_t(k)];
+      result.change(at / 3, at % 3) = delta[k];
+    }
+  }
+}
+
+}  // namespace ffdkit::ffd

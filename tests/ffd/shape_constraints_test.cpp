@@ -1,0 +1,263 @@
+// Shape constraints: the engine's least-norm control change against an independent dense
+// computation (the deformation's matrix built from Lattice::evaluate, a KKT solve by SVD), the
+// volume and centroid after Newton against the divergence theorem on the deformed mesh, and
+// the errors for open surfaces and constraints that cannot be met.
+#include "ffdkit/ffd/shape_constraints.h"
+
+#include <random>
+
+#include <Eigen/SVD>
+#include <gtest/gtest.h>
+
+#include "closed_surfaces.h"
+#include "test_lattices.h"
+
+namespace ffdkit::ffd {
+namespace {
+
+// The deformed world points through the reference evaluator: F * X(uvw) for every point.
+Eigen::MatrixX3d evaluated(const Lattice& lattice, const Eigen::MatrixX3d& uvw) {
+  Eigen::MatrixX3d x(uvw.rows(), 3);
+  for (Eigen::Index p = 0; p < uvw.rows(); ++p)
+    x.row(p) = (lattice.frame() * lattice.evaluate(uvw.row(p).transpose())).transpose();
+  return x;
+}
+
+// M (3 #points x 3 #controls): d x' / d P, flattened row-major on both sides, column by column
+// from unit moves of one control coordinate through Lattice::evaluate (x' is linear in P).
+Eigen::MatrixXd deformationMatrix(const Lattice& lattice, const Eigen::MatrixX3d& uvw) {
+  const Eigen::Index n = uvw.rows(), N = lattice.pointCount();
+  Eigen::MatrixXd M(3 * n, 3 * N);
+  const Eigen::MatrixX3d base = evaluated(lattice, uvw);
+  for (Eigen::Index i = 0; i < N; ++i)
+    for (int c = 0; c < 3; ++c) {
+      Lattice moved = lattice;
+      moved.setControlPoint(i, lattice.controlPoints().row(i).transpose() + Eigen::Vector3d::Unit(c));
+      const Eigen::MatrixX3d x = evaluated(moved, uvw) - base;
+      for (Eigen::Index p = 0; p < n; ++p)
+        for (int d = 0; d < 3; ++d) M(3 * p + d, 3 * i + c) = x(p, d);
+    }
+  return M;
+}
+
+Eigen::VectorXd flat(const Eigen::MatrixX3d& m) {
+  Eigen::VectorXd v(3 * m.rows());
+  for (Eigen::Index r = 0; r < m.rows(); ++r)
+    for (int c = 0; c < 3; ++c) v[3 * r + c] = m(r, c);
+  return v;
+}
+
+struct PointsSetup {
+  Lattice lattice;
+  Eigen::MatrixX3d uvw, points;
+};
+
+PointsSetup randomSetup(std::mt19937& rng, Eigen::Index n) {
+  Lattice lattice = testing::randomLattice(rng, 0.0, 5);
+  // Some control points already moved, so constraints are solved from a deformed state.
+  lattice.setControlPoints(lattice.controlPoints() + 0.05 * Eigen::MatrixX3d::Random(lattice.pointCount(), 3));
+  Eigen::MatrixX3d uvw = testing::randomParameters(lattice, n, rng);
+  // Keep the parameters off the box faces so every point embeds as Inside.
+  const Eigen::Vector3d lo = lattice.parameterMin(), hi = lattice.parameterMax();
+  for (Eigen::Index r = 0; r < n; ++r)
+    for (int a = 0; a < 3; ++a) uvw(r, a) = lo[a] + (0.05 + 0.9 * (uvw(r, a) - lo[a]) / (hi[a] - lo[a])) * (hi[a] - lo[a]);
+  Eigen::MatrixX3d points = testing::restImages(lattice, uvw);
+  return {lattice, uvw, points};
+}
+
+TEST(ShapeConstraints, LinearRowsGiveTheLeastNormChangeOfADenseKktSolve) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 12; ++trial) {
+    PointsSetup s = randomSetup(rng, 30);
+    const Eigen::Index n = s.points.rows(), N = s.lattice.pointCount();
+    const int m = std::uniform_int_distribution<int>(1, 5)(rng);
+    Eigen::MatrixXd A = Eigen::MatrixXd::Random(m, 3 * n);
+    // A sparse row too: one coordinate of one point pinned.
+    A.row(0).setZero();
+    A(0, 3 * 4 + 1) = 1.0;
+    const Eigen::VectorXd b = A * flat(evaluated(s.lattice, s.uvw)) + 0.1 * Eigen::VectorXd::Random(m);
+    ControlMask free = ControlMask::Constant(N, 3, true);
+    if (trial % 2 == 1)  // half the trials with some control coordinates fixed
+      for (Eigen::Index i = 0; i < N; ++i)
+        for (int c = 0; c < 3; ++c) free(i, c) = (i + c) % 3 != 0;
+
+    ShapeConstraints constraints(s.lattice, s.points);
+    constraints.setFreeControls(free);
+    constraints.addLinear(A.sparseView(), b);
+    const ShapeSolveResult result = constraints.solve(s.lattice);
+
+    // Independent: J = A M restricted to the free columns, least-norm delta = J^+ (b - A x0).
+    const Eigen::MatrixXd M = deformationMatrix(s.lattice, s.uvw);
+    std::vector<Eigen::Index> cols;
+    for (Eigen::Index k = 0; k < 3 * N; ++k)
+      if (free(k / 3, k % 3)) cols.push_back(k);
+    Eigen::MatrixXd J(m, Eigen::Index(cols.size()));
+    const Eigen::MatrixXd AM = A * M;
+    for (std::size_t k = 0; k < cols.size(); ++k) J.col(Eigen::Index(k)) = AM.col(cols[k]);
+    const Eigen::VectorXd rhs = b - A * flat(evaluated(s.lattice, s.uvw));
+    const Eigen::VectorXd y = J.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(rhs);
+    Eigen::VectorXd expected = Eigen::VectorXd::Zero(3 * N);
+    for (std::size_t k = 0; k < cols.size(); ++k) expected[cols[k]] = y[Eigen::Index(k)];
+    EXPECT_LT((flat(result.change) - expected).cwiseAbs().maxCoeff(), 1e-9 * (1 + expected.cwiseAbs().maxCoeff()))
+        << "trial " << trial;
+    // The constraints hold on the reference evaluator's points.
+    Lattice after = s.lattice;
+    after.setControlPoints(s.lattice.controlPoints() + result.change);
+    EXPECT_LT((A * flat(evaluated(after, s.uvw)) - b).cwiseAbs().maxCoeff(), 1e-11) << "trial " << trial;
+    EXPECT_LE(result.iterations, 2);
+  }
+}
+
+TEST(ShapeConstraints, BarycentreIsMovedExactlyToItsTarget) {
+  std::mt19937 rng(8);
+  PointsSetup s = randomSetup(rng, 200);
+  ShapeConstraints constraints(s.lattice, s.points);
+  const Eigen::Vector3d target = evaluated(s.lattice, s.uvw).colwise().mean().transpose() + Eigen::Vector3d(0.05, -0.02, 0.03);
+  constraints.keepBarycentre(target);
+  const ShapeSolveResult result = constraints.solve(s.lattice);
+  Lattice after = s.lattice;
+  after.setControlPoints(s.lattice.controlPoints() + result.change);
+  EXPECT_LT((evaluated(after, s.uvw).colwise().mean().transpose() - target).norm(), 1e-13);
+  // Least norm: the change lies in the row space of the three mean rows, i.e. dP_i = M_i^T y.
+  const Eigen::MatrixXd M = deformationMatrix(s.lattice, s.uvw);
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(3, M.cols());
+  for (Eigen::Index p = 0; p < s.points.rows(); ++p) R += M.middleRows(3 * p, 3) / double(s.points.rows());
+  const Eigen::VectorXd projected = R.transpose() * R.transpose().jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(flat(result.change));
+  EXPECT_LT((projected - flat(result.change)).norm(), 1e-10 * flat(result.change).norm());
+}
+
+struct VolumeSetup {
+  Lattice lattice;
+  testing::TestMesh mesh;
+};
+
+// A sphere inside a 4x4x4 cubic lattice over [-1, 1]^3 under a random frame, the lattice dragged.
+VolumeSetup volumeSetup(std::mt19937& rng, int rings, double drag) {
+  BoxLatticeOptions options;
+  options.boxMin = Eigen::Vector3d::Constant(-1.0);
+  options.boxMax = Eigen::Vector3d::Constant(1.0);
+  options.frame = testing::randomFrame(rng);
+  Lattice lattice = makeBoxLattice(options);
+  testing::TestMesh mesh = testing::sphereMesh({0.1, -0.05, 0.0}, 0.7, rings, 2 * rings);
+  for (Eigen::Index r = 0; r < mesh.points.rows(); ++r)
+    mesh.points.row(r) = (options.frame * mesh.points.row(r).transpose()).transpose();
+  Eigen::MatrixX3d p = lattice.controlPoints();
+  p.row(lattice.index(3, 1, 2)) += drag * Eigen::RowVector3d(1.0, 0.4, -0.2);
+  p.row(lattice.index(0, 2, 1)) += drag * Eigen::RowVector3d(-0.5, 0.8, 0.3);
+  lattice.setControlPoints(p);
+  return {lattice, mesh};
+}
+
+TEST(ShapeConstraints, VolumeIsKeptToOnePartIn1e12AtALagrangePoint) {
+  std::mt19937 rng(9);
+  for (int trial = 0; trial < 4; ++trial) {
+    VolumeSetup s = volumeSetup(rng, 24, 0.3 + 0.2 * trial);
+    const ClosedSurface surface(s.mesh.triangles, s.mesh.points.rows());
+    const double rest = enclosedVolume(s.mesh.points, surface);
+    ShapeConstraints constraints(s.lattice, s.mesh.points);
+    constraints.keepVolume(surface, rest);
+    const ShapeSolveResult result = constraints.solve(s.lattice);
+    EXPECT_GE(result.iterations, 2);
+    EXPECT_LE(result.volumeRelativeError, 1e-12);
+    // Independent: the divergence-theorem volume of the mesh deformed by Lattice::evaluate.
+    Lattice after = s.lattice;
+    after.setControlPoints(s.lattice.controlPoints() + result.change);
+    const Eigen::MatrixX3d uvw = constraints.embedding().parameters();
+    const Eigen::MatrixX3d x = evaluated(after, uvw);
+    EXPECT_LT(std::abs(enclosedVolume(x, surface) - rest) / rest, 1e-12) << "trial " << trial;
+    // Lagrange: the change is parallel to the volume's gradient with respect to the control
+    // points at the solution, M^T g (g: the per-vertex gradient of the divergence sum).
+    Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(x.rows(), 3);
+    for (Eigen::Index t = 0; t < s.mesh.triangles.rows(); ++t) {
+      const int a = s.mesh.triangles(t, 0), b = s.mesh.triangles(t, 1), c = s.mesh.triangles(t, 2);
+      const Eigen::Vector3d xa = x.row(a), xb = x.row(b), xc = x.row(c);
+      g.row(a) += xb.cross(xc).transpose() / 6;
+      g.row(b) += xc.cross(xa).transpose() / 6;
+      g.row(c) += xa.cross(xb).transpose() / 6;
+    }
+    const Eigen::VectorXd grad = deformationMatrix(after, uvw).transpose() * flat(g);
+    const Eigen::VectorXd d = flat(result.change);
+    const Eigen::VectorXd along = grad.normalized() * grad.normalized().dot(d);
+    EXPECT_LT((d - along).norm(), 1e-9 * d.norm()) << "trial " << trial;
+  }
+}
+
+TEST(ShapeConstraints, VolumeWithFixedControlsMovesOnlyTheFreeOnes) {
+  std::mt19937 rng(10);
+  VolumeSetup s = volumeSetup(rng, 16, 0.4);
+  const ClosedSurface surface(s.mesh.triangles, s.mesh.points.rows());
+  ShapeConstraints constraints(s.lattice, s.mesh.points);
+  ControlMask free = ControlMask::Constant(s.lattice.pointCount(), 3, false);
+  free.col(2).setConstant(true);  // only the local z coordinates may move
+  constraints.setFreeControls(free);
+  const double rest = enclosedVolume(s.mesh.points, surface);
+  constraints.keepVolume(surface, 0.9 * rest);
+  const ShapeSolveResult result = constraints.solve(s.lattice);
+  EXPECT_EQ(result.change.leftCols(2).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_LE(result.volumeRelativeError, 1e-12);
+  EXPECT_NEAR(enclosedVolume(constraints.deformedPoints(), surface), 0.9 * rest, 1e-12 * rest);
+}
+
+TEST(ShapeConstraints, VolumeAndBarycentreTogether) {
+  std::mt19937 rng(11);
+  VolumeSetup s = volumeSetup(rng, 16, 0.5);
+  const ClosedSurface surface(s.mesh.triangles, s.mesh.points.rows());
+  ShapeConstraints constraints(s.lattice, s.mesh.points);
+  const double rest = enclosedVolume(s.mesh.points, surface);
+  const Eigen::Vector3d mean = s.mesh.points.colwise().mean().transpose();
+  constraints.keepVolume(surface, rest);
+  constraints.keepBarycentre(mean);
+  const ShapeSolveResult result = constraints.solve(s.lattice);
+  EXPECT_NEAR(enclosedVolume(constraints.deformedPoints(), surface), rest, 1e-12 * rest);
+  EXPECT_LT((constraints.deformedPoints().colwise().mean().transpose() - mean).norm(), 1e-12);
+  EXPECT_LE(result.largestRelativeResidual, 1e-12);
+}
+
+TEST(ShapeConstraints, CentroidOfTheSolidIsKept) {
+  std::mt19937 rng(12);
+  VolumeSetup s = volumeSetup(rng, 16, 0.4);
+  const ClosedSurface surface(s.mesh.triangles, s.mesh.points.rows());
+  const Eigen::Vector3d centroid = enclosedCentroid(s.mesh.points, surface);
+  ShapeConstraints constraints(s.lattice, s.mesh.points);
+  constraints.keepCentroid(surface, centroid);
+  const ShapeSolveResult result = constraints.solve(s.lattice);
+  EXPECT_GE(result.iterations, 1);
+  EXPECT_LT((enclosedCentroid(constraints.deformedPoints(), surface) - centroid).norm(), 1e-11);
+}
+
+TEST(ShapeConstraints, RefusesOpenSurfacesAndConstraintsThatCannotBeMet) {
+  std::mt19937 rng(13);
+  VolumeSetup s = volumeSetup(rng, 8, 0.3);
+  ShapeConstraints constraints(s.lattice, s.mesh.points);
+  // Open: a sphere without its last triangle.
+  EXPECT_THROW(ClosedSurface(s.mesh.triangles.topRows(s.mesh.triangles.rows() - 1), s.mesh.points.rows()),
+               ConstraintError);
+  const ClosedSurface surface(s.mesh.triangles, s.mesh.points.rows());
+  // No free control point: the volume cannot change.
+  constraints.setFreeControls(ControlMask::Constant(s.lattice.pointCount(), 3, false));
+  constraints.keepVolume(surface, 2.0 * enclosedVolume(s.mesh.points, surface));
+  try {
+    constraints.solve(s.lattice);
+    FAIL() << "no error";
+  } catch (const ConstraintError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot be met"), std::string::npos) << e.what();
+  }
+  // Two contradicting rows.
+  ShapeConstraints contradicting(s.lattice, s.mesh.points);
+  Eigen::SparseMatrix<double, Eigen::RowMajor> A(2, 3 * s.mesh.points.rows());
+  A.insert(0, 0) = 1.0;
+  A.insert(1, 0) = 1.0;
+  contradicting.addLinear(A, Eigen::Vector2d(0.0, 1.0));
+  EXPECT_THROW(contradicting.solve(s.lattice), ConstraintError);
+  // Sizes.
+  EXPECT_THROW(contradicting.addLinear(A, Eigen::Vector3d::Zero()), ConstraintError);
+  EXPECT_THROW(contradicting.keepVolume(ClosedSurface(testing::boxMesh({0, 0, 0}, {1, 1, 1}).triangles, 8), 1.0),
+               ConstraintError);
+  // A stale lattice.
+  Lattice moved = s.lattice;
+  moved.setFrame(Eigen::Affine3d(Eigen::Translation3d(1, 0, 0)));
+  EXPECT_THROW(constraints.solve(moved), LatticeError);
+}
+
+}  // namespace
+}  // namespace ffdkit::ffd
