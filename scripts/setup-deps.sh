@@ -19,6 +19,7 @@ packages=(
   xvfb xauth libxcb1-dev
   python3 doxygen
   pybind11-dev python3-dev python3-numpy python3-pytest
+  openfoam  # tests/cli/openfoam_test.sh: blockMesh, foamFormatConvert and checkMesh judge what ffdkit writes
 )
 if [ "${1:-}" = "--fuzz" ]; then
   packages+=(clang libfuzzer-14-dev libclang-rt-14-dev)
