@@ -33,6 +33,7 @@ class VertexSliceReader {
   VertexSliceReader(const VertexSliceReader&) = delete;
   VertexSliceReader& operator=(const VertexSliceReader&) = delete;
 
+  /// The file's format (from its extension and header).
   MeshFormat format() const;
   /// PLY and npy: the vertex count of the header; xyz: nullopt (known once every part is counted).
   std::optional<std::int64_t> vertexCount() const;
@@ -46,9 +47,9 @@ class VertexSliceReader {
 
   /// A part of an .xyz file's text, with its newline and point-line counts.
   struct TextPart {
-    std::string text;
-    std::int64_t lines = 0;
-    std::int64_t points = 0;
+    std::string text;         ///< the part's bytes
+    std::int64_t lines = 0;   ///< newlines in it
+    std::int64_t points = 0;  ///< point lines in it
   };
   /// xyz: part `part` of `parts`: from the first line that starts at or after byte
   /// part * size / parts (byte 0 for part 0) to where the next part starts, so that every line

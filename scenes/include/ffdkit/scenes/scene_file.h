@@ -25,6 +25,7 @@ class SceneFileError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Options of readScene: where relative paths resolve, the generators, the path rule and the read budget.
 struct SceneReadOptions {
   /// Folder that relative mesh and widget-file paths resolve against (readScene(path) uses
   /// the scene file's folder).
