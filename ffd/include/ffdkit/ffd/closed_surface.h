@@ -14,6 +14,7 @@ namespace ffdkit::ffd {
 /// `volume needs a closed surface: edge (12, 40) is used by 1 triangle (triangle 7)`.
 class ConstraintError : public std::invalid_argument {
  public:
+  /// An error with `message`, which says what was expected, what came and where.
   explicit ConstraintError(const std::string& message) : std::invalid_argument(message) {}
 };
 
@@ -31,13 +32,16 @@ class ClosedSurface {
   ///         direction (inconsistent orientation or a non-manifold edge), naming the triangle.
   ClosedSurface(TriangleMatrix triangles, Eigen::Index vertexCount);
 
+  /// The triangles, #triangles x 3, as given.
   const TriangleMatrix& triangles() const { return triangles_; }
+  /// The number of points the indices refer to.
   Eigen::Index vertexCount() const { return vertexCount_; }
 
   /// Per vertex, the ordered pairs (b, c) of the triangles (v, b, c) around it (rotated so that
   /// v comes first), as CSR: pairs [offsets[v], offsets[v+1]). The volume's gradient at v is
   /// sum (x_b x x_c) / 6 over them; computed once so that gradients run in parallel over vertices.
   const Eigen::VectorXi& pairOffsets() const { return offsets_; }
+  /// The pairs (b, c) of every vertex, rows [pairOffsets()[v], pairOffsets()[v+1]) for vertex v.
   const Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor>& pairs() const { return pairs_; }
 
  private:

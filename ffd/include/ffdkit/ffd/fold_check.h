@@ -20,7 +20,7 @@ namespace ffdkit::ffd {
 struct JacobianDeterminantPatch {
   std::array<int, 3> degrees{};  ///< (3p-1, 3q-1, 3r-1)
   Eigen::Vector3d parameterMin = Eigen::Vector3d::Zero();  ///< the cell's parameter box
-  Eigen::Vector3d parameterMax = Eigen::Vector3d::Ones();
+  Eigen::Vector3d parameterMax = Eigen::Vector3d::Ones();  ///< upper corner of the cell's parameter box
   /// (d0+1)(d1+1)(d2+1) Bernstein coefficients, index i + (d0+1) (j + (d1+1) k).
   Eigen::VectorXd coefficients;
 
@@ -56,11 +56,15 @@ struct FoldCheckResult {
   std::vector<double> lowerBound;
   /// Per cell, a parameter point where sign * det J <= 0 (Folds cells; NaN otherwise).
   std::vector<Eigen::Vector3d> witness;
+  ///@{
+  /// Cells certified Positive, found to fold, and left Unknown.
   Eigen::Index positiveCount = 0, foldsCount = 0, unknownCount = 0;
+  ///@}
   /// Sign of det J of the rest lattice at the centre of its parameter box (+1 or -1): folding is
   /// measured against the rest lattice's orientation (a mirrored frame is not a fold).
   int orientation = 1;
 
+  /// True when every cell is certified Positive (no fold anywhere in the lattice).
   bool certifiedPositive() const { return foldsCount == 0 && unknownCount == 0; }
 };
 

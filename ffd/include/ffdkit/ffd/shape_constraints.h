@@ -73,12 +73,15 @@ class ShapeConstraints {
   ShapeConstraints(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points,
                    const EmbedOptions& embedOptions = {});
 
+  /// Number of object points.
   Eigen::Index pointCount() const { return points_.rows(); }
+  /// The points' embedding in the rest lattice.
   const Embedding& embedding() const { return deformer_.embedding(); }
 
   /// Restricts the solve to the free control coordinates (#controlPoints x 3, lattice-local).
   /// @throws ConstraintError on a wrong row count.
   void setFreeControls(const ControlMask& free);
+  /// The control coordinates the solve may change (#controlPoints x 3).
   const ControlMask& freeControls() const { return free_; }
 
   /// Adds the rows A x' = b. @param A  m x 3*#points; @param b  m.
