@@ -169,9 +169,14 @@ Eigen::MatrixX3d VertexSliceReader::parseXyzPart(const TextPart& part, std::int6
 MeshData VertexSliceReader::readCells() const {
   const Impl& d = *impl_;
   if (!d.ply || !d.ply->hasCells()) return {};
-  return readingSlice(d.source, d.budget, [&] {
+  // The cells count as in a read of the whole file: against a budget holding every vertex of
+  // the file (the ranks of a batch hold them all between them, and the one reading the cells
+  // keeps them beside its own slice), so a split read refuses what readMesh refuses.
+  ReadBudget whole(d.budget.limits());
+  return readingSlice(d.source, whole, [&] {
+    whole.chargePoints(std::uint64_t(d.ply->vertexCount()), "element 'vertex' (every slice)");
     const std::string tail = d.read(d.ply->cellsOffset(), d.size - d.ply->cellsOffset());
-    return d.ply->readCells(tail, impl_->budget);
+    return d.ply->readCells(tail, whole);
   });
 }
 

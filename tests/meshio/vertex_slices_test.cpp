@@ -98,6 +98,41 @@ TEST_F(VertexSlices, PartsStackToThePointsReadMeshReads) {
   }
 }
 
+// The cells a batch's first rank reads after its slice count as in a whole read: with every
+// vertex of the file (24 bytes each) and the faces (12 bytes a triangle), not only the slice.
+// At the memory limit a whole read takes the file reads and the cells read; a byte less, both
+// refuse it, however small the slice read before (each rank's slice alone would fit).
+TEST_F(VertexSlices, CellsCountWithEveryVertexOfTheFileAsInAWholeRead) {
+  const auto path = torusFile(".ply");
+  const MeshData whole = readMesh(path);
+  const std::uint64_t n = std::uint64_t(whole.points.rows()), t = std::uint64_t(whole.triangles.rows());
+  ASSERT_GT(t, 0u);
+  const std::uint64_t needed = 24 * n + 12 * t;  // docs/robustness.md, PLY's row of the budget table
+  const auto limits = [](std::uint64_t bytes) { return ReadLimits{.maxMemoryBytes = bytes, .maxPoints = 1'000'000}; };
+  // readMesh: exactly what it charges.
+  EXPECT_EQ(readMesh(path, MeshReadOptions{.limits = limits(needed)}).triangles, whole.triangles);
+  EXPECT_THROW(readMesh(path, MeshReadOptions{.limits = limits(needed - 1)}), MeshIoError);
+  for (int parts : {1, 2, 8}) {
+    SCOPED_TRACE(parts);
+    {
+      const VertexSliceReader first(path, limits(needed));
+      first.readVertices(0, std::int64_t(n) / parts);
+      EXPECT_EQ(first.readCells().triangles, whole.triangles);
+    }
+    const VertexSliceReader first(path, limits(needed - 1));
+    first.readVertices(0, std::int64_t(n) / parts);
+    try {
+      first.readCells();
+      ADD_FAILURE() << "the cells read at a limit the whole file is over";
+    } catch (const MeshIoError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+      EXPECT_NE(message.find("element 'face'"), std::string::npos) << message;
+      EXPECT_NE(message.find("--max-memory"), std::string::npos) << message;
+    }
+  }
+}
+
 TEST_F(VertexSlices, XyzPartsCutAtLineStartsAndNumberLinesAsTheWholeFile) {
   // Lines of very different lengths, comments and blank lines; a bad number on line 9.
   const std::string text = "# points\n0 0 0\n\n1 1 1\n   # x\n2.5 2.5 2.5e0\n3 3 3\n4 4 4\n5 5 oops\n6 6 6\n";

@@ -61,7 +61,10 @@ class VertexSliceReader {
   Eigen::MatrixX3d parseXyzPart(const TextPart& part, std::int64_t linesBefore, std::int64_t pointsBefore) const;
 
   /// PLY: the faces and edges, read from the bytes after the vertices and checked against the
-  /// vertex count (points empty); npy, xyz: an empty MeshData.
+  /// vertex count (points empty); npy, xyz: an empty MeshData. The cells are charged as readMesh
+  /// charges them, to a budget of the reader's limits that holds every vertex of the file (not
+  /// only the slices read here): a split read refuses what a whole read refuses.
+  /// @throws MeshIoError naming the file and the limit.
   MeshData readCells() const;
 
  private:
