@@ -606,18 +606,36 @@ std::string sceneFileText(const Scene& scene) { return detail::canonicalJsonText
 
 void writeScene(std::ostream& out, const Scene& scene) { out << sceneFileText(scene); }
 
-void writeScene(const std::filesystem::path& path, const Scene& scene) {
+void writeScene(const std::filesystem::path& path, const Scene& scene, const SceneWriteOptions& options) {
   const std::string text = sceneFileText(scene);  // before touching any file: nothing half-written
-  try {
-    if (scene.widgetFile) {
-      const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-      const std::filesystem::path widgetPath(*scene.widgetFile);
-      writeWidgetFile(widgetPath.is_absolute() ? widgetPath : folder / widgetPath, scene.widgets);
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  // The reader's confinement rule, before anything is written: a path it would refuse is refused
+  // here, so a written scene always reads back (under the same rule) and no widget file lands
+  // outside the folder.
+  const auto confined = [&](const std::string& named, std::string_view what, const std::string& pointer,
+                            const std::string& object) {
+    try {
+      return meshio::confinedPath(folder, named, what, options.confinement);
+    } catch (const meshio::PathOutsideFolderError& e) {
+      throw SceneFileError(path.string() + " " + pointer + ": " + (object.empty() ? "" : "object '" + object + "': ") + e.what() +
+                           "; nothing written: the scene would not read back");
     }
+  };
+  for (std::size_t i = 0; i < scene.objects().size(); ++i) {
+    const SceneObject& object = scene.objects()[i];
+    if (const auto* file = std::get_if<MeshFileSource>(&object.source))
+      confined(file->path, "mesh file", "/objects/" + std::to_string(i) + "/mesh/path", object.name);
+  }
+  std::optional<std::filesystem::path> widgetPath;
+  if (scene.widgetFile) widgetPath = confined(*scene.widgetFile, "widget file", "/widgetFile", "");
+  try {
+    if (widgetPath) writeWidgetFile(*widgetPath, scene.widgets);
     meshio::writeFileAtomically(path, text);
   } catch (const std::exception& e) {
     throw SceneFileError(e.what());
   }
 }
+
+void writeScene(const std::filesystem::path& path, const Scene& scene) { writeScene(path, scene, SceneWriteOptions{}); }
 
 }  // namespace ffdkit::scenes

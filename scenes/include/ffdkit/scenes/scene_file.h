@@ -57,9 +57,24 @@ Scene readScene(const std::filesystem::path& path, SceneReadOptions options);
 std::string sceneFileText(const Scene& scene);
 void writeScene(std::ostream& out, const Scene& scene);
 
+/// Options of writeScene.
+struct SceneWriteOptions {
+  /// The reader's rule for the paths a scene names (SceneReadOptions::confinement), applied
+  /// before anything is written: by default a mesh path or widget file that leads outside the
+  /// folder of the file written is an error, so ffdkit never writes a scene its reader refuses
+  /// by default, nor a widget file outside that folder. The app passes its preference.
+  meshio::PathConfinement confinement{};
+};
+
 /// Writes atomically (temporary file + rename); when `scene.widgetFile` is set, also writes
-/// that widget file (resolved against the scene file's folder), atomically.
-/// @throws SceneFileError if a file cannot be written.
+/// that widget file (resolved against the scene file's folder), atomically. Every mesh path and
+/// the widget file are checked against `options.confinement` first.
+/// @throws SceneFileError if a file cannot be written, or naming the object, its JSON pointer
+///   and the path that leads outside the folder (nothing is written then):
+///   `out/scene.json /objects/1/mesh/path: object 'bunny': mesh file '/data/bunny.obj' is outside
+///   the folder of the file that names it (...)`.
+void writeScene(const std::filesystem::path& path, const Scene& scene, const SceneWriteOptions& options);
+/// writeScene(path, scene, {}): paths outside the folder are refused.
 void writeScene(const std::filesystem::path& path, const Scene& scene);
 
 /// Reads a JSON object of generator parameters, the same as a scene file's generator
