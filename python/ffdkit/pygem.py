@@ -134,7 +134,10 @@ class FFD:
         return t_mapping
 
     def reset_weights(self):
-        """Set the weights (the displacements of the control points) to zeros."""
+        """Set the weights (the displacements of the control points) to zeros.
+
+        Afterwards the FFD maps every point to itself.
+        """
         self.array_mu_x.fill(0.0)
         self.array_mu_y.fill(0.0)
         self.array_mu_z.fill(0.0)
@@ -239,7 +242,11 @@ class FFD:
         self.array_mu_x, self.array_mu_y, self.array_mu_z = arrays
 
     def write_parameters(self, filename='parameters.prm'):
-        """Write the parameters as a PyGeM ``.prm`` file (the same bytes PyGeM writes)."""
+        """Write the parameters as a PyGeM ``.prm`` file (the same bytes PyGeM writes).
+
+        :param str filename: the file to write (default ``parameters.prm``).
+        :raises TypeError: if `filename` is not a string.
+        """
         if not isinstance(filename, str):
             raise TypeError("filename must be a string")
         text = _PRM_BOX_HEAD

@@ -65,11 +65,20 @@ void bindSceneEditing(py::module_& m) {
             }
             s.addObject(std::move(object));
           },
-          "name"_a, "path"_a, "up"_a = "z",
-          "Adds an object read from a mesh file (the path is kept for the scene file, relative to the "
-          "working folder here); up='y' turns a Y-up file upright as it is read.")
-      .def("removeObject", &Scene::removeObject, "name"_a,
-           "Removes an object and its place in every attachment.")
+          "name"_a, "path"_a, "up"_a = "z", R"doc(Adds an object read from a mesh file.
+
+Args:
+    name: the new object's unique name.
+    path: the mesh file (kept for the scene file, relative to the working folder here).
+    up: "z" (default) or "y": a Y-up file is turned upright as it is read.
+Raises:
+    ValueError: up is neither, or the name is empty or taken. MeshIoError: the file cannot be read.)doc")
+      .def("removeObject", &Scene::removeObject, "name"_a, R"doc(Removes an object and its place in every attachment.
+
+Args:
+    name: the object's name.
+Raises:
+    ValueError: an unknown object.)doc")
       .def(
           "attachNewLattice",
           [](Scene& s, const std::vector<std::string>& objects, const std::string& name,
@@ -80,16 +89,36 @@ void bindSceneEditing(py::module_& m) {
             options.padding = padding;
             return scenes::attachNewLattice(s, objects, options);
           },
-          "objects"_a, "name"_a = "", "counts"_a = Eigen::Vector3i::Constant(3), "padding"_a = 0.05,
-          "Adds a root lattice fitted around the objects (padded by `padding` of their diagonal) and "
-          "attaches it to them; returns its WidgetId.")
-      .def("detachLattice", &Scene::detach, "lattice"_a, "object"_a)
+          "objects"_a, "name"_a = "", "counts"_a = Eigen::Vector3i::Constant(3), "padding"_a = 0.05, R"doc(Adds a root lattice fitted around objects and attaches it to them (Kuriyama 1996, sec. 6.4).
+
+Args:
+    objects: the objects' names.
+    name: the lattice's name; "" -> "lattice<N>".
+    counts: control points per axis (default 3, 3, 3).
+    padding: margin on every side, relative to the objects' bounding-box diagonal.
+Returns:
+    WidgetId of the new lattice.
+Raises:
+    ValueError: an unknown object or none given. WidgetError: bad counts or a duplicate name.)doc")
+      .def("detachLattice", &Scene::detach, "lattice"_a, "object"_a, R"doc(Stops a lattice deforming an object (an attachment left with no object goes).
+
+Args:
+    lattice: WidgetId of the root lattice.
+    object: the object's name.
+Raises:
+    ValueError: the lattice was not attached to the object.)doc")
       .def(
           "detachLattice",
           [](Scene& s, const std::string& lattice, const std::string& object) {
             s.detach(s.widgets.find(lattice), object);
           },
-          "lattice"_a, "object"_a, "The same, the lattice given by its name.")
+          "lattice"_a, "object"_a, R"doc(Stops a lattice, given by its name, deforming an object.
+
+Args:
+    lattice: the root lattice's name.
+    object: the object's name.
+Raises:
+    WidgetError: an unknown lattice. ValueError: it was not attached to the object.)doc")
       // ---- animation ----
       .def_property(
           "framesPerSecond", [](const Scene& s) { return s.animation().framesPerSecond; },
@@ -116,52 +145,116 @@ void bindSceneEditing(py::module_& m) {
                 scenes::setKey(s, widget, kind, keyOf(kind, seconds, value, interpolation));
             return replaced ? valueOf(kind, *replaced) : py::none();
           },
-          "widget"_a, "kind"_a, "seconds"_a, "value"_a, "interpolation"_a = Interpolation::Smooth,
-          "Keys `widget` at `seconds`: a variation (float), a lattice frame (4x4) or control points "
-          "(N x 3, local). Returns the value of the key it replaced, or None.")
+          "widget"_a, "kind"_a, "seconds"_a, "value"_a, "interpolation"_a = Interpolation::Smooth, R"doc(Keys a widget's property at a time (docs/animation.md).
+
+Args:
+    widget: WidgetId.
+    kind: ChannelKind: Variation (value a float), LatticeFrame (a 4 x 4 frame) or ControlPoints
+        (N x 3 local control points).
+    seconds: the key's time.
+    value: the keyed value, as the kind says.
+    interpolation: Interpolation of the segment to the next key (default Smooth).
+Returns:
+    The value of the key it replaced, or None.
+Raises:
+    AnimationError: a kind the widget cannot key, a value of the wrong shape, a time out of range.)doc")
       .def(
           "keyCurrent",
           [](Scene& s, WidgetId widget, ChannelKind kind, double seconds, Interpolation interpolation) {
             scenes::setKey(s, widget, kind, scenes::currentKey(s, widget, kind, seconds, interpolation));
           },
-          "widget"_a, "kind"_a, "seconds"_a, "interpolation"_a = Interpolation::Smooth,
-          "Keys the widget's present value (as Insert Key in the app).")
+          "widget"_a, "kind"_a, "seconds"_a, "interpolation"_a = Interpolation::Smooth, R"doc(Keys the widget's present value (as Insert Key in the app).
+
+Args:
+    widget: WidgetId.
+    kind: ChannelKind.
+    seconds: the key's time.
+    interpolation: Interpolation (default Smooth).
+Raises:
+    AnimationError: a kind the widget cannot key, a time out of range.)doc")
       .def(
           "removeKey",
           [](Scene& s, WidgetId widget, ChannelKind kind, double seconds) {
             const std::optional<Keyframe> removed = scenes::removeKey(s, widget, kind, seconds);
             return removed ? valueOf(kind, *removed) : py::none();
           },
-          "widget"_a, "kind"_a, "seconds"_a, "Removes the key at `seconds`; returns its value, or None.")
+          "widget"_a, "kind"_a, "seconds"_a, R"doc(Removes the key at a time.
+
+Args:
+    widget: WidgetId.
+    kind: ChannelKind.
+    seconds: the key's time.
+Returns:
+    The removed key's value, or None when there was none.)doc")
       .def(
           "keyValue",
           [](const Scene& s, WidgetId widget, ChannelKind kind, double seconds) {
             const std::optional<Keyframe> key = scenes::keyAt(s.animation(), widget, kind, seconds);
             return key ? valueOf(kind, *key) : py::none();
           },
-          "widget"_a, "kind"_a, "seconds"_a)
+          "widget"_a, "kind"_a, "seconds"_a, R"doc(The value of the key at a time.
+
+Args:
+    widget: WidgetId.
+    kind: ChannelKind.
+    seconds: the key's time.
+Returns:
+    The value (a float, a 4 x 4 frame or N x 3 control points), or None when there is no key.)doc")
       .def(
           "keyTimes",
           [](const Scene& s, std::optional<WidgetId> widget) {
             return widget ? scenes::keyTimes(s, *widget) : scenes::keyTimes(s);
           },
-          "widget"_a = py::none(), "Key times in seconds, sorted, unique (of one widget, or of all).")
+          "widget"_a = py::none(), R"doc(The key times in seconds, sorted and unique.
+
+Args:
+    widget: a WidgetId for its keys only, or None for every key.
+Returns:
+    list of float.)doc")
       .def("keyableKinds", [](const Scene& s, WidgetId widget) { return scenes::keyableKinds(s.widgets, widget); },
-           "widget"_a)
-      .def("applyAnimation", &scenes::applyAnimation, "seconds"_a,
-           "Sets the widget model to the animation at `seconds` through its own gestures (bindings "
-           "propagate as in a drag; docs/animation.md). Re-deform with a SceneDeformer afterwards.")
-      .def("applyAnimationFrame", &scenes::applyAnimationFrame, "frame"_a)
-      .def("frameTime", [](const Scene& s, double frame) { return scenes::frameTime(s.animation(), frame); }, "frame"_a)
-      .def("validateAnimation", &scenes::validateAnimation);
+           "widget"_a, R"doc(The properties of a widget that can be keyed.
+
+Args:
+    widget: WidgetId.
+Returns:
+    list of ChannelKind (an affine widget: Variation; a lattice: LatticeFrame, ControlPoints).)doc")
+      .def("applyAnimation", &scenes::applyAnimation, "seconds"_a, R"doc(Sets the widget model to the animation at a time, through its own gestures (bindings follow).
+
+Args:
+    seconds: the time.
+Raises:
+    AnimationError: a non-finite time, or during a gesture. WidgetError: from the model.
+    Re-deform with a SceneDeformer afterwards.)doc")
+      .def("applyAnimationFrame", &scenes::applyAnimationFrame, "frame"_a, R"doc(Sets the widget model to the animation at a frame (frame / framesPerSecond seconds).
+
+Args:
+    frame: the frame number.
+Raises:
+    AnimationError: as applyAnimation().)doc")
+      .def("frameTime", [](const Scene& s, double frame) { return scenes::frameTime(s.animation(), frame); }, "frame"_a, R"doc(The time of a frame, in seconds.
+
+Args:
+    frame: the frame number (may be fractional).
+Returns:
+    frame / framesPerSecond.)doc")
+      .def("validateAnimation", &scenes::validateAnimation, R"doc(Checks the animation: frame rate and range, channels naming existing widgets, key counts and values.
+
+Raises:
+    AnimationError: naming what is wrong.)doc");
 }
 
 void bindAnimationTypes(py::module_& m) {
-  py::enum_<Interpolation>(m, "Interpolation", "How a key's segment to the next key is interpolated.")
+  py::enum_<Interpolation>(m, "Interpolation", R"doc(How a key's segment to the next key is interpolated.
+
+Constant (a step), Linear (straight to the next key; frames slerp), or Smooth (the default:
+cubic Hermite with automatic clamped slopes, through every key, no overshoot).)doc")
       .value("Constant", Interpolation::Constant)
       .value("Linear", Interpolation::Linear)
       .value("Smooth", Interpolation::Smooth);
-  py::enum_<ChannelKind>(m, "ChannelKind", "What a channel keys.")
+  py::enum_<ChannelKind>(m, "ChannelKind", R"doc(What a channel keys.
+
+Variation (of an affine widget), LatticeFrame (a lattice's world frame) or ControlPoints (a
+lattice's local control points).)doc")
       .value("Variation", ChannelKind::Variation)
       .value("LatticeFrame", ChannelKind::LatticeFrame)
       .value("ControlPoints", ChannelKind::ControlPoints);

@@ -114,9 +114,11 @@ py::array boxBernsteinDeform(const ffd::BoxBernsteinLattice& lattice, const py::
 }  // namespace
 
 void bindBoxBernstein(py::module_& m) {
-  py::class_<ffd::BoxBernsteinLattice>(m, "BoxBernsteinLattice",
-                                       "A Bernstein lattice on an oriented box given by its control-point "
-                                       "displacements (ffd/box_bernstein_deform.h).")
+  py::class_<ffd::BoxBernsteinLattice>(m, "BoxBernsteinLattice", R"doc(A Bernstein lattice on an oriented box, given by its control-point displacements (ffd/box_bernstein_deform.h).
+
+The kernel behind ffdkit.pygem.FFD. Fields: counts (l, m, n), frame (4 x 4: the box's edge vectors
+as the columns of its linear part, its origin as translation), displacements ((l*m*n) x 3 in box
+coordinates, flat index i + l*(j + m*k)).)doc")
       .def(py::init([](const Eigen::Vector3i& counts, const py::object& frame, const py::object& displacements) {
              ffd::BoxBernsteinLattice lattice;
              lattice.counts = counts;
@@ -126,26 +128,50 @@ void bindBoxBernstein(py::module_& m) {
              }
              return lattice;
            }),
-           "counts"_a = Eigen::Vector3i(2, 2, 2), "frame"_a = py::none(), "displacements"_a = py::none())
+           "counts"_a = Eigen::Vector3i(2, 2, 2), "frame"_a = py::none(), "displacements"_a = py::none(), R"doc(A box lattice.
+
+Args:
+    counts: control points per axis (default 2, 2, 2).
+    frame: 4 x 4 box frame (default the unit box).
+    displacements: (l*m*n) x 3 control-point moves in box coordinates (default zeros).
+Raises:
+    ValueError: a frame that is not 4 x 4 (sizes are checked by boxBernsteinDeform).)doc")
       .def_readwrite("counts", &ffd::BoxBernsteinLattice::counts)
       .def_property(
           "frame", [](const ffd::BoxBernsteinLattice& l) { return affineToArray(l.frame); },
           [](ffd::BoxBernsteinLattice& l, const py::object& frame) { l.frame = affineArg(frame, "frame"); })
       .def_readwrite("displacements", &ffd::BoxBernsteinLattice::displacements);
 
-  py::class_<ffd::BoxBernsteinDeformOptions>(m, "BoxBernsteinDeformOptions")
+  py::class_<ffd::BoxBernsteinDeformOptions>(m, "BoxBernsteinDeformOptions", R"doc(Options of boxBernsteinDeform.
+
+BoxBernsteinDeformOptions(faceTolerance=1e-12, parallel=True): box coordinates within
+faceTolerance of a face count as on it; parallel runs on all OpenMP threads.)doc")
       .def(py::init([](double faceTolerance, bool parallel) {
              return ffd::BoxBernsteinDeformOptions{faceTolerance, parallel};
            }),
-           "faceTolerance"_a = 1e-12, "parallel"_a = true)
+           "faceTolerance"_a = 1e-12, "parallel"_a = true, R"doc(Options.
+
+Args:
+    faceTolerance: box coordinates within this of [0, 1] count as inside.
+    parallel: run on all OpenMP threads.)doc")
       .def_readwrite("faceTolerance", &ffd::BoxBernsteinDeformOptions::faceTolerance)
       .def_readwrite("parallel", &ffd::BoxBernsteinDeformOptions::parallel);
 
   m.def("boxBernsteinDeform", &boxBernsteinDeform, "lattice"_a, "points"_a, "options"_a = py::none(),
-        "out"_a = py::none(),
-        "One-pass FFD by a Bernstein box lattice (GIL released): points inside the box (to faceTolerance) "
-        "move, the others are copied. points: (N, 3), any layout, read in place; returns `out` "
-        "(default: a new C-ordered (N, 3) array; out=points deforms in place).");
+        "out"_a = py::none(), R"doc(One-pass FFD by a Bernstein box lattice: points inside the box move, the others are copied.
+
+Nothing is stored per point; the interpreter lock is released.
+Args:
+    lattice: BoxBernsteinLattice.
+    points: (N, 3) float array of any layout, read in place.
+    options: BoxBernsteinDeformOptions (default: BoxBernsteinDeformOptions()).
+    out: where to write: None (a new C-ordered (N, 3) array), any writable float64 (N, 3)
+        array, or points itself to deform in place.
+Returns:
+    out.
+Raises:
+    ValueError: points or out of the wrong shape or dtype, out read-only or overlapping points.
+    LatticeError: counts or displacements that do not match.)doc");
 }
 
 }  // namespace ffdkit::python

@@ -52,24 +52,47 @@ PYBIND11_MODULE(_ffdkit, module) {
 
   py::handle valueError(PyExc_ValueError), runtimeError(PyExc_RuntimeError), osError(PyExc_OSError);
   errors.base = addError(module, "Error", py::make_tuple(py::handle(PyExc_Exception)),
-                         "Base class of every ffdkit error.");
+                         R"doc(Base class of every ffdkit error.
+
+Catch it to handle any error of the module; the message names the file, the widget or the
+argument concerned.)doc");
   py::handle base(errors.base);
   errors.lattice = addError(module, "LatticeError", py::make_tuple(base, valueError),
-                            "Bad input to the FFD engine (ffd::LatticeError).");
+                            R"doc(Bad input to the FFD engine (ffd::LatticeError); also a ValueError.
+
+Raised for bad lattice counts, bases, frames or control points, non-finite points, and an
+embedding used with a lattice it was not built for ("embedding is stale ... re-embed").)doc");
   errors.cancelled = addError(module, "Cancelled", py::make_tuple(base),
-                              "A long computation stopped because its progress callback returned False.");
+                              R"doc(A long computation stopped because its progress callback returned False.
+
+Raised by embed, deformPoints, Deformer.fromPoints, Pipeline.update / reembedAll and
+SceneDeformer updates; what was computed before the cancel is kept as the C++ API documents.)doc");
   errors.widget = addError(module, "WidgetError", py::make_tuple(base, valueError),
-                           "A widget model call that cannot be done (widgets::WidgetError); .code names the kind.");
+                           R"doc(A widget model call that cannot be done (widgets::WidgetError); also a ValueError.
+
+.code names the kind: "UnknownWidget", "InvalidArgument", "InvalidBinding", "InconsistentLoop"
+or "GestureState"; .where is the location in a widget file's data, or "". The model is unchanged.)doc");
   errors.widgetFile = addError(module, "WidgetFileError", py::make_tuple(base, valueError),
-                               "A widget file that cannot be read or written.");
+                               R"doc(A widget file that cannot be read or written; also a ValueError.
+
+The message names the file and the JSON pointer of what is wrong.)doc");
   errors.sceneFile = addError(module, "SceneFileError", py::make_tuple(base, valueError),
-                              "A scene file that cannot be read or written.");
+                              R"doc(A scene file that cannot be read or written; also a ValueError.
+
+The message names the file and the JSON pointer of what is wrong.)doc");
   errors.meshIo = addError(module, "MeshIoError", py::make_tuple(base, osError),
-                           "A mesh or point file that cannot be read or written.");
+                           R"doc(A mesh or point file that cannot be read or written; also an OSError.
+
+The message names the file and the element or line ("bunny.obj:14: face 3: ...").)doc");
   errors.generator = addError(module, "GeneratorError", py::make_tuple(base, valueError),
-                              "A generator that cannot run with the given parameters.");
+                              R"doc(A generator that cannot run with the given parameters; also a ValueError.
+
+The message names the generator and the parameter (unknown names, bad values, failed solves).)doc");
   errors.animation = addError(module, "AnimationError", py::make_tuple(base, valueError),
-                              "A key or animation that cannot be set or evaluated (scenes::AnimationError).");
+                              R"doc(A key or animation that cannot be set or evaluated (scenes::AnimationError); also a ValueError.
+
+Raised for a kind a widget cannot key, a value of the wrong shape, a time out of range, or an
+animation applied during a gesture.)doc");
 
   py::register_exception_translator([](std::exception_ptr pointer) {
     if (!pointer) return;

@@ -73,7 +73,11 @@ struct SceneDeformerHandle {
 };
 
 void bindMeshes(py::module_& m) {
-  py::class_<scenes::MeshData>(m, "MeshData", "Points with triangles or segments (scenes/mesh_io.h).")
+  py::class_<scenes::MeshData>(m, "MeshData", R"doc(Points with triangles or segments: an object's geometry, as the mesh readers return it.
+
+MeshData(points, triangles=None, segments=None, hasNormals=False). points is a writable
+#P x 3 view; triangles (#T x 3) and segments (#S x 2) are copies on read; hasNormals: the file
+had normals (writers recompute them).)doc")
       .def(py::init([](const py::object& points, const py::object& triangles, const py::object& segments, bool normals) {
              scenes::MeshData mesh;
              mesh.points = PointsArg(points, "points").ref();
@@ -82,7 +86,15 @@ void bindMeshes(py::module_& m) {
              mesh.hasNormals = normals;
              return mesh;
            }),
-           "points"_a, "triangles"_a = py::none(), "segments"_a = py::none(), "hasNormals"_a = false)
+           "points"_a, "triangles"_a = py::none(), "segments"_a = py::none(), "hasNormals"_a = false, R"doc(A mesh from arrays.
+
+Args:
+    points: #P x 3 float.
+    triangles: #T x 3 point indices, or None.
+    segments: #S x 2 point indices, or None.
+    hasNormals: write recomputed normals.
+Raises:
+    ValueError: arrays of the wrong shape (validateMesh checks the indices).)doc")
       .def_property(
           "points", [](py::object self) { return viewOf(self.cast<scenes::MeshData&>().points, self, true); },
           [](scenes::MeshData& mesh, const py::object& points) { mesh.points = PointsArg(points, "points").ref(); },
@@ -101,40 +113,89 @@ void bindMeshes(py::module_& m) {
       });
   // Lambdas: readMesh and writeMesh also have stream overloads.
   m.def("readMesh", [](const std::filesystem::path& path) { return scenes::readMesh(path); }, "path"_a,
-        py::call_guard<py::gil_scoped_release>(),
-        "Reads .obj .ply .stl .vtp .vtk .gltf/.glb .xyz .npy by extension, checked while it parses.");
+        py::call_guard<py::gil_scoped_release>(), R"doc(Reads a mesh or point file; the extension picks the format, and it is checked while it parses.
+
+Args:
+    path: .obj .ply .stl .vtp .vtk .gltf/.glb .xyz or .npy.
+Returns:
+    MeshData. The interpreter lock is released while it reads.
+Raises:
+    MeshIoError: the file cannot be read; the message names the file and the element or line.)doc");
   m.def("writeMesh", [](const std::filesystem::path& path, const scenes::MeshData& mesh) { scenes::writeMesh(path, mesh); },
-        "path"_a, "mesh"_a, py::call_guard<py::gil_scoped_release>(),
-        "Writes .obj .ply .stl .vtp .vtk .xyz .npy by extension, atomically.");
-  m.def("validateMesh", &scenes::validateMesh, "mesh"_a, "what"_a = "mesh");
+        "path"_a, "mesh"_a, py::call_guard<py::gil_scoped_release>(), R"doc(Writes a mesh atomically (a temporary file renamed over the target); the extension picks the format.
+
+Args:
+    path: .obj .ply .stl .vtp .vtk .xyz or .npy.
+    mesh: MeshData.
+Raises:
+    MeshIoError: an unknown extension, an invalid mesh, or a failed write (nothing is left behind).)doc");
+  m.def("validateMesh", &scenes::validateMesh, "mesh"_a, "what"_a = "mesh", R"doc(Checks a mesh: shapes, index ranges and finite points.
+
+Args:
+    mesh: MeshData.
+    what: the name used in the message.
+Raises:
+    MeshIoError: naming the first offending point or element.)doc");
 }
 
 void bindGenerators(py::module_& m) {
-  m.def("generatorNames", [] { return scenes::builtinGenerators().names(); });
+  m.def("generatorNames", [] { return scenes::builtinGenerators().names(); }, R"doc(The names of the built-in curve and surface generators (docs/generators.md).
+
+Returns:
+    list of str, sorted.)doc");
   m.def("generatorSummary", [](const std::string& name) { return scenes::builtinGenerators().get(name).summary; },
-        "name"_a);
+        "name"_a, R"doc(One line describing a generator.
+
+Args:
+    name: a generator name.
+Raises:
+    GeneratorError: an unknown generator (the message lists the known ones).)doc");
   m.def("generatorParameterNames",
-        [](const std::string& name) { return scenes::builtinGenerators().get(name).parameterNames; }, "name"_a);
+        [](const std::string& name) { return scenes::builtinGenerators().get(name).parameterNames; }, "name"_a, R"doc(The parameters a generator accepts.
+
+Args:
+    name: a generator name.
+Returns:
+    list of str.
+Raises:
+    GeneratorError: an unknown generator.)doc");
   m.def("generate",
         [](const std::string& name, const py::dict& parameters, double density) {
           const scenes::GeneratorParameters values = generatorParameters(parameters);
           py::gil_scoped_release release;
           return scenes::builtinGenerators().generate(name, values, density);
         },
-        "name"_a, "parameters"_a = py::dict(), "density"_a = 1.0,
-        "Runs a built-in generator by name (docs/generators.md) and returns its MeshData.");
+        "name"_a, "parameters"_a = py::dict(), "density"_a = 1.0, R"doc(Runs a built-in generator and returns its curve or surface.
+
+Args:
+    name: a generator name (generatorNames()).
+    parameters: dict of its parameters (numbers, lists, strings, bools); unknown names are refused.
+    density: sampling relative to the generator's default, (0, 64].
+Returns:
+    MeshData. The interpreter lock is released while it runs.
+Raises:
+    GeneratorError: an unknown generator or parameter, a bad value, or a solve that fails.)doc");
 }
 
 void bindSceneDocuments(py::module_& m) {
-  py::class_<scenes::SceneObject>(m, "SceneObject")
+  py::class_<scenes::SceneObject>(m, "SceneObject", R"doc(A deformable object of a Scene (read-only; Scene.findObject returns it).
+
+Fields: name, mesh (its own, undeformed points; Scene.setObjectMesh changes them).)doc")
       .def_readonly("name", &scenes::SceneObject::name)
       .def_readonly("mesh", &scenes::SceneObject::mesh, "The object's own (undeformed) points (Scene.setObjectMesh changes them).");
-  py::class_<scenes::Attachment>(m, "Attachment")
+  py::class_<scenes::Attachment>(m, "Attachment", R"doc(A root lattice (with its subtree) deforming some objects of a Scene.
+
+Fields: lattice (the root lattice's WidgetId, which a rename keeps), objects (names).)doc")
       .def_readonly("lattice", &scenes::Attachment::lattice, "The root lattice's WidgetId (a rename keeps it).")
       .def_readonly("objects", &scenes::Attachment::objects);
 
-  py::class_<scenes::Scene>(m, "Scene", "Objects, the widget model deforming them, attachments (scenes/scene.h).")
-      .def(py::init<>())
+  py::class_<scenes::Scene>(m, "Scene", R"doc(A document: objects, the widget model whose lattices deform them, attachments, camera, animation.
+
+Read one with readScene(); edit widgets through scene.widgets (a WidgetModel) and objects with
+the Scene methods; deformScene() or a SceneDeformer gives the deformed points (scenes/scene.h).)doc")
+      .def(py::init<>(), R"doc(An empty scene.
+
+Add objects with addMeshFile and lattices with attachNewLattice, or read one with readScene().)doc")
       .def_readwrite("description", &scenes::Scene::description)
       .def_readwrite("widgets", &scenes::Scene::widgets)
       .def_property_readonly("attachments", &scenes::Scene::attachments)
@@ -144,28 +205,90 @@ void bindSceneDocuments(py::module_& m) {
              std::vector<std::string> names;
              for (const auto& object : scene.objects()) names.push_back(object.name);
              return names;
-           })
-      .def("findObject", &scenes::Scene::findObject, py::return_value_policy::reference_internal, "name"_a)
+           }, R"doc(The objects' names, in scene order.
+
+Returns:
+    list of str.)doc")
+      .def("findObject", &scenes::Scene::findObject, py::return_value_policy::reference_internal, "name"_a, R"doc(The object of that name.
+
+Args:
+    name: the object's name.
+Returns:
+    SceneObject, or None when there is none.)doc")
       .def(
           "setObjectMesh",
           [](scenes::Scene& scene, const std::string& name, scenes::MeshData mesh) { scene.setObjectMesh(name, std::move(mesh)); },
-          "name"_a, "mesh"_a, "Replaces an object's own points (a deformer notices through the object's revision).")
-      .def("latticesDeforming", &scenes::Scene::latticesDeforming, "object"_a)
-      .def("validate", &scenes::validateScene);
+          "name"_a, "mesh"_a, R"doc(Replaces an object's own points (a deformer notices through the object's revision).
+
+Args:
+    name: the object's name.
+    mesh: MeshData.
+Raises:
+    ValueError: an unknown object.)doc")
+      .def("latticesDeforming", &scenes::Scene::latticesDeforming, "object"_a, R"doc(The root lattices deforming an object, in attachment order.
+
+Args:
+    object: the object's name.
+Returns:
+    list of WidgetId.)doc")
+      .def("validate", &scenes::validateScene, R"doc(Checks the scene: unique names, attachments naming existing root lattices and objects.
+
+Raises:
+    SceneFileError: naming what is wrong.)doc");
 
   m.def("readScene", py::overload_cast<const std::filesystem::path&>(&scenes::readScene), "path"_a,
-        py::call_guard<py::gil_scoped_release>(), "Reads a scene file, or <folder>/scene.json.");
+        py::call_guard<py::gil_scoped_release>(), R"doc(Reads a scene file, or <folder>/scene.json, with its meshes, generators and widget file.
+
+Args:
+    path: a .json file or a folder.
+Returns:
+    Scene. The interpreter lock is released while it reads.
+Raises:
+    SceneFileError: the file and the JSON pointer of what is wrong. MeshIoError: a mesh file.
+    WidgetFileError: its widget file. GeneratorError: a generated object.)doc");
   m.def("writeScene", py::overload_cast<const std::filesystem::path&, const scenes::Scene&>(&scenes::writeScene),
-        "path"_a, "scene"_a, py::call_guard<py::gil_scoped_release>());
-  m.def("sceneFileText", &scenes::sceneFileText, "scene"_a);
+        "path"_a, "scene"_a, py::call_guard<py::gil_scoped_release>(), R"doc(Writes a scene file atomically.
+
+Args:
+    path: the .json file (or a folder: <folder>/scene.json).
+    scene: Scene.
+Raises:
+    SceneFileError: the scene cannot be written (the message says why).)doc");
+  m.def("sceneFileText", &scenes::sceneFileText, "scene"_a, R"doc(The scene file's JSON text, as writeScene writes it.
+
+Args:
+    scene: Scene.
+Returns:
+    str.)doc");
   m.def("readWidgetFile", py::overload_cast<const std::filesystem::path&>(&scenes::readWidgetFile), "path"_a,
-        py::call_guard<py::gil_scoped_release>());
+        py::call_guard<py::gil_scoped_release>(), R"doc(Reads a widget file: lattices, cells, affine widgets and bindings (docs/widget-file-format.md).
+
+Args:
+    path: the .json file.
+Returns:
+    WidgetModel. The interpreter lock is released while it reads.
+Raises:
+    WidgetFileError: the file and the JSON pointer of what is wrong.)doc");
   m.def("writeWidgetFile",
         py::overload_cast<const std::filesystem::path&, const widgets::WidgetModel&>(&scenes::writeWidgetFile), "path"_a,
-        "model"_a, py::call_guard<py::gil_scoped_release>());
-  m.def("widgetFileText", &scenes::widgetFileText, "model"_a);
+        "model"_a, py::call_guard<py::gil_scoped_release>(), R"doc(Writes a widget file atomically.
 
-  py::class_<scenes::SceneDeformStats>(m, "SceneDeformStats")
+Args:
+    path: the .json file.
+    model: WidgetModel.
+Raises:
+    WidgetFileError: the file cannot be written.)doc");
+  m.def("widgetFileText", &scenes::widgetFileText, "model"_a, R"doc(The widget file's JSON text, as writeWidgetFile writes it.
+
+Args:
+    model: WidgetModel.
+Returns:
+    str.)doc");
+
+  py::class_<scenes::SceneDeformStats>(m, "SceneDeformStats", R"doc(Timing and work of the last SceneDeformer update.
+
+Fields: seconds, reembeddedStages, deformedPoints, outsidePoints, failedPoints, embedSeconds,
+latticesBuilt, deltaStages.)doc")
       .def_readonly("seconds", &scenes::SceneDeformStats::seconds)
       .def_readonly("reembeddedStages", &scenes::SceneDeformStats::reembeddedStages)
       .def_readonly("deformedPoints", &scenes::SceneDeformStats::deformedPoints)
@@ -175,56 +298,110 @@ void bindSceneDocuments(py::module_& m) {
       .def_readonly("latticesBuilt", &scenes::SceneDeformStats::latticesBuilt)
       .def_readonly("deltaStages", &scenes::SceneDeformStats::deltaStages);
 
-  py::class_<scenes::GestureMotion>(m, "GestureMotion",
-                                    "How an object's points moved by delta steps of its last lattice stage since their "
-                                    "base: points = base + sum_c controlWeights(object, controlPoints[c]) * displacements[c].")
+  py::class_<scenes::GestureMotion>(m, "GestureMotion", R"doc(How an object's points moved by delta steps of its last lattice stage since their base revision.
+
+A point's motion is sum_c controlWeights(name, c) * displacements[c]. Fields: baseRevision,
+lattice, controlPoints, displacements.)doc")
       .def_readonly("baseRevision", &scenes::GestureMotion::baseRevision)
       .def_readonly("lattice", &scenes::GestureMotion::lattice)
       .def_readonly("controlPoints", &scenes::GestureMotion::controlPoints)
       .def_readonly("displacements", &scenes::GestureMotion::displacements);
 
-  py::class_<SceneDeformerHandle>(m, "SceneDeformer",
-                                  "Evaluates a scene's lattice trees per object (scenes/scene_deformer.h).")
-      .def(py::init<>())
+  py::class_<SceneDeformerHandle>(m, "SceneDeformer", R"doc(Evaluates a scene's lattice trees per object, re-embedding and re-evaluating only what changed.
+
+Keep one per scene and call update(scene) after every edit; points(name) gives an object's
+deformed points (scenes/scene_deformer.h).)doc")
+      .def(py::init<>(), R"doc(A deformer with nothing computed yet.
+
+The first update(scene) embeds every object.)doc")
       .def("update",
            [](SceneDeformerHandle& h, const scenes::Scene& scene, std::optional<widgets::WidgetId> active) {
              h.run([&] { h.deformer.update(scene, active); });
            },
-           "scene"_a, "activeLattice"_a = py::none(), "Brings every object's deformed points up to date (GIL released).")
+           "scene"_a, "activeLattice"_a = py::none(), R"doc(Brings every object's deformed points up to date.
+
+Args:
+    scene: Scene.
+    activeLattice: WidgetId of the lattice being edited (it re-embeds at once), or None.
+Raises:
+    LatticeError: a lattice that cannot embed. Cancelled: the progress callback returned False.
+    The interpreter lock is released while it runs.)doc")
       .def("updateGesture",
            [](SceneDeformerHandle& h, const scenes::Scene& scene, std::optional<widgets::WidgetId> active) {
              h.run([&] { h.deformer.updateGesture(scene, active); });
            },
-           "scene"_a, "activeLattice"_a = py::none(),
-           "One step of a gesture: as update(), but a lattice whose control points moved is updated by deltas "
-           "(exact to rounding only, until finishGesture() or update()). GIL released.")
+           "scene"_a, "activeLattice"_a = py::none(), R"doc(One step of a gesture: as update(), but a lattice whose control points moved is updated by deltas.
+
+Exact to rounding only, until finishGesture() or update().
+Args:
+    scene: Scene.
+    activeLattice: WidgetId of the dragged lattice, or None.
+Raises:
+    LatticeError, Cancelled: as update().)doc")
       .def("finishGesture", [](SceneDeformerHandle& h, const scenes::Scene& scene) {
         h.run([&] { h.deformer.finishGesture(scene); });
-      }, "scene"_a, "Ends a gesture: evaluates every lattice updated by deltas in full (the exact result).")
+      }, "scene"_a, R"doc(Ends a gesture: evaluates every lattice updated by deltas in full (the exact result).
+
+Args:
+    scene: Scene.
+Raises:
+    LatticeError, Cancelled: as update().)doc")
       .def("revision", [](const SceneDeformerHandle& h, const std::string& object) { return h.deformer.revision(object); },
-           "object"_a, "Grows whenever the object's deformed points change.")
+           "object"_a, R"doc(A number that grows whenever the object's deformed points change.
+
+Args:
+    object: the object's name.
+Raises:
+    ValueError: an unknown object.)doc")
       .def("gestureMotion",
            [](const SceneDeformerHandle& h, const std::string& object) { return h.deformer.gestureMotion(object); },
-           "object"_a, "The object's motion by delta steps of its last lattice stage since its base, or None.")
+           "object"_a, R"doc(The object's motion by delta steps of its last lattice stage since its base.
+
+Args:
+    object: the object's name.
+Returns:
+    GestureMotion, or None when its last update was not by deltas.)doc")
       .def("controlWeights",
            [](const SceneDeformerHandle& h, const std::string& object, Eigen::Index controlPoint) {
              return h.deformer.controlWeights(object, controlPoint);
            },
-           "object"_a, "controlPoint"_a,
-           "The weight of a control point of the object's last lattice stage for each of its points.")
+           "object"_a, "controlPoint"_a, R"doc(The weight of one control point of the object's last lattice stage at each of its points.
+
+Args:
+    object: the object's name.
+    controlPoint: flat index in that lattice.
+Returns:
+    array of #points weights.
+Raises:
+    ValueError: an unknown object, one without lattices or not embedded yet.
+    LatticeError: a control point out of range.)doc")
       .def("setProgress",
            [](SceneDeformerHandle& h, const py::object& callback) {
              h.progress = PythonProgress(callback);
              h.deformer.setProgress(h.progress.fractionHook());
            },
-           "progress"_a, "progress(fraction) -> bool|None, called on the updating thread; False or an exception cancels.")
+           "progress"_a, R"doc(Sets the callback that reports progress of long updates and may cancel them.
+
+Args:
+    progress: callable(fraction) called on the updating thread; returning False (or raising)
+        cancels the update with Cancelled (or that exception); None or True goes on.)doc")
       .def("points",
            [](py::object self, const std::string& object) {
              return viewOf(self.cast<SceneDeformerHandle&>().deformer.points(object), self, false);
            },
-           "object"_a, "Deformed points of an object (a read-only view, rewritten by the next update).")
+           "object"_a, R"doc(An object's deformed points, #points x 3.
+
+Args:
+    object: the object's name.
+Returns:
+    A read-only view that the next update rewrites (.copy() to keep).
+Raises:
+    ValueError: an unknown object.)doc")
       .def_property_readonly("lastStats", [](const SceneDeformerHandle& h) { return h.deformer.lastStats(); })
-      .def("reset", [](SceneDeformerHandle& h) { h.deformer.reset(); });
+      .def("reset", [](SceneDeformerHandle& h) { h.deformer.reset(); }, R"doc(Forgets everything computed; the next update embeds every object again.
+
+Returns:
+    None.)doc");
 
   m.def("deformScene",
         [](const scenes::Scene& scene) {
@@ -237,7 +414,14 @@ void bindSceneDocuments(py::module_& m) {
           for (auto& [name, matrix] : points) result[py::str(name)] = toArray(std::move(matrix));
           return result;
         },
-        "scene"_a, "The deformed points of every object, by name.");
+        "scene"_a, R"doc(The deformed points of every object of a scene, in one call.
+
+Args:
+    scene: Scene.
+Returns:
+    dict {object name: N x 3 array}. The interpreter lock is released while it runs.
+Raises:
+    LatticeError: a lattice that cannot embed.)doc");
 }
 
 }  // namespace

@@ -22,43 +22,66 @@ using widgets::WidgetModel;
 namespace {
 
 void bindValueTypes(py::module_& m) {
-  py::class_<WidgetId>(m, "WidgetId", "Handle of a widget in one model; printed as w<N>.")
+  py::class_<WidgetId>(m, "WidgetId", R"doc(The handle of a widget in one WidgetModel; printed as w<N>.
+
+Returned by the add* calls and find(); hashable and ordered. value is the number; valid() is
+False for a default-constructed id.)doc")
       .def_readonly("value", &WidgetId::value)
-      .def("valid", &WidgetId::valid)
+      .def("valid", &WidgetId::valid, R"doc(True unless the id is the invalid default.
+
+Returns:
+    bool.)doc")
       .def(py::self == py::self)
       .def(py::self < py::self)
       .def("__hash__", [](const WidgetId& id) { return std::hash<std::uint32_t>{}(id.value); })
       .def("__repr__", [](const WidgetId& id) { return widgets::toString(id); });
-  py::class_<widgets::BindingId>(m, "BindingId")
+  py::class_<widgets::BindingId>(m, "BindingId", R"doc(The handle of a binding in one WidgetModel; printed as b<N>.
+
+Returned by WidgetModel.bind(); hashable; field value.)doc")
       .def_readonly("value", &widgets::BindingId::value)
       .def(py::self == py::self)
       .def("__hash__", [](const widgets::BindingId& id) { return std::hash<std::uint32_t>{}(id.value); })
       .def("__repr__", [](const widgets::BindingId& id) { return widgets::toString(id); });
 
-  py::enum_<widgets::WidgetType>(m, "WidgetType")
+  py::enum_<widgets::WidgetType>(m, "WidgetType", R"doc(The type of a widget: Lattice, Cell or Affine.
+
+WidgetModel.type(id) returns it; widgets(type) and names(type) filter by it.)doc")
       .value("Lattice", widgets::WidgetType::Lattice)
       .value("Cell", widgets::WidgetType::Cell)
       .value("Affine", widgets::WidgetType::Affine);
-  py::enum_<widgets::AffineKind>(m, "AffineKind")
+  py::enum_<widgets::AffineKind>(m, "AffineKind", R"doc(What an affine widget does: Translate (along its x), Rotate (about its z) or Scale.
+
+Its variation is a distance, an angle in radians or a log scale factor.)doc")
       .value("Translate", widgets::AffineKind::Translate)
       .value("Rotate", widgets::AffineKind::Rotate)
       .value("Scale", widgets::AffineKind::Scale);
-  py::enum_<widgets::CellKind>(m, "CellKind")
+  py::enum_<widgets::CellKind>(m, "CellKind", R"doc(Which points a cell groups: Point, Edge, Face, Slab, Box or Custom (Kuriyama 1996, sec. 6.2.1).
+
+CellSpec.point(...), .edge(...), ... make the specs.)doc")
       .value("Point", widgets::CellKind::Point)
       .value("Edge", widgets::CellKind::Edge)
       .value("Face", widgets::CellKind::Face)
       .value("Slab", widgets::CellKind::Slab)
       .value("Box", widgets::CellKind::Box)
       .value("Custom", widgets::CellKind::Custom);
-  py::enum_<widgets::BindingKind>(m, "BindingKind")
+  py::enum_<widgets::BindingKind>(m, "BindingKind", R"doc(The kind of a binding, decided by the two widgets bound (Kuriyama 1996, sec. 6.2.2).
+
+Attachment (cell -> affine widget), Variation (affine -> affine, through a ConversionRule),
+CellMotion (cell -> cell) or Hierarchy (cell -> lattice: the lattice rides on the cell).)doc")
       .value("Attachment", widgets::BindingKind::Attachment)
       .value("Variation", widgets::BindingKind::Variation)
       .value("CellMotion", widgets::BindingKind::CellMotion)
       .value("Hierarchy", widgets::BindingKind::Hierarchy);
 
-  py::class_<widgets::AffineMask>(m, "AffineMask", "Which of translation, rotation, scale a binding carries.")
+  py::class_<widgets::AffineMask>(m, "AffineMask", R"doc(Which of translation, rotation and scale a binding carries.
+
+AffineMask(translate=True, rotate=True, scale=False), or AffineMask.parse("TR"); str() gives
+the letters.)doc")
       .def(py::init([](bool t, bool r, bool s) { return widgets::AffineMask{t, r, s}; }), "translate"_a = true,
-           "rotate"_a = true, "scale"_a = false)
+           "rotate"_a = true, "scale"_a = false, R"doc(A mask from three flags.
+
+Args:
+    translate, rotate, scale: whether each part passes.)doc")
       .def_readwrite("translate", &widgets::AffineMask::translate)
       .def_readwrite("rotate", &widgets::AffineMask::rotate)
       .def_readwrite("scale", &widgets::AffineMask::scale)
@@ -66,23 +89,49 @@ void bindValueTypes(py::module_& m) {
         auto mask = widgets::parseMask(text);
         if (!mask) throw py::value_error("mask: expected letters T, R, S at most once each, got '" + text + "'");
         return *mask;
-      }, "text"_a)
+      }, "text"_a, R"doc(A mask from its letters, e.g. "TR" (translation and rotation).
+
+Args:
+    text: the letters T, R, S, each at most once ("" passes nothing).
+Raises:
+    ValueError: another letter, or one given twice.)doc")
       .def(py::self == py::self)
       .def("__str__", &widgets::maskString)
       .def("__repr__", [](const widgets::AffineMask& mask) { return "AffineMask('" + widgets::maskString(mask) + "')"; });
 
-  py::class_<widgets::VariationRange>(m, "VariationRange")
-      .def(py::init([](double lo, double hi) { return widgets::VariationRange{lo, hi}; }), "min"_a, "max"_a)
+  py::class_<widgets::VariationRange>(m, "VariationRange", R"doc(A closed range of variation: a distance, an angle in radians or a log scale factor.
+
+VariationRange(min, max); ConversionRule.clamp holds one.)doc")
+      .def(py::init([](double lo, double hi) { return widgets::VariationRange{lo, hi}; }), "min"_a, "max"_a, R"doc(The range [min, max].
+
+Args:
+    min, max: its ends (an empty range is refused where it is used).)doc")
       .def_readwrite("min", &widgets::VariationRange::min)
       .def_readwrite("max", &widgets::VariationRange::max);
-  py::class_<widgets::ConversionRule>(m, "ConversionRule", "delta_to = gain * delta_from, optionally clamped.")
-      .def(py::init<double, std::optional<widgets::VariationRange>>(), "gain"_a = 1.0, "clamp"_a = py::none())
+  py::class_<widgets::ConversionRule>(m, "ConversionRule", R"doc(The rule of an affine <-> affine binding: delta_to = gain * delta_from, optionally clamped.
+
+ConversionRule(gain=1.0, clamp=None), or ConversionRule.screw(distancePerTurn). The clamp
+bounds the driven widget's accumulated variation (Kuriyama 1996, sec. 6.2.2).)doc")
+      .def(py::init<double, std::optional<widgets::VariationRange>>(), "gain"_a = 1.0, "clamp"_a = py::none(), R"doc(A conversion rule.
+
+Args:
+    gain: != 0 and finite (checked when the binding is made: WidgetError InvalidArgument).
+    clamp: VariationRange bounding the driven widget's variation, or None.)doc")
       .def_readwrite("gain", &widgets::ConversionRule::gain)
       .def_readwrite("clamp", &widgets::ConversionRule::clamp)
-      .def_static("screw", &widgets::ConversionRule::screw, "distancePerTurn"_a)
+      .def_static("screw", &widgets::ConversionRule::screw, "distancePerTurn"_a, R"doc(A screw: distancePerTurn of translation per full turn (2 pi rad) of a rotate widget.
+
+Args:
+    distancePerTurn: the pitch (Kuriyama 1996, Fig. 6-10), for a binding from a rotate widget to
+        a translate widget.
+Returns:
+    ConversionRule with gain distancePerTurn / (2 pi).)doc")
       .def(py::self == py::self);
 
-  py::class_<widgets::Binding>(m, "Binding")
+  py::class_<widgets::Binding>(m, "Binding", R"doc(One binding of a WidgetModel (read-only; WidgetModel.binding(id) returns it).
+
+Fields: id, kind (BindingKind), from_ and to (WidgetId), mask (AffineMask), rule
+(ConversionRule, Variation only), oneWay.)doc")
       .def_readonly("id", &widgets::Binding::id)
       .def_readonly("kind", &widgets::Binding::kind)
       .def_readonly("from_", &widgets::Binding::from)
@@ -91,34 +140,88 @@ void bindValueTypes(py::module_& m) {
       .def_readonly("rule", &widgets::Binding::rule)
       .def_readonly("oneWay", &widgets::Binding::oneWay);
 
-  py::class_<widgets::CellSpec>(m, "CellSpec", "Which lattice points a cell groups.")
+  py::class_<widgets::CellSpec>(m, "CellSpec", R"doc(Which lattice points a cell groups: made by CellSpec.point/edge/face/slab/box/custom.
+
+Grid indices (i, j, k), flat index i + l*(j + m*k). Fields: kind, base, axis, indices. A spec
+outside the lattice's grid is refused by WidgetModel.addCell (WidgetError InvalidArgument).)doc")
       .def_readonly("kind", &widgets::CellSpec::kind)
       .def_readonly("base", &widgets::CellSpec::base)
       .def_readonly("axis", &widgets::CellSpec::axis)
       .def_readonly("indices", &widgets::CellSpec::indices)
-      .def_static("point", &widgets::CellSpec::point, "i"_a, "j"_a, "k"_a)
-      .def_static("edge", &widgets::CellSpec::edge, "i"_a, "j"_a, "k"_a, "alongAxis"_a)
-      .def_static("face", &widgets::CellSpec::face, "i"_a, "j"_a, "k"_a, "normalAxis"_a)
-      .def_static("slab", &widgets::CellSpec::slab, "normalAxis"_a, "planeIndex"_a)
-      .def_static("box", &widgets::CellSpec::box, "i"_a, "j"_a, "k"_a)
-      .def_static("custom", &widgets::CellSpec::custom, "flatIndices"_a)
+      .def_static("point", &widgets::CellSpec::point, "i"_a, "j"_a, "k"_a, R"doc(The point (i, j, k).
+
+Args:
+    i, j, k: grid indices.
+Returns:
+    CellSpec.)doc")
+      .def_static("edge", &widgets::CellSpec::edge, "i"_a, "j"_a, "k"_a, "alongAxis"_a, R"doc(The edge from (i, j, k) to the next point along an axis.
+
+Args:
+    i, j, k: grid indices of its lower end.
+    alongAxis: 0, 1 or 2.
+Returns:
+    CellSpec.)doc")
+      .def_static("face", &widgets::CellSpec::face, "i"_a, "j"_a, "k"_a, "normalAxis"_a, R"doc(The quad with lower corner (i, j, k) in the plane normal to an axis.
+
+Args:
+    i, j, k: grid indices of its lower corner.
+    normalAxis: 0, 1 or 2.
+Returns:
+    CellSpec.)doc")
+      .def_static("slab", &widgets::CellSpec::slab, "normalAxis"_a, "planeIndex"_a, R"doc(Every point of one plane of the grid.
+
+Args:
+    normalAxis: the axis normal to the plane (0, 1 or 2).
+    planeIndex: the plane's index along that axis.
+Returns:
+    CellSpec.)doc")
+      .def_static("box", &widgets::CellSpec::box, "i"_a, "j"_a, "k"_a, R"doc(The 2 x 2 x 2 points with lower corner (i, j, k).
+
+Args:
+    i, j, k: grid indices of the lower corner.
+Returns:
+    CellSpec.)doc")
+      .def_static("custom", &widgets::CellSpec::custom, "flatIndices"_a, R"doc(Any points, by flat index.
+
+Args:
+    flatIndices: at least one, no duplicates.
+Returns:
+    CellSpec.)doc")
       .def(py::self == py::self);
 
-  py::class_<widgets::Ray>(m, "Ray", "A world-space ray origin + t * direction.")
+  py::class_<widgets::Ray>(m, "Ray", R"doc(A world-space ray origin + t * direction, for picking and dragging.
+
+Ray(origin, direction); fields origin, direction; at(t).)doc")
       .def(py::init([](const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
              return widgets::Ray{origin, direction};
            }),
-           "origin"_a, "direction"_a)
+           "origin"_a, "direction"_a, R"doc(A ray.
+
+Args:
+    origin: 3 numbers, world.
+    direction: 3 numbers, non-zero (normalised where used).)doc")
       .def_readwrite("origin", &widgets::Ray::origin)
       .def_readwrite("direction", &widgets::Ray::direction)
-      .def("at", &widgets::Ray::at, "t"_a);
-  py::class_<widgets::PickResult>(m, "PickResult")
+      .def("at", &widgets::Ray::at, "t"_a, R"doc(The point at distance t along the (normalised) direction.
+
+Args:
+    t: distance from the origin.
+Returns:
+    3-vector.)doc");
+  py::class_<widgets::PickResult>(m, "PickResult", R"doc(What WidgetModel.pick hit.
+
+Fields: id (the widget), t (distance along the ray), point (world hit point).)doc")
       .def_readonly("id", &widgets::PickResult::id)
       .def_readonly("t", &widgets::PickResult::t)
       .def_readonly("point", &widgets::PickResult::point);
 
-  py::class_<widgets::LatticeSettings>(m, "LatticeSettings", "Bases, outside policy and cylinder of a lattice widget.")
-      .def(py::init<>())
+  py::class_<widgets::LatticeSettings>(m, "LatticeSettings", R"doc(The FFD settings of a lattice widget: bases and outside policy.
+
+Fields: basis (three ffd.AxisBasis, u v w; Bernstein by default), outside (ffd.OutsidePolicy).
+Setting basis to anything but three bases raises ValueError.)doc")
+      .def(py::init<>(), R"doc(Default settings: Bernstein bases on every axis, the Identity outside policy.
+
+Edit basis and outside, then pass them to WidgetModel.addLattice or setLatticeSettings.)doc")
       .def_property(
           "basis", [](const widgets::LatticeSettings& s) { return std::vector<ffd::AxisBasis>(s.basis.begin(), s.basis.end()); },
           [](widgets::LatticeSettings& s, const std::vector<ffd::AxisBasis>& bases) {
@@ -131,11 +234,19 @@ void bindValueTypes(py::module_& m) {
 py::array latticeView(py::object self, const Eigen::MatrixX3d& points) { return viewOf(points, self, false); }
 
 void bindModel(py::module_& m) {
-  py::class_<WidgetModel>(m, "WidgetModel",
-                          "Lattice, cell and affine widgets, bindings and gestures (widgets/widget_model.h). "
-                          "Errors raise ffdkit.WidgetError and leave the model unchanged.")
-      .def(py::init<>())
-      .def("copy", [](const WidgetModel& model) { return WidgetModel(model); })
+  py::class_<WidgetModel>(m, "WidgetModel", R"doc(The headless widget model (widgets/widget_model.h; Kuriyama 1996, ch. 6).
+
+Lattice widgets own their control points; cell widgets group them; affine widgets (translate,
+rotate, scale) attached to cells move them; bindings carry one widget's motion to another.
+Every failing call raises ffdkit.WidgetError (a ValueError; .code names the kind) and leaves the
+model unchanged.)doc")
+      .def(py::init<>(), R"doc(An empty model.
+
+Add lattices with addLattice, then cells, affine widgets and bindings.)doc")
+      .def("copy", [](const WidgetModel& model) { return WidgetModel(model); }, R"doc(An independent copy of the model (without an active gesture).
+
+Returns:
+    WidgetModel.)doc")
       // building
       .def("addLattice",
            [](WidgetModel& model, const std::string& name, const Eigen::Vector3i& counts, const py::object& frame,
@@ -149,14 +260,44 @@ void bindModel(py::module_& m) {
              return model.addLattice(options);
            },
            "name"_a = "", "counts"_a = Eigen::Vector3i(2, 2, 2), "frame"_a = py::none(), "restPoints"_a = py::none(),
-           "settings"_a = py::none(), "A root lattice widget (LatticeOptions as keywords).")
-      .def("addCell", &WidgetModel::addCell, "lattice"_a, "spec"_a, "name"_a = "")
+           "settings"_a = py::none(), R"doc(Adds a root lattice widget.
+
+Args:
+    name: unique; "" -> "lattice<N>".
+    counts: (l, m, n) control points, each >= 2.
+    frame: 4 x 4 world placement (default identity).
+    restPoints: l*m*n x 3 local rest points (default the unit box's grid).
+    settings: LatticeSettings (default Bernstein bases).
+Returns:
+    WidgetId.
+Raises:
+    WidgetError: counts < 2, a bad rest shape or non-finite values, a duplicate name.)doc")
+      .def("addCell", &WidgetModel::addCell, "lattice"_a, "spec"_a, "name"_a = "", R"doc(Adds a cell of a lattice.
+
+Args:
+    lattice: WidgetId of a lattice.
+    spec: CellSpec.
+    name: unique; "" -> a generated name.
+Returns:
+    WidgetId.
+Raises:
+    WidgetError: an unknown lattice, a spec outside its grid, a duplicate name.)doc")
       .def("addAffine",
            [](WidgetModel& model, WidgetId cell, widgets::AffineKind kind, const std::string& name,
               const py::object& placement) {
              return model.addAffine(cell, kind, name, affineArg(placement, "placement"));
            },
-           "cell"_a, "kind"_a, "name"_a = "", "placement"_a = py::none())
+           "cell"_a, "kind"_a, "name"_a = "", "placement"_a = py::none(), R"doc(Adds an affine widget attached to a cell (with its Attachment binding).
+
+Args:
+    cell: WidgetId of a cell.
+    kind: AffineKind.
+    name: unique; "" -> "<kind><N>".
+    placement: 4 x 4 relative to the cell's rest frame (default identity).
+Returns:
+    WidgetId.
+Raises:
+    WidgetError: an unknown cell, a duplicate name, a kind the cell cannot carry.)doc")
       .def("addFreeAffine",
            [](WidgetModel& model, widgets::AffineKind kind, const std::string& name, const py::object& placement) {
              widgets::AffineOptions options;
@@ -164,7 +305,16 @@ void bindModel(py::module_& m) {
              options.placement = affineArg(placement, "placement");
              return model.addFreeAffine(kind, options);
            },
-           "kind"_a, "name"_a = "", "placement"_a = py::none())
+           "kind"_a, "name"_a = "", "placement"_a = py::none(), R"doc(Adds an affine widget on no cell (e.g. a press handle); placement is its world frame.
+
+Args:
+    kind: AffineKind.
+    name: unique; "" -> "<kind><N>".
+    placement: 4 x 4 world frame (default identity).
+Returns:
+    WidgetId.
+Raises:
+    WidgetError: a duplicate name.)doc")
       .def("bind",
            [](WidgetModel& model, WidgetId a, WidgetId b, const std::optional<widgets::ConversionRule>& rule,
               const std::optional<widgets::AffineMask>& mask, bool oneWay) {
@@ -174,90 +324,381 @@ void bindModel(py::module_& m) {
              options.oneWay = oneWay;
              return model.bind(a, b, options);
            },
-           "a"_a, "b"_a, "rule"_a = py::none(), "mask"_a = py::none(), "oneWay"_a = false,
-           "Binds two widgets; the kind follows from their types (Kuriyama 1996, sec. 6.2.2).")
-      .def("unbind", &WidgetModel::unbind, "binding"_a)
-      .def("remove", &WidgetModel::remove, "id"_a)
-      .def("rename", &WidgetModel::rename, "id"_a, "name"_a)
+           "a"_a, "b"_a, "rule"_a = py::none(), "mask"_a = py::none(), "oneWay"_a = false, R"doc(Binds two widgets; the kind follows from their types (Kuriyama 1996, sec. 6.2.2).
+
+Args:
+    a, b: WidgetIds (cell+affine: Attachment; affine+affine: Variation; cell+cell: CellMotion;
+        cell+lattice: Hierarchy).
+    rule: ConversionRule of a Variation binding (default gain 1).
+    mask: AffineMask (default by kind).
+    oneWay: only a drives b.
+Returns:
+    BindingId.
+Raises:
+    WidgetError: unknown widgets, an unsupported pair or self binding, a duplicate binding, a
+        hierarchy cycle, a zero gain, or a loop whose gains do not multiply to 1.)doc")
+      .def("unbind", &WidgetModel::unbind, "binding"_a, R"doc(Removes a binding.
+
+Args:
+    binding: BindingId.
+Raises:
+    WidgetError: an unknown binding.)doc")
+      .def("remove", &WidgetModel::remove, "id"_a, R"doc(Removes a widget and its bindings.
+
+A lattice takes its cells and their widgets along (child lattices become roots); a cell's
+widgets become free.
+Args:
+    id: WidgetId.
+Raises:
+    WidgetError: an unknown widget, or during a gesture.)doc")
+      .def("rename", &WidgetModel::rename, "id"_a, "name"_a, R"doc(Renames a widget.
+
+Args:
+    id: WidgetId.
+    name: the new unique, non-empty name.
+Raises:
+    WidgetError: an unknown widget, an empty or duplicate name.)doc")
       .def("setPlacement",
            [](WidgetModel& model, WidgetId id, const py::object& p) { model.setPlacement(id, affineArg(p, "placement")); },
-           "affine"_a, "placement"_a)
-      .def("setAffineKind", &WidgetModel::setAffineKind, "affine"_a, "kind"_a)
-      .def("setMask", &WidgetModel::setMask, "binding"_a, "mask"_a)
-      .def("setRule", &WidgetModel::setRule, "binding"_a, "rule"_a)
-      .def("setOneWay", &WidgetModel::setOneWay, "binding"_a, "oneWay"_a)
-      .def("setLatticeSettings", &WidgetModel::setLatticeSettings, "lattice"_a, "settings"_a)
-      .def("setLatticeCounts", &WidgetModel::setLatticeCounts, "lattice"_a, "counts"_a)
+           "affine"_a, "placement"_a, R"doc(Sets an affine widget's placement (relative to its cell's rest frame; a free widget's world frame).
+
+Args:
+    affine: WidgetId.
+    placement: 4 x 4 affine matrix.
+Raises:
+    WidgetError: not an affine widget. ValueError: not a 4 x 4 matrix.)doc")
+      .def("setAffineKind", &WidgetModel::setAffineKind, "affine"_a, "kind"_a, R"doc(Changes what an affine widget does; its variation restarts at 0, bindings are kept.
+
+Args:
+    affine: WidgetId.
+    kind: AffineKind.
+Raises:
+    WidgetError: not an affine widget.)doc")
+      .def("setMask", &WidgetModel::setMask, "binding"_a, "mask"_a, R"doc(Sets the parts a binding carries.
+
+Args:
+    binding: BindingId.
+    mask: AffineMask.
+Raises:
+    WidgetError: an unknown binding or a Variation binding.)doc")
+      .def("setRule", &WidgetModel::setRule, "binding"_a, "rule"_a, R"doc(Sets a Variation binding's conversion rule.
+
+Args:
+    binding: BindingId.
+    rule: ConversionRule.
+Raises:
+    WidgetError: an unknown binding, a zero or non-finite gain, an inconsistent loop.)doc")
+      .def("setOneWay", &WidgetModel::setOneWay, "binding"_a, "oneWay"_a, R"doc(Makes a binding one-way (only from_ drives to) or two-way.
+
+Args:
+    binding: BindingId.
+    oneWay: bool.
+Raises:
+    WidgetError: an unknown binding.)doc")
+      .def("setLatticeSettings", &WidgetModel::setLatticeSettings, "lattice"_a, "settings"_a, R"doc(Sets a lattice's bases and outside policy.
+
+Args:
+    lattice: WidgetId.
+    settings: LatticeSettings.
+Raises:
+    WidgetError: not a lattice, or bases its counts cannot carry.)doc")
+      .def("setLatticeCounts", &WidgetModel::setLatticeCounts, "lattice"_a, "counts"_a, R"doc(Changes a lattice's point counts, keeping its deformation as well as the new lattice can hold it.
+
+Args:
+    lattice: WidgetId.
+    counts: (l, m, n), each >= 2.
+Raises:
+    WidgetError: during a gesture, counts < 2, a basis the new count cannot carry, or a cell that
+        no longer fits (the model is then unchanged).)doc")
       .def("setLatticeFrame",
            [](WidgetModel& model, WidgetId id, const py::object& f) { model.setLatticeFrame(id, affineArg(f, "frame")); },
-           "lattice"_a, "frame"_a)
+           "lattice"_a, "frame"_a, R"doc(Sets a root lattice's world frame.
+
+Args:
+    lattice: WidgetId of a root lattice.
+    frame: 4 x 4 affine matrix.
+Raises:
+    WidgetError: not a lattice, a child lattice, a singular frame.)doc")
       .def("setControlPoints",
            [](WidgetModel& model, WidgetId id, const py::object& points) {
              model.setControlPoints(id, PointsArg(points, "points").ref());
            },
-           "lattice"_a, "points"_a)
-      .def("resetLattice", &WidgetModel::resetLattice, "lattice"_a)
+           "lattice"_a, "points"_a, R"doc(Sets every control point of a lattice.
+
+Args:
+    lattice: WidgetId.
+    points: pointCount x 3, lattice-local.
+Raises:
+    WidgetError: not a lattice, wrong row count or non-finite values.)doc")
+      .def("resetLattice", &WidgetModel::resetLattice, "lattice"_a, R"doc(Puts a lattice back to rest: control points = rest points, its widgets' variations = 0.
+
+Args:
+    lattice: WidgetId.
+Raises:
+    WidgetError: not a lattice.)doc")
       // queries
-      .def("contains", &WidgetModel::contains, "id"_a)
-      .def("type", &WidgetModel::type, "id"_a)
-      .def("name", &WidgetModel::name, "id"_a)
-      .def("find", &WidgetModel::find, "name"_a)
+      .def("contains", &WidgetModel::contains, "id"_a, R"doc(True when the model holds the widget.
+
+Args:
+    id: WidgetId.)doc")
+      .def("type", &WidgetModel::type, "id"_a, R"doc(The widget's type.
+
+Args:
+    id: WidgetId.
+Returns:
+    WidgetType.
+Raises:
+    WidgetError: an unknown widget.)doc")
+      .def("name", &WidgetModel::name, "id"_a, R"doc(The widget's name.
+
+Args:
+    id: WidgetId.
+Raises:
+    WidgetError: an unknown widget.)doc")
+      .def("find", &WidgetModel::find, "name"_a, R"doc(The widget of that name.
+
+Args:
+    name: its name.
+Returns:
+    WidgetId.
+Raises:
+    WidgetError: no such widget (the message lists the known names).)doc")
       .def("widgets", [](const WidgetModel& model, std::optional<widgets::WidgetType> type) {
         return type ? model.widgets(*type) : model.widgets();
-      }, "type"_a = py::none())
+      }, "type"_a = py::none(), R"doc(The widgets in id order.
+
+Args:
+    type: a WidgetType to keep only that type, or None for all.
+Returns:
+    list of WidgetId.)doc")
       .def("names", [](const WidgetModel& model, std::optional<widgets::WidgetType> type) {
         std::vector<std::string> names;
         for (const WidgetId id : type ? model.widgets(*type) : model.widgets()) names.push_back(model.name(id));
         return names;
-      }, "type"_a = py::none(), "Widget names in id order (of one type if given).")
-      .def("bindings", &WidgetModel::bindings)
-      .def("bindingsOf", &WidgetModel::bindingsOf, "id"_a)
-      .def("binding", &WidgetModel::binding, "binding"_a)
+      }, "type"_a = py::none(), R"doc(The widgets' names in id order.
+
+Args:
+    type: a WidgetType to keep only that type, or None for all.
+Returns:
+    list of str.)doc")
+      .def("bindings", &WidgetModel::bindings, R"doc(Every binding, in id order.
+
+Returns:
+    list of BindingId.)doc")
+      .def("bindingsOf", &WidgetModel::bindingsOf, "id"_a, R"doc(The bindings with the widget at either end, in id order.
+
+Args:
+    id: WidgetId.
+Raises:
+    WidgetError: an unknown widget.)doc")
+      .def("binding", &WidgetModel::binding, "binding"_a, R"doc(A binding's data.
+
+Args:
+    binding: BindingId.
+Returns:
+    Binding.
+Raises:
+    WidgetError: an unknown binding.)doc")
       .def_property_readonly("revision", &WidgetModel::revision)
-      .def("counts", &WidgetModel::counts, "lattice"_a)
+      .def("counts", &WidgetModel::counts, "lattice"_a, R"doc(A lattice's control points per axis.
+
+Args:
+    lattice: WidgetId.
+Returns:
+    (l, m, n).
+Raises:
+    WidgetError: not a lattice.)doc")
       .def("controlPoints",
            [](py::object self, WidgetId id) { return latticeView(self, self.cast<const WidgetModel&>().controlPoints(id)); },
-           "lattice"_a, "Local control points (read-only view; the next edit of the model may invalidate it: copy to keep).")
+           "lattice"_a, R"doc(A lattice's control points, lattice-local, pointCount x 3.
+
+Args:
+    lattice: WidgetId.
+Returns:
+    A read-only view; the next edit of the model may change it (.copy() to keep).
+Raises:
+    WidgetError: not a lattice.)doc")
       .def("restPoints",
            [](py::object self, WidgetId id) { return latticeView(self, self.cast<const WidgetModel&>().restPoints(id)); },
-           "lattice"_a)
+           "lattice"_a, R"doc(A lattice's rest points, lattice-local, pointCount x 3.
+
+Args:
+    lattice: WidgetId.
+Returns:
+    A read-only view.
+Raises:
+    WidgetError: not a lattice.)doc")
       .def("worldControlPoints", [](const WidgetModel& model, WidgetId id) { return toArray(model.worldControlPoints(id)); },
-           "lattice"_a)
+           "lattice"_a, R"doc(A lattice's control points in the world, pointCount x 3.
+
+Args:
+    lattice: WidgetId.
+Returns:
+    A new array.
+Raises:
+    WidgetError: not a lattice.)doc")
       .def("worldRestPoints", [](const WidgetModel& model, WidgetId id) { return toArray(model.worldRestPoints(id)); },
-           "lattice"_a)
+           "lattice"_a, R"doc(A lattice's rest points at its current frame, in the world, pointCount x 3.
+
+Args:
+    lattice: WidgetId.
+Raises:
+    WidgetError: not a lattice.)doc")
       .def("latticeFrame", [](const WidgetModel& model, WidgetId id) { return affineToArray(model.latticeFrame(id)); },
-           "lattice"_a)
-      .def("latticeSettings", &WidgetModel::latticeSettings, "lattice"_a)
-      .def("ffdLattice", &WidgetModel::ffdLattice, "lattice"_a, "The FFD engine's lattice of a lattice widget (a copy).")
-      .def("parentCell", &WidgetModel::parentCell, "lattice"_a)
-      .def("parentLattice", &WidgetModel::parentLattice, "lattice"_a)
-      .def("children", &WidgetModel::children, "lattice"_a)
-      .def("roots", &WidgetModel::roots)
+           "lattice"_a, R"doc(A lattice's world frame (world = frame @ local).
+
+Args:
+    lattice: WidgetId.
+Returns:
+    4 x 4 array (a child lattice: its parent cell's frame times its placement).
+Raises:
+    WidgetError: not a lattice.)doc")
+      .def("latticeSettings", &WidgetModel::latticeSettings, "lattice"_a, R"doc(A lattice's bases and outside policy.
+
+Args:
+    lattice: WidgetId.
+Returns:
+    LatticeSettings.
+Raises:
+    WidgetError: not a lattice.)doc")
+      .def("ffdLattice", &WidgetModel::ffdLattice, "lattice"_a, R"doc(The FFD engine's lattice of a lattice widget, as the deformer uses it (a copy).
+
+Args:
+    lattice: WidgetId.
+Returns:
+    ffd.Lattice with its counts, bases, policy, rest and control points and world frame.
+Raises:
+    WidgetError: not a lattice.)doc")
+      .def("parentCell", &WidgetModel::parentCell, "lattice"_a, R"doc(The cell a child lattice rides on.
+
+Args:
+    lattice: WidgetId.
+Returns:
+    WidgetId, or None for a root.
+Raises:
+    WidgetError: not a lattice.)doc")
+      .def("parentLattice", &WidgetModel::parentLattice, "lattice"_a, R"doc(The lattice of parentCell().
+
+Args:
+    lattice: WidgetId.
+Returns:
+    WidgetId, or None for a root.
+Raises:
+    WidgetError: not a lattice.)doc")
+      .def("children", &WidgetModel::children, "lattice"_a, R"doc(A lattice's child lattices, in sibling order.
+
+Args:
+    lattice: WidgetId.
+Raises:
+    WidgetError: not a lattice.)doc")
+      .def("roots", &WidgetModel::roots, R"doc(The root lattices, in sibling order.
+
+Returns:
+    list of WidgetId.)doc")
       .def("pipelineOrder",
            [](const WidgetModel& model, std::optional<WidgetId> root) {
              return root ? model.pipelineOrder(*root) : model.pipelineOrder();
            },
-           "root"_a = py::none(), "Lattices in pre-order (of one root's tree if given).")
-      .def("cellsOf", &WidgetModel::cellsOf, "lattice"_a)
-      .def("latticeOf", &WidgetModel::latticeOf, "id"_a)
-      .def("cellSpec", &WidgetModel::cellSpec, "cell"_a)
-      .def("cellIndices", &WidgetModel::cellIndices, "cell"_a)
+           "root"_a = py::none(), R"doc(The lattices in pre-order: the order in which they deform (Kuriyama 1996, secs. 6.2.3, 6.3.2).
+
+Args:
+    root: a root lattice to list only its tree, or None for every tree.
+Raises:
+    WidgetError: root is not a lattice.)doc")
+      .def("cellsOf", &WidgetModel::cellsOf, "lattice"_a, R"doc(A lattice's cells, in id order.
+
+Args:
+    lattice: WidgetId.
+Raises:
+    WidgetError: not a lattice.)doc")
+      .def("latticeOf", &WidgetModel::latticeOf, "id"_a, R"doc(The lattice of a cell or of an attached affine widget.
+
+Args:
+    id: WidgetId.
+Returns:
+    WidgetId (invalid for a free affine widget).
+Raises:
+    WidgetError: an unknown widget.)doc")
+      .def("cellSpec", &WidgetModel::cellSpec, "cell"_a, R"doc(Which points a cell groups, as given.
+
+Args:
+    cell: WidgetId.
+Returns:
+    CellSpec.
+Raises:
+    WidgetError: not a cell.)doc")
+      .def("cellIndices", &WidgetModel::cellIndices, "cell"_a, R"doc(The flat indices of a cell's points.
+
+Args:
+    cell: WidgetId.
+Returns:
+    list of int.
+Raises:
+    WidgetError: not a cell.)doc")
       .def("cellWorldPoints", [](const WidgetModel& model, WidgetId id) { return toArray(model.cellWorldPoints(id)); },
-           "cell"_a)
-      .def("affinesOf", &WidgetModel::affinesOf, "cell"_a)
-      .def("affineKind", &WidgetModel::affineKind, "affine"_a)
-      .def("attachedCell", &WidgetModel::attachedCell, "affine"_a)
+           "cell"_a, R"doc(A cell's points in the world, #points x 3.
+
+Args:
+    cell: WidgetId.
+Raises:
+    WidgetError: not a cell.)doc")
+      .def("affinesOf", &WidgetModel::affinesOf, "cell"_a, R"doc(The affine widgets attached to a cell, in id order.
+
+Args:
+    cell: WidgetId.
+Raises:
+    WidgetError: not a cell.)doc")
+      .def("affineKind", &WidgetModel::affineKind, "affine"_a, R"doc(What an affine widget does.
+
+Args:
+    affine: WidgetId.
+Returns:
+    AffineKind.
+Raises:
+    WidgetError: not an affine widget.)doc")
+      .def("attachedCell", &WidgetModel::attachedCell, "affine"_a, R"doc(The cell an affine widget is attached to.
+
+Args:
+    affine: WidgetId.
+Returns:
+    WidgetId, or None for a free widget.
+Raises:
+    WidgetError: not an affine widget.)doc")
       .def("placement", [](const WidgetModel& model, WidgetId id) { return affineToArray(model.placement(id)); },
-           "affine"_a)
-      .def("variation", &WidgetModel::variation, "affine"_a)
+           "affine"_a, R"doc(An affine widget's placement: relative to its cell's rest frame, or its world frame if free.
+
+Args:
+    affine: WidgetId.
+Returns:
+    4 x 4 array.
+Raises:
+    WidgetError: not an affine widget.)doc")
+      .def("variation", &WidgetModel::variation, "affine"_a, R"doc(An affine widget's accumulated variation: a distance, an angle (rad) or a log scale factor.
+
+Args:
+    affine: WidgetId.
+Raises:
+    WidgetError: not an affine widget.)doc")
       .def("affineFrame",
            [](const WidgetModel& model, WidgetId id) {
              const widgets::WidgetFrame frame = model.affineFrame(id);
              return py::make_tuple(affineToArray(Eigen::Affine3d(frame.frame.matrix())), frame.size);
            },
-           "affine"_a, "(4 x 4 rigid world frame, glyph size)")
+           "affine"_a, R"doc(An affine widget's rigid world frame and glyph size (Kuriyama 1996, sec. 6.2.1).
+
+Args:
+    affine: WidgetId.
+Returns:
+    (4 x 4 frame, size).
+Raises:
+    WidgetError: not an affine widget.)doc")
       // gestures
-      .def("beginGesture", &WidgetModel::beginGesture, "id"_a)
+      .def("beginGesture", &WidgetModel::beginGesture, "id"_a, R"doc(Starts a gesture on a widget: the start state and the order of the bindings to visit are recorded.
+
+Args:
+    id: WidgetId.
+Raises:
+    WidgetError: a gesture is active (GestureState), or an unknown widget.)doc")
       .def("updateGesture",
            [](WidgetModel& model, const py::object& change) {
              if (py::isinstance<py::float_>(change) || py::isinstance<py::int_>(change)) {
@@ -266,29 +707,84 @@ void bindModel(py::module_& m) {
                model.updateGesture(affineArg(change, "worldMotion"));
              }
            },
-           "change"_a,
-           "A number: the variation change since the gesture start (affine widget); a 4 x 4 matrix: the world "
-           "motion since the start (cell or lattice widget).")
-      .def("endGesture", &WidgetModel::endGesture)
-      .def("cancelGesture", &WidgetModel::cancelGesture)
-      .def("gestureActive", &WidgetModel::gestureActive)
-      .def("gestureWidget", &WidgetModel::gestureWidget)
-      .def("gestureVisitOrder", &WidgetModel::gestureVisitOrder)
+           "change"_a, R"doc(Moves the gesture's widget; bindings follow, from the start state (no drift).
+
+Args:
+    change: a number (affine widget: the variation change since the start) or a 4 x 4 matrix
+        (cell or lattice: its world motion since the start).
+Raises:
+    WidgetError: no gesture is active (GestureState). ValueError: a matrix that is not 4 x 4.)doc")
+      .def("endGesture", &WidgetModel::endGesture, R"doc(Ends the gesture; its changes stay.
+
+Raises:
+    WidgetError: no gesture is active (GestureState).)doc")
+      .def("cancelGesture", &WidgetModel::cancelGesture, R"doc(Ends the gesture and restores the state at its start.
+
+Raises:
+    WidgetError: no gesture is active (GestureState).)doc")
+      .def("gestureActive", &WidgetModel::gestureActive, R"doc(True between beginGesture() and endGesture() / cancelGesture().
+
+Returns:
+    bool.)doc")
+      .def("gestureWidget", &WidgetModel::gestureWidget, R"doc(The widget of the active gesture.
+
+Returns:
+    WidgetId, or None when no gesture is active.)doc")
+      .def("gestureVisitOrder", &WidgetModel::gestureVisitOrder, R"doc(The widgets the active gesture moves, in visiting order (for highlighting).
+
+Returns:
+    list of WidgetId (empty when no gesture is active).)doc")
       .def("pick",
            [](const WidgetModel& model, const widgets::Ray& ray, double tolerance, bool affines, bool cells,
               bool lattices) {
              return model.pick(ray, widgets::PickOptions{tolerance, affines, cells, lattices});
            },
-           "ray"_a, "tolerance"_a = 0.02, "affines"_a = true, "cells"_a = true, "lattices"_a = false)
-      .def("beginDrag", &WidgetModel::beginDrag, "id"_a, "ray"_a)
-      .def("dragTo", &WidgetModel::dragTo, "ray"_a)
-      .def("applyVariation", &WidgetModel::applyVariation, "affine"_a, "delta"_a)
-      .def("setVariation", &WidgetModel::setVariation, "affine"_a, "value"_a)
+           "ray"_a, "tolerance"_a = 0.02, "affines"_a = true, "cells"_a = true, "lattices"_a = false, R"doc(The nearest widget a ray hits: glyphs of affine widgets, cells' points, edges and faces.
+
+Args:
+    ray: Ray in the world.
+    tolerance: how far from a thin glyph the ray may pass (world units).
+    affines, cells, lattices: which kinds to consider (lattices: their bounding boxes).
+Returns:
+    PickResult, or None on a miss.)doc")
+      .def("beginDrag", &WidgetModel::beginDrag, "id"_a, "ray"_a, R"doc(Begins a drag of a widget grabbed by a ray (a gesture driven by rays).
+
+Args:
+    id: WidgetId.
+    ray: the ray through the grab point.
+Raises:
+    WidgetError: a gesture is active, or an unknown widget.)doc")
+      .def("dragTo", &WidgetModel::dragTo, "ray"_a, R"doc(Moves the active drag to a new mouse ray (rays parallel to the drag line keep the last value).
+
+Args:
+    ray: Ray.
+Raises:
+    WidgetError: no drag is active (GestureState).)doc")
+      .def("applyVariation", &WidgetModel::applyVariation, "affine"_a, "delta"_a, R"doc(Changes an affine widget's variation by delta, as one whole gesture (bindings follow).
+
+Args:
+    affine: WidgetId.
+    delta: a distance, an angle (rad) or a log scale factor.
+Raises:
+    WidgetError: not an affine widget, or a gesture is active.)doc")
+      .def("setVariation", &WidgetModel::setVariation, "affine"_a, "value"_a, R"doc(Sets an affine widget's variation to value, as one whole gesture (bindings follow).
+
+Args:
+    affine: WidgetId.
+    value: the new variation.
+Raises:
+    WidgetError: not an affine widget, or a gesture is active.)doc")
       .def("applyMotion",
            [](WidgetModel& model, WidgetId id, const py::object& motion) {
              model.applyMotion(id, affineArg(motion, "worldMotion"));
            },
-           "id"_a, "worldMotion"_a)
+           "id"_a, "worldMotion"_a, R"doc(Moves a cell or lattice by a world motion, as one whole gesture (bindings follow).
+
+Args:
+    id: WidgetId of a cell or lattice.
+    worldMotion: 4 x 4 affine matrix.
+Raises:
+    WidgetError: not a cell or lattice, or a gesture is active.)doc")
       .def("__repr__", [](const WidgetModel& model) {
         return "<ffdkit.widgets.WidgetModel: " + std::to_string(model.widgets(widgets::WidgetType::Lattice).size()) +
                " lattices, " + std::to_string(model.widgets().size()) + " widgets, " +
