@@ -55,7 +55,8 @@ void MainWindow::saveScene(const std::filesystem::path& path) {
   scenes::Scene copy = impl_->scene;
   copy.setCamera(impl_->sceneView->camera());
   copy.widgetFile.reset();
-  scenes::writeScene(path, copy);
+  // The reading rule for the paths the scene names: what is saved opens again.
+  scenes::writeScene(path, copy, scenes::SceneWriteOptions{.confinement = pathConfinement()});
   impl_->commands.markClean();
   impl_->restoredUnsaved = false;
   setDocumentPath(path);

@@ -61,7 +61,9 @@ void RecoveryFile::write(const scenes::Scene& scene, const scenes::Camera& camer
   fs::create_directories(directory_);
   // The origin first: a scene file never appears without it.
   meshio::writeFileAtomically(origin_, origin.empty() ? std::string() : fs::absolute(origin).string());
-  scenes::writeScene(scene_, fileContent(scene, camera, origin));
+  // The app's own file, read back with the confinement lifted: its mesh paths are the document's.
+  scenes::writeScene(scene_, fileContent(scene, camera, origin),
+                     scenes::SceneWriteOptions{.confinement = meshio::PathConfinement{.allowOutside = true}});
 }
 
 void RecoveryFile::remove() noexcept {
