@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 #include "animation_checks.h"
@@ -196,38 +197,99 @@ Eigen::MatrixX3d evaluatePoints(const std::vector<Keyframe>& keys, double second
   return points;
 }
 
-void applyAnimation(Scene& scene, double seconds) {
+namespace {
+
+// The scene's channels that applyAnimation sets: keyed, of a widget the model holds, of a kind
+// that widget can be keyed with.
+bool liveChannel(const Scene& scene, const Channel& c) {
+  if (c.keys.empty() || !scene.widgets.contains(c.widget)) return false;
+  const auto kinds = keyableKinds(scene.widgets, c.widget);
+  return std::find(kinds.begin(), kinds.end(), c.kind) != kinds.end();
+}
+
+template <class Value>
+const Value* findValue(const std::vector<std::pair<WidgetId, Value>>& items, WidgetId id) {
+  const auto it = std::find_if(items.begin(), items.end(), [&](const auto& item) { return item.first == id; });
+  return it == items.end() ? nullptr : &it->second;
+}
+
+}  // namespace
+
+widgets::WidgetModelState animationValues(const Scene& scene, double seconds) {
   if (!std::isfinite(seconds)) throw AnimationError("animation time must be finite, got " + number(seconds));
+  widgets::WidgetModelState values;
+  for (const Channel& c : scene.animation().channels) {
+    if (!liveChannel(scene, c)) continue;
+    switch (c.kind) {
+      case ChannelKind::LatticeFrame: values.latticeFrames.emplace_back(c.widget, evaluateFrame(c.keys, seconds)); break;
+      case ChannelKind::Variation: values.variations.emplace_back(c.widget, evaluateVariation(c.keys, seconds)); break;
+      case ChannelKind::ControlPoints: values.controlPoints.emplace_back(c.widget, evaluatePoints(c.keys, seconds)); break;
+    }
+  }
+  return values;
+}
+
+widgets::WidgetModelState animatedPart(const Scene& scene, const widgets::WidgetModelState& state) {
+  widgets::WidgetModelState part;
+  for (const Channel& c : scene.animation().channels) {
+    if (!liveChannel(scene, c)) continue;
+    switch (c.kind) {
+      case ChannelKind::LatticeFrame:
+        if (const auto* v = findValue(state.latticeFrames, c.widget)) part.latticeFrames.emplace_back(c.widget, *v);
+        break;
+      case ChannelKind::Variation:
+        if (const auto* v = findValue(state.variations, c.widget)) part.variations.emplace_back(c.widget, *v);
+        break;
+      case ChannelKind::ControlPoints:
+        if (const auto* v = findValue(state.controlPoints, c.widget)) part.controlPoints.emplace_back(c.widget, *v);
+        break;
+    }
+  }
+  return part;
+}
+
+widgets::WidgetModelState animatedState(const Scene& scene) { return animatedPart(scene, scene.widgets.captureState()); }
+
+void applyAnimatedValues(Scene& scene, const widgets::WidgetModelState& values) {
   WidgetModel& model = scene.widgets;
   if (model.gestureActive()) throw AnimationError("cannot evaluate the animation during a gesture");
-  const Animation& animation = scene.animation();
-  const auto live = [&](const Channel& c) {
-    if (c.keys.empty() || !model.contains(c.widget)) return false;
-    const auto kinds = keyableKinds(model, c.widget);
-    return std::find(kinds.begin(), kinds.end(), c.kind) != kinds.end();
-  };
   for (WidgetId lattice : model.pipelineOrder()) {
-    const Channel* c = findChannel(animation, lattice, ChannelKind::LatticeFrame);
-    if (c == nullptr || !live(*c)) continue;
-    const Eigen::Affine3d target = evaluateFrame(c->keys, seconds);
+    const Eigen::Affine3d* target = findValue(values.latticeFrames, lattice);
+    if (target == nullptr) continue;
+    const auto kinds = keyableKinds(model, lattice);  // a child bound two-way cannot reach a frame
+    if (std::find(kinds.begin(), kinds.end(), ChannelKind::LatticeFrame) == kinds.end()) continue;
     const Eigen::Affine3d now = model.latticeFrame(lattice);
     // A gesture leaves the frame within rounding of the target: that counts as there.
-    const double scale = std::max(1.0, target.matrix().cwiseAbs().maxCoeff());
-    if ((target.matrix() - now.matrix()).cwiseAbs().maxCoeff() <= 1e-12 * scale) continue;
-    model.applyMotion(lattice, target * now.inverse());
+    const double scale = std::max(1.0, target->matrix().cwiseAbs().maxCoeff());
+    if ((target->matrix() - now.matrix()).cwiseAbs().maxCoeff() <= 1e-12 * scale) continue;
+    model.applyMotion(lattice, *target * now.inverse());
   }
-  for (const Channel& c : animation.channels) {
-    if (c.kind != ChannelKind::Variation || !live(c)) continue;
-    const double target = evaluateVariation(c.keys, seconds);
-    if (std::abs(model.variation(c.widget) - target) <= 1e-12 * std::max(1.0, std::abs(target))) continue;
-    model.setVariation(c.widget, target);
+  for (const auto& [widget, target] : values.variations) {
+    if (!model.contains(widget) || model.type(widget) != WidgetType::Affine) continue;
+    if (std::abs(model.variation(widget) - target) <= 1e-12 * std::max(1.0, std::abs(target))) continue;
+    model.setVariation(widget, target);
   }
-  for (const Channel& c : animation.channels) {
-    if (c.kind != ChannelKind::ControlPoints || !live(c)) continue;
-    const Eigen::MatrixX3d target = evaluatePoints(c.keys, seconds);
-    if (target.rows() != model.controlPoints(c.widget).rows() || target == model.controlPoints(c.widget)) continue;
-    model.setControlPoints(c.widget, target);
+  for (const auto& [widget, target] : values.controlPoints) {
+    if (!model.contains(widget) || model.type(widget) != WidgetType::Lattice) continue;
+    if (target.rows() != model.controlPoints(widget).rows() || target == model.controlPoints(widget)) continue;
+    model.setControlPoints(widget, target);
   }
+}
+
+void applyAnimation(Scene& scene, double seconds) {
+  applyAnimatedValues(scene, animationValues(scene, seconds));
+}
+
+void restoreAtEditValues(Scene& scene, const widgets::WidgetModelState& editValues, bool animationAppliedSince,
+                         const std::function<void()>& restore) {
+  if (!animationAppliedSince) {
+    restore();  // the model is as the edit left it (or as its undo did): exact
+    return;
+  }
+  const widgets::WidgetModelState shown = animatedState(scene);
+  applyAnimatedValues(scene, editValues);
+  restore();
+  applyAnimatedValues(scene, shown);
 }
 
 void applyAnimationFrame(Scene& scene, double frame) { applyAnimation(scene, frameTime(scene.animation(), frame)); }

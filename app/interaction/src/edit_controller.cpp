@@ -8,6 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/document_delta.h"
 
 namespace ffdkit::app {
@@ -465,14 +466,24 @@ void EditController::confirm() {
     notify();
     return;
   }
-  auto restore = [this, delta, placed](bool forward) {
-    scene_.widgets.restoreState(forward ? delta->after : delta->before);
-    for (const Placed& p : *placed) scene_.widgets.setPlacement(p.id, forward ? p.after : p.before);
+  // The animated channels' values when the transform began (before) and ended (after): an undo or
+  // redo after a frame change writes the points back as at the edit's frame and carries them to
+  // the frame shown (scenes::restoreAtEditValues).
+  auto animated = std::make_shared<const scenes::StateDelta>(
+      scenes::StateDelta{scenes::animatedPart(scene_, live.before), scenes::animatedState(scene_)});
+  const std::uint64_t madeAt = widgets_.animationApplications();
+  auto restore = [this, delta, placed, animated, madeAt](bool forward) {
+    scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after,
+                                widgets_.animationApplications() != madeAt, [&] {
+                                  scene_.widgets.restoreState(forward ? delta->after : delta->before);
+                                  for (const Placed& p : *placed)
+                                    scene_.widgets.setPlacement(p.id, forward ? p.after : p.before);
+                                });
     widgets_.refresh();
     notify();
   };
   commands_.push(scenes::Command{live.verb + " " + live.what, [restore] { restore(false); }, [restore] { restore(true); },
-                                 "", delta->bytes() + placed->size() * sizeof(Placed)});
+                                 "", delta->bytes() + animated->bytes() + placed->size() * sizeof(Placed)});
   notify();
 }
 

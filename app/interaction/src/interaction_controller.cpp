@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 
+#include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/document_delta.h"
 
 namespace ffdkit::app {
@@ -157,7 +158,7 @@ void InteractionController::release() {
     const std::string description = "Drag point " + std::to_string(objectGrab_->vertex) + " of " + objectGrab_->object;
     objectGrab_.reset();
     deformer_.finishGesture(scene_);
-    pushState(description, scenes::stateDelta(dragStart_, scene_.widgets.captureState()));
+    pushState(description, dragStart_);
     notify();
     return;
   }
@@ -187,7 +188,7 @@ void InteractionController::release() {
   deformer_.finishGesture(scene_);  // the exact result, in one pass
   const std::string what = handle ? handleDragDescription(*handle) : std::string("Drag");
   // A click that selected a widget changed nothing: no command.
-  pushState(what + " " + scene_.widgets.name(target), scenes::stateDelta(dragStart_, scene_.widgets.captureState()));
+  pushState(what + " " + scene_.widgets.name(target), dragStart_);
   notify();
 }
 
@@ -268,18 +269,26 @@ void InteractionController::pruneSelection() {
   });
 }
 
-void InteractionController::pushState(const std::string& description, scenes::StateDelta delta,
+void InteractionController::pushState(const std::string& description, const widgets::WidgetModelState& before,
                                       const std::string& mergeKey) {
-  if (delta.empty()) return;
-  const std::size_t bytes = delta.bytes();
-  auto shared = std::make_shared<const scenes::StateDelta>(std::move(delta));
-  auto apply = [this, shared](bool forward) {
+  auto delta = std::make_shared<const scenes::StateDelta>(scenes::stateDelta(before, scene_.widgets.captureState()));
+  if (delta->empty()) return;
+  // The animated channels' values when the gesture began (before) and ended (after), for undo and
+  // redo after a frame change (scenes::restoreAtEditValues).
+  auto animated = std::make_shared<const scenes::StateDelta>(
+      scenes::StateDelta{scenes::animatedPart(scene_, before), scenes::animatedState(scene_)});
+  const std::uint64_t madeAt = animationApplications_;
+  auto apply = [this, delta, animated, madeAt](bool forward) {
     // In place: only what differs is stamped, so the deformer re-embeds nothing unless a frame
     // changed and then only the stages concerned.
-    scene_.widgets.restoreState(forward ? shared->after : shared->before);
+    scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after, animationApplications_ != madeAt,
+                                [&] { scene_.widgets.restoreState(forward ? delta->after : delta->before); });
     refresh();
   };
-  commands_.push(scenes::Command{description, [apply] { apply(false); }, [apply] { apply(true); }, mergeKey, bytes});
+  // Gestures merge only within one frame: a merged step's undo writes back the first's values.
+  const std::string mergeAtFrame = mergeKey.empty() ? mergeKey : mergeKey + "@" + std::to_string(madeAt);
+  commands_.push(scenes::Command{description, [apply] { apply(false); }, [apply] { apply(true); }, mergeAtFrame,
+                                 delta->bytes() + animated->bytes()});
 }
 
 void InteractionController::refresh() {

@@ -10,6 +10,7 @@
 #include "ffdkit/app/cell_from_selection.h"
 #include "ffdkit/ffd/cylindrical_lattice.h"
 #include "ffdkit/ffd/pipeline.h"
+#include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/document_delta.h"
 #include "ffdkit/scenes/lattice_fit.h"
 #include "ffdkit/scenes/scene_changes.h"
@@ -43,6 +44,7 @@ auto InteractionController::edit(const std::string& description, Change change, 
   const widgets::WidgetModelData widgetsBefore = scene_.widgets.toData();
   const std::vector<scenes::Attachment> attachmentsBefore = scene_.attachments();
   const std::size_t objectsBefore = scene_.objects().size();
+  const widgets::WidgetModelState animatedBefore = scenes::animatedState(scene_);
   auto deltaFromBefore = [&] {
     scenes::SceneDelta delta;
     delta.widgets = scenes::modelPatch(widgetsBefore, scene_.widgets.toData());
@@ -55,21 +57,30 @@ auto InteractionController::edit(const std::string& description, Change change, 
     // redo; the command holds an object only while it is undone.
     auto held = std::make_shared<std::vector<scenes::SceneObject>>();
     const std::size_t added = scene_.objects().size() - objectsBefore;
-    auto apply = [this, delta, held, added, objectsBefore](bool forward) {
-      if (!forward) {
-        for (std::size_t i = 0; i < added; ++i) held->push_back(scene_.takeObject(scene_.objects()[objectsBefore].name));
-      }
-      scenes::applySceneDelta(scene_, *delta, forward);
-      if (forward && added > 0) {
-        for (auto& object : *held) scene_.addObject(std::move(object));
-        held->clear();
-      }
+    // The animated channels' values before and after the change: its undo or redo after a frame
+    // change swaps the records back as at the edit's frame and carries them to the frame shown
+    // (scenes::restoreAtEditValues).
+    auto animated = std::make_shared<const scenes::StateDelta>(scenes::StateDelta{animatedBefore, scenes::animatedState(scene_)});
+    const std::uint64_t madeAt = animationApplications_;
+    auto apply = [this, delta, held, added, objectsBefore, animated, madeAt](bool forward) {
+      scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after, animationApplications_ != madeAt, [&] {
+        if (!forward) {
+          for (std::size_t i = 0; i < added; ++i) held->push_back(scene_.takeObject(scene_.objects()[objectsBefore].name));
+        }
+        scenes::applySceneDelta(scene_, *delta, forward);
+        if (forward && added > 0) {
+          for (auto& object : *held) scene_.addObject(std::move(object));
+          held->clear();
+        }
+      });
       pruneSelection();
       refresh();
       if (onStructureChanged) onStructureChanged();
     };
-    commands_.push(scenes::Command{description, [apply] { apply(false); }, [apply] { apply(true); }, mergeKey,
-                                   delta->bytes() + sizeof(*held)});
+    // Edits merge only within one frame: a merged step's undo writes back the first's values.
+    const std::string mergeAtFrame = mergeKey.empty() ? mergeKey : mergeKey + "@" + std::to_string(madeAt);
+    commands_.push(scenes::Command{description, [apply] { apply(false); }, [apply] { apply(true); }, mergeAtFrame,
+                                   delta->bytes() + animated->bytes() + sizeof(*held)});
     deformer_.finishGesture(scene_);
     notify();
     if (onStructureChanged) onStructureChanged();

@@ -30,6 +30,7 @@ int Timeline::frame() const {
 void Timeline::setFrame(int frame) {
   frame_ = std::clamp(frame, scene_.animation().firstFrame, scene_.animation().lastFrame);
   clock_ = frame_;
+  controller_.animationApplied();  // undo after this carries its values to the frame shown
   scenes::applyAnimationFrame(scene_, frame_);
   controller_.refresh();
 }
@@ -160,6 +161,7 @@ bool Timeline::advance(double seconds) {
   // A drag under way owns the model: the clock runs on, the frame follows after the release.
   if (scene_.widgets.gestureActive() || controller_.dragging()) return false;
   frame_ = whole;
+  controller_.animationApplied();
   scenes::applyAnimationFrame(scene_, frame_);
   controller_.refresh();
   return true;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -57,21 +58,51 @@ Eigen::Affine3d evaluateFrame(const std::vector<Keyframe>& keys, double seconds)
 /// points exactly.
 Eigen::MatrixX3d evaluatePoints(const std::vector<Keyframe>& keys, double seconds);
 
-/// Sets the scene's widget model to its animation at `seconds` through the model's own gestures,
-/// so bindings propagate exactly as during a drag:
-///  1. lattice-frame channels, parents before children (WidgetModel::pipelineOrder): a lattice
-///     gesture with the world motion target * current^-1 (WidgetModel::applyMotion);
-///  2. variation channels, in channel order: WidgetModel::setVariation (a gesture from the
-///     current variation to the keyed one; bound widgets follow);
-///  3. control-point channels: WidgetModel::setControlPoints; they come last, so a lattice whose
-///     points are keyed shows exactly those points whatever its widgets did.
-/// A channel whose value is already there is not touched (no revision, nothing re-deformed).
-/// Channels of widgets the model no longer holds are skipped. Motions that do not commute (two
-/// rotations on overlapping cells, a keyed widget bound to another keyed widget) make the result
-/// depend on the state it starts from, as with drags; key one widget of a bound group.
-/// @throws AnimationError for a non-finite time or during a gesture; the model's WidgetError
-///   unchanged (the model keeps the channels applied before it).
+/// The values of the scene's animated channels at `seconds` (keyed channels of widgets the model
+/// holds, of a kind the widget can be keyed with): lattice frames, variations and control points,
+/// in the animation's channel order. @throws AnimationError for a non-finite time.
+widgets::WidgetModelState animationValues(const Scene& scene, double seconds);
+/// The items of `state` (captured from the scene's model) that are animated channels of the scene:
+/// the part of a state that applyAnimation would set.
+widgets::WidgetModelState animatedPart(const Scene& scene, const widgets::WidgetModelState& state);
+/// animatedPart of the model's present state.
+widgets::WidgetModelState animatedState(const Scene& scene);
+
+/// Sets the widget model's animated channels to `values` (animationValues, animatedPart) through
+/// the model's own gestures, so bindings propagate exactly as during a drag:
+///  1. lattice frames, parents before children (WidgetModel::pipelineOrder): a lattice gesture
+///     with the world motion target * current^-1 (WidgetModel::applyMotion);
+///  2. variations, in their order: WidgetModel::setVariation (a gesture from the current variation
+///     to the target; bound widgets follow);
+///  3. control points: WidgetModel::setControlPoints; they come last, so a lattice whose points
+///     are keyed shows exactly those points whatever its widgets did.
+/// A value already there (frames within 1e-12 relative) is not touched (no revision, nothing
+/// re-deformed); values of widgets the model does not hold, or cannot reach that way, are
+/// skipped. Motions that do not commute (two rotations on overlapping cells, a keyed widget
+/// bound to another keyed widget) make the result depend on the state it starts from, as with
+/// drags; key one widget of a bound group.
+/// @throws AnimationError during a gesture; the model's WidgetError unchanged (the model keeps
+///   the values applied before it).
+void applyAnimatedValues(Scene& scene, const widgets::WidgetModelState& values);
+
+/// Sets the scene's widget model to its animation at `seconds`:
+/// applyAnimatedValues(scene, animationValues(scene, seconds)).
+/// @throws AnimationError for a non-finite time or during a gesture; the model's WidgetError.
 void applyAnimation(Scene& scene, double seconds);
+
+/// Undo and redo of an edit after frame changes. An edit's command writes back values captured
+/// when the edit was made (control points, frames, variations, records); a frame change since
+/// then has moved the model by the animation (keyed channels to their keys, bound widgets with
+/// them), so writing the old values alone would mix two frames. This runs `restore` (the
+/// command's write-back) as at the edit, then carries the result to the frame shown now:
+///  1. the animated channels are set to `editValues` (applyAnimatedValues): their values when
+///     the edit ended, for an undo, or when it started, for a redo (animatedState then);
+///  2. `restore()`;
+///  3. if the animation was applied since the edit (`animationAppliedSince`: a frame change),
+///     the animated channels are set back to the values they had before step 1.
+/// Without a frame change in between only `restore()` runs: the write-back is exact.
+void restoreAtEditValues(Scene& scene, const widgets::WidgetModelState& editValues, bool animationAppliedSince,
+                         const std::function<void()>& restore);
 /// applyAnimation at frameTime(scene.animation(), frame).
 void applyAnimationFrame(Scene& scene, double frame);
 

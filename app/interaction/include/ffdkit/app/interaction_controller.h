@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -194,14 +195,22 @@ class InteractionController {
   /// Re-deforms every object (after undo/redo or a scene change) and notifies.
   void refresh();
 
+  /// Notes that the model was set to the animation at a frame (the timeline's frame changes and
+  /// playback call it). An edit's command keeps the count it was made at; its undo and redo after
+  /// a frame change carry what they write back to the frame shown (scenes::restoreAtEditValues).
+  void animationApplied() { ++animationApplications_; }
+  std::uint64_t animationApplications() const { return animationApplications_; }
+
   /// Called after every change of the scene, the selection or the hover (redraw, refresh panels).
   std::function<void()> onChanged;
   /// Called after a change of the widget tree or the objects (rebuild outliners).
   std::function<void()> onStructureChanged;
 
  private:
-  /// Pushes a gesture's or a value edit's delta as one command (nothing when it is empty).
-  void pushState(const std::string& description, scenes::StateDelta delta, const std::string& mergeKey = {});
+  /// Pushes a gesture's delta from `before` (the model's state when it began) to the model now as
+  /// one command (nothing when nothing changed).
+  void pushState(const std::string& description, const widgets::WidgetModelState& before,
+                 const std::string& mergeKey = {});
   /// Runs `change` on the scene and pushes it as one command holding its delta (the widget records
   /// and attachments it changed, the objects it added); edits with the same non-empty
   /// `mergeKey` in a row merge into one step.
@@ -223,6 +232,7 @@ class InteractionController {
   std::vector<widgets::WidgetId> selection_;
   std::optional<LatticePointRef> point_;
   std::optional<widgets::WidgetId> hovered_;
+  std::uint64_t animationApplications_ = 0;
   bool dragging_ = false;
   std::optional<widgets::WidgetId> dragLattice_;
   widgets::WidgetModelState dragStart_;
