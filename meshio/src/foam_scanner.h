@@ -134,8 +134,10 @@ class FoamScanner {
     return "'" + token + "'";
   }
 
-  [[noreturn]] void fail(const std::string& message) const {
-    throw MeshIoError(source_ + ":" + std::to_string(line_) + ": " + message);
+  [[noreturn]] void fail(const std::string& message) const { failAt(line_, message); }
+  /// A message about something on an earlier line (a list's size, found wrong at its end).
+  [[noreturn]] void failAt(int line, const std::string& message) const {
+    throw MeshIoError(source_ + ":" + std::to_string(line) + ": " + message);
   }
   const std::string& source() const { return source_; }
 

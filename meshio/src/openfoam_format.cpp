@@ -113,11 +113,12 @@ FoamFileLayout readHeader(FoamScanner& s, std::initializer_list<std::string_view
 // `minItemBytes`: the fewest bytes an item takes, to check N against the bytes left.
 std::int64_t openList(FoamScanner& s, const char* what, std::int64_t maxSize, std::uint64_t minItemBytes) {
   const std::int64_t n = s.label(Where{what, -1, "list size"}, 0, maxSize);
+  const int sizeLine = s.line();
   s.skipSpace();
   if (s.peek() == '{')
-    s.fail(std::string(what) + ": a uniform list N{value} is not supported here (expected N followed by '(')");
+    s.failAt(sizeLine, std::string(what) + ": a uniform list N{value} is not supported here (expected N followed by '(')");
   if (minItemBytes > 0 && std::uint64_t(n) > s.bytesLeft() / minItemBytes)
-    s.fail(std::string(what) + ": a list of " + std::to_string(n) + " needs at least " +
+    s.failAt(sizeLine, std::string(what) + ": a list of " + std::to_string(n) + " needs at least " +
            std::to_string(std::uint64_t(n) * minItemBytes) + " bytes, the file has " + std::to_string(s.bytesLeft()) +
            " left (truncated, or the size is wrong)");
   s.expect('(', Where{what, -1, "list"});

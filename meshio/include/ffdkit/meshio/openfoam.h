@@ -103,6 +103,10 @@ std::filesystem::path openFoamPolyMeshFolder(const std::filesystem::path& folder
 /// @throws MeshIoError naming the file and the line (ASCII) or the record (binary).
 OpenFoamMesh readOpenFoamMesh(const std::filesystem::path& folder, const OpenFoamReadOptions& options = {});
 
+/// The parsers of the single files: what readOpenFoamMesh calls for each. Each charges `budget`
+/// before it allocates and lets its ReadLimitError through (readOpenFoamMesh turns it into a
+/// MeshIoError naming the folder).
+///
 /// The list of a `points` file (vectorField) in `bytes` (decompressed). `points`, when not null,
 /// receives what the writer needs.  @throws MeshIoError "points:24: point 3: expected ')'...".
 Eigen::MatrixX3d readFoamPoints(std::string_view bytes, const std::string& source, ReadBudget& budget,
