@@ -1,0 +1,252 @@
+// An OpenFOAM case through what `ffdkit-cli deform` does with it, step by step and whole:
+//   BM_OpenFoamRead/cells:64      read the binary polyMesh of a cube of 64^3 hexahedra
+//   BM_OpenFoamDeform/cells:64    deform its points with tests/data/openfoam/bulge.json
+//   BM_OpenFoamCheck/cells:64     the cell check (meshio/cell_quality.h)
+//   BM_OpenFoamWrite/cells:64     write the case (points rewritten, the rest copied; durable)
+//   BM_OpenFoamCase/cells:64      all four, as the CLI runs them
+// The case is what blockMesh writes for a unit cube of N^3 cells in binary (foamFormatConvert):
+// points x fastest, internal faces in upper-triangular order, one boundary patch; made here so
+// that the benchmark needs no OpenFOAM. Each size is first checked: the cube's cells are valid,
+// their volumes add up to 1, and the written case reads back with the deformed points.
+#include <benchmark/benchmark.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "ffdkit/meshio/cell_quality.h"
+#include "ffdkit/meshio/openfoam.h"
+#include "ffdkit/scenes/scene.h"
+#include "ffdkit/scenes/scene_deformer.h"
+#include "ffdkit/scenes/widget_file.h"
+
+namespace {
+
+using namespace ffdkit;
+namespace fs = std::filesystem;
+
+std::string header(const char* className, const char* object) {
+  return std::string("FoamFile\n{\n    version     2.0;\n    format      binary;\n    class       ") + className +
+         ";\n    arch        \"LSB;label=32;scalar=64\";\n    location    \"constant/polyMesh\";\n    object      " +
+         object + ";\n}\n\n";
+}
+
+template <class T>
+void appendList(std::string& out, const std::vector<T>& values) {
+  out += std::to_string(values.size()) + "\n(";
+  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  out += ")\n";
+}
+
+void writeFile(const fs::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+// The cases made by this run, removed at its end.
+struct MadeCases {
+  std::vector<fs::path> roots;
+  ~MadeCases() {
+    std::error_code ignored;
+    for (const auto& root : roots) fs::remove_all(root, ignored);
+  }
+};
+
+// A case folder holding the binary polyMesh of a unit cube of n^3 hexahedra.
+fs::path makeCube(int n) {
+  static MadeCases made;
+  const fs::path root = fs::temp_directory_path() / ("ffdkit-bench-openfoam-" + std::to_string(::getpid()) + "-" + std::to_string(n));
+  if (fs::exists(root / "constant" / "polyMesh" / "boundary")) return root;
+  made.roots.push_back(root);
+  const fs::path polyMesh = root / "constant" / "polyMesh";
+  fs::create_directories(polyMesh);
+  fs::create_directories(root / "system");
+  writeFile(root / "system" / "controlDict", "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n");
+  const int m = n + 1;
+  auto point = [m](int i, int j, int k) { return std::int32_t(i + m * (j + m * k)); };
+  auto cell = [n](int i, int j, int k) { return std::int32_t(i + n * (j + n * k)); };
+
+  std::vector<double> coordinates;
+  coordinates.reserve(std::size_t(m) * m * m * 3);
+  for (int k = 0; k < m; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) {
+        coordinates.push_back(double(i) / n);
+        coordinates.push_back(double(j) / n);
+        coordinates.push_back(double(k) / n);
+      }
+  std::vector<std::int32_t> starts{0}, vertices, owner, neighbour;
+  auto face = [&](std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t d, std::int32_t own) {
+    vertices.insert(vertices.end(), {a, b, c, d});
+    starts.push_back(std::int32_t(vertices.size()));
+    owner.push_back(own);
+  };
+  // Internal faces, upper-triangular: by owner, then by neighbour (+x, +y, +z); normals point
+  // from owner to neighbour (right-hand rule).
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::int32_t c = cell(i, j, k);
+        if (i + 1 < n) {
+          face(point(i + 1, j, k), point(i + 1, j + 1, k), point(i + 1, j + 1, k + 1), point(i + 1, j, k + 1), c);
+          neighbour.push_back(cell(i + 1, j, k));
+        }
+        if (j + 1 < n) {
+          face(point(i, j + 1, k), point(i, j + 1, k + 1), point(i + 1, j + 1, k + 1), point(i + 1, j + 1, k), c);
+          neighbour.push_back(cell(i, j + 1, k));
+        }
+        if (k + 1 < n) {
+          face(point(i, j, k + 1), point(i + 1, j, k + 1), point(i + 1, j + 1, k + 1), point(i, j + 1, k + 1), c);
+          neighbour.push_back(cell(i, j, k + 1));
+        }
+      }
+  // Boundary faces, pointing out of the cube.
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      face(point(0, a, b), point(0, a, b + 1), point(0, a + 1, b + 1), point(0, a + 1, b), cell(0, a, b));
+      face(point(n, a, b), point(n, a + 1, b), point(n, a + 1, b + 1), point(n, a, b + 1), cell(n - 1, a, b));
+      face(point(a, 0, b), point(a + 1, 0, b), point(a + 1, 0, b + 1), point(a, 0, b + 1), cell(a, 0, b));
+      face(point(a, n, b), point(a, n, b + 1), point(a + 1, n, b + 1), point(a + 1, n, b), cell(a, n - 1, b));
+      face(point(a, b, 0), point(a, b + 1, 0), point(a + 1, b + 1, 0), point(a + 1, b, 0), cell(a, b, 0));
+      face(point(a, b, n), point(a + 1, b, n), point(a + 1, b + 1, n), point(a, b + 1, n), cell(a, b, n - 1));
+    }
+  std::string bytes = header("vectorField", "points");
+  bytes += std::to_string(coordinates.size() / 3) + "\n(";
+  bytes.append(reinterpret_cast<const char*>(coordinates.data()), coordinates.size() * sizeof(double));
+  bytes += ")\n";
+  writeFile(polyMesh / "points", bytes);
+  bytes = header("faceCompactList", "faces");
+  appendList(bytes, starts);
+  appendList(bytes, vertices);
+  writeFile(polyMesh / "faces", bytes);
+  bytes = header("labelList", "owner");
+  appendList(bytes, owner);
+  writeFile(polyMesh / "owner", bytes);
+  bytes = header("labelList", "neighbour");
+  appendList(bytes, neighbour);
+  writeFile(polyMesh / "neighbour", bytes);
+  writeFile(polyMesh / "boundary",
+            "FoamFile { version 2.0; format ascii; class polyBoundaryMesh; object boundary; }\n1\n(\n    walls\n    {\n"
+            "        type wall;\n        nFaces " + std::to_string(6 * n * n) + ";\n        startFace " +
+            std::to_string(neighbour.size()) + ";\n    }\n)\n");
+  return root;
+}
+
+widgets::WidgetModel tool() {
+  return scenes::readWidgetFile(fs::path(FFDKIT_SOURCE_DIR) / "tests" / "data" / "openfoam" / "bulge.json");
+}
+
+Eigen::MatrixX3d deform(const widgets::WidgetModel& model, Eigen::MatrixX3d points) {
+  scenes::Scene scene;
+  scene.widgets = model;
+  scenes::SceneObject object;
+  object.name = "mesh";
+  object.mesh.points = std::move(points);
+  scene.addObject(std::move(object));
+  std::vector<scenes::Attachment> attachments;
+  for (auto root : scene.widgets.roots()) attachments.push_back({root, {"mesh"}});
+  scene.setAttachments(std::move(attachments));
+  scenes::SceneDeformer deformer;
+  deformer.finishGestureTakingPoints(scene);
+  return deformer.takePoints("mesh");
+}
+
+void checkCube(int n) {
+  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(makeCube(n));
+  const meshio::CellQuality before = meshio::checkPolyMeshCells(mesh.points, mesh.cells);
+  if (!before.ok() || std::abs(before.totalVolume - 1.0) > 1e-9 || before.cellCount != std::int64_t(n) * n * n)
+    throw std::runtime_error("the generated cube is not valid: " + meshio::cellQualityText(before));
+  const Eigen::MatrixX3d deformed = deform(tool(), mesh.points);
+  if (!meshio::checkPolyMeshCells(deformed, mesh.cells).ok()) throw std::runtime_error("bulge.json inverted cells");
+  const fs::path out = makeCube(n).string() + "-out";
+  meshio::writeOpenFoamMesh(mesh, deformed, out, {.durable = false});
+  if (meshio::readOpenFoamMesh(out, {.readCells = false}).points != deformed)
+    throw std::runtime_error("the written case reads back other points");
+  fs::remove_all(out);
+}
+
+int cellsOf(const benchmark::State& state) {
+  static int checked = 0;
+  const int n = int(state.range(0));
+  if (checked != n) {
+    checkCube(n);
+    checked = n;
+  }
+  return n;
+}
+
+void setCounters(benchmark::State& state, int n) {
+  const double points = std::pow(double(n + 1), 3);
+  state.counters["points"] = points;
+  state.counters["points_per_second"] = benchmark::Counter(points * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void BM_OpenFoamRead(benchmark::State& state) {
+  const int n = cellsOf(state);
+  const fs::path root = makeCube(n);
+  for (auto _ : state) benchmark::DoNotOptimize(meshio::readOpenFoamMesh(root).points.data());
+  setCounters(state, n);
+}
+
+void BM_OpenFoamDeform(benchmark::State& state) {
+  const int n = cellsOf(state);
+  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(makeCube(n), {.readCells = false});
+  const widgets::WidgetModel model = tool();
+  for (auto _ : state) benchmark::DoNotOptimize(deform(model, mesh.points).data());
+  setCounters(state, n);
+}
+
+void BM_OpenFoamCheck(benchmark::State& state) {
+  const int n = cellsOf(state);
+  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(makeCube(n));
+  for (auto _ : state) benchmark::DoNotOptimize(meshio::checkPolyMeshCells(mesh.points, mesh.cells).minVolume);
+  setCounters(state, n);
+}
+
+void BM_OpenFoamWrite(benchmark::State& state) {
+  const int n = cellsOf(state);
+  const fs::path root = makeCube(n);
+  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(root, {.readCells = false});
+  const Eigen::MatrixX3d moved = mesh.points * 1.01;
+  const fs::path out = root.string() + "-out";
+  for (auto _ : state) meshio::writeOpenFoamMesh(mesh, moved, out);
+  fs::remove_all(out);
+  setCounters(state, n);
+}
+
+void BM_OpenFoamCase(benchmark::State& state) {
+  const int n = cellsOf(state);
+  const fs::path root = makeCube(n);
+  const fs::path out = root.string() + "-out";
+  const widgets::WidgetModel model = tool();
+  for (auto _ : state) {
+    meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(root);
+    const Eigen::MatrixX3d deformed = deform(model, std::move(mesh.points));
+    if (!meshio::checkPolyMeshCells(deformed, mesh.cells).ok()) state.SkipWithError("inverted cells");
+    meshio::writeOpenFoamMesh(mesh, deformed, out);
+  }
+  fs::remove_all(out);
+  setCounters(state, n);
+}
+
+void sizes(benchmark::internal::Benchmark* b) {
+  b->ArgName("cells")->Unit(benchmark::kMillisecond)->UseRealTime();
+  for (int n : {32, 64, 128}) b->Arg(n);
+}
+
+BENCHMARK(BM_OpenFoamRead)->Apply(sizes);
+BENCHMARK(BM_OpenFoamDeform)->Apply(sizes);
+BENCHMARK(BM_OpenFoamCheck)->Apply(sizes);
+BENCHMARK(BM_OpenFoamWrite)->Apply(sizes);
+BENCHMARK(BM_OpenFoamCase)->Apply(sizes);
+
+}  // namespace
+
+BENCHMARK_MAIN();
