@@ -25,8 +25,9 @@ void checkCounts(const Eigen::Vector3i& counts) {
   if ((counts.array() < 2).any()) {
     throw LatticeError("lattice needs >= 2 points per axis, got " + str(counts));
   }
-  if (counts.cast<double>().prod() > 1e8) {
-    throw LatticeError("lattice has too many control points: " + str(counts));
+  if (counts.cast<double>().prod() > static_cast<double>(kMaxLatticeControlPoints)) {
+    throw LatticeError("lattice has too many control points: " + str(counts) + ", more than " +
+                       std::to_string(kMaxLatticeControlPoints));
   }
 }
 

@@ -52,7 +52,7 @@ BindingId bindingId(const Json& j, const Location& at) {
 // Points per lattice axis, and grid indices along one: what a file may ask for before the budget
 // counts the whole lattice (WidgetModel keeps a lattice's flat point indices in int).
 constexpr int kMaxLatticeAxisCount = 1'000'000;
-constexpr std::uint64_t kMaxLatticePoints = 100'000'000;  // ffd::Lattice's own cap (ffd/src/lattice.cpp)
+constexpr std::uint64_t kMaxLatticePoints = ffd::kMaxLatticeControlPoints;
 constexpr int kMaxBasisDegree = 32;  // the B-spline evaluation's fixed-size tables (ffd/bspline_basis)
 
 // Three integers, each in [lo, hi].
@@ -201,7 +201,25 @@ std::uint64_t cellPointCount(const CellSpec& spec, const WidgetModelData& d, Wid
   return 0;
 }
 
-WidgetModelData readData(const Json& root, const Location& at, meshio::ReadBudget& budget) {
+// The array `key` of `root` (an absent key: none): `bytesEach` of each element charged to the
+// budget before any is read, then `readOne(element, its location)` for each, in order. The one
+// loop every list of the file (lattices, cells, affines, bindings) is read by.
+template <class ReadOne>
+void readList(const Json& root, const char* key, std::uint64_t bytesEach, const char* what, const Location& at,
+              meshio::ReadBudget& budget, ReadOne readOne) {
+  if (!root.contains(key)) return;
+  const Json& list = root[key];
+  const Location listAt = at / key;
+  checkArray(list, listAt);
+  detail::chargeBytes(budget, list.size(), bytesEach, what, listAt);
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Location itemAt = listAt / i;
+    checkObject(list[i], itemAt);
+    readOne(list[i], itemAt);
+  }
+}
+
+void checkFormat(const Json& root, const Location& at) {
   checkObject(root, at);
   checkKeys(root, {"format", "version", "lattices", "rootOrder", "cells", "affines", "bindings"}, at);
   const std::string format = text(member(root, "format", at), at / "format");
@@ -210,181 +228,164 @@ WidgetModelData readData(const Json& root, const Location& at, meshio::ReadBudge
   if (version > kWidgetFileVersion)
     (at / "version").fail("widget file version " + std::to_string(version) + " is newer than this build reads (" +
                           std::to_string(kWidgetFileVersion) + "); update ffdkit");
+}
 
-  WidgetModelData d;
-  auto list = [&](const char* key) -> const Json& {
-    static const Json empty = Json::array();
-    if (!root.contains(key)) return empty;
-    checkArray(root[key], at / key);
-    return root[key];
-  };
-  const Json& lattices = list("lattices");
-  detail::chargeBytes(budget, lattices.size(), kWidgetNodeBytes, "lattices", at / "lattices");
-  for (std::size_t i = 0; i < lattices.size(); ++i) {
-    const Json& j = lattices[i];
-    const Location li = at / "lattices" / i;
-    checkObject(j, li);
-    checkKeys(j, {"id", "name", "counts", "basis", "outside", "reembed", "cylinder", "frame", "children", "rest", "points"}, li);
-    LatticeData l;
-    l.id = widgetId(member(j, "id", li), li / "id");
-    l.name = text(member(j, "name", li), li / "name");
-    l.counts = vector3i(member(j, "counts", li), 2, kMaxLatticeAxisCount, li / "counts");
-    chargeLattice(l.counts, l.name, budget, li / "counts");
-    if (j.contains("basis")) {
-      const Json& b = j["basis"];
-      checkArray(b, li / "basis");
-      if (b.size() != 3) (li / "basis").fail("expected one basis per axis (3), got " + std::to_string(b.size()));
-      for (std::size_t a = 0; a < 3; ++a) l.settings.basis[a] = readBasis(b[a], li / "basis" / a);
+ffd::OutsidePolicy readOutsidePolicy(const Json& o, const Location& at) {
+  checkObject(o, at);
+  checkKeys(o, {"policy", "distance"}, at);
+  const std::string policy = text(member(o, "policy", at), at / "policy");
+  using K = ffd::OutsidePolicy::Kind;
+  ffd::OutsidePolicy outside;
+  bool found = false;
+  for (K k : {K::Identity, K::ClampEdge, K::Extrapolate, K::Falloff}) {
+    if (outsideKindName(k) == policy) {
+      outside.kind = k;
+      found = true;
     }
-    if (j.contains("outside")) {
-      const Json& o = j["outside"];
-      const Location lo = li / "outside";
-      checkObject(o, lo);
-      checkKeys(o, {"policy", "distance"}, lo);
-      const std::string policy = text(member(o, "policy", lo), lo / "policy");
-      using K = ffd::OutsidePolicy::Kind;
-      bool found = false;
-      for (K k : {K::Identity, K::ClampEdge, K::Extrapolate, K::Falloff}) {
-        if (outsideKindName(k) == policy) {
-          l.settings.outside.kind = k;
-          found = true;
-        }
-      }
-      if (!found) (lo / "policy").fail("unknown outside policy '" + policy + "' (known: identity, clamp-edge, extrapolate, falloff)");
-      if (l.settings.outside.kind == K::Falloff) l.settings.outside.distance = number(member(o, "distance", lo), lo / "distance");
-      else if (o.contains("distance")) (lo / "distance").fail("only the falloff policy takes a distance");
-    }
-    if (j.contains("reembed")) {
-      const Json& r = j["reembed"];
-      const Location lr = li / "reembed";
-      checkObject(r, lr);
-      checkKeys(r, {"policy", "n"}, lr);
-      const std::string policy = text(member(r, "policy", lr), lr / "policy");
-      l.settings.reembed.kind = named(parseReembedKind(policy), policy, "re-embed policy", "immediate, every-n, on-release", lr / "policy");
-      if (l.settings.reembed.kind == ReembedKind::EveryN) l.settings.reembed.everyN = intIn(member(r, "n", lr), 1, 1'000'000, lr / "n");
-      else if (r.contains("n")) (lr / "n").fail("only the every-n policy takes n");
-    }
-    if (j.contains("cylinder")) {
-      const Json& c = j["cylinder"];
-      const Location lc = li / "cylinder";
-      checkKeys(c, {"innerRadius", "outerRadius", "zMin", "zMax"}, lc);
-      ffd::CylinderRestShape shape;
-      shape.innerRadius = number(member(c, "innerRadius", lc), lc / "innerRadius");
-      shape.outerRadius = number(member(c, "outerRadius", lc), lc / "outerRadius");
-      shape.zMin = number(member(c, "zMin", lc), lc / "zMin");
-      shape.zMax = number(member(c, "zMax", lc), lc / "zMax");
-      if (shape.innerRadius < 0.0 || shape.outerRadius <= shape.innerRadius || shape.zMax <= shape.zMin)
-        lc.fail("expected 0 <= innerRadius < outerRadius and zMin < zMax");
-      l.settings.cylinder = shape;
-    }
-    if (j.contains("frame")) l.frame = affine(j["frame"], li / "frame");
-    if (j.contains("children")) {
-      const Json& c = j["children"];
-      checkArray(c, li / "children");
-      for (std::size_t k = 0; k < c.size(); ++k) l.children.push_back(widgetId(c[k], li / "children" / k));
-    }
-    if (j.contains("rest")) {
-      l.restPoints = points(j["rest"], li / "rest");
-    } else {
-      // The default box lattice of these bases (Greville abscissae for B-splines).
-      ffd::BoxLatticeOptions box;
-      box.counts = l.counts;
-      box.bases = l.settings.basis;
-      box.capDegreeToCount = false;
-      try {
-        l.restPoints = ffd::makeBoxLattice(box).restPoints();
-      } catch (const std::invalid_argument& e) {
-        (li / "basis").fail(e.what());
-      }
-    }
-    l.controlPoints = j.contains("points") ? points(j["points"], li / "points") : l.restPoints;
-    d.lattices.push_back(std::move(l));
   }
+  if (!found) (at / "policy").fail("unknown outside policy '" + policy + "' (known: identity, clamp-edge, extrapolate, falloff)");
+  if (outside.kind == K::Falloff) outside.distance = number(member(o, "distance", at), at / "distance");
+  else if (o.contains("distance")) (at / "distance").fail("only the falloff policy takes a distance");
+  return outside;
+}
 
-  const Json& cells = list("cells");
-  detail::chargeBytes(budget, cells.size(), kWidgetNodeBytes, "cells", at / "cells");
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const Json& j = cells[i];
-    const Location ci = at / "cells" / i;
-    checkObject(j, ci);
-    CellData c;
-    c.id = widgetId(member(j, "id", ci), ci / "id");
-    c.name = text(member(j, "name", ci), ci / "name");
-    c.lattice = widgetId(member(j, "lattice", ci), ci / "lattice");
-    const std::string kind = text(member(j, "kind", ci), ci / "kind");
-    const CellKind k = named(parseCellKind(kind), kind, "cell kind", "point, edge, face, slab, box, custom", ci / "kind");
-    switch (k) {
-      case CellKind::Point:
-      case CellKind::Box: checkKeys(j, {"id", "name", "lattice", "kind", "base"}, ci); break;
-      case CellKind::Edge:
-      case CellKind::Face: checkKeys(j, {"id", "name", "lattice", "kind", "base", "axis"}, ci); break;
-      case CellKind::Slab: checkKeys(j, {"id", "name", "lattice", "kind", "axis", "plane"}, ci); break;
-      case CellKind::Custom: checkKeys(j, {"id", "name", "lattice", "kind", "indices"}, ci); break;
-    }
-    c.spec = readCellSpec(j, k, ci);
-    detail::chargeBytes(budget, cellPointCount(c.spec, d, c.lattice), kCellPointBytes, "cell '" + c.name + "': its points", ci);
-    d.cells.push_back(std::move(c));
+void readReembedPolicy(const Json& r, const Location& at, LatticeSettings& settings) {
+  checkObject(r, at);
+  checkKeys(r, {"policy", "n"}, at);
+  const std::string policy = text(member(r, "policy", at), at / "policy");
+  settings.reembed.kind = named(parseReembedKind(policy), policy, "re-embed policy", "immediate, every-n, on-release", at / "policy");
+  if (settings.reembed.kind == ReembedKind::EveryN) settings.reembed.everyN = intIn(member(r, "n", at), 1, 1'000'000, at / "n");
+  else if (r.contains("n")) (at / "n").fail("only the every-n policy takes n");
+}
+
+ffd::CylinderRestShape readCylinder(const Json& c, const Location& at) {
+  checkKeys(c, {"innerRadius", "outerRadius", "zMin", "zMax"}, at);
+  ffd::CylinderRestShape shape;
+  shape.innerRadius = number(member(c, "innerRadius", at), at / "innerRadius");
+  shape.outerRadius = number(member(c, "outerRadius", at), at / "outerRadius");
+  shape.zMin = number(member(c, "zMin", at), at / "zMin");
+  shape.zMax = number(member(c, "zMax", at), at / "zMax");
+  if (shape.innerRadius < 0.0 || shape.outerRadius <= shape.innerRadius || shape.zMax <= shape.zMin)
+    at.fail("expected 0 <= innerRadius < outerRadius and zMin < zMax");
+  return shape;
+}
+
+// The rest points a file gives, else the default box lattice of the bases (Greville abscissae for
+// B-splines).
+Eigen::MatrixX3d readRestPoints(const Json& j, const LatticeData& l, const Location& at) {
+  if (j.contains("rest")) return points(j["rest"], at / "rest");
+  ffd::BoxLatticeOptions box;
+  box.counts = l.counts;
+  box.bases = l.settings.basis;
+  box.capDegreeToCount = false;
+  try {
+    return ffd::makeBoxLattice(box).restPoints();
+  } catch (const std::invalid_argument& e) {
+    (at / "basis").fail(e.what());
   }
+}
 
-  const Json& affines = list("affines");
-  detail::chargeBytes(budget, affines.size(), kWidgetNodeBytes, "affine widgets", at / "affines");
-  for (std::size_t i = 0; i < affines.size(); ++i) {
-    const Json& j = affines[i];
-    const Location ai = at / "affines" / i;
-    checkObject(j, ai);
-    checkKeys(j, {"id", "name", "kind", "placement", "variation", "glyph"}, ai);
-    AffineData a;
-    a.id = widgetId(member(j, "id", ai), ai / "id");
-    a.name = text(member(j, "name", ai), ai / "name");
-    const std::string kind = text(member(j, "kind", ai), ai / "kind");
-    a.kind = named(parseAffineKind(kind), kind, "affine widget kind", "translate, rotate, scale", ai / "kind");
-    if (j.contains("placement")) a.placement = affine(j["placement"], ai / "placement");
-    if (j.contains("variation")) a.variation = number(j["variation"], ai / "variation");
-    a.glyph.shape = a.kind == AffineKind::Translate ? "arrow" : a.kind == AffineKind::Rotate ? "ring" : "cube";
-    if (j.contains("glyph")) {
-      const Json& g = j["glyph"];
-      const Location ag = ai / "glyph";
-      checkObject(g, ag);
-      checkKeys(g, {"shape", "size", "placement"}, ag);
-      if (g.contains("shape")) a.glyph.shape = text(g["shape"], ag / "shape");
-      if (g.contains("size")) a.glyph.size = number(g["size"], ag / "size");
-      if (g.contains("placement")) a.glyph.partPlacement = affine(g["placement"], ag / "placement");
-    }
-    d.affines.push_back(std::move(a));
+// One lattice; its control points are charged to the budget as soon as its counts are known.
+LatticeData readLattice(const Json& j, const Location& at, meshio::ReadBudget& budget) {
+  checkKeys(j, {"id", "name", "counts", "basis", "outside", "reembed", "cylinder", "frame", "children", "rest", "points"}, at);
+  LatticeData l;
+  l.id = widgetId(member(j, "id", at), at / "id");
+  l.name = text(member(j, "name", at), at / "name");
+  l.counts = vector3i(member(j, "counts", at), 2, kMaxLatticeAxisCount, at / "counts");
+  chargeLattice(l.counts, l.name, budget, at / "counts");
+  if (j.contains("basis")) {
+    const Json& b = j["basis"];
+    checkArray(b, at / "basis");
+    if (b.size() != 3) (at / "basis").fail("expected one basis per axis (3), got " + std::to_string(b.size()));
+    for (std::size_t a = 0; a < 3; ++a) l.settings.basis[a] = readBasis(b[a], at / "basis" / a);
   }
-
-  const Json& bindings = list("bindings");
-  detail::chargeBytes(budget, bindings.size(), kBindingBytes, "bindings", at / "bindings");
-  for (std::size_t i = 0; i < bindings.size(); ++i) {
-    const Json& j = bindings[i];
-    const Location bi = at / "bindings" / i;
-    checkObject(j, bi);
-    Binding b;
-    b.id = bindingId(member(j, "id", bi), bi / "id");
-    const std::string kind = text(member(j, "kind", bi), bi / "kind");
-    b.kind = named(parseBindingKind(kind), kind, "binding kind", "attachment, variation, cell-motion, hierarchy", bi / "kind");
-    if (b.kind == BindingKind::Variation) {
-      checkKeys(j, {"id", "kind", "from", "to", "gain", "clamp", "oneWay"}, bi);
-      b.mask = AffineMask::none();
-      b.rule.gain = j.contains("gain") ? number(j["gain"], bi / "gain") : 1.0;
-      if (j.contains("clamp")) {
-        const Json& c = j["clamp"];
-        checkArray(c, bi / "clamp");
-        if (c.size() != 2) (bi / "clamp").fail("expected [min, max]");
-        b.rule.clamp = VariationRange{number(c[0], bi / "clamp" / 0), number(c[1], bi / "clamp" / 1)};
-      }
-    } else {
-      checkKeys(j, {"id", "kind", "from", "to", "mask", "oneWay"}, bi);
-      const std::string mask = text(member(j, "mask", bi), bi / "mask");
-      b.mask = named(parseMask(mask), mask, "mask", "letters T, R, S, e.g. \"TR\"", bi / "mask");
-    }
-    b.from = widgetId(member(j, "from", bi), bi / "from");
-    b.to = widgetId(member(j, "to", bi), bi / "to");
-    if (j.contains("oneWay")) b.oneWay = boolean(j["oneWay"], bi / "oneWay");
-    d.bindings.push_back(b);
+  if (j.contains("outside")) l.settings.outside = readOutsidePolicy(j["outside"], at / "outside");
+  if (j.contains("reembed")) readReembedPolicy(j["reembed"], at / "reembed", l.settings);
+  if (j.contains("cylinder")) l.settings.cylinder = readCylinder(j["cylinder"], at / "cylinder");
+  if (j.contains("frame")) l.frame = affine(j["frame"], at / "frame");
+  if (j.contains("children")) {
+    const Json& c = j["children"];
+    checkArray(c, at / "children");
+    for (std::size_t k = 0; k < c.size(); ++k) l.children.push_back(widgetId(c[k], at / "children" / k));
   }
+  l.restPoints = readRestPoints(j, l, at);
+  l.controlPoints = j.contains("points") ? points(j["points"], at / "points") : l.restPoints;
+  return l;
+}
 
-  // Optional tree order: by default roots in file order, children in binding order.
+// One cell; its points are charged once its spec (and, for a slab, its lattice) says how many.
+CellData readCell(const Json& j, const Location& at, const WidgetModelData& d, meshio::ReadBudget& budget) {
+  CellData c;
+  c.id = widgetId(member(j, "id", at), at / "id");
+  c.name = text(member(j, "name", at), at / "name");
+  c.lattice = widgetId(member(j, "lattice", at), at / "lattice");
+  const std::string kind = text(member(j, "kind", at), at / "kind");
+  const CellKind k = named(parseCellKind(kind), kind, "cell kind", "point, edge, face, slab, box, custom", at / "kind");
+  switch (k) {
+    case CellKind::Point:
+    case CellKind::Box: checkKeys(j, {"id", "name", "lattice", "kind", "base"}, at); break;
+    case CellKind::Edge:
+    case CellKind::Face: checkKeys(j, {"id", "name", "lattice", "kind", "base", "axis"}, at); break;
+    case CellKind::Slab: checkKeys(j, {"id", "name", "lattice", "kind", "axis", "plane"}, at); break;
+    case CellKind::Custom: checkKeys(j, {"id", "name", "lattice", "kind", "indices"}, at); break;
+  }
+  c.spec = readCellSpec(j, k, at);
+  detail::chargeBytes(budget, cellPointCount(c.spec, d, c.lattice), kCellPointBytes, "cell '" + c.name + "': its points", at);
+  return c;
+}
+
+AffineData readAffine(const Json& j, const Location& at) {
+  checkKeys(j, {"id", "name", "kind", "placement", "variation", "glyph"}, at);
+  AffineData a;
+  a.id = widgetId(member(j, "id", at), at / "id");
+  a.name = text(member(j, "name", at), at / "name");
+  const std::string kind = text(member(j, "kind", at), at / "kind");
+  a.kind = named(parseAffineKind(kind), kind, "affine widget kind", "translate, rotate, scale", at / "kind");
+  if (j.contains("placement")) a.placement = affine(j["placement"], at / "placement");
+  if (j.contains("variation")) a.variation = number(j["variation"], at / "variation");
+  a.glyph.shape = a.kind == AffineKind::Translate ? "arrow" : a.kind == AffineKind::Rotate ? "ring" : "cube";
+  if (j.contains("glyph")) {
+    const Json& g = j["glyph"];
+    const Location ag = at / "glyph";
+    checkObject(g, ag);
+    checkKeys(g, {"shape", "size", "placement"}, ag);
+    if (g.contains("shape")) a.glyph.shape = text(g["shape"], ag / "shape");
+    if (g.contains("size")) a.glyph.size = number(g["size"], ag / "size");
+    if (g.contains("placement")) a.glyph.partPlacement = affine(g["placement"], ag / "placement");
+  }
+  return a;
+}
+
+// One binding: a variation binding's conversion rule (gain, clamp), or another kind's mask.
+Binding readBinding(const Json& j, const Location& at) {
+  Binding b;
+  b.id = bindingId(member(j, "id", at), at / "id");
+  const std::string kind = text(member(j, "kind", at), at / "kind");
+  b.kind = named(parseBindingKind(kind), kind, "binding kind", "attachment, variation, cell-motion, hierarchy", at / "kind");
+  if (b.kind == BindingKind::Variation) {
+    checkKeys(j, {"id", "kind", "from", "to", "gain", "clamp", "oneWay"}, at);
+    b.mask = AffineMask::none();
+    b.rule.gain = j.contains("gain") ? number(j["gain"], at / "gain") : 1.0;
+    if (j.contains("clamp")) {
+      const Json& c = j["clamp"];
+      checkArray(c, at / "clamp");
+      if (c.size() != 2) (at / "clamp").fail("expected [min, max]");
+      b.rule.clamp = VariationRange{number(c[0], at / "clamp" / 0), number(c[1], at / "clamp" / 1)};
+    }
+  } else {
+    checkKeys(j, {"id", "kind", "from", "to", "mask", "oneWay"}, at);
+    const std::string mask = text(member(j, "mask", at), at / "mask");
+    b.mask = named(parseMask(mask), mask, "mask", "letters T, R, S, e.g. \"TR\"", at / "mask");
+  }
+  b.from = widgetId(member(j, "from", at), at / "from");
+  b.to = widgetId(member(j, "to", at), at / "to");
+  if (j.contains("oneWay")) b.oneWay = boolean(j["oneWay"], at / "oneWay");
+  return b;
+}
+
+// The lattice tree's order: the file's rootOrder, or by default the roots in file order; a
+// lattice without "children" gets its children in binding order.
+void readTreeOrder(const Json& root, const Location& at, WidgetModelData& d) {
   if (root.contains("rootOrder")) {
     const Json& r = root["rootOrder"];
     checkArray(r, at / "rootOrder");
@@ -396,6 +397,8 @@ WidgetModelData readData(const Json& root, const Location& at, meshio::ReadBudge
       if (!child) d.rootOrder.push_back(l.id);
     }
   }
+  if (d.lattices.empty()) return;
+  const Json& lattices = root["lattices"];
   for (std::size_t i = 0; i < d.lattices.size(); ++i) {
     if (lattices[i].contains("children")) continue;
     for (const Binding& b : d.bindings) {
@@ -404,6 +407,20 @@ WidgetModelData readData(const Json& root, const Location& at, meshio::ReadBudge
         if (c.id == b.from && c.lattice == d.lattices[i].id) d.lattices[i].children.push_back(b.to);
     }
   }
+}
+
+WidgetModelData readData(const Json& root, const Location& at, meshio::ReadBudget& budget) {
+  checkFormat(root, at);
+  WidgetModelData d;
+  readList(root, "lattices", kWidgetNodeBytes, "lattices", at, budget,
+           [&](const Json& j, const Location& li) { d.lattices.push_back(readLattice(j, li, budget)); });
+  readList(root, "cells", kWidgetNodeBytes, "cells", at, budget,
+           [&](const Json& j, const Location& ci) { d.cells.push_back(readCell(j, ci, d, budget)); });
+  readList(root, "affines", kWidgetNodeBytes, "affine widgets", at, budget,
+           [&](const Json& j, const Location& ai) { d.affines.push_back(readAffine(j, ai)); });
+  readList(root, "bindings", kBindingBytes, "bindings", at, budget,
+           [&](const Json& j, const Location& bi) { d.bindings.push_back(readBinding(j, bi)); });
+  readTreeOrder(root, at, d);
   return d;
 }
 

@@ -15,6 +15,10 @@
 
 namespace ffdkit::ffd {
 
+/// The most control points a lattice may have (l*m*n): the constructors refuse more, and the
+/// file readers check a count against it before allocating.
+inline constexpr std::uint64_t kMaxLatticeControlPoints = 100'000'000;
+
 /// An FFD lattice: l x m x n control points P_ijk (Kuriyama 1996, sec. 6.3.2), a basis per axis,
 /// the rest lattice Pbar (the control points before any edit, eq. (6.2)), a frame placing the
 /// lattice-local coordinates in the world, and the outside-point policy.
