@@ -7,7 +7,7 @@ Submodules mirror the C++ namespaces (docs/python.md):
 - ``ffdkit.scenes``   scenes (objects, lattices, keyframes), scene and widget files, the scene
                       deformer, mesh files, generators
 - ``ffdkit.app``      a scene edited as the app edits it, one undoable command per operation
-- ``ffdkit.pygem``    PyGeM's ``FFD`` class on ffdkit's engine
+- ``ffdkit.pygem``    PyGeM's ``FFD``, ``CFFD``, ``BFFD`` and ``VFFD`` classes on ffdkit's engine
 
 Points are numpy float64 arrays of shape (N, 3). Errors are ``ffdkit.Error`` subclasses carrying
 the C++ messages.
@@ -15,7 +15,7 @@ the C++ messages.
 
 import sys as _sys
 
-from ._ffdkit import (AnimationError, Cancelled, Error, GeneratorError, LatticeError, MeshIoError,
+from ._ffdkit import (AnimationError, Cancelled, ConstraintError, Error, GeneratorError, LatticeError, MeshIoError,
                       SceneFileError, WidgetError, WidgetFileError, __version__, app, ffd, scenes,
                       widgets)
 
@@ -23,6 +23,6 @@ from ._ffdkit import (AnimationError, Cancelled, Error, GeneratorError, LatticeE
 for _module in (ffd, widgets, scenes, app):
     _sys.modules[__name__ + "." + _module.__name__.rsplit(".", 1)[-1]] = _module
 
-__all__ = ["ffd", "widgets", "scenes", "app", "Error", "LatticeError", "Cancelled", "WidgetError",
+__all__ = ["ffd", "widgets", "scenes", "app", "Error", "LatticeError", "ConstraintError", "Cancelled", "WidgetError",
            "WidgetFileError", "SceneFileError", "MeshIoError", "GeneratorError", "AnimationError",
            "__version__"]

@@ -1,4 +1,4 @@
-"""PyGeM's ``FFD`` class on ffdkit's engine.
+"""PyGeM's ``FFD`` class on ffdkit's engine (and ``CFFD``, ``BFFD``, ``VFFD``: pygem_cffd.py).
 
 A PyGeM script switches by changing its import line::
 
@@ -320,3 +320,6 @@ _PRM_WEIGHTS_HEAD = (
     '# |    0    |    0    |    1    |  3.4   |\n'
 )
 _PRM_WEIGHTS_COMMENT = '\n# parameter {0} collects the displacements along {0}, normalized with the box length {0}.'
+
+# PyGeM's constrained classes, defined on FFD above (imported last: they subclass it).
+from .pygem_cffd import BFFD, CFFD, VFFD  # noqa: E402,F401

@@ -10,6 +10,8 @@ namespace py = pybind11;
 void bindFfd(py::module_& module);
 /// ffdkit.ffd.boxBernsteinDeform and its lattice and options (box_bernstein_bindings.cpp).
 void bindBoxBernstein(py::module_& module);
+/// ffdkit.ffd.ShapeConstraints, enclosedVolume, checkFolding (shape_constraints_bindings.cpp).
+void bindShapeConstraints(py::module_& module);
 void bindWidgets(py::module_& module);
 void bindScenes(py::module_& module);
 /// Parts of ffdkit.scenes bound in animation_bindings.cpp, called by bindScenes: the keyframe

@@ -8,6 +8,7 @@
 
 #include "bindings.h"
 #include "ffdkit/ffd/cancelled.h"
+#include "ffdkit/ffd/closed_surface.h"
 #include "ffdkit/ffd/lattice_error.h"
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/generator.h"
@@ -26,6 +27,7 @@ namespace {
 struct ErrorClasses {
   PyObject* base = nullptr;
   PyObject* lattice = nullptr;
+  PyObject* constraint = nullptr;
   PyObject* cancelled = nullptr;
   PyObject* widget = nullptr;
   PyObject* widgetFile = nullptr;
@@ -62,6 +64,11 @@ argument concerned.)doc");
 
 Raised for bad lattice counts, bases, frames or control points, non-finite points, and an
 embedding used with a lattice it was not built for ("embedding is stale ... re-embed").)doc");
+  errors.constraint = addError(module, "ConstraintError", py::make_tuple(base, valueError),
+                               R"doc(A shape constraint that is malformed or cannot be met (ffd::ConstraintError); also a ValueError.
+
+Raised for an open surface where a volume needs a closed one (the message names the edge and
+the triangle), sizes that differ, and constraints no allowed control change meets.)doc");
   errors.cancelled = addError(module, "Cancelled", py::make_tuple(base),
                               R"doc(A long computation stopped because its progress callback returned False.
 
@@ -100,6 +107,8 @@ animation applied during a gesture.)doc");
       std::rethrow_exception(pointer);
     } catch (const ffd::LatticeError& e) {
       PyErr_SetString(errors.lattice, e.what());
+    } catch (const ffd::ConstraintError& e) {
+      PyErr_SetString(errors.constraint, e.what());
     } catch (const ffd::Cancelled& e) {
       PyErr_SetString(errors.cancelled, e.what());
     } catch (const widgets::WidgetError& e) {
@@ -125,6 +134,7 @@ animation applied during a gesture.)doc");
   py::module_ ffdModule = module.def_submodule("ffd", "The FFD / EFFD engine (C++ namespace ffdkit::ffd).");
   python::bindFfd(ffdModule);
   python::bindBoxBernstein(ffdModule);
+  python::bindShapeConstraints(ffdModule);
   py::module_ widgetsModule = module.def_submodule("widgets", "The headless widget model (ffdkit::widgets).");
   python::bindWidgets(widgetsModule);
   py::module_ scenesModule =
