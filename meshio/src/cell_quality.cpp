@@ -17,6 +17,10 @@ constexpr double kSmall = 1.0e-15;
 constexpr double kVerySmall = 1.0e-300;
 constexpr double kRootVerySmall = 1.0e-150;
 
+// Points one per row in memory: a face's points are read three times per check, and a
+// column-major N x 3 matrix puts each point's coordinates on three cache lines.
+using PointRows = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
 struct FaceGeometry {
   Eigen::Vector3d centre;
   Eigen::Vector3d area;  ///< area vector: right-hand rule over the face's points, length = area
@@ -25,7 +29,7 @@ struct FaceGeometry {
 // A face's centre and area vector as OpenFOAM computes them (face::areaAndCentre): a triangle
 // directly; a polygon from the triangles between each edge and the point average, the centre
 // weighted by the triangles' areas.
-FaceGeometry faceGeometry(const Eigen::MatrixX3d& p, const PolyMeshCells& cells, std::int64_t f) {
+FaceGeometry faceGeometry(const PointRows& p, const PolyMeshCells& cells, std::int64_t f) {
   const std::int32_t* v = cells.faceVertices.data() + cells.faceStarts[std::size_t(f)];
   const std::int64_t n = cells.faceStarts[std::size_t(f) + 1] - cells.faceStarts[std::size_t(f)];
   auto point = [&](std::int64_t i) -> Eigen::Vector3d { return p.row(v[i]).transpose(); };
@@ -54,7 +58,7 @@ FaceGeometry faceGeometry(const Eigen::MatrixX3d& p, const PolyMeshCells& cells,
 // boundaryFaceSkewness): the distance of the face centre from where the line between the cell
 // centres (or, at the boundary, the face normal through the cell centre) crosses the face,
 // over an estimate of the face's extent in that direction.
-double faceSkewness(const Eigen::MatrixX3d& p, const PolyMeshCells& cells, std::int64_t f, const FaceGeometry& face,
+double faceSkewness(const PointRows& p, const PolyMeshCells& cells, std::int64_t f, const FaceGeometry& face,
                     const Eigen::Vector3d& ownCentre, const Eigen::Vector3d* neiCentre) {
   const Eigen::Vector3d cpf = face.centre - ownCentre;
   Eigen::Vector3d d;
@@ -76,8 +80,9 @@ double faceSkewness(const Eigen::MatrixX3d& p, const PolyMeshCells& cells, std::
 
 }  // namespace
 
-CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCells& cells,
+CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& columns, const PolyMeshCells& cells,
                                const CellQualityOptions& options) {
+  const PointRows points = columns;
   CellQuality q;
   const std::int64_t faces = cells.faceCount();
   const std::int64_t internal = std::int64_t(cells.neighbour.size());
@@ -86,7 +91,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
   const std::size_t nCells = std::size_t(cells.cellCount);
 
   // First estimate of each cell centre: the average of its face centres.
-  Eigen::MatrixX3d estimate = Eigen::MatrixX3d::Zero(Eigen::Index(nCells), 3);
+  PointRows estimate = PointRows::Zero(Eigen::Index(nCells), 3);
   std::vector<std::int32_t> faceCounts(nCells, 0);
   for (std::int64_t f = 0; f < faces; ++f) {
     const Eigen::Vector3d c = faceGeometry(points, cells, f).centre;
@@ -103,7 +108,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
   faceCounts = {};
 
   // Volumes and centres from the face pyramids about the estimate (3 x volume accumulated).
-  Eigen::MatrixX3d centres = Eigen::MatrixX3d::Zero(Eigen::Index(nCells), 3);
+  PointRows centres = PointRows::Zero(Eigen::Index(nCells), 3);
   Eigen::VectorXd volumes = Eigen::VectorXd::Zero(Eigen::Index(nCells));
   auto addPyramid = [&](std::size_t cell, const FaceGeometry& face, double sign) {
     const Eigen::Vector3d apex = estimate.row(Eigen::Index(cell)).transpose();
@@ -122,7 +127,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
     else centres.row(i) = estimate.row(i);
   }
   volumes /= 3.0;
-  estimate = Eigen::MatrixX3d();
+  estimate = PointRows();
 
   std::vector<char> bad(nCells, 0);
   q.minVolume = std::numeric_limits<double>::infinity();

@@ -48,8 +48,8 @@ struct CellQuality {
   double volumeRatio() const { return maxVolume > 0.0 ? minVolume / maxVolume : 0.0; }
 };
 
-/// Checks every cell of `cells` over `points` (#P x 3). Memory: 7 doubles per cell; faces are
-/// visited three times without storing their geometry.
+/// Checks every cell of `cells` over `points` (#P x 3). Memory: 7 doubles per cell and a copy of
+/// the points (one per row); faces are visited three times without storing their geometry.
 CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCells& cells,
                                const CellQualityOptions& options = {});
 
