@@ -88,7 +88,109 @@ struct SceneDeformer::ObjectPipeline {
   // be deferred (deferred: run the pipeline when points() is asked for; see run()).
   bool deltaOnly = false;
   bool deferred = false;
+
+  // Whether the object still holds the points this pipeline was built from.
+  bool holdsSameMesh(const SceneObject& object) const;
+  // A new pipeline for `stages` over the object's points (or the points taken from `takeFrom`):
+  // a new object, new points or a new lattice tree. Returns the lattices built.
+  int rebuild(const Scene& scene, const SceneObject& object, std::vector<Stage> stages, Scene* takeFrom);
+  // The scene's lattices synced into the pipeline in place: a stage whose revisions did not move
+  // is left alone; new control points are written into its lattice (updated incrementally), a
+  // new frame moves it (re-embedding per the throttle); only a new rest shape makes a new
+  // lattice. Clears `onlyLastControl` when anything but the last stage's control points moved,
+  // sets `lastControlMoved` when those did. Returns the lattices built.
+  int syncInPlace(const Scene& scene, const std::vector<Stage>& stages, bool sameModel, bool& onlyLastControl,
+                  bool& lastControlMoved);
+  // What the object holds now (no points, when the pipeline took them over), to recognise it next time.
+  void remember(const SceneObject& object);
+  // After a pipeline run: the revision, and the base of gestureMotion() (see baseRevision).
+  void recordRun();
 };
+
+bool SceneDeformer::ObjectPipeline::holdsSameMesh(const SceneObject& object) const {
+  const Eigen::MatrixX3d& own = object.mesh.points;
+  return pipeline && object.meshRevision == meshRevision && own.data() == meshData && own.rows() == meshRows;
+}
+
+int SceneDeformer::ObjectPipeline::rebuild(const Scene& scene, const SceneObject& object, std::vector<Stage> newStages,
+                                           Scene* takeFrom) {
+  auto built = takeFrom ? std::make_unique<ffd::Pipeline>(ffd::Pipeline::adopting(takeFrom->takeObjectPoints(object.name)))
+                        : std::make_unique<ffd::Pipeline>(object.mesh.points);
+  std::map<widgets::WidgetId, ffd::LatticeId> newIds;
+  int latticesBuilt = 0;
+  synced.clear();
+  for (const Stage& stage : newStages) {
+    std::optional<ffd::LatticeId> parent;
+    if (stage.parent) parent = newIds.at(*stage.parent);
+    newIds[stage.lattice] = built->addLattice(scene.widgets.ffdLattice(stage.lattice), parent, stage.priority);
+    ++latticesBuilt;
+    synced[stage.lattice] = {scene.widgets.frameRevision(stage.lattice), scene.widgets.controlRevision(stage.lattice)};
+  }
+  stages = std::move(newStages);
+  pipeline = std::move(built);
+  ids = std::move(newIds);
+  ++revision;
+  baseControl.resize(0, 3);  // the next run sets the base (it embeds every stage)
+  moved = false;
+  return latticesBuilt;
+}
+
+int SceneDeformer::ObjectPipeline::syncInPlace(const Scene& scene, const std::vector<Stage>& current, bool sameModel,
+                                               bool& onlyLastControl, bool& lastControlMoved) {
+  int latticesBuilt = 0;
+  for (const Stage& stage : current) {
+    const std::uint64_t frameRevision = scene.widgets.frameRevision(stage.lattice);
+    const std::uint64_t controlRevision = scene.widgets.controlRevision(stage.lattice);
+    auto& seen = synced[stage.lattice];
+    if (sameModel && seen == std::pair(frameRevision, controlRevision)) continue;
+    if (!(stage == current.back()) || seen.first != frameRevision) onlyLastControl = false;
+    ffd::Lattice& lattice = pipeline->lattice(ids.at(stage.lattice));
+    if (!sameModel || seen.first != frameRevision) {
+      if (!sameRestShape(scene.widgets, stage.lattice, lattice)) {
+        lattice = scene.widgets.ffdLattice(stage.lattice);
+        ++latticesBuilt;
+      } else if (const Eigen::Affine3d frame = scene.widgets.latticeFrame(stage.lattice);
+                 frame.matrix() != lattice.frame().matrix()) {
+        lattice.setFrame(frame);
+      }
+    }
+    const Eigen::MatrixX3d& control = scene.widgets.controlPoints(stage.lattice);
+    if (control != lattice.controlPoints()) {
+      lattice.setControlPoints(control);
+      lastControlMoved = lastControlMoved || stage == current.back();
+    }
+    seen = {frameRevision, controlRevision};
+  }
+  return latticesBuilt;
+}
+
+void SceneDeformer::ObjectPipeline::remember(const SceneObject& object) {
+  meshData = object.mesh.points.data();
+  meshRows = object.mesh.points.rows();
+  meshRevision = object.meshRevision;
+}
+
+void SceneDeformer::ObjectPipeline::recordRun() {
+  const std::vector<ffd::StageReport>& reports = pipeline->lastReport();
+  const auto changedOutput = [](const ffd::StageReport& r) { return r.outputChanged; };
+  deltaOnly = !reports.empty() && reports.back().delta &&
+              std::none_of(reports.begin(), reports.end(),
+                           [](const ffd::StageReport& r) { return r.approximate || r.reembedded; }) &&
+              std::none_of(reports.begin(), reports.end() - 1, changedOutput);
+  if (!std::any_of(reports.begin(), reports.end(), changedOutput)) return;
+  ++revision;
+  // Only the last stage changed, by deltas: the output moved linearly in its control points
+  // since the base. Anything else makes this output the new base.
+  const bool lastByDelta = reports.back().delta && std::none_of(reports.begin(), reports.end() - 1, changedOutput);
+  if (!lastByDelta || baseControl.size() == 0) {
+    baseRevision = revision;
+    baseControl = pipeline->lattice(reports.back().id).controlPoints();
+    moved = false;
+    if (lastByDelta) baseControl.resize(0, 3);  // moved from an unknown base: nothing to follow
+  } else {
+    moved = true;
+  }
+}
 
 SceneDeformer::SceneDeformer() = default;
 SceneDeformer::~SceneDeformer() = default;
@@ -127,67 +229,19 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
     ObjectPipeline* p = found != objects_.end() ? found->second.get() : (added = std::make_unique<ObjectPipeline>()).get();
     std::vector<Stage> stages = stagesFor(scene, object.name);
     const Eigen::MatrixX3d& own = object.mesh.points;
-    const bool sameMesh = p->pipeline && object.meshRevision == p->meshRevision && own.data() == p->meshData &&
-                          own.rows() == p->meshRows;
     // A mesh at another address (a copied scene, an undo of an object edit) may still be the same:
     // compare it then, once, rather than rebuild.
-    const bool inputChanged = !sameMesh && (!p->pipeline || p->pipeline->inputPoints().rows() != own.rows() ||
-                                            p->pipeline->inputPoints() != own);
+    const bool inputChanged = !p->holdsSameMesh(object) &&
+                              (!p->pipeline || p->pipeline->inputPoints().rows() != own.rows() || p->pipeline->inputPoints() != own);
     bool onlyLastControl = sameModel;  // only the last stage's control points moved (or nothing)
     bool lastControlMoved = false;
     if (!p->pipeline || inputChanged || stages != p->stages) {
       onlyLastControl = false;
-      // New object, new points or a new lattice tree: rebuild (embeddings follow on update).
-      auto pipeline = takeFrom ? std::make_unique<ffd::Pipeline>(
-                                     ffd::Pipeline::adopting(takeFrom->takeObjectPoints(object.name)))
-                               : std::make_unique<ffd::Pipeline>(own);
-      std::map<widgets::WidgetId, ffd::LatticeId> ids;
-      p->synced.clear();
-      for (const Stage& stage : stages) {
-        std::optional<ffd::LatticeId> parent;
-        if (stage.parent) parent = ids.at(*stage.parent);
-        ids[stage.lattice] = pipeline->addLattice(scene.widgets.ffdLattice(stage.lattice), parent, stage.priority);
-        ++latticesBuilt;
-        p->synced[stage.lattice] = {scene.widgets.frameRevision(stage.lattice), scene.widgets.controlRevision(stage.lattice)};
-      }
-      p->stages = std::move(stages);
-      p->pipeline = std::move(pipeline);
-      p->ids = std::move(ids);
-      ++p->revision;
-      p->baseControl.resize(0, 3);  // the next run sets the base (it embeds every stage)
-      p->moved = false;
+      latticesBuilt += p->rebuild(scene, object, std::move(stages), takeFrom);
     } else {
-      // In place: a stage whose revisions did not move is left alone; new control points are
-      // written into the pipeline's lattice (the deformer then updates incrementally), a new frame
-      // moves it (re-embedding per the throttle); only a new rest shape makes a new lattice.
-      for (const Stage& stage : stages) {
-        const std::uint64_t frameRevision = scene.widgets.frameRevision(stage.lattice);
-        const std::uint64_t controlRevision = scene.widgets.controlRevision(stage.lattice);
-        auto& seen = p->synced[stage.lattice];
-        if (sameModel && seen == std::pair(frameRevision, controlRevision)) continue;
-        if (!(stage == stages.back()) || seen.first != frameRevision) onlyLastControl = false;
-        ffd::Lattice& current = p->pipeline->lattice(p->ids.at(stage.lattice));
-        if (!sameModel || seen.first != frameRevision) {
-          if (!sameRestShape(scene.widgets, stage.lattice, current)) {
-            current = scene.widgets.ffdLattice(stage.lattice);
-            ++latticesBuilt;
-          } else if (const Eigen::Affine3d frame = scene.widgets.latticeFrame(stage.lattice);
-                     frame.matrix() != current.frame().matrix()) {
-            current.setFrame(frame);
-          }
-        }
-        const Eigen::MatrixX3d& control = scene.widgets.controlPoints(stage.lattice);
-        if (control != current.controlPoints()) {
-          current.setControlPoints(control);
-          lastControlMoved = lastControlMoved || stage == stages.back();
-        }
-        seen = {frameRevision, controlRevision};
-      }
+      latticesBuilt += p->syncInPlace(scene, stages, sameModel, onlyLastControl, lastControlMoved);
     }
-    // What the object holds now (no points, when the pipeline took them over), to recognise it next time.
-    p->meshData = own.data();
-    p->meshRows = own.rows();
-    p->meshRevision = object.meshRevision;
+    p->remember(object);
     if (!p->stages.empty()) {
       p->pipeline->setThrottle(throttleFor(scene.widgets.latticeSettings(p->stages.front().lattice)));
       std::optional<ffd::LatticeId> active;
@@ -254,30 +308,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       stats.embedSeconds += report.embedSeconds;
     }
     countPoints(p);
-    const std::vector<ffd::StageReport>& reports = p.pipeline->lastReport();
-    p.deltaOnly = !reports.empty() && reports.back().delta &&
-                  std::none_of(reports.begin(), reports.end(), [](const ffd::StageReport& r) {
-                    return r.approximate || r.reembedded;
-                  }) &&
-                  std::none_of(reports.begin(), reports.end() - 1,
-                               [](const ffd::StageReport& r) { return r.outputChanged; });
-    if (std::any_of(reports.begin(), reports.end(), [](const ffd::StageReport& r) { return r.outputChanged; })) {
-      ++p.revision;
-      // Only the last stage changed, by deltas: the output moved linearly in its control points
-      // since the base. Anything else makes this output the new base.
-      const bool lastByDelta =
-          reports.back().delta && std::none_of(reports.begin(), reports.end() - 1, [](const ffd::StageReport& r) {
-            return r.outputChanged;
-          });
-      if (!lastByDelta || p.baseControl.size() == 0) {
-        p.baseRevision = p.revision;
-        p.baseControl = p.pipeline->lattice(reports.back().id).controlPoints();
-        p.moved = false;
-        if (lastByDelta) p.baseControl.resize(0, 3);  // moved from an unknown base: nothing to follow
-      } else {
-        p.moved = true;
-      }
-    }
+    p.recordRun();
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats_ = stats;
