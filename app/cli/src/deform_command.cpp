@@ -17,6 +17,7 @@
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/lattice_fit.h"
 #include "frames.h"
+#include "shape_guard.h"
 #include "split_input.h"
 #include "volume_mesh.h"
 #include "ffdkit/scenes/scene.h"
@@ -140,6 +141,7 @@ struct DeformRequest {
   bool allowInverted = false;        ///< --allow-inverted: write a volume mesh with bad cells
   bool quality = false;              ///< --quality: a volume mesh's cell check before and after
   ffd::Precision precision = ffd::Precision::Double;  ///< --precision
+  ShapeGuardRequest guard;           ///< --keep-volume, --keep-centre, --fold-check
 };
 
 DeformRequest parseRequest(const Args& args) {
@@ -179,6 +181,7 @@ DeformRequest parseRequest(const Args& args) {
     }
   }
   r.settings = parseSettings(args.values("set"));
+  r.guard = parseShapeGuard(args);
   r.objects = args.values("object");
   if (!r.objects.empty() && !r.inputs.empty())
     throw UsageError("--object selects objects of a scene without INPUT files");
@@ -342,13 +345,27 @@ int runDeform(const Args& args) {
   scenes::SceneDeformer deformer;
   deformer.setPrecision(request.precision);
   std::vector<std::pair<fs::path, scenes::MeshData>> meshes;
+  std::map<std::string, scenes::MeshData> restOf;  // the objects whose shape is kept, before deforming
   onEveryRank(ranks, [&] {
+    checkFoldsBeforeDeform(scene.widgets, request.guard.foldCheck, console);
+    for (const auto* names : {&request.guard.keepVolume, &request.guard.keepCentre})
+      for (const auto& name : *names) {
+        const auto* object = scene.findObject(name);
+        if (!object) throw std::runtime_error("--keep-volume/--keep-centre: no object '" + name + "' to deform");
+        restOf.emplace(name, object->mesh);
+      }
     evaluate(scene, deformer, console);
     for (const auto& target : targets) {
       // Both are done with the object: take its mesh (its points are in the deformer) and its
       // deformed points (no copies).
       scenes::MeshData mesh = scene.takeObject(target.object).mesh;
       mesh.points = deformer.takePoints(target.object);
+      if (request.guard.keeps(target.object)) {
+        const auto& keep = request.guard;
+        restoreShape(target.object, restOf.at(target.object), mesh.points,
+                     std::count(keep.keepVolume.begin(), keep.keepVolume.end(), target.object) > 0,
+                     std::count(keep.keepCentre.begin(), keep.keepCentre.end(), target.object) > 0, console);
+      }
       // A whole file is checked by its writer (stageMesh); a rank's slice of a split INPUT is
       // checked here, unless empty (more ranks than points or lines).
       if (split && mesh.points.rows() > 0) scenes::validateMesh(mesh, "deformed object '" + target.object + "'");
@@ -390,6 +407,11 @@ int runDeform(const Args& args) {
   return 0;
 }
 
+std::vector<OptionSpec> withShapeGuardOptions(std::vector<OptionSpec> options) {
+  for (OptionSpec& option : shapeGuardOptions()) options.push_back(std::move(option));
+  return options;
+}
+
 }  // namespace
 
 Command deformCommand() {
@@ -411,12 +433,16 @@ Command deformCommand() {
           "unchanged but the points, after its cells are checked: inverted or zero-volume cells refuse\n"
           "the write unless --allow-inverted (docs/volume-meshes.md).\n"
           "Nothing is written when anything fails.\n"
+          "--keep-volume OBJECT / --keep-centre OBJECT restore, after the deformation, the volume the\n"
+          "object's closed surface enclosed and its centre, by the least-norm change of a correction\n"
+          "lattice fitted around it (docs/cli.md). --fold-check warns (default) or fails when a lattice\n"
+          "of the tool folds space over itself (a certified bound of det J per cell).\n"
           "Batch: mpirun -n N ffdkit-cli deform --widgets TOOL PIECE... -o FOLDER: rank 0 reads TOOL\n"
           "and sends it to every rank; each rank reads, deforms and writes its contiguous share of\n"
           "the PIECE files (--fit fits to the box of all pieces), as one process would (docs/scaling.md).\n"
           "With one INPUT (binary .ply, .npy, .xyz) each rank reads, deforms and writes its slice of\n"
           "the vertices into the one OUTPUT (.ply, .npy, .xyz); rank 0 also copies a PLY's faces.\n",
-          withReadOptions({{"widgets", 'w', "FILE", "the widget file (deformation tool) to apply"},
+          withShapeGuardOptions(withReadOptions({{"widgets", 'w', "FILE", "the widget file (deformation tool) to apply"},
            {"scene", 's', "SCENE", "the scene (file or sample folder) whose widget trees to apply"},
            {"output", 'o', "PATH", "output file, or folder for several outputs"},
            {"frame", '\0', "T", "with a scene: deform at frame T of its animation"},
@@ -430,7 +456,7 @@ Command deformCommand() {
            {"quality", '\0', "", "with an OpenFOAM case: print the cell check before and after"},
            {"precision", '\0', "P", "double (default) or single: the displacements in float32, as Blender does "
                                      "(within 1e-6 of the largest control-point move; docs/ffd-engine.md)"},
-           quietOption(), progressOption(), timingsOption()}),
+           quietOption(), progressOption(), timingsOption()})),
           runDeform};
 }
 

@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "console.h"
+#include "shape_guard.h"
 #include "volume_mesh.h"
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene.h"
@@ -53,6 +54,16 @@ void printWidgets(const widgets::WidgetModel& model) {
                 cell ? ("on cell " + model.name(*cell)).c_str() : "free");
   }
   std::printf("bindings: %zu\n", model.bindings().size());
+  const std::vector<std::string> folds = foldFindings(model);
+  if (folds.empty() && !model.pipelineOrder().empty()) std::printf("fold-over: every lattice certified free of it\n");
+  for (const auto& line : folds) std::printf("fold-over: %s\n", line.c_str());
+}
+
+/// validate's note on fold-over: "" when every lattice is certified free of it.
+std::string foldNote(const widgets::WidgetModel& model) {
+  std::string note;
+  for (const auto& line : foldFindings(model)) note += "; fold-over: " + line;
+  return note;
 }
 
 void infoScene(const fs::path& path, const ReadSettings& read) {
@@ -139,13 +150,15 @@ std::string check(const fs::path& path, const ReadSettings& read) {
           throw std::runtime_error(path.string() + ": object '" + name + "' deforms to non-finite points");
       }
       return format("scene, %zu objects, %zu lattices", scene.objects().size(),
-                    scene.widgets.widgets(widgets::WidgetType::Lattice).size());
+                    scene.widgets.widgets(widgets::WidgetType::Lattice).size()) +
+             foldNote(scene.widgets);
     }
     case FileKind::Widgets: {
       const widgets::WidgetModel model = readWidgetsFile(path, read);
       for (auto lattice : model.widgets(widgets::WidgetType::Lattice)) (void)model.ffdLattice(lattice);
       return format("widget file, %zu lattices, %zu affine widgets", model.widgets(widgets::WidgetType::Lattice).size(),
-                    model.widgets(widgets::WidgetType::Affine).size());
+                    model.widgets(widgets::WidgetType::Affine).size()) +
+             foldNote(model);
     }
     case FileKind::Mesh: {
       const scenes::MeshData mesh = readMeshFile(path, read);

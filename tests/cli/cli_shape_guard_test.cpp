@@ -1,0 +1,151 @@
+// ffdkit-cli deform --keep-volume / --keep-centre / --fold-check, and the fold-over line of info:
+// the written mesh's volume and centroid against the test's own divergence-theorem sums.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "cli_runner.h"
+#include "ffdkit/scenes/mesh_io.h"
+
+namespace ffdkit::cli::test {
+namespace {
+
+namespace fs = std::filesystem;
+using scenes::MeshData;
+
+const fs::path kWidgetExamples = fs::path(FFDKIT_SOURCE_DIR) / "widgets" / "examples";
+
+/// A closed UV sphere of radius 1 about the origin, outward triangles.
+MeshData ball(int rings = 16) {
+  const int segments = 2 * rings, n = 2 + (rings - 1) * segments;
+  MeshData mesh;
+  mesh.points.resize(n, 3);
+  mesh.points.row(0) << 0, 0, 1;
+  mesh.points.row(n - 1) << 0, 0, -1;
+  for (int r = 1; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const double t = M_PI * r / rings, p = 2 * M_PI * s / segments;
+      mesh.points.row(1 + (r - 1) * segments + s) << std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t);
+    }
+  const auto at = [segments](int ring, int s) { return 1 + (ring - 1) * segments + s % segments; };
+  std::vector<Eigen::Vector3i> tris;
+  for (int s = 0; s < segments; ++s) tris.emplace_back(0, at(1, s), at(1, s + 1));
+  for (int r = 1; r + 1 < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      tris.emplace_back(at(r, s), at(r + 1, s), at(r + 1, s + 1));
+      tris.emplace_back(at(r, s), at(r + 1, s + 1), at(r, s + 1));
+    }
+  for (int s = 0; s < segments; ++s) tris.emplace_back(n - 1, at(rings - 1, s + 1), at(rings - 1, s));
+  mesh.triangles.resize(Eigen::Index(tris.size()), 3);
+  for (std::size_t t = 0; t < tris.size(); ++t) mesh.triangles.row(Eigen::Index(t)) = tris[t].transpose();
+  return mesh;
+}
+
+// Volume and first moment by the divergence theorem (tetrahedra from the origin).
+double volumeOf(const MeshData& m, Eigen::Vector3d* centroid = nullptr) {
+  double six = 0.0;
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  for (Eigen::Index t = 0; t < m.triangles.rows(); ++t) {
+    const Eigen::Vector3d a = m.points.row(m.triangles(t, 0)), b = m.points.row(m.triangles(t, 1)),
+                          c = m.points.row(m.triangles(t, 2));
+    const double det = a.dot(b.cross(c));
+    six += det;
+    moment += det * (a + b + c);
+  }
+  if (centroid) *centroid = moment / (4.0 * six);
+  return six / 6.0;
+}
+
+
+TEST(CliShapeGuard, KeepVolumeAndCentreRestoreThemInTheWrittenMesh) {
+  TempDir dir;
+  scenes::writeMesh(dir / "ball.vtp", ball());
+  Eigen::Vector3d restCentre;
+  const double rest = volumeOf(ball(), &restCentre);
+  const std::string tool = (kWidgetExamples / "fig6-8.json").string();
+  const CliResult plain = runCli({"deform", "-w", tool, (dir / "ball.vtp").string(), "-o", (dir / "plain.vtp").string(),
+                                  "--fit", "--set", "push-front=0.5"});
+  ASSERT_EQ(plain.exitCode, 0) << describe(plain);
+  const double changed = volumeOf(scenes::readMesh(dir / "plain.vtp"));
+  ASSERT_GT(std::abs(changed - rest) / rest, 1e-3);  // the tool does change the volume
+
+  const CliResult kept = runCli({"deform", "-w", tool, (dir / "ball.vtp").string(), "-o", (dir / "kept.vtp").string(),
+                                 "--fit", "--set", "push-front=0.5", "--keep-volume", "ball", "--keep-centre", "ball"});
+  ASSERT_EQ(kept.exitCode, 0) << describe(kept);
+  EXPECT_NE(kept.out.find("volume kept"), std::string::npos) << kept.out;
+  Eigen::Vector3d centre;
+  const MeshData out = scenes::readMesh(dir / "kept.vtp");
+  EXPECT_LT(std::abs(volumeOf(out, &centre) - rest) / rest, 1e-12);
+  EXPECT_LT((centre - restCentre).norm(), 1e-11);
+  EXPECT_GT((out.points - scenes::readMesh(dir / "plain.vtp").points).cwiseAbs().maxCoeff(), 1e-3);
+}
+
+TEST(CliShapeGuard, KeepVolumeOfAnOpenSurfaceFailsNamingTheEdgeAndWritesNothing) {
+  TempDir dir;
+  MeshData open = ball(8);
+  open.triangles.conservativeResize(open.triangles.rows() - 1, 3);
+  scenes::writeMesh(dir / "cup.vtp", open);
+  const CliResult r = runCli({"deform", "-w", (kWidgetExamples / "fig6-8.json").string(), (dir / "cup.vtp").string(),
+                              "-o", (dir / "out.vtp").string(), "--fit", "--keep-volume", "cup"});
+  EXPECT_EQ(r.exitCode, 1) << describe(r);
+  EXPECT_NE(r.err.find("object 'cup'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("open"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out.vtp"));
+  const CliResult unknown = runCli({"deform", "-w", (kWidgetExamples / "fig6-8.json").string(), (dir / "cup.vtp").string(),
+                                    "-o", (dir / "out.vtp").string(), "--keep-centre", "nothing"});
+  EXPECT_EQ(unknown.exitCode, 1) << describe(unknown);
+  EXPECT_NE(unknown.err.find("no object 'nothing'"), std::string::npos) << unknown.err;
+}
+
+TEST(CliShapeGuard, FoldCheckErrorRefusesAFoldingToolWarnWritesOffIsSilent) {
+  TempDir dir;
+  scenes::writeMesh(dir / "ball.vtp", ball(8));
+  const std::vector<std::string> folding = {"deform", "-w", (kWidgetExamples / "fig6-8.json").string(),
+                                            (dir / "ball.vtp").string(), "--fit", "--set", "push-front=-3"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> a = folding;
+    a.insert(a.end(), extra.begin(), extra.end());
+    return runCli(a);
+  };
+  const CliResult error = with({"-o", (dir / "e.vtp").string(), "--fold-check", "error"});
+  EXPECT_EQ(error.exitCode, 1) << describe(error);
+  EXPECT_NE(error.err.find("folds"), std::string::npos) << error.err;
+  EXPECT_FALSE(fs::exists(dir / "e.vtp"));
+  const CliResult warn = with({"-o", (dir / "w.vtp").string()});  // warn is the default
+  EXPECT_EQ(warn.exitCode, 0) << describe(warn);
+  EXPECT_NE(warn.err.find("folds"), std::string::npos) << warn.err;
+  EXPECT_TRUE(fs::exists(dir / "w.vtp"));
+  const CliResult off = with({"-o", (dir / "o.vtp").string(), "--fold-check", "off"});
+  EXPECT_EQ(off.exitCode, 0) << describe(off);
+  EXPECT_EQ(off.err.find("folds"), std::string::npos) << off.err;
+  const CliResult mild = runCli({"deform", "-w", (kWidgetExamples / "fig6-8.json").string(), (dir / "ball.vtp").string(),
+                                 "--fit", "--set", "push-front=0.5", "-o", (dir / "m.vtp").string(), "--fold-check", "error"});
+  EXPECT_EQ(mild.exitCode, 0) << describe(mild);
+  const CliResult bad = with({"-o", (dir / "b.vtp").string(), "--fold-check", "sometimes"});
+  EXPECT_EQ(bad.exitCode, 2) << describe(bad);
+}
+
+TEST(CliShapeGuard, InfoAndValidateReportFoldOverOfTheExampleTools) {
+  for (const char* name : {"fig6-8.json", "fig6-9.json", "fig6-10-press.json"}) {
+    const CliResult info = runCli({"info", (kWidgetExamples / name).string()});
+    ASSERT_EQ(info.exitCode, 0) << describe(info);
+    EXPECT_NE(info.out.find("fold-over: every lattice certified free of it"), std::string::npos) << name << info.out;
+    const CliResult validate = runCli({"validate", (kWidgetExamples / name).string()});
+    EXPECT_EQ(validate.exitCode, 0) << describe(validate);
+    EXPECT_EQ(validate.out.find("fold-over"), std::string::npos) << validate.out;
+  }
+  // Kuriyama 1996, Fig. 6-2's twisted box: det J reaches 0 at the corner (1, 1, 0) of its
+  // parameter box (positive inside), which the bound reports as a point with det J <= 0.
+  const CliResult info = runCli({"info", (kWidgetExamples / "fig6-2.json").string()});
+  ASSERT_EQ(info.exitCode, 0) << describe(info);
+  EXPECT_NE(info.out.find("fold-over: lattice unit-box folds in 1 of 1 cells (det J = 0 at u,v,w = 1, 1, 0)"),
+            std::string::npos) << info.out;
+  const CliResult validate = runCli({"validate", (kWidgetExamples / "fig6-2.json").string()});
+  EXPECT_EQ(validate.exitCode, 0) << describe(validate);  // reported, not a broken file
+  EXPECT_NE(validate.out.find("fold-over: lattice unit-box folds"), std::string::npos) << validate.out;
+}
+
+}  // namespace
+}  // namespace ffdkit::cli::test
