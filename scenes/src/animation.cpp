@@ -280,16 +280,27 @@ void applyAnimation(Scene& scene, double seconds) {
   applyAnimatedValues(scene, animationValues(scene, seconds));
 }
 
-void restoreAtEditValues(Scene& scene, const widgets::WidgetModelState& editValues, bool animationAppliedSince,
+void restoreAtEditValues(Scene& scene, const widgets::WidgetModelState& editValues, std::optional<double> shownSeconds,
                          const std::function<void()>& restore) {
-  if (!animationAppliedSince) {
+  if (!shownSeconds) {
     restore();  // the model is as the edit left it (or as its undo did): exact
     return;
   }
+  // The values shown now: those of the channels live now, as they are (the model's, which the
+  // animation set at the last frame change); the animation's at that time for the channels of
+  // widgets the write-back brings back.
   const widgets::WidgetModelState shown = animatedState(scene);
   applyAnimatedValues(scene, editValues);
   restore();
-  applyAnimatedValues(scene, shown);
+  widgets::WidgetModelState values = animationValues(scene, *shownSeconds);
+  const auto keep = [](auto& items, const auto& now) {
+    for (auto& [widget, value] : items)
+      if (const auto* v = findValue(now, widget)) value = *v;
+  };
+  keep(values.latticeFrames, shown.latticeFrames);
+  keep(values.variations, shown.variations);
+  keep(values.controlPoints, shown.controlPoints);
+  applyAnimatedValues(scene, values);
 }
 
 void applyAnimationFrame(Scene& scene, double frame) { applyAnimation(scene, frameTime(scene.animation(), frame)); }

@@ -474,7 +474,7 @@ void EditController::confirm() {
   const std::uint64_t madeAt = widgets_.animationApplications();
   auto restore = [this, delta, placed, animated, madeAt](bool forward) {
     scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after,
-                                widgets_.animationApplications() != madeAt, [&] {
+                                widgets_.animationAppliedSince(madeAt), [&] {
                                   scene_.widgets.restoreState(forward ? delta->after : delta->before);
                                   for (const Placed& p : *placed)
                                     scene_.widgets.setPlacement(p.id, forward ? p.after : p.before);

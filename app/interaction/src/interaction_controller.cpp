@@ -281,7 +281,7 @@ void InteractionController::pushState(const std::string& description, const widg
   auto apply = [this, delta, animated, madeAt](bool forward) {
     // In place: only what differs is stamped, so the deformer re-embeds nothing unless a frame
     // changed and then only the stages concerned.
-    scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after, animationApplications_ != madeAt,
+    scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after, animationAppliedSince(madeAt),
                                 [&] { scene_.widgets.restoreState(forward ? delta->after : delta->before); });
     refresh();
   };

@@ -63,7 +63,7 @@ auto InteractionController::edit(const std::string& description, Change change, 
     auto animated = std::make_shared<const scenes::StateDelta>(scenes::StateDelta{animatedBefore, scenes::animatedState(scene_)});
     const std::uint64_t madeAt = animationApplications_;
     auto apply = [this, delta, held, added, objectsBefore, animated, madeAt](bool forward) {
-      scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after, animationApplications_ != madeAt, [&] {
+      scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after, animationAppliedSince(madeAt), [&] {
         if (!forward) {
           for (std::size_t i = 0; i < added; ++i) held->push_back(scene_.takeObject(scene_.objects()[objectsBefore].name));
         }

@@ -30,7 +30,8 @@ int Timeline::frame() const {
 void Timeline::setFrame(int frame) {
   frame_ = std::clamp(frame, scene_.animation().firstFrame, scene_.animation().lastFrame);
   clock_ = frame_;
-  controller_.animationApplied();  // undo after this carries its values to the frame shown
+  // Undo after this carries what it writes back to the frame shown.
+  controller_.animationApplied(scenes::frameTime(scene_.animation(), frame_));
   scenes::applyAnimationFrame(scene_, frame_);
   controller_.refresh();
 }
@@ -161,7 +162,7 @@ bool Timeline::advance(double seconds) {
   // A drag under way owns the model: the clock runs on, the frame follows after the release.
   if (scene_.widgets.gestureActive() || controller_.dragging()) return false;
   frame_ = whole;
-  controller_.animationApplied();
+  controller_.animationApplied(scenes::frameTime(scene_.animation(), frame_));
   scenes::applyAnimationFrame(scene_, frame_);
   controller_.refresh();
   return true;

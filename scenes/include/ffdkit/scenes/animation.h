@@ -94,14 +94,16 @@ void applyAnimation(Scene& scene, double seconds);
 /// when the edit was made (control points, frames, variations, records); a frame change since
 /// then has moved the model by the animation (keyed channels to their keys, bound widgets with
 /// them), so writing the old values alone would mix two frames. This runs `restore` (the
-/// command's write-back) as at the edit, then carries the result to the frame shown now:
+/// command's write-back) as at the edit, then carries the result to the time shown:
 ///  1. the animated channels are set to `editValues` (applyAnimatedValues): their values when
 ///     the edit ended, for an undo, or when it started, for a redo (animatedState then);
 ///  2. `restore()`;
-///  3. if the animation was applied since the edit (`animationAppliedSince`: a frame change),
-///     the animated channels are set back to the values they had before step 1.
-/// Without a frame change in between only `restore()` runs: the write-back is exact.
-void restoreAtEditValues(Scene& scene, const widgets::WidgetModelState& editValues, bool animationAppliedSince,
+///  3. the animated channels are set back to the values they had before step 1, and those of
+///     widgets the write-back brought back to the animation's at `*shownSeconds` (the time the
+///     model was last set to).
+/// `shownSeconds` is given when the animation was applied since the edit (a frame change);
+/// without it only `restore()` runs, and the write-back is exact.
+void restoreAtEditValues(Scene& scene, const widgets::WidgetModelState& editValues, std::optional<double> shownSeconds,
                          const std::function<void()>& restore);
 /// applyAnimation at frameTime(scene.animation(), frame).
 void applyAnimationFrame(Scene& scene, double frame);

@@ -195,11 +195,19 @@ class InteractionController {
   /// Re-deforms every object (after undo/redo or a scene change) and notifies.
   void refresh();
 
-  /// Notes that the model was set to the animation at a frame (the timeline's frame changes and
+  /// Notes that the model was set to the animation at `seconds` (the timeline's frame changes and
   /// playback call it). An edit's command keeps the count it was made at; its undo and redo after
-  /// a frame change carry what they write back to the frame shown (scenes::restoreAtEditValues).
-  void animationApplied() { ++animationApplications_; }
+  /// a frame change carry what they write back to the time shown (scenes::restoreAtEditValues).
+  void animationApplied(double seconds) {
+    ++animationApplications_;
+    shownSeconds_ = seconds;
+  }
   std::uint64_t animationApplications() const { return animationApplications_; }
+  /// The time the model was last set to (animationApplied) if that was after the count
+  /// `madeAt`, else nullopt: what an edit's command made at `madeAt` passes to restoreAtEditValues.
+  std::optional<double> animationAppliedSince(std::uint64_t madeAt) const {
+    return animationApplications_ != madeAt ? std::optional(shownSeconds_) : std::nullopt;
+  }
 
   /// Called after every change of the scene, the selection or the hover (redraw, refresh panels).
   std::function<void()> onChanged;
@@ -233,6 +241,7 @@ class InteractionController {
   std::optional<LatticePointRef> point_;
   std::optional<widgets::WidgetId> hovered_;
   std::uint64_t animationApplications_ = 0;
+  double shownSeconds_ = 0.0;
   bool dragging_ = false;
   std::optional<widgets::WidgetId> dragLattice_;
   widgets::WidgetModelState dragStart_;
