@@ -3,6 +3,8 @@
 # Idempotent: installs only what is missing, and runs `apt-get update` once, only then.
 #   scripts/setup-deps.sh           the build, tests and app
 #   scripts/setup-deps.sh --fuzz    also clang and libFuzzer (scripts/fuzz.sh)
+#   scripts/setup-deps.sh --cost    print what the install costs (packages and disk, with their
+#                                   dependencies, beyond Debian's required and important ones)
 set -euo pipefail
 
 packages=(
@@ -21,8 +23,36 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest
   openfoam  # tests/cli/openfoam_test.sh: blockMesh, foamFormatConvert and checkMesh judge what ffdkit writes
 )
-if [ "${1:-}" = "--fuzz" ]; then
+fuzz=0
+cost=0
+for arg in "$@"; do
+  case "$arg" in
+    --fuzz) fuzz=1 ;;
+    --cost) cost=1 ;;
+    *) echo "setup-deps: unknown option $arg (--fuzz, --cost)" >&2; exit 2 ;;
+  esac
+done
+if [ "$fuzz" = 1 ]; then
   packages+=(clang libfuzzer-14-dev libclang-rt-14-dev)
+fi
+
+if [ "$cost" = 1 ]; then
+  # What the list stands for beyond what every Debian system has (priority required/important):
+  # its installed packages with their dependencies (dpkg's records), plus what apt would install
+  # for any still missing (a simulated install, no Recommends, as below). Sizes in installed KiB.
+  deps=$(apt-cache depends --recurse --no-recommends --no-suggests --no-conflicts --no-breaks --no-replaces \
+           --no-enhances "${packages[@]}" | grep -v '^ ' | grep -v '<' | sort -u)
+  installed=$({ dpkg-query -W -f='${Package} ${Installed-Size} ${Priority} ${db:Status-Abbrev}\n' $deps 2>/dev/null || true; } |
+                awk '$4 == "ii" && $3 != "required" && $3 != "important" {n++; kib += $2} END {print n + 0, kib + 0}')
+  toInstall=$({ apt-get install -s -qq --no-install-recommends "${packages[@]}" 2>/dev/null || true; } | awk '/^Inst /{print $2}')
+  simulated="0 0"
+  if [ -n "$toInstall" ]; then
+    simulated=$(apt-cache show --no-all-versions $toInstall | awk '/^Installed-Size:/ {n++; kib += $2} END {print n + 0, kib + 0}')
+  fi
+  read -r n1 k1 <<<"$installed"
+  read -r n2 k2 <<<"$simulated"
+  awk -v n=$((n1 + n2)) -v kib=$((k1 + k2)) 'BEGIN {printf "setup-deps: %d packages, %.1f GB installed\n", n, kib / 1024 / 1024}'
+  exit 0
 fi
 
 missing=()
