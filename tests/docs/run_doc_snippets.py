@@ -124,6 +124,17 @@ def tools_folder(scratch, build, python):
     return tools
 
 
+def page_env(base, folder):
+    """The environment of one page's blocks: the C++ projects they configure compile through
+    ccache when it is installed (CMake reads CMAKE_CXX_COMPILER_LAUNCHER from the environment),
+    with paths below the page's folder hashed relative to it, so that the next run of the test,
+    in another temporary folder, finds the objects in the cache."""
+    env = dict(base)
+    if shutil.which("ccache") and "CMAKE_CXX_COMPILER_LAUNCHER" not in env:
+        env.update({"CMAKE_CXX_COMPILER_LAUNCHER": "ccache", "CCACHE_BASEDIR": folder, "CCACHE_NOHASHDIR": "1"})
+    return env
+
+
 def run(command, cwd, env, block, display):
     if display and not env.get("DISPLAY"):
         if shutil.which("xvfb-run") is None:
@@ -197,7 +208,7 @@ def main():
     scratch = tempfile.mkdtemp(prefix="ffdkit-doc-snippets-")
     try:
         tools = tools_folder(scratch, build, os.path.realpath(args.python))
-        env = dict(os.environ)
+        base_env = env = dict(os.environ)
         env["PATH"] = tools + os.pathsep + env.get("PATH", "")
         env["PYTHONPATH"] = os.path.join(build, "python")
         env["PYTHONDONTWRITEBYTECODE"] = "1"
@@ -214,6 +225,7 @@ def main():
             folder = os.path.join(scratch, re.sub(r"[^A-Za-z0-9]+", "-", os.path.relpath(page, source)))
             os.makedirs(folder)
             link_tree(folder, source, build)
+            env = page_env(base_env, folder)
             cpp_blocks, cmake_block = [], None
             for block in blocks:
                 kind = RUN_KINDS.get(block.language)
