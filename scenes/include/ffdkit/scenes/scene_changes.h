@@ -18,7 +18,7 @@ struct SceneMark {
 };
 
 /// What changed in a scene after a SceneMark (Scene's edits stamp what they change): the change set the deformer, the view, the outliner
-/// and the property panel read instead of comparing the document (seed STYLE "change-driven").
+/// and the property panel read instead of comparing the document (change-driven updates).
 struct SceneChanges {
   /// The widget model was replaced (a copy, a file): take every widget and lattice anew.
   bool widgetsReplaced = false;
