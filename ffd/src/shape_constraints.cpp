@@ -6,10 +6,46 @@
 
 #include <Eigen/QR>
 
+#include "cell_polynomials.h"
+#include "vector_clones.h"
+
 namespace ffdkit::ffd {
 namespace {
 
 constexpr Eigen::Index kParallelPoints = 16384;
+
+// One block of adjointDeform for axes of degree <= 3: the basis from the cells' power form
+// (CellPolynomials, four lanes, zero beyond the degree) and the window accumulated four
+// u-functions at a time, acc[k][c][b] (lane a) for coordinate k. One coordinate per pass keeps its
+// sixteen accumulators in vector registers; compiled for AVX2 / AVX-512 too (Lane4 is one register).
+FFDKIT_VECTOR_CLONES
+void adjointBlockCubic(const Embedding& embedding, const Embedding::Block& block, const std::array<int, 3>& cell,
+                       const detail::CellPolynomials poly[3], const Eigen::Ref<const Eigen::MatrixX3d>& g,
+                       detail::Lane4 acc[3][4][4]) {
+  const auto& order = embedding.order();
+  for (int k = 0; k < 3; ++k) {
+    detail::Lane4 sum[4][4];
+    for (int c = 0; c < 4; ++c)
+      for (int b = 0; b < 4; ++b) sum[c][b] = detail::Lane4{0, 0, 0, 0};
+    for (std::uint32_t q = block.begin; q < block.end; ++q) {
+      const Eigen::Index p = order.empty() ? q : order[q];
+      const double s = block.kind == Embedding::BlockKind::Blended
+                           ? embedding.blendWeight()[block.blendOffset + q - block.begin]
+                           : 1.0;
+      detail::Lane4 Nu, Nv, Nw, D;
+      poly[0].evaluate(cell[0], embedding.sortedU()[q], Nu, D);
+      poly[1].evaluate(cell[1], embedding.sortedV()[q], Nv, D);
+      poly[2].evaluate(cell[2], embedding.sortedW()[q], Nw, D);
+      const double sg = s * g(p, k);
+      for (int c = 0; c < 4; ++c) {
+        const detail::Lane4 t = (sg * Nw[c]) * Nv;
+        for (int b = 0; b < 4; ++b) sum[c][b] += t[b] * Nu;
+      }
+    }
+    for (int c = 0; c < 4; ++c)
+      for (int b = 0; b < 4; ++b) acc[k][c][b] = sum[c][b];
+  }
+}
 
 // The transpose of the deformation's linear part: for a world gradient g (#points x 3) of some
 // function of the deformed points, its gradient with respect to the LOCAL control points,
@@ -20,7 +56,14 @@ Eigen::MatrixX3d adjointDeform(const Lattice& lattice, const Embedding& embeddin
                                const Eigen::Ref<const Eigen::MatrixX3d>& g) {
   const Eigen::Index n = embedding.pointCount();
   int np[3];
-  for (int a = 0; a < 3; ++a) np[a] = lattice.axis(a).degree() + 1;
+  bool cubic = true;
+  for (int a = 0; a < 3; ++a) {
+    np[a] = lattice.axis(a).degree() + 1;
+    cubic = cubic && detail::CellPolynomials::supports(lattice.axis(a));
+  }
+  detail::CellPolynomials poly[3];
+  if (cubic)
+    for (int a = 0; a < 3; ++a) poly[a] = detail::CellPolynomials(lattice.axis(a));
   const int window = np[0] * np[1] * np[2];
   const auto& blocks = embedding.blocks();
   const auto& tiles = embedding.tileBlocks();
@@ -35,26 +78,35 @@ Eigen::MatrixX3d adjointDeform(const Lattice& lattice, const Embedding& embeddin
     // acc(a + np0 (b + np1 c), :) = sum over the block's points of s bu[a] bv[b] bw[c] g.
     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> acc(window, 3);
     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> vw(np[1] * np[2], 3);
+    alignas(32) detail::Lane4 acc4[3][4][4];
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t t = 0; t < tileCount; ++t) {
       for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
         const Embedding::Block& block = blocks[bi];
         if (block.kind == Embedding::BlockKind::Frozen) continue;
         const std::array<int, 3> cell = embedding.cellOf(block);
-        acc.setZero();
-        for (std::uint32_t q = block.begin; q < block.end; ++q) {
-          const Eigen::Index p = order.empty() ? q : order[q];
-          const double s = block.kind == Embedding::BlockKind::Blended
-                               ? embedding.blendWeight()[block.blendOffset + q - block.begin]
-                               : 1.0;
-          lattice.axis(0).basis(cell[0], embedding.sortedU()[q], bu.data());
-          lattice.axis(1).basis(cell[1], embedding.sortedV()[q], bv.data());
-          lattice.axis(2).basis(cell[2], embedding.sortedW()[q], bw.data());
-          const Eigen::RowVector3d sg = s * g.row(p);
+        if (cubic) {
+          adjointBlockCubic(embedding, block, cell, poly, g, acc4);
           for (int c = 0; c < np[2]; ++c)
-            for (int b = 0; b < np[1]; ++b) vw.row(b + np[1] * c) = (bv[std::size_t(b)] * bw[std::size_t(c)]) * sg;
-          for (int bc = 0; bc < np[1] * np[2]; ++bc)
-            for (int a = 0; a < np[0]; ++a) acc.row(a + np[0] * bc) += bu[std::size_t(a)] * vw.row(bc);
+            for (int b = 0; b < np[1]; ++b)
+              for (int a = 0; a < np[0]; ++a)
+                acc.row(a + np[0] * (b + np[1] * c)) << acc4[0][c][b][a], acc4[1][c][b][a], acc4[2][c][b][a];
+        } else {
+          acc.setZero();
+          for (std::uint32_t q = block.begin; q < block.end; ++q) {
+            const Eigen::Index p = order.empty() ? q : order[q];
+            const double s = block.kind == Embedding::BlockKind::Blended
+                                 ? embedding.blendWeight()[block.blendOffset + q - block.begin]
+                                 : 1.0;
+            lattice.axis(0).basis(cell[0], embedding.sortedU()[q], bu.data());
+            lattice.axis(1).basis(cell[1], embedding.sortedV()[q], bv.data());
+            lattice.axis(2).basis(cell[2], embedding.sortedW()[q], bw.data());
+            const Eigen::RowVector3d sg = s * g.row(p);
+            for (int c = 0; c < np[2]; ++c)
+              for (int b = 0; b < np[1]; ++b) vw.row(b + np[1] * c) = (bv[std::size_t(b)] * bw[std::size_t(c)]) * sg;
+            for (int bc = 0; bc < np[1] * np[2]; ++bc)
+              for (int a = 0; a < np[0]; ++a) acc.row(a + np[0] * bc) += bu[std::size_t(a)] * vw.row(bc);
+          }
         }
         int wi = 0;
         for (int c = 0; c < np[2]; ++c)
