@@ -4,19 +4,21 @@ Import them from ``ffdkit.pygem`` (``from ffdkit.pygem import CFFD, BFFD, VFFD``
 attributes (``fun``, ``fixval``, ``ffd_mask``, ``fun_mask``, ``triangles``, the FFD attributes)
 and calls (``adjust_control_points(src_pts)``, ``ffd(src_pts)``, ``__call__``) are PyGeM's.
 
-What ``adjust_control_points`` does is PyGeM's algorithm, made exact. PyGeM splits the gap
-``fixval - fun(ffd(src_pts))`` over the axes by ``fun_mask`` (row r of it, normalised to sum 1,
-says which share of constraint r each axis closes); for each axis it moves only that axis's free
-weights (``ffd_mask[..., axis]``) by the least-norm change that meets the constraints the axis
-carries. PyGeM fits a linear map to ``fun`` at random weights and solves once, so a nonlinear
-``fun`` (the volume) is met only approximately. Here:
+What ``adjust_control_points`` does is PyGeM's algorithm with exact derivatives. PyGeM splits
+the gap ``fixval - fun(ffd(src_pts))`` over the axes by ``fun_mask`` (row r of it, normalised to
+sum 1, says which share of constraint r each axis closes); for each axis it moves only that
+axis's free weights (``ffd_mask[..., axis]``) by the least-norm change that meets the constraints
+the axis carries, from a linear map it fits to ``fun`` at random weights. Here:
 
 - ``CFFD`` (any ``fun``) takes the derivative of ``fun(ffd(src_pts))`` with respect to the free
   weights by finite differences and repeats the least-norm step until the constraints hold to
-  1e-12 relative (one step for the affine functions PyGeM's docstring asks for);
-- ``VFFD`` meets the volume of a closed surface with ffdkit's Newton solver on the Lagrange
-  system (``ffdkit.ffd.ShapeConstraints.keepVolume``) to a relative error of 1e-12; a surface that
-  is not closed falls back to the finite-difference path;
+  1e-12 relative (one step for the affine functions PyGeM's docstring asks for; a nonlinear
+  ``fun`` converges instead of stopping at its linearisation);
+- ``VFFD`` meets the volume of a closed surface with ffdkit's Newton solver
+  (``ffdkit.ffd.ShapeConstraints.keepVolume``, exact gradients) to 1e-12 relative. With PyGeM's
+  per-axis split the volume is linear in the moving weights (a determinant is linear in each
+  coordinate column), so one step meets it; a surface that is not closed falls back to the
+  finite-difference path;
 - ``BFFD`` keeps the mean of the points (linear: one step).
 """
 
