@@ -164,47 +164,93 @@ JacobianDeterminantPatch patchOf(const Lattice& lattice, const std::array<int, 3
   // that a product is a plain convolution: sum f~_a g~_b lands on f~g~_(a+b).
   Dims dd[3];
   std::vector<Eigen::Vector3d> D[3];
+  double binomials[3][3][12];  // binomials[a][axis][i] = C(dd[a].n[axis] - 1, i)
   for (int a = 0; a < 3; ++a) {
     dd[a] = net;
     dd[a].n[a] -= 1;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int i = 0; i < dd[a].n[axis]; ++i) binomials[a][axis][i] = binomial(dd[a].n[axis] - 1, i);
     D[a].resize(std::size_t(dd[a].size()));
     for (int k = 0; k < dd[a].n[2]; ++k)
       for (int j = 0; j < dd[a].n[1]; ++j)
         for (int i = 0; i < dd[a].n[0]; ++i) {
           int next[3] = {i, j, k};
           next[a] += 1;
-          const double scaledBinomials = binomial(dd[a].n[0] - 1, i) * binomial(dd[a].n[1] - 1, j) *
-                                         binomial(dd[a].n[2] - 1, k);
+          const double scaledBinomials = binomials[a][0][i] * binomials[a][1][j] * binomials[a][2][k];
           D[a][std::size_t(dd[a].at(i, j, k))] =
               (p[a] / width[a] * scaledBinomials) *
               (b[std::size_t(net.at(next[0], next[1], next[2]))] - b[std::size_t(net.at(i, j, k))]);
         }
   }
   const Dims out{{3 * p[0], 3 * p[1], 3 * p[2]}};
-  // Offsets in the output's strides: index(a) + index(b) = index(a + b) (the map is linear).
-  const auto offsets = [&out](const Dims& d) {
-    std::vector<int> o(std::size_t(d.size()));
-    for (int k = 0; k < d.n[2]; ++k)
-      for (int j = 0; j < d.n[1]; ++j)
-        for (int i = 0; i < d.n[0]; ++i) o[std::size_t(d.at(i, j, k))] = out.at(i, j, k);
-    return o;
+  // Products of nets as 3D convolutions, the u index innermost and contiguous on both sides (one
+  // array per coordinate), so that the compiler vectorises the inner loop.
+  const auto split3 = [](const std::vector<Eigen::Vector3d>& v, std::vector<double> c[3]) {
+    for (int k = 0; k < 3; ++k) {
+      c[k].resize(v.size());
+      for (std::size_t i = 0; i < v.size(); ++i) c[k][i] = v[i][k];
+    }
   };
-  const std::vector<int> ou = offsets(dd[0]), ov = offsets(dd[1]), ow = offsets(dd[2]);
-  std::vector<Eigen::Vector3d> cross(std::size_t(out.size()), Eigen::Vector3d::Zero());
-  for (std::size_t a = 0; a < D[1].size(); ++a)
-    for (std::size_t c = 0; c < D[2].size(); ++c) cross[std::size_t(ov[a] + ow[c])] += D[1][a].cross(D[2][c]);
+  std::vector<double> Du[3], Dv[3], Dw[3];
+  split3(D[0], Du);
+  split3(D[1], Dv);
+  split3(D[2], Dw);
+  // X_v x X_w: degrees (2p, 2q-1, 2r-1).
+  const Dims cd{{dd[1].n[0] + dd[2].n[0] - 1, dd[1].n[1] + dd[2].n[1] - 1, dd[1].n[2] + dd[2].n[2] - 1}};
+  std::vector<double> C[3];
+  for (int k = 0; k < 3; ++k) C[k].assign(std::size_t(cd.size()), 0.0);
+  const int vn0 = dd[1].n[0], wn0 = dd[2].n[0];
+  for (int kv = 0; kv < dd[1].n[2]; ++kv)
+    for (int jv = 0; jv < dd[1].n[1]; ++jv)
+      for (int kw = 0; kw < dd[2].n[2]; ++kw)
+        for (int jw = 0; jw < dd[2].n[1]; ++jw) {
+          const int rowOut = cd.at(0, jv + jw, kv + kw);
+          const int rowV = dd[1].at(0, jv, kv), rowW = dd[2].at(0, jw, kw);
+          for (int iv = 0; iv < vn0; ++iv) {
+            const double vx = Dv[0][std::size_t(rowV + iv)], vy = Dv[1][std::size_t(rowV + iv)],
+                         vz = Dv[2][std::size_t(rowV + iv)];
+            double* __restrict cx = C[0].data() + rowOut + iv;
+            double* __restrict cy = C[1].data() + rowOut + iv;
+            double* __restrict cz = C[2].data() + rowOut + iv;
+            const double* __restrict wx = Dw[0].data() + rowW;
+            const double* __restrict wy = Dw[1].data() + rowW;
+            const double* __restrict wz = Dw[2].data() + rowW;
+            for (int iw = 0; iw < wn0; ++iw) {
+              cx[iw] += vy * wz[iw] - vz * wy[iw];
+              cy[iw] += vz * wx[iw] - vx * wz[iw];
+              cz[iw] += vx * wy[iw] - vy * wx[iw];
+            }
+          }
+        }
+  // X_u . (X_v x X_w): degrees (3p-1, 3q-1, 3r-1).
   patch.coefficients = Eigen::VectorXd::Zero(out.size());
-  // X_v x X_w has degrees (2p, 2q-1, 2r-1): its entries sit at the offsets of those indices.
-  Dims crossDims{{2 * p[0] + 1, 2 * p[1], 2 * p[2]}};
-  const std::vector<int> oc = offsets(crossDims);
-  for (std::size_t a = 0; a < D[0].size(); ++a)
-    for (std::size_t c = 0; c < oc.size(); ++c)
-      patch.coefficients[ou[a] + oc[std::size_t(c)]] += D[0][a].dot(cross[std::size_t(oc[c])]);
+  double* __restrict det = patch.coefficients.data();
+  const int un0 = dd[0].n[0], cn0 = cd.n[0];
+  for (int ku = 0; ku < dd[0].n[2]; ++ku)
+    for (int ju = 0; ju < dd[0].n[1]; ++ju)
+      for (int kc = 0; kc < cd.n[2]; ++kc)
+        for (int jc = 0; jc < cd.n[1]; ++jc) {
+          const int rowOut = out.at(0, ju + jc, ku + kc);
+          const int rowU = dd[0].at(0, ju, ku), rowC = cd.at(0, jc, kc);
+          for (int iu = 0; iu < un0; ++iu) {
+            const double ux = Du[0][std::size_t(rowU + iu)], uy = Du[1][std::size_t(rowU + iu)],
+                         uz = Du[2][std::size_t(rowU + iu)];
+            const double* __restrict cx = C[0].data() + rowC;
+            const double* __restrict cy = C[1].data() + rowC;
+            const double* __restrict cz = C[2].data() + rowC;
+            double* __restrict o = det + rowOut + iu;
+            for (int ic = 0; ic < cn0; ++ic) o[ic] += ux * cx[ic] + uy * cy[ic] + uz * cz[ic];
+          }
+        }
+  // Back from the scaled form: divide by C(d0, i) C(d1, j) C(d2, k) (reciprocals per axis).
+  double inverse[3][32];
+  for (int a = 0; a < 3; ++a)
+    for (int i = 0; i < out.n[a]; ++i) inverse[a][i] = 1.0 / binomial(out.n[a] - 1, i);
   for (int k = 0; k < out.n[2]; ++k)
-    for (int j = 0; j < out.n[1]; ++j)
-      for (int i = 0; i < out.n[0]; ++i)
-        patch.coefficients[out.at(i, j, k)] /=
-            binomial(out.n[0] - 1, i) * binomial(out.n[1] - 1, j) * binomial(out.n[2] - 1, k);
+    for (int j = 0; j < out.n[1]; ++j) {
+      const double jk = inverse[1][j] * inverse[2][k];
+      for (int i = 0; i < out.n[0]; ++i) patch.coefficients[out.at(i, j, k)] *= inverse[0][i] * jk;
+    }
   patch.degrees = {out.n[0] - 1, out.n[1] - 1, out.n[2] - 1};
   return patch;
 }
