@@ -130,25 +130,28 @@ Eigen::VectorXd flatten(const Eigen::MatrixX3d& m) {
   return out;
 }
 
-// Per-vertex volume gradient sum (x_b x x_c) / 6 over the triangles (v, b, c) at v; `volume`
-// gets sum_v x_v . gradient_v / 3 (each triangle's determinant counted three times).
-Eigen::MatrixX3d volumeGradient(const Eigen::MatrixX3d& x, const ClosedSurface& surface, double& volume) {
+// Per-vertex volume gradient sum (y_b x y_c) / 6 over the triangles (v, b, c) at v, y = x - origin
+// (the volume does not depend on the origin; measuring about the object keeps digits), into g
+// (#points x 3, reused between steps: no fresh pages per step); `volume` gets
+// sum_v y_v . gradient_v / 3 (each triangle's determinant counted three times).
+void volumeGradient(const Eigen::MatrixX3d& x, const Eigen::Vector3d& origin, const ClosedSurface& surface,
+                    double& volume, Eigen::MatrixX3d& g) {
   const Eigen::Index n = x.rows();
-  Eigen::MatrixX3d g(n, 3);
+  g.resize(n, 3);
   const auto& offsets = surface.pairOffsets();
   const auto& pairs = surface.pairs();
+  const Eigen::RowVector3d o = origin.transpose();
   double sum = 0.0;
 #pragma omp parallel for reduction(+ : sum) schedule(static) if (n >= kParallelPoints)
   for (Eigen::Index v = 0; v < n; ++v) {
     Eigen::Vector3d acc = Eigen::Vector3d::Zero();
     for (int e = offsets[v]; e < offsets[v + 1]; ++e)
-      acc += x.row(pairs(e, 0)).transpose().cross(x.row(pairs(e, 1)).transpose());
+      acc += (x.row(pairs(e, 0)) - o).transpose().cross((x.row(pairs(e, 1)) - o).transpose());
     acc /= 6.0;
     g.row(v) = acc.transpose();
-    sum += x.row(v).dot(acc.transpose());
+    sum += (x.row(v) - o).dot(acc.transpose());
   }
   volume = sum / 3.0;
-  return g;
 }
 
 // The centroid's residual M - t V (3 values; M = sum det (a + b + c) / 24, V = sum det / 6) and
@@ -282,7 +285,7 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
     const Eigen::MatrixX3d& deformed = deformer_.deform(current, points_);
     const Eigen::MatrixX3d& x = deformed;
     Eigen::MatrixX3d centred;
-    if (volumeSurface_ || centroidSurface_) centred = deformed.rowwise() - origin_.transpose();
+    if (centroidSurface_) centred = deformed.rowwise() - origin_.transpose();
     // Residuals c, their scales and the rows of J over the free coordinates.
     Eigen::VectorXd c(m), scale(m);
     Eigen::MatrixXd J(m, f);
@@ -300,7 +303,8 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
     Eigen::Index row = linearCount;
     if (volumeSurface_) {
       double volume = 0.0;
-      const Eigen::MatrixX3d g = volumeGradient(centred, *volumeSurface_, volume);
+      Eigen::MatrixX3d& g = gradientScratch_;
+      volumeGradient(x, origin_, *volumeSurface_, volume, g);
       const Eigen::VectorXd gradient = flatten(adjointDeform(lattice_, deformer_.embedding(), g));
       c[row] = volume - volumeTarget_;
       scale[row] = std::abs(volumeTarget_);
@@ -315,7 +319,7 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
       centroidResidual(centred, *centroidSurface_, centroidTarget_ - origin_, residual, g);
       // Scale: the volume times the surface's size (the units of M - t V).
       double volume = 0.0;
-      volumeGradient(centred, *centroidSurface_, volume);
+      volumeGradient(x, origin_, *centroidSurface_, volume, gradientScratch_);
       for (int k = 0; k < 3; ++k) {
         const Eigen::VectorXd gradient = flatten(adjointDeform(lattice_, deformer_.embedding(), g[k]));
         c[row] = residual[k];

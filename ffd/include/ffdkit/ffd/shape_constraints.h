@@ -122,6 +122,7 @@ class ShapeConstraints {
   double volumeTarget_ = 0.0;
   std::shared_ptr<const ClosedSurface> centroidSurface_;
   Eigen::Vector3d centroidTarget_ = Eigen::Vector3d::Zero();
+  Eigen::MatrixX3d gradientScratch_;  // the per-vertex volume gradient, reused between Newton steps
 };
 
 }  // namespace ffdkit::ffd
