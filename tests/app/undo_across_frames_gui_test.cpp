@@ -17,6 +17,7 @@
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "gui_test_support.h"
+#include "number_text_difference.h"
 #include "timeline_widget.h"
 
 using namespace ffdkit;
@@ -61,33 +62,6 @@ std::string firstDifference(const std::string& got, const std::string& want) {
     if (!moreA && !moreB) return "same";
     if (x != y || moreA != moreB) return "line " + std::to_string(line) + ": got '" + x + "', want '" + y + "'";
   }
-}
-
-// The largest difference between the numbers of two documents, relative to max(1, |number|), or
-// nullopt if they differ in anything but numbers.
-std::optional<double> largestNumberDifference(const std::string& a, const std::string& b) {
-  const auto numberAt = [](const std::string& s, std::size_t i) {
-    return std::isdigit(static_cast<unsigned char>(s[i])) ||
-           (s[i] == '-' && i + 1 < s.size() && std::isdigit(static_cast<unsigned char>(s[i + 1])));
-  };
-  double largest = 0.0;
-  std::size_t i = 0, j = 0;
-  while (i < a.size() && j < b.size()) {
-    if (numberAt(a, i) && numberAt(b, j)) {
-      char* endA = nullptr;
-      char* endB = nullptr;
-      const double x = std::strtod(a.c_str() + i, &endA), y = std::strtod(b.c_str() + j, &endB);
-      largest = std::max(largest, std::abs(x - y) / std::max(1.0, std::abs(y)));
-      i = std::size_t(endA - a.c_str());
-      j = std::size_t(endB - b.c_str());
-      continue;
-    }
-    if (a[i] != b[j]) return std::nullopt;
-    ++i;
-    ++j;
-  }
-  if (i != a.size() || j != b.size()) return std::nullopt;
-  return largest;
 }
 
 // Types `text` on the view, key by key.

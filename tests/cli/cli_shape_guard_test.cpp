@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include "../ffd/closed_surfaces.h"
 #include "cli_runner.h"
 #include "ffdkit/scenes/mesh_io.h"
 
@@ -17,29 +18,12 @@ using scenes::MeshData;
 
 const fs::path kWidgetExamples = fs::path(FFDKIT_SOURCE_DIR) / "widgets" / "examples";
 
-/// A closed UV sphere of radius 1 about the origin, outward triangles.
+/// A closed UV sphere of radius 1 about the origin (rings x 2 rings quads), outward triangles.
 MeshData ball(int rings = 16) {
-  const int segments = 2 * rings, n = 2 + (rings - 1) * segments;
+  const ffd::testing::TestMesh sphere = ffd::testing::sphereMesh(Eigen::Vector3d::Zero(), 1.0, rings, 2 * rings);
   MeshData mesh;
-  mesh.points.resize(n, 3);
-  mesh.points.row(0) << 0, 0, 1;
-  mesh.points.row(n - 1) << 0, 0, -1;
-  for (int r = 1; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const double t = M_PI * r / rings, p = 2 * M_PI * s / segments;
-      mesh.points.row(1 + (r - 1) * segments + s) << std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t);
-    }
-  const auto at = [segments](int ring, int s) { return 1 + (ring - 1) * segments + s % segments; };
-  std::vector<Eigen::Vector3i> tris;
-  for (int s = 0; s < segments; ++s) tris.emplace_back(0, at(1, s), at(1, s + 1));
-  for (int r = 1; r + 1 < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      tris.emplace_back(at(r, s), at(r + 1, s), at(r + 1, s + 1));
-      tris.emplace_back(at(r, s), at(r + 1, s + 1), at(r, s + 1));
-    }
-  for (int s = 0; s < segments; ++s) tris.emplace_back(n - 1, at(rings - 1, s + 1), at(rings - 1, s));
-  mesh.triangles.resize(Eigen::Index(tris.size()), 3);
-  for (std::size_t t = 0; t < tris.size(); ++t) mesh.triangles.row(Eigen::Index(t)) = tris[t].transpose();
+  mesh.points = sphere.points;
+  mesh.triangles = sphere.triangles;
   return mesh;
 }
 
