@@ -83,7 +83,7 @@ class Answerer : public QObject {
     modal->setProperty("ffdkitAnswered", true);
     if (auto* dialog = qobject_cast<QFileDialog*>(modal)) {
       ++shown_.fileDialogs;
-      const QString failure = typeFilePath(dialog, path_);
+      const QString failure = chooseFilePath(dialog, path_);
       if (!failure.isEmpty()) fail(dialog, failure.toStdString());
       return;
     }

@@ -38,37 +38,35 @@ inline ModalAnswers::Handler readMessage(QString* shown, QMessageBox::Icon icon)
   };
 }
 
-/// Types `path` into a file dialog's name field and presses Return, as a user does; returns what
-/// went wrong, or an empty string once the dialog has closed. The dialog lists its folder in a
-/// thread and updates its name field as the rows arrive, which can overwrite what was typed, and
-/// a shown dialog whose name field has the focus ignores selectFile() (the dialog then opened
-/// its own folder on accept and stayed open): so it types once the listing is there, and again
-/// while the dialog stays open.
-inline QString typeFilePath(QFileDialog* dialog, const std::filesystem::path& path) {
+/// Chooses `path` in an open-file dialog and accepts it; returns what went wrong, or an empty
+/// string once the dialog has closed. All in one go, with no events handled in between: the
+/// dialog lists its folder in a thread and changes its selection and name field as rows arrive,
+/// and a shown dialog whose name field has the focus ignores selectFile() (the dialog then
+/// opened its own folder on accept and stayed open). So the name field gives up the focus,
+/// selectFile() writes the name, selectedFiles() must be `path`, and then the dialog accepts.
+inline QString chooseFilePath(QFileDialog* dialog, const std::filesystem::path& path) {
   auto* name = dialog->findChild<QLineEdit*>("fileNameEdit");
-  auto* files = dialog->findChild<QFileSystemModel*>();
-  if (name == nullptr || files == nullptr) return "a file dialog without a name field or a file system model";
-  const QModelIndex folder = files->index(dialog->directory().absolutePath());
-  (void)QTest::qWaitFor(  // a listing that takes longer only costs a retyping below
-      [&] { return dialog->isVisible() && !files->canFetchMore(folder) && files->rowCount(folder) > 0; }, 10000);
-  const QString typed = QString::fromStdString(path.string());
-  for (int attempt = 0; attempt < 5 && dialog->isVisible(); ++attempt) {
-    QTest::qWait(20 * (attempt + 1));
-    name->setFocus();
-    name->selectAll();
-    QTest::keyClicks(name, typed);
-    if (name->text() == typed) QTest::keyClick(name, Qt::Key_Return);
+  if (name == nullptr) return "a file dialog without a name field";
+  const QString wanted = QString::fromStdString(path.string());
+  for (int attempt = 0; attempt < 3 && dialog->isVisible(); ++attempt) {
+    if (attempt > 0) QTest::qWait(50);
+    name->clearFocus();
+    dialog->selectFile(wanted);
+    if (dialog->selectedFiles() != QStringList{wanted}) continue;
+    static_cast<QDialog*>(dialog)->accept();  // public through QDialog, virtual: QFileDialog::accept
   }
-  if (dialog->isVisible()) return "the file dialog did not take the typed path: its name field holds '" + name->text() + "'";
+  if (dialog->isVisible())
+    return "the file dialog did not take the path: it selects '" + dialog->selectedFiles().join("', '") +
+           "', its name field holds '" + name->text() + "'";
   return {};
 }
 
-/// Chooses `path` in an open-file dialog by typing it, as a user does.
+/// Chooses `path` in an open-file dialog (chooseFilePath).
 inline ModalAnswers::Handler chooseFile(const std::filesystem::path& path) {
   return [path](QWidget* modal) {
     auto* dialog = qobject_cast<QFileDialog*>(modal);
     QVERIFY2(dialog != nullptr, qPrintable(modal->metaObject()->className()));
-    const QString failure = typeFilePath(dialog, path);
+    const QString failure = chooseFilePath(dialog, path);
     QVERIFY2(failure.isEmpty(), qPrintable(failure));
   };
 }
