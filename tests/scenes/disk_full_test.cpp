@@ -126,16 +126,16 @@ TEST_F(DiskFull, ASaveOntoAFullDiskFailsKeepsTheOldFileAndLeavesNoTemporary) {
 TEST_F(DiskFull, AnExportOntoAFullDiskFailsKeepsTheOldFileAndLeavesNoTemporary) {
   const auto sphere = makePrimitive({.kind = PrimitiveKind::Sphere, .resolution = 16});
   const meshio::MeshData mesh{sphere.vertices, sphere.triangles, {}, false};
-  for (const std::string name : {"sphere.ply", "sphere.obj", "sphere.vtp"}) {
+  for (const std::string name : {"sphere.ply", "sphere.obj", "sphere.npy"}) {
     SCOPED_TRACE(name);
     meshio::writeMesh(dir_ / name, mesh);
   }
   std::vector<std::string> old;
-  for (const std::string name : {"sphere.ply", "sphere.obj", "sphere.vtp"}) old.push_back(fileText(dir_ / name));
+  for (const std::string name : {"sphere.ply", "sphere.obj", "sphere.npy"}) old.push_back(fileText(dir_ / name));
   fill(dir_);
   meshio::MeshData moved = mesh;
   moved.points.col(2).array() += 1.0;
-  for (const std::string name : {"sphere.ply", "sphere.obj", "sphere.vtp", "new.stl"}) {
+  for (const std::string name : {"sphere.ply", "sphere.obj", "sphere.npy", "new.stl"}) {
     SCOPED_TRACE(name);
     try {
       meshio::writeMesh(dir_ / name, moved);
@@ -147,8 +147,8 @@ TEST_F(DiskFull, AnExportOntoAFullDiskFailsKeepsTheOldFileAndLeavesNoTemporary) 
     }
   }
   for (std::size_t i = 0; i < 3; ++i)
-    EXPECT_EQ(fileText(dir_ / std::vector<std::string>{"sphere.ply", "sphere.obj", "sphere.vtp"}[i]), old[i]);
-  EXPECT_EQ(othersIn(dir_, {"sphere.ply", "sphere.obj", "sphere.vtp", "filler"}), std::vector<std::string>{});
+    EXPECT_EQ(fileText(dir_ / std::vector<std::string>{"sphere.ply", "sphere.obj", "sphere.npy"}[i]), old[i]);
+  EXPECT_EQ(othersIn(dir_, {"sphere.ply", "sphere.obj", "sphere.npy", "filler"}), std::vector<std::string>{});
 }
 
 }  // namespace
