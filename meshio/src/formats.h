@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +17,12 @@
 #include "ffdkit/meshio/mesh_io.h"
 
 namespace ffdkit::meshio::detail {
+
+/// Reads the regular file `path` whole with read(2) into the buffer `allocate(size)` returns
+/// (the caller's: an uninitialised array, a string); returns the size.
+/// @throws MeshIoError naming the file when it cannot be opened, is not a regular file, or
+///   cannot be read to its end.
+std::size_t readRegularFile(const std::filesystem::path& path, const std::function<char*(std::size_t)>& allocate);
 
 MeshData readPly(std::string_view bytes, const std::string& source, ReadBudget& budget);
 void writePly(ByteSink& out, const MeshData& mesh, PlyEncoding encoding);

@@ -48,26 +48,12 @@ struct FileBytes {
 };
 
 FileBytes readFileBytes(const std::filesystem::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw MeshIoError(path.string() + ": cannot open (" + std::strerror(errno) + ")");
-  struct stat info {};
-  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
-    ::close(fd);
-    throw MeshIoError(path.string() + ": not a regular file");
-  }
-  FileBytes bytes{std::make_unique_for_overwrite<char[]>(std::size_t(info.st_size)), std::size_t(info.st_size)};
-  ffd::adviseHugePages(bytes.data.get(), bytes.size);
-  std::size_t done = 0;
-  while (done < bytes.size) {
-    const ssize_t n = ::read(fd, bytes.data.get() + done, bytes.size - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      ::close(fd);
-      throw MeshIoError(path.string() + ": cannot read (" + (n < 0 ? std::strerror(errno) : "the file shrank while read") + ")");
-    }
-    done += std::size_t(n);
-  }
-  ::close(fd);
+  FileBytes bytes;
+  bytes.size = detail::readRegularFile(path, [&bytes](std::size_t size) {
+    bytes.data = std::make_unique_for_overwrite<char[]>(size);
+    ffd::adviseHugePages(bytes.data.get(), size);
+    return bytes.data.get();
+  });
   return bytes;
 }
 
@@ -107,6 +93,36 @@ MeshData parseMesh(std::string_view bytes, MeshFormat format, const std::string&
 }  // namespace
 
 namespace detail {
+
+std::size_t readRegularFile(const std::filesystem::path& path, const std::function<char*(std::size_t)>& allocate) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw MeshIoError(path.string() + ": cannot open (" + std::strerror(errno) + ")");
+  struct stat info {};
+  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+    ::close(fd);
+    throw MeshIoError(path.string() + ": not a regular file");
+  }
+  const std::size_t size = std::size_t(info.st_size);
+  char* data = nullptr;
+  try {
+    data = allocate(size);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  std::size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::read(fd, data + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      ::close(fd);
+      throw MeshIoError(path.string() + ": cannot read (" + (n < 0 ? std::strerror(errno) : "the file shrank while read") + ")");
+    }
+    done += std::size_t(n);
+  }
+  ::close(fd);
+  return size;
+}
 
 void requireFloat32Points(const Eigen::MatrixX3d& points, std::string_view formatName, long long firstIndex) {
   // One vectorised test of the whole block; the offending row is looked for only when it fails.

@@ -13,6 +13,7 @@
 #include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/openfoam.h"
 #include "ffdkit/meshio/read_failures.h"
+#include "formats.h"
 
 namespace ffdkit::meshio {
 
@@ -36,26 +37,11 @@ fs::path meshFile(const fs::path& polyMesh, const std::string& name) {
 }
 
 std::string readWholeFile(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw MeshIoError(path.string() + ": cannot open (" + std::strerror(errno) + ")");
-  struct stat info {};
-  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
-    ::close(fd);
-    throw MeshIoError(path.string() + ": not a regular file");
-  }
   std::string bytes;
-  bytes.resize(std::size_t(info.st_size));
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      ::close(fd);
-      throw MeshIoError(path.string() + ": cannot read (" + (n < 0 ? std::strerror(errno) : "the file shrank while read") + ")");
-    }
-    done += std::size_t(n);
-  }
-  ::close(fd);
+  detail::readRegularFile(path, [&bytes](std::size_t size) {
+    bytes.resize(size);
+    return bytes.data();
+  });
   return bytes;
 }
 
