@@ -22,6 +22,10 @@ packages=(
   python3 doxygen
   pybind11-dev python3-dev python3-numpy python3-pytest
   openfoam  # tests/cli/openfoam_test.sh: blockMesh, foamFormatConvert and checkMesh judge what ffdkit writes
+  gmsh  # volume-mesh tests: gmsh -3 makes the meshes and reads back what ffdkit writes
+  libcgns-dev cgns-convert  # the CGNS reader/writer and cgnscheck, which judges what it writes
+  blender  # the Blender add-on's tests and the side-by-side timing against Blender's lattice modifier
+  libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev  # cad/: STEP and IGES
 )
 fuzz=0
 cost=0
