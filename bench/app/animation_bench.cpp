@@ -14,9 +14,9 @@
 #include <vtkNew.h>
 #include <vtkRenderer.h>
 
-#include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/scene_view.h"
-#include "ffdkit/app/timeline.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/render/scene_view.h"
+#include "ffdkit/interaction/timeline.h"
 #include "sphere_session.h"
 
 using namespace ffdkit;

@@ -15,8 +15,8 @@
 #include <vtkNew.h>
 #include <vtkRenderer.h>
 
-#include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/scene_view.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/render/scene_view.h"
 #include "sphere_session.h"
 
 using namespace ffdkit;

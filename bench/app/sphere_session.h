@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 
 namespace ffdkit::bench {
 

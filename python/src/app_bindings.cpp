@@ -12,7 +12,7 @@
 
 #include "bindings.h"
 #include "numpy_eigen.h"
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/scenes/command_stack.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"

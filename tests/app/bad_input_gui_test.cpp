@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "../meshio/hostile_files.h"
-#include "ffdkit/app/recovery_file.h"
+#include "ffdkit/gui/recovery_file.h"
 #include "ffdkit/meshio/mesh_io.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/scenes/widget_file.h"

@@ -1,7 +1,7 @@
 // The camera maths of the 3D view (app/interaction camera_navigation.h), headless: turntable
 // orbit keeps the horizon level, trackball does not; framing puts a box inside the view and
 // fills it; the keypad views look exactly along the axes; orthographic toggling keeps the size.
-#include "ffdkit/app/camera_navigation.h"
+#include "ffdkit/interaction/camera_navigation.h"
 
 #include <gtest/gtest.h>
 

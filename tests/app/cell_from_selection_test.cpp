@@ -3,7 +3,7 @@
 // with the reason why.
 #include <gtest/gtest.h>
 
-#include "ffdkit/app/cell_from_selection.h"
+#include "ffdkit/interaction/cell_from_selection.h"
 
 namespace ffdkit::app {
 namespace {

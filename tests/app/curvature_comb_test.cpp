@@ -1,4 +1,4 @@
-// The curvature comb of a polyline (app/render/include/ffdkit/app/curvature_comb.h): the
+// The curvature comb of a polyline (app/render/include/ffdkit/render/curvature_comb.h): the
 // discrete curvature of the circle through three points, its normal, and segment chaining.
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <numbers>
 
-#include "ffdkit/app/curvature_comb.h"
+#include "ffdkit/render/curvature_comb.h"
 #include "ffdkit/scenes/generator.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "test_curves.h"

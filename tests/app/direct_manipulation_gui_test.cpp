@@ -5,7 +5,7 @@
 #include <QAction>
 #include <QTest>
 
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 #include "gui_test_support.h"
 
 using namespace ffdkit;

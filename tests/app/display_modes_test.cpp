@@ -15,8 +15,8 @@
 #include <vtkRenderer.h>
 #include <vtkUnsignedCharArray.h>
 
-#include "ffdkit/app/offscreen_render.h"
-#include "ffdkit/app/scene_view.h"
+#include "ffdkit/render/offscreen_render.h"
+#include "ffdkit/render/scene_view.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "test_curves.h"

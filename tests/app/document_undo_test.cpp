@@ -9,7 +9,7 @@
 #include <random>
 #include <sstream>
 
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"

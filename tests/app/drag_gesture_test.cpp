@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "drag_sphere.h"
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/scenes/scene_deformer.h"
 
 namespace ffdkit::app {

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 
 namespace ffdkit::app::testing {
 

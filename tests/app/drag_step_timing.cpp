@@ -12,8 +12,8 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 
-#include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/scene_view.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/render/scene_view.h"
 
 using namespace ffdkit;
 using Clock = std::chrono::steady_clock;

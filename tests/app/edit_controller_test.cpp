@@ -5,7 +5,7 @@
 
 #include <numbers>
 
-#include "ffdkit/app/edit_controller.h"
+#include "ffdkit/interaction/edit_controller.h"
 #include "ffdkit/scenes/scene_deformer.h"
 
 namespace ffdkit::app {

@@ -14,8 +14,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "ffdkit/app/edit_controller.h"
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/edit_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/widgets/thesis_examples.h"
 #include "fig62_steps.h"
 #include "gui_test_support.h"

@@ -9,7 +9,7 @@
 
 #include <algorithm>
 
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "gui_test_support.h"
 

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "ffdkit/app/edit_controller.h"
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/edit_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 #include "gui_test_support.h"
 
 namespace ffdkit::app::testing {

@@ -29,9 +29,9 @@
 
 #include <Eigen/Core>
 
-#include "ffdkit/app/main_window.h"
-#include "ffdkit/app/scene_view.h"
-#include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/gui/main_window.h"
+#include "ffdkit/render/scene_view.h"
+#include "ffdkit/viewhost/vtk_view_widget.h"
 
 namespace ffdkit::app::testing {
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/widgets/thesis_examples.h"
 

@@ -16,7 +16,7 @@
 
 #include <sys/resource.h>
 
-#include "ffdkit/app/recovery_file.h"
+#include "ffdkit/gui/recovery_file.h"
 #include "ffdkit/meshio/mesh_io.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "gui_test_support.h"

@@ -21,8 +21,8 @@
 #include <optional>
 #include <utility>
 
-#include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/recovery_file.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/gui/recovery_file.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "gui_test_support.h"
 #include "lifecycle_dialog_answers.h"

@@ -31,10 +31,10 @@
 #include <vtkCamera.h>
 #include <vtkRenderer.h>
 
-#include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/main_window.h"
-#include "ffdkit/app/scene_view.h"
-#include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/gui/main_window.h"
+#include "ffdkit/render/scene_view.h"
+#include "ffdkit/viewhost/vtk_view_widget.h"
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/widget_file.h"

@@ -4,7 +4,7 @@
 
 #include <numbers>
 
-#include "ffdkit/app/modal_transform.h"
+#include "ffdkit/interaction/modal_transform.h"
 
 namespace ffdkit::app {
 namespace {

@@ -42,8 +42,8 @@
 #include <sanitizer/common_interface_defs.h>
 #endif
 
-#include "ffdkit/app/edit_controller.h"
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/edit_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "gui_test_support.h"

@@ -13,7 +13,7 @@
 #include <vtkCamera.h>
 #include <vtkRenderer.h>
 
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/scenes/mesh_io.h"
 #include "gui_test_support.h"
 

@@ -4,7 +4,7 @@
 #include <QTemporaryDir>
 #include <QTest>
 
-#include "ffdkit/app/offscreen_render.h"
+#include "ffdkit/render/offscreen_render.h"
 #include "ffdkit/scenes/scene_file.h"
 
 class OffscreenRenderTest : public QObject {

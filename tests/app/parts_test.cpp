@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "ffdkit/app/parts.h"
+#include "ffdkit/parts/parts.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/scenes/widget_file.h"
 

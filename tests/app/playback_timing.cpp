@@ -15,8 +15,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "ffdkit/app/main_window.h"
-#include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/gui/main_window.h"
+#include "ffdkit/viewhost/vtk_view_widget.h"
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/scene_changes.h"
 #include "timeline_widget.h"

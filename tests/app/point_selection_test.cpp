@@ -2,7 +2,7 @@
 // invert, linked rows and planes, against index sets written out by hand.
 #include <gtest/gtest.h>
 
-#include "ffdkit/app/point_selection.h"
+#include "ffdkit/interaction/point_selection.h"
 
 namespace ffdkit::app {
 namespace {

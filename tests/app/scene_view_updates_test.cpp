@@ -14,8 +14,8 @@
 #include <vtkRenderer.h>
 
 #include "drag_sphere.h"
-#include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/scene_view.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/render/scene_view.h"
 
 namespace ffdkit::app {
 namespace {

@@ -2,7 +2,7 @@
 // scrubbing and playback that set the model through the animation, looping at the range's end.
 #include <gtest/gtest.h>
 
-#include "ffdkit/app/timeline.h"
+#include "ffdkit/interaction/timeline.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
 

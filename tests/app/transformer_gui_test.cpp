@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/transformer.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/interaction/transformer.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "gui_test_support.h"
 

@@ -1,7 +1,7 @@
 // The transformer manipulator's geometry: which handle a ray hits and which world motion a drag
 // of it means. Rays are aimed at the handles of TransformerLayout; motions are checked against
 // the exact ray geometry.
-#include "ffdkit/app/transformer.h"
+#include "ffdkit/interaction/transformer.h"
 
 #include <cmath>
 #include <numbers>

@@ -13,7 +13,7 @@
 #include <optional>
 #include <sstream>
 
-#include "ffdkit/app/edit_controller.h"
+#include "ffdkit/interaction/edit_controller.h"
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "gui_test_support.h"

@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "cli_runner.h"
-#include "ffdkit/app/curve_plot.h"
+#include "ffdkit/render/curve_plot.h"
 #include "png_image.h"
 
 namespace ffdkit::app {

@@ -11,7 +11,7 @@ endif()
 set(expected
     include/ffdkit/ffd/lattice.h include/ffdkit/widgets/widget_model.h include/ffdkit/scenes/scene.h
     include/ffdkit/geometry/gauss_legendre.h include/ffdkit/geometry/quaternion/qi_interpolation.h
-    include/ffdkit/meshio/mesh_io.h include/ffdkit/exporters/gltf_export.h include/ffdkit/app/interaction_controller.h
+    include/ffdkit/meshio/mesh_io.h include/ffdkit/exporters/gltf_export.h include/ffdkit/interaction/interaction_controller.h
     lib/libffdkit_ffd.a lib/libffdkit_widgets.a lib/libffdkit_scenes.a lib/libffdkit_geometry_core.a
     lib/libffdkit_meshio.a lib/libffdkit_exporters.a lib/libffdkit_interaction.a lib/libffdkit_parts.a
     lib/cmake/ffdkit/ffdkitConfig.cmake lib/cmake/ffdkit/ffdkitConfigVersion.cmake

@@ -1,7 +1,7 @@
 // ffdkit-cli plot: curvature (and torsion) of a generated curve against arc length, as a PNG.
 #include "commands.h"
 #include "console.h"
-#include "ffdkit/app/curve_plot.h"
+#include "ffdkit/render/curve_plot.h"
 #include "ffdkit/scenes/generator.h"
 #include "ffdkit/scenes/scene_file.h"
 

@@ -5,7 +5,7 @@
 
 #include "commands.h"
 #include "console.h"
-#include "ffdkit/app/offscreen_render.h"
+#include "ffdkit/render/offscreen_render.h"
 #include "ffdkit/scenes/animation.h"
 #include "frames.h"
 #include "ffdkit/scenes/scene_deformer.h"

@@ -15,10 +15,10 @@
 #include <QRubberBand>
 #include <QToolBar>
 
-#include "ffdkit/app/edit_controller.h"
-#include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/scene_view.h"
-#include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/interaction/edit_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/render/scene_view.h"
+#include "ffdkit/viewhost/vtk_view_widget.h"
 #include "ffdkit/scenes/scene.h"
 #include "status_line.h"
 

@@ -10,8 +10,8 @@
 #include <exception>
 #include <stdexcept>
 
-#include "ffdkit/app/main_window.h"
-#include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/gui/main_window.h"
+#include "ffdkit/viewhost/vtk_view_widget.h"
 #include "timeline_widget.h"
 
 namespace {

@@ -1,7 +1,7 @@
 // MainWindow: the window, its docks, the model -> view wiring, the 3D view's pointer and keys,
 // drops and closing. Its menus and actions are in main_window_menus.cpp, the document's files in
 // main_window_document.cpp, a large attach's background embedding in main_window_embed.cpp.
-#include "ffdkit/app/main_window.h"
+#include "ffdkit/gui/main_window.h"
 
 #include <algorithm>
 #include <numbers>

@@ -15,7 +15,7 @@
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/scenes/widget_file.h"
-#include "ffdkit/app/scene_bounds.h"
+#include "ffdkit/interaction/scene_bounds.h"
 #include "import_options.h"
 #include "main_window_impl.h"
 #include "read_preferences.h"

@@ -18,12 +18,12 @@
 #include <QString>
 #include <QTimer>
 
-#include "ffdkit/app/edit_controller.h"
-#include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/main_window.h"
-#include "ffdkit/app/recovery_file.h"
-#include "ffdkit/app/scene_view.h"
-#include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/interaction/edit_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/gui/main_window.h"
+#include "ffdkit/gui/recovery_file.h"
+#include "ffdkit/render/scene_view.h"
+#include "ffdkit/viewhost/vtk_view_widget.h"
 #include "ffdkit/scenes/command_stack.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"

@@ -21,7 +21,7 @@
 #include <QSpinBox>
 #include <QToolBar>
 
-#include "ffdkit/app/scene_bounds.h"
+#include "ffdkit/interaction/scene_bounds.h"
 #include "gltf_export_dialog.h"
 #include "import_options.h"
 #include "keyboard_shortcuts.h"

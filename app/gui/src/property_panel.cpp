@@ -16,8 +16,8 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
-#include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/parts.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/parts/parts.h"
 #include "lattice_bases.h"
 #include "property_fields.h"
 

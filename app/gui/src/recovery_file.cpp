@@ -1,4 +1,4 @@
-#include "ffdkit/app/recovery_file.h"
+#include "ffdkit/gui/recovery_file.h"
 
 #include <algorithm>
 #include <cerrno>

@@ -8,7 +8,7 @@
 #include <QTimer>
 #include <QWidget>
 
-#include "ffdkit/app/timeline.h"
+#include "ffdkit/interaction/timeline.h"
 
 class QAction;
 class QLabel;

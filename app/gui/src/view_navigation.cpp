@@ -4,8 +4,8 @@
 #include <QMenu>
 #include <QSettings>
 
-#include "ffdkit/app/scene_view.h"
-#include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/render/scene_view.h"
+#include "ffdkit/viewhost/vtk_view_widget.h"
 
 namespace ffdkit::app {
 

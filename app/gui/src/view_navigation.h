@@ -1,7 +1,7 @@
 // The 3D view's navigation in the window: orbiting on a left-drag over empty space (turntable,
 // or trackball as a preference), frame selected / frame all, the keypad's axis views and the
 // orthographic toggle, as View menu actions. The camera maths is headless
-// (ffdkit/app/camera_navigation.h); this only turns pointer moves and actions into it.
+// (ffdkit/interaction/camera_navigation.h); this only turns pointer moves and actions into it.
 #pragma once
 
 #include <functional>
@@ -10,7 +10,7 @@
 #include <QObject>
 #include <QPoint>
 
-#include "ffdkit/app/camera_navigation.h"
+#include "ffdkit/interaction/camera_navigation.h"
 
 class QAction;
 class QMenu;

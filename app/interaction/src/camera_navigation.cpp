@@ -1,4 +1,4 @@
-#include "ffdkit/app/camera_navigation.h"
+#include "ffdkit/interaction/camera_navigation.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "ffdkit/app/cell_from_selection.h"
+#include "ffdkit/interaction/cell_from_selection.h"
 
 #include <algorithm>
 #include <set>

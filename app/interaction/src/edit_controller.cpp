@@ -1,4 +1,4 @@
-#include "ffdkit/app/edit_controller.h"
+#include "ffdkit/interaction/edit_controller.h"
 
 #include <algorithm>
 #include <cmath>

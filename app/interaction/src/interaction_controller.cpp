@@ -3,7 +3,7 @@
 // steps of gestures. Transformer handle drags are in interaction_controller_handles.cpp, direct
 // manipulation and pins in interaction_controller_pins.cpp, document operations (undoable
 // edits) in interaction_controller_operations.cpp.
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 
 #include <algorithm>
 #include <cctype>

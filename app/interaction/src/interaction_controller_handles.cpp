@@ -1,6 +1,6 @@
 // The interaction controller, transformer handle drags: the manipulator of the selected affine
 // widget or lattice (transformer.h), and a handle drag's motion applied to its target.
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 
 #include <algorithm>
 

@@ -1,13 +1,13 @@
 // The interaction controller, document operations: each an undoable edit (one command holding
 // its delta) of the widget model, the attachments or the objects.
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 
 #include <algorithm>
 #include <memory>
 #include <stdexcept>
 #include <type_traits>
 
-#include "ffdkit/app/cell_from_selection.h"
+#include "ffdkit/interaction/cell_from_selection.h"
 #include "ffdkit/ffd/cylindrical_lattice.h"
 #include "ffdkit/ffd/pipeline.h"
 #include "ffdkit/scenes/animation.h"

@@ -1,10 +1,10 @@
 // The interaction controller, direct manipulation (Hsu, Hughes & Kaufman 1992): a drag on a point of an object
 // moves its lattice by the least-norm change (HHK 1992), with pinned points held.
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 
 #include <stdexcept>
 
-#include "ffdkit/app/object_points.h"
+#include "ffdkit/interaction/object_points.h"
 #include "ffdkit/ffd/direct_manipulation.h"
 #include "ffdkit/ffd/embedding.h"
 

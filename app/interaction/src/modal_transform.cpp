@@ -1,4 +1,4 @@
-#include "ffdkit/app/modal_transform.h"
+#include "ffdkit/interaction/modal_transform.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "ffdkit/app/object_points.h"
+#include "ffdkit/interaction/object_points.h"
 
 #include <algorithm>
 #include <limits>

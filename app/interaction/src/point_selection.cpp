@@ -1,4 +1,4 @@
-#include "ffdkit/app/point_selection.h"
+#include "ffdkit/interaction/point_selection.h"
 
 #include <stdexcept>
 #include <string>

@@ -1,4 +1,4 @@
-#include "ffdkit/app/scene_bounds.h"
+#include "ffdkit/interaction/scene_bounds.h"
 
 namespace ffdkit::app {
 

@@ -1,4 +1,4 @@
-#include "ffdkit/app/timeline.h"
+#include "ffdkit/interaction/timeline.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "ffdkit/app/transformer.h"
+#include "ffdkit/interaction/transformer.h"
 
 #include <algorithm>
 #include <cmath>

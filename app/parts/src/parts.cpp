@@ -1,4 +1,4 @@
-#include "ffdkit/app/parts.h"
+#include "ffdkit/parts/parts.h"
 
 #include <numbers>
 

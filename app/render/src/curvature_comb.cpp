@@ -1,4 +1,4 @@
-#include "ffdkit/app/curvature_comb.h"
+#include "ffdkit/render/curvature_comb.h"
 
 #include <cmath>
 

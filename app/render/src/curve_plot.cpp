@@ -1,4 +1,4 @@
-#include "ffdkit/app/curve_plot.h"
+#include "ffdkit/render/curve_plot.h"
 
 #include <stdexcept>
 

@@ -1,4 +1,4 @@
-#include "ffdkit/app/offscreen_render.h"
+#include "ffdkit/render/offscreen_render.h"
 
 #include <stdexcept>
 
@@ -6,7 +6,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 
-#include "ffdkit/app/scene_view.h"
+#include "ffdkit/render/scene_view.h"
 #include "png_output.h"
 
 namespace ffdkit::app {

@@ -1,4 +1,4 @@
-#include "ffdkit/app/scene_view.h"
+#include "ffdkit/render/scene_view.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,8 +29,8 @@
 #include <vtkTransform.h>
 #include <vtkTubeFilter.h>
 
-#include "ffdkit/app/curvature_comb.h"
-#include "ffdkit/app/parts.h"
+#include "ffdkit/render/curvature_comb.h"
+#include "ffdkit/parts/parts.h"
 #include "gesture_normals.h"
 #include "ffdkit/widgets/widget_model.h"
 #include "ffdkit/widgets/widget_redraw.h"

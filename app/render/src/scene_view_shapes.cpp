@@ -1,6 +1,6 @@
 #include "scene_view_shapes.h"
 
-#include "ffdkit/app/scene_view.h"
+#include "ffdkit/render/scene_view.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,8 +17,8 @@
 #include <vtkPointData.h>
 #include <vtkTransform.h>
 
-#include "ffdkit/app/curvature_comb.h"
-#include "ffdkit/app/parts.h"
+#include "ffdkit/render/curvature_comb.h"
+#include "ffdkit/parts/parts.h"
 #include "ffdkit/widgets/glyph_shape.h"
 
 namespace ffdkit::app::scene_view_shapes {

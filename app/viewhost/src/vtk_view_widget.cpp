@@ -1,4 +1,4 @@
-#include "ffdkit/app/vtk_view_widget.h"
+#include "ffdkit/viewhost/vtk_view_widget.h"
 
 #include <QKeyEvent>
 #include <QMouseEvent>

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "../consumer_check.h"
-#include "ffdkit/app/camera_navigation.h"
-#include "ffdkit/app/parts.h"
+#include "ffdkit/interaction/camera_navigation.h"
+#include "ffdkit/parts/parts.h"
 
 using namespace ffdkit;
 

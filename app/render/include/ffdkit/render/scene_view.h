@@ -7,9 +7,9 @@
 
 #include <Eigen/Core>
 
-#include "ffdkit/app/camera_navigation.h"
-#include "ffdkit/app/transformer.h"
-#include "ffdkit/app/view_highlights.h"
+#include "ffdkit/interaction/camera_navigation.h"
+#include "ffdkit/interaction/transformer.h"
+#include "ffdkit/interaction/view_highlights.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/widgets/ray.h"

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "ffdkit/app/object_points.h"
-#include "ffdkit/app/transformer.h"
-#include "ffdkit/app/view_highlights.h"
+#include "ffdkit/interaction/object_points.h"
+#include "ffdkit/interaction/transformer.h"
+#include "ffdkit/interaction/view_highlights.h"
 #include "ffdkit/scenes/command_stack.h"
 #include "ffdkit/scenes/document_delta.h"
 #include "ffdkit/scenes/primitive.h"

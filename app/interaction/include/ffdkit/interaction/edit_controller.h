@@ -8,12 +8,12 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "ffdkit/app/cell_from_selection.h"
-#include "ffdkit/app/interaction_controller.h"
-#include "ffdkit/app/modal_transform.h"
-#include "ffdkit/app/point_selection.h"
-#include "ffdkit/app/transformer.h"
-#include "ffdkit/app/view_highlights.h"
+#include "ffdkit/interaction/cell_from_selection.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/interaction/modal_transform.h"
+#include "ffdkit/interaction/point_selection.h"
+#include "ffdkit/interaction/transformer.h"
+#include "ffdkit/interaction/view_highlights.h"
 #include "ffdkit/scenes/command_stack.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"

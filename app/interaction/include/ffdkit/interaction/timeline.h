@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "ffdkit/app/interaction_controller.h"
+#include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/command_stack.h"
 #include "ffdkit/scenes/scene.h"

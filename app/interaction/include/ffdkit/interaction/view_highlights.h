@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-#include "ffdkit/app/transformer.h"
+#include "ffdkit/interaction/transformer.h"
 #include "ffdkit/widgets/widget_id.h"
 
 namespace ffdkit::app {
