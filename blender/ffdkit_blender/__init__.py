@@ -1,0 +1,194 @@
+"""ffdkit in Blender: widget tools (ffdkit widget files) deforming Blender meshes.
+
+Object > ffdkit (or the ffdkit tab of the 3D view's sidebar): "Load Widget Tool" reads a widget
+file onto the active mesh; each affine widget becomes a slider (a keyable, drivable custom
+property ``ffd:<name>``); the deformation is written into the shape key ``ffdkit`` whenever a
+variation changes. See docs/blender.md.
+"""
+
+bl_info = {
+    "name": "ffdkit",
+    "author": "ffdkit developers",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "View3D > Sidebar > ffdkit",
+    "description": "Direct-manipulation free-form deformation: ffdkit widget tools on meshes",
+    "doc_url": "https://github.com/ffdkit/ffdkit/blob/main/docs/blender.md",
+    "category": "Object",
+}
+
+import bpy
+from bpy.app.handlers import persistent
+from bpy.props import BoolProperty, StringProperty
+
+from . import mesh_link, runtime
+from . import tool as tool_module
+
+
+def ffdkit_module():
+    """The ffdkit package (runtime.load with the preferences' folder); raises runtime.ModuleNotFound."""
+    preferences = bpy.context.preferences.addons.get(__package__)
+    folder = preferences.preferences.module_path if preferences is not None else ""
+    return runtime.load(bpy.path.abspath(folder) if folder else "")
+
+
+class FFDKIT_AP_preferences(bpy.types.AddonPreferences):
+    bl_idname = __package__
+
+    module_path: StringProperty(
+        name="ffdkit module folder", subtype="DIR_PATH",
+        description="Folder holding the ffdkit Python package (e.g. build/python), when Blender does not find it")
+
+    def draw(self, context):
+        self.layout.prop(self, "module_path")
+        try:
+            module = ffdkit_module()
+            self.layout.label(text="ffdkit %s: %s" % (module.__version__, module.__file__))
+        except runtime.ModuleNotFound as error:
+            self.layout.label(text=str(error), icon="ERROR")
+
+
+class FFDKIT_OT_load_tool(bpy.types.Operator):
+    """Load an ffdkit widget file onto the active mesh: one slider per affine widget"""
+
+    bl_idname = "ffdkit.load_tool"
+    bl_label = "Load Widget Tool"
+    bl_options = {"REGISTER", "UNDO"}
+
+    filepath: StringProperty(subtype="FILE_PATH")
+    filter_glob: StringProperty(default="*.json", options={"HIDDEN"})
+    fit: BoolProperty(name="Fit to Mesh", default=True,
+                      description="Place the tool around the mesh (as ffdkit-cli deform --fit); "
+                                  "off: at the frames stored in the file, in the mesh's own coordinates")
+
+    def invoke(self, context, event):
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context):
+        obj = context.active_object
+        if obj is None:
+            self.report({"ERROR"}, "no active object: select a mesh to load the widget tool onto")
+            return {"CANCELLED"}
+        if obj.type != "MESH":
+            self.report({"ERROR"}, "'%s' is a %s, not a mesh: the widget tool deforms meshes"
+                        % (obj.name, obj.type.lower()))
+            return {"CANCELLED"}
+        if obj.mode != "OBJECT":
+            self.report({"ERROR"}, "'%s' is in %s mode: load the widget tool in object mode"
+                        % (obj.name, obj.mode.lower()))
+            return {"CANCELLED"}
+        try:
+            ffdkit = ffdkit_module()
+            text = tool_module.read_widget_text(ffdkit, bpy.path.abspath(self.filepath))
+            tool = mesh_link.attach(ffdkit, obj, text, self.filepath, self.fit)
+        except (runtime.ModuleNotFound, tool_module.ToolError) as error:
+            self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        self.report({"INFO"}, "'%s': %d widget sliders from %s"
+                    % (obj.name, len(tool.affine_names()), bpy.path.basename(self.filepath)))
+        return {"FINISHED"}
+
+
+class FFDKIT_OT_remove_tool(bpy.types.Operator):
+    """Remove the widget tool from the active mesh: its sliders, their keys and its shape key"""
+
+    bl_idname = "ffdkit.remove_tool"
+    bl_label = "Remove Widget Tool"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return mesh_link.has_tool(context.active_object)
+
+    def execute(self, context):
+        mesh_link.detach(context.active_object)
+        return {"FINISHED"}
+
+
+class FFDKIT_PT_tool(bpy.types.Panel):
+    bl_label = "ffdkit"
+    bl_idname = "FFDKIT_PT_tool"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "ffdkit"
+
+    def draw(self, context):
+        layout = self.layout
+        obj = context.active_object
+        layout.operator(FFDKIT_OT_load_tool.bl_idname, icon="FILEBROWSER")
+        if not mesh_link.has_tool(obj):
+            return
+        layout.label(text=bpy.path.basename(obj.get(mesh_link.SOURCE_KEY, "")), icon="MOD_LATTICE")
+        link = mesh_link._links.get(obj.name)
+        if link is not None and link.error:
+            layout.label(text=link.error, icon="ERROR")
+        column = layout.column(align=True)
+        for key in obj.keys():
+            if key.startswith(mesh_link.PREFIX):
+                column.prop(obj, '["%s"]' % key, text=key[len(mesh_link.PREFIX):], slider=True)
+        layout.operator(FFDKIT_OT_remove_tool.bl_idname, icon="X")
+
+
+def _menu(self, context):
+    self.layout.operator(FFDKIT_OT_load_tool.bl_idname)
+
+
+def _sync_all(scene, depsgraph):
+    try:
+        ffdkit = ffdkit_module()
+    except runtime.ModuleNotFound:
+        return
+    for obj in scene.objects:
+        if mesh_link.has_tool(obj):
+            evaluated = obj.evaluated_get(depsgraph) if depsgraph is not None else None
+            mesh_link.sync(ffdkit, obj, evaluated)
+
+
+@persistent
+def _on_depsgraph_update(scene, depsgraph):
+    _sync_all(scene, depsgraph)
+
+
+@persistent
+def _on_frame_change(scene, depsgraph):
+    _sync_all(scene, depsgraph)
+
+
+@persistent
+def _on_load(_dummy):
+    mesh_link.forget_all()
+
+
+@persistent
+def _on_undo(_scene):
+    mesh_link.forget_all(mark_dirty_only=True)
+
+
+_classes = (FFDKIT_AP_preferences, FFDKIT_OT_load_tool, FFDKIT_OT_remove_tool, FFDKIT_PT_tool)
+_handlers = (
+    (bpy.app.handlers.depsgraph_update_post, _on_depsgraph_update),
+    (bpy.app.handlers.frame_change_post, _on_frame_change),
+    (bpy.app.handlers.load_post, _on_load),
+    (bpy.app.handlers.undo_post, _on_undo),
+    (bpy.app.handlers.redo_post, _on_undo),
+)
+
+
+def register():
+    for cls in _classes:
+        bpy.utils.register_class(cls)
+    bpy.types.VIEW3D_MT_object.append(_menu)
+    for handlers, function in _handlers:
+        if function not in handlers:
+            handlers.append(function)
+
+
+def unregister():
+    for handlers, function in _handlers:
+        if function in handlers:
+            handlers.remove(function)
+    bpy.types.VIEW3D_MT_object.remove(_menu)
+    for cls in reversed(_classes):
+        bpy.utils.unregister_class(cls)
+    mesh_link.forget_all()

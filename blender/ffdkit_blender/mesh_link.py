@@ -1,0 +1,171 @@
+"""The link between a tool and a Blender mesh object: the stored tool, the variation properties,
+the shape key the deformation is written into, and the handlers that keep it current.
+
+What is stored on the object (saved in the .blend):
+- ``_ffdkit_tool``: the widget file's canonical text; ``_ffdkit_source``: the file it came from;
+  ``_ffdkit_fit``: whether the tool was fitted around the mesh (else at its stored frames).
+- ``ffd:<widget>``: one float per affine widget, its variation (world distance, radians or log
+  scale): a slider in the ffdkit panel, keyable (I over the slider) and drivable.
+- The shape key ``ffdkit`` (value 1, relative to the mesh's reference key): the deformed points.
+  The rest points are the reference key's (``Basis``), so other shape keys still add on top.
+The Tool objects (with ffdkit's embedding) live only in memory and are rebuilt from the stored
+text when a file is opened.
+"""
+
+import numpy as np
+
+from . import tool as tool_module
+
+PREFIX = "ffd:"
+TOOL_KEY = "_ffdkit_tool"
+SOURCE_KEY = "_ffdkit_source"
+FIT_KEY = "_ffdkit_fit"
+SHAPE_KEY = "ffdkit"
+
+# Object name -> _Link. Rebuilt on demand (after a file is opened, or an undo that changed the text).
+_links = {}
+
+
+class _Link:
+    def __init__(self, tool, text):
+        self.tool = tool
+        self.text = text
+        self.dirty = True  # the shape key must be (re)written
+        self.error = ""
+
+
+def has_tool(obj):
+    return obj is not None and obj.type == "MESH" and TOOL_KEY in obj.keys()
+
+
+def rest_points(mesh):
+    """The mesh's undeformed points, #vertices x 3 float64: its reference shape key's, else its vertices'."""
+    count = len(mesh.vertices)
+    flat = np.empty(3 * count, dtype=np.float32)
+    if mesh.shape_keys is not None and mesh.shape_keys.reference_key is not None:
+        mesh.shape_keys.reference_key.data.foreach_get("co", flat)
+    else:
+        mesh.vertices.foreach_get("co", flat)
+    return flat.reshape(-1, 3).astype(np.float64)
+
+
+def attach(ffdkit, obj, text, source, fit):
+    """Builds the tool on the object and stores it; the mesh changes only when this succeeds.
+
+    Raises:
+        tool.ToolError: the mesh or the tool cannot be used (nothing on the object is changed).
+    """
+    tool = tool_module.Tool(ffdkit, text, rest_points(obj.data), fit=fit, mesh_name=obj.name)
+    detach(obj)
+    obj[TOOL_KEY] = text
+    obj[SOURCE_KEY] = source
+    obj[FIT_KEY] = bool(fit)
+    for name, value in tool.variations().items():
+        key = PREFIX + name
+        obj[key] = float(value)
+        _describe_property(obj, key, tool.affine_kind(name))
+    if obj.data.shape_keys is None:
+        obj.shape_key_add(name="Basis", from_mix=False)
+    block = obj.shape_key_add(name=SHAPE_KEY, from_mix=False)
+    block.value = 1.0
+    block.relative_key = obj.data.shape_keys.reference_key
+    link = _Link(tool, text)
+    _links[obj.name] = link
+    write(obj, link)
+    return tool
+
+
+def detach(obj):
+    """Removes the tool, its properties (and their animation curves) and its shape key."""
+    _links.pop(obj.name, None)
+    for key in [k for k in obj.keys() if k.startswith(PREFIX) or k in (TOOL_KEY, SOURCE_KEY, FIT_KEY)]:
+        if obj.animation_data and obj.animation_data.action:
+            curve = obj.animation_data.action.fcurves.find('["%s"]' % key)
+            if curve is not None:
+                obj.animation_data.action.fcurves.remove(curve)
+        del obj[key]
+    keys = obj.data.shape_keys
+    if keys is not None and SHAPE_KEY in keys.key_blocks:
+        obj.shape_key_remove(keys.key_blocks[SHAPE_KEY])
+        keys = obj.data.shape_keys
+        if keys is not None and len(keys.key_blocks) == 1:
+            obj.shape_key_remove(keys.key_blocks[0])  # only the Basis this add-on made is left
+
+
+def _describe_property(obj, key, kind):
+    subtype = {"TRANSLATE": "DISTANCE", "ROTATE": "ANGLE"}.get(kind, "NONE")
+    span = {"TRANSLATE": 1.0, "ROTATE": 3.141592653589793, "SCALE": 1.0}.get(kind, 1.0)
+    what = {"TRANSLATE": "world distance", "ROTATE": "radians", "SCALE": "log scale"}.get(kind, "")
+    obj.id_properties_ui(key).update(subtype=subtype, soft_min=-span, soft_max=span, default=0.0,
+                                     description="ffdkit %s widget '%s': its variation (%s)"
+                                     % (kind.lower(), key[len(PREFIX):], what))
+
+
+def link_of(ffdkit, obj):
+    """The object's live link, rebuilt from the stored tool when missing or stale; None on error."""
+    text = obj.get(TOOL_KEY)
+    link = _links.get(obj.name)
+    if link is not None and link.text == text:
+        return link
+    link = _Link(None, text)
+    try:
+        link.tool = tool_module.Tool(ffdkit, text, rest_points(obj.data), fit=bool(obj.get(FIT_KEY, True)),
+                                     mesh_name=obj.name)
+    except tool_module.ToolError as error:
+        link.error = str(error)
+    _links[obj.name] = link
+    return link
+
+
+def _animated(obj, key):
+    data = obj.animation_data
+    if data is None:
+        return False
+    path = '["%s"]' % key
+    if data.action is not None and data.action.fcurves.find(path) is not None:
+        return True
+    return any(driver.data_path == path for driver in data.drivers)
+
+
+def sync(ffdkit, obj, evaluated=None):
+    """Applies the object's variation properties (their evaluated values: keys and drivers
+    included) to its tool and writes the shape key when something changed. Followers of a
+    binding get their properties written back unless they are animated."""
+    link = link_of(ffdkit, obj)
+    if link.tool is None:
+        return False
+    source = evaluated if evaluated is not None else obj
+    values = {}
+    for name in link.tool.affine_names():
+        key = PREFIX + name
+        if key in source.keys():
+            values[name] = float(source[key])
+    changed = link.tool.set_variations(values)
+    if not (changed or link.dirty):
+        return False
+    for name, value in link.tool.variations().items():
+        key = PREFIX + name
+        if key in obj.keys() and float(obj[key]) != value and not _animated(obj, key):
+            obj[key] = value
+    write(obj, link)
+    return True
+
+
+def write(obj, link):
+    """Writes the tool's deformed points into the object's ffdkit shape key (one foreach_set)."""
+    keys = obj.data.shape_keys
+    if keys is None or SHAPE_KEY not in keys.key_blocks:
+        return
+    points = np.ascontiguousarray(link.tool.points(), dtype=np.float32)
+    keys.key_blocks[SHAPE_KEY].data.foreach_set("co", points.ravel())
+    obj.data.update_tag()
+    link.dirty = False
+
+
+def forget_all(mark_dirty_only=False):
+    """After an undo or a file load: links are rebuilt (or rewritten) on the next sync."""
+    if mark_dirty_only:
+        for link in _links.values():
+            link.dirty = True
+    else:
+        _links.clear()
