@@ -18,10 +18,11 @@ bl_info = {
 }
 
 import bpy
+import mathutils
 from bpy.app.handlers import persistent
 from bpy.props import BoolProperty, StringProperty
 
-from . import mesh_link, runtime
+from . import lattice_convert, mesh_link, runtime
 from . import tool as tool_module
 
 
@@ -106,6 +107,105 @@ class FFDKIT_OT_remove_tool(bpy.types.Operator):
         return {"FINISHED"}
 
 
+def _lattice_grid(lattice):
+    """The rest grid of a Blender lattice (origin, spacing per axis) from its points' rest positions."""
+    counts = (lattice.points_u, lattice.points_v, lattice.points_w)
+    first = lattice.points[0].co
+    steps = (1, counts[0], counts[0] * counts[1])
+    origin = [first[a] for a in range(3)]
+    spacing = [lattice.points[steps[a]].co[a] - first[a] if counts[a] > 1 else 1.0 for a in range(3)]
+    return counts, origin, spacing
+
+
+class FFDKIT_OT_export_lattice(bpy.types.Operator):
+    """Write the active Lattice object as an ffdkit widget file that deforms as its Lattice modifier does"""
+
+    bl_idname = "ffdkit.export_lattice"
+    bl_label = "Export Lattice as ffdkit Widget File"
+    bl_options = {"REGISTER"}
+
+    filepath: StringProperty(subtype="FILE_PATH")
+    filter_glob: StringProperty(default="*.json", options={"HIDDEN"})
+
+    def invoke(self, context, event):
+        if not self.filepath and context.active_object is not None:
+            self.filepath = bpy.path.clean_name(context.active_object.name) + ".json"
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context):
+        obj = context.active_object
+        if obj is None or obj.type != "LATTICE":
+            self.report({"ERROR"}, "the active object %s: select a Lattice object to export"
+                        % ("is a %s" % obj.type.lower() if obj is not None else "is missing"))
+            return {"CANCELLED"}
+        lattice = obj.data
+        counts, origin, spacing = _lattice_grid(lattice)
+        points = [tuple(p.co_deform) for p in lattice.points]
+        kinds = (lattice.interpolation_type_u, lattice.interpolation_type_v, lattice.interpolation_type_w)
+        try:
+            ffdkit = ffdkit_module()
+            model = lattice_convert.widget_model_from_blender(ffdkit, obj.name, counts, kinds, origin, spacing, points,
+                                                              [list(row) for row in obj.matrix_world])
+            ffdkit.scenes.writeWidgetFile(bpy.path.abspath(self.filepath), model)
+        except (runtime.ModuleNotFound, ValueError, OSError) as error:
+            self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        notes = []
+        if lattice.vertex_group:
+            notes.append("the lattice's vertex group '%s' (point weights) is not exported" % lattice.vertex_group)
+        if lattice.shape_keys is not None or len(obj.modifiers) > 0:
+            notes.append("the lattice's own shape keys and modifiers are not exported: its points as stored are")
+        self.report({"WARNING"} if notes else {"INFO"}, "wrote %s%s" % (self.filepath, ("; " + "; ".join(notes)) if notes else ""))
+        return {"FINISHED"}
+
+
+class FFDKIT_OT_import_lattice(bpy.types.Operator):
+    """Make Blender Lattice objects from the lattices of an ffdkit widget file (with a Lattice modifier on the active mesh)"""
+
+    bl_idname = "ffdkit.import_lattice"
+    bl_label = "Import ffdkit Lattices"
+    bl_options = {"REGISTER", "UNDO"}
+
+    filepath: StringProperty(subtype="FILE_PATH")
+    filter_glob: StringProperty(default="*.json", options={"HIDDEN"})
+
+    def invoke(self, context, event):
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context):
+        try:
+            ffdkit = ffdkit_module()
+            path = bpy.path.abspath(self.filepath)
+            tool_module.read_widget_text(ffdkit, path)  # the file's errors, named as the user gave it
+            model = ffdkit.scenes.readWidgetFile(path)
+            converted = [(model.name(root), lattice_convert.blender_lattice_from_model(ffdkit, model, root))
+                         for root in model.roots()]
+        except (runtime.ModuleNotFound, tool_module.ToolError, lattice_convert.NotRepresentable) as error:
+            self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        target = context.active_object if context.active_object is not None and context.active_object.type == "MESH" else None
+        warnings = []
+        for name, blender in converted:
+            data = bpy.data.lattices.new(name)
+            data.points_u, data.points_v, data.points_w = blender.counts
+            data.interpolation_type_u, data.interpolation_type_v, data.interpolation_type_w = blender.kinds
+            for point, position in zip(data.points, blender.points):
+                point.co_deform = tuple(position)
+            obj = bpy.data.objects.new(name, data)
+            context.collection.objects.link(obj)
+            obj.matrix_world = mathutils.Matrix([list(row) for row in blender.matrix_world])  # rows, not RNA's column order
+            if target is not None:
+                modifier = target.modifiers.new(name, "LATTICE")
+                modifier.object = obj
+            warnings.extend(blender.warnings)
+        message = "%d lattice(s) from %s%s" % (len(converted), bpy.path.basename(self.filepath),
+                                               " onto '%s'" % target.name if target is not None else "")
+        self.report({"WARNING"} if warnings else {"INFO"}, "; ".join([message] + warnings))
+        return {"FINISHED"}
+
+
 class FFDKIT_PT_tool(bpy.types.Panel):
     bl_label = "ffdkit"
     bl_idname = "FFDKIT_PT_tool"
@@ -117,6 +217,9 @@ class FFDKIT_PT_tool(bpy.types.Panel):
         layout = self.layout
         obj = context.active_object
         layout.operator(FFDKIT_OT_load_tool.bl_idname, icon="FILEBROWSER")
+        row = layout.row(align=True)
+        row.operator(FFDKIT_OT_import_lattice.bl_idname, text="Import Lattices", icon="IMPORT")
+        row.operator(FFDKIT_OT_export_lattice.bl_idname, text="Export Lattice", icon="EXPORT")
         if not mesh_link.has_tool(obj):
             return
         layout.label(text=bpy.path.basename(obj.get(mesh_link.SOURCE_KEY, "")), icon="MOD_LATTICE")
@@ -165,7 +268,8 @@ def _on_undo(_scene):
     mesh_link.forget_all(mark_dirty_only=True)
 
 
-_classes = (FFDKIT_AP_preferences, FFDKIT_OT_load_tool, FFDKIT_OT_remove_tool, FFDKIT_PT_tool)
+_classes = (FFDKIT_AP_preferences, FFDKIT_OT_load_tool, FFDKIT_OT_remove_tool, FFDKIT_OT_export_lattice,
+            FFDKIT_OT_import_lattice, FFDKIT_PT_tool)
 _handlers = (
     (bpy.app.handlers.depsgraph_update_post, _on_depsgraph_update),
     (bpy.app.handlers.frame_change_post, _on_frame_change),
