@@ -40,6 +40,11 @@ while [ $# -gt 0 ]; do
 done
 case "$reps" in '' | *[!0-9]* | 0) echo "bench.sh: --repetitions needs a positive integer, got '$reps'" >&2; exit 2 ;; esac
 
+# The commit the programs are built from, taken before the build (the tree may move while the
+# benchmarks run).
+commit="$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+if [ -n "$(git -C "$root" status --porcelain --untracked-files=no 2>/dev/null)" ]; then commit="$commit (with uncommitted changes)"; fi
+
 if [ "$do_build" = 1 ]; then
   FFDKIT_BUILD_DIR="$build" "$root/scripts/build.sh" --target bench_ffd --target bench_meshio \
     --target bench_geometry_quaternion --target bench_interaction --target bench_animation --target bench_exporters \
@@ -142,8 +147,6 @@ echo "bench.sh: load average after: $load_after"
 # ---- The page ---------------------------------------------------------------------------------
 cpu="$(lscpu 2>/dev/null | sed -n 's/^Model name:[[:space:]]*//p' | head -1)"
 memory="$(awk '/^MemTotal/ { printf "%.1f GiB", $2 / 1048576 }' /proc/meminfo)"
-commit="$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
-if [ -n "$(git -C "$root" status --porcelain --untracked-files=no 2>/dev/null)" ]; then commit="$commit (with uncommitted changes)"; fi
 FFDKIT_BENCH_WORK="$work" FFDKIT_BENCH_BUILD="$build" FFDKIT_BENCH_REPS="$reps" \
 FFDKIT_BENCH_CPU="${cpu:-unknown}" FFDKIT_BENCH_CORES="$(nproc)" FFDKIT_BENCH_MEMORY="$memory" \
 FFDKIT_BENCH_COMMIT="$commit" FFDKIT_BENCH_DATE="$(date -u +%Y-%m-%d)" FFDKIT_BENCH_OS="$(uname -sr)" \
