@@ -1,0 +1,103 @@
+"""Times a slider change of the ffdkit add-on on a big mesh inside Blender, beside Blender's own
+Lattice modifier on the same mesh.
+
+    FFDKIT_PYTHONPATH=build/python blender -b --factory-startup --python bench/blender/slider_update.py -- [VERTICES] [REPS]
+
+A UV sphere of about VERTICES vertices (default 1,000,000) gets the fig6-8 tool (fitted); each
+repetition sets a new value of its 'push-front' slider and times, wall clock, from the change to
+the evaluated mesh holding the new positions: the add-on's depsgraph handler (ffdkit's update and
+one foreach_set into the shape key) and Blender's re-evaluation of the mesh. The same mesh with a
+4x4x4 B-spline Lattice modifier instead: a lattice point moves, then the evaluation. Prints the
+medians over REPS (default 10), with the handler's share, in ms.
+"""
+
+import os
+import statistics
+import sys
+import time
+
+import addon_utils
+import bpy
+import numpy as np
+
+args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+vertices = int(args[0]) if args else 1_000_000
+reps = int(args[1]) if len(args) > 1 else 10
+root = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+sys.path.insert(0, os.path.join(root, "blender"))
+addon = addon_utils.enable("ffdkit_blender", default_set=True)
+addon.ffdkit_module()
+from ffdkit_blender import mesh_link  # noqa: E402
+
+for obj in list(bpy.data.objects):
+    bpy.data.objects.remove(obj)
+side = max(3, int(round(np.sqrt(vertices))))
+bpy.ops.mesh.primitive_uv_sphere_add(segments=side, ring_count=side, radius=1.0)
+sphere = bpy.context.active_object
+count = len(sphere.data.vertices)
+view_layer = bpy.context.view_layer
+
+
+def evaluated_points(obj):
+    mesh = obj.evaluated_get(bpy.context.evaluated_depsgraph_get()).data
+    flat = np.empty(3 * len(mesh.vertices), dtype=np.float32)
+    mesh.vertices.foreach_get("co", flat)
+    return flat
+
+
+# ---- the add-on's slider ------------------------------------------------------------------
+tool = os.path.join(root, "widgets", "examples", "fig6-8.json")
+start = time.perf_counter()
+assert bpy.ops.ffdkit.load_tool(filepath=tool, fit=True) == {"FINISHED"}
+view_layer.update()
+load_ms = 1e3 * (time.perf_counter() - start)
+handler_ms = []
+original_write = mesh_link.write
+
+
+def timed_write(obj, link):
+    t = time.perf_counter()
+    original_write(obj, link)
+    handler_ms.append(1e3 * (time.perf_counter() - t))
+
+
+mesh_link.write = timed_write
+slider = []
+for k in range(reps):
+    before = evaluated_points(sphere)
+    t = time.perf_counter()
+    sphere["ffd:push-front"] = 0.02 * (k + 1)
+    sphere.update_tag()  # as the slider's RNA update does
+    view_layer.update()  # the handler writes the shape key and tags the mesh
+    view_layer.update()  # Blender evaluates the mesh with the new key
+    slider.append(1e3 * (time.perf_counter() - t))
+    assert np.abs(evaluated_points(sphere) - before).max() > 1e-3, "the slider did not move the mesh"
+mesh_link.write = original_write
+
+# ---- Blender's Lattice modifier on the same mesh --------------------------------------------
+assert bpy.ops.ffdkit.remove_tool() == {"FINISHED"}
+data = bpy.data.lattices.new("cage")
+data.points_u = data.points_v = data.points_w = 4
+data.interpolation_type_u = data.interpolation_type_v = data.interpolation_type_w = "KEY_BSPLINE"
+cage = bpy.data.objects.new("cage", data)
+bpy.context.scene.collection.objects.link(cage)
+cage.scale = (2.2 / 3, 2.2 / 3, 2.2 / 3)
+modifier = sphere.modifiers.new("cage", "LATTICE")
+modifier.object = cage
+view_layer.update()
+lattice = []
+for k in range(reps):
+    before = evaluated_points(sphere)
+    t = time.perf_counter()
+    point = data.points[21]
+    point.co_deform = (point.co[0] + 0.05 * (k + 1), point.co[1], point.co[2])
+    data.update_tag()
+    view_layer.update()
+    lattice.append(1e3 * (time.perf_counter() - t))
+    assert np.abs(evaluated_points(sphere) - before).max() > 1e-3, "the lattice point did not move the mesh"
+
+print("blender_slider_bench vertices %d, tool fig6-8 (fitted), median of %d" % (count, reps))
+print("  load tool (embed + first write):      %8.1f ms" % load_ms)
+print("  ffdkit slider -> evaluated mesh:      %8.1f ms  (handler: ffdkit update + foreach_set %.1f ms)"
+      % (statistics.median(slider), statistics.median(handler_ms)))
+print("  Blender Lattice modifier 4x4x4 B-spline, point move -> evaluated mesh: %8.1f ms" % statistics.median(lattice))
