@@ -107,6 +107,41 @@ class FFDKIT_OT_remove_tool(bpy.types.Operator):
         return {"FINISHED"}
 
 
+class FFDKIT_OT_bake_shape_keys(bpy.types.Operator):
+    """Bake the widget tool's deformation, frame by frame, into shape keys that play back without the add-on"""
+
+    bl_idname = "ffdkit.bake_shape_keys"
+    bl_label = "Bake to Shape Keys"
+    bl_options = {"REGISTER", "UNDO"}
+
+    frame_start: bpy.props.IntProperty(name="Start", default=1)
+    frame_end: bpy.props.IntProperty(name="End", default=250)
+    frame_step: bpy.props.IntProperty(name="Step", default=1, min=1)
+
+    @classmethod
+    def poll(cls, context):
+        return mesh_link.has_tool(context.active_object)
+
+    def invoke(self, context, event):
+        self.frame_start, self.frame_end = context.scene.frame_start, context.scene.frame_end
+        return context.window_manager.invoke_props_dialog(self)
+
+    def execute(self, context):
+        if self.frame_end < self.frame_start:
+            self.report({"ERROR"}, "the frame range %d..%d is empty" % (self.frame_start, self.frame_end))
+            return {"CANCELLED"}
+        try:
+            ffdkit_module()
+        except runtime.ModuleNotFound as error:
+            self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        frames = list(range(self.frame_start, self.frame_end + 1, self.frame_step))
+        baked = mesh_link.bake(context.scene, context.active_object, frames)
+        self.report({"INFO"}, "baked %d frames of '%s' into shape keys (the live key '%s' is muted)"
+                    % (baked, context.active_object.name, mesh_link.SHAPE_KEY))
+        return {"FINISHED"}
+
+
 def _lattice_grid(lattice):
     """The rest grid of a Blender lattice (origin, spacing per axis) from its points' rest positions."""
     counts = (lattice.points_u, lattice.points_v, lattice.points_w)
@@ -230,6 +265,7 @@ class FFDKIT_PT_tool(bpy.types.Panel):
         for key in obj.keys():
             if key.startswith(mesh_link.PREFIX):
                 column.prop(obj, '["%s"]' % key, text=key[len(mesh_link.PREFIX):], slider=True)
+        layout.operator(FFDKIT_OT_bake_shape_keys.bl_idname, icon="KEYINGSET")
         layout.operator(FFDKIT_OT_remove_tool.bl_idname, icon="X")
 
 
@@ -268,7 +304,8 @@ def _on_undo(_scene):
     mesh_link.forget_all(mark_dirty_only=True)
 
 
-_classes = (FFDKIT_AP_preferences, FFDKIT_OT_load_tool, FFDKIT_OT_remove_tool, FFDKIT_OT_export_lattice,
+_classes = (FFDKIT_AP_preferences, FFDKIT_OT_load_tool, FFDKIT_OT_remove_tool, FFDKIT_OT_bake_shape_keys,
+            FFDKIT_OT_export_lattice,
             FFDKIT_OT_import_lattice, FFDKIT_PT_tool)
 _handlers = (
     (bpy.app.handlers.depsgraph_update_post, _on_depsgraph_update),

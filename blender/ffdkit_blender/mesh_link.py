@@ -169,3 +169,37 @@ def forget_all(mark_dirty_only=False):
             link.dirty = True
     else:
         _links.clear()
+
+
+def bake(scene, obj, frames):
+    """Writes the deformation at each frame into a shape key 'ffdkit <frame>' whose value is keyed
+    1 at its frame and 0 at the neighbouring baked frames (linear), and mutes the live key: the
+    animation then plays back from the shape keys alone. Returns the number of frames baked."""
+    keys = obj.data.shape_keys
+    live = keys.key_blocks[SHAPE_KEY]
+    live.mute = False
+    current = scene.frame_current
+    flat = np.empty(3 * len(live.data), dtype=np.float32)
+    blocks = []
+    for frame in frames:
+        scene.frame_set(frame)  # frame_change_post writes the live key
+        live.data.foreach_get("co", flat)
+        name = "%s %d" % (SHAPE_KEY, frame)
+        if name in keys.key_blocks:
+            obj.shape_key_remove(keys.key_blocks[name])
+        block = obj.shape_key_add(name=name, from_mix=False)
+        block.relative_key = keys.reference_key
+        block.data.foreach_set("co", flat)
+        blocks.append((frame, block))
+    for index, (frame, block) in enumerate(blocks):
+        path = 'key_blocks["%s"].value' % block.name
+        neighbours = [blocks[j][0] for j in (index - 1, index + 1) if 0 <= j < len(blocks)]
+        for at, value in [(frame, 1.0)] + [(n, 0.0) for n in neighbours]:
+            block.value = value
+            keys.keyframe_insert(path, frame=at)
+        curve = keys.animation_data.action.fcurves.find(path)
+        for point in curve.keyframe_points:
+            point.interpolation = "LINEAR"
+    live.mute = True
+    scene.frame_set(current)
+    return len(blocks)

@@ -68,3 +68,20 @@ for frame in (1, 12, 24, 6):
     assert error <= TOLERANCE, "frame %d: Blender differs from ffdkit's animation by %g" % (frame, error)
     if frame != 1:
         assert moved > 1e-2, "frame %d: the keys did not move the mesh" % frame
+
+# Bake to Shape Keys: frames 1..24 become shape keys, and with the add-on disabled (no handler)
+# the animation plays back from them alone: at frames 6 and 12 the same positions.
+live = {}
+for frame in (6, 12):
+    scene.frame_set(frame)
+    live[frame] = support.shape_key_points(obj)
+assert bpy.ops.ffdkit.bake_shape_keys(frame_start=1, frame_end=24, frame_step=1) == {"FINISHED"}
+blocks = obj.data.shape_keys.key_blocks
+assert blocks["ffdkit"].mute and all("ffdkit %d" % f in blocks for f in range(1, 25))
+import addon_utils  # noqa: E402
+addon_utils.disable("ffdkit_blender", default_set=True)
+for frame in (12, 6):
+    scene.frame_set(frame)
+    error = np.abs(support.evaluated_points(obj) - live[frame]).max()
+    print("baked frame %2d played back without the add-on: max |baked - live| %.2e" % (frame, error))
+    assert error <= TOLERANCE, "frame %d: the baked keys differ from the live deformation by %g" % (frame, error)
