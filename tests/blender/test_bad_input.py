@@ -1,5 +1,6 @@
 """Bad input to Load Widget Tool: a broken widget file, a missing file, a non-mesh active object,
-no active object, a mesh with no vertices, a tool whose lattices (at their stored frames) reach
+no active object, a mesh with no vertices, a mesh in edit mode, a tool whose lattices (at their
+stored frames) reach
 no vertex. Each is reported through the operator's report (Blender raises it to a Python caller
 as RuntimeError "Error: ..."), with no traceback, and leaves the object as it was: same vertices,
 no shape keys, no properties."""
@@ -77,6 +78,13 @@ untouched(camera, None)
 
 bpy.context.view_layer.objects.active = None
 expect_report("no active object", filepath=tool)
+
+# A mesh in edit mode: its vertices live in the edit mesh, so the tool is refused.
+bpy.context.view_layer.objects.active = obj
+bpy.ops.object.mode_set(mode="EDIT")
+expect_report("'part' is in edit mode", filepath=tool)
+bpy.ops.object.mode_set(mode="OBJECT")
+untouched(obj, stored_far)
 
 # After all of that, a good load still works on the same mesh.
 bpy.context.view_layer.objects.active = obj
