@@ -1,9 +1,8 @@
 """Bad input to Load Widget Tool: a broken widget file, a missing file, a non-mesh active object,
 no active object, a mesh with no vertices, a mesh in edit mode, a tool whose lattices (at their
-stored frames) reach
-no vertex. Each is reported through the operator's report (Blender raises it to a Python caller
-as RuntimeError "Error: ..."), with no traceback, and leaves the object as it was: same vertices,
-no shape keys, no properties."""
+stored frames) reach no vertex. Each is reported through the operator's report (Blender raises
+it to a Python caller as RuntimeError "Error: ..."), with no traceback, and leaves the object as
+it was: same vertices, no shape keys, no properties."""
 
 import os
 import sys
