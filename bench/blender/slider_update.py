@@ -3,10 +3,10 @@ Lattice modifier on the same mesh.
 
     FFDKIT_PYTHONPATH=build/python blender -b --factory-startup --python bench/blender/slider_update.py -- [VERTICES] [REPS]
 
-A UV sphere of about VERTICES vertices (default 1,000,000) gets the fig6-8 tool (fitted); each
+A latitude-longitude sphere of about VERTICES vertices (quads) (default 1,000,000) gets the fig6-8 tool (fitted); each
 repetition sets a new value of its 'push-front' slider and times, wall clock, from the change to
-the evaluated mesh holding the new positions: the add-on's depsgraph handler (ffdkit's update and
-one foreach_set into the shape key) and Blender's re-evaluation of the mesh. The same mesh with a
+the evaluated mesh holding the new positions: the add-on's handler before the evaluation
+(ffdkit's update and one foreach_set into the shape key) and Blender's evaluation of the mesh. The same mesh with a
 4x4x4 B-spline Lattice modifier instead: a lattice point moves, then the evaluation. Prints the
 medians over REPS (default 10), with the handler's share, in ms.
 """
@@ -31,9 +31,35 @@ from ffdkit_blender import mesh_link  # noqa: E402
 
 for obj in list(bpy.data.objects):
     bpy.data.objects.remove(obj)
-side = max(3, int(round(np.sqrt(vertices))))
-bpy.ops.mesh.primitive_uv_sphere_add(segments=side, ring_count=side, radius=1.0)
-sphere = bpy.context.active_object
+
+
+def sphere_mesh(side):
+    """A side x side latitude-longitude grid of quads on the unit sphere (poles left open), built
+    from numpy arrays (bpy.ops.mesh.primitive_uv_sphere_add takes minutes at this size)."""
+    theta, phi = np.meshgrid(np.linspace(0.02, np.pi - 0.02, side), np.linspace(0, 2 * np.pi, side, endpoint=False),
+                             indexing="ij")
+    points = np.stack([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)], axis=-1).reshape(-1, 3)
+    i, j = np.meshgrid(np.arange(side - 1), np.arange(side), indexing="ij")
+    quads = np.stack([i * side + j, i * side + (j + 1) % side, (i + 1) * side + (j + 1) % side, (i + 1) * side + j],
+                     axis=-1).reshape(-1, 4)
+    mesh = bpy.data.meshes.new("sphere")
+    mesh.vertices.add(len(points))
+    mesh.vertices.foreach_set("co", points.astype(np.float32).ravel())
+    mesh.loops.add(quads.size)
+    mesh.loops.foreach_set("vertex_index", quads.astype(np.int32).ravel())
+    mesh.polygons.add(len(quads))
+    mesh.polygons.foreach_set("loop_start", np.arange(0, quads.size, 4, dtype=np.int32))
+    mesh.polygons.foreach_set("loop_total", np.full(len(quads), 4, dtype=np.int32))
+    mesh.update(calc_edges=True)
+    mesh.validate()
+    obj = bpy.data.objects.new("sphere", mesh)
+    bpy.context.scene.collection.objects.link(obj)
+    bpy.context.view_layer.objects.active = obj
+    obj.select_set(True)
+    return obj
+
+
+sphere = sphere_mesh(max(3, int(round(np.sqrt(vertices)))))
 count = len(sphere.data.vertices)
 view_layer = bpy.context.view_layer
 
@@ -68,8 +94,7 @@ for k in range(reps):
     t = time.perf_counter()
     sphere["ffd:push-front"] = 0.02 * (k + 1)
     sphere.update_tag()  # as the slider's RNA update does
-    view_layer.update()  # the handler writes the shape key and tags the mesh
-    view_layer.update()  # Blender evaluates the mesh with the new key
+    view_layer.update()  # the add-on's pre-evaluation handler writes the key; Blender evaluates the mesh
     slider.append(1e3 * (time.perf_counter() - t))
     assert np.abs(evaluated_points(sphere) - before).max() > 1e-3, "the slider did not move the mesh"
 mesh_link.write = original_write

@@ -273,7 +273,10 @@ def _menu(self, context):
     self.layout.operator(FFDKIT_OT_load_tool.bl_idname)
 
 
-def _sync_all(scene, depsgraph):
+def _sync_all(scene, depsgraph=None):
+    """Brings every tool on the scene's meshes up to date: before an evaluation (depsgraph None)
+    from the objects' own and keyed values, so the shape key joins that evaluation; after it from
+    the evaluated values (drivers), which costs one more evaluation only when a value changed."""
     try:
         ffdkit = ffdkit_module()
     except runtime.ModuleNotFound:
@@ -281,16 +284,16 @@ def _sync_all(scene, depsgraph):
     for obj in scene.objects:
         if mesh_link.has_tool(obj):
             evaluated = obj.evaluated_get(depsgraph) if depsgraph is not None else None
-            mesh_link.sync(ffdkit, obj, evaluated)
+            mesh_link.sync(ffdkit, obj, evaluated, scene.frame_current)
 
 
 @persistent
-def _on_depsgraph_update(scene, depsgraph):
-    _sync_all(scene, depsgraph)
+def _before_evaluation(scene, *_):
+    _sync_all(scene)
 
 
 @persistent
-def _on_frame_change(scene, depsgraph):
+def _after_evaluation(scene, depsgraph=None, *_):
     _sync_all(scene, depsgraph)
 
 
@@ -308,8 +311,10 @@ _classes = (FFDKIT_AP_preferences, FFDKIT_OT_load_tool, FFDKIT_OT_remove_tool, F
             FFDKIT_OT_export_lattice,
             FFDKIT_OT_import_lattice, FFDKIT_PT_tool)
 _handlers = (
-    (bpy.app.handlers.depsgraph_update_post, _on_depsgraph_update),
-    (bpy.app.handlers.frame_change_post, _on_frame_change),
+    (bpy.app.handlers.depsgraph_update_pre, _before_evaluation),
+    (bpy.app.handlers.frame_change_pre, _before_evaluation),
+    (bpy.app.handlers.depsgraph_update_post, _after_evaluation),
+    (bpy.app.handlers.frame_change_post, _after_evaluation),
     (bpy.app.handlers.load_post, _on_load),
     (bpy.app.handlers.undo_post, _on_undo),
     (bpy.app.handlers.redo_post, _on_undo),

@@ -117,35 +117,52 @@ def link_of(ffdkit, obj):
     return link
 
 
-def _animated(obj, key):
+def _curve(obj, key):
+    """The action's F-curve animating the property, or None."""
     data = obj.animation_data
-    if data is None:
-        return False
-    path = '["%s"]' % key
-    if data.action is not None and data.action.fcurves.find(path) is not None:
-        return True
-    return any(driver.data_path == path for driver in data.drivers)
+    if data is None or data.action is None:
+        return None
+    return data.action.fcurves.find('["%s"]' % key)
 
 
-def sync(ffdkit, obj, evaluated=None):
-    """Applies the object's variation properties (their evaluated values: keys and drivers
-    included) to its tool and writes the shape key when something changed. Followers of a
-    binding get their properties written back unless they are animated."""
+def _driven(obj, key):
+    data = obj.animation_data
+    return data is not None and any(driver.data_path == '["%s"]' % key for driver in data.drivers)
+
+
+def _values(obj, names, evaluated, frame):
+    """{name: variation} the tool should have: the evaluated object's values when given (keys and
+    drivers applied by Blender), else the object's own values with keyed ones evaluated at
+    `frame` from their F-curves (driven ones are left to the evaluated pass)."""
+    values = {}
+    for name in names:
+        key = PREFIX + name
+        if evaluated is not None:
+            if key in evaluated.keys():
+                values[name] = float(evaluated[key])
+            continue
+        if key not in obj.keys() or _driven(obj, key):
+            continue
+        curve = _curve(obj, key)
+        values[name] = float(curve.evaluate(frame)) if curve is not None else float(obj[key])
+    return values
+
+
+def sync(ffdkit, obj, evaluated=None, frame=None):
+    """Applies the object's variation properties to its tool and writes the shape key when
+    something changed; followers of a binding get their properties written back unless they are
+    animated. Run before Blender evaluates (frame given: the object's own and keyed values), the
+    write joins that evaluation; run after it (evaluated given), driven values are caught too and
+    the write asks for one more evaluation."""
     link = link_of(ffdkit, obj)
     if link.tool is None:
         return False
-    source = evaluated if evaluated is not None else obj
-    values = {}
-    for name in link.tool.affine_names():
-        key = PREFIX + name
-        if key in source.keys():
-            values[name] = float(source[key])
-    changed = link.tool.set_variations(values)
+    changed = link.tool.set_variations(_values(obj, link.tool.affine_names(), evaluated, frame))
     if not (changed or link.dirty):
         return False
     for name, value in link.tool.variations().items():
         key = PREFIX + name
-        if key in obj.keys() and float(obj[key]) != value and not _animated(obj, key):
+        if key in obj.keys() and float(obj[key]) != value and _curve(obj, key) is None and not _driven(obj, key):
             obj[key] = value
     write(obj, link)
     return True

@@ -69,6 +69,19 @@ for frame in (1, 12, 24, 6):
     if frame != 1:
         assert moved > 1e-2, "frame %d: the keys did not move the mesh" % frame
 
+# A driver on a slider (frame / 100): the value Blender evaluates reaches the tool.
+driver = obj.driver_add('["ffd:pull-back"]').driver
+driver.type = "SCRIPTED"
+driver.expression = "frame / 100"
+scene.frame_set(20)
+out = os.path.join(folder, "driven.npy")
+support.run_cli("deform", "-q", "--scene", folder, "--frame", "20", "--set", "pull-back=0.2", "-o", out)
+error = np.abs(support.shape_key_points(obj) - np.load(out)).max()
+print("frame 20 with pull-back driven to 0.2: max |blender - ffdkit| %.2e" % error)
+assert error <= TOLERANCE, "the driven slider: Blender differs from ffdkit by %g" % error
+obj.driver_remove('["ffd:pull-back"]')
+obj["ffd:pull-back"] = 0.0
+
 # Bake to Shape Keys: frames 1..24 become shape keys, and with the add-on disabled (no handler)
 # the animation plays back from them alone: at frames 6 and 12 the same positions.
 live = {}
