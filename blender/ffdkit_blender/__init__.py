@@ -22,7 +22,7 @@ import mathutils
 from bpy.app.handlers import persistent
 from bpy.props import BoolProperty, StringProperty
 
-from . import lattice_convert, mesh_link, runtime
+from . import lattice_convert, mesh_link, runtime, scene_io
 from . import tool as tool_module
 
 
@@ -142,6 +142,74 @@ class FFDKIT_OT_bake_shape_keys(bpy.types.Operator):
         return {"FINISHED"}
 
 
+class FFDKIT_OT_import_scene(bpy.types.Operator):
+    """Import an ffdkit scene: its objects as meshes with the scene's widget tool, sliders and keys"""
+
+    bl_idname = "ffdkit.import_scene"
+    bl_label = "Import ffdkit Scene"
+    bl_options = {"REGISTER", "UNDO"}
+
+    filepath: StringProperty(subtype="FILE_PATH")
+    filter_glob: StringProperty(default="*.json", options={"HIDDEN"})
+
+    def invoke(self, context, event):
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context):
+        path = bpy.path.abspath(self.filepath)
+        try:
+            ffdkit = ffdkit_module()
+            fps = ffdkit.scenes.readScene(path).framesPerSecond
+            objects, notes = scene_io.import_scene(bpy, ffdkit, path, context.collection)
+        except (runtime.ModuleNotFound, tool_module.ToolError, OSError, ValueError) as error:
+            self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        if abs(fps - round(fps)) < 1e-9:
+            context.scene.render.fps, context.scene.render.fps_base = int(round(fps)), 1.0
+        else:
+            notes.append("the scene's %g frames per second is not a whole number: Blender's frame rate left as it was" % fps)
+        self.report({"WARNING"} if notes else {"INFO"},
+                    "; ".join(["imported %d object(s) from %s" % (len(objects), bpy.path.basename(path))] + notes))
+        return {"FINISHED"}
+
+
+class FFDKIT_OT_export_scene(bpy.types.Operator):
+    """Write the sliders' values and keys of the objects imported from an ffdkit scene back to a scene file"""
+
+    bl_idname = "ffdkit.export_scene"
+    bl_label = "Export ffdkit Scene"
+    bl_options = {"REGISTER"}
+
+    filepath: StringProperty(subtype="FILE_PATH")
+    filter_glob: StringProperty(default="*.json", options={"HIDDEN"})
+
+    @classmethod
+    def poll(cls, context):
+        return context.active_object is not None and scene_io.SCENE_KEY in context.active_object.keys()
+
+    def invoke(self, context, event):
+        self.filepath = scene_io.scene_file(context.active_object[scene_io.SCENE_KEY])
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context):
+        obj = context.active_object
+        if obj is None or scene_io.SCENE_KEY not in obj.keys():
+            self.report({"ERROR"}, "the active object was not imported from an ffdkit scene")
+            return {"CANCELLED"}
+        source = obj[scene_io.SCENE_KEY]
+        objects = [o for o in context.scene.objects if o.get(scene_io.SCENE_KEY) == source]
+        fps = context.scene.render.fps / context.scene.render.fps_base
+        try:
+            notes = scene_io.export_scene(ffdkit_module(), objects, source, bpy.path.abspath(self.filepath), fps)
+        except (runtime.ModuleNotFound, OSError, ValueError) as error:
+            self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        self.report({"WARNING"} if notes else {"INFO"}, "; ".join(["wrote %s" % self.filepath] + notes))
+        return {"FINISHED"}
+
+
 def _lattice_grid(lattice):
     """The rest grid of a Blender lattice (origin, spacing per axis) from its points' rest positions."""
     counts = (lattice.points_u, lattice.points_v, lattice.points_w)
@@ -255,6 +323,9 @@ class FFDKIT_PT_tool(bpy.types.Panel):
         row = layout.row(align=True)
         row.operator(FFDKIT_OT_import_lattice.bl_idname, text="Import Lattices", icon="IMPORT")
         row.operator(FFDKIT_OT_export_lattice.bl_idname, text="Export Lattice", icon="EXPORT")
+        row = layout.row(align=True)
+        row.operator(FFDKIT_OT_import_scene.bl_idname, text="Import Scene", icon="IMPORT")
+        row.operator(FFDKIT_OT_export_scene.bl_idname, text="Export Scene", icon="EXPORT")
         if not mesh_link.has_tool(obj):
             return
         layout.label(text=bpy.path.basename(obj.get(mesh_link.SOURCE_KEY, "")), icon="MOD_LATTICE")
@@ -309,7 +380,7 @@ def _on_undo(_scene):
 
 _classes = (FFDKIT_AP_preferences, FFDKIT_OT_load_tool, FFDKIT_OT_remove_tool, FFDKIT_OT_bake_shape_keys,
             FFDKIT_OT_export_lattice,
-            FFDKIT_OT_import_lattice, FFDKIT_PT_tool)
+            FFDKIT_OT_import_lattice, FFDKIT_OT_import_scene, FFDKIT_OT_export_scene, FFDKIT_PT_tool)
 _handlers = (
     (bpy.app.handlers.depsgraph_update_pre, _before_evaluation),
     (bpy.app.handlers.frame_change_pre, _before_evaluation),

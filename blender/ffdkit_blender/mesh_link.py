@@ -12,6 +12,8 @@ The Tool objects (with ffdkit's embedding) live only in memory and are rebuilt f
 text when a file is opened.
 """
 
+import json
+
 import numpy as np
 
 from . import tool as tool_module
@@ -20,6 +22,7 @@ PREFIX = "ffd:"
 TOOL_KEY = "_ffdkit_tool"
 SOURCE_KEY = "_ffdkit_source"
 FIT_KEY = "_ffdkit_fit"
+ROOTS_KEY = "_ffdkit_roots"  # JSON list of the root lattices deforming the mesh (absent: all)
 SHAPE_KEY = "ffdkit"
 
 # Object name -> _Link. Rebuilt on demand (after a file is opened, or an undo that changed the text).
@@ -49,15 +52,22 @@ def rest_points(mesh):
     return flat.reshape(-1, 3).astype(np.float64)
 
 
-def attach(ffdkit, obj, text, source, fit):
+def _roots(obj):
+    return json.loads(obj[ROOTS_KEY]) if ROOTS_KEY in obj.keys() else None
+
+
+def attach(ffdkit, obj, text, source, fit, roots=None):
     """Builds the tool on the object and stores it; the mesh changes only when this succeeds.
+    `roots`: the root lattices deforming the mesh (None: all).
 
     Raises:
         tool.ToolError: the mesh or the tool cannot be used (nothing on the object is changed).
     """
-    tool = tool_module.Tool(ffdkit, text, rest_points(obj.data), fit=fit, mesh_name=obj.name)
+    tool = tool_module.Tool(ffdkit, text, rest_points(obj.data), fit=fit, mesh_name=obj.name, roots=roots)
     detach(obj)
     obj[TOOL_KEY] = text
+    if roots is not None:
+        obj[ROOTS_KEY] = json.dumps(list(roots))
     obj[SOURCE_KEY] = source
     obj[FIT_KEY] = bool(fit)
     for name, value in tool.variations().items():
@@ -78,7 +88,7 @@ def attach(ffdkit, obj, text, source, fit):
 def detach(obj):
     """Removes the tool, its properties (and their animation curves) and its shape key."""
     _links.pop(obj.name, None)
-    for key in [k for k in obj.keys() if k.startswith(PREFIX) or k in (TOOL_KEY, SOURCE_KEY, FIT_KEY)]:
+    for key in [k for k in obj.keys() if k.startswith(PREFIX) or k in (TOOL_KEY, SOURCE_KEY, FIT_KEY, ROOTS_KEY)]:
         if obj.animation_data and obj.animation_data.action:
             curve = obj.animation_data.action.fcurves.find('["%s"]' % key)
             if curve is not None:
@@ -110,7 +120,7 @@ def link_of(ffdkit, obj):
     link = _Link(None, text)
     try:
         link.tool = tool_module.Tool(ffdkit, text, rest_points(obj.data), fit=bool(obj.get(FIT_KEY, True)),
-                                     mesh_name=obj.name)
+                                     mesh_name=obj.name, roots=_roots(obj))
     except tool_module.ToolError as error:
         link.error = str(error)
     _links[obj.name] = link

@@ -76,11 +76,12 @@ class Tool:
         rest_points: #points x 3, the mesh's undeformed points in its own coordinates.
         fit: place the tool around the points (_fit_roots); False keeps the lattices' stored frames.
         mesh_name: the mesh's name, for messages.
+        roots: names of the root lattices that deform the mesh (None: every root lattice).
     Raises:
         ToolError: no points, non-finite points, or (not fitted) no point inside any root lattice.
     """
 
-    def __init__(self, ffdkit, widget_text, rest_points, fit=True, mesh_name="mesh"):
+    def __init__(self, ffdkit, widget_text, rest_points, fit=True, mesh_name="mesh", roots=None):
         self._ffdkit = ffdkit
         points = np.asarray(rest_points, dtype=np.float64).reshape(-1, 3)
         if points.shape[0] == 0:
@@ -88,7 +89,7 @@ class Tool:
         if not np.isfinite(points).all():
             raise ToolError("'%s' has vertices that are not finite numbers" % mesh_name)
         self.rest_points = points
-        self.scene = self._build_scene(widget_text, points)
+        self.scene = self._build_scene(widget_text, points, roots)
         if fit:
             _fit_roots(ffdkit, self.scene, points, FIT_PADDING)
         else:
@@ -99,7 +100,7 @@ class Tool:
         self.deformer = ffdkit.scenes.SceneDeformer()
         self._applied = self.variations()
 
-    def _build_scene(self, widget_text, points):
+    def _build_scene(self, widget_text, points, chosen):
         folder = tempfile.mkdtemp(prefix="ffdkit-blender-")
         try:
             np.save(os.path.join(folder, "points.npy"), points)
@@ -110,6 +111,11 @@ class Tool:
             except (self._ffdkit.Error, OSError, ValueError) as error:
                 raise ToolError(str(error).replace(folder + os.sep, "")) from None
             roots = [model.name(root) for root in model.roots()]
+            if chosen is not None:
+                unknown = sorted(set(chosen) - set(roots))
+                if unknown:
+                    raise ToolError("the tool has no root lattice %s (its roots: %s)" % (", ".join(unknown), ", ".join(roots)))
+                roots = [name for name in roots if name in chosen]
             scene = {
                 "format": "ffdkit-scene",
                 "version": 2,
