@@ -20,7 +20,7 @@ bl_info = {
 import bpy
 import mathutils
 from bpy.app.handlers import persistent
-from bpy.props import BoolProperty, StringProperty
+from bpy.props import BoolProperty, IntProperty, StringProperty
 
 from . import lattice_convert, mesh_link, runtime, scene_io
 from . import tool as tool_module
@@ -114,9 +114,9 @@ class FFDKIT_OT_bake_shape_keys(bpy.types.Operator):
     bl_label = "Bake to Shape Keys"
     bl_options = {"REGISTER", "UNDO"}
 
-    frame_start: bpy.props.IntProperty(name="Start", default=1)
-    frame_end: bpy.props.IntProperty(name="End", default=250)
-    frame_step: bpy.props.IntProperty(name="Step", default=1, min=1)
+    frame_start: IntProperty(name="Start", default=1)
+    frame_end: IntProperty(name="End", default=250)
+    frame_step: IntProperty(name="Step", default=1, min=1)
 
     @classmethod
     def poll(cls, context):
@@ -329,9 +329,9 @@ class FFDKIT_PT_tool(bpy.types.Panel):
         if not mesh_link.has_tool(obj):
             return
         layout.label(text=bpy.path.basename(obj.get(mesh_link.SOURCE_KEY, "")), icon="MOD_LATTICE")
-        link = mesh_link._links.get(obj.name)
-        if link is not None and link.error:
-            layout.label(text=link.error, icon="ERROR")
+        error = mesh_link.link_error(obj)
+        if error:
+            layout.label(text=error, icon="ERROR")
         column = layout.column(align=True)
         for key in obj.keys():
             if key.startswith(mesh_link.PREFIX):

@@ -127,6 +127,12 @@ def link_of(ffdkit, obj):
     return link
 
 
+def link_error(obj):
+    """Why the object's stored tool could not be rebuilt ("" when it was, or was not tried yet)."""
+    link = _links.get(obj.name)
+    return link.error if link is not None else ""
+
+
 def _curve(obj, key):
     """The action's F-curve animating the property, or None."""
     data = obj.animation_data

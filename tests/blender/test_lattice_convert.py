@@ -10,7 +10,6 @@ frames, and the exported files read back: Import ffdkit Lattices makes a Lattice
 Lattice modifier on the mesh whose result equals ffdkit-cli deform within 1e-5. Lattices Blender
 cannot hold are refused, saying why."""
 
-import itertools
 import os
 import sys
 
