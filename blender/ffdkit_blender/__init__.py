@@ -369,6 +369,14 @@ def _after_evaluation(scene, depsgraph=None, *_):
 
 
 @persistent
+def _on_save(*_):
+    try:
+        mesh_link.store_states(ffdkit_module(), bpy.data.objects)
+    except runtime.ModuleNotFound:
+        pass
+
+
+@persistent
 def _on_load(_dummy):
     mesh_link.forget_all()
 
@@ -387,6 +395,7 @@ _handlers = (
     (bpy.app.handlers.depsgraph_update_post, _after_evaluation),
     (bpy.app.handlers.frame_change_post, _after_evaluation),
     (bpy.app.handlers.load_post, _on_load),
+    (bpy.app.handlers.save_pre, _on_save),
     (bpy.app.handlers.undo_post, _on_undo),
     (bpy.app.handlers.redo_post, _on_undo),
 )

@@ -23,6 +23,7 @@ TOOL_KEY = "_ffdkit_tool"
 SOURCE_KEY = "_ffdkit_source"
 FIT_KEY = "_ffdkit_fit"
 ROOTS_KEY = "_ffdkit_roots"  # JSON list of the root lattices deforming the mesh (absent: all)
+STATE_KEY = "_ffdkit_state"  # the tool's widget file as placed and posed when the .blend was saved
 SHAPE_KEY = "ffdkit"
 
 # Object name -> _Link. Rebuilt on demand (after a file is opened, or an undo that changed the text).
@@ -88,7 +89,7 @@ def attach(ffdkit, obj, text, source, fit, roots=None):
 def detach(obj):
     """Removes the tool, its properties (and their animation curves) and its shape key."""
     _links.pop(obj.name, None)
-    for key in [k for k in obj.keys() if k.startswith(PREFIX) or k in (TOOL_KEY, SOURCE_KEY, FIT_KEY, ROOTS_KEY)]:
+    for key in [k for k in obj.keys() if k.startswith(PREFIX) or k in (TOOL_KEY, SOURCE_KEY, FIT_KEY, ROOTS_KEY, STATE_KEY)]:
         if obj.animation_data and obj.animation_data.action:
             curve = obj.animation_data.action.fcurves.find('["%s"]' % key)
             if curve is not None:
@@ -119,8 +120,14 @@ def link_of(ffdkit, obj):
         return link
     link = _Link(None, text)
     try:
-        link.tool = tool_module.Tool(ffdkit, text, rest_points(obj.data), fit=bool(obj.get(FIT_KEY, True)),
-                                     mesh_name=obj.name, roots=_roots(obj))
+        if STATE_KEY in obj.keys():
+            # As saved: placed, and posed as the sliders were (applying the sliders one by one to
+            # the file's rest pose would move bound followers twice).
+            link.tool = tool_module.Tool(ffdkit, obj[STATE_KEY], rest_points(obj.data), fit=False,
+                                         mesh_name=obj.name, roots=_roots(obj))
+        else:
+            link.tool = tool_module.Tool(ffdkit, text, rest_points(obj.data), fit=bool(obj.get(FIT_KEY, True)),
+                                         mesh_name=obj.name, roots=_roots(obj))
     except tool_module.ToolError as error:
         link.error = str(error)
     _links[obj.name] = link
@@ -193,6 +200,14 @@ def write(obj, link):
     keys.key_blocks[SHAPE_KEY].data.foreach_set("co", points.ravel())
     obj.data.update_tag()
     link.dirty = False
+
+
+def store_states(ffdkit, objects):
+    """Before a save: each tool's present widget file (placed and posed) goes into the object."""
+    for obj in objects:
+        link = _links.get(obj.name)
+        if has_tool(obj) and link is not None and link.tool is not None and link.text == obj.get(TOOL_KEY):
+            obj[STATE_KEY] = ffdkit.scenes.widgetFileText(link.tool.scene.widgets)
 
 
 def forget_all(mark_dirty_only=False):

@@ -84,4 +84,21 @@ model.setVariation(model.find("handle"), 6.0)
 for jaw in ("left-jaw", "right-jaw"):
     assert abs(obj["ffd:" + jaw] - model.variation(model.find(jaw))) < 1e-12, (jaw, obj["ffd:" + jaw])
     assert abs(obj["ffd:" + jaw]) > 1e-3, jaw
+
+# Saved and opened again: the tool is rebuilt as it was posed (the jaws are not moved twice), and
+# the next slider change deforms as ffdkit-cli does with both changes.
+blend = os.path.join(folder, "vise.blend")
+bpy.ops.wm.save_as_mainfile(filepath=blend)
+bpy.ops.wm.open_mainfile(filepath=blend)
+obj = bpy.data.objects["part"]
+obj["ffd:handle"] = 9.0
+obj.update_tag()
+bpy.context.view_layer.update()
+np.save(os.path.join(folder, "in.npy"), support.vertices(obj))
+out = os.path.join(folder, "out.npy")
+support.run_cli("deform", "-q", "-w", vise, os.path.join(folder, "in.npy"), "-o", out, "--fit",
+                "--set", "handle=6.0", "--set", "handle=9.0")
+error = np.abs(support.shape_key_points(obj) - np.load(out)).max()
+print("vise saved, opened, handle 6 -> 9: max |blender - cli| %.2e" % error)
+assert error <= TOLERANCE, "after reopening, Blender differs from ffdkit-cli by %g" % error
 print("max error per tool:", json.dumps(worst))
