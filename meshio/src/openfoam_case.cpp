@@ -14,6 +14,7 @@
 #include "ffdkit/meshio/openfoam.h"
 #include "ffdkit/meshio/read_failures.h"
 #include "formats.h"
+#include "openfoam_files.h"
 
 namespace ffdkit::meshio {
 
@@ -71,8 +72,8 @@ void refuseDecomposedCase(const fs::path& root) {
     const std::string name = it->path().filename().string();
     if (name.rfind("processor", 0) == 0 && it->is_directory(ec))
       throw MeshIoError(root.string() + ": a decomposed case (" + name +
-                        "/): ffdkit reads the whole mesh in constant/polyMesh; run reconstructParMesh or remove the "
-                        "processor folders");
+                        "/): its meshes are read one by one (ffdkit-cli deform takes the case, docs/volume-meshes.md); "
+                        "give a processor folder, or reconstruct the case with reconstructParMesh");
   }
 }
 
@@ -141,7 +142,11 @@ OpenFoamMesh readMeshFolder(const fs::path& folder, const OpenFoamReadOptions& o
   return mesh;
 }
 
-void writeFileBytes(const fs::path& path, std::string_view bytes, bool durable) {
+}  // namespace
+
+namespace detail {
+
+void writeNewFile(const fs::path& path, std::string_view bytes, bool durable) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) throw MeshIoError(path.string() + ": cannot create (" + std::strerror(errno) + ")");
   while (!bytes.empty()) {
@@ -165,12 +170,11 @@ void syncPath(const fs::path& path) {
   ::close(fd);
 }
 
-// Copies the folder `from` to `to` (which exists), but `skip`; a symbolic link is copied as the
-// file it leads to, which must be inside `root`.
-void copyFolder(const fs::path& from, const fs::path& to, const fs::path& root, const fs::path& skip, bool durable) {
+void copyFolder(const fs::path& from, const fs::path& to, const fs::path& root,
+                const std::function<bool(const fs::path&)>& skip, bool durable) {
   for (const fs::directory_entry& entry : fs::directory_iterator(from)) {
     const fs::path target = to / entry.path().filename();
-    if (entry.path() == skip) continue;
+    if (skip(entry.path())) continue;
     const fs::file_status link = entry.symlink_status();
     if (fs::is_symlink(link)) {
       if (!isInsideFolder(entry.path(), root))
@@ -192,7 +196,32 @@ void copyFolder(const fs::path& from, const fs::path& to, const fs::path& root, 
   if (durable) syncPath(to);
 }
 
-}  // namespace
+void checkFolderOutput(const fs::path& rootGiven, const fs::path& output) {
+  std::error_code ec;
+  const fs::path root = fs::weakly_canonical(rootGiven, ec);
+  const fs::path target = fs::weakly_canonical(fs::absolute(output), ec);
+  if (target != root && isInsideFolder(target, root))
+    throw MeshIoError(output.string() + ": the output folder is inside the folder it copies (" + rootGiven.string() + ")");
+  if (fs::exists(output) && !fs::is_directory(output))
+    throw MeshIoError(output.string() + ": exists and is not a folder");
+}
+
+void renameFolderIntoPlace(const fs::path& temporary, const fs::path& output, bool durable) {
+  std::error_code ec;
+  if (!fs::exists(output)) {
+    if (::rename(temporary.c_str(), output.c_str()) != 0)
+      throw MeshIoError(output.string() + ": cannot rename the finished copy into place (" + std::strerror(errno) + ")");
+  } else {
+    // Atomic exchange: `output` is the old folder or the whole new one at every moment.
+    if (::renameat2(AT_FDCWD, temporary.c_str(), AT_FDCWD, output.c_str(), RENAME_EXCHANGE) != 0)
+      throw MeshIoError(output.string() + ": cannot exchange the finished copy with the existing folder (" +
+                        std::strerror(errno) + ")");
+    fs::remove_all(temporary, ec);  // the old folder
+  }
+  if (durable) syncPath(output.has_parent_path() ? output.parent_path() : fs::path("."));
+}
+
+}  // namespace detail
 
 bool isOpenFoamMeshFolder(const fs::path& folder) {
   std::error_code ec;
@@ -224,38 +253,24 @@ OpenFoamMesh readOpenFoamMesh(const fs::path& folder, const OpenFoamReadOptions&
 void writeOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points, const fs::path& outputGiven,
                        const OpenFoamWriteOptions& options) {
   const fs::path output = outputGiven.filename().empty() ? outputGiven.parent_path() : outputGiven;
-  std::error_code ec;
-  const fs::path root = fs::weakly_canonical(mesh.root, ec);
-  const fs::path target = fs::weakly_canonical(fs::absolute(output), ec);
-  if (target != root && isInsideFolder(target, root))
-    throw MeshIoError(output.string() + ": the output folder is inside the folder it copies (" + mesh.root.string() + ")");
-  if (fs::exists(output) && !fs::is_directory(output))
-    throw MeshIoError(output.string() + ": exists and is not a folder");
+  detail::checkFolderOutput(mesh.root, output);
   // The points bytes first: a point count or value the file cannot hold fails before any copy.
   std::string bytes = foamPointsBytes(mesh.pointsFile, points);
   if (mesh.pointsFile.gzip) bytes = gzipBytes(bytes, mesh.pointsFile.fileName);
 
   const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
   const fs::path temporary = temporaryPathBeside(output);
+  std::error_code ec;
   try {
     fs::create_directories(parent);
     fs::create_directory(temporary);
     const fs::path pointsPath = mesh.polyMesh / mesh.pointsFile.fileName;
-    copyFolder(mesh.root, temporary, mesh.root, pointsPath, options.durable);
+    detail::copyFolder(mesh.root, temporary, mesh.root, [&](const fs::path& p) { return p == pointsPath; },
+                       options.durable);
     const fs::path relativePolyMesh = fs::relative(mesh.polyMesh, mesh.root);
-    writeFileBytes(temporary / relativePolyMesh / mesh.pointsFile.fileName, bytes, options.durable);
-    if (options.durable) syncPath(temporary / relativePolyMesh);
-    if (!fs::exists(output)) {
-      if (::rename(temporary.c_str(), output.c_str()) != 0)
-        throw MeshIoError(output.string() + ": cannot rename the finished copy into place (" + std::strerror(errno) + ")");
-    } else {
-      // Atomic exchange: `output` is the old folder or the whole new one at every moment.
-      if (::renameat2(AT_FDCWD, temporary.c_str(), AT_FDCWD, output.c_str(), RENAME_EXCHANGE) != 0)
-        throw MeshIoError(output.string() + ": cannot exchange the finished copy with the existing folder (" +
-                          std::strerror(errno) + ")");
-      fs::remove_all(temporary, ec);  // the old folder
-    }
-    if (options.durable) syncPath(parent);
+    detail::writeNewFile(temporary / relativePolyMesh / mesh.pointsFile.fileName, bytes, options.durable);
+    if (options.durable) detail::syncPath(temporary / relativePolyMesh);
+    detail::renameFolderIntoPlace(temporary, output, options.durable);
   } catch (const fs::filesystem_error& e) {
     fs::remove_all(temporary, ec);
     throw MeshIoError(output.string() + ": cannot write the case (" + e.what() + ")");

@@ -1,0 +1,35 @@
+#pragma once
+// File steps shared by the OpenFOAM writers (a case folder, a decomposed case): copying a folder
+// under the confinement rule, writing a new file, flushing, and putting a finished hidden folder in
+// place. Private to meshio.
+
+#include <filesystem>
+#include <functional>
+#include <string_view>
+
+namespace ffdkit::meshio::detail {
+
+/// Creates `path` (which must not exist) with `bytes`, flushed to disk when `durable`.
+/// @throws MeshIoError naming the path.
+void writeNewFile(const std::filesystem::path& path, std::string_view bytes, bool durable);
+
+/// fsync of a file or folder, when it can be opened (a best effort: the data were written).
+void syncPath(const std::filesystem::path& path);
+
+/// Copies the folder `from` into `to` (which exists), but the entries `skip` says true for; a
+/// symbolic link is copied as the file it leads to, which must be inside `root`.
+/// @throws MeshIoError for a link outside `root`, a link to a folder, or what is neither a file
+/// nor a folder; std::filesystem::filesystem_error for a failed copy.
+void copyFolder(const std::filesystem::path& from, const std::filesystem::path& to, const std::filesystem::path& root,
+                const std::function<bool(const std::filesystem::path&)>& skip, bool durable);
+
+/// Refuses an `output` inside `root` (other than root itself) and an `output` that exists and is
+/// not a folder. @throws MeshIoError.
+void checkFolderOutput(const std::filesystem::path& root, const std::filesystem::path& output);
+
+/// Renames the finished folder `temporary` onto `output`: a plain rename when `output` does not
+/// exist, else an atomic exchange (RENAME_EXCHANGE) after which the old folder is removed, so that
+/// `output` is the old folder or the whole new one at every moment. @throws MeshIoError.
+void renameFolderIntoPlace(const std::filesystem::path& temporary, const std::filesystem::path& output, bool durable);
+
+}  // namespace ffdkit::meshio::detail
