@@ -1,8 +1,10 @@
 // Constrained and guarded deformation: one Keep Volume drag step (a control point moved, then the
 // least-norm control change that restores the enclosed volume to 1e-12, shape_constraints.h) on
 // a closed UV sphere in a 4x4x4 cubic lattice; and the certified fold-over bound of an n x n x n
-// cubic lattice (fold_check.h). Each step runs Newton: per step one deformation, one pass over the
-// triangles and one adjoint pass over the points, so its cost grows linearly with the vertices.
+// cubic lattice (fold_check.h). BM_KeepVolumeDragStep evaluates the volume by its precomputed
+// polynomial (a step costs O(lattice)); BM_KeepVolumeDragStepPerVertex deforms the points and sums
+// over the triangles in every Newton step (O(vertices)); BM_KeepVolumePrecompute is keepVolume()
+// building the polynomial (one pass over the vertices).
 #include <cmath>
 #include <random>
 
@@ -42,7 +44,7 @@ void sphere(Eigen::Index vertices, Eigen::MatrixX3d& points, TriangleMatrix& tri
   for (int s = 0; s < segments; ++s) triangles.row(t++) << n - 1, at(rings - 1, s + 1), at(rings - 1, s);
 }
 
-void BM_KeepVolumeDragStep(benchmark::State& state) {
+void keepVolumeDragStep(benchmark::State& state, VolumeEvaluation evaluation) {
   Eigen::MatrixX3d points;
   TriangleMatrix triangles;
   sphere(state.range(0), points, triangles);
@@ -50,7 +52,7 @@ void BM_KeepVolumeDragStep(benchmark::State& state) {
   const ClosedSurface surface(triangles, points.rows());
   const double rest = enclosedVolume(points, surface);
   ShapeConstraints constraints(lattice, points);
-  constraints.keepVolume(surface, rest);
+  constraints.keepVolume(surface, rest, evaluation);
   int step = 0;
   double iterations = 0, worst = 0;
   for (auto _ : state) {
@@ -67,12 +69,28 @@ void BM_KeepVolumeDragStep(benchmark::State& state) {
   state.counters["volume_error"] = worst;
   state.SetItemsProcessed(state.iterations() * points.rows());
 }
-BENCHMARK(BM_KeepVolumeDragStep)
+void BM_KeepVolumeDragStep(benchmark::State& state) { keepVolumeDragStep(state, VolumeEvaluation::Polynomial); }
+void BM_KeepVolumeDragStepPerVertex(benchmark::State& state) { keepVolumeDragStep(state, VolumeEvaluation::PerVertex); }
+BENCHMARK(BM_KeepVolumeDragStep)->ArgName("vertices")->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_KeepVolumeDragStepPerVertex)
     ->ArgName("vertices")
     ->Arg(10000)
     ->Arg(100000)
     ->Arg(1000000)
     ->Unit(benchmark::kMillisecond);
+
+void BM_KeepVolumePrecompute(benchmark::State& state) {
+  Eigen::MatrixX3d points;
+  TriangleMatrix triangles;
+  sphere(state.range(0), points, triangles);
+  const Lattice lattice = makeBoxLattice();
+  const ClosedSurface surface(triangles, points.rows());
+  const double rest = enclosedVolume(points, surface);
+  ShapeConstraints constraints(lattice, points);
+  for (auto _ : state) constraints.keepVolume(surface, rest, VolumeEvaluation::Polynomial);
+  state.SetItemsProcessed(state.iterations() * points.rows());
+}
+BENCHMARK(BM_KeepVolumePrecompute)->ArgName("vertices")->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
 
 void BM_FoldCheck(benchmark::State& state) {
   BoxLatticeOptions options;

@@ -8,6 +8,7 @@
 
 #include "cell_polynomials.h"
 #include "vector_clones.h"
+#include "volume_polynomial.h"
 
 namespace ffdkit::ffd {
 namespace {
@@ -231,6 +232,14 @@ void ShapeConstraints::addLinear(const Eigen::SparseMatrix<double, Eigen::RowMaj
     linearRows_.push_back(flatten(adjointDeform(lattice_, deformer_.embedding(), g)));
     linearA_.push_back(A.row(r));
     linearB_.push_back(b[r]);
+    double rest = 0.0, magnitude = 0.0;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, r); it; ++it) {
+      const double term = it.value() * points_(it.col() / 3, it.col() % 3);
+      rest += term;
+      magnitude += std::abs(term);
+    }
+    linearRest_.push_back(rest);
+    linearRestScale_.push_back(magnitude);
   }
 }
 
@@ -245,12 +254,45 @@ void ShapeConstraints::keepBarycentre(const Eigen::Vector3d& target) {
   addLinear(A, target);
 }
 
-void ShapeConstraints::keepVolume(const ClosedSurface& surface, double target) {
+void ShapeConstraints::keepVolume(const ClosedSurface& surface, double target, VolumeEvaluation evaluation) {
   checkSurface(surface, points_.rows(), "keepVolume");
   if (!std::isfinite(target) || target == 0.0)
     throw ConstraintError("keepVolume: the target volume must be finite and non-zero, got " + std::to_string(target));
   volumeSurface_ = std::make_shared<ClosedSurface>(surface);
   volumeTarget_ = target;
+  volumePolynomial_.reset();
+  if (evaluation == VolumeEvaluation::PerVertex) return;
+  std::optional<detail::VolumePolynomial> polynomial =
+      detail::VolumePolynomial::build(lattice_, deformer_.embedding(), points_, origin_, *volumeSurface_);
+  if (polynomial) {
+    volumePolynomial_ = std::make_shared<const detail::VolumePolynomial>(std::move(*polynomial));
+  } else if (evaluation == VolumeEvaluation::Polynomial) {
+    throw ConstraintError("keepVolume: the volume polynomial needs at most " +
+                          std::to_string(detail::VolumePolynomial::kMaxActiveControls) +
+                          " control points moving the surface; use VolumeEvaluation::PerVertex");
+  }
+}
+
+double ShapeConstraints::keptVolume(const Lattice& lattice) const {
+  if (!volumeSurface_) throw ConstraintError("keptVolume: no volume is kept (keepVolume)");
+  deformer_.embedding().checkLattice(lattice);
+  if (volumePolynomial_) {
+    Eigen::MatrixX3d gradient;
+    const Eigen::MatrixX3d world = (lattice.controlPoints() - lattice.restPoints()) * lattice_.frame().linear().transpose();
+    return volumePolynomial_->evaluate(world, gradient);
+  }
+  deformer_.deform(lattice, points_);
+  deformedStale_ = true;
+  return enclosedVolume(deformer_.points(), *volumeSurface_);
+}
+
+const Eigen::MatrixX3d& ShapeConstraints::deformedPoints() const {
+  if (!solved_) throw ConstraintError("deformedPoints: no solve() yet");
+  if (deformedStale_) {
+    deformer_.deform(*solved_, points_);
+    deformedStale_ = false;
+  }
+  return deformer_.points();
 }
 
 void ShapeConstraints::keepCentroid(const ClosedSurface& surface, const Eigen::Vector3d& target) {
@@ -277,35 +319,46 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
   Eigen::VectorXd delta = Eigen::VectorXd::Zero(f);  // the free part of the change
   Lattice current = lattice;
   const double size = lattice.restSize();
+  // With the volume polynomial and no centroid, no step visits the points.
+  const bool perVertex = (volumeSurface_ && !volumePolynomial_) || centroidSurface_;
+  const Eigen::Matrix3d L = lattice_.frame().linear();
   for (int iteration = 0;; ++iteration) {
     Eigen::MatrixX3d moved = lattice.controlPoints() + result.change;
     current.setControlPoints(moved);
+    const Eigen::MatrixX3d displacement = moved - lattice.restPoints();  // local P + dP - Pbar
     // Volume and centroid are translation invariant: measured about the object's mean so that
     // the divergence-theorem sums do not lose digits to the distance from the world origin.
-    const Eigen::MatrixX3d& deformed = deformer_.deform(current, points_);
-    const Eigen::MatrixX3d& x = deformed;
+    if (perVertex) deformer_.deform(current, points_);
+    const Eigen::MatrixX3d& x = deformer_.points();
     Eigen::MatrixX3d centred;
-    if (centroidSurface_) centred = deformed.rowwise() - origin_.transpose();
-    // Residuals c, their scales and the rows of J over the free coordinates.
+    if (centroidSurface_) centred = x.rowwise() - origin_.transpose();
+    // Residuals c, their scales and the rows of J over the free coordinates. A linear row is
+    // a . x' = a . x + J (P + dP - Pbar) (its J is the adjoint of the deformation, constant).
     Eigen::VectorXd c(m), scale(m);
     Eigen::MatrixXd J(m, f);
+    const Eigen::VectorXd flatDisplacement = flatten(displacement);
     for (Eigen::Index r = 0; r < linearCount; ++r) {
-      double value = -linearB_[std::size_t(r)], magnitude = std::abs(linearB_[std::size_t(r)]);
-      for (Eigen::SparseVector<double>::InnerIterator it(linearA_[std::size_t(r)]); it; ++it) {
-        const double term = it.value() * x(it.index() / 3, it.index() % 3);
-        value += term;
-        magnitude += std::abs(term);
-      }
-      c[r] = value;
+      const std::size_t ri = std::size_t(r);
+      const Eigen::VectorXd terms = linearRows_[ri].cwiseProduct(flatDisplacement);
+      c[r] = linearRest_[ri] + terms.sum() - linearB_[ri];
+      const double magnitude = linearRestScale_[ri] + terms.cwiseAbs().sum() + std::abs(linearB_[ri]);
       scale[r] = magnitude > 0.0 ? magnitude : 1.0;
-      for (Eigen::Index k = 0; k < f; ++k) J(r, k) = linearRows_[std::size_t(r)][freeIndex[std::size_t(k)]];
+      for (Eigen::Index k = 0; k < f; ++k) J(r, k) = linearRows_[ri][freeIndex[std::size_t(k)]];
     }
     Eigen::Index row = linearCount;
     if (volumeSurface_) {
       double volume = 0.0;
-      Eigen::MatrixX3d& g = gradientScratch_;
-      volumeGradient(x, origin_, *volumeSurface_, volume, g);
-      const Eigen::VectorXd gradient = flatten(adjointDeform(lattice_, deformer_.embedding(), g));
+      Eigen::VectorXd gradient;
+      if (volumePolynomial_) {
+        // World displacements D_i = L dP_i (rows: dP L^T); the local gradient is L^T dV/dD.
+        Eigen::MatrixX3d worldGradient;
+        volume = volumePolynomial_->evaluate(displacement * L.transpose(), worldGradient);
+        gradient = flatten(worldGradient * L);
+      } else {
+        Eigen::MatrixX3d& g = gradientScratch_;
+        volumeGradient(x, origin_, *volumeSurface_, volume, g);
+        gradient = flatten(adjointDeform(lattice_, deformer_.embedding(), g));
+      }
       c[row] = volume - volumeTarget_;
       scale[row] = std::abs(volumeTarget_);
       for (Eigen::Index k = 0; k < f; ++k) J(row, k) = gradient[freeIndex[std::size_t(k)]];
@@ -336,6 +389,8 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
     if (result.largestRelativeResidual <= options.tolerance &&
         (!nonlinear || iteration == 0 || result.lastStep <= options.stationarity)) {
       result.iterations = iteration;
+      solved_ = current;
+      deformedStale_ = true;
       return result;
     }
     if (iteration >= options.maxIterations)

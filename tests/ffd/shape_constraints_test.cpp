@@ -182,6 +182,78 @@ TEST(ShapeConstraints, VolumeIsKeptToOnePartIn1e12AtALagrangePoint) {
   }
 }
 
+// The precomputed volume polynomial (VolumeEvaluation::Polynomial) against the divergence-theorem
+// volume of the mesh deformed by Lattice::evaluate, at random control displacements: a single
+// Bernstein cell under a random frame, a 5x5x5 cubic B-spline lattice whose cells the sphere
+// crosses (stars across cell boundaries), and points outside the lattice (Falloff: blended
+// weights; Identity: frozen), where the deformer's output is the reference.
+TEST(ShapeConstraints, VolumePolynomialEqualsTheDivergenceTheoremVolumeOfTheDeformedMesh) {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  struct Case {
+    const char* name;
+    BoxLatticeOptions options;
+    double radius;
+    bool insideOnly;
+  };
+  std::vector<Case> cases;
+  {
+    Case c{"bernstein 4x4x4, random frame", {}, 0.7, true};
+    c.options.bases = {AxisBasis::bernstein(), AxisBasis::bernstein(), AxisBasis::bernstein()};
+    c.options.frame = testing::randomFrame(rng);
+    cases.push_back(c);
+  }
+  {
+    Case c{"cubic B-spline 5x5x5 (8 cells)", {}, 0.7, true};
+    c.options.counts = Eigen::Vector3i(5, 5, 5);
+    c.options.frame = testing::randomFrame(rng);
+    cases.push_back(c);
+  }
+  {
+    Case c{"cubic B-spline 4x4x4, sphere half outside, falloff", {}, 1.3, false};
+    c.options.outsidePolicy = OutsidePolicy::falloff(0.5);
+    cases.push_back(c);
+  }
+  {
+    Case c{"cubic B-spline 4x4x4, sphere half outside, identity", {}, 1.3, false};
+    cases.push_back(c);
+  }
+  for (Case& c : cases) {
+    c.options.boxMin = Eigen::Vector3d::Constant(-1.0);
+    c.options.boxMax = Eigen::Vector3d::Constant(1.0);
+    Lattice lattice = makeBoxLattice(c.options);
+    testing::TestMesh mesh = testing::sphereMesh({0.1, -0.05, 0.02}, c.radius, 20, 40);
+    for (Eigen::Index r = 0; r < mesh.points.rows(); ++r)
+      mesh.points.row(r) = (c.options.frame * mesh.points.row(r).transpose()).transpose();
+    const ClosedSurface surface(mesh.triangles, mesh.points.rows());
+    const double rest = enclosedVolume(mesh.points, surface);
+    ShapeConstraints constraints(lattice, mesh.points);
+    constraints.keepVolume(surface, rest, VolumeEvaluation::Polynomial);
+    ASSERT_TRUE(constraints.volumeIsPolynomial()) << c.name;
+    EXPECT_NEAR(constraints.keptVolume(lattice), rest, 1e-13 * rest) << c.name;
+    const Eigen::MatrixX3d uvw = constraints.embedding().parameters();
+    Deformer deformer(embed(lattice, mesh.points));
+    for (int trial = 0; trial < 5; ++trial) {
+      Eigen::MatrixX3d p = lattice.restPoints();
+      for (Eigen::Index r = 0; r < p.rows(); ++r)
+        for (int k = 0; k < 3; ++k) p(r, k) += 0.15 * (trial + 1) / 3.0 * U(rng);
+      lattice.setControlPoints(p);
+      const Eigen::MatrixX3d x = c.insideOnly ? evaluated(lattice, uvw) : Eigen::MatrixX3d(deformer.deform(lattice, mesh.points));
+      const double expected = enclosedVolume(x, surface);
+      EXPECT_LT(std::abs(constraints.keptVolume(lattice) - expected) / std::abs(expected), 1e-12)
+          << c.name << ", trial " << trial << ": " << constraints.keptVolume(lattice) << " vs " << expected;
+    }
+    // The same Newton solve through the polynomial and per vertex.
+    ShapeConstraints perVertex(lattice, mesh.points);
+    perVertex.keepVolume(surface, rest, VolumeEvaluation::PerVertex);
+    EXPECT_FALSE(perVertex.volumeIsPolynomial());
+    const ShapeSolveResult fast = constraints.solve(lattice), slow = perVertex.solve(lattice);
+    EXPECT_LE(fast.volumeRelativeError, 1e-12) << c.name;
+    EXPECT_LT((fast.change - slow.change).norm(), 1e-9 * slow.change.norm()) << c.name;
+    EXPECT_NEAR(enclosedVolume(constraints.deformedPoints(), surface), rest, 1e-12 * rest) << c.name;
+  }
+}
+
 TEST(ShapeConstraints, VolumeWithFixedControlsMovesOnlyTheFreeOnes) {
   std::mt19937 rng(10);
   VolumeSetup s = volumeSetup(rng, 16, 0.4);

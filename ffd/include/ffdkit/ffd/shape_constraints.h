@@ -18,6 +18,26 @@ namespace ffdkit::ffd {
 /// Lattice::index, column = lattice-LOCAL axis), true = free. Default: all free.
 using ControlMask = Eigen::Matrix<bool, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
+namespace detail {
+class VolumePolynomial;
+}
+
+/// How a kept volume is evaluated in each Newton step of ShapeConstraints::solve.
+enum class VolumeEvaluation {
+  /// Polynomial when at most 128 control points move the surface (a 4x4x4 cubic lattice moves
+  /// 64, a 5x5x5 one 125), else PerVertex.
+  Automatic,
+  /// The volume as a cubic polynomial in the control displacements, precomputed by keepVolume()
+  /// (one pass over the vertices: about 54,000 multiply-adds per vertex for a cubic cell, a few
+  /// seconds for 10^6 vertices); each Newton step then costs O(a^3/6) for the a control points
+  /// that move the surface, whatever the number of vertices: the choice for a drag.
+  /// @throws ConstraintError from keepVolume() when more than 128 control points move the surface.
+  Polynomial,
+  /// No precompute: each Newton step deforms the points and sums over the triangles (O(vertices)):
+  /// the choice for a single solve (the CLI's deform, PyGeM's VFFD).
+  PerVertex
+};
+
 /// Options of ShapeConstraints::solve.
 struct ShapeSolveOptions {
   /// Stop when every constraint's residual is <= tolerance times its scale: |V - V*| / |V*| for
@@ -60,10 +80,12 @@ struct ShapeSolveResult {
 /// whose fixed points are exactly the Lagrange points (dP parallel to the rows of J); linear
 /// constraints hold after the first step, the volume's error falls quadratically.
 ///
-/// Precompute (constructor): the embedding, the rows of J of the linear constraints (constant),
-/// the surface's vertex-to-triangle table. Each Newton step: one deformation of the points, one
-/// pass over the triangles for the volume and its gradient, one adjoint pass (the transpose of
-/// the deformation) to carry the gradient to the control points.
+/// Precompute (constructor, add*, keep*): the embedding, the rows of J of the linear constraints
+/// (constant: a linear row's residual is a . x + J (P + dP - Pbar)), the surface's
+/// vertex-to-triangle table, and (VolumeEvaluation::Polynomial) the volume's coefficients. Each
+/// Newton step: with the volume polynomial and no centroid, O(lattice) work only; otherwise one
+/// deformation of the points, one pass over the triangles for the volume (and centroid) and its
+/// gradient, one adjoint pass (the transpose of the deformation) to carry it to the control points.
 class ShapeConstraints {
  public:
   /// @param lattice the lattice whose control points will change (its rest lattice and frame fix
@@ -89,10 +111,20 @@ class ShapeConstraints {
   void addLinear(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A, const Eigen::Ref<const Eigen::VectorXd>& b);
   /// Keeps the mean of the deformed points at `target` (world); three linear rows.
   void keepBarycentre(const Eigen::Vector3d& target);
-  /// Keeps the volume the closed surface over these points bounds at `target` (world units^3).
+  /// Keeps the volume the closed surface over these points bounds at `target` (world units^3),
+  /// evaluated per Newton step as `evaluation` says (Polynomial precomputes here).
   /// @throws ConstraintError when the surface is open or its vertex count is not pointCount(),
-  ///         or the target is not finite and non-zero.
-  void keepVolume(const ClosedSurface& surface, double target);
+  ///         the target is not finite and non-zero, or Polynomial is asked for with more than 128
+  ///         control points moving the surface.
+  void keepVolume(const ClosedSurface& surface, double target,
+                  VolumeEvaluation evaluation = VolumeEvaluation::Automatic);
+  /// The volume the kept surface encloses once deformed by `lattice`'s current control points
+  /// (world units^3): the precomputed polynomial (O(lattice)) or a deformation and a sum over the
+  /// triangles. A drag's status line (the volume change) costs nothing more than its solve.
+  /// @throws ConstraintError without keepVolume(); LatticeError if `lattice` is not the one embedded.
+  double keptVolume(const Lattice& lattice) const;
+  /// True when the kept volume is evaluated by its precomputed polynomial (see VolumeEvaluation).
+  bool volumeIsPolynomial() const { return volumePolynomial_ != nullptr; }
   /// Keeps the centroid of the solid the closed surface bounds at `target` (world).
   void keepCentroid(const ClosedSurface& surface, const Eigen::Vector3d& target);
 
@@ -104,22 +136,29 @@ class ShapeConstraints {
   ///         it, two contradicting rows) or Newton has not converged after maxIterations.
   ShapeSolveResult solve(const Lattice& lattice, const ShapeSolveOptions& options = {});
 
-  /// The deformed points of the last solve() (world, #points x 3), after its change.
-  const Eigen::MatrixX3d& deformedPoints() const { return deformer_.points(); }
+  /// The deformed points of the last solve() (world, #points x 3), after its change (deformed
+  /// on the first call after a solve that did not need them).
+  /// @throws ConstraintError before any solve().
+  const Eigen::MatrixX3d& deformedPoints() const;
 
  private:
   Lattice lattice_;  // the embedded lattice (bases, frame; its control points are not used)
   Eigen::MatrixX3d points_;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();  // mean of points_: volumes are measured about it
-  Deformer deformer_;
+  mutable Deformer deformer_;
+  std::optional<Lattice> solved_;     // the lattice of the last solve(), its change applied
+  mutable bool deformedStale_ = true;  // deformer_.points() is not yet that lattice's
   ControlMask free_;
   // Linear rows: J rows (flattened #controlPoints*3, local), right sides, the A rows kept for
   // their residual.
   std::vector<Eigen::VectorXd> linearRows_;
   std::vector<Eigen::SparseVector<double>> linearA_;
   std::vector<double> linearB_;
+  std::vector<double> linearRest_;       // a . x of each row at the rest points
+  std::vector<double> linearRestScale_;  // sum |a_j x_j| of each row at the rest points
   std::shared_ptr<const ClosedSurface> volumeSurface_;
   double volumeTarget_ = 0.0;
+  std::shared_ptr<const detail::VolumePolynomial> volumePolynomial_;
   std::shared_ptr<const ClosedSurface> centroidSurface_;
   Eigen::Vector3d centroidTarget_ = Eigen::Vector3d::Zero();
   Eigen::MatrixX3d gradientScratch_;  // the per-vertex volume gradient, reused between Newton steps
