@@ -344,10 +344,11 @@ def _menu(self, context):
     self.layout.operator(FFDKIT_OT_load_tool.bl_idname)
 
 
-def _sync_all(scene, depsgraph=None):
+def _sync_all(scene, depsgraph=None, new_frame=False):
     """Brings every tool on the scene's meshes up to date: before an evaluation (depsgraph None)
-    from the objects' own and keyed values, so the shape key joins that evaluation; after it from
-    the evaluated values (drivers), which costs one more evaluation only when a value changed."""
+    from the objects' own values (on a new frame, keyed ones from their F-curves), so the shape
+    key joins that evaluation; after it from the evaluated values (drivers), which costs one
+    more evaluation only when a value changed."""
     try:
         ffdkit = ffdkit_module()
     except runtime.ModuleNotFound:
@@ -355,12 +356,17 @@ def _sync_all(scene, depsgraph=None):
     for obj in scene.objects:
         if mesh_link.has_tool(obj):
             evaluated = obj.evaluated_get(depsgraph) if depsgraph is not None else None
-            mesh_link.sync(ffdkit, obj, evaluated, scene.frame_current)
+            mesh_link.sync(ffdkit, obj, evaluated, scene.frame_current if new_frame else None)
 
 
 @persistent
 def _before_evaluation(scene, *_):
     _sync_all(scene)
+
+
+@persistent
+def _before_frame(scene, *_):
+    _sync_all(scene, new_frame=True)
 
 
 @persistent
@@ -386,12 +392,24 @@ def _on_undo(_scene):
     mesh_link.forget_all(mark_dirty_only=True)
 
 
+# A slider dragged in the UI changes an ID property, which tags no depsgraph update, so no
+# depsgraph handler runs: the interface is polled as well (a few property reads per tool).
+POLL_SECONDS = 0.05
+
+
+def _poll():
+    scene = bpy.context.scene
+    if scene is not None:
+        _sync_all(scene)
+    return POLL_SECONDS
+
+
 _classes = (FFDKIT_AP_preferences, FFDKIT_OT_load_tool, FFDKIT_OT_remove_tool, FFDKIT_OT_bake_shape_keys,
             FFDKIT_OT_export_lattice,
             FFDKIT_OT_import_lattice, FFDKIT_OT_import_scene, FFDKIT_OT_export_scene, FFDKIT_PT_tool)
 _handlers = (
     (bpy.app.handlers.depsgraph_update_pre, _before_evaluation),
-    (bpy.app.handlers.frame_change_pre, _before_evaluation),
+    (bpy.app.handlers.frame_change_pre, _before_frame),
     (bpy.app.handlers.depsgraph_update_post, _after_evaluation),
     (bpy.app.handlers.frame_change_post, _after_evaluation),
     (bpy.app.handlers.load_post, _on_load),
@@ -408,9 +426,13 @@ def register():
     for handlers, function in _handlers:
         if function not in handlers:
             handlers.append(function)
+    if not bpy.app.timers.is_registered(_poll):
+        bpy.app.timers.register(_poll, first_interval=POLL_SECONDS, persistent=True)
 
 
 def unregister():
+    if bpy.app.timers.is_registered(_poll):
+        bpy.app.timers.unregister(_poll)
     for handlers, function in _handlers:
         if function in handlers:
             handlers.remove(function)

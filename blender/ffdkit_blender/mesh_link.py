@@ -155,8 +155,10 @@ def _driven(obj, key):
 
 def _values(obj, names, evaluated, frame):
     """{name: variation} the tool should have: the evaluated object's values when given (keys and
-    drivers applied by Blender), else the object's own values with keyed ones evaluated at
-    `frame` from their F-curves (driven ones are left to the evaluated pass)."""
+    drivers applied by Blender); else the object's own values, keyed ones evaluated at `frame`
+    from their F-curves when a frame is given (a new frame, before Blender evaluates it: the own
+    value still holds the last frame's; without a frame the own value is current, and may be an
+    edit the keys do not hold yet). Driven ones are left to the evaluated pass."""
     values = {}
     for name in names:
         key = PREFIX + name
@@ -166,7 +168,7 @@ def _values(obj, names, evaluated, frame):
             continue
         if key not in obj.keys() or _driven(obj, key):
             continue
-        curve = _curve(obj, key)
+        curve = _curve(obj, key) if frame is not None else None
         values[name] = float(curve.evaluate(frame)) if curve is not None else float(obj[key])
     return values
 
@@ -174,9 +176,9 @@ def _values(obj, names, evaluated, frame):
 def sync(ffdkit, obj, evaluated=None, frame=None):
     """Applies the object's variation properties to its tool and writes the shape key when
     something changed; followers of a binding get their properties written back unless they are
-    animated. Run before Blender evaluates (frame given: the object's own and keyed values), the
-    write joins that evaluation; run after it (evaluated given), driven values are caught too and
-    the write asks for one more evaluation."""
+    animated. Run before Blender evaluates (the object's own values; with `frame`, a new frame's
+    keyed values), the write joins that evaluation; run after it (evaluated given), driven values
+    are caught too and the write asks for one more evaluation."""
     link = link_of(ffdkit, obj)
     if link.tool is None:
         return False

@@ -37,7 +37,7 @@ print("add-on from %s, ffdkit %s from %s" % (module.__file__, ffdkit.__version__
 for operator in ("load_tool", "remove_tool"):
     assert hasattr(bpy.ops.ffdkit, operator), operator
 assert hasattr(bpy.types, "FFDKIT_PT_tool")
-assert module._after_evaluation in bpy.app.handlers.depsgraph_update_post and module._before_evaluation in bpy.app.handlers.frame_change_pre
+assert module._after_evaluation in bpy.app.handlers.depsgraph_update_post and module._before_frame in bpy.app.handlers.frame_change_pre
 
 support.empty_scene()
 obj = support.add_mesh("part", support.sphere_points())
