@@ -41,7 +41,7 @@ def read_widget_text(ffdkit, path):
     return ffdkit.scenes.widgetFileText(model)
 
 
-def _fit_roots(ffdkit, scene, points, padding):
+def _fit_roots(scene, points, padding):
     """Places the tool around the points as ``ffdkit-cli deform --fit`` does: one scale-and-
     translate map takes the box of the root lattices' rest shapes onto the points' box grown by
     ``padding`` x its diagonal (scenes/lattice_fit.h), and every root frame F becomes map @ F, so
@@ -91,7 +91,7 @@ class Tool:
         self.rest_points = points
         self.scene = self._build_scene(widget_text, points, roots)
         if fit:
-            _fit_roots(ffdkit, self.scene, points, FIT_PADDING)
+            _fit_roots(self.scene, points, FIT_PADDING)
         else:
             self._check_reach(points, mesh_name)
         model = self.scene.widgets
