@@ -99,6 +99,22 @@ for k in range(reps):
     assert np.abs(evaluated_points(sphere) - before).max() > 1e-3, "the slider did not move the mesh"
 mesh_link.write = original_write
 
+# The handler's parts: ffdkit's update after a slider change, the float32 copy, the foreach_set.
+link = mesh_link.link_of(addon.ffdkit_module(), sphere)
+update_ms, copy_ms, set_ms = [], [], []
+block = sphere.data.shape_keys.key_blocks[mesh_link.SHAPE_KEY]
+for k in range(reps):
+    link.tool.set_variations({"push-front": 0.01 * (k + 1)})
+    t = time.perf_counter()
+    points = link.tool.points()
+    update_ms.append(1e3 * (time.perf_counter() - t))
+    t = time.perf_counter()
+    flat = np.ascontiguousarray(points, dtype=np.float32).ravel()
+    copy_ms.append(1e3 * (time.perf_counter() - t))
+    t = time.perf_counter()
+    block.data.foreach_set("co", flat)
+    set_ms.append(1e3 * (time.perf_counter() - t))
+
 # ---- Blender's Lattice modifier on the same mesh --------------------------------------------
 assert bpy.ops.ffdkit.remove_tool() == {"FINISHED"}
 data = bpy.data.lattices.new("cage")
@@ -125,4 +141,6 @@ print("blender_slider_bench vertices %d, tool fig6-8 (fitted), median of %d" % (
 print("  load tool (embed + first write):      %8.1f ms" % load_ms)
 print("  ffdkit slider -> evaluated mesh:      %8.1f ms  (handler: ffdkit update + foreach_set %.1f ms)"
       % (statistics.median(slider), statistics.median(handler_ms)))
+print("    ffdkit update %.1f ms, float32 copy %.1f ms, foreach_set into the shape key %.1f ms"
+      % (statistics.median(update_ms), statistics.median(copy_ms), statistics.median(set_ms)))
 print("  Blender Lattice modifier 4x4x4 B-spline, point move -> evaluated mesh: %8.1f ms" % statistics.median(lattice))
