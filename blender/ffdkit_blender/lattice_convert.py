@@ -203,10 +203,11 @@ def _axis_candidates(ffdkit, basis, count, axis_name):
         expected = AxisForm("KEY_BSPLINE", n).knots * h + (knots[4] if n > 1 else knots[4])
         if h > 0 and np.allclose(knots, expected, rtol=0, atol=1e-12 * max(1.0, np.abs(knots).max())):
             return [(kind, n, AxisForm(kind, n), knots[4], h) for kind in ("KEY_CATMULL_ROM", "KEY_CARDINAL", "KEY_BSPLINE")]
-    raise NotRepresentable("axis %s: B-spline of degree %d on %s knots: Blender's lattice has linear, cardinal, "
-                           "Catmull-Rom and B-spline interpolations over a uniform grid with its end points "
-                           "repeated; this basis is none of them (an ffdkit clamped cubic B-spline, for one)"
-                           % (axis_name, basis.degree, "clamped uniform" if basis.knots.size == 0 else "these"))
+    raise NotRepresentable("axis %s: B-spline of degree %d on %s: Blender's lattice interpolations (linear, "
+                           "cardinal, Catmull-Rom, B-spline) run over a uniform grid whose end points repeat, "
+                           "and none of them gives this basis"
+                           % (axis_name, basis.degree,
+                              "clamped uniform knots (ffdkit's default)" if basis.knots.size == 0 else "its knots"))
 
 
 def blender_lattice_from_model(ffdkit, model, lattice):

@@ -142,7 +142,7 @@ settings = ffdkit.widgets.LatticeSettings()
 settings.basis = [ffdkit.ffd.AxisBasis.bspline(3)] * 3
 model.setLatticeSettings(model.find("cubic"), settings)
 ffdkit.scenes.writeWidgetFile(os.path.join(folder, "cubic.json"), model)
-expect_error(bpy.ops.ffdkit.import_lattice, "clamped cubic B-spline", filepath=os.path.join(folder, "cubic.json"))
+expect_error(bpy.ops.ffdkit.import_lattice, "degree 3 on clamped uniform knots", filepath=os.path.join(folder, "cubic.json"))
 expect_error(bpy.ops.ffdkit.import_lattice, "child lattices",
              filepath=os.path.join(support.SOURCE_DIR, "widgets", "examples", "fig6-9.json"))
 assert len(obj.modifiers) == 0 and not [o for o in bpy.data.objects if o.type == "LATTICE"]
