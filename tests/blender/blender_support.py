@@ -3,7 +3,9 @@
 CTest sets FFDKIT_ADDON_DIR (the source folder holding ffdkit_blender), FFDKIT_PYTHONPATH (the
 build tree's python folder), FFDKIT_CLI (ffdkit-cli) and FFDKIT_SOURCE_DIR (the repository)."""
 
+import atexit
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -97,4 +99,7 @@ def run_cli(*args):
 
 
 def temporary_folder():
-    return tempfile.mkdtemp(prefix="ffdkit-blender-test-")
+    """A new folder, removed when Blender exits normally."""
+    folder = tempfile.mkdtemp(prefix="ffdkit-blender-test-")
+    atexit.register(shutil.rmtree, folder, True)
+    return folder
