@@ -13,7 +13,6 @@ bl_info = {
     "blender": (3, 4, 0),
     "location": "View3D > Sidebar > ffdkit",
     "description": "Direct-manipulation free-form deformation: ffdkit widget tools on meshes",
-    "doc_url": "https://github.com/ffdkit/ffdkit/blob/main/docs/blender.md",
     "category": "Object",
 }
 
