@@ -217,9 +217,9 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
     console.begin("read", "reading a slice of " + r.inputs.front() + " per process");
     split.emplace(fs::path(r.inputs.front()), r.read.limits, ranks);
   } else if (VolumeMeshInput::applies(r.inputs)) {
-    console.begin("read", "reading the OpenFOAM mesh " + r.inputs.front());
+    console.begin("read", "reading the volume mesh " + r.inputs.front());
     volume.emplace(fs::path(r.inputs.front()), r.read);
-    if (r.quality) console.say("cell check before: " + meshio::cellQualityText(volume->check(volume->mesh().points)));
+    if (r.quality) console.say("cell check before: " + volume->check(volume->points()).summary);
   }
   onEveryRank(ranks, [&] {
     if (r.inputs.empty()) return;
@@ -376,9 +376,9 @@ int runDeform(const Args& args) {
   if (!volume) console.begin("write", "writing " + std::to_string(split ? 1 : meshes.size()) + " file(s)");
   if (volume) {
     const auto& [path, mesh] = meshes.front();
-    console.begin("check", "checking " + std::to_string(volume->mesh().cells.cellCount) + " cells");
-    const meshio::CellQuality quality = volume->check(mesh.points);
-    if (request.quality) console.say("cell check after: " + meshio::cellQualityText(quality));
+    console.begin("check", "checking " + std::to_string(volume->cellCount()) + " cells");
+    const meshio::VolumeMeshQuality quality = volume->check(mesh.points);
+    if (request.quality) console.say("cell check after: " + quality.summary);
     console.begin("write", "writing " + path.string());
     volume->write(mesh.points, quality, path, request.allowInverted, console);
     console.end();
@@ -426,11 +426,12 @@ Command deformCommand() {
           "the scene's own objects are deformed and written (--object picks some). A scene may also\n"
           "be given as the first INPUT. --frame T first sets the scene's animation to frame T (in its\n"
           "frame range; docs/animation.md); --set values apply after it.\n"
-          "INPUT: .obj .ply .stl .vtp .vtk .gltf .glb .xyz .npy, or an OpenFOAM case or polyMesh folder.\n"
+          "INPUT: .obj .ply .stl .vtp .vtk .gltf .glb .xyz .npy, or a volume mesh: an OpenFOAM case or\n"
+          "polyMesh folder, .msh (Gmsh 4.1), .su2, .unv, .nodes (Elmer), .k/.key (LS-DYNA), .mdpa (Kratos).\n"
           "OUTPUT: a file when there is one result (its extension picks the format: .obj .ply .stl .vtp\n"
           ".vtk .xyz .npy), else a folder that receives NAME.EXT per object. Normals are recomputed when\n"
-          "the input had them. An OpenFOAM case is written to the folder OUTPUT, every file copied\n"
-          "unchanged but the points, after its cells are checked: inverted or zero-volume cells refuse\n"
+          "the input had them. A volume mesh is written to OUTPUT (an OpenFOAM case: a folder) with every\n"
+          "byte but the point coordinates as read, after its cells are checked: inverted or zero-volume cells refuse\n"
           "the write unless --allow-inverted (docs/volume-meshes.md).\n"
           "Nothing is written when anything fails.\n"
           "--keep-volume OBJECT / --keep-centre OBJECT restore, after the deformation, the volume the\n"
@@ -451,9 +452,9 @@ Command deformCommand() {
            {"padding", '\0', "P", "with --fit: margin on every side, relative to the box diagonal (0.05)"},
            {"object", '\0', "NAME", "with --scene and no INPUT: write only this object", true},
            {"format", '\0', "EXT", "format of outputs written into a folder (default: the input's)"},
-           {"allow-inverted", '\0', "", "with an OpenFOAM case: write it even when deformed cells are inverted or "
+           {"allow-inverted", '\0', "", "with a volume mesh: write it even when deformed cells are inverted or "
                                           "of zero volume (says how many)"},
-           {"quality", '\0', "", "with an OpenFOAM case: print the cell check before and after"},
+           {"quality", '\0', "", "with a volume mesh: print the cell check before and after"},
            {"precision", '\0', "P", "double (default) or single: the displacements in float32, as Blender does "
                                      "(within 1e-6 of the largest control-point move; docs/ffd-engine.md)"},
            quietOption(), progressOption(), timingsOption()})),

@@ -204,12 +204,14 @@ Command infoCommand() {
           "ffdkit-cli info FILE...\n       ffdkit-cli info --generators",
           "FILE: a scene (.json or a sample-scene folder), a widget file (.json with format\n"
           "\"ffdkit-widgets\") or a mesh / point file. Lists objects, lattices, affine widgets (the\n"
-          "names --set takes) with their variations, attachments, and evaluates a scene. An OpenFOAM\n"
-          "case or polyMesh folder: its counts and patches; --quality adds the cell check (volumes,\n"
-          "face pyramids, non-orthogonality, skewness), --widgets TOOL the same check after TOOL deforms it.\n",
+          "names --set takes) with their variations, attachments, and evaluates a scene. A volume mesh\n"
+          "(an OpenFOAM case or polyMesh folder, .msh, .su2, .unv, .nodes, .k, .mdpa): its counts, patches,\n"
+          "markers or physical groups; --quality adds the cell check (OpenFOAM: volumes, face pyramids,\n"
+          "non-orthogonality, skewness; Gmsh and SU2: volumes and corner Jacobians), --widgets TOOL the\n"
+          "same check after TOOL deforms it.\n",
           withReadOptions({{"generators", '\0', "", "list the registered curve and surface generators"},
-                           {"quality", '\0', "", "an OpenFOAM case: print its cell check"},
-                           {"widgets", 'w', "TOOL", "an OpenFOAM case: also check its cells as TOOL deforms them"},
+                           {"quality", '\0', "", "a volume mesh: print its cell check"},
+                           {"widgets", 'w', "TOOL", "a volume mesh: also check its cells as TOOL deforms them"},
                            quietOption()}),
           runInfo};
 }
@@ -219,7 +221,7 @@ Command validateCommand() {
           "check scene, widget and mesh files; report every broken one",
           "ffdkit-cli validate FILE...",
           "Reads each file completely (a scene: its mesh files, generators, widgets and\n"
-          "attachments, then evaluates it; an OpenFOAM case: its polyMesh and the check of its cells)\n"
+          "attachments, then evaluates it; a volume mesh: the whole file and the check of its cells)\n"
           "and prints 'FILE: ok' or the problem, with line and\n"
           "column for malformed JSON. Exit status 1 when any file is broken. Writes nothing.\n",
           withReadOptions({quietOption()}),

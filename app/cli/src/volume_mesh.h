@@ -1,23 +1,24 @@
 #pragma once
-// Volume meshes in the CLI: an OpenFOAM case or polyMesh folder given to deform, info or validate
+// Volume meshes in the CLI: an OpenFOAM case or polyMesh folder, or a Gmsh, SU2, UNV, Elmer,
+// LS-DYNA or Kratos file (meshio/volume_mesh.h), given to deform, info or validate
 // (docs/volume-meshes.md). Its points are deformed like any INPUT's; before anything is written
-// its cells are checked (meshio/cell_quality.h) and a mesh with inverted or zero-volume cells is
-// refused unless --allow-inverted.
+// its cells are checked (the formats that have cells) and a mesh with inverted or zero-volume
+// cells is refused unless --allow-inverted.
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "console.h"
-#include "ffdkit/meshio/cell_quality.h"
-#include "ffdkit/meshio/openfoam.h"
+#include "ffdkit/meshio/volume_mesh.h"
 #include "read_options.h"
 
 namespace ffdkit::cli {
 
-/// Whether `path` is a volume mesh the CLI reads (an OpenFOAM case or polyMesh folder).
+/// Whether `path` is a volume mesh the CLI reads (meshio::volumeMeshFormatOf knows it).
 bool isVolumeMesh(const std::filesystem::path& path);
 
 /// A volume mesh given as deform's INPUT: read once, its points handed to the deformation, its
@@ -25,39 +26,41 @@ bool isVolumeMesh(const std::filesystem::path& path);
 class VolumeMeshInput {
  public:
   /// Whether `inputs` is one volume mesh. @throws UsageError when a volume mesh comes with
-  /// other INPUTs (a case is deformed on its own).
+  /// other INPUTs (a volume mesh is deformed on its own).
   static bool applies(const std::vector<std::string>& inputs);
 
-  /// Reads the mesh (points, faces, owner, neighbour, boundary). @throws meshio::MeshIoError.
-  VolumeMeshInput(const std::filesystem::path& folder, const ReadSettings& read);
+  /// Reads the mesh. @throws meshio::MeshIoError.
+  VolumeMeshInput(const std::filesystem::path& path, const ReadSettings& read);
 
-  /// The points read (#P x 3), moved out: call once.
-  Eigen::MatrixX3d takePoints();
-  /// The cell check of the points as read (before takePoints).
-  meshio::CellQuality qualityBefore() const;
+  /// The points read (#P x 3), until takePoints.
+  const Eigen::MatrixX3d& points() const { return mesh_->points(); }
+  /// The points read, moved out: call once.
+  Eigen::MatrixX3d takePoints() { return mesh_->takePoints(); }
+  /// Cells the check visits (0 for a points-only format).
+  std::int64_t cellCount() const { return mesh_->cellCount(); }
 
   /// The cell check of `deformed` (#P x 3) over the mesh's cells.
-  meshio::CellQuality check(const Eigen::MatrixX3d& deformed) const;
-  /// Writes the folder with `deformed` as its points to `output` when `quality` (check() of the
+  meshio::VolumeMeshQuality check(const Eigen::MatrixX3d& deformed) const { return mesh_->check(deformed); }
+  /// Writes the mesh with `deformed` as its points to `output` when `quality` (check() of the
   /// same points) passes, or when `allowInverted` (and says so on stderr).
   /// @throws std::runtime_error naming the bad cells when they fail and !allowInverted (nothing
   /// written), meshio::MeshIoError when the write fails (nothing written).
-  void write(const Eigen::MatrixX3d& deformed, const meshio::CellQuality& quality, const std::filesystem::path& output,
+  void write(const Eigen::MatrixX3d& deformed, const meshio::VolumeMeshQuality& quality, const std::filesystem::path& output,
              bool allowInverted, const Console& console) const;
 
-  const meshio::OpenFoamMesh& mesh() const { return mesh_; }
+  const meshio::VolumeMesh& mesh() const { return *mesh_; }
 
  private:
-  meshio::OpenFoamMesh mesh_;
+  std::unique_ptr<meshio::VolumeMesh> mesh_;
 };
 
-/// `info` of a volume mesh: counts, patches, the points' format, and with `quality` the cell
-/// check; with a `tool` (a widget file) also the check after the tool deforms the mesh.
-void infoVolumeMesh(const std::filesystem::path& folder, const ReadSettings& read, bool quality,
+/// `info` of a volume mesh: what it holds, and with `quality` the cell check; with a `tool` (a
+/// widget file) also the check after the tool deforms the mesh.
+void infoVolumeMesh(const std::filesystem::path& path, const ReadSettings& read, bool quality,
                     const std::filesystem::path* tool);
 
 /// `validate` of a volume mesh: reads it and checks its cells. Returns the summary line.
 /// @throws std::runtime_error naming the bad cells.
-std::string checkVolumeMesh(const std::filesystem::path& folder, const ReadSettings& read);
+std::string checkVolumeMesh(const std::filesystem::path& path, const ReadSettings& read);
 
 }  // namespace ffdkit::cli
