@@ -217,348 +217,463 @@ std::size_t Embedding::memoryBytes() const {
          blocks_.capacity() * sizeof(Block) + tileBlocks_.capacity() * sizeof(std::uint32_t);
 }
 
+namespace {
+
+// The blocks, blend weights and counts of every tile, joined in tile order.
+struct JoinedTiles {
+  std::vector<Embedding::Block> blocks;
+  std::vector<double> blend;
+  std::vector<std::uint32_t> tileBlocks{0};
+  Eigen::Index inside = 0, outside = 0, failed = 0;
+  bool identity = true;  // every tile kept the original order
+};
+
+// One embed() call (Kuriyama 1996, eq. (6.2)), as the steps it takes: solve each point of a
+// tile for (u, v, w) (closed form for an affine rest map, Newton otherwise), apply the outside
+// policy, sort the tile by (class, cell) into blocks, and join the tiles. The per-point arrays
+// are written here and moved into the Embedding by embed().
+class EmbedRun {
+ public:
+  EmbedRun(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points, const EmbedOptions& options,
+           const detail::RestSolver& solver);
+
+  // Solves and groups every tile in one parallel region, calling the progress hook.
+  void solveTiles();
+  // Rethrows the progress hook's exception, throws for the first non-finite point, or Cancelled.
+  void throwIfStopped() const;
+  // The tiles' blocks, blend weights and counts in tile order; fills the original order of the
+  // tiles that kept it when another did not, and drops the order when none was permuted.
+  JoinedTiles joinTiles();
+  // The final progress call (all points done).
+  void reportDone();
+
+  Embedding::StatusVector status;
+  Embedding::ParameterVector u, v, w;
+  Embedding::IndexVector order;
+
+ private:
+  PointClass applyOutsidePolicy(const Eigen::Vector3d& q, bool noPreimageOutside, Eigen::Vector3d& uvw,
+                                double& weight) const;
+  void solvePoint(Eigen::Index p, std::uint32_t i, TileScratch& t, const FirstSteps* first = nullptr,
+                  std::uint32_t runIndex = 0);
+  void solveAffineTile(Eigen::Index begin, std::uint32_t m, TileScratch& t);
+  void solveNewtonTile(Eigen::Index begin, Eigen::Index end, TileScratch& t, FirstSteps* first);
+  void sortTileByKey(std::uint32_t m, TileScratch& t) const;
+  void groupTile(std::int64_t tile, TileScratch& t);
+  std::uint32_t cellKey(double pu, double pv, double pw) const;
+  void callHook(Eigen::Index done);
+  Cancelled cancelled() const;
+
+  const Eigen::Ref<const Eigen::MatrixX3d>& points_;
+  const EmbedOptions& options_;
+  const detail::RestSolver& solver_;
+  const Eigen::Index n_;
+  const std::int64_t tileCount_;
+  const Eigen::Affine3d toLocal_;
+  const OutsidePolicy policy_;
+  const AxisSpline* axes_[3];
+  const std::array<detail::CellLocator, 3> locate_;
+  int cells_[3];
+  std::int64_t cellTotal_;
+  bool periodic_[3];
+  bool affine_;
+  bool batched_;  // Newton's first steps across points
+  Eigen::Matrix3d Ainv_;
+  Eigen::Vector3d b_;
+  // The closed form's coefficients (affineTile): F^-1, F^-1 translation - b, A^-1, the box.
+  double affineCoef_[27];
+  // Identity and Extrapolate keep an outside point's parameters as solved: no per-point policy work.
+  bool outsideKeepsParameters_;
+  std::int64_t outsideClass_;
+  std::size_t keyCount_;
+  bool counting_;  // few enough keys for a counting sort
+
+  std::vector<TileGroups> groups_;
+  // Non-finite input points are found in the same pass (a separate check cost as much as the
+  // closed-form embedding itself); embed() then throws for the first one.
+  std::atomic<bool> nonFinite_{false};
+  std::atomic<bool> stop_{false};
+  std::exception_ptr hookError_;
+  Eigen::Index reported_ = 0;
+};
+
+EmbedRun::EmbedRun(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points, const EmbedOptions& options,
+                   const detail::RestSolver& solver)
+    : points_(points),
+      options_(options),
+      solver_(solver),
+      n_(points.rows()),
+      tileCount_((points.rows() + kTile - 1) / kTile),
+      toLocal_(lattice.frame().inverse()),
+      policy_(lattice.outsidePolicy()),
+      axes_{&lattice.axis(0), &lattice.axis(1), &lattice.axis(2)},
+      locate_{detail::CellLocator(lattice.axis(0)), detail::CellLocator(lattice.axis(1)),
+              detail::CellLocator(lattice.axis(2))} {
+  for (int a = 0; a < 3; ++a) {
+    cells_[a] = axes_[a]->cellCount();
+    periodic_[a] = axes_[a]->periodic();
+  }
+  cellTotal_ = std::int64_t(cells_[0]) * cells_[1] * cells_[2];
+  affine_ = lattice.restIsAffine();
+  batched_ = !affine_ && solver.batchedFirstStep();
+  Ainv_ = lattice.restAffineLinear().inverse();
+  b_ = lattice.restAffineOffset();
+
+  const Eigen::Matrix3d L = toLocal_.linear();
+  const Eigen::Vector3d T = toLocal_.translation();
+  for (int r = 0; r < 3; ++r) {
+    const double eps = options.boundaryEpsilon * (axes_[r]->domainMax() - axes_[r]->domainMin());
+    for (int c = 0; c < 3; ++c) {
+      affineCoef_[3 * r + c] = L(r, c);
+      affineCoef_[12 + 3 * r + c] = Ainv_(r, c);
+    }
+    affineCoef_[9 + r] = T[r] - b_[r];
+    affineCoef_[21 + r] = axes_[r]->domainMin() - eps;  // the epsilon-grown parameter box
+    affineCoef_[24 + r] = axes_[r]->domainMax() + eps;
+  }
+  outsideKeepsParameters_ =
+      policy_.kind == OutsidePolicy::Kind::Identity || policy_.kind == OutsidePolicy::Kind::Extrapolate;
+  outsideClass_ = static_cast<std::int64_t>(policy_.kind == OutsidePolicy::Kind::Identity ? PointClass::Frozen
+                                                                                            : PointClass::Evaluated);
+  keyCount_ = static_cast<std::size_t>(3 * cellTotal_);
+  counting_ = keyCount_ <= 4 * kTile;
+
+  // Written once, tile by tile in parallel: no zero fill first (see NoInitAllocator).
+  status.resize(static_cast<std::size_t>(n_));
+  u.resize(n_);
+  v.resize(n_);
+  w.resize(n_);
+  order.resize(n_);
+  groups_.resize(static_cast<std::size_t>(tileCount_));
+}
+
+std::uint32_t EmbedRun::cellKey(double pu, double pv, double pw) const {
+  if (cellTotal_ == 1) return 0u;
+  return static_cast<std::uint32_t>(locate_[0](pu) + cells_[0] * (locate_[1](pv) + std::int64_t(cells_[1]) * locate_[2](pw)));
+}
+
+// What the outside policy does with a point outside the rest lattice: its class, its (clamped)
+// parameters, and its blend weight.
+PointClass EmbedRun::applyOutsidePolicy(const Eigen::Vector3d& q, bool noPreimageOutside, Eigen::Vector3d& uvw,
+                                        double& weight) const {
+  switch (policy_.kind) {
+    case OutsidePolicy::Kind::Identity:
+      return PointClass::Frozen;
+    case OutsidePolicy::Kind::Extrapolate:
+      return noPreimageOutside ? PointClass::Blended : PointClass::Evaluated;
+    case OutsidePolicy::Kind::ClampEdge:
+      uvw = solver_.clampToBox(uvw);
+      return PointClass::Blended;
+    case OutsidePolicy::Kind::Falloff: {
+      uvw = solver_.clampToBox(uvw);
+      Eigen::Matrix3d J;
+      const double x = (solver_.evaluate(uvw, J) - q).norm() / policy_.distance;
+      if (x >= 1.0) return PointClass::Frozen;
+      weight = 1.0 - x * x * (3.0 - 2.0 * x);  // smoothstep from 1 at the boundary to 0 at `distance`
+      return PointClass::Blended;
+    }
+  }
+  return PointClass::Evaluated;
+}
+
+// Point p of a tile: (u, v, w), blend weight, (class, cell) key, status (Kuriyama 1996,
+// eq. (6.2)). first: the batched first Newton steps of the run point p belongs to (null: none),
+// at `runIndex`.
+void EmbedRun::solvePoint(Eigen::Index p, std::uint32_t i, TileScratch& t, const FirstSteps* first,
+                          std::uint32_t runIndex) {
+  if (!points_.row(p).allFinite()) {
+    nonFinite_.store(true, std::memory_order_relaxed);
+    t.pu[i] = t.pv[i] = t.pw[i] = 0.0;
+    t.weight[i] = 0.0;
+    t.key[i] = 0;
+    status[p] = PointStatus::Failed;
+    return;
+  }
+  const Eigen::Vector3d q = toLocal_ * points_.row(p).transpose();
+  Eigen::Vector3d uvw;
+  bool converged = true;
+  if (affine_) {
+    uvw = Ainv_ * (q - b_);
+  } else {
+    converged = first ? solveNewtonAfterSteps(solver_, q, first, runIndex, uvw) : solveNewton(solver_, q, uvw);
+  }
+  PointStatus pointStatus = PointStatus::Inside;
+  PointClass cls = PointClass::Evaluated;
+  double s = 1.0;
+  // Outside for certain, yet Newton found no preimage (the lattice's polynomial extension does
+  // not reach q): Outside, not Failed, with the closest boundary parameters; no extrapolated
+  // preimage exists, so Extrapolate keeps the offset like ClampEdge.
+  const bool noPreimageOutside = !converged && solver_.outsideRestHull(q);
+  if (noPreimageOutside) uvw = solver_.closestInBox(q);
+  if (!converged && !noPreimageOutside) {
+    pointStatus = PointStatus::Failed;
+    cls = PointClass::Frozen;
+    uvw = solver_.clampToBox(uvw);
+  } else if (noPreimageOutside || !solver_.insideBox(uvw)) {
+    pointStatus = PointStatus::Outside;
+    cls = applyOutsidePolicy(q, noPreimageOutside, uvw, s);
+  }
+  for (int a = 0; a < 3; ++a) {
+    if (periodic_[a]) uvw[a] = axes_[a]->wrap(uvw[a]);
+  }
+  t.pu[i] = uvw[0];
+  t.pv[i] = uvw[1];
+  t.pw[i] = uvw[2];
+  t.weight[i] = s;
+  status[p] = pointStatus;
+  t.key[i] = static_cast<std::uint32_t>(static_cast<std::int64_t>(cls) * cellTotal_ + cellKey(uvw[0], uvw[1], uvw[2]));
+}
+
+// The closed form of an affine rest map, uvw = A^-1 (F^-1 x - b), a tile at a time: the
+// arithmetic runs over the columns of the tile (vectorised across points); the few points
+// outside the box go through solvePoint for their outside policy.
+void EmbedRun::solveAffineTile(Eigen::Index begin, std::uint32_t m, TileScratch& t) {
+  t.pu = u.data() + begin;
+  t.pv = v.data() + begin;
+  t.pw = w.data() + begin;
+  if (affineTile(points_.col(0).data() + begin, points_.col(1).data() + begin, points_.col(2).data() + begin, m,
+                 affineCoef_, t.pu, t.pv, t.pw, t.flagged.data())) {
+    nonFinite_.store(true, std::memory_order_relaxed);
+  }
+  PointStatus* tileStatus = status.data() + begin;
+  for (std::uint32_t i = 0; i < m; ++i) {
+    t.weight[i] = 1.0;
+    if (!t.flagged[i]) {
+      tileStatus[i] = PointStatus::Inside;
+      t.key[i] = cellKey(t.pu[i], t.pv[i], t.pw[i]);
+    } else if (outsideKeepsParameters_ && points_.row(begin + i).allFinite()) {
+      tileStatus[i] = PointStatus::Outside;
+      t.key[i] = static_cast<std::uint32_t>(outsideClass_ * cellTotal_) + cellKey(t.pu[i], t.pv[i], t.pw[i]);
+    } else {
+      solvePoint(begin + i, i, t);
+    }
+  }
+}
+
+// Newton for points [begin, end) of a tile, into the scratch arrays; with `first`, the first two
+// steps batched across runs of FirstSteps::kChunk points.
+void EmbedRun::solveNewtonTile(Eigen::Index begin, Eigen::Index end, TileScratch& t, FirstSteps* first) {
+  t.pu = t.u.data();
+  t.pv = t.v.data();
+  t.pw = t.w.data();
+  if (!first) {
+    for (Eigen::Index p = begin; p < end; ++p) solvePoint(p, static_cast<std::uint32_t>(p - begin), t);
+    return;
+  }
+  for (Eigen::Index run = begin; run < end; run += FirstSteps::kChunk) {
+    const std::uint32_t m = static_cast<std::uint32_t>(std::min<Eigen::Index>(end - run, FirstSteps::kChunk));
+    firstSteps(solver_, toLocal_, points_.col(0).data() + run, points_.col(1).data() + run,
+               points_.col(2).data() + run, m, *first);
+    for (std::uint32_t j = 0; j < m; ++j) solvePoint(run + j, static_cast<std::uint32_t>(run + j - begin), t, first, j);
+  }
+}
+
+// t.order = the tile's m points sorted by key, stably: the original order when every key is
+// equal, a counting sort when the keys are few, else a stable sort.
+void EmbedRun::sortTileByKey(std::uint32_t m, TileScratch& t) const {
+  std::uint32_t* sorted = t.order.data();
+  const std::uint32_t* key = t.key.data();
+  bool uniform = true;
+  for (std::uint32_t i = 1; i < m; ++i) uniform &= key[i] == key[0];
+  if (uniform) {
+    for (std::uint32_t i = 0; i < m; ++i) sorted[i] = i;
+  } else if (counting_) {
+    t.start.assign(keyCount_ + 1, 0u);
+    for (std::uint32_t i = 0; i < m; ++i) ++t.start[key[i] + 1];
+    for (std::size_t k = 0; k < keyCount_; ++k) t.start[k + 1] += t.start[k];
+    for (std::uint32_t i = 0; i < m; ++i) sorted[t.start[key[i]]++] = i;
+  } else {
+    for (std::uint32_t i = 0; i < m; ++i) sorted[i] = i;
+    std::stable_sort(sorted, sorted + m, [key](std::uint32_t lhs, std::uint32_t rhs) { return key[lhs] < key[rhs]; });
+  }
+}
+
+// Sorts a solved tile by (class, cell), stably, and writes its parameters, order and blocks:
+// a block streams one cell's control points over its points in Deformer, while reads and
+// writes in original order stay within the tile (cache-local). A tile of one key (any
+// single-cell lattice with every point inside) keeps the original order.
+void EmbedRun::groupTile(std::int64_t tile, TileScratch& t) {
+  const Eigen::Index begin = tile * kTile;
+  const std::uint32_t m = static_cast<std::uint32_t>(std::min<Eigen::Index>(n_ - begin, kTile));
+  TileGroups& g = groups_[static_cast<std::size_t>(tile)];
+  sortTileByKey(m, t);
+  const std::uint32_t* sorted = t.order.data();
+  const std::uint32_t* key = t.key.data();
+  for (std::uint32_t i = 0; i < m; ++i) g.identity &= sorted[i] == i;
+  double* tu = u.data() + begin;
+  double* tv = v.data() + begin;
+  double* tw = w.data() + begin;
+  if (g.identity) {
+    if (t.pu != tu) {
+      std::copy_n(t.pu, m, tu);
+      std::copy_n(t.pv, m, tv);
+      std::copy_n(t.pw, m, tw);
+    }
+  } else {
+    if (t.pu == tu) {  // solved in place: permute from a copy
+      std::copy_n(tu, m, t.u.data());
+      std::copy_n(tv, m, t.v.data());
+      std::copy_n(tw, m, t.w.data());
+    }
+    std::uint32_t* globalOrder = order.data() + begin;
+    for (std::uint32_t i = 0; i < m; ++i) {
+      tu[i] = t.u[sorted[i]];
+      tv[i] = t.v[sorted[i]];
+      tw[i] = t.w[sorted[i]];
+      globalOrder[i] = static_cast<std::uint32_t>(begin) + sorted[i];
+    }
+  }
+  // Runs of equal key become blocks.
+  for (std::uint32_t i = 0; i < m;) {
+    const std::uint32_t k = key[sorted[i]];
+    std::uint32_t runEnd = i + 1;
+    while (runEnd < m && key[sorted[runEnd]] == k) ++runEnd;
+    Embedding::Block block{};
+    block.cell = static_cast<std::uint32_t>(k % cellTotal_);  // < 1e8 cells (Lattice's limit on control points)
+    block.begin = static_cast<std::uint32_t>(begin + i);
+    block.end = static_cast<std::uint32_t>(begin + runEnd);
+    block.kind = static_cast<Embedding::BlockKind>(k / cellTotal_);
+    block.blendOffset = static_cast<std::uint32_t>(g.blend.size());
+    if (block.kind == Embedding::BlockKind::Blended) {
+      for (std::uint32_t r = i; r < runEnd; ++r) g.blend.push_back(t.weight[sorted[r]]);
+    }
+    g.blocks.push_back(block);
+    i = runEnd;
+  }
+  for (Eigen::Index p = begin; p < begin + m; ++p) {
+    const PointStatus s = status[p];
+    g.inside += s == PointStatus::Inside;
+    g.outside += s == PointStatus::Outside;
+    g.failed += s == PointStatus::Failed;
+  }
+}
+
+void EmbedRun::callHook(Eigen::Index done) {
+  try {
+    if (!options_.progress(done, n_)) stop_ = true;
+  } catch (...) {
+    hookError_ = std::current_exception();
+    stop_ = true;
+  }
+  reported_ = done;
+}
+
+Cancelled EmbedRun::cancelled() const {
+  return Cancelled("embed: cancelled after " + std::to_string(reported_) + " of " + std::to_string(n_) + " points");
+}
+
+// One parallel region; threads take tiles from a shared counter, solve and group them. The
+// calling thread (OpenMP thread 0 of the team) calls the progress hook between its own tiles,
+// each time the points finished by all threads pass another kEmbedProgressChunk; a `false`
+// makes every thread stop after its current tile. Cutting the loop into chunks run one after
+// another instead put a barrier at every chunk end, which on a loaded machine (a thread
+// descheduled while its team-mate waits) cost 7-43 % of the median wall time (docs/ffd-engine.md).
+void EmbedRun::solveTiles() {
+  std::atomic<std::int64_t> next{0};
+  std::atomic<Eigen::Index> finished{0};
+  if (options_.progress) callHook(0);
+#pragma omp parallel if (options_.parallel && n_ >= kParallelPoints)
+  {
+    const bool caller = omp_get_thread_num() == 0;
+    const auto scratch = std::make_unique<TileScratch>();
+    const auto first = batched_ ? std::make_unique<FirstSteps>() : nullptr;
+    while (!stop_.load(std::memory_order_relaxed)) {
+      const std::int64_t tile = next.fetch_add(1, std::memory_order_relaxed);
+      if (tile >= tileCount_) break;
+      const Eigen::Index begin = tile * kTile;
+      const Eigen::Index end = std::min<Eigen::Index>(n_, begin + kTile);
+      if (affine_) {
+        solveAffineTile(begin, static_cast<std::uint32_t>(end - begin), *scratch);
+      } else {
+        solveNewtonTile(begin, end, *scratch, first.get());
+      }
+      groupTile(tile, *scratch);
+      const Eigen::Index done = finished.fetch_add(end - begin, std::memory_order_acq_rel) + (end - begin);
+      if (caller && options_.progress && done < n_ && done - reported_ >= kEmbedProgressChunk) callHook(done);
+    }
+  }
+}
+
+void EmbedRun::throwIfStopped() const {
+  if (hookError_) std::rethrow_exception(hookError_);
+  if (nonFinite_) {
+    for (Eigen::Index r = 0; r < n_; ++r) {
+      if (!points_.row(r).allFinite()) throw LatticeError("embed: point " + std::to_string(r) + " is not finite");
+    }
+  }
+  if (stop_) throw cancelled();
+}
+
+JoinedTiles EmbedRun::joinTiles() {
+  JoinedTiles joined;
+  for (const TileGroups& g : groups_) {
+    const std::uint32_t blendBase = static_cast<std::uint32_t>(joined.blend.size());
+    for (Embedding::Block block : g.blocks) {
+      block.blendOffset += blendBase;
+      joined.blocks.push_back(block);
+    }
+    joined.blend.insert(joined.blend.end(), g.blend.begin(), g.blend.end());
+    joined.tileBlocks.push_back(static_cast<std::uint32_t>(joined.blocks.size()));
+    joined.inside += g.inside;
+    joined.outside += g.outside;
+    joined.failed += g.failed;
+    joined.identity = joined.identity && g.identity;
+  }
+  if (joined.identity) {
+    Embedding::IndexVector().swap(order);  // never written: only address space was reserved
+  } else {
+#pragma omp parallel for if (options_.parallel && n_ >= kParallelPoints)
+    for (std::int64_t tile = 0; tile < tileCount_; ++tile) {
+      if (!groups_[static_cast<std::size_t>(tile)].identity) continue;
+      const Eigen::Index begin = tile * kTile;
+      const Eigen::Index end = std::min<Eigen::Index>(n_, begin + kTile);
+      for (Eigen::Index p = begin; p < end; ++p) order[p] = static_cast<std::uint32_t>(p);
+    }
+  }
+  return joined;
+}
+
+void EmbedRun::reportDone() {
+  if (!options_.progress) return;
+  callHook(n_);
+  if (hookError_) std::rethrow_exception(hookError_);
+  if (stop_) throw cancelled();
+}
+
+}  // namespace
+
 Embedding embed(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points, const EmbedOptions& options) {
   const Eigen::Index n = points.rows();
   if (n >= static_cast<Eigen::Index>(std::numeric_limits<std::uint32_t>::max())) {
     throw LatticeError("embed: at most 2^32-2 points, got " + std::to_string(n));
   }
   // The tabulated inverse (about 5000 Newton solves) pays for itself from a few 10^4 points on.
-  detail::RestSolver gridSolver(lattice, options, /*inverseGrid=*/n >= 4 * kParallelPoints);
-  if (gridSolver.wantsInverseGrid()) buildInverseGrid(gridSolver, options.parallel);
-  const detail::RestSolver& solver = gridSolver;
-  const Eigen::Affine3d toLocal = lattice.frame().inverse();
-  const OutsidePolicy policy = lattice.outsidePolicy();
-  const AxisSpline* axes[3] = {&lattice.axis(0), &lattice.axis(1), &lattice.axis(2)};
-  const detail::CellLocator locate[3] = {detail::CellLocator(*axes[0]), detail::CellLocator(*axes[1]),
-                                         detail::CellLocator(*axes[2])};
-  const int cells[3] = {axes[0]->cellCount(), axes[1]->cellCount(), axes[2]->cellCount()};
-  const std::int64_t cellTotal = std::int64_t(cells[0]) * cells[1] * cells[2];
-  const bool periodic[3] = {axes[0]->periodic(), axes[1]->periodic(), axes[2]->periodic()};
-  const bool affine = lattice.restIsAffine();
-  const bool batched = !affine && solver.batchedFirstStep();  // Newton's first steps across points
-  const Eigen::Matrix3d Ainv = lattice.restAffineLinear().inverse();
-  const Eigen::Vector3d b = lattice.restAffineOffset();
+  detail::RestSolver solver(lattice, options, /*inverseGrid=*/n >= 4 * kParallelPoints);
+  if (solver.wantsInverseGrid()) buildInverseGrid(solver, options.parallel);
+
+  EmbedRun run(lattice, points, options, solver);
+  run.solveTiles();
+  run.throwIfStopped();
+  JoinedTiles joined = run.joinTiles();
 
   Embedding e;
   e.restRevision_ = lattice.restRevision();
   e.counts_ = lattice.counts();
-  e.cellsU_ = cells[0];
-  e.cellsV_ = cells[1];
-  e.policy_ = policy;
-  // Written once below, tile by tile in parallel: no zero fill first (see NoInitAllocator).
-  e.status_.resize(static_cast<std::size_t>(n));
-  e.u_.resize(n);
-  e.v_.resize(n);
-  e.w_.resize(n);
-  e.order_.resize(n);
-  const std::int64_t tileCount = (n + kTile - 1) / kTile;
-  std::vector<TileGroups> groups(static_cast<std::size_t>(tileCount));
-  // Non-finite input points are found in the same pass (a separate check cost as much as the
-  // closed-form embedding itself); embed() then throws for the first one.
-  std::atomic<bool> nonFinite{false};
-
-  // Point p of a tile: (u, v, w), blend weight, (class, cell) key, status (Kuriyama 1996,
-  // eq. (6.2)). first: the batched first Newton steps of the run point p belongs to (null: none), at
-  // `runIndex`.
-  const auto solvePoint = [&](Eigen::Index p, std::uint32_t i, TileScratch& t, const FirstSteps* first = nullptr,
-                              std::uint32_t runIndex = 0) {
-    if (!points.row(p).allFinite()) {
-      nonFinite.store(true, std::memory_order_relaxed);
-      t.pu[i] = t.pv[i] = t.pw[i] = 0.0;
-      t.weight[i] = 0.0;
-      t.key[i] = 0;
-      e.status_[p] = PointStatus::Failed;
-      return;
-    }
-    const Eigen::Vector3d q = toLocal * points.row(p).transpose();
-    Eigen::Vector3d uvw;
-    bool converged = true;
-    if (affine) {
-      uvw = Ainv * (q - b);
-    } else {
-      converged = first ? solveNewtonAfterSteps(solver, q, first, runIndex, uvw) : solveNewton(solver, q, uvw);
-    }
-    PointStatus status = PointStatus::Inside;
-    PointClass cls = PointClass::Evaluated;
-    double s = 1.0;
-    // Outside for certain, yet Newton found no preimage (the lattice's polynomial extension does
-    // not reach q): Outside, not Failed, with the closest boundary parameters; no extrapolated
-    // preimage exists, so Extrapolate keeps the offset like ClampEdge.
-    const bool noPreimageOutside = !converged && solver.outsideRestHull(q);
-    if (noPreimageOutside) uvw = solver.closestInBox(q);
-    if (!converged && !noPreimageOutside) {
-      status = PointStatus::Failed;
-      cls = PointClass::Frozen;
-      uvw = solver.clampToBox(uvw);
-    } else if (noPreimageOutside || !solver.insideBox(uvw)) {
-      status = PointStatus::Outside;
-      switch (policy.kind) {
-        case OutsidePolicy::Kind::Identity:
-          cls = PointClass::Frozen;
-          break;
-        case OutsidePolicy::Kind::Extrapolate:
-          if (noPreimageOutside) cls = PointClass::Blended;
-          break;
-        case OutsidePolicy::Kind::ClampEdge:
-          cls = PointClass::Blended;
-          uvw = solver.clampToBox(uvw);
-          break;
-        case OutsidePolicy::Kind::Falloff: {
-          uvw = solver.clampToBox(uvw);
-          Eigen::Matrix3d J;
-          const double x = (solver.evaluate(uvw, J) - q).norm() / policy.distance;
-          if (x >= 1.0) {
-            cls = PointClass::Frozen;
-          } else {
-            cls = PointClass::Blended;
-            s = 1.0 - x * x * (3.0 - 2.0 * x);  // smoothstep from 1 at the boundary to 0 at `distance`
-          }
-          break;
-        }
-      }
-    }
-    for (int a = 0; a < 3; ++a) {
-      if (periodic[a]) uvw[a] = axes[a]->wrap(uvw[a]);
-    }
-    t.pu[i] = uvw[0];
-    t.pv[i] = uvw[1];
-    t.pw[i] = uvw[2];
-    t.weight[i] = s;
-    e.status_[p] = status;
-    const std::int64_t cell =
-        cellTotal == 1 ? 0 : locate[0](uvw[0]) + cells[0] * (locate[1](uvw[1]) + std::int64_t(cells[1]) * locate[2](uvw[2]));
-    t.key[i] = static_cast<std::uint32_t>(static_cast<std::int64_t>(cls) * cellTotal + cell);
-  };
-
-  // The closed form of an affine rest map, uvw = A^-1 (F^-1 x - b), a tile at a time: the
-  // arithmetic runs over the columns of the tile (vectorised across points); the few points
-  // outside the box go through solvePoint for their outside policy.
-  const Eigen::Matrix3d L = toLocal.linear();
-  const Eigen::Vector3d T = toLocal.translation();
-  double lo[3], hi[3];
-  for (int a = 0; a < 3; ++a) {
-    const double eps = options.boundaryEpsilon * (axes[a]->domainMax() - axes[a]->domainMin());
-    lo[a] = axes[a]->domainMin() - eps;
-    hi[a] = axes[a]->domainMax() + eps;
-  }
-  const bool singleCell = cellTotal == 1;
-  // Identity and Extrapolate keep an outside point's parameters as solved: no per-point policy work.
-  const bool outsideKeepsParameters =
-      policy.kind == OutsidePolicy::Kind::Identity || policy.kind == OutsidePolicy::Kind::Extrapolate;
-  const std::int64_t outsideClass = static_cast<std::int64_t>(
-      policy.kind == OutsidePolicy::Kind::Identity ? PointClass::Frozen : PointClass::Evaluated);
-  double affineCoef[27];
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) {
-      affineCoef[3 * r + c] = L(r, c);
-      affineCoef[12 + 3 * r + c] = Ainv(r, c);
-    }
-    affineCoef[9 + r] = T[r] - b[r];
-    affineCoef[21 + r] = lo[r];
-    affineCoef[24 + r] = hi[r];
-  }
-  const auto solveAffineTile = [&](Eigen::Index begin, std::uint32_t m, TileScratch& t) {
-    t.pu = e.u_.data() + begin;
-    t.pv = e.v_.data() + begin;
-    t.pw = e.w_.data() + begin;
-    const double* U = t.pu;
-    const double* V = t.pv;
-    const double* W = t.pw;
-    if (affineTile(points.col(0).data() + begin, points.col(1).data() + begin, points.col(2).data() + begin, m,
-                   affineCoef, t.pu, t.pv, t.pw, t.flagged.data())) {
-      nonFinite.store(true, std::memory_order_relaxed);
-    }
-    PointStatus* status = e.status_.data() + begin;
-    const auto cellKey = [&](std::uint32_t i) -> std::uint32_t {
-      return singleCell ? 0u
-                        : static_cast<std::uint32_t>(locate[0](U[i]) +
-                                                     cells[0] * (locate[1](V[i]) + std::int64_t(cells[1]) * locate[2](W[i])));
-    };
-    for (std::uint32_t i = 0; i < m; ++i) {
-      t.weight[i] = 1.0;
-      if (!t.flagged[i]) {
-        status[i] = PointStatus::Inside;
-        t.key[i] = cellKey(i);
-      } else if (outsideKeepsParameters && points.row(begin + i).allFinite()) {
-        status[i] = PointStatus::Outside;
-        t.key[i] = static_cast<std::uint32_t>(outsideClass * cellTotal) + cellKey(i);
-      } else {
-        solvePoint(begin + i, i, t);
-      }
-    }
-  };
-
-  // Sorts a solved tile by (class, cell), stably, and writes its parameters, order and blocks:
-  // a block streams one cell's control points over its points in Deformer, while reads and
-  // writes in original order stay within the tile (cache-local). A tile of one key (any
-  // single-cell lattice with every point inside) keeps the original order.
-  const std::size_t keyCount = static_cast<std::size_t>(3 * cellTotal);
-  const bool counting = keyCount <= 4 * kTile;
-  const auto groupTile = [&](std::int64_t tile, TileScratch& t) {
-    const Eigen::Index begin = tile * kTile;
-    const std::uint32_t m = static_cast<std::uint32_t>(std::min<Eigen::Index>(n - begin, kTile));
-    TileGroups& g = groups[static_cast<std::size_t>(tile)];
-    std::uint32_t* order = t.order.data();
-    const std::uint32_t* key = t.key.data();
-    bool uniform = true;
-    for (std::uint32_t i = 1; i < m; ++i) uniform &= key[i] == key[0];
-    if (uniform) {
-      for (std::uint32_t i = 0; i < m; ++i) order[i] = i;
-    } else if (counting) {
-      t.start.assign(keyCount + 1, 0u);
-      for (std::uint32_t i = 0; i < m; ++i) ++t.start[key[i] + 1];
-      for (std::size_t k = 0; k < keyCount; ++k) t.start[k + 1] += t.start[k];
-      for (std::uint32_t i = 0; i < m; ++i) order[t.start[key[i]]++] = i;
-    } else {
-      for (std::uint32_t i = 0; i < m; ++i) order[i] = i;
-      std::stable_sort(order, order + m, [key](std::uint32_t lhs, std::uint32_t rhs) { return key[lhs] < key[rhs]; });
-    }
-    for (std::uint32_t i = 0; i < m; ++i) g.identity &= order[i] == i;
-    double* u = e.u_.data() + begin;
-    double* v = e.v_.data() + begin;
-    double* w = e.w_.data() + begin;
-    if (g.identity) {
-      if (t.pu != u) {
-        std::copy_n(t.pu, m, u);
-        std::copy_n(t.pv, m, v);
-        std::copy_n(t.pw, m, w);
-      }
-    } else {
-      if (t.pu == u) {  // solved in place: permute from a copy
-        std::copy_n(u, m, t.u.data());
-        std::copy_n(v, m, t.v.data());
-        std::copy_n(w, m, t.w.data());
-      }
-      std::uint32_t* globalOrder = e.order_.data() + begin;
-      for (std::uint32_t i = 0; i < m; ++i) {
-        u[i] = t.u[order[i]];
-        v[i] = t.v[order[i]];
-        w[i] = t.w[order[i]];
-        globalOrder[i] = static_cast<std::uint32_t>(begin) + order[i];
-      }
-    }
-    // Runs of equal key become blocks.
-    for (std::uint32_t i = 0; i < m;) {
-      const std::uint32_t k = key[order[i]];
-      std::uint32_t runEnd = i + 1;
-      while (runEnd < m && key[order[runEnd]] == k) ++runEnd;
-      const std::int64_t cell = k % cellTotal;
-      Embedding::Block block{};
-      block.cell = static_cast<std::uint32_t>(cell);  // < 1e8 cells (Lattice's limit on control points)
-      block.begin = static_cast<std::uint32_t>(begin + i);
-      block.end = static_cast<std::uint32_t>(begin + runEnd);
-      block.kind = static_cast<Embedding::BlockKind>(k / cellTotal);
-      block.blendOffset = static_cast<std::uint32_t>(g.blend.size());
-      if (block.kind == Embedding::BlockKind::Blended) {
-        for (std::uint32_t r = i; r < runEnd; ++r) g.blend.push_back(t.weight[order[r]]);
-      }
-      g.blocks.push_back(block);
-      i = runEnd;
-    }
-    for (Eigen::Index p = begin; p < begin + m; ++p) {
-      const PointStatus s = e.status_[p];
-      g.inside += s == PointStatus::Inside;
-      g.outside += s == PointStatus::Outside;
-      g.failed += s == PointStatus::Failed;
-    }
-  };
-
-  // One parallel region; threads take tiles from a shared counter, solve and group them. The
-  // calling thread (OpenMP thread 0 of the team) calls the progress hook between its own tiles,
-  // each time the points finished by all threads pass another kEmbedProgressChunk; a `false`
-  // makes every thread stop after its current tile. Cutting the loop into chunks run one after
-  // another instead put a barrier at every chunk end, which on a loaded machine (a thread
-  // descheduled while its team-mate waits) cost 7-43 % of the median wall time (docs/ffd-engine.md).
-  std::atomic<std::int64_t> next{0};
-  std::atomic<Eigen::Index> finished{0};
-  std::atomic<bool> stop{false};
-  std::exception_ptr hookError;
-  Eigen::Index reported = 0;
-  const auto callHook = [&](Eigen::Index done) {
-    try {
-      if (!options.progress(done, n)) stop = true;
-    } catch (...) {
-      hookError = std::current_exception();
-      stop = true;
-    }
-    reported = done;
-  };
-  if (options.progress) callHook(0);
-#pragma omp parallel if (options.parallel && n >= kParallelPoints)
-  {
-    const bool caller = omp_get_thread_num() == 0;
-    const auto scratch = std::make_unique<TileScratch>();
-    const auto first = batched ? std::make_unique<FirstSteps>() : nullptr;
-    while (!stop.load(std::memory_order_relaxed)) {
-      const std::int64_t tile = next.fetch_add(1, std::memory_order_relaxed);
-      if (tile >= tileCount) break;
-      const Eigen::Index begin = tile * kTile;
-      const Eigen::Index end = std::min<Eigen::Index>(n, begin + kTile);
-      if (affine) {
-        solveAffineTile(begin, static_cast<std::uint32_t>(end - begin), *scratch);
-      } else {
-        scratch->pu = scratch->u.data();
-        scratch->pv = scratch->v.data();
-        scratch->pw = scratch->w.data();
-        if (batched) {
-          for (Eigen::Index run = begin; run < end; run += FirstSteps::kChunk) {
-            const std::uint32_t m = static_cast<std::uint32_t>(std::min<Eigen::Index>(end - run, FirstSteps::kChunk));
-            firstSteps(solver, toLocal, points.col(0).data() + run, points.col(1).data() + run,
-                       points.col(2).data() + run, m, *first);
-            for (std::uint32_t j = 0; j < m; ++j) {
-              solvePoint(run + j, static_cast<std::uint32_t>(run + j - begin), *scratch, first.get(), j);
-            }
-          }
-        } else {
-          for (Eigen::Index p = begin; p < end; ++p) solvePoint(p, static_cast<std::uint32_t>(p - begin), *scratch);
-        }
-      }
-      groupTile(tile, *scratch);
-      const Eigen::Index done = finished.fetch_add(end - begin, std::memory_order_acq_rel) + (end - begin);
-      if (caller && options.progress && done < n && done - reported >= kEmbedProgressChunk) callHook(done);
-    }
-  }
-  if (hookError) std::rethrow_exception(hookError);
-  if (nonFinite) {
-    for (Eigen::Index r = 0; r < n; ++r) {
-      if (!points.row(r).allFinite()) throw LatticeError("embed: point " + std::to_string(r) + " is not finite");
-    }
-  }
-  const auto cancelled = [&reported, n] {
-    return Cancelled("embed: cancelled after " + std::to_string(reported) + " of " + std::to_string(n) + " points");
-  };
-  if (stop) throw cancelled();
-
-  bool identity = true;
-  for (const TileGroups& g : groups) {
-    const std::uint32_t blendBase = static_cast<std::uint32_t>(e.blend_.size());
-    for (Embedding::Block block : g.blocks) {
-      block.blendOffset += blendBase;
-      e.blocks_.push_back(block);
-    }
-    e.blend_.insert(e.blend_.end(), g.blend.begin(), g.blend.end());
-    e.tileBlocks_.push_back(static_cast<std::uint32_t>(e.blocks_.size()));
-    e.inside_ += g.inside;
-    e.outside_ += g.outside;
-    e.failed_ += g.failed;
-    identity = identity && g.identity;
-  }
-  if (identity) {
-    Embedding::IndexVector().swap(e.order_);  // never written: only address space was reserved
-  } else {
-#pragma omp parallel for if (options.parallel && n >= kParallelPoints)
-    for (std::int64_t tile = 0; tile < tileCount; ++tile) {
-      if (!groups[static_cast<std::size_t>(tile)].identity) continue;
-      const Eigen::Index begin = tile * kTile;
-      const Eigen::Index end = std::min<Eigen::Index>(n, begin + kTile);
-      for (Eigen::Index p = begin; p < end; ++p) e.order_[p] = static_cast<std::uint32_t>(p);
-    }
-  }
-  if (options.progress) {
-    callHook(n);
-    if (hookError) std::rethrow_exception(hookError);
-    if (stop) throw cancelled();
-  }
+  e.cellsU_ = lattice.axis(0).cellCount();
+  e.cellsV_ = lattice.axis(1).cellCount();
+  e.policy_ = lattice.outsidePolicy();
+  e.status_ = std::move(run.status);
+  e.u_ = std::move(run.u);
+  e.v_ = std::move(run.v);
+  e.w_ = std::move(run.w);
+  e.order_ = std::move(run.order);
+  e.blocks_ = std::move(joined.blocks);
+  e.blend_ = std::move(joined.blend);
+  e.tileBlocks_ = std::move(joined.tileBlocks);
+  e.inside_ = joined.inside;
+  e.outside_ = joined.outside;
+  e.failed_ = joined.failed;
+  run.reportDone();
   return e;
 }
 
