@@ -64,7 +64,7 @@ def import_scene(bpy, ffdkit, path, collection):
         mesh = _blender_mesh(bpy, name, mesh_data)
         obj = bpy.data.objects.new(name, mesh)
         collection.objects.link(obj)
-        roots = [scene.widgets.name(a.lattice) for a in scene.attachments if name in a.objects]
+        roots = [scene.widgets.name(a.lattice) for a in scene.attachments if name in _object_names(scene, a)]
         if not roots:
             notes.append("'%s' has no lattice attached: imported without a tool" % name)
             objects.append(obj)
@@ -114,6 +114,12 @@ def _set_handles(curve, keys, fps):
         if i + 1 < len(points):
             step = (frames[i + 1] - frames[i]) / 3.0
             point.handle_right = (frames[i] + step, values[i] + slopes[i] * step)
+
+
+def _object_names(scene, attachment):
+    """The names of the objects an attachment deforms (it holds names or, in newer modules,
+    ObjectIds)."""
+    return [o if isinstance(o, str) else scene.objectName(o) for o in attachment.objects]
 
 
 def _blender_mesh(bpy, name, mesh_data):
