@@ -18,7 +18,7 @@ execute_process(COMMAND dpkg-deb --field ${debs} Package Depends OUTPUT_VARIABLE
 message(STATUS "${debs}:\n${fields}")
 set(expected ./usr/include/ffdkit/ffd/lattice.h ./usr/lib/libffdkit_scenes.a ./usr/lib/cmake/ffdkit/ffdkitConfig.cmake
              ./usr/lib/cmake/ffdkit/ffdkit-ffd-targets.cmake ./usr/bin/ffdkit-cli ./usr/${PYTHON_DIR}/ffdkit/pygem.py
-             ./usr/${PYTHON_DIR}/ffdkit/_ffdkit)
+             ./usr/${PYTHON_DIR}/ffdkit/_ffdkit ./usr/share/blender/scripts/addons/ffdkit_blender/__init__.py)
 if(WITH_APP)
   list(APPEND expected ./usr/bin/ffdkit)
 endif()

@@ -15,7 +15,8 @@ set(expected
     lib/libffdkit_ffd.a lib/libffdkit_widgets.a lib/libffdkit_scenes.a lib/libffdkit_geometry_core.a
     lib/libffdkit_meshio.a lib/libffdkit_exporters.a lib/libffdkit_interaction.a lib/libffdkit_parts.a
     lib/cmake/ffdkit/ffdkitConfig.cmake lib/cmake/ffdkit/ffdkitConfigVersion.cmake
-    bin/ffdkit-cli share/ffdkit/scenes/press/scene.json share/ffdkit/widgets/fig6-8.json)
+    bin/ffdkit-cli share/ffdkit/scenes/press/scene.json share/ffdkit/widgets/fig6-8.json
+    share/blender/scripts/addons/ffdkit_blender/__init__.py)
 foreach(component ffd geometry widgets meshio scenes exporters app)
   list(APPEND expected lib/cmake/ffdkit/ffdkit-${component}-targets.cmake)
 endforeach()
