@@ -7,6 +7,8 @@
 
 #include <Eigen/LU>
 
+#include "vector_clones.h"
+
 namespace ffdkit::ffd {
 namespace {
 
@@ -113,6 +115,71 @@ Verdict classify(const std::vector<double>& c, const Dims& d, const Eigen::Vecto
   return {unknown ? CellFolding::Unknown : CellFolding::Positive, {}};
 }
 
+// binomial(n, k) for n <= 9 as constants (the fixed-degree products below).
+constexpr double kBinomial[10][10] = {
+    {1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6, 4, 1}, {1, 5, 10, 10, 5, 1}, {1, 6, 15, 20, 15, 6, 1},
+    {1, 7, 21, 35, 35, 21, 7, 1}, {1, 8, 28, 56, 70, 56, 28, 8, 1}, {1, 9, 36, 84, 126, 126, 84, 36, 9, 1}};
+
+// det J's Bernstein coefficients from a cell's Bezier net b ((P+1)^3 points, i fastest) when all
+// three axes have degree P (1..3): the same two products as the general path below, with every
+// size a compile-time constant (arrays on the stack, inner loops unrolled), about 50,000
+// multiply-adds for a cubic cell. `out` gets (3P)^3 coefficients, index i + 3P (j + 3P k).
+template <int P>
+FFDKIT_VECTOR_CLONES void equalDegreeProducts(const Eigen::Vector3d* b, const double width[3], double* out) {
+  constexpr int N = P + 1, M = P;          // a net's and a derivative's points per axis
+  constexpr int C0 = 2 * P + 1, C1 = 2 * P;  // X_v x X_w: (2P+1) x 2P x 2P
+  constexpr int Q = 3 * P;                 // det J: Q^3
+  const auto at = [](int i, int j, int k) { return i + N * (j + N * k); };
+  // Scaled derivative nets (coefficient times the binomials of its degrees), [coordinate][k][j][i].
+  double du[3][N][N][M], dv[3][N][M][N], dw[3][M][N][N];
+  const double su = P / width[0], sv = P / width[1], sw = P / width[2];
+  for (int k = 0; k < N; ++k)
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i)
+        for (int c = 0; c < 3; ++c) {
+          if (i < M)
+            du[c][k][j][i] = su * kBinomial[M - 1][i] * kBinomial[N - 1][j] * kBinomial[N - 1][k] *
+                             (b[at(i + 1, j, k)][c] - b[at(i, j, k)][c]);
+          if (j < M)
+            dv[c][k][j][i] = sv * kBinomial[N - 1][i] * kBinomial[M - 1][j] * kBinomial[N - 1][k] *
+                             (b[at(i, j + 1, k)][c] - b[at(i, j, k)][c]);
+          if (k < M)
+            dw[c][k][j][i] = sw * kBinomial[N - 1][i] * kBinomial[N - 1][j] * kBinomial[M - 1][k] *
+                             (b[at(i, j, k + 1)][c] - b[at(i, j, k)][c]);
+        }
+  double cross[3][C1][C1][C0] = {};
+  for (int kv = 0; kv < N; ++kv)
+    for (int jv = 0; jv < M; ++jv)
+      for (int kw = 0; kw < M; ++kw)
+        for (int jw = 0; jw < N; ++jw)
+          for (int iv = 0; iv < N; ++iv) {
+            const double vx = dv[0][kv][jv][iv], vy = dv[1][kv][jv][iv], vz = dv[2][kv][jv][iv];
+            for (int iw = 0; iw < N; ++iw) {
+              const double wx = dw[0][kw][jw][iw], wy = dw[1][kw][jw][iw], wz = dw[2][kw][jw][iw];
+              cross[0][kv + kw][jv + jw][iv + iw] += vy * wz - vz * wy;
+              cross[1][kv + kw][jv + jw][iv + iw] += vz * wx - vx * wz;
+              cross[2][kv + kw][jv + jw][iv + iw] += vx * wy - vy * wx;
+            }
+          }
+  double det[Q][Q][Q] = {};
+  for (int ku = 0; ku < N; ++ku)
+    for (int ju = 0; ju < N; ++ju)
+      for (int kc = 0; kc < C1; ++kc)
+        for (int jc = 0; jc < C1; ++jc)
+          for (int iu = 0; iu < M; ++iu) {
+            const double ux = du[0][ku][ju][iu], uy = du[1][ku][ju][iu], uz = du[2][ku][ju][iu];
+            double* __restrict o = det[ku + kc][ju + jc] + iu;
+            const double* __restrict cx = cross[0][kc][jc];
+            const double* __restrict cy = cross[1][kc][jc];
+            const double* __restrict cz = cross[2][kc][jc];
+            for (int ic = 0; ic < C0; ++ic) o[ic] += ux * cx[ic] + uy * cy[ic] + uz * cz[ic];
+          }
+  for (int k = 0; k < Q; ++k)
+    for (int j = 0; j < Q; ++j)
+      for (int i = 0; i < Q; ++i)
+        out[i + Q * (j + Q * k)] = det[k][j][i] / (kBinomial[Q - 1][i] * kBinomial[Q - 1][j] * kBinomial[Q - 1][k]);
+}
+
 // The patch of one cell given the per-axis extraction matrices.
 JacobianDeterminantPatch patchOf(const Lattice& lattice, const std::array<int, 3>& cell,
                                  const std::vector<Eigen::MatrixXd>* extraction) {
@@ -160,6 +227,15 @@ JacobianDeterminantPatch patchOf(const Lattice& lattice, const std::array<int, 3
         for (int r = 0; r <= p[2]; ++r) s += Ew(r, k) * t2[std::size_t(net.at(i, j, r))];
         b[std::size_t(net.at(i, j, k))] = s;
       }
+  if (p[0] == p[1] && p[1] == p[2] && p[0] >= 1 && p[0] <= 3) {
+    const int q = 3 * p[0];
+    patch.coefficients.resize(q * q * q);
+    if (p[0] == 1) equalDegreeProducts<1>(b.data(), width, patch.coefficients.data());
+    if (p[0] == 2) equalDegreeProducts<2>(b.data(), width, patch.coefficients.data());
+    if (p[0] == 3) equalDegreeProducts<3>(b.data(), width, patch.coefficients.data());
+    patch.degrees = {q - 1, q - 1, q - 1};
+    return patch;
+  }
   // Derivative nets in scaled Bernstein form (coefficient times C(d0,i) C(d1,j) C(d2,k)), so
   // that a product is a plain convolution: sum f~_a g~_b lands on f~g~_(a+b).
   Dims dd[3];
@@ -310,10 +386,15 @@ FoldCheckResult checkFolding(const Lattice& lattice, const FoldCheckOptions& opt
   for (std::int64_t flat = 0; flat < cellCount; ++flat) {
     const std::array<int, 3> cell = {int(flat % cu), int(flat / cu % cv), int(flat / cu / cv)};
     const JacobianDeterminantPatch patch = patchOf(lattice, cell, extraction);
+    const double lowest = result.orientation > 0 ? patch.coefficients.minCoeff() : -patch.coefficients.maxCoeff();
+    result.lowerBound[std::size_t(flat)] = lowest;
+    if (lowest > 0.0) {  // certified at once (most cells of a usable lattice)
+      result.cells[std::size_t(flat)] = CellFolding::Positive;
+      continue;
+    }
     std::vector<double> signedCoefficients(patch.coefficients.data(), patch.coefficients.data() + patch.coefficients.size());
     for (double& c : signedCoefficients) c *= result.orientation;
     const Dims d{{patch.degrees[0] + 1, patch.degrees[1] + 1, patch.degrees[2] + 1}};
-    result.lowerBound[std::size_t(flat)] = *std::min_element(signedCoefficients.begin(), signedCoefficients.end());
     const Verdict v = classify(signedCoefficients, d, Eigen::Vector3d::Zero(), 1.0, 0, options.maxDepth);
     result.cells[std::size_t(flat)] = v.folding;
     if (v.folding == CellFolding::Folds)
