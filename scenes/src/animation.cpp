@@ -213,6 +213,22 @@ const Value* findValue(const std::vector<std::pair<WidgetId, Value>>& items, Wid
   return it == items.end() ? nullptr : &it->second;
 }
 
+// Exactly the same widgets, in the same order, with exactly the same values.
+bool sameState(const widgets::WidgetModelState& a, const widgets::WidgetModelState& b) {
+  const auto same = [](const auto& x, const auto& y, auto equal) {
+    if (x.size() != y.size()) return false;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      if (x[i].first != y[i].first || !equal(x[i].second, y[i].second)) return false;
+    return true;
+  };
+  return same(a.variations, b.variations, [](double u, double v) { return u == v; }) &&
+         same(a.latticeFrames, b.latticeFrames,
+              [](const Eigen::Affine3d& u, const Eigen::Affine3d& v) { return u.matrix() == v.matrix(); }) &&
+         same(a.controlPoints, b.controlPoints, [](const Eigen::MatrixX3d& u, const Eigen::MatrixX3d& v) {
+           return u.rows() == v.rows() && u == v;
+         });
+}
+
 }  // namespace
 
 widgets::WidgetModelState animationValues(const Scene& scene, double seconds) {
@@ -281,9 +297,20 @@ void applyAnimation(Scene& scene, double seconds) {
 }
 
 void restoreAtEditValues(Scene& scene, const widgets::WidgetModelState& editValues, std::optional<double> shownSeconds,
-                         const std::function<void()>& restore) {
+                         const std::function<void()>& restore, std::optional<CarriedStep>* last) {
   if (!shownSeconds) {
     restore();  // the model is as the edit left it (or as its undo did): exact
+    if (last != nullptr) last->reset();
+    return;
+  }
+  widgets::WidgetModelState start = scene.widgets.captureState();
+  if (last != nullptr && last->has_value() && sameState(start, (*last)->after)) {
+    // The inverse of the command's last carried step, from the state it left: its records (and
+    // any structure) by the write-back, then every value as it was before that step.
+    widgets::WidgetModelState back = std::move((*last)->before);
+    restore();
+    scene.widgets.restoreState(back);
+    *last = CarriedStep{std::move(start), std::move(back)};
     return;
   }
   // The values shown now: those of the channels live now, as they are (the model's, which the
@@ -301,6 +328,7 @@ void restoreAtEditValues(Scene& scene, const widgets::WidgetModelState& editValu
   keep(values.variations, shown.variations);
   keep(values.controlPoints, shown.controlPoints);
   applyAnimatedValues(scene, values);
+  if (last != nullptr) *last = CarriedStep{std::move(start), scene.widgets.captureState()};
 }
 
 void applyAnimationFrame(Scene& scene, double frame) { applyAnimation(scene, frameTime(scene.animation(), frame)); }

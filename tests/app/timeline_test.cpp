@@ -54,6 +54,39 @@ TEST(Timeline, APickedPointKeysItsLatticesControlPoints) {
   EXPECT_EQ(d.timeline.insertKeys(), 1);
 }
 
+TEST(Timeline, UndoOfAKeyAfterAFrameChangeGivesThePoseTheAnimationGivesWithoutIt) {
+  // A key changes no value, but the frame changes after it apply the animation with it: keyed
+  // control points hold the lattice at the key's points at every frame. Undoing the key there
+  // must give the pose the animation gives without it, not keep the points the key put there.
+  Document keyed, unkeyed;
+  const auto lattice = keyed.scene.widgets.find("lattice");
+  keyed.controller.setPickedPoint(LatticePointRef{lattice, 4});
+  keyed.timeline.setFrame(24);  // the pull at 0.5
+  const Eigen::MatrixX3d atKey = keyed.scene.widgets.controlPoints(lattice);
+  ASSERT_EQ(keyed.timeline.insertKeys(), 1);
+  keyed.timeline.setFrame(0);  // the pull back at 0, the points held by their key
+  ASSERT_EQ(keyed.scene.widgets.controlPoints(lattice), atKey);
+  unkeyed.timeline.setFrame(24);
+  unkeyed.timeline.setFrame(0);
+  const Eigen::MatrixX3d without = unkeyed.scene.widgets.controlPoints(lattice);
+  ASSERT_GT((atKey - without).cwiseAbs().maxCoeff(), 0.1);  // the case under test
+  keyed.commands.undo();
+  EXPECT_LE((keyed.scene.widgets.controlPoints(lattice) - without).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_EQ(keyed.scene.widgets.variation(keyed.scene.widgets.find("pull")), 0.0);
+  // Redo gives the keyed pose again, exactly (the carried undo's record).
+  keyed.commands.redo();
+  EXPECT_EQ(keyed.scene.widgets.controlPoints(lattice), atKey);
+  // Delete Key likewise: removing the key at frame 24, then frame 0 shows the unkeyed pose; its undo
+  // there brings back the key's points.
+  keyed.timeline.setFrame(24);
+  keyed.controller.setPickedPoint(LatticePointRef{lattice, 4});
+  ASSERT_EQ(keyed.timeline.deleteKeys(), 1);
+  keyed.timeline.setFrame(0);
+  EXPECT_LE((keyed.scene.widgets.controlPoints(lattice) - without).cwiseAbs().maxCoeff(), 1e-12);
+  keyed.commands.undo();
+  EXPECT_LE((keyed.scene.widgets.controlPoints(lattice) - atKey).cwiseAbs().maxCoeff(), 1e-12);
+}
+
 TEST(Timeline, NothingKeyableIsRefusedWithoutACommand) {
   Document d;
   d.controller.setSelection({d.scene.widgets.find("top")});

@@ -361,3 +361,86 @@ TEST(AnimationFile, VersionTwoFuzzSeedsLoadAndEvaluate) {
 
 }  // namespace
 }  // namespace ffdkit::scenes
+
+namespace ffdkit::scenes {
+namespace {
+
+// The press sample as it ships: a handle keyed from 0 (frame 0) to one turn (frame 72), driving
+// the press through a screw (0.4 per turn) clamped to [0, 0.3]. A clamp forgets how far a motion
+// pushed past it, so a carry there and back (restoreAtEditValues after a frame change) does not
+// return: only the stored values do.
+struct PressEdit {
+  Scene scene = readScene(kExamples / "press");
+  WidgetId press = scene.widgets.find("press");
+  widgets::WidgetModelState before, after;  // the edit's write-back (all of the model's values)
+  widgets::WidgetModelState animatedBefore, animatedAfter;
+
+  PressEdit() {
+    applyAnimation(scene, 1.5);  // frame 36: the handle half a turn round, the press at 0.2
+    before = scene.widgets.captureState();
+    animatedBefore = animatedState(scene);
+    scene.widgets.setVariation(press, 0.28);  // a drag of the press: the handle turns with it (two-way)
+    after = scene.widgets.captureState();
+    animatedAfter = animatedState(scene);
+    applyAnimation(scene, 3.0);  // frame 72: the screw runs into the clamp
+    applyAnimation(scene, 0.5);  // frame 12: shown when the undo runs
+  }
+  void undo(std::optional<CarriedStep>* last) {
+    restoreAtEditValues(scene, animatedAfter, 0.5, [&] { scene.widgets.restoreState(before); }, last);
+  }
+  void redo(std::optional<CarriedStep>* last) {
+    restoreAtEditValues(scene, animatedBefore, 0.5, [&] { scene.widgets.restoreState(after); }, last);
+  }
+};
+
+bool sameValues(const widgets::WidgetModelState& a, const widgets::WidgetModelState& b) {
+  if (a.variations != b.variations || a.controlPoints.size() != b.controlPoints.size()) return false;
+  for (std::size_t i = 0; i < a.controlPoints.size(); ++i)
+    if (a.controlPoints[i].first != b.controlPoints[i].first || a.controlPoints[i].second != b.controlPoints[i].second)
+      return false;
+  return true;
+}
+
+TEST(RestoreAtEditValues, ACarriedUndosRedoAndUndoAgainGiveTheStoredStatesExactly) {
+  PressEdit e;
+  const widgets::WidgetModelState edited = e.scene.widgets.captureState();
+  std::optional<CarriedStep> last;
+  e.undo(&last);
+  const widgets::WidgetModelState undone = e.scene.widgets.captureState();
+  ASSERT_TRUE(last.has_value());
+  e.redo(&last);
+  EXPECT_TRUE(sameValues(e.scene.widgets.captureState(), edited)) << "redo after a carried undo";
+  e.undo(&last);
+  EXPECT_TRUE(sameValues(e.scene.widgets.captureState(), undone)) << "undo again";
+  e.redo(&last);
+  EXPECT_TRUE(sameValues(e.scene.widgets.captureState(), edited)) << "redo again";
+  // The handle shows frame 12's value throughout.
+  EXPECT_NEAR(e.scene.widgets.variation(e.scene.widgets.find("handle")),
+              evaluateVariation(e.scene.animation().channels[0].keys, 0.5), 1e-12);
+}
+
+TEST(RestoreAtEditValues, WithoutTheRecordARedoCarriedAgainMissesTheClampedPress) {
+  // The case the record is for: the same undo and redo, each carried through the bindings.
+  PressEdit e;
+  const double pressEdited = e.scene.widgets.variation(e.press);
+  e.undo(nullptr);
+  e.redo(nullptr);
+  EXPECT_GT(std::abs(e.scene.widgets.variation(e.press) - pressEdited), 1e-3);
+}
+
+TEST(RestoreAtEditValues, ARecordIsUsedOnlyFromTheStateItsStepLeft) {
+  PressEdit e;
+  std::optional<CarriedStep> last;
+  e.undo(&last);
+  applyAnimation(e.scene, 0.25);  // a frame change after the undo: the redo carries again
+  const double handle = e.scene.widgets.variation(e.scene.widgets.find("handle"));
+  e.redo(&last);
+  EXPECT_NEAR(e.scene.widgets.variation(e.scene.widgets.find("handle")), handle, 1e-12);  // the frame shown stays
+  // Without a frame change since the edit, the write-back alone runs and the record is dropped.
+  restoreAtEditValues(e.scene, e.animatedAfter, std::nullopt, [&] { e.scene.widgets.restoreState(e.before); }, &last);
+  EXPECT_FALSE(last.has_value());
+  EXPECT_TRUE(sameValues(e.scene.widgets.captureState(), e.before));
+}
+
+}  // namespace
+}  // namespace ffdkit::scenes

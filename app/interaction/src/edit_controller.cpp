@@ -472,13 +472,14 @@ void EditController::confirm() {
   auto animated = std::make_shared<const scenes::StateDelta>(
       scenes::StateDelta{scenes::animatedPart(scene_, live.before), scenes::animatedState(scene_)});
   const std::uint64_t madeAt = widgets_.animationApplications();
-  auto restore = [this, delta, placed, animated, madeAt](bool forward) {
+  auto carried = std::make_shared<std::optional<scenes::CarriedStep>>();  // makes an undo's redo exact
+  auto restore = [this, delta, placed, animated, madeAt, carried](bool forward) {
     scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after,
                                 widgets_.animationAppliedSince(madeAt), [&] {
                                   scene_.widgets.restoreState(forward ? delta->after : delta->before);
                                   for (const Placed& p : *placed)
                                     scene_.widgets.setPlacement(p.id, forward ? p.after : p.before);
-                                });
+                                }, carried.get());
     widgets_.refresh();
     notify();
   };

@@ -278,11 +278,12 @@ void InteractionController::pushState(const std::string& description, const widg
   auto animated = std::make_shared<const scenes::StateDelta>(
       scenes::StateDelta{scenes::animatedPart(scene_, before), scenes::animatedState(scene_)});
   const std::uint64_t madeAt = animationApplications_;
-  auto apply = [this, delta, animated, madeAt](bool forward) {
+  auto carried = std::make_shared<std::optional<scenes::CarriedStep>>();  // makes an undo's redo exact
+  auto apply = [this, delta, animated, madeAt, carried](bool forward) {
     // In place: only what differs is stamped, so the deformer re-embeds nothing unless a frame
     // changed and then only the stages concerned.
     scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after, animationAppliedSince(madeAt),
-                                [&] { scene_.widgets.restoreState(forward ? delta->after : delta->before); });
+                                [&] { scene_.widgets.restoreState(forward ? delta->after : delta->before); }, carried.get());
     refresh();
   };
   // Gestures merge only within one frame: a merged step's undo writes back the first's values.

@@ -62,7 +62,8 @@ auto InteractionController::edit(const std::string& description, Change change, 
     // (scenes::restoreAtEditValues).
     auto animated = std::make_shared<const scenes::StateDelta>(scenes::StateDelta{animatedBefore, scenes::animatedState(scene_)});
     const std::uint64_t madeAt = animationApplications_;
-    auto apply = [this, delta, held, added, objectsBefore, animated, madeAt](bool forward) {
+    auto carried = std::make_shared<std::optional<scenes::CarriedStep>>();  // makes an undo's redo exact
+    auto apply = [this, delta, held, added, objectsBefore, animated, madeAt, carried](bool forward) {
       scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after, animationAppliedSince(madeAt), [&] {
         if (!forward) {
           for (std::size_t i = 0; i < added; ++i) held->push_back(scene_.takeObject(scene_.objects()[objectsBefore].name));
@@ -72,7 +73,7 @@ auto InteractionController::edit(const std::string& description, Change change, 
           for (auto& object : *held) scene_.addObject(std::move(object));
           held->clear();
         }
-      });
+      }, carried.get());
       pruneSelection();
       refresh();
       if (onStructureChanged) onStructureChanged();

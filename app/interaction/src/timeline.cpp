@@ -5,6 +5,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "ffdkit/scenes/document_delta.h"
+
 namespace ffdkit::app {
 
 using scenes::ChannelKind;
@@ -88,6 +90,7 @@ int Timeline::insertKeys() {
     throw std::invalid_argument("Insert Key: select an affine widget (its variation) or a lattice (its frame); a picked "
                                 "lattice point keys its lattice's control points");
   const double time = scenes::frameTime(scene_.animation(), frame());
+  const widgets::WidgetModelState animatedBefore = scenes::animatedState(scene_);
   std::vector<KeyChange> changes;
   for (const auto& [widget, kind] : channels) {
     Keyframe key = scenes::currentKey(scene_, widget, kind, time);
@@ -95,12 +98,13 @@ int Timeline::insertKeys() {
     changes.push_back(std::move(change));
   }
   const int count = static_cast<int>(changes.size());
-  push("Insert Key", std::move(changes));
+  push("Insert Key", std::move(changes), animatedBefore);
   return count;
 }
 
 int Timeline::deleteKeys() {
   const double time = scenes::frameTime(scene_.animation(), frame());
+  const widgets::WidgetModelState animatedBefore = scenes::animatedState(scene_);
   std::vector<KeyChange> changes;
   for (const auto& [widget, kind] : selectedChannels()) {
     // A lattice keyed both ways: Delete Key removes whichever of its keys sit at this frame.
@@ -112,7 +116,7 @@ int Timeline::deleteKeys() {
   }
   if (changes.empty()) throw std::invalid_argument("Delete Key: the selection has no key at frame " + std::to_string(frame()));
   const int count = static_cast<int>(changes.size());
-  push("Delete Key", std::move(changes));
+  push("Delete Key", std::move(changes), animatedBefore);
   return count;
 }
 
@@ -122,24 +126,36 @@ std::size_t Timeline::bytesOf(const std::vector<Keyframe>& keys) {
   return bytes;
 }
 
-void Timeline::push(const std::string& description, std::vector<KeyChange> changes) {
+void Timeline::push(const std::string& description, std::vector<KeyChange> changes,
+                    const widgets::WidgetModelState& animatedBefore) {
   std::vector<Keyframe> held;
   for (const KeyChange& c : changes) {
     if (c.before) held.push_back(*c.before);
     if (c.after) held.push_back(*c.after);
   }
-  const std::size_t bytes = sizeof(KeyChange) * changes.size() + bytesOf(held);
+  // A key changes no value, but every frame change since applies the animation with it: a keyed
+  // channel sets its widget, and the pose shown is the one that key made. Its undo or redo after
+  // a frame change therefore runs as at the key's frame and carries the result to the frame shown,
+  // as every edit does (scenes::restoreAtEditValues): the animated channels' values before and
+  // after the key command (with and without the channels it made or removed) are kept for that.
+  auto animated = std::make_shared<const scenes::StateDelta>(scenes::StateDelta{animatedBefore, scenes::animatedState(scene_)});
+  const std::size_t bytes = sizeof(KeyChange) * changes.size() + bytesOf(held) + animated->bytes();
   auto shared = std::make_shared<const std::vector<KeyChange>>(std::move(changes));
-  auto apply = [this, shared](bool forward) {
-    for (const KeyChange& c : *shared) {
-      const std::optional<Keyframe>& to = forward ? c.after : c.before;
-      if (to) {
-        scenes::setKey(scene_, c.widget, c.kind, *to);
-      } else {
-        scenes::removeKey(scene_, c.widget, c.kind, c.time);
-      }
-    }
-    controller_.refresh();  // the timeline redraws its marks (nothing to re-deform)
+  const std::uint64_t madeAt = controller_.animationApplications();
+  auto carried = std::make_shared<std::optional<scenes::CarriedStep>>();  // makes an undo's redo exact
+  auto apply = [this, shared, animated, madeAt, carried](bool forward) {
+    scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after,
+                                controller_.animationAppliedSince(madeAt), [&] {
+                                  for (const KeyChange& c : *shared) {
+                                    const std::optional<Keyframe>& to = forward ? c.after : c.before;
+                                    if (to) {
+                                      scenes::setKey(scene_, c.widget, c.kind, *to);
+                                    } else {
+                                      scenes::removeKey(scene_, c.widget, c.kind, c.time);
+                                    }
+                                  }
+                                }, carried.get());
+    controller_.refresh();  // the timeline redraws its marks (and the objects, if the pose moved)
   };
   commands_.push(scenes::Command{description, [apply] { apply(false); }, [apply] { apply(true); }, {}, bytes});
   controller_.refresh();

@@ -90,6 +90,13 @@ void applyAnimatedValues(Scene& scene, const widgets::WidgetModelState& values);
 /// @throws AnimationError for a non-finite time or during a gesture; the model's WidgetError.
 void applyAnimation(Scene& scene, double seconds);
 
+/// What one command's last carried undo or redo (restoreAtEditValues after a frame change) did:
+/// the model's state (WidgetModel::captureState) before and after it.
+struct CarriedStep {
+  widgets::WidgetModelState before;
+  widgets::WidgetModelState after;
+};
+
 /// Undo and redo of an edit after frame changes. An edit's command writes back values captured
 /// when the edit was made (control points, frames, variations, records); a frame change since
 /// then has moved the model by the animation (keyed channels to their keys, bound widgets with
@@ -103,8 +110,16 @@ void applyAnimation(Scene& scene, double seconds);
 ///     model was last set to).
 /// `shownSeconds` is given when the animation was applied since the edit (a frame change);
 /// without it only `restore()` runs, and the write-back is exact.
+///
+/// The carry goes through the bindings, and clamped or non-commuting ones (a keyed handle driving
+/// a clamped screw, rotations on overlapping cells) do not come back by the reverse motion: an
+/// undo carried and its redo carried again would not give the state before the undo. `last`, the
+/// command's own record (nullptr: none), makes the inverse exact: each carried step stores the
+/// model's state before and after it there, and a step that starts from exactly the state the
+/// last one left (a redo right after its undo, an undo right after its redo) runs `restore()` and
+/// then writes the stored state back, instead of carrying again.
 void restoreAtEditValues(Scene& scene, const widgets::WidgetModelState& editValues, std::optional<double> shownSeconds,
-                         const std::function<void()>& restore);
+                         const std::function<void()>& restore, std::optional<CarriedStep>* last = nullptr);
 /// applyAnimation at frameTime(scene.animation(), frame).
 void applyAnimationFrame(Scene& scene, double frame);
 

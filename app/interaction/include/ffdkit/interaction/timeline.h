@@ -14,7 +14,8 @@ namespace ffdkit::app {
 /// The GUI-free side of the timeline (docs/animation.md): the current frame, scrubbing and
 /// playback (the model set to the scene's animation at a frame, scenes::applyAnimation, then
 /// re-deformed), the keys of the selection, and Insert Key / Delete Key as one undoable command
-/// each that holds only the keys it added, replaced or removed (no copy of the document). The
+/// each that holds only the keys it added, replaced or removed and the animated channels' values
+/// (for an undo after a frame change; no copy of the document). The
 /// Qt timeline widget only turns pixels into frames and a QTimer into advance() calls.
 class Timeline {
  public:
@@ -63,7 +64,8 @@ class Timeline {
 
  private:
   struct KeyChange;
-  void push(const std::string& description, std::vector<KeyChange> changes);
+  /// Pushes the key changes as one command; `animatedBefore` is scenes::animatedState before them.
+  void push(const std::string& description, std::vector<KeyChange> changes, const widgets::WidgetModelState& animatedBefore);
 
   scenes::Scene& scene_;
   scenes::CommandStack& commands_;
