@@ -130,7 +130,7 @@ void closeList(FoamScanner& s, const char* what, bool binary, std::int64_t n) {
   if (binary) {
     if (s.peek() != ')')
       s.fail(std::string(what) + ": expected ')' right after the " + std::to_string(n) + " binary items, got " + s.shown() +
-             " (the list size is wrong)");
+             " (the list size is wrong, or the list is not binary as the header's 'format binary' says)");
     s.advance();
   } else {
     s.expect(')', Where{what, -1, "list end"});

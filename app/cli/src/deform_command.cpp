@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "batch_ranks.h"
+#include "cad_input.h"
 #include "commands.h"
 #include "console.h"
 #include "ffdkit/meshio/atomic_write.h"
@@ -315,6 +316,7 @@ void evaluate(scenes::Scene& scene, scenes::SceneDeformer& deformer, Console& co
 }
 
 int runDeform(const Args& args) {
+  if (isCadDeform(args)) return runCadDeform(args);  // a STEP or IGES part: the B-rep path (cad_input.cpp)
   // In an mpirun batch every rank runs this; rank 0 speaks for the batch.
   // Static: MPI_Finalize (a fence of every rank) runs after main has printed this rank's error, so
   // that no rank exits, and mpirun kills the others, before every failing rank has said why.
@@ -434,6 +436,9 @@ Command deformCommand() {
           "byte but the point coordinates as read, after its cells are checked: inverted or zero-volume cells refuse\n"
           "the write unless --allow-inverted (docs/volume-meshes.md).\n"
           "Nothing is written when anything fails.\n"
+          "A STEP or IGES INPUT (.step .stp .iges .igs) is deformed as a B-rep by the tool's one Bernstein\n"
+          "lattice, composed exactly with every surface (--cad-method), and written as STEP or IGES\n"
+          "(-o part.step; docs/cad.md).\n"
           "--keep-volume OBJECT / --keep-centre OBJECT restore, after the deformation, the volume the\n"
           "object's closed surface enclosed and its centre, by the least-norm change of a correction\n"
           "lattice fitted around it (docs/cli.md). --fold-check warns (default) or fails when a lattice\n"
@@ -443,7 +448,7 @@ Command deformCommand() {
           "the PIECE files (--fit fits to the box of all pieces), as one process would (docs/scaling.md).\n"
           "With one INPUT (binary .ply, .npy, .xyz) each rank reads, deforms and writes its slice of\n"
           "the vertices into the one OUTPUT (.ply, .npy, .xyz); rank 0 also copies a PLY's faces.\n",
-          withShapeGuardOptions(withReadOptions({{"widgets", 'w', "FILE", "the widget file (deformation tool) to apply"},
+          withCadOptions(withShapeGuardOptions(withReadOptions({{"widgets", 'w', "FILE", "the widget file (deformation tool) to apply"},
            {"scene", 's', "SCENE", "the scene (file or sample folder) whose widget trees to apply"},
            {"output", 'o', "PATH", "output file, or folder for several outputs"},
            {"frame", '\0', "T", "with a scene: deform at frame T of its animation"},
@@ -457,7 +462,7 @@ Command deformCommand() {
            {"quality", '\0', "", "with a volume mesh: print the cell check before and after"},
            {"precision", '\0', "P", "double (default) or single: the displacements in float32, as Blender does "
                                      "(within 1e-6 of the largest control-point move; docs/ffd-engine.md)"},
-           quietOption(), progressOption(), timingsOption()})),
+           quietOption(), progressOption(), timingsOption()}))),
           runDeform};
 }
 

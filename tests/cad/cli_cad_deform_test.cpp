@@ -1,0 +1,130 @@
+// ffdkit-cli deform with a STEP input: the program run as a user runs it, its output file read back.
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+
+#include "cad_test_support.h"
+#include "ffdkit/cad/cad_check.h"
+#include "ffdkit/cad/cad_deform.h"
+#include "ffdkit/cad/cad_io.h"
+#include "ffdkit/cad/sample_parts.h"
+
+namespace ffdkit::cad {
+namespace {
+
+using test::deformedLatticeAround;
+using test::ScratchFolder;
+
+std::string rows(const Eigen::MatrixX3d& points) {
+  std::ostringstream out;
+  out.precision(17);
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    out << (i ? ",\n" : "") << "[" << points(i, 0) << ", " << points(i, 1) << ", " << points(i, 2) << "]";
+  return out.str();
+}
+
+/// A widget file holding one lattice with `basis` ("bernstein" or a cubic "bspline") on every axis.
+void writeTool(const std::filesystem::path& path, const ffd::Lattice& lattice, const std::string& basis) {
+  const Eigen::Vector3i n = lattice.counts();
+  const std::string axis = basis == "bernstein" ? R"({"kind": "bernstein"})" : R"({"kind": "bspline", "degree": 3})";
+  std::ofstream out(path);
+  out << R"({"format": "ffdkit-widgets", "version": 1, "lattices": [{"id": "w0", "name": "tool", "counts": [)" << n[0]
+      << ", " << n[1] << ", " << n[2] << R"(], "basis": [)" << axis << ", " << axis << ", " << axis
+      << R"(], "outside": {"policy": "identity"}, "reembed": {"policy": "immediate"},
+        "frame": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]], "children": [], "rest": [)"
+      << rows(lattice.restPoints()) << R"(], "points": [)" << rows(lattice.controlPoints()) << "]}]}\n";
+}
+
+struct CliRun {
+  int status = -1;
+  std::string output;
+};
+
+CliRun runCli(const std::string& arguments, const std::filesystem::path& log) {
+  const std::string command = std::string(FFDKIT_CLI) + " " + arguments + " > " + log.string() + " 2>&1";
+  CliRun run;
+  const int raw = std::system(command.c_str());
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(log);
+  run.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return run;
+}
+
+TEST(CliCadDeform, WritesTheExactlyDeformedStep) {
+  ScratchFolder folder;
+  const CadModel model = makeSamplePart(SamplePart::Bottle);
+  writeStep(model, folder / "bottle.step");
+  const CadModel read = readStep(folder / "bottle.step");
+  const ffd::Lattice lattice = deformedLatticeAround(read.bounds(), {3, 3, 2}, 0.08);
+  writeTool(folder / "tool.json", lattice, "bernstein");
+  const CliRun run = runCli("deform -w " + (folder / "tool.json").string() + " " + (folder / "bottle.step").string() +
+                             " -o " + (folder / "out.step").string() + " --cad-check",
+                         folder / "log.txt");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("BRepCheck: valid"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("exact composition"), std::string::npos) << run.output;
+  const CadModel written = readStep(folder / "out.step");
+  writeStep(deformCad(read, lattice).model, folder / "in-process.step");
+  const double expected = checkModel(readStep(folder / "in-process.step")).volume;
+  EXPECT_NEAR(checkModel(written).volume, expected, 1e-7 * expected);
+  EXPECT_GT(std::abs(expected - checkModel(read).volume), 1e-3 * expected);  // it did deform
+}
+
+TEST(CliCadDeform, PoleMethodAndIgesOutput) {
+  ScratchFolder folder;
+  writeStep(makeSamplePart(SamplePart::FilletedBox), folder / "box.stp");
+  const CadModel read = readStep(folder / "box.stp");
+  writeTool(folder / "tool.json", deformedLatticeAround(read.bounds(), {3, 3, 2}, 0.08), "bernstein");
+  const CliRun run = runCli("deform -w " + (folder / "tool.json").string() + " " + (folder / "box.stp").string() +
+                             " -o " + (folder / "out.igs").string() + " --cad-method poles",
+                         folder / "log.txt");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("poles moved"), std::string::npos) << run.output;
+  EXPECT_GT(checkModel(readIges(folder / "out.igs")).volume, 0.0);
+}
+
+TEST(CliCadDeform, WrongUsesAreRefusedWithTheirReason) {
+  ScratchFolder folder;
+  writeStep(makeSamplePart(SamplePart::FilletedBox), folder / "box.step");
+  const CadModel read = readStep(folder / "box.step");
+  writeTool(folder / "bernstein.json", deformedLatticeAround(read.bounds(), {3, 3, 2}, 0.08), "bernstein");
+  ffd::BoxLatticeOptions options;
+  options.counts = {5, 5, 5};
+  options.boxMin = read.bounds().min() - Eigen::Vector3d::Constant(5.0);
+  options.boxMax = read.bounds().max() + Eigen::Vector3d::Constant(5.0);
+  writeTool(folder / "bspline.json", ffd::makeBoxLattice(options), "bspline");
+  const std::string in = (folder / "box.step").string();
+
+  CliRun run = runCli("deform -w " + (folder / "bernstein.json").string() + " " + in + " -o " + (folder / "o.step").string() +
+                       " --cad-method bogus",
+                   folder / "log.txt");
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("--cad-method must be exact or poles"), std::string::npos) << run.output;
+
+  run = runCli("deform -w " + (folder / "bernstein.json").string() + " " + in + " -o " + (folder / "o.obj").string(),
+               folder / "log.txt");
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("-o OUTPUT.step"), std::string::npos) << run.output;
+
+  run = runCli("deform -w " + (folder / "bspline.json").string() + " " + in + " -o " + (folder / "o.step").string(),
+               folder / "log.txt");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("Bernstein"), std::string::npos) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(folder / "o.step"));
+
+  std::ofstream(folder / "broken.step") << "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n#1=FOO(;\n";
+  run = runCli("deform -w " + (folder / "bernstein.json").string() + " " + (folder / "broken.step").string() + " -o " +
+                   (folder / "o.step").string(),
+               folder / "log.txt");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("broken.step"), std::string::npos) << run.output;
+}
+
+}  // namespace
+}  // namespace ffdkit::cad

@@ -1,0 +1,25 @@
+// Fuzz target: the STEP reader (cad::readStep from a stream) on arbitrary bytes, and a tessellation
+// of what it read. Errors are CadError; anything else (a crash, a sanitizer report, another
+// exception) is a finding. A 20 s transfer limit keeps a slow input a finding of its own (timeout).
+#include <cstdint>
+#include <sstream>
+#include <string>
+
+#include "ffdkit/cad/cad_error.h"
+#include "ffdkit/cad/cad_io.h"
+#include "ffdkit/cad/tessellation.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace ffdkit::cad;
+  std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));
+  CadReadOptions options;
+  options.maxSeconds = 20.0;
+  try {
+    const CadModel model = readStep(in, "fuzz.step", options);
+    TessellationOptions mesh;
+    mesh.linearDeflection = 0.1 * std::max(1e-3, model.bounds().diagonal().norm());
+    tessellate(model, mesh);
+  } catch (const CadError&) {
+  }
+  return 0;
+}
