@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
 #include <Eigen/Geometry>
 
@@ -17,6 +18,7 @@ namespace fs = std::filesystem;
 using scenes::MeshData;
 
 const fs::path kWidgetExamples = fs::path(FFDKIT_SOURCE_DIR) / "widgets" / "examples";
+const fs::path kSceneExamples = fs::path(FFDKIT_SOURCE_DIR) / "scenes" / "examples";
 
 /// A closed UV sphere of radius 1 about the origin (rings x 2 rings quads), outward triangles.
 MeshData ball(int rings = 16) {
@@ -124,11 +126,58 @@ TEST(CliShapeGuard, InfoAndValidateReportFoldOverOfTheExampleTools) {
   // parameter box (positive inside), which the bound reports as a point with det J <= 0.
   const CliResult info = runCli({"info", (kWidgetExamples / "fig6-2.json").string()});
   ASSERT_EQ(info.exitCode, 0) << describe(info);
-  EXPECT_NE(info.out.find("fold-over: lattice unit-box folds in 1 of 1 cells (det J = 0 at u,v,w = 1, 1, 0)"),
+  EXPECT_NE(info.out.find("fold-over: lattice unit-box folds in 1 of 1 cells (det J = 0 at u,v,w = 1, 1, 0): "
+                          "cells (0, 0, 0)\n"),
             std::string::npos) << info.out;
   const CliResult validate = runCli({"validate", (kWidgetExamples / "fig6-2.json").string()});
   EXPECT_EQ(validate.exitCode, 0) << describe(validate);  // reported, not a broken file
   EXPECT_NE(validate.out.find("fold-over: lattice unit-box folds"), std::string::npos) << validate.out;
+}
+
+// The press sample with its handle-to-press gain raised so that a full turn of the handle (the
+// animation's last key, t = 3 s) pushes the jaw 3.1 below its rest, through the block's bottom
+// face: the 2x2x2 lattice's map turns inside out there (det J < 0) while t = 0 is the rest.
+fs::path foldingPress(const fs::path& dir) {
+  std::string text = readText(kSceneExamples / "press" / "scene.json");
+  const std::string binding = "\"gain\": 0.06366197723675814,\n        \"clamp\": [0.0, 0.3],";
+  const std::size_t at = text.find(binding);
+  EXPECT_NE(at, std::string::npos) << "the press sample's binding changed";
+  if (at != std::string::npos) text.replace(at, binding.size(), "\"gain\": 0.5,\n        \"clamp\": [0.0, 5.0],");
+  fs::create_directories(dir / "press");
+  std::ofstream(dir / "press" / "scene.json", std::ios::binary) << text;
+  return dir / "press";
+}
+
+TEST(CliShapeGuard, ExportSkinRefusesAFoldingDeformationUnlessAllowed) {
+  TempDir dir;
+  // Certified: the press as shipped (the jaw moves 0.4 of the block's height at most).
+  const CliResult fine = runCli({"export", (kSceneExamples / "press").string(), "-o", (dir / "fine.glb").string(), "--skin"});
+  EXPECT_EQ(fine.exitCode, 0) << describe(fine);
+  EXPECT_TRUE(fs::exists(dir / "fine.glb"));
+  EXPECT_EQ(fine.err.find("folds"), std::string::npos) << fine.err;
+  // Folding at the last key: refused, nothing written, the key, lattice and cell named.
+  const fs::path press = foldingPress(dir.path());
+  const CliResult refused = runCli({"export", press.string(), "-o", (dir / "fold.glb").string(), "--skin"});
+  EXPECT_EQ(refused.exitCode, 1) << describe(refused);
+  EXPECT_FALSE(fs::exists(dir / "fold.glb"));
+  EXPECT_NE(refused.err.find("export --skin: the deformation folds space over itself"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("at t = 3 s: lattice press-frame folds in 1 of 1 cells"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("cells (0, 0, 0)"), std::string::npos) << refused.err;
+  EXPECT_EQ(refused.err.find("at t = 0 s"), std::string::npos) << refused.err;  // the rest does not fold
+  EXPECT_NE(refused.err.find("--allow-folding"), std::string::npos) << refused.err;
+  // Asked for: written, with the finding as a warning.
+  const CliResult allowed =
+      runCli({"export", press.string(), "-o", (dir / "fold.glb").string(), "--skin", "--allow-folding"});
+  EXPECT_EQ(allowed.exitCode, 0) << describe(allowed);
+  EXPECT_TRUE(fs::exists(dir / "fold.glb"));
+  EXPECT_NE(allowed.err.find("at t = 3 s: lattice press-frame folds"), std::string::npos) << allowed.err;
+  // --allow-folding belongs to --skin.
+  const CliResult usage =
+      runCli({"export", press.string(), "-o", (dir / "m.glb").string(), "--morph", "--allow-folding"});
+  EXPECT_EQ(usage.exitCode, 2) << describe(usage);
+  // info reports the same lattice as it is saved (the jaw at the saved variation): certified.
+  const CliResult info = runCli({"info", press.string()});
+  EXPECT_EQ(info.exitCode, 0) << describe(info);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "console.h"
 #include "frames.h"
+#include "shape_guard.h"
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/exporters/gltf_export.h"
 #include "ffdkit/exporters/scene_animation.h"
@@ -27,8 +28,8 @@ int runExport(const Args& args) {
   if (args.flag("morph")) options.content = exporters::GltfContent::Morph;
   if (args.flag("skin")) options.content = exporters::GltfContent::Skin;
   if (options.content != exporters::GltfContent::Skin &&
-      (args.value("joints") || args.value("tolerance") || args.flag("no-raise")))
-    throw UsageError("--joints, --tolerance and --no-raise go with --skin");
+      (args.value("joints") || args.value("tolerance") || args.flag("no-raise") || args.flag("allow-folding")))
+    throw UsageError("--joints, --tolerance, --no-raise and --allow-folding go with --skin");
   if (const auto joints = args.value("joints")) {
     if (*joints != "4" && *joints != "8") throw UsageError("--joints takes 4 or 8, got '" + *joints + "'");
     options.joints = std::stoi(*joints);
@@ -54,6 +55,18 @@ int runExport(const Args& args) {
   }
   // Morph / skin: --set gives widgets that are not keyed their values for the whole animation.
   applySettings(scene.widgets, settings);
+
+  // A skin carries the lattices' motion to every renderer: refuse one that folds space over
+  // itself (the certified bound of checkFolding) at any key unless asked.
+  if (options.content == exporters::GltfContent::Skin) {
+    const std::vector<std::string> findings = skinFoldFindings(scene, animation);
+    if (!findings.empty() && !args.flag("allow-folding")) {
+      std::string message = "export --skin: the deformation folds space over itself:";
+      for (const auto& f : findings) message += "\n  " + f;
+      throw std::runtime_error(message + "\n(--allow-folding exports it anyway)");
+    }
+    for (const auto& f : findings) console.warn(f);
+  }
 
   console.begin("export", "exporting " + *output);
   const exporters::GltfExportReport report = exporters::exportGltf(scene, animation, fs::path(*output), options);
@@ -86,7 +99,7 @@ int runExport(const Args& args) {
 Command exportCommand() {
   return {"export",
           "write a scene as binary glTF 2.0 (.glb): a deformed frame, morph targets or a skin",
-          "ffdkit-cli export SCENE -o OUT.glb [--frame F | --morph | --skin [--joints 4|8] [--tolerance E]]",
+          "ffdkit-cli export SCENE -o OUT.glb [--frame F | --morph | --skin [--joints 4|8] [--tolerance E] [--allow-folding]]",
           "--frame F: the deformed meshes at frame F of the scene's animation (in its frame range;\n"
           "without any of the three: the scene as saved); --set values apply after it. With --morph /\n"
           "--skin, --set holds for the whole animation and keyed widgets take their keys.\n"
@@ -97,6 +110,8 @@ Command exportCommand() {
           "causes is measured against ffdkit's own deformation at every key and frame and printed;\n"
           "above --tolerance (default 0.001, scene units) 4 joints become 8, and if 8 still exceed it\n"
           "nothing is written (exit 1, the message gives the errors). --joints fixes k. See docs/export.md.\n"
+          "A skin whose lattices fold space over themselves at a key (the certified det J bound of\n"
+          "info) is refused (exit 1, the message names the lattice, key and cells) unless --allow-folding.\n"
           "The file is written atomically: nothing is left behind when anything fails.\n",
           withReadOptions({{"output", 'o', "OUT.glb", "the .glb to write"},
            {"frame", '\0', "F", "export the deformed meshes at frame F of the scene's animation"},
@@ -105,6 +120,7 @@ Command exportCommand() {
            {"joints", '\0', "K", "with --skin: joints per vertex, 4 or 8 (default 4, raised to 8 if needed)"},
            {"tolerance", '\0', "E", "with --skin: largest position error allowed (default 0.001)"},
            {"no-raise", '\0', "", "with --skin: refuse rather than raise 4 joints to 8"},
+           {"allow-folding", '\0', "", "with --skin: export even when a lattice folds space over itself at a key"},
            {"no-normals", '\0', "", "write no NORMAL attributes"},
            setOption(), quietOption(), progressOption(), timingsOption()}),
           runExport};

@@ -53,6 +53,26 @@ std::vector<OptionSpec> shapeGuardOptions() {
            "error, warn (default) or off: a lattice whose map folds space (certified bound) fails or warns"}};
 }
 
+namespace {
+
+// "(i, j, k)" of the first `most` cells with verdict `which` (flat index cu + cells_u (cv + cells_v cw)),
+// "..." after them when there are more.
+std::string firstCells(const ffd::FoldCheckResult& result, ffd::CellFolding which, int most = 3) {
+  std::string text;
+  int listed = 0;
+  for (std::size_t c = 0; c < result.cells.size(); ++c) {
+    if (result.cells[c] != which) continue;
+    if (listed == most) return text + ", ...";
+    const std::size_t cu = std::size_t(result.cellCounts[0]), cv = std::size_t(result.cellCounts[1]);
+    text += std::string(listed ? ", " : "") + "(" + std::to_string(c % cu) + ", " + std::to_string(c / cu % cv) + ", " +
+            std::to_string(c / cu / cv) + ")";
+    ++listed;
+  }
+  return text;
+}
+
+}  // namespace
+
 std::vector<std::string> foldFindings(const widgets::WidgetModel& model) {
   std::vector<std::string> findings;
   for (auto id : model.pipelineOrder()) {
@@ -71,12 +91,26 @@ std::vector<std::string> foldFindings(const widgets::WidgetModel& model) {
           line += value + formatted(" at u,v,w = %.4g, %.4g, %.4g)", w.x(), w.y(), w.z());
           break;
         }
-      if (result.unknownCount > 0) line += ", " + std::to_string(result.unknownCount) + " unknown";
+      line += ": cells " + firstCells(result, ffd::CellFolding::Folds);
+      if (result.unknownCount > 0)
+        line += "; " + std::to_string(result.unknownCount) + " unknown: cells " +
+                firstCells(result, ffd::CellFolding::Unknown);
     } else {
       line += ": " + std::to_string(result.unknownCount) + " of " + total +
-              " cells not certified free of fold-over (unknown)";
+              " cells not certified free of fold-over (unknown): cells " + firstCells(result, ffd::CellFolding::Unknown);
     }
     findings.push_back(line);
+  }
+  return findings;
+}
+
+std::vector<std::string> skinFoldFindings(const scenes::Scene& scene, const exporters::AnimationSource& animation) {
+  if (animation.keyTimes.empty() || !animation.setTime) return foldFindings(scene.widgets);
+  std::vector<std::string> findings;
+  for (double t : animation.keyTimes) {
+    scenes::Scene at = scene;
+    animation.setTime(at, t);
+    for (const auto& line : foldFindings(at.widgets)) findings.push_back(formatted("at t = %g s: ", t, 0, 0) + line);
   }
   return findings;
 }
@@ -113,7 +147,7 @@ void restoreShape(const std::string& object, const scenes::MeshData& rest, Eigen
   try {
     if (volume) {
       restVolume = ffd::enclosedVolume(rest.points, closed());
-      constraints.keepVolume(closed(), restVolume);
+      constraints.keepVolume(closed(), restVolume, ffd::VolumeEvaluation::PerVertex);  // one solve: no precompute
     }
     if (centre) {
       bool isClosed = rest.triangles.rows() > 0;

@@ -9,6 +9,7 @@
 
 #include "args.h"
 #include "console.h"
+#include "ffdkit/exporters/gltf_export.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/widgets/widget_model.h"
 
@@ -28,10 +29,16 @@ struct ShapeGuardRequest {
 ShapeGuardRequest parseShapeGuard(const Args& args);
 std::vector<OptionSpec> shapeGuardOptions();
 
-/// One line per lattice of the model that is not certified free of fold-over (ffd::checkFolding):
-/// "lattice L0 folds in 2 of 27 cells (det J <= 0 at u,v,w = 0.25, 0.5, 0.5)" or "... 3 of 27
-/// cells unknown". Empty when every lattice is certified positive.
+/// One line per lattice of the model that is not certified free of fold-over (ffd::checkFolding),
+/// with the counts and the first three cells (u, v, w cell indices) of each verdict:
+/// "lattice L0 folds in 2 of 27 cells (det J = -0.12 at u,v,w = 0.25, 0.5, 0.5): cells (0, 1, 2),
+/// (1, 1, 2); 1 unknown: cells (2, 2, 2)" or "lattice L0: 3 of 27 cells not certified free of
+/// fold-over (unknown): cells (...)". Empty when every lattice is certified positive.
 std::vector<std::string> foldFindings(const widgets::WidgetModel& model);
+
+/// foldFindings of the scene's widgets at every key time of `animation` (each line prefixed
+/// "at t = 1.5 s: "), or of the scene as it is when the animation has no keys or no setTime.
+std::vector<std::string> skinFoldFindings(const scenes::Scene& scene, const exporters::AnimationSource& animation);
 
 /// --fold-check before a deform: Error throws std::runtime_error with the findings, Warn prints
 /// them as warnings, Off does nothing.
