@@ -313,13 +313,11 @@ class FfdModification : public BRepTools_Modification {
     const int q = bs->VDegree();
     const int d = map_.volume().totalDegree();
     noteDegree(std::max(d * p, d * q), where);
-    {
-      TColStd_Array1OfInteger um(1, bs->NbUKnots()), vm(1, bs->NbVKnots());
-      bs->UMultiplicities(um);
-      bs->VMultiplicities(vm);
-      checkClamped(um, p, where);
-      checkClamped(vm, q, where);
-    }
+    TColStd_Array1OfInteger originalUMults(1, bs->NbUKnots()), originalVMults(1, bs->NbVKnots());
+    bs->UMultiplicities(originalUMults);
+    bs->VMultiplicities(originalVMults);
+    checkClamped(originalUMults, p, where);
+    checkClamped(originalVMults, q, where);
     // Bezier extraction by knot insertion: the pieces share their boundary poles and weights exactly.
     for (Standard_Integer i = 2; i < bs->NbUKnots(); ++i) bs->IncreaseUMultiplicity(i, p);
     for (Standard_Integer i = 2; i < bs->NbVKnots(); ++i) bs->IncreaseVMultiplicity(i, q);
@@ -357,19 +355,25 @@ class FfdModification : public BRepTools_Modification {
     TColStd_Array1OfInteger um(1, nu + 1), vm(1, nv + 1);
     pieceMultiplicities(um, du);
     pieceMultiplicities(vm, dv);
-    if (rational) return new Geom_BSplineSurface(poles, weights, uk, vk, um, vm, du, dv);
-    return new Geom_BSplineSurface(poles, uk, vk, um, vm, du, dv);
+    Handle(Geom_BSplineSurface) out = rational ? new Geom_BSplineSurface(poles, weights, uk, vk, um, vm, du, dv)
+                                               : new Geom_BSplineSurface(poles, uk, vk, um, vm, du, dv);
+    // The composition of a C^k join is C^k: remove the knots the C0 join of the pieces added, where
+    // OpenCASCADE finds them removable within rounding (a join stays C0 otherwise).
+    const double tolerance = removalTolerance(poles);
+    for (Standard_Integer i = 2; i <= nu; ++i)
+      out->RemoveUKnot(i, std::max(0, du - (p - originalUMults(i))), tolerance);
+    for (Standard_Integer i = 2; i <= nv; ++i)
+      out->RemoveVKnot(i, std::max(0, dv - (q - originalVMults(i))), tolerance);
+    return out;
   }
 
   Handle(Geom_BSplineCurve) composeCurve(const Handle(Geom_BSplineCurve)& bs, const std::string& where) {
     const int p = bs->Degree();
     const int d = map_.volume().totalDegree();
     noteDegree(d * p, where);
-    {
-      TColStd_Array1OfInteger m(1, bs->NbKnots());
-      bs->Multiplicities(m);
-      checkClamped(m, p, where);
-    }
+    TColStd_Array1OfInteger originalMults(1, bs->NbKnots());
+    bs->Multiplicities(originalMults);
+    checkClamped(originalMults, p, where);
     for (Standard_Integer i = 2; i < bs->NbKnots(); ++i) bs->IncreaseMultiplicity(i, p);
     const int n = bs->NbKnots() - 1;
     const bool rational = bs->IsRational();
@@ -396,8 +400,22 @@ class FfdModification : public BRepTools_Modification {
     bs->Knots(knots);
     TColStd_Array1OfInteger mults(1, n + 1);
     pieceMultiplicities(mults, dp);
-    if (rational) return new Geom_BSplineCurve(poles, weights, knots, mults, dp);
-    return new Geom_BSplineCurve(poles, knots, mults, dp);
+    Handle(Geom_BSplineCurve) out = rational ? new Geom_BSplineCurve(poles, weights, knots, mults, dp)
+                                             : new Geom_BSplineCurve(poles, knots, mults, dp);
+    TColgp_Array2OfPnt asGrid(1, poles.Length(), 1, 1);
+    for (Standard_Integer i = 1; i <= poles.Length(); ++i) asGrid(i, 1) = poles(i);
+    const double tolerance = removalTolerance(asGrid);
+    for (Standard_Integer i = 2; i <= n; ++i) out->RemoveKnot(i, std::max(0, dp - (p - originalMults(i))), tolerance);
+    return out;
+  }
+
+  /// Knot removal may move the geometry by 1e-12 of the poles' extent (rounding, for a join that is
+  /// as smooth as the original's).
+  static double removalTolerance(const TColgp_Array2OfPnt& poles) {
+    Eigen::AlignedBox3d box;
+    for (Standard_Integer i = poles.LowerRow(); i <= poles.UpperRow(); ++i)
+      for (Standard_Integer j = poles.LowerCol(); j <= poles.UpperCol(); ++j) box.extend(toEigen(poles(i, j)));
+    return 1e-12 * std::max(box.diagonal().norm(), 1e-300);
   }
 
   Handle(Geom_BSplineSurface) movePoles(const Handle(Geom_BSplineSurface)& bs) {
