@@ -7,6 +7,8 @@ Submodules mirror the C++ namespaces (docs/python.md):
 - ``ffdkit.scenes``   scenes (objects, lattices, keyframes), scene and widget files, the scene
                       deformer, mesh files, generators
 - ``ffdkit.app``      a scene edited as the app edits it, one undoable command per operation
+- ``ffdkit.io``       volume meshes (OpenFOAM, Gmsh, SU2, UNV, Elmer, LS-DYNA, Kratos) read to points
+                      and written back by pass-through, and PyGeM's file handler classes
 - ``ffdkit.pygem``    PyGeM's ``FFD``, ``CFFD``, ``BFFD`` and ``VFFD`` classes on ffdkit's engine
 
 Points are numpy float64 arrays of shape (N, 3). Errors are ``ffdkit.Error`` subclasses carrying
@@ -23,6 +25,8 @@ from ._ffdkit import (AnimationError, Cancelled, ConstraintError, Error, Generat
 for _module in (ffd, widgets, scenes, app):
     _sys.modules[__name__ + "." + _module.__name__.rsplit(".", 1)[-1]] = _module
 
-__all__ = ["ffd", "widgets", "scenes", "app", "Error", "LatticeError", "ConstraintError", "Cancelled", "WidgetError",
+from . import io  # noqa: E402  (after the extension's submodules)
+
+__all__ = ["ffd", "widgets", "scenes", "app", "io", "Error", "LatticeError", "ConstraintError", "Cancelled", "WidgetError",
            "WidgetFileError", "SceneFileError", "MeshIoError", "GeneratorError", "AnimationError",
            "__version__"]

@@ -20,5 +20,7 @@ void bindAnimationTypes(py::module_& module);
 void bindSceneEditing(py::module_& module);
 /// ffdkit.app: the Document (scene, deformer, undo stack, interaction controller).
 void bindApp(py::module_& module);
+/// ffdkit.io's C++ half: volume meshes read and written back by pass-through (io_bindings.cpp).
+void bindIo(py::module_& module);
 
 }  // namespace ffdkit::python

@@ -143,4 +143,7 @@ animation applied during a gesture.)doc");
   py::module_ appModule =
       module.def_submodule("app", "Scenes edited as the app edits them, with undo (ffdkit::app's controller).");
   python::bindApp(appModule);
+  py::module_ ioModule =
+      module.def_submodule("_io", "Volume meshes read and written back by pass-through (ffdkit::meshio); see ffdkit.io.");
+  python::bindIo(ioModule);
 }
