@@ -79,10 +79,10 @@ Scene makeDefault() {
   widgets::AffineOptions up;
   up.name = "pull";
   up.placement = Eigen::AngleAxisd(-std::numbers::pi / 2, Eigen::Vector3d::UnitY());  // local x -> world +z
-  const auto pull = scene.widgets.addAffine(top, AffineKind::Translate, up);
-  scene.widgets.setVariation(pull, 0.5);
-  aimCamera(scene, {3.0, -3.8, 2.7}, {0.0, 0.0, 0.3});  // far enough to see the pulled arrow
-  // Three seconds at 24 fps: the arrow rises to the saved pull at 1 s, dips, comes back.
+  scene.widgets.addAffine(top, AffineKind::Translate, up);
+  aimCamera(scene, {3.0, -3.8, 2.7}, {0.0, 0.0, 0.3});  // far enough to see the arrow pulled to 0.5
+  // Three seconds at 24 fps: the arrow rises to 0.5 at 1 s, dips, comes back. The file stores
+  // frame 0 (the rest pose), so opening it and going to the first frame change nothing.
   keyVariation(scene, "pull", {{0, 0.0}, {24, 0.5}, {48, -0.2}, {72, 0.0}});
   return scene;
 }
@@ -98,10 +98,10 @@ Scene withThesisModel(std::string description, widgets::WidgetModel model, widge
   return scene;
 }
 
-// Fig. 6-10: a handle turned half a turn presses the top face down by half the pitch.
+// Fig. 6-10: a handle turned presses the top face down, one pitch per turn; at frame 36 (half a
+// turn) by half the pitch. The file stores frame 0: the handle and the face at rest.
 Scene makePress() {
   auto press = widgets::buildFig610(0.4, widgets::VariationRange{0.0, 0.3});
-  press.model.setVariation(press.handle, std::numbers::pi);
   Scene scene = withThesisModel("Fig. 6-10: a press. Turn the handle: one turn lowers the top face by the pitch (0.4).",
                                 std::move(press.model), press.lattice,
                                 primitiveObject("block", {.kind = scenes::PrimitiveKind::Cylinder, .resolution = 40, .size = 0.8,
@@ -152,8 +152,6 @@ Scene makeVise() {
 // Fig. 6-8: opposite translate widgets bound: a mirror-symmetric deformation.
 Scene makeMirror() {
   auto fig = widgets::buildFig68();
-  fig.model.setVariation(fig.faceTranslateA, 0.2);
-  fig.model.setVariation(fig.edgeTranslateA, 0.15);
   Scene scene = withThesisModel("Fig. 6-8: a 2x3x2 lattice; bound pairs of widgets move mirror-symmetrically about y = 0.5.",
                                 std::move(fig.model), fig.lattice,
                                 primitiveObject("torus", {.kind = scenes::PrimitiveKind::Torus, .resolution = 48, .size = 0.9,
@@ -161,6 +159,8 @@ Scene makeMirror() {
                                                                        Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitX())},
                                                 {0.45, 0.75, 0.5}));
   // One widget of each bound pair is keyed; its partner follows through the binding at every frame.
+  // The file stores frame 0 (the rest pose); at frame 36 the face is pushed by 0.2 and the edge
+  // pulled by 0.15.
   keyVariation(scene, "push-front", {{0, 0.0}, {36, 0.2}, {72, 0.0}});
   keyVariation(scene, "pull-front", {{0, 0.0}, {24, 0.15}}, scenes::Interpolation::Constant);
   return scene;

@@ -16,6 +16,7 @@
 #include <vtkPolyData.h>
 
 #include "ffdkit/exporters/scene_animation.h"
+#include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "glb_reader.h"
@@ -30,6 +31,18 @@ using test::readGlb;
 
 scenes::Scene sample(const std::string& name) {
   return scenes::readScene(fs::path(FFDKIT_SOURCE_DIR) / "scenes/examples" / name / "scene.json");
+}
+
+// A sample scene in a pose away from rest, for the tests that scale a pose's variations in time
+// (scaled_animation.h): the keyed samples store their first frame, the rest pose, so they are
+// taken to a frame where their keys have moved them (default: the pull's 0.5 at frame 24; press:
+// the handle half a turn round at frame 36; mirror: push 0.2 and pull 0.15 at frame 36). The
+// others store a moved pose.
+scenes::Scene posed(const std::string& name) {
+  scenes::Scene scene = sample(name);
+  const std::map<std::string, int> frames = {{"default", 24}, {"press", 36}, {"mirror", 36}};
+  if (const auto it = frames.find(name); it != frames.end()) scenes::applyAnimationFrame(scene, it->second);
+  return scene;
 }
 
 class TempFolder {
@@ -75,7 +88,7 @@ const std::vector<std::string> kSamples = {"default", "press", "vise", "mirror",
 TEST(GltfExport, FrameHoldsTheDeformedMeshAsFloat32ReadByTinygltfAndVtk) {
   TempFolder dir;
   for (const std::string name : {"default", "cylinder-twist", "qi-interpolate"}) {
-    const scenes::Scene scene = sample(name);
+    const scenes::Scene scene = posed(name);
     const AnimationSource animation = test::scaledVariations(scene);
     GltfExportOptions options;
     options.time = 0.75;
@@ -134,7 +147,7 @@ TEST(GltfExport, FrameHoldsTheDeformedMeshAsFloat32ReadByTinygltfAndVtk) {
 TEST(GltfExport, MorphTargetsReproduceEveryKeyExactlyToFloat32) {
   TempFolder dir;
   for (const std::string& name : kSamples) {
-    const scenes::Scene scene = sample(name);
+    const scenes::Scene scene = posed(name);
     for (const KeyInterpolation interpolation : {KeyInterpolation::Linear, KeyInterpolation::Constant}) {
       const AnimationSource animation = test::scaledVariations(scene, {0.0, 0.4, 1.0}, interpolation);
       GltfExportOptions options;
@@ -271,7 +284,7 @@ const std::map<std::string, SkinErrorBound> kSkinErrorBounds = {
 TEST(GltfExport, SkinErrorRecomputedFromTheFileIsWithinTheReportedBoundOnEverySample) {
   TempFolder dir;
   for (const std::string& name : kSamples) {
-    const scenes::Scene scene = sample(name);
+    const scenes::Scene scene = posed(name);
     const AnimationSource animation = test::scaledVariations(scene);
     for (const int k : {4, 8}) {
       GltfExportOptions options;
@@ -306,7 +319,7 @@ TEST(GltfExport, ASingleStageSkinWithTheWholeWindowIsExactToFloat32) {
   // press: one 2x2x2 lattice, 8 weights per vertex (trilinear): 8 joints keep them all, and the
   // linear model is the FFD itself (a fixed embedding); only float32 rounding remains.
   TempFolder dir;
-  const scenes::Scene scene = sample("press");
+  const scenes::Scene scene = posed("press");
   const AnimationSource animation = test::scaledVariations(scene);
   GltfExportOptions options;
   options.content = GltfContent::Skin;
@@ -322,7 +335,7 @@ TEST(GltfExport, ASingleStageSkinWithTheWholeWindowIsExactToFloat32) {
 
 TEST(GltfExport, SkinOverToleranceIsRefusedWithTheNumbersOrRaisedToEightJoints) {
   TempFolder dir;
-  const scenes::Scene scene = sample("default");  // 3x3x3 Bernstein: 27 weights per vertex
+  const scenes::Scene scene = posed("default");  // 3x3x3 Bernstein: 27 weights per vertex
   const AnimationSource animation = test::scaledVariations(scene);
   GltfExportOptions options;
   options.content = GltfContent::Skin;
@@ -359,7 +372,7 @@ TEST(GltfExport, SkinOverToleranceIsRefusedWithTheNumbersOrRaisedToEightJoints) 
 }
 
 TEST(GltfExport, RejectsBadOptionsAndAnimationsWithMessages) {
-  const scenes::Scene scene = sample("default");
+  const scenes::Scene scene = posed("default");
   AnimationSource animation = test::scaledVariations(scene);
   std::ostringstream out;
   GltfExportOptions options;
@@ -409,7 +422,7 @@ Eigen::MatrixX3d vtkPlayed(const fs::path& path, double t) {
 
 TEST(GltfExport, VtksGltfPlayerShowsTheSkinAndTheMorphTargetsWithinTheReportedErrors) {
   TempFolder dir;
-  const scenes::Scene scene = sample("mirror");
+  const scenes::Scene scene = posed("mirror");
   const AnimationSource animation = test::scaledVariations(scene);
   const std::string object = scene.objects().at(0).name;
   GltfExportOptions options;
@@ -498,7 +511,7 @@ namespace {
 // The press (one 2x2x2 lattice: 8 weights per vertex, all kept with 8 joints) shrunk so that part
 // of its block lies outside the lattice.
 scenes::Scene shrunkPress() {
-  scenes::Scene scene = sample("press");
+  scenes::Scene scene = posed("press");
   const widgets::WidgetId lattice = scene.widgets.find("press-frame");
   const Eigen::Affine3d shrink = Eigen::Translation3d(0.5, 0.5, 0.5) * Eigen::Scaling(0.6) *
                                  Eigen::Translation3d(-0.5, -0.5, -0.5);
@@ -524,7 +537,7 @@ double largestLinearError(const GltfExportReport& report) {
 
 TEST(GltfExport, OutsidePoliciesAndKeyedFramesAreMeasuredNotAssumed) {
   TempFolder dir;
-  const double rounding = 8 * roundingBound(sample("press").objects()[0].mesh.points);
+  const double rounding = 8 * roundingBound(posed("press").objects()[0].mesh.points);
   for (const ffd::OutsidePolicy policy :
        {ffd::OutsidePolicy::falloff(0.2), ffd::OutsidePolicy::clampEdge(), ffd::OutsidePolicy::extrapolate()}) {
     scenes::Scene scene = shrunkPress();

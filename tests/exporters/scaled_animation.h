@@ -1,7 +1,8 @@
 #pragma once
 // Test support: an animation of a sample scene without keys in its file: every affine widget's
-// saved variation scaled by the time (t = 0: rest, t = 1: the saved pose), set from rest each
-// time (so the state depends on t only).
+// variation in the given scene scaled by the time (t = 0: rest, t = 1: that pose), set from rest
+// each time (so the state depends on t only). The keyed samples store their rest pose (frame 0):
+// the tests take them to a later frame first (gltf_export_test.cpp, posed()).
 
 #include <utility>
 #include <vector>

@@ -3,13 +3,17 @@
 // with that code only prove the code agrees with itself. These tests pin what the files hold to
 // values written out here from the widget semantics (Kuriyama 1996, secs. 6.2.1, 6.2.2, 6.5): the rest
 // grid, the moved cells, and the rings of the twist in closed form.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/scenes/widget_file.h"
 
@@ -41,9 +45,60 @@ WidgetId onlyRoot(const WidgetModel& m) {
 
 Scene sample(const std::string& name) { return readScene(kRoot / "scenes" / "examples" / name / "scene.json"); }
 
+// The sample scene taken from its stored pose (its first frame) to `frame` of its animation.
+Scene sampleAtFrame(const std::string& name, double frame) {
+  Scene s = sample(name);
+  applyAnimationFrame(s, frame);
+  return s;
+}
+
+std::vector<std::string> sampleNames() {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(kRoot / "scenes" / "examples"))
+    if (fs::exists(entry.path() / "scene.json")) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(SampleValues, EveryStoredPoseIsItsAnimationsFirstFrame) {
+  // What a sample file stores is what its timeline shows at the first frame: opening it and going
+  // to that frame changes nothing, byte for byte (else the first frame change of a session would
+  // jump, and undo after frame changes would be compared with a pose no frame shows).
+  int animated = 0;
+  for (const std::string& name : sampleNames()) {
+    Scene s = sample(name);
+    const std::string stored = sceneFileText(s);
+    // Every keyed channel holds exactly its first frame's value.
+    const widgets::WidgetModelState keyed = animationValues(s, frameTime(s.animation(), s.animation().firstFrame));
+    for (const auto& [widget, value] : keyed.variations) EXPECT_EQ(s.widgets.variation(widget), value) << name;
+    for (const auto& [widget, frame] : keyed.latticeFrames)
+      EXPECT_EQ(s.widgets.latticeFrame(widget).matrix(), frame.matrix()) << name;
+    for (const auto& [widget, points] : keyed.controlPoints) EXPECT_EQ(s.widgets.controlPoints(widget), points) << name;
+    applyAnimationFrame(s, s.animation().firstFrame);
+    EXPECT_EQ(sceneFileText(s), stored) << name << ": the stored pose is not the first frame's";
+    if (!s.animation().channels.empty()) ++animated;
+  }
+  EXPECT_GE(animated, 3);  // default, press, mirror
+}
+
+TEST(SampleValues, AnimatedSamplesStoreTheRestPoseAndMoveLater) {
+  // Frame 0 is the rest pose; the keys (make_examples.cpp) move the scenes by then.
+  const Scene press = sample("press"), mirror = sample("mirror"), pose = sample("default");
+  EXPECT_EQ(press.widgets.variation(press.widgets.find("handle")), 0.0);
+  EXPECT_EQ(press.widgets.variation(press.widgets.find("press")), 0.0);
+  EXPECT_EQ(mirror.widgets.variation(mirror.widgets.find("push-front")), 0.0);
+  EXPECT_EQ(mirror.widgets.variation(mirror.widgets.find("pull-front")), 0.0);
+  EXPECT_EQ(pose.widgets.variation(pose.widgets.find("pull")), 0.0);
+  const Scene mirror36 = sampleAtFrame("mirror", 36);
+  EXPECT_NEAR(mirror36.widgets.variation(mirror36.widgets.find("push-front")), 0.2, 1e-15);
+  EXPECT_NEAR(mirror36.widgets.variation(mirror36.widgets.find("pull-front")), 0.15, 1e-15);
+}
+
 TEST(SampleValues, PressSceneLowersTheTopFaceByHalfThePitch) {
-  // make_examples: pitch 0.4 per turn, the handle turned half a turn -> the top face 0.2 down.
-  const Scene s = sample("press");
+  // make_examples: pitch 0.4 per turn; at frame 36 the handle is half a turn round (its keys: 0 at
+  // frame 0, one turn at frame 72, linear) -> the top face 0.2 down.
+  const Scene s = sampleAtFrame("press", 36);
+  EXPECT_NEAR(s.widgets.variation(s.widgets.find("handle")), pi, 1e-15);
   const WidgetId lattice = onlyRoot(s.widgets);
   Eigen::MatrixX3d expected = unitGrid({2, 2, 2});
   expected.bottomRows(4).col(2).array() -= 0.2;
@@ -64,8 +119,9 @@ TEST(SampleValues, ViseSceneClosesBothJawsByOneAndAHalfTurnsOfPitch) {
 }
 
 TEST(SampleValues, DefaultScenePullsTheTopCentrePointUpByHalf) {
-  // The 3x3x3 lattice fitted to the sphere; only point (1, 1, 2) moved, by 0.5 along world +z.
-  const Scene s = sample("default");
+  // The 3x3x3 lattice fitted to the sphere; at frame 24 (the pull's key of 0.5) only point
+  // (1, 1, 2) moved, by 0.5 along world +z.
+  const Scene s = sampleAtFrame("default", 24);
   const WidgetId lattice = onlyRoot(s.widgets);
   const Eigen::MatrixX3d moved = s.widgets.worldControlPoints(lattice);
   const Eigen::Affine3d frame = s.widgets.latticeFrame(lattice);
