@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <Eigen/QR>
@@ -321,6 +322,7 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
   const double size = lattice.restSize();
   // With the volume polynomial and no centroid, no step visits the points.
   const bool perVertex = (volumeSurface_ && !volumePolynomial_) || centroidSurface_;
+  double lastStepNorm = std::numeric_limits<double>::infinity();
   const Eigen::Matrix3d L = lattice_.frame().linear();
   for (int iteration = 0;; ++iteration) {
     Eigen::MatrixX3d moved = lattice.controlPoints() + result.change;
@@ -386,8 +388,12 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
       throw ConstraintError("shape constraints: the residual is not finite after " + std::to_string(iteration) +
                             " Newton steps (the deformation degenerated)");
     const bool nonlinear = volumeSurface_ || centroidSurface_;
+    // A step at the rounding level of the control coordinates (1000 eps times the lattice's size)
+    // is stationary too: a drag that barely changes the volume asks for a change so small that its
+    // relative step cannot fall below `stationarity`.
+    const bool roundingStep = lastStepNorm <= 1e3 * std::numeric_limits<double>::epsilon() * size;
     if (result.largestRelativeResidual <= options.tolerance &&
-        (!nonlinear || iteration == 0 || result.lastStep <= options.stationarity)) {
+        (!nonlinear || iteration == 0 || result.lastStep <= options.stationarity || roundingStep)) {
       result.iterations = iteration;
       solved_ = current;
       deformedStale_ = true;
@@ -415,7 +421,8 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
                             " is not reachable (the constraints contradict each other or no free control changes it)");
     }
     const Eigen::VectorXd next = J.transpose() * y;
-    result.lastStep = (next - delta).norm() / std::max(next.norm(), 1e-300);
+    lastStepNorm = (next - delta).norm();
+    result.lastStep = lastStepNorm / std::max(next.norm(), 1e-300);
     delta = next;
     result.change.setZero();
     for (Eigen::Index k = 0; k < f; ++k) {

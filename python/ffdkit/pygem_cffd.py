@@ -217,7 +217,7 @@ class VFFD(CFFD):
         free[:, axis] = np.asarray(self.ffd_mask, dtype=bool)[..., axis].ravel(order="F")
         constraints.setFreeControls(free)
         # PyGeM's fun is sum det[a, b, c] = 6 V.
-        constraints.keepVolume(np.asarray(self.triangles), target / 6.0)
+        constraints.keepVolume(np.asarray(self.triangles), target / 6.0, evaluation="per_vertex")  # one solve
         result = constraints.solve(lattice)
         change = result.change[:, axis].reshape(counts, order="F")
         self._set_weights(axis, np.asarray(self._weights(axis), dtype=float) + change)

@@ -132,17 +132,34 @@ Args:
 Args:
     target: (3,) world point; three linear rows.)doc")
       .def("keepVolume",
-           [](ffd::ShapeConstraints& c, const py::object& triangles, double target) {
-             c.keepVolume(surfaceArg(triangles, c.pointCount()), target);
+           [](ffd::ShapeConstraints& c, const py::object& triangles, double target, const std::string& evaluation) {
+             ffd::VolumeEvaluation mode = ffd::VolumeEvaluation::Automatic;
+             if (evaluation == "polynomial")
+               mode = ffd::VolumeEvaluation::Polynomial;
+             else if (evaluation == "per_vertex")
+               mode = ffd::VolumeEvaluation::PerVertex;
+             else if (evaluation != "automatic")
+               throw py::value_error("keepVolume: evaluation must be 'automatic', 'polynomial' or 'per_vertex', got '" +
+                                     evaluation + "'");
+             c.keepVolume(surfaceArg(triangles, c.pointCount()), target, mode);
            },
-           "triangles"_a, "target"_a, R"doc(Keeps the volume a closed surface over the points bounds.
+           "triangles"_a, "target"_a, "evaluation"_a = "automatic",
+           R"doc(Keeps the volume a closed surface over the points bounds.
 
 Args:
     triangles: (T, 3) vertex indices into the points, counter-clockwise seen from outside.
     target: the volume (world units cubed), finite and non-zero.
+    evaluation: 'polynomial' precomputes the volume as a cubic polynomial in the control points
+        (one pass over the vertices) so that each Newton step costs O(lattice): for many solves
+        (a drag); 'per_vertex' deforms and sums over the triangles in each step: for one solve;
+        'automatic' (default) is 'polynomial' when at most 128 control points move the surface.
 
 Raises:
-    ConstraintError: the surface is open or misoriented (names the edge and triangle).)doc")
+    ConstraintError: the surface is open or misoriented (names the edge and triangle), or
+        'polynomial' with more than 128 control points moving the surface.)doc")
+      .def("keptVolume", [](const ffd::ShapeConstraints& c, ffd::Lattice& lattice) { return c.keptVolume(synced(lattice)); },
+           "lattice"_a,
+           R"doc(The volume the kept surface encloses once deformed by the lattice's control points.)doc")
       .def("keepCentroid",
            [](ffd::ShapeConstraints& c, const py::object& triangles, const Eigen::Vector3d& target) {
              c.keepCentroid(surfaceArg(triangles, c.pointCount()), target);

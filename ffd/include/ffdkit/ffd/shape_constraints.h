@@ -46,7 +46,9 @@ struct ShapeSolveOptions {
   double tolerance = 1e-12;
   /// With a volume or centroid: also stop only when the last step changed the control change by
   /// <= stationarity times its norm (the Lagrange condition: the change is parallel to the
-  /// constraints' gradients; it converges linearly, the constraint residual quadratically).
+  /// constraints' gradients; it converges linearly, the constraint residual quadratically), or
+  /// by <= 1000 machine epsilons times the lattice's rest size (a change at the rounding level of
+  /// the control coordinates, e.g. after a drag that barely changed the volume).
   double stationarity = 1e-10;
   int maxIterations = 40;  ///< Newton steps before giving up (ConstraintError).
 };
