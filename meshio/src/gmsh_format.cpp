@@ -129,6 +129,14 @@ class NodeIndex {
   std::vector<std::pair<std::int64_t, std::int32_t>> sorted_;
 };
 
+// Resizes `v` to `size` new items of `value`, growing its capacity at least twofold (a file of
+// many element blocks does not reallocate at every block).
+template <class T>
+void growTo(std::vector<T>& v, std::size_t size, T value) {
+  if (size > v.capacity()) v.reserve(std::max(size, 2 * v.capacity()));
+  v.resize(size, value);
+}
+
 class GmshParser {
  public:
   GmshParser(std::string_view text, const std::string& source, ReadBudget& budget, GmshMesh& mesh)
@@ -217,6 +225,7 @@ class GmshParser {
       else s_.fail("$MeshFormat: the binary integer after the header is " + std::to_string(one) + ", not 1");
       s_.moveTo(s_.pos() + 4);
       mesh_.file.swapped = swap_;
+      s_.useByteOffsets();
     }
     expectEnd("MeshFormat");
   }
@@ -422,10 +431,44 @@ class GmshParser {
       if (binary_) b.need(n * std::uint64_t(sizeBytes_) * std::uint64_t(1 + nodes), what + " (" + std::to_string(n) + " elements)");
       if (dim == 3) {
         budget_.chargeBytes(n, 1 + 8 + 8 + 4 * std::uint64_t(cornerCount(shape)), what + ": cells");
-        mesh_.cells.shapes.reserve(mesh_.cells.shapes.size() + n);
-        mesh_.cells.cornerStarts.reserve(mesh_.cells.cornerStarts.size() + n);
-        mesh_.cells.ids.reserve(mesh_.cells.ids.size() + n);
-        mesh_.cells.corners.reserve(mesh_.cells.corners.size() + n * std::uint64_t(cornerCount(shape)));
+        ElementCells& cells = mesh_.cells;
+        const std::size_t first = cells.shapes.size(), firstCorner = cells.corners.size();
+        const std::size_t k = std::size_t(cornerCount(shape));
+        if (binary_) {
+          growTo(cells.shapes, first + n, shape);
+          growTo(cells.cornerStarts, first + n, std::int64_t(0));
+          growTo(cells.ids, first + n, std::int64_t(0));
+          growTo(cells.corners, firstCorner + n * k, std::int32_t(0));
+          // The hot path of a large binary file: the cells written in place.
+          for (std::uint64_t e = 0; e < n; ++e) {
+            const std::size_t c = first + std::size_t(e);
+            const std::uint64_t tag = b.size();
+            cells.ids[c] = std::int64_t(tag);
+            cells.cornerStarts[c] = std::int64_t(firstCorner + std::size_t(e) * k);
+            std::int32_t* corner = cells.corners.data() + firstCorner + std::size_t(e) * k;
+            for (int j = 0; j < nodes; ++j) {
+              const std::uint64_t node = b.size();
+              const std::int32_t row = index_.find(node);
+              if (row < 0)
+                b.fail(what + ": element " + std::to_string(tag) + ": node " + std::to_string(node) + " is not in $Nodes (" +
+                       b.at() + ")");
+              if (std::size_t(j) < k) corner[j] = row;
+            }
+          }
+          s_.moveTo(b.pos());
+          mesh_.elementsByType[type] += std::int64_t(n);
+          read += n;
+          continue;
+        }
+        // ASCII: appended cell by cell below (ElementCells::add), the room made once.
+        growTo(cells.shapes, first + n, shape);
+        growTo(cells.cornerStarts, first + n, std::int64_t(0));
+        growTo(cells.ids, first + n, std::int64_t(0));
+        growTo(cells.corners, firstCorner + n * k, std::int32_t(0));
+        cells.shapes.resize(first);
+        cells.cornerStarts.resize(first);
+        cells.ids.resize(first);
+        cells.corners.resize(firstCorner);
       }
       for (std::uint64_t e = 0; e < n; ++e) {
         const std::int64_t tag = binary_ ? std::int64_t(b.size()) : s_.integer(what + " element tag", 1, LLONG_MAX);

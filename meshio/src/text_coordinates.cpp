@@ -120,15 +120,18 @@ double LineScanner::number(std::string_view what, bool newlines, std::size_t* st
 }
 
 void LineScanner::moveTo(std::size_t pos) {
-  for (std::size_t k = pos_; k < pos && k < text_.size(); ++k) line_ += text_[k] == '\n';
-  pos_ = std::min(pos, text_.size());
+  pos = std::min(pos, text_.size());
+  if (pos > pos_ && !byteOffsets_) line_ += int(std::count(text_.begin() + std::ptrdiff_t(pos_), text_.begin() + std::ptrdiff_t(pos), '\n'));
+  pos_ = pos;
 }
 
 void LineScanner::fail(const std::string& message) const {
+  if (byteOffsets_) throw MeshIoError(source_ + ": byte offset " + std::to_string(pos_) + ": " + message);
   throw MeshIoError(source_ + ":" + std::to_string(line_) + ": " + message);
 }
 
 void LineScanner::failAt(int line, const std::string& message) const {
+  if (byteOffsets_) fail(message);
   throw MeshIoError(source_ + ":" + std::to_string(line) + ": " + message);
 }
 

@@ -42,8 +42,12 @@ class LineScanner {
   /// through `start` and `length` when they are not null.
   double number(std::string_view what, bool newlines = true, std::size_t* start = nullptr, std::size_t* length = nullptr,
                 bool fortran = false, char extraSeparator = '\0');
-  /// Moves to `pos` (a position in the text), counting the newlines passed.
+  /// Moves to `pos` (a position in the text), counting the newlines passed (unless messages
+  /// name byte offsets).
   void moveTo(std::size_t pos);
+  /// From now on messages name the byte offset instead of the line ("file: byte offset 1234:
+  /// ..."): for a file whose binary data make line numbers meaningless.
+  void useByteOffsets() { byteOffsets_ = true; }
 
   [[noreturn]] void fail(const std::string& message) const;
   [[noreturn]] void failAt(int line, const std::string& message) const;
@@ -54,6 +58,7 @@ class LineScanner {
   const std::string& source_;
   std::size_t pos_ = 0;
   int line_ = 1;
+  bool byteOffsets_ = false;
 };
 
 /// Parses a number token as the readers do (a leading '+' allowed; with `fortran`, 'D' or 'd'

@@ -153,6 +153,8 @@ TEST(Gmsh, BadFilesGiveClearMessages) {
     EXPECT_NE(errorOf(binary.substr(0, cut)).find("two.msh"), std::string::npos) << cut;
   EXPECT_NE(errorOf(binary.substr(0, binary.find("$Nodes") + 100)).find("$Nodes: 5 nodes need at least 32 bytes"),
             std::string::npos);
+  // A binary file's messages name byte offsets, not lines.
+  EXPECT_NE(errorOf(binary.substr(0, binary.find("$Nodes") + 100)).find("two.msh: byte offset "), std::string::npos);
 }
 
 TEST(Gmsh, ChargesTheBudgetBeforeAllocating) {
