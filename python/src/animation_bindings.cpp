@@ -100,7 +100,7 @@ Returns:
     WidgetId of the new lattice.
 Raises:
     ValueError: an unknown object or none given. WidgetError: bad counts or a duplicate name.)doc")
-      .def("detachLattice", &Scene::detach, "lattice"_a, "object"_a, R"doc(Stops a lattice deforming an object (an attachment left with no object goes).
+      .def("detachLattice", py::overload_cast<widgets::WidgetId, const std::string&>(&Scene::detach), "lattice"_a, "object"_a, R"doc(Stops a lattice deforming an object (an attachment left with no object goes).
 
 Args:
     lattice: WidgetId of the root lattice.

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include <pybind11/eigen.h>
+#include <pybind11/operators.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -178,16 +179,28 @@ Raises:
 }
 
 void bindSceneDocuments(py::module_& m) {
+  py::class_<scenes::ObjectId>(m, "ObjectId", R"doc(The handle of an object in one Scene; printed as o<N>.
+
+The scene gives it when the object is added and keeps it through renames (a name is a label);
+attachments hold ids. Hashable and ordered; value is the number.)doc")
+      .def_readonly("value", &scenes::ObjectId::value)
+      .def(py::self == py::self)
+      .def(py::self < py::self)
+      .def("__hash__", [](const scenes::ObjectId& id) { return std::hash<std::uint32_t>{}(id.value); })
+      .def("__repr__", [](const scenes::ObjectId& id) { return scenes::toString(id); });
   py::class_<scenes::SceneObject>(m, "SceneObject", R"doc(A deformable object of a Scene (read-only; Scene.findObject returns it).
 
-Fields: name, mesh (its own, undeformed points; Scene.setObjectMesh changes them).)doc")
+Fields: id (its ObjectId, which a rename keeps), name, mesh (its own, undeformed points;
+Scene.setObjectMesh changes them).)doc")
+      .def_readonly("id", &scenes::SceneObject::id)
       .def_readonly("name", &scenes::SceneObject::name)
       .def_readonly("mesh", &scenes::SceneObject::mesh, "The object's own (undeformed) points (Scene.setObjectMesh changes them).");
   py::class_<scenes::Attachment>(m, "Attachment", R"doc(A root lattice (with its subtree) deforming some objects of a Scene.
 
-Fields: lattice (the root lattice's WidgetId, which a rename keeps), objects (names).)doc")
+Fields: lattice (the root lattice's WidgetId, which a rename keeps), objects (ObjectIds, which
+renames keep; Scene.objectName gives a name).)doc")
       .def_readonly("lattice", &scenes::Attachment::lattice, "The root lattice's WidgetId (a rename keeps it).")
-      .def_readonly("objects", &scenes::Attachment::objects);
+      .def_readonly("objects", &scenes::Attachment::objects, "The objects' ObjectIds (renames keep them).");
 
   py::class_<scenes::Scene>(m, "Scene", R"doc(A document: objects, the widget model whose lattices deform them, attachments, camera, animation.
 
@@ -209,7 +222,24 @@ Add objects with addMeshFile and lattices with attachNewLattice, or read one wit
 
 Returns:
     list of str.)doc")
-      .def("findObject", &scenes::Scene::findObject, py::return_value_policy::reference_internal, "name"_a, R"doc(The object of that name.
+      .def("objectName", &scenes::Scene::objectName, "id"_a, R"doc(The name of the object with this id.
+
+Args:
+    id: an ObjectId.
+Returns:
+    str.
+Raises:
+    ValueError: no object has this id.)doc")
+      .def("objectId", &scenes::Scene::objectId, "name"_a, R"doc(The id of the object with this name.
+
+Args:
+    name: the object's name.
+Returns:
+    ObjectId.
+Raises:
+    ValueError: an unknown name.)doc")
+      .def("findObject", py::overload_cast<const std::string&>(&scenes::Scene::findObject, py::const_),
+           py::return_value_policy::reference_internal, "name"_a, R"doc(The object of that name.
 
 Args:
     name: the object's name.
@@ -225,7 +255,7 @@ Args:
     mesh: MeshData.
 Raises:
     ValueError: an unknown object.)doc")
-      .def("latticesDeforming", &scenes::Scene::latticesDeforming, "object"_a, R"doc(The root lattices deforming an object, in attachment order.
+      .def("latticesDeforming", py::overload_cast<const std::string&>(&scenes::Scene::latticesDeforming, py::const_), "object"_a, R"doc(The root lattices deforming an object, in attachment order.
 
 Args:
     object: the object's name.

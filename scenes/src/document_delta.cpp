@@ -83,9 +83,7 @@ std::size_t changesBytes(const ModelPatch::Changes<Record>& changes) {
 
 std::size_t attachmentsBytes(const std::vector<Attachment>& list) {
   std::size_t bytes = list.size() * sizeof(Attachment);
-  for (const Attachment& a : list) {
-    for (const std::string& o : a.objects) bytes += sizeof(o) + o.size();
-  }
+  for (const Attachment& a : list) bytes += a.objects.size() * sizeof(ObjectId);
   return bytes;
 }
 

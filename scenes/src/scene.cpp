@@ -30,46 +30,78 @@ const SceneObject* Scene::findObject(const std::string& name) const {
   return nullptr;
 }
 
+const SceneObject* Scene::findObject(ObjectId id) const {
+  for (const auto& object : objects_)
+    if (object.id == id) return &object;
+  return nullptr;
+}
+
+ObjectId Scene::objectId(const std::string& name) const {
+  const SceneObject* found = findObject(name);
+  if (found == nullptr) throw std::invalid_argument("scene: unknown object '" + name + "' (known: " + knownObjects(*this) + ")");
+  return found->id;
+}
+
+const std::string& Scene::objectName(ObjectId id) const {
+  const SceneObject* found = findObject(id);
+  if (found == nullptr) throw std::invalid_argument("scene: no object " + toString(id) + " (known: " + knownObjects(*this) + ")");
+  return found->name;
+}
+
+SceneObject& Scene::object(ObjectId id) {
+  auto found = std::find_if(objects_.begin(), objects_.end(), [&](const SceneObject& o) { return o.id == id; });
+  if (found == objects_.end()) throw std::invalid_argument("scene: no object " + toString(id) + " (known: " + knownObjects(*this) + ")");
+  return *found;
+}
+
 SceneObject& Scene::object(const std::string& name) {
   auto found = std::find_if(objects_.begin(), objects_.end(), [&](const SceneObject& o) { return o.name == name; });
   if (found == objects_.end()) throw std::invalid_argument("scene: unknown object '" + name + "' (known: " + knownObjects(*this) + ")");
   return *found;
 }
 
-void Scene::addObject(SceneObject object) { insertObject(objects_.size(), std::move(object)); }
+ObjectId Scene::addObject(SceneObject object) { return insertObject(objects_.size(), std::move(object)); }
 
-void Scene::insertObject(std::size_t position, SceneObject object) {
+ObjectId Scene::insertObject(std::size_t position, SceneObject object) {
   if (position > objects_.size())
     throw std::invalid_argument("scene: no place " + std::to_string(position) + " among " + std::to_string(objects_.size()) + " objects");
   if (object.name.empty()) throw std::invalid_argument("scene: an object needs a name");
   if (findObject(object.name) != nullptr) throw std::invalid_argument("scene: an object named '" + object.name + "' exists");
+  if (!object.id.valid() || findObject(object.id) != nullptr) {
+    if (nextObjectId_ == ObjectId::kInvalid) throw std::invalid_argument("scene: out of object ids");
+    object.id = ObjectId{nextObjectId_};
+  }
+  nextObjectId_ = std::max(nextObjectId_, object.id.value + 1);
+  const ObjectId id = object.id;
   const std::uint64_t r = stamp();
   object.meshRevision = object.displayRevision = r;
   structureRevision_ = r;
   objects_.insert(objects_.begin() + static_cast<std::ptrdiff_t>(position), std::move(object));
+  return id;
 }
 
 void Scene::removeObject(const std::string& name) { takeObject(name); }
 
-SceneObject Scene::takeObject(const std::string& objectName) {
-  const std::string name = objectName;  // `objectName` may be the object's own name, moved below
-  SceneObject& found = object(name);
+SceneObject Scene::takeObject(const std::string& objectName) { return takeObject(objectId(objectName)); }
+
+SceneObject Scene::takeObject(ObjectId id) {
+  SceneObject& found = object(id);
   SceneObject taken = std::move(found);
   objects_.erase(objects_.begin() + (&found - objects_.data()));
-  for (Attachment& a : attachments_) std::erase(a.objects, name);
+  for (Attachment& a : attachments_) std::erase(a.objects, id);
   std::erase_if(attachments_, [](const Attachment& a) { return a.objects.empty(); });
   structureRevision_ = stamp();
   return taken;
 }
 
-void Scene::renameObject(const std::string& fromName, const std::string& to) {
-  const std::string from = fromName;  // `fromName` may be the object's own name, renamed below
-  SceneObject& o = object(from);
-  if (to == from) return;
+void Scene::renameObject(const std::string& fromName, const std::string& to) { renameObject(objectId(fromName), to); }
+
+void Scene::renameObject(ObjectId id, const std::string& to) {
+  SceneObject& o = object(id);
+  if (to == o.name) return;
   if (to.empty()) throw std::invalid_argument("scene: an object needs a name");
   if (findObject(to) != nullptr) throw std::invalid_argument("scene: an object named '" + to + "' exists");
   o.name = to;
-  for (Attachment& a : attachments_) std::replace(a.objects.begin(), a.objects.end(), from, to);
   structureRevision_ = stamp();
 }
 
@@ -100,7 +132,9 @@ void Scene::setAttachments(std::vector<Attachment> attachments) {
   structureRevision_ = stamp();
 }
 
-void Scene::attach(widgets::WidgetId lattice, const std::string& object) {
+void Scene::attach(widgets::WidgetId lattice, const std::string& object) { attach(lattice, objectId(object)); }
+
+void Scene::attach(widgets::WidgetId lattice, ObjectId object) {
   auto it = std::find_if(attachments_.begin(), attachments_.end(), [&](const Attachment& a) { return a.lattice == lattice; });
   if (it == attachments_.end()) {
     attachments_.push_back({lattice, {object}});
@@ -113,6 +147,15 @@ void Scene::attach(widgets::WidgetId lattice, const std::string& object) {
 }
 
 void Scene::detach(widgets::WidgetId lattice, const std::string& object) {
+  const SceneObject* found = findObject(object);
+  if (found == nullptr) {
+    const std::string name = widgets.contains(lattice) ? widgets.name(lattice) : widgets::toString(lattice);
+    throw std::invalid_argument("detach: lattice '" + name + "' does not deform object '" + object + "'");
+  }
+  detach(lattice, found->id);
+}
+
+void Scene::detach(widgets::WidgetId lattice, ObjectId object) {
   for (auto it = attachments_.begin(); it != attachments_.end(); ++it) {
     if (it->lattice != lattice) continue;
     auto o = std::find(it->objects.begin(), it->objects.end(), object);
@@ -123,7 +166,9 @@ void Scene::detach(widgets::WidgetId lattice, const std::string& object) {
     return;
   }
   const std::string name = widgets.contains(lattice) ? widgets.name(lattice) : widgets::toString(lattice);
-  throw std::invalid_argument("detach: lattice '" + name + "' does not deform object '" + object + "'");
+  const SceneObject* found = findObject(object);
+  throw std::invalid_argument("detach: lattice '" + name + "' does not deform object '" +
+                              (found != nullptr ? found->name : toString(object)) + "'");
 }
 
 void Scene::dropStaleAttachments() {
@@ -132,6 +177,16 @@ void Scene::dropStaleAttachments() {
 }
 
 std::vector<widgets::WidgetId> Scene::latticesDeforming(const std::string& object) const {
+  const SceneObject* found = findObject(object);
+  return found != nullptr ? latticesDeforming(found->id) : std::vector<widgets::WidgetId>{};
+}
+
+std::vector<widgets::WidgetId> Scene::stagesDeforming(const std::string& object) const {
+  const SceneObject* found = findObject(object);
+  return found != nullptr ? stagesDeforming(found->id) : std::vector<widgets::WidgetId>{};
+}
+
+std::vector<widgets::WidgetId> Scene::latticesDeforming(ObjectId object) const {
   std::vector<widgets::WidgetId> result;
   for (const auto& attachment : attachments_)
     if (std::find(attachment.objects.begin(), attachment.objects.end(), object) != attachment.objects.end())
@@ -139,7 +194,7 @@ std::vector<widgets::WidgetId> Scene::latticesDeforming(const std::string& objec
   return result;
 }
 
-std::vector<widgets::WidgetId> Scene::stagesDeforming(const std::string& object) const {
+std::vector<widgets::WidgetId> Scene::stagesDeforming(ObjectId object) const {
   std::vector<widgets::WidgetId> stages;
   for (widgets::WidgetId root : latticesDeforming(object)) {
     const std::vector<widgets::WidgetId> tree = widgets.pipelineOrder(root);
@@ -231,11 +286,14 @@ widgets::WidgetId attachNewLattice(Scene& scene, const std::vector<std::string>&
 
 void validateScene(const Scene& scene) {
   std::set<std::string> names;
+  std::set<ObjectId> ids;
   for (const auto& object : scene.objects()) {
     if (object.name.empty()) throw std::invalid_argument("scene: an object has an empty name");
     if (!names.insert(object.name).second) throw std::invalid_argument("scene: duplicate object name '" + object.name + "'");
+    if (!object.id.valid() || !ids.insert(object.id).second)
+      throw std::invalid_argument("scene: object '" + object.name + "' has no id of its own (" + toString(object.id) + ")");
   }
-  std::set<std::pair<widgets::WidgetId, std::string>> pairs;
+  std::set<std::pair<widgets::WidgetId, ObjectId>> pairs;
   for (const auto& attachment : scene.attachments()) {
     const widgets::WidgetId id = attachment.lattice;
     if (!scene.widgets.contains(id))
@@ -247,12 +305,13 @@ void validateScene(const Scene& scene) {
     if (scene.widgets.parentCell(id).has_value())
       throw std::invalid_argument("scene: attachment names '" + name +
                                   "', a child lattice: attach its root (children deform through it)");
-    for (const auto& object : attachment.objects) {
-      if (names.count(object) == 0)
-        throw std::invalid_argument("scene: lattice '" + name + "' is attached to unknown object '" + object +
-                                    "' (known: " + knownObjects(scene) + ")");
+    for (const ObjectId object : attachment.objects) {
+      const SceneObject* found = scene.findObject(object);
+      if (found == nullptr)
+        throw std::invalid_argument("scene: lattice '" + name + "' is attached to unknown object " + toString(object) +
+                                    " (known: " + knownObjects(scene) + ")");
       if (!pairs.insert({id, object}).second)
-        throw std::invalid_argument("scene: lattice '" + name + "' is attached to '" + object + "' twice");
+        throw std::invalid_argument("scene: lattice '" + name + "' is attached to '" + found->name + "' twice");
     }
   }
 }

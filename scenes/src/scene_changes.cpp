@@ -15,8 +15,8 @@ SceneChanges changesSince(const Scene& scene, const SceneMark& mark) {
   changes.camera = scene.cameraRevision() > mark.scene;
   changes.animation = scene.animationRevision() > mark.scene;
   for (const SceneObject& o : scene.objects()) {
-    if (o.meshRevision > mark.scene) changes.meshes.push_back(o.name);
-    if (o.displayRevision > mark.scene) changes.looks.push_back(o.name);
+    if (o.meshRevision > mark.scene) changes.meshes.push_back(o.id);
+    if (o.displayRevision > mark.scene) changes.looks.push_back(o.id);
   }
   return changes;
 }

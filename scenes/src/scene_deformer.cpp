@@ -46,7 +46,7 @@ struct Stage {
   bool operator==(const Stage&) const = default;
 };
 
-std::vector<Stage> stagesFor(const Scene& scene, const std::string& object) {
+std::vector<Stage> stagesFor(const Scene& scene, ObjectId object) {
   std::vector<Stage> stages;
   int rootPriority = 0;
   for (widgets::WidgetId lattice : scene.stagesDeforming(object)) {
@@ -218,16 +218,18 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   // 1. Sync every object's pipeline with the scene, in place (nothing is embedded yet), so that a
   //    throw in step 2 leaves each pipeline whole.
   std::vector<ObjectPipeline*> toRun, deferred;
-  std::set<std::string> names;
+  std::set<ObjectId> present;
+  labels_.clear();
   // Revisions compare within one widget model: another instance (a replaced model) syncs in full.
   const bool sameModel = widgetInstance_ == scene.widgets.instance();
   int latticesBuilt = 0;
   for (const auto& object : scene.objects()) {
-    names.insert(object.name);
-    auto found = objects_.find(object.name);
+    present.insert(object.id);
+    labels_.emplace(object.name, object.id);
+    auto found = objects_.find(object.id);
     std::unique_ptr<ObjectPipeline> added;  // a new object enters objects_ once it is synced
     ObjectPipeline* p = found != objects_.end() ? found->second.get() : (added = std::make_unique<ObjectPipeline>()).get();
-    std::vector<Stage> stages = stagesFor(scene, object.name);
+    std::vector<Stage> stages = stagesFor(scene, object.id);
     const Eigen::MatrixX3d& own = object.mesh.points;
     // A mesh at another address (a copied scene, an undo of an object edit) may still be the same:
     // compare it then, once, rather than rebuild.
@@ -257,9 +259,9 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
         toRun.push_back(p);
       }
     }
-    if (added) objects_[object.name] = std::move(added);
+    if (added) objects_[object.id] = std::move(added);
   }
-  std::erase_if(objects_, [&names](const auto& entry) { return !names.count(entry.first); });
+  std::erase_if(objects_, [&present](const auto& entry) { return !present.count(entry.first); });
   widgetInstance_ = scene.widgets.instance();  // every object is synced to it
 
   // 2. Run the pipelines; progress counts the points every one of them embeds.
@@ -312,16 +314,36 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats_ = stats;
+  totals_.reembeddedStages += std::uint64_t(stats.reembeddedStages);
+  totals_.latticesBuilt += std::uint64_t(stats.latticesBuilt);
   if (progress_ && !progress_(1.0)) throw ffd::Cancelled("scene deformer: cancelled at the end (all work kept)");
 }
 
-SceneDeformer::ObjectPipeline& SceneDeformer::pipelineOf(const std::string& object) const {
+SceneDeformer::ObjectPipeline& SceneDeformer::pipelineOf(ObjectId object) const {
   auto it = objects_.find(object);
-  if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
+  if (it == objects_.end()) throw std::invalid_argument("SceneDeformer: unknown object " + toString(object));
   return *it->second;
 }
 
-const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const {
+ObjectId SceneDeformer::idOf(const std::string& object) const {
+  auto it = labels_.find(object);
+  if (it == labels_.end()) throw std::invalid_argument("SceneDeformer: unknown object '" + object + "'");
+  return it->second;
+}
+
+const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const { return points(idOf(object)); }
+Eigen::MatrixX3d SceneDeformer::takePoints(const std::string& object) { return takePoints(idOf(object)); }
+Eigen::Index SceneDeformer::pointCount(const std::string& object) const { return pointCount(idOf(object)); }
+std::uint64_t SceneDeformer::revision(const std::string& object) const { return revision(idOf(object)); }
+std::optional<GestureMotion> SceneDeformer::gestureMotion(const std::string& object) const {
+  auto it = labels_.find(object);
+  return it != labels_.end() ? gestureMotion(it->second) : std::nullopt;
+}
+Eigen::VectorXd SceneDeformer::controlWeights(const std::string& object, Eigen::Index controlPoint) const {
+  return controlWeights(idOf(object), controlPoint);
+}
+
+const Eigen::MatrixX3d& SceneDeformer::points(ObjectId object) const {
   ObjectPipeline& p = pipelineOf(object);
   if (p.deferred) {
     // The deferred gesture steps, as one delta step from the last evaluated control points (a
@@ -332,20 +354,20 @@ const Eigen::MatrixX3d& SceneDeformer::points(const std::string& object) const {
   return p.pipeline->points();
 }
 
-Eigen::MatrixX3d SceneDeformer::takePoints(const std::string& object) {
+Eigen::MatrixX3d SceneDeformer::takePoints(ObjectId object) {
   (void)points(object);  // applies the deferred gesture steps (and throws for an unknown object)
   return objects_.extract(object).mapped()->pipeline->takePoints();
 }
 
-Eigen::Index SceneDeformer::pointCount(const std::string& object) const {
+Eigen::Index SceneDeformer::pointCount(ObjectId object) const {
   return pipelineOf(object).pipeline->inputPoints().rows();
 }
 
-std::uint64_t SceneDeformer::revision(const std::string& object) const {
+std::uint64_t SceneDeformer::revision(ObjectId object) const {
   return pipelineOf(object).revision;
 }
 
-std::optional<GestureMotion> SceneDeformer::gestureMotion(const std::string& object) const {
+std::optional<GestureMotion> SceneDeformer::gestureMotion(ObjectId object) const {
   auto it = objects_.find(object);
   if (it == objects_.end()) return std::nullopt;
   const ObjectPipeline& p = *it->second;
@@ -368,12 +390,12 @@ std::optional<GestureMotion> SceneDeformer::gestureMotion(const std::string& obj
   return motion;
 }
 
-Eigen::VectorXd SceneDeformer::controlWeights(const std::string& object, Eigen::Index controlPoint) const {
+Eigen::VectorXd SceneDeformer::controlWeights(ObjectId object, Eigen::Index controlPoint) const {
   const ObjectPipeline& p = pipelineOf(object);
-  if (p.stages.empty()) throw std::invalid_argument("SceneDeformer: object '" + object + "' has no lattice");
+  if (p.stages.empty()) throw std::invalid_argument("SceneDeformer: object " + toString(object) + " has no lattice");
   const ffd::LatticeId last = p.pipeline->order().back();
   const ffd::Embedding* embedding = p.pipeline->embedding(last);
-  if (!embedding) throw std::invalid_argument("SceneDeformer: object '" + object + "' is not embedded yet");
+  if (!embedding) throw std::invalid_argument("SceneDeformer: object " + toString(object) + " is not embedded yet");
   return ffd::controlPointWeights(p.pipeline->lattice(last), *embedding, controlPoint);
 }
 
@@ -381,7 +403,7 @@ std::map<std::string, Eigen::MatrixX3d> deformScene(const Scene& scene) {
   SceneDeformer deformer;
   deformer.finishGesture(scene);  // the exact result in one pass
   std::map<std::string, Eigen::MatrixX3d> result;
-  for (const auto& object : scene.objects()) result[object.name] = deformer.takePoints(object.name);
+  for (const auto& object : scene.objects()) result[object.name] = deformer.takePoints(object.id);
   return result;
 }
 

@@ -437,7 +437,14 @@ Scene readSceneJson(const Json& root, const std::string& source, const SceneRead
       }
       const Json& names = member(list[i], "objects", aat);
       if (!names.is_array() || names.empty()) (aat / "objects").fail("expected a non-empty array of object names");
-      for (std::size_t k = 0; k < names.size(); ++k) attachment.objects.push_back(text(names[k], aat / "objects" / k));
+      // The file names the objects; the scene holds their ids.
+      for (std::size_t k = 0; k < names.size(); ++k) {
+        const std::string name = text(names[k], aat / "objects" / k);
+        const SceneObject* object = scene.findObject(name);
+        if (object == nullptr)
+          (aat / "objects" / k).fail("lattice '" + lattice + "' is attached to unknown object '" + name + "'");
+        attachment.objects.push_back(object->id);
+      }
       attachments.push_back(std::move(attachment));
     }
     scene.setAttachments(std::move(attachments));
@@ -537,7 +544,9 @@ Json sceneJson(const Scene& scene) {
     if (!scene.widgets.contains(a.lattice))
       throw std::invalid_argument("scene: an attachment holds lattice " + widgets::toString(a.lattice) +
                                   ", which the widget model does not have");
-    attachments.push_back({{"lattice", scene.widgets.name(a.lattice)}, {"objects", a.objects}});
+    Json objects = Json::array();
+    for (const ObjectId object : a.objects) objects.push_back(scene.objectName(object));
+    attachments.push_back({{"lattice", scene.widgets.name(a.lattice)}, {"objects", std::move(objects)}});
   }
   root["attachments"] = std::move(attachments);
   root["camera"] = {{"position", array3(scene.camera().position)},

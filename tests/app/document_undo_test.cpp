@@ -178,7 +178,7 @@ TEST(DocumentUndo, AThousandRandomOperationsUndoneAndRedoneGiveTheSameFiles) {
         case 16:
           if (!d.scene.attachments().empty()) {
             const scenes::Attachment a = d.scene.attachments().back();
-            d.controller.detachLattice(a.lattice, a.objects.front());
+            d.controller.detachLattice(a.lattice, d.scene.objectName(a.objects.front()));
           }
           break;
       }

@@ -386,7 +386,7 @@ class InteractionControllerTest : public QObject {
     QCOMPARE(f.controller.pressObject(ray, 1e-3), std::optional<std::string>(f.sphere));
     QVERIFY(f.controller.dragging());
     const auto [object, vertex] = *f.controller.grabbedPoint();
-    QCOMPARE(object, f.sphere);
+    QVERIFY(object == f.scene.objectId(f.sphere));
     const Eigen::Vector3d grab = before.row(vertex).transpose();
     QVERIFY(grab.x() > 0.2);  // on the side facing the ray
     // The pointer moves by (0, 0.1, 0.05) in the drag plane (normal: the ray, -x).
@@ -431,16 +431,17 @@ class InteractionControllerTest : public QObject {
     before.col(2).maxCoeff(&top);
     before.col(2).minCoeff(&bottom);
     const std::size_t position = f.commands.position();
-    f.controller.togglePin({f.sphere, top});
-    f.controller.togglePin({f.sphere, bottom});
-    f.controller.togglePin({f.sphere, 7});
-    f.controller.togglePin({f.sphere, 7});  // a second toggle unpins
+    f.controller.togglePin({f.scene.objectId(f.sphere), top});
+    f.controller.togglePin({f.scene.objectId(f.sphere), bottom});
+    const scenes::ObjectId sphere = f.scene.objectId(f.sphere);
+    f.controller.togglePin({sphere, 7});
+    f.controller.togglePin({sphere, 7});  // a second toggle unpins
     QCOMPARE(f.controller.pins().size(), std::size_t{2});
     QCOMPARE(f.commands.position(), position);
     QCOMPARE(f.controller.highlights().pins.size(), std::size_t{2});
     QVERIFY((f.controller.highlights().pins[0] - before.row(top).transpose()).norm() == 0.0);
-    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, f.controller.togglePin({f.sphere, before.rows()}));
-    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, f.controller.togglePin({"nobody", 0}));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, f.controller.togglePin({sphere, before.rows()}));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, f.controller.togglePin({scenes::ObjectId{999}, 0}));
 
     const widgets::Ray ray{Eigen::Vector3d(5.0, 0.1, 0.2), Eigen::Vector3d(-1.0, 0.0, 0.0)};
     const Eigen::Vector3d offset(0.0, 0.1, 0.05);
@@ -473,7 +474,7 @@ class InteractionControllerTest : public QObject {
     f.controller.release();
     QVERIFY((f.deformer.points(f.sphere).row(top) - start.row(top)).norm() > 1e-4);
     // Pins go with their object.
-    f.controller.togglePin({f.sphere, top});
+    f.controller.togglePin({f.scene.objectId(f.sphere), top});
     f.controller.removeObjects({f.sphere});
     QVERIFY(f.controller.pins().empty());
   }

@@ -286,7 +286,7 @@ class LifecycleGuiTest : public QObject {
     key(w, Qt::Key_Z, Qt::ControlModifier);
     QCOMPARE(w.scene().objects().size(), std::size_t(1));
     QCOMPARE(w.scene().attachments().size(), std::size_t(1));
-    QCOMPARE(w.scene().attachments().front().objects, std::vector<std::string>{"sphere"});
+    QVERIFY(w.scene().attachments().front().objects == std::vector<scenes::ObjectId>{w.scene().objectId("sphere")});
     // Deformed again, as before.
     QVERIFY((w.deformer().points("sphere") - scenes::deformScene(before).at("sphere")).cwiseAbs().maxCoeff() < 1e-12);
   }
@@ -323,7 +323,7 @@ class LifecycleGuiTest : public QObject {
       QCOMPARE(answers.answered(), 1);
     }
     QVERIFY(w.scene().findObject("ring") != nullptr);
-    QCOMPARE(w.scene().attachments().front().objects, std::vector<std::string>{"ring"});
+    QVERIFY(w.scene().attachments().front().objects == std::vector<scenes::ObjectId>{w.scene().objectId("ring")});
     // The binding holds: dragging the renamed widget moves its partner; the torus deforms.
     const Eigen::MatrixX3d torus = w.deformer().points("ring");
     const double backBefore = w.scene().widgets.variation(back), frontBefore = w.scene().widgets.variation(front);
@@ -336,7 +336,7 @@ class LifecycleGuiTest : public QObject {
     key(w, Qt::Key_Z, Qt::ControlModifier);
     key(w, Qt::Key_Z, Qt::ControlModifier);
     QVERIFY(w.scene().findObject("torus") != nullptr);
-    QCOMPARE(w.scene().attachments().front().objects, std::vector<std::string>{"torus"});
+    QVERIFY(w.scene().attachments().front().objects == std::vector<scenes::ObjectId>{w.scene().objectId("torus")});
     // A name in use is refused with the model's message; nothing changes.
     const std::size_t steps = w.commands().position();
     clickRow(w, "front");
@@ -370,7 +370,7 @@ class LifecycleGuiTest : public QObject {
     QCOMPARE(answers.answered(), 1);
     QCOMPARE(w.scene().attachments().size(), std::size_t(1));
     QCOMPARE(w.scene().widgets.name(w.scene().attachments().front().lattice), std::string("parent"));
-    QCOMPARE(w.scene().attachments().front().objects, std::vector<std::string>{"sphere"});
+    QVERIFY(w.scene().attachments().front().objects == std::vector<scenes::ObjectId>{w.scene().objectId("sphere")});
     // The parent's frame is the sphere's bounding box grown by 5 % of its diagonal per side.
     const Eigen::MatrixX3d& p = w.scene().findObject("sphere")->mesh.points;
     const Eigen::Vector3d lo = p.colwise().minCoeff(), hi = p.colwise().maxCoeff();

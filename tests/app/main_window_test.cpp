@@ -642,7 +642,7 @@ class MainWindowTest : public QObject {
     QCOMPARE(w.scene().widgets.counts(w.scene().widgets.find("dropped")), Eigen::Vector3i(2, 3, 4));
     // The widget file's lattice went onto the only object.
     QCOMPARE(w.scene().attachments().size(), std::size_t(1));
-    QCOMPARE(w.scene().attachments().front().objects, std::vector<std::string>{"triangle"});
+    QVERIFY(w.scene().attachments().front().objects == std::vector<scenes::ObjectId>{w.scene().objectId("triangle")});
     {
       // A scene replaces the modified document: asked first (Discard).
       ffdkit::app::testing::ModalAnswers discard({[](QWidget* modal) {

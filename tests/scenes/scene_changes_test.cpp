@@ -30,8 +30,8 @@ TEST(SceneChanges, EachEditReportsWhatItChanged) {
   scene.addObject(sphere("a"));
   SceneChanges c = changesSince(scene, mark);
   EXPECT_TRUE(c.structure);
-  EXPECT_EQ(c.meshes, std::vector<std::string>{"a"});
-  EXPECT_EQ(c.looks, std::vector<std::string>{"a"});
+  EXPECT_EQ(c.meshes, std::vector<ObjectId>{scene.objectId("a")});
+  EXPECT_EQ(c.looks, std::vector<ObjectId>{scene.objectId("a")});
   EXPECT_FALSE(c.camera);
   EXPECT_TRUE(c.widgets.empty());
   scene.addObject(sphere("b"));
@@ -41,7 +41,7 @@ TEST(SceneChanges, EachEditReportsWhatItChanged) {
   look.color = {0.1, 0.2, 0.3};
   scene.setObjectDisplay("b", look);
   c = changesSince(scene, mark);
-  EXPECT_EQ(c.looks, std::vector<std::string>{"b"});
+  EXPECT_EQ(c.looks, std::vector<ObjectId>{scene.objectId("b")});
   EXPECT_TRUE(c.meshes.empty());
   EXPECT_FALSE(c.structure);
   EXPECT_FALSE(c.camera);
@@ -57,7 +57,7 @@ TEST(SceneChanges, EachEditReportsWhatItChanged) {
   mark = markOf(scene);
   scene.setObjectMesh("a", sphere("a", 8).mesh);
   c = changesSince(scene, mark);
-  EXPECT_EQ(c.meshes, std::vector<std::string>{"a"});
+  EXPECT_EQ(c.meshes, std::vector<ObjectId>{scene.objectId("a")});
   EXPECT_TRUE(c.looks.empty() && !c.structure && !c.camera);
 
   mark = markOf(scene);
@@ -141,8 +141,10 @@ TEST(SceneRevisions, EachEditBumpsExactlyTheRevisionsItShould) {
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setAttachments({}); }), Stamps{"structure"});
   EXPECT_TRUE(scene.latticesDeforming("a").empty());
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setAttachments(attached); }), Stamps{"structure"});
+  const ObjectId a = scene.objectId("a");
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.renameObject("a", "c"); }), Stamps{"structure"});
-  EXPECT_EQ(scene.attachments().front().objects, std::vector<std::string>{"c"});  // the link follows
+  EXPECT_EQ(scene.objectId("c"), a);  // a rename keeps the id
+  EXPECT_EQ(scene.attachments().front().objects, std::vector<ObjectId>{a});  // the link holds the id
 
   Keyframe key;
   key.frame = scene.widgets.latticeFrame(lattice);

@@ -257,7 +257,7 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
       std::vector<scenes::Attachment> attachments;
       for (auto root : scene.widgets.roots()) {
         scenes::Attachment attachment{root, {}};
-        for (const auto& object : scene.objects()) attachment.objects.push_back(object.name);
+        for (const auto& object : scene.objects()) attachment.objects.push_back(object.id);
         attachments.push_back(std::move(attachment));
       }
       scene.setAttachments(std::move(attachments));

@@ -77,7 +77,7 @@ void infoScene(const fs::path& path, const ReadSettings& read) {
   printWidgets(scene.widgets);
   for (const auto& a : scene.attachments()) {
     std::string objects;
-    for (const auto& o : a.objects) objects += (objects.empty() ? "" : ", ") + o;
+    for (const auto o : a.objects) objects += (objects.empty() ? "" : ", ") + scene.objectName(o);
     std::printf("attachment: %s deforms %s\n", scene.widgets.name(a.lattice).c_str(), objects.c_str());
   }
   scenes::SceneDeformer deformer;

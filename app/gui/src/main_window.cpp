@@ -123,6 +123,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     s.view->requestRender();
   };
   d.controller->onStructureChanged = [this, refreshPanel] {
+    // A removed object leaves the selection, as its row leaves the outliner's (an undo that
+    // brings it back does not select it again).
+    std::erase_if(impl_->selectedObjects, [this](scenes::ObjectId id) { return impl_->scene.findObject(id) == nullptr; });
     impl_->outliner->sync(impl_->scene);
     refreshPanel();
   };

@@ -194,8 +194,9 @@ bool MainWindow::offerRecovery() {
 
 void MainWindow::deleteSelectedObjects() {
   Impl& d = *impl_;
-  if (d.selectedObjects.empty()) throw std::invalid_argument("select an object to delete (in the outliner)");
-  d.controller->removeObjects(d.selectedObjects);
+  const std::vector<std::string> selected = d.selectedObjectNames();
+  if (selected.empty()) throw std::invalid_argument("select an object to delete (in the outliner)");
+  d.controller->removeObjects(selected);
   d.selectedObjects.clear();
   d.outliner->select(d.entries());
   d.properties->showSelection(d.entries());
@@ -204,10 +205,11 @@ void MainWindow::deleteSelectedObjects() {
 void MainWindow::renameSelection() {
   Impl& d = *impl_;
   const auto widgets = d.controller->selection();
-  const bool object = d.selectedObjects.size() == 1 && widgets.empty();
+  const std::vector<std::string> selected = d.selectedObjectNames();
+  const bool object = selected.size() == 1 && widgets.empty();
   if (!object && widgets.size() != 1)
     throw std::invalid_argument("select one object, lattice or widget to rename");
-  const std::string old = object ? d.selectedObjects.front() : d.scene.widgets.name(widgets.front());
+  const std::string old = object ? selected.front() : d.scene.widgets.name(widgets.front());
   QInputDialog dialog(this);
   dialog.setObjectName("renameDialog");
   dialog.setWindowTitle(tr("Rename"));
@@ -216,8 +218,7 @@ void MainWindow::renameSelection() {
   if (dialog.exec() != QDialog::Accepted) return;
   const std::string name = dialog.textValue().trimmed().toStdString();
   if (object) {
-    d.controller->renameObject(old, name);
-    d.selectedObjects = {name};
+    d.controller->renameObject(old, name);  // the selection holds the object's id: it stays
   } else {
     d.controller->renameWidget(widgets.front(), name);
   }
@@ -230,8 +231,8 @@ void MainWindow::openWidgetFile(const std::filesystem::path& path) {
   widgets::WidgetModel model = scenes::readWidgetFile(path, widgetReadOptions());
   // Its lattices go onto the selected object (or the only one), fitted as Attach fits them.
   std::optional<std::string> target;
-  if (!d.selectedObjects.empty()) {
-    target = d.selectedObjects.front();
+  if (const std::vector<std::string> selected = d.selectedObjectNames(); !selected.empty()) {
+    target = selected.front();
   } else if (d.scene.objects().size() == 1) {
     target = d.scene.objects().front().name;
   }
@@ -268,7 +269,8 @@ void MainWindow::importMesh(const std::filesystem::path& path) {
 void MainWindow::exportMesh(const std::filesystem::path& path) {
   const auto& objects = impl_->scene.objects();
   if (objects.empty()) throw std::invalid_argument("the scene has no object to export");
-  const std::string name = impl_->selectedObjects.empty() ? objects.front().name : impl_->selectedObjects.front();
+  const std::vector<std::string> selected = impl_->selectedObjectNames();
+  const std::string name = selected.empty() ? objects.front().name : selected.front();
   scenes::MeshData mesh = impl_->scene.findObject(name)->mesh;
   mesh.points = impl_->deformer.points(name);
   scenes::writeMesh(path, mesh);

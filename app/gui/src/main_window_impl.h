@@ -79,7 +79,14 @@ struct MainWindow::Impl {
   QAction* zebra = nullptr;
   QAction* comb = nullptr;
   std::filesystem::path scenePath;
-  std::vector<std::string> selectedObjects;
+  std::vector<scenes::ObjectId> selectedObjects;  ///< by id: a rename keeps the selection
+  /// The names of the selected objects that exist, in selection order.
+  std::vector<std::string> selectedObjectNames() const {
+    std::vector<std::string> names;
+    for (const scenes::ObjectId id : selectedObjects)
+      if (const scenes::SceneObject* object = scene.findObject(id)) names.push_back(object->name);
+    return names;
+  }
   std::optional<widgets::BindingId> selectedBinding;
   // Pointer state of the 3D view.
   QPoint pressAt;
@@ -111,7 +118,7 @@ struct MainWindow::Impl {
 
   // The objects the View menu's looks apply to: the selected ones, else all.
   std::vector<std::string> lookTargets() const {
-    if (!selectedObjects.empty()) return selectedObjects;
+    if (std::vector<std::string> selected = selectedObjectNames(); !selected.empty()) return selected;
     std::vector<std::string> names;
     for (const auto& o : scene.objects()) names.push_back(o.name);
     return names;
@@ -159,7 +166,8 @@ struct MainWindow::Impl {
 
   std::vector<OutlinerEntry> entries() const {
     std::vector<OutlinerEntry> out;
-    for (const auto& o : selectedObjects) out.push_back({OutlinerEntry::Kind::Object, o, {}, {}});
+    for (const scenes::ObjectId o : selectedObjects)
+      if (scene.findObject(o) != nullptr) out.push_back({OutlinerEntry::Kind::Object, o, {}, {}});
     for (widgets::WidgetId w : controller->selection()) out.push_back({OutlinerEntry::Kind::Widget, {}, w, {}});
     if (selectedBinding) out.push_back({OutlinerEntry::Kind::Binding, {}, {}, *selectedBinding});
     return out;

@@ -141,7 +141,7 @@ void MainWindow::createEditMenu() {
   edit->addSeparator();
   addMenuAction(edit, tr("&Delete Widget"), "actionRemove", [this] {
     const auto sel = impl_->controller->selection();
-    if (!impl_->selectedObjects.empty() && sel.empty() && !impl_->selectedBinding) {
+    if (!impl_->selectedObjectNames().empty() && sel.empty() && !impl_->selectedBinding) {
       deleteSelectedObjects();  // the Delete key deletes whatever is selected
     } else if (impl_->selectedBinding) {
       impl_->controller->unbind(*impl_->selectedBinding);
@@ -197,7 +197,7 @@ QMenu* MainWindow::createWidgetsMenu() {
     throw std::invalid_argument("select a lattice");
   };
   auto selectedObject = [this]() -> std::string {
-    if (!impl_->selectedObjects.empty()) return impl_->selectedObjects.front();
+    if (const std::vector<std::string> selected = impl_->selectedObjectNames(); !selected.empty()) return selected.front();
     if (impl_->scene.objects().size() == 1) return impl_->scene.objects().front().name;
     throw std::invalid_argument("select an object in the outliner");
   };
@@ -297,7 +297,7 @@ void MainWindow::addPrimitiveInteractively() {
   if (axis->currentIndex() == 1) options.placement = Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitY());
   if (axis->currentIndex() == 2) options.placement = Eigen::AngleAxisd(-std::numbers::pi / 2, Eigen::Vector3d::UnitX());
   const std::string name = impl_->controller->addPrimitive(options);
-  impl_->selectedObjects = {name};
+  impl_->selectedObjects = {impl_->scene.objectId(name)};
   impl_->outliner->select(impl_->entries());
 }
 
@@ -310,7 +310,7 @@ QMenu* MainWindow::createViewMenu(QDockWidget* outlinerDock, QDockWidget* proper
   });
   d.navigation = new ViewNavigation(
       d.view, *d.sceneView,
-      [this] { return selectionBounds(impl_->scene, impl_->deformer, impl_->controller->selection(), impl_->selectedObjects); },
+      [this] { return selectionBounds(impl_->scene, impl_->deformer, impl_->controller->selection(), impl_->selectedObjectNames()); },
       [this] { return sceneBounds(impl_->scene, impl_->deformer); }, this);
   d.navigation->addActions(viewMenu);
   viewMenu->addSeparator();

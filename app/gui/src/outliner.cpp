@@ -21,7 +21,7 @@ OutlinerEntry entryOf(const QTreeWidgetItem* item) {
   if (!kind.isValid()) return e;
   e.kind = static_cast<OutlinerEntry::Kind>(kind.toInt());
   switch (e.kind) {
-    case OutlinerEntry::Kind::Object: e.object = item->data(0, kIdRole).toString().toStdString(); break;
+    case OutlinerEntry::Kind::Object: e.object.value = item->data(0, kIdRole).toUInt(); break;
     case OutlinerEntry::Kind::Widget: e.widget.value = item->data(0, kIdRole).toUInt(); break;
     case OutlinerEntry::Kind::Binding: e.binding.value = item->data(0, kIdRole).toUInt(); break;
   }
@@ -101,8 +101,8 @@ void Outliner::rebuild(const scenes::Scene& scene) {
   };
   auto* objects = new QTreeWidgetItem(this, {tr("Objects")});
   for (const auto& object : scene.objects()) {
-    auto* item = makeItem(objects, qs(object.name), tr("object"), OutlinerEntry::Kind::Object, qs(object.name));
-    for (widgets::WidgetId lattice : scene.latticesDeforming(object.name))
+    auto* item = makeItem(objects, qs(object.name), tr("object"), OutlinerEntry::Kind::Object, object.id.value);
+    for (widgets::WidgetId lattice : scene.latticesDeforming(object.id))
       (new QTreeWidgetItem(item, {qs(m.name(lattice)), tr("deformed by")}))->setData(0, kDeformedByRole, lattice.value);
   }
   auto* tree = new QTreeWidgetItem(this, {tr("Widgets")});

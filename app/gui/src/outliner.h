@@ -14,7 +14,7 @@ namespace ffdkit::app {
 /// One row of the outliner: an object, a widget (lattice, cell, affine) or a binding.
 struct OutlinerEntry {
   enum class Kind { Object, Widget, Binding } kind = Kind::Object;
-  std::string object;
+  scenes::ObjectId object;  ///< the object's id (a rename keeps the row and its selection)
   widgets::WidgetId widget;
   widgets::BindingId binding;
 };

@@ -53,7 +53,7 @@ std::string PropertyPanel::layoutOf(const std::vector<OutlinerEntry>& selection)
     case OutlinerEntry::Kind::Object: {
       const scenes::SceneObject* object = scene_.findObject(e.object);
       if (object == nullptr) return key + "gone";
-      return key + "object " + e.object + (object->mesh.triangles.rows() > 0 ? " surface" : "") +
+      return key + "object " + object->name + (object->mesh.triangles.rows() > 0 ? " surface" : "") +
              (object->mesh.segments.rows() > 0 ? " curve" : "");
     }
     case OutlinerEntry::Kind::Binding: {
@@ -107,7 +107,9 @@ void PropertyPanel::showSelection(const std::vector<OutlinerEntry>& selection) {
   const OutlinerEntry& e = selection.front();
   const auto& m = scene_.widgets;
   switch (e.kind) {
-    case OutlinerEntry::Kind::Object: showObject(e.object); break;
+    case OutlinerEntry::Kind::Object:
+      if (const scenes::SceneObject* object = scene_.findObject(e.object)) showObject(object->name);
+      break;
     case OutlinerEntry::Kind::Binding:
       if (e.binding.valid()) showBinding(e.binding);
       break;

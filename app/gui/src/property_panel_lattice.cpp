@@ -138,7 +138,7 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
     QStringList objects;
     for (const auto& a : scene_.attachments())
       if (a.lattice == root)
-        for (const auto& o : a.objects) objects << qs(o);
+        for (const auto o : a.objects) objects << qs(scene_.objectName(o));
     QString deforms = objects.isEmpty() ? tr("(nothing)") : objects.join(", ");
     if (root != id && !objects.isEmpty()) deforms += tr(" (through %1)").arg(qs(model.name(root)));
     return deforms;

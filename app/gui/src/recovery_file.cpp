@@ -33,6 +33,7 @@ scenes::Scene fileContent(const scenes::Scene& scene, const scenes::Camera& came
   out.setBackground(scene.background());
   for (const scenes::SceneObject& object : scene.objects()) {
     scenes::SceneObject copy;
+    copy.id = object.id;  // the attachments hold ids
     copy.name = object.name;
     copy.source = object.source;
     copy.display = object.display;

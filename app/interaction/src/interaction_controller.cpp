@@ -155,7 +155,7 @@ void InteractionController::release() {
   if (!dragging_) return;
   dragging_ = false;
   if (objectGrab_) {
-    const std::string description = "Drag point " + std::to_string(objectGrab_->vertex) + " of " + objectGrab_->object;
+    const std::string description = "Drag point " + std::to_string(objectGrab_->vertex) + " of " + scene_.objectName(objectGrab_->object);
     objectGrab_.reset();
     deformer_.finishGesture(scene_);
     pushState(description, dragStart_);

@@ -66,7 +66,7 @@ auto InteractionController::edit(const std::string& description, Change change, 
     auto apply = [this, delta, held, added, objectsBefore, animated, madeAt, carried](bool forward) {
       scenes::restoreAtEditValues(scene_, forward ? animated->before : animated->after, animationAppliedSince(madeAt), [&] {
         if (!forward) {
-          for (std::size_t i = 0; i < added; ++i) held->push_back(scene_.takeObject(scene_.objects()[objectsBefore].name));
+          for (std::size_t i = 0; i < added; ++i) held->push_back(scene_.takeObject(scene_.objects()[objectsBefore].id));
         }
         scenes::applySceneDelta(scene_, *delta, forward);
         if (forward && added > 0) {
@@ -98,7 +98,7 @@ auto InteractionController::edit(const std::string& description, Change change, 
   } catch (...) {
     // A failed edit leaves no trace.
     scenes::applySceneDelta(scene_, deltaFromBefore(), /*forward=*/false);
-    while (scene_.objects().size() > objectsBefore) scene_.removeObject(scene_.objects().back().name);
+    while (scene_.objects().size() > objectsBefore) scene_.takeObject(scene_.objects().back().id);
     pruneSelection();
     refresh();
     if (onStructureChanged) onStructureChanged();
@@ -313,7 +313,7 @@ void InteractionController::replaceWidgets(widgets::WidgetModel model, const std
   edit(attachTo ? "Open widget file on " + *attachTo : std::string("Open widget file"), [&] {
     // Another model has its own ids: an attachment goes over to the new root of its lattice's
     // name, or goes.
-    std::vector<std::pair<std::string, std::vector<std::string>>> named;
+    std::vector<std::pair<std::string, std::vector<scenes::ObjectId>>> named;
     for (const scenes::Attachment& a : scene_.attachments()) named.emplace_back(scene_.widgets.name(a.lattice), a.objects);
     scene_.widgets = std::move(model);
     std::vector<scenes::Attachment> attachments;
@@ -339,13 +339,16 @@ void InteractionController::removeObjects(const std::vector<std::string>& object
   std::string description = "Delete " + objects.front();
   if (objects.size() > 1) description += " and " + std::to_string(objects.size() - 1) + " more";
   // The command holds the removed objects (with their places) while they are removed, and the
-  // attachments before (a few names); Scene::takeObject drops each from its attachments.
+  // attachments before (a few ids); Scene::takeObject drops each from its attachments. Objects
+  // are held by id (a put-back object keeps its id, so a redo removes the same ones).
   auto held = std::make_shared<std::vector<std::pair<std::size_t, scenes::SceneObject>>>();
   const auto attachmentsBefore = std::make_shared<const std::vector<scenes::Attachment>>(scene_.attachments());
-  auto remove = [this, objects, held] {
+  std::vector<scenes::ObjectId> ids;
+  for (const std::string& object : objects) ids.push_back(scene_.objectId(object));
+  auto remove = [this, ids, held] {
     for (std::size_t i = scene_.objects().size(); i-- > 0;)
-      if (std::find(objects.begin(), objects.end(), scene_.objects()[i].name) != objects.end())
-        held->emplace_back(i, scene_.takeObject(scene_.objects()[i].name));
+      if (std::find(ids.begin(), ids.end(), scene_.objects()[i].id) != ids.end())
+        held->emplace_back(i, scene_.takeObject(scene_.objects()[i].id));
   };
   auto putBack = [this, held, attachmentsBefore] {
     for (auto it = held->rbegin(); it != held->rend(); ++it)
@@ -382,14 +385,16 @@ void InteractionController::renameObject(const std::string& object, const std::s
   if (name.empty()) throw std::invalid_argument("an object needs a name");
   if (scene_.findObject(name) != nullptr) throw std::invalid_argument("object name '" + name + "' is already used");
   if (dragging_) cancel();
-  auto rename = [this](const std::string& from, const std::string& to) {
-    scene_.renameObject(from, to);
+  // By id: a name is a label, and the rename touches nothing else (no pipeline, no actor).
+  const scenes::ObjectId id = scene_.objectId(object);
+  auto rename = [this, id](const std::string& to) {
+    scene_.renameObject(id, to);
     refresh();
     if (onStructureChanged) onStructureChanged();
   };
-  rename(object, name);
-  commands_.push(scenes::Command{"Rename " + object + " to " + name, [rename, object, name] { rename(name, object); },
-                                 [rename, object, name] { rename(object, name); }, {}, 0});
+  rename(name);
+  commands_.push(scenes::Command{"Rename " + object + " to " + name, [rename, object] { rename(object); },
+                                 [rename, name] { rename(name); }, {}, 0});
 }
 
 void InteractionController::renameWidget(WidgetId id, const std::string& name) {

@@ -17,10 +17,11 @@ std::optional<std::string> InteractionController::pressObject(const widgets::Ray
   const Eigen::Vector3d dir = ray.direction.normalized();
   const std::optional<ObjectPoint> best = objectPointAt(ray, tolerance);
   if (!best) return std::nullopt;
-  const auto& [name, vertex] = *best;
-  const std::vector<WidgetId> stages = scene_.stagesDeforming(name);
+  const auto& [id, vertex] = *best;
+  const std::string& name = scene_.objectName(id);
+  const std::vector<WidgetId> stages = scene_.stagesDeforming(id);
   if (stages.empty()) throw std::invalid_argument("'" + name + "' is not deformed by a lattice: attach one to drag its points");
-  const Eigen::Vector3d own = scene_.findObject(name)->mesh.points.row(vertex).transpose();
+  const Eigen::Vector3d own = scene_.findObject(id)->mesh.points.row(vertex).transpose();
   // From the last stage back: the first lattice whose input holds the point moves it; a later
   // one that does not hold it must leave it alone (identity outside policy).
   for (std::size_t k = stages.size(); k-- > 0;) {
@@ -29,12 +30,12 @@ std::optional<std::string> InteractionController::pressObject(const widgets::Ray
     const ffd::Embedding e = ffd::embed(lattice, input.transpose());
     if (e.status(0) == ffd::PointStatus::Inside) {
       ObjectGrab g;
-      g.object = name;
+      g.object = id;
       g.vertex = vertex;
       g.lattice = stages[k];
       g.weights = pinnedDragWeights(scene_, stages[k], e.parameters().row(0), *best, pins_, carryPins);
       g.worldToLocal = lattice.frame().linear().inverse();
-      g.grab = deformer_.points(name).row(vertex).transpose();
+      g.grab = deformer_.points(id).row(vertex).transpose();
       g.normal = dir;
       g.controlStart = scene_.widgets.controlPoints(stages[k]);
       objectGrab_ = std::move(g);
@@ -56,7 +57,7 @@ std::optional<std::string> InteractionController::pressObject(const widgets::Ray
 void InteractionController::togglePin(const ObjectPoint& point) {
   const scenes::SceneObject* object = scene_.findObject(point.object);
   if (object == nullptr || point.vertex < 0 || point.vertex >= object->mesh.points.rows())
-    throw std::invalid_argument("no point " + std::to_string(point.vertex) + " of '" + point.object + "' to pin");
+    throw std::invalid_argument("no point " + std::to_string(point.vertex) + " of object " + scenes::toString(point.object) + " to pin");
   if (std::erase(pins_, point) == 0) pins_.push_back(point);
   notify();
 }

@@ -16,7 +16,7 @@ std::optional<ObjectPoint> pickObjectPoint(const scenes::Scene& scene, const sce
   double bestT = std::numeric_limits<double>::infinity();
   for (const scenes::SceneObject& object : scene.objects()) {
     if (!object.display.visible) continue;
-    const Eigen::MatrixX3d& points = deformed.points(object.name);
+    const Eigen::MatrixX3d& points = deformed.points(object.id);
     const Eigen::MatrixX3i& triangles = object.mesh.triangles;
     if (triangles.rows() > 0) {
       for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
@@ -30,7 +30,7 @@ std::optional<ObjectPoint> pickObjectPoint(const scenes::Scene& scene, const sce
         for (int k = 1; k < 3; ++k)
           if ((points.row(triangles(t, k)).transpose() - p).norm() < (points.row(triangles(t, corner)).transpose() - p).norm())
             corner = k;
-        best = ObjectPoint{object.name, static_cast<Eigen::Index>(triangles(t, corner))};
+        best = ObjectPoint{object.id, static_cast<Eigen::Index>(triangles(t, corner))};
       }
     } else {
       for (Eigen::Index i = 0; i < points.rows(); ++i) {
@@ -38,7 +38,7 @@ std::optional<ObjectPoint> pickObjectPoint(const scenes::Scene& scene, const sce
         const double t = v.dot(dir);
         if (t < 0.0 || t >= bestT || (v - t * dir).norm() > tolerance) continue;
         bestT = t;
-        best = ObjectPoint{object.name, i};
+        best = ObjectPoint{object.id, i};
       }
     }
   }

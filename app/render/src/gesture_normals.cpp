@@ -26,7 +26,7 @@ void GestureNormals::clear() {
   beta_.resize(0);
 }
 
-bool GestureNormals::follow(const scenes::SceneDeformer& deformer, const std::string& object, vtkPoints* points,
+bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::ObjectId object, vtkPoints* points,
                             vtkFloatArray* normals) {
   const Eigen::Index n = sums_.rows();
   if (!active_ || points->GetDataType() != VTK_DOUBLE || points->GetNumberOfPoints() != n ||
@@ -81,7 +81,7 @@ bool GestureNormals::follow(const scenes::SceneDeformer& deformer, const std::st
   return true;
 }
 
-void GestureNormals::update(const scenes::SceneDeformer& deformer, const std::string& object,
+void GestureNormals::update(const scenes::SceneDeformer& deformer, scenes::ObjectId object,
                             const Eigen::MatrixX3i& triangles, const VertexFaces& vf, const Eigen::MatrixX3d& points,
                             std::vector<Eigen::Vector3f>& faceScratch, vtkFloatArray* normals) {
   const Eigen::Index n = points.rows();

@@ -48,14 +48,14 @@ class GestureNormals {
   /// both cores, without reading the deformer's points (SceneDeformer::points applies deferred
   /// gesture steps: the view does not ask for them). Returns false, touching nothing, when the
   /// object's motion is not that one (then call update() with the deformer's points).
-  bool follow(const scenes::SceneDeformer& deformer, const std::string& object, vtkPoints* points,
+  bool follow(const scenes::SceneDeformer& deformer, scenes::ObjectId object, vtkPoints* points,
               vtkFloatArray* normals);
 
   /// Writes the area-weighted vertex normals of `points` (the deformer's present points of
   /// `object`, whose triangles are `triangles`) into `normals`, computed from the triangles
   /// (updateNormals' bits), keeping what follow() needs when the object's motion is one control
   /// point's (its weights beta_v, W_v and N_v(t0)).
-  void update(const scenes::SceneDeformer& deformer, const std::string& object, const Eigen::MatrixX3i& triangles,
+  void update(const scenes::SceneDeformer& deformer, scenes::ObjectId object, const Eigen::MatrixX3i& triangles,
               const scene_view_shapes::VertexFaces& vf, const Eigen::MatrixX3d& points,
               std::vector<Eigen::Vector3f>& faceScratch, vtkFloatArray* normals);
 

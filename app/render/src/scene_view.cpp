@@ -52,7 +52,8 @@ bool contains(const std::vector<WidgetId>& ids, WidgetId id) { return std::find(
 
 struct SceneView::Impl {
   struct ObjectActor {
-    std::string name;
+    scenes::ObjectId id;                      ///< the object drawn (a rename keeps the actor)
+    std::string name;                         ///< its name at the last refresh (objectNormals)
     Eigen::Index pointCount = 0;
     std::uint64_t pointsRevision = 0;         ///< SceneDeformer::revision of the points drawn
     scenes::DisplaySettings display;          ///< as drawn; a change rebuilds the actor
@@ -68,6 +69,7 @@ struct SceneView::Impl {
   };
   vtkRenderer* renderer = nullptr;
   std::vector<ObjectActor> objects;
+  std::uint64_t namesSeen = 0;  // Scene::structureRevision when the actors' names were last set
   // Widget actors are built for a new model instance, and for the widgets a change concerns when
   // the model's revision moved (widgets::widgetsToRedraw); a change of the highlights only
   // recolours them, shows or hides the selected lattices' faces and moves the point marker:
@@ -205,10 +207,11 @@ struct SceneView::Impl {
     for (const auto& object : scene.objects()) {
       if (!object.display.visible) continue;
       ObjectActor entry;
+      entry.id = object.id;
       entry.name = object.name;
-      const Eigen::MatrixX3d& points = deformed.points(object.name);
+      const Eigen::MatrixX3d& points = deformed.points(object.id);
       entry.pointCount = points.rows();
-      entry.pointsRevision = deformed.revision(object.name);
+      entry.pointsRevision = deformed.revision(object.id);
       entry.restLo = object.mesh.points.rows() > 0 ? Eigen::Vector3d(object.mesh.points.colwise().minCoeff().transpose())
                                                    : Eigen::Vector3d::Zero();
       entry.restHi = object.mesh.points.rows() > 0 ? Eigen::Vector3d(object.mesh.points.colwise().maxCoeff().transpose())
@@ -289,8 +292,8 @@ struct SceneView::Impl {
     std::size_t n = 0;
     for (const auto& object : scene.objects()) {
       if (!object.display.visible) continue;
-      if (n >= objects.size() || objects[n].name != object.name ||
-          objects[n].pointCount != deformed.pointCount(object.name) || !(objects[n].display == object.display))
+      if (n >= objects.size() || objects[n].id != object.id ||
+          objects[n].pointCount != deformed.pointCount(object.id) || !(objects[n].display == object.display))
         return false;
       ++n;
     }
@@ -525,34 +528,40 @@ void SceneView::show(const scenes::Scene& scene, const scenes::SceneDeformer& de
 
 void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
   if (impl_->sameObjects(scene, deformed)) {
+    if (scene.structureRevision() != impl_->namesSeen) {  // a rename: the labels only
+      auto entry = impl_->objects.begin();
+      for (const auto& object : scene.objects())
+        if (object.display.visible) (entry++)->name = object.name;
+    }
     for (auto& entry : impl_->objects) {
       // Only objects whose deformed points moved: their point array, normals and comb, in place.
-      const std::uint64_t revision = deformed.revision(entry.name);
+      const std::uint64_t revision = deformed.revision(entry.id);
       if (revision == entry.pointsRevision) continue;
       entry.pointsRevision = revision;
       auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals());
       // A later step of a one-control-point drag: points and normals follow the motion in one pass.
-      const bool followed = normals && entry.gestureNormals.follow(deformed, entry.name, entry.polyData->GetPoints(), normals);
-      if (!followed) setPoints(entry.polyData->GetPoints(), deformed.points(entry.name));
+      const bool followed = normals && entry.gestureNormals.follow(deformed, entry.id, entry.polyData->GetPoints(), normals);
+      if (!followed) setPoints(entry.polyData->GetPoints(), deformed.points(entry.id));
       ++impl_->stats.pointUpdates;
       if (normals) {
         ++impl_->stats.normalUpdates;
         if (followed)
           ++impl_->stats.followedNormals;
         else
-          entry.gestureNormals.update(deformed, entry.name, scene.findObject(entry.name)->mesh.triangles,
-                                      entry.vertexFaces, deformed.points(entry.name), entry.faceNormals, normals);
+          entry.gestureNormals.update(deformed, entry.id, scene.findObject(entry.id)->mesh.triangles,
+                                      entry.vertexFaces, deformed.points(entry.id), entry.faceNormals, normals);
         if (auto* tcoords = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetTCoords()))
           updateZebraCoordinates(tcoords, normals, entry.display.zebraDirection, entry.display.zebraStripes);
       }
       if (entry.comb)
         vtkPolyDataMapper::SafeDownCast(entry.comb->GetMapper())
-            ->SetInputData(combPolyData(entry.chains, deformed.points(entry.name), entry.combFactor));
+            ->SetInputData(combPolyData(entry.chains, deformed.points(entry.id), entry.combFactor));
       entry.polyData->Modified();
     }
   } else {
     impl_->buildObjects(scene, deformed);
   }
+  impl_->namesSeen = scene.structureRevision();
   impl_->updateWidgets(scene.widgets);
   impl_->renderer->SetBackground(scene.background().x(), scene.background().y(), scene.background().z());
   // The clipping range from our own bounds: VTK's would visit every cell of a large mesh

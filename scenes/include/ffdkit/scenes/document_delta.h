@@ -59,7 +59,7 @@ ModelPatch modelPatch(const widgets::WidgetModelData& before, const widgets::Wid
 void applyPatch(widgets::WidgetModel& model, const ModelPatch& patch, bool forward);
 
 /// A document edit's delta: its widget patch and, when they changed, the attachments before and
-/// after (a few names each). Objects added or removed are kept by the command that moved them.
+/// after (a few ids each). Objects added or removed are kept by the command that moved them.
 struct SceneDelta {
   ModelPatch widgets;  ///< the widget model's records that changed
   std::optional<std::pair<std::vector<Attachment>, std::vector<Attachment>>> attachments;  ///< attachments before and after, when they changed

@@ -12,6 +12,7 @@
 #include "ffdkit/scenes/generator.h"
 #include "ffdkit/scenes/keyframes.h"
 #include "ffdkit/scenes/mesh_io.h"
+#include "ffdkit/scenes/object_id.h"
 #include "ffdkit/scenes/primitive.h"
 #include "ffdkit/scenes/up_axis.h"
 #include "ffdkit/widgets/widget_model.h"
@@ -72,7 +73,10 @@ struct DisplaySettings {
 
 /// A deformable object: its source, its own points (built from the source on load), its look.
 struct SceneObject {
-  std::string name;  ///< unique within the scene
+  /// Given by the scene when the object is added (Scene::insertObject), kept through renames and
+  /// undo; what attachments, the deformer, the view and the outliner hold.
+  ObjectId id;
+  std::string name;  ///< unique within the scene; a label (a rename changes nothing else)
   ObjectSource source;  ///< where its own points come from
   DisplaySettings display;  ///< how it is drawn
   MeshData mesh;     ///< the object's own points; the widget trees deform copies of them
@@ -84,10 +88,11 @@ struct SceneObject {
 
 /// A root lattice widget (with its whole subtree of child lattices) deforming some objects:
 /// for each object the lattices run in pre-order (Kuriyama 1996, secs. 6.2.3, 6.3.2). The lattice is held
-/// by its id, which a rename keeps (the scene file writes its name, scene-file-format.md).
+/// by its id and the objects by theirs, which renames keep (the scene file writes their names,
+/// scene-file-format.md).
 struct Attachment {
-  widgets::WidgetId lattice;         ///< a ROOT lattice widget of the scene's model
-  std::vector<std::string> objects;  ///< names of the objects it deforms
+  widgets::WidgetId lattice;      ///< a ROOT lattice widget of the scene's model
+  std::vector<ObjectId> objects;  ///< the objects it deforms
   friend bool operator==(const Attachment&, const Attachment&) = default;  ///< equal when lattice and objects are
 };
 
@@ -128,19 +133,32 @@ class Scene {
   const std::vector<SceneObject>& objects() const { return objects_; }
   /// The object with this name, or nullptr.
   const SceneObject* findObject(const std::string& name) const;
-  /// Adds an object at the end (stamps the structure and the object's mesh and look).
-  /// @throws std::invalid_argument for an empty or duplicate name.
-  void addObject(SceneObject object);
-  /// The same at `position` (<= objects().size(); an undo puts an object back in its place).
-  void insertObject(std::size_t position, SceneObject object);
+  /// The object with this id, or nullptr.
+  const SceneObject* findObject(ObjectId id) const;
+  /// The id of the object with this name. @throws std::invalid_argument for an unknown name.
+  ObjectId objectId(const std::string& name) const;
+  /// The name of the object with this id. @throws std::invalid_argument for an unknown id.
+  const std::string& objectName(ObjectId id) const;
+  /// Adds an object at the end (stamps the structure and the object's mesh and look) and returns
+  /// its id. @throws std::invalid_argument for an empty or duplicate name.
+  ObjectId addObject(SceneObject object);
+  /// The same at `position` (<= objects().size(); an undo puts an object back in its place). The
+  /// object keeps its id when it has one no other object holds (an object taken out and put back
+  /// is the same object to the attachments and the deformer); otherwise it gets a new one.
+  ObjectId insertObject(std::size_t position, SceneObject object);
   /// Removes an object and its place in every attachment (an attachment left with no object goes).
   /// @throws std::invalid_argument for an unknown object.
   void removeObject(const std::string& name);
-  /// The same, handing the object over (an undoable removal keeps it).
+  /// The same, handing the object over with its id (an undoable removal keeps it).
   SceneObject takeObject(const std::string& objectName);
-  /// Renames an object; the attachments naming it follow (stamps the structure).
+  /// The same by id. @throws std::invalid_argument for an unknown object.
+  SceneObject takeObject(ObjectId id);
+  /// Renames an object: its name only (attachments and everything else hold its id); stamps the
+  /// structure so that the outliner and the panel show the new name.
   /// @throws std::invalid_argument for an unknown object, or an empty or used name.
   void renameObject(const std::string& fromName, const std::string& to);
+  /// The same by id.
+  void renameObject(ObjectId id, const std::string& to);
   /// Replaces an object's own points, and its source when given (which the points then come
   /// from). @throws std::invalid_argument for an unknown object.
   void setObjectMesh(const std::string& name, MeshData mesh, std::optional<ObjectSource> source = {});
@@ -158,16 +176,24 @@ class Scene {
   void setAttachments(std::vector<Attachment> attachments);
   /// `lattice` deforms `object` too: appended to the lattice's attachment, or a new attachment at
   /// the end. Stamps the structure unless it already did. Checks nothing (validateScene does).
+  void attach(widgets::WidgetId lattice, ObjectId object);
+  /// attach() of the object with this name. @throws std::invalid_argument for an unknown name.
   void attach(widgets::WidgetId lattice, const std::string& object);
   /// `lattice` stops deforming `object` (an attachment left with no object goes).
   /// @throws std::invalid_argument if it was not attached.
+  void detach(widgets::WidgetId lattice, ObjectId object);
+  /// detach() of the object with this name. @throws std::invalid_argument for an unknown name.
   void detach(widgets::WidgetId lattice, const std::string& object);
   /// Drops the attachments whose lattice the widget model no longer has (after a removal).
   void dropStaleAttachments();
   /// Root lattices deforming `object`, in attachment order.
+  std::vector<widgets::WidgetId> latticesDeforming(ObjectId object) const;
+  /// The same for the object with this name (none for an unknown name).
   std::vector<widgets::WidgetId> latticesDeforming(const std::string& object) const;
   /// Every lattice deforming `object` in the order its pipeline runs them (Kuriyama 1996, sec. 6.2.3): each attached
   /// root in attachment order followed by its subtree (WidgetModel::pipelineOrder(root)).
+  std::vector<widgets::WidgetId> stagesDeforming(ObjectId object) const;
+  /// The same for the object with this name (none for an unknown name).
   std::vector<widgets::WidgetId> stagesDeforming(const std::string& object) const;
 
   // ---- camera and background -----------------------------------------------------------------
@@ -197,8 +223,10 @@ class Scene {
   /// The next revision, which the caller stamps on what it changed.
   std::uint64_t stamp() { return ++revision_; }
   SceneObject& object(const std::string& name);
+  SceneObject& object(ObjectId id);
 
   std::vector<SceneObject> objects_;
+  std::uint32_t nextObjectId_ = 0;  // the id the next new object gets
   std::vector<Attachment> attachments_;
   Animation animation_;
   Camera camera_;
@@ -253,9 +281,8 @@ widgets::WidgetId attachNewLattice(Scene& scene, const std::vector<std::string>&
 /// @throws std::invalid_argument if it was not attached.
 void detachLattice(Scene& scene, widgets::WidgetId lattice, const std::string& object);
 
-/// Checks names and references: unique object names, attachments holding ids of existing root
-/// lattices and names of existing objects, each object deformed at
-/// most once by a given lattice.
+/// Checks names and references: unique object names and ids, attachments holding ids of existing
+/// root lattices and of existing objects, each object deformed at most once by a given lattice.
 /// @throws std::invalid_argument naming the first problem.
 void validateScene(const Scene& scene);
 

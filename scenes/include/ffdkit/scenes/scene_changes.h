@@ -23,11 +23,11 @@ struct SceneChanges {
   /// The widget model was replaced (a copy, a file): take every widget and lattice anew.
   bool widgetsReplaced = false;
   widgets::WidgetChanges widgets;   ///< within the same model (empty when replaced)
-  bool structure = false;           ///< objects added, removed or renamed; attachments changed
+  bool structure = false;           ///< objects added, removed or renamed (labels only); attachments changed
   bool camera = false;              ///< camera or background
   bool animation = false;           ///< keys, frame rate or frame range
-  std::vector<std::string> meshes;  ///< objects whose own points (or source) changed
-  std::vector<std::string> looks;   ///< objects whose DisplaySettings changed
+  std::vector<ObjectId> meshes;  ///< objects whose own points (or source) changed
+  std::vector<ObjectId> looks;   ///< objects whose DisplaySettings changed
 
   /// True when nothing changed.
   bool empty() const {

@@ -59,6 +59,10 @@ using SceneProgress = std::function<bool(double fraction)>;
 /// deformed incrementally; a new frame moves the lattice and re-embeds it (per its throttle); no
 /// lattice is rebuilt for a drag step. An object's own points are taken as unchanged while its
 /// mesh keeps its address, size and SceneObject::meshRevision (Scene::setObjectMesh stamps it).
+///
+/// Pipelines are keyed by ObjectId: a renamed object keeps its pipeline and embeddings. The
+/// accessors taking a name are for callers that speak names (tests, scripts): they mean the object
+/// that had this name at the last update.
 class SceneDeformer {
  public:
   SceneDeformer();
@@ -117,20 +121,37 @@ class SceneDeformer {
   /// step from the last evaluated control points (a consumer that follows gestureMotion(), as the
   /// view does, reads no points during a drag). Hence not thread-safe against other const calls.
   /// @throws std::invalid_argument for an object update() has not seen.
+  const Eigen::MatrixX3d& points(ObjectId object) const;
+  /// points() of the object that had this name at the last update.
   const Eigen::MatrixX3d& points(const std::string& object) const;
   /// points(object), handed over without a copy, for a caller done with the deformation (the CLI
   /// writes them, deformScene returns them). The deformer forgets the object: the next run builds
   /// its pipeline again. @throws std::invalid_argument for an object update() has not seen.
+  Eigen::MatrixX3d takePoints(ObjectId object);
+  /// takePoints() of the object that had this name at the last update.
   Eigen::MatrixX3d takePoints(const std::string& object);
   /// points(object).rows() without applying deferred gesture steps.
   /// @throws std::invalid_argument for an object update() has not seen.
+  Eigen::Index pointCount(ObjectId object) const;
+  /// pointCount() of the object that had this name at the last update.
   Eigen::Index pointCount(const std::string& object) const;
   /// Grows whenever points(object) changes (a view updates the object's arrays when it moved).
   /// @throws std::invalid_argument for an object update() has not seen.
+  std::uint64_t revision(ObjectId object) const;
+  /// revision() of the object that had this name at the last update.
   std::uint64_t revision(const std::string& object) const;
 
   /// Timing and work of the last update().
   const SceneDeformStats& lastStats() const { return stats_; }
+  /// Lattice stages embedded (SceneDeformStats::reembeddedStages) and pipeline lattices built
+  /// (latticesBuilt) over every call since the deformer was made: what an edit cost in
+  /// precomputation, summed over the calls it caused (a rename must add nothing).
+  struct Totals {
+    std::uint64_t reembeddedStages = 0;  ///< sum of SceneDeformStats::reembeddedStages
+    std::uint64_t latticesBuilt = 0;     ///< sum of SceneDeformStats::latticesBuilt
+  };
+  /// The sums since the deformer was made (not reset by reset()).
+  const Totals& totals() const { return totals_; }
 
   /// The motion of an object's points since their last evaluation that was not a delta step of
   /// its last lattice stage (updateGesture), when they moved since by such steps only: then the
@@ -138,11 +159,15 @@ class SceneDeformer {
   /// can follow it (the view's vertex normals: one cross product per vertex instead of a pass over
   /// the triangles). nullopt when the points are at their base (update(), finishGesture(), a
   /// re-embedding, a change of another stage) or the object is unknown.
+  std::optional<GestureMotion> gestureMotion(ObjectId object) const;
+  /// gestureMotion() of the object that had this name at the last update (nullopt for none).
   std::optional<GestureMotion> gestureMotion(const std::string& object) const;
   /// The weight of control point `controlPoint` of the object's last lattice stage for each of the
   /// object's points (ffd::controlPointWeights on that stage's embedding).
   /// @throws std::invalid_argument for an unknown object, one without lattices or not embedded yet;
   ///   ffd::LatticeError for a control point out of range.
+  Eigen::VectorXd controlWeights(ObjectId object, Eigen::Index controlPoint) const;
+  /// controlWeights() of the object that had this name at the last update.
   Eigen::VectorXd controlWeights(const std::string& object, Eigen::Index controlPoint) const;
 
   /// Forgets every embedding (after an object's mesh was replaced).
@@ -158,9 +183,13 @@ class SceneDeformer {
 
   struct ObjectPipeline;
   // The object's pipeline. @throws std::invalid_argument for an object update() has not seen.
-  ObjectPipeline& pipelineOf(const std::string& object) const;
-  std::map<std::string, std::unique_ptr<ObjectPipeline>> objects_;
+  ObjectPipeline& pipelineOf(ObjectId object) const;
+  // The id of the object that had this name at the last run. @throws std::invalid_argument for none.
+  ObjectId idOf(const std::string& object) const;
+  std::map<ObjectId, std::unique_ptr<ObjectPipeline>> objects_;
+  std::map<std::string, ObjectId, std::less<>> labels_;  // name -> id at the last run
   SceneDeformStats stats_;
+  Totals totals_;
   SceneProgress progress_;
   ffd::Precision precision_ = ffd::Precision::Double;
   std::uint64_t widgetInstance_ = 0;  // the widget model last synced (WidgetModel::instance)

@@ -98,7 +98,7 @@ class InteractionController {
   void togglePin(const ObjectPoint& point);
   void clearPins();
   /// During a direct-manipulation drag: the object and the index of the point being dragged.
-  std::optional<std::pair<std::string, Eigen::Index>> grabbedPoint() const {
+  std::optional<std::pair<scenes::ObjectId, Eigen::Index>> grabbedPoint() const {
     if (!objectGrab_) return std::nullopt;
     return std::make_pair(objectGrab_->object, objectGrab_->vertex);
   }
@@ -255,7 +255,7 @@ class InteractionController {
   bool handleStart_ = false;
   // Direct manipulation: the grabbed point and the lattice that moves it.
   struct ObjectGrab {
-    std::string object;
+    scenes::ObjectId object;
     Eigen::Index vertex = 0;
     widgets::WidgetId lattice;
     Eigen::Vector3d grab = Eigen::Vector3d::Zero();  ///< its deformed world position at the press

@@ -15,7 +15,7 @@ namespace ffdkit::app {
 
 /// A point (vertex) of a scene object: what direct manipulation grabs and pins.
 struct ObjectPoint {
-  std::string object;
+  scenes::ObjectId object;  ///< a rename keeps the point (and a pin on it)
   Eigen::Index vertex = 0;
   friend bool operator==(const ObjectPoint&, const ObjectPoint&) = default;
 };
