@@ -154,7 +154,7 @@ Eigen::MatrixX3d deform(const widgets::WidgetModel& model, Eigen::MatrixX3d poin
   for (auto root : scene.widgets.roots()) attachments.push_back({root, {"mesh"}});
   scene.setAttachments(std::move(attachments));
   scenes::SceneDeformer deformer;
-  deformer.finishGestureTakingPoints(scene);
+  deformer.evaluateTakingPoints(scene);
   return deformer.takePoints("mesh");
 }
 

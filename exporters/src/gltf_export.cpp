@@ -90,7 +90,7 @@ class Evaluator {
       work_.widgets = original_.widgets;  // the deformer syncs another model instance by value
       animation_.setTime(work_, t);
     }
-    deformer_.finishGesture(work_);
+    deformer_.evaluate(work_);
   }
   const Eigen::MatrixX3d& points(const std::string& object) const { return deformer_.points(object); }
   scenes::Scene& scene() { return work_; }

@@ -376,6 +376,27 @@ Args:
     scene: Scene.
 Raises:
     LatticeError, Cancelled: as update().)doc")
+      .def("evaluate", [](SceneDeformerHandle& h, const scenes::Scene& scene) {
+        bool ran = false;
+        h.run([&] { ran = h.deformer.evaluate(scene); });
+        return ran;
+      }, "scene"_a, R"doc(Brings the points up to date with the scene when it changed since the last evaluation.
+
+The one call a script needs: nothing changed, nothing done; between beginGesture() and
+endGesture() a step by deltas, otherwise the exact result.
+Args:
+    scene: Scene.
+Returns:
+    bool: whether it evaluated.
+Raises:
+    LatticeError, Cancelled: as update().)doc")
+      .def("beginGesture", [](SceneDeformerHandle& h, std::optional<widgets::WidgetId> active) { h.deformer.beginGesture(active); },
+           "activeLattice"_a = py::none(), R"doc(A gesture starts: evaluate() steps by deltas until endGesture().
+
+Args:
+    activeLattice: WidgetId of the dragged lattice (it re-embeds at once), or None.)doc")
+      .def("endGesture", [](SceneDeformerHandle& h) { h.deformer.endGesture(); },
+           R"doc(The gesture ends: the next evaluate() gives the exact result.)doc")
       .def("revision", [](const SceneDeformerHandle& h, const std::string& object) { return h.deformer.revision(object); },
            "object"_a, R"doc(A number that grows whenever the object's deformed points change.
 

@@ -197,7 +197,33 @@ SceneDeformer::~SceneDeformer() = default;
 SceneDeformer::SceneDeformer(SceneDeformer&&) noexcept = default;
 SceneDeformer& SceneDeformer::operator=(SceneDeformer&&) noexcept = default;
 
-void SceneDeformer::reset() { objects_.clear(); }
+void SceneDeformer::reset() {
+  objects_.clear();
+  evaluated_ = nullptr;
+}
+
+void SceneDeformer::beginGesture(std::optional<widgets::WidgetId> activeLattice) {
+  gesture_ = true;
+  gestureLattice_ = activeLattice;
+}
+
+void SceneDeformer::endGesture() {
+  gesture_ = false;
+  gestureLattice_.reset();
+}
+
+bool SceneDeformer::evaluate(const Scene& scene) {
+  // Nothing changed since the last run, which already gave what the gesture state asks for.
+  if (&scene == evaluated_ && markOf(scene) == evaluatedMark_ && (gesture_ || exact_)) return false;
+  if (gesture_) {
+    run(scene, gestureLattice_, Run::Gesture);
+  } else {
+    run(scene, std::nullopt, Run::Finish);
+  }
+  return true;
+}
+
+void SceneDeformer::evaluateTakingPoints(Scene& scene) { run(scene, std::nullopt, Run::Finish, &scene); }
 
 void SceneDeformer::update(const Scene& scene, std::optional<widgets::WidgetId> activeLattice) {
   run(scene, activeLattice, Run::Update);
@@ -314,6 +340,9 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats_ = stats;
+  evaluated_ = takeFrom != nullptr ? nullptr : &scene;  // points taken over: evaluate anew
+  evaluatedMark_ = markOf(scene);
+  exact_ = how == Run::Finish;
   totals_.reembeddedStages += std::uint64_t(stats.reembeddedStages);
   totals_.latticesBuilt += std::uint64_t(stats.latticesBuilt);
   if (progress_ && !progress_(1.0)) throw ffd::Cancelled("scene deformer: cancelled at the end (all work kept)");
@@ -356,6 +385,7 @@ const Eigen::MatrixX3d& SceneDeformer::points(ObjectId object) const {
 
 Eigen::MatrixX3d SceneDeformer::takePoints(ObjectId object) {
   (void)points(object);  // applies the deferred gesture steps (and throws for an unknown object)
+  evaluated_ = nullptr;  // the object is forgotten: the next evaluate() builds its pipeline again
   return objects_.extract(object).mapped()->pipeline->takePoints();
 }
 

@@ -132,6 +132,23 @@ def test_scene_load_drive_and_deformed_points():
         deformer.points("nothing")
 
 
+def test_objects_are_held_by_id_and_evaluate_runs_once_per_change():
+    scene = scenes.readScene(ROOT / "scenes" / "examples" / "press")
+    block = scene.objectId("block")
+    assert scene.findObject("block").id == block and scene.objectName(block) == "block"
+    assert scene.attachments[0].objects == [block]
+    deformer = scenes.SceneDeformer()
+    assert deformer.evaluate(scene)
+    assert not deformer.evaluate(scene)  # nothing changed
+    embedded = deformer.lastStats.reembeddedStages
+    assert embedded > 0
+    model = scene.widgets
+    model.setVariation(model.find("handle"), 1.5 * math.pi)
+    assert deformer.evaluate(scene)
+    assert deformer.lastStats.reembeddedStages == 0
+    np.testing.assert_allclose(deformer.points("block"), press_expectation(scene, 0.3), atol=1e-12)
+
+
 def test_scene_deformer_gesture_steps_move_by_deltas_and_finish_exactly():
     scene = scenes.readScene(ROOT / "scenes" / "examples" / "press")
     model = scene.widgets

@@ -311,7 +311,7 @@ void evaluate(scenes::Scene& scene, scenes::SceneDeformer& deformer, Console& co
   Eigen::Index pointCount = 0;
   for (const auto& object : scene.objects()) pointCount += object.mesh.points.rows();
   console.begin("deform", "embedding and deforming " + std::to_string(pointCount) + " points");
-  deformer.finishGestureTakingPoints(scene);
+  deformer.evaluateTakingPoints(scene);
   console.carve("embed", 1e3 * deformer.lastStats().embedSeconds);
 }
 

@@ -81,7 +81,7 @@ void infoScene(const fs::path& path, const ReadSettings& read) {
     std::printf("attachment: %s deforms %s\n", scene.widgets.name(a.lattice).c_str(), objects.c_str());
   }
   scenes::SceneDeformer deformer;
-  deformer.finishGesture(scene);  // syncs and runs the exact pipeline in one pass
+  deformer.evaluate(scene);  // syncs and runs the exact pipeline in one pass
   const auto& stats = deformer.lastStats();
   std::printf("evaluated: %lld points deformed (%lld outside their lattice, %lld failed to embed)\n",
               static_cast<long long>(stats.deformedPoints), static_cast<long long>(stats.outsidePoints),

@@ -196,7 +196,7 @@ void MainWindow::setScene(scenes::Scene scene) {
   d.selectedBinding.reset();
   d.commands.clear();
   d.deformer.reset();
-  d.deformer.finishGesture(d.scene);
+  d.deformer.evaluate(d.scene);
   d.deformStatus->setText(deformStatusText(d.deformer.lastStats()));
   d.sceneView->setHighlights(d.controller->highlights());
   d.sceneView->show(d.scene, d.deformer);

@@ -48,7 +48,7 @@ bool MainWindow::attachLattice(widgets::WidgetId lattice, const std::string& obj
   });
   QThread* thread = QThread::create([job] {
     try {
-      job->deformer.finishGesture(job->scene);
+      job->deformer.evaluate(job->scene);
     } catch (const ffd::Cancelled&) {
       // The copy is dropped below.
     } catch (const std::exception& e) {

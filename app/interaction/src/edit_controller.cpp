@@ -441,7 +441,7 @@ void EditController::apply(const Eigen::Affine3d& motion) {
       }
     }
   }
-  deformer_.updateGesture(scene_, live_->targets.size() == 1 ? active : std::nullopt);
+  deformer_.beginGesture(live_->targets.size() == 1 ? active : std::nullopt);  // this step's active lattice
   notify();
 }
 
@@ -461,7 +461,7 @@ void EditController::confirm() {
   for (const Target& t : live.targets)
     if (t.kind == Target::Kind::Placement && m.placement(t.id).matrix() != t.start.matrix())
       placed->push_back({t.id, t.start, m.placement(t.id)});
-  deformer_.finishGesture(scene_);
+  deformer_.endGesture();  // the next evaluation is exact
   if (delta->empty() && placed->empty()) {
     notify();
     return;
@@ -493,6 +493,7 @@ void EditController::cancel() {
   Live live = std::move(*live_);
   live_.reset();
   modal_.reset();
+  deformer_.endGesture();
   scene_.widgets.restoreState(live.before);
   for (const Target& t : live.targets)
     if (t.kind == Target::Kind::Placement) scene_.widgets.setPlacement(t.id, t.start);
@@ -543,6 +544,7 @@ ViewHighlights EditController::highlights(ViewHighlights h) const {
 }
 
 void EditController::notify() {
+  deformer_.evaluate(scene_);  // what the step changed, once (SceneDeformer::evaluate)
   if (onChanged) onChanged();
 }
 

@@ -77,6 +77,7 @@ InteractionController::PressResult InteractionController::press(const widgets::R
     scene_.widgets.beginDrag(hit->id, ray);
     dragging_ = true;
     dragLattice_ = activeLattice(hit->id);
+    deformer_.beginGesture(dragLattice_);
     notify();
     return PressResult::Widget;
   }
@@ -124,7 +125,6 @@ void InteractionController::drag(const widgets::Ray& ray) {
     // World displacement -> lattice-local (world = frame * local), then HHK's least-norm change.
     const Eigen::Vector3d local = g.worldToLocal * (ray.at(*t) - g.grab);
     scene_.widgets.setControlPoints(g.lattice, g.controlStart + g.weights * local.transpose());
-    deformer_.updateGesture(scene_, dragLattice_);
     notify();
     return;
   }
@@ -133,7 +133,6 @@ void InteractionController::drag(const widgets::Ray& ray) {
     return;
   }
   scene_.widgets.dragTo(ray);
-  deformer_.updateGesture(scene_, dragLattice_);
   notify();
 }
 
@@ -146,7 +145,6 @@ bool InteractionController::setDragValue(double value) {
   const auto widget = scene_.widgets.gestureWidget();
   if (!widget || scene_.widgets.type(*widget) != WidgetType::Affine) return false;
   scene_.widgets.updateGesture(value);
-  deformer_.updateGesture(scene_, dragLattice_);
   notify();
   return true;
 }
@@ -154,10 +152,10 @@ bool InteractionController::setDragValue(double value) {
 void InteractionController::release() {
   if (!dragging_) return;
   dragging_ = false;
+  deformer_.endGesture();  // the next evaluation is exact
   if (objectGrab_) {
     const std::string description = "Drag point " + std::to_string(objectGrab_->vertex) + " of " + scene_.objectName(objectGrab_->object);
     objectGrab_.reset();
-    deformer_.finishGesture(scene_);
     pushState(description, dragStart_);
     notify();
     return;
@@ -185,7 +183,6 @@ void InteractionController::release() {
   }
   const WidgetId target = *scene_.widgets.gestureWidget();
   scene_.widgets.endGesture();
-  deformer_.finishGesture(scene_);  // the exact result, in one pass
   const std::string what = handle ? handleDragDescription(*handle) : std::string("Drag");
   // A click that selected a widget changed nothing: no command.
   pushState(what + " " + scene_.widgets.name(target), dragStart_);
@@ -195,6 +192,7 @@ void InteractionController::release() {
 void InteractionController::cancel() {
   if (!dragging_) return;
   dragging_ = false;
+  deformer_.endGesture();
   if (objectGrab_) {
     scene_.widgets.setControlPoints(objectGrab_->lattice, objectGrab_->controlStart);
     objectGrab_.reset();
@@ -292,12 +290,11 @@ void InteractionController::pushState(const std::string& description, const widg
                                  delta->bytes() + animated->bytes()});
 }
 
-void InteractionController::refresh() {
-  deformer_.finishGesture(scene_);
-  notify();
-}
+void InteractionController::refresh() { notify(); }
 
 void InteractionController::notify() {
+  // The one place the app evaluates: what the edits since the last call changed, once.
+  deformer_.evaluate(scene_);
   if (onChanged) onChanged();
 }
 

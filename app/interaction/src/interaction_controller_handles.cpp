@@ -29,6 +29,7 @@ void InteractionController::beginHandleDrag(const Transformer& gizmo, Transforme
     dragLattice_ = handleTarget_;
   }
   dragging_ = true;
+  deformer_.beginGesture(dragLattice_);
   notify();
 }
 
@@ -40,7 +41,6 @@ void InteractionController::applyHandleMotion(const Eigen::Affine3d& motion) {
     return;
   }
   scene_.widgets.updateGesture(motion);
-  deformer_.updateGesture(scene_, dragLattice_);
   notify();
 }
 

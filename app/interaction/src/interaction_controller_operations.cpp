@@ -82,7 +82,6 @@ auto InteractionController::edit(const std::string& description, Change change, 
     const std::string mergeAtFrame = mergeKey.empty() ? mergeKey : mergeKey + "@" + std::to_string(madeAt);
     commands_.push(scenes::Command{description, [apply] { apply(false); }, [apply] { apply(true); }, mergeAtFrame,
                                    delta->bytes() + animated->bytes() + sizeof(*held)});
-    deformer_.finishGesture(scene_);
     notify();
     if (onStructureChanged) onStructureChanged();
   };

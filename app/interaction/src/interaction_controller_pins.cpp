@@ -42,6 +42,7 @@ std::optional<std::string> InteractionController::pressObject(const widgets::Ray
       dragStart_ = scene_.widgets.captureState();
       dragLattice_ = stages[k];
       dragging_ = true;
+      deformer_.beginGesture(dragLattice_);
       notify();
       return name;
     }

@@ -25,7 +25,7 @@ void renderSceneToPng(const scenes::Scene& scene, const std::filesystem::path& p
   window->AddRenderer(renderer);
   SceneView view(renderer);
   scenes::SceneDeformer deformed;
-  deformed.finishGesture(scene);  // syncs and runs the exact pipeline in one pass
+  deformed.evaluate(scene);  // syncs and runs the exact pipeline in one pass
   view.show(scene, deformed);
   window->Render();
 

@@ -15,6 +15,7 @@ struct SceneMark {
   std::uint64_t scene = 0;  ///< the scene's revision
   std::uint64_t widgetInstance = 0;  ///< 0: never looked
   std::uint64_t widgets = 0;  ///< the widget model's revision
+  friend bool operator==(const SceneMark&, const SceneMark&) = default;  ///< the same place
 };
 
 /// What changed in a scene after a SceneMark (Scene's edits stamp what they change): the change set the deformer, the view, the outliner

@@ -11,6 +11,7 @@
 #include "ffdkit/ffd/cancelled.h"
 #include "ffdkit/ffd/deformer.h"
 #include "ffdkit/scenes/scene.h"
+#include "ffdkit/scenes/scene_changes.h"
 
 namespace ffdkit::scenes {
 
@@ -52,8 +53,15 @@ using SceneProgress = std::function<bool(double fraction)>;
 /// embeddings are built on the first update and again only when a lattice's rest shape or
 /// frame moves; an edit of control points is an incremental update.
 ///
-/// Keep one SceneDeformer per open scene and call update() after every model change; it
-/// notices new objects and lattices, changed attachments and sources. Change-driven: a lattice
+/// Keep one SceneDeformer per open scene and call evaluate() where the edits of an operation end
+/// (the app: once per model change it reports, after the last edit; the CLI and scripts: when
+/// they read points): it is the one place that evaluates. It reads what changed since its last
+/// evaluation (SceneMark, scene_changes.h): nothing changed, nothing done; during a gesture
+/// (beginGesture .. endGesture) a step by deltas, otherwise the exact result. update(),
+/// updateGesture() and finishGesture() are the steps evaluate() chooses from, public for tests
+/// and the Python module's low-level deformer; application code calls evaluate() (a CTest check,
+/// SingleEvaluationPoint, greps for other calls). It notices new objects and lattices, changed
+/// attachments and sources. Change-driven: a lattice
 /// whose revisions (WidgetModel::frameRevision, controlRevision) did not move since the last
 /// update is not looked at; new control points are written in place into the stage's lattice and
 /// deformed incrementally; a new frame moves the lattice and re-embeds it (per its throttle); no
@@ -71,6 +79,24 @@ class SceneDeformer {
   SceneDeformer(SceneDeformer&&) noexcept;
   /// Moves the deformer.
   SceneDeformer& operator=(SceneDeformer&&) noexcept;
+
+  // ---- evaluation: the one entry point --------------------------------------------------------
+  /// A gesture starts (a drag, a live transform): until endGesture(), evaluate() takes the
+  /// gesture's steps by deltas (updateGesture), re-embedding `activeLattice` at once.
+  void beginGesture(std::optional<widgets::WidgetId> activeLattice = std::nullopt);
+  /// The gesture ends (released or cancelled): the next evaluate() gives the exact result
+  /// (finishGesture), also when nothing changed since the last step.
+  void endGesture();
+  /// True between beginGesture() and endGesture().
+  bool inGesture() const { return gesture_; }
+  /// Brings the deformed points up to date with `scene` when it changed since the last
+  /// evaluation (its SceneMark moved, another scene, setPrecision, reset) or a gesture's exact
+  /// result is due: once, by deltas during a gesture and exactly otherwise. Returns whether it
+  /// evaluated. Throws as update(); after a throw the next call evaluates again.
+  bool evaluate(const Scene& scene);
+  /// evaluate() for a caller done with the objects' own points (the CLI): as
+  /// finishGestureTakingPoints(), always exact.
+  void evaluateTakingPoints(Scene& scene);
 
   /// Brings every object's deformed points up to date with `scene`.
   /// `activeLattice`: the lattice being dragged (always re-embedded at once; the others follow
@@ -98,7 +124,10 @@ class SceneDeformer {
 
   /// The arithmetic of the following calls' deformations (ffd::Precision; default Double). A
   /// change evaluates every lattice stage in full at the next call.
-  void setPrecision(ffd::Precision precision) { precision_ = precision; }
+  void setPrecision(ffd::Precision precision) {
+    if (precision != precision_) evaluated_ = nullptr;  // evaluate() runs again
+    precision_ = precision;
+  }
   /// The arithmetic of the following updates.
   ffd::Precision precision() const { return precision_; }
 
@@ -193,6 +222,12 @@ class SceneDeformer {
   SceneProgress progress_;
   ffd::Precision precision_ = ffd::Precision::Double;
   std::uint64_t widgetInstance_ = 0;  // the widget model last synced (WidgetModel::instance)
+  // evaluate(): the scene and its mark at the last run, whether that run was exact, the gesture.
+  const Scene* evaluated_ = nullptr;
+  SceneMark evaluatedMark_;
+  bool exact_ = false;
+  bool gesture_ = false;
+  std::optional<widgets::WidgetId> gestureLattice_;
 };
 
 /// One-shot evaluation: the deformed points of every object, by name.
