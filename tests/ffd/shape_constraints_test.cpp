@@ -254,6 +254,34 @@ TEST(ShapeConstraints, VolumePolynomialEqualsTheDivergenceTheoremVolumeOfTheDefo
   }
 }
 
+// More than 128 control points moving the surface: Polynomial is refused with the limit named,
+// Automatic solves per vertex.
+TEST(ShapeConstraints, VolumePolynomialNeedsAtMost128MovingControlPoints) {
+  BoxLatticeOptions options;
+  options.counts = Eigen::Vector3i(6, 6, 6);  // 216 control points, 27 cubic cells
+  options.boxMin = Eigen::Vector3d::Constant(-1.0);
+  options.boxMax = Eigen::Vector3d::Constant(1.0);
+  Lattice lattice = makeBoxLattice(options);
+  const testing::TestMesh mesh = testing::sphereMesh({0.0, 0.0, 0.0}, 0.8, 12, 24);
+  const ClosedSurface surface(mesh.triangles, mesh.points.rows());
+  const double rest = enclosedVolume(mesh.points, surface);
+  ShapeConstraints constraints(lattice, mesh.points);
+  try {
+    constraints.keepVolume(surface, rest, VolumeEvaluation::Polynomial);
+    ADD_FAILURE() << "216 moving control points accepted";
+  } catch (const ConstraintError& e) {
+    EXPECT_NE(std::string(e.what()).find("at most 128 control points"), std::string::npos) << e.what();
+  }
+  constraints.keepVolume(surface, rest);
+  EXPECT_FALSE(constraints.volumeIsPolynomial());
+  Eigen::MatrixX3d p = lattice.controlPoints();
+  p.row(lattice.index(2, 3, 2)) += Eigen::RowVector3d(0.2, -0.1, 0.1);
+  lattice.setControlPoints(p);
+  const ShapeSolveResult result = constraints.solve(lattice);
+  EXPECT_LE(result.volumeRelativeError, 1e-12);
+  EXPECT_NEAR(enclosedVolume(constraints.deformedPoints(), surface), rest, 1e-12 * rest);
+}
+
 TEST(ShapeConstraints, VolumeWithFixedControlsMovesOnlyTheFreeOnes) {
   std::mt19937 rng(10);
   VolumeSetup s = volumeSetup(rng, 16, 0.4);
