@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "deform_kernels.h"
+#include "point_window.h"
 
 namespace ffdkit::ffd {
 
@@ -34,6 +35,7 @@ ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& em
         bw(static_cast<std::size_t>(np[2]));
     std::vector<double> w(static_cast<std::size_t>(window));
     std::vector<std::int32_t> index(static_cast<std::size_t>(window));
+    std::vector<Eigen::Index> flat(static_cast<std::size_t>(window));
     std::vector<int> rank(static_cast<std::size_t>(window));
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t t = 0; t < tileCount; ++t) {
@@ -42,13 +44,8 @@ ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& em
         if (block.kind == Embedding::BlockKind::Frozen) continue;  // no weights, total 0
         const std::array<int, 3> cell = embedding.cellOf(block);
         // The cell's window of control indices, in the order Deformer's gatherWindow walks it.
-        int wi = 0;
-        for (int c = 0; c < np[2]; ++c)
-          for (int b = 0; b < np[1]; ++b)
-            for (int a = 0; a < np[0]; ++a, ++wi)
-              index[std::size_t(wi)] = static_cast<std::int32_t>(
-                  lattice.index(lattice.axis(0).controlIndex(cell[0], a), lattice.axis(1).controlIndex(cell[1], b),
-                                lattice.axis(2).controlIndex(cell[2], c)));
+        detail::windowControlIndices(lattice, cell, flat.data());
+        for (int r = 0; r < window; ++r) index[std::size_t(r)] = static_cast<std::int32_t>(flat[std::size_t(r)]);
         // A periodic axis with fewer control points than its window wraps onto the same point
         // twice: first[r] is the first window position with index[r] (the weights add up there).
         std::vector<int> first(static_cast<std::size_t>(window));
@@ -62,13 +59,8 @@ ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& em
           const double s = block.kind == Embedding::BlockKind::Blended
                                ? embedding.blendWeight()[block.blendOffset + q - block.begin]
                                : 1.0;
-          lattice.axis(0).basis(cell[0], embedding.sortedU()[q], bu.data());
-          lattice.axis(1).basis(cell[1], embedding.sortedV()[q], bv.data());
-          lattice.axis(2).basis(cell[2], embedding.sortedW()[q], bw.data());
-          wi = 0;
-          for (int c = 0; c < np[2]; ++c)
-            for (int b = 0; b < np[1]; ++b)
-              for (int a = 0; a < np[0]; ++a, ++wi) w[std::size_t(wi)] = s * bu[std::size_t(a)] * bv[std::size_t(b)] * bw[std::size_t(c)];
+          detail::windowWeights(lattice, cell, embedding.sortedU()[q], embedding.sortedV()[q], embedding.sortedW()[q], s,
+                                bu.data(), bv.data(), bw.data(), w.data());
           if (wraps) {
             for (int r = 0; r < window; ++r) {
               if (first[std::size_t(r)] == r) continue;

@@ -8,6 +8,7 @@
 #include <Eigen/QR>
 
 #include "cell_polynomials.h"
+#include "point_window.h"
 #include "vector_clones.h"
 #include "volume_polynomial.h"
 
@@ -79,7 +80,8 @@ Eigen::MatrixX3d adjointDeform(const Lattice& lattice, const Embedding& embeddin
         bw(static_cast<std::size_t>(np[2]));
     // acc(a + np0 (b + np1 c), :) = sum over the block's points of s bu[a] bv[b] bw[c] g.
     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> acc(window, 3);
-    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> vw(np[1] * np[2], 3);
+    std::vector<double> weights(static_cast<std::size_t>(window));
+    std::vector<Eigen::Index> indices(static_cast<std::size_t>(window));
     alignas(32) detail::Lane4 acc4[3][4][4];
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t t = 0; t < tileCount; ++t) {
@@ -100,22 +102,14 @@ Eigen::MatrixX3d adjointDeform(const Lattice& lattice, const Embedding& embeddin
             const double s = block.kind == Embedding::BlockKind::Blended
                                  ? embedding.blendWeight()[block.blendOffset + q - block.begin]
                                  : 1.0;
-            lattice.axis(0).basis(cell[0], embedding.sortedU()[q], bu.data());
-            lattice.axis(1).basis(cell[1], embedding.sortedV()[q], bv.data());
-            lattice.axis(2).basis(cell[2], embedding.sortedW()[q], bw.data());
-            const Eigen::RowVector3d sg = s * g.row(p);
-            for (int c = 0; c < np[2]; ++c)
-              for (int b = 0; b < np[1]; ++b) vw.row(b + np[1] * c) = (bv[std::size_t(b)] * bw[std::size_t(c)]) * sg;
-            for (int bc = 0; bc < np[1] * np[2]; ++bc)
-              for (int a = 0; a < np[0]; ++a) acc.row(a + np[0] * bc) += bu[std::size_t(a)] * vw.row(bc);
+            detail::windowWeights(lattice, cell, embedding.sortedU()[q], embedding.sortedV()[q], embedding.sortedW()[q],
+                                  s, bu.data(), bv.data(), bw.data(), weights.data());
+            const Eigen::RowVector3d gp = g.row(p);
+            for (int wi = 0; wi < window; ++wi) acc.row(wi) += weights[std::size_t(wi)] * gp;
           }
         }
-        int wi = 0;
-        for (int c = 0; c < np[2]; ++c)
-          for (int b = 0; b < np[1]; ++b)
-            for (int a = 0; a < np[0]; ++a, ++wi)
-              local.row(lattice.index(lattice.axis(0).controlIndex(cell[0], a), lattice.axis(1).controlIndex(cell[1], b),
-                                      lattice.axis(2).controlIndex(cell[2], c))) += acc.row(wi);
+        detail::windowControlIndices(lattice, cell, indices.data());
+        for (int wi = 0; wi < window; ++wi) local.row(indices[std::size_t(wi)]) += acc.row(wi);
       }
     }
 #pragma omp critical

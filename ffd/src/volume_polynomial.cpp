@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "point_window.h"
 #include "vector_clones.h"
 
 // The precompute's two hot loops are also compiled for AVX + FMA without AVX2 (the clone
@@ -144,17 +145,13 @@ std::optional<VolumePolynomial> VolumePolynomial::build(const Lattice& lattice, 
     if (!fresh) continue;
     Window w;
     w.cell = embedding.cellOf(block);
+    std::vector<Eigen::Index> flat(static_cast<std::size_t>(windowSize));
+    detail::windowControlIndices(lattice, w.cell, flat.data());
     w.slotOf.resize(std::size_t(windowSize));
-    int r = 0;
-    for (int c = 0; c < np[2]; ++c)
-      for (int b = 0; b < np[1]; ++b)
-        for (int a = 0; a < np[0]; ++a, ++r) {
-          const Eigen::Index flat = lattice.index(lattice.axis(0).controlIndex(w.cell[0], a),
-                                                  lattice.axis(1).controlIndex(w.cell[1], b),
-                                                  lattice.axis(2).controlIndex(w.cell[2], c));
-          w.slotOf[std::size_t(r)] = int(flat);  // the control index for now
-          used[std::size_t(flat)] = 1;
-        }
+    for (int r = 0; r < windowSize; ++r) {
+      w.slotOf[std::size_t(r)] = int(flat[std::size_t(r)]);  // the control index for now
+      used[std::size_t(flat[std::size_t(r)])] = 1;
+    }
     windows.push_back(std::move(w));
   }
   VolumePolynomial result;
@@ -186,6 +183,7 @@ std::optional<VolumePolynomial> VolumePolynomial::build(const Lattice& lattice, 
   {
     // The point's weights on its window's slots (zero-filled); the window, or -1 when frozen.
     std::vector<double> bu(static_cast<std::size_t>(np[0])), bv(static_cast<std::size_t>(np[1])), bw(static_cast<std::size_t>(np[2]));
+    std::vector<double> positions(static_cast<std::size_t>(windowSize));
     const auto weightsOf = [&](Eigen::Index p, double* out) -> int {
       const std::uint32_t bi = blockOf[std::size_t(p)];
       const int wi = windowOfBlock[bi];
@@ -196,16 +194,10 @@ std::optional<VolumePolynomial> VolumePolynomial::build(const Lattice& lattice, 
       const double s = block.kind == Embedding::BlockKind::Blended
                            ? embedding.blendWeight()[block.blendOffset + q - block.begin]
                            : 1.0;
-      lattice.axis(0).basis(w.cell[0], embedding.sortedU()[q], bu.data());
-      lattice.axis(1).basis(w.cell[1], embedding.sortedV()[q], bv.data());
-      lattice.axis(2).basis(w.cell[2], embedding.sortedW()[q], bw.data());
+      windowWeights(lattice, w.cell, embedding.sortedU()[q], embedding.sortedV()[q], embedding.sortedW()[q], s, bu.data(),
+                    bv.data(), bw.data(), positions.data());
       std::fill(out, out + w.slots.size(), 0.0);
-      int r = 0;
-      for (int c = 0; c < np[2]; ++c)
-        for (int b = 0; b < np[1]; ++b) {
-          const double vw = s * bv[std::size_t(b)] * bw[std::size_t(c)];
-          for (int x = 0; x < np[0]; ++x, ++r) out[w.slotOf[std::size_t(r)]] += bu[std::size_t(x)] * vw;
-        }
+      for (int r = 0; r < windowSize; ++r) out[w.slotOf[std::size_t(r)]] += positions[std::size_t(r)];
       return wi;
     };
 
