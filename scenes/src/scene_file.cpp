@@ -314,6 +314,9 @@ Animation readAnimation(const Json& j, const Location& at, const Scene& scene, m
   return animation;
 }
 
+// Whether a channel is written: a removed widget's keys go with it.
+bool writtenChannel(const Scene& scene, const Channel& c) { return scene.widgets.contains(c.widget) && !c.keys.empty(); }
+
 Json animationJson(const Scene& scene) {
   const Animation& animation = scene.animation();
   Json a;
@@ -321,7 +324,7 @@ Json animationJson(const Scene& scene) {
   a["frames"] = Json::array({animation.firstFrame, animation.lastFrame});
   Json channels = Json::array();
   for (const Channel& c : animation.channels) {
-    if (!scene.widgets.contains(c.widget) || c.keys.empty()) continue;  // a removed widget's keys go with it
+    if (!writtenChannel(scene, c)) continue;
     Json keys = Json::array();
     for (const Keyframe& k : c.keys) {
       Json key;
@@ -347,10 +350,16 @@ Json animationJson(const Scene& scene) {
   return a;
 }
 
-bool isDefault(const Animation& animation) {
+// Whether the animation writes nothing: the default rate and range, and no channel written (else
+// a scene whose keyed widgets were removed would write "channels": [], which reads back as the
+// default animation and so is not written again: not the same text).
+bool isDefault(const Scene& scene) {
+  const Animation& animation = scene.animation();
   const Animation defaults;
-  return animation.channels.empty() && animation.framesPerSecond == defaults.framesPerSecond &&
-         animation.firstFrame == defaults.firstFrame && animation.lastFrame == defaults.lastFrame;
+  return std::none_of(animation.channels.begin(), animation.channels.end(),
+                      [&](const Channel& c) { return writtenChannel(scene, c); }) &&
+         animation.framesPerSecond == defaults.framesPerSecond && animation.firstFrame == defaults.firstFrame &&
+         animation.lastFrame == defaults.lastFrame;
 }
 
 Scene readSceneJson(const Json& root, const std::string& source, const SceneReadOptions& options, meshio::ReadBudget& budget) {
@@ -554,7 +563,7 @@ Json sceneJson(const Scene& scene) {
                     {"viewUp", array3(scene.camera().viewUp)},
                     {"viewAngle", scene.camera().viewAngleDegrees}};
   // Written only when there is something to say: a scene without keys stays as short as before.
-  if (!isDefault(scene.animation())) root["animation"] = animationJson(scene);
+  if (!isDefault(scene)) root["animation"] = animationJson(scene);
   return root;
 }
 
