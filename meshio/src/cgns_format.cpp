@@ -231,6 +231,7 @@ CgnsMesh readZone(const fs::path& path, const CgnsReadOptions& options, ReadBudg
   int coordinates = 0;
   file.check(cg_ncoords(fn, mesh.base, mesh.zone, &coordinates), "cannot count the coordinates");
   const char* wanted[3] = {"CoordinateX", "CoordinateY", "CoordinateZ"};
+  mesh.pointCount = pointCount;
   mesh.points = Eigen::MatrixX3d::Zero(Eigen::Index(pointCount), 3);
   std::vector<double> values(static_cast<std::size_t>(pointCount));
   for (int axis = 0; axis < mesh.physicalDimension; ++axis) {
@@ -266,9 +267,9 @@ CgnsMesh readZone(const fs::path& path, const CgnsReadOptions& options, ReadBudg
 
 void writeCgnsMesh(const CgnsMesh& mesh, const Eigen::MatrixX3d& points, const fs::path& output,
                    const CgnsWriteOptions& options) {
-  if (points.rows() != mesh.points.rows())
+  if (points.rows() != mesh.pointCount)
     throw MeshIoError(output.string() + ": " + std::to_string(points.rows()) + " points given for a zone of " +
-                      std::to_string(mesh.points.rows()) + " vertices");
+                      std::to_string(mesh.pointCount) + " vertices");
   for (Eigen::Index i = 0; i < points.rows(); ++i)
     for (int axis = 0; axis < mesh.physicalDimension; ++axis) {
       const double value = points(i, axis);

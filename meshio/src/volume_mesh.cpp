@@ -5,6 +5,7 @@
 
 #include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/cell_quality.h"
+#include "ffdkit/meshio/cgns.h"
 #include "ffdkit/meshio/element_cells.h"
 #include "ffdkit/meshio/gmsh.h"
 #include "ffdkit/meshio/openfoam.h"
@@ -166,6 +167,7 @@ const char* volumeMeshFormatName(VolumeMeshFormat format) {
     case VolumeMeshFormat::Elmer: return "Elmer";
     case VolumeMeshFormat::LsDyna: return "LS-DYNA";
     case VolumeMeshFormat::Kratos: return "Kratos";
+    case VolumeMeshFormat::Cgns: return "CGNS";
   }
   return "volume mesh";
 }
@@ -183,6 +185,7 @@ std::optional<VolumeMeshFormat> volumeMeshFormatOf(const fs::path& path) {
   if (ext == ".nodes") return VolumeMeshFormat::Elmer;
   if (ext == ".k" || ext == ".key") return VolumeMeshFormat::LsDyna;
   if (ext == ".mdpa") return VolumeMeshFormat::Kratos;
+  if (ext == ".cgns") return VolumeMeshFormat::Cgns;
   return std::nullopt;
 }
 
@@ -203,6 +206,8 @@ std::unique_ptr<VolumeMesh> readVolumeMeshBytes(std::string bytes, VolumeMeshFor
       return std::make_unique<TextVolume>(source, format, detail::readLsDyna(std::move(bytes), source, budget));
     case VolumeMeshFormat::Kratos:
       return std::make_unique<TextVolume>(source, format, detail::readKratos(std::move(bytes), source, budget));
+    case VolumeMeshFormat::Cgns:
+      throw MeshIoError(source + ": a CGNS file is read from its path, through the CGNS library");
   }
   throw MeshIoError(source + ": unknown volume-mesh format");
 }
@@ -212,13 +217,14 @@ std::unique_ptr<VolumeMesh> readVolumeMesh(const fs::path& path, const VolumeMes
   if (!format)
     throw MeshIoError(path.string() +
                       ": not a volume mesh (an OpenFOAM case or polyMesh folder, or a .msh, .su2, .unv, .nodes, .k, .key "
-                      "or .mdpa file)");
+                      "or .mdpa or .cgns file)");
   if (*format == VolumeMeshFormat::OpenFoam) {
     OpenFoamReadOptions o;
     o.limits = options.limits;
     o.confinement = options.confinement;
     return std::make_unique<OpenFoamVolume>(readOpenFoamMesh(path, o));
   }
+  if (*format == VolumeMeshFormat::Cgns) return readCgnsVolumeMesh(path, options);
   ReadBudget budget(options.limits);
   const std::string source = path.string();
   return convertReadFailures<MeshIoError>(source, "the mesh", budget, [&] {

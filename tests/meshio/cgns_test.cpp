@@ -222,6 +222,23 @@ TEST_F(Cgns, MixedSectionsOfPrismsAndTetrahedra) {
   EXPECT_NEAR(quality.totalVolume, 0.5 + 1.0 / 6.0, 1e-15);
 }
 
+TEST_F(Cgns, ReadVolumeMeshTakesCgnsFiles) {
+  const fs::path in = writeBlock("block.CGNS");
+  ASSERT_EQ(volumeMeshFormatOf(in), VolumeMeshFormat::Cgns);
+  std::unique_ptr<VolumeMesh> mesh = readVolumeMesh(in);
+  EXPECT_EQ(mesh->format(), VolumeMeshFormat::Cgns);
+  EXPECT_EQ(mesh->cellCount(), 8);
+  Eigen::MatrixX3d points = mesh->takePoints();
+  ASSERT_EQ(points.rows(), 27);
+  EXPECT_TRUE(mesh->check(points).ok());
+  points.col(0) *= 3.0;
+  const VolumeMeshQuality stretched = mesh->check(points);
+  EXPECT_TRUE(stretched.checked);
+  EXPECT_EQ(stretched.cellCount, 8);
+  mesh->write(points, dir_ / "out.cgns", {.durable = false});
+  EXPECT_EQ(readCgnsMesh(dir_ / "out.cgns").points, points);
+}
+
 // --- bad input: a clear message naming the file, the zone and the section ---
 
 TEST_F(Cgns, NodeOutOfRangeIsRefusedWithTheSectionAndElement) {

@@ -10,12 +10,14 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include <Eigen/Core>
 
 #include "ffdkit/meshio/element_cells.h"
 #include "ffdkit/meshio/read_limits.h"
+#include "ffdkit/meshio/volume_mesh.h"
 
 namespace ffdkit::meshio {
 
@@ -41,6 +43,7 @@ struct CgnsMesh {
   int cellDimension = 3;       ///< the base's cell dimension (2 or 3)
   int physicalDimension = 3;   ///< the base's physical dimension (the coordinates written: 2 or 3)
   Eigen::MatrixX3d points;     ///< #P x 3 (z = 0 when the physical dimension is 2)
+  std::int64_t pointCount = 0; ///< #P, the zone's vertices (also once `points` is moved out)
   std::array<std::string, 3> coordinateNames;  ///< CoordinateX, CoordinateY, CoordinateZ (or as the file names them)
   std::array<bool, 3> singlePrecision{};       ///< a coordinate array stored as RealSingle
   /// The cells of the zone's sections of the base's cell dimension (tetrahedra, pyramids, prisms,
@@ -70,5 +73,9 @@ struct CgnsWriteOptions {
 /// nothing. @throws MeshIoError naming the file and the step.
 void writeCgnsMesh(const CgnsMesh& mesh, const Eigen::MatrixX3d& points, const std::filesystem::path& output,
                    const CgnsWriteOptions& options = {});
+
+/// The CGNS file `path` (its first base's first zone) as a VolumeMesh: what readVolumeMesh
+/// returns for a .cgns file. @throws MeshIoError as readCgnsMesh.
+std::unique_ptr<VolumeMesh> readCgnsVolumeMesh(const std::filesystem::path& path, const VolumeMeshReadOptions& options);
 
 }  // namespace ffdkit::meshio

@@ -12,6 +12,7 @@
 //   Elmer         *.nodes (mesh.nodes)         none: points only
 //   LS-DYNA       *.k, *.key (*NODE)           none: points only
 //   Kratos        *.mdpa (Begin Nodes)         none: points only
+//   CGNS          *.cgns (unstructured zone)   its elements at their corners (cgns.h)
 
 #include <cstdint>
 #include <filesystem>
@@ -29,13 +30,13 @@ namespace ffdkit::meshio {
 struct OpenFoamMesh;
 
 /// The volume-mesh formats.
-enum class VolumeMeshFormat { OpenFoam, Gmsh, Su2, Unv, Elmer, LsDyna, Kratos };
+enum class VolumeMeshFormat { OpenFoam, Gmsh, Su2, Unv, Elmer, LsDyna, Kratos, Cgns };
 
-/// "OpenFOAM", "Gmsh", "SU2", "UNV", "Elmer", "LS-DYNA", "Kratos".
+/// "OpenFOAM", "Gmsh", "SU2", "UNV", "Elmer", "LS-DYNA", "Kratos", "CGNS".
 const char* volumeMeshFormatName(VolumeMeshFormat format);
 
 /// The format of `path`: a folder holding an OpenFOAM mesh, or a file by its extension (.msh,
-/// .su2, .unv, .nodes, .k or .key, .mdpa, any case); nullopt for anything else.
+/// .su2, .unv, .nodes, .k or .key, .mdpa, .cgns, any case); nullopt for anything else.
 std::optional<VolumeMeshFormat> volumeMeshFormatOf(const std::filesystem::path& path);
 
 /// What the cell check of a volume mesh found, in words every format shares.
