@@ -396,7 +396,9 @@ Raises:
 Args:
     activeLattice: WidgetId of the dragged lattice (it re-embeds at once), or None.)doc")
       .def("endGesture", [](SceneDeformerHandle& h) { h.deformer.endGesture(); },
-           R"doc(The gesture ends: the next evaluate() gives the exact result.)doc")
+           R"doc(The gesture ends (released or cancelled).
+
+The next evaluate() gives the exact result, also when nothing changed since the last step.)doc")
       .def("revision", [](const SceneDeformerHandle& h, const std::string& object) { return h.deformer.revision(object); },
            "object"_a, R"doc(A number that grows whenever the object's deformed points change.
 
