@@ -77,7 +77,7 @@ struct Lines {
 TextVolumeFile readUnv(std::string bytes, const std::string& source, ReadBudget& budget) {
   TextVolumeFile file;
   file.bytes = std::move(bytes);
-  file.spans.style = {16, 'E', true, true};
+  file.spans.style = {16, 'E', true, true, true};
   PointCollector points(budget, file, "UNV dataset 2411: nodes");
   Lines lines{file.bytes};
   std::string_view line;
@@ -226,7 +226,7 @@ TextVolumeFile readLsDyna(std::string bytes, const std::string& source, ReadBudg
 TextVolumeFile readKratos(std::string bytes, const std::string& source, ReadBudget& budget) {
   TextVolumeFile file;
   file.bytes = std::move(bytes);
-  file.spans.style = {16, 'E', false, false};
+  file.spans.style = {16, 'E', false, false, false};
   PointCollector points(budget, file, "Kratos nodes");
   Lines lines{file.bytes};
   std::string_view line;

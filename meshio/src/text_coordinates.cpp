@@ -14,6 +14,7 @@ namespace ffdkit::meshio::detail {
 namespace {
 
 bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+bool isSpace(char c) { return isBlank(c) || c == '\n'; }
 
 std::string shown(std::string_view token) {
   if (token.empty()) return "the end of the line";
@@ -158,15 +159,19 @@ std::string replaceCoordinates(std::string_view original, const CoordinateSpans&
       const std::size_t k = std::size_t(i) * std::size_t(spans.perPoint) + std::size_t(c);
       const std::size_t start = spans.starts[k], length = spans.lengths[k];
       const double value = points(i, c);
-      const std::string_view old = original.substr(start, length);
-      const std::size_t blanks = old.find_first_not_of(" \t");
+      // Unchanged values keep their text (a blank fixed-width field is a zero, as the readers take it).
+      std::string_view old = original.substr(start, length);
+      const std::size_t first = old.find_first_not_of(" \t\r");
+      old = first == std::string_view::npos ? std::string_view() : old.substr(first, old.find_last_not_of(" \t\r") - first + 1);
       double was = 0.0;
-      if (parseNumberToken(old.substr(blanks == std::string_view::npos ? old.size() : blanks), was, spans.style.fortran) &&
-          std::memcmp(&was, &value, sizeof value) == 0)
-        continue;  // unchanged: its text stays
+      if (old.empty() ? (value == 0.0 && !std::signbit(value))
+                      : parseNumberToken(old, was, spans.style.fortran) && std::memcmp(&was, &value, sizeof value) == 0)
+        continue;
       if (!std::isfinite(value))
         throw MeshIoError(source + ": point " + std::to_string(i) + ": non-finite coordinate");
-      const std::string text = numberText(value, spans.style, spans.style.fixedWidth ? length : 0);
+      const bool blankFirst = spans.style.separated && start > 0 && !isSpace(original[start - 1]);
+      const std::size_t width = spans.style.fixedWidth ? length - (blankFirst && length > 0 ? 1 : 0) : 0;
+      const std::string text = width == 0 && spans.style.fixedWidth ? std::string() : numberText(value, spans.style, width);
       if (text.empty())
         throw MeshIoError(source + ": point " + std::to_string(i) + ": " + std::to_string(value) + " does not fit a field of " +
                           std::to_string(length) + " characters");

@@ -77,6 +77,9 @@ struct NumberStyle {
   bool fixedWidth = false;
   /// Fortran 'D' exponents in the old text (to compare the old value).
   bool fortran = false;
+  /// A fixed-width field that follows another value directly keeps one blank before its text
+  /// (the format is read by splitting at blanks, as UNV's readers do).
+  bool separated = false;
 };
 
 /// Where the coordinates of each point are in a text file: point i's coordinate c (c < perPoint)

@@ -148,6 +148,32 @@ TEST(VolumeMesh, FixedWidthFieldsKeepTheirColumns) {
   EXPECT_NE(text.find("\n   0.0000000000000000E+00  -1.2000000000000000E+00   0.0000000000000000E+00\n"), std::string::npos);
 }
 
+TEST(VolumeMesh, BlankAndPaddedFixedFieldsComeBackAsTheyWere) {
+  // A blank field is a zero (as LS-DYNA reads it); a value may sit anywhere in its 16 columns.
+  const std::string k = "*NODE\n       1    0.5000000000                 0.25           \n*END\n";
+  const auto mesh = fromBytes(k, VolumeMeshFormat::LsDyna);
+  EXPECT_EQ(mesh->points().row(0), Eigen::RowVector3d(0.5, 0.0, 0.25));
+  EXPECT_EQ(mesh->bytesWith(mesh->points()), k);
+  Eigen::MatrixX3d moved = mesh->points();
+  moved(0, 1) = -3.0;
+  EXPECT_EQ(fromBytes(mesh->bytesWith(moved), VolumeMeshFormat::LsDyna)->points(), moved);
+}
+
+TEST(VolumeMesh, NarrowUnvFieldsKeepABlankBetweenValues) {
+  // Values one blank apart (narrower than UNV's 25 columns): a new value never touches the
+  // one before it, or is refused when it cannot fit.
+  const std::string unv = "    -1\n  2411\n         1         1         1        11\n 1.5 2.5 3.5\n    -1\n";
+  const auto mesh = fromBytes(unv, VolumeMeshFormat::Unv);
+  Eigen::MatrixX3d moved = mesh->points();
+  moved(0, 1) = 7.0;
+  try {
+    const std::string written = mesh->bytesWith(moved);
+    EXPECT_EQ(fromBytes(written, VolumeMeshFormat::Unv)->points(), moved) << written;
+  } catch (const MeshIoError& e) {
+    EXPECT_NE(std::string(e.what()).find("does not fit a field of 4 characters"), std::string::npos) << e.what();
+  }
+}
+
 TEST(VolumeMesh, CommaSeparatedLsDynaNodes) {
   const std::string k = "*KEYWORD\n$ nodes\n*NODE\n1, -0.05, -0.025,0.5\n2,0.1,0.2,0.3, 0, 0\n*ELEMENT_SOLID\n1,1,1,2\n*END\n";
   const auto mesh = fromBytes(k, VolumeMeshFormat::LsDyna);
