@@ -2,6 +2,7 @@
 // elmerhandler.py, khandler.py, mdpahandler.py): I-DEAS universal dataset 2411, Elmer's
 // mesh.nodes, LS-DYNA's *NODE cards and Kratos's "Begin Nodes" blocks. Only the coordinates are
 // read and rewritten; every other line is kept as it is.
+#include <algorithm>
 #include <climits>
 
 #include "parse_support.h"
@@ -114,7 +115,8 @@ TextVolumeFile readUnv(std::string bytes, const std::string& source, ReadBudget&
           // Each coordinate is a 25-character field (format 3D25.16): its text right-aligned in it.
           const std::size_t end = std::size_t(xyz[std::size_t(c)].data() + xyz[std::size_t(c)].size() - line.data());
           const std::size_t previousEnd = c == 0 ? 0 : std::size_t(xyz[std::size_t(c - 1)].data() + xyz[std::size_t(c - 1)].size() - line.data());
-          const std::size_t start = end >= previousEnd + 25 ? end - 25 : previousEnd;
+          const std::size_t tokenStart = std::size_t(xyz[std::size_t(c)].data() - line.data());
+          const std::size_t start = std::min(tokenStart, end >= previousEnd + 25 ? end - 25 : previousEnd);
           points.span(line.substr(start, end - start));
         }
         points.sink.add(v[0], v[1], v[2]);

@@ -174,6 +174,16 @@ TEST(VolumeMesh, NarrowUnvFieldsKeepABlankBetweenValues) {
   }
 }
 
+TEST(VolumeMesh, UnvValueWiderThanItsFieldIsKeptWhole) {
+  const std::string unv = "    -1\n  2411\n         1         1         1        11\n"
+                          "   6.66666666666665413333333333333330E-01   1.0E+00   2.0E+00\n    -1\n";
+  const auto mesh = fromBytes(unv, VolumeMeshFormat::Unv);
+  EXPECT_EQ(mesh->bytesWith(mesh->points()), unv);
+  Eigen::MatrixX3d moved = mesh->points();
+  moved(0, 0) = 0.5;
+  EXPECT_EQ(fromBytes(mesh->bytesWith(moved), VolumeMeshFormat::Unv)->points(), moved);
+}
+
 TEST(VolumeMesh, CommaSeparatedLsDynaNodes) {
   const std::string k = "*KEYWORD\n$ nodes\n*NODE\n1, -0.05, -0.025,0.5\n2,0.1,0.2,0.3, 0, 0\n*ELEMENT_SOLID\n1,1,1,2\n*END\n";
   const auto mesh = fromBytes(k, VolumeMeshFormat::LsDyna);
