@@ -6,7 +6,19 @@
 #include <chrono>
 #include <fstream>
 #include <system_error>
+#include <cerrno>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <sstream>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
 
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESCAFControl_Reader.hxx>
@@ -33,6 +45,18 @@
 #include <XCAFDoc_ShapeTool.hxx>
 
 #include "cad_model_data.h"
+
+// AddressSanitizer reserves terabytes of shadow address space: no address-space limit under it.
+#if defined(__SANITIZE_ADDRESS__)
+#define FFDKIT_CAD_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define FFDKIT_CAD_ASAN 1
+#endif
+#endif
+#ifndef FFDKIT_CAD_ASAN
+#define FFDKIT_CAD_ASAN 0
+#endif
 
 namespace ffdkit::cad {
 
@@ -214,9 +238,10 @@ std::optional<CadFormat> cadFormatOf(const fs::path& path) {
   return std::nullopt;
 }
 
-CadModel readStep(const fs::path& path, const CadReadOptions& options) {
+namespace {
+
+CadModel readStepHere(const fs::path& path, const CadReadOptions& options) {
   silenceOcct();
-  checkFile(path, options);
   const std::string file = path.string();
   STEPCAFControl_Reader reader;
   reader.SetNameMode(true);
@@ -226,7 +251,7 @@ CadModel readStep(const fs::path& path, const CadReadOptions& options) {
   return transfer(reader, file, "STEP", options);
 }
 
-CadModel readStep(std::istream& in, const std::string& name, const CadReadOptions& options) {
+CadModel readStepHere(std::istream& in, const std::string& name, const CadReadOptions& options) {
   silenceOcct();
   STEPCAFControl_Reader reader;
   reader.SetNameMode(true);
@@ -236,9 +261,8 @@ CadModel readStep(std::istream& in, const std::string& name, const CadReadOption
   return transfer(reader, name, "STEP", options);
 }
 
-CadModel readIges(const fs::path& path, const CadReadOptions& options) {
+CadModel readIgesHere(const fs::path& path, const CadReadOptions& options) {
   silenceOcct();
-  checkFile(path, options);
   const std::string file = path.string();
   IGESCAFControl_Reader reader;
   reader.SetNameMode(true);
@@ -246,6 +270,125 @@ CadModel readIges(const fs::path& path, const CadReadOptions& options) {
       guardOcct(file + ": reading IGES", [&] { return reader.ReadFile(file.c_str()); });
   if (status != IFSelect_RetDone) throw CadError(file + ": not a readable IGES file (" + statusText(status) + ")");
   return transfer(reader, file, "IGES", options);
+}
+
+/// The parts as text: a header, then per part its name and its shape in BRep text form.
+void writeParts(const CadModel& model, std::ostream& out) {
+  out << "ffdkit-cad-parts 1\n" << model.data().parts.size() << "\n";
+  for (const auto& part : model.data().parts) {
+    std::ostringstream brep;
+    BRepTools::Write(part.shape, brep);
+    const std::string text = brep.str();
+    out << part.name.size() << "\n" << part.name << "\n" << text.size() << "\n" << text;
+  }
+}
+
+CadModel readParts(std::istream& in, const std::string& file) {
+  std::string magic;
+  std::size_t count = 0;
+  if (!(in >> magic >> magic) || !(in >> count) || count > 1000000) throw CadError(file + ": the reading process returned no parts");
+  CadModel model;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::size_t nameSize = 0, brepSize = 0;
+    in >> nameSize;
+    in.get();
+    std::string name(nameSize, '\0');
+    in.read(name.data(), static_cast<std::streamsize>(nameSize));
+    in >> brepSize;
+    in.get();
+    std::string brep(brepSize, '\0');
+    in.read(brep.data(), static_cast<std::streamsize>(brepSize));
+    if (!in) throw CadError(file + ": the reading process returned a truncated part list");
+    std::istringstream shapeText(brep);
+    TopoDS_Shape shape;
+    BRep_Builder builder;
+    guardOcct(file + ": reading back a part", [&] { BRepTools::Read(shape, shapeText, builder); });
+    model.data().parts.push_back({name, shape});
+  }
+  return model;
+}
+
+/// Runs `read` in a child process, so that a file that makes OpenCASCADE crash (it dereferences
+/// null entities of some malformed files) or run away is a CadError here: the child has
+/// maxSeconds of CPU time (SIGXCPU) and, outside sanitizer builds, maxMemoryBytes of address space;
+/// it hands the parts back as BRep text through a temporary file.
+CadModel readIsolated(const std::string& file, const CadReadOptions& options, const std::function<CadModel()>& read) {
+  if (!options.isolate) return read();
+  char pattern[] = "/tmp/ffdkit-cad-read-XXXXXX";
+  const int fd = ::mkstemp(pattern);
+  if (fd < 0) throw CadError(file + ": cannot create a temporary file for the reading process");
+  ::close(fd);
+  const std::string transferFile = pattern;
+  std::fflush(nullptr);
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::unlink(transferFile.c_str());
+    throw CadError(file + ": cannot start the reading process");
+  }
+  if (child == 0) {
+#if !FFDKIT_CAD_ASAN
+    if (options.maxMemoryBytes > 0) {
+      const rlimit memory{options.maxMemoryBytes, options.maxMemoryBytes};
+      ::setrlimit(RLIMIT_AS, &memory);
+    }
+#endif
+    if (options.maxSeconds > 0) {
+      const rlim_t seconds = static_cast<rlim_t>(std::ceil(options.maxSeconds));
+      const rlimit cpu{seconds, seconds + 1};
+      ::setrlimit(RLIMIT_CPU, &cpu);
+    }
+    int code = 0;
+    std::ofstream out(transferFile, std::ios::binary | std::ios::trunc);
+    try {
+      writeParts(read(), out);
+    } catch (const CadError& error) {
+      out << "error\n" << error.what();
+      code = 3;
+    } catch (const std::bad_alloc&) {
+      code = 4;
+    } catch (...) {
+      code = 5;
+    }
+    out.close();
+    std::_Exit(code);
+  }
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  std::ifstream in(transferFile, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ::unlink(transferFile.c_str());
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    if (signal == SIGXCPU || signal == SIGKILL)
+      throw CadError(file + ": reading took more than " + std::to_string(options.maxSeconds) +
+                     " s of CPU time (CadReadOptions::maxSeconds)");
+    throw CadError(file + ": OpenCASCADE crashed reading the file (signal " + std::to_string(signal) + ")");
+  }
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (code == 3) throw CadError(text.substr(text.find('\n') + 1));
+  if (code == 4)
+    throw CadError(file + ": reading needs more than " + std::to_string(options.maxMemoryBytes) +
+                   " bytes of memory (CadReadOptions::maxMemoryBytes)");
+  if (code != 0) throw CadError(file + ": the reading process failed (exit status " + std::to_string(code) + ")");
+  std::istringstream parts(text);
+  return readParts(parts, file);
+}
+
+}  // namespace
+
+CadModel readStep(const fs::path& path, const CadReadOptions& options) {
+  checkFile(path, options);
+  return readIsolated(path.string(), options, [&] { return readStepHere(path, options); });
+}
+
+CadModel readStep(std::istream& in, const std::string& name, const CadReadOptions& options) {
+  return readIsolated(name, options, [&] { return readStepHere(in, name, options); });
+}
+
+CadModel readIges(const fs::path& path, const CadReadOptions& options) {
+  checkFile(path, options);
+  return readIsolated(path.string(), options, [&] { return readIgesHere(path, options); });
 }
 
 CadModel readCad(const fs::path& path, const CadReadOptions& options) {

@@ -143,6 +143,26 @@ TEST(CadIo, StepWithDanglingReferencesIsAnError) {
   expectReadError(folder / "dangling.step", "dangling.step");
 }
 
+TEST(CadIo, AFileThatCrashesOpenCascadeIsACadError) {
+  // Found by fuzz_cad_step: OpenCASCADE dereferences a null point entity of this file (SIGSEGV).
+  // The reading process dies, this one reports it.
+  const fs::path file = "../fuzz/regressions/fuzz_cad_step/occt-null-cartesian-point.step";
+  ASSERT_TRUE(fs::exists(file));
+  expectReadError(file, "crashed");
+}
+
+TEST(CadIo, ReadingInThisProcessGivesTheSameModel) {
+  ScratchFolder folder;
+  writeStep(makeSamplePart(SamplePart::TwoPartAssembly), folder / "a.step");
+  CadReadOptions here;
+  here.isolate = false;
+  const CadModel inProcess = readStep(folder / "a.step", here);
+  const CadModel isolated = readStep(folder / "a.step");
+  ASSERT_EQ(isolated.partCount(), inProcess.partCount());
+  EXPECT_EQ(isolated.partName(1), inProcess.partName(1));
+  EXPECT_NEAR(checkModel(isolated).volume, checkModel(inProcess).volume, 1e-9 * checkModel(inProcess).volume);
+}
+
 TEST(CadIo, LargerThanTheLimitIsRefusedBeforeParsing) {
   ScratchFolder folder;
   writeStep(makeSamplePart(SamplePart::FilletedBox), folder / "box.step");

@@ -1,6 +1,8 @@
 // Fuzz target: the STEP reader (cad::readStep from a stream) on arbitrary bytes, and a tessellation
 // of what it read. Errors are CadError; anything else (a crash, a sanitizer report, another
-// exception) is a finding. A 20 s transfer limit keeps a slow input a finding of its own (timeout).
+// exception) is a finding. The reader runs in a child process (its default), so a crash inside
+// OpenCASCADE's reader is a CadError too (regressions/fuzz_cad_step holds one); a 20 s limit keeps
+// a slow input from stalling the run.
 #include <cstdint>
 #include <sstream>
 #include <string>

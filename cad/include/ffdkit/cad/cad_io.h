@@ -15,8 +15,15 @@ struct CadReadOptions {
   /// Larger files are refused before they are parsed (bytes; 0 = no limit).
   std::uint64_t maxFileBytes = 512ull << 20;
   /// The transfer of the parsed entities to shapes stops with a CadError after this many
-  /// seconds of wall time (0 = no limit). Parsing itself is linear in the file size.
+  /// seconds of wall time, and with isolate the reading process after this much CPU time
+  /// (0 = no limit).
   double maxSeconds = 120.0;
+  /// true: read in a child process (fork), so that a file that makes OpenCASCADE crash or run
+  /// away is a CadError, not the end of this process; the parts come back as BRep text.
+  bool isolate = true;
+  /// With isolate: the child's address-space limit in bytes (0 = none; not applied in
+  /// AddressSanitizer builds, whose shadow memory needs more).
+  std::uint64_t maxMemoryBytes = 4ull << 30;
 };
 
 /// The CAD exchange formats.
