@@ -8,13 +8,6 @@
 #include "point_window.h"
 #include "vector_clones.h"
 
-// The precompute's two hot loops are also compiled for AVX + FMA without AVX2 (the clone
-// "fma"), which some virtual machines expose; the rest of the library's clones need AVX2.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define FFDKIT_VOLUME_CLONES __attribute__((target_clones("default", "fma", "arch=x86-64-v3", "arch=x86-64-v4")))
-#else
-#define FFDKIT_VOLUME_CLONES
-#endif
 
 namespace ffdkit::ffd::detail {
 namespace {
@@ -50,7 +43,7 @@ struct Accumulator {
 // neighbour x, e_x = sum_{pairs (x, c)} d_c - sum_{pairs (b, x)} d_b (one multiply-add per entry
 // and neighbour). d and e are count x stride (stride >= u rounded up to 8, zero-padded), so that
 // eight entries of a row of A sum over the neighbours in registers and are written once.
-FFDKIT_VOLUME_CLONES
+FFDKIT_VECTOR_CLONES
 void wedgeSum(double* __restrict A, const double* __restrict d, const double* __restrict e, int count, int u,
               int stride) {
   for (int k = 1; k < u; ++k) {
@@ -69,7 +62,7 @@ void wedgeSum(double* __restrict A, const double* __restrict d, const double* __
 }
 
 // Q[c][jk] += sum_b Y[b][c] A[b][jk] and R[c][i] += sum_b G[b][c] W[b][i] for a batch.
-FFDKIT_VOLUME_CLONES
+FFDKIT_VECTOR_CLONES
 void addQuadraticAndLinear(double* const Q[3], double* const R[3], const double* __restrict A, const double* __restrict W,
                            const double (*Y)[3], const double (*G)[3], int u) {
   const std::size_t P = std::size_t(pairCount(u));
@@ -91,7 +84,7 @@ void addQuadraticAndLinear(double* const Q[3], double* const R[3], const double*
 
 // K[i<j<k] += sum_b W[b][i] A[b][jk] for a batch of kBatch vertices (rows of zeros pad a short batch):
 // K streams through the cache once per batch.
-FFDKIT_VOLUME_CLONES
+FFDKIT_VECTOR_CLONES
 void addCubic(double* __restrict K, const double* __restrict A, const double* __restrict W, int u) {
   const std::size_t P = std::size_t(pairCount(u));
   for (int k = 2; k < u; ++k)
