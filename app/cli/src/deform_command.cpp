@@ -13,6 +13,7 @@
 #include "cad_input.h"
 #include "commands.h"
 #include "console.h"
+#include "decomposed_case.h"
 #include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/mesh_io.h"
 #include "ffdkit/scenes/animation.h"
@@ -202,7 +203,7 @@ DeformRequest parseRequest(const Args& args) {
 /// deforms every input. `sourceOf` receives each input object's file.
 scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRanks& ranks,
                         std::map<std::string, fs::path>& sourceOf, std::optional<SplitInput>& split,
-                        std::optional<VolumeMeshInput>& volume) {
+                        std::optional<VolumeMeshInput>& volume, std::optional<DecomposedCaseInput>& decomposed) {
   scenes::Scene scene;
   onEveryRank(ranks, [&] {
     if (r.widgetFile) {
@@ -214,7 +215,10 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
       if (r.frame) scenes::applyAnimationFrame(scene, parseFrame(*r.frame, scene.animation()));
     }
   });
-  if (SplitInput::applies(r.inputs.size(), ranks)) {
+  if (DecomposedCaseInput::applies(r.inputs)) {
+    console.begin("read", "reading the processor meshes of " + r.inputs.front());
+    onEveryRank(ranks, [&] { decomposed.emplace(fs::path(r.inputs.front()), r.read, ranks); });
+  } else if (SplitInput::applies(r.inputs.size(), ranks)) {
     console.begin("read", "reading a slice of " + r.inputs.front() + " per process");
     split.emplace(fs::path(r.inputs.front()), r.read.limits, ranks);
   } else if (VolumeMeshInput::applies(r.inputs)) {
@@ -224,6 +228,15 @@ scenes::Scene loadScene(const DeformRequest& r, Console& console, const BatchRan
   }
   onEveryRank(ranks, [&] {
     if (r.inputs.empty()) return;
+    if (decomposed) {  // this rank's meshes of the case, one object each
+      for (std::size_t i = 0; i < decomposed->ownCount(); ++i) {
+        scenes::SceneObject object;
+        object.name = decomposed->name(i);
+        object.mesh.points = decomposed->takePoints(i);
+        scene.addObject(std::move(object));
+      }
+      return;
+    }
     // Names from the whole list, so that every rank names the pieces as one process does.
     std::vector<std::string> names;
     std::set<std::string> taken;
@@ -326,7 +339,7 @@ int runDeform(const Args& args) {
   DeformRequest request;
   onEveryRank(ranks, [&] {
     request = parseRequest(args);
-    if (ranks.size() > 1 && VolumeMeshInput::applies(request.inputs))
+    if (ranks.size() > 1 && !DecomposedCaseInput::applies(request.inputs) && VolumeMeshInput::applies(request.inputs))
       throw UsageError("an mpirun batch does not take an OpenFOAM case yet: run one process on the reconstructed case");
     if (ranks.size() > 1 && (!request.widgetFile || request.inputs.empty()))
       throw UsageError("an mpirun batch takes --widgets TOOL and INPUT pieces (each rank deforms its share) "
@@ -335,13 +348,18 @@ int runDeform(const Args& args) {
   std::map<std::string, fs::path> sourceOf;
   std::optional<SplitInput> split;
   std::optional<VolumeMeshInput> volume;
-  scenes::Scene scene = loadScene(request, console, ranks, sourceOf, split, volume);
+  std::optional<DecomposedCaseInput> decomposed;
+  scenes::Scene scene = loadScene(request, console, ranks, sourceOf, split, volume, decomposed);
   bool intoFolder = false;
   std::vector<Output> targets;
   onEveryRank(ranks, [&] {
     // A volume mesh is written as a folder: -o names it.
-    targets = volume ? std::vector<Output>{{scene.objects().front().name, request.output}}
-                     : plannedOutputs(request, scene, sourceOf, intoFolder);
+    if (decomposed) {  // written as one folder too: -o names it
+      for (std::size_t i = 0; i < decomposed->ownCount(); ++i) targets.push_back({decomposed->name(i), request.output});
+    } else {
+      targets = volume ? std::vector<Output>{{scene.objects().front().name, request.output}}
+                       : plannedOutputs(request, scene, sourceOf, intoFolder);
+    }
     if (split) split->checkTarget(targets.front().path);
   });
   scenes::SceneDeformer deformer;
@@ -375,8 +393,17 @@ int runDeform(const Args& args) {
     }
   });
   const scenes::SceneDeformStats stats = deformer.lastStats();
-  if (!volume) console.begin("write", "writing " + std::to_string(split ? 1 : meshes.size()) + " file(s)");
-  if (volume) {
+  if (!volume && !decomposed) console.begin("write", "writing " + std::to_string(split ? 1 : meshes.size()) + " file(s)");
+  if (decomposed) {
+    console.begin("write", "checking and writing " + std::to_string(decomposed->totalCount()) + " meshes of " +
+                               request.inputs.front());
+    std::vector<const Eigen::MatrixX3d*> deformedPoints;
+    for (const auto& [path, mesh] : meshes) deformedPoints.push_back(&mesh.points);
+    decomposed->write(deformedPoints, request.output, request.allowInverted, console, ranks);
+    console.end();
+    console.say("wrote " + request.output.string() + " (" + std::to_string(decomposed->totalCount()) + " meshes of a " +
+                "decomposed case, " + std::to_string(ranks.size()) + " process(es))");
+  } else if (volume) {
     const auto& [path, mesh] = meshes.front();
     console.begin("check", "checking " + std::to_string(volume->cellCount()) + " cells");
     const meshio::VolumeMeshQuality quality = volume->check(mesh.points);
@@ -398,7 +425,7 @@ int runDeform(const Args& args) {
     for (const auto& [path, mesh] : meshes)
       console.say("wrote " + path.string() + " (" + std::to_string(mesh.points.rows()) + " points)");
   }
-  if (ranks.size() > 1 && !split) console.say("mpirun batch: " + std::to_string(ranks.size()) + " processes wrote " +
+  if (ranks.size() > 1 && !split && !decomposed) console.say("mpirun batch: " + std::to_string(ranks.size()) + " processes wrote " +
                                     std::to_string(ranks.sum(static_cast<std::int64_t>(meshes.size()))) + " file(s)");
   const std::int64_t failed = ranks.sum(stats.failedPoints);
   const std::int64_t outside = ranks.sum(stats.outsidePoints);
