@@ -149,13 +149,13 @@ Eigen::MatrixX3d deform(const widgets::WidgetModel& model, Eigen::MatrixX3d poin
   scenes::SceneObject object;
   object.name = "mesh";
   object.mesh.points = std::move(points);
-  scene.addObject(std::move(object));
+  const scenes::ObjectId id = scene.addObject(std::move(object));
   std::vector<scenes::Attachment> attachments;
-  for (auto root : scene.widgets.roots()) attachments.push_back({root, {"mesh"}});
+  for (auto root : scene.widgets.roots()) attachments.push_back({root, {id}});
   scene.setAttachments(std::move(attachments));
   scenes::SceneDeformer deformer;
   deformer.evaluateTakingPoints(scene);
-  return deformer.takePoints("mesh");
+  return deformer.takePoints(id);
 }
 
 void checkCube(int n) {
