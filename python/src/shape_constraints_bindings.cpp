@@ -159,7 +159,21 @@ Raises:
         'polynomial' with more than 128 control points moving the surface.)doc")
       .def("keptVolume", [](const ffd::ShapeConstraints& c, ffd::Lattice& lattice) { return c.keptVolume(synced(lattice)); },
            "lattice"_a,
-           R"doc(The volume the kept surface encloses once deformed by the lattice's control points.)doc")
+           R"doc(The volume the kept surface encloses once deformed by the lattice's control points.
+
+Evaluated by the precomputed polynomial when keepVolume chose it (O(lattice)), else by deforming
+the points and summing over the triangles; a drag's status line (the volume change) costs
+nothing more than its solve.
+
+Args:
+    lattice: the lattice these constraints were built for (the one embedded).
+
+Returns:
+    The enclosed volume in world units cubed.
+
+Raises:
+    ConstraintError: keepVolume was not called.
+    LatticeError: the lattice is not the one embedded.)doc")
       .def("keepCentroid",
            [](ffd::ShapeConstraints& c, const py::object& triangles, const Eigen::Vector3d& target) {
              c.keepCentroid(surfaceArg(triangles, c.pointCount()), target);

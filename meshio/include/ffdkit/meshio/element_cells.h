@@ -41,6 +41,7 @@ struct ElementCells {
   /// The id a message gives cell c (the file's element tag); empty: c itself.
   std::vector<std::int64_t> ids;
 
+  /// The number of cells.
   std::int64_t cellCount() const { return std::int64_t(shapes.size()); }
   /// Appends a cell: its shape and cornerCount(shape) point indices.
   void add(CellShape shape, const std::int32_t* cornerIndices, std::int64_t id);
@@ -64,6 +65,7 @@ struct ElementQuality {
   std::int64_t badCells = 0;                ///< cells with a non-positive corner Jacobian or volume
   std::vector<std::int64_t> firstBadCells;  ///< their first ids (ElementCells::ids when given)
 
+  /// Whether no cell is inverted or of zero volume.
   bool ok() const { return badCells == 0; }
   /// min / max cell volume (0 when the largest is not positive).
   double volumeRatio() const { return maxVolume > 0.0 ? minVolume / maxVolume : 0.0; }

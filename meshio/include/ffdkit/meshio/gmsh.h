@@ -28,15 +28,15 @@ struct GmshFile {
   /// Binary: the coordinates of nodes first .. first + count - 1 (in file order) start at byte
   /// `offset`, `stride` doubles per node (3, or more with parametric coordinates).
   struct CoordinateBlock {
-    std::size_t offset = 0;
-    std::int64_t first = 0;
-    std::int64_t count = 0;
-    int stride = 3;
+    std::size_t offset = 0;   ///< byte offset of the first node's x
+    std::int64_t first = 0;   ///< index (file order) of the block's first node
+    std::int64_t count = 0;   ///< nodes in the block
+    int stride = 3;           ///< doubles per node
   };
   std::vector<CoordinateBlock> blocks;  ///< binary
   /// ASCII: byte offset and length of each coordinate's text, 3 per node in file order.
   std::vector<std::uint64_t> spanStarts;
-  std::vector<std::uint32_t> spanLengths;
+  std::vector<std::uint32_t> spanLengths;  ///< ASCII: the length of each span in spanStarts
 };
 
 /// A Gmsh mesh: its nodes, its volume cells and what the file holds.

@@ -47,6 +47,7 @@ struct VolumeMeshQuality {
   std::string summary;         ///< one line: volumes, worst Jacobian or pyramid, ... (or why not checked)
   std::string badText;         ///< "3 cells inverted or of zero volume (first: 4, 5, 13)..." when badCells > 0
 
+  /// Whether no cell is inverted or of zero volume.
   bool ok() const { return badCells == 0; }
 };
 
@@ -68,6 +69,7 @@ class VolumeMesh {
  public:
   virtual ~VolumeMesh() = default;
 
+  /// The file's format.
   virtual VolumeMeshFormat format() const = 0;
   /// The file or folder read.
   const std::filesystem::path& path() const { return path_; }
@@ -94,6 +96,7 @@ class VolumeMesh {
   virtual const OpenFoamMesh* openFoam() const { return nullptr; }
 
  protected:
+  /// A mesh read from `path` with its points (#P x 3).
   VolumeMesh(std::filesystem::path path, Eigen::MatrixX3d points)
       : path_(std::move(path)), points_(std::move(points)), pointCount_(points_.rows()) {}
 

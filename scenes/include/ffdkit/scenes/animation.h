@@ -93,8 +93,8 @@ void applyAnimation(Scene& scene, double seconds);
 /// What one command's last carried undo or redo (restoreAtEditValues after a frame change) did:
 /// the model's state (WidgetModel::captureState) before and after it.
 struct CarriedStep {
-  widgets::WidgetModelState before;
-  widgets::WidgetModelState after;
+  widgets::WidgetModelState before;  ///< the state the carried step started from
+  widgets::WidgetModelState after;   ///< the state it left
 };
 
 /// Undo and redo of an edit after frame changes. An edit's command writes back values captured
