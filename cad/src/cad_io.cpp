@@ -370,7 +370,12 @@ CadModel readIsolated(const std::string& file, const CadReadOptions& options, co
   if (code == 4)
     throw CadError(file + ": reading needs more than " + std::to_string(options.maxMemoryBytes) +
                    " bytes of memory (CadReadOptions::maxMemoryBytes)");
-  if (code != 0) throw CadError(file + ": the reading process failed (exit status " + std::to_string(code) + ")");
+  if (code == 5) throw CadError(file + ": the reading process failed (exit status 5: an unexpected exception)");
+  // Any other status is not one the child chose: the process ended abnormally (under ASan a
+  // crash is reported and ends the process with ASan's exit code instead of the signal).
+  if (code != 0)
+    throw CadError(file + ": OpenCASCADE crashed reading the file (the reading process ended with exit status " +
+                   std::to_string(code) + ")");
   std::istringstream parts(text);
   return readParts(parts, file);
 }
