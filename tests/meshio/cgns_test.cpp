@@ -17,22 +17,14 @@
 #include <cgnslib.h>
 #include <gtest/gtest.h>
 
+#include "scratch_folder.h"
+
 #include "ffdkit/meshio/mesh_data.h"
 
 namespace ffdkit::meshio {
 namespace {
 
 namespace fs = std::filesystem;
-
-template <class Action>
-std::string errorOf(Action action) {
-  try {
-    action();
-  } catch (const MeshIoError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 // stdout and exit status of a shell command.
 std::pair<std::string, int> run(const std::string& command) {
@@ -51,15 +43,9 @@ std::pair<std::string, int> run(const std::string& command) {
 // Node number (1-based) of grid point (i, j, k) of an (n+1)^3 block, x fastest.
 int node(int i, int j, int k, int n) { return 1 + i + (n + 1) * (j + (n + 1) * k); }
 
-class Cgns : public ::testing::Test {
+class Cgns : public testing::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("ffdkit-cgns-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  Cgns() : ScratchFolderTest("cgns") {}
 
   // The hexahedral block of n^3 cells over [0, 1]^3: points, a HEXA_8 section, a QUAD_4 section
   // of the faces at z = 0 with a wall condition on them, a vertex solution and a descriptor.
@@ -118,7 +104,6 @@ class Cgns : public ::testing::Test {
     EXPECT_EQ(cg_close(fn), CG_OK);
     return path;
   }
-  fs::path dir_;
 };
 
 TEST_F(Cgns, ReadsTheCoordinatesAndTheHexahedraOfABlock) {
@@ -180,7 +165,7 @@ TEST_F(Cgns, RealSingleCoordinatesStaySingle) {
   EXPECT_EQ(back.points, moved.cast<float>().cast<double>());
   Eigen::MatrixX3d huge = mesh.points;
   huge(4, 1) = 1e300;
-  const std::string message = errorOf([&] { writeCgnsMesh(mesh, huge, dir_ / "huge.cgns"); });
+  const std::string message = testing::meshIoErrorOf([&] { writeCgnsMesh(mesh, huge, dir_ / "huge.cgns"); });
   EXPECT_NE(message.find("vertex 5: CoordinateY"), std::string::npos) << message;
   EXPECT_NE(message.find("RealSingle"), std::string::npos) << message;
   EXPECT_FALSE(fs::exists(dir_ / "huge.cgns"));
@@ -243,7 +228,7 @@ TEST_F(Cgns, ReadVolumeMeshTakesCgnsFiles) {
 
 TEST_F(Cgns, NodeOutOfRangeIsRefusedWithTheSectionAndElement) {
   const fs::path path = writeBlock("bad.cgns", 2, 99);
-  const std::string message = errorOf([&] { readCgnsMesh(path); });
+  const std::string message = testing::meshIoErrorOf([&] { readCgnsMesh(path); });
   EXPECT_NE(message.find(path.string() + ": zone Block, section 1 'Hexa', element 2: node 99 is outside 1..27"),
             std::string::npos)
       << message;
@@ -252,16 +237,16 @@ TEST_F(Cgns, NodeOutOfRangeIsRefusedWithTheSectionAndElement) {
 TEST_F(Cgns, NotACgnsFileIsRefused) {
   const fs::path path = dir_ / "text.cgns";
   std::ofstream(path) << "not a CGNS file\n";
-  const std::string message = errorOf([&] { readCgnsMesh(path); });
+  const std::string message = testing::meshIoErrorOf([&] { readCgnsMesh(path); });
   EXPECT_NE(message.find(path.string() + ": not a CGNS file"), std::string::npos) << message;
-  EXPECT_NE(errorOf([&] { readCgnsMesh(dir_ / "missing.cgns"); }).find("not a regular file"), std::string::npos);
+  EXPECT_NE(testing::meshIoErrorOf([&] { readCgnsMesh(dir_ / "missing.cgns"); }).find("not a regular file"), std::string::npos);
 }
 
 TEST_F(Cgns, TooManyPointsForTheBudgetAreRefusedBeforeReading) {
   const fs::path path = writeBlock("big.cgns", 6);
   CgnsReadOptions options;
   options.limits.maxPoints = 100;  // the block has 343
-  const std::string message = errorOf([&] { readCgnsMesh(path, options); });
+  const std::string message = testing::meshIoErrorOf([&] { readCgnsMesh(path, options); });
   EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << message;
   EXPECT_NE(message.find("343"), std::string::npos) << message;
 }
@@ -274,7 +259,7 @@ TEST_F(Cgns, StructuredZoneIsRefused) {
   cgsize_t size[9] = {2, 2, 2, 1, 1, 1, 0, 0, 0};
   CG(cg_zone_write(fn, B, "Box", size, CGNS_ENUMV(Structured), &Z));
   CG(cg_close(fn));
-  const std::string message = errorOf([&] { readCgnsMesh(path); });
+  const std::string message = testing::meshIoErrorOf([&] { readCgnsMesh(path); });
   EXPECT_NE(message.find("zone Box is structured"), std::string::npos) << message;
 }
 

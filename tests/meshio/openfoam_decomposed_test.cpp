@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "scratch_folder.h"
+
 namespace ffdkit::meshio {
 namespace {
 
@@ -25,23 +27,11 @@ std::string fileText(const fs::path& path) {
   return s.str();
 }
 
-template <class Action>
-std::string errorOf(Action action) {
-  try {
-    action();
-  } catch (const MeshIoError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-class DecomposedOpenFoam : public ::testing::Test {
+class DecomposedOpenFoam : public testing::ScratchFolderTest {
  protected:
+  DecomposedOpenFoam() : ScratchFolderTest("decomposed") {}
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("ffdkit-decomposed-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    ScratchFolderTest::SetUp();
     case_ = dir_ / "case";
     fs::copy(kCube, case_, fs::copy_options::recursive);
     for (int p = 0; p < 3; ++p) {
@@ -52,13 +42,12 @@ class DecomposedOpenFoam : public ::testing::Test {
       std::ofstream(processor / "0" / "U") << "a field of processor " << p << "\n";
     }
   }
-  void TearDown() override { fs::remove_all(dir_); }
   // Only the output folder is beside the case: no hidden staging folder is left.
   void expectNoTemporaries() {
     for (const auto& entry : fs::directory_iterator(dir_))
       EXPECT_NE(entry.path().filename().string()[0], '.') << entry.path();
   }
-  fs::path dir_, case_;
+  fs::path case_;
 };
 
 TEST_F(DecomposedOpenFoam, FindsTheReconstructedMeshThenTheProcessorsInNumberOrder) {
@@ -83,18 +72,18 @@ TEST_F(DecomposedOpenFoam, FindsTheReconstructedMeshThenTheProcessorsInNumberOrd
 
 TEST_F(DecomposedOpenFoam, RefusesAGapInTheNumbering) {
   fs::remove_all(case_ / "processor1");
-  const std::string message = errorOf([&] { findDecomposedCase(case_); });
+  const std::string message = testing::meshIoErrorOf([&] { findDecomposedCase(case_); });
   EXPECT_NE(message.find("processor1 is missing (found processor2"), std::string::npos) << message;
 }
 
 TEST_F(DecomposedOpenFoam, RefusesTheCollatedLayoutAndAProcessorWithoutMesh) {
   fs::create_directories(case_ / "processors3");
-  std::string message = errorOf([&] { findDecomposedCase(case_); });
+  std::string message = testing::meshIoErrorOf([&] { findDecomposedCase(case_); });
   EXPECT_NE(message.find("processors3: not a processor folder"), std::string::npos) << message;
   EXPECT_NE(message.find("collated"), std::string::npos) << message;
   fs::remove_all(case_ / "processors3");
   fs::remove_all(case_ / "processor2" / "constant");
-  message = errorOf([&] { findDecomposedCase(case_); });
+  message = testing::meshIoErrorOf([&] { findDecomposedCase(case_); });
   EXPECT_NE(message.find("processor2: no constant/polyMesh/points"), std::string::npos) << message;
 }
 
@@ -142,7 +131,7 @@ TEST_F(DecomposedOpenFoam, AFailedPieceLeavesTheOutputAsItWas) {
   const OpenFoamMesh mesh = readDecomposedCasePiece(decomposed.pieces[1]);
   const Eigen::MatrixX3d tooFew = mesh.points.topRows(10);
   const std::string message =
-      errorOf([&] { writeDecomposedCasePiece(decomposed.pieces[1], mesh, tooFew, staging, {.durable = false}); });
+      testing::meshIoErrorOf([&] { writeDecomposedCasePiece(decomposed.pieces[1], mesh, tooFew, staging, {.durable = false}); });
   EXPECT_EQ(message.rfind(decomposed.pieces[1].folder.string() + ": ", 0), 0u) << message;
   EXPECT_NE(message.find("10 points given for a file with more"), std::string::npos) << message;
   fs::remove_all(staging);  // what the batch does when a piece fails
@@ -151,7 +140,7 @@ TEST_F(DecomposedOpenFoam, AFailedPieceLeavesTheOutputAsItWas) {
 }
 
 TEST_F(DecomposedOpenFoam, RefusesAnOutputInsideTheCaseBeforeCopying) {
-  const std::string message = errorOf([&] { stageDecomposedCase(findDecomposedCase(case_), case_ / "out"); });
+  const std::string message = testing::meshIoErrorOf([&] { stageDecomposedCase(findDecomposedCase(case_), case_ / "out"); });
   EXPECT_NE(message.find("inside the folder it copies"), std::string::npos) << message;
   EXPECT_FALSE(fs::exists(case_ / "out"));
   for (const auto& entry : fs::directory_iterator(case_))
@@ -164,7 +153,7 @@ TEST_F(DecomposedOpenFoam, AProcessorFolderIsReadAsACase) {
   EXPECT_EQ(mesh.points.rows(), 343);
   EXPECT_EQ(mesh.cells.cellCount, 216);
   // The case itself is refused by the one-mesh reader, with a message that says what to do.
-  const std::string message = errorOf([&] { readOpenFoamMesh(case_); });
+  const std::string message = testing::meshIoErrorOf([&] { readOpenFoamMesh(case_); });
   EXPECT_NE(message.find("a decomposed case (processor"), std::string::npos) << message;
 }
 

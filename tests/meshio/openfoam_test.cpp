@@ -13,6 +13,8 @@
 #include <Eigen/LU>
 #include <gtest/gtest.h>
 
+#include "scratch_folder.h"
+
 #include "ffdkit/meshio/cell_quality.h"
 
 namespace ffdkit::meshio {
@@ -34,33 +36,15 @@ void writeText(const fs::path& path, const std::string& text) {
   out << text;
 }
 
-// The error message of `action`, or "" when it does not throw a MeshIoError.
-template <class Action>
-std::string errorOf(Action action) {
-  try {
-    action();
-  } catch (const MeshIoError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-class OpenFoam : public ::testing::Test {
+class OpenFoam : public testing::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("ffdkit-openfoam-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  OpenFoam() : ScratchFolderTest("openfoam") {}
   // A copy of a test case to spoil.
   fs::path copyCase(const std::string& name) {
     const fs::path to = dir_ / name;
     fs::copy(kData / name, to, fs::copy_options::recursive);
     return to;
   }
-  fs::path dir_;
 };
 
 TEST_F(OpenFoam, ReadsTheAsciiBlockMeshCube) {
@@ -145,7 +129,7 @@ TEST_F(OpenFoam, GzipRoundTripAndTheBombIsRefused) {
   ReadLimits limits;
   limits.maxMemoryBytes = std::uint64_t(64) << 20;
   ReadBudget small(limits);
-  const std::string message = errorOf([&] { gunzipBytes(bomb, "points.gz", small); });
+  const std::string message = testing::meshIoErrorOf([&] { gunzipBytes(bomb, "points.gz", small); });
   EXPECT_NE(message.find("points.gz: the compressed file expands past"), std::string::npos) << message;
   EXPECT_NE(message.find("--max-memory"), std::string::npos) << message;
 }
@@ -178,7 +162,9 @@ TEST_F(OpenFoam, WritesTheCaseWithOnlyThePointsChanged) {
       ++files;
       const fs::path relative = fs::relative(entry.path(), kData / name);
       ASSERT_TRUE(fs::exists(out / relative)) << relative;
-      if (relative.filename() != "points") EXPECT_EQ(fileText(out / relative), fileText(entry.path())) << relative;
+      if (relative.filename() != "points") {
+        EXPECT_EQ(fileText(out / relative), fileText(entry.path())) << relative;
+      }
     }
     std::size_t written = 0;
     for (const auto& entry : fs::recursive_directory_iterator(out)) written += entry.is_regular_file() ? 1 : 0;
@@ -206,7 +192,7 @@ TEST_F(OpenFoam, AnExistingOutputIsReplacedWhole) {
 TEST_F(OpenFoam, RefusesAnOutputInsideTheCase) {
   const fs::path copy = copyCase("cube");
   const OpenFoamMesh mesh = readOpenFoamMesh(copy);
-  const std::string message = errorOf([&] { writeOpenFoamMesh(mesh, mesh.points, copy / "system" / "out"); });
+  const std::string message = testing::meshIoErrorOf([&] { writeOpenFoamMesh(mesh, mesh.points, copy / "system" / "out"); });
   EXPECT_NE(message.find("inside the folder it copies"), std::string::npos) << message;
   EXPECT_FALSE(fs::exists(copy / "system" / "out"));
 }
@@ -219,7 +205,7 @@ TEST_F(OpenFoam, LyingPointCountIsRefusedWithFileAndLine) {
   std::string text = fileText(points);
   text.replace(text.find("\n343\n"), 5, "\n344\n");
   writeText(points, text);
-  const std::string message = errorOf([&] { readOpenFoamMesh(copy); });
+  const std::string message = testing::meshIoErrorOf([&] { readOpenFoamMesh(copy); });
   // Point 343 meets the list's closing ')' on the last line of the list.
   EXPECT_NE(message.find(points.string() + ":364: point 343: expected '('"), std::string::npos) << message;
 }
@@ -230,7 +216,7 @@ TEST_F(OpenFoam, TruncatedPointsAreRefused) {
     const fs::path points = copy / "constant" / "polyMesh" / "points";
     const std::string text = fileText(points);
     writeText(points, text.substr(0, text.size() / 2));
-    const std::string message = errorOf([&] { readOpenFoamMesh(copy); });
+    const std::string message = testing::meshIoErrorOf([&] { readOpenFoamMesh(copy); });
     EXPECT_EQ(message.rfind(points.string() + ":", 0), 0u) << message;
     EXPECT_NE(message.find(std::string(name) == "cube" ? "expected a number, got the end of the file" : "point: a list of 343 needs at least 8232 bytes, the file has"),
               std::string::npos)
@@ -244,7 +230,7 @@ TEST_F(OpenFoam, FaceWithAnOutOfRangePointIsRefused) {
   std::string text = fileText(faces);
   text.replace(text.find("4(1 8 57 50)"), 12, "4(1 8 343 50)");
   writeText(faces, text);
-  const std::string message = errorOf([&] { readOpenFoamMesh(copy); });
+  const std::string message = testing::meshIoErrorOf([&] { readOpenFoamMesh(copy); });
   EXPECT_NE(message.find(faces.string() + ":"), std::string::npos) << message;
   EXPECT_NE(message.find(": 343 is outside 0..342"), std::string::npos) << message;
   EXPECT_NE(message.find("face 0"), std::string::npos) << message;
@@ -259,7 +245,7 @@ TEST_F(OpenFoam, BinaryFaceWithAnOutOfRangePointIsRefused) {
   const std::int32_t bad = 1000;
   std::memcpy(text.data() + data, &bad, sizeof bad);
   writeText(faces, text);
-  const std::string message = errorOf([&] { readOpenFoamMesh(copy); });
+  const std::string message = testing::meshIoErrorOf([&] { readOpenFoamMesh(copy); });
   EXPECT_NE(message.find("face point 0 (binary, offset " + std::to_string(data) + "): 1000 is outside 0..342"),
             std::string::npos)
       << message;
@@ -268,7 +254,7 @@ TEST_F(OpenFoam, BinaryFaceWithAnOutOfRangePointIsRefused) {
 TEST_F(OpenFoam, MissingOwnerIsRefused) {
   const fs::path copy = copyCase("cube");
   fs::remove(copy / "constant" / "polyMesh" / "owner");
-  const std::string message = errorOf([&] { readOpenFoamMesh(copy); });
+  const std::string message = testing::meshIoErrorOf([&] { readOpenFoamMesh(copy); });
   EXPECT_NE(message.find("no 'owner' file"), std::string::npos) << message;
 }
 
@@ -280,7 +266,7 @@ TEST_F(OpenFoam, OwnerOfTheWrongSizeIsRefused) {
   text.replace(at, 7, "\n755\n(\n");
   text.erase(text.rfind("\n)") - 4, 4);  // the last label ("215\n" before the ')')
   writeText(owner, text);
-  const std::string message = errorOf([&] { readOpenFoamMesh(copy); });
+  const std::string message = testing::meshIoErrorOf([&] { readOpenFoamMesh(copy); });
   EXPECT_NE(message.find("755 owner cells for the 756 faces"), std::string::npos) << message;
 }
 
@@ -290,7 +276,7 @@ TEST_F(OpenFoam, SymbolicLinkOutsideTheCaseIsRefused) {
   fs::copy_file(copy / "constant" / "polyMesh" / "points", outside);
   fs::remove(copy / "constant" / "polyMesh" / "points");
   fs::create_symlink(outside, copy / "constant" / "polyMesh" / "points");
-  const std::string message = errorOf([&] { readOpenFoamMesh(copy); });
+  const std::string message = testing::meshIoErrorOf([&] { readOpenFoamMesh(copy); });
   EXPECT_NE(message.find("a symbolic link that leads outside the folder"), std::string::npos) << message;
   // Allowed explicitly, it reads; a link elsewhere in the case still refuses the copy.
   OpenFoamReadOptions allow;
@@ -298,7 +284,7 @@ TEST_F(OpenFoam, SymbolicLinkOutsideTheCaseIsRefused) {
   const OpenFoamMesh mesh = readOpenFoamMesh(copy, allow);
   EXPECT_EQ(mesh.points.rows(), 343);
   fs::create_symlink(outside, copy / "system" / "extra");
-  const std::string copyMessage = errorOf([&] { writeOpenFoamMesh(mesh, mesh.points, dir_ / "out"); });
+  const std::string copyMessage = testing::meshIoErrorOf([&] { writeOpenFoamMesh(mesh, mesh.points, dir_ / "out"); });
   EXPECT_NE(copyMessage.find((copy / "system" / "extra").string() + ": a symbolic link that leads outside"),
             std::string::npos)
       << copyMessage;
@@ -308,17 +294,17 @@ TEST_F(OpenFoam, SymbolicLinkOutsideTheCaseIsRefused) {
 TEST_F(OpenFoam, DecomposedCaseIsRefused) {
   const fs::path copy = copyCase("cube");
   fs::create_directories(copy / "processor0");
-  const std::string message = errorOf([&] { readOpenFoamMesh(copy); });
+  const std::string message = testing::meshIoErrorOf([&] { readOpenFoamMesh(copy); });
   EXPECT_NE(message.find("a decomposed case (processor0/)"), std::string::npos) << message;
 }
 
 TEST_F(OpenFoam, HugeListSizeIsRefusedBeforeAllocating) {
   ReadBudget budget;
   const std::string text = "FoamFile { format ascii; class vectorField; }\n3000000000\n((0 0 0))\n";
-  const std::string message = errorOf([&] { readFoamPoints(text, "points", budget); });
+  const std::string message = testing::meshIoErrorOf([&] { readFoamPoints(text, "points", budget); });
   EXPECT_NE(message.find("points:2: point (list size): 3000000000 is outside 0..2147483647"), std::string::npos) << message;
   const std::string fits = "FoamFile { format ascii; class vectorField; }\n200000000\n((0 0 0))\n";
-  const std::string fitsMessage = errorOf([&] { readFoamPoints(fits, "points", budget); });
+  const std::string fitsMessage = testing::meshIoErrorOf([&] { readFoamPoints(fits, "points", budget); });
   EXPECT_NE(fitsMessage.find("points:2: point: a list of 200000000 needs at least 1400000000 bytes, the file has 10 left"),
             std::string::npos)
       << fitsMessage;
