@@ -11,25 +11,13 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 
+#include "curve_intersections.h"
 #include "curve_point_search.h"
 
 namespace ffdkit::geometry::curvenet {
 namespace {
 
 using namespace detail;
-
-std::string fmt(const Eigen::Vector3d& p) {
-  std::ostringstream s;
-  s.precision(6);
-  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
-  return s.str();
-}
-
-struct PairHit {
-  int a = -1, b = -1;
-  double ta = 0.0, tb = 0.0, distance = 0.0;
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();
-};
 
 struct NearMiss {
   double distance = std::numeric_limits<double>::infinity();
@@ -139,152 +127,8 @@ class NetworkBuilder {
 
   // --- pairwise intersections (closest points), Kuriyama 1996, sec. 5.3.3 steps 1-2 ----------
   std::vector<PairHit> findIntersections() {
-    makeSegmentBoxes();
-    std::vector<PairHit> hits;
-    for (int a = 0; a < nc_; ++a)
-      for (int b = a + 1; b < nc_; ++b) intersect(a, b, hits);
-    return hits;
-  }
-
-  // Per-segment sample boxes and the longest sample step of each curve: only segment pairs whose
-  // boxes come within the gate are compared.
-  void makeSegmentBoxes() {
-    step_.assign(nc_, 0.0);
-    boxes_.assign(nc_, {});
-    for (int c = 0; c < nc_; ++c) {
-      const Eigen::MatrixX3d& p = samples_[c];
-      const Eigen::Index n = p.rows();
-      for (Eigen::Index i = 1; i < n; ++i) step_[c] = std::max(step_[c], (p.row(i) - p.row(i - 1)).norm());
-      if (net_.curves[c].closed()) step_[c] = std::max(step_[c], (p.row(0) - p.row(n - 1)).norm());
-      const int segs = static_cast<int>(net_.curves[c].segments().size());
-      for (int k = 0; k < segs; ++k) {
-        Eigen::AlignedBox3d box;
-        for (int q = 0; q <= kSamples; ++q) {
-          const Eigen::Index idx =
-              net_.curves[c].closed() ? (k * kSamples + q) % n : std::min<Eigen::Index>(k * kSamples + q, n - 1);
-          box.extend(p.row(idx).transpose());
-        }
-        boxes_[c].push_back(box);
-      }
-    }
-  }
-
-  // The sample rows of curves a and b worth comparing: the smallest windows holding every
-  // segment pair whose boxes come within `gate`. False if none do.
-  bool sampleWindows(int a, int b, double gate, Eigen::Index& r0, Eigen::Index& r1, Eigen::Index& c0,
-                     Eigen::Index& c1) const {
-    r0 = std::numeric_limits<Eigen::Index>::max(), r1 = -1, c0 = r0, c1 = -1;
-    for (int ka = 0; ka < static_cast<int>(boxes_[a].size()); ++ka) {
-      Eigen::AlignedBox3d grown = boxes_[a][ka];
-      grown.min().array() -= gate;
-      grown.max().array() += gate;
-      for (int kb = 0; kb < static_cast<int>(boxes_[b].size()); ++kb) {
-        if (!grown.intersects(boxes_[b][kb])) continue;
-        r0 = std::min<Eigen::Index>(r0, ka * kSamples);
-        r1 = std::max<Eigen::Index>(r1, (ka + 1) * kSamples);
-        c0 = std::min<Eigen::Index>(c0, kb * kSamples);
-        c1 = std::max<Eigen::Index>(c1, (kb + 1) * kSamples);
-      }
-    }
-    if (r1 < 0) return false;
-    r1 = std::min(r1, samples_[a].rows() - 1);
-    c1 = std::min(c1, samples_[b].rows() - 1);
-    return true;
-  }
-
-  // Where curves a and b meet, appended to `hits`: each local minimum of the sampled distance
-  // within the gate, refined to the closest points (and snapped to an open end within tau: a T).
-  void intersect(int a, int b, std::vector<PairHit>& hits) {
-    const double gate = tau_ + step_[a] + step_[b];
-    Eigen::Index r0, r1, c0, c1;
-    if (!sampleWindows(a, b, gate, r0, r1, c0, c1)) return;
-    // Wrap-around neighbours only when the window is the whole closed curve.
-    const bool wrapA = net_.curves[a].closed() && r0 == 0 && r1 == samples_[a].rows() - 1;
-    const bool wrapB = net_.curves[b].closed() && c0 == 0 && c1 == samples_[b].rows() - 1;
-    const Eigen::MatrixX3d pa = samples_[a].middleRows(r0, r1 - r0 + 1);
-    const Eigen::MatrixX3d pb = samples_[b].middleRows(c0, c1 - c0 + 1);
-    const Eigen::Index na = pa.rows(), nb = pb.rows();
-    Eigen::MatrixXd dist(na, nb);
-    for (Eigen::Index i = 0; i < na; ++i) dist.row(i) = (pb.rowwise() - pa.row(i)).rowwise().norm().transpose();
-    Eigen::Index mi = 0, mj = 0;
-    if (dist.minCoeff(&mi, &mj) > gate) return;
-    std::vector<PairHit> pairHits;
-    for (Eigen::Index i = 0; i < na; ++i) {
-      for (Eigen::Index j = 0; j < nb; ++j) {
-        if (dist(i, j) > gate || !isLocalMinimum(dist, i, j, wrapA, wrapB)) continue;
-        double s = params_[a][r0 + i], t = params_[b][c0 + j];
-        refineClosestPoints(net_.curves[a], net_.curves[b], s, t);
-        // T-detection (Kuriyama 1996, sec. 5.3.3): an open end within tau of the other curve is
-        // the cut point.
-        if (snapToEnd(net_.curves[a], s, tau_)) refineOnOneCurve(net_.curves[a].evaluate(s), net_.curves[b], t);
-        if (snapToEnd(net_.curves[b], t, tau_)) refineOnOneCurve(net_.curves[b].evaluate(t), net_.curves[a], s);
-        const Eigen::Vector3d xa = net_.curves[a].evaluate(s), xb = net_.curves[b].evaluate(t);
-        const double d = (xa - xb).norm();
-        if (d >= tau_) continue;
-        keepClosest(pairHits, PairHit{a, b, s, t, d, 0.5 * (xa + xb)});
-      }
-    }
-    if (pairHits.empty()) noteNearMiss(a, b, params_[a][r0 + mi], params_[b][c0 + mj]);
-    for (const PairHit& hit : pairHits) {
-      requireCrossingAngle(hit);
-      hits.push_back(hit);
-    }
-  }
-
-  // Whether dist(i, j) is a local minimum over its 8 neighbours (wrapping on closed curves); ties
-  // broken by index so a flat valley yields one start, not many.
-  static bool isLocalMinimum(const Eigen::MatrixXd& dist, Eigen::Index i, Eigen::Index j, bool wrapA, bool wrapB) {
-    const Eigen::Index na = dist.rows(), nb = dist.cols();
-    const double dij = dist(i, j);
-    for (int di = -1; di <= 1; ++di) {
-      for (int dj = -1; dj <= 1; ++dj) {
-        if (di == 0 && dj == 0) continue;
-        Eigen::Index ii = i + di, jj = j + dj;
-        if (wrapA) ii = (ii + na) % na;
-        if (wrapB) jj = (jj + nb) % nb;
-        if (ii < 0 || ii >= na || jj < 0 || jj >= nb) continue;
-        if (dist(ii, jj) < dij || (dist(ii, jj) == dij && (ii * nb + jj) < (i * nb + j))) return false;
-      }
-    }
-    return true;
-  }
-
-  // Adds `hit` unless a kept hit lies within tau; then the closer of the two is kept.
-  void keepClosest(std::vector<PairHit>& pairHits, const PairHit& hit) const {
-    bool duplicate = false;
-    for (PairHit& other : pairHits) {
-      if ((other.point - hit.point).norm() < tau_) {
-        duplicate = true;
-        if (hit.distance < other.distance) other = hit;
-      }
-    }
-    if (!duplicate) pairHits.push_back(hit);
-  }
-
-  // A near miss is the usual symptom of a crossing the designer meant: say where.
-  void noteNearMiss(int a, int b, double s, double t) {
-    refineClosestPoints(net_.curves[a], net_.curves[b], s, t);
-    const Eigen::Vector3d xa = net_.curves[a].evaluate(s), xb = net_.curves[b].evaluate(t);
-    const double d = (xa - xb).norm();
-    if (!(d < 3.0 * tau_)) return;
-    std::ostringstream msg;
-    msg << curveLabel(net_, a) << " and " << curveLabel(net_, b) << " pass within " << d << " of each other near "
-        << fmt(0.5 * (xa + xb)) << " without meeting (tolerance " << tau_
-        << "); raise the tolerance or move them if they should cross";
-    net_.notes.push_back(msg.str());
-  }
-
-  void requireCrossingAngle(const PairHit& hit) const {
-    const Eigen::Vector3d ta = net_.curves[hit.a].evaluate(hit.ta, 1).normalized();
-    const Eigen::Vector3d tb = net_.curves[hit.b].evaluate(hit.tb, 1).normalized();
-    const double sine = ta.cross(tb).norm();
-    if (!(sine < sinMin_)) return;
-    std::ostringstream msg;
-    msg << curveLabel(net_, hit.a) << " and " << curveLabel(net_, hit.b) << " are tangent or nearly coincident near "
-        << fmt(hit.point) << " (t = " << hit.ta << " and " << hit.tb << "): crossing angle "
-        << std::asin(std::min(1.0, sine)) * 180.0 / std::numbers::pi << " deg, expected >= "
-        << options_.minimumCrossingAngleDegrees << " deg; separate the curves or make them cross";
-    throw CurveNetworkError(msg.str());
+    return findCurveIntersections(net_, CurveSamples{samples_, params_, kSamples}, tau_,
+                                  options_.minimumCrossingAngleDegrees);
   }
 
   // --- vertices: clusters of hits closer than tau (>= 3 curves: a multiple point) -------------
@@ -368,7 +212,7 @@ class NetworkBuilder {
       refineClosestPoints(net_.curves[c], net_.curves[miss.other], ts, to);
       const Eigen::Vector3d ps = net_.curves[c].evaluate(ts), po = net_.curves[miss.other].evaluate(to);
       msg << ": nearest is " << curveLabel(net_, miss.other) << " at distance " << (ps - po).norm() << " near "
-          << fmt(0.5 * (ps + po)) << " (t = " << ts << ")"
+          << formatPoint(0.5 * (ps + po)) << " (t = " << ts << ")"
           << "; move the curves together or raise the intersection tolerance";
     }
     return msg.str();
@@ -391,7 +235,7 @@ class NetworkBuilder {
         if (r > 1e-9 * net_.scale) {
           std::ostringstream msg;
           msg << curveLabel(net_, c) << ": curve correction cannot meet the intersection at "
-              << fmt(net_.vertices[vi].position) << " (t = " << t << "), residual " << r
+              << formatPoint(net_.vertices[vi].position) << " (t = " << t << "), residual " << r
               << " > 1e-9 L; the curve has too few knot spans for its intersections: add points";
           throw CurveNetworkError(msg.str());
         }
@@ -465,7 +309,7 @@ class NetworkBuilder {
       if (normalState_[vi] != 0 || isFree(vi)) continue;
       if (net_.vertices[vi].normal.dot(options_.orientationHint) < 0.0) net_.vertices[vi].normal = -net_.vertices[vi].normal;
       normalState_[vi] = 2;
-      net_.notes.push_back("vertex at " + fmt(net_.vertices[vi].position) +
+      net_.notes.push_back("vertex at " + formatPoint(net_.vertices[vi].position) +
                            ": tangent-plane orientation undetermined by N.1-N.4, taken from the "
                            "orientation hint");
       propagateNormals({vi});
@@ -561,7 +405,7 @@ class NetworkBuilder {
         const double th = turnAngle(h, o);
         if (th <= -epsS_) continue;
         if (best >= 0 && std::abs(th - bestAngle) < 1e-6) {
-          net_.notes.push_back("ambiguous turn at vertex " + fmt(net_.vertices[he.to].position) + " arriving on " +
+          net_.notes.push_back("ambiguous turn at vertex " + formatPoint(net_.vertices[he.to].position) + " arriving on " +
                                curveLabel(net_, he.curve));
         }
         if (th > bestAngle) {
@@ -576,7 +420,7 @@ class NetworkBuilder {
       if (he.next >= 0) ++predecessors_[he.next];
     for (int h = 0; h < nhe_; ++h) {
       if (predecessors_[h] > 1) {
-        throw CurveNetworkError("face tracing is ambiguous at vertex " + fmt(net_.vertices[net_.halfEdges[h].from].position) +
+        throw CurveNetworkError("face tracing is ambiguous at vertex " + formatPoint(net_.vertices[net_.halfEdges[h].from].position) +
                                 " on " + curveLabel(net_, net_.halfEdges[h].curve) +
                                 ": check for curves that cross tangentially");
       }
@@ -669,14 +513,14 @@ class NetworkBuilder {
       const double side = tc.cross(tk).dot(v.normal);
       if (std::abs(side) < sinMin_) {
         throw CurveNetworkError(curveLabel(net_, cp.curve) + " is tangent to " + curveLabel(net_, run.curve) + " at " +
-                                fmt(v.position) + ": a transversal must cross the guide curve");
+                                formatPoint(v.position) + ": a transversal must cross the guide curve");
       }
       tr.directions.push_back(side > 0.0 ? 1 : -1);
       w += net_.influence[cp.curve];
     }
     tr.influence = tr.members.empty() ? 1.0 : w / tr.members.size();
     if (tr.members.empty() && !isFree(vi)) {
-      throw CurveNetworkError(curveLabel(net_, run.curve) + ": run end at " + fmt(v.position) + " has no transversal curve");
+      throw CurveNetworkError(curveLabel(net_, run.curve) + ": run end at " + formatPoint(v.position) + " has no transversal curve");
     }
     return tr;
   }
@@ -730,9 +574,9 @@ class NetworkBuilder {
     }
     const HalfEdge& end = net_.halfEdges[chain.back()];
     if (isFree(end.to)) {
-      s << "; it ends at the free end of " << curveLabel(net_, end.curve) << " at " << fmt(net_.vertices[end.to].position);
+      s << "; it ends at the free end of " << curveLabel(net_, end.curve) << " at " << formatPoint(net_.vertices[end.to].position);
     } else {
-      s << "; it ends at " << fmt(net_.vertices[end.to].position)
+      s << "; it ends at " << formatPoint(net_.vertices[end.to].position)
         << " where no curve turns left (a reflex corner or the outer boundary)";
     }
     return s.str();
@@ -780,7 +624,7 @@ class NetworkBuilder {
     if (firstCorner == len) {
       throw CurveNetworkError("a region bounded by " + curveLabel(net_, net_.halfEdges[cycle[0]].curve) +
                               " alone (one side, no corner) near " +
-                              fmt(net_.vertices[net_.halfEdges[cycle[0]].from].position) +
+                              formatPoint(net_.vertices[net_.halfEdges[cycle[0]].from].position) +
                               " is not supported: add a curve across it");
     }
     std::rotate(cycle.begin(), cycle.begin() + firstCorner, cycle.end());
@@ -796,7 +640,7 @@ class NetworkBuilder {
     }
     if (face.sides.size() == 1) {
       throw CurveNetworkError("a region bounded by " + curveLabel(net_, net_.runs[face.sides[0].run].curve) +
-                              " alone (one corner) near " + fmt(net_.vertices[net_.halfEdges[cycle[0]].from].position) +
+                              " alone (one corner) near " + formatPoint(net_.vertices[net_.halfEdges[cycle[0]].from].position) +
                               " is not supported: add a curve across it");
     }
     if (face.sides.size() == 2) {
@@ -864,8 +708,6 @@ class NetworkBuilder {
   std::vector<Eigen::VectorXd> params_;                         // the samples' parameters
   double tau_ = 0.0;                                            // intersection tolerance
   double sinMin_ = 0.0;                                         // sine of the least crossing angle
-  std::vector<double> step_;                                    // per curve, the longest sample step
-  std::vector<std::vector<Eigen::AlignedBox3d>> boxes_;         // per curve, per segment
   std::vector<std::vector<std::pair<double, int>>> onCurve_;    // per curve, (parameter, vertex)
   std::vector<std::vector<int>> curveEdges_;                    // per curve, its forward half-edges
   std::vector<std::vector<int>> outgoing_;                      // per vertex, its half-edges
