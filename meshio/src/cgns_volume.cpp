@@ -42,6 +42,7 @@ class CgnsVolume final : public VolumeMesh {
   std::string bytesWith(const Eigen::MatrixX3d&) const override {
     throw MeshIoError(path().string() + ": a CGNS file is written through the CGNS library, to a file, not as bytes");
   }
+  const ElementCells* elementCells() const override { return &mesh_.cells; }
 
  private:
   CgnsMesh mesh_;

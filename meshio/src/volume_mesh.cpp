@@ -122,6 +122,7 @@ class GmshVolume final : public VolumeMesh {
   void write(const Eigen::MatrixX3d& points, const fs::path& output, const VolumeMeshWriteOptions& options) const override {
     writeGmsh(mesh_, points, output, options.durable);
   }
+  const ElementCells* elementCells() const override { return &mesh_.cells; }
 
  private:
   GmshMesh mesh_;
@@ -150,6 +151,7 @@ class TextVolume final : public VolumeMesh {
   void write(const Eigen::MatrixX3d& points, const fs::path& output, const VolumeMeshWriteOptions& options) const override {
     writeBytes(output, detail::replaceCoordinates(file_.bytes, file_.spans, points, output.string()), options);
   }
+  const ElementCells* elementCells() const override { return file_.hasCells ? &file_.cells : nullptr; }
 
  private:
   VolumeMeshFormat format_;

@@ -28,6 +28,7 @@
 namespace ffdkit::meshio {
 
 struct OpenFoamMesh;
+struct ElementCells;
 
 /// The volume-mesh formats.
 enum class VolumeMeshFormat { OpenFoam, Gmsh, Su2, Unv, Elmer, LsDyna, Kratos, Cgns };
@@ -94,6 +95,9 @@ class VolumeMesh {
   virtual std::string bytesWith(const Eigen::MatrixX3d& points) const = 0;
   /// The OpenFOAM mesh behind this one, or null for the other formats.
   virtual const OpenFoamMesh* openFoam() const { return nullptr; }
+  /// The cells of an element mesh (Gmsh, SU2, UNV with elements, CGNS) by their corners, or null
+  /// (OpenFOAM: openFoam(); a points-only format).
+  virtual const ElementCells* elementCells() const { return nullptr; }
 
  protected:
   /// A mesh read from `path` with its points (#P x 3).
