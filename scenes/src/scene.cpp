@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "ffdkit/scenes/lattice_fit.h"
+#include "ffdkit/scenes/volume_object.h"
 
 namespace ffdkit::scenes {
 namespace {
@@ -253,6 +254,10 @@ MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path
                    return MeshData{mesh.vertices, mesh.triangles, {}, false};
                  },
                  [&](const MeshFileSource& file) {
+                   // A solver's volume mesh: every point, and its boundary surface to draw (volume_object.h).
+                   if (volumeMeshFormatOf(file, baseDirectory))
+                     return volumeObjectMesh(meshio::confinedPath(baseDirectory, file.path, "mesh file", options.confinement),
+                                             file.up, budget, options.confinement);
                    const std::filesystem::path path = meshio::confinedPath(baseDirectory, file.path, "mesh file", options.confinement);
                    MeshData mesh = readMesh(path, meshio::MeshReadOptions{.limits = budget.limits(), .budget = &budget, .confinement = options.confinement});
                    convertToZUp(mesh, file.up);

@@ -25,6 +25,7 @@
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
+#include "ffdkit/scenes/volume_object.h"
 #include "ffdkit/scenes/widget_file.h"
 
 namespace ffdkit::cli {
@@ -144,6 +145,21 @@ struct DeformRequest {
   bool quality = false;              ///< --quality: a volume mesh's cell check before and after
   ffd::Precision precision = ffd::Precision::Double;  ///< --precision
   ShapeGuardRequest guard;           ///< --keep-volume, --keep-centre, --fold-check
+
+  /// The folder the scene's relative paths resolve against (the scene file's, or the sample's).
+  fs::path sceneFolder() const {
+    if (!sceneFile) return ".";
+    if (fs::is_directory(*sceneFile)) return *sceneFile;
+    return sceneFile->has_parent_path() ? sceneFile->parent_path() : fs::path(".");
+  }
+};
+
+/// A scene object that is a volume mesh (scenes/volume_object.h), deformed: written by
+/// pass-through in its own format after its cells are checked.
+struct VolumeOutput {
+  scenes::SceneObject object;  ///< its source (its mesh moved out)
+  Eigen::MatrixX3d points;     ///< every point of the mesh, deformed
+  fs::path path;               ///< where it goes
 };
 
 DeformRequest parseRequest(const Args& args) {
@@ -300,6 +316,16 @@ std::vector<Output> plannedOutputs(const DeformRequest& r, const scenes::Scene& 
   intoFolder = total > 1 || fs::is_directory(r.output);
   std::vector<Output> targets;
   for (const auto& name : names) {
+    // A scene's volume mesh goes to -o itself, or into the folder by its name and its file's
+    // extension (an OpenFOAM case: a folder of its name).
+    if (r.inputs.empty() && scenes::volumeMeshFormatOf(scene.findObject(name)->source, r.sceneFolder())) {
+      const fs::path source(std::get<scenes::MeshFileSource>(scene.findObject(name)->source).path);
+      const bool folderCase = fs::is_directory(source.is_absolute() ? source : r.sceneFolder() / source);
+      // One result goes to -o even when it is an existing folder (an OpenFOAM case written before).
+      const bool single = total == 1;
+      targets.push_back({name, single ? r.output : r.output / (name + (folderCase ? "" : lower(source.extension().string())))});
+      continue;
+    }
     if (!intoFolder) {
       if (r.output.extension().empty())
         throw UsageError("-o " + r.output.string() + ": no extension to pick a format by");
@@ -326,6 +352,26 @@ void evaluate(scenes::Scene& scene, scenes::SceneDeformer& deformer, Console& co
   console.begin("deform", "embedding and deforming " + std::to_string(pointCount) + " points");
   deformer.evaluateTakingPoints(scene);
   console.carve("embed", 1e3 * deformer.lastStats().embedSeconds);
+}
+
+/// Writes the scene's deformed volume meshes by pass-through, each after its cell check (a bad
+/// one refuses with the count and first ids, unless --allow-inverted). They are written before
+/// the other outputs, so that a refused volume mesh leaves the surface outputs unwritten too.
+void writeVolumeOutputs(const std::vector<VolumeOutput>& outputs, const DeformRequest& r, Console& console) {
+  scenes::VolumeObjectWriteOptions options;
+  options.allowInverted = r.allowInverted;
+  options.confinement = r.read.confinement;
+  options.limits = r.read.limits;
+  for (const VolumeOutput& output : outputs) {
+    console.begin("write", "checking and writing the volume mesh " + output.object.name + " to " + output.path.string());
+    const scenes::VolumeObjectWriteResult result =
+        scenes::writeVolumeObject(output.object, output.points, r.sceneFolder(), output.path, options);
+    if (r.quality) console.say("cell check after: " + result.quality.summary);
+    if (!result.quality.ok()) console.warn("wrote a mesh with " + result.quality.badText + " (--allow-inverted)");
+    console.say("wrote " + output.path.string() + " (" + meshio::volumeMeshFormatName(result.format) + ", " +
+                std::to_string(result.pointCount) + " points, " + std::to_string(result.quality.cellCount) + " cells" +
+                (result.quality.checked && result.quality.ok() ? ", all valid)" : ")"));
+  }
 }
 
 int runDeform(const Args& args) {
@@ -365,6 +411,7 @@ int runDeform(const Args& args) {
   scenes::SceneDeformer deformer;
   deformer.setPrecision(request.precision);
   std::vector<std::pair<fs::path, scenes::MeshData>> meshes;
+  std::vector<VolumeOutput> volumeOutputs;
   std::map<std::string, scenes::MeshData> restOf;  // the objects whose shape is kept, before deforming
   onEveryRank(ranks, [&] {
     checkFoldsBeforeDeform(scene.widgets, request.guard.foldCheck, console);
@@ -378,7 +425,8 @@ int runDeform(const Args& args) {
     for (const auto& target : targets) {
       // Both are done with the object: take its mesh (its points are in the deformer) and its
       // deformed points (no copies).
-      scenes::MeshData mesh = scene.takeObject(target.object).mesh;
+      scenes::SceneObject taken = scene.takeObject(target.object);
+      scenes::MeshData mesh = std::move(taken.mesh);
       mesh.points = deformer.takePoints(target.object);
       if (request.guard.keeps(target.object)) {
         const auto& keep = request.guard;
@@ -389,6 +437,10 @@ int runDeform(const Args& args) {
       // A whole file is checked by its writer (stageMesh); a rank's slice of a split INPUT is
       // checked here, unless empty (more ranks than points or lines).
       if (split && mesh.points.rows() > 0) scenes::validateMesh(mesh, "deformed object '" + target.object + "'");
+      if (request.inputs.empty() && scenes::volumeMeshFormatOf(taken.source, request.sceneFolder())) {
+        volumeOutputs.push_back({std::move(taken), std::move(mesh.points), target.path});
+        continue;
+      }
       meshes.emplace_back(target.path, std::move(mesh));
     }
   });
@@ -420,6 +472,7 @@ int runDeform(const Args& args) {
                 std::to_string(ranks.size()) + " processes)");
   } else {
     if (intoFolder) fs::create_directories(request.output);
+    writeVolumeOutputs(volumeOutputs, request, console);
     writeAll(meshes, ranks);
     console.end();
     for (const auto& [path, mesh] : meshes)
