@@ -4,6 +4,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "ffdkit/scenes/cad_objects.h"
 #include "ffdkit/scenes/lattice_fit.h"
 #include "ffdkit/scenes/volume_object.h"
 
@@ -259,6 +260,9 @@ MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path
                      return volumeObjectMesh(meshio::confinedPath(baseDirectory, file.path, "mesh file", options.confinement),
                                              file.up, budget, options.confinement);
                    const std::filesystem::path path = meshio::confinedPath(baseDirectory, file.path, "mesh file", options.confinement);
+                   // A STEP or IGES part: its tessellation, by the reader the program registered
+                   // (Z up: CAD files are not turned).
+                   if (isCadFile(path)) return readCadMesh(path, budget);
                    MeshData mesh = readMesh(path, meshio::MeshReadOptions{.limits = budget.limits(), .budget = &budget, .confinement = options.confinement});
                    convertToZUp(mesh, file.up);
                    return mesh;
