@@ -1,9 +1,13 @@
 // The node sections of the formats PyGeM's file handlers read (pygem/unvhandler.py,
 // elmerhandler.py, khandler.py, mdpahandler.py): I-DEAS universal dataset 2411, Elmer's
 // mesh.nodes, LS-DYNA's *NODE cards and Kratos's "Begin Nodes" blocks. Only the coordinates are
-// read and rewritten; every other line is kept as it is.
+// read and rewritten; every other line is kept as it is. A universal file's elements (dataset
+// 2412) are read too, for the cell check of its solids.
 #include <algorithm>
+#include <charconv>
 #include <climits>
+#include <map>
+#include <unordered_map>
 
 #include "parse_support.h"
 #include "volume_formats.h"
@@ -73,6 +77,73 @@ struct Lines {
   }
 };
 
+// What the cell check takes of a UNV element type (I-DEAS FE descriptor id): its shape and the
+// positions of its corners among its nodes. The linear solids list their corners in Gmsh's order;
+// a parabolic solid lists corner and mid-edge nodes alternately round each face, then the
+// mid-edges between them (Gmsh's UNV reader, GModelIO_UNV.cpp, maps them the same way); the
+// pyramids are Salome's (312, 313), which I-DEAS lacks.
+struct UnvSolid {
+  int descriptor;
+  int nodes;
+  CellShape shape;
+  std::array<int, 8> corners;
+};
+constexpr UnvSolid kUnvSolids[] = {
+    {111, 4, CellShape::Tetrahedron, {0, 1, 2, 3}},
+    {118, 10, CellShape::Tetrahedron, {0, 2, 4, 9}},
+    {101, 6, CellShape::Prism, {0, 1, 2, 3, 4, 5}},
+    {112, 6, CellShape::Prism, {0, 1, 2, 3, 4, 5}},
+    {102, 15, CellShape::Prism, {0, 2, 4, 9, 11, 13}},
+    {113, 15, CellShape::Prism, {0, 2, 4, 9, 11, 13}},
+    {104, 8, CellShape::Hexahedron, {0, 1, 2, 3, 4, 5, 6, 7}},
+    {115, 8, CellShape::Hexahedron, {0, 1, 2, 3, 4, 5, 6, 7}},
+    {105, 20, CellShape::Hexahedron, {0, 2, 4, 6, 12, 14, 16, 18}},
+    {116, 20, CellShape::Hexahedron, {0, 2, 4, 6, 12, 14, 16, 18}},
+    {312, 5, CellShape::Pyramid, {0, 1, 2, 3, 4}},
+    {313, 13, CellShape::Pyramid, {0, 2, 4, 6, 12}},
+};
+
+const UnvSolid* unvSolid(long long descriptor) {
+  for (const UnvSolid& solid : kUnvSolids)
+    if (solid.descriptor == descriptor) return &solid;
+  return nullptr;
+}
+
+// Beams carry a second record (orientation node, cross sections) before their nodes.
+bool unvBeam(long long descriptor) {
+  switch (descriptor) {
+    case 11: case 21: case 22: case 23: case 24: case 31: case 32: return true;
+    default: return false;
+  }
+}
+
+// The kind a summary gives an element type.
+const char* unvKind(long long descriptor) {
+  if (unvSolid(descriptor) != nullptr) return "solid";
+  if (unvBeam(descriptor)) return "beam";
+  if (descriptor >= 41 && descriptor <= 99) return "shell";
+  return "other";
+}
+
+constexpr long long kMaxUnvElementNodes = 64;
+
+long long unvInteger(std::string_view token, const std::string& source, int line, const std::string& what) {
+  long long value = 0;
+  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (error != std::errc() || end != token.data() + token.size())
+    failAt(source, line, what + ": expected an integer, got '" + std::string(token.substr(0, 20)) + "'");
+  return value;
+}
+
+// A dataset 2412 element as read: its label, type, the line of its first record and its nodes'
+// labels (in `labels`, from `firstLabel`); resolved to point rows once every 2411 node is known.
+struct UnvElement {
+  long long label;
+  long long descriptor;
+  int line;
+  std::size_t firstLabel;
+};
+
 }  // namespace
 
 TextVolumeFile readUnv(std::string bytes, const std::string& source, ReadBudget& budget) {
@@ -82,8 +153,12 @@ TextVolumeFile readUnv(std::string bytes, const std::string& source, ReadBudget&
   PointCollector points(budget, file, "UNV dataset 2411: nodes");
   Lines lines{file.bytes};
   std::string_view line;
-  int datasets = 0, nodeSets = 0;
+  int datasets = 0, nodeSets = 0, elementSets = 0;
   bool styleSet = false;
+  std::vector<long long> nodeLabels;  // per point, in file order
+  std::vector<int> nodeLines;
+  std::vector<UnvElement> elements;
+  std::vector<long long> elementNodes;  // the node labels of every element, in order
   while (lines.next(line)) {
     if (trimmed(line) != "-1") {
       if (trimmed(line).empty()) continue;
@@ -101,7 +176,10 @@ TextVolumeFile readUnv(std::string bytes, const std::string& source, ReadBudget&
         if (head.size() != 4)
           failAt(source, lines.number, "dataset 2411: expected a node record (label, two systems, colour), got '" +
                                            std::string(line.substr(0, 60)) + "'");
-        const std::string what = "dataset 2411: node " + std::string(head[0]);
+        const std::string what = "dataset 2411: node " + std::string(head[0].substr(0, 20));
+        budget.chargeBytes(1, sizeof(long long) + sizeof(int), "UNV dataset 2411: node labels");
+        nodeLabels.push_back(unvInteger(head[0], source, lines.number, "dataset 2411: node label"));
+        nodeLines.push_back(lines.number);
         if (!lines.next(line)) failAt(source, lines.number, what + ": no coordinate record");
         const auto xyz = tokens(line);
         if (xyz.size() != 3) failAt(source, lines.number, what + ": expected 3 coordinates, got " + std::to_string(xyz.size()));
@@ -121,6 +199,44 @@ TextVolumeFile readUnv(std::string bytes, const std::string& source, ReadBudget&
         }
         points.sink.add(v[0], v[1], v[2]);
       }
+    } else if (id == "2412") {
+      ++elementSets;
+      for (;;) {
+        if (!lines.next(line)) failAt(source, lines.number, "dataset 2412 is not closed by '-1'");
+        if (trimmed(line) == "-1") break;
+        // Record 1 (6I10): label, FE descriptor, physical and material property tables, colour, nodes.
+        const auto head = tokens(line);
+        if (head.size() != 6)
+          failAt(source, lines.number, "dataset 2412: expected an element record (label, type, two tables, colour, node "
+                                       "count), got '" + std::string(line.substr(0, 60)) + "'");
+        UnvElement element{unvInteger(head[0], source, lines.number, "dataset 2412: element label"),
+                           unvInteger(head[1], source, lines.number, "dataset 2412: element type"), lines.number,
+                           elementNodes.size()};
+        const std::string what = "dataset 2412: element " + std::string(head[0].substr(0, 20));
+        const long long count = unvInteger(head[5], source, lines.number, what + ": node count");
+        if (count < 1 || count > kMaxUnvElementNodes)
+          failAt(source, lines.number, what + ": " + std::to_string(count) + " nodes (expected 1.." +
+                                           std::to_string(kMaxUnvElementNodes) + ")");
+        if (const UnvSolid* solid = unvSolid(element.descriptor); solid != nullptr && count != solid->nodes)
+          failAt(source, lines.number, what + ": type " + std::to_string(element.descriptor) + " has " +
+                                           std::to_string(solid->nodes) + " nodes, the record says " + std::to_string(count));
+        if (unvBeam(element.descriptor)) {  // record 2 of a beam (3I10): orientation node, cross sections
+          if (!lines.next(line) || tokens(line).size() != 3)
+            failAt(source, lines.number, what + ": a beam's second record (orientation node, two cross sections) is missing");
+        }
+        budget.chargeBytes(std::uint64_t(count), sizeof(long long), "UNV dataset 2412: element nodes");
+        budget.chargeBytes(1, sizeof(UnvElement), "UNV dataset 2412: elements");
+        while (std::int64_t(elementNodes.size() - element.firstLabel) < count) {  // 8I10 per line
+          if (!lines.next(line)) failAt(source, lines.number, what + ": the file ends inside its node list");
+          const auto labels = tokens(line);
+          if (labels.empty() || labels.size() > 8 ||
+              std::int64_t(elementNodes.size() - element.firstLabel + labels.size()) > count)
+            failAt(source, lines.number, what + ": expected " + std::to_string(count) + " node labels, 8 or fewer a line, got '" +
+                                             std::string(line.substr(0, 60)) + "'");
+          for (const std::string_view label : labels) elementNodes.push_back(unvInteger(label, source, lines.number, what));
+        }
+        elements.push_back(element);
+      }
     } else {
       for (;;) {
         if (!lines.next(line)) failAt(source, lines.number, "dataset " + std::string(id.substr(0, 20)) + " is not closed by '-1'");
@@ -131,6 +247,36 @@ TextVolumeFile readUnv(std::string bytes, const std::string& source, ReadBudget&
   if (nodeSets == 0) failAt(source, lines.number, "no dataset 2411 (nodes)");
   points.finish();
   file.summary = std::to_string(file.points.rows()) + " nodes (dataset 2411), " + std::to_string(datasets) + " datasets";
+  if (elementSets == 0) return file;
+  // The elements' node labels to point rows; a solid's corners become a cell to check.
+  budget.chargeBytes(nodeLabels.size(), 48, "UNV: the index of node labels");
+  std::unordered_map<long long, std::int32_t> rowOf;
+  rowOf.reserve(nodeLabels.size());
+  for (std::size_t row = 0; row < nodeLabels.size(); ++row)
+    if (!rowOf.emplace(nodeLabels[row], std::int32_t(row)).second)
+      failAt(source, nodeLines[row], "dataset 2411: node label " + std::to_string(nodeLabels[row]) + " given twice");
+  std::map<long long, std::int64_t> byType;
+  std::array<std::int32_t, 8> corners{};
+  for (const UnvElement& element : elements) {
+    ++byType[element.descriptor];
+    const std::size_t last = &element == &elements.back() ? elementNodes.size() : (&element + 1)->firstLabel;
+    for (std::size_t k = element.firstLabel; k < last; ++k)
+      if (rowOf.find(elementNodes[k]) == rowOf.end())
+        failAt(source, element.line, "dataset 2412: element " + std::to_string(element.label) + ": node " +
+                                         std::to_string(elementNodes[k]) + " is not in dataset 2411");
+    const UnvSolid* solid = unvSolid(element.descriptor);
+    if (solid == nullptr) continue;  // beams, shells and others are kept, not checked
+    for (int c = 0; c < cornerCount(solid->shape); ++c)
+      corners[std::size_t(c)] = rowOf.at(elementNodes[element.firstLabel + std::size_t(solid->corners[std::size_t(c)])]);
+    file.cells.add(solid->shape, corners.data(), element.label);
+  }
+  file.hasCells = file.cells.cellCount() > 0;
+  std::string types;
+  for (const auto& [descriptor, count] : byType)
+    types += (types.empty() ? "" : ", ") + std::to_string(count) + " of type " + std::to_string(descriptor) + " (" +
+             unvKind(descriptor) + ")";
+  file.summary += "\n" + std::to_string(elements.size()) + " elements (dataset 2412): " + types + "; " +
+                  std::to_string(file.cells.cellCount()) + " solid cells checked";
   return file;
 }
 

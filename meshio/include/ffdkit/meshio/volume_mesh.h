@@ -8,7 +8,7 @@
 //   OpenFOAM      case or polyMesh folder      polyhedra (cell_quality.h)
 //   Gmsh MSH 4.1  *.msh (ASCII, binary)        3D elements at their corners (element_cells.h)
 //   SU2           *.su2 (2D, 3D)               its elements at their corners
-//   UNV           *.unv (dataset 2411)         none: points only
+//   UNV           *.unv (datasets 2411, 2412)  its solids at their corners (beams, shells kept)
 //   Elmer         *.nodes (mesh.nodes)         none: points only
 //   LS-DYNA       *.k, *.key (*NODE)           none: points only
 //   Kratos        *.mdpa (Begin Nodes)         none: points only
