@@ -21,6 +21,18 @@
 
 namespace ffdkit::cli {
 
+/// `info` of a decomposed case: for each of its meshes (the reconstructed one when the case still
+/// has it, then each processor) its points, faces, cells and patches, and with `quality` its cell
+/// check; then the totals over the processor meshes, which hold each cell of the case once. The
+/// meshes are read one at a time. @throws meshio::MeshIoError naming the file.
+void infoDecomposedCase(const std::filesystem::path& folder, const ReadSettings& read, bool quality);
+
+/// `validate` of a decomposed case: reads every mesh and checks its cells. Returns the summary
+/// line (processors, cells, points). @throws std::runtime_error naming each mesh with bad cells
+/// and its first cells; meshio::MeshIoError naming a file that cannot be read.
+std::string checkDecomposedCase(const std::filesystem::path& folder, const ReadSettings& read);
+
+/// A decomposed OpenFOAM case given as deform's INPUT.
 class DecomposedCaseInput {
  public:
   /// Whether `inputs` is one decomposed case (a folder with processor* folders).

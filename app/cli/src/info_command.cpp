@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "console.h"
+#include "decomposed_case.h"
 #include "shape_guard.h"
 #include "volume_mesh.h"
 #include "ffdkit/scenes/mesh_io.h"
@@ -121,6 +122,11 @@ int runInfo(const Args& args) {
   for (const auto& file : args.positional()) {
     if (!first) std::printf("\n");
     first = false;
+    if (meshio::isDecomposedOpenFoamCase(file)) {
+      if (tool) throw UsageError("--widgets TOOL checks one mesh; for a decomposed case run deform on it");
+      infoDecomposedCase(file, read, args.flag("quality"));
+      continue;
+    }
     if (isVolumeMesh(file)) {
       infoVolumeMesh(file, read, args.flag("quality"), tool ? &*tool : nullptr);
       continue;
@@ -137,6 +143,7 @@ int runInfo(const Args& args) {
 /// Checks one file completely: reads it, builds every object, validates references and meshes,
 /// and evaluates a scene (a degenerate lattice fails there). @throws on the first problem.
 std::string check(const fs::path& path, const ReadSettings& read) {
+  if (meshio::isDecomposedOpenFoamCase(path)) return checkDecomposedCase(path, read);
   if (isVolumeMesh(path)) return checkVolumeMesh(path, read);
   switch (fileKind(path)) {
     case FileKind::Scene: {
@@ -208,7 +215,8 @@ Command infoCommand() {
           "(an OpenFOAM case or polyMesh folder, .msh, .su2, .unv, .nodes, .k, .mdpa): its counts, patches,\n"
           "markers or physical groups; --quality adds the cell check (OpenFOAM: volumes, face pyramids,\n"
           "non-orthogonality, skewness; Gmsh and SU2: volumes and corner Jacobians), --widgets TOOL the\n"
-          "same check after TOOL deforms it.\n",
+          "same check after TOOL deforms it. A decomposed OpenFOAM case (processor* folders): each\n"
+          "processor mesh's counts (and --quality its cell check), then the totals.\n",
           withReadOptions({{"generators", '\0', "", "list the registered curve and surface generators"},
                            {"quality", '\0', "", "a volume mesh: print its cell check"},
                            {"widgets", 'w', "TOOL", "a volume mesh: also check its cells as TOOL deforms them"},
@@ -221,7 +229,8 @@ Command validateCommand() {
           "check scene, widget and mesh files; report every broken one",
           "ffdkit-cli validate FILE...",
           "Reads each file completely (a scene: its mesh files, generators, widgets and\n"
-          "attachments, then evaluates it; a volume mesh: the whole file and the check of its cells)\n"
+          "attachments, then evaluates it; a volume mesh: the whole file and the check of its cells; a\n"
+          "decomposed OpenFOAM case: every processor mesh and its cells)\n"
           "and prints 'FILE: ok' or the problem, with line and\n"
           "column for malformed JSON. Exit status 1 when any file is broken. Writes nothing.\n",
           withReadOptions({quietOption()}),
