@@ -40,6 +40,15 @@ VolumeObjectWriteResult writeVolumeObject(const SceneObject& object, const Eigen
   readOptions.limits = options.limits;
   readOptions.confinement = options.confinement;
   const std::unique_ptr<meshio::VolumeMesh> volume = meshio::readVolumeMesh(path, readOptions);
+  // Pass-through writes the format read: the output's name must not promise another.
+  const std::optional<meshio::VolumeMeshFormat> named = meshio::volumeMeshFormatOf(output);
+  if (volume->format() == meshio::VolumeMeshFormat::OpenFoam ? named && *named != volume->format()
+                                                             : named != volume->format())
+    throw std::invalid_argument("object '" + object.name + "' is a " + meshio::volumeMeshFormatName(volume->format()) +
+                                " mesh, written in its own format: " +
+                                (volume->format() == meshio::VolumeMeshFormat::OpenFoam
+                                     ? std::string("name a folder for the case, not ") + output.string()
+                                     : output.string() + " should end in " + path.extension().string()));
   if (volume->pointCount() != deformed.rows())
     throw std::invalid_argument("object '" + object.name + "': " + path.string() + " holds " +
                                 std::to_string(volume->pointCount()) + " points, the deformed object " +

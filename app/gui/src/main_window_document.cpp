@@ -14,6 +14,7 @@
 #include "ffdkit/meshio/mesh_format.h"
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene_file.h"
+#include "ffdkit/scenes/volume_object.h"
 #include "ffdkit/scenes/widget_file.h"
 #include "ffdkit/interaction/scene_bounds.h"
 #include "import_options.h"
@@ -271,7 +272,23 @@ void MainWindow::exportMesh(const std::filesystem::path& path) {
   if (objects.empty()) throw std::invalid_argument("the scene has no object to export");
   const std::vector<std::string> selected = impl_->selectedObjectNames();
   const std::string name = selected.empty() ? objects.front().name : selected.front();
-  scenes::MeshData mesh = impl_->scene.findObject(name)->mesh;
+  // A solver's volume mesh is written whole, in its own format, after its cells are checked
+  // (volume_object.h); a surface format's extension (.obj, .ply, ...) writes its boundary surface.
+  const scenes::SceneObject& object = *impl_->scene.findObject(name);
+  const std::filesystem::path base = impl_->scenePath.empty() ? std::filesystem::path(".") : impl_->scenePath.parent_path();
+  if (scenes::volumeMeshFormatOf(object.source, base) && !meshio::meshFormatOf(path)) {
+    scenes::VolumeObjectWriteOptions options;
+    options.confinement = pathConfinement();
+    options.limits = meshReadOptions().limits;
+    const scenes::VolumeObjectWriteResult result = scenes::writeVolumeObject(object, impl_->deformer.points(name), base, path, options);
+    impl_->status->say(tr("Exported %1 to %2 (%3 mesh, %4 points; %5)")
+                           .arg(qs(name), qs(path.string()), QString(meshio::volumeMeshFormatName(result.format)))
+                           .arg(result.pointCount)
+                           .arg(qs(result.quality.summary)),
+                       5000);
+    return;
+  }
+  scenes::MeshData mesh = object.mesh;
   mesh.points = impl_->deformer.points(name);
   scenes::writeMesh(path, mesh);
   impl_->status->say(tr("Exported %1 to %2").arg(qs(name), qs(path.string())), 5000);

@@ -60,8 +60,10 @@ struct VolumeObjectWriteResult {
 /// checked, and the file is written by pass-through (every byte but the coordinates as read),
 /// all or nothing. `baseDirectory` is the folder the scene's relative paths resolve against.
 /// @throws InvertedCellsError naming the bad cells (nothing written) unless
-///   options.allowInverted; std::invalid_argument when the object is not a volume mesh or
-///   `deformed` has another point count than the file (it changed since the scene was read);
+///   options.allowInverted; std::invalid_argument when the object is not a volume mesh, when
+///   `output` names another format (a file's extension must be its format's: .msh for Gmsh, ...;
+///   an OpenFOAM case is a folder), or when `deformed` has another point count than the file (it
+///   changed since the scene was read);
 ///   meshio::MeshIoError when the file cannot be read or written (nothing written).
 VolumeObjectWriteResult writeVolumeObject(const SceneObject& object, const Eigen::MatrixX3d& deformed,
                                           const std::filesystem::path& baseDirectory,
