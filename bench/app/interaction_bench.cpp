@@ -198,10 +198,12 @@ void BM_UndoAddWidget(benchmark::State& state) {
 
 // Sphere resolution 1414: ~1M vertices; 4472: ~10M. The drag step also at 10K and 100K vertices
 // (how its cost grows with the mesh).
+BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:10M/lattice:4x4x4-cubic")->Arg(4472)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:100K/lattice:4x4x4-cubic")->Arg(447)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:10K/lattice:4x4x4-cubic")->Arg(141)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DragFirstStep)->Name("BM_DragFirstStep/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DragFirstStep)->Name("BM_DragFirstStep/points:10M/lattice:4x4x4-cubic")->Arg(4472)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Hover)->Name("BM_Hover/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_UndoAddWidget)->Name("BM_UndoAddWidget/points:100K/lattices:9/widgets:148")->Arg(447)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_UndoDrag)->Name("BM_UndoDrag/points:10M/lattice:4x4x4-cubic")->Arg(4472)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
