@@ -293,6 +293,7 @@ const Eigen::MatrixX3d& Deformer::deform(const Lattice& lattice, const Eigen::Re
 
 Eigen::MatrixX3d Deformer::takePoints() {
   deformed_ = false;
+  homogeneousValid_ = false;
   lastControl_.resize(0, 3);
   return std::move(output_);
 }
@@ -308,11 +309,49 @@ const Eigen::MatrixX3d& Deformer::deformStale(const Lattice& lattice, const Eige
     output_.resize(n, 3);
     adviseHugePages(output_);
   }
-  evaluateBlocks(lattice, input, nullptr);
-  lastControl_ = lattice.controlPoints();
+  if (lattice.isRational()) {
+    evaluateRational(lattice, input, nullptr);
+  } else {
+    evaluateBlocks(lattice, input, nullptr);
+    homogeneousValid_ = false;
+  }
+  remember(lattice);
   deformed_ = true;
   stats_ = DeformStats{true, 0, n};
   return output_;
+}
+
+void Deformer::remember(const Lattice& lattice) {
+  lastControl_ = lattice.controlPoints();
+  lastWeights_ = lattice.weights();
+  lastRational_ = lattice.isRational();
+}
+
+std::vector<char> Deformer::touchedCells(const Lattice& lattice, Eigen::Index& changed) const {
+  const Eigen::MatrixX3d& P = lattice.controlPoints();
+  const Eigen::VectorXd weights = lattice.weights();
+  int np[3], cells[3];
+  for (int a = 0; a < 3; ++a) {
+    np[a] = lattice.axis(a).degree() + 1;
+    cells[a] = lattice.axis(a).cellCount();
+  }
+  std::vector<std::vector<int>> cellsOf[3];  // cellsOf[a][i]: cells whose window holds index i on axis a
+  for (int a = 0; a < 3; ++a) {
+    cellsOf[a].resize(lattice.counts()[a]);
+    for (int c = 0; c < cells[a]; ++c)
+      for (int r = 0; r < np[a]; ++r) cellsOf[a][lattice.axis(a).controlIndex(c, r)].push_back(c);
+  }
+  std::vector<char> touched(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2], 0);
+  changed = 0;
+  for (Eigen::Index f = 0; f < P.rows(); ++f) {
+    if (P.row(f) == lastControl_.row(f) && weights[f] == lastWeights_[f]) continue;
+    ++changed;
+    const Eigen::Vector3i g = lattice.gridIndex(f);
+    for (int cw : cellsOf[2][g[2]])
+      for (int cv : cellsOf[1][g[1]])
+        for (int cu : cellsOf[0][g[0]]) touched[cu + cells[0] * (cv + static_cast<std::size_t>(cells[1]) * cw)] = 1;
+  }
+  return touched;
 }
 
 Eigen::Index Deformer::evaluateBlocks(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input,
@@ -382,39 +421,28 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice, const Eigen::Re
     throw LatticeError("Deformer::update: expected " + std::to_string(embedding_.pointCount()) +
                        " x 3 input points (the embedded ones), got " + std::to_string(input.rows()) + " x 3");
   }
-  const Eigen::MatrixX3d& P = lattice.controlPoints();
-  // Cells whose window holds a control point that moved since the last call.
-  int np[3], cells[3];
-  for (int a = 0; a < 3; ++a) {
-    np[a] = lattice.axis(a).degree() + 1;
-    cells[a] = lattice.axis(a).cellCount();
-  }
-  std::vector<std::vector<int>> cellsOf[3];  // cellsOf[a][i]: cells whose window holds index i on axis a
-  for (int a = 0; a < 3; ++a) {
-    cellsOf[a].resize(lattice.counts()[a]);
-    for (int c = 0; c < cells[a]; ++c)
-      for (int r = 0; r < np[a]; ++r) cellsOf[a][lattice.axis(a).controlIndex(c, r)].push_back(c);
-  }
-  std::vector<char> touched(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2], 0);
   Eigen::Index changed = 0;
-  for (Eigen::Index f = 0; f < P.rows(); ++f) {
-    if (P.row(f) == lastControl_.row(f)) continue;
-    ++changed;
-    const Eigen::Vector3i g = lattice.gridIndex(f);
-    for (int cw : cellsOf[2][g[2]])
-      for (int cv : cellsOf[1][g[1]])
-        for (int cu : cellsOf[0][g[0]]) touched[cu + cells[0] * (cv + static_cast<std::size_t>(cells[1]) * cw)] = 1;
-  }
+  const std::vector<char> touched = touchedCells(lattice, changed);
   stats_ = DeformStats{false, changed, 0};
   if (changed == 0) return output_;
-  stats_.evaluatedPoints = evaluateBlocks(lattice, input, &touched);
-  lastControl_ = P;
+  const bool rational = lattice.isRational();
+  // A switch between the rational and the polynomial path (or rational sums not kept) evaluates
+  // every point, so that the output is that of a deform() on either path.
+  const bool all = rational != lastRational_ || (rational && !homogeneousValid_);
+  if (rational) {
+    stats_.evaluatedPoints = evaluateRational(lattice, input, all ? nullptr : &touched);
+  } else {
+    stats_.evaluatedPoints = evaluateBlocks(lattice, input, all ? nullptr : &touched);
+    homogeneousValid_ = false;
+  }
+  remember(lattice);
   return output_;
 }
 
 const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
   embedding_.checkLattice(lattice);
   if (!deformed_) throw LatticeError("Deformer::update: call deform() once before incremental updates");
+  if (lattice.isRational() || lastRational_) return updateRational(lattice);
   const Eigen::MatrixX3d& P = lattice.controlPoints();
   std::vector<Eigen::Index> changed;
   for (Eigen::Index f = 0; f < P.rows(); ++f) {
@@ -503,7 +531,8 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
     }
   }
   stats_.evaluatedPoints = evaluated;
-  lastControl_ = P;
+  remember(lattice);
+  homogeneousValid_ = false;
   return output_;
 }
 

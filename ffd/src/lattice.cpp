@@ -107,11 +107,80 @@ void Lattice::setControlPoint(Eigen::Index flat, const Eigen::Vector3d& p) {
 
 void Lattice::resetToRest() {
   control_ = rest_;
+  weights_ = restWeights_;
   revision_ = nextRevision();
+}
+
+Eigen::VectorXd Lattice::checkedWeights(const Eigen::Ref<const Eigen::VectorXd>& weights, const char* what) const {
+  if (weights.size() != pointCount()) {
+    throw LatticeError(std::string(what) + ": expected " + std::to_string(pointCount()) + " weights for a " +
+                       str(counts_) + " lattice, got " + std::to_string(weights.size()));
+  }
+  bool unit = true;
+  for (Eigen::Index f = 0; f < weights.size(); ++f) {
+    if (!(std::isfinite(weights[f]) && weights[f] > 0.0)) {
+      std::ostringstream os;
+      os << what << ": weight " << f << " must be finite and > 0, got " << weights[f];
+      throw LatticeError(os.str());
+    }
+    unit = unit && weights[f] == 1.0;
+  }
+  // All weights 1 is stored as none: the polynomial lattice and its code path.
+  return unit ? Eigen::VectorXd() : Eigen::VectorXd(weights);
+}
+
+Eigen::VectorXd Lattice::weights() const {
+  return weights_.size() > 0 ? weights_ : Eigen::VectorXd::Ones(pointCount());
+}
+
+double Lattice::weight(Eigen::Index flat) const {
+  gridIndex(flat);  // range check
+  return weights_.size() > 0 ? weights_[flat] : 1.0;
+}
+
+Eigen::VectorXd Lattice::restWeights() const {
+  return restWeights_.size() > 0 ? restWeights_ : Eigen::VectorXd::Ones(pointCount());
+}
+
+void Lattice::setWeights(const Eigen::Ref<const Eigen::VectorXd>& weights) {
+  weights_ = checkedWeights(weights, "setWeights");
+  revision_ = nextRevision();
+}
+
+void Lattice::setWeight(Eigen::Index flat, double weight) {
+  gridIndex(flat);  // range check
+  if (!(std::isfinite(weight) && weight > 0.0)) {
+    std::ostringstream os;
+    os << "setWeight: weight " << flat << " must be finite and > 0, got " << weight;
+    throw LatticeError(os.str());
+  }
+  Eigen::VectorXd w = weights();
+  w[flat] = weight;
+  weights_ = checkedWeights(w, "setWeight");
+  revision_ = nextRevision();
+}
+
+void Lattice::setRestWeights(const Eigen::Ref<const Eigen::VectorXd>& weights) {
+  Eigen::VectorXd checked = checkedWeights(weights, "setRestWeights");
+  const Eigen::VectorXd previous = restWeights_;
+  const Eigen::MatrixX3d control = control_;
+  restWeights_ = checked;
+  try {
+    setRestInternal(Eigen::MatrixX3d(rest_));  // the affine test and the degeneracy check see the weights
+  } catch (...) {
+    restWeights_ = previous;
+    control_ = control;
+    throw;
+  }
+  control_ = control;
+  weights_ = restWeights_;
+  revision_ = nextRevision();
+  restRevision_ = nextRevision();
 }
 
 void Lattice::setRestPoints(const Eigen::Ref<const Eigen::MatrixX3d>& restPoints) {
   setRestInternal(restPoints);
+  weights_ = restWeights_;
   cylinder_.reset();
   revision_ = nextRevision();
   restRevision_ = nextRevision();
@@ -142,7 +211,7 @@ void Lattice::setRestInternal(const Eigen::Ref<const Eigen::MatrixX3d>& restPoin
 
   // Affine rest map? Fit Pbar_ijk ~ A (g_i, g_j, g_k) + b; B-splines reproduce linear functions at
   // the Greville abscissae, so an exact fit means Xbar(u) = A u + b everywhere.
-  bool affine = !(axes_[0].periodic() || axes_[1].periodic() || axes_[2].periodic());
+  bool affine = !(axes_[0].periodic() || axes_[1].periodic() || axes_[2].periodic()) && restWeights_.size() == 0;
   Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   if (affine) {
@@ -188,8 +257,8 @@ void Lattice::setRestInternal(const Eigen::Ref<const Eigen::MatrixX3d>& restPoin
   }
 }
 
-Eigen::Vector3d Lattice::evaluateOn(const Eigen::MatrixX3d& points, const Eigen::Vector3d& uvw,
-                                    Eigen::Matrix3d* jac) const {
+Eigen::Vector3d Lattice::evaluateOn(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weights,
+                                    const Eigen::Vector3d& uvw, Eigen::Matrix3d* jac) const {
   constexpr int kMax = 33;
   double N[3][kMax];
   double D[3][kMax];
@@ -203,6 +272,34 @@ Eigen::Vector3d Lattice::evaluateOn(const Eigen::MatrixX3d& points, const Eigen:
   const int pu = axes_[0].degree();
   const int pv = axes_[1].degree();
   const int pw = axes_[2].degree();
+  if (weights.size() > 0) {
+    // Homogeneous sums (Lamousin & Waggenspack 1994): N = sum B w P, W = sum B w, X = N / W,
+    // dX = (dN - X dW^T) / W.
+    Eigen::Vector3d dW = Eigen::Vector3d::Zero();
+    double W = 0.0;
+    for (int c = 0; c <= pw; ++c) {
+      const int k = axes_[2].controlIndex(cell[2], c);
+      for (int b = 0; b <= pv; ++b) {
+        const int j = axes_[1].controlIndex(cell[1], b);
+        for (int a = 0; a <= pu; ++a) {
+          const Eigen::Index f = index(axes_[0].controlIndex(cell[0], a), j, k);
+          const double w = weights[f];
+          const Eigen::Vector3d p = w * points.row(f).transpose();
+          const double n = N[0][a] * N[1][b] * N[2][c];
+          x += n * p;
+          W += n * w;
+          if (jac) {
+            const Eigen::Vector3d d(D[0][a] * N[1][b] * N[2][c], N[0][a] * D[1][b] * N[2][c], N[0][a] * N[1][b] * D[2][c]);
+            J += p * d.transpose();
+            dW += w * d;
+          }
+        }
+      }
+    }
+    x /= W;
+    if (jac) *jac = (J - x * dW.transpose()) / W;
+    return x;
+  }
   for (int c = 0; c <= pw; ++c) {
     const int k = axes_[2].controlIndex(cell[2], c);
     for (int b = 0; b <= pv; ++b) {
@@ -223,20 +320,24 @@ Eigen::Vector3d Lattice::evaluateOn(const Eigen::MatrixX3d& points, const Eigen:
   return x;
 }
 
-Eigen::Vector3d Lattice::evaluate(const Eigen::Vector3d& uvw) const { return evaluateOn(control_, uvw, nullptr); }
+Eigen::Vector3d Lattice::evaluate(const Eigen::Vector3d& uvw) const {
+  return evaluateOn(control_, weights_, uvw, nullptr);
+}
 
-Eigen::Vector3d Lattice::evaluateRest(const Eigen::Vector3d& uvw) const { return evaluateOn(rest_, uvw, nullptr); }
+Eigen::Vector3d Lattice::evaluateRest(const Eigen::Vector3d& uvw) const {
+  return evaluateOn(rest_, restWeights_, uvw, nullptr);
+}
 
 Eigen::Matrix3d Lattice::jacobian(const Eigen::Vector3d& uvw, Eigen::Vector3d* value) const {
   Eigen::Matrix3d J;
-  const Eigen::Vector3d x = evaluateOn(control_, uvw, &J);
+  const Eigen::Vector3d x = evaluateOn(control_, weights_, uvw, &J);
   if (value) *value = x;
   return J;
 }
 
 Eigen::Matrix3d Lattice::restJacobian(const Eigen::Vector3d& uvw, Eigen::Vector3d* value) const {
   Eigen::Matrix3d J;
-  const Eigen::Vector3d x = evaluateOn(rest_, uvw, &J);
+  const Eigen::Vector3d x = evaluateOn(rest_, restWeights_, uvw, &J);
   if (value) *value = x;
   return J;
 }

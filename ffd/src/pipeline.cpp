@@ -198,7 +198,7 @@ Pipeline::Action Pipeline::decide(LatticeId id, const Node& n, std::uint64_t inp
   }
   if (reembed) return Action::Reembed;
   const bool kept = n.keptInput == inputVersion && n.keptRest == n.lattice.restRevision() &&
-                    n.deformer->lastControlPoints() == n.lattice.controlPoints();
+                    n.deformer->isCurrentFor(n.lattice);
   return kept ? Action::Keep : Action::Stale;
 }
 
@@ -215,7 +215,7 @@ Eigen::Index Pipeline::pointsToEmbed(bool reembedAll) const {
     bool changed = action != Action::Keep;
     if (action == Action::Update)
       changed = (n.outputInexact && (reembedAll || mode_ == UpdateMode::Exact)) ||
-                n.deformer->lastControlPoints() != n.lattice.controlPoints();
+                !n.deformer->isCurrentFor(n.lattice);
     if (action == Action::Reembed) total += input_.rows();
     inputVersion = changed || n.outputVersion == 0 ? ++counter : n.outputVersion;
   }

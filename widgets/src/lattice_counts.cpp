@@ -133,7 +133,7 @@ void WidgetModel::setLatticeCounts(WidgetId lattice, const Eigen::Vector3i& coun
 
   // Parameters of the new grid: the Greville abscissae of the new bases, and the same relative
   // position in the old parameter box.
-  const ffd::Lattice old = Impl::makeFfd(n.counts, n.settings, n.rest, n.control, Eigen::Affine3d::Identity());
+  const ffd::Lattice old = Impl::makeFfd(n.counts, n.settings, n.rest, n.control, Eigen::Affine3d::Identity(), n.weights);
   const Eigen::Index total = static_cast<Eigen::Index>(counts.prod());
   Eigen::MatrixX3d params(total, 3), oldParams(total, 3);
   for (Eigen::Index f = 0; f < total; ++f) {
@@ -223,6 +223,7 @@ void WidgetModel::setLatticeCounts(WidgetId lattice, const Eigen::Vector3i& coun
   w.counts = counts;
   w.rest = rest;
   w.control = control;
+  w.weights.resize(0);  // the resampled points carry the old (rational) shape; the new weights are 1
   for (std::size_t c = 0; c < cellIds.size(); ++c) {
     Impl::Node& cell = m.nodes[cellIds[c].value];
     cell.spec = std::move(specs[c]);

@@ -1,5 +1,7 @@
 #include "widget_model_impl.h"
 
+#include <cmath>
+
 #include "ffdkit/ffd/cylindrical_lattice.h"
 #include "ffdkit/ffd/embedding.h"
 
@@ -381,7 +383,7 @@ void WidgetModel::setLatticeSettings(WidgetId lattice, const LatticeSettings& se
 
 ffd::Lattice WidgetModel::ffdLattice(WidgetId lattice) const {
   const Impl::Node& n = impl_->node(lattice, WidgetType::Lattice);
-  return Impl::makeFfd(n.counts, n.settings, n.rest, n.control, impl_->latticeFrame(n));
+  return Impl::makeFfd(n.counts, n.settings, n.rest, n.control, impl_->latticeFrame(n), n.weights);
 }
 
 void WidgetModel::setLatticeFrame(WidgetId lattice, const Eigen::Affine3d& frame) {
@@ -430,6 +432,7 @@ void WidgetModel::resetLattice(WidgetId lattice) {
   m.requireNoGesture("resetting a lattice");
   Impl::Node& n = m.node(lattice, WidgetType::Lattice);
   n.control = n.rest;
+  n.weights.resize(0);
   m.touch();
   m.markControl(lattice);
   for (WidgetId c : n.cells)
@@ -437,6 +440,44 @@ void WidgetModel::resetLattice(WidgetId lattice) {
       m.nodes[a.value].variation = 0.0;
       m.markWidget(a);
     }
+}
+
+namespace {
+
+// Weights as the model stores them: checked (count, finite, > 0; the message names the first bad
+// one), and empty when every weight is 1.
+Eigen::VectorXd storedWeights(Eigen::Index count, const Eigen::Ref<const Eigen::VectorXd>& weights) {
+  if (weights.size() != count)
+    fail(WidgetErrorCode::InvalidArgument, "expected " + std::to_string(count) + " weights, got " + std::to_string(weights.size()));
+  for (Eigen::Index i = 0; i < weights.size(); ++i)
+    if (!(std::isfinite(weights[i]) && weights[i] > 0.0))
+      fail(WidgetErrorCode::InvalidArgument,
+           "weight " + std::to_string(i) + " must be finite and > 0, got " + std::to_string(weights[i]));
+  if ((weights.array() == 1.0).all()) return {};
+  return weights;
+}
+
+}  // namespace
+
+void WidgetModel::setWeights(WidgetId lattice, const Eigen::Ref<const Eigen::VectorXd>& weights) {
+  Impl& m = *impl_;
+  m.requireNoGesture("setting weights");
+  Impl::Node& n = m.node(lattice, WidgetType::Lattice);
+  Eigen::VectorXd stored = storedWeights(n.control.rows(), weights);
+  if (stored.size() == n.weights.size() && stored == n.weights) return;
+  n.weights = std::move(stored);
+  m.touch();
+  m.markControl(lattice);
+}
+
+void WidgetModel::setWeight(WidgetId lattice, Eigen::Index point, double weight) {
+  const Impl::Node& n = impl_->node(lattice, WidgetType::Lattice);
+  if (point < 0 || point >= n.control.rows())
+    fail(WidgetErrorCode::InvalidArgument, "point " + std::to_string(point) + " outside [0, " +
+                                               std::to_string(n.control.rows()) + ") of lattice '" + impl_->label(lattice));
+  Eigen::VectorXd all = weights(lattice);
+  all[point] = weight;
+  setWeights(lattice, all);
 }
 
 }  // namespace ffdkit::widgets

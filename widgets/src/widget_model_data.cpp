@@ -1,5 +1,7 @@
 #include "widget_model_impl.h"
 
+#include <cmath>
+
 namespace ffdkit::widgets {
 
 // ---- state and data -------------------------------------------------------------------------------
@@ -9,6 +11,7 @@ WidgetModelState WidgetModel::captureState() const {
     if (!n.alive) continue;
     if (n.type == WidgetType::Lattice) {
       s.controlPoints.emplace_back(n.id, n.control);
+      s.weights.emplace_back(n.id, n.weights);
       s.latticeFrames.emplace_back(n.id, n.frame);
     } else if (n.type == WidgetType::Affine) {
       s.variations.emplace_back(n.id, n.variation);
@@ -26,6 +29,12 @@ void WidgetModel::restoreState(const WidgetModelState& s) {
       fail(WidgetErrorCode::InvalidArgument, "state holds " + std::to_string(p.rows()) + " points for lattice '" +
                                                  m.label(id) + ", expected " + std::to_string(n.control.rows()));
   }
+  for (const auto& [id, w] : s.weights) {
+    const auto& n = m.node(id, WidgetType::Lattice);
+    if (w.size() != 0 && (w.size() != n.control.rows() || !(w.array() > 0.0).all() || !w.allFinite()))
+      fail(WidgetErrorCode::InvalidArgument, "state holds " + std::to_string(w.size()) + " weights for lattice '" +
+                                                 m.label(id) + ", expected " + std::to_string(n.control.rows()) + " finite weights > 0");
+  }
   for (const auto& [id, f] : s.latticeFrames) m.node(id, WidgetType::Lattice);
   for (const auto& [id, v] : s.variations) m.node(id, WidgetType::Affine);
   // Only what differs is written and stamped: an undo of a drag re-embeds nothing.
@@ -40,6 +49,11 @@ void WidgetModel::restoreState(const WidgetModelState& s) {
       n.frame = f;
       m.markRest(id);
     }
+  for (const auto& [id, w] : s.weights)
+    if (Impl::Node& n = m.nodes[id.value]; n.weights.size() != w.size() || n.weights != w) {
+      n.weights = w;
+      m.markControl(id);
+    }
   for (const auto& [id, v] : s.variations)
     if (Impl::Node& n = m.nodes[id.value]; n.variation != v) {
       n.variation = v;
@@ -53,7 +67,7 @@ WidgetModelData WidgetModel::toData() const {
     if (!n.alive) continue;
     switch (n.type) {
       case WidgetType::Lattice:
-        d.lattices.push_back(LatticeData{n.id, n.name, n.counts, n.rest, n.control, n.frame, n.settings, n.children});
+        d.lattices.push_back(LatticeData{n.id, n.name, n.counts, n.rest, n.control, n.frame, n.settings, n.children, n.weights});
         break;
       case WidgetType::Cell: d.cells.push_back(CellData{n.id, n.name, n.lattice, n.spec}); break;
       case WidgetType::Affine: d.affines.push_back(AffineData{n.id, n.name, n.kind, n.placement, n.variation, n.glyph}); break;
@@ -98,6 +112,14 @@ WidgetModel WidgetModel::fromData(const WidgetModelData& data) {
       at(base + "/points");
       if (l.controlPoints.rows() != n || !finite(l.controlPoints))
         bad(WidgetErrorCode::InvalidArgument, "expected " + std::to_string(n) + " finite control points, got " + std::to_string(l.controlPoints.rows()));
+      at(base + "/weights");
+      if (l.weights.size() != 0 && l.weights.size() != n)
+        bad(WidgetErrorCode::InvalidArgument, "expected " + std::to_string(n) + " weights, got " + std::to_string(l.weights.size()));
+      for (Eigen::Index k = 0; k < l.weights.size(); ++k)
+        if (!(std::isfinite(l.weights[k]) && l.weights[k] > 0.0)) {
+          at(base + "/weights/" + std::to_string(k));
+          bad(WidgetErrorCode::InvalidArgument, "weight " + std::to_string(k) + " must be finite and > 0, got " + std::to_string(l.weights[k]));
+        }
       at(base + "/frame");
       if (!detail::finiteAndInvertible(l.frame))
         bad(WidgetErrorCode::InvalidArgument, "frame must be finite and invertible");
@@ -106,6 +128,7 @@ WidgetModel WidgetModel::fromData(const WidgetModelData& data) {
       node.counts = l.counts;
       node.rest = l.restPoints;
       node.control = l.controlPoints;
+      node.weights = (l.weights.array() == 1.0).all() ? Eigen::VectorXd() : l.weights;
       node.frame = l.frame;
       node.settings = l.settings;
     }

@@ -70,6 +70,7 @@ struct WidgetModel::Impl {
     // lattice
     Eigen::Vector3i counts = Eigen::Vector3i::Constant(2);
     Eigen::MatrixX3d rest, control;
+    Eigen::VectorXd weights;  // empty: every weight 1
     Eigen::Affine3d frame = Eigen::Affine3d::Identity();  // root frame or child placement
     LatticeSettings settings;
     std::vector<WidgetId> children;
@@ -287,12 +288,13 @@ struct WidgetModel::Impl {
   // The FFD engine's lattice for these settings; its errors become WidgetError.
   static ffd::Lattice makeFfd(const Eigen::Vector3i& counts, const LatticeSettings& settings,
                               const Eigen::MatrixX3d& rest, const Eigen::MatrixX3d& control,
-                              const Eigen::Affine3d& frame) {
+                              const Eigen::Affine3d& frame, const Eigen::VectorXd& weights = {}) {
     try {
       ffd::Lattice l(counts, settings.basis, rest, frame);
       l.setOutsidePolicy(settings.outside);
       l.setCylinderRestShape(settings.cylinder);
       l.setControlPoints(control);
+      if (weights.size() > 0) l.setWeights(weights);
       return l;
     } catch (const std::invalid_argument& e) {
       fail(WidgetErrorCode::InvalidArgument, e.what());

@@ -79,6 +79,13 @@ WidgetChanges WidgetModel::changesSince(std::uint64_t since) const {
 
 Eigen::Vector3i WidgetModel::counts(WidgetId lattice) const { return impl_->node(lattice, WidgetType::Lattice).counts; }
 const Eigen::MatrixX3d& WidgetModel::controlPoints(WidgetId lattice) const { return impl_->node(lattice, WidgetType::Lattice).control; }
+
+Eigen::VectorXd WidgetModel::weights(WidgetId lattice) const {
+  const Impl::Node& n = impl_->node(lattice, WidgetType::Lattice);
+  return n.weights.size() > 0 ? n.weights : Eigen::VectorXd::Ones(n.control.rows());
+}
+
+bool WidgetModel::isRational(WidgetId lattice) const { return impl_->node(lattice, WidgetType::Lattice).weights.size() > 0; }
 const Eigen::MatrixX3d& WidgetModel::restPoints(WidgetId lattice) const { return impl_->node(lattice, WidgetType::Lattice).rest; }
 Eigen::MatrixX3d WidgetModel::worldControlPoints(WidgetId lattice) const {
   const auto& n = impl_->node(lattice, WidgetType::Lattice);

@@ -44,6 +44,13 @@ enum class Precision {
 /// points to the embedding tolerance, and it is also the natural approximation when a pipeline
 /// stage's input moved but its re-embedding is throttled.
 ///
+/// Rational lattices (Lattice::isRational(), Lamousin & Waggenspack 1994) use the same formula with
+/// X and Xbar the ratios sum B w P / sum B w: out = Q + s * F.linear() * (X(u,v,w) - Xbar(u,v,w)).
+/// Their deformer keeps, per point, the homogeneous sums (sum B w P, sum B w) of the last call, so
+/// that update(lattice) adds B_ijk * d(w P) and B_ijk * dw for the changed control points and
+/// divides again (32 bytes per point, allocated on the first rational call). Polynomial lattices
+/// (every weight 1) never touch that state and run the power-form kernels as before.
+///
 /// Threads: OpenMP over blocks of points that share a lattice cell.
 class Deformer {
  public:
@@ -93,6 +100,15 @@ class Deformer {
   /// LOCAL control points of the last deform() / update() (what update() compares against);
   /// empty before the first deform().
   const Eigen::MatrixX3d& lastControlPoints() const { return lastControl_; }
+  /// Weights of the last deform() / update() (empty before the first deform(); all 1 for a
+  /// polynomial lattice).
+  const Eigen::VectorXd& lastWeights() const { return lastWeights_; }
+  /// True when the last deform() / update() ran with the lattice's current control points and
+  /// weights (an update() now would change nothing).
+  bool isCurrentFor(const Lattice& lattice) const {
+    return deformed_ && lastControl_.rows() == lattice.pointCount() && lastControl_ == lattice.controlPoints() &&
+           lastWeights_ == lattice.weights();
+  }
 
   /// Run on all OpenMP threads (default) or on the calling thread only.
   void setParallel(bool parallel) { parallel_ = parallel; }
@@ -107,10 +123,25 @@ class Deformer {
   // number of points evaluated.
   Eigen::Index evaluateBlocks(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input,
                               const std::vector<char>* cellFilter);
+  // Cells whose window holds a control point whose position or weight changed since the last
+  // call; `changed` counts those control points.
+  std::vector<char> touchedCells(const Lattice& lattice, Eigen::Index& changed) const;
+  // The rational paths (rational_deform.cpp): a dense evaluation of the cells set in cellFilter
+  // (all if null) and the delta step of update(lattice).
+  Eigen::Index evaluateRational(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input,
+                                const std::vector<char>* cellFilter);
+  const Eigen::MatrixX3d& updateRational(const Lattice& lattice);
+  void remember(const Lattice& lattice);
 
   Embedding embedding_;
   Eigen::MatrixX3d output_;
   Eigen::MatrixX3d lastControl_;  // local control points at the last deform()/update()
+  Eigen::VectorXd lastWeights_;   // weights at the last deform()/update()
+  bool lastRational_ = false;     // the output of the last call came from the rational path
+  // Rational path: per sorted point, the local homogeneous sums (sum B w P, sum B w) of the
+  // last call, 4 doubles a point; valid when homogeneousValid_.
+  std::vector<double> homogeneous_;
+  bool homogeneousValid_ = false;
   bool deformed_ = false;
   bool parallel_ = true;
   Precision precision_ = Precision::Double;

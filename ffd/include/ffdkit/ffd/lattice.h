@@ -23,6 +23,11 @@ inline constexpr std::uint64_t kMaxLatticeControlPoints = 100'000'000;
 /// the rest lattice Pbar (the control points before any edit, eq. (6.2)), a frame placing the
 /// lattice-local coordinates in the world, and the outside-point policy.
 ///
+/// Rational lattices (NURBS-based FFD, Lamousin & Waggenspack 1994): a weight w_ijk > 0 per
+/// control point makes the map the ratio X = sum B_ijk w_ijk P_ijk / sum B_ijk w_ijk; the rest
+/// lattice has its own weights wbar_ijk. All weights 1 (the default) is the polynomial lattice
+/// of eq. (6.1), evaluated by the polynomial code everywhere (the same bits as before weights).
+///
 /// Layout: control points are stored one per row of a pointCount x 3 matrix in lattice-LOCAL
 /// coordinates, flat index = i + l*(j + m*k) (i fastest). World = frame() * local.
 /// Value semantics: copyable, comparable by revision only through revision()/restRevision().
@@ -69,11 +74,32 @@ class Lattice {
   void setControlPoints(const Eigen::Ref<const Eigen::MatrixX3d>& points);
   /// @throws LatticeError on flat out of range or non-finite p. Bumps revision().
   void setControlPoint(Eigen::Index flat, const Eigen::Vector3d& p);
-  /// P = Pbar. Bumps revision().
+  /// P = Pbar and w = wbar. Bumps revision().
   void resetToRest();
   /// Replaces the rest lattice (and resets P to it): the "points moved before attaching" case.
   /// @throws LatticeError like the constructor. Bumps revision() and restRevision().
   void setRestPoints(const Eigen::Ref<const Eigen::MatrixX3d>& restPoints);
+
+  /// Current weights w_ijk, pointCount entries (i fastest, like the points), all > 0.
+  Eigen::VectorXd weights() const;
+  /// Weight of control point `flat` (1 for a polynomial lattice). @throws LatticeError on a bad index.
+  double weight(Eigen::Index flat) const;
+  /// Rest weights wbar_ijk, the weights of the rest map Xbar that embedding inverts.
+  Eigen::VectorXd restWeights() const;
+  /// True when some current or rest weight is not 1: the map is a ratio (Lamousin & Waggenspack 1994).
+  bool isRational() const { return weights_.size() > 0 || restWeights_.size() > 0; }
+  /// True when some rest weight is not 1: embedding solves the rational rest map by Newton.
+  bool restIsRational() const { return restWeights_.size() > 0; }
+  /// Sets every current weight (pointCount entries).
+  /// @throws LatticeError on a wrong count or a weight that is not finite and > 0 (naming it).
+  /// Bumps revision(): like a control-point edit, a weight edit deforms without re-embedding.
+  void setWeights(const Eigen::Ref<const Eigen::VectorXd>& weights);
+  /// Sets one current weight. @throws LatticeError on a bad index or a weight not finite and > 0.
+  /// Bumps revision().
+  void setWeight(Eigen::Index flat, double weight);
+  /// Sets the rest weights and resets the current weights to them (the control points are kept).
+  /// @throws LatticeError like setWeights. Bumps revision() and restRevision() (re-embed).
+  void setRestWeights(const Eigen::Ref<const Eigen::VectorXd>& weights);
 
   /// World placement of the lattice: world = frame * local.
   const Eigen::Affine3d& frame() const { return frame_; }
@@ -93,18 +119,20 @@ class Lattice {
   /// for an older restRevision are stale.
   std::uint64_t restRevision() const { return restRevision_; }
 
-  /// X(u,v,w) = sum_ijk B_i(u) B_j(v) B_k(w) P_ijk, lattice-local (Kuriyama 1996, eq. (6.1)).
+  /// X(u,v,w) = sum_ijk B_i(u) B_j(v) B_k(w) P_ijk, lattice-local (Kuriyama 1996, eq. (6.1));
+  /// with weights the ratio sum B w P / sum B w (Lamousin & Waggenspack 1994).
   /// Parameters outside the box evaluate the end polynomial pieces; periodic axes wrap.
   Eigen::Vector3d evaluate(const Eigen::Vector3d& uvw) const;
   /// Xbar(u,v,w): eq. (6.1) on the rest lattice (the left side of eq. (6.2)).
   Eigen::Vector3d evaluateRest(const Eigen::Vector3d& uvw) const;
-  /// dX/d(u,v,w) (column a = derivative along parameter a) and, optionally, X itself.
+  /// dX/d(u,v,w) (column a = derivative along parameter a) and, optionally, X itself. With
+  /// weights, the quotient rule: (dN - X dW^T) / W with N = sum B w P and W = sum B w.
   Eigen::Matrix3d jacobian(const Eigen::Vector3d& uvw, Eigen::Vector3d* value = nullptr) const;
   /// dXbar/d(u,v,w) on the rest lattice and, optionally, Xbar itself (used by Newton embedding).
   Eigen::Matrix3d restJacobian(const Eigen::Vector3d& uvw, Eigen::Vector3d* value = nullptr) const;
 
   /// True when Xbar is an affine function of (u,v,w): Xbar = A*uvw + b (box lattices on the
-  /// Greville grid). Then embedding is the closed form A^-1 (Q - b).
+  /// Greville grid with rest weights 1). Then embedding is the closed form A^-1 (Q - b).
   bool restIsAffine() const { return restAffine_; }
   /// A and b of the affine rest map (meaningful only if restIsAffine()).
   const Eigen::Matrix3d& restAffineLinear() const { return restA_; }
@@ -120,14 +148,17 @@ class Lattice {
   void setCylinderRestShape(const std::optional<CylinderRestShape>& shape) { cylinder_ = shape; }
 
  private:
-  Eigen::Vector3d evaluateOn(const Eigen::MatrixX3d& points, const Eigen::Vector3d& uvw,
-                             Eigen::Matrix3d* jac) const;
+  Eigen::Vector3d evaluateOn(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weights,
+                             const Eigen::Vector3d& uvw, Eigen::Matrix3d* jac) const;
   void setRestInternal(const Eigen::Ref<const Eigen::MatrixX3d>& restPoints);
+  Eigen::VectorXd checkedWeights(const Eigen::Ref<const Eigen::VectorXd>& weights, const char* what) const;
 
   Eigen::Vector3i counts_;
   std::array<AxisSpline, 3> axes_;
   Eigen::MatrixX3d control_;
   Eigen::MatrixX3d rest_;
+  Eigen::VectorXd weights_;      // empty: every weight 1
+  Eigen::VectorXd restWeights_;  // empty: every rest weight 1
   Eigen::Affine3d frame_ = Eigen::Affine3d::Identity();
   OutsidePolicy policy_{};
   std::uint64_t revision_ = 0;

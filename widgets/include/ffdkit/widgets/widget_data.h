@@ -41,6 +41,9 @@ struct LatticeData {
   Eigen::Affine3d frame = Eigen::Affine3d::Identity();
   LatticeSettings settings;  ///< bases, outside policy, re-embedding
   std::vector<WidgetId> children;  ///< child lattices in sibling order
+  /// A weight > 0 per control point (rational lattice, Lamousin & Waggenspack 1994), same order
+  /// as the points; empty when every weight is 1 (the rest lattice's weights are always 1).
+  Eigen::VectorXd weights;
 };
 
 /// A cell widget: a group of a lattice's points.

@@ -71,6 +71,8 @@ struct WidgetModelState {
   std::vector<std::pair<WidgetId, Eigen::MatrixX3d>> controlPoints;  ///< local control points per lattice
   std::vector<std::pair<WidgetId, Eigen::Affine3d>> latticeFrames;  ///< root frame / child placement
   std::vector<std::pair<WidgetId, double>> variations;  ///< variation per affine widget
+  /// Control-point weights per lattice (pointCount entries; empty when every weight is 1).
+  std::vector<std::pair<WidgetId, Eigen::VectorXd>> weights;
 };
 
 /// The headless widget model of Kuriyama 1996, ch. 6 (secs. 6.2.1-6.2.3): lattice widgets that own
@@ -170,7 +172,7 @@ class WidgetModel {
   ///   round(i n' / n) mod n'); point, edge, face and box cells move their lower corner, a slab
   ///   its plane, a custom cell each index (duplicates dropped). Attached affine widgets keep
   ///   their placement on their (remapped) cell and their variation; child lattices keep their
-  ///   world frame. Bindings and ids are unchanged.
+  ///   world frame. Bindings and ids are unchanged. Control-point weights go back to 1.
   /// @throws GestureState during a gesture; InvalidArgument for counts < 2, a basis whose degree
   ///   a new count cannot carry, a cell that no longer fits on the new grid (the message names
   ///   it). The model is unchanged on every error.
@@ -181,7 +183,18 @@ class WidgetModel {
   void setSiblingPosition(WidgetId lattice, std::size_t position);
   /// Sets every control point of a lattice (pointCount x 3, local).
   void setControlPoints(WidgetId lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points);
-  /// Back to rest: control points = rest points, variations of the lattice's widgets = 0.
+  /// Sets every control-point weight of a lattice (pointCount values, each finite and > 0; all 1
+  /// makes it polynomial again). A weight pulls the deformed shape towards its control point
+  /// (rational FFD, Lamousin & Waggenspack 1994); the rest lattice keeps weights 1, so weights
+  /// deform without re-embedding. Reported like a control-point edit (controlRevision, the
+  /// lattice's control points in WidgetChanges); undoable through captureState/restoreState.
+  /// @throws GestureState during a gesture; InvalidArgument on a wrong count or a bad weight
+  ///   (naming the point). The model is unchanged on every error.
+  void setWeights(WidgetId lattice, const Eigen::Ref<const Eigen::VectorXd>& weights);
+  /// Sets the weight of control point `point` (flat index). @throws like setWeights, and
+  /// InvalidArgument on a point index out of range.
+  void setWeight(WidgetId lattice, Eigen::Index point, double weight);
+  /// Back to rest: control points = rest points, weights = 1, variations of the lattice's widgets = 0.
   void resetLattice(WidgetId lattice);
 
   // ---- queries --------------------------------------------------------------------------
@@ -228,6 +241,10 @@ class WidgetModel {
   Eigen::Vector3i counts(WidgetId lattice) const;
   const Eigen::MatrixX3d& controlPoints(WidgetId lattice) const;  ///< local, pointCount x 3
   const Eigen::MatrixX3d& restPoints(WidgetId lattice) const;     ///< local, pointCount x 3
+  /// Control-point weights, pointCount values (all 1 for a polynomial lattice).
+  Eigen::VectorXd weights(WidgetId lattice) const;
+  /// True when some control-point weight of the lattice is not 1.
+  bool isRational(WidgetId lattice) const;
   /// Control points in the world, pointCount x 3.
   Eigen::MatrixX3d worldControlPoints(WidgetId lattice) const;
   Eigen::MatrixX3d worldRestPoints(WidgetId lattice) const;       ///< rest shape at the current frame
@@ -236,7 +253,7 @@ class WidgetModel {
   /// Bases, outside policy and re-embedding policy of a lattice.
   const LatticeSettings& latticeSettings(WidgetId lattice) const;
   /// The FFD engine's lattice for a lattice widget: counts, bases, outside policy, rest and
-  /// current control points, and its current world frame (what the FFD pipeline deforms with).
+  /// current control points, weights, and its current world frame (what the FFD pipeline deforms with).
   ffd::Lattice ffdLattice(WidgetId lattice) const;
   /// The cell a child lattice rides on (none for a root).
   std::optional<WidgetId> parentCell(WidgetId lattice) const;
