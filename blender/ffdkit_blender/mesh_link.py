@@ -16,6 +16,7 @@ import json
 
 import numpy as np
 
+from . import key_write
 from . import tool as tool_module
 
 PREFIX = "ffd:"
@@ -36,6 +37,7 @@ class _Link:
         self.text = text
         self.dirty = True  # the shape key must be (re)written
         self.error = ""
+        self.write_path = ""  # how the last write went: key_write.DIRECT or FOREACH_SET
 
 
 def has_tool(obj):
@@ -194,13 +196,16 @@ def sync(ffdkit, obj, evaluated=None, frame=None):
 
 
 def write(obj, link):
-    """Writes the tool's deformed points into the object's ffdkit shape key (one foreach_set)."""
+    """Writes the tool's deformed points into the object's ffdkit shape key (key_write: a copy
+    into Blender's array, else one foreach_set) and tags the shape keys for evaluation. Only the
+    Key data-block is tagged, not the mesh: a tagged mesh is copied whole for evaluation (its
+    vertices, edges, faces and corners), which costs more than the rest of a slider change; the
+    Key's tag alone re-evaluates the mesh's geometry and the object's modifier stack."""
     keys = obj.data.shape_keys
     if keys is None or SHAPE_KEY not in keys.key_blocks:
         return
-    points = np.ascontiguousarray(link.tool.points(), dtype=np.float32)
-    keys.key_blocks[SHAPE_KEY].data.foreach_set("co", points.ravel())
-    obj.data.update_tag()
+    link.write_path = key_write.write_points(keys.key_blocks[SHAPE_KEY], link.tool.points())
+    keys.update_tag()
     link.dirty = False
 
 
