@@ -15,6 +15,7 @@ std::size_t matrixBytes(const Eigen::MatrixX3d& m) { return sizeof(double) * std
 std::size_t stateBytes(const widgets::WidgetModelState& s) {
   std::size_t bytes = sizeof(s);
   for (const auto& [id, points] : s.controlPoints) bytes += sizeof(id) + sizeof(points) + matrixBytes(points);
+  for (const auto& [id, weights] : s.weights) bytes += sizeof(id) + sizeof(weights) + sizeof(double) * weights.size();
   bytes += s.latticeFrames.size() * sizeof(s.latticeFrames.front());
   bytes += s.variations.size() * sizeof(std::pair<WidgetId, double>);
   return bytes;
@@ -99,6 +100,14 @@ StateDelta stateDelta(const widgets::WidgetModelState& before, const widgets::Wi
     if (p.rows() != q.rows() || p != q) {
       d.before.controlPoints.emplace_back(id, p);
       d.after.controlPoints.emplace_back(id, q);
+    }
+  }
+  for (std::size_t i = 0; i < std::min(before.weights.size(), after.weights.size()); ++i) {
+    const auto& [id, w] = before.weights[i];
+    const auto& x = after.weights[i].second;
+    if (w.size() != x.size() || w != x) {
+      d.before.weights.emplace_back(id, w);
+      d.after.weights.emplace_back(id, x);
     }
   }
   for (std::size_t i = 0; i < std::min(before.latticeFrames.size(), after.latticeFrames.size()); ++i)

@@ -159,6 +159,10 @@ int SceneDeformer::ObjectPipeline::syncInPlace(const Scene& scene, const std::ve
       lattice.setControlPoints(control);
       lastControlMoved = lastControlMoved || stage == current.back();
     }
+    if (const Eigen::VectorXd weights = scene.widgets.weights(stage.lattice); weights != lattice.weights()) {
+      lattice.setWeights(weights);
+      lastControlMoved = lastControlMoved || stage == current.back();
+    }
     seen = {frameRevision, controlRevision};
   }
   return latticesBuilt;
@@ -405,6 +409,7 @@ std::optional<GestureMotion> SceneDeformer::gestureMotion(ObjectId object) const
   const ffd::LatticeId last = p.pipeline->order().back();
   const ffd::Lattice& lattice = p.pipeline->lattice(last);
   if (lattice.controlPoints().rows() != p.baseControl.rows()) return std::nullopt;
+  if (lattice.isRational()) return std::nullopt;  // with weights the map is a ratio, not linear in the points
   GestureMotion motion;
   motion.baseRevision = p.baseRevision;
   for (const auto& [widget, id] : p.ids)

@@ -1,5 +1,7 @@
 #include "ffdkit/scenes/widget_file.h"
 
+#include <algorithm>
+
 #include <fstream>
 #include <initializer_list>
 #include <iterator>
@@ -219,7 +221,8 @@ void readList(const Json& root, const char* key, std::uint64_t bytesEach, const 
   }
 }
 
-void checkFormat(const Json& root, const Location& at) {
+// Checks the format name and version; returns the version.
+int checkFormat(const Json& root, const Location& at) {
   checkObject(root, at);
   checkKeys(root, {"format", "version", "lattices", "rootOrder", "cells", "affines", "bindings"}, at);
   const std::string format = text(member(root, "format", at), at / "format");
@@ -228,6 +231,20 @@ void checkFormat(const Json& root, const Location& at) {
   if (version > kWidgetFileVersion)
     (at / "version").fail("widget file version " + std::to_string(version) + " is newer than this build reads (" +
                           std::to_string(kWidgetFileVersion) + "); update ffdkit");
+  return version;
+}
+
+// A lattice's control-point weights (version 2): `count` numbers, each finite and > 0.
+Eigen::VectorXd readWeights(const Json& j, Eigen::Index count, const Location& at) {
+  checkArray(j, at);
+  if (static_cast<Eigen::Index>(j.size()) != count)
+    at.fail("expected " + std::to_string(count) + " weights (one per control point), got " + std::to_string(j.size()));
+  Eigen::VectorXd w(count);
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    w[static_cast<Eigen::Index>(i)] = number(j[i], at / i);
+    if (!(w[static_cast<Eigen::Index>(i)] > 0.0)) (at / i).fail("a weight must be > 0, got " + j[i].dump());
+  }
+  return w;
 }
 
 ffd::OutsidePolicy readOutsidePolicy(const Json& o, const Location& at) {
@@ -286,8 +303,9 @@ Eigen::MatrixX3d readRestPoints(const Json& j, const LatticeData& l, const Locat
 }
 
 // One lattice; its control points are charged to the budget as soon as its counts are known.
-LatticeData readLattice(const Json& j, const Location& at, meshio::ReadBudget& budget) {
-  checkKeys(j, {"id", "name", "counts", "basis", "outside", "reembed", "cylinder", "frame", "children", "rest", "points"}, at);
+LatticeData readLattice(const Json& j, const Location& at, meshio::ReadBudget& budget, int version) {
+  checkKeys(j, {"id", "name", "counts", "basis", "outside", "reembed", "cylinder", "frame", "children", "rest", "points", "weights"},
+            at);
   LatticeData l;
   l.id = widgetId(member(j, "id", at), at / "id");
   l.name = text(member(j, "name", at), at / "name");
@@ -310,6 +328,11 @@ LatticeData readLattice(const Json& j, const Location& at, meshio::ReadBudget& b
   }
   l.restPoints = readRestPoints(j, l, at);
   l.controlPoints = j.contains("points") ? points(j["points"], at / "points") : l.restPoints;
+  if (j.contains("weights")) {
+    if (version < 2)
+      (at / "weights").fail("'weights' needs widget file version 2 (this file says version " + std::to_string(version) + ")");
+    l.weights = readWeights(j["weights"], static_cast<Eigen::Index>(l.counts.prod()), at / "weights");
+  }
   return l;
 }
 
@@ -410,10 +433,10 @@ void readTreeOrder(const Json& root, const Location& at, WidgetModelData& d) {
 }
 
 WidgetModelData readData(const Json& root, const Location& at, meshio::ReadBudget& budget) {
-  checkFormat(root, at);
+  const int version = checkFormat(root, at);
   WidgetModelData d;
   readList(root, "lattices", kWidgetNodeBytes, "lattices", at, budget,
-           [&](const Json& j, const Location& li) { d.lattices.push_back(readLattice(j, li, budget)); });
+           [&](const Json& j, const Location& li) { d.lattices.push_back(readLattice(j, li, budget, version)); });
   readList(root, "cells", kWidgetNodeBytes, "cells", at, budget,
            [&](const Json& j, const Location& ci) { d.cells.push_back(readCell(j, ci, d, budget)); });
   readList(root, "affines", kWidgetNodeBytes, "affine widgets", at, budget,
@@ -453,7 +476,9 @@ Json ids(const std::vector<WidgetId>& list) {
 Json toJson(const WidgetModelData& d) {
   Json root;
   root["format"] = kFormatName;
-  root["version"] = kWidgetFileVersion;
+  // Version 2 only where weights appear: a tool without them is written as before, byte for byte.
+  const bool weighted = std::any_of(d.lattices.begin(), d.lattices.end(), [](const LatticeData& l) { return l.weights.size() > 0; });
+  root["version"] = weighted ? kWidgetFileVersion : 1;
   Json lattices = Json::array();
   for (const LatticeData& l : d.lattices) {
     Json j;
@@ -485,6 +510,7 @@ Json toJson(const WidgetModelData& d) {
     j["children"] = ids(l.children);
     j["rest"] = pointsJson(l.restPoints);
     j["points"] = pointsJson(l.controlPoints);
+    if (l.weights.size() > 0) j["weights"] = row(l.weights.transpose());
     lattices.push_back(j);
   }
   root["lattices"] = lattices;

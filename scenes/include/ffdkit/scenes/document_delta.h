@@ -11,7 +11,7 @@
 namespace ffdkit::scenes {
 
 /// What a gesture or a value edit changed in a widget model's mutable state (control points,
-/// lattice frames, variations): only the items that differ, before and after. Undo and redo
+/// control-point weights, lattice frames, variations): only the items that differ, before and after. Undo and redo
 /// write them in place (WidgetModel::restoreState), which stamps only what differs, so the
 /// deformer re-embeds nothing unless a frame changed.
 struct StateDelta {
@@ -19,7 +19,10 @@ struct StateDelta {
   widgets::WidgetModelState after;  ///< the same items as they are after the change
 
   /// True when nothing changed.
-  bool empty() const { return before.controlPoints.empty() && before.latticeFrames.empty() && before.variations.empty(); }
+  bool empty() const {
+    return before.controlPoints.empty() && before.latticeFrames.empty() && before.variations.empty() &&
+           before.weights.empty();
+  }
   /// Heap and inline bytes held.
   std::size_t bytes() const;
 };

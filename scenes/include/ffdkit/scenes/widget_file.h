@@ -13,7 +13,10 @@ namespace ffdkit::scenes {
 /// The widget file format this build reads and writes (docs/widget-file-format.md): a whole
 /// reusable deformation tool (Kuriyama 1996, secs. 6.3.3, 6.4): lattice tree, bases, rest
 /// shape, current control points, cells, affine widgets, bindings, outside and re-embed policy.
-inline constexpr int kWidgetFileVersion = 1;
+/// It reads every version from 1. Version 2 added control-point weights (rational lattices,
+/// Lamousin & Waggenspack 1994); a tool without weights is still written as version 1, byte for
+/// byte as before.
+inline constexpr int kWidgetFileVersion = 2;
 
 /// A widget file that cannot be read or written. what() says where:
 /// `tool.json:14:9: syntax error ...` for malformed JSON,
