@@ -10,6 +10,8 @@ update, the write into the shape key, the tag), and evaluates the view layer; it
 clock, from the change to the evaluated mesh holding the new positions, and each part. Then:
 - the same mesh with nothing on it, only tagged for a geometry update: Blender's own floor, what
   any change of the mesh costs before anything is deformed;
+- two other ways to the evaluated mesh: the key written and the mesh tagged (instead of the Key),
+  and no shape key at all, the mesh's own vertices written;
 - the same mesh with a 4x4x4 B-spline Lattice modifier instead of the tool: a lattice point
   moves, then the evaluation.
 Prints the medians over REPS (default 10), in ms. Drawing is not included (no window: -b).
@@ -79,14 +81,12 @@ def ms(start):
     return 1e3 * (time.perf_counter() - start)
 
 
-# ---- Blender's floor: the bare mesh re-evaluated ---------------------------------------------
+# Blender's floor: a second sphere with nothing on it, tagged and re-evaluated between the
+# slider changes (interleaved, so that both see the same machine).
+bare = sphere_mesh(max(3, int(round(np.sqrt(vertices)))))
+bpy.context.view_layer.objects.active = sphere
 view_layer.update()
 floor = []
-for k in range(reps):
-    t = time.perf_counter()
-    sphere.update_tag()
-    view_layer.update()
-    floor.append(ms(t))
 
 # ---- the add-on's slider -------------------------------------------------------------------
 tool = os.path.join(root, "widgets", "examples", "fig6-8.json")
@@ -120,6 +120,10 @@ def timed_write_points(*arguments, **options):
 link.tool.points = timed_points
 key_write.write_points = timed_write_points
 for k in range(reps):
+    t = time.perf_counter()
+    bare.update_tag()
+    view_layer.update()
+    floor.append(ms(t))
     before = evaluated_points(sphere)
     t = time.perf_counter()
     sphere["ffd:push-front"] = 0.02 * (k + 1)
@@ -144,8 +148,31 @@ for k in range(reps):
     key_write.write_points(block, points, allow_direct=False)
     foreach_ms.append(ms(t))
 
-# ---- Blender's Lattice modifier on the same mesh --------------------------------------------
+# The other ways to the same evaluated mesh: the key written and the mesh tagged instead of the
+# Key (a tagged mesh is copied whole for evaluation); no shape key, the mesh's own vertices
+# written (foreach_set is fast there: MeshVertex.co maps onto MVert.co) and the mesh tagged.
+mesh_tagged = []
+for k in range(reps):
+    scaled = points * (1 + 0.01 * (k + 1))
+    t = time.perf_counter()
+    key_write.write_points(block, scaled)
+    sphere.data.update_tag()
+    view_layer.update()
+    mesh_tagged.append(ms(t))
 assert bpy.ops.ffdkit.remove_tool() == {"FINISHED"}
+rest = np.empty(3 * count, dtype=np.float32)
+sphere.data.vertices.foreach_get("co", rest)
+vertices_written = []
+for k in range(reps):
+    scaled = rest * np.float32(1 + 0.01 * (k + 1))
+    t = time.perf_counter()
+    sphere.data.vertices.foreach_set("co", scaled)
+    sphere.data.update_tag()
+    view_layer.update()
+    vertices_written.append(ms(t))
+sphere.data.vertices.foreach_set("co", rest)
+
+# ---- Blender's Lattice modifier on the same mesh --------------------------------------------
 data = bpy.data.lattices.new("cage")
 data.points_u = data.points_v = data.points_w = 4
 data.interpolation_type_u = data.interpolation_type_v = data.interpolation_type_w = "KEY_BSPLINE"
@@ -177,4 +204,6 @@ print("      write into the shape key (%s):            %7.1f ms  (foreach_set: %
       % (path, med(write_ms), med(foreach_ms)))
 print("    Blender's evaluation of the mesh:                 %7.1f ms" % med(evaluate_ms))
 print("  the bare mesh re-evaluated (no tool, no modifier):  %8.1f ms" % med(floor))
+print("  the key written, the mesh tagged instead of the Key: %8.1f ms" % med(mesh_tagged))
+print("  no shape key, the mesh's vertices written and tagged: %7.1f ms" % med(vertices_written))
 print("  Blender Lattice modifier 4x4x4 B-spline, point move -> evaluated mesh: %8.1f ms" % med(lattice))
