@@ -7,6 +7,7 @@
 #include <set>
 #include <utility>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "ffdkit/meshio/element_cells.h"
