@@ -14,6 +14,11 @@ namespace ffdkit::ffd {
 ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& embedding, int k) {
   if (k < 1) throw LatticeError("largestControlWeights: k must be >= 1, got " + std::to_string(k));
   embedding.checkLattice(lattice);
+  // With weights other than the rest weights the output is Q + s F (sum R P - Xbar): the term
+  // sum R Pbar - Xbar is not a blend of control displacements, so there is no such skin.
+  if (lattice.isRational() && lattice.weights() != lattice.restWeights())
+    throw LatticeError("largestControlWeights: the lattice's weights differ from its rest weights; a rational "
+                       "deformation is a blend of control displacements only while they are equal");
   const Eigen::Index n = embedding.pointCount();
   ControlWeights result;
   result.k = k;
@@ -95,9 +100,51 @@ ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& em
   return result;
 }
 
+namespace {
+
+// controlPointWeights on a rational lattice: s R_f = s w_f B_f / sum w B, from the whole window
+// of each point whose cell holds the control point (detail::windowWeights).
+Eigen::VectorXd rationalControlPointWeights(const Lattice& lattice, const Embedding& embedding, Eigen::Index flat) {
+  const Eigen::Index n = embedding.pointCount();
+  Eigen::VectorXd result = Eigen::VectorXd::Zero(n);
+  const int np[3] = {lattice.axis(0).degree() + 1, lattice.axis(1).degree() + 1, lattice.axis(2).degree() + 1};
+  const std::size_t size = static_cast<std::size_t>(np[0]) * np[1] * np[2];
+  const auto& blocks = embedding.blocks();
+  const auto& order = embedding.order();
+#pragma omp parallel if (n >= 16384)
+  {
+    std::vector<double> bu(static_cast<std::size_t>(np[0])), bv(static_cast<std::size_t>(np[1])),
+        bw(static_cast<std::size_t>(np[2])), window(size);
+    std::vector<Eigen::Index> indices(size);
+#pragma omp for schedule(dynamic, 64)
+    for (std::int64_t bi = 0; bi < static_cast<std::int64_t>(blocks.size()); ++bi) {
+      const Embedding::Block& block = blocks[static_cast<std::size_t>(bi)];
+      if (block.kind == Embedding::BlockKind::Frozen) continue;
+      const std::array<int, 3> cell = embedding.cellOf(block);
+      detail::windowControlIndices(lattice, cell, indices.data());
+      if (std::find(indices.begin(), indices.end(), flat) == indices.end()) continue;
+      for (std::uint32_t q = block.begin; q < block.end; ++q) {
+        const double s = block.kind == Embedding::BlockKind::Blended
+                             ? embedding.blendWeight()[block.blendOffset + q - block.begin]
+                             : 1.0;
+        detail::windowWeights(lattice, cell, embedding.sortedU()[q], embedding.sortedV()[q], embedding.sortedW()[q], s,
+                              bu.data(), bv.data(), bw.data(), window.data());
+        double sum = 0.0;
+        for (std::size_t i = 0; i < size; ++i)
+          if (indices[i] == flat) sum += window[i];
+        result[order.empty() ? q : order[q]] = sum;
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace
+
 Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& embedding, Eigen::Index flat) {
   embedding.checkLattice(lattice);
   const Eigen::Vector3i g = lattice.gridIndex(flat);  // throws when out of range
+  if (lattice.isRational()) return rationalControlPointWeights(lattice, embedding, flat);
   const Eigen::Index n = embedding.pointCount();
   Eigen::VectorXd result = Eigen::VectorXd::Zero(n);
   int np[3], degrees[3];

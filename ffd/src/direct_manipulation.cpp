@@ -31,6 +31,15 @@ std::vector<BasisWeight> basisWeights(const Lattice& lattice, const Eigen::Vecto
       }
     }
   }
+  if (lattice.isRational()) {
+    // X = sum R P with R = w B / sum w B (Lamousin & Waggenspack 1994): linear in P for fixed weights.
+    double sum = 0.0;
+    for (BasisWeight& b : out) {
+      b.weight *= lattice.weight(b.point);
+      sum += b.weight;
+    }
+    for (BasisWeight& b : out) b.weight /= sum;
+  }
   return out;
 }
 

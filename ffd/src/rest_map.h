@@ -41,7 +41,8 @@ class RestMap {
       for (int a = 0; a < 3; ++a) poly_[a] = CellPolynomials(*axis_[a]);
     }
     range_ = hi_ - lo_;
-    buildWindows(lattice.restPoints());
+    rational_ = lattice.restIsRational();
+    buildWindows(lattice.restPoints(), lattice.restWeights());
   }
 
   // The basis values and derivatives of one parameter point, kept so that the Jacobian is only
@@ -55,6 +56,8 @@ class RestMap {
     // Any degree: the Cox-de Boor values and derivatives.
     double N[3][kMaxBasis];
     double D[3][kMaxBasis];
+    // Rational rest lattice: the homogeneous sum (sum B w P, sum B w) whose ratio is Xbar.
+    Xyz0 h;
   };
 
   // Xbar(uvw), filling `basis`. The x, y, z of a window point share one vector register, so each
@@ -78,7 +81,7 @@ class RestMap {
         x += (basis.N[1][b] * basis.N[2][c]) * s;
       }
     }
-    return Eigen::Vector3d(x[0], x[1], x[2]);
+    return result(x, basis);
   }
 
   // dXbar/duvw at the point `basis` was filled for by value().
@@ -101,9 +104,7 @@ class RestMap {
         jw += (basis.N[1][b] * basis.D[2][c]) * s;
       }
     }
-    Eigen::Matrix3d J;
-    J << ju[0], jv[0], jw[0], ju[1], jv[1], jw[1], ju[2], jv[2], jw[2];
-    return J;
+    return derivative(ju, jv, jw, basis);
   }
 
   // Xbar(uvw) and its Jacobian J.
@@ -136,6 +137,8 @@ class RestMap {
   const CellPolynomials* polynomials() const { return poly_; }
   // Degree <= 3 on every axis: value() and jacobian() run on the cells' polynomials.
   bool cubic() const { return cubic_; }
+  // Rest weights other than 1: Xbar is a ratio (Lamousin & Waggenspack 1994), not a polynomial.
+  bool rational() const { return rational_; }
   int cells(int a) const { return cells_[a]; }
   const Eigen::Vector3d& lo() const { return lo_; }
   const Eigen::Vector3d& hi() const { return hi_; }
@@ -162,7 +165,7 @@ class RestMap {
       }
       x += nw[c] * y;
     }
-    return Eigen::Vector3d(x[0], x[1], x[2]);
+    return result(x, basis);
   }
 
   // jacobian() for degree <= 3, reusing the partial sums valueCubic() kept in basis.s.
@@ -184,15 +187,32 @@ class RestMap {
       jv += nw[c] * yv;
       jw += dw[c] * y;
     }
+    return derivative(ju, jv, jw, basis);
+  }
+
+  // Xbar from the window sum x: x itself, or with rest weights its ratio (each window point holds
+  // (w P, w): the fourth lane sums the weights).
+  FFDKIT_INLINE Eigen::Vector3d result(const Xyz0& x, Basis& basis) const {
+    if (!rational_) return Eigen::Vector3d(x[0], x[1], x[2]);
+    basis.h = x;
+    return Eigen::Vector3d(x[0] / x[3], x[1] / x[3], x[2] / x[3]);
+  }
+
+  // dXbar from the derivatives of the window sums: themselves, or with rest weights the quotient
+  // rule (dN - Xbar dW^T) / W.
+  FFDKIT_INLINE Eigen::Matrix3d derivative(const Xyz0& ju, const Xyz0& jv, const Xyz0& jw, const Basis& basis) const {
     Eigen::Matrix3d J;
     J << ju[0], jv[0], jw[0], ju[1], jv[1], jw[1], ju[2], jv[2], jw[2];
-    return J;
+    if (!rational_) return J;
+    const double w = basis.h[3];
+    const Eigen::Vector3d x(basis.h[0] / w, basis.h[1] / w, basis.h[2] / w);
+    return (J - x * Eigen::RowVector3d(ju[3], jv[3], jw[3])) / w;
   }
 
   // Each cell's rest control points, contiguous (x, y, z per point, a fastest): Newton evaluates
   // Xbar many times per point, and gathering through the lattice's index map dominated it.
   // With cubic_, each window is padded to 4 x 4 x 4 with zero points (their basis lanes are zero).
-  void buildWindows(const Eigen::MatrixX3d& rest) {
+  void buildWindows(const Eigen::MatrixX3d& rest, const Eigen::VectorXd& weights) {
     const int nu = axis_[0]->degree() + 1;
     const int nv = axis_[1]->degree() + 1;
     const int nw = axis_[2]->degree() + 1;
@@ -212,7 +232,12 @@ class RestMap {
                 }
                 const Eigen::Index f = lattice_.index(axis_[0]->controlIndex(cu, a), axis_[1]->controlIndex(cv, b),
                                                       axis_[2]->controlIndex(cw, c));
-                windows_.push_back({Xyz0{rest(f, 0), rest(f, 1), rest(f, 2), 0.0}});
+                if (rational_) {
+                  const double w = weights[f];
+                  windows_.push_back({Xyz0{w * rest(f, 0), w * rest(f, 1), w * rest(f, 2), w}});
+                } else {
+                  windows_.push_back({Xyz0{rest(f, 0), rest(f, 1), rest(f, 2), 0.0}});
+                }
               }
   }
 
@@ -222,6 +247,7 @@ class RestMap {
   CellLocator locate_[3];
   bool periodic_[3] = {false, false, false};
   bool cubic_ = false;  // degree <= 3 on every axis: valueCubic / jacobianCubic
+  bool rational_ = false;  // rest weights: windows hold (w P, w) and Xbar is their ratio
   CellPolynomials poly_[3];
   struct alignas(32) WindowPoint {  // a std::vector drops the typedef's alignment, a struct keeps it
     Xyz0 point;

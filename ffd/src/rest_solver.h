@@ -47,7 +47,8 @@ class RestSolver {
     if (cylinder_ && map_.cubic()) cylinderStart_.emplace(lattice, *cylinder_, map_.polynomials()[1], map_.locator(1));
     restMin_ = rest.colwise().minCoeff().transpose();
     restMax_ = rest.colwise().maxCoeff().transpose();
-    if (map_.cubic()) curvature_ = restCurvatureBound(lattice, map_.polynomials());
+    // The Taylor certificate bounds a polynomial's curvature: not for a rational rest map.
+    if (map_.cubic() && !map_.rational()) curvature_ = restCurvatureBound(lattice, map_.polynomials());
     if (!lattice.restIsAffine()) buildSamples();
     const bool periodic = map_.axis(0).periodic() || map_.axis(1).periodic() || map_.axis(2).periodic();
     wantsInverseGrid_ = inverseGrid && !lattice.restIsAffine() && !cylinder_ && !periodic;
@@ -148,7 +149,7 @@ class RestSolver {
   // single cell (all points share one window and one set of basis polynomials), no periodic
   // axis, not a cylinder (normalize() is a clamp).
   bool batchedFirstStep() const {
-    bool ok = map_.cubic() && !cylinder_ && options_.maxIterations >= 2;
+    bool ok = map_.cubic() && !map_.rational() && !cylinder_ && options_.maxIterations >= 2;
     for (int a = 0; a < 3; ++a) ok = ok && map_.cells(a) == 1 && !map_.axis(a).periodic();
     return ok;
   }
@@ -277,7 +278,7 @@ class RestSolver {
         delta = -(JtJ + mu * Eigen::Matrix3d::Identity()).ldlt().solve(J.transpose() * F);
       }
       if (!delta.allFinite()) return false;
-      if (map_.cubic() && certified(basis[current], uvw, delta, F, J)) {
+      if (map_.cubic() && !map_.rational() && certified(basis[current], uvw, delta, F, J)) {
         uvw += delta;
         normalize(uvw);
         return true;

@@ -36,7 +36,10 @@ struct ControlWeights {
 /// cell, times its blend weight. Memory: 12 k + 16 bytes per point; the window itself is never stored.
 /// @param lattice the lattice the embedding was built for (same counts; its basis and knots).
 /// @param k       >= 1.
-/// @throws LatticeError if k < 1 or the embedding is stale for `lattice` (Embedding::checkLattice).
+/// A rational lattice (Lamousin & Waggenspack 1994) gives s R_ijk = s w B / sum w B, exact while
+/// its weights equal its rest weights.
+/// @throws LatticeError if k < 1, the embedding is stale for `lattice` (Embedding::checkLattice),
+///   or the lattice's weights differ from its rest weights.
 ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& embedding, int k);
 
 /// The weight of one control point for every point of `embedding`: s * B_i(u) B_j(v) B_k(w) for
@@ -46,6 +49,8 @@ ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& em
 /// dP (lattice-local) moves point p by weight[p] * F.linear() dP, and nothing else changes: the
 /// motion of a gesture that drags one control point (the view's vertex normals follow it without
 /// recomputing them, app/render/src/gesture_normals.h). Memory: 8 bytes per point.
+/// On a rational lattice the weight is s R_ijk = s w_ijk B_ijk / sum w B (Lamousin & Waggenspack
+/// 1994), the derivative of the output with respect to that control point, its weights held fixed.
 /// @throws LatticeError if `flat` is out of range or the embedding is stale for `lattice`.
 Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& embedding, Eigen::Index flat);
 

@@ -12,12 +12,14 @@ namespace ffdkit::ffd {
 /// the control point's flat index and its tensor-product weight B_i(u) B_j(v) B_k(w).
 struct BasisWeight {
   Eigen::Index point = 0;  ///< flat index of the control point.
-  double weight = 0.0;  ///< its basis weight B_ijk(u,v,w) at the point.
+  double weight = 0.0;  ///< its basis weight B_ijk(u,v,w) at the point (rational lattice: w B / sum w B).
 };
 
 /// The non-zero weights of the lattice's basis at parameters `uvw`, (degree_u+1)(degree_v+1)
 /// (degree_w+1) of them, in the order Lattice::evaluate sums them (periodic axes wrap; outside
-/// the box the end pieces extend). evaluate(uvw) == sum weight * P[point].
+/// the box the end pieces extend). evaluate(uvw) == sum weight * P[point]; on a rational lattice
+/// the weights are R_ijk = w_ijk B_ijk / sum w B (Lamousin & Waggenspack 1994), so that this holds
+/// and direct manipulation moves the weighted shape exactly (its weights held fixed).
 std::vector<BasisWeight> basisWeights(const Lattice& lattice, const Eigen::Vector3d& uvw);
 
 /// Direct manipulation of an FFD (Hsu, Hughes & Kaufman 1992, "Direct manipulation of

@@ -1,0 +1,373 @@
+// Rational lattices (NURBS-based FFD, Lamousin & Waggenspack 1994): a weight per control point,
+// X = sum B w P / sum B w. Checked against an independent evaluator of that formula in long
+// double (Bernstein by the binomial formula, B-splines by the recursive Cox-de Boor definition),
+// against the closed form of a quarter circle, and against the polynomial lattice bit for bit.
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "ffdkit/ffd/control_weights.h"
+#include "ffdkit/ffd/deformer.h"
+#include "ffdkit/ffd/direct_manipulation.h"
+#include "ffdkit/ffd/embedding.h"
+#include "ffdkit/ffd/lattice.h"
+#include "ffdkit/ffd/pipeline.h"
+
+namespace ffdkit::ffd {
+namespace {
+
+using Real = long double;
+
+// ---- the reference: the rational formula, term by term, in long double -------------------------
+struct RefAxis {
+  bool bernstein = true;
+  int count = 4;
+  int degree = 3;
+  std::vector<Real> knots;  // B-spline: clamped uniform on [0, 1]
+};
+
+Real binomial(int n, int k) {
+  Real c = 1;
+  for (int i = 1; i <= k; ++i) c = c * (n - k + i) / i;
+  return c;
+}
+
+Real coxDeBoor(const std::vector<Real>& t, int i, int p, Real u) {
+  if (p == 0) {
+    if (u == 1) return t[i] < t[i + 1] && t[i + 1] == 1 ? 1 : 0;
+    return t[i] <= u && u < t[i + 1] ? 1 : 0;
+  }
+  Real value = 0;
+  if (t[i + p] > t[i]) value += (u - t[i]) / (t[i + p] - t[i]) * coxDeBoor(t, i, p - 1, u);
+  if (t[i + p + 1] > t[i + 1]) value += (t[i + p + 1] - u) / (t[i + p + 1] - t[i + 1]) * coxDeBoor(t, i + 1, p - 1, u);
+  return value;
+}
+
+Real refBasis(const RefAxis& a, int i, Real u) {
+  if (a.bernstein) return binomial(a.count - 1, i) * std::pow(u, Real(i)) * std::pow(1 - u, Real(a.count - 1 - i));
+  return coxDeBoor(a.knots, i, a.degree, u);
+}
+
+RefAxis refBSpline(int count, int degree) {
+  RefAxis a{false, count, degree, {}};
+  for (int i = 0; i <= degree; ++i) a.knots.push_back(0);
+  for (int i = 1; i < count - degree; ++i) a.knots.push_back(Real(i) / (count - degree));
+  for (int i = 0; i <= degree; ++i) a.knots.push_back(1);
+  return a;
+}
+
+// X(u,v,w) = sum B_ijk w_ijk P_ijk / sum B_ijk w_ijk over every control point.
+Eigen::Vector3d refEvaluate(const RefAxis (&axes)[3], const Eigen::MatrixX3d& P, const Eigen::VectorXd& w,
+                            const Eigen::Vector3d& uvw) {
+  Real num[3] = {0, 0, 0}, den = 0;
+  for (int k = 0; k < axes[2].count; ++k)
+    for (int j = 0; j < axes[1].count; ++j)
+      for (int i = 0; i < axes[0].count; ++i) {
+        const Eigen::Index f = i + axes[0].count * (j + axes[1].count * k);
+        const Real b = refBasis(axes[0], i, uvw[0]) * refBasis(axes[1], j, uvw[1]) * refBasis(axes[2], k, uvw[2]) * w[f];
+        for (int c = 0; c < 3; ++c) num[c] += b * P(f, c);
+        den += b;
+      }
+  return Eigen::Vector3d(double(num[0] / den), double(num[1] / den), double(num[2] / den));
+}
+
+// ---- lattices --------------------------------------------------------------------------------
+Lattice boxLattice(const Eigen::Vector3i& counts, AxisBasis basis) {
+  BoxLatticeOptions options;
+  options.counts = counts;
+  options.bases = {basis, basis, basis};
+  return makeBoxLattice(options);
+}
+
+Eigen::MatrixX3d jiggled(const Eigen::MatrixX3d& P, double amount, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-amount, amount);
+  Eigen::MatrixX3d Q = P;
+  for (Eigen::Index r = 0; r < Q.rows(); ++r)
+    for (int c = 0; c < 3; ++c) Q(r, c) += U(rng);
+  return Q;
+}
+
+Eigen::VectorXd randomWeights(Eigen::Index n, double lo, double hi, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(lo, hi);
+  Eigen::VectorXd w(n);
+  for (Eigen::Index i = 0; i < n; ++i) w[i] = U(rng);
+  return w;
+}
+
+Eigen::MatrixX3d randomPoints(Eigen::Index n, double lo, double hi, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(lo, hi);
+  Eigen::MatrixX3d Q(n, 3);
+  for (Eigen::Index r = 0; r < n; ++r) Q.row(r) << U(rng), U(rng), U(rng);
+  return Q;
+}
+
+// ---- tests -----------------------------------------------------------------------------------
+
+TEST(RationalLattice, UnitWeightsAreThePolynomialLatticeBitForBit) {
+  for (AxisBasis basis : {AxisBasis::bspline(3), AxisBasis::bernstein(), AxisBasis::bspline(2)}) {
+    Lattice plain = boxLattice({5, 4, 4}, basis);
+    plain.setControlPoints(jiggled(plain.controlPoints(), 0.1, 1));
+    Lattice weighted = plain;
+    weighted.setWeights(randomWeights(plain.pointCount(), 0.5, 2.0, 2));
+    EXPECT_TRUE(weighted.isRational());
+    weighted.setWeights(Eigen::VectorXd::Ones(plain.pointCount()));  // back to 1: polynomial again
+    EXPECT_FALSE(weighted.isRational());
+    const Eigen::MatrixX3d Q = randomPoints(20000, -0.1, 1.1, 3);  // some points outside
+    Deformer a(embed(plain, Q)), b(embed(weighted, Q));
+    const Eigen::MatrixX3d pa = a.deform(plain, Q), pb = b.deform(weighted, Q);
+    EXPECT_EQ(0, std::memcmp(pa.data(), pb.data(), sizeof(double) * pa.size()));
+    const Eigen::Vector3d uvw(0.3, 0.7, 0.2);
+    EXPECT_EQ(plain.evaluate(uvw), weighted.evaluate(uvw));
+    EXPECT_EQ(plain.jacobian(uvw), weighted.jacobian(uvw));
+  }
+}
+
+TEST(RationalLattice, EvaluationAgreesWithTheReferenceFormula) {
+  struct Case {
+    Eigen::Vector3i counts;
+    AxisBasis basis;
+    RefAxis ref[3];
+  };
+  const Case cases[] = {
+      {{4, 3, 5}, AxisBasis::bernstein(), {{true, 4, 3, {}}, {true, 3, 2, {}}, {true, 5, 4, {}}}},
+      {{6, 5, 4}, AxisBasis::bspline(3), {refBSpline(6, 3), refBSpline(5, 3), refBSpline(4, 3)}},
+      {{5, 5, 5}, AxisBasis::bspline(2), {refBSpline(5, 2), refBSpline(5, 2), refBSpline(5, 2)}},
+  };
+  for (const Case& c : cases) {
+    Lattice lattice = boxLattice(c.counts, c.basis);
+    lattice.setControlPoints(jiggled(lattice.controlPoints(), 0.15, 4));
+    const Eigen::VectorXd w = randomWeights(lattice.pointCount(), 0.2, 5.0, 5);
+    lattice.setWeights(w);
+    const Eigen::MatrixX3d uvw = randomPoints(200, 0.0, 1.0, 6);
+    for (Eigen::Index r = 0; r < uvw.rows(); ++r) {
+      const Eigen::Vector3d t = uvw.row(r).transpose();
+      const Eigen::Vector3d expected = refEvaluate(c.ref, lattice.controlPoints(), w, t);
+      EXPECT_LT((lattice.evaluate(t) - expected).norm(), 1e-14) << "at " << t.transpose();
+      // The Jacobian against central differences of the reference (step 1e-5: error ~1e-10).
+      Eigen::Matrix3d J;
+      const Eigen::Matrix3d analytic = lattice.jacobian(t);
+      for (int a = 0; a < 3; ++a) {
+        Eigen::Vector3d lo = t, hi = t;
+        const double h = 1e-5;
+        lo[a] = std::max(0.0, t[a] - h);
+        hi[a] = std::min(1.0, t[a] + h);
+        J.col(a) = (refEvaluate(c.ref, lattice.controlPoints(), w, hi) - refEvaluate(c.ref, lattice.controlPoints(), w, lo)) /
+                   (hi[a] - lo[a]);
+      }
+      EXPECT_LT((analytic - J).norm(), 1e-8 * (1.0 + J.norm())) << "at " << t.transpose();
+    }
+    // The deformer: out = F X(u,v,w) at the embedded parameters.
+    const Eigen::MatrixX3d Q = randomPoints(30000, 0.0, 1.0, 7);
+    Deformer deformer(embed(lattice, Q));
+    const Eigen::MatrixX3d& out = deformer.deform(lattice, Q);
+    const Eigen::MatrixX3d params = deformer.embedding().parameters();
+    for (Eigen::Index r = 0; r < Q.rows(); r += 97) {
+      const Eigen::Vector3d expected = refEvaluate(c.ref, lattice.controlPoints(), w, params.row(r).transpose());
+      EXPECT_LT((out.row(r).transpose() - expected).norm(), 1e-14) << "point " << r;
+    }
+  }
+}
+
+// A quadratic Bernstein axis with control points (1, 0), (1, 1), (0, 1) and weights 1, 1/sqrt(2),
+// 1 is the quarter circle of radius 1 exactly (the conic of Lamousin & Waggenspack 1994); the
+// second axis, linear, scales it to radius 1 + v.
+TEST(RationalLattice, AQuarterCircleWeightMapsASegmentOntoAQuarterCircle) {
+  Lattice lattice = boxLattice({3, 2, 2}, AxisBasis::bernstein());
+  Eigen::MatrixX3d P = lattice.controlPoints();
+  Eigen::VectorXd w = Eigen::VectorXd::Ones(lattice.pointCount());
+  const double corner[3][2] = {{1, 0}, {1, 1}, {0, 1}};
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 3; ++i) {
+        const Eigen::Index f = lattice.index(i, j, k);
+        P.row(f) << (1.0 + j) * corner[i][0], (1.0 + j) * corner[i][1], double(k);
+        if (i == 1) w[f] = 1.0 / std::numbers::sqrt2;
+      }
+  lattice.setControlPoints(P);
+  lattice.setWeights(w);
+  double worst = 0.0;
+  for (int s = 0; s <= 1000; ++s) {
+    const Eigen::Vector3d x = lattice.evaluate({s / 1000.0, 0.0, 0.5});
+    worst = std::max(worst, std::abs(std::hypot(x.x(), x.y()) - 1.0));
+    const Eigen::Vector3d y = lattice.evaluate({s / 1000.0, 1.0, 0.0});
+    worst = std::max(worst, std::abs(std::hypot(y.x(), y.y()) - 2.0) / 2.0);
+  }
+  EXPECT_LE(worst, 1e-15);
+  // Through the deformer: a straight segment of object points along the lattice's u axis.
+  Eigen::MatrixX3d Q(1001, 3);
+  for (int s = 0; s <= 1000; ++s) Q.row(s) << s / 1000.0, 0.0, 0.25;
+  Deformer deformer(embed(lattice, Q));
+  const Eigen::MatrixX3d& out = deformer.deform(lattice, Q);
+  double radius = 0.0;
+  for (Eigen::Index r = 0; r < out.rows(); ++r)
+    radius = std::max(radius, std::abs(std::hypot(out(r, 0), out(r, 1)) - 1.0));
+  EXPECT_LE(radius, 1e-15);
+  EXPECT_NEAR(out(0, 0), 1.0, 1e-15);
+  EXPECT_NEAR(out(1000, 1), 1.0, 1e-15);
+  // The midpoint u = 1/2 is at 45 degrees.
+  EXPECT_NEAR(out(500, 0), std::numbers::sqrt2 / 2, 1e-15);
+  EXPECT_NEAR(out(500, 1), std::numbers::sqrt2 / 2, 1e-15);
+}
+
+TEST(RationalLattice, EmbeddingInvertsTheWeightedRestMap) {
+  for (AxisBasis basis : {AxisBasis::bspline(3), AxisBasis::bernstein()}) {
+    Lattice lattice = boxLattice({4, 4, 4}, basis);
+    lattice.setRestPoints(jiggled(lattice.restPoints(), 0.04, 8));
+    lattice.setRestWeights(randomWeights(lattice.pointCount(), 0.5, 2.0, 9));
+    lattice.setFrame(Eigen::Affine3d(Eigen::Translation3d(1.0, -2.0, 0.5)) *
+                     Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 1, 0).normalized()) * Eigen::Scaling(2.0));
+    EXPECT_FALSE(lattice.restIsAffine());
+    EXPECT_TRUE(lattice.restIsRational());
+    const Eigen::MatrixX3d uvw = randomPoints(20000, 0.02, 0.98, 10);
+    Eigen::MatrixX3d Q(uvw.rows(), 3);
+    for (Eigen::Index r = 0; r < uvw.rows(); ++r)
+      Q.row(r) = (lattice.frame() * lattice.evaluateRest(uvw.row(r).transpose())).transpose();
+    const Embedding e = embed(lattice, Q);
+    EXPECT_EQ(e.insideCount(), Q.rows());
+    const Eigen::MatrixX3d found = e.parameters();
+    EXPECT_LT((found - uvw).cwiseAbs().maxCoeff(), 1e-10);
+    // At rest the deformer gives the points back; with weights and points moved, F X(u,v,w).
+    Deformer deformer(e);
+    EXPECT_LT((deformer.deform(lattice, Q) - Q).cwiseAbs().maxCoeff(), 1e-12);
+    lattice.setControlPoints(jiggled(lattice.restPoints(), 0.1, 11));
+    lattice.setWeight(lattice.index(1, 2, 1), 3.0);
+    const Eigen::MatrixX3d& out = deformer.deform(lattice, Q);
+    for (Eigen::Index r = 0; r < Q.rows(); r += 101) {
+      const Eigen::Vector3d expected = lattice.frame() * lattice.evaluate(found.row(r).transpose());
+      EXPECT_LT((out.row(r).transpose() - expected).norm(), 1e-12) << "point " << r;
+    }
+  }
+}
+
+TEST(RationalLattice, DeltaAndExactUpdatesFollowAFullEvaluation) {
+  Lattice lattice = boxLattice({6, 6, 6}, AxisBasis::bspline(3));
+  lattice.setOutsidePolicy(OutsidePolicy{OutsidePolicy::Kind::Falloff, 0.2});
+  const Eigen::MatrixX3d Q = randomPoints(50000, -0.15, 1.15, 12);
+  Deformer delta(embed(lattice, Q)), exact(embed(lattice, Q));
+  delta.deform(lattice, Q);  // polynomial first: the delta step builds its sums when weights appear
+  exact.deform(lattice, Q);
+  std::mt19937 rng(13);
+  std::uniform_int_distribution<Eigen::Index> pick(0, lattice.pointCount() - 1);
+  std::uniform_real_distribution<double> U(-0.05, 0.05), W(0.3, 3.0);
+  for (int step = 0; step < 40; ++step) {
+    const Eigen::Index f = pick(rng);
+    if (step % 3 == 0) {
+      lattice.setWeight(f, W(rng));
+    } else {
+      lattice.setControlPoint(f, lattice.controlPoints().row(f).transpose() + Eigen::Vector3d(U(rng), U(rng), U(rng)));
+    }
+    delta.update(lattice);
+    exact.update(lattice, Q);
+    Deformer full(embed(lattice, Q));
+    const Eigen::MatrixX3d& reference = full.deform(lattice, Q);
+    EXPECT_LT((delta.points() - reference).cwiseAbs().maxCoeff(), 1e-13) << "step " << step;
+    EXPECT_EQ(0, std::memcmp(exact.points().data(), reference.data(), sizeof(double) * reference.size())) << "step " << step;
+    EXPECT_GT(exact.lastStats().evaluatedPoints, 0);
+    EXPECT_LT(exact.lastStats().evaluatedPoints, Q.rows());
+  }
+  // Weights back to 1: the exact update lands on the polynomial deform() bit for bit.
+  lattice.setWeights(Eigen::VectorXd::Ones(lattice.pointCount()));
+  exact.update(lattice, Q);
+  delta.update(lattice);
+  Deformer full(embed(lattice, Q));
+  const Eigen::MatrixX3d& reference = full.deform(lattice, Q);
+  EXPECT_EQ(0, std::memcmp(exact.points().data(), reference.data(), sizeof(double) * reference.size()));
+  EXPECT_LT((delta.points() - reference).cwiseAbs().maxCoeff(), 1e-13);
+}
+
+TEST(RationalLattice, AWeightEditReachesThePipelineOutput) {
+  Lattice lattice = boxLattice({4, 4, 4}, AxisBasis::bspline(3));
+  const Eigen::MatrixX3d Q = randomPoints(5000, 0.0, 1.0, 14);
+  Pipeline pipeline(Q);
+  const LatticeId id = pipeline.addLattice(lattice);
+  const Eigen::MatrixX3d before = pipeline.update();
+  pipeline.lattice(id).setWeight(lattice.index(1, 1, 1), 4.0);
+  const Eigen::MatrixX3d after = pipeline.update();
+  EXPECT_GT((after - before).cwiseAbs().maxCoeff(), 1e-3);
+  Deformer full(embed(pipeline.lattice(id), Q));
+  EXPECT_LT((after - full.deform(pipeline.lattice(id), Q)).cwiseAbs().maxCoeff(), 1e-14);
+}
+
+TEST(RationalLattice, BadWeightsAreErrorsNamingThePoint) {
+  Lattice lattice = boxLattice({3, 3, 3}, AxisBasis::bernstein());
+  const Eigen::Index n = lattice.pointCount();
+  auto message = [&](auto&& call) -> std::string {
+    try {
+      call();
+    } catch (const LatticeError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  Eigen::VectorXd w = Eigen::VectorXd::Ones(n);
+  w[5] = 0.0;
+  EXPECT_NE(message([&] { lattice.setWeights(w); }).find("weight 5 must be finite and > 0, got 0"), std::string::npos);
+  w[5] = -2.0;
+  EXPECT_NE(message([&] { lattice.setRestWeights(w); }).find("weight 5"), std::string::npos);
+  w[5] = std::nan("");
+  EXPECT_NE(message([&] { lattice.setWeights(w); }).find("weight 5"), std::string::npos);
+  EXPECT_NE(message([&] { lattice.setWeights(Eigen::VectorXd::Ones(n - 1)); }).find("expected 27 weights"), std::string::npos);
+  EXPECT_NE(message([&] { lattice.setWeight(27, 1.0); }).find("out of range"), std::string::npos);
+  EXPECT_NE(message([&] { lattice.setWeight(3, std::numeric_limits<double>::infinity()); }).find("weight 3"), std::string::npos);
+  EXPECT_FALSE(lattice.isRational());  // nothing was changed by the failed calls
+}
+
+TEST(RationalLattice, RestWeightsAreKeptApartFromTheCurrentOnes) {
+  Lattice lattice = boxLattice({3, 3, 3}, AxisBasis::bernstein());
+  const std::uint64_t rest = lattice.restRevision();
+  lattice.setWeight(4, 2.0);
+  EXPECT_EQ(lattice.restRevision(), rest);  // a weight edit deforms, it does not re-embed
+  EXPECT_EQ(lattice.weight(4), 2.0);
+  EXPECT_EQ(lattice.restWeights()[4], 1.0);
+  lattice.resetToRest();
+  EXPECT_EQ(lattice.weight(4), 1.0);
+  EXPECT_FALSE(lattice.isRational());
+  const Eigen::MatrixX3d moved = jiggled(lattice.controlPoints(), 0.05, 15);
+  lattice.setControlPoints(moved);
+  lattice.setRestWeights(Eigen::VectorXd::Constant(27, 0.5).cwiseMax(randomWeights(27, 0.5, 1.5, 16)));
+  EXPECT_NE(lattice.restRevision(), rest);
+  EXPECT_EQ(lattice.controlPoints(), moved);  // the control points are kept
+  EXPECT_EQ(lattice.weights(), lattice.restWeights());
+  EXPECT_FALSE(lattice.restIsAffine());
+}
+
+// With its weights held fixed a rational lattice is linear in its control points, with the
+// coefficients R = w B / sum w B: direct manipulation and the per-control-point weights use them.
+TEST(RationalLattice, DirectManipulationAndControlWeightsUseTheRationalBasis) {
+  Lattice lattice = boxLattice({5, 5, 5}, AxisBasis::bspline(2));
+  lattice.setControlPoints(jiggled(lattice.controlPoints(), 0.05, 17));
+  lattice.setWeights(randomWeights(lattice.pointCount(), 0.3, 3.0, 18));
+  const Eigen::MatrixX3d uvw = (Eigen::MatrixX3d(2, 3) << 0.3, 0.4, 0.5, 0.8, 0.1, 0.6).finished();
+  const Eigen::MatrixX3d move = (Eigen::MatrixX3d(2, 3) << 0.05, -0.02, 0.01, 0.0, 0.03, -0.04).finished();
+  Eigen::MatrixX3d before(2, 3);
+  for (int r = 0; r < 2; ++r) before.row(r) = lattice.evaluate(uvw.row(r).transpose()).transpose();
+  lattice.setControlPoints(lattice.controlPoints() + leastNormControlChange(lattice, uvw, move));
+  for (int r = 0; r < 2; ++r)
+    EXPECT_LT((lattice.evaluate(uvw.row(r).transpose()).transpose() - before.row(r) - move.row(r)).norm(), 1e-14);
+
+  const Eigen::MatrixX3d Q = randomPoints(3000, 0.0, 1.0, 19);
+  Deformer deformer(embed(lattice, Q));
+  const Eigen::MatrixX3d start = deformer.deform(lattice, Q);
+  const Eigen::Index flat = lattice.index(2, 1, 3);
+  const Eigen::VectorXd weight = controlPointWeights(lattice, deformer.embedding(), flat);
+  const Eigen::Vector3d dP(0.01, -0.02, 0.015);
+  lattice.setControlPoint(flat, lattice.controlPoints().row(flat).transpose() + dP);
+  const Eigen::MatrixX3d& moved = deformer.deform(lattice, Q);
+  for (Eigen::Index p = 0; p < Q.rows(); ++p)
+    EXPECT_LT((moved.row(p) - start.row(p) - weight[p] * dP.transpose()).norm(), 1e-15) << "point " << p;
+  EXPECT_GT(weight.maxCoeff(), 0.1);
+  // A skin of control displacements exists only while the weights equal the rest weights.
+  EXPECT_THROW(largestControlWeights(lattice, deformer.embedding(), 4), LatticeError);
+}
+
+}  // namespace
+}  // namespace ffdkit::ffd
