@@ -255,11 +255,9 @@ MeshData buildObjectMesh(const ObjectSource& source, const std::filesystem::path
                    return MeshData{mesh.vertices, mesh.triangles, {}, false};
                  },
                  [&](const MeshFileSource& file) {
-                   // A solver's volume mesh: every point, and its boundary surface to draw (volume_object.h).
-                   if (volumeMeshFormatOf(file, baseDirectory))
-                     return volumeObjectMesh(meshio::confinedPath(baseDirectory, file.path, "mesh file", options.confinement),
-                                             file.up, budget, options.confinement);
                    const std::filesystem::path path = meshio::confinedPath(baseDirectory, file.path, "mesh file", options.confinement);
+                   // A solver's volume mesh: every point, and its boundary surface to draw (volume_object.h).
+                   if (meshio::volumeMeshFormatOf(path)) return volumeObjectMesh(path, file.up, budget, options.confinement);
                    // A STEP or IGES part: its tessellation, by the reader the program registered
                    // (Z up: CAD files are not turned).
                    if (isCadFile(path)) return readCadMesh(path, budget);
