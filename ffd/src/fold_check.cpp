@@ -363,6 +363,43 @@ JacobianDeterminantPatch jacobianDeterminantPatch(const Lattice& lattice, const 
   return patchOf(lattice, cell, extraction);
 }
 
+namespace {
+
+// A rational lattice's det J is a ratio (the polynomial bound above does not apply): each cell is
+// sampled on a 5 x 5 x 5 grid of its closed box; a sample with sign * det J <= 0 proves Folds,
+// otherwise the cell stays Unknown (never certified). lowerBound: the smallest sample, which
+// bounds nothing (NaN).
+void checkRationalFolding(const Lattice& lattice, FoldCheckResult& result) {
+  const int cu = result.cellCounts[0], cv = result.cellCounts[1], cw = result.cellCounts[2];
+  const std::int64_t cellCount = std::int64_t(cu) * cv * cw;
+  constexpr int kSamples = 5;
+#pragma omp parallel for schedule(dynamic, 1) if (cellCount >= 8)
+  for (std::int64_t flat = 0; flat < cellCount; ++flat) {
+    const int cell[3] = {int(flat % cu), int(flat / cu % cv), int(flat / cu / cv)};
+    result.lowerBound[std::size_t(flat)] = std::numeric_limits<double>::quiet_NaN();
+    for (int k = 0; k < kSamples && result.cells[std::size_t(flat)] != CellFolding::Folds; ++k)
+      for (int j = 0; j < kSamples; ++j)
+        for (int i = 0; i < kSamples; ++i) {
+          const int at[3] = {i, j, k};
+          Eigen::Vector3d uvw;
+          for (int a = 0; a < 3; ++a) {
+            const AxisSpline& axis = lattice.axis(a);
+            uvw[a] = axis.cellMin(cell[a]) + (axis.cellMax(cell[a]) - axis.cellMin(cell[a])) * at[a] / (kSamples - 1);
+          }
+          if (result.orientation * lattice.jacobian(uvw).determinant() <= 0.0) {
+            result.cells[std::size_t(flat)] = CellFolding::Folds;
+            result.witness[std::size_t(flat)] = uvw;
+          }
+        }
+  }
+  for (CellFolding c : result.cells) {
+    result.foldsCount += c == CellFolding::Folds;
+    result.unknownCount += c == CellFolding::Unknown;
+  }
+}
+
+}  // namespace
+
 FoldCheckResult checkFolding(const Lattice& lattice, const FoldCheckOptions& options) {
   if (options.maxDepth < 0 || options.maxDepth > 10)
     throw LatticeError("checkFolding: maxDepth must be in [0, 10], got " + std::to_string(options.maxDepth));
@@ -382,6 +419,10 @@ FoldCheckResult checkFolding(const Lattice& lattice, const FoldCheckOptions& opt
   result.cells.assign(std::size_t(cellCount), CellFolding::Unknown);
   result.lowerBound.assign(std::size_t(cellCount), 0.0);
   result.witness.assign(std::size_t(cellCount), Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+  if (lattice.isRational()) {
+    checkRationalFolding(lattice, result);
+    return result;
+  }
 #pragma omp parallel for schedule(dynamic, 1) if (cellCount >= 8)
   for (std::int64_t flat = 0; flat < cellCount; ++flat) {
     const std::array<int, 3> cell = {int(flat % cu), int(flat / cu % cv), int(flat / cu / cv)};

@@ -16,6 +16,7 @@
 #include "ffdkit/ffd/deformer.h"
 #include "ffdkit/ffd/direct_manipulation.h"
 #include "ffdkit/ffd/embedding.h"
+#include "ffdkit/ffd/fold_check.h"
 #include "ffdkit/ffd/lattice.h"
 #include "ffdkit/ffd/pipeline.h"
 
@@ -367,6 +368,22 @@ TEST(RationalLattice, DirectManipulationAndControlWeightsUseTheRationalBasis) {
   EXPECT_GT(weight.maxCoeff(), 0.1);
   // A skin of control displacements exists only while the weights equal the rest weights.
   EXPECT_THROW(largestControlWeights(lattice, deformer.embedding(), 4), LatticeError);
+}
+
+// checkFolding on a rational lattice finds folds by sampling and certifies nothing.
+TEST(RationalLattice, FoldCheckFindsAFoldAndCertifiesNothing) {
+  Lattice lattice = boxLattice({4, 4, 4}, AxisBasis::bspline(2));
+  lattice.setWeight(lattice.index(1, 1, 1), 2.0);
+  FoldCheckResult clean = checkFolding(lattice);
+  EXPECT_EQ(clean.foldsCount, 0);
+  EXPECT_EQ(clean.unknownCount, 8);
+  EXPECT_FALSE(clean.certifiedPositive());
+  // Push an inner point through the face opposite: the first cell turns inside out.
+  lattice.setControlPoint(lattice.index(1, 1, 1), Eigen::Vector3d(-0.6, -0.6, -0.6));
+  FoldCheckResult folded = checkFolding(lattice);
+  ASSERT_GT(folded.foldsCount, 0);
+  EXPECT_EQ(folded.cells[0], CellFolding::Folds);
+  EXPECT_LE(lattice.jacobian(folded.witness[0]).determinant(), 0.0);
 }
 
 }  // namespace

@@ -74,6 +74,10 @@ struct FoldCheckResult {
 /// at its midpoints by de Casteljau and each part is checked again, down to options.maxDepth,
 /// and what is still inconclusive is Unknown. Cost: one product of Bernstein nets per cell
 /// (degree (3p-1)^3: 729 coefficients for cubic axes) plus any subdivisions.
+/// Rational lattices (Lamousin & Waggenspack 1994): det J of the ratio sum B w P / sum B w is not
+/// a polynomial, and no bound is computed for it: each cell is sampled on a 5 x 5 x 5 grid of its
+/// closed box (Lattice::jacobian); a sample with det J <= 0 (against the rest orientation) makes it
+/// Folds with that witness, every other cell is Unknown (lowerBound NaN), never certified Positive.
 /// @throws LatticeError on maxDepth outside [0, 10].
 FoldCheckResult checkFolding(const Lattice& lattice, const FoldCheckOptions& options = {});
 
