@@ -8,6 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "ffdkit/ffd/fold_check.h"
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/document_delta.h"
 
@@ -340,7 +341,58 @@ void EditController::startLive(std::vector<Target> all, const std::string& verbT
   }
   live.pivot = *pivotPoint();
   live.targets = std::move(all);
+  if (editing() && soft_.enabled)
+    for (Target& t : live.targets)
+      if (t.kind == Target::Kind::Points) softenTarget(t);
   live_ = std::move(live);
+}
+
+void EditController::softenTarget(Target& t) const {
+  t.soft.clear();
+  if (!soft_.enabled) return;
+  const auto& m = scene_.widgets;
+  const Eigen::MatrixX3d world = (t.startPoints * m.latticeFrame(t.id).linear().transpose()).rowwise() +
+                                 m.latticeFrame(t.id).translation().transpose();
+  const Eigen::VectorXd weights = softSelectionWeights(soft_, world, m.counts(t.id), t.indices);
+  std::vector<bool> fixed(static_cast<std::size_t>(world.rows()), false);
+  for (Eigen::Index i : t.indices) fixed[static_cast<std::size_t>(i)] = true;
+  for (const auto& image : t.images) fixed[static_cast<std::size_t>(image.first)] = true;
+  for (Eigen::Index i = 0; i < world.rows(); ++i)
+    if (!fixed[static_cast<std::size_t>(i)] && weights(i) > 0.0) t.soft.emplace_back(i, weights(i));
+}
+
+void EditController::setSoftSelection(const SoftSelection& soft) {
+  if (!(soft.radius > 0.0) || !std::isfinite(soft.radius))
+    throw std::invalid_argument("the soft selection's radius must be positive, got " + std::to_string(soft.radius));
+  soft_ = soft;
+  if (live_ && editing()) {
+    for (Target& t : live_->targets)
+      if (t.kind == Target::Kind::Points) softenTarget(t);
+    apply(live_->motion);
+    return;
+  }
+  notify();
+}
+
+void EditController::scaleSoftRadius(double factor) {
+  if (!(factor > 0.0)) throw std::invalid_argument("the soft selection's radius factor must be positive");
+  SoftSelection soft = soft_;
+  soft.radius *= factor;
+  setSoftSelection(soft);
+}
+
+Eigen::VectorXd EditController::softWeights() const {
+  if (!editing()) return {};
+  const auto& m = scene_.widgets;
+  if (live_)
+    for (const Target& t : live_->targets)
+      if (t.kind == Target::Kind::Points && t.id == lattice()) {
+        Eigen::VectorXd w = Eigen::VectorXd::Zero(t.startPoints.rows());
+        for (Eigen::Index i : t.indices) w(i) = 1.0;
+        for (const auto& [i, weight] : t.soft) w(i) = weight;
+        return w;
+      }
+  return softSelectionWeights(soft_, m.worldControlPoints(lattice()), m.counts(lattice()), selection_->indices());
 }
 
 bool EditController::pressHandle(const widgets::Ray& ray, double tolerance) {
@@ -426,6 +478,11 @@ void EditController::apply(const Eigen::Affine3d& motion) {
           const Eigen::Vector3d start = t.startPoints.row(image).transpose();
           points.row(image) = (t.reflection * (local * (t.reflection * start))).transpose();
         }
+        // Soft selection: the unselected points within the radius, each by its part of the motion.
+        for (const auto& [i, weight] : t.soft) {
+          const Eigen::Vector3d world = frame * Eigen::Vector3d(t.startPoints.row(i).transpose());
+          points.row(i) = (toLocal * (partialMotion(motion, pivot, weight) * world)).transpose();
+        }
         m.setControlPoints(t.id, points);
         active = t.id;
         break;
@@ -441,8 +498,54 @@ void EditController::apply(const Eigen::Affine3d& motion) {
       }
     }
   }
+  live_->motion = motion;
+  guardStep();
   deformer_.beginGesture(live_->targets.size() == 1 ? active : std::nullopt);  // this step's active lattice
   notify();
+}
+
+void EditController::guardStep() {
+  guardSteps_.clear();
+  if (guard_.empty()) return;
+  for (const Target& t : live_->targets) {
+    if (t.kind != Target::Kind::Points) continue;
+    // Free: the points this transform does not move (selected, mirrored or softly moved ones).
+    std::vector<bool> free(static_cast<std::size_t>(t.startPoints.rows()), true);
+    for (Eigen::Index i : t.indices) free[static_cast<std::size_t>(i)] = false;
+    for (const auto& image : t.images) free[static_cast<std::size_t>(image.first)] = false;
+    for (const auto& soft : t.soft) free[static_cast<std::size_t>(soft.first)] = false;
+    // apply() set every point from the transform's start: the free ones are where they were
+    // before it, and the correction is the least-norm change from there (no drift over the steps).
+    for (ShapeGuardStep& step : guard_.correct(scene_, t.id, free)) guardSteps_.push_back(std::move(step));
+  }
+}
+
+void EditController::updateFoldTints() {
+  const auto& m = scene_.widgets;
+  std::vector<widgets::WidgetId> lattices;
+  if (editing()) lattices.push_back(lattice());
+  if (live_)
+    for (const Target& t : live_->targets)
+      if (t.kind != Target::Kind::Placement && std::find(lattices.begin(), lattices.end(), t.id) == lattices.end())
+        lattices.push_back(t.id);
+  std::vector<FoldTint> tints;
+  std::map<widgets::WidgetId, std::pair<std::uint64_t, std::uint64_t>> revisions;
+  for (widgets::WidgetId id : lattices) {
+    if (!m.contains(id) || m.type(id) != WidgetType::Lattice) continue;
+    const std::pair<std::uint64_t, std::uint64_t> now{m.controlRevision(id), m.frameRevision(id)};
+    revisions[id] = now;
+    const auto known = foldRevisions_.find(id);
+    const auto old = std::find_if(foldTints_.begin(), foldTints_.end(), [&](const FoldTint& f) { return f.lattice == id; });
+    if (known != foldRevisions_.end() && known->second == now) {  // unchanged: the verdicts stand
+      if (old != foldTints_.end()) tints.push_back(*old);
+      continue;
+    }
+    const ffd::FoldCheckResult result = ffd::checkFolding(m.ffdLattice(id));
+    if (result.certifiedPositive()) continue;
+    tints.push_back(FoldTint{id, result.cellCounts, result.cells});
+  }
+  foldTints_ = std::move(tints);
+  foldRevisions_ = std::move(revisions);
 }
 
 void EditController::confirm() {
@@ -531,6 +634,8 @@ CellFromSelection EditController::cellFor(std::optional<widgets::CellKind> kind)
 WidgetId EditController::makeCell(const widgets::CellSpec& spec) { return widgets_.addCell(lattice(), spec); }
 
 ViewHighlights EditController::highlights(ViewHighlights h) const {
+  h.foldTints = foldTints_;
+  if (live_ && editing() && soft_.enabled) h.softRadius = SoftRadius{live_->pivot, soft_.radius};
   if (editing() && scene_.widgets.contains(lattice()))
     for (Eigen::Index i : selection_->indices()) h.selectedPoints.push_back({lattice(), i});
   // In the edit mode the points' transformer replaces the lattice's; outside, a group's shows
@@ -545,6 +650,8 @@ ViewHighlights EditController::highlights(ViewHighlights h) const {
 
 void EditController::notify() {
   deformer_.evaluate(scene_);  // what the step changed, once (SceneDeformer::evaluate)
+  guard_.prune(scene_);
+  updateFoldTints();
   if (onChanged) onChanged();
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,8 @@
 #include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/interaction/modal_transform.h"
 #include "ffdkit/interaction/point_selection.h"
+#include "ffdkit/interaction/shape_guard.h"
+#include "ffdkit/interaction/soft_selection.h"
 #include "ffdkit/interaction/transformer.h"
 #include "ffdkit/interaction/view_highlights.h"
 #include "ffdkit/scenes/command_stack.h"
@@ -126,7 +129,36 @@ class EditController {
   /// so that Add Translate / Rotate / Scale act on it. @return its id.
   widgets::WidgetId makeCell(const widgets::CellSpec& spec);
 
-  /// The controller's highlights with this object's: the selected points and the transformer.
+  // ---- soft selection (Blender's proportional editing) ----------------------------------------
+  /// The soft selection of the edit mode's transforms (off by default).
+  const SoftSelection& softSelection() const { return soft_; }
+  /// Sets it; during a transform the points follow at once.
+  /// @throws std::invalid_argument for a radius that is not positive and finite.
+  void setSoftSelection(const SoftSelection& soft);
+  /// Multiplies the radius by `factor` (> 0): the wheel or PageUp / PageDown during G / R / S.
+  void scaleSoftRadius(double factor);
+  /// Per point of the edited lattice, the weight a transform gives it now (softSelectionWeights
+  /// over the points where the live transform started, else where they are): 1 selected,
+  /// the falloff within the radius, 0 beyond. Empty outside the edit mode.
+  Eigen::VectorXd softWeights() const;
+
+  // ---- Keep Volume / Keep Centre ---------------------------------------------------------------
+  /// The objects whose volume and centre the edit mode's transforms keep. Each step of a
+  /// transform of points (edit mode, cells of a group) corrects the points it does not move.
+  ShapeGuard& shapeGuard() { return guard_; }
+  /// ShapeGuard::setKeep with this controller's scene and deformer: keeps `object`'s volume and /
+  /// or centre at their values now. @throws std::invalid_argument as ShapeGuard::setKeep.
+  void setKeep(scenes::ObjectId object, ShapeKeep keep) { guard_.setKeep(scene_, deformer_, object, keep); }
+  /// What the last step's corrections did (one entry per kept object of the moved lattices).
+  const std::vector<ShapeGuardStep>& guardSteps() const { return guardSteps_; }
+
+  // ---- fold-over tint --------------------------------------------------------------------------
+  /// The fold-over verdicts (ffd::checkFolding) of the edited lattice and of the lattices a
+  /// transform moves, brought up to date after every change of their control points or frames.
+  const std::vector<FoldTint>& foldTints() const { return foldTints_; }
+
+  /// The controller's highlights with this object's: the selected points, the transformer, the
+  /// soft selection's radius and the fold-over tints.
   ViewHighlights highlights(ViewHighlights widgetHighlights) const;
 
   /// Called after every change of the selection or of the model this object makes.
@@ -147,6 +179,8 @@ class EditController {
     /// Points, mirror editing: (image index, position in `indices` of the point it mirrors).
     std::vector<std::pair<Eigen::Index, std::size_t>> images;
     Eigen::Affine3d reflection = Eigen::Affine3d::Identity();  ///< Points, mirror editing: S (local)
+    /// Points, soft selection: (index, weight) of the unselected points it moves, weight in (0, 1).
+    std::vector<std::pair<Eigen::Index, double>> soft;
   };
   struct Live {
     std::vector<Target> targets;
@@ -157,12 +191,19 @@ class EditController {
     std::optional<TransformerDrag> handle;
     std::optional<double> typed;  ///< a handle drag's typed amount (setDragValue)
     Transformer transformer;  ///< the one whose handle is dragged
+    Eigen::Affine3d motion = Eigen::Affine3d::Identity();  ///< the last motion applied
   };
   std::vector<Target> targets() const;
   void startLive(std::vector<Target> targets, const std::string& verb);
   void apply(const Eigen::Affine3d& motion);
   void notify();
   std::vector<widgets::WidgetId> movableWidgets() const;
+  /// The soft selection's points of a Points target (Target::soft) from its start points.
+  void softenTarget(Target& target) const;
+  /// Keep Volume / Keep Centre after a step: the points the step did not move are corrected.
+  void guardStep();
+  /// foldTints_ for the edited lattice and the live targets' lattices whose revisions moved.
+  void updateFoldTints();
 
   scenes::Scene& scene_;
   scenes::SceneDeformer& deformer_;
@@ -174,6 +215,12 @@ class EditController {
   std::optional<Live> live_;
   std::optional<ModalTransform> modal_;
   std::optional<TransformerHandle> hoveredHandle_;
+  SoftSelection soft_;
+  ShapeGuard guard_;
+  std::vector<ShapeGuardStep> guardSteps_;
+  std::vector<FoldTint> foldTints_;
+  /// Per tinted lattice, the (controlRevision, frameRevision) its verdicts were computed for.
+  std::map<widgets::WidgetId, std::pair<std::uint64_t, std::uint64_t>> foldRevisions_;
 };
 
 }  // namespace ffdkit::app

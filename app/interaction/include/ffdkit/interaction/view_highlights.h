@@ -1,10 +1,12 @@
 #pragma once
 
+#include <array>
 #include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "ffdkit/ffd/fold_check.h"
 #include "ffdkit/interaction/transformer.h"
 #include "ffdkit/widgets/widget_id.h"
 
@@ -17,6 +19,23 @@ struct LatticePointRef {
   friend bool operator==(const LatticePointRef&, const LatticePointRef&) = default;
 };
 
+/// A lattice's cells tinted by their fold-over verdict (ffd::checkFolding): "folds" red,
+/// "unknown" amber, "positive" not drawn.
+struct FoldTint {
+  widgets::WidgetId lattice;       ///< the lattice
+  std::array<int, 3> cellCounts{};  ///< cells along u, v, w
+  /// One verdict per cell, flat index cu + cellCounts[0] (cv + cellCounts[1] cw).
+  std::vector<ffd::CellFolding> cells;
+  friend bool operator==(const FoldTint&, const FoldTint&) = default;  ///< equal when every field is
+};
+
+/// The soft selection's reach, drawn as a sphere round the pivot during a transform.
+struct SoftRadius {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< world
+  double radius = 0.0;                               ///< world units
+  friend bool operator==(const SoftRadius&, const SoftRadius&) = default;  ///< equal when both fields are
+};
+
 /// What the view emphasises; the model knows nothing about it.
 struct ViewHighlights {
   std::optional<widgets::WidgetId> hovered;
@@ -27,6 +46,8 @@ struct ViewHighlights {
   std::optional<Transformer> transformer;  ///< the manipulator of the selection, if shown
   std::optional<TransformerHandle> transformerHandle;  ///< its hovered or dragged handle
   std::vector<Eigen::Vector3d> pins;  ///< pinned object points (direct manipulation), where they are drawn
+  std::vector<FoldTint> foldTints;    ///< lattices whose cells are not all certified free of fold-over
+  std::optional<SoftRadius> softRadius;  ///< the soft selection's radius during a transform
 };
 
 }  // namespace ffdkit::app
