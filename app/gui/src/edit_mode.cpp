@@ -8,6 +8,7 @@
 #include <QMouseEvent>
 #include <QSignalBlocker>
 #include <QStatusBar>
+#include <QWheelEvent>
 
 #include "keyboard_shortcuts.h"
 
@@ -43,10 +44,18 @@ char typedChar(const QKeyEvent* e) {
 
 bool isConfirm(const QKeyEvent& e) { return matchesShortcut(e, "confirmTransform") || e.key() == Qt::Key_Enter; }
 
+bool isRadiusKey(const QKeyEvent& e) {
+  return matchesShortcut(e, "softRadiusUp") || matchesShortcut(e, "softRadiusDown");
+}
+
 bool isModalKey(const QKeyEvent* e) {
   return typedChar(e) != 0 || axisKey(*e) || matchesShortcut(*e, "typedBackspace") || isConfirm(*e) ||
-         matchesShortcut(*e, "cancelDrag");
+         matchesShortcut(*e, "cancelDrag") || isRadiusKey(*e);
 }
+
+// The soft selection's radius changes by this factor per wheel notch or PageUp / PageDown
+// (Blender's step).
+constexpr double kRadiusStep = 1.1;
 
 }  // namespace
 
@@ -145,6 +154,9 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
     a->setChecked(axis < 0);
     mirrors->addAction(a);
   }
+
+  addSoftSelectionActions(selectMenu_);
+  addShapeGuardActions(widgetsMenu);
 
   count_ = new QLabel;
   count_->setObjectName("editCount");
@@ -303,6 +315,7 @@ bool EditModeInput::typeIntoDrag(const QKeyEvent* e) {
 }
 
 void EditModeInput::syncEditToggle() {
+  syncKeepActions();  // the outliner's selection or the objects may have changed
   // An undo (or any edit) that removes or resizes the edited lattice ends the mode: the toggle
   // follows, and the mode is left for good (a redo does not bring back a stale selection).
   if (entering_ || p_.edit->editing() || !editAction_->isChecked()) return;
@@ -329,7 +342,12 @@ void EditModeInput::changed() {
   } else {
     count_->hide();
   }
-  if (p_.edit->transforming()) p_.status->say(qs(p_.edit->describe()));
+  syncKeepActions();
+  if (p_.edit->transforming()) {
+    QString text = qs(p_.edit->describe());
+    if (const QString guard = guardText(); !guard.isEmpty()) text += " · " + guard;
+    p_.status->say(text);
+  }
   p_.redraw();
 }
 
@@ -402,6 +420,9 @@ bool EditModeInput::eventFilter(QObject* watched, QEvent* event) {
           dragTyped_.clear();
           edit.cancel();
           p_.status->say(tr("Transform cancelled"), 3000);
+        } else if (isRadiusKey(*e)) {
+          if (edit.softSelection().enabled)
+            scaleSoftRadius(matchesShortcut(*e, "softRadiusUp") ? kRadiusStep : 1.0 / kRadiusStep);
         } else if (edit.draggedHandle()) {
           typeIntoDrag(e);  // a typed amount of the handle (the pointer no longer moves it)
         } else if (isConfirm(*e)) {
@@ -416,6 +437,14 @@ bool EditModeInput::eventFilter(QObject* watched, QEvent* event) {
           }
           edit.update(p_.rayAt(lastPos_), snap);
         }
+        return true;
+      }
+      case QEvent::Wheel: {
+        // During G / R / S with soft selection the wheel sets its radius (towards the user: larger,
+        // as in Blender); otherwise it is the camera's.
+        if (!edit.transforming() || !edit.softSelection().enabled) return false;
+        const int notches = static_cast<QWheelEvent*>(event)->angleDelta().y() / 120;
+        if (notches != 0) scaleSoftRadius(std::pow(kRadiusStep, -notches));
         return true;
       }
       case QEvent::MouseMove: {

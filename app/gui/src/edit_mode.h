@@ -46,6 +46,8 @@ class EditModeInput : public QObject {
     std::function<widgets::Ray(const QPoint&)> rayAt;   ///< view pixel -> world ray
     std::function<double()> tolerance;                  ///< pick tolerance (world units)
     std::function<void()> redraw;                       ///< the window's redraw of the model and highlights
+    /// The objects selected in the outliner (Keep Volume / Keep Centre act on them).
+    std::function<std::vector<scenes::ObjectId>()> selectedObjects;
   };
   /// Adds its actions to `widgetsMenu` (Make Cell), a new Select menu and `toolbar`, and filters
   /// the view's events.
@@ -66,6 +68,21 @@ class EditModeInput : public QObject {
   void beginModal(TransformMode mode);
   void makeCell(std::optional<widgets::CellKind> kind);
   void changed();
+  /// Soft selection's menu (O, Alt+O, the falloffs) in `menu`.
+  void addSoftSelectionActions(QMenu* menu);
+  /// Keep Volume and Keep Centre in `menu` and as buttons on the status bar.
+  void addShapeGuardActions(QMenu* menu);
+  /// The objects Keep Volume / Keep Centre act on: the selected ones, else those the edited
+  /// lattice deforms, else the scene's only object. @throws std::invalid_argument for none.
+  std::vector<scenes::ObjectId> keptTargets() const;
+  /// Turns Keep Volume (`volume`) or Keep Centre on or off for keptTargets().
+  void setKeep(bool volume, bool on);
+  /// Checks Keep Volume / Keep Centre when every target object keeps it.
+  void syncKeepActions();
+  /// The shape guard's report of the last transform step ("volume kept (change 2e-16)"), or "".
+  QString guardText() const;
+  /// Grows (factor > 1) or shrinks the soft selection's radius during a transform.
+  void scaleSoftRadius(double factor);
   void finishBox(const QPoint& end, Qt::KeyboardModifiers modifiers);
   Eigen::Vector3d viewDirection() const;
   /// The action of this object whose keys (keyboard_shortcuts.cpp) the event is, or null.
@@ -75,6 +92,10 @@ class EditModeInput : public QObject {
   bool typeIntoDrag(const QKeyEvent* event);
   Parts p_;
   QAction* editAction_ = nullptr;
+  QAction* softAction_ = nullptr;       ///< Soft Selection (O)
+  QAction* connectedAction_ = nullptr;  ///< Soft Selection: Connected Only (Alt+O)
+  QAction* keepVolume_ = nullptr;
+  QAction* keepCentre_ = nullptr;
   std::vector<QAction*> viewActions_;  ///< the actions whose keys act in the view
   QMenu* cellMenu_ = nullptr;
   QMenu* selectMenu_ = nullptr;

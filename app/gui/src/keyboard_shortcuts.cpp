@@ -59,6 +59,10 @@ constexpr std::array kShortcuts{
                      "Move the selected points (or two or more selected widgets) with the pointer; click or Enter confirms"},
     KeyboardShortcut{"R", "actionRotateSelection", C::EditMode, "Turn the selection about the pivot"},
     KeyboardShortcut{"S", "actionScaleSelection", C::EditMode, "Size the selection about the pivot"},
+    KeyboardShortcut{"O", "actionSoftSelection", C::EditMode,
+                     "Soft selection on / off: G / R / S also move the points near the selection, by the falloff"},
+    KeyboardShortcut{"Alt+O", "actionSoftConnected", C::EditMode,
+                     "Soft selection along the lattice's grid lines only (connected only) on / off"},
     KeyboardShortcut{"Ctrl+M", "actionMakeCell", C::EditMode, "Make a cell of the selected points (point, edge, face, slab, box; else asks: custom)"},
     KeyboardShortcut{"X", "constrainAxisX", C::Drag, "During G / R / S: along (about) x only; again: free"},
     KeyboardShortcut{"Y", "constrainAxisY", C::Drag, "During G / R / S: along (about) y only; again: free"},
@@ -68,6 +72,10 @@ constexpr std::array kShortcuts{
     KeyboardShortcut{"Shift+Z", "excludeAxisZ", C::Drag, "During G / S: in the xy plane (z excluded)"},
     KeyboardShortcut{"Return", "confirmTransform", C::Drag, "Confirm G / R / S, or a drag with a typed value (one undo step)"},
     KeyboardShortcut{"Backspace", "typedBackspace", C::Drag, "Remove the last typed character of a value"},
+    KeyboardShortcut{"PgUp", "softRadiusUp", C::Drag,
+                     "During G / R / S with soft selection: a larger radius (the wheel towards you too)"},
+    KeyboardShortcut{"PgDown", "softRadiusDown", C::Drag,
+                     "During G / R / S with soft selection: a smaller radius (the wheel away from you too)"},
 };
 
 bool isAction(const KeyboardShortcut& s) { return std::string_view(s.action).starts_with("action"); }

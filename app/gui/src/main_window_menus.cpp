@@ -351,7 +351,7 @@ void MainWindow::createOperationsToolbar(QMenu* widgetsMenu, QMenu* viewMenu) {
   d.editInput = new EditModeInput({this, d.view, d.sceneView.get(), d.status, &d.scene, d.controller.get(), d.edit.get(),
                                    [this](const std::string& m) { impl_->sayError(m); },
                                    [this](const QPoint& p) { return impl_->rayAt(p); }, [this] { return impl_->tolerance(); },
-                                   [this] { impl_->controller->onChanged(); }},
+                                   [this] { impl_->controller->onChanged(); }, [this] { return impl_->selectedObjects; }},
                                   widgetsMenu, toolbar);
   viewMenu->addSeparator();
   addToolbarTextOption(viewMenu, toolbar);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <vtkActor.h>
+#include <vtkAppendPolyData.h>
 #include <vtkArrowSource.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
@@ -120,6 +121,51 @@ struct SceneView::Impl {
     }
     vtkPolyDataMapper::SafeDownCast(pins->GetMapper())->SetInputData(pointsPolyData(points));
     pins->SetVisibility(!pinsShown.empty());
+  }
+
+  // The fold-over tint of lattice cells (red: folds, amber: unknown), rebuilt when the tints or
+  // the model changed; and the soft selection's radius as three circles round the pivot.
+  vtkSmartPointer<vtkActor> foldTint, softSphere;
+  std::vector<FoldTint> foldTintShown;
+  std::uint64_t foldTintRevision = 0;
+  std::optional<SoftRadius> softRadiusShown;
+
+  vtkSmartPointer<vtkActor> addPlainActor() {
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(vtkSmartPointer<vtkPolyDataMapper>::New());
+    renderer->AddActor(actor);
+    return actor;
+  }
+
+  void updateFoldTintAndRadius(const widgets::WidgetModel& model) {
+    if (!foldTint) {
+      foldTint = addPlainActor();
+      foldTint->GetProperty()->SetOpacity(0.45);
+      softSphere = addPlainActor();
+      softSphere->GetProperty()->SetColor(0.95, 0.95, 0.95);
+      softSphere->GetProperty()->SetLighting(false);
+      softSphere->GetProperty()->SetLineWidth(1.5);
+    }
+    if (highlights.foldTints != foldTintShown || (!foldTintShown.empty() && foldTintRevision != model.revision())) {
+      foldTintShown = highlights.foldTints;
+      foldTintRevision = model.revision();
+      vtkNew<vtkAppendPolyData> all;
+      for (const FoldTint& tint : foldTintShown)
+        if (model.contains(tint.lattice) && model.type(tint.lattice) == widgets::WidgetType::Lattice)
+          all->AddInputData(foldTintPolyData(model.ffdLattice(tint.lattice), tint.cellCounts, tint.cells));
+      if (all->GetNumberOfInputConnections(0) > 0) {
+        all->Update();
+        vtkPolyDataMapper::SafeDownCast(foldTint->GetMapper())->SetInputData(all->GetOutput());
+      }
+      foldTint->SetVisibility(all->GetNumberOfInputConnections(0) > 0);
+    }
+    if (highlights.softRadius != softRadiusShown) {
+      softRadiusShown = highlights.softRadius;
+      if (softRadiusShown)
+        vtkPolyDataMapper::SafeDownCast(softSphere->GetMapper())
+            ->SetInputData(sphereCirclesPolyData(softRadiusShown->centre, softRadiusShown->radius));
+      softSphere->SetVisibility(softRadiusShown.has_value());
+    }
   }
 
   Eigen::Vector3d emphasis(WidgetId id, const Eigen::Vector3d& base) const {
@@ -505,6 +551,7 @@ struct SceneView::Impl {
     }
     applyHighlights(model);
     updatePins();
+    updateFoldTintAndRadius(model);
   }
 };
 

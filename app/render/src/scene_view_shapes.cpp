@@ -8,6 +8,7 @@
 
 #include <vtkArrowSource.h>
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
 #include <vtkCubeSource.h>
 #include <vtkDoubleArray.h>
 #include <vtkImageData.h>
@@ -16,7 +17,9 @@
 #include <vtkParametricTorus.h>
 #include <vtkPointData.h>
 #include <vtkTransform.h>
+#include <vtkUnsignedCharArray.h>
 
+#include "ffdkit/ffd/lattice.h"
 #include "ffdkit/render/curvature_comb.h"
 #include "ffdkit/parts/parts.h"
 #include "ffdkit/widgets/glyph_shape.h"
@@ -246,6 +249,84 @@ vtkSmartPointer<vtkPolyData> latticePolyData(const Eigen::MatrixX3d& points, con
 
 // The six boundary sides of a lattice as quads between neighbouring grid points (drawn
 // translucent for a selected lattice).
+Eigen::Vector3d foldColour(ffd::CellFolding verdict) {
+  return verdict == ffd::CellFolding::Folds ? Eigen::Vector3d(0.95, 0.12, 0.10) : Eigen::Vector3d(1.0, 0.70, 0.05);
+}
+
+vtkSmartPointer<vtkPolyData> foldTintPolyData(const ffd::Lattice& lattice, const std::array<int, 3>& cellCounts,
+                                              const std::vector<ffd::CellFolding>& cells, int samples) {
+  vtkNew<vtkPoints> vtkPts;
+  vtkPts->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> quads;
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetName("Colors");
+  colours->SetNumberOfComponents(3);
+  const int n = std::max(samples, 1);
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    if (cells[c] == ffd::CellFolding::Positive) continue;
+    const int cell[3] = {static_cast<int>(c % std::size_t(cellCounts[0])),
+                         static_cast<int>(c / std::size_t(cellCounts[0]) % std::size_t(cellCounts[1])),
+                         static_cast<int>(c / std::size_t(cellCounts[0]) / std::size_t(cellCounts[1]))};
+    Eigen::Vector3d lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = lattice.axis(a).cellMin(cell[a]);
+      hi[a] = lattice.axis(a).cellMax(cell[a]);
+    }
+    const Eigen::Vector3d rgb = 255.0 * foldColour(cells[c]);
+    // Each side of the cell's parameter box, sampled on an (n+1) x (n+1) grid and mapped.
+    for (int normal = 0; normal < 3; ++normal) {
+      const int a = (normal + 1) % 3, b = (normal + 2) % 3;
+      for (double side : {lo[normal], hi[normal]}) {
+        const vtkIdType first = vtkPts->GetNumberOfPoints();
+        for (int j = 0; j <= n; ++j)
+          for (int i = 0; i <= n; ++i) {
+            Eigen::Vector3d uvw;
+            uvw[normal] = side;
+            uvw[a] = lo[a] + (hi[a] - lo[a]) * i / n;
+            uvw[b] = lo[b] + (hi[b] - lo[b]) * j / n;
+            const Eigen::Vector3d world = lattice.frame() * lattice.evaluate(uvw);
+            vtkPts->InsertNextPoint(world.x(), world.y(), world.z());
+          }
+        for (int j = 0; j < n; ++j)
+          for (int i = 0; i < n; ++i) {
+            const vtkIdType q = first + j * (n + 1) + i;
+            const vtkIdType ids[4] = {q, q + 1, q + n + 2, q + n + 1};
+            quads->InsertNextCell(4, ids);
+            colours->InsertNextTuple3(rgb.x(), rgb.y(), rgb.z());
+          }
+      }
+    }
+  }
+  auto polyData = vtkSmartPointer<vtkPolyData>::New();
+  polyData->SetPoints(vtkPts);
+  polyData->SetPolys(quads);
+  polyData->GetCellData()->SetScalars(colours);
+  return polyData;
+}
+
+vtkSmartPointer<vtkPolyData> sphereCirclesPolyData(const Eigen::Vector3d& centre, double radius, int segments) {
+  vtkNew<vtkPoints> vtkPts;
+  vtkPts->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> lines;
+  for (int normal = 0; normal < 3; ++normal) {
+    const int a = (normal + 1) % 3, b = (normal + 2) % 3;
+    const vtkIdType first = vtkPts->GetNumberOfPoints();
+    for (int s = 0; s < segments; ++s) {
+      const double t = 2.0 * std::numbers::pi * s / segments;
+      Eigen::Vector3d p = centre;
+      p[a] += radius * std::cos(t);
+      p[b] += radius * std::sin(t);
+      vtkPts->InsertNextPoint(p.x(), p.y(), p.z());
+    }
+    lines->InsertNextCell(segments + 1);
+    for (int s = 0; s <= segments; ++s) lines->InsertCellPoint(first + s % segments);
+  }
+  auto polyData = vtkSmartPointer<vtkPolyData>::New();
+  polyData->SetPoints(vtkPts);
+  polyData->SetLines(lines);
+  return polyData;
+}
+
 vtkSmartPointer<vtkPolyData> latticeFacesPolyData(const Eigen::MatrixX3d& points, const Eigen::Vector3i& n) {
   vtkNew<vtkPoints> vtkPts;
   vtkPts->SetDataTypeToDouble();

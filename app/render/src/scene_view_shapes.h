@@ -4,6 +4,7 @@
 // zebra coordinates, curvature combs, lattices, points and widget glyphs. SceneView decides
 // what to build and when; these functions only build it.
 
+#include <array>
 #include <vector>
 
 #include <Eigen/Core>
@@ -13,6 +14,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkTexture.h>
 
+#include "ffdkit/ffd/fold_check.h"
 #include "ffdkit/meshio/mesh_data.h"
 #include "ffdkit/widgets/widget_model.h"
 
@@ -97,6 +99,20 @@ vtkSmartPointer<vtkPolyData> latticePolyData(const Eigen::MatrixX3d& points, con
 
 /// The six boundary sides of a lattice as quads (drawn translucent for a selected lattice).
 vtkSmartPointer<vtkPolyData> latticeFacesPolyData(const Eigen::MatrixX3d& points, const Eigen::Vector3i& n);
+
+/// The colour of a fold-over verdict's tint: red where the cell folds, amber where it is unknown.
+Eigen::Vector3d foldColour(ffd::CellFolding verdict);
+
+/// The cells of `lattice` (world: its frame applied) whose verdict (`cells`, flat index
+/// cu + cellCounts[0] (cv + cellCounts[1] cw), ffd::checkFolding) is not Positive, as the six
+/// sides of each cell's image under the lattice map, each side `samples` x `samples` quads,
+/// coloured per cell by foldColour (RGB unsigned-char cell scalars).
+vtkSmartPointer<vtkPolyData> foldTintPolyData(const ffd::Lattice& lattice, const std::array<int, 3>& cellCounts,
+                                              const std::vector<ffd::CellFolding>& cells, int samples = 8);
+
+/// The soft selection's reach: three great circles (normal to x, y, z) of the sphere of `radius`
+/// about `centre`, as lines of `segments` pieces each.
+vtkSmartPointer<vtkPolyData> sphereCirclesPolyData(const Eigen::Vector3d& centre, double radius, int segments = 96);
 
 /// Points as vertices.
 vtkSmartPointer<vtkPolyData> pointsPolyData(const Eigen::MatrixX3d& points);
