@@ -358,7 +358,7 @@ void writeSkin(const scenes::Scene& scene, const AnimationSource& animation, con
 
   // Sample, measure against ffdkit's exact deformation; keep the joint translations.
   const bool step = allConstant(animation);
-  const std::vector<double> times = sampleTimes(animation, /*frames=*/true, step);
+  const std::vector<double> times = skinSampleTimes(animation);
   std::vector<Eigen::MatrixX3d> translations;
   std::vector<GltfSampleError> samples;
   struct Worst {
@@ -556,6 +556,11 @@ GltfExportReport exportGltf(const scenes::Scene& scene, const AnimationSource& a
   if (!out) throw std::runtime_error("glTF export: writing the stream failed");
   if (start >= 0) written.report.bytes = static_cast<std::uintmax_t>(out.tellp() - start);
   return written.report;
+}
+
+std::vector<double> skinSampleTimes(const AnimationSource& animation) {
+  checkAnimation(animation, "skin");
+  return sampleTimes(animation, /*frames=*/true, allConstant(animation));
 }
 
 GltfExportReport exportGltf(const scenes::Scene& scene, const AnimationSource& animation,

@@ -161,16 +161,36 @@ TEST(CliShapeGuard, ExportSkinRefusesAFoldingDeformationUnlessAllowed) {
   EXPECT_EQ(refused.exitCode, 1) << describe(refused);
   EXPECT_FALSE(fs::exists(dir / "fold.glb"));
   EXPECT_NE(refused.err.find("export --skin: the deformation folds space over itself"), std::string::npos) << refused.err;
-  EXPECT_NE(refused.err.find("at t = 3 s: lattice press-frame folds in 1 of 1 cells"), std::string::npos) << refused.err;
+  // Checked at every frame the skin samples (keys 0 and 3 s at 24 frames/s: 73 times), not only at
+  // the keys: the first folding frame is named, and it is the first frame `deform --frame
+  // --fold-check error` refuses.
+  const std::string prefix = "at t = ";
+  const std::size_t first = refused.err.find(prefix);
+  ASSERT_NE(first, std::string::npos) << refused.err;
+  const double foldTime = std::stod(refused.err.substr(first + prefix.size()));
+  EXPECT_GT(foldTime, 0.0) << refused.err;  // the rest does not fold
+  EXPECT_LT(foldTime, 3.0) << refused.err;  // between the keys
+  EXPECT_NE(refused.err.find(" s: lattice press-frame folds in 1 of 1 cells"), std::string::npos) << refused.err;
   EXPECT_NE(refused.err.find("cells (0, 0, 0)"), std::string::npos) << refused.err;
-  EXPECT_EQ(refused.err.find("at t = 0 s"), std::string::npos) << refused.err;  // the rest does not fold
+  EXPECT_NE(refused.err.find("of the 73 sampled times fold"), std::string::npos) << refused.err;
+  const long frame = std::lround(foldTime * 24.0);
+  EXPECT_NEAR(foldTime * 24.0, double(frame), 1e-4) << "sampled at a frame (printed to 6 digits)";
+  const auto deformAtFrame = [&](long f) {
+    return runCli({"deform", press.string(), "--frame", std::to_string(f), "--fold-check", "error", "-o",
+                   (dir / ("frame" + std::to_string(f) + ".ply")).string()});
+  };
+  const CliResult atFold = deformAtFrame(frame);
+  EXPECT_EQ(atFold.exitCode, 1) << describe(atFold);
+  EXPECT_NE(atFold.err.find("folds"), std::string::npos) << atFold.err;
+  const CliResult before = deformAtFrame(frame - 1);
+  EXPECT_EQ(before.exitCode, 0) << describe(before);
   EXPECT_NE(refused.err.find("--allow-folding"), std::string::npos) << refused.err;
   // Asked for: written, with the finding as a warning.
   const CliResult allowed =
       runCli({"export", press.string(), "-o", (dir / "fold.glb").string(), "--skin", "--allow-folding"});
   EXPECT_EQ(allowed.exitCode, 0) << describe(allowed);
   EXPECT_TRUE(fs::exists(dir / "fold.glb"));
-  EXPECT_NE(allowed.err.find("at t = 3 s: lattice press-frame folds"), std::string::npos) << allowed.err;
+  EXPECT_NE(allowed.err.find(" s: lattice press-frame folds"), std::string::npos) << allowed.err;
   // --allow-folding belongs to --skin.
   const CliResult usage =
       runCli({"export", press.string(), "-o", (dir / "m.glb").string(), "--morph", "--allow-folding"});

@@ -106,12 +106,23 @@ std::vector<std::string> foldFindings(const widgets::WidgetModel& model) {
 
 std::vector<std::string> skinFoldFindings(const scenes::Scene& scene, const exporters::AnimationSource& animation) {
   if (animation.keyTimes.empty() || !animation.setTime) return foldFindings(scene.widgets);
+  // Every time the skin is sampled at, not only the keys: bindings and rotations carry the
+  // lattices along paths that can fold between two keys that do not.
+  const std::vector<double> times = exporters::skinSampleTimes(animation);
   std::vector<std::string> findings;
-  for (double t : animation.keyTimes) {
-    scenes::Scene at = scene;
+  std::vector<double> folding;  // the sampled times with a finding
+  scenes::Scene at = scene;     // one copy, set to each time in turn
+  for (double t : times) {
     animation.setTime(at, t);
-    for (const auto& line : foldFindings(at.widgets)) findings.push_back(formatted("at t = %g s: ", t, 0, 0) + line);
+    const std::vector<std::string> lines = foldFindings(at.widgets);
+    if (lines.empty()) continue;
+    folding.push_back(t);
+    if (folding.size() > 1) continue;  // the first time in full, the others counted
+    for (const auto& line : lines) findings.push_back(formatted("at t = %g s: ", t, 0, 0) + line);
   }
+  if (folding.size() > 1)
+    findings.push_back(std::to_string(folding.size()) + " of the " + std::to_string(times.size()) +
+                       " sampled times fold or are not certified" + formatted(" (t = %g s to %g s)", folding.front(), folding.back(), 0));
   return findings;
 }
 

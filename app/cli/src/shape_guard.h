@@ -36,8 +36,10 @@ std::vector<OptionSpec> shapeGuardOptions();
 /// fold-over (unknown): cells (...)". Empty when every lattice is certified positive.
 std::vector<std::string> foldFindings(const widgets::WidgetModel& model);
 
-/// foldFindings of the scene's widgets at every key time of `animation` (each line prefixed
-/// "at t = 1.5 s: "), or of the scene as it is when the animation has no keys or no setTime.
+/// foldFindings of the scene's widgets at every time a skin export samples `animation`
+/// (exporters::skinSampleTimes: keys and frames): the first time that folds in full (each line
+/// prefixed "at t = 1.5 s: "), then a line counting the sampled times that fold and their span
+/// when there are more; of the scene as it is when the animation has no keys or no setTime.
 std::vector<std::string> skinFoldFindings(const scenes::Scene& scene, const exporters::AnimationSource& animation);
 
 /// --fold-check before a deform: Error throws std::runtime_error with the findings, Warn prints

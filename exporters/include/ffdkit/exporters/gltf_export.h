@@ -107,4 +107,11 @@ GltfExportReport exportGltf(const scenes::Scene& scene, const AnimationSource& a
 
 std::string_view gltfContentName(GltfContent content);  ///< "frame", "morph", "skin"
 
+/// The times a skin export samples the animation at (seconds, sorted, distinct as float32): its
+/// keys, every frame between the first and the last key at AnimationSource::frameRate, and the
+/// sample just before the end of each held segment. A check that must hold wherever the skin is
+/// measured (the fold-over guard of `ffdkit-cli export --skin`) runs at these times.
+/// @throws GltfExportError for an animation without keys or setTime, or unsorted key times.
+std::vector<double> skinSampleTimes(const AnimationSource& animation);
+
 }  // namespace ffdkit::exporters
