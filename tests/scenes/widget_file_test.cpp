@@ -123,8 +123,8 @@ TEST(WidgetFile, PathOverloadsWriteAtomically) {
 TEST(WidgetFile, MalformedAndFutureFilesGiveLocatedErrors) {
   std::string e = errorOf("{\n  \"format\": \"ffdkit-widgets\",\n  \"version\": 1,\n  \"lattices\": [,]\n}\n");
   EXPECT_NE(e.find("tool.json:4:16: syntax error"), std::string::npos) << e;
-  e = errorOf(R"({"format": "ffdkit-widgets", "version": 2})");
-  EXPECT_NE(e.find("tool.json /version: widget file version 2 is newer"), std::string::npos) << e;
+  e = errorOf(R"({"format": "ffdkit-widgets", "version": 3})");
+  EXPECT_NE(e.find("tool.json /version: widget file version 3 is newer"), std::string::npos) << e;
   e = errorOf(R"({"format": "ffdkit-widgets"})");
   EXPECT_NE(e.find("/: missing key 'version'"), std::string::npos) << e;
   e = errorOf(R"({"format": "something", "version": 1})");
