@@ -78,7 +78,8 @@ struct Su2Reader {
   }
 
   void readElements(std::int64_t n, bool cells, const std::string& what) {
-    if (std::uint64_t(n) > s.bytesLeft() / 4)
+    // At least "1 0" and a line end each; the file's last line may have none (hence the + 1).
+    if (std::uint64_t(n) > (s.bytesLeft() + 1) / 4)
       s.fail(what + ": " + std::to_string(n) + " elements need at least 4 bytes each, the file has " +
              std::to_string(s.bytesLeft()) + " left (truncated, or the count is wrong)");
     if (cells) budget.chargeBytes(std::uint64_t(n), 1 + 8 + 8 + 32, what + ": cells");
@@ -112,7 +113,8 @@ struct Su2Reader {
   }
 
   void readPoints(std::int64_t n) {
-    if (std::uint64_t(n) > s.bytesLeft() / std::uint64_t(2 * dimension))
+    // A digit and a blank or line end per coordinate; the file's last line may have no line end.
+    if (std::uint64_t(n) > (s.bytesLeft() + 1) / std::uint64_t(2 * dimension))
       s.fail("NPOIN: " + std::to_string(n) + " points need at least " + std::to_string(2 * dimension) +
              " bytes each, the file has " + std::to_string(s.bytesLeft()) + " left (truncated, or the count is wrong)");
     budget.chargePoints(std::uint64_t(n), "NPOIN: " + std::to_string(n) + " points");

@@ -255,6 +255,18 @@ TEST(VolumeMesh, Su2TwoDimensionalMeshesKeepTwoCoordinates) {
   EXPECT_NE(mesh->bytesWith(moved).find("\n2 1.5 3\n"), std::string::npos);
 }
 
+// A fuzz_su2 finding: the count check asked two bytes per coordinate after NPOIN's line, so a
+// last point of one-digit values without a line end ("0 1", 3 bytes for 2 coordinates), which a
+// moved point can become, was refused as truncated. (The element count's check allows for a last
+// element without a line end the same way.)
+TEST(VolumeMesh, Su2LastRecordWithoutALineEndIsNotTruncated) {
+  const auto mesh = fromBytes("NDIME= 2\nNPOIN= 1\n0 02", VolumeMeshFormat::Su2);
+  const Eigen::MatrixX3d moved = mesh->points() * 0.5;
+  EXPECT_EQ(mesh->bytesWith(moved), "NDIME= 2\nNPOIN= 1\n0 1");
+  EXPECT_EQ(fromBytes(mesh->bytesWith(moved), VolumeMeshFormat::Su2)->points(), moved);
+  EXPECT_NE(errorOf("NDIME= 2\nNPOIN= 2\n0 1", VolumeMeshFormat::Su2).find("NPOIN: 2 points need"), std::string::npos);
+}
+
 TEST(VolumeMesh, BadSu2FilesNameTheLine) {
   auto replaced = [](std::string text, const std::string& from, const std::string& to) {
     return text.replace(text.find(from), from.size(), to);
