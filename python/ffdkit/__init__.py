@@ -9,6 +9,7 @@ Submodules mirror the C++ namespaces (docs/python.md):
 - ``ffdkit.app``      a scene edited as the app edits it, one undoable command per operation
 - ``ffdkit.io``       volume meshes (OpenFOAM, Gmsh, SU2, UNV, Elmer, LS-DYNA, Kratos) read to points
                       and written back by pass-through, and PyGeM's file handler classes
+- ``ffdkit.cad``      STEP and IGES parts and their exact FFD (builds with OpenCASCADE; ``import ffdkit.cad``)
 - ``ffdkit.pygem``    PyGeM's ``FFD``, ``CFFD``, ``BFFD`` and ``VFFD`` classes on ffdkit's engine
 
 Points are numpy float64 arrays of shape (N, 3). Errors are ``ffdkit.Error`` subclasses carrying

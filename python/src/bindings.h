@@ -20,6 +20,9 @@ void bindAnimationTypes(py::module_& module);
 void bindSceneEditing(py::module_& module);
 /// ffdkit.app: the Document (scene, deformer, undo stack, interaction controller).
 void bindApp(py::module_& module);
+/// ffdkit.cad's C++ half (cad_bindings.cpp, with the cad module only); CadError derives from
+/// `baseError` (ffdkit.Error) and RuntimeError.
+void bindCad(py::module_& module, py::handle baseError);
 /// ffdkit.io's C++ half: volume meshes read and written back by pass-through (io_bindings.cpp).
 void bindIo(py::module_& module);
 

@@ -14,6 +14,10 @@ import ffdkit.pygem
 
 MODULES = {"ffdkit": ffdkit, "ffdkit.ffd": ffdkit.ffd, "ffdkit.widgets": ffdkit.widgets, "ffdkit.scenes": ffdkit.scenes,
            "ffdkit.app": ffdkit.app, "ffdkit.pygem": ffdkit.pygem}
+if hasattr(ffdkit._ffdkit, "_cad"):  # builds with OpenCASCADE
+    import ffdkit.cad
+
+    MODULES["ffdkit.cad"] = ffdkit.cad
 
 # A pybind11 signature line: "name(arg: type, ...) -> type", or "1. name(...)" in an overload list.
 SIGNATURE = re.compile(r"^\s*(\d+\.\s+)?[A-Za-z_][\w.]*\(.*\)(\s*->\s*.*)?\s*$")

@@ -12,6 +12,7 @@
 #include <QSettings>
 
 #include "ffdkit/meshio/mesh_format.h"
+#include "ffdkit/scenes/cad_objects.h"
 #include "ffdkit/scenes/mesh_io.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/scenes/volume_object.h"
@@ -25,7 +26,9 @@ namespace ffdkit::app {
 
 namespace window_detail {
 
-bool isMeshFile(const std::filesystem::path& path) { return meshio::meshFormatOf(path).has_value(); }
+bool isMeshFile(const std::filesystem::path& path) {
+  return meshio::meshFormatOf(path).has_value() || scenes::isCadFile(path);  // a STEP or IGES part: its tessellation
+}
 
 // A widget file says "format": "ffdkit-widgets" near its top; a scene says "ffdkit-scene".
 bool isWidgetFile(const std::filesystem::path& path) {
@@ -255,9 +258,15 @@ void MainWindow::saveWidgetFile(const std::filesystem::path& path) {
 
 void MainWindow::importMesh(const std::filesystem::path& path) {
   scenes::SceneObject object;
-  const scenes::UpAxis up = importUpAxis();  // File > Import Up Axis
-  object.mesh = scenes::readMesh(path, meshReadOptions());
-  scenes::convertToZUp(object.mesh, up);  // once, here; the scene file says "up" so a reload does it again
+  scenes::UpAxis up = importUpAxis();  // File > Import Up Axis
+  if (scenes::isCadFile(path)) {
+    up = scenes::UpAxis::Z;  // a CAD part keeps its axes: its exact export (cad_import.h) is in the file's frame
+    meshio::ReadBudget budget(meshReadOptions().limits);
+    object.mesh = scenes::readCadMesh(path, budget);
+  } else {
+    object.mesh = scenes::readMesh(path, meshReadOptions());
+    scenes::convertToZUp(object.mesh, up);  // once, here; the scene file says "up" so a reload does it again
+  }
   object.source = scenes::MeshFileSource{std::filesystem::absolute(path).string(), up};
   std::string base = path.stem().string();
   object.name = base;

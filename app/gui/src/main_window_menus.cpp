@@ -22,6 +22,7 @@
 #include <QToolBar>
 
 #include "ffdkit/interaction/scene_bounds.h"
+#include "cad_import.h"
 #include "gltf_export_dialog.h"
 #include "import_options.h"
 #include "keyboard_shortcuts.h"
@@ -94,7 +95,10 @@ void MainWindow::createFileMenu() {
   Impl& d = *impl_;
   const QString sceneFilter = tr("ffdkit scenes (*.json);;All files (*)");
   const QString widgetFilter = tr("ffdkit widget files (*.json);;All files (*)");
-  const QString meshFilter = tr("Meshes (*.obj *.ply *.stl *.vtp *.vtk *.gltf *.glb *.xyz *.npy);;All files (*)");
+  const QString meshFilter = tr("Meshes and CAD parts (*.obj *.ply *.stl *.vtp *.vtk *.gltf *.glb *.xyz *.npy *.step *.stp "
+                                "*.iges *.igs);;All files (*)");
+  const QString cadFilter = tr("STEP (*.step *.stp);;IGES (*.iges *.igs)");
+  registerCadObjectReader();  // STEP and IGES objects (cad_import.h), in scenes and imports alike
 
   QMenu* file = menuBar()->addMenu(tr("&File"));
   addMenuAction(file, tr("&New Scene"), "actionNewScene", [this] {
@@ -124,6 +128,14 @@ void MainWindow::createFileMenu() {
   addImportUpAxisMenu(file);
   addFileAction(file, tr("&Export Deformed Mesh..."), "actionExportMesh", true, meshFilter,
                 [this](const std::filesystem::path& p) { exportMesh(p); });
+  QAction* exportCad = addFileAction(file, tr("Export Deformed &CAD Model..."), "actionExportCad", true, cadFilter,
+                                     [this](const std::filesystem::path& p) {
+                                       const std::filesystem::path base =
+                                           impl_->scenePath.empty() ? std::filesystem::path{} : impl_->scenePath.parent_path();
+                                       impl_->status->say(exportDeformedCad(impl_->scene, impl_->selectedObjectNames(), base, p), 5000);
+                                     });
+  if (!hasCadModule()) exportCad->setToolTip(tr("This build has no CAD module (OpenCASCADE): it writes no STEP or IGES"));
+  addCadTessellationAction(file, this);
   addMenuAction(file, tr("Export &glTF..."), "actionExportGltf", [this] { exportGltfInteractively(this, impl_->scene); });
   file->addSeparator();
   addReadPreferenceActions(file, this);  // the confinement opt-out and the read limits

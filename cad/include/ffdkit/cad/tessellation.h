@@ -13,6 +13,11 @@ struct TessellationOptions {
   double linearDeflection = 0.0;
   /// Largest angle between the normals at a triangle's corners and the face's, radians.
   double angularDeflection = 0.5;
+  /// > 0: no triangle edge longer than this, in model units (0 = no limit). BRepMesh leaves a
+  /// plane with its boundary's points only, which a lattice then deforms as flat triangles; the
+  /// longest edges are then bisected (the midpoints on the straight edges, in every triangle that
+  /// has the edge, so faces stay joined) until none is longer.
+  double maxEdgeLength = 0.0;
 };
 
 /// Triangles of a CAD model, one triangle per row of `triangles` (indices into `points`), oriented
@@ -26,7 +31,8 @@ struct CadTriangles {
 
 /// Tessellates every face of every part. The triangulation is also stored on the model's faces
 /// (OpenCASCADE keeps it with the shapes; a later call with a coarser deflection reuses it).
-/// @throws CadError if the deflections are not > 0 and finite or meshing fails.
+/// @throws CadError if the deflections are not > 0 and finite, maxEdgeLength is negative or not
+///         finite or would make more than 20 million triangles, or meshing fails.
 CadTriangles tessellate(const CadModel& model, const TessellationOptions& options = {});
 
 /// The volume a closed, outward-oriented triangle set encloses (divergence theorem).
