@@ -12,6 +12,7 @@
 #   scenes     ffdkit::scenes
 #   exporters  ffdkit::exporters
 #   app        ffdkit::interaction, ffdkit::parts (the application's headless libraries)
+#   cad        ffdkit::cad (built with OpenCASCADE, FFDKIT_WITH_CAD: its consumers find OpenCASCADE)
 # A component's targets link only targets of the components it needs; the packages each needs
 # are found in cmake/ffdkitConfig.cmake.in.
 
@@ -23,7 +24,7 @@ set(FFDKIT_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/ffdkit" CACHE STRING
 
 # Every component, dependencies before the components that need them (the config file loads them
 # in this order).
-set(FFDKIT_PACKAGE_COMPONENT_ORDER ffd geometry widgets meshio scenes exporters app)
+set(FFDKIT_PACKAGE_COMPONENT_ORDER ffd geometry widgets meshio scenes exporters app cad)
 
 # ffdkit_component_of(module out_var): the package component a module's target belongs to.
 function(ffdkit_component_of module out_var)
