@@ -137,7 +137,8 @@ class TextVolume final : public VolumeMesh {
   VolumeMeshQuality check(const Eigen::MatrixX3d& points) const override {
     if (!file_.hasCells) {
       VolumeMeshQuality r;
-      r.summary = std::string("cells not checked (") + volumeMeshFormatName(format_) + ": points only)";
+      r.summary = std::string("cells not checked (") + volumeMeshFormatName(format_) + ": " +
+                  (format_ == VolumeMeshFormat::Unv ? "no solid elements" : "points only") + ")";
       return r;
     }
     return fromElements(checkElementCells(points, file_.cells));
