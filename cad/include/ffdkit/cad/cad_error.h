@@ -9,6 +9,7 @@ namespace ffdkit::cad {
 /// CAD module cannot make exactly. The message names the file (or part and face) and what failed.
 class CadError : public std::runtime_error {
  public:
+  /// An error whose what() is `message`.
   explicit CadError(const std::string& message) : std::runtime_error(message) {}
 };
 
