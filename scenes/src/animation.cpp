@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <sstream>
+#include <vector>
 
 #include "animation_checks.h"
 
@@ -280,11 +281,24 @@ void applyAnimatedValues(Scene& scene, const widgets::WidgetModelState& values) 
     if ((target->matrix() - now.matrix()).cwiseAbs().maxCoeff() <= 1e-12 * scale) continue;
     model.applyMotion(lattice, *target * now.inverse());
   }
-  for (const auto& [widget, target] : values.variations) {
-    if (!model.contains(widget) || model.type(widget) != WidgetType::Affine) continue;
-    if (std::abs(model.variation(widget) - target) <= 1e-12 * std::max(1.0, std::abs(target))) continue;
-    model.setVariation(widget, target);
-  }
+  // Variations are wound in the channels' order from 0, and a change first unwinds the channels,
+  // from the last down to the first whose value changes, back to 0: a motion whose direction
+  // depends on another keyed channel (a push on a face whose edge a keyed pull tilts: the face's
+  // fitted frame, so the push's direction, follows the pull) then gives the same model at a time
+  // from whatever time the model comes, and a frame change there and back is exact. Winding
+  // straight from value to value would leave such a face off by the push times the tilt.
+  std::vector<std::pair<WidgetId, double>> keyed;
+  for (const auto& [widget, target] : values.variations)
+    if (model.contains(widget) && model.type(widget) == WidgetType::Affine) keyed.emplace_back(widget, target);
+  const auto at = [&](WidgetId widget, double target) {
+    return std::abs(model.variation(widget) - target) <= 1e-12 * std::max(1.0, std::abs(target));
+  };
+  std::size_t first = 0;
+  while (first < keyed.size() && at(keyed[first].first, keyed[first].second)) ++first;
+  for (std::size_t i = keyed.size(); i-- > first;)
+    if (model.variation(keyed[i].first) != 0.0) model.setVariation(keyed[i].first, 0.0);
+  for (std::size_t i = first; i < keyed.size(); ++i)
+    if (!at(keyed[i].first, keyed[i].second)) model.setVariation(keyed[i].first, keyed[i].second);
   for (const auto& [widget, target] : values.controlPoints) {
     if (!model.contains(widget) || model.type(widget) != WidgetType::Lattice) continue;
     if (target.rows() != model.controlPoints(widget).rows() || target == model.controlPoints(widget)) continue;

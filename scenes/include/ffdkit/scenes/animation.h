@@ -72,8 +72,10 @@ widgets::WidgetModelState animatedState(const Scene& scene);
 /// the model's own gestures, so bindings propagate exactly as during a drag:
 ///  1. lattice frames, parents before children (WidgetModel::pipelineOrder): a lattice gesture
 ///     with the world motion target * current^-1 (WidgetModel::applyMotion);
-///  2. variations, in their order: WidgetModel::setVariation (a gesture from the current variation
-///     to the target; bound widgets follow);
+///  2. variations: those from the last down to the first whose value changes go back to 0, then
+///     each, in their order, to its target: WidgetModel::setVariation (gestures; bound widgets
+///     follow). A frame then gives the same model from whatever frame the model comes, even
+///     where one keyed motion turns another's direction;
 ///  3. control points: WidgetModel::setControlPoints; they come last, so a lattice whose points
 ///     are keyed shows exactly those points whatever its widgets did.
 /// A value already there (frames within 1e-12 relative) is not touched (no revision, nothing
