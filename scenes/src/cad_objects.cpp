@@ -44,8 +44,9 @@ MeshData readCadMesh(const std::filesystem::path& path, meshio::ReadBudget& budg
     reader = registeredReader();
   }
   if (!reader)
-    throw MeshIoError(path.string() + ": a STEP or IGES file; this program was built without the cad module "
-                                      "(OpenCASCADE, FFDKIT_WITH_CAD), which reads them");
+    throw MeshIoError(path.string() + ": a STEP or IGES part; this program reads none (the app built with "
+                                      "OpenCASCADE, FFDKIT_WITH_CAD, reads them as objects; ffdkit-cli deform "
+                                      "takes them as its INPUT)");
   return reader(path, budget);
 }
 

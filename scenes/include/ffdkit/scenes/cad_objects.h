@@ -29,7 +29,7 @@ bool hasCadMeshReader();
 
 /// Reads a CAD file with the registered reader.
 /// @throws MeshIoError naming the file when no reader is registered (a build without the cad
-///         module), and whatever the reader throws on a bad file.
+///         module, or a program that registers none), and whatever the reader throws on a bad file.
 MeshData readCadMesh(const std::filesystem::path& path, meshio::ReadBudget& budget);
 
 }  // namespace ffdkit::scenes
