@@ -61,6 +61,10 @@ class GestureNormals {
 
   /// Forgets the motion (frees its 28 bytes per vertex).
   void clear();
+  /// Heap bytes held for the motion (28 per vertex while one is followed, else 0).
+  std::size_t memoryBytes() const {
+    return sizeof(float) * std::size_t(sums_.size() + motion_.size() + beta_.size());
+  }
 
  private:
   bool active_ = false;

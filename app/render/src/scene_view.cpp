@@ -657,6 +657,18 @@ Eigen::MatrixX3f SceneView::objectNormals(const std::string& object) const {
 
 const SceneViewStats& SceneView::stats() const { return impl_->stats; }
 
+SceneViewMemory SceneView::objectMemory() const {
+  SceneViewMemory memory;
+  for (const auto& entry : impl_->objects) {
+    memory.vertices += entry.pointCount;
+    memory.bytes += std::size_t(entry.polyData->GetActualMemorySize()) * 1024;  // VTK reports KiB
+    memory.bytes += sizeof(int) * (entry.vertexFaces.start.capacity() + entry.vertexFaces.faces.capacity());
+    memory.bytes += sizeof(Eigen::Vector3f) * entry.faceNormals.capacity();
+    memory.bytes += entry.gestureNormals.memoryBytes();
+  }
+  return memory;
+}
+
 void SceneView::applyCamera(const scenes::Camera& camera) {
   vtkCamera* c = impl_->renderer->GetActiveCamera();
   c->SetPosition(camera.position.data());

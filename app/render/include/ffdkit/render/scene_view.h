@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <optional>
 #include <string>
@@ -43,6 +44,17 @@ struct SceneViewStats {
   int overlayBuilds = 0;  ///< placements of the transformer's actors (another transformer)
 };
 
+/// What a SceneView holds in memory for the objects it draws (SceneView::objectMemory).
+struct SceneViewMemory {
+  /// Heap bytes: the VTK data of each object (points, cells, normals, texture coordinates), the
+  /// triangles around each vertex and the per-triangle scratch of the normals, and what the
+  /// normals keep to follow a drag (gesture_normals.h).
+  std::size_t bytes = 0;
+  Eigen::Index vertices = 0;  ///< vertices drawn, over all objects
+  /// bytes / vertices (0 for no vertex): the view's memory per vertex.
+  double bytesPerVertex() const { return vertices > 0 ? double(bytes) / double(vertices) : 0.0; }
+};
+
 /// Draws a scene into a VTK renderer: shaded (or zebra-striped, DisplaySettings::surfaceStyle)
 /// objects at their deformed points, curves as tubes (with a curvature comb of the deformed
 /// polyline when DisplaySettings::curvatureComb is set), lattice points and edges, cells as
@@ -73,6 +85,8 @@ class SceneView {
   void setHighlights(const ViewHighlights& highlights);
 
   const SceneViewStats& stats() const;
+  /// The memory the view holds for the objects it draws now.
+  SceneViewMemory objectMemory() const;
   /// The vertex normals drawn for `object`, #points x 3 (empty when it is not drawn or has no
   /// triangles). For tests.
   Eigen::MatrixX3f objectNormals(const std::string& object) const;
