@@ -150,6 +150,61 @@ void BM_Update(benchmark::State& state, Eigen::Vector3i control, Eigen::Index n,
   state.counters["max_diff_vs_full"] = drift;
 }
 
+// Rational lattices (Lamousin & Waggenspack 1994): the same 4x4x4 cubic lattice and 10^6 random
+// points as BM_Deform, with every weight drawn from [0.5, 2]. Full evaluation (the rational path
+// of Deformer::deform) and the delta step of update(lattice) after one control point and its
+// weight moved (the homogeneous sums kept per point). Checked against Lattice::evaluate first.
+void BM_RationalDeform(benchmark::State& state, Eigen::Index n) {
+  Lattice lattice = boxLattice(4, AxisBasis::bspline(3));
+  const Eigen::MatrixX3d Q = randomPoints(n, 1);
+  Deformer deformer(embed(lattice, Q));
+  lattice.setControlPoints(moved(lattice, 2));
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(0.5, 2.0);
+  Eigen::VectorXd w(lattice.pointCount());
+  for (Eigen::Index i = 0; i < w.size(); ++i) w[i] = U(rng);
+  lattice.setWeights(w);
+  deformer.deform(lattice, Q);
+  check(lattice, deformer, state);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(deformer.deform(lattice, Q).data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * n);
+}
+
+void BM_RationalUpdate(benchmark::State& state, Eigen::Index n, bool weighted) {
+  Lattice lattice = boxLattice(8, AxisBasis::bspline(3));
+  const Eigen::MatrixX3d Q = randomPoints(n, 1);
+  Deformer deformer(embed(lattice, Q));
+  lattice.setControlPoints(moved(lattice, 2));
+  if (weighted) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> U(0.5, 2.0);
+    Eigen::VectorXd w(lattice.pointCount());
+    for (Eigen::Index i = 0; i < w.size(); ++i) w[i] = U(rng);
+    lattice.setWeights(w);
+  }
+  deformer.deform(lattice, Q);
+  const Eigen::Index flat = lattice.index(3, 3, 3);
+  const Eigen::Vector3d base = lattice.controlPoints().row(flat).transpose();
+  const double weight = lattice.weight(flat);
+  double step = 0.0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    step += 1e-3;
+    lattice.setControlPoint(flat, base + Eigen::Vector3d(step, -step, step));
+    if (weighted) lattice.setWeight(flat, weight * (1.0 + step));
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(deformer.update(lattice).data());
+  }
+  Deformer full(embed(lattice, Q));
+  const double drift = (full.deform(lattice, Q) - deformer.points()).rowwise().norm().maxCoeff();
+  if (drift > 1e-9) state.SkipWithError("delta step disagrees with full evaluation");
+  state.counters["max_diff_vs_full"] = drift;
+  state.counters["points_touched"] = double(deformer.lastStats().evaluatedPoints);
+}
+
 // Closed-form embedding into a box lattice (affine rest map), points in random order: the
 // embedding every box lattice of the CLI and the scene deformer does. grow = 1: every point
 // inside (a lattice fitted to the object, as `ffdkit-cli deform --fit`); grow = 1.1: the box
@@ -288,6 +343,17 @@ const bool registered = [] {
                                    million, grow)
           ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
     }
+  }
+  benchmark::RegisterBenchmark(name("BM_RationalDeform", million, "4x4x4/basis:bspline3/weights:random").c_str(),
+                               BM_RationalDeform, million)
+      ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+  for (bool weighted : {false, true}) {
+    benchmark::RegisterBenchmark((name("BM_RationalUpdate", million, "8x8x8/basis:bspline3") +
+                                  (weighted ? "/weights:random/moved:(3,3,3)+weight/update:delta"
+                                            : "/weights:none/moved:(3,3,3)/update:delta"))
+                                     .c_str(),
+                                 BM_RationalUpdate, million, weighted)
+        ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
   }
   // Newton embedding at 10^5, 10^6 and 10^7 points (how the cost grows), and at 10^6 with progress.
   for (auto [n, progress] : {std::pair{million / 10, false}, std::pair{million, false}, std::pair{10 * million, false},
