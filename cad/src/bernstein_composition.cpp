@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/LU>
+
 #include "ffdkit/cad/cad_error.h"
 #include "ffdkit/ffd/bernstein_basis.h"
 
@@ -159,7 +161,7 @@ BernsteinVolume BernsteinVolume::fromLattice(const ffd::Lattice& lattice) {
   for (int axis = 0; axis < 3; ++axis)
     if (lattice.basis(axis).kind != ffd::AxisBasis::Kind::Bernstein)
       throw CadError("exact CAD deformation needs a Bernstein lattice; axis " + std::to_string(axis) +
-                     " is a B-spline (B-spline lattices are not supported yet)");
+                     " is a B-spline (its cells are polynomials of their own: fromLatticeCell)");
   if (!lattice.restIsAffine())
     throw CadError("exact CAD deformation needs a lattice whose rest shape is a box (an affine rest map)");
   BernsteinVolume volume;
@@ -170,6 +172,66 @@ BernsteinVolume BernsteinVolume::fromLattice(const ffd::Lattice& lattice) {
   toLocalParameter.linear() = lattice.restAffineLinear().inverse();
   toLocalParameter.translation() = -(toLocalParameter.linear() * lattice.restAffineOffset());
   volume.toParameter = toLocalParameter * lattice.frame().inverse();
+  return volume;
+}
+
+namespace {
+
+/// C[r][m]: the r-th basis function non-zero on `cell` of `axis`, in the Bernstein basis of the
+/// axis's degree over the cell (from its values at degree+1 points of the cell).
+Eigen::MatrixXd cellExtraction(const ffd::AxisSpline& axis, int cell) {
+  const int p = axis.degree();
+  const double a = axis.cellMin(cell), b = axis.cellMax(cell);
+  Eigen::MatrixXd bernstein(p + 1, p + 1);  // [sample m][Bernstein l]
+  Eigen::MatrixXd values(p + 1, p + 1);     // [sample m][basis r]
+  std::vector<double> row(p + 1);
+  for (int m = 0; m <= p; ++m) {
+    const double t = double(m) / p;
+    bernstein.row(m) = ffd::bernsteinBasis(p, t).transpose();
+    axis.basis(cell, a + (b - a) * t, row.data());
+    for (int r = 0; r <= p; ++r) values(m, r) = row[r];
+  }
+  return bernstein.fullPivLu().solve(values).transpose();  // C^T = B^-1 V
+}
+
+}  // namespace
+
+BernsteinVolume BernsteinVolume::fromLatticeCell(const ffd::Lattice& lattice, const Eigen::Vector3i& cell) {
+  if (!lattice.restIsAffine())
+    throw CadError("exact CAD deformation needs a lattice whose rest shape is a box (an affine rest map)");
+  Eigen::MatrixXd extraction[3];
+  BernsteinVolume volume;
+  Eigen::Affine3d toCell = Eigen::Affine3d::Identity();
+  for (int a = 0; a < 3; ++a) {
+    const ffd::AxisSpline& axis = lattice.axis(a);
+    if (axis.periodic()) throw CadError("exact CAD deformation needs clamped lattice axes; axis " + std::to_string(a) + " is periodic");
+    if (cell[a] < 0 || cell[a] >= axis.cellCount())
+      throw CadError("lattice cell " + std::to_string(cell[a]) + " on axis " + std::to_string(a) + " is out of range");
+    extraction[a] = cellExtraction(axis, cell[a]);
+    volume.degrees[a] = axis.degree();
+    const double lo = axis.cellMin(cell[a]), hi = axis.cellMax(cell[a]);
+    toCell.linear()(a, a) = 1.0 / (hi - lo);
+    toCell.translation()[a] = -lo / (hi - lo);
+  }
+  const Eigen::Vector3i n = volume.degrees;
+  volume.points = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(n[0] + 1) * (n[1] + 1) * (n[2] + 1), 3);
+  const Eigen::MatrixX3d world = (lattice.frame() * lattice.controlPoints().transpose()).transpose();
+  for (int rk = 0; rk <= n[2]; ++rk)
+    for (int rj = 0; rj <= n[1]; ++rj)
+      for (int ri = 0; ri <= n[0]; ++ri) {
+        const Eigen::RowVector3d point = world.row(lattice.index(lattice.axis(0).controlIndex(cell[0], ri),
+                                                                 lattice.axis(1).controlIndex(cell[1], rj),
+                                                                 lattice.axis(2).controlIndex(cell[2], rk)));
+        Eigen::Index row = 0;
+        for (int k = 0; k <= n[2]; ++k)
+          for (int j = 0; j <= n[1]; ++j)
+            for (int i = 0; i <= n[0]; ++i, ++row)
+              volume.points.row(row) += extraction[0](ri, i) * extraction[1](rj, j) * extraction[2](rk, k) * point;
+      }
+  Eigen::Affine3d toLocalParameter = Eigen::Affine3d::Identity();
+  toLocalParameter.linear() = lattice.restAffineLinear().inverse();
+  toLocalParameter.translation() = -(toLocalParameter.linear() * lattice.restAffineOffset());
+  volume.toParameter = toCell * toLocalParameter * lattice.frame().inverse();
   return volume;
 }
 

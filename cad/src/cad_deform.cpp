@@ -1,10 +1,12 @@
-// Deforming B-rep models by an FFD lattice: exact composition (Bernstein lattices) or pole moving,
-// every vertex, edge and face through one BRepTools_Modification so shared boundaries stay shared.
+// Deforming B-rep models by an FFD lattice: exact composition (cell by cell), an approximation on
+// the same parameters where that is not possible, or pole moving; every vertex, edge and face
+// through one BRepTools_Modification so shared boundaries stay shared.
 #include "ffdkit/cad/cad_deform.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +15,7 @@
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <Precision.hxx>
 #include <BRepTools_Modification.hxx>
@@ -41,7 +44,9 @@
 #include <TopoDS_Iterator.hxx>
 
 #include "cad_model_data.h"
-#include "ffdkit/cad/bernstein_composition.h"
+#include "ffd_map.h"
+#include "geometry_fit.h"
+#include "piecewise_composition.h"
 
 namespace ffdkit::cad {
 
@@ -49,84 +54,6 @@ namespace {
 
 Eigen::Vector3d toEigen(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 gp_Pnt toPnt(const Eigen::Vector3d& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
-
-/// The lattice's FFD as a map of world points, and what the CAD deformation needs of it.
-class FfdMap {
- public:
-  FfdMap(const ffd::Lattice& lattice, const CadDeformOptions& options) : lattice_(lattice), options_(options) {
-    if (!lattice.restIsAffine())
-      throw CadError("CAD deformation needs a lattice whose rest shape is a box (an affine rest map)");
-    const auto kind = lattice.outsidePolicy().kind;
-    if (kind != ffd::OutsidePolicy::Kind::Identity && kind != ffd::OutsidePolicy::Kind::Extrapolate)
-      throw CadError("CAD deformation supports the Identity and Extrapolate outside policies (ClampEdge and Falloff "
-                     "are not polynomial outside the lattice; approximating them is not implemented)");
-    if (options.method == CadMethod::Exact) {
-      volume_ = BernsteinVolume::fromLattice(lattice);
-      if (options.maxDegree < 1 || options.maxDegree > Geom_BSplineSurface::MaxDegree())
-        throw CadError("maxDegree must be in [1, " + std::to_string(Geom_BSplineSurface::MaxDegree()) + "], got " +
-                       std::to_string(options.maxDegree));
-    }
-    Eigen::Affine3d toLocalParameter = Eigen::Affine3d::Identity();
-    toLocalParameter.linear() = lattice.restAffineLinear().inverse();
-    toLocalParameter.translation() = -(toLocalParameter.linear() * lattice.restAffineOffset());
-    toParameter_ = toLocalParameter * lattice.frame().inverse();
-    lipschitz_ = lipschitzBound();
-  }
-
-  const CadDeformOptions& options() const { return options_; }
-  const BernsteinVolume& volume() const { return *volume_; }
-  bool extrapolates() const { return lattice_.outsidePolicy().kind == ffd::OutsidePolicy::Kind::Extrapolate; }
-  /// A bound of |dX| / |dq| in the lattice (tolerances of moved edges and vertices scale by it).
-  double lipschitz() const { return lipschitz_; }
-
-  /// (u, v, w) of a world point.
-  Eigen::Vector3d parameters(const Eigen::Vector3d& world) const { return toParameter_ * world; }
-  bool inside(const Eigen::Vector3d& world) const {
-    const Eigen::Vector3d uvw = parameters(world);
-    const double eps = 1e-9;
-    return (uvw.array() >= lattice_.parameterMin().array() - eps).all() &&
-           (uvw.array() <= lattice_.parameterMax().array() + eps).all();
-  }
-
-  /// X(q) as the FFD engine evaluates it (Lattice::evaluate), the outside policy applied.
-  Eigen::Vector3d point(const Eigen::Vector3d& world) const {
-    if (!extrapolates() && !inside(world)) return world;
-    return lattice_.frame() * lattice_.evaluate(parameters(world));
-  }
-
- private:
-  double lipschitzBound() const {
-    // |J v| <= |R|_2 sqrt(sum_a c_a^2) |v|, R = d(uvw)/dq, c_a a bound of |dX/du_a| (the
-    // derivative's control net: degree times the largest difference of neighbours along a).
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    const Eigen::Vector3i n = lattice_.counts();
-    const Eigen::MatrixX3d world = (lattice_.frame() * lattice_.controlPoints().transpose()).transpose();
-    for (int k = 0; k < n[2]; ++k)
-      for (int j = 0; j < n[1]; ++j)
-        for (int i = 0; i < n[0]; ++i) {
-          const Eigen::Index at = lattice_.index(i, j, k);
-          if (i + 1 < n[0]) c[0] = std::max(c[0], (world.row(lattice_.index(i + 1, j, k)) - world.row(at)).norm());
-          if (j + 1 < n[1]) c[1] = std::max(c[1], (world.row(lattice_.index(i, j + 1, k)) - world.row(at)).norm());
-          if (k + 1 < n[2]) c[2] = std::max(c[2], (world.row(lattice_.index(i, j, k + 1)) - world.row(at)).norm());
-        }
-    for (int a = 0; a < 3; ++a) {
-      const auto& axis = lattice_.axis(a);
-      const double span = axis.domainMax() - axis.domainMin();
-      // A B-spline's derivative net divides by knot spans; degree / (smallest cell) bounds it.
-      double smallest = span;
-      for (int cell = 0; cell < axis.cellCount(); ++cell) smallest = std::min(smallest, axis.cellMax(cell) - axis.cellMin(cell));
-      c[a] *= axis.degree() / smallest;
-    }
-    Eigen::JacobiSVD<Eigen::Matrix3d> svd(toParameter_.linear());
-    return svd.singularValues()[0] * c.norm();
-  }
-
-  const ffd::Lattice& lattice_;
-  CadDeformOptions options_;
-  std::optional<BernsteinVolume> volume_;
-  Eigen::Affine3d toParameter_;
-  double lipschitz_ = 1.0;
-};
 
 Handle(Geom_BSplineSurface) asBSpline(const Handle(Geom_Surface)& surface, const std::string& where) {
   if (auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(surface)) return asBSpline(trimmed->BasisSurface(), where);
@@ -176,42 +103,58 @@ Handle(Geom_BSplineCurve) asBSpline(const Handle(Geom_Curve)& curve, double firs
   return bs;
 }
 
-/// Multiplicities to give the interior knots for a C0 join of Bezier pieces of `degree`.
-void pieceMultiplicities(TColStd_Array1OfInteger& mults, int degree) {
-  for (Standard_Integer i = mults.Lower(); i <= mults.Upper(); ++i)
-    mults(i) = (i == mults.Lower() || i == mults.Upper()) ? degree + 1 : degree;
-}
-
 void checkClamped(const TColStd_Array1OfInteger& mults, int degree, const std::string& where) {
   if (mults(mults.Lower()) != degree + 1 || mults(mults.Upper()) != degree + 1)
     throw CadError(where + ": an unclamped B-spline (end knot multiplicity below degree + 1) is not supported");
+}
+
+/// Where a face or edge lies relative to the lattice (sampled: 17 x 17 per face inside its trim,
+/// 33 points per edge).
+enum class Region { Inside, Outside, Across };
+
+const char* policyName(ffd::OutsidePolicy::Kind kind) {
+  switch (kind) {
+    case ffd::OutsidePolicy::Kind::Identity: return "Identity";
+    case ffd::OutsidePolicy::Kind::ClampEdge: return "ClampEdge";
+    case ffd::OutsidePolicy::Kind::Extrapolate: return "Extrapolate";
+    case ffd::OutsidePolicy::Kind::Falloff: return "Falloff";
+  }
+  return "?";
+}
+
+std::string formatNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
 }
 
 /// The deformation of one part's surfaces, curves and points (BRepTools_Modifier calls it for every
 /// face, edge and vertex once; shared ones are shared in the result).
 class FfdModification : public BRepTools_Modification {
  public:
-  FfdModification(const FfdMap& map, const gp_Trsf& placement, const TopoDS_Shape& shape, const std::string& part)
-      : map_(map), placement_(placement), part_(part) {
+  FfdModification(const FfdMap& map, const gp_Trsf& placement, const TopoDS_Shape& shape, const std::string& part,
+                  CadDeformReport& report)
+      : map_(map), placement_(placement), part_(part), report_(report) {
     TopExp::MapShapes(shape, TopAbs_FACE, faces_);
     TopExp::MapShapes(shape, TopAbs_EDGE, edges_);
   }
 
-  int maxDegree() const { return maxDegree_; }
+  /// True when a surface or curve of the part was approximated (its tolerances need settling).
+  bool approximated() const { return approximated_; }
 
   Standard_Boolean NewSurface(const TopoDS_Face& face, Handle(Geom_Surface)& surface, TopLoc_Location& location,
                               Standard_Real& tolerance, Standard_Boolean& revWires, Standard_Boolean& revFace) override {
     surface = BRep_Tool::Surface(face, location);
     if (surface.IsNull()) return Standard_False;
     const std::string where = "part '" + part_ + "', face " + std::to_string(faces_.FindIndex(face));
-    if (map_.options().method == CadMethod::Exact) requireInside(face, where);
     Handle(Geom_BSplineSurface) bs = asBSpline(surface, where);
     bs->Transform(placement_ * location.Transformation());
-    Handle(Geom_BSplineSurface) moved =
-        map_.options().method == CadMethod::Exact ? composeSurface(bs, where) : movePoles(bs);
+    double error = 0.0;
+    Handle(Geom_BSplineSurface) moved = map_.options().method == CadMethod::Exact ? deformSurface(face, bs, where, error)
+                                                                                  : movePoles(bs);
     if (!location.IsIdentity()) moved->Transform(location.Transformation().Inverted());
     surface = moved;
-    tolerance = BRep_Tool::Tolerance(face) * std::max(1.0, map_.lipschitz());
+    tolerance = BRep_Tool::Tolerance(face) * std::max(1.0, map_.lipschitz()) + error;
     revWires = Standard_False;
     revFace = Standard_False;
     return Standard_True;
@@ -223,27 +166,32 @@ class FfdModification : public BRepTools_Modification {
     curve = BRep_Tool::Curve(edge, location, first, last);
     if (curve.IsNull()) return Standard_False;
     const std::string where = "part '" + part_ + "', edge " + std::to_string(edges_.FindIndex(edge));
-    if (map_.options().method == CadMethod::Exact) requireInside(edge, where);
     Handle(Geom_BSplineCurve) bs = asBSpline(curve, first, last, where);
     bs->Transform(placement_ * location.Transformation());
-    Handle(Geom_BSplineCurve) moved = map_.options().method == CadMethod::Exact ? composeCurve(bs, where) : movePoles(bs);
+    double error = 0.0;
+    Handle(Geom_BSplineCurve) moved = map_.options().method == CadMethod::Exact
+                                          ? deformCurve(edge, bs, first, last, where, error)
+                                          : movePoles(bs);
     if (!location.IsIdentity()) moved->Transform(location.Transformation().Inverted());
     curve = moved;
-    tolerance = BRep_Tool::Tolerance(edge) * std::max(1.0, map_.lipschitz());
+    tolerance = BRep_Tool::Tolerance(edge) * std::max(1.0, map_.lipschitz()) + error;
     return Standard_True;
   }
 
   Standard_Boolean NewPoint(const TopoDS_Vertex& vertex, gp_Pnt& point, Standard_Real& tolerance) override {
-    const gp_Pnt world = BRep_Tool::Pnt(vertex).Transformed(placement_);
-    if (map_.options().method == CadMethod::Exact) requireInside(toEigen(world), "part '" + part_ + "', a vertex");
-    point = toPnt(map_.point(toEigen(world)));
+    const Eigen::Vector3d world = toEigen(BRep_Tool::Pnt(vertex).Transformed(placement_));
+    if (map_.options().method == CadMethod::Exact && !map_.options().approximate && map_.polynomial() &&
+        !map_.extrapolates() && !map_.inside(world))
+      throw outsideError("part '" + part_ + "', a vertex", world);
+    point = toPnt(map_.point(world));
     tolerance = BRep_Tool::Tolerance(vertex) * std::max(1.0, map_.lipschitz());
     return Standard_True;
   }
 
   Standard_Boolean NewCurve2d(const TopoDS_Edge& edge, const TopoDS_Face& face, const TopoDS_Edge&, const TopoDS_Face&,
                               Handle(Geom2d_Curve)& curve, Standard_Real& tolerance) override {
-    // The surfaces keep their parameters (same knots), so every p-curve stays as it is.
+    // The surfaces keep their parameters (same knots, or a fit on the same parameters), so every
+    // p-curve stays as it is.
     Standard_Real first = 0.0, last = 0.0;
     const Handle(Geom2d_Curve) original = BRep_Tool::CurveOnSurface(edge, face, first, last);
     if (original.IsNull()) return Standard_False;
@@ -262,183 +210,200 @@ class FfdModification : public BRepTools_Modification {
   }
 
  private:
-  void requireInside(const Eigen::Vector3d& world, const std::string& where) const {
-    if (map_.extrapolates() || map_.inside(world)) return;
+  CadError outsideError(const std::string& where, const Eigen::Vector3d& world) const {
     const Eigen::Vector3d uvw = map_.parameters(world);
-    throw CadError(where + " lies outside the lattice (lattice parameters (" + std::to_string(uvw.x()) + ", " +
-                   std::to_string(uvw.y()) + ", " + std::to_string(uvw.z()) +
-                   ")): with the Identity outside policy the FFD is not one polynomial there; enlarge the lattice "
-                   "or use the Extrapolate policy (approximating the Identity case is not implemented)");
+    return CadError(where + " lies outside the lattice (lattice parameters (" + std::to_string(uvw.x()) + ", " +
+                    std::to_string(uvw.y()) + ", " + std::to_string(uvw.z()) + ")): with the " +
+                    policyName(map_.lattice().outsidePolicy().kind) +
+                    " outside policy the FFD is not one polynomial there; enlarge the lattice, use the Extrapolate "
+                    "policy or allow the approximation");
   }
 
-  /// The trimmed face inside the lattice, checked on a 17 x 17 grid of its parameters classified
-  /// against its boundary (its surface may extend beyond it: that part is trimmed away).
-  void requireInside(const TopoDS_Face& face, const std::string& where) const {
-    if (map_.extrapolates()) return;
+  /// Where the points are relative to the lattice (the Extrapolate policy: always Inside).
+  Region regionOf(const std::vector<Eigen::Vector3d>& points) const {
+    if (map_.extrapolates()) return Region::Inside;
+    int inside = 0;
+    for (const Eigen::Vector3d& p : points) inside += map_.inside(p) ? 1 : 0;
+    return inside == static_cast<int>(points.size()) ? Region::Inside : inside == 0 ? Region::Outside : Region::Across;
+  }
+
+  /// A 17 x 17 grid of the face's parameters classified against its boundary (its surface may
+  /// extend beyond it: that part is trimmed away).
+  std::vector<Eigen::Vector3d> samplesOf(const TopoDS_Face& face) const {
     Standard_Real u0, u1, v0, v1;
     BRepTools::UVBounds(face, u0, u1, v0, v1);
     BRepAdaptor_Surface surface(face, false);
     BRepTopAdaptor_FClass2d classifier(face, Precision::PConfusion());
+    std::vector<Eigen::Vector3d> points;
     const int n = 16;
     for (int i = 0; i <= n; ++i)
       for (int j = 0; j <= n; ++j) {
         const gp_Pnt2d uv(u0 + (u1 - u0) * i / n, v0 + (v1 - v0) * j / n);
         if (classifier.Perform(uv) == TopAbs_OUT) continue;
-        requireInside(toEigen(surface.Value(uv.X(), uv.Y()).Transformed(placement_)), where);
+        points.push_back(toEigen(surface.Value(uv.X(), uv.Y()).Transformed(placement_)));
       }
+    return points;
   }
 
-  /// The edge inside the lattice, checked at 33 points of its range.
-  void requireInside(const TopoDS_Edge& edge, const std::string& where) const {
-    if (map_.extrapolates()) return;
+  /// 33 points of the edge's range.
+  std::vector<Eigen::Vector3d> samplesOf(const TopoDS_Edge& edge) const {
     BRepAdaptor_Curve curve(edge);
+    std::vector<Eigen::Vector3d> points;
     const int n = 32;
     for (int i = 0; i <= n; ++i) {
       const double t = curve.FirstParameter() + (curve.LastParameter() - curve.FirstParameter()) * i / n;
-      requireInside(toEigen(curve.Value(t).Transformed(placement_)), where);
+      points.push_back(toEigen(curve.Value(t).Transformed(placement_)));
     }
+    return points;
   }
 
-  void noteDegree(int degree, const std::string& where) {
-    const int limit = map_.options().maxDegree;
-    if (degree > limit)
-      throw CadError(where + ": the exact composition has degree " + std::to_string(degree) + ", above the limit of " +
-                     std::to_string(limit) + " (CadDeformOptions::maxDegree; a lattice of fewer control points lowers "
-                     "it; approximation above the limit is not implemented)");
-    maxDegree_ = std::max(maxDegree_, degree);
-  }
-
-  Handle(Geom_BSplineSurface) composeSurface(const Handle(Geom_BSplineSurface)& bs, const std::string& where) {
-    const int p = bs->UDegree();
-    const int q = bs->VDegree();
-    const int d = map_.volume().totalDegree();
-    noteDegree(std::max(d * p, d * q), where);
-    TColStd_Array1OfInteger originalUMults(1, bs->NbUKnots()), originalVMults(1, bs->NbVKnots());
-    bs->UMultiplicities(originalUMults);
-    bs->VMultiplicities(originalVMults);
-    checkClamped(originalUMults, p, where);
-    checkClamped(originalVMults, q, where);
-    // Bezier extraction by knot insertion: the pieces share their boundary poles and weights exactly.
-    for (Standard_Integer i = 2; i < bs->NbUKnots(); ++i) bs->IncreaseUMultiplicity(i, p);
-    for (Standard_Integer i = 2; i < bs->NbVKnots(); ++i) bs->IncreaseVMultiplicity(i, q);
-    const int nu = bs->NbUKnots() - 1;
-    const int nv = bs->NbVKnots() - 1;
-    const bool rational = bs->IsURational() || bs->IsVRational();
-    const int du = d * p;
-    const int dv = d * q;
-    TColgp_Array2OfPnt poles(1, nu * du + 1, 1, nv * dv + 1);
-    TColStd_Array2OfReal weights(1, nu * du + 1, 1, nv * dv + 1);
-    BezierPatch piece;
-    piece.degreeU = p;
-    piece.degreeV = q;
-    piece.poles.resize(piece.poleCount(), 3);
-    if (rational) piece.weights.resize(piece.poleCount());
-    for (int sv = 0; sv < nv; ++sv)
-      for (int su = 0; su < nu; ++su) {
-        for (int b = 0; b <= q; ++b)
-          for (int a = 0; a <= p; ++a) {
-            const Eigen::Index row = a + (p + 1) * b;
-            piece.poles.row(row) = toEigen(bs->Pole(su * p + a + 1, sv * q + b + 1)).transpose();
-            if (rational) piece.weights[row] = bs->Weight(su * p + a + 1, sv * q + b + 1);
-          }
-        const BezierPatch composed = composeBezierPatch(map_.volume(), piece);
-        for (int b = 0; b <= dv; ++b)
-          for (int a = 0; a <= du; ++a) {
-            const Eigen::Index row = a + (du + 1) * b;
-            poles(su * du + a + 1, sv * dv + b + 1) = toPnt(composed.poles.row(row).transpose());
-            weights(su * du + a + 1, sv * dv + b + 1) = rational ? composed.weights[row] : 1.0;
-          }
-      }
-    TColStd_Array1OfReal uk(1, nu + 1), vk(1, nv + 1);
-    bs->UKnots(uk);
-    bs->VKnots(vk);
-    TColStd_Array1OfInteger um(1, nu + 1), vm(1, nv + 1);
-    pieceMultiplicities(um, du);
-    pieceMultiplicities(vm, dv);
-    Handle(Geom_BSplineSurface) out = rational ? new Geom_BSplineSurface(poles, weights, uk, vk, um, vm, du, dv)
-                                               : new Geom_BSplineSurface(poles, uk, vk, um, vm, du, dv);
-    // The composition of a C^k join is C^k: remove the knots the C0 join of the pieces added, where
-    // OpenCASCADE finds them removable within rounding (a join stays C0 otherwise).
-    const double tolerance = removalTolerance(poles);
-    for (Standard_Integer i = 2; i <= nu; ++i)
-      out->RemoveUKnot(i, std::max(0, du - (p - originalUMults(i))), tolerance);
-    for (Standard_Integer i = 2; i <= nv; ++i)
-      out->RemoveVKnot(i, std::max(0, dv - (q - originalVMults(i))), tolerance);
-    return out;
-  }
-
-  Handle(Geom_BSplineCurve) composeCurve(const Handle(Geom_BSplineCurve)& bs, const std::string& where) {
-    const int p = bs->Degree();
-    const int d = map_.volume().totalDegree();
-    noteDegree(d * p, where);
-    TColStd_Array1OfInteger originalMults(1, bs->NbKnots());
-    bs->Multiplicities(originalMults);
-    checkClamped(originalMults, p, where);
-    for (Standard_Integer i = 2; i < bs->NbKnots(); ++i) bs->IncreaseMultiplicity(i, p);
-    const int n = bs->NbKnots() - 1;
-    const bool rational = bs->IsRational();
-    const int dp = d * p;
-    TColgp_Array1OfPnt poles(1, n * dp + 1);
-    TColStd_Array1OfReal weights(1, n * dp + 1);
-    BezierPatch piece;
-    piece.degreeU = p;
-    piece.degreeV = 0;
-    piece.poles.resize(p + 1, 3);
-    if (rational) piece.weights.resize(p + 1);
-    for (int s = 0; s < n; ++s) {
-      for (int a = 0; a <= p; ++a) {
-        piece.poles.row(a) = toEigen(bs->Pole(s * p + a + 1)).transpose();
-        if (rational) piece.weights[a] = bs->Weight(s * p + a + 1);
-      }
-      const BezierPatch composed = composeBezierPatch(map_.volume(), piece);
-      for (int a = 0; a <= dp; ++a) {
-        poles(s * dp + a + 1) = toPnt(composed.poles.row(a).transpose());
-        weights(s * dp + a + 1) = rational ? composed.weights[a] : 1.0;
-      }
+  /// Why the FFD of geometry of degree `degree` in the region cannot be composed exactly (empty:
+  /// it can, or, for the Identity policy wholly outside, it is the identity).
+  std::string whyNotExact(Region region, int degree, const std::vector<Eigen::Vector3d>& samples,
+                          const std::string& where) const {
+    if (!map_.polynomial())
+      return "the lattice's rest shape is not a box (a cylindrical lattice): its FFD is not a polynomial of world "
+             "coordinates";
+    const auto policy = map_.lattice().outsidePolicy().kind;
+    if (region == Region::Across || (region == Region::Outside && policy != ffd::OutsidePolicy::Kind::Identity)) {
+      if (!map_.options().approximate)
+        for (const Eigen::Vector3d& p : samples)
+          if (!map_.inside(p)) throw outsideError(where, p);
+      return std::string(region == Region::Across ? "it crosses the lattice's boundary" : "it lies outside the lattice") +
+             ", where the " + policyName(policy) + " outside policy is not the lattice's polynomial";
     }
-    TColStd_Array1OfReal knots(1, n + 1);
-    bs->Knots(knots);
-    TColStd_Array1OfInteger mults(1, n + 1);
-    pieceMultiplicities(mults, dp);
-    Handle(Geom_BSplineCurve) out = rational ? new Geom_BSplineCurve(poles, weights, knots, mults, dp)
-                                             : new Geom_BSplineCurve(poles, knots, mults, dp);
-    TColgp_Array2OfPnt asGrid(1, poles.Length(), 1, 1);
-    for (Standard_Integer i = 1; i <= poles.Length(); ++i) asGrid(i, 1) = poles(i);
-    const double tolerance = removalTolerance(asGrid);
-    for (Standard_Integer i = 2; i <= n; ++i) out->RemoveKnot(i, std::max(0, dp - (p - originalMults(i))), tolerance);
-    return out;
+    if (degree > map_.options().maxDegree)
+      return "the exact composition has degree " + std::to_string(degree) + ", above the limit of " +
+             std::to_string(map_.options().maxDegree);
+    return {};
   }
 
-  /// Knot removal may move the geometry by 1e-12 of the poles' extent (rounding, for a join that is
-  /// as smooth as the original's).
-  static double removalTolerance(const TColgp_Array2OfPnt& poles) {
-    Eigen::AlignedBox3d box;
-    for (Standard_Integer i = poles.LowerRow(); i <= poles.UpperRow(); ++i)
-      for (Standard_Integer j = poles.LowerCol(); j <= poles.UpperCol(); ++j) box.extend(toEigen(poles(i, j)));
-    return 1e-12 * std::max(box.diagonal().norm(), 1e-300);
+  /// The approximation is allowed, or a CadError saying why the geometry is not exact.
+  void requireApproximation(const std::string& where, const std::string& why) const {
+    if (!map_.options().approximate)
+      throw CadError(where + " cannot be deformed exactly: " + why +
+                     " (CadDeformOptions::approximate is off; a lattice of fewer control points lowers the degree)");
   }
+
+  void noteApproximation(const std::string& where, const std::string& why, double error, bool face) {
+    if (error > map_.tolerance())
+      throw CadError(where + ": approximating its deformation (" + why + ") reached a deviation of " +
+                     formatNumber(error) + ", above the tolerance of " + formatNumber(map_.tolerance()) +
+                     " (a larger tolerance, or a lattice that bends the part less, lets it through)");
+    report_.approximations.push_back(where + ": " + why + "; approximated within " + formatNumber(error));
+    report_.approximationError = std::max(report_.approximationError, error);
+    (face ? report_.approximatedFaces : report_.approximatedEdges) += 1;
+    approximated_ = true;
+  }
+
+  /// The degree of an approximation: at least 5 (or the original's), at most the limit.
+  int fitDegree(int original) const { return std::min(map_.options().maxDegree, std::max(5, original)); }
+
+  Handle(Geom_BSplineSurface) deformSurface(const TopoDS_Face& face, const Handle(Geom_BSplineSurface)& bs,
+                                            const std::string& where, double& error) {
+    const std::vector<Eigen::Vector3d> samples = samplesOf(face);
+    const Region region = regionOf(samples);
+    const int d = map_.totalDegree();
+    std::string why = whyNotExact(region, d * std::max(bs->UDegree(), bs->VDegree()), samples, where);
+    if (why.empty() && region == Region::Outside) {  // the Identity policy: the FFD leaves it where it is
+      noteDegree(std::max(bs->UDegree(), bs->VDegree()));
+      return bs;
+    }
+    if (why.empty()) {
+      TColStd_Array1OfInteger um(1, bs->NbUKnots()), vm(1, bs->NbVKnots());
+      bs->UMultiplicities(um);
+      bs->VMultiplicities(vm);
+      checkClamped(um, bs->UDegree(), where);
+      checkClamped(vm, bs->VDegree(), where);
+      const ExactSurface exact = composeSurfaceExactly(map_, bs);
+      if (exact.surface) {
+        noteDegree(std::max(exact.surface->UDegree(), exact.surface->VDegree()));
+        return exact.surface;
+      }
+      why = exact.whyNot;
+    }
+    requireApproximation(where, why);
+    Standard_Real u0, u1, v0, v1, su0, su1, sv0, sv1;
+    BRepTools::UVBounds(face, u0, u1, v0, v1);
+    bs->Bounds(su0, su1, sv0, sv1);
+    u0 = std::max(u0, su0);
+    u1 = std::min(u1, su1);
+    v0 = std::max(v0, sv0);
+    v1 = std::min(v1, sv1);
+    SurfaceCrossings kinks;
+    const Planes knotPlanes{map_.knotPlanes(0), map_.knotPlanes(1), map_.knotPlanes(2)};
+    if (map_.polynomial())
+      kinks = parameterLineCrossings(map_, bs, region == Region::Inside ? knotPlanes : map_.kinkPlanes());
+    const SurfaceFit fit = fitSurface(map_, bs, u0, u1, v0, v1, fitDegree(bs->UDegree()), fitDegree(bs->VDegree()),
+                                      map_.tolerance(), region == Region::Inside, kinks.u, kinks.v);
+    noteApproximation(where, why, fit.error, true);
+    noteDegree(std::max(fit.surface->UDegree(), fit.surface->VDegree()));
+    error = fit.error;
+    return fit.surface;
+  }
+
+  Handle(Geom_BSplineCurve) deformCurve(const TopoDS_Edge& edge, const Handle(Geom_BSplineCurve)& bs, double first,
+                                        double last, const std::string& where, double& error) {
+    const std::vector<Eigen::Vector3d> samples = samplesOf(edge);
+    const Region region = regionOf(samples);
+    std::string why = whyNotExact(region, map_.totalDegree() * bs->Degree(), samples, where);
+    if (why.empty() && region == Region::Outside) {
+      noteDegree(bs->Degree());
+      return bs;
+    }
+    if (why.empty()) {
+      TColStd_Array1OfInteger mults(1, bs->NbKnots());
+      bs->Multiplicities(mults);
+      checkClamped(mults, bs->Degree(), where);
+      const ExactCurve exact = composeCurveExactly(map_, bs);
+      if (exact.curve) {
+        noteDegree(exact.curve->Degree());
+        return exact.curve;
+      }
+      why = exact.whyNot;
+    }
+    requireApproximation(where, why);
+    const std::vector<double> kinks = map_.polynomial() ? curveCrossings(map_, bs, map_.kinkPlanes()) : std::vector<double>{};
+    const CurveFit fit = fitCurve(map_, bs, std::max(first, bs->FirstParameter()), std::min(last, bs->LastParameter()),
+                                  fitDegree(bs->Degree()), map_.tolerance(), kinks);
+    noteApproximation(where, why, fit.error, false);
+    noteDegree(fit.curve->Degree());
+    error = fit.error;
+    return fit.curve;
+  }
+
+  void noteDegree(int degree) { report_.maxDegree = std::max(report_.maxDegree, degree); }
 
   Handle(Geom_BSplineSurface) movePoles(const Handle(Geom_BSplineSurface)& bs) {
-    maxDegree_ = std::max({maxDegree_, bs->UDegree(), bs->VDegree()});
+    noteDegree(std::max(bs->UDegree(), bs->VDegree()));
+    Eigen::MatrixX3d poles(static_cast<Eigen::Index>(bs->NbUPoles()) * bs->NbVPoles(), 3);
+    Eigen::Index row = 0;
     for (Standard_Integer i = 1; i <= bs->NbUPoles(); ++i)
-      for (Standard_Integer j = 1; j <= bs->NbVPoles(); ++j)
-        bs->SetPole(i, j, toPnt(map_.point(toEigen(bs->Pole(i, j)))), bs->Weight(i, j));
+      for (Standard_Integer j = 1; j <= bs->NbVPoles(); ++j) poles.row(row++) = toEigen(bs->Pole(i, j)).transpose();
+    const Eigen::MatrixX3d moved = map_.points(poles);
+    row = 0;
+    for (Standard_Integer i = 1; i <= bs->NbUPoles(); ++i)
+      for (Standard_Integer j = 1; j <= bs->NbVPoles(); ++j, ++row)
+        bs->SetPole(i, j, toPnt(moved.row(row).transpose()), bs->Weight(i, j));
     return bs;
   }
 
   Handle(Geom_BSplineCurve) movePoles(const Handle(Geom_BSplineCurve)& bs) {
-    maxDegree_ = std::max(maxDegree_, bs->Degree());
-    for (Standard_Integer i = 1; i <= bs->NbPoles(); ++i)
-      bs->SetPole(i, toPnt(map_.point(toEigen(bs->Pole(i)))), bs->Weight(i));
+    noteDegree(bs->Degree());
+    Eigen::MatrixX3d poles(bs->NbPoles(), 3);
+    for (Standard_Integer i = 1; i <= bs->NbPoles(); ++i) poles.row(i - 1) = toEigen(bs->Pole(i)).transpose();
+    const Eigen::MatrixX3d moved = map_.points(poles);
+    for (Standard_Integer i = 1; i <= bs->NbPoles(); ++i) bs->SetPole(i, toPnt(moved.row(i - 1).transpose()), bs->Weight(i));
     return bs;
   }
 
   const FfdMap& map_;
   gp_Trsf placement_;
   std::string part_;
+  CadDeformReport& report_;
   TopTools_IndexedMapOfShape faces_;
   TopTools_IndexedMapOfShape edges_;
-  int maxDegree_ = 0;
+  bool approximated_ = false;
 };
 
 /// True when a sub-shape below the root carries a placement of its own (the modifier's frames
@@ -449,8 +414,61 @@ bool hasInnerLocations(const TopoDS_Shape& shape) {
   return false;
 }
 
-/// Max |S'(s,t) - X(S(s,t))| over a grid per face (the points inside its trim), and max distance between each edge's 3D curve
-/// and its curves on the faces that share it.
+/// After an approximation, an edge's curve and its curves on its faces no longer agree to
+/// rounding: each edge's tolerance grows to 1.5 times the largest distance measured between them
+/// (33 points), and each vertex's to cover its edges and the ends of their curves.
+void settleTolerances(const TopoDS_Shape& shape) {
+  BRep_Builder builder;
+  TopTools_IndexedDataMapOfShapeListOfShape facesOfEdge;
+  TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, facesOfEdge);
+  TopTools_IndexedDataMapOfShapeListOfShape edgesOfVertex;
+  TopExp::MapShapesAndAncestors(shape, TopAbs_VERTEX, TopAbs_EDGE, edgesOfVertex);
+  std::vector<double> vertexTolerance(edgesOfVertex.Extent() + 1, 0.0);
+  for (Standard_Integer e = 1; e <= facesOfEdge.Extent(); ++e) {
+    const TopoDS_Edge& edge = TopoDS::Edge(facesOfEdge.FindKey(e));
+    const bool degenerated = BRep_Tool::Degenerated(edge);
+    double gap = 0.0;
+    std::vector<gp_Pnt> ends;
+    TopoDS_Vertex first, last;
+    TopExp::Vertices(edge, first, last);
+    Standard_Real t0 = 0.0, t1 = 0.0;
+    BRep_Tool::Range(edge, t0, t1);
+    std::optional<BRepAdaptor_Curve> curve;
+    if (!degenerated && BRep_Tool::IsGeometric(edge)) curve.emplace(edge);
+    for (TopTools_ListIteratorOfListOfShape f(facesOfEdge(e)); f.More(); f.Next()) {
+      BRepAdaptor_Curve onFace(edge, TopoDS::Face(f.Value()));
+      for (int k = 0; k <= 32; ++k) {
+        const double t = t0 + (t1 - t0) * k / 32;
+        const gp_Pnt p = onFace.Value(t);
+        if (curve) gap = std::max(gap, curve->Value(t).Distance(p));
+        if (degenerated && !first.IsNull()) gap = std::max(gap, BRep_Tool::Pnt(first).Distance(p));
+      }
+      ends.push_back(onFace.Value(t0));
+      ends.push_back(onFace.Value(t1));
+    }
+    if (curve) {
+      ends.push_back(curve->Value(t0));
+      ends.push_back(curve->Value(t1));
+    }
+    const double tolerance = std::max(BRep_Tool::Tolerance(edge), 1.5 * gap);
+    builder.UpdateEdge(edge, tolerance);
+    for (const TopoDS_Vertex& vertex : {first, last}) {
+      if (vertex.IsNull()) continue;
+      const Standard_Integer v = edgesOfVertex.FindIndex(vertex);
+      double reach = tolerance;
+      for (std::size_t i = 0; i < ends.size(); ++i)
+        if ((i % 2 == 0) == (vertex.IsSame(first))) reach = std::max(reach, 1.5 * BRep_Tool::Pnt(vertex).Distance(ends[i]));
+      vertexTolerance[v] = std::max(vertexTolerance[v], reach);
+    }
+  }
+  for (Standard_Integer v = 1; v <= edgesOfVertex.Extent(); ++v) {
+    const TopoDS_Vertex& vertex = TopoDS::Vertex(edgesOfVertex.FindKey(v));
+    if (vertexTolerance[v] > BRep_Tool::Tolerance(vertex)) builder.UpdateVertex(vertex, vertexTolerance[v]);
+  }
+}
+
+/// Max |S'(s,t) - X(S(s,t))| over a grid per face (the points inside its trim), and max distance
+/// between each edge's 3D curve and its curves on the faces that share it.
 void measure(const TopoDS_Shape& original, const gp_Trsf& placement, const TopoDS_Shape& deformed,
              const BRepTools_Modifier& modifier, const FfdMap& map, int samples, CadDeformReport& report) {
   for (TopExp_Explorer it(original, TopAbs_FACE); it.More(); it.Next()) {
@@ -461,14 +479,20 @@ void measure(const TopoDS_Shape& original, const gp_Trsf& placement, const TopoD
     BRepAdaptor_Surface before(face, false);
     BRepAdaptor_Surface after(moved, false);
     BRepTopAdaptor_FClass2d classifier(face, Precision::PConfusion());
+    std::vector<Eigen::Vector3d> from, to;
     for (int i = 0; i < samples; ++i)
       for (int j = 0; j < samples; ++j) {
         const double u = u0 + (u1 - u0) * i / std::max(1, samples - 1);
         const double v = v0 + (v1 - v0) * j / std::max(1, samples - 1);
         if (classifier.Perform(gp_Pnt2d(u, v)) == TopAbs_OUT) continue;  // trimmed away
-        const Eigen::Vector3d expected = map.point(toEigen(before.Value(u, v).Transformed(placement)));
-        report.maxDeviation = std::max(report.maxDeviation, (toEigen(after.Value(u, v)) - expected).norm());
+        from.push_back(toEigen(before.Value(u, v).Transformed(placement)));
+        to.push_back(toEigen(after.Value(u, v)));
       }
+    Eigen::MatrixX3d world(static_cast<Eigen::Index>(from.size()), 3);
+    for (std::size_t k = 0; k < from.size(); ++k) world.row(static_cast<Eigen::Index>(k)) = from[k].transpose();
+    const Eigen::MatrixX3d expected = map.points(world);
+    for (std::size_t k = 0; k < to.size(); ++k)
+      report.maxDeviation = std::max(report.maxDeviation, (to[k] - expected.row(static_cast<Eigen::Index>(k)).transpose()).norm());
   }
   TopTools_IndexedDataMapOfShapeListOfShape facesOfEdge;
   TopExp::MapShapesAndAncestors(deformed, TopAbs_EDGE, TopAbs_FACE, facesOfEdge);
@@ -490,7 +514,7 @@ void measure(const TopoDS_Shape& original, const gp_Trsf& placement, const TopoD
 
 CadDeformResult deformCad(const CadModel& model, const ffd::Lattice& lattice, const CadDeformOptions& options) {
   if (options.samples < 0) throw CadError("samples must be >= 0, got " + std::to_string(options.samples));
-  const FfdMap map(lattice, options);
+  const FfdMap map(lattice, options, model.bounds().isEmpty() ? 1.0 : model.bounds().diagonal().norm());
   CadDeformResult result;
   double seconds = 0.0;
   for (const auto& part : model.data().parts) {
@@ -503,11 +527,12 @@ CadDeformResult deformCad(const CadModel& model, const ffd::Lattice& lattice, co
       const TopoDS_Shape nurbs = convert.Shape();
       if (hasInnerLocations(nurbs))
         throw CadError(context + ": sub-shapes with placements of their own are not supported yet");
-      Handle(FfdModification) modification = new FfdModification(map, placement, nurbs, part.name);
+      Handle(FfdModification) modification = new FfdModification(map, placement, nurbs, part.name, result.report);
       BRepTools_Modifier modifier(nurbs);
       modifier.Perform(modification);
       if (!modifier.IsDone()) throw CadError(context + ": OpenCASCADE's modifier did not complete");
       const TopoDS_Shape deformed = modifier.ModifiedShape(nurbs);
+      if (modification->approximated()) settleTolerances(deformed);
       seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       result.model.data().parts.push_back({part.name, deformed});
       TopTools_IndexedMapOfShape faces, edges;
@@ -515,11 +540,11 @@ CadDeformResult deformCad(const CadModel& model, const ffd::Lattice& lattice, co
       TopExp::MapShapes(nurbs, TopAbs_EDGE, edges);
       result.report.faces += faces.Extent();
       result.report.edges += edges.Extent();
-      result.report.maxDegree = std::max(result.report.maxDegree, modification->maxDegree());
       if (options.samples > 0) measure(nurbs, placement, deformed, modifier, map, options.samples, result.report);
     });
   }
   result.report.seconds = seconds;
+  if (!result.report.approximations.empty()) result.report.tolerance = map.tolerance();
   return result;
 }
 

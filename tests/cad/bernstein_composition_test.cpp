@@ -127,6 +127,47 @@ TEST(BernsteinComposition, RefusesABSplineLattice) {
   }
 }
 
+TEST(BernsteinComposition, EachCellOfABSplineLatticeIsOnePolynomial) {
+  // Cubic x quadratic x linear, uneven knots on u: each cell's Bernstein form evaluates to the
+  // lattice's FFD at points of that cell, and beyond the end cells to the extrapolated FFD.
+  Eigen::VectorXd knots(10);
+  knots << 0, 0, 0, 0, 0.2, 0.7, 1, 1, 1, 1;
+  ffd::BoxLatticeOptions options;
+  options.counts = {6, 4, 3};
+  options.bases = {ffd::AxisBasis::bsplineWithKnots(3, knots), ffd::AxisBasis::bspline(2), ffd::AxisBasis::bspline(1)};
+  ffd::Lattice lattice = ffd::makeBoxLattice(options);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> move(0.0, 0.05);
+  Eigen::MatrixX3d points = lattice.restPoints();
+  for (Eigen::Index i = 0; i < points.rows(); ++i) points.row(i) += Eigen::RowVector3d(move(rng), move(rng), move(rng));
+  lattice.setControlPoints(points);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int checked = 0;
+  for (int ci = 0; ci < lattice.axis(0).cellCount(); ++ci)
+    for (int cj = 0; cj < lattice.axis(1).cellCount(); ++cj)
+      for (int ck = 0; ck < lattice.axis(2).cellCount(); ++ck) {
+        const Eigen::Vector3i cell(ci, cj, ck);
+        const BernsteinVolume volume = BernsteinVolume::fromLatticeCell(lattice, cell);
+        EXPECT_EQ(volume.degrees, Eigen::Vector3i(3, 2, 1));
+        for (int sample = 0; sample < 20; ++sample) {
+          Eigen::Vector3d uvw;
+          for (int a = 0; a < 3; ++a) {
+            const double lo = lattice.axis(a).cellMin(cell[a]), hi = lattice.axis(a).cellMax(cell[a]);
+            uvw[a] = lo + (hi - lo) * unit(rng);
+          }
+          const Eigen::Vector3d world = lattice.restAffineLinear() * uvw + lattice.restAffineOffset();
+          EXPECT_LT((volume.evaluate(world) - ffdOf(lattice, world)).norm(), 1e-13);
+          ++checked;
+        }
+      }
+  EXPECT_EQ(checked, 3 * 2 * 2 * 20);
+  // Beyond the lattice the end cell's polynomial continues (Lattice::evaluate extrapolates it).
+  const Eigen::Vector3d beyond(1.2, 0.5, -0.1);
+  const BernsteinVolume last = BernsteinVolume::fromLatticeCell(lattice, {2, 0, 0});
+  EXPECT_LT((last.evaluate(beyond) - ffdOf(lattice, beyond)).norm(), 1e-12);
+  EXPECT_THROW(BernsteinVolume::fromLatticeCell(lattice, {3, 0, 0}), CadError);
+}
+
 TEST(BernsteinComposition, RefusesNonPositiveWeightsAndWrongPoleCounts) {
   const BernsteinVolume volume = BernsteinVolume::fromLattice(deformedLatticeAround(kUnitBox, {2, 2, 2}, 0.1));
   BezierPatch patch = wavyPatch(2, 1, true, 2);

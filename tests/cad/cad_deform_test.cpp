@@ -20,42 +20,6 @@ using test::deformedLatticeAround;
 using test::ffdOf;
 using test::ScratchFolder;
 
-/// The volume of the tessellation deformed by the lattice (Lattice::evaluate at every vertex), each
-/// triangle first split into 4^k (k = log2 of its longest edge / h, at most 6), flat.
-double deformedVolume(const CadTriangles& mesh, const ffd::Lattice& lattice, double h) {
-  double volume = 0.0;
-  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
-    const Eigen::Vector3d a = mesh.points.row(mesh.triangles(t, 0)), b = mesh.points.row(mesh.triangles(t, 1)),
-                          c = mesh.points.row(mesh.triangles(t, 2));
-    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const int level = std::clamp(static_cast<int>(std::ceil(std::log2(std::max(longest / h, 1.0)))), 0, 6);
-    const int n = 1 << level;
-    auto at = [&](int i, int j) { return ffdOf(lattice, a + (b - a) * double(i) / n + (c - a) * double(j) / n); };
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; i + j < n; ++j) {
-        const Eigen::Vector3d p = at(i, j), q = at(i + 1, j), r = at(i, j + 1);
-        volume += p.dot(q.cross(r)) / 6.0;
-        if (i + j + 2 <= n) {
-          const Eigen::Vector3d s = at(i + 1, j + 1);
-          volume += q.dot(s.cross(r)) / 6.0;
-        }
-      }
-  }
-  return volume;
-}
-
-/// The area of the tessellation's triangles deformed by the lattice (vertices mapped).
-double stretchedArea(const CadTriangles& mesh, const ffd::Lattice& lattice) {
-  double area = 0.0;
-  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
-    const Eigen::Vector3d a = ffdOf(lattice, mesh.points.row(mesh.triangles(t, 0)).transpose()),
-                          b = ffdOf(lattice, mesh.points.row(mesh.triangles(t, 1)).transpose()),
-                          c = ffdOf(lattice, mesh.points.row(mesh.triangles(t, 2)).transpose());
-    area += 0.5 * (b - a).cross(c - a).norm();
-  }
-  return area;
-}
-
 /// Lattice control points per axis for each sample: the composed degree (L+M+N) x (surface degree)
 /// stays within the default limit of 15.
 Eigen::Vector3i countsFor(SamplePart sample) {
@@ -84,6 +48,8 @@ TEST_P(ExactDeformation, WritesTheFfdOfTheSurfacesAsAValidWatertightSolid) {
   EXPECT_LE(result.report.maxGap, check.maxTolerance);
   EXPECT_GT(result.report.maxDegree, 1);
   EXPECT_LE(result.report.maxDegree, options.maxDegree);
+  EXPECT_EQ(result.report.approximatedFaces, 0);
+  EXPECT_EQ(result.report.approximatedEdges, 0);
 
   // Same topology: every face, edge and vertex went through the same map.
   EXPECT_EQ(result.model.counts().faces, model.counts().faces);
@@ -96,12 +62,11 @@ TEST_P(ExactDeformation, WritesTheFfdOfTheSurfacesAsAValidWatertightSolid) {
   // tessellation (deflection 3e-5 x size) is refined to triangles shorter than h before the map
   // (planar faces have large triangles that the map bends); the error left is estimated from
   // h = 2% and 1% of the size (chord error ~ h^2: e(h/2) ~ |V(h) - V(h/2)| / 3).
-  TessellationOptions fine;
-  fine.linearDeflection = 3e-5 * size;
-  const CadTriangles mesh = tessellate(model, fine);
-  const double coarse = deformedVolume(mesh, lattice, 0.02 * size);
-  const double finer = deformedVolume(mesh, lattice, 0.01 * size);
-  const double tessellationError = std::abs(coarse - finer) / 3.0 + stretchedArea(mesh, lattice) * fine.linearDeflection;
+  const auto [finer, tessellationError, area] = test::deformedTessellationVolume(model, [&](const Eigen::MatrixX3d& points) {
+    Eigen::MatrixX3d moved(points.rows(), 3);
+    for (Eigen::Index i = 0; i < points.rows(); ++i) moved.row(i) = ffdOf(lattice, points.row(i).transpose()).transpose();
+    return moved;
+  });
   EXPECT_NEAR(check.volume, finer, 3.0 * tessellationError);
   EXPECT_GT(std::abs(check.volume - checkModel(model).volume), 10.0 * tessellationError);
 
@@ -162,13 +127,15 @@ TEST(CadDeform, RestLatticeKeepsTheModel) {
   EXPECT_NEAR(checkModel(result.model).volume, volume, 1e-8 * volume);
 }
 
-TEST(CadDeform, PartOutsideTheLatticeIsRefusedWithTheIdentityPolicy) {
+TEST(CadDeform, PartOutsideTheLatticeIsRefusedWithTheIdentityPolicyWhenExactOnly) {
   const CadModel model = makeSamplePart(SamplePart::FilletedBox);
   Eigen::AlignedBox3d half = model.bounds();
   half.max().x() = half.center().x();
   const ffd::Lattice lattice = deformedLatticeAround(half, {2, 2, 2}, 0.05);
+  CadDeformOptions exactOnly;
+  exactOnly.approximate = false;
   try {
-    deformCad(model, lattice);
+    deformCad(model, lattice, exactOnly);
     FAIL() << "a part outside the lattice was deformed";
   } catch (const CadError& error) {
     const std::string message = error.what();
@@ -190,11 +157,13 @@ TEST(CadDeform, ExtrapolatePolicyDeformsAPartBeyondTheLattice) {
   EXPECT_TRUE(checkModel(result.model).valid);
 }
 
-TEST(CadDeform, DegreeAboveTheLimitIsRefused) {
+TEST(CadDeform, DegreeAboveTheLimitIsRefusedWhenExactOnly) {
   const CadModel model = makeSamplePart(SamplePart::Blade);
   const ffd::Lattice lattice = deformedLatticeAround(model.bounds(), {4, 4, 4}, 0.05);
+  CadDeformOptions exactOnly;
+  exactOnly.approximate = false;
   try {
-    deformCad(model, lattice);
+    deformCad(model, lattice, exactOnly);
     FAIL() << "degree 27 was accepted";
   } catch (const CadError& error) {
     EXPECT_NE(std::string(error.what()).find("degree 27"), std::string::npos) << error.what();

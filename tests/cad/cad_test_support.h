@@ -1,15 +1,21 @@
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include "ffdkit/cad/cad_model.h"
+#include "ffdkit/cad/tessellation.h"
 #include "ffdkit/ffd/box_lattice_options.h"
+#include "ffdkit/ffd/deformer.h"
+#include "ffdkit/ffd/embedding.h"
 #include "ffdkit/ffd/lattice.h"
 
 namespace ffdkit::cad::test {
@@ -17,10 +23,12 @@ namespace ffdkit::cad::test {
 /// A Bernstein box lattice around `box` (grown by 5% of its size on every side) with its control
 /// points displaced smoothly: a bend along x, a bulge in y and a twist-like shear in z, each up to
 /// `amount` x the box diagonal, and a widening towards the top (which changes the volume). counts = control points per axis.
-inline ffd::Lattice deformedLatticeAround(const Eigen::AlignedBox3d& box, const Eigen::Vector3i& counts, double amount) {
+/// `basis`: the basis of every axis (Bernstein by default).
+inline ffd::Lattice deformedLatticeAround(const Eigen::AlignedBox3d& box, const Eigen::Vector3i& counts, double amount,
+                                          const ffd::AxisBasis& basis = ffd::AxisBasis::bernstein()) {
   ffd::BoxLatticeOptions options;
   options.counts = counts;
-  options.bases = {ffd::AxisBasis::bernstein(), ffd::AxisBasis::bernstein(), ffd::AxisBasis::bernstein()};
+  options.bases = {basis, basis, basis};
   const Eigen::Vector3d pad = 0.05 * box.sizes();
   options.boxMin = box.min() - pad;
   options.boxMax = box.max() + pad;
@@ -46,6 +54,86 @@ inline Eigen::Vector3d ffdOf(const ffd::Lattice& lattice, const Eigen::Vector3d&
   const Eigen::Vector3d local = lattice.frame().inverse() * world;
   const Eigen::Vector3d uvw = lattice.restAffineLinear().inverse() * (local - lattice.restAffineOffset());
   return lattice.frame() * lattice.evaluate(uvw);
+}
+
+/// The FFD of world points as the engine deforms a mesh (embed, then Deformer::deform), the
+/// lattice's outside policy applied: what ClampEdge and Falloff do outside the lattice.
+inline Eigen::MatrixX3d engineFfd(const ffd::Lattice& lattice, const Eigen::MatrixX3d& world) {
+  ffd::Deformer deformer(ffd::embed(lattice, world));
+  return deformer.deform(lattice, world);
+}
+
+/// The volume of a closed triangle set whose points are mapped by `map` (#P x 3 -> #P x 3), each
+/// triangle first split into 4^k flat triangles (k = log2 of its longest edge / h, at most 6).
+template <class Map>
+double mappedVolume(const CadTriangles& mesh, Map&& map, double h) {
+  std::vector<Eigen::Vector3d> corners;
+  std::vector<int> levels;
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+    const Eigen::Vector3d a = mesh.points.row(mesh.triangles(t, 0)), b = mesh.points.row(mesh.triangles(t, 1)),
+                          c = mesh.points.row(mesh.triangles(t, 2));
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const int level = std::clamp(static_cast<int>(std::ceil(std::log2(std::max(longest / h, 1.0)))), 0, 6);
+    const int n = 1 << level;
+    levels.push_back(n);
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) corners.push_back(a + (b - a) * double(i) / n + (c - a) * double(j) / n);
+  }
+  Eigen::MatrixX3d points(static_cast<Eigen::Index>(corners.size()), 3);
+  for (std::size_t i = 0; i < corners.size(); ++i) points.row(static_cast<Eigen::Index>(i)) = corners[i].transpose();
+  const Eigen::MatrixX3d moved = map(points);
+  double volume = 0.0;
+  Eigen::Index base = 0;
+  for (int n : levels) {
+    // Row of (i, j) in the triangle's block: sum_{i' < i} (n + 1 - i') + j.
+    auto at = [&](int i, int j) -> Eigen::Vector3d {
+      return moved.row(base + i * (n + 1) - i * (i - 1) / 2 + j).transpose();
+    };
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        const Eigen::Vector3d p = at(i, j), q = at(i + 1, j), r = at(i, j + 1);
+        volume += p.dot(q.cross(r)) / 6.0;
+        if (i + j + 2 <= n) {
+          const Eigen::Vector3d s = at(i + 1, j + 1);
+          volume += q.dot(s.cross(r)) / 6.0;
+        }
+      }
+    base += static_cast<Eigen::Index>(n + 1) * (n + 2) / 2;
+  }
+  return volume;
+}
+
+/// The area of the triangles with their points mapped by `map`.
+template <class Map>
+double mappedArea(const CadTriangles& mesh, Map&& map) {
+  const Eigen::MatrixX3d moved = map(mesh.points);
+  double area = 0.0;
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+    const Eigen::Vector3d a = moved.row(mesh.triangles(t, 0)), b = moved.row(mesh.triangles(t, 1)),
+                          c = moved.row(mesh.triangles(t, 2));
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  return area;
+}
+
+/// The volume of a deformed tessellation, its estimated error and its area.
+struct TessellatedVolume {
+  double volume = 0.0;  ///< of the tessellation refined to triangles shorter than 1% of the size
+  double error = 0.0;   ///< from the difference to the 2% refinement (chord error ~ h^2) and the deflection
+  double area = 0.0;    ///< of the deformed triangles
+};
+
+/// The volume of the model deformed by `map` from its fine tessellation (deflection 3e-5 x size).
+template <class Map>
+TessellatedVolume deformedTessellationVolume(const CadModel& model, Map&& map) {
+  const double size = model.bounds().diagonal().norm();
+  TessellationOptions fine;
+  fine.linearDeflection = 3e-5 * size;
+  const CadTriangles mesh = tessellate(model, fine);
+  const double coarse = mappedVolume(mesh, map, 0.02 * size);
+  const double finer = mappedVolume(mesh, map, 0.01 * size);
+  const double area = mappedArea(mesh, map);
+  return {finer, std::abs(coarse - finer) / 3.0 + area * fine.linearDeflection, area};
 }
 
 }  // namespace ffdkit::cad::test

@@ -43,7 +43,13 @@ std::string fixed(double value, int digits) {
 std::vector<OptionSpec> withCadOptions(std::vector<OptionSpec> options) {
   options.push_back({"cad-method", '\0', "M", "STEP/IGES input: exact (default; the FFD composed with every surface) or "
                                               "poles (each NURBS pole moved, PyGeM's method: gaps, not the FFD)"});
-  options.push_back({"max-degree", '\0', "N", "STEP/IGES input, exact: the highest degree a composed surface may reach (15)"});
+  options.push_back({"cad-degree-limit", '\0', "N", "STEP/IGES input, exact: the highest degree per direction a composed "
+                                                   "surface or curve may have; above it the FFD is approximated (15, at most 25)"});
+  options.push_back({"cad-tolerance", '\0', "T", "STEP/IGES input, exact: the largest deviation from the FFD an approximated "
+                                                "surface or curve may have, in model units (1e-6 x the model's size)"});
+  options.push_back({"cad-exact-only", '\0', "", "STEP/IGES input: refuse what cannot be composed exactly (a degree above the "
+                                                "limit, a B-spline lattice's knot plane crossed across a face's parameter "
+                                                "lines, a part leaving the lattice) instead of approximating it"});
   options.push_back({"cad-check", '\0', "", "STEP/IGES input: measure the result (deviation from the FFD, gaps, "
                                             "BRepCheck validity, volume) and print it"});
   return options;
@@ -76,11 +82,18 @@ int runCadDeform(const Args& args) {
     else
       throw UsageError("--cad-method must be exact or poles, got '" + *method + "'");
   }
-  if (auto degree = args.value("max-degree")) {
-    const double value = parseNumber(*degree, "--max-degree");
-    if (value != std::floor(value) || value < 1 || value > 25) throw UsageError("--max-degree must be an integer in [1, 25]");
+  if (auto degree = args.value("cad-degree-limit")) {
+    const double value = parseNumber(*degree, "--cad-degree-limit");
+    if (value != std::floor(value) || value < 1 || value > 25)
+      throw UsageError("--cad-degree-limit must be an integer in [1, 25]");
     options.maxDegree = static_cast<int>(value);
   }
+  if (auto tolerance = args.value("cad-tolerance")) {
+    const double value = parseNumber(*tolerance, "--cad-tolerance");
+    if (!(value > 0.0) || !std::isfinite(value)) throw UsageError("--cad-tolerance must be a number > 0");
+    options.tolerance = value;
+  }
+  options.approximate = !args.flag("cad-exact-only");
   const bool check = args.flag("cad-check");
   if (check) options.samples = 9;
 
@@ -109,7 +122,20 @@ int runCadDeform(const Args& args) {
   console.say("wrote " + *output + " (" + std::to_string(result.model.partCount()) + " part(s), " +
               std::to_string(report.faces) + " faces, " + std::to_string(report.edges) + " edges, degree up to " +
               std::to_string(report.maxDegree) + ", " +
-              (options.method == cad::CadMethod::Exact ? "exact composition" : "poles moved") + ")");
+              (options.method == cad::CadMethod::Poles       ? "poles moved"
+               : report.approximations.empty() ? "exact composition"
+                                               : "exact composition, " + std::to_string(report.approximatedFaces) +
+                                                     " face(s) and " + std::to_string(report.approximatedEdges) +
+                                                     " edge(s) approximated") +
+              ")");
+  if (!report.approximations.empty()) {
+    console.say("approximated within " + fixed(report.tolerance, 3) + " of the FFD (largest deviation measured: " +
+                fixed(report.approximationError, 3) + "):");
+    const std::size_t shown = std::min<std::size_t>(report.approximations.size(), 10);
+    for (std::size_t i = 0; i < shown; ++i) console.say("  " + report.approximations[i]);
+    if (shown < report.approximations.size())
+      console.say("  ... and " + std::to_string(report.approximations.size() - shown) + " more");
+  }
   if (measured) {
     console.say("deviation from the FFD: " + fixed(report.maxDeviation, 3) + " (model size " +
                 fixed(model.bounds().diagonal().norm(), 4) + "); largest edge-face gap: " + fixed(report.maxGap, 3) +

@@ -37,6 +37,13 @@ struct BernsteinVolume {
   /// (makeBoxLattice): control points carried to the world by the lattice's frame.
   /// @throws CadError if an axis is not Bernstein or the rest lattice is not affine.
   static BernsteinVolume fromLattice(const ffd::Lattice& lattice);
+  /// The map of one cell of a box lattice with clamped B-spline (or Bernstein) axes: on the cell,
+  /// the FFD is one trivariate polynomial of degrees (p_u, p_v, p_w), here in Bernstein form over
+  /// the cell (Bezier extraction of each axis's basis functions), with `toParameter` mapping the
+  /// cell's parameter box onto [0, 1]^3. Beyond the lattice's end cells it is their polynomial
+  /// continued (what the Extrapolate policy evaluates).
+  /// @throws CadError if an axis is periodic, the rest lattice is not affine or `cell` is out of range.
+  static BernsteinVolume fromLatticeCell(const ffd::Lattice& lattice, const Eigen::Vector3i& cell);
 };
 
 /// The exact composition X(S(s, t)) of a Bernstein volume with a (rational) Bezier patch, as a
