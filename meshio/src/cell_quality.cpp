@@ -1,14 +1,25 @@
 #include "ffdkit/meshio/cell_quality.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <numbers>
 
 #include <Eigen/Geometry>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace ffdkit::meshio {
+
+namespace detail {
+void quadGeometryLanes(const double* x, const double* y, const double* z, int stride, int count, double* cx, double* cy,
+                       double* cz, double* ax, double* ay, double* az);
+}  // namespace detail
 
 namespace {
 
@@ -17,9 +28,19 @@ constexpr double kSmall = 1.0e-15;
 constexpr double kVerySmall = 1.0e-300;
 constexpr double kRootVerySmall = 1.0e-150;
 
-// Points one per row in memory: a face's points are read three times per check, and a
-// column-major N x 3 matrix puts each point's coordinates on three cache lines.
+// Cell centres one per row in memory: a face reads its two cells' centres.
 using PointRows = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+// The points as they are given (#P x 3, column-major), read in place: a copy one per row would
+// cost 24 bytes per point for little gain, since neighbouring faces share their points' lines.
+struct PointColumns {
+  explicit PointColumns(const Eigen::MatrixX3d& points)
+      : x(points.col(0).data()), y(points.col(1).data()), z(points.col(2).data()) {}
+  Eigen::Vector3d operator[](std::int32_t i) const { return {x[i], y[i], z[i]}; }
+  const double* x;
+  const double* y;
+  const double* z;
+};
 
 struct FaceGeometry {
   Eigen::Vector3d centre;
@@ -29,10 +50,10 @@ struct FaceGeometry {
 // A face's centre and area vector as OpenFOAM computes them (face::areaAndCentre): a triangle
 // directly; a polygon from the triangles between each edge and the point average, the centre
 // weighted by the triangles' areas.
-FaceGeometry faceGeometry(const PointRows& p, const PolyMeshCells& cells, std::int64_t f) {
+FaceGeometry faceGeometry(const PointColumns& p, const PolyMeshCells& cells, std::int64_t f) {
   const std::int32_t* v = cells.faceVertices.data() + cells.faceStarts[std::size_t(f)];
   const std::int64_t n = cells.faceStarts[std::size_t(f) + 1] - cells.faceStarts[std::size_t(f)];
-  auto point = [&](std::int64_t i) -> Eigen::Vector3d { return p.row(v[i]).transpose(); };
+  auto point = [&](std::int64_t i) -> Eigen::Vector3d { return p[v[i]]; };
   if (n == 3) {
     const Eigen::Vector3d a = point(0), b = point(1), c = point(2);
     return {(a + b + c) / 3.0, 0.5 * (b - a).cross(c - a)};
@@ -54,11 +75,57 @@ FaceGeometry faceGeometry(const PointRows& p, const PolyMeshCells& cells, std::i
   return {sumAc / (3.0 * sumA), 0.5 * sumN};
 }
 
+// Faces' geometry many at a time, one face per lane: quadrilaterals (a hexahedral mesh's faces)
+// by the kernel below, the others one by one by faceGeometry. Each lane's result is bit for bit
+// faceGeometry's.
+struct FaceLanes {
+  static constexpr int kLanes = 256;
+  // Inputs of the quadrilateral kernel: the 4 points of the face in each lane.
+  double x[4][kLanes], y[4][kLanes], z[4][kLanes];
+  // Results: centre and area vector of the face in each lane.
+  double cx[kLanes], cy[kLanes], cz[kLanes], ax[kLanes], ay[kLanes], az[kLanes];
+  int count = 0;
+  // Lanes of faces that are not quadrilaterals, with their geometry.
+  std::vector<std::pair<int, FaceGeometry>> others;
+
+  void clear() {
+    count = 0;
+    others.clear();
+  }
+  // Puts face f in the next lane.
+  void add(const PointColumns& p, const PolyMeshCells& cells, std::int64_t f) {
+    const std::int32_t begin = cells.faceStarts[std::size_t(f)];
+    const int lane = count++;
+    if (cells.faceStarts[std::size_t(f) + 1] - begin == 4) {
+      const std::int32_t* v = cells.faceVertices.data() + begin;
+      for (int k = 0; k < 4; ++k) {
+        x[k][lane] = p.x[v[k]];
+        y[k][lane] = p.y[v[k]];
+        z[k][lane] = p.z[v[k]];
+      }
+    } else {
+      for (int k = 0; k < 4; ++k) x[k][lane] = y[k][lane] = z[k][lane] = 0.0;
+      others.emplace_back(lane, faceGeometry(p, cells, f));
+    }
+  }
+  // Computes every lane's geometry.
+  void compute() {
+    detail::quadGeometryLanes(x[0], y[0], z[0], kLanes, count, cx, cy, cz, ax, ay, az);
+    for (const auto& [lane, g] : others) {
+      cx[lane] = g.centre.x(), cy[lane] = g.centre.y(), cz[lane] = g.centre.z();
+      ax[lane] = g.area.x(), ay[lane] = g.area.y(), az[lane] = g.area.z();
+    }
+  }
+  FaceGeometry operator[](int lane) const {
+    return {{cx[lane], cy[lane], cz[lane]}, {ax[lane], ay[lane], az[lane]}};
+  }
+};
+
 // checkMesh's skewness of a face (OpenFOAM source, primitiveMeshTools.C, faceSkewness and
 // boundaryFaceSkewness): the distance of the face centre from where the line between the cell
 // centres (or, at the boundary, the face normal through the cell centre) crosses the face,
 // over an estimate of the face's extent in that direction.
-double faceSkewness(const PointRows& p, const PolyMeshCells& cells, std::int64_t f, const FaceGeometry& face,
+double faceSkewness(const PointColumns& p, const PolyMeshCells& cells, std::int64_t f, const FaceGeometry& face,
                     const Eigen::Vector3d& ownCentre, const Eigen::Vector3d* neiCentre) {
   const Eigen::Vector3d cpf = face.centre - ownCentre;
   Eigen::Vector3d d;
@@ -74,143 +141,299 @@ double faceSkewness(const PointRows& p, const PolyMeshCells& cells, std::int64_t
   const Eigen::Vector3d svHat = sv / (sv.norm() + kRootVerySmall);
   double fd = spread * d.norm() + kRootVerySmall;
   for (std::int64_t k = cells.faceStarts[std::size_t(f)]; k < cells.faceStarts[std::size_t(f) + 1]; ++k)
-    fd = std::max(fd, std::abs(svHat.dot(p.row(cells.faceVertices[std::size_t(k)]).transpose() - face.centre)));
+    fd = std::max(fd, std::abs(svHat.dot(p[cells.faceVertices[std::size_t(k)]] - face.centre)));
   return sv.norm() / fd;
 }
 
 }  // namespace
 
-namespace {
+namespace detail {
 
-// Faces are visited in chunks: the geometry of a chunk's faces (and, in the last pass, their
-// checks) is computed in parallel into a small buffer, then used in face order, so that every sum
-// adds in the same order whatever the number of threads.
-constexpr std::int64_t kFaceChunk = std::int64_t(1) << 14;
-
-template <class Compute, class Use>
-void forFaceChunks(std::int64_t faces, Compute&& compute, Use&& use) {
-  for (std::int64_t begin = 0; begin < faces; begin += kFaceChunk) {
-    const std::int64_t end = std::min(faces, begin + kFaceChunk);
-#pragma omp parallel for schedule(static) if (end - begin > 1024)
-    for (std::int64_t f = begin; f < end; ++f) compute(f, f - begin);
-    for (std::int64_t f = begin; f < end; ++f) use(f, f - begin);
+// faceGeometry of `count` quadrilaterals, one per lane: point k of lane l at x[k * stride + l]
+// (and y, z). The same operations in the same order as faceGeometry's Eigen expressions for
+// n == 4, so that each result is bit for bit faceGeometry's; written for the compiler to
+// vectorise across lanes (SSE2, or AVX2 where the processor has it: AVX2 brings no fused
+// multiply-add, which would round differently).
+// The file is compiled with -fno-math-errno and -fno-trapping-math (meshio/CMakeLists.txt): the
+// square roots are of sums of squares, the results are the same, and without them errno's branch
+// and the division's possible trap keep the loop from being vectorised.
+__attribute__((target_clones("avx2", "default"))) void quadGeometryLanes(
+    const double* __restrict x, const double* __restrict y, const double* __restrict z, int stride, int count,
+    double* __restrict cx, double* __restrict cy, double* __restrict cz, double* __restrict ax, double* __restrict ay,
+    double* __restrict az) {
+  for (int l = 0; l < count; ++l) {
+    double mx = 0.0, my = 0.0, mz = 0.0;
+#pragma GCC unroll 4
+    for (int k = 0; k < 4; ++k) {
+      mx += x[k * stride + l];
+      my += y[k * stride + l];
+      mz += z[k * stride + l];
+    }
+    mx /= 4.0;
+    my /= 4.0;
+    mz /= 4.0;
+    double nX = 0.0, nY = 0.0, nZ = 0.0, sumA = 0.0, sX = 0.0, sY = 0.0, sZ = 0.0;
+#pragma GCC unroll 4
+    for (int k = 0; k < 4; ++k) {
+      const int j = (k + 1) & 3;
+      const double px = x[k * stride + l], py = y[k * stride + l], pz = z[k * stride + l];
+      const double qx = x[j * stride + l], qy = y[j * stride + l], qz = z[j * stride + l];
+      const double ex = qx - px, ey = qy - py, ez = qz - pz;  // b - a
+      const double fx = mx - px, fy = my - py, fz = mz - pz;  // average - a
+      const double nx = ey * fz - ez * fy, ny = ez * fx - ex * fz, nz = ex * fy - ey * fx;
+      const double twiceArea = std::sqrt(nx * nx + ny * ny + nz * nz);
+      nX += nx;
+      nY += ny;
+      nZ += nz;
+      sumA += twiceArea;
+      sX += twiceArea * (px + qx + mx);
+      sY += twiceArea * (py + qy + my);
+      sZ += twiceArea * (pz + qz + mz);
+    }
+    // Both results computed, one kept: a branch would keep the loop from being vectorised.
+    const bool flat = sumA < kRootVerySmall;
+    const double sumA3 = 3.0 * sumA;
+    const double qx = sX / sumA3, qy = sY / sumA3, qz = sZ / sumA3;
+    const double hx = 0.5 * nX, hy = 0.5 * nY, hz = 0.5 * nZ;
+    cx[l] = flat ? mx : qx;
+    cy[l] = flat ? my : qy;
+    cz[l] = flat ? mz : qz;
+    ax[l] = flat ? 0.0 : hx;
+    ay[l] = flat ? 0.0 : hy;
+    az[l] = flat ? 0.0 : hz;
   }
 }
 
-// What the last pass finds at one face.
-struct FaceCheck {
-  double ownPyramid = 0.0;
-  double neiPyramid = 0.0;  ///< internal faces
-  double cosine = 1.0;      ///< internal faces: between the centres' line and the area vector
-  double skewness = 0.0;
+}  // namespace detail
+
+
+namespace {
+
+// Cells and faces are visited in blocks of this many, in parallel; each block's share of a sum,
+// minimum or count is kept apart and the shares are combined in block order, so that every
+// result is the same whatever the number of threads.
+constexpr std::int64_t kBlock = std::int64_t(1) << 13;
+
+// The faces of each cell, in increasing face order: faces[starts[c] .. starts[c + 1]), each a
+// face index with kNeighbourSide set when the cell is the face's neighbour. 4 bytes per cell and
+// per (cell, face) pair: an owner list has at most INT32_MAX faces and a neighbour list fewer, so
+// the pairs number below 2^32.
+struct CellFaces {
+  static constexpr std::uint32_t kNeighbourSide = std::uint32_t(1) << 31;
+  std::vector<std::uint32_t> starts;
+  std::vector<std::uint32_t> faces;
+};
+
+// Built in parallel: each thread takes a range of cells and walks every face for those of its
+// range, so that each cell's faces come in face order without a sort.
+CellFaces cellFacesOf(const PolyMeshCells& cells) {
+  const std::int64_t nCells = cells.cellCount;
+  const std::int64_t faces = cells.faceCount();
+  const std::int64_t internal = std::int64_t(cells.neighbour.size());
+  const std::int32_t* owner = cells.owner.data();
+  const std::int32_t* neighbour = cells.neighbour.data();
+  CellFaces r;
+  r.starts.resize(std::size_t(nCells) + 1);
+  r.faces.resize(std::size_t(faces + internal));
+  std::uint32_t* starts = r.starts.data();
+  std::uint32_t* list = r.faces.data();
+#pragma omp parallel
+  {
+    int threads = 1, thread = 0;
+#ifdef _OPENMP
+    threads = omp_get_num_threads();
+    thread = omp_get_thread_num();
+#endif
+    const std::int32_t first = std::int32_t(nCells * thread / threads);
+    const std::int32_t last = std::int32_t(nCells * (thread + 1) / threads);
+    const std::uint32_t span = std::uint32_t(last - first);
+    for (std::int32_t c = first; c < last; ++c) starts[c + 1] = 0;
+    for (std::int64_t f = 0; f < faces; ++f) {
+      if (std::uint32_t(owner[f] - first) < span) ++starts[owner[f] + 1];
+      if (f < internal && std::uint32_t(neighbour[f] - first) < span) ++starts[neighbour[f] + 1];
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      starts[0] = 0;
+      for (std::int64_t c = 0; c < nCells; ++c) starts[c + 1] += starts[c];
+    }
+    // starts[c] is the cursor of cell c while the list fills (it ends at starts[c + 1]'s old value).
+    std::vector<std::uint32_t> cursor(starts + first, starts + last);
+    for (std::int64_t f = 0; f < faces; ++f) {
+      if (std::uint32_t(owner[f] - first) < span) list[cursor[std::size_t(owner[f] - first)]++] = std::uint32_t(f);
+      if (f < internal && std::uint32_t(neighbour[f] - first) < span)
+        list[cursor[std::size_t(neighbour[f] - first)]++] = std::uint32_t(f) | CellFaces::kNeighbourSide;
+    }
+  }
+  return r;
+}
+
+// Per block of cells: what the volumes add to the result.
+struct VolumeShare {
+  double min = std::numeric_limits<double>::infinity();
+  double max = -std::numeric_limits<double>::infinity();
+  double total = 0.0;
+  std::int64_t negative = 0;
+};
+
+// Per block of faces: what the face checks add to the result.
+struct FaceShare {
+  double minPyramid = std::numeric_limits<double>::infinity();
+  double minCosine = 1.0;
+  double sumCosines = 0.0;
+  double maxSkewness = 0.0;
+  std::int64_t incorrectlyOriented = 0;
 };
 
 }  // namespace
 
-CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& columns, const PolyMeshCells& cells,
+CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCells& cells,
                                const CellQualityOptions& options) {
-  const PointRows points = columns;
+  const PointColumns p(points);
   CellQuality q;
   const std::int64_t faces = cells.faceCount();
   const std::int64_t internal = std::int64_t(cells.neighbour.size());
-  q.cellCount = cells.cellCount;
+  const std::int64_t nCells = cells.cellCount;
+  q.cellCount = nCells;
   q.faceCount = faces;
-  const std::size_t nCells = std::size_t(cells.cellCount);
-  std::vector<FaceGeometry> geometry(std::size_t(std::min(faces, kFaceChunk)));
-  auto computeGeometry = [&](std::int64_t f, std::int64_t k) { geometry[std::size_t(k)] = faceGeometry(points, cells, f); };
+  std::vector<std::uint8_t> bad(std::size_t(nCells), 0);
+  PointRows centres(Eigen::Index(nCells), 3);
 
-  // First estimate of each cell centre: the average of its face centres.
-  PointRows estimate = PointRows::Zero(Eigen::Index(nCells), 3);
-  std::vector<std::int32_t> faceCounts(nCells, 0);
-  forFaceChunks(faces, computeGeometry, [&](std::int64_t f, std::int64_t k) {
-    const Eigen::Vector3d& c = geometry[std::size_t(k)].centre;
-    const std::size_t own = std::size_t(cells.owner[std::size_t(f)]);
-    estimate.row(Eigen::Index(own)) += c.transpose();
-    ++faceCounts[own];
-    if (f < internal) {
-      const std::size_t nei = std::size_t(cells.neighbour[std::size_t(f)]);
-      estimate.row(Eigen::Index(nei)) += c.transpose();
-      ++faceCounts[nei];
+  // Each cell's volume and centre (OpenFOAM: primitiveMeshCellCentresAndVols.C): the pyramids of
+  // its faces about a first estimate, the average of its face centres. A cell adds its faces in
+  // face order, as OpenFOAM's loops over owner and neighbour do for each cell.
+  {
+    const CellFaces cellFaces = cellFacesOf(cells);
+    const std::int64_t blocks = (nCells + kBlock - 1) / kBlock;
+    std::vector<VolumeShare> shares(static_cast<std::size_t>(blocks));
+#pragma omp parallel
+    {
+      auto lanes = std::make_unique<FaceLanes>();
+      std::vector<FaceGeometry> local;
+      // One cell's volume and centre from its faces' geometry (face(k): its k-th face, in face order).
+      auto addCell = [&](std::int64_t c, VolumeShare& share, auto&& face) {
+        const std::uint32_t begin = cellFaces.starts[std::size_t(c)], end = cellFaces.starts[std::size_t(c) + 1];
+        Eigen::Vector3d estimate = Eigen::Vector3d::Zero();
+        for (std::uint32_t k = begin; k < end; ++k) estimate += face(k).centre;
+        estimate /= double(std::max<std::uint32_t>(1, end - begin));
+        // 3 x the volume, and the centre weighted by it.
+        Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+        double volume3 = 0.0;
+        for (std::uint32_t k = begin; k < end; ++k) {
+          const FaceGeometry g = face(k);
+          const double sign = (cellFaces.faces[k] & CellFaces::kNeighbourSide) != 0 ? -1.0 : 1.0;
+          const double pyramid3 = sign * g.area.dot(g.centre - estimate);
+          weighted += pyramid3 * (0.75 * g.centre + 0.25 * estimate);
+          volume3 += pyramid3;
+        }
+        centres.row(Eigen::Index(c)) = (std::abs(volume3) > kVerySmall ? Eigen::Vector3d(weighted / volume3) : estimate).transpose();
+        const double volume = volume3 / 3.0;
+        if (volume < kVerySmall) {
+          ++share.negative;
+          bad[std::size_t(c)] = 1;
+        }
+        share.min = std::min(share.min, volume);
+        share.max = std::max(share.max, volume);
+        share.total += volume;
+      };
+      auto faceOf = [&](std::uint32_t k) { return std::int64_t(cellFaces.faces[k] & ~CellFaces::kNeighbourSide); };
+#pragma omp for schedule(dynamic, 4)
+      for (std::int64_t b = 0; b < blocks; ++b) {
+        VolumeShare& share = shares[std::size_t(b)];
+        const std::int64_t last = std::min(nCells, (b + 1) * kBlock);
+        for (std::int64_t c = b * kBlock; c < last;) {
+          // As many whole cells as fit the lanes; a cell with more faces than lanes on its own.
+          const std::int64_t first = c;
+          lanes->clear();
+          while (c < last && lanes->count + std::int64_t(cellFaces.starts[std::size_t(c) + 1] - cellFaces.starts[std::size_t(c)]) <=
+                                 FaceLanes::kLanes) {
+            for (std::uint32_t k = cellFaces.starts[std::size_t(c)]; k < cellFaces.starts[std::size_t(c) + 1]; ++k)
+              lanes->add(p, cells, faceOf(k));
+            ++c;
+          }
+          if (c == first) {
+            const std::uint32_t begin = cellFaces.starts[std::size_t(c)];
+            local.clear();
+            for (std::uint32_t k = begin; k < cellFaces.starts[std::size_t(c) + 1]; ++k) local.push_back(faceGeometry(p, cells, faceOf(k)));
+            addCell(c, share, [&](std::uint32_t k) { return local[k - begin]; });
+            ++c;
+            continue;
+          }
+          lanes->compute();
+          const std::uint32_t base = cellFaces.starts[std::size_t(first)];
+          for (std::int64_t d = first; d < c; ++d) addCell(d, share, [&](std::uint32_t k) { return (*lanes)[int(k - base)]; });
+        }
+      }
     }
-  });
-  for (std::size_t c = 0; c < nCells; ++c) estimate.row(Eigen::Index(c)) /= double(std::max(1, faceCounts[c]));
-  faceCounts = {};
-
-  // Volumes and centres from the face pyramids about the estimate (3 x volume accumulated).
-  PointRows centres = PointRows::Zero(Eigen::Index(nCells), 3);
-  Eigen::VectorXd volumes = Eigen::VectorXd::Zero(Eigen::Index(nCells));
-  auto addPyramid = [&](std::size_t cell, const FaceGeometry& face, double sign) {
-    const Eigen::Vector3d apex = estimate.row(Eigen::Index(cell)).transpose();
-    const double volume3 = sign * face.area.dot(face.centre - apex);
-    centres.row(Eigen::Index(cell)) += volume3 * (0.75 * face.centre + 0.25 * apex).transpose();
-    volumes[Eigen::Index(cell)] += volume3;
-  };
-  forFaceChunks(faces, computeGeometry, [&](std::int64_t f, std::int64_t k) {
-    const FaceGeometry& face = geometry[std::size_t(k)];
-    addPyramid(std::size_t(cells.owner[std::size_t(f)]), face, 1.0);
-    if (f < internal) addPyramid(std::size_t(cells.neighbour[std::size_t(f)]), face, -1.0);
-  });
-  for (std::size_t c = 0; c < nCells; ++c) {
-    const Eigen::Index i = Eigen::Index(c);
-    if (std::abs(volumes[i]) > kVerySmall) centres.row(i) /= volumes[i];
-    else centres.row(i) = estimate.row(i);
-  }
-  volumes /= 3.0;
-  estimate = PointRows();
-  geometry = {};
-
-  std::vector<char> bad(nCells, 0);
-  q.minVolume = std::numeric_limits<double>::infinity();
-  q.maxVolume = -std::numeric_limits<double>::infinity();
-  for (std::size_t c = 0; c < nCells; ++c) {
-    const double v = volumes[Eigen::Index(c)];
-    if (v < kVerySmall) {
-      ++q.negativeVolumeCells;
-      bad[c] = 1;
+    q.minVolume = std::numeric_limits<double>::infinity();
+    q.maxVolume = -std::numeric_limits<double>::infinity();
+    for (const VolumeShare& share : shares) {
+      q.negativeVolumeCells += share.negative;
+      q.minVolume = std::min(q.minVolume, share.min);
+      q.maxVolume = std::max(q.maxVolume, share.max);
+      q.totalVolume += share.total;
     }
-    q.minVolume = std::min(q.minVolume, v);
-    q.maxVolume = std::max(q.maxVolume, v);
-    q.totalVolume += v;
   }
 
-  // Each face's pyramids about the two cell centres, its non-orthogonality and skewness.
+  // Each face's pyramids about the two cell centres, its non-orthogonality and skewness
+  // (primitiveMeshCheck.C: checkFacePyramids, checkFaceOrthogonality, checkFaceSkewness).
+  const std::int64_t blocks = (faces + kBlock - 1) / kBlock;
+  std::vector<FaceShare> shares(static_cast<std::size_t>(blocks));
+  auto markBad = [&bad](std::int32_t cell) { std::atomic_ref<std::uint8_t>(bad[std::size_t(cell)]).store(1, std::memory_order_relaxed); };
+#pragma omp parallel
+  {
+    auto lanes = std::make_unique<FaceLanes>();
+#pragma omp for schedule(dynamic, 4)
+    for (std::int64_t b = 0; b < blocks; ++b) {
+      FaceShare& share = shares[std::size_t(b)];
+      const std::int64_t last = std::min(faces, (b + 1) * kBlock);
+      for (std::int64_t first = b * kBlock; first < last; first += FaceLanes::kLanes) {
+        const std::int64_t end = std::min(last, first + FaceLanes::kLanes);
+        lanes->clear();
+        for (std::int64_t f = first; f < end; ++f) lanes->add(p, cells, f);
+        lanes->compute();
+        for (std::int64_t f = first; f < end; ++f) {
+          const FaceGeometry face = (*lanes)[int(f - first)];
+          const std::int32_t own = cells.owner[std::size_t(f)];
+          const Eigen::Vector3d ownCentre = centres.row(Eigen::Index(own)).transpose();
+          const double ownPyramid = face.area.dot(face.centre - ownCentre) / 3.0;
+          share.minPyramid = std::min(share.minPyramid, ownPyramid);
+          if (ownPyramid < -kSmall) {
+            ++share.incorrectlyOriented;
+            markBad(own);
+          }
+          if (f < internal) {
+            const std::int32_t nei = cells.neighbour[std::size_t(f)];
+            const Eigen::Vector3d neiCentre = centres.row(Eigen::Index(nei)).transpose();
+            const double neiPyramid = face.area.dot(neiCentre - face.centre) / 3.0;
+            share.minPyramid = std::min(share.minPyramid, neiPyramid);
+            if (neiPyramid < -kSmall) {
+              ++share.incorrectlyOriented;
+              markBad(nei);
+            }
+            const Eigen::Vector3d d = neiCentre - ownCentre;
+            const double cosine = d.dot(face.area) / (d.norm() * face.area.norm() + kRootVerySmall);
+            share.minCosine = std::min(share.minCosine, cosine);
+            share.sumCosines += cosine;
+            share.maxSkewness = std::max(share.maxSkewness, faceSkewness(p, cells, f, face, ownCentre, &neiCentre));
+          } else {
+            share.maxSkewness = std::max(share.maxSkewness, faceSkewness(p, cells, f, face, ownCentre, nullptr));
+          }
+        }
+      }
+    }
+  }
   q.minPyramidVolume = std::numeric_limits<double>::infinity();
   double sumCosines = 0.0;
   double minCosine = 1.0;
-  std::vector<FaceCheck> checks(std::size_t(std::min(faces, kFaceChunk)));
-  auto computeCheck = [&](std::int64_t f, std::int64_t k) {
-    const FaceGeometry face = faceGeometry(points, cells, f);
-    FaceCheck& r = checks[std::size_t(k)];
-    const Eigen::Vector3d ownCentre = centres.row(Eigen::Index(cells.owner[std::size_t(f)])).transpose();
-    r.ownPyramid = face.area.dot(face.centre - ownCentre) / 3.0;
-    if (f < internal) {
-      const Eigen::Vector3d neiCentre = centres.row(Eigen::Index(cells.neighbour[std::size_t(f)])).transpose();
-      r.neiPyramid = face.area.dot(neiCentre - face.centre) / 3.0;
-      const Eigen::Vector3d d = neiCentre - ownCentre;
-      r.cosine = d.dot(face.area) / (d.norm() * face.area.norm() + kRootVerySmall);
-      r.skewness = faceSkewness(points, cells, f, face, ownCentre, &neiCentre);
-    } else {
-      r.skewness = faceSkewness(points, cells, f, face, ownCentre, nullptr);
-    }
-  };
-  forFaceChunks(faces, computeCheck, [&](std::int64_t f, std::int64_t k) {
-    const FaceCheck& r = checks[std::size_t(k)];
-    q.minPyramidVolume = std::min(q.minPyramidVolume, r.ownPyramid);
-    if (r.ownPyramid < -kSmall) {
-      ++q.incorrectlyOrientedFaces;
-      bad[std::size_t(cells.owner[std::size_t(f)])] = 1;
-    }
-    if (f < internal) {
-      q.minPyramidVolume = std::min(q.minPyramidVolume, r.neiPyramid);
-      if (r.neiPyramid < -kSmall) {
-        ++q.incorrectlyOrientedFaces;
-        bad[std::size_t(cells.neighbour[std::size_t(f)])] = 1;
-      }
-      minCosine = std::min(minCosine, r.cosine);
-      sumCosines += r.cosine;
-    }
-    q.maxSkewness = std::max(q.maxSkewness, r.skewness);
-  });
+  for (const FaceShare& share : shares) {
+    q.minPyramidVolume = std::min(q.minPyramidVolume, share.minPyramid);
+    q.incorrectlyOrientedFaces += share.incorrectlyOriented;
+    minCosine = std::min(minCosine, share.minCosine);
+    sumCosines += share.sumCosines;
+    q.maxSkewness = std::max(q.maxSkewness, share.maxSkewness);
+  }
   // The largest angle is the smallest cosine's (acos decreases): one acos, not one per face.
   if (internal > 0) q.maxNonOrthogonality = std::acos(std::clamp(minCosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
   // checkMesh's average: the angle of the mean cosine (not the mean angle).
@@ -218,7 +441,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& columns, const PolyMeshCe
     q.meanNonOrthogonality = std::acos(std::clamp(sumCosines / double(internal), -1.0, 1.0)) * 180.0 / std::numbers::pi;
   if (faces == 0) q.minPyramidVolume = 0.0;
   if (nCells == 0) q.minVolume = q.maxVolume = 0.0;
-  for (std::size_t c = 0; c < nCells; ++c)
+  for (std::size_t c = 0; c < bad.size(); ++c)
     if (bad[c] != 0) {
       ++q.badCells;
       if (q.firstBadCells.size() < options.listedIds) q.firstBadCells.push_back(std::int64_t(c));

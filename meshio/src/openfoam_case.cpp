@@ -14,6 +14,7 @@
 #include "ffdkit/meshio/openfoam.h"
 #include "ffdkit/meshio/read_failures.h"
 #include "formats.h"
+#include "parse_support.h"
 #include "openfoam_files.h"
 
 namespace ffdkit::meshio {
@@ -46,17 +47,46 @@ std::string readWholeFile(const fs::path& path) {
   return bytes;
 }
 
-// The bytes of one polyMesh file (inflated when it is .gz), after the confinement rule: a file
-// that is a symbolic link out of `root` is refused.
-std::string meshFileBytes(const fs::path& path, const fs::path& root, const OpenFoamReadOptions& options,
-                          ReadBudget& budget) {
+void refuseOutside(const fs::path& path, const fs::path& root, const OpenFoamReadOptions& options) {
   if (!options.confinement.allowOutside && !isInsideFolder(path, root))
     throw MeshIoError(path.string() + ": a symbolic link that leads outside the folder " + root.string() +
                       " (refused: a case must not make ffdkit read other files; allow it with --allow-outside)");
+}
+
+// The bytes of one polyMesh file (inflated when it is .gz), after the confinement rule: a file
+// that is a symbolic link out of `root` is refused. For the points file, which the writer keeps.
+std::string meshFileBytes(const fs::path& path, const fs::path& root, const OpenFoamReadOptions& options,
+                          ReadBudget& budget) {
+  refuseOutside(path, root, options);
   std::string bytes = readWholeFile(path);
   if (path.extension() == ".gz") return gunzipBytes(bytes, path.string(), budget);
   return bytes;
 }
+
+// A file's bytes for one parse (faces, owner, neighbour): read into fresh memory that is neither
+// cleared first nor kept, backed by huge pages where the system allows.
+class ParsedFileBytes {
+ public:
+  ParsedFileBytes(const fs::path& path, const fs::path& root, const OpenFoamReadOptions& options, ReadBudget& budget) {
+    refuseOutside(path, root, options);
+    size_ = detail::readRegularFile(path, [this](std::size_t size) {
+      data_ = std::make_unique_for_overwrite<char[]>(size);
+      detail::adviseHugePages(data_.get(), size);
+      return data_.get();
+    });
+    if (path.extension() == ".gz") {
+      inflated_ = gunzipBytes(view(), path.string(), budget);
+      data_.reset();
+      size_ = 0;
+    }
+  }
+  std::string_view view() const { return data_ ? std::string_view(data_.get(), size_) : std::string_view(inflated_); }
+
+ private:
+  std::unique_ptr<char[]> data_;
+  std::size_t size_ = 0;
+  std::string inflated_;
+};
 
 fs::path requiredFile(const fs::path& polyMesh, const std::string& name) {
   fs::path path = meshFile(polyMesh, name);
@@ -106,19 +136,20 @@ OpenFoamMesh readMeshFolder(const fs::path& folder, const OpenFoamReadOptions& o
   if (!options.readCells) return mesh;
 
   const fs::path facesPath = requiredFile(mesh.polyMesh, "faces");
-  readFoamFaces(meshFileBytes(facesPath, folder, options, budget), facesPath.string(), mesh.points.rows(), budget,
+  readFoamFaces(ParsedFileBytes(facesPath, folder, options, budget).view(), facesPath.string(), mesh.points.rows(), budget,
                 mesh.cells);
   const std::int64_t faceCount = std::int64_t(mesh.cells.faceStarts.size()) - 1;
 
   const fs::path ownerPath = requiredFile(mesh.polyMesh, "owner");
-  mesh.cells.owner = readFoamLabels(meshFileBytes(ownerPath, folder, options, budget), ownerPath.string(), INT32_MAX - 1, budget);
+  mesh.cells.owner =
+      readFoamLabels(ParsedFileBytes(ownerPath, folder, options, budget).view(), ownerPath.string(), INT32_MAX - 1, budget);
   if (std::int64_t(mesh.cells.owner.size()) != faceCount)
     throw MeshIoError(ownerPath.string() + ": " + std::to_string(mesh.cells.owner.size()) + " owner cells for the " +
                       std::to_string(faceCount) + " faces of " + facesPath.filename().string() + " (one per face)");
 
   const fs::path neighbourPath = requiredFile(mesh.polyMesh, "neighbour");
   mesh.cells.neighbour =
-      readFoamLabels(meshFileBytes(neighbourPath, folder, options, budget), neighbourPath.string(), INT32_MAX - 1, budget);
+      readFoamLabels(ParsedFileBytes(neighbourPath, folder, options, budget).view(), neighbourPath.string(), INT32_MAX - 1, budget);
   if (std::int64_t(mesh.cells.neighbour.size()) > faceCount)
     throw MeshIoError(neighbourPath.string() + ": " + std::to_string(mesh.cells.neighbour.size()) +
                       " neighbour cells for " + std::to_string(faceCount) + " faces (at most one per face)");
@@ -133,8 +164,11 @@ OpenFoamMesh readMeshFolder(const fs::path& folder, const OpenFoamReadOptions& o
       throw MeshIoError(neighbourPath.string() + ": face " + std::to_string(f) + " has cell " +
                         std::to_string(mesh.cells.owner[f]) + " on both sides");
   checkCellFaces(mesh.cells, ownerPath, budget);
-  // What the cell check allocates per cell (centres, volumes, a first centre estimate, a count).
-  budget.chargeBytes(std::uint64_t(mesh.cells.cellCount), 64, "cells: centres and volumes of the cell check");
+  // What the cell check allocates (meshio/cell_quality.h): each cell's faces (4 bytes per cell
+  // and per cell-face pair), then its centre and a flag.
+  budget.chargeBytes(std::uint64_t(mesh.cells.cellCount) + std::uint64_t(faceCount) + mesh.cells.neighbour.size(), 4,
+                     "cells: the faces of each cell for the cell check");
+  budget.chargeBytes(std::uint64_t(mesh.cells.cellCount), 25, "cells: centres of the cell check");
 
   const fs::path boundaryPath = requiredFile(mesh.polyMesh, "boundary");
   mesh.patches = readFoamBoundary(meshFileBytes(boundaryPath, folder, options, budget), boundaryPath.string(),
@@ -170,8 +204,18 @@ void syncPath(const fs::path& path) {
   ::close(fd);
 }
 
-void copyFolder(const fs::path& from, const fs::path& to, const fs::path& root,
-                const std::function<bool(const fs::path&)>& skip, bool durable) {
+void startWriteback(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::sync_file_range(fd, 0, 0, SYNC_FILE_RANGE_WRITE);
+  ::close(fd);
+}
+
+namespace {
+
+// copyFolder's walk; `copied` receives every file and folder made, to be flushed at the end.
+void copyInto(const fs::path& from, const fs::path& to, const fs::path& root,
+              const std::function<bool(const fs::path&)>& skip, bool durable, std::vector<fs::path>& copied) {
   for (const fs::directory_entry& entry : fs::directory_iterator(from)) {
     const fs::path target = to / entry.path().filename();
     if (skip(entry.path())) continue;
@@ -185,15 +229,27 @@ void copyFolder(const fs::path& from, const fs::path& to, const fs::path& root,
     }
     if (fs::is_directory(entry.status())) {
       fs::create_directory(target);
-      copyFolder(entry.path(), target, root, skip, durable);
+      copyInto(entry.path(), target, root, skip, durable, copied);
     } else if (fs::is_regular_file(entry.status())) {
       fs::copy_file(entry.path(), target);
-      if (durable) syncPath(target);
+      // The disk starts on this file while the next ones are copied; the flush at the end waits.
+      if (durable) startWriteback(target);
+      copied.push_back(target);
     } else {
       throw MeshIoError(entry.path().string() + ": neither a file nor a folder (not copied)");
     }
   }
-  if (durable) syncPath(to);
+  copied.push_back(to);
+}
+
+}  // namespace
+
+void copyFolder(const fs::path& from, const fs::path& to, const fs::path& root,
+                const std::function<bool(const fs::path&)>& skip, bool durable) {
+  std::vector<fs::path> copied;
+  copyInto(from, to, root, skip, durable, copied);
+  if (durable)
+    for (const fs::path& path : copied) syncPath(path);
 }
 
 void checkFolderOutput(const fs::path& rootGiven, const fs::path& output) {
@@ -265,11 +321,16 @@ void writeOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points,
     fs::create_directories(parent);
     fs::create_directory(temporary);
     const fs::path pointsPath = mesh.polyMesh / mesh.pointsFile.fileName;
+    const fs::path relativePolyMesh = fs::relative(mesh.polyMesh, mesh.root);
+    const fs::path newPoints = temporary / relativePolyMesh / mesh.pointsFile.fileName;
+    // The new points file first, its flush started, then the rest copied and everything flushed:
+    // the disk writes while the copies are made.
+    fs::create_directories(newPoints.parent_path());
+    detail::writeNewFile(newPoints, bytes, false);
+    if (options.durable) detail::startWriteback(newPoints);
     detail::copyFolder(mesh.root, temporary, mesh.root, [&](const fs::path& p) { return p == pointsPath; },
                        options.durable);
-    const fs::path relativePolyMesh = fs::relative(mesh.polyMesh, mesh.root);
-    detail::writeNewFile(temporary / relativePolyMesh / mesh.pointsFile.fileName, bytes, options.durable);
-    if (options.durable) detail::syncPath(temporary / relativePolyMesh);
+    if (options.durable) detail::syncPath(newPoints);
     detail::renameFolderIntoPlace(temporary, output, options.durable);
   } catch (const fs::filesystem_error& e) {
     fs::remove_all(temporary, ec);

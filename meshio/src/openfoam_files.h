@@ -16,8 +16,14 @@ void writeNewFile(const std::filesystem::path& path, std::string_view bytes, boo
 /// fsync of a file or folder, when it can be opened (a best effort: the data were written).
 void syncPath(const std::filesystem::path& path);
 
+/// Starts writing a file's data to disk without waiting (sync_file_range); a later syncPath waits
+/// only for what is left. A best effort, as syncPath.
+void startWriteback(const std::filesystem::path& path);
+
 /// Copies the folder `from` into `to` (which exists), but the entries `skip` says true for; a
-/// symbolic link is copied as the file it leads to, which must be inside `root`.
+/// symbolic link is copied as the file it leads to, which must be inside `root`. When `durable`,
+/// every file copied and every folder is flushed to disk before it returns (each file's writing
+/// to disk is started as soon as it is copied, so the disk works while the next is copied).
 /// @throws MeshIoError for a link outside `root`, a link to a folder, or what is neither a file
 /// nor a folder; std::filesystem::filesystem_error for a failed copy.
 void copyFolder(const std::filesystem::path& from, const std::filesystem::path& to, const std::filesystem::path& root,

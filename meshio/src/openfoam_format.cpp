@@ -3,6 +3,7 @@
 // by N raw items and `)`). Every list size is checked against the bytes left and charged to the
 // budget before anything is allocated.
 #include <algorithm>
+#include <bit>
 #include <climits>
 #include <cstring>
 
@@ -151,6 +152,21 @@ void needBinary(const FoamScanner& s, const char* what, std::int64_t count, std:
            " bytes at offset " + std::to_string(s.pos()) + ", the file has " + std::to_string(s.bytesLeft()) + " left");
 }
 
+// Whether the n native 32-bit labels at `at` all lie in [lo, hi]: one pass without a branch per
+// label (the compiler vectorises it).
+bool allInRange(const char* at, std::size_t n, std::int32_t lo, std::int32_t hi) {
+  constexpr std::size_t kRun = 4096;
+  std::int32_t run[kRun];
+  for (std::size_t first = 0; first < n; first += kRun) {
+    const std::size_t count = std::min(kRun, n - first);
+    std::memcpy(run, at + first * sizeof(std::int32_t), count * sizeof(std::int32_t));
+    bool outside = false;
+    for (std::size_t i = 0; i < count; ++i) outside |= (run[i] < lo) | (run[i] > hi);
+    if (outside) return false;
+  }
+  return true;
+}
+
 template <class T>
 T loadBinary(const char* at, bool bigEndian) {
   char raw[sizeof(T)];
@@ -176,6 +192,14 @@ void readLabelList(FoamScanner& s, const FoamFileLayout& layout, const char* wha
   if (layout.binary) {
     needBinary(s, what, n, std::uint64_t(layout.labelBytes));
     const char* at = s.text().data() + s.pos();
+    if (layout.labelBytes == 4 && layout.bigEndian == (std::endian::native == std::endian::big) &&
+        allInRange(at, std::size_t(n), std::int32_t(lo), std::int32_t(std::min<std::int64_t>(hi, kMaxLabel32)))) {
+      // The file's own layout: one copy; the item-by-item loop below only finds the bad label.
+      if (n > 0) std::memcpy(out.data(), at, std::size_t(n) * sizeof(std::int32_t));
+      s.advance(std::size_t(n) * sizeof(std::int32_t));
+      closeList(s, what, layout.binary, n);
+      return;
+    }
     for (std::int64_t i = 0; i < n; ++i, at += layout.labelBytes) {
       const std::int64_t value = binaryLabel(at, layout);
       if (value < lo || value > hi)
@@ -202,10 +226,31 @@ Eigen::MatrixX3d readFoamPoints(std::string_view bytes, const std::string& sourc
   const int listLine = s.line();
   budget.chargePoints(std::uint64_t(n), "points: a list of " + std::to_string(n));
   Eigen::MatrixX3d points(Eigen::Index(n), 3);
+  detail::adviseHugePages(points);
   if (layout.binary) {
     needBinary(s, "point", n, itemBytes);
     const char* at = bytes.data() + s.pos();
-    for (Eigen::Index i = 0; i < n; ++i)
+    bool fast = layout.scalarBytes == 8 && layout.bigEndian == (std::endian::native == std::endian::big);
+    if (fast) {
+      // The file's own doubles: copied to the columns in one pass; a non-finite value (all exponent
+      // bits set) makes the item-by-item loop below run to name it.
+      double* x = points.col(0).data();
+      double* y = points.col(1).data();
+      double* z = points.col(2).data();
+      std::uint64_t special = 0;
+      constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        std::uint64_t raw[3];
+        std::memcpy(raw, at + std::size_t(i) * 24, 24);
+        special |= std::uint64_t((raw[0] & kExponent) == kExponent) | std::uint64_t((raw[1] & kExponent) == kExponent) |
+                   std::uint64_t((raw[2] & kExponent) == kExponent);
+        x[i] = std::bit_cast<double>(raw[0]);
+        y[i] = std::bit_cast<double>(raw[1]);
+        z[i] = std::bit_cast<double>(raw[2]);
+      }
+      fast = special == 0;
+    }
+    for (Eigen::Index i = 0; !fast && i < n; ++i)
       for (int c = 0; c < 3; ++c, at += layout.scalarBytes) {
         const double value = layout.scalarBytes == 8 ? loadBinary<double>(at, layout.bigEndian)
                                                      : double(loadBinary<float>(at, layout.bigEndian));
@@ -242,18 +287,17 @@ void readFoamFaces(std::string_view bytes, const std::string& source, std::int64
   const std::int64_t lastPoint = pointCount - 1;
   if (layout.className == "faceCompactList") {
     // Two lists: the #F + 1 offsets of each face's points, then the points.
-    std::vector<std::int32_t> starts;
+    std::vector<std::int32_t>& starts = cells.faceStarts;
     readLabelList(s, layout, "face offset", 0, kMaxLabel32, budget, starts, kMaxLabel32);
     if (starts.empty()) s.fail("face offset: the list is empty (it needs the number of faces + 1 offsets)");
     if (starts.front() != 0) s.fail("face offset 0: " + std::to_string(starts.front()) + ", expected 0");
-    budget.chargeBytes(starts.size(), sizeof(std::int64_t), "faces: offsets");
-    cells.faceStarts.assign(starts.begin(), starts.end());
-    for (std::size_t f = 0; f + 1 < starts.size(); ++f)
+    bool short_ = false;  // one branch-free pass; the loop below names the first short face
+    for (std::size_t f = 0; f + 1 < starts.size(); ++f) short_ |= starts[f + 1] - starts[f] < 3;
+    for (std::size_t f = 0; short_ && f + 1 < starts.size(); ++f)
       if (starts[f + 1] - starts[f] < 3)
         s.fail(Where{"face", std::int64_t(f)}.text() + ": " + std::to_string(starts[f + 1] - starts[f]) +
                " points (offsets " + std::to_string(starts[f]) + ".." + std::to_string(starts[f + 1]) +
                "); a face needs at least 3 and the offsets must increase");
-    starts = {};
     readLabelList(s, layout, "face point", 0, lastPoint, budget, cells.faceVertices);
     if (std::int64_t(cells.faceVertices.size()) != cells.faceStarts.back())
       s.fail("faces: the offsets end at " + std::to_string(cells.faceStarts.back()) + " but the point list has " +
@@ -263,7 +307,7 @@ void readFoamFaces(std::string_view bytes, const std::string& source, std::int64
   }
   if (layout.binary) s.fail("faces: a binary faceList is not supported (OpenFOAM writes binary faces as faceCompactList)");
   const std::int64_t n = openList(s, "face", kMaxLabel32, 8);  // "3(0 0 0)"
-  budget.chargeBytes(std::uint64_t(n) + 1, sizeof(std::int64_t), "faces: offsets");
+  budget.chargeBytes(std::uint64_t(n) + 1, sizeof(std::int32_t), "faces: offsets");
   cells.faceStarts.resize(std::size_t(n) + 1);
   cells.faceStarts[0] = 0;
   // At most one point per two bytes left: the vertex list never grows past what the file holds.
@@ -273,6 +317,8 @@ void readFoamFaces(std::string_view bytes, const std::string& source, std::int64
   for (std::int64_t f = 0; f < n; ++f) {
     const Where where{"face", f};
     const std::int64_t k = s.label(where, 3, std::int64_t(std::min<std::size_t>(most, kMaxLabel32)));
+    if (std::int64_t(cells.faceVertices.size()) + k > kMaxLabel32)
+      s.fail(where.text() + ": the faces hold more than " + std::to_string(kMaxLabel32) + " points in all (more than a polyMesh of label=32 holds)");
     if (cells.faceVertices.size() + std::size_t(k) > charged) {
       const std::size_t want = std::min(most, std::max<std::size_t>({64, 2 * charged, cells.faceVertices.size() + std::size_t(k)}));
       budget.chargeBytes(want - charged, sizeof(std::int32_t), "faces: point indices");
@@ -282,7 +328,7 @@ void readFoamFaces(std::string_view bytes, const std::string& source, std::int64
     s.expect('(', where);
     for (std::int64_t j = 0; j < k; ++j) cells.faceVertices.push_back(std::int32_t(s.label(where, 0, lastPoint)));
     s.expect(')', where);
-    cells.faceStarts[std::size_t(f) + 1] = std::int64_t(cells.faceVertices.size());
+    cells.faceStarts[std::size_t(f) + 1] = std::int32_t(cells.faceVertices.size());
   }
   closeList(s, "face", false, n);
   expectEnd(s);

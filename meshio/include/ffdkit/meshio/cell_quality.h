@@ -48,8 +48,10 @@ struct CellQuality {
   double volumeRatio() const { return maxVolume > 0.0 ? minVolume / maxVolume : 0.0; }
 };
 
-/// Checks every cell of `cells` over `points` (#P x 3). Memory: 7 doubles per cell and a copy of
-/// the points (one per row); faces are visited three times without storing their geometry.
+/// Checks every cell of `cells` over `points` (#P x 3, read in place). Runs on every core
+/// (OpenMP); the result does not depend on the number of threads. Memory: 4 bytes per cell and per
+/// cell-face pair while the cell volumes are computed, then 3 doubles and a byte per cell; a face's
+/// geometry is computed when needed (three times in all) and never stored.
 CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCells& cells,
                                const CellQualityOptions& options = {});
 

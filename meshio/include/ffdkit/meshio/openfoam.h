@@ -26,7 +26,9 @@ namespace ffdkit::meshio {
 /// points out of cell owner[f]; the first neighbour.size() faces are internal and point into
 /// cell neighbour[f], the others are boundary faces.
 struct PolyMeshCells {
-  std::vector<std::int64_t> faceStarts;    ///< #F + 1 offsets into faceVertices, faceStarts[0] = 0
+  /// #F + 1 offsets into faceVertices, faceStarts[0] = 0 (32 bits, as OpenFOAM's faceCompactList
+  /// of label=32 stores them: a polyMesh holds fewer than 2^31 face points).
+  std::vector<std::int32_t> faceStarts;
   std::vector<std::int32_t> faceVertices;  ///< point indices, >= 3 per face
   std::vector<std::int32_t> owner;         ///< #F cell indices
   std::vector<std::int32_t> neighbour;     ///< #internal faces cell indices
