@@ -7,7 +7,8 @@
 // again, and after redoing the rest too, undoing everything gives the file again.
 //   FFDKIT_MONKEY_SEED     the plan's seed (default 1)
 //   FFDKIT_MONKEY_ACTIONS  how many actions (default 2000)
-//   FFDKIT_MONKEY_LOG=1    prints every action as it runs (with what it aimed at), each undo and
+//   FFDKIT_MONKEY_LOG=1    prints every action as it runs (with what it aimed at, then "@frame",
+//                          "playing" while the timeline plays, and "#" the undo stack's position), each undo and
 //                          redo of the walks, and a segment's largest difference from the file
 //   monkey_gui_test --replay   prints the plan of the seed and count, runs nothing
 #include <QAbstractButton>
@@ -512,7 +513,8 @@ class MonkeyGuiTest : public QObject {
         const std::string answered = answers.lastAnswers();
         if (log)
           std::cerr << "  " << what << (aim.empty() ? "" : " -> " + aim) << (answered.empty() ? "" : " [" + answered + "]")
-                    << std::endl;
+                    << " @" << timeline->timeline().frame() << (timeline->timeline().playing() ? " playing" : "") << " #"
+                    << w->commands().position() << std::endl;
         if (!answers.unanswered().empty())
           QFAIL((where + ", action " + what + ": a dialog stayed open: " + answers.unanswered().front()).c_str());
         QVERIFY2(w->isVisible(), (where + ", action " + what + ": the window closed").c_str());
