@@ -317,6 +317,26 @@ TEST(SceneViewUpdates, DragNormalsFollowTheExactNormalsAndAreTheExactOnesAtRelea
   }
 }
 
+TEST(SceneViewUpdates, ObjectMemoryCountsTheDrawnDataAndTheDragStateWhileADragLasts) {
+  // The view holds at least each vertex's double point (24 bytes) and float normal (12) and each
+  // triangle's three indices (4 bytes each at the least); following a drag adds beta, W and the
+  // unnormalised normals in float (28 bytes per vertex of the dragged object), freed at release.
+  DragSession s(60);
+  const Eigen::Index n = s.deformer.pointCount(s.sphere);
+  const SceneViewMemory before = s.view.objectMemory();
+  EXPECT_EQ(before.vertices, n);
+  EXPECT_GE(before.bytes, std::size_t(n) * (24 + 12) + std::size_t(s.triangles().rows()) * 3 * 4);
+  EXPECT_DOUBLE_EQ(before.bytesPerVertex(), double(before.bytes) / double(n));
+  ASSERT_EQ(s.controller.press(s.ray(0.5), s.tolerance()), InteractionController::PressResult::Widget);
+  s.controller.drag(s.ray(0.75));
+  s.controller.drag(s.ray(1.0));
+  const SceneViewMemory dragging = s.view.objectMemory();
+  EXPECT_GE(dragging.bytes, before.bytes + std::size_t(n) * 28);
+  s.controller.release();
+  EXPECT_LE(s.view.objectMemory().bytes + std::size_t(n) * 28, dragging.bytes);
+  EXPECT_EQ(SceneViewMemory{}.bytesPerVertex(), 0.0);
+}
+
 TEST(SceneViewUpdates, AGestureOfTwoControlPointsRecomputesTheNormalsAtEveryStep) {
   // The followed form covers one control point; two (pairwise D x D' terms) are recomputed.
   DragSession s(40);
