@@ -112,11 +112,29 @@ TEST(CliCadDeform, WrongUsesAreRefusedWithTheirReason) {
   EXPECT_EQ(run.status, 2) << run.output;
   EXPECT_NE(run.output.find("-o OUTPUT.step"), std::string::npos) << run.output;
 
-  run = runCli("deform -w " + (folder / "bspline.json").string() + " " + in + " -o " + (folder / "o.step").string(),
+  // A cubic B-spline lattice: the fillets would compose to degree 18, above the limit; exact only,
+  // that is refused and nothing is written.
+  run = runCli("deform -w " + (folder / "bspline.json").string() + " " + in + " -o " + (folder / "o.step").string() +
+                   " --cad-exact-only",
                folder / "log.txt");
   EXPECT_EQ(run.status, 1) << run.output;
-  EXPECT_NE(run.output.find("Bernstein"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("degree 18, above the limit of 15"), std::string::npos) << run.output;
   EXPECT_FALSE(std::filesystem::exists(folder / "o.step"));
+
+  run = runCli("deform -w " + (folder / "bspline.json").string() + " " + in + " -o " + (folder / "o.step").string() +
+                   " --cad-degree-limit 26",
+               folder / "log.txt");
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("--cad-degree-limit must be an integer in [1, 25]"), std::string::npos) << run.output;
+
+  // Allowed to approximate (the default), it writes the part and says what it approximated.
+  run = runCli("deform -w " + (folder / "bspline.json").string() + " " + in + " -o " + (folder / "o.step").string() +
+                   " --cad-tolerance 1e-3 --cad-check",
+               folder / "log.txt");
+  EXPECT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("approximated within 0.001 of the FFD"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("BRepCheck: valid"), std::string::npos) << run.output;
+  EXPECT_TRUE(std::filesystem::exists(folder / "o.step"));
 
   std::ofstream(folder / "broken.step") << "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n#1=FOO(;\n";
   run = runCli("deform -w " + (folder / "bernstein.json").string() + " " + (folder / "broken.step").string() + " -o " +
