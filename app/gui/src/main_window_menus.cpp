@@ -126,7 +126,10 @@ void MainWindow::createFileMenu() {
   addFileAction(file, tr("&Import Mesh..."), "actionImportMesh", false, meshFilter,
                 [this](const std::filesystem::path& p) { importMesh(p); });
   addImportUpAxisMenu(file);
-  addFileAction(file, tr("&Export Deformed Mesh..."), "actionExportMesh", true, meshFilter,
+  // A scene's volume mesh is exported in its own format (.msh, .su2, ...; docs/volume-meshes.md).
+  const QString exportFilter = tr("Meshes and volume meshes (*.obj *.ply *.stl *.vtp *.vtk *.xyz *.npy *.msh *.su2 *.unv "
+                                  "*.nodes *.k *.key *.mdpa *.cgns);;All files (*)");
+  addFileAction(file, tr("&Export Deformed Mesh..."), "actionExportMesh", true, exportFilter,
                 [this](const std::filesystem::path& p) { exportMesh(p); });
   QAction* exportCad = addFileAction(file, tr("Export Deformed &CAD Model..."), "actionExportCad", true, cadFilter,
                                      [this](const std::filesystem::path& p) {
