@@ -12,7 +12,11 @@ void bindFfd(py::module_& module);
 void bindBoxBernstein(py::module_& module);
 /// ffdkit.ffd.ShapeConstraints, enclosedVolume, checkFolding (shape_constraints_bindings.cpp).
 void bindShapeConstraints(py::module_& module);
+/// Control-point weights on ffdkit.ffd.Lattice (weights_bindings.cpp), after bindFfd.
+void bindLatticeWeights(py::module_& module);
 void bindWidgets(py::module_& module);
+/// Control-point weights on ffdkit.widgets.WidgetModel (weights_bindings.cpp), after bindWidgets.
+void bindWidgetWeights(py::module_& module);
 void bindScenes(py::module_& module);
 /// Parts of ffdkit.scenes bound in animation_bindings.cpp, called by bindScenes: the keyframe
 /// enums (before Scene), then Scene's object, lattice and animation editing (after Scene).

@@ -133,10 +133,12 @@ animation applied during a gesture.)doc");
 
   py::module_ ffdModule = module.def_submodule("ffd", "The FFD / EFFD engine (C++ namespace ffdkit::ffd).");
   python::bindFfd(ffdModule);
+  python::bindLatticeWeights(ffdModule);
   python::bindBoxBernstein(ffdModule);
   python::bindShapeConstraints(ffdModule);
   py::module_ widgetsModule = module.def_submodule("widgets", "The headless widget model (ffdkit::widgets).");
   python::bindWidgets(widgetsModule);
+  python::bindWidgetWeights(widgetsModule);
   py::module_ scenesModule =
       module.def_submodule("scenes", "Scenes, widget and scene files, mesh I/O, generators (ffdkit::scenes).");
   python::bindScenes(scenesModule);

@@ -45,8 +45,15 @@ void printWidgets(const widgets::WidgetModel& model) {
   for (auto lattice : model.pipelineOrder()) {
     const Eigen::Vector3i n = model.counts(lattice);
     const auto parent = model.parentLattice(lattice);
-    std::printf("lattice %s: %dx%dx%d control points, %s, %zu cells\n", model.name(lattice).c_str(), n.x(), n.y(),
-                n.z(), parent ? ("child of " + model.name(*parent)).c_str() : "root", model.cellsOf(lattice).size());
+    // A rational lattice (Lamousin & Waggenspack 1994) says so, with the range of its weights.
+    std::string rational;
+    if (model.isRational(lattice)) {
+      const Eigen::VectorXd w = model.weights(lattice);
+      rational = format(", rational (weights %g to %g)", w.minCoeff(), w.maxCoeff());
+    }
+    std::printf("lattice %s: %dx%dx%d control points, %s, %zu cells%s\n", model.name(lattice).c_str(), n.x(), n.y(),
+                n.z(), parent ? ("child of " + model.name(*parent)).c_str() : "root", model.cellsOf(lattice).size(),
+                rational.c_str());
   }
   for (auto affine : model.widgets(widgets::WidgetType::Affine)) {
     const auto cell = model.attachedCell(affine);
