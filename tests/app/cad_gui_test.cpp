@@ -5,7 +5,11 @@
 // cad::deformCad of the same part by the same lattice, a valid solid whose volume is the volume
 // the deformed triangles shown enclose. A scene without a CAD object exports nothing and says why.
 #include <QAction>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QInputDialog>
 #include <QMessageBox>
+#include <QSettings>
 #include <QTemporaryDir>
 
 #include <cmath>
@@ -39,9 +43,9 @@ double filletedBoxVolume() {
 
 // The tessellation the app shows for a part (its default import tolerance, 1e-3 of the size, and
 // edges up to 2% of the size).
-cad::CadTriangles defaultTessellation(const cad::CadModel& part) {
+cad::CadTriangles defaultTessellation(const cad::CadModel& part, double tolerance = 1e-3) {
   cad::TessellationOptions options;
-  options.linearDeflection = 1e-3 * part.bounds().diagonal().norm();
+  options.linearDeflection = tolerance * part.bounds().diagonal().norm();
   options.maxEdgeLength = 0.02 * part.bounds().diagonal().norm();
   return cad::tessellate(part, options);
 }
@@ -61,7 +65,10 @@ class CadGuiTest : public QObject {
     window_ = openWindow(QSize(1000, 760));
     QVERIFY(window_ != nullptr);
   }
-  void cleanup() { window_.reset(); }
+  void cleanup() {
+    window_.reset();
+    QSettings().remove("cadTessellationTolerance");  // every test imports with the default
+  }
 
   void importingAStepFileShowsItsTessellation() {
     MainWindow& w = *window_;
@@ -81,6 +88,36 @@ class CadGuiTest : public QObject {
     const double volume = cad::enclosedVolume(object.mesh.points, object.mesh.triangles);
     QVERIFY2(std::abs(volume - filletedBoxVolume()) < 2e-3 * filletedBoxVolume(),
              qPrintable(QString("%1 vs %2").arg(volume).arg(filletedBoxVolume())));
+  }
+
+  void theTessellationToleranceTypedInItsDialogHoldsForTheNextImport() {
+    MainWindow& w = *window_;
+    {
+      ModalAnswers answers({[](QWidget* modal) {
+        auto* dialog = qobject_cast<QInputDialog*>(modal);
+        QVERIFY2(dialog != nullptr && dialog->objectName() == "cadTessellationDialog", qPrintable(modal->objectName()));
+        auto* spin = dialog->findChild<QDoubleSpinBox*>();
+        QVERIFY(spin != nullptr);
+        spin->selectAll();
+        QTest::keyClicks(spin, "0.02");
+        auto* buttons = dialog->findChild<QDialogButtonBox*>();
+        QVERIFY(buttons != nullptr);
+        QTest::mouseClick(buttons->button(QDialogButtonBox::Ok), Qt::LeftButton);
+      }});
+      clickMenuItem(w, action(w, "actionCadTessellation"));
+      QTRY_COMPARE(answers.answered(), 1);
+    }
+    {
+      ModalAnswers answers({chooseFile(folder_ / "part.step")});
+      clickMenuItem(w, action(w, "actionImportMesh"));
+      QTRY_COMPARE(answers.answered(), 1);
+    }
+    QTRY_COMPARE(w.scene().objects().size(), std::size_t(1));
+    const cad::CadModel part = cad::readStep(folder_ / "part.step");
+    const cad::CadTriangles coarse = defaultTessellation(part, 0.02);
+    QVERIFY(w.scene().objects().front().mesh.points == coarse.points);
+    const cad::CadTriangles fine = defaultTessellation(part);
+    QVERIFY(coarse.points.rows() != fine.points.rows() || coarse.points != fine.points);
   }
 
   void aDraggedArrowExportsTheExactDeformation() {
