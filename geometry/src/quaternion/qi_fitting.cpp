@@ -34,10 +34,10 @@ Eigen::VectorXd chordLengthParameters(const Eigen::MatrixX3d& points, const std:
   for (std::size_t j = 0; j + 1 < breaks.size(); ++j) {
     double total = 0.0;
     for (int m = breaks[j] + 1; m <= breaks[j + 1]; ++m) total += (points.row(m) - points.row(m - 1)).norm();
-    if (!(total > 0.0)) {
+    if (!(total > 0.0) || !std::isfinite(total)) {
       std::ostringstream msg;
-      msg << "chordLengthParameters: segment " << j << " (points " << breaks[j] << ".." << breaks[j + 1]
-          << ") has zero chord length";
+      msg << "chordLengthParameters: segment " << j << " (points " << breaks[j] << ".." << breaks[j + 1] << ") has "
+          << (total > 0.0 ? "a chord length beyond the range of doubles (points too far apart)" : "zero chord length");
       throw QuaternionCurveError(msg.str());
     }
     double acc = 0.0;

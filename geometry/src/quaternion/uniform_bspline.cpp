@@ -77,6 +77,7 @@ UniformCubicBSpline fitLeastSquaresCubicBSpline(const Eigen::MatrixX3d& points, 
         << u.size() << " parameters for " << points.rows() << " points";
     throw QuaternionCurveError(msg.str());
   }
+  if (!u.allFinite()) throw QuaternionCurveError("fitLeastSquaresCubicBSpline: expected finite parameters");
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(points.rows(), spans + 3);
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     const int m = std::clamp(static_cast<int>(std::floor(u[i])), 0, spans - 1);

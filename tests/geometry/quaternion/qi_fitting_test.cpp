@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include <omp.h>
 
 #include "ffdkit/geometry/quaternion/quaternion_error.h"
+#include "ffdkit/geometry/quaternion/uniform_bspline.h"
 #include "ffdkit/geometry/quaternion/unit_quaternion.h"
 #include "qi_fit_datasets.h"
 
@@ -496,6 +498,26 @@ TEST(QiFitting, ChordLengthParametersHitBreaksAtIntegers) {
   const Eigen::VectorXd u = chordLengthParameters(d.points, d.breaks);
   for (std::size_t j = 0; j < d.breaks.size(); ++j) EXPECT_DOUBLE_EQ(u[d.breaks[j]], static_cast<double>(j));
   for (Eigen::Index i = 1; i < u.size(); ++i) EXPECT_GT(u[i], u[i - 1]);
+}
+
+TEST(QiFitting, ChordsBeyondTheRangeOfDoublesAreAnErrorNotNaNParameters) {
+  // Finite points 1e200 apart: the chord's length (a norm: the root of a sum of squares)
+  // overflows to infinity and acc / total would be inf / inf (a fuzzed generator input found it).
+  Eigen::MatrixX3d points(5, 3);
+  points << 0, 0, 0, 1, 0, 0, 2, 0, 0, 1e200, 0, 0, 3, 1, 0;
+  try {
+    (void)chordLengthParameters(points, {0, 2, 4});
+    FAIL() << "expected a QuaternionCurveError";
+  } catch (const QuaternionCurveError& e) {
+    EXPECT_NE(std::string(e.what()).find("segment 1 (points 2..4) has a chord length beyond the range of doubles"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(fitQiChain(points, {0, 2, 4}), QuaternionCurveError);
+  // And a least-squares fit given a NaN parameter refuses it (it would pick a span from NaN).
+  Eigen::VectorXd u(5);
+  u << 0, 0.5, std::nan(""), 1.5, 2;
+  EXPECT_THROW(fitLeastSquaresCubicBSpline(points, u, 2), QuaternionCurveError);
 }
 
 TEST(QiFitting, RejectsInvalidBreaksAndPlanarModeOnSpatialData) {
