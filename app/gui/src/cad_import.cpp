@@ -133,10 +133,21 @@ QString exportDeformedCad(const scenes::Scene& scene, const std::vector<std::str
     throw cad::CadError(std::string(e.what()) + ". Nothing was exported.");
   }
   cad::writeCad(result.model, output);
-  return QObject::tr("Exported '%1' deformed exactly by '%2' to %3 (%4 faces, degree up to %5)")
+  const cad::CadDeformReport& report = result.report;
+  if (report.approximatedFaces == 0 && report.approximatedEdges == 0)
+    return QObject::tr("Exported '%1' deformed exactly by '%2' to %3 (%4 faces, degree up to %5)")
+        .arg(qs(object.name), qs(scene.widgets.name(lattices.front())), qs(output.string()))
+        .arg(report.faces)
+        .arg(report.maxDegree);
+  // Exact where the FFD is one polynomial per piece; the rest fitted to deformCad's tolerance.
+  return QObject::tr("Exported '%1' deformed by '%2' to %3: %4 of %5 faces and %6 edges approximated "
+                     "(largest error %7, tolerance %8), the rest exact")
       .arg(qs(object.name), qs(scene.widgets.name(lattices.front())), qs(output.string()))
-      .arg(result.report.faces)
-      .arg(result.report.maxDegree);
+      .arg(report.approximatedFaces)
+      .arg(report.faces)
+      .arg(report.approximatedEdges)
+      .arg(report.approximationError, 0, 'g', 3)
+      .arg(report.tolerance, 0, 'g', 3);
 }
 
 #else
