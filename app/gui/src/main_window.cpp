@@ -126,6 +126,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     // A removed object leaves the selection, as its row leaves the outliner's (an undo that
     // brings it back does not select it again).
     std::erase_if(impl_->selectedObjects, [this](scenes::ObjectId id) { return impl_->scene.findObject(id) == nullptr; });
+    impl_->forgetRemovedBinding();
     impl_->outliner->sync(impl_->scene);
     refreshPanel();
   };
@@ -145,10 +146,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     s.status->clearStale();  // what was said was about the document before this change
     setWindowModified(s.modified());
     s.autosave();
-    if (s.selectedBinding && !s.scene.widgets.bindings().empty()) {
-      const auto all = s.scene.widgets.bindings();
-      if (std::find(all.begin(), all.end(), *s.selectedBinding) == all.end()) s.selectedBinding.reset();
-    }
+    s.forgetRemovedBinding();
     s.outliner->select(s.entries());
     refreshPanel();
   };

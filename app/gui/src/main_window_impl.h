@@ -4,6 +4,7 @@
 // files, recovery) and main_window_embed.cpp (a large attach's background embedding).
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -88,6 +89,13 @@ struct MainWindow::Impl {
     return names;
   }
   std::optional<widgets::BindingId> selectedBinding;
+  /// Drops the selected binding when the model no longer has it (an undo or a widget file took
+  /// it away), before anything shows the selection: the panel would ask the model for it.
+  void forgetRemovedBinding() {
+    if (!selectedBinding) return;
+    const auto all = scene.widgets.bindings();
+    if (std::find(all.begin(), all.end(), *selectedBinding) == all.end()) selectedBinding.reset();
+  }
   // Pointer state of the 3D view.
   QPoint pressAt;
   bool pressOnEmpty = false;
