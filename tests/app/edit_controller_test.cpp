@@ -5,6 +5,7 @@
 
 #include <numbers>
 
+#include "edit_test_document.h"
 #include "ffdkit/interaction/edit_controller.h"
 #include "ffdkit/scenes/scene_deformer.h"
 
@@ -15,24 +16,11 @@ using std::numbers::pi;
 using widgets::CellKind;
 using widgets::WidgetId;
 
-struct Document {
-  scenes::Scene scene;
-  scenes::SceneDeformer deformer;
-  scenes::CommandStack commands;
-  InteractionController controller{scene, deformer, commands};
-  EditController edit{scene, deformer, commands, controller};
-};
+using test::Document;
+using test::downAt;
+using test::f;
+using test::kView;
 
-Eigen::Index f(int i, int j, int k) { return i + 3 * (j + 3 * k); }
-
-// Looking down -z at the point p.
-widgets::Ray downAt(const Eigen::Vector3d& p) {
-  widgets::Ray r;
-  r.origin = p + Eigen::Vector3d(0, 0, 10);
-  r.direction = {0, 0, -1};
-  return r;
-}
-const Eigen::Vector3d kView(0, 0, -1);
 // From above and a little to the front (+y), through p: the turn rings are not seen edge-on.
 widgets::Ray tiltedAt(const Eigen::Vector3d& p) {
   widgets::Ray r;

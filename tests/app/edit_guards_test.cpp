@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "edit_test_document.h"
 #include "ffdkit/interaction/edit_controller.h"
 #include "ffdkit/scenes/scene_deformer.h"
 
@@ -15,23 +16,11 @@ namespace {
 
 using widgets::WidgetId;
 
-struct Document {
-  scenes::Scene scene;
-  scenes::SceneDeformer deformer;
-  scenes::CommandStack commands;
-  InteractionController controller{scene, deformer, commands};
-  EditController edit{scene, deformer, commands, controller};
-};
+using test::Document;
+using test::downAt;
+using test::f;
+using test::kView;
 
-Eigen::Index f(int i, int j, int k) { return i + 3 * (j + 3 * k); }
-
-widgets::Ray downAt(const Eigen::Vector3d& p) {
-  widgets::Ray r;
-  r.origin = p + Eigen::Vector3d(0, 0, 10);
-  r.direction = {0, 0, -1};
-  return r;
-}
-const Eigen::Vector3d kView(0, 0, -1);
 
 // The volume a closed triangle mesh encloses: sum over triangles of a . (b x c) / 6.
 double divergenceVolume(const Eigen::MatrixX3d& p, const Eigen::MatrixX3i& t) {
