@@ -11,6 +11,8 @@
 #include <TColgp_Array1OfPnt.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 
+#include "ffdkit/ffd/bspline_basis.h"
+
 namespace ffdkit::cad {
 
 namespace {
@@ -103,24 +105,13 @@ std::vector<double> flatKnots(const Breaks& b, int q) {
 Eigen::MatrixXd basisMatrix(const std::vector<double>& flat, int q, const std::vector<double>& ts) {
   const int n = static_cast<int>(flat.size()) - q - 1;
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(ts.size()), n);
-  std::vector<double> values(q + 1), left(q + 1), right(q + 1);
+  std::vector<double> values(q + 1);
   for (std::size_t r = 0; r < ts.size(); ++r) {
     const double t = ts[r];
     int span = n - 1;
     if (t < flat[n]) span = static_cast<int>(std::upper_bound(flat.begin() + q, flat.begin() + n, t) - flat.begin()) - 1;
     span = std::clamp(span, q, n - 1);
-    values[0] = 1.0;
-    for (int j = 1; j <= q; ++j) {
-      left[j] = t - flat[span + 1 - j];
-      right[j] = flat[span + j] - t;
-      double saved = 0.0;
-      for (int k = 0; k < j; ++k) {
-        const double temp = values[k] / (right[k + 1] + left[j - k]);
-        values[k] = saved + right[k + 1] * temp;
-        saved = left[j - k] * temp;
-      }
-      values[j] = saved;
-    }
+    ffd::bsplineBasisOnSpan(flat.data(), span, q, t, values.data(), nullptr);
     for (int k = 0; k <= q; ++k) m(static_cast<Eigen::Index>(r), span - q + k) = values[k];
   }
   return m;
