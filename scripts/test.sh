@@ -58,12 +58,13 @@ if [ "${FFDKIT_NOAPP_STAGE:-1}" = "1" ]; then
   xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
     ctest --test-dir "$noapp" --output-on-failure --parallel "$jobs" --timeout 600 "${noapp_tests[@]}" "$@"
   tested=$(date +%s)
-  # The same without VTK (-DFFDKIT_WITH_VTK=OFF, build-novtk/): VTK is not looked for, meshio
+  # The same without VTK and OpenCASCADE (-DFFDKIT_WITH_VTK=OFF -DFFDKIT_WITH_CAD=OFF, build-novtk/):
+  # neither is looked for, ffdkit-cli refuses STEP and IGES inputs, meshio
   # refuses to write .vtp and legacy .vtk, ffdkit-cli has no render or plot; the tests that need
   # no VTK run, with the install and consumer tests (nothing may link or look for VTK).
   novtk="${FFDKIT_NOVTK_BUILD_DIR:-$root/build-novtk}"
   FFDKIT_BUILD_DIR="$novtk" "$root/scripts/build.sh" -DFFDKIT_BUILD_APP=OFF -DFFDKIT_WITH_VTK=OFF \
-    -DFFDKIT_BUILD_BENCH=OFF
+    -DFFDKIT_BUILD_BENCH=OFF -DFFDKIT_WITH_CAD=OFF
   if grep -q "^Qt6_DIR:\|^VTK_DIR:" "$novtk/CMakeCache.txt"; then
     echo "no-app stage: the configuration without VTK looked for Qt or VTK ($novtk/CMakeCache.txt)" >&2
     exit 1
