@@ -8,6 +8,8 @@ namespace py = pybind11;
 
 /// One function per C++ module, each filling the Python submodule of the same name.
 void bindFfd(py::module_& module);
+/// ffdkit.ffd's pipelines and direct manipulation (ffd_pipeline_bindings.cpp), called by bindFfd.
+void bindFfdPipeline(py::module_& module);
 /// ffdkit.ffd.boxBernsteinDeform and its lattice and options (box_bernstein_bindings.cpp).
 void bindBoxBernstein(py::module_& module);
 /// ffdkit.ffd.ShapeConstraints, enclosedVolume, checkFolding (shape_constraints_bindings.cpp).
