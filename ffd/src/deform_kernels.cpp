@@ -244,9 +244,60 @@ FFDKIT_INLINE void powerBlockSingleT(const KernelInput& in, const int cell[3], s
   }
 }
 
+// (dx, dy, dz) / D for the lanes' stored denominators D = sum B w (a rational lattice's numerator
+// change over its unchanged denominator): one reciprocal, three products.
+FFDKIT_INLINE void divideLanes(const double* denominators, std::uint32_t q0, int count, Lane& dx, Lane& dy, Lane& dz) {
+  const Lane inv = 1.0 / loadLanes(denominators, q0, count);
+  dx *= inv;
+  dy *= inv;
+  dz *= inv;
+}
+
+// The homogeneous form of a rational lattice: the tensor-product Horner of powerBlockT on the four
+// components (N, D) of the current lattice and on those of the base, then N / D - Nb / Db.
+template <int K, bool BaseRational>
+FFDKIT_INLINE void rationalPowerBlockT(const KernelInput& in, const int cell[3], std::uint32_t begin,
+                                       std::uint32_t end, bool blended, const double* C, double* denominators,
+                                       Store mode) {
+  constexpr int set = (K + 1) * (K + 1) * (K + 1);
+  const double* pu = in.axis[0].poly->cell(cell[0]);
+  const double* pv = in.axis[1].poly->cell(cell[1]);
+  const double* pw = in.axis[2].poly->cell(cell[2]);
+  for (std::uint32_t q0 = begin; q0 < end; q0 += kLanes) {
+    const int count = static_cast<int>(std::min<std::uint32_t>(kLanes, end - q0));
+    const Lane x = localLanes(in.u, q0, count, pu);
+    const Lane y = localLanes(in.v, q0, count, pv);
+    const Lane z = localLanes(in.w, q0, count, pw);
+    const Lane D = hornerTensor<K>(C + 3 * set, x, y, z);
+    const Lane inv = 1.0 / D;
+    Lane dx = hornerTensor<K>(C, x, y, z) * inv;
+    Lane dy = hornerTensor<K>(C + set, x, y, z) * inv;
+    Lane dz = hornerTensor<K>(C + 2 * set, x, y, z) * inv;
+    if constexpr (BaseRational) {
+      const Lane invBase = 1.0 / hornerTensor<K>(C + 7 * set, x, y, z);
+      dx -= hornerTensor<K>(C + 4 * set, x, y, z) * invBase;
+      dy -= hornerTensor<K>(C + 5 * set, x, y, z) * invBase;
+      dz -= hornerTensor<K>(C + 6 * set, x, y, z) * invBase;
+    } else {
+      dx -= hornerTensor<K>(C + 4 * set, x, y, z);
+      dy -= hornerTensor<K>(C + 5 * set, x, y, z);
+      dz -= hornerTensor<K>(C + 6 * set, x, y, z);
+    }
+    if (denominators) {
+      if (count == kLanes) {
+        __builtin_memcpy(denominators + q0, &D, sizeof(Lane));
+      } else {
+        for (int l = 0; l < count; ++l) denominators[q0 + l] = D[l];
+      }
+    }
+    storeLanes(in, q0, count, blended, dx, dy, dz, mode);
+  }
+}
+
 template <int K>
 FFDKIT_INLINE void sparsePowerT(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end,
-                                bool blended, const SparseTerm* terms, int termCount, Store mode) {
+                                bool blended, const SparseTerm* terms, int termCount, Store mode,
+                                const double* denominators) {
   constexpr int n = K + 1;
   const double* pu = in.axis[0].poly->cell(cell[0]);
   const double* pv = in.axis[1].poly->cell(cell[1]);
@@ -266,12 +317,14 @@ FFDKIT_INLINE void sparsePowerT(const KernelInput& in, const int cell[3], std::u
       dy += weight * term.dy;
       dz += weight * term.dz;
     }
+    if (denominators) divideLanes(denominators, q0, count, dx, dy, dz);
     storeLanes(in, q0, count, blended, dx, dy, dz, mode);
   }
 }
 
 FFDKIT_INLINE void sparseCoxDeBoor(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end,
-                                   bool blended, const SparseTerm* terms, int termCount, Store mode) {
+                                   bool blended, const SparseTerm* terms, int termCount, Store mode,
+                                   const double* denominators) {
   Lane bu[kMaxBasis], bv[kMaxBasis], bw[kMaxBasis];
   for (std::uint32_t q0 = begin; q0 < end; q0 += kLanes) {
     const int count = static_cast<int>(std::min<std::uint32_t>(kLanes, end - q0));
@@ -286,6 +339,7 @@ FFDKIT_INLINE void sparseCoxDeBoor(const KernelInput& in, const int cell[3], std
       dy += weight * term.dy;
       dz += weight * term.dz;
     }
+    if (denominators) divideLanes(denominators, q0, count, dx, dy, dz);
     storeLanes(in, q0, count, blended, dx, dy, dz, mode);
   }
 }
@@ -482,13 +536,27 @@ void powerBlockSingle(const KernelInput& in, const int cell[3], std::uint32_t be
 
 FFDKIT_VECTOR_CLONES
 void sparseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
-                 const SparseTerm* terms, int termCount, Store mode) {
-  if (!in.axis[0].poly) return sparseCoxDeBoor(in, cell, begin, end, blended, terms, termCount, mode);
+                 const SparseTerm* terms, int termCount, Store mode, const double* denominators) {
+  if (!in.axis[0].poly) return sparseCoxDeBoor(in, cell, begin, end, blended, terms, termCount, mode, denominators);
   switch (in.axis[0].poly->degree) {
-    case 1: return sparsePowerT<1>(in, cell, begin, end, blended, terms, termCount, mode);
-    case 2: return sparsePowerT<2>(in, cell, begin, end, blended, terms, termCount, mode);
-    default: return sparsePowerT<3>(in, cell, begin, end, blended, terms, termCount, mode);
+    case 1: return sparsePowerT<1>(in, cell, begin, end, blended, terms, termCount, mode, denominators);
+    case 2: return sparsePowerT<2>(in, cell, begin, end, blended, terms, termCount, mode, denominators);
+    default: return sparsePowerT<3>(in, cell, begin, end, blended, terms, termCount, mode, denominators);
   }
+}
+
+FFDKIT_VECTOR_CLONES
+void rationalPowerBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
+                        const double* C, bool baseRational, double* denominators, Store mode) {
+  const int K = in.axis[0].poly->degree;
+  if (baseRational) {
+    if (K == 1) return rationalPowerBlockT<1, true>(in, cell, begin, end, blended, C, denominators, mode);
+    if (K == 2) return rationalPowerBlockT<2, true>(in, cell, begin, end, blended, C, denominators, mode);
+    return rationalPowerBlockT<3, true>(in, cell, begin, end, blended, C, denominators, mode);
+  }
+  if (K == 1) return rationalPowerBlockT<1, false>(in, cell, begin, end, blended, C, denominators, mode);
+  if (K == 2) return rationalPowerBlockT<2, false>(in, cell, begin, end, blended, C, denominators, mode);
+  return rationalPowerBlockT<3, false>(in, cell, begin, end, blended, C, denominators, mode);
 }
 
 }  // namespace ffdkit::ffd::detail

@@ -97,9 +97,26 @@ struct SparseTerm {
 
 /// Sparse block: s * sum over changed control points of Bu_a Bv_b Bw_c dP (basis values from the
 /// power form when in.axis[0].poly is set, else Cox-de Boor), added to out (Accumulate) or
-/// written to the scratch (Displacement).
+/// written to the scratch (Displacement). With `denominators` (a rational lattice whose changed
+/// control points kept their weights, dP = w F.linear dP): the sum is divided by
+/// denominators[q], the point's unchanged D = sum B w, so that d is the change of N / D.
 void sparseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
-                 const SparseTerm* terms, int termCount, Store mode);
+                 const SparseTerm* terms, int termCount, Store mode, const double* denominators = nullptr);
+
+/// The coefficient sets of one rational block (rationalPowerBlock): the current homogeneous sums
+/// N = sum B w F.linear P (x, y, z) and D = sum B w, then a base's Nb (x, y, z) and Db, then one
+/// unused set (cellCoefficients fills sets three at a time).
+inline int rationalSetCount() { return 9; }
+
+/// Rational power-form block (Lamousin & Waggenspack 1994, evaluated in homogeneous form: the
+/// polynomial kernel on (w P, w), then a division; The NURBS Book, sec. 4.2): per point, Horner's
+/// rule gives the current (N, D) and the base's (Nb, Db) from the coefficient sets C
+/// (rationalSetCount() sets of (K+1)^3), and d = N / D - Nb / Db (d = N / D - Nb when
+/// baseRational is false: a polynomial rest map, whose Db is 1), one reciprocal per ratio. The base
+/// is the rest map (Store::Replace: out = Q + s d) or the last state of an incremental step
+/// (Store::Accumulate: out += s d). D is written to denominators[q] (sorted order) when not null.
+void rationalPowerBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
+                        const double* C, bool baseRational, double* denominators, Store mode);
 
 /// The second half of a tile in random point order: its rows [begin, end) in original order (so
 /// that reads and writes stream), out = Q + s (Replace) or out += s (Accumulate) for the rows

@@ -293,7 +293,7 @@ const Eigen::MatrixX3d& Deformer::deform(const Lattice& lattice, const Eigen::Re
 
 Eigen::MatrixX3d Deformer::takePoints() {
   deformed_ = false;
-  homogeneousValid_ = false;
+  denominatorsValid_ = false;
   lastControl_.resize(0, 3);
   return std::move(output_);
 }
@@ -310,10 +310,10 @@ const Eigen::MatrixX3d& Deformer::deformStale(const Lattice& lattice, const Eige
     adviseHugePages(output_);
   }
   if (lattice.isRational()) {
-    evaluateRational(lattice, input, nullptr);
+    evaluateRational(lattice, &input, nullptr);
   } else {
     evaluateBlocks(lattice, input, nullptr);
-    homogeneousValid_ = false;
+    denominatorsValid_ = false;
   }
   remember(lattice);
   deformed_ = true;
@@ -428,12 +428,12 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice, const Eigen::Re
   const bool rational = lattice.isRational();
   // A switch between the rational and the polynomial path (or rational sums not kept) evaluates
   // every point, so that the output is that of a deform() on either path.
-  const bool all = rational != lastRational_ || (rational && !homogeneousValid_);
+  const bool all = rational != lastRational_ || (rational && !denominatorsValid_);
   if (rational) {
-    stats_.evaluatedPoints = evaluateRational(lattice, input, all ? nullptr : &touched);
+    stats_.evaluatedPoints = evaluateRational(lattice, &input, all ? nullptr : &touched);
   } else {
     stats_.evaluatedPoints = evaluateBlocks(lattice, input, all ? nullptr : &touched);
-    homogeneousValid_ = false;
+    denominatorsValid_ = false;
   }
   remember(lattice);
   return output_;
@@ -532,7 +532,7 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
   }
   stats_.evaluatedPoints = evaluated;
   remember(lattice);
-  homogeneousValid_ = false;
+  denominatorsValid_ = false;
   return output_;
 }
 

@@ -3,6 +3,7 @@
 // double (Bernstein by the binomial formula, B-splines by the recursive Cox-de Boor definition),
 // against the closed form of a quarter circle, and against the polynomial lattice bit for bit.
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -246,6 +247,57 @@ TEST(RationalLattice, EmbeddingInvertsTheWeightedRestMap) {
       const Eigen::Vector3d expected = lattice.frame() * lattice.evaluate(found.row(r).transpose());
       EXPECT_LT((out.row(r).transpose() - expected).norm(), 1e-12) << "point " << r;
     }
+  }
+}
+
+// The deformer's homogeneous form (the power-form kernels on (w P, w), one division per point;
+// Cox-de Boor sums above cubic) against the formula out = Q + F.linear (X(u,v,w) - Xbar(u,v,w)) in
+// long double, with a frame, rest weights, and points moved with their weights kept (the
+// numerator-only delta step) and with a weight changed (the re-evaluation step): 1e-14 relative.
+TEST(RationalLattice, HomogeneousEvaluationAgreesWithTheFormulaToRoundoff) {
+  struct Case {
+    Eigen::Vector3i counts;
+    AxisBasis basis;
+    RefAxis ref[3];
+  };
+  const Case cases[] = {
+      {{4, 4, 4}, AxisBasis::bspline(3), {refBSpline(4, 3), refBSpline(4, 3), refBSpline(4, 3)}},
+      {{7, 5, 6}, AxisBasis::bspline(2), {refBSpline(7, 2), refBSpline(5, 2), refBSpline(6, 2)}},
+      {{5, 2, 3}, AxisBasis::bernstein(), {{true, 5, 4, {}}, {true, 2, 1, {}}, {true, 3, 2, {}}}},
+  };
+  for (const Case& c : cases) {
+    Lattice lattice = boxLattice(c.counts, c.basis);
+    lattice.setRestWeights(randomWeights(lattice.pointCount(), 0.5, 2.0, 31));
+    lattice.setFrame(Eigen::Affine3d(Eigen::Translation3d(3.0, -1.0, 2.0)) *
+                     Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 1).normalized()) * Eigen::Scaling(1.5, 2.0, 0.75));
+    const Eigen::MatrixX3d Q = randomPoints(20000, 0.02, 0.98, 32);
+    Eigen::MatrixX3d world(Q.rows(), 3);
+    for (Eigen::Index r = 0; r < Q.rows(); ++r) world.row(r) = (lattice.frame() * Q.row(r).transpose()).transpose();
+    Deformer full(embed(lattice, world)), delta(embed(lattice, world));
+    const Eigen::MatrixX3d params = full.embedding().parameters();
+    const Eigen::Matrix3d L = lattice.frame().linear();
+    auto check = [&](const Eigen::MatrixX3d& out, const char* what) {
+      double worst = 0.0;
+      for (Eigen::Index r = 0; r < Q.rows(); r += 37) {
+        const Eigen::Vector3d t = params.row(r).transpose();
+        const Eigen::Vector3d X = refEvaluate(c.ref, lattice.controlPoints(), lattice.weights(), t);
+        const Eigen::Vector3d Xbar = refEvaluate(c.ref, lattice.restPoints(), lattice.restWeights(), t);
+        const Eigen::Vector3d expected = world.row(r).transpose() + L * (X - Xbar);
+        worst = std::max(worst, (out.row(r).transpose() - expected).cwiseAbs().maxCoeff() / (1.0 + expected.norm()));
+      }
+      EXPECT_LT(worst, 1e-14) << what << ", lattice " << c.counts.transpose();
+    };
+    lattice.setControlPoints(jiggled(lattice.restPoints(), 0.1, 33));
+    lattice.setWeights(randomWeights(lattice.pointCount(), 0.3, 3.0, 34));
+    check(full.deform(lattice, world), "deform");
+    delta.deform(lattice, world);
+    lattice.setControlPoint(7, lattice.controlPoints().row(7).transpose() + Eigen::Vector3d(0.05, -0.02, 0.03));
+    lattice.setControlPoint(9, lattice.controlPoints().row(9).transpose() + Eigen::Vector3d(-0.01, 0.04, 0.02));
+    check(delta.update(lattice), "delta step, weights kept");
+    EXPECT_EQ(delta.lastStats().changedControlPoints, 2);
+    lattice.setWeight(9, 2.5);
+    check(delta.update(lattice), "delta step, a weight changed");
+    check(full.update(lattice, world), "exact update");
   }
 }
 

@@ -46,10 +46,13 @@ enum class Precision {
 ///
 /// Rational lattices (Lattice::isRational(), Lamousin & Waggenspack 1994) use the same formula with
 /// X and Xbar the ratios sum B w P / sum B w: out = Q + s * F.linear() * (X(u,v,w) - Xbar(u,v,w)).
-/// Their deformer keeps, per point, the homogeneous sums (sum B w P, sum B w) of the last call, so
-/// that update(lattice) adds B_ijk * d(w P) and B_ijk * dw for the changed control points and
-/// divides again (32 bytes per point, allocated on the first rational call). Polynomial lattices
-/// (every weight 1) never touch that state and run the power-form kernels as before.
+/// They are evaluated in homogeneous form: the power-form kernels run on the numerator
+/// N = sum B w P and the denominator D = sum B w, then divide once per point. The deformer keeps
+/// D per point (8 bytes per point, allocated on the first rational call), so that update(lattice)
+/// after control points moved with their weights kept adds B_ijk w_ijk dP_ijk / D (the
+/// numerator's change over the unchanged denominator); a weight change re-evaluates the cells it
+/// touched against the last control points and weights. Polynomial lattices (every weight 1)
+/// never touch that state and run the power-form kernels as before.
 ///
 /// Threads: OpenMP over blocks of points that share a lattice cell.
 class Deformer {
@@ -127,8 +130,10 @@ class Deformer {
   // call; `changed` counts those control points.
   std::vector<char> touchedCells(const Lattice& lattice, Eigen::Index& changed) const;
   // The rational paths (rational_deform.cpp): a dense evaluation of the cells set in cellFilter
-  // (all if null) and the delta step of update(lattice).
-  Eigen::Index evaluateRational(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& input,
+  // (all if null), out = Q + s F.linear (X - Xbar) from `input`, or without it (null)
+  // out += s F.linear (X - Xlast) against the last control points and weights; and the delta
+  // step of update(lattice).
+  Eigen::Index evaluateRational(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>* input,
                                 const std::vector<char>* cellFilter);
   const Eigen::MatrixX3d& updateRational(const Lattice& lattice);
   void remember(const Lattice& lattice);
@@ -138,10 +143,10 @@ class Deformer {
   Eigen::MatrixX3d lastControl_;  // local control points at the last deform()/update()
   Eigen::VectorXd lastWeights_;   // weights at the last deform()/update()
   bool lastRational_ = false;     // the output of the last call came from the rational path
-  // Rational path: per sorted point, the local homogeneous sums (sum B w P, sum B w) of the
-  // last call, 4 doubles a point; valid when homogeneousValid_.
-  std::vector<double> homogeneous_;
-  bool homogeneousValid_ = false;
+  // Rational path: per sorted point, the denominator D = sum B w of the last call; valid (for
+  // every point) when denominatorsValid_.
+  std::vector<double> denominators_;
+  bool denominatorsValid_ = false;
   bool deformed_ = false;
   bool parallel_ = true;
   Precision precision_ = Precision::Double;
