@@ -4,13 +4,18 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
 #include <gtest/gtest.h>
 
 #include <vtkNew.h>
+#include <vtkActor.h>
 #include <vtkActorCollection.h>
+#include <vtkMapper.h>
+#include <vtkPolyData.h>
+#include <vtkPoints.h>
 #include <vtkRenderer.h>
 
 #include "drag_sphere.h"
@@ -318,23 +323,39 @@ TEST(SceneViewUpdates, DragNormalsFollowTheExactNormalsAndAreTheExactOnesAtRelea
 }
 
 TEST(SceneViewUpdates, ObjectMemoryCountsTheDrawnDataAndTheDragStateWhileADragLasts) {
-  // The view holds at least each vertex's double point (24 bytes) and float normal (12) and each
-  // triangle's three indices (4 bytes each at the least); following a drag adds beta, W and the
-  // unnormalised normals in float (28 bytes per vertex of the dragged object), freed at release.
+  // The view holds at least each vertex's float point and float normal (12 bytes each), each
+  // triangle's three indices (4 bytes each) and the float sums of the normals (12 per vertex:
+  // a drag's first step starts from them); following a drag adds beta and W in float (16 bytes
+  // per vertex of the dragged object), freed at release.
   DragSession s(60);
   const Eigen::Index n = s.deformer.pointCount(s.sphere);
   const SceneViewMemory before = s.view.objectMemory();
   EXPECT_EQ(before.vertices, n);
-  EXPECT_GE(before.bytes, std::size_t(n) * (24 + 12) + std::size_t(s.triangles().rows()) * 3 * 4);
+  EXPECT_GE(before.bytes, std::size_t(n) * (12 + 12 + 12) + std::size_t(s.triangles().rows()) * 3 * 4);
   EXPECT_DOUBLE_EQ(before.bytesPerVertex(), double(before.bytes) / double(n));
   ASSERT_EQ(s.controller.press(s.ray(0.5), s.tolerance()), InteractionController::PressResult::Widget);
   s.controller.drag(s.ray(0.75));
   s.controller.drag(s.ray(1.0));
   const SceneViewMemory dragging = s.view.objectMemory();
-  EXPECT_GE(dragging.bytes, before.bytes + std::size_t(n) * 28);
+  EXPECT_GE(dragging.bytes, before.bytes + std::size_t(n) * 16);
   s.controller.release();
-  EXPECT_LE(s.view.objectMemory().bytes + std::size_t(n) * 28, dragging.bytes);
+  EXPECT_LE(s.view.objectMemory().bytes + std::size_t(n) * 16, dragging.bytes);
   EXPECT_EQ(SceneViewMemory{}.bytesPerVertex(), 0.0);
+}
+
+TEST(SceneViewUpdates, TheViewHoldsFloatPointsAnd32BitCells) {
+  // Per vertex of a closed sphere (two triangles a vertex) during a drag: points and normals
+  // 12 + 12, cells 8 + 24 (32-bit offsets and indices), the triangles of each vertex 4 + 24, the
+  // per-triangle scratch 24, the sums of the normals 12, beta and W 16: 136 bytes and VTK's
+  // object headers. Double points and 64-bit cells held 196.
+  DragSession s(120);
+  ASSERT_EQ(s.controller.press(s.ray(0.5), s.tolerance()), InteractionController::PressResult::Widget);
+  s.controller.drag(s.ray(0.75));
+  s.controller.drag(s.ray(1.0));
+  const SceneViewMemory dragging = s.view.objectMemory();
+  EXPECT_GT(dragging.bytesPerVertex(), 136.0);
+  EXPECT_LT(dragging.bytesPerVertex(), 140.0);
+  s.controller.release();
 }
 
 TEST(SceneViewUpdates, AGestureOfTwoControlPointsRecomputesTheNormalsAtEveryStep) {
@@ -355,6 +376,76 @@ TEST(SceneViewUpdates, AGestureOfTwoControlPointsRecomputesTheNormalsAtEveryStep
   }
   EXPECT_EQ(s.view.stats().normalUpdates, before.normalUpdates + 3);
   EXPECT_EQ(s.view.stats().followedNormals, before.followedNormals);
+}
+
+// The float points the view draws for the shaded object of `n` points (null for none).
+vtkPoints* drawnPoints(vtkRenderer* renderer, Eigen::Index n) {
+  vtkActorCollection* actors = renderer->GetActors();
+  actors->InitTraversal();
+  while (vtkActor* actor = actors->GetNextActor()) {
+    auto* polyData = vtkPolyData::SafeDownCast(actor->GetMapper() ? actor->GetMapper()->GetInput() : nullptr);
+    if (polyData && polyData->GetNumberOfPoints() == n && polyData->GetNumberOfPolys() > 0) return polyData->GetPoints();
+  }
+  return nullptr;
+}
+
+// The largest |drawn - float(exact)| over the coordinates; infinity when `drawn` is not n float points.
+double largestDifference(vtkPoints* drawn, const Eigen::MatrixX3d& exact) {
+  if (drawn == nullptr || drawn->GetDataType() != VTK_FLOAT || drawn->GetNumberOfPoints() != exact.rows())
+    return std::numeric_limits<double>::infinity();
+  const float* p = static_cast<const float*>(drawn->GetVoidPointer(0));
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < exact.rows(); ++i)
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(p[3 * i + c]) - double(float(exact(i, c)))));
+  return worst;
+}
+
+TEST(SceneViewUpdates, TheViewDrawsTheDeformersPointsRoundedToFloatAndExactlyThemAtRelease) {
+  // The view's points are float32: float(x) for every point it copies from the deformer (show,
+  // the first step of a drag, release), and while a drag is followed the float points moved by
+  // beta (D(t) - D(t')), off float(x) by float rounding only.
+  DragSession s(80);
+  const Eigen::Index n = s.deformer.pointCount(s.sphere);
+  EXPECT_EQ(largestDifference(drawnPoints(s.renderer, n), s.deformer.points(s.sphere)), 0.0) << "shown";
+  ASSERT_EQ(s.controller.press(s.ray(0.5), s.tolerance()), InteractionController::PressResult::Widget);
+  for (int step = 1; step <= 12; ++step) {
+    s.controller.drag(s.ray(0.5 + 0.15 * step));
+    const double off = largestDifference(drawnPoints(s.renderer, n), s.deformer.points(s.sphere));
+    if (step == 1)
+      EXPECT_EQ(off, 0.0) << "the first step copies the deformer's points";
+    else
+      EXPECT_LT(off, 2e-6) << "step " << step;  // a unit sphere: ulp(1) = 1.2e-7 a step at most
+  }
+  s.controller.release();
+  EXPECT_EQ(largestDifference(drawnPoints(s.renderer, n), s.deformer.points(s.sphere)), 0.0) << "released";
+  // Undo: the exact points again.
+  s.commands.undo();
+  EXPECT_EQ(largestDifference(drawnPoints(s.renderer, n), s.deformer.points(s.sphere)), 0.0) << "undone";
+}
+
+TEST(SceneViewUpdates, TheFirstStepOfADragStartsFromTheNormalsDrawnBeforeIt) {
+  // The first step of a one-control-point drag whose motion starts from the points the view drew
+  // last (after show, a release, an undo) adds D x W to the sums of their normals instead of
+  // computing the triangles' area vectors again (gesture_normals.h); the normals are the exact
+  // ones to float rounding, and at release the exact ones bit for bit.
+  DragSession s(120);
+  for (int drag = 0; drag < 3; ++drag) {
+    const SceneViewStats before = s.view.stats();
+    ASSERT_EQ(s.controller.press(s.ray(0.5), s.tolerance()), InteractionController::PressResult::Widget);
+    s.controller.drag(s.ray(1.0 + 0.5 * drag));
+    EXPECT_EQ(s.view.stats().normalsFromBase, before.normalsFromBase + 1) << "drag " << drag;
+    EXPECT_EQ(s.view.stats().followedNormals, before.followedNormals) << "drag " << drag;
+    const Eigen::MatrixX3d exact = exactNormals(s.deformer.points(s.sphere), s.triangles());
+    EXPECT_LT(maxAngleDegrees(s.view.objectNormals(s.sphere), exact), 1e-3) << "drag " << drag;
+    s.controller.drag(s.ray(1.2 + 0.5 * drag));
+    EXPECT_EQ(s.view.stats().followedNormals, before.followedNormals + 1) << "drag " << drag;
+    EXPECT_LT(maxAngleDegrees(s.view.objectNormals(s.sphere), exactNormals(s.deformer.points(s.sphere), s.triangles())),
+              1e-3)
+        << "drag " << drag;
+    s.controller.release();
+    EXPECT_TRUE((s.view.objectNormals(s.sphere).array() == s.freshNormals().array()).all()) << "drag " << drag;
+    if (drag == 1) s.commands.undo();  // the next drag starts from the undone points
+  }
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <limits>
 
 #include <Eigen/Core>
+#include <vtkFloatArray.h>
+#include <vtkType.h>
 
 namespace ffdkit::app {
 
@@ -11,17 +13,51 @@ using scene_view_shapes::VertexFaces;
 
 namespace {
 
-// Per vertex: the sum of `faces` over its triangles, into the rows of `sums`.
-void gatherSums(const VertexFaces& vf, const std::vector<Eigen::Vector3f>& faces, Eigen::MatrixX3f& sums) {
-#pragma omp parallel for schedule(static)
-  for (Eigen::Index i = 0; i < sums.rows(); ++i) sums.row(i) = scene_view_shapes::vertexSum(vf, faces, i).transpose();
+// The normalised `sum` into out[0..2] (+z for a zero sum).
+inline void writeNormal(float* out, const Eigen::Vector3f& sum) {
+  const float length = sum.norm();
+  const Eigen::Vector3f v = length > 0.0f ? Eigen::Vector3f(sum / length) : Eigen::Vector3f::UnitZ();
+  out[0] = v.x();
+  out[1] = v.y();
+  out[2] = v.z();
+}
+
+// `drawn` as n float32 points and `normals` as n normals, ready to be written.
+void sizeArrays(Eigen::Index n, vtkPoints* drawn, vtkFloatArray* normals) {
+  if (drawn->GetDataType() != VTK_FLOAT) drawn->SetDataTypeToFloat();
+  drawn->SetNumberOfPoints(n);
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(n);
 }
 
 }  // namespace
 
-void GestureNormals::clear() {
+void exactNormals(const Eigen::MatrixX3i& triangles, const VertexFaces& vf, const Eigen::MatrixX3d& points,
+                  std::vector<Eigen::Vector3f>& faceScratch, Eigen::MatrixX3f& sums, vtkPoints* drawn,
+                  vtkFloatArray* normals) {
+  const Eigen::Index n = points.rows();
+  scene_view_shapes::faceAreaVectors(triangles, points, faceScratch);
+  sums.resize(n, 3);
+  sizeArrays(n, drawn, normals);
+  float* out = normals->GetPointer(0);
+  float* xyz = static_cast<float*>(drawn->GetVoidPointer(0));
+  const double *x = points.data(), *y = x + n, *z = y + n;  // column-major
+  // One pass per vertex: the gather of its triangles' area vectors, its normal and its point.
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3f sum = scene_view_shapes::vertexSum(vf, faceScratch, i);
+    sums.row(i) = sum.transpose();
+    writeNormal(out + 3 * i, sum);
+    xyz[3 * i] = static_cast<float>(x[i]);
+    xyz[3 * i + 1] = static_cast<float>(y[i]);
+    xyz[3 * i + 2] = static_cast<float>(z[i]);
+  }
+  normals->Modified();
+  drawn->Modified();
+}
+
+void GestureNormals::stopFollowing() {
   active_ = false;
-  sums_.resize(0, 3);
   motion_.resize(0, 3);
   beta_.resize(0);
 }
@@ -29,8 +65,9 @@ void GestureNormals::clear() {
 bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::ObjectId object, vtkPoints* points,
                             vtkFloatArray* normals) {
   const Eigen::Index n = sums_.rows();
-  if (!active_ || points->GetDataType() != VTK_DOUBLE || points->GetNumberOfPoints() != n ||
-      normals->GetNumberOfTuples() != n || normals->GetNumberOfComponents() != 3 || beta_.rows() != n)
+  if (!active_ || points->GetDataType() != VTK_FLOAT || points->GetNumberOfPoints() != n ||
+      normals->GetNumberOfTuples() != n || normals->GetNumberOfComponents() != 3 || beta_.rows() != n ||
+      motion_.rows() != n)
     return false;
   const std::optional<scenes::GestureMotion> motion = deformer.gestureMotion(object);
   if (!motion || motion->controlPoints.size() != 1 || motion->baseRevision != baseRevision_ ||
@@ -38,12 +75,12 @@ bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::Objec
     return false;
   const Eigen::Vector3d now = motion->displacements.row(0).transpose();
   // The points: x_v(t) = x_v(t') + beta_v (D(t) - D(t')) (gesture_normals.h: x_v(t) = x_v(0) + beta_v D(t)).
-  const Eigen::Vector3d step = now - shownDisplacement_;
-  const double sx = step.x(), sy = step.y(), sz = step.z();
-  // The normals: N_v(t) = N_v(t0) + (D(t) - D(t0)) x W_v, normalised (+z for a zero sum, as gatherNormals).
+  const Eigen::Vector3f step = (now - shownDisplacement_).cast<float>();
+  const float sx = step.x(), sy = step.y(), sz = step.z();
+  // The normals: N_v(t) = N_v(t0) + (D(t) - D(t0)) x W_v, normalised (+z for a zero sum, as exactNormals).
   const Eigen::Vector3f d = (now - startDisplacement_).cast<float>();
   const float dx = d.x(), dy = d.y(), dz = d.z();
-  double* xyz = static_cast<double*>(points->GetVoidPointer(0));
+  float* xyz = static_cast<float*>(points->GetVoidPointer(0));
   float* out = normals->GetPointer(0);
   // In chunks: the arithmetic on columns (Eigen vectorises it, sqrt included), then the
   // interleaved stores VTK wants; memory bound, so both cores.
@@ -62,10 +99,10 @@ bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::Objec
     const Column z = In(nz + first, m) + (dx * In(wy + first, m) - dy * In(wx + first, m));
     const Column inverse = (x.square() + y.square() + z.square()).sqrt().inverse();  // inf for a zero sum
     float* o = out + 3 * first;
-    double* p = xyz + 3 * first;
+    float* p = xyz + 3 * first;
     const float* b = beta + first;
     for (Eigen::Index j = 0; j < m; ++j) {
-      const double w = b[j];
+      const float w = b[j];
       p[3 * j] += w * sx;
       p[3 * j + 1] += w * sy;
       p[3 * j + 2] += w * sz;
@@ -81,39 +118,70 @@ bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::Objec
   return true;
 }
 
-void GestureNormals::update(const scenes::SceneDeformer& deformer, scenes::ObjectId object,
+bool GestureNormals::update(const scenes::SceneDeformer& deformer, scenes::ObjectId object,
                             const Eigen::MatrixX3i& triangles, const VertexFaces& vf, const Eigen::MatrixX3d& points,
-                            std::vector<Eigen::Vector3f>& faceScratch, vtkFloatArray* normals) {
+                            std::vector<Eigen::Vector3f>& faceScratch, vtkPoints* drawn, vtkFloatArray* normals) {
   const Eigen::Index n = points.rows();
+  const std::uint64_t revision = deformer.revision(object);
   const std::optional<scenes::GestureMotion> motion = deformer.gestureMotion(object);
-  const bool single = motion && motion->controlPoints.size() == 1;
-  if (!single) {
-    clear();
-    scene_view_shapes::updateNormals(normals, triangles, vf, points, faceScratch);
-    return;
+  if (!motion || motion->controlPoints.size() != 1) {
+    stopFollowing();
+    exactNormals(triangles, vf, points, faceScratch, sums_, drawn, normals);
+    sumsRevision_ = revision;
+    sumsValid_ = true;
+    return false;
   }
-  // The first step of a one-control-point motion: the exact normals, and what follows them.
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(n);
-  sums_.resize(n, 3);
-  motion_.resize(n, 3);
-  scene_view_shapes::faceAreaVectors(triangles, points, faceScratch);
-  scene_view_shapes::gatherNormals(vf, faceScratch, n, normals->GetPointer(0), &sums_);
+  // The first step of a one-control-point motion.
+  const Eigen::Vector3d now = motion->displacements.row(0).transpose();
+  const bool fromBase = sumsValid_ && sumsRevision_ == motion->baseRevision && sums_.rows() == n;
+  if (fromBase) {
+    startDisplacement_.setZero();  // sums_ holds N_v(base), where D = 0
+  } else {
+    exactNormals(triangles, vf, points, faceScratch, sums_, drawn, normals);
+    sumsRevision_ = revision;
+    sumsValid_ = true;
+    startDisplacement_ = now;
+  }
   const Eigen::VectorXd beta = deformer.controlWeights(object, motion->controlPoints[0]);
   // Per triangle: dbeta1 e2 - dbeta2 e1 (gesture_normals.h).
   scene_view_shapes::perFace(triangles, points, faceScratch,
                              [&](int a, int b, int c, const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) -> Eigen::Vector3d {
                                return (beta[b] - beta[a]) * e2 - (beta[c] - beta[a]) * e1;
                              });
-  beta_ = beta.cast<float>();
-  gatherSums(vf, faceScratch, motion_);
-  normals->Modified();
+  motion_.resize(n, 3);
+  beta_.resize(n);
+  if (fromBase) {
+    // One pass per vertex: W_v, beta_v, the normal N_v(base) + D x W_v and the point.
+    sizeArrays(n, drawn, normals);
+    float* out = normals->GetPointer(0);
+    float* xyz = static_cast<float*>(drawn->GetVoidPointer(0));
+    const double *x = points.data(), *y = x + n, *z = y + n;  // column-major
+    const Eigen::Vector3f d = now.cast<float>();
+#pragma omp parallel for schedule(static)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Eigen::Vector3f w = scene_view_shapes::vertexSum(vf, faceScratch, i);
+      motion_.row(i) = w.transpose();
+      beta_[i] = static_cast<float>(beta[i]);
+      writeNormal(out + 3 * i, Eigen::Vector3f(sums_.row(i).transpose()) + d.cross(w));
+      xyz[3 * i] = static_cast<float>(x[i]);
+      xyz[3 * i + 1] = static_cast<float>(y[i]);
+      xyz[3 * i + 2] = static_cast<float>(z[i]);
+    }
+    normals->Modified();
+    drawn->Modified();
+  } else {
+#pragma omp parallel for schedule(static)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      motion_.row(i) = scene_view_shapes::vertexSum(vf, faceScratch, i).transpose();
+      beta_[i] = static_cast<float>(beta[i]);
+    }
+  }
   active_ = true;
   baseRevision_ = motion->baseRevision;
   lattice_ = motion->lattice;
   controlPoint_ = motion->controlPoints[0];
-  startDisplacement_ = motion->displacements.row(0).transpose();
-  shownDisplacement_ = startDisplacement_;
+  shownDisplacement_ = now;
+  return fromBase;
 }
 
 }  // namespace ffdkit::app

@@ -21,13 +21,24 @@
 // of the linear interpolant of beta, (dbeta1 e2 - dbeta2 e1) = A_f x g_f, so that
 // D x (A_f x g_f) = (g_f.D) A_f - g_f (D.A_f) is that cofactor's change applied to A_f, exactly.
 //
-// Cost per step (follow): one cross product and a normalisation per vertex, and the point moved by
-// beta_v times the step of D: 52 bytes read and 36 written, in one pass, instead of a pass over the
-// triangles, a gather over each vertex's triangles and a copy of the deformer's points (whose
-// delta step the deformer defers: SceneDeformer::points). The first step of a motion computes the
-// exact normals, W and beta (a pass over the triangles and a gather, once).
+// Cost per step (follow): one cross product and a normalisation per vertex, and the float point
+// moved by beta_v times the step of D: 40 bytes read and 24 written, in one pass, instead of a
+// pass over the triangles, a gather over each vertex's triangles and a copy of the deformer's
+// points (whose delta step the deformer defers: SceneDeformer::points).
+//
+// The first step of a motion: every exact update (update()) keeps the unnormalised sums N_v of
+// the points it drew. When the motion starts from those points (GestureMotion::baseRevision is
+// their revision, as after a release, an undo or any exact evaluation), N_v(base) is known and
+// D(base) = 0, so the first step only computes beta (SceneDeformer::controlWeights), the face
+// terms of W (one pass over the triangles) and, per vertex, W_v and N_v(base) + D(t0) x W_v:
+// no area vectors and no second gather. Otherwise it computes the exact normals first.
 // Motions of several control points (the general form has pairwise D_c x D_c' terms) and every
 // other change are recomputed exactly.
+//
+// Points are drawn as float32 (object_arrays.h): follow() adds beta_v (D(t) - D(t')) to the
+// float point, so the drawn points drift from float(x_v(t)) by float rounding, about one unit in
+// the last place per step; every update() writes float(x_v) exactly, so the release shows the
+// exact mesh.
 
 #include <string>
 #include <vector>
@@ -42,41 +53,58 @@ namespace ffdkit::app {
 
 class GestureNormals {
  public:
-  /// A later step of the one-control-point motion update() last set up: moves the view's points
-  /// by x_v += beta_v (D(t) - D(t')) (t' the step last shown; beta_v in float, the points in
-  /// double as VTK holds them) and writes the followed normals, in one pass over the vertices on
-  /// both cores, without reading the deformer's points (SceneDeformer::points applies deferred
-  /// gesture steps: the view does not ask for them). Returns false, touching nothing, when the
-  /// object's motion is not that one (then call update() with the deformer's points).
+  /// A later step of the one-control-point motion update() last set up: moves the view's float
+  /// points by x_v += beta_v (D(t) - D(t')) (t' the step last shown) and writes the followed
+  /// normals, in one pass over the vertices on both cores, without reading the deformer's points
+  /// (SceneDeformer::points applies deferred gesture steps: the view does not ask for them).
+  /// Returns false, touching nothing, when the object's motion is not that one or `points` are
+  /// not float32 (then call update()).
   bool follow(const scenes::SceneDeformer& deformer, scenes::ObjectId object, vtkPoints* points,
               vtkFloatArray* normals);
 
-  /// Writes the area-weighted vertex normals of `points` (the deformer's present points of
-  /// `object`, whose triangles are `triangles`) into `normals`, computed from the triangles
-  /// (updateNormals' bits), keeping what follow() needs when the object's motion is one control
-  /// point's (its weights beta_v, W_v and N_v(t0)).
-  void update(const scenes::SceneDeformer& deformer, scenes::ObjectId object, const Eigen::MatrixX3i& triangles,
+  /// Writes `points` (the deformer's present points of `object`, #points x 3, whose triangles are
+  /// `triangles`) into `drawn` as float32 and their area-weighted vertex normals into `normals`:
+  /// from the triangles (exactNormals' bits), or, for the first step of a one-control-point motion
+  /// from the points update() last drew, as N_v(base) + D x W_v (see above). Keeps the sums of
+  /// the normals, and what follow() needs when the motion is one control point's (beta_v, W_v).
+  /// Returns true when it took the first-step form.
+  bool update(const scenes::SceneDeformer& deformer, scenes::ObjectId object, const Eigen::MatrixX3i& triangles,
               const scene_view_shapes::VertexFaces& vf, const Eigen::MatrixX3d& points,
-              std::vector<Eigen::Vector3f>& faceScratch, vtkFloatArray* normals);
+              std::vector<Eigen::Vector3f>& faceScratch, vtkPoints* drawn, vtkFloatArray* normals);
 
-  /// Forgets the motion (frees its 28 bytes per vertex).
-  void clear();
-  /// Heap bytes held for the motion (28 per vertex while one is followed, else 0).
+  /// Heap bytes held: the sums of the normals (12 per vertex) and, while a motion is followed,
+  /// beta_v and W_v (16 more).
   std::size_t memoryBytes() const {
     return sizeof(float) * std::size_t(sums_.size() + motion_.size() + beta_.size());
   }
 
  private:
+  // Frees beta_v and W_v: no motion followed.
+  void stopFollowing();
+
   bool active_ = false;
   std::uint64_t baseRevision_ = 0;
   widgets::WidgetId lattice_;
   Eigen::Index controlPoint_ = -1;
-  Eigen::Vector3d startDisplacement_ = Eigen::Vector3d::Zero();  // D(t0)
+  // The revision (SceneDeformer::revision) of the points whose normals' sums_ holds, and the
+  // displacement D of the motion at them (0 at the motion's base).
+  std::uint64_t sumsRevision_ = 0;
+  bool sumsValid_ = false;
+  Eigen::Vector3d startDisplacement_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d shownDisplacement_ = Eigen::Vector3d::Zero();  // D(t') of the points shown
   // Columns (x, y, z: the per-step loop streams and vectorises over them):
-  Eigen::MatrixX3f sums_;    // N_v(t0), the unnormalised area-weighted normals
+  Eigen::MatrixX3f sums_;    // N_v at sumsRevision_, the unnormalised area-weighted normals
   Eigen::MatrixX3f motion_;  // W_v
   Eigen::VectorXf beta_;     // beta_v, the moved control point's weights
 };
+
+/// Area-weighted vertex normals of `points` (#points x 3) with triangles `triangles` (vf: the
+/// triangles of each vertex): each triangle's area vector (b - a) x (c - a) in double, stored as
+/// float in `faceScratch`, summed per vertex in float into the rows of `sums` (#points x 3,
+/// resized) and normalised into `normals` (+z where the sum is 0); `points` also written into
+/// `drawn` as float32. The bits SceneView draws for a shaded surface outside a followed drag.
+void exactNormals(const Eigen::MatrixX3i& triangles, const scene_view_shapes::VertexFaces& vf,
+                  const Eigen::MatrixX3d& points, std::vector<Eigen::Vector3f>& faceScratch, Eigen::MatrixX3f& sums,
+                  vtkPoints* drawn, vtkFloatArray* normals);
 
 }  // namespace ffdkit::app

@@ -33,6 +33,7 @@
 #include "ffdkit/render/curvature_comb.h"
 #include "ffdkit/parts/parts.h"
 #include "gesture_normals.h"
+#include "object_arrays.h"
 #include "ffdkit/widgets/widget_model.h"
 #include "ffdkit/widgets/widget_redraw.h"
 #include "scene_view_shapes.h"
@@ -263,7 +264,7 @@ struct SceneView::Impl {
       entry.restHi = object.mesh.points.rows() > 0 ? Eigen::Vector3d(object.mesh.points.colwise().maxCoeff().transpose())
                                                    : Eigen::Vector3d::Zero();
       entry.display = object.display;
-      entry.polyData = toPolyData(object.mesh, points);
+      entry.polyData = object_arrays::objectPolyData(object.mesh, points);  // float32 points, 32-bit cells
       const bool zebra = object.display.surfaceStyle == scenes::SurfaceStyle::Zebra && object.mesh.triangles.rows() > 0;
       constexpr double kCurveLineWidth = 2.0;  // pixels, DisplaySettings::curveStyle
       const bool curveLine = object.display.curveStyle == scenes::CurveStyle::Line && object.mesh.triangles.rows() == 0 &&
@@ -272,7 +273,8 @@ struct SceneView::Impl {
       if (object.mesh.triangles.rows() > 0) {
         vtkNew<vtkFloatArray> normals;  // smooth shading of the deformed surface
         entry.vertexFaces = vertexFaces(object.mesh.triangles, points.rows());
-        updateNormals(normals, object.mesh.triangles, entry.vertexFaces, points, entry.faceNormals);
+        entry.gestureNormals.update(deformed, object.id, object.mesh.triangles, entry.vertexFaces, points,
+                                    entry.faceNormals, entry.polyData->GetPoints(), normals);
         entry.polyData->GetPointData()->SetNormals(normals);
         if (zebra) {
           vtkNew<vtkFloatArray> tcoords;
@@ -588,15 +590,18 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
       auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals());
       // A later step of a one-control-point drag: points and normals follow the motion in one pass.
       const bool followed = normals && entry.gestureNormals.follow(deformed, entry.id, entry.polyData->GetPoints(), normals);
-      if (!followed) setPoints(entry.polyData->GetPoints(), deformed.points(entry.id));
+      if (!normals) object_arrays::setFloatPoints(entry.polyData->GetPoints(), deformed.points(entry.id));
       ++impl_->stats.pointUpdates;
       if (normals) {
         ++impl_->stats.normalUpdates;
+        // Otherwise the points and normals together (the first step of a drag from the normals
+        // drawn last: gesture_normals.h).
         if (followed)
           ++impl_->stats.followedNormals;
-        else
-          entry.gestureNormals.update(deformed, entry.id, scene.findObject(entry.id)->mesh.triangles,
-                                      entry.vertexFaces, deformed.points(entry.id), entry.faceNormals, normals);
+        else if (entry.gestureNormals.update(deformed, entry.id, scene.findObject(entry.id)->mesh.triangles,
+                                             entry.vertexFaces, deformed.points(entry.id), entry.faceNormals,
+                                             entry.polyData->GetPoints(), normals))
+          ++impl_->stats.normalsFromBase;
         if (auto* tcoords = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetTCoords()))
           updateZebraCoordinates(tcoords, normals, entry.display.zebraDirection, entry.display.zebraStripes);
       }

@@ -37,6 +37,9 @@ struct SceneViewStats {
   /// Of normalUpdates, those that followed a drag of one control point (one cross product per
   /// vertex, exact to float rounding) instead of a pass over the triangles (app/render/src/gesture_normals.h).
   int followedNormals = 0;
+  /// Of normalUpdates, first steps of a one-control-point drag that started from the normals the
+  /// view drew last: N(base) + D x W, without computing the triangles' area vectors again.
+  int normalsFromBase = 0;
   /// Updates of the widget actors (the model changed): all of them for a new model instance, those
   /// of the widgets the change concerns otherwise (widgets::widgetsToRedraw).
   int widgetBuilds = 0;
