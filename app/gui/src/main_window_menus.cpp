@@ -32,6 +32,9 @@
 
 namespace ffdkit::app {
 
+/// QSettings key of View > Simplify While Moving (bool, default true).
+constexpr const char* kSimplifyWhileMovingKey = "view/simplifyWhileMoving";
+
 using namespace window_detail;
 
 namespace {
@@ -57,6 +60,15 @@ void MainWindow::createMenus(QDockWidget* outlinerDock, QDockWidget* propertiesD
   d.timeline = addTimelineDock(this, d.scene, d.commands, *d.controller);
   connect(d.timeline, &TimelineWidget::error, this, [this](const QString& m) { impl_->sayError(m.toStdString()); });
   connect(d.timeline, &TimelineWidget::frameChanged, this, refreshPanel);
+  // Level of detail (SceneView::setMoving): playback draws large surfaces as their proxies, a pause
+  // draws them in full at once. After the timeline's own handler: playing() is the new state.
+  connect(findChild<QAction*>("actionPlayPause"), &QAction::triggered, this, [this] {
+    Impl& s = *impl_;
+    s.sceneView->setMoving(s.timeline->timeline().playing());
+    if (!s.showingScene) return;
+    s.sceneView->refresh(s.scene, s.deformer);
+    s.view->requestRender();
+  });
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   addMenuAction(help, tr("&Keyboard Shortcuts"), "actionKeyboardShortcuts", [this] { showKeyboardShortcuts(this); });
   applyKeyboardShortcuts(this);  // every action's keys (and its tooltip's) from the one table (keyboard_shortcuts.h)
@@ -346,6 +358,22 @@ QMenu* MainWindow::createViewMenu(QDockWidget* outlinerDock, QDockWidget* proper
     });
   });
   d.comb->setCheckable(true);
+  // Level of detail (SceneView::setLevelOfDetail): large surfaces drawn simplified while a drag or
+  // playback runs, in full when it stops. Kept between sessions.
+  QAction* simplify = addMenuAction(viewMenu, tr("&Simplify While Moving"), "actionSimplifyWhileMoving", [this] {
+    const bool on = findChild<QAction*>("actionSimplifyWhileMoving")->isChecked();
+    QSettings().setValue(kSimplifyWhileMovingKey, on);
+    LevelOfDetail lod = impl_->sceneView->levelOfDetail();
+    lod.enabled = on;
+    impl_->sceneView->setLevelOfDetail(lod);
+  });
+  simplify->setCheckable(true);
+  simplify->setChecked(QSettings().value(kSimplifyWhileMovingKey, true).toBool());
+  {
+    LevelOfDetail lod = d.sceneView->levelOfDetail();
+    lod.enabled = simplify->isChecked();
+    d.sceneView->setLevelOfDetail(lod);
+  }
   viewMenu->addSeparator();
   viewMenu->addAction(outlinerDock->toggleViewAction());
   viewMenu->addAction(propertiesDock->toggleViewAction());

@@ -34,6 +34,7 @@
 #include "ffdkit/parts/parts.h"
 #include "gesture_normals.h"
 #include "object_arrays.h"
+#include "object_proxy.h"
 #include "ffdkit/widgets/widget_model.h"
 #include "ffdkit/widgets/widget_redraw.h"
 #include "scene_view_shapes.h"
@@ -68,6 +69,7 @@ struct SceneView::Impl {
     GestureNormals gestureNormals;            ///< the normals followed along a drag
     vtkSmartPointer<vtkPolyData> polyData;
     vtkSmartPointer<vtkActor> actor;
+    std::unique_ptr<ObjectProxy> proxy;       ///< level of detail (object_proxy.h), or null
   };
   vtkRenderer* renderer = nullptr;
   std::vector<ObjectActor> objects;
@@ -240,6 +242,33 @@ struct SceneView::Impl {
       pointMarker->SetPosition(p.x(), p.y(), p.z());
     }
   }
+
+  // --- Level of detail (LevelOfDetail, object_proxy.h): while things move, a large shaded surface
+  // draws its proxy and its own arrays are left as they are until the motion stops.
+  LevelOfDetail lod;
+  bool moving = false;  // setMoving (playback)
+  // Draws `entry` as its proxy when things move and it is large enough (building the proxy once);
+  // returns whether it did. Otherwise the object's own actor is shown.
+  bool drawProxy(ObjectActor& entry, const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
+    const scenes::SceneObject* object = scene.findObject(entry.id);
+    const bool wanted = lod.enabled && (moving || deformed.inGesture()) && object != nullptr &&
+                        entry.pointCount >= lod.minVertices && object->mesh.triangles.rows() > 0 &&
+                        entry.display.surfaceStyle != scenes::SurfaceStyle::Zebra &&
+                        object->mesh.points.rows() == entry.pointCount;
+    if (!wanted) {
+      if (entry.proxy && entry.proxy->shown()) entry.proxy->show(false);
+      return false;
+    }
+    if (!entry.proxy || entry.proxy->targetVertices() != lod.proxyVertices) {
+      entry.proxy.reset();
+      entry.proxy = std::make_unique<ObjectProxy>(renderer, entry.actor, object->mesh, lod.proxyVertices);
+      ++stats.proxyBuilds;
+    }
+    entry.proxy->show(true);
+    if (entry.proxy->update(deformed, entry.id)) ++stats.proxyUpdates;
+    return true;
+  }
+  // --- end of level of detail
 
   void clearObjects() {
     for (auto& o : objects) {
@@ -583,6 +612,7 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
         if (object.display.visible) (entry++)->name = object.name;
     }
     for (auto& entry : impl_->objects) {
+      if (impl_->drawProxy(entry, scene, deformed)) continue;  // level of detail: the proxy only
       // Only objects whose deformed points moved: their point array, normals and comb, in place.
       const std::uint64_t revision = deformed.revision(entry.id);
       if (revision == entry.pointsRevision) continue;
@@ -670,9 +700,35 @@ SceneViewMemory SceneView::objectMemory() const {
     memory.bytes += sizeof(int) * (entry.vertexFaces.start.capacity() + entry.vertexFaces.faces.capacity());
     memory.bytes += sizeof(Eigen::Vector3f) * entry.faceNormals.capacity();
     memory.bytes += entry.gestureNormals.memoryBytes();
+    if (entry.proxy) memory.bytes += entry.proxy->memoryBytes();
   }
   return memory;
 }
+
+// --- Level of detail (LevelOfDetail, object_proxy.h).
+void SceneView::setLevelOfDetail(const LevelOfDetail& lod) { impl_->lod = lod; }
+const LevelOfDetail& SceneView::levelOfDetail() const { return impl_->lod; }
+void SceneView::setMoving(bool moving) { impl_->moving = moving; }
+bool SceneView::showsProxy(const std::string& object) const {
+  for (const auto& entry : impl_->objects)
+    if (entry.name == object) return entry.proxy && entry.proxy->shown();
+  return false;
+}
+Eigen::MatrixX3d SceneView::objectPoints(const std::string& object) const {
+  for (const auto& entry : impl_->objects) {
+    if (entry.name != object) continue;
+    vtkPoints* points = entry.polyData->GetPoints();
+    Eigen::MatrixX3d out(points->GetNumberOfPoints(), 3);
+    for (Eigen::Index i = 0; i < out.rows(); ++i) {
+      double p[3];
+      points->GetPoint(i, p);
+      out.row(i) = Eigen::RowVector3d(p[0], p[1], p[2]);
+    }
+    return out;
+  }
+  return {};
+}
+// --- end of level of detail
 
 void SceneView::applyCamera(const scenes::Camera& camera) {
   vtkCamera* c = impl_->renderer->GetActiveCamera();

@@ -45,6 +45,22 @@ struct SceneViewStats {
   int widgetBuilds = 0;
   int widgetActorBuilds = 0;  ///< widgets whose actors were built, one per widget (a lattice's two count once)
   int overlayBuilds = 0;  ///< placements of the transformer's actors (another transformer)
+  int proxyBuilds = 0;    ///< level-of-detail proxies built (LevelOfDetail; once per object actor)
+  int proxyUpdates = 0;   ///< proxy point arrays rewritten (a gesture step or a played frame)
+};
+
+/// How a SceneView draws large objects while things move (SceneView::setLevelOfDetail), as VTK's
+/// LOD actors and Blender's Simplify do: during a gesture (SceneDeformer::inGesture) and while
+/// SceneView::setMoving(true) (playback), a shaded surface of at least `minVertices` vertices is
+/// drawn as its proxy, a decimation of the mesh built once per object (vertex clustering: the
+/// proxy's vertices are a subset of the mesh's, so its deformed points are the object's deformed
+/// points at those indices and a step costs the proxy's size). The next refresh() after the motion
+/// draws the full mesh, exact. Widgets, lattices, curves and zebra-striped surfaces are always
+/// drawn in full; what is picked and exported never depends on what is drawn.
+struct LevelOfDetail {
+  bool enabled = true;                ///< false: every object is always drawn in full
+  Eigen::Index minVertices = 250000;  ///< objects with fewer vertices are always drawn in full
+  Eigen::Index proxyVertices = 40000; ///< about this many vertices in a proxy
 };
 
 /// What a SceneView holds in memory for the objects it draws (SceneView::objectMemory).
@@ -86,6 +102,20 @@ class SceneView {
 
   /// Highlights used by the next show() / refresh().
   void setHighlights(const ViewHighlights& highlights);
+
+  /// Sets how large objects are drawn while things move; a change of the proxies' size or
+  /// threshold builds them again at the next refresh().
+  void setLevelOfDetail(const LevelOfDetail& lod);
+  /// The level of detail set (the default LevelOfDetail unless set).
+  const LevelOfDetail& levelOfDetail() const;
+  /// Marks a stream of changes outside a gesture (playback): until setMoving(false), refresh()
+  /// draws large objects as their proxies. The refresh() after setMoving(false) draws them in full.
+  void setMoving(bool moving);
+  /// True when `object` is drawn as its level-of-detail proxy now.
+  bool showsProxy(const std::string& object) const;
+  /// The points of `object`'s full mesh as the view holds them, #points x 3 (empty when it is not
+  /// drawn). For tests.
+  Eigen::MatrixX3d objectPoints(const std::string& object) const;
 
   const SceneViewStats& stats() const;
   /// The memory the view holds for the objects it draws now.

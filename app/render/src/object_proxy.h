@@ -1,0 +1,78 @@
+#pragma once
+
+// The level-of-detail proxy of one object as SceneView draws it (private to ffdkit::render;
+// LevelOfDetail in scene_view.h): an actor beside the object's own, drawing lod_proxy.h's
+// decimation at the deformer's points, and sharing the object actor's property (colour, opacity,
+// highlights). SceneView shows one of the two actors at a time.
+//
+// Points during a gesture: when the deformer reports the object's motion as linear in a few
+// control points (scenes::GestureMotion), the proxy follows it as  x_v = x_v(base) +
+// sum_c w_c(v) d_c  for its own vertices only (w_c = SceneDeformer::controlWeights at the proxy's
+// vertices, taken once per motion), so the deformer's deferred steps of the full mesh are not
+// applied (SceneDeformer::points) and a step costs the proxy's size. Otherwise (playback, the
+// first step, another motion) the proxy gathers the deformer's points at its vertices.
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+#include <vtkActor.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include "ffdkit/meshio/mesh_data.h"
+#include "ffdkit/scenes/scene_deformer.h"
+#include "lod_proxy.h"
+
+class vtkRenderer;
+
+namespace ffdkit::app {
+
+class ObjectProxy {
+ public:
+  /// Decimates `mesh` (its own points and triangles: clusterVertices to about `targetVertices`)
+  /// and adds its actor, hidden, to `renderer`, sharing `full`'s property.
+  ObjectProxy(vtkRenderer* renderer, vtkActor* full, const meshio::MeshData& mesh, Eigen::Index targetVertices);
+  /// Removes the proxy's actor from the renderer.
+  ~ObjectProxy();
+  ObjectProxy(const ObjectProxy&) = delete;
+  ObjectProxy& operator=(const ObjectProxy&) = delete;
+
+  /// Draws the proxy (true) or the object's own actor (false), hiding the other.
+  void show(bool proxy);
+  /// True while the proxy is drawn.
+  bool shown() const { return shown_; }
+  /// Brings the proxy's points and normals to the deformer's present points of `object`.
+  /// Returns false when they already were (the object's revision did not move).
+  bool update(const scenes::SceneDeformer& deformer, scenes::ObjectId object);
+  /// The proxy's vertex count.
+  Eigen::Index vertexCount() const { return static_cast<Eigen::Index>(mesh_.vertices.size()); }
+  /// The target the proxy was built for (a change of LevelOfDetail::proxyVertices builds it anew).
+  Eigen::Index targetVertices() const { return target_; }
+  /// Heap bytes held: the VTK data, the vertex subset and what a followed motion keeps.
+  std::size_t memoryBytes() const;
+
+ private:
+  void gather(const Eigen::MatrixX3d& points, Eigen::MatrixX3d& out) const;
+  void draw(const Eigen::MatrixX3d& points);
+
+  vtkRenderer* renderer_;
+  vtkSmartPointer<vtkActor> full_, actor_;
+  vtkSmartPointer<vtkPolyData> polyData_;
+  ProxyMesh mesh_;
+  Eigen::Index target_ = 0;
+  bool shown_ = false;
+  std::uint64_t drawnRevision_ = 0;
+  bool drawn_ = false;
+  // The motion's base: the proxy's points at the deformer's revision `baseRevision_` that was not a
+  // delta step, and the weights of the control points it moves, at the proxy's vertices.
+  bool haveBase_ = false;
+  std::uint64_t baseRevision_ = 0;
+  Eigen::MatrixX3d base_;
+  widgets::WidgetId weightsLattice_;
+  std::vector<Eigen::Index> weightsFor_;
+  Eigen::MatrixXd weights_;  // #proxy vertices x #control points
+  Eigen::MatrixX3d scratch_;
+};
+
+}  // namespace ffdkit::app
