@@ -414,9 +414,23 @@ bool hasInnerLocations(const TopoDS_Shape& shape) {
   return false;
 }
 
+/// The edge as it is to be read on the face: once, or for a seam (an edge on a closed face, with
+/// a p-curve on each side of the face's parameter domain) twice, forward and reversed, so that
+/// both p-curves are measured (BRep_Tool picks the p-curve by the edge's orientation).
+std::vector<TopoDS_Edge> curvesOnFace(const TopoDS_Edge& edge, const TopoDS_Face& face) {
+  if (!BRep_Tool::IsClosed(edge, face)) return {edge};
+  return {TopoDS::Edge(edge.Oriented(TopAbs_FORWARD)), TopoDS::Edge(edge.Oriented(TopAbs_REVERSED))};
+}
+
 /// After an approximation, an edge's curve and its curves on its faces no longer agree to
-/// rounding: each edge's tolerance grows to 1.5 times the largest distance measured between them
-/// (33 points), and each vertex's to cover its edges and the ends of their curves.
+/// rounding. Each edge's tolerance grows to cover them: to the bound the fits give (the edge's
+/// curve is within its tolerance of the FFD of the original edge, which lay on the original face;
+/// the face's surface within the face's tolerance of the FFD of that face: their sum, as
+/// NewSurface and NewCurve set them, bounds the gap), and to at least 1.5 times the largest distance
+/// measured between them (65 points per curve on the face, both p-curves of a seam). Sampling alone
+/// is not enough: between 33 samples the gap to an approximated face of the bent pipe or the bottle
+/// reached more than twice the tolerance set from them, and BRepCheck_Analyzer rejected the face. Each vertex's tolerance
+/// then grows to cover its edges and the ends of their curves.
 void settleTolerances(const TopoDS_Shape& shape) {
   BRep_Builder builder;
   TopTools_IndexedDataMapOfShapeListOfShape facesOfEdge;
@@ -427,7 +441,7 @@ void settleTolerances(const TopoDS_Shape& shape) {
   for (Standard_Integer e = 1; e <= facesOfEdge.Extent(); ++e) {
     const TopoDS_Edge& edge = TopoDS::Edge(facesOfEdge.FindKey(e));
     const bool degenerated = BRep_Tool::Degenerated(edge);
-    double gap = 0.0;
+    double gap = 0.0, faceTolerance = 0.0;
     std::vector<gp_Pnt> ends;
     TopoDS_Vertex first, last;
     TopExp::Vertices(edge, first, last);
@@ -435,22 +449,25 @@ void settleTolerances(const TopoDS_Shape& shape) {
     BRep_Tool::Range(edge, t0, t1);
     std::optional<BRepAdaptor_Curve> curve;
     if (!degenerated && BRep_Tool::IsGeometric(edge)) curve.emplace(edge);
-    for (TopTools_ListIteratorOfListOfShape f(facesOfEdge(e)); f.More(); f.Next()) {
-      BRepAdaptor_Curve onFace(edge, TopoDS::Face(f.Value()));
-      for (int k = 0; k <= 32; ++k) {
-        const double t = t0 + (t1 - t0) * k / 32;
-        const gp_Pnt p = onFace.Value(t);
-        if (curve) gap = std::max(gap, curve->Value(t).Distance(p));
-        if (degenerated && !first.IsNull()) gap = std::max(gap, BRep_Tool::Pnt(first).Distance(p));
+    for (TopTools_ListIteratorOfListOfShape f(facesOfEdge(e)); f.More(); f.Next())
+      for (const TopoDS_Edge& side : curvesOnFace(edge, TopoDS::Face(f.Value()))) {
+        faceTolerance = std::max(faceTolerance, BRep_Tool::Tolerance(TopoDS::Face(f.Value())));
+        BRepAdaptor_Curve onFace(side, TopoDS::Face(f.Value()));
+        for (int k = 0; k <= 64; ++k) {
+          const double t = t0 + (t1 - t0) * k / 64;
+          const gp_Pnt p = onFace.Value(t);
+          if (curve) gap = std::max(gap, curve->Value(t).Distance(p));
+          if (degenerated && !first.IsNull()) gap = std::max(gap, BRep_Tool::Pnt(first).Distance(p));
+        }
+        ends.push_back(onFace.Value(t0));
+        ends.push_back(onFace.Value(t1));
       }
-      ends.push_back(onFace.Value(t0));
-      ends.push_back(onFace.Value(t1));
-    }
     if (curve) {
       ends.push_back(curve->Value(t0));
       ends.push_back(curve->Value(t1));
     }
-    const double tolerance = std::max(BRep_Tool::Tolerance(edge), 1.5 * gap);
+    const double bound = degenerated ? BRep_Tool::Tolerance(edge) : BRep_Tool::Tolerance(edge) + faceTolerance;
+    const double tolerance = std::max(bound, 1.5 * gap);
     builder.UpdateEdge(edge, tolerance);
     for (const TopoDS_Vertex& vertex : {first, last}) {
       if (vertex.IsNull()) continue;
@@ -500,13 +517,14 @@ void measure(const TopoDS_Shape& original, const gp_Trsf& placement, const TopoD
     const TopoDS_Edge& edge = TopoDS::Edge(facesOfEdge.FindKey(e));
     if (BRep_Tool::Degenerated(edge) || !BRep_Tool::IsGeometric(edge)) continue;
     BRepAdaptor_Curve curve(edge);
-    for (TopTools_ListIteratorOfListOfShape f(facesOfEdge(e)); f.More(); f.Next()) {
-      BRepAdaptor_Curve onFace(edge, TopoDS::Face(f.Value()));
-      for (int k = 0; k < samples; ++k) {
-        const double t = curve.FirstParameter() + (curve.LastParameter() - curve.FirstParameter()) * k / std::max(1, samples - 1);
-        report.maxGap = std::max(report.maxGap, curve.Value(t).Distance(onFace.Value(t)));
+    for (TopTools_ListIteratorOfListOfShape f(facesOfEdge(e)); f.More(); f.Next())
+      for (const TopoDS_Edge& side : curvesOnFace(edge, TopoDS::Face(f.Value()))) {
+        BRepAdaptor_Curve onFace(side, TopoDS::Face(f.Value()));
+        for (int k = 0; k < samples; ++k) {
+          const double t = curve.FirstParameter() + (curve.LastParameter() - curve.FirstParameter()) * k / std::max(1, samples - 1);
+          report.maxGap = std::max(report.maxGap, curve.Value(t).Distance(onFace.Value(t)));
+        }
       }
-    }
   }
 }
 
