@@ -120,6 +120,6 @@ void BM_GmshCheck(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_GmshRead)->ArgName("nodes")->Arg(125000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_GmshWrite)->ArgName("nodes")->Arg(125000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_GmshCheck)->ArgName("nodes")->Arg(125000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GmshRead)->ArgName("nodes")->Arg(125000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+BENCHMARK(BM_GmshWrite)->ArgName("nodes")->Arg(125000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+BENCHMARK(BM_GmshCheck)->ArgName("nodes")->Arg(125000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();

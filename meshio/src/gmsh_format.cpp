@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <bit>
 #include <climits>
+#include <cmath>
 #include <cstring>
 
 #include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/mesh_data.h"
 #include "ffdkit/meshio/read_failures.h"
 #include "formats.h"
+#include "fresh_buffers.h"
 #include "parse_support.h"
 #include "text_coordinates.h"
 
@@ -46,6 +48,27 @@ constexpr TypeInfo kTypes[] = {
 
 constexpr std::int64_t kMaxCount = std::int64_t(1) << 40;
 
+// The value of type T stored at `at` (unaligned), its bytes reversed when `swap`.
+template <class T>
+T loadRaw(const char* at, bool swap) {
+  char raw[sizeof(T)];
+  std::memcpy(raw, at, sizeof(T));
+  if (swap) std::reverse(raw, raw + sizeof(T));
+  T value;
+  std::memcpy(&value, raw, sizeof(T));
+  return value;
+}
+
+// A size_t of the file (data-size 4 or 8 bytes) at `at`.
+inline std::uint64_t loadSize(const char* at, bool swap, int sizeBytes) {
+  return sizeBytes == 8 ? loadRaw<std::uint64_t>(at, swap) : loadRaw<std::uint32_t>(at, swap);
+}
+
+// Blocks of at least this many nodes or elements are read on every core (OpenMP): each record
+// is at a known offset, and a bad one is looked for again in order so that the message names
+// the first, as a serial read would.
+constexpr std::uint64_t kParallelRecords = 1 << 15;
+
 // Raw values of a binary section, each read checked against the bytes left.
 class BinaryReader {
  public:
@@ -70,11 +93,7 @@ class BinaryReader {
  private:
   template <class T>
   T load() {
-    char raw[sizeof(T)];
-    std::memcpy(raw, text_.data() + pos_, sizeof(T));
-    if (swap_) std::reverse(raw, raw + sizeof(T));
-    T value;
-    std::memcpy(&value, raw, sizeof(T));
+    const T value = loadRaw<T>(text_.data() + pos_, swap_);
     pos_ += sizeof(T);
     return value;
   }
@@ -95,7 +114,8 @@ class NodeIndex {
     if (maxTag - minTag < 4 * n + 1024) {
       min_ = minTag;
       budget.chargeBytes(std::uint64_t(maxTag - minTag + 1), sizeof(std::int32_t), "$Nodes: tag table");
-      dense_.assign(std::size_t(maxTag - minTag + 1), -1);
+      dense_.clear();
+      detail::resizeFresh(dense_, std::size_t(maxTag - minTag + 1), std::int32_t(-1));
       for (std::int64_t i = 0; i < n; ++i) {
         std::int32_t& slot = dense_[std::size_t(tags[std::size_t(i)] - minTag)];
         if (slot >= 0) duplicate(source, tags[std::size_t(i)]);
@@ -133,7 +153,11 @@ class NodeIndex {
 // many element blocks does not reallocate at every block).
 template <class T>
 void growTo(std::vector<T>& v, std::size_t size, T value) {
-  if (size > v.capacity()) v.reserve(std::max(size, 2 * v.capacity()));
+  if (size > v.capacity()) {
+    v.reserve(std::max(size, 2 * v.capacity()));
+    // The new memory beyond the items moved in is fresh (fresh_buffers.h).
+    ffd::adviseHugePages(v.data(), v.capacity() * sizeof(T));
+  }
   v.resize(size, value);
 }
 
@@ -314,7 +338,8 @@ class GmshParser {
     budget_.chargePoints(count, "$Nodes: " + std::to_string(count) + " nodes");
     budget_.chargeBytes(count, 8 + (binary_ ? 0 : 36), "$Nodes: tags and coordinate positions");
     mesh_.points.resize(Eigen::Index(count), 3);
-    mesh_.nodeTags.resize(std::size_t(count));
+    detail::adviseHugePages(mesh_.points);
+    detail::resizeFresh(mesh_.nodeTags, std::size_t(count));
     if (!binary_) {
       mesh_.file.spanStarts.reserve(3 * count);
       mesh_.file.spanLengths.reserve(3 * count);
@@ -345,13 +370,25 @@ class GmshParser {
       const int stride = 3 + (parametric == 1 ? dim : 0);
       if (binary_) {
         b.need(n * (std::uint64_t(sizeBytes_) + 8 * std::uint64_t(stride)), what + " (" + std::to_string(n) + " nodes)");
-        for (std::uint64_t i = 0; i < n; ++i) mesh_.nodeTags[std::size_t(read + i)] = std::int64_t(b.size());
-        mesh_.file.blocks.push_back({b.pos(), std::int64_t(read), std::int64_t(n), stride});
-        for (std::uint64_t i = 0; i < n; ++i) {
-          for (int c = 0; c < 3; ++c) mesh_.points(Eigen::Index(read + i), c) = b.real();
-          b.skip(8 * std::size_t(stride - 3));
+        const char* tags = text_.data() + b.pos();
+        const char* xyz = tags + n * std::uint64_t(sizeBytes_);
+        const std::size_t nodeBytes = 8 * std::size_t(stride);
+        const bool swap = swap_;
+        const int sizeBytes = sizeBytes_;
+        std::int64_t* tagOut = mesh_.nodeTags.data() + read;
+        double* x = mesh_.points.col(0).data() + read;
+        double* y = mesh_.points.col(1).data() + read;
+        double* z = mesh_.points.col(2).data() + read;
+#pragma omp parallel for schedule(static) if (n >= kParallelRecords)
+        for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
+          tagOut[i] = std::int64_t(loadSize(tags + std::size_t(i) * std::size_t(sizeBytes), swap, sizeBytes));
+          const char* at = xyz + std::size_t(i) * nodeBytes;
+          x[i] = loadRaw<double>(at, swap);
+          y[i] = loadRaw<double>(at + 8, swap);
+          z[i] = loadRaw<double>(at + 16, swap);
         }
-        s_.moveTo(b.pos());
+        mesh_.file.blocks.push_back({std::size_t(xyz - text_.data()), std::int64_t(read), std::int64_t(n), stride});
+        s_.moveTo(std::size_t(xyz - text_.data()) + std::size_t(n) * nodeBytes);
       } else {
         for (std::uint64_t i = 0; i < n; ++i)
           mesh_.nodeTags[std::size_t(read + i)] = s_.integer(what + " node tag", 1, LLONG_MAX);
@@ -375,16 +412,31 @@ class GmshParser {
     }
     if (read != count)
       s_.fail("$Nodes: the blocks hold " + std::to_string(read) + " nodes, the header announces " + std::to_string(count));
-    for (std::uint64_t i = 0; i < count; ++i) {
-      const std::int64_t tag = mesh_.nodeTags[std::size_t(i)];
-      if (tag < 1 || std::uint64_t(tag) < h[2] || std::uint64_t(tag) > h[3])
+    // The tags in the header's range, binary coordinates finite: checked on every core, the
+    // first bad node (in file order) named.
+    const std::int64_t* tags = mesh_.nodeTags.data();
+    const std::uint64_t minTag = h[2], maxTag = h[3];
+    auto badTag = [&](std::int64_t i) {
+      return tags[i] < 1 || std::uint64_t(tags[i]) < minTag || std::uint64_t(tags[i]) > maxTag;
+    };
+    const double* x = mesh_.points.col(0).data();
+    const double* y = mesh_.points.col(1).data();
+    const double* z = mesh_.points.col(2).data();
+    const bool binary = binary_;
+    auto badPoint = [&](std::int64_t i) {
+      return binary && !(std::isfinite(x[i]) && std::isfinite(y[i]) && std::isfinite(z[i]));
+    };
+    std::int64_t firstBad = std::int64_t(count);
+#pragma omp parallel for schedule(static) reduction(min : firstBad) if (count >= kParallelRecords)
+    for (std::int64_t i = 0; i < std::int64_t(count); ++i)
+      if (i < firstBad && (badTag(i) || badPoint(i))) firstBad = i;
+    if (firstBad < std::int64_t(count)) {
+      const std::int64_t tag = tags[firstBad];
+      if (badTag(firstBad))
         s_.fail("$Nodes: node tag " + std::to_string(tag) + " is outside the header's range " + std::to_string(h[2]) + ".." +
                 std::to_string(h[3]));
+      s_.fail("$Nodes: node " + std::to_string(tag) + ": non-finite coordinate");
     }
-    if (binary_)
-      for (Eigen::Index i = 0; i < mesh_.points.rows(); ++i)
-        if (!mesh_.points.row(i).allFinite())
-          s_.fail("$Nodes: node " + std::to_string(mesh_.nodeTags[std::size_t(i)]) + ": non-finite coordinate");
     index_.build(mesh_.nodeTags, std::int64_t(h[2]), std::int64_t(h[3]), budget_, source_);
     expectEnd("Nodes");
   }
@@ -439,23 +491,36 @@ class GmshParser {
           growTo(cells.cornerStarts, first + n, std::int64_t(0));
           growTo(cells.ids, first + n, std::int64_t(0));
           growTo(cells.corners, firstCorner + n * k, std::int32_t(0));
-          // The hot path of a large binary file: the cells written in place.
-          for (std::uint64_t e = 0; e < n; ++e) {
+          // The hot path of a large binary file: the cells written in place, on every core.
+          const char* records = text_.data() + b.pos();
+          const std::size_t recordBytes = std::size_t(sizeBytes_) * std::size_t(1 + nodes);
+          const bool swap = swap_;
+          const int sizeBytes = sizeBytes_;
+          std::int64_t firstBad = std::int64_t(n);
+#pragma omp parallel for schedule(static) reduction(min : firstBad) if (n >= kParallelRecords)
+          for (std::int64_t e = 0; e < std::int64_t(n); ++e) {
+            const char* record = records + std::size_t(e) * recordBytes;
             const std::size_t c = first + std::size_t(e);
-            const std::uint64_t tag = b.size();
-            cells.ids[c] = std::int64_t(tag);
+            cells.ids[c] = std::int64_t(loadSize(record, swap, sizeBytes));
             cells.cornerStarts[c] = std::int64_t(firstCorner + std::size_t(e) * k);
             std::int32_t* corner = cells.corners.data() + firstCorner + std::size_t(e) * k;
             for (int j = 0; j < nodes; ++j) {
-              const std::uint64_t node = b.size();
-              const std::int32_t row = index_.find(node);
-              if (row < 0)
-                b.fail(what + ": element " + std::to_string(tag) + ": node " + std::to_string(node) + " is not in $Nodes (" +
-                       b.at() + ")");
+              const std::int32_t row = index_.find(loadSize(record + std::size_t(1 + j) * std::size_t(sizeBytes), swap, sizeBytes));
+              if (row < 0 && e < firstBad) firstBad = e;
               if (std::size_t(j) < k) corner[j] = row;
             }
           }
-          s_.moveTo(b.pos());
+          if (firstBad < std::int64_t(n)) {
+            const char* record = records + std::size_t(firstBad) * recordBytes;
+            for (int j = 0; j < nodes; ++j) {
+              const char* at = record + std::size_t(1 + j) * std::size_t(sizeBytes);
+              const std::uint64_t node = loadSize(at, swap, sizeBytes);
+              if (index_.find(node) < 0)
+                b.fail(what + ": element " + std::to_string(loadSize(record, swap, sizeBytes)) + ": node " + std::to_string(node) +
+                       " is not in $Nodes (byte offset " + std::to_string(at - text_.data()) + ")");
+            }
+          }
+          s_.moveTo(b.pos() + std::size_t(n) * recordBytes);
           mesh_.elementsByType[type] += std::int64_t(n);
           read += n;
           continue;
@@ -539,7 +604,7 @@ GmshMesh readGmsh(const std::filesystem::path& path, const ReadLimits& limits) {
     std::string bytes;
     detail::readRegularFile(path, [&](std::size_t size) {
       budget.chargeBytes(size, 1, "the file's bytes");
-      bytes.resize(size);
+      detail::resizeFresh(bytes, size);
       return bytes.data();
     });
     return readGmsh(std::move(bytes), source, budget);

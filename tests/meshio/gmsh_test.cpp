@@ -1,8 +1,10 @@
 #include "ffdkit/meshio/gmsh.h"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include <unistd.h>
 
@@ -155,6 +157,74 @@ TEST(Gmsh, BadFilesGiveClearMessages) {
             std::string::npos);
   // A binary file's messages name byte offsets, not lines.
   EXPECT_NE(errorOf(binary.substr(0, binary.find("$Nodes") + 100)).find("two.msh: byte offset "), std::string::npos);
+}
+
+// A binary file of `n` nodes (tags 1..n at (i, i^2 mod 7, -i)) and n - 3 tetrahedra on nodes
+// (i, i+1, i+2, i+3), in either byte order: large enough that its blocks are read on every core.
+std::string binaryChain(std::uint64_t n, bool bigEndian) {
+  std::string b = "$MeshFormat\n4.1 1 8\n";
+  auto put = [&](auto v) {
+    char raw[sizeof v];
+    std::memcpy(raw, &v, sizeof v);
+    if (bigEndian) std::reverse(raw, raw + sizeof v);
+    b.append(raw, sizeof v);
+  };
+  put(std::int32_t(1));
+  b += "\n$EndMeshFormat\n$Nodes\n";
+  put(std::uint64_t(1)), put(n), put(std::uint64_t(1)), put(n);
+  put(std::int32_t(3)), put(std::int32_t(1)), put(std::int32_t(0)), put(n);
+  for (std::uint64_t t = 1; t <= n; ++t) put(t);
+  for (std::uint64_t i = 0; i < n; ++i) put(double(i)), put(double((i * i) % 7)), put(-double(i));
+  b += "\n$EndNodes\n$Elements\n";
+  put(std::uint64_t(1)), put(n - 3), put(std::uint64_t(1)), put(n - 3);
+  put(std::int32_t(3)), put(std::int32_t(1)), put(std::int32_t(4)), put(n - 3);
+  for (std::uint64_t e = 1; e <= n - 3; ++e) put(e), put(e), put(e + 1), put(e + 2), put(e + 3);
+  b += "\n$EndElements\n";
+  return b;
+}
+
+// Overwrites the 8-byte value at `offset` of a little-endian file.
+void poke(std::string& bytes, std::size_t offset, auto value) { std::memcpy(bytes.data() + offset, &value, 8); }
+
+TEST(Gmsh, LargeBinaryBlocksReadInEitherByteOrderAndNameTheFirstBadRecord) {
+  const std::uint64_t n = 100'000;
+  for (bool big : {false, true}) {
+    const GmshMesh mesh = read(binaryChain(n, big));
+    ASSERT_EQ(mesh.points.rows(), Eigen::Index(n));
+    ASSERT_EQ(mesh.cells.cellCount(), std::int64_t(n - 3));
+    bool same = true;
+    for (std::uint64_t i = 0; i < n; ++i)
+      same = same && mesh.nodeTags[i] == std::int64_t(i + 1) && mesh.points(Eigen::Index(i), 0) == double(i) &&
+             mesh.points(Eigen::Index(i), 1) == double((i * i) % 7) && mesh.points(Eigen::Index(i), 2) == -double(i);
+    for (std::int64_t c = 0; c < mesh.cells.cellCount(); ++c)
+      same = same && mesh.cells.ids[std::size_t(c)] == c + 1 && mesh.cells.cornerStarts[std::size_t(c)] == 4 * c &&
+             mesh.cells.corners[std::size_t(4 * c + 3)] == std::int32_t(c + 3);
+    EXPECT_TRUE(same) << (big ? "big-endian" : "little-endian");
+  }
+  const std::string good = binaryChain(n, false);
+  const std::size_t tags = good.find("$Nodes\n") + 7 + 32 + 20, xyz = tags + 8 * n;
+  const std::size_t elements = good.find("$Elements\n") + 10 + 32 + 20;
+  // Two bad element nodes, the later one in the first half of the block: the earlier is named.
+  std::string bad = good;
+  poke(bad, elements + 40 * 70'000 + 16, std::uint64_t(n + 5));
+  poke(bad, elements + 40 * 20'000 + 24, std::uint64_t(n + 9));
+  EXPECT_NE(errorOf(bad).find("element 20001: node 100009 is not in $Nodes (byte offset " +
+                              std::to_string(elements + 40 * 20'000 + 24) + ")"),
+            std::string::npos)
+      << errorOf(bad);
+  // A non-finite coordinate after a tag outside the header's range: the tag is named.
+  bad = good;
+  poke(bad, xyz + 24 * 80'000 + 8, std::numeric_limits<double>::quiet_NaN());
+  poke(bad, tags + 8 * 60'000, std::uint64_t(n + 1));
+  EXPECT_NE(errorOf(bad).find("node tag 100001 is outside the header's range 1..100000"), std::string::npos) << errorOf(bad);
+  bad = good;
+  poke(bad, xyz + 24 * 80'000 + 8, std::numeric_limits<double>::infinity());
+  poke(bad, xyz + 24 * 90'000, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_NE(errorOf(bad).find("node 80001: non-finite coordinate"), std::string::npos) << errorOf(bad);
+  // Finite coordinates whose sum would overflow are finite.
+  bad = good;
+  poke(bad, xyz + 24 * 50'000, 1e308), poke(bad, xyz + 24 * 50'000 + 8, 1e308);
+  EXPECT_EQ(errorOf(bad), "no error");
 }
 
 TEST(Gmsh, ChargesTheBudgetBeforeAllocating) {
