@@ -3,7 +3,7 @@
 // BM_DragFirstStep times), a hover (highlights only), an undo of a drag (model and deformer:
 // the document core; the view then updates as in a drag step) and of adding a widget, on a sphere of
 // 1M (10M) vertices in a 4x4x4 cubic B-spline lattice with one point widget. No GL draw: the
-// view's renderer has no window. BM_DragStep's counter viewBytesPerVertex is the view's memory
+// view's renderer has no window, and it draws every object in full (no level of detail). BM_DragStep's counter viewBytesPerVertex is the view's memory
 // per vertex during the drag (SceneView::objectMemory). Run:
 //   bench_interaction --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // Each benchmark checks once that its work did what it should (the view updated the points, the
@@ -42,6 +42,9 @@ struct Session {
     lattice = made.lattice;
     widget = made.widget;
     view = std::make_unique<app::SceneView>(renderer);
+    // The full-resolution data path: the view follows the whole mesh at every step (a level-of-
+    // detail proxy would draw a decimated copy during the gesture and leave the mesh's arrays).
+    view->setLevelOfDetail(app::LevelOfDetail{.enabled = false});
     view->setHighlights(controller.highlights());
     view->show(scene, deformer);
     controller.onChanged = [this] {
