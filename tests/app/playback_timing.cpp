@@ -60,12 +60,19 @@ class PaintCounter : public QObject {
 };
 
 // The end time of every render of the view's window (ms on `clock`).
+// and how long each render took (from the render window's start of render).
 struct FrameClock {
   QElapsedTimer clock;
-  std::vector<double> ends;
+  std::vector<double> ends, renders;
+  double started = 0.0;
+  static void onStart(vtkObject*, unsigned long, void* self, void*) {
+    auto* me = static_cast<FrameClock*>(self);
+    me->started = me->clock.nsecsElapsed() * 1e-6;
+  }
   static void onEnd(vtkObject*, unsigned long, void* self, void*) {
     auto* me = static_cast<FrameClock*>(self);
     me->ends.push_back(me->clock.nsecsElapsed() * 1e-6);
+    me->renders.push_back(me->ends.back() - me->started);
   }
 };
 
@@ -214,6 +221,7 @@ int drag(app::MainWindow& window, const Options& o, FrameClock& frames) {
   QWidget* view = window.view();
 
   frames.ends.clear();
+  frames.renders.clear();
   const double start = frames.clock.nsecsElapsed() * 1e-6;
   sendMouse(view, QEvent::MouseButtonPress, press, Qt::LeftButton, Qt::LeftButton);
   if (window.sceneView().stats().pointUpdates < 0 || !window.deformer().inGesture())
@@ -221,13 +229,16 @@ int drag(app::MainWindow& window, const Options& o, FrameClock& frames) {
   // The pointer moves 40 px out and back along the arrow, a move every 16 ms (QTimer events, so
   // the event loop renders between them as it does for a real pointer).
   int moves = 0;
+  std::vector<double> handling;  // ms each move took to handle (the model, the deformer, the view's arrays)
   QTimer mover;
   mover.setTimerType(Qt::PreciseTimer);
   QObject::connect(&mover, &QTimer::timeout, [&] {
     ++moves;
     const double t = (frames.clock.nsecsElapsed() * 1e-6 - start) * 1e-3;
     const double offset = 40.0 * std::sin(t * 2.0);  // px; about 0.3 back-and-forth per second
+    const double before = frames.clock.nsecsElapsed() * 1e-6;
     sendMouse(view, QEvent::MouseMove, press + offset * unit, Qt::NoButton, Qt::LeftButton);
+    handling.push_back(frames.clock.nsecsElapsed() * 1e-6 - before);
   });
   mover.start(16);
   QTest::qWait(static_cast<int>(o.seconds * 1000));
@@ -257,6 +268,9 @@ int drag(app::MainWindow& window, const Options& o, FrameClock& frames) {
               static_cast<long long>(window.scene().objects().front().mesh.points.rows()), dragSeconds, moves, during,
               during / dragSeconds, spanSeconds > 0 ? (during - 1) / spanSeconds : 0.0, median(frameTimes),
               frameTimes.empty() ? 0.0 : *std::max_element(frameTimes.begin(), frameTimes.end()));
+  std::printf("  of which: render (start to end) median %.0f ms, a move's handling median %.0f ms, worst %.0f ms\n",
+              median(std::vector<double>(frames.renders.begin(), frames.renders.begin() + long(during))), median(handling),
+              handling.empty() ? 0.0 : *std::max_element(handling.begin(), handling.end()));
   std::printf("release: handled in %.0f ms, exact mesh displayed %.0f ms after the release (%d full point updates "
               "at release, gesture %s)\n",
               handled - releaseAt, exactShown - releaseAt, after.pointUpdates - before.pointUpdates,
@@ -297,5 +311,9 @@ int main(int argc, char** argv) {
   onEnd->SetCallback(&FrameClock::onEnd);
   onEnd->SetClientData(&frames);
   window.view()->renderWindow()->AddObserver(vtkCommand::EndEvent, onEnd);
+  vtkNew<vtkCallbackCommand> onStart;
+  onStart->SetCallback(&FrameClock::onStart);
+  onStart->SetClientData(&frames);
+  window.view()->renderWindow()->AddObserver(vtkCommand::StartEvent, onStart);
   return o.mode == "drag" ? drag(window, o, frames) : play(window, o, frames);
 }

@@ -1,0 +1,219 @@
+// The view's level of detail (LevelOfDetail in scene_view.h, app/render/src/lod_proxy.h): the
+// proxy is a vertex clustering whose vertices are some of the mesh's, it is what a drag or
+// playback draws of a large surface, it follows the deformer's motion at its own vertices, and the
+// full mesh drawn after the motion is bit for bit the one a view without level of detail draws.
+// No GL draw: the renderers have no window.
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <tuple>
+
+#include <gtest/gtest.h>
+
+#include <vtkActor.h>
+#include <vtkActorCollection.h>
+#include <vtkMapper.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkRenderer.h>
+
+#include "drag_sphere.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/render/scene_view.h"
+#include "lod_proxy.h"
+
+namespace ffdkit::app {
+namespace {
+
+meshio::MeshData sphereMesh(int resolution) {
+  scenes::PrimitiveOptions sphere;
+  sphere.resolution = resolution;
+  return scenes::buildObjectMesh(sphere, ".");
+}
+
+TEST(LodProxy, IsAClusteringOfSomeOfTheMeshsVertices) {
+  const meshio::MeshData mesh = sphereMesh(200);
+  const Eigen::Index n = mesh.points.rows();
+  ASSERT_GT(n, 15000);
+  const Eigen::Index target = 1000;
+  const ProxyMesh proxy = clusterVertices(mesh.points, mesh.triangles, target);
+  const auto count = static_cast<Eigen::Index>(proxy.vertices.size());
+  // About the target: a cell per sqrt(area / target) of surface.
+  EXPECT_GT(count, target / 3);
+  EXPECT_LT(count, 3 * target);
+  EXPECT_TRUE(std::is_sorted(proxy.vertices.begin(), proxy.vertices.end()));
+  EXPECT_TRUE(std::adjacent_find(proxy.vertices.begin(), proxy.vertices.end()) == proxy.vertices.end());
+  EXPECT_GE(proxy.vertices.front(), 0);
+  EXPECT_LT(proxy.vertices.back(), n);
+  // Triangles over three distinct proxy vertices, each once, every vertex used.
+  std::set<std::tuple<int, int, int>> seen;
+  std::vector<bool> used(proxy.vertices.size(), false);
+  ASSERT_GT(proxy.triangles.rows(), count);  // a closed surface has about twice as many
+  for (Eigen::Index t = 0; t < proxy.triangles.rows(); ++t) {
+    int c[3] = {proxy.triangles(t, 0), proxy.triangles(t, 1), proxy.triangles(t, 2)};
+    for (int v : c) {
+      ASSERT_GE(v, 0);
+      ASSERT_LT(v, count);
+      used[static_cast<std::size_t>(v)] = true;
+    }
+    ASSERT_TRUE(c[0] != c[1] && c[1] != c[2] && c[0] != c[2]) << "triangle " << t;
+    std::sort(c, c + 3);
+    EXPECT_TRUE(seen.emplace(c[0], c[1], c[2]).second) << "triangle " << t << " repeats";
+  }
+  EXPECT_TRUE(std::all_of(used.begin(), used.end(), [](bool u) { return u; }));
+  // The proxy covers the surface: every vertex of the mesh lies within two cells (sqrt(3) cell
+  // diagonals and a neighbour) of a proxy vertex.
+  const double area = 4.0 * std::numbers::pi * std::pow(mesh.points.row(0).norm(), 2);
+  const double cell = std::sqrt(area / double(target));
+  double farthest = 0.0;
+  for (Eigen::Index v = 0; v < n; v += 7) {
+    double nearest = INFINITY;
+    for (Eigen::Index p : proxy.vertices) nearest = std::min(nearest, (mesh.points.row(v) - mesh.points.row(p)).norm());
+    farthest = std::max(farthest, nearest);
+  }
+  EXPECT_LT(farthest, 2.0 * cell);
+  // Deterministic.
+  const ProxyMesh again = clusterVertices(mesh.points, mesh.triangles, target);
+  EXPECT_EQ(again.vertices, proxy.vertices);
+  EXPECT_EQ(again.triangles, proxy.triangles);
+}
+
+TEST(LodProxy, AMeshNoLargerThanTheTargetIsItsOwnProxy) {
+  const meshio::MeshData mesh = sphereMesh(20);
+  const ProxyMesh proxy = clusterVertices(mesh.points, mesh.triangles, mesh.points.rows());
+  ASSERT_EQ(static_cast<Eigen::Index>(proxy.vertices.size()), mesh.points.rows());
+  for (std::size_t i = 0; i < proxy.vertices.size(); ++i) EXPECT_EQ(proxy.vertices[i], static_cast<Eigen::Index>(i));
+  EXPECT_EQ(proxy.triangles, mesh.triangles);
+}
+
+// A sphere in a cubic lattice with a translate widget, drawn by a view whose level of detail is
+// on (proxies from 500 vertices) or off.
+struct Document {
+  scenes::Scene scene;
+  scenes::SceneDeformer deformer;
+  scenes::CommandStack commands;
+  InteractionController controller{scene, deformer, commands};
+  vtkNew<vtkRenderer> renderer;
+  SceneView view{renderer};
+  testing::DragSphere made;
+  static constexpr Eigen::Index kProxyVertices = 300;
+
+  explicit Document(bool lod) {
+    LevelOfDetail options;
+    options.enabled = lod;
+    options.minVertices = 500;
+    options.proxyVertices = kProxyVertices;
+    view.setLevelOfDetail(options);
+    made = testing::addDragSphere(controller, 60);
+    view.setHighlights(controller.highlights());
+    view.show(scene, deformer);
+    controller.onChanged = [this] {
+      view.setHighlights(controller.highlights());
+      view.refresh(scene, deformer);
+    };
+  }
+  widgets::Ray ray(double along) const {
+    const widgets::WidgetFrame f = scene.widgets.affineFrame(made.widget);
+    widgets::Ray r;
+    r.origin = f.frame.translation() + f.size * along * f.frame.linear().col(0) + 5.0 * f.frame.linear().col(2);
+    r.direction = -f.frame.linear().col(2);
+    return r;
+  }
+  double tolerance() const { return 0.05 * scene.widgets.affineFrame(made.widget).size; }
+  const meshio::MeshData& mesh() const { return scene.findObject(made.sphere)->mesh; }
+  // The points of the visible actor drawing `vertices` points (the proxy), #vertices x 3.
+  Eigen::MatrixX3d visibleActorPoints(Eigen::Index vertices) {
+    vtkActorCollection* actors = renderer->GetActors();
+    actors->InitTraversal();
+    while (vtkActor* actor = actors->GetNextActor()) {
+      auto* data = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInput());
+      if (!actor->GetVisibility() || data == nullptr || data->GetNumberOfPoints() != vertices) continue;
+      Eigen::MatrixX3d out(vertices, 3);
+      for (Eigen::Index i = 0; i < vertices; ++i) {
+        double p[3];
+        data->GetPoint(i, p);
+        out.row(i) = Eigen::RowVector3d(p[0], p[1], p[2]);
+      }
+      return out;
+    }
+    return {};
+  }
+};
+
+TEST(LevelOfDetail, ADragDrawsTheProxyFollowingTheMotionAndReleaseTheFullMeshBitForBit) {
+  Document on(true), off(false);
+  ASSERT_GT(on.mesh().points.rows(), 500);
+  const ProxyMesh proxy = clusterVertices(on.mesh().points, on.mesh().triangles, Document::kProxyVertices);
+  const auto proxyCount = static_cast<Eigen::Index>(proxy.vertices.size());
+  for (Document* d : {&on, &off})
+    ASSERT_EQ(d->controller.press(d->ray(0.5), d->tolerance()), InteractionController::PressResult::Widget);
+  const SceneViewStats pressed = on.view.stats();
+  const double scale = on.mesh().points.cwiseAbs().maxCoeff();
+  for (int step = 1; step <= 6; ++step) {
+    for (Document* d : {&on, &off}) d->controller.drag(d->ray(0.5 + 0.15 * step));
+    EXPECT_TRUE(on.view.showsProxy(on.made.sphere));
+    EXPECT_FALSE(off.view.showsProxy(off.made.sphere));
+    // The proxy at the deformer's points of its vertices (the view followed the motion; points()
+    // applies the deferred steps, so it is read after the proxy was drawn).
+    const Eigen::MatrixX3d drawn = on.visibleActorPoints(proxyCount);
+    ASSERT_EQ(drawn.rows(), proxyCount);
+    const Eigen::MatrixX3d& exact = on.deformer.points(on.made.sphere);
+    double worst = 0.0;
+    for (Eigen::Index i = 0; i < proxyCount; ++i)
+      worst = std::max(worst, (drawn.row(i) - exact.row(proxy.vertices[static_cast<std::size_t>(i)])).cwiseAbs().maxCoeff());
+    EXPECT_LT(worst, 1e-6 * scale) << "step " << step;  // float storage
+  }
+  const SceneViewStats dragged = on.view.stats();
+  EXPECT_EQ(dragged.proxyBuilds, pressed.proxyBuilds + (pressed.proxyBuilds == 0 ? 1 : 0));
+  EXPECT_GE(dragged.proxyUpdates, pressed.proxyUpdates + 6);
+  EXPECT_EQ(dragged.pointUpdates, pressed.pointUpdates);  // the full mesh's arrays untouched
+  EXPECT_EQ(dragged.normalUpdates, pressed.normalUpdates);
+
+  for (Document* d : {&on, &off}) d->controller.release();
+  EXPECT_FALSE(on.view.showsProxy(on.made.sphere));
+  EXPECT_EQ(on.view.stats().pointUpdates, dragged.pointUpdates + 1);
+  // The same document, the same exact points, and the same full mesh drawn, bit for bit.
+  EXPECT_EQ(on.deformer.points(on.made.sphere), off.deformer.points(off.made.sphere));
+  EXPECT_EQ(on.scene.widgets.variation(on.made.widget), off.scene.widgets.variation(off.made.widget));
+  const Eigen::MatrixX3d onPoints = on.view.objectPoints(on.made.sphere);
+  ASSERT_EQ(onPoints.rows(), on.mesh().points.rows());
+  EXPECT_TRUE(onPoints == off.view.objectPoints(off.made.sphere));
+  EXPECT_TRUE(on.view.objectNormals(on.made.sphere) == off.view.objectNormals(off.made.sphere));
+  EXPECT_LT((onPoints - on.deformer.points(on.made.sphere)).cwiseAbs().maxCoeff(), 1e-6 * scale);
+  EXPECT_GT((onPoints - on.mesh().points).cwiseAbs().maxCoeff(), 1e-3 * scale);  // it did move
+}
+
+TEST(LevelOfDetail, PlaybackDrawsTheProxyUntilItStops) {
+  Document on(true);
+  on.view.setMoving(true);
+  for (int frame = 1; frame <= 3; ++frame) {
+    on.controller.setVariation(on.made.widget, 0.1 * frame);
+    EXPECT_TRUE(on.view.showsProxy(on.made.sphere));
+  }
+  const SceneViewStats playing = on.view.stats();
+  on.view.setMoving(false);
+  on.view.refresh(on.scene, on.deformer);
+  EXPECT_FALSE(on.view.showsProxy(on.made.sphere));
+  EXPECT_EQ(on.view.stats().pointUpdates, playing.pointUpdates + 1);
+  const double scale = on.mesh().points.cwiseAbs().maxCoeff();
+  EXPECT_LT((on.view.objectPoints(on.made.sphere) - on.deformer.points(on.made.sphere)).cwiseAbs().maxCoeff(), 1e-6 * scale);
+}
+
+TEST(LevelOfDetail, SmallObjectsAndAViewWithoutItDrawInFull) {
+  for (const bool large : {false, true}) {
+    Document d(true);
+    LevelOfDetail options = d.view.levelOfDetail();
+    options.enabled = large;  // off: no proxy at any size
+    if (large) options.minVertices = d.mesh().points.rows() + 1;  // on, but the sphere is below it
+    d.view.setLevelOfDetail(options);
+    ASSERT_EQ(d.controller.press(d.ray(0.5), d.tolerance()), InteractionController::PressResult::Widget);
+    d.controller.drag(d.ray(0.9));
+    EXPECT_FALSE(d.view.showsProxy(d.made.sphere));
+    EXPECT_EQ(d.view.stats().proxyBuilds, 0);
+    d.controller.release();
+  }
+}
+
+}  // namespace
+}  // namespace ffdkit::app
