@@ -24,8 +24,8 @@ std::size_t stateBytes(const widgets::WidgetModelState& s) {
 bool same(const widgets::LatticeData& a, const widgets::LatticeData& b) {
   return a.name == b.name && a.counts == b.counts && a.restPoints.rows() == b.restPoints.rows() &&
          a.restPoints == b.restPoints && a.controlPoints.rows() == b.controlPoints.rows() &&
-         a.controlPoints == b.controlPoints && a.frame.matrix() == b.frame.matrix() && widgets::sameLatticeSettings(a.settings, b.settings) &&
-         a.children == b.children;
+         a.controlPoints == b.controlPoints && a.weights.size() == b.weights.size() && a.weights == b.weights &&
+         a.frame.matrix() == b.frame.matrix() && widgets::sameLatticeSettings(a.settings, b.settings) && a.children == b.children;
 }
 bool same(const widgets::CellData& a, const widgets::CellData& b) {
   return a.name == b.name && a.lattice == b.lattice && a.spec == b.spec;
@@ -68,7 +68,7 @@ void patch(std::vector<Record>& records, const ModelPatch::Changes<Record>& chan
 
 std::size_t recordBytes(const widgets::LatticeData& r) {
   return sizeof(r) + r.name.size() + matrixBytes(r.restPoints) + matrixBytes(r.controlPoints) +
-         r.children.size() * sizeof(WidgetId);
+         sizeof(double) * static_cast<std::size_t>(r.weights.size()) + r.children.size() * sizeof(WidgetId);
 }
 std::size_t recordBytes(const widgets::CellData& r) { return sizeof(r) + r.name.size() + r.spec.indices.size() * sizeof(r.spec.indices.front()); }
 std::size_t recordBytes(const widgets::AffineData& r) { return sizeof(r) + r.name.size() + r.glyph.shape.size(); }

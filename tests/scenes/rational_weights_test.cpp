@@ -75,6 +75,24 @@ TEST(RationalWeights, TheModelEditsWeightsAsControlEditsWithUndo) {
   EXPECT_FALSE(model.isRational(lattice));
 }
 
+// A document edit's command holds the records that changed (modelPatch): a weight edit alone is
+// a change of its lattice's record, so its undo gives the polynomial lattice back and its redo
+// the weight (found by the monkey GUI test: the undo of 'Weight of point 5 of lattice' did nothing).
+TEST(RationalWeights, AWeightEditAloneIsAPatchOfItsLattice) {
+  WidgetModel model;
+  const WidgetId lattice = model.addLattice("box", Eigen::Vector3i(3, 3, 3));
+  const widgets::WidgetModelData before = model.toData();
+  model.setWeight(lattice, 5, 0.5);
+  const ModelPatch patch = modelPatch(before, model.toData());
+  ASSERT_EQ(patch.lattices.size(), 1u);
+  EXPECT_GT(patch.bytes(), 27 * sizeof(double));  // the weights are held, not only the points
+  applyPatch(model, patch, false);  // undo
+  EXPECT_FALSE(model.isRational(lattice));
+  EXPECT_EQ(widgetFileText(model).find("\"version\": 2"), std::string::npos);
+  applyPatch(model, patch, true);  // redo
+  EXPECT_EQ(model.weights(lattice)[5], 0.5);
+}
+
 TEST(RationalWeights, WidgetFilesCarryWeightsInVersionTwoOnly) {
   WidgetModel model;
   const WidgetId lattice = model.addLattice("box", Eigen::Vector3i(3, 2, 2));
