@@ -417,11 +417,21 @@ void WidgetModel::setSiblingPosition(WidgetId lattice, std::size_t position) {
 
 void WidgetModel::setControlPoints(WidgetId lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points) {
   Impl& m = *impl_;
-  m.requireNoGesture("setting control points");
   Impl::Node& n = m.node(lattice, WidgetType::Lattice);
   if (points.rows() != n.control.rows() || !finite(points))
     fail(WidgetErrorCode::InvalidArgument, "control points must be " + std::to_string(n.control.rows()) +
                                                " x 3 finite values, got " + std::to_string(points.rows()) + " x 3");
+  // During a gesture only the points it does not move may change (a correction of the others
+  // after each step: the app's Keep Volume / Keep Centre); each step re-applies the gesture's own
+  // points from their start, and cancelGesture() restores only those.
+  if (m.gesture)
+    for (const auto& [id, indices] : m.gesture->affected)
+      if (id == lattice)
+        for (Eigen::Index i : indices)
+          if (points.row(i) != n.control.row(i))
+            fail(WidgetErrorCode::GestureState, "setting control point " + std::to_string(i) + " of '" + m.label(lattice) +
+                                                    ", which the gesture on " + toString(m.gesture->target) +
+                                                    " moves, is not allowed during it");
   n.control = points;
   m.touch();
   m.markControl(lattice);

@@ -60,6 +60,9 @@ class EditModeInput : public QObject {
   /// model change.
   void syncEditToggle();
   bool eventFilter(QObject* watched, QEvent* event) override;
+  /// The shape guard's report of the last step of the transform or drag in progress
+  /// ("sphere1: volume change 2.0e-16"), or "".
+  QString guardText() const;
 
  private:
   /// A menu action; with `viewKeys`, its keys (from keyboard_shortcuts.cpp) act in the view only.
@@ -79,8 +82,6 @@ class EditModeInput : public QObject {
   void setKeep(bool volume, bool on);
   /// Checks Keep Volume / Keep Centre when every target object keeps it.
   void syncKeepActions();
-  /// The shape guard's report of the last transform step ("volume kept (change 2e-16)"), or "".
-  QString guardText() const;
   /// Grows (factor > 1) or shrinks the soft selection's radius during a transform.
   void scaleSoftRadius(double factor);
   void finishBox(const QPoint& end, Qt::KeyboardModifiers modifiers);

@@ -77,9 +77,9 @@ void EditModeInput::scaleSoftRadius(double factor) {
 void EditModeInput::addShapeGuardActions(QMenu* menu) {
   menu->addSeparator();
   keepVolume_ = addAction(menu, tr("Keep &Volume"), "actionKeepVolume", false, {});
-  keepVolume_->setToolTip(tr("Moving lattice points keeps the volume of the selected object (closed surfaces)"));
+  keepVolume_->setToolTip(tr("Every drag and transform keeps the volume of the selected object (closed surfaces)"));
   keepCentre_ = addAction(menu, tr("Keep C&entre"), "actionKeepCentre", false, {});
-  keepCentre_->setToolTip(tr("Moving lattice points keeps the centre of the selected object"));
+  keepCentre_->setToolTip(tr("Every drag and transform keeps the centre of the selected object"));
   for (QAction* a : {keepVolume_, keepCentre_}) {
     a->setCheckable(true);
     const bool volume = a == keepVolume_;
@@ -128,7 +128,7 @@ void EditModeInput::setKeep(bool volume, bool on) {
   }
   syncKeepActions();
   const QString what = volume ? tr("volume") : tr("centre");
-  p_.status->say(on ? tr("Keeping the %1 of %2 while lattice points move").arg(what, names.join(", "))
+  p_.status->say(on ? tr("Keeping the %1 of %2 while its lattice moves").arg(what, names.join(", "))
                     : tr("No longer keeping the %1 of %2").arg(what, names.join(", ")),
                  5000);
 }
@@ -153,7 +153,9 @@ void EditModeInput::syncKeepActions() {
 
 QString EditModeInput::guardText() const {
   QStringList parts;
-  for (const ShapeGuardStep& step : p_.edit->guardSteps()) {
+  // The edit mode's transform, else the controller's drag (a glyph, a cell, a handle, an object point).
+  const std::vector<ShapeGuardStep>& steps = p_.edit->transforming() ? p_.edit->guardSteps() : p_.controller->guardSteps();
+  for (const ShapeGuardStep& step : steps) {
     const QString name = p_.scene->findObject(step.object) ? qs(p_.scene->objectName(step.object)) : QString();
     if (!step.problem.empty()) parts << tr("not kept: %1").arg(qs(step.problem));
     else if (std::isnan(step.volumeChange)) parts << tr("%1: centre kept").arg(name);

@@ -107,6 +107,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     s.sceneView->setHighlights(s.edit->highlights(s.controller->highlights()));
     s.sceneView->refresh(s.scene, s.deformer);
     if (s.timeline) s.timeline->sync();
+    QString dragText;
     if (const auto value = s.controller->handleDragValue()) {
       // What the transformer drag does so far, as a designer reads it.
       const TransformerHandle handle = *s.controller->transformerHandle();
@@ -114,8 +115,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
       const QString amount = group == 0   ? QString::number(*value, 'f', 3)
                              : group == 1 ? QString("%1°").arg(*value * 180.0 / std::numbers::pi, 0, 'f', 1)
                                           : QString("x%1").arg(*value, 0, 'f', 3);
-      s.status->say(QString("%1 %2").arg(transformerHandleName(handle), amount));
+      dragText = QString("%1 %2").arg(transformerHandleName(handle), amount);
     }
+    // Keep Volume / Keep Centre during a drag: the volume change of each kept object.
+    if (s.editInput && s.controller->dragging())
+      if (const QString guard = s.editInput->guardText(); !guard.isEmpty())
+        dragText += (dragText.isEmpty() ? QString() : QString(" · ")) + guard;
+    if (!dragText.isEmpty()) s.status->say(dragText);
     const auto& stats = s.deformer.lastStats();
     // An update with nothing to do (a hover, a selection) keeps the last real deform time.
     if (stats.seconds > 0.0 && stats.deformedPoints > 0 && (stats.seconds >= 1e-5 || stats.reembeddedStages > 0))

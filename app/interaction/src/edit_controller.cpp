@@ -506,7 +506,7 @@ void EditController::apply(const Eigen::Affine3d& motion) {
 
 void EditController::guardStep() {
   guardSteps_.clear();
-  if (guard_.empty()) return;
+  if (shapeGuard().empty()) return;
   for (const Target& t : live_->targets) {
     if (t.kind != Target::Kind::Points) continue;
     // Free: the points this transform does not move (selected, mirrored or softly moved ones).
@@ -516,7 +516,7 @@ void EditController::guardStep() {
     for (const auto& soft : t.soft) free[static_cast<std::size_t>(soft.first)] = false;
     // apply() set every point from the transform's start: the free ones are where they were
     // before it, and the correction is the least-norm change from there (no drift over the steps).
-    for (ShapeGuardStep& step : guard_.correct(scene_, t.id, free)) guardSteps_.push_back(std::move(step));
+    for (ShapeGuardStep& step : shapeGuard().correct(scene_, t.id, free)) guardSteps_.push_back(std::move(step));
   }
 }
 
@@ -634,7 +634,11 @@ CellFromSelection EditController::cellFor(std::optional<widgets::CellKind> kind)
 WidgetId EditController::makeCell(const widgets::CellSpec& spec) { return widgets_.addCell(lattice(), spec); }
 
 ViewHighlights EditController::highlights(ViewHighlights h) const {
-  h.foldTints = foldTints_;
+  // The controller's tints (lattices its drags moved) with this object's (the edited lattice and
+  // the lattices a transform moves): one per lattice, the same verdicts either way.
+  for (const FoldTint& tint : foldTints_)
+    if (std::none_of(h.foldTints.begin(), h.foldTints.end(), [&](const FoldTint& f) { return f.lattice == tint.lattice; }))
+      h.foldTints.push_back(tint);
   if (live_ && editing() && soft_.enabled) h.softRadius = SoftRadius{live_->pivot, soft_.radius};
   if (editing() && scene_.widgets.contains(lattice()))
     for (Eigen::Index i : selection_->indices()) h.selectedPoints.push_back({lattice(), i});
@@ -650,7 +654,7 @@ ViewHighlights EditController::highlights(ViewHighlights h) const {
 
 void EditController::notify() {
   deformer_.evaluate(scene_);  // what the step changed, once (SceneDeformer::evaluate)
-  guard_.prune(scene_);
+  shapeGuard().prune(scene_);
   updateFoldTints();
   if (onChanged) onChanged();
 }

@@ -74,6 +74,7 @@ InteractionController::PressResult InteractionController::press(const widgets::R
     if (std::find(selection_.begin(), selection_.end(), hit->id) == selection_.end()) selection_.push_back(hit->id);
     point_.reset();
     dragStart_ = scene_.widgets.captureState();
+    recordDragStart();
     scene_.widgets.beginDrag(hit->id, ray);
     dragging_ = true;
     dragLattice_ = activeLattice(hit->id);
@@ -125,6 +126,7 @@ void InteractionController::drag(const widgets::Ray& ray) {
     // World displacement -> lattice-local (world = frame * local), then HHK's least-norm change.
     const Eigen::Vector3d local = g.worldToLocal * (ray.at(*t) - g.grab);
     scene_.widgets.setControlPoints(g.lattice, g.controlStart + g.weights * local.transpose());
+    guardObjectStep(ray.at(*t));
     notify();
     return;
   }
@@ -207,6 +209,8 @@ void InteractionController::cancel() {
     return;
   }
   scene_.widgets.cancelGesture();
+  // The points the gesture did not move but Keep Volume / Keep Centre corrected go back too.
+  if (!guard_.empty()) scene_.widgets.restoreState(dragStart_);
   refresh();
 }
 
@@ -250,6 +254,7 @@ ViewHighlights InteractionController::highlights() const {
   h.point = point_;
   h.transformer = transformer();
   h.transformerHandle = transformerHandle();
+  h.foldTints = foldTints_;
   for (const ObjectPoint& pin : pins_)
     if (const scenes::SceneObject* o = scene_.findObject(pin.object); o && pin.vertex < o->mesh.points.rows())
       h.pins.push_back(deformer_.points(pin.object).row(pin.vertex).transpose());
@@ -293,6 +298,12 @@ void InteractionController::pushState(const std::string& description, const widg
 void InteractionController::refresh() { notify(); }
 
 void InteractionController::notify() {
+  if (dragging_) {
+    guardStep();  // Keep Volume / Keep Centre: part of the step, before it is evaluated
+    watchMovedLattices();
+  }
+  guard_.prune(scene_);
+  updateFoldTints();
   // The one place the app evaluates: what the edits since the last call changed, once.
   deformer_.evaluate(scene_);
   if (onChanged) onChanged();

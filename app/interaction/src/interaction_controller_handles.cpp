@@ -13,6 +13,7 @@ void InteractionController::beginHandleDrag(const Transformer& gizmo, Transforme
   handleTarget_ = selection_.front();
   handleDrag_.emplace(gizmo, handle, ray);
   hoveredHandle_ = handle;
+  recordDragStart();
   point_.reset();
   if (scene_.widgets.type(handleTarget_) == WidgetType::Affine) {
     // The placement is not part of WidgetModelState: the command stores it (release()).

@@ -299,6 +299,11 @@ void InteractionController::setLatticeSettings(WidgetId lattice, const widgets::
        [&] { scene_.widgets.setLatticeSettings(lattice, settings); });
 }
 
+void InteractionController::setWeight(WidgetId lattice, Eigen::Index point, double weight) {
+  edit("Weight of point " + std::to_string(point) + " of " + scene_.widgets.name(lattice),
+       [&] { scene_.widgets.setWeight(lattice, point, weight); });
+}
+
 void InteractionController::setLatticeFrame(WidgetId lattice, const Eigen::Affine3d& frame) {
   edit("Place " + scene_.widgets.name(lattice), [&] { scene_.widgets.setLatticeFrame(lattice, frame); },
        "frame/" + widgets::toString(lattice));

@@ -38,8 +38,10 @@ std::optional<std::string> InteractionController::pressObject(const widgets::Ray
       g.grab = deformer_.points(id).row(vertex).transpose();
       g.normal = dir;
       g.controlStart = scene_.widgets.controlPoints(stages[k]);
+      g.basis = ffd::basisWeights(lattice, e.parameters().row(0).transpose());
       objectGrab_ = std::move(g);
       dragStart_ = scene_.widgets.captureState();
+      recordDragStart();
       dragLattice_ = stages[k];
       dragging_ = true;
       deformer_.beginGesture(dragLattice_);

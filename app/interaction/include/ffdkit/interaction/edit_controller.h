@@ -143,12 +143,13 @@ class EditController {
   Eigen::VectorXd softWeights() const;
 
   // ---- Keep Volume / Keep Centre ---------------------------------------------------------------
-  /// The objects whose volume and centre the edit mode's transforms keep. Each step of a
-  /// transform of points (edit mode, cells of a group) corrects the points it does not move.
-  ShapeGuard& shapeGuard() { return guard_; }
-  /// ShapeGuard::setKeep with this controller's scene and deformer: keeps `object`'s volume and /
-  /// or centre at their values now. @throws std::invalid_argument as ShapeGuard::setKeep.
-  void setKeep(scenes::ObjectId object, ShapeKeep keep) { guard_.setKeep(scene_, deformer_, object, keep); }
+  /// The objects whose volume and centre the transforms keep: InteractionController's guard, the
+  /// one every gesture uses. Each step of a transform of points (edit mode, cells of a group)
+  /// corrects the points it does not move.
+  ShapeGuard& shapeGuard() { return widgets_.shapeGuard(); }
+  /// InteractionController::setKeep: keeps `object`'s volume and / or centre at their values
+  /// now. @throws std::invalid_argument as ShapeGuard::setKeep.
+  void setKeep(scenes::ObjectId object, ShapeKeep keep) { widgets_.setKeep(object, keep); }
   /// What the last step's corrections did (one entry per kept object of the moved lattices).
   const std::vector<ShapeGuardStep>& guardSteps() const { return guardSteps_; }
 
@@ -216,7 +217,6 @@ class EditController {
   std::optional<ModalTransform> modal_;
   std::optional<TransformerHandle> hoveredHandle_;
   SoftSelection soft_;
-  ShapeGuard guard_;
   std::vector<ShapeGuardStep> guardSteps_;
   std::vector<FoldTint> foldTints_;
   /// Per tinted lattice, the (controlRevision, frameRevision) its verdicts were computed for.

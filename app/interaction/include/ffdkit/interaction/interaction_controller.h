@@ -3,11 +3,14 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "ffdkit/ffd/direct_manipulation.h"
 #include "ffdkit/interaction/object_points.h"
+#include "ffdkit/interaction/shape_guard.h"
 #include "ffdkit/interaction/transformer.h"
 #include "ffdkit/interaction/view_highlights.h"
 #include "ffdkit/scenes/command_stack.h"
@@ -127,8 +130,28 @@ class InteractionController {
   std::optional<double> handleDragValue() const {
     return handleDrag_ ? std::optional<double>(handleDrag_->value()) : std::nullopt;
   }
-  /// What a view should emphasise now.
+  /// What a view should emphasise now (with the fold-over tints of foldTints()).
   ViewHighlights highlights() const;
+
+  // ---- Keep Volume / Keep Centre and the fold-over tint ----------------------------------------
+  /// The objects whose volume and centre every gesture keeps: the one home of that rule. After
+  /// each step of a drag (an affine widget's glyph, a cell, a lattice, a transformer handle, an
+  /// object point) and of EditController's transforms, the guard corrects the control points the
+  /// gesture leaves free in each lattice the gesture has moved; the correction is part of the
+  /// gesture's one undo step.
+  ShapeGuard& shapeGuard() { return guard_; }
+  /// The guard (read-only).
+  const ShapeGuard& shapeGuard() const { return guard_; }
+  /// ShapeGuard::setKeep with this controller's scene and deformer: keeps `object`'s volume and /
+  /// or centre at their values now. @throws std::invalid_argument as ShapeGuard::setKeep.
+  void setKeep(scenes::ObjectId object, ShapeKeep keep) { guard_.setKeep(scene_, deformer_, object, keep); }
+  /// What the guard did at the last step of this controller's drag (one entry per kept object of
+  /// the lattices the drag moved; empty when nothing is kept or no drag ran since the press).
+  const std::vector<ShapeGuardStep>& guardSteps() const { return guardSteps_; }
+  /// The fold-over verdicts (ffd::checkFolding) of the lattices that drags have moved, brought
+  /// up to date at each step and after every change of their control points or frames: lattices
+  /// with a cell that folds or is unknown (a certified lattice has none).
+  const std::vector<FoldTint>& foldTints() const { return foldTints_; }
 
   // ---- operations (each one undoable command; they throw the model's errors unchanged) ----
   widgets::WidgetId newLattice(const NewLatticeOptions& options);
@@ -170,6 +193,10 @@ class InteractionController {
   void setLatticeSettings(widgets::WidgetId lattice, const widgets::LatticeSettings& settings);
   /// Changes a lattice's point counts (WidgetModel::setLatticeCounts).
   void setLatticeCounts(widgets::WidgetId lattice, const Eigen::Vector3i& counts);
+  /// Sets the weight of control point `point` (flat index) of `lattice` (rational FFD, Lamousin &
+  /// Waggenspack 1994; weight 1 everywhere is the polynomial lattice): one undoable command.
+  /// @throws what WidgetModel::setWeight throws (a weight not finite and > 0, an unknown point).
+  void setWeight(widgets::WidgetId lattice, Eigen::Index point, double weight);
   /// A root lattice's world frame (its placement, orientation and size).
   void setLatticeFrame(widgets::WidgetId lattice, const Eigen::Affine3d& frame);
   void setSiblingPosition(widgets::WidgetId lattice, std::size_t position);
@@ -233,6 +260,21 @@ class InteractionController {
   /// A handle drag's world motion applied: an affine widget's placement, else the lattice gesture.
   void applyHandleMotion(const Eigen::Affine3d& motion);
   void notify();
+  /// At a drag's press: the lattices' revisions (what the drag moves is what changes from them)
+  /// and no guard report yet.
+  void recordDragStart();
+  /// Keep Volume / Keep Centre after a drag step: guard_.correct on each lattice the drag moved,
+  /// with the points it moves (the gesture's cells, or the grabbed point's lattice) held.
+  void guardStep();
+  /// Per lattice the active widget-model gesture moves points of: which (#points flags).
+  std::map<widgets::WidgetId, std::vector<bool>> gestureMovedPoints() const;
+  /// Direct manipulation with a kept object: alternates the guard's correction and the least-norm
+  /// change that brings the grabbed point back to `target` (world) until both hold.
+  void guardObjectStep(const Eigen::Vector3d& target);
+  /// Notes the lattices whose control points or frames changed since the drag's press (foldWatch_).
+  void watchMovedLattices();
+  /// foldTints_ for the watched lattices whose revisions moved.
+  void updateFoldTints();
 
   scenes::Scene& scene_;
   scenes::SceneDeformer& deformer_;
@@ -266,9 +308,19 @@ class InteractionController {
     /// weights from pinnedDragWeights (HHK 1992 with the pins as further constraints).
     Eigen::VectorXd weights;
     Eigen::Matrix3d worldToLocal = Eigen::Matrix3d::Identity();
+    /// The lattice's basis at the grabbed point (its deformed position is linear in the controls).
+    std::vector<ffd::BasisWeight> basis;
   };
   std::optional<ObjectGrab> objectGrab_;
   std::vector<ObjectPoint> pins_;
+  ShapeGuard guard_;
+  std::vector<ShapeGuardStep> guardSteps_;
+  /// Per lattice, its (controlRevision, frameRevision) at the press of the drag.
+  std::map<widgets::WidgetId, std::pair<std::uint64_t, std::uint64_t>> dragRevisions_;
+  /// The lattices drags have moved (their fold-over verdicts are kept up to date), with the
+  /// revisions the verdicts in foldTints_ were computed for.
+  std::map<widgets::WidgetId, std::pair<std::uint64_t, std::uint64_t>> foldWatch_;
+  std::vector<FoldTint> foldTints_;
 };
 
 }  // namespace ffdkit::app
