@@ -14,6 +14,9 @@
 #include "ffdkit/cad/cad_deform.h"
 #include "ffdkit/cad/cad_io.h"
 #include "ffdkit/cad/sample_parts.h"
+#include "ffdkit/cad/tessellation.h"
+#include "ffdkit/scenes/scene.h"
+#include "ffdkit/scenes/scene_file.h"
 
 namespace ffdkit::cad {
 namespace {
@@ -142,6 +145,82 @@ TEST(CliCadDeform, WrongUsesAreRefusedWithTheirReason) {
                folder / "log.txt");
   EXPECT_EQ(run.status, 1) << run.output;
   EXPECT_NE(run.output.find("broken.step"), std::string::npos) << run.output;
+}
+
+/// A scene naming part.step (relative to its folder) with a 3 x 3 x 3 Bernstein lattice attached,
+/// its top layer of control points raised and shifted; returns the lattice as the scene holds it.
+ffd::Lattice writeSceneWithPart(const std::filesystem::path& scenePath, const CadModel& part) {
+  scenes::Scene scene;
+  scenes::SceneObject object;
+  object.name = "part";
+  object.source = scenes::MeshFileSource{"part.step"};
+  const CadTriangles triangles = tessellate(part);
+  object.mesh.points = triangles.points;
+  object.mesh.triangles = triangles.triangles;
+  scene.addObject(std::move(object));
+  scenes::AttachOptions attach;
+  attach.latticeName = "lattice";
+  const widgets::WidgetId lattice = scenes::attachNewLattice(scene, {"part"}, attach);
+  Eigen::MatrixX3d points = scene.widgets.ffdLattice(lattice).controlPoints();
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    if (points(i, 2) > 0.99) points.row(i) += Eigen::RowVector3d(0.15 * points(i, 1), 0.05, 0.2);
+    else if (points(i, 2) > 0.49) points(i, 0) += 0.1;
+  scene.widgets.setControlPoints(lattice, points);
+  scenes::writeScene(scenePath, scene);
+  return scene.widgets.ffdLattice(lattice);
+}
+
+TEST(CliCadScene, DeformWritesTheScenesStepPartDeformedAsDeformCadDoes) {
+  // deform --scene with a .step output reads the part the scene names again and composes the
+  // attached lattice with it: the file equals deformCad's of the same part by the same lattice.
+  ScratchFolder folder;
+  writeStep(makeSamplePart(SamplePart::FilletedBox), folder / "part.step");
+  const CadModel part = readStep(folder / "part.step");
+  const ffd::Lattice lattice = writeSceneWithPart(folder / "scene.json", part);
+  const CliRun run = runCli("deform --scene " + (folder / "scene.json").string() + " -o " +
+                                (folder / "out.step").string() + " --cad-check",
+                            folder / "log.txt");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("exact composition"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("BRepCheck: valid"), std::string::npos) << run.output;
+  const CadModel written = readStep(folder / "out.step");
+  const CadModel expected = deformCad(part, lattice).model;
+  writeStep(expected, folder / "in-process.step");
+  const CadModel expectedBack = readStep(folder / "in-process.step");
+  EXPECT_EQ(written.counts().faces, part.counts().faces);
+  const double volume = checkModel(expectedBack).volume;
+  EXPECT_NEAR(checkModel(written).volume, volume, 1e-9 * volume);
+  EXPECT_LT((written.bounds().min() - expectedBack.bounds().min()).norm(), 1e-6);
+  EXPECT_LT((written.bounds().max() - expectedBack.bounds().max()).norm(), 1e-6);
+  EXPECT_GT(std::abs(volume - checkModel(part).volume), 1e-2 * volume);  // it did deform
+
+  // A mesh output writes the deformed tessellation instead; info and validate read the scene.
+  const CliRun mesh = runCli("deform --scene " + (folder / "scene.json").string() + " -o " +
+                                 (folder / "out.stl").string(),
+                             folder / "log.txt");
+  ASSERT_EQ(mesh.status, 0) << mesh.output;
+  EXPECT_GT(std::filesystem::file_size(folder / "out.stl"), 1000u);
+  const CliRun info = runCli("info " + (folder / "scene.json").string(), folder / "log.txt");
+  EXPECT_EQ(info.status, 0) << info.output;
+  EXPECT_NE(info.output.find("part"), std::string::npos) << info.output;
+  const CliRun validate = runCli("validate " + (folder / "scene.json").string(), folder / "log.txt");
+  EXPECT_EQ(validate.status, 0) << validate.output;
+}
+
+TEST(CliCadScene, AStepOutputNeedsTheScenesCadObject) {
+  ScratchFolder folder;
+  writeStep(makeSamplePart(SamplePart::TwoPartAssembly), folder / "part.step");
+  writeSceneWithPart(folder / "scene.json", readStep(folder / "part.step"));
+  CliRun run = runCli("deform --scene " + (folder / "scene.json").string() + " --object nothing -o " +
+                          (folder / "out.step").string(),
+                      folder / "log.txt");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("no object named 'nothing'"), std::string::npos) << run.output;
+  run = runCli("deform --scene " + (folder / "scene.json").string() + " -o " + (folder / "out.step").string() +
+                   " --cad-method poles --fit",
+               folder / "log.txt");
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(folder / "out.step"));
 }
 
 }  // namespace

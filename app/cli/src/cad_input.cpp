@@ -10,14 +10,20 @@
 #include <stdexcept>
 #include <string>
 
+#include "commands.h"
 #include "console.h"
+#include "ffdkit/scenes/animation.h"
+#include "ffdkit/scenes/cad_objects.h"
+#include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/widget_file.h"
+#include "frames.h"
 #include "read_options.h"
 
 #if FFDKIT_HAS_CAD
 #include "ffdkit/cad/cad_check.h"
 #include "ffdkit/cad/cad_deform.h"
 #include "ffdkit/cad/cad_io.h"
+#include "ffdkit/cad/tessellation.h"
 #endif
 
 namespace ffdkit::cli {
@@ -60,19 +66,23 @@ bool isCadDeform(const Args& args) {
   return std::any_of(inputs.begin(), inputs.end(), hasCadExtension);
 }
 
+bool isCadSceneDeform(const Args& args) {
+  const auto output = args.value("output");
+  return output && hasCadExtension(*output) && !args.value("widgets") && !isCadDeform(args) &&
+         (args.value("scene") || args.positional().size() == 1);
+}
+
 #if FFDKIT_HAS_CAD
 
-int runCadDeform(const Args& args) {
-  Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
-  const auto widgets = args.value("widgets");
-  const auto output = args.value("output");
-  const auto& inputs = args.positional();
-  if (!widgets) throw UsageError("a STEP or IGES INPUT is deformed by a widget file: give --widgets TOOL.json");
-  if (inputs.size() != 1) throw UsageError("a STEP or IGES INPUT is deformed alone: give exactly one INPUT");
-  if (!output || !cad::cadFormatOf(*output))
-    throw UsageError("a STEP or IGES INPUT is written as STEP or IGES: give -o OUTPUT.step (or .stp, .iges, .igs)");
-  for (const char* unsupported : {"scene", "fit", "frame", "set", "keep-volume", "keep-centre"})
-    if (args.flag(unsupported)) throw UsageError(std::string("--") + unsupported + " does not apply to a STEP or IGES INPUT yet");
+namespace {
+
+// The tessellation of a scene's CAD object, as the app's import makes it by default: within 1e-3
+// of the part's size of its surfaces, no triangle edge longer than 2% of it (planes bend too).
+constexpr double kSceneTessellationTolerance = 1e-3;
+constexpr double kSceneMaxEdgeLength = 0.02;
+
+/// deform's --cad-* options, checked.
+cad::CadDeformOptions cadOptions(const Args& args) {
   cad::CadDeformOptions options;
   if (auto method = args.value("cad-method")) {
     if (*method == "exact")
@@ -94,32 +104,26 @@ int runCadDeform(const Args& args) {
     options.tolerance = value;
   }
   options.approximate = !args.flag("cad-exact-only");
-  const bool check = args.flag("cad-check");
-  if (check) options.samples = 9;
+  if (args.flag("cad-check")) options.samples = 9;
+  return options;
+}
 
-  console.begin("read", "reading " + *widgets);
-  scenes::WidgetReadOptions widgetOptions;
-  widgetOptions.limits = readSettings(args).limits;
-  const widgets::WidgetModel tool = scenes::readWidgetFile(fs::path(*widgets), widgetOptions);
-  const auto roots = tool.roots();
-  if (roots.size() != 1 || !tool.children(roots.front()).empty())
-    throw std::runtime_error(*widgets + ": a STEP or IGES INPUT is deformed by one lattice; the tool has " +
-                             std::to_string(roots.size()) + " root lattice(s) and child lattices are not supported yet");
-  const ffd::Lattice lattice = tool.ffdLattice(roots.front());
-  console.begin("read", "reading " + inputs.front());
-  const cad::CadModel model = cad::readCad(inputs.front());
+/// Deforms `model` by `lattice`, writes it to `output` (STEP or IGES by extension) and says what
+/// was done; returns the exit code (1 when --cad-check finds the result invalid).
+int deformAndWrite(const cad::CadModel& model, const ffd::Lattice& lattice, const cad::CadDeformOptions& options,
+                   const std::string& output, Console& console) {
   console.begin("deform", "deforming " + std::to_string(model.counts().faces) + " faces");
   const cad::CadDeformResult result = cad::deformCad(model, lattice, options);
   std::optional<cad::CadCheck> measured;
-  if (check) {
+  if (options.samples > 0) {
     console.begin("check", "checking the result");
     measured = cad::checkModel(result.model);
   }
-  console.begin("write", "writing " + *output);
-  cad::writeCad(result.model, *output);
+  console.begin("write", "writing " + output);
+  cad::writeCad(result.model, output);
   console.end();
   const auto& report = result.report;
-  console.say("wrote " + *output + " (" + std::to_string(result.model.partCount()) + " part(s), " +
+  console.say("wrote " + output + " (" + std::to_string(result.model.partCount()) + " part(s), " +
               std::to_string(report.faces) + " faces, " + std::to_string(report.edges) + " edges, degree up to " +
               std::to_string(report.maxDegree) + ", " +
               (options.method == cad::CadMethod::Poles       ? "poles moved"
@@ -147,11 +151,136 @@ int runCadDeform(const Args& args) {
   return measured && !measured->valid ? 1 : 0;
 }
 
+bool isCadObject(const scenes::SceneObject& object) {
+  const auto* file = std::get_if<scenes::MeshFileSource>(&object.source);
+  return file != nullptr && scenes::isCadFile(file->path);
+}
+
+}  // namespace
+
+void registerCadSceneReader() {
+  scenes::setCadMeshReader([](const fs::path& path, meshio::ReadBudget& budget) {
+    const cad::CadModel model = cad::readCad(path);
+    cad::TessellationOptions options;
+    const double size = std::max(model.bounds().diagonal().norm(), 1e-9);
+    options.linearDeflection = kSceneTessellationTolerance * size;
+    options.maxEdgeLength = kSceneMaxEdgeLength * size;
+    const cad::CadTriangles triangles = cad::tessellate(model, options);
+    const std::string what = path.string() + ": the tessellation of its " + std::to_string(model.counts().faces) + " faces";
+    budget.chargePoints(static_cast<std::uint64_t>(triangles.points.rows()), what);
+    budget.chargeBytes(static_cast<std::uint64_t>(triangles.triangles.rows()), 3 * sizeof(int), what);
+    scenes::MeshData mesh;
+    mesh.points = triangles.points;
+    mesh.triangles = triangles.triangles;
+    return mesh;
+  });
+}
+
+int runCadDeform(const Args& args) {
+  Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
+  const auto widgets = args.value("widgets");
+  const auto output = args.value("output");
+  const auto& inputs = args.positional();
+  if (!widgets) throw UsageError("a STEP or IGES INPUT is deformed by a widget file: give --widgets TOOL.json");
+  if (inputs.size() != 1) throw UsageError("a STEP or IGES INPUT is deformed alone: give exactly one INPUT");
+  if (!output || !cad::cadFormatOf(*output))
+    throw UsageError("a STEP or IGES INPUT is written as STEP or IGES: give -o OUTPUT.step (or .stp, .iges, .igs)");
+  for (const char* unsupported : {"scene", "fit", "frame", "set", "keep-volume", "keep-centre"})
+    if (args.flag(unsupported)) throw UsageError(std::string("--") + unsupported + " does not apply to a STEP or IGES INPUT yet");
+  const cad::CadDeformOptions options = cadOptions(args);
+
+  console.begin("read", "reading " + *widgets);
+  scenes::WidgetReadOptions widgetOptions;
+  widgetOptions.limits = readSettings(args).limits;
+  const widgets::WidgetModel tool = scenes::readWidgetFile(fs::path(*widgets), widgetOptions);
+  const auto roots = tool.roots();
+  if (roots.size() != 1 || !tool.children(roots.front()).empty())
+    throw std::runtime_error(*widgets + ": a STEP or IGES INPUT is deformed by one lattice; the tool has " +
+                             std::to_string(roots.size()) + " root lattice(s) and child lattices are not supported yet");
+  const ffd::Lattice lattice = tool.ffdLattice(roots.front());
+  console.begin("read", "reading " + inputs.front());
+  const cad::CadModel model = cad::readCad(inputs.front());
+  return deformAndWrite(model, lattice, options, *output, console);
+}
+
+int runCadSceneDeform(const Args& args) {
+  Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
+  const std::string output = *args.value("output");
+  const auto sceneOption = args.value("scene");
+  const auto& inputs = args.positional();
+  if (sceneOption && !inputs.empty())
+    throw UsageError("a scene's CAD object written as STEP or IGES takes no INPUT files (the scene names the part)");
+  const fs::path sceneFile = sceneOption ? fs::path(*sceneOption) : fs::path(inputs.front());
+  for (const char* unsupported : {"fit", "keep-volume", "keep-centre", "format", "precision"})
+    if (args.flag(unsupported))
+      throw UsageError(std::string("--") + unsupported + " does not apply to a STEP or IGES output yet");
+  const cad::CadDeformOptions options = cadOptions(args);
+  const ReadSettings read = readSettings(args);
+
+  console.begin("read", "reading " + sceneFile.string());
+  scenes::Scene scene = readSceneFile(sceneFile, read);
+  if (auto frame = args.value("frame")) scenes::applyAnimationFrame(scene, parseFrame(*frame, scene.animation()));
+  applySettings(scene.widgets, parseSettings(args.values("set")));
+  const std::vector<std::string> named = args.values("object");
+  if (named.size() > 1) throw UsageError("a STEP or IGES output holds one CAD object: give at most one --object");
+  const scenes::SceneObject* object = nullptr;
+  if (!named.empty()) {
+    object = scene.findObject(named.front());
+    if (object == nullptr) throw std::runtime_error(sceneFile.string() + ": no object named '" + named.front() + "'");
+    if (!isCadObject(*object))
+      throw std::runtime_error(sceneFile.string() + ": object '" + named.front() +
+                               "' is not read from a STEP or IGES file; -o " + output + " writes a CAD object");
+  } else {
+    int count = 0;
+    for (const scenes::SceneObject& candidate : scene.objects())
+      if (isCadObject(candidate)) object = &candidate, ++count;
+    if (count == 0)
+      throw std::runtime_error(sceneFile.string() + ": the scene has no object read from a STEP or IGES file; -o " +
+                               output + " writes one (a mesh format writes the deformed meshes)");
+    if (count > 1)
+      throw UsageError(sceneFile.string() + ": the scene has " + std::to_string(count) +
+                       " CAD objects: pick the one to write with --object NAME");
+  }
+  // The part's file, relative to the scene's folder (or a sample folder given as the scene).
+  const fs::path folder = fs::is_directory(sceneFile) ? sceneFile
+                          : sceneFile.has_parent_path() ? sceneFile.parent_path()
+                                                        : fs::path(".");
+  const fs::path source(std::get<scenes::MeshFileSource>(object->source).path);
+  const fs::path part = source.is_absolute() ? source : folder / source;
+  std::vector<widgets::WidgetId> lattices;
+  for (const scenes::Attachment& attachment : scene.attachments())
+    if (std::find(attachment.objects.begin(), attachment.objects.end(), object->id) != attachment.objects.end())
+      lattices.push_back(attachment.lattice);
+  if (lattices.size() > 1)
+    throw std::runtime_error("'" + object->name + "' is deformed by " + std::to_string(lattices.size()) +
+                             " lattices; a STEP or IGES output composes one lattice");
+  if (!lattices.empty() && scene.widgets.pipelineOrder(lattices.front()).size() > 1)
+    throw std::runtime_error("'" + object->name + "' is deformed by lattice '" + scene.widgets.name(lattices.front()) +
+                             "' and its child lattices; a STEP or IGES output composes one lattice without children");
+  console.begin("read", "reading " + part.string());
+  const cad::CadModel model = cad::readCad(part);
+  if (lattices.empty()) {
+    console.begin("write", "writing " + output);
+    cad::writeCad(model, output);
+    console.end();
+    console.say("wrote " + output + " as read: no lattice deforms '" + object->name + "'");
+    return 0;
+  }
+  return deformAndWrite(model, scene.widgets.ffdLattice(lattices.front()), options, output, console);
+}
+
 #else
+
+void registerCadSceneReader() {}  // a scene's STEP or IGES object is then a read error saying so
 
 int runCadDeform(const Args&) {
   throw std::runtime_error("this ffdkit-cli was built without OpenCASCADE (FFDKIT_WITH_CAD=OFF), which STEP and IGES "
                            "inputs need");
+}
+
+int runCadSceneDeform(const Args&) {
+  throw std::runtime_error("this ffdkit-cli was built without OpenCASCADE (FFDKIT_WITH_CAD=OFF), which STEP and IGES "
+                           "outputs need");
 }
 
 #endif

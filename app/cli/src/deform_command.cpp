@@ -376,6 +376,7 @@ void writeVolumeOutputs(const std::vector<VolumeOutput>& outputs, const DeformRe
 
 int runDeform(const Args& args) {
   if (isCadDeform(args)) return runCadDeform(args);  // a STEP or IGES part: the B-rep path (cad_input.cpp)
+  if (isCadSceneDeform(args)) return runCadSceneDeform(args);  // a scene's STEP part written as STEP
   // In an mpirun batch every rank runs this; rank 0 speaks for the batch.
   // Static: MPI_Finalize (a fence of every rank) runs after main has printed this rank's error, so
   // that no rank exits, and mpirun kills the others, before every failing rank has said why.
