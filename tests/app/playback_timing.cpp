@@ -2,19 +2,19 @@
 // real mouse events through the event loop, and the time of each frame the view displayed (the
 // render window's end of render, not the event that asked for it).
 //
-//   playback_timing drag <sphere-resolution> [seconds] [--lod on|off] [--trace file]
+//   playback_timing drag <sphere-resolution> [seconds] [--lod on|off] [--proxy N] [--trace file]
 //     A sphere in a 4x4x4 cubic B-spline lattice with a translate widget on its top: the widget's
 //     arrow is pressed, dragged back and forth by synthesised mouse moves every 16 ms (a pointer
 //     at 60 Hz) for `seconds`, and released. Prints each displayed frame's time, the displayed
 //     frames per second, and the time from the release to the displayed full-resolution exact mesh.
-//   playback_timing play <sphere-resolution> [seconds] [--lod on|off] [--trace file]
+//   playback_timing play <sphere-resolution> [seconds] [--lod on|off] [--proxy N] [--trace file]
 //   playback_timing <sphere-resolution> [seconds]          (play, as before)
 //     The same sphere with the widget keyed (0 -> 0.3 -> 0 over 48 frames at 24 fps), played
 //     through the timeline's Play action: frames shown per second, frames the view drew per
 //     second, and how late a 50 ms timer fired (the event loop's responsiveness).
 //
 // --lod on|off sets the view's level of detail (SceneView::setLevelOfDetail; the window's default
-// otherwise); --trace writes one line per displayed frame: its end time and its duration in ms.
+// otherwise), --proxy N the proxies' size (LevelOfDetail::proxyVertices); --trace writes one line per displayed frame: its end time and its duration in ms.
 // Resolution 1414 is 998,286 vertices, 4472 about 10M. Not a test: scripts/window-timing.sh runs
 // it under Xvfb (Mesa's software GL), e.g.
 //   xvfb-run -a -s "-screen 0 1280x1024x24" build/tests/app/playback_timing drag 1414 5
@@ -142,6 +142,7 @@ struct Options {
   int resolution = 1414;
   double seconds = 5.0;
   int lod = -1;  // -1: the window's default
+  long proxyVertices = 0;  // 0: the default
   const char* trace = nullptr;
 };
 
@@ -151,6 +152,8 @@ Options parse(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--lod") == 0 && i + 1 < argc)
       o.lod = std::strcmp(argv[++i], "off") != 0;
+    else if (std::strcmp(argv[i], "--proxy") == 0 && i + 1 < argc)
+      o.proxyVertices = std::atol(argv[++i]);
     else if (std::strcmp(argv[i], "--trace") == 0 && i + 1 < argc)
       o.trace = argv[++i];
     else
@@ -295,14 +298,13 @@ int main(int argc, char** argv) {
   window.setScene(sphereScene(o.resolution, o.mode == "play"));
   std::printf("scene of %lld points set in %.1f s\n",
               static_cast<long long>(window.scene().objects().front().mesh.points.rows()), setup.elapsed() * 1e-3);
-  if (o.lod >= 0) {
-    app::LevelOfDetail lod = window.sceneView().levelOfDetail();
-    lod.enabled = o.lod == 1;
-    window.sceneView().setLevelOfDetail(lod);
-  }
-  std::printf("level of detail: %s (proxy of objects from %lld vertices)\n",
-              window.sceneView().levelOfDetail().enabled ? "on" : "off",
-              static_cast<long long>(window.sceneView().levelOfDetail().minVertices));
+  app::LevelOfDetail lod = window.sceneView().levelOfDetail();
+  if (o.lod >= 0) lod.enabled = o.lod == 1;
+  if (o.proxyVertices > 0) lod.proxyVertices = o.proxyVertices;
+  window.sceneView().setLevelOfDetail(lod);
+  std::printf("level of detail: %s (a proxy of about %lld vertices for objects from %lld vertices)\n",
+              lod.enabled ? "on" : "off", static_cast<long long>(lod.proxyVertices),
+              static_cast<long long>(lod.minVertices));
   QTest::qWait(1000);
 
   FrameClock frames;

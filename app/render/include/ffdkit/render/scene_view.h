@@ -60,7 +60,7 @@ struct SceneViewStats {
 struct LevelOfDetail {
   bool enabled = true;                ///< false: every object is always drawn in full
   Eigen::Index minVertices = 250000;  ///< objects with fewer vertices are always drawn in full
-  Eigen::Index proxyVertices = 40000; ///< about this many vertices in a proxy
+  Eigen::Index proxyVertices = 20000; ///< about this many vertices in a proxy
 };
 
 /// What a SceneView holds in memory for the objects it draws (SceneView::objectMemory).
