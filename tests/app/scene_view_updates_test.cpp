@@ -378,32 +378,65 @@ TEST(SceneViewUpdates, AGestureOfTwoControlPointsRecomputesTheNormalsAtEveryStep
   EXPECT_EQ(s.view.stats().followedNormals, before.followedNormals);
 }
 
-// The float points the view draws for the shaded object of `n` points (null for none).
-vtkPoints* drawnPoints(vtkRenderer* renderer, Eigen::Index n) {
+// The float points the view draws for the shaded object of `n` points, relative to its actor's
+// position (null for none).
+struct Drawn {
+  vtkPoints* points = nullptr;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+};
+Drawn drawnPoints(vtkRenderer* renderer, Eigen::Index n) {
   vtkActorCollection* actors = renderer->GetActors();
   actors->InitTraversal();
   while (vtkActor* actor = actors->GetNextActor()) {
     auto* polyData = vtkPolyData::SafeDownCast(actor->GetMapper() ? actor->GetMapper()->GetInput() : nullptr);
-    if (polyData && polyData->GetNumberOfPoints() == n && polyData->GetNumberOfPolys() > 0) return polyData->GetPoints();
+    if (polyData && polyData->GetNumberOfPoints() == n && polyData->GetNumberOfPolys() > 0)
+      return {polyData->GetPoints(), Eigen::Vector3d(actor->GetPosition())};
   }
-  return nullptr;
+  return {};
 }
 
-// The largest |drawn - float(exact)| over the coordinates; infinity when `drawn` is not n float points.
-double largestDifference(vtkPoints* drawn, const Eigen::MatrixX3d& exact) {
-  if (drawn == nullptr || drawn->GetDataType() != VTK_FLOAT || drawn->GetNumberOfPoints() != exact.rows())
+// The largest |drawn - float(exact - origin)| over the coordinates (the drawn points are the
+// deformer's relative to the actor's position, rounded to float); infinity when `drawn` is not n
+// float points.
+double largestDifference(const Drawn& drawn, const Eigen::MatrixX3d& exact) {
+  if (drawn.points == nullptr || drawn.points->GetDataType() != VTK_FLOAT ||
+      drawn.points->GetNumberOfPoints() != exact.rows())
     return std::numeric_limits<double>::infinity();
-  const float* p = static_cast<const float*>(drawn->GetVoidPointer(0));
+  const float* p = static_cast<const float*>(drawn.points->GetVoidPointer(0));
   double worst = 0.0;
   for (Eigen::Index i = 0; i < exact.rows(); ++i)
-    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(p[3 * i + c]) - double(float(exact(i, c)))));
+    for (int c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(double(p[3 * i + c]) - double(float(exact(i, c) - drawn.origin[c]))));
   return worst;
 }
 
+TEST(SceneViewUpdates, AnObjectFarFromTheOriginIsDrawnToFloatRoundingOfItsOwnSize) {
+  // A unit sphere placed as in map coordinates (x = 500 km, y = 4000 km): float points relative to
+  // the object's centre keep its shape to ~1e-7; absolute float coordinates would round to 0.03
+  // (ulp(4e6) / 2 = 0.25, ulp(5e5) / 2 = 0.03).
+  ViewedDocument d;
+  scenes::PrimitiveOptions sphere;
+  sphere.resolution = 30;
+  sphere.placement = Eigen::Translation3d(5.0e5, 4.0e6, 120.0);
+  const std::string name = d.controller.addPrimitive(sphere);
+  d.view.show(d.scene, d.deformer);
+  const Eigen::MatrixX3d& exact = d.deformer.points(name);
+  const Drawn drawn = drawnPoints(d.renderer, exact.rows());
+  ASSERT_NE(drawn.points, nullptr);
+  EXPECT_EQ(largestDifference(drawn, exact), 0.0);
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < exact.rows(); ++i) {
+    double p[3];
+    drawn.points->GetPoint(i, p);
+    worst = std::max(worst, (Eigen::Vector3d(p[0], p[1], p[2]) + drawn.origin - exact.row(i).transpose()).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(worst, 2e-7);
+}
+
 TEST(SceneViewUpdates, TheViewDrawsTheDeformersPointsRoundedToFloatAndExactlyThemAtRelease) {
-  // The view's points are float32: float(x) for every point it copies from the deformer (show,
-  // the first step of a drag, release), and while a drag is followed the float points moved by
-  // beta (D(t) - D(t')), off float(x) by float rounding only.
+  // The view's points are float32 relative to the actor's position o: float(x - o) for every
+  // point it copies from the deformer (show, the first step of a drag, release), and while a drag
+  // is followed the float points moved by beta (D(t) - D(t')), off float(x - o) by float rounding.
   DragSession s(80);
   const Eigen::Index n = s.deformer.pointCount(s.sphere);
   EXPECT_EQ(largestDifference(drawnPoints(s.renderer, n), s.deformer.points(s.sphere)), 0.0) << "shown";

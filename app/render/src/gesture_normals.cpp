@@ -33,8 +33,8 @@ void sizeArrays(Eigen::Index n, vtkPoints* drawn, vtkFloatArray* normals) {
 }  // namespace
 
 void exactNormals(const Eigen::MatrixX3i& triangles, const VertexFaces& vf, const Eigen::MatrixX3d& points,
-                  std::vector<Eigen::Vector3f>& faceScratch, Eigen::MatrixX3f& sums, vtkPoints* drawn,
-                  vtkFloatArray* normals) {
+                  const Eigen::Vector3d& origin, std::vector<Eigen::Vector3f>& faceScratch, Eigen::MatrixX3f& sums,
+                  vtkPoints* drawn, vtkFloatArray* normals) {
   const Eigen::Index n = points.rows();
   scene_view_shapes::faceAreaVectors(triangles, points, faceScratch);
   sums.resize(n, 3);
@@ -42,15 +42,16 @@ void exactNormals(const Eigen::MatrixX3i& triangles, const VertexFaces& vf, cons
   float* out = normals->GetPointer(0);
   float* xyz = static_cast<float*>(drawn->GetVoidPointer(0));
   const double *x = points.data(), *y = x + n, *z = y + n;  // column-major
+  const double ox = origin.x(), oy = origin.y(), oz = origin.z();
   // One pass per vertex: the gather of its triangles' area vectors, its normal and its point.
 #pragma omp parallel for schedule(static)
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::Vector3f sum = scene_view_shapes::vertexSum(vf, faceScratch, i);
     sums.row(i) = sum.transpose();
     writeNormal(out + 3 * i, sum);
-    xyz[3 * i] = static_cast<float>(x[i]);
-    xyz[3 * i + 1] = static_cast<float>(y[i]);
-    xyz[3 * i + 2] = static_cast<float>(z[i]);
+    xyz[3 * i] = static_cast<float>(x[i] - ox);
+    xyz[3 * i + 1] = static_cast<float>(y[i] - oy);
+    xyz[3 * i + 2] = static_cast<float>(z[i] - oz);
   }
   normals->Modified();
   drawn->Modified();
@@ -120,13 +121,14 @@ bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::Objec
 
 bool GestureNormals::update(const scenes::SceneDeformer& deformer, scenes::ObjectId object,
                             const Eigen::MatrixX3i& triangles, const VertexFaces& vf, const Eigen::MatrixX3d& points,
-                            std::vector<Eigen::Vector3f>& faceScratch, vtkPoints* drawn, vtkFloatArray* normals) {
+                            const Eigen::Vector3d& origin, std::vector<Eigen::Vector3f>& faceScratch, vtkPoints* drawn,
+                            vtkFloatArray* normals) {
   const Eigen::Index n = points.rows();
   const std::uint64_t revision = deformer.revision(object);
   const std::optional<scenes::GestureMotion> motion = deformer.gestureMotion(object);
   if (!motion || motion->controlPoints.size() != 1) {
     stopFollowing();
-    exactNormals(triangles, vf, points, faceScratch, sums_, drawn, normals);
+    exactNormals(triangles, vf, points, origin, faceScratch, sums_, drawn, normals);
     sumsRevision_ = revision;
     sumsValid_ = true;
     return false;
@@ -137,7 +139,7 @@ bool GestureNormals::update(const scenes::SceneDeformer& deformer, scenes::Objec
   if (fromBase) {
     startDisplacement_.setZero();  // sums_ holds N_v(base), where D = 0
   } else {
-    exactNormals(triangles, vf, points, faceScratch, sums_, drawn, normals);
+    exactNormals(triangles, vf, points, origin, faceScratch, sums_, drawn, normals);
     sumsRevision_ = revision;
     sumsValid_ = true;
     startDisplacement_ = now;
@@ -156,6 +158,7 @@ bool GestureNormals::update(const scenes::SceneDeformer& deformer, scenes::Objec
     float* out = normals->GetPointer(0);
     float* xyz = static_cast<float*>(drawn->GetVoidPointer(0));
     const double *x = points.data(), *y = x + n, *z = y + n;  // column-major
+    const double ox = origin.x(), oy = origin.y(), oz = origin.z();
     const Eigen::Vector3f d = now.cast<float>();
 #pragma omp parallel for schedule(static)
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -163,9 +166,9 @@ bool GestureNormals::update(const scenes::SceneDeformer& deformer, scenes::Objec
       motion_.row(i) = w.transpose();
       beta_[i] = static_cast<float>(beta[i]);
       writeNormal(out + 3 * i, Eigen::Vector3f(sums_.row(i).transpose()) + d.cross(w));
-      xyz[3 * i] = static_cast<float>(x[i]);
-      xyz[3 * i + 1] = static_cast<float>(y[i]);
-      xyz[3 * i + 2] = static_cast<float>(z[i]);
+      xyz[3 * i] = static_cast<float>(x[i] - ox);
+      xyz[3 * i + 1] = static_cast<float>(y[i] - oy);
+      xyz[3 * i + 2] = static_cast<float>(z[i] - oz);
     }
     normals->Modified();
     drawn->Modified();

@@ -35,10 +35,10 @@
 // Motions of several control points (the general form has pairwise D_c x D_c' terms) and every
 // other change are recomputed exactly.
 //
-// Points are drawn as float32 (object_arrays.h): follow() adds beta_v (D(t) - D(t')) to the
-// float point, so the drawn points drift from float(x_v(t)) by float rounding, about one unit in
-// the last place per step; every update() writes float(x_v) exactly, so the release shows the
-// exact mesh.
+// Points are drawn as float32 relative to an origin o of the object (object_arrays.h): follow()
+// adds beta_v (D(t) - D(t')) to the float point, so the drawn points drift from float(x_v(t) - o)
+// by float rounding, about one unit in the last place per step; every update() writes
+// float(x_v - o) exactly, so the release shows the exact mesh.
 
 #include <string>
 #include <vector>
@@ -63,13 +63,14 @@ class GestureNormals {
               vtkFloatArray* normals);
 
   /// Writes `points` (the deformer's present points of `object`, #points x 3, whose triangles are
-  /// `triangles`) into `drawn` as float32 and their area-weighted vertex normals into `normals`:
+  /// `triangles`) into `drawn` as float32 relative to `origin` (object_arrays::setFloatPoints) and
+  /// their area-weighted vertex normals into `normals`:
   /// from the triangles (exactNormals' bits), or, for the first step of a one-control-point motion
   /// from the points update() last drew, as N_v(base) + D x W_v (see above). Keeps the sums of
   /// the normals, and what follow() needs when the motion is one control point's (beta_v, W_v).
   /// Returns true when it took the first-step form.
   bool update(const scenes::SceneDeformer& deformer, scenes::ObjectId object, const Eigen::MatrixX3i& triangles,
-              const scene_view_shapes::VertexFaces& vf, const Eigen::MatrixX3d& points,
+              const scene_view_shapes::VertexFaces& vf, const Eigen::MatrixX3d& points, const Eigen::Vector3d& origin,
               std::vector<Eigen::Vector3f>& faceScratch, vtkPoints* drawn, vtkFloatArray* normals);
 
   /// Heap bytes held: the sums of the normals (12 per vertex) and, while a motion is followed,
@@ -102,9 +103,11 @@ class GestureNormals {
 /// triangles of each vertex): each triangle's area vector (b - a) x (c - a) in double, stored as
 /// float in `faceScratch`, summed per vertex in float into the rows of `sums` (#points x 3,
 /// resized) and normalised into `normals` (+z where the sum is 0); `points` also written into
-/// `drawn` as float32. The bits SceneView draws for a shaded surface outside a followed drag.
+/// `drawn` as float32 relative to `origin` (object_arrays::setFloatPoints). The bits SceneView
+/// draws for a shaded surface outside a followed drag.
 void exactNormals(const Eigen::MatrixX3i& triangles, const scene_view_shapes::VertexFaces& vf,
-                  const Eigen::MatrixX3d& points, std::vector<Eigen::Vector3f>& faceScratch, Eigen::MatrixX3f& sums,
-                  vtkPoints* drawn, vtkFloatArray* normals);
+                  const Eigen::MatrixX3d& points, const Eigen::Vector3d& origin,
+                  std::vector<Eigen::Vector3f>& faceScratch, Eigen::MatrixX3f& sums, vtkPoints* drawn,
+                  vtkFloatArray* normals);
 
 }  // namespace ffdkit::app

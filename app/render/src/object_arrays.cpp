@@ -31,26 +31,28 @@ vtkSmartPointer<vtkCellArray> cellArray(const Rows& cells, int width) {
 
 }  // namespace
 
-void setFloatPoints(vtkPoints* drawn, const Eigen::MatrixX3d& points) {
+void setFloatPoints(vtkPoints* drawn, const Eigen::MatrixX3d& points, const Eigen::Vector3d& origin) {
   if (drawn->GetDataType() != VTK_FLOAT) drawn->SetDataTypeToFloat();
   drawn->SetNumberOfPoints(points.rows());
   float* out = static_cast<float*>(drawn->GetVoidPointer(0));
   const double* x = points.data();  // column-major: the x, y and z columns
   const double* y = x + points.rows();
   const double* z = y + points.rows();
+  const double ox = origin.x(), oy = origin.y(), oz = origin.z();
   // Memory bound: both cores' bandwidth.
 #pragma omp parallel for schedule(static) if (points.rows() >= 65536)
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    out[3 * i] = static_cast<float>(x[i]);
-    out[3 * i + 1] = static_cast<float>(y[i]);
-    out[3 * i + 2] = static_cast<float>(z[i]);
+    out[3 * i] = static_cast<float>(x[i] - ox);
+    out[3 * i + 1] = static_cast<float>(y[i] - oy);
+    out[3 * i + 2] = static_cast<float>(z[i] - oz);
   }
   drawn->Modified();
 }
 
-vtkSmartPointer<vtkPolyData> objectPolyData(const meshio::MeshData& mesh, const Eigen::MatrixX3d& points) {
+vtkSmartPointer<vtkPolyData> objectPolyData(const meshio::MeshData& mesh, const Eigen::MatrixX3d& points,
+                                            const Eigen::Vector3d& origin) {
   vtkNew<vtkPoints> drawn;
-  setFloatPoints(drawn, points);
+  setFloatPoints(drawn, points, origin);
   auto polyData = vtkSmartPointer<vtkPolyData>::New();
   polyData->SetPoints(drawn);
   if (mesh.triangles.rows() > 0) polyData->SetPolys(cellArray(mesh.triangles, 3));

@@ -65,6 +65,7 @@ struct SceneView::Impl {
     vtkSmartPointer<vtkActor> comb;           ///< the curvature comb, or null
     VertexFaces vertexFaces;                  ///< of the triangles, for the normals
     Eigen::Vector3d restLo, restHi;           ///< bounding box of the object's own points
+    Eigen::Vector3d origin;                   ///< the float points are relative to it (object_arrays.h)
     std::vector<Eigen::Vector3f> faceNormals; ///< scratch
     GestureNormals gestureNormals;            ///< the normals followed along a drag
     vtkSmartPointer<vtkPolyData> polyData;
@@ -293,7 +294,8 @@ struct SceneView::Impl {
       entry.restHi = object.mesh.points.rows() > 0 ? Eigen::Vector3d(object.mesh.points.colwise().maxCoeff().transpose())
                                                    : Eigen::Vector3d::Zero();
       entry.display = object.display;
-      entry.polyData = object_arrays::objectPolyData(object.mesh, points);  // float32 points, 32-bit cells
+      entry.origin = 0.5 * (entry.restLo + entry.restHi);  // of its own points: the same in every view
+      entry.polyData = object_arrays::objectPolyData(object.mesh, points, entry.origin);  // float32, 32-bit cells
       const bool zebra = object.display.surfaceStyle == scenes::SurfaceStyle::Zebra && object.mesh.triangles.rows() > 0;
       constexpr double kCurveLineWidth = 2.0;  // pixels, DisplaySettings::curveStyle
       const bool curveLine = object.display.curveStyle == scenes::CurveStyle::Line && object.mesh.triangles.rows() == 0 &&
@@ -302,7 +304,7 @@ struct SceneView::Impl {
       if (object.mesh.triangles.rows() > 0) {
         vtkNew<vtkFloatArray> normals;  // smooth shading of the deformed surface
         entry.vertexFaces = vertexFaces(object.mesh.triangles, points.rows());
-        entry.gestureNormals.update(deformed, object.id, object.mesh.triangles, entry.vertexFaces, points,
+        entry.gestureNormals.update(deformed, object.id, object.mesh.triangles, entry.vertexFaces, points, entry.origin,
                                     entry.faceNormals, entry.polyData->GetPoints(), normals);
         entry.polyData->GetPointData()->SetNormals(normals);
         if (zebra) {
@@ -342,6 +344,7 @@ struct SceneView::Impl {
         mapper->SetInputData(entry.polyData);
       }
       entry.actor = vtkSmartPointer<vtkActor>::New();
+      entry.actor->SetPosition(entry.origin.data());  // where the float points are relative to
       entry.actor->GetProperty()->SetLineWidth(3.0);
       entry.actor->GetProperty()->SetPointSize(4.0);
       entry.actor->SetMapper(mapper);
@@ -620,7 +623,7 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
       auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals());
       // A later step of a one-control-point drag: points and normals follow the motion in one pass.
       const bool followed = normals && entry.gestureNormals.follow(deformed, entry.id, entry.polyData->GetPoints(), normals);
-      if (!normals) object_arrays::setFloatPoints(entry.polyData->GetPoints(), deformed.points(entry.id));
+      if (!normals) object_arrays::setFloatPoints(entry.polyData->GetPoints(), deformed.points(entry.id), entry.origin);
       ++impl_->stats.pointUpdates;
       if (normals) {
         ++impl_->stats.normalUpdates;
@@ -629,8 +632,8 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
         if (followed)
           ++impl_->stats.followedNormals;
         else if (entry.gestureNormals.update(deformed, entry.id, scene.findObject(entry.id)->mesh.triangles,
-                                             entry.vertexFaces, deformed.points(entry.id), entry.faceNormals,
-                                             entry.polyData->GetPoints(), normals))
+                                             entry.vertexFaces, deformed.points(entry.id), entry.origin,
+                                             entry.faceNormals, entry.polyData->GetPoints(), normals))
           ++impl_->stats.normalsFromBase;
         if (auto* tcoords = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetTCoords()))
           updateZebraCoordinates(tcoords, normals, entry.display.zebraDirection, entry.display.zebraStripes);
@@ -722,7 +725,7 @@ Eigen::MatrixX3d SceneView::objectPoints(const std::string& object) const {
     for (Eigen::Index i = 0; i < out.rows(); ++i) {
       double p[3];
       points->GetPoint(i, p);
-      out.row(i) = Eigen::RowVector3d(p[0], p[1], p[2]);
+      out.row(i) = Eigen::RowVector3d(p[0], p[1], p[2]) + entry.origin.transpose();  // float points: relative
     }
     return out;
   }
