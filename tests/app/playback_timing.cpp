@@ -14,12 +14,14 @@
 //     second, and how late a 50 ms timer fired (the event loop's responsiveness).
 //
 // --lod on|off sets the view's level of detail (SceneView::setLevelOfDetail; the window's default
-// otherwise), --proxy N the proxies' size (LevelOfDetail::proxyVertices); --trace writes one line per displayed frame: its end time and its duration in ms.
+// otherwise), --proxy N the proxies' size (LevelOfDetail::proxyVertices), --frames DIR saves the
+// view as PNG three times during the drag and after the release (scripts/lod-drag-frames.sh); --trace writes one line per displayed frame: its end time and its duration in ms.
 // Resolution 1414 is 998,286 vertices, 4472 about 10M. Not a test: scripts/window-timing.sh runs
 // it under Xvfb (Mesa's software GL), e.g.
 //   xvfb-run -a -s "-screen 0 1280x1024x24" build/tests/app/playback_timing drag 1414 5
 #include <QAction>
 #include <QApplication>
+#include <QImage>
 #include <QElapsedTimer>
 #include <QMouseEvent>
 #include <QSurfaceFormat>
@@ -143,6 +145,7 @@ struct Options {
   double seconds = 5.0;
   int lod = -1;  // -1: the window's default
   long proxyVertices = 0;  // 0: the default
+  const char* frames = nullptr;  // a folder for PNG frames of the drag (not timed then)
   const char* trace = nullptr;
 };
 
@@ -154,6 +157,8 @@ Options parse(int argc, char** argv) {
       o.lod = std::strcmp(argv[++i], "off") != 0;
     else if (std::strcmp(argv[i], "--proxy") == 0 && i + 1 < argc)
       o.proxyVertices = std::atol(argv[++i]);
+    else if (std::strcmp(argv[i], "--frames") == 0 && i + 1 < argc)
+      o.frames = argv[++i];
     else if (std::strcmp(argv[i], "--trace") == 0 && i + 1 < argc)
       o.trace = argv[++i];
     else
@@ -222,6 +227,14 @@ int drag(app::MainWindow& window, const Options& o, FrameClock& frames) {
   const double length = std::hypot(along.x(), along.y());
   const QPointF unit = length > 0 ? along / length : QPointF(1, 0);
   QWidget* view = window.view();
+  // --frames: the view as drawn, 480 pixels wide, three times during the drag and after the release.
+  int captured = 0;
+  auto capture = [&](const std::string& name) {
+    if (o.frames == nullptr) return;
+    const std::string path = std::string(o.frames) + "/" + name + ".png";
+    if (!window.view()->grabFramebuffer().scaledToWidth(480, Qt::SmoothTransformation).save(QString::fromStdString(path)))
+      std::fprintf(stderr, "cannot write %s\n", path.c_str());
+  };
 
   frames.ends.clear();
   frames.renders.clear();
@@ -242,6 +255,8 @@ int drag(app::MainWindow& window, const Options& o, FrameClock& frames) {
     const double before = frames.clock.nsecsElapsed() * 1e-6;
     sendMouse(view, QEvent::MouseMove, press + offset * unit, Qt::NoButton, Qt::LeftButton);
     handling.push_back(frames.clock.nsecsElapsed() * 1e-6 - before);
+    if (o.frames != nullptr && captured < 3 && t > (captured + 1) * o.seconds / 4.0)
+      capture("lod-drag-" + std::to_string(++captured));
   });
   mover.start(16);
   QTest::qWait(static_cast<int>(o.seconds * 1000));
@@ -261,6 +276,7 @@ int drag(app::MainWindow& window, const Options& o, FrameClock& frames) {
   }
   const double exactShown = frames.ends.empty() ? 0.0 : frames.ends.back();
   const auto after = window.sceneView().stats();
+  capture("lod-drag-released");
 
   std::vector<double> frameTimes;
   for (std::size_t i = 1; i < during; ++i) frameTimes.push_back(frames.ends[i] - frames.ends[i - 1]);
