@@ -92,7 +92,12 @@ void BM_KeepVolumePrecompute(benchmark::State& state) {
 }
 BENCHMARK(BM_KeepVolumePrecompute)->ArgName("vertices")->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
 
-void BM_FoldCheck(benchmark::State& state) {
+// A mildly bent n x n x n cubic B-spline lattice ((n-3)^3 cells). Rational: every weight drawn
+// from [0.5, 2] (weights:random: every cell takes the bound of det[H_u, H_v, H_w, H], degree 11
+// per axis, instead of det J's, degree 8), or one inner weight edited to 2 (weights:one: the 64
+// cells whose window holds it; the others have equal weights and take det J's bound).
+enum class Weights { None, Random, One };
+void foldCheck(benchmark::State& state, Weights weights) {
   BoxLatticeOptions options;
   options.counts = Eigen::Vector3i::Constant(int(state.range(0)));
   Lattice lattice = makeBoxLattice(options);
@@ -102,11 +107,24 @@ void BM_FoldCheck(benchmark::State& state) {
   for (Eigen::Index r = 0; r < p.rows(); ++r)
     for (int c = 0; c < 3; ++c) p(r, c) += 0.1 / (options.counts[c] - 1) * U(rng);  // mildly bent
   lattice.setControlPoints(p);
+  if (weights == Weights::Random) {
+    std::uniform_real_distribution<double> W(0.5, 2.0);
+    Eigen::VectorXd w(lattice.pointCount());
+    for (Eigen::Index i = 0; i < w.size(); ++i) w[i] = W(rng);
+    lattice.setWeights(w);
+  }
+  const int middle = int(state.range(0)) / 2;
+  if (weights == Weights::One) lattice.setWeight(lattice.index(middle, middle, middle), 2.0);
   Eigen::Index positive = 0;
   for (auto _ : state) positive = checkFolding(lattice).positiveCount;
   state.counters["cells"] = double(std::pow(state.range(0) - 3, 3));
   state.counters["certified"] = double(positive);
 }
-BENCHMARK(BM_FoldCheck)->ArgName("lattice_n")->Arg(4)->Arg(6)->Arg(10)->Arg(14)->Unit(benchmark::kMillisecond);
+void BM_FoldCheck(benchmark::State& state) { foldCheck(state, Weights::None); }
+BENCHMARK(BM_FoldCheck)->ArgName("lattice_n")->Arg(4)->Arg(6)->Arg(10)->Arg(13)->Arg(14)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(foldCheck, weights:random, Weights::Random)
+    ->Name("BM_RationalFoldCheck/weights:random")->ArgName("lattice_n")->Arg(4)->Arg(13)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(foldCheck, weights:one, Weights::One)
+    ->Name("BM_RationalFoldCheck/weights:one")->ArgName("lattice_n")->Arg(13)->Unit(benchmark::kMillisecond);
 
 }  // namespace

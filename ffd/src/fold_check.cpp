@@ -365,40 +365,305 @@ JacobianDeterminantPatch jacobianDeterminantPatch(const Lattice& lattice, const 
 
 namespace {
 
-// A rational lattice's det J is a ratio (the polynomial bound above does not apply): each cell is
-// sampled on a 5 x 5 x 5 grid of its closed box; a sample with sign * det J <= 0 proves Folds,
-// otherwise the cell stays Unknown (never certified). lowerBound: the smallest sample, which
-// bounds nothing (NaN).
-void checkRationalFolding(const Lattice& lattice, FoldCheckResult& result) {
+// One cell of a polynomial map: det J's Bernstein coefficients certify Positive at once, or
+// subdivision decides.
+void checkPolynomialCell(const Lattice& lattice, const FoldCheckOptions& options,
+                         const std::vector<Eigen::MatrixXd>* extraction, const std::array<int, 3>& cell,
+                         std::size_t flat, FoldCheckResult& result) {
+  const JacobianDeterminantPatch patch = patchOf(lattice, cell, extraction);
+  const double lowest = result.orientation > 0 ? patch.coefficients.minCoeff() : -patch.coefficients.maxCoeff();
+  result.lowerBound[flat] = lowest;
+  if (lowest > 0.0) {  // certified at once (most cells of a usable lattice)
+    result.cells[flat] = CellFolding::Positive;
+    return;
+  }
+  std::vector<double> signedCoefficients(patch.coefficients.data(), patch.coefficients.data() + patch.coefficients.size());
+  for (double& c : signedCoefficients) c *= result.orientation;
+  const Dims d{{patch.degrees[0] + 1, patch.degrees[1] + 1, patch.degrees[2] + 1}};
+  const Verdict v = classify(signedCoefficients, d, Eigen::Vector3d::Zero(), 1.0, 0, options.maxDepth);
+  result.cells[flat] = v.folding;
+  if (v.folding == CellFolding::Folds)
+    result.witness[flat] = patch.parameterMin + (patch.parameterMax - patch.parameterMin).cwiseProduct(v.witness);
+}
+
+void checkPolynomialFolding(const Lattice& lattice, const FoldCheckOptions& options,
+                            const std::vector<Eigen::MatrixXd>* extraction, FoldCheckResult& result) {
   const int cu = result.cellCounts[0], cv = result.cellCounts[1], cw = result.cellCounts[2];
   const std::int64_t cellCount = std::int64_t(cu) * cv * cw;
-  constexpr int kSamples = 5;
 #pragma omp parallel for schedule(dynamic, 1) if (cellCount >= 8)
-  for (std::int64_t flat = 0; flat < cellCount; ++flat) {
-    const int cell[3] = {int(flat % cu), int(flat / cu % cv), int(flat / cu / cv)};
-    result.lowerBound[std::size_t(flat)] = std::numeric_limits<double>::quiet_NaN();
-    for (int k = 0; k < kSamples && result.cells[std::size_t(flat)] != CellFolding::Folds; ++k)
-      for (int j = 0; j < kSamples; ++j)
-        for (int i = 0; i < kSamples; ++i) {
-          const int at[3] = {i, j, k};
-          Eigen::Vector3d uvw;
-          for (int a = 0; a < 3; ++a) {
-            const AxisSpline& axis = lattice.axis(a);
-            uvw[a] = axis.cellMin(cell[a]) + (axis.cellMax(cell[a]) - axis.cellMin(cell[a])) * at[a] / (kSamples - 1);
-          }
-          if (result.orientation * lattice.jacobian(uvw).determinant() <= 0.0) {
-            result.cells[std::size_t(flat)] = CellFolding::Folds;
-            result.witness[std::size_t(flat)] = uvw;
+  for (std::int64_t flat = 0; flat < cellCount; ++flat)
+    checkPolynomialCell(lattice, options, extraction, {int(flat % cu), int(flat / cu % cv), int(flat / cu / cv)},
+                        std::size_t(flat), result);
+}
+
+// ---- rational lattices ---------------------------------------------------------------------------
+// With H = (N, D) = (sum B w P, sum B w) the homogeneous map (Lamousin & Waggenspack 1994) and
+// X = N / D, H_a = D_a (X, 1) + D (X_a, 0); subtracting D_a / D times the column H from each
+// derivative column leaves det[H_u, H_v, H_w, H] = det[D (X_u, 0), D (X_v, 0), D (X_w, 0), D (X, 1)]
+// = D^4 det J. All weights are > 0 and the basis is a partition of unity, so D lies between the
+// smallest and the largest weight of the cell's window: det J has the sign of the polynomial
+// G = det[H_u, H_v, H_w, H], of degree (4p-1, 4q-1, 4r-1), bounded by its Bernstein coefficients
+// as det J is on the polynomial path (docs/ffd-engine.md, "Fold-over bound").
+
+// A trivariate polynomial in scaled Bernstein form (coefficient times C(d0,i) C(d1,j) C(d2,k)),
+// where a product is a convolution of the coefficient arrays.
+struct ScaledPolynomial {
+  Dims d{{1, 1, 1}};
+  std::vector<double> c;
+};
+
+ScaledPolynomial product(const ScaledPolynomial& a, const ScaledPolynomial& b) {
+  ScaledPolynomial out;
+  for (int axis = 0; axis < 3; ++axis) out.d.n[axis] = a.d.n[axis] + b.d.n[axis] - 1;
+  out.c.assign(std::size_t(out.d.size()), 0.0);
+  const int an0 = a.d.n[0], bn0 = b.d.n[0];
+  for (int ka = 0; ka < a.d.n[2]; ++ka)
+    for (int ja = 0; ja < a.d.n[1]; ++ja)
+      for (int kb = 0; kb < b.d.n[2]; ++kb)
+        for (int jb = 0; jb < b.d.n[1]; ++jb) {
+          double* __restrict o = out.c.data() + out.d.at(0, ja + jb, ka + kb);
+          const double* __restrict x = a.c.data() + a.d.at(0, ja, ka);
+          const double* __restrict y = b.c.data() + b.d.at(0, jb, kb);
+          for (int ia = 0; ia < an0; ++ia)
+            for (int ib = 0; ib < bn0; ++ib) o[ia + ib] += x[ia] * y[ib];
+        }
+  return out;
+}
+
+// acc += sign * x (the same degrees; acc empty: acc = sign * x).
+void accumulate(ScaledPolynomial& acc, const ScaledPolynomial& x, double sign) {
+  if (acc.c.empty()) {
+    acc.d = x.d;
+    acc.c.assign(x.c.size(), 0.0);
+  }
+  for (std::size_t i = 0; i < x.c.size(); ++i) acc.c[i] += sign * x.c[i];
+}
+
+// det[H_u, H_v, H_w, H] from the scaled nets of its columns (H_u, H_v, H_w, H; per component),
+// any degrees: the Laplace expansion along H_u, G = sum_i (-1)^i (H_u)_i M_i, M_i the 3 x 3
+// minor of [H_v, H_w, H] without row i, itself expanded along H_v over the 2 x 2 minors of [H_w, H].
+void expandDeterminant(const ScaledPolynomial (&column)[4][4], ScaledPolynomial& G) {
+  ScaledPolynomial minor2[4][4];
+  for (int r = 0; r < 4; ++r)
+    for (int s = r + 1; s < 4; ++s) {
+      accumulate(minor2[r][s], product(column[2][r], column[3][s]), 1.0);
+      accumulate(minor2[r][s], product(column[2][s], column[3][r]), -1.0);
+    }
+  for (int i = 0; i < 4; ++i) {
+    int rows[3], n = 0;
+    for (int r = 0; r < 4; ++r)
+      if (r != i) rows[n++] = r;
+    ScaledPolynomial minor3;
+    accumulate(minor3, product(column[1][rows[0]], minor2[rows[1]][rows[2]]), 1.0);
+    accumulate(minor3, product(column[1][rows[1]], minor2[rows[0]][rows[2]]), -1.0);
+    accumulate(minor3, product(column[1][rows[2]], minor2[rows[0]][rows[1]]), 1.0);
+    accumulate(G, product(column[0][i], minor3), i % 2 == 0 ? 1.0 : -1.0);
+  }
+}
+
+// out (dims A + B - 1 per axis) += sum_m sign_m a_m (dims A) * b_m (dims B): M products of
+// scaled Bernstein forms summed at once (M multiply-adds per load and store of out), with
+// compile-time sizes so that the inner loop is unrolled and vectorised.
+template <int M, int A0, int A1, int A2, int B0, int B1, int B2>
+FFDKIT_INLINE void convolveSum(const double* const (&a)[M], const double* const (&b)[M], const double (&sign)[M],
+                               double* __restrict out) {
+  constexpr int O0 = A0 + B0 - 1, O1 = A1 + B1 - 1;
+  for (int ka = 0; ka < A2; ++ka)
+    for (int ja = 0; ja < A1; ++ja)
+      for (int kb = 0; kb < B2; ++kb)
+        for (int jb = 0; jb < B1; ++jb) {
+          double* __restrict o = out + O0 * ((ja + jb) + O1 * (ka + kb));
+          const double* y[M];
+          for (int m = 0; m < M; ++m) y[m] = b[m] + B0 * (jb + B1 * kb);
+          for (int ia = 0; ia < A0; ++ia) {
+            double x[M];
+            for (int m = 0; m < M; ++m) x[m] = sign[m] * a[m][ia + A0 * (ja + A1 * ka)];
+            for (int ib = 0; ib < B0; ++ib) {
+              double sum = o[ia + ib];
+              for (int m = 0; m < M; ++m) sum += x[m] * y[m][ib];
+              o[ia + ib] = sum;
+            }
           }
         }
+}
+
+// expandDeterminant when all three axes have degree P (1..3): every size a compile-time constant.
+// columns[a][component]: the scaled nets of H_u, H_v, H_w (P on their own axis, P + 1 on the
+// others) and H ((P+1)^3). `out` gets G's (4P)^3 scaled coefficients, index i + 4P (j + 4P k).
+template <int P>
+FFDKIT_VECTOR_CLONES void rationalEqualDegree(const double* const (&columns)[4][4], double* out) {
+  constexpr int N = P + 1;
+  constexpr int minor2Size = (2 * P + 1) * (2 * P + 1) * (2 * P);  // [H_w, H], rows r < s
+  constexpr int minor3Size = (3 * P + 1) * (3 * P) * (3 * P);      // [H_v, H_w, H] without row i
+  double minor2[4][4][minor2Size] = {};
+  for (int r = 0; r < 4; ++r)
+    for (int s = r + 1; s < 4; ++s)
+      convolveSum<2, N, N, P, N, N, N>({columns[2][r], columns[2][s]}, {columns[3][s], columns[3][r]}, {1.0, -1.0},
+                                       minor2[r][s]);
+  double minor3[4][minor3Size] = {};
+  for (int i = 0; i < 4; ++i) {
+    int rows[3], n = 0;
+    for (int r = 0; r < 4; ++r)
+      if (r != i) rows[n++] = r;
+    convolveSum<3, N, P, N, 2 * P + 1, 2 * P + 1, 2 * P>(
+        {columns[1][rows[0]], columns[1][rows[1]], columns[1][rows[2]]},
+        {minor2[rows[1]][rows[2]], minor2[rows[0]][rows[2]], minor2[rows[0]][rows[1]]}, {1.0, -1.0, 1.0}, minor3[i]);
   }
-  for (CellFolding c : result.cells) {
-    result.foldsCount += c == CellFolding::Folds;
-    result.unknownCount += c == CellFolding::Unknown;
+  std::fill_n(out, (4 * P) * (4 * P) * (4 * P), 0.0);
+  convolveSum<4, P, N, N, 3 * P + 1, 3 * P, 3 * P>({columns[0][0], columns[0][1], columns[0][2], columns[0][3]},
+                                                   {minor3[0], minor3[1], minor3[2], minor3[3]},
+                                                   {1.0, -1.0, 1.0, -1.0}, out);
+}
+
+// G = det[H_u, H_v, H_w, H] on one cell in Bernstein form, and the range of the window's weights.
+struct RationalPatch {
+  Dims d{{1, 1, 1}};
+  std::vector<double> coefficients;  // index i + n0 (j + n1 k)
+  double minWeight = 1.0, maxWeight = 1.0;
+  Eigen::Vector3d parameterMin, parameterMax;
+};
+
+RationalPatch rationalPatchOf(const Lattice& lattice, const std::array<int, 3>& cell,
+                              const std::vector<Eigen::MatrixXd>* extraction) {
+  int p[3];
+  double width[3];
+  RationalPatch patch;
+  for (int a = 0; a < 3; ++a) {
+    p[a] = lattice.axis(a).degree();
+    patch.parameterMin[a] = lattice.axis(a).cellMin(cell[a]);
+    patch.parameterMax[a] = lattice.axis(a).cellMax(cell[a]);
+    width[a] = patch.parameterMax[a] - patch.parameterMin[a];
+  }
+  // The cell's Bezier net of H (the extraction is linear, so it maps (w P, w) like P).
+  const Dims net{{p[0] + 1, p[1] + 1, p[2] + 1}};
+  std::vector<Eigen::Vector4d> b(std::size_t(net.size())), t(b.size());
+  patch.minWeight = std::numeric_limits<double>::infinity();
+  patch.maxWeight = 0.0;
+  for (int k = 0; k <= p[2]; ++k)
+    for (int j = 0; j <= p[1]; ++j)
+      for (int i = 0; i <= p[0]; ++i) {
+        const Eigen::Index f = lattice.index(lattice.axis(0).controlIndex(cell[0], i),
+                                             lattice.axis(1).controlIndex(cell[1], j),
+                                             lattice.axis(2).controlIndex(cell[2], k));
+        const double w = lattice.weight(f);
+        patch.minWeight = std::min(patch.minWeight, w);
+        patch.maxWeight = std::max(patch.maxWeight, w);
+        b[std::size_t(net.at(i, j, k))] << w * lattice.controlPoints().row(f).transpose(), w;
+      }
+  for (int axis = 0; axis < 3; ++axis) {
+    const Eigen::MatrixXd& E = extraction[axis][std::size_t(cell[axis])];
+    for (int k = 0; k <= p[2]; ++k)
+      for (int j = 0; j <= p[1]; ++j)
+        for (int i = 0; i <= p[0]; ++i) {
+          int at[3] = {i, j, k};
+          const int out = at[axis];
+          Eigen::Vector4d sum = Eigen::Vector4d::Zero();
+          for (int r = 0; r <= p[axis]; ++r) {
+            at[axis] = r;
+            sum += E(r, out) * b[std::size_t(net.at(at[0], at[1], at[2]))];
+          }
+          t[std::size_t(net.at(i, j, k))] = sum;
+        }
+    std::swap(b, t);
+  }
+  // Columns of the 4 x 4 matrix, per component, in scaled Bernstein form: H_u, H_v, H_w, H.
+  ScaledPolynomial column[4][4];
+  for (int a = 0; a < 4; ++a) {
+    Dims d = net;
+    if (a < 3) d.n[a] -= 1;
+    for (int component = 0; component < 4; ++component) {
+      column[a][component].d = d;
+      column[a][component].c.resize(std::size_t(d.size()));
+    }
+    for (int k = 0; k < d.n[2]; ++k)
+      for (int j = 0; j < d.n[1]; ++j)
+        for (int i = 0; i < d.n[0]; ++i) {
+          const double scale = binomial(d.n[0] - 1, i) * binomial(d.n[1] - 1, j) * binomial(d.n[2] - 1, k);
+          Eigen::Vector4d value = b[std::size_t(net.at(i, j, k))];
+          if (a < 3) {
+            int next[3] = {i, j, k};
+            next[a] += 1;
+            value = p[a] / width[a] * (b[std::size_t(net.at(next[0], next[1], next[2]))] - value);
+          }
+          for (int component = 0; component < 4; ++component)
+            column[a][component].c[std::size_t(d.at(i, j, k))] = scale * value[component];
+        }
+  }
+  // det[H_u, H_v, H_w, H] by products of the nets.
+  ScaledPolynomial G;
+  if (p[0] == p[1] && p[1] == p[2] && p[0] >= 1 && p[0] <= 3) {
+    const double* columns[4][4];
+    for (int a = 0; a < 4; ++a)
+      for (int component = 0; component < 4; ++component) columns[a][component] = column[a][component].c.data();
+    const int q = 4 * p[0];
+    G.d = Dims{{q, q, q}};
+    G.c.resize(std::size_t(q * q * q));
+    if (p[0] == 1) rationalEqualDegree<1>(columns, G.c.data());
+    if (p[0] == 2) rationalEqualDegree<2>(columns, G.c.data());
+    if (p[0] == 3) rationalEqualDegree<3>(columns, G.c.data());
+  } else {
+    expandDeterminant(column, G);
+  }
+  patch.d = G.d;
+  patch.coefficients = std::move(G.c);
+  // Back from the scaled form: divide by C(d0, i) C(d1, j) C(d2, k) (reciprocals per axis).
+  double inverse[3][44];
+  for (int a = 0; a < 3; ++a)
+    for (int i = 0; i < patch.d.n[a]; ++i) inverse[a][i] = 1.0 / binomial(patch.d.n[a] - 1, i);
+  for (int k = 0; k < patch.d.n[2]; ++k)
+    for (int j = 0; j < patch.d.n[1]; ++j) {
+      const double jk = inverse[1][j] * inverse[2][k];
+      double* row = patch.coefficients.data() + patch.d.at(0, j, k);
+      for (int i = 0; i < patch.d.n[0]; ++i) row[i] *= inverse[0][i] * jk;
+    }
+  return patch;
+}
+
+// Per cell: G's coefficients certify Positive at once or, subdivided like det J's on the
+// polynomial path, find a corner where G (hence det J) is <= 0 or leave the cell Unknown.
+// lowerBound: min G / maxWeight^4 when min G > 0, else min G / minWeight^4 (a lower bound of
+// sign * det J = sign * G / D^4 either way, D being in [minWeight, maxWeight]).
+void checkRationalFolding(const Lattice& lattice, const FoldCheckOptions& options,
+                          const std::vector<Eigen::MatrixXd>* extraction, FoldCheckResult& result) {
+  const int cu = result.cellCounts[0], cv = result.cellCounts[1], cw = result.cellCounts[2];
+  const std::int64_t cellCount = std::int64_t(cu) * cv * cw;
+#pragma omp parallel for schedule(dynamic, 1) if (cellCount >= 8)
+  for (std::int64_t flat = 0; flat < cellCount; ++flat) {
+    const std::array<int, 3> cell = {int(flat % cu), int(flat / cu % cv), int(flat / cu / cv)};
+    // Equal weights in the cell's window (every cell away from an edited weight): the map is
+    // polynomial there, and det J's own bound (degree 3p-1 instead of 4p-1) is used.
+    double lightest = std::numeric_limits<double>::infinity(), heaviest = 0.0;
+    for (int k = 0; k <= lattice.axis(2).degree(); ++k)
+      for (int j = 0; j <= lattice.axis(1).degree(); ++j)
+        for (int i = 0; i <= lattice.axis(0).degree(); ++i) {
+          const double w = lattice.weight(lattice.index(lattice.axis(0).controlIndex(cell[0], i),
+                                                        lattice.axis(1).controlIndex(cell[1], j),
+                                                        lattice.axis(2).controlIndex(cell[2], k)));
+          lightest = std::min(lightest, w);
+          heaviest = std::max(heaviest, w);
+        }
+    if (lightest == heaviest) {
+      checkPolynomialCell(lattice, options, extraction, cell, std::size_t(flat), result);
+      continue;
+    }
+    RationalPatch patch = rationalPatchOf(lattice, cell, extraction);
+    for (double& c : patch.coefficients) c *= result.orientation;
+    const double lowest = *std::min_element(patch.coefficients.begin(), patch.coefficients.end());
+    result.lowerBound[std::size_t(flat)] = lowest / std::pow(lowest > 0.0 ? patch.maxWeight : patch.minWeight, 4);
+    if (lowest > 0.0) {
+      result.cells[std::size_t(flat)] = CellFolding::Positive;
+      continue;
+    }
+    const Verdict v = classify(patch.coefficients, patch.d, Eigen::Vector3d::Zero(), 1.0, 0, options.maxDepth);
+    result.cells[std::size_t(flat)] = v.folding;
+    if (v.folding == CellFolding::Folds)
+      result.witness[std::size_t(flat)] =
+          patch.parameterMin + (patch.parameterMax - patch.parameterMin).cwiseProduct(v.witness);
   }
 }
 
 }  // namespace
+
 
 FoldCheckResult checkFolding(const Lattice& lattice, const FoldCheckOptions& options) {
   if (options.maxDepth < 0 || options.maxDepth > 10)
@@ -420,27 +685,9 @@ FoldCheckResult checkFolding(const Lattice& lattice, const FoldCheckOptions& opt
   result.lowerBound.assign(std::size_t(cellCount), 0.0);
   result.witness.assign(std::size_t(cellCount), Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
   if (lattice.isRational()) {
-    checkRationalFolding(lattice, result);
-    return result;
-  }
-#pragma omp parallel for schedule(dynamic, 1) if (cellCount >= 8)
-  for (std::int64_t flat = 0; flat < cellCount; ++flat) {
-    const std::array<int, 3> cell = {int(flat % cu), int(flat / cu % cv), int(flat / cu / cv)};
-    const JacobianDeterminantPatch patch = patchOf(lattice, cell, extraction);
-    const double lowest = result.orientation > 0 ? patch.coefficients.minCoeff() : -patch.coefficients.maxCoeff();
-    result.lowerBound[std::size_t(flat)] = lowest;
-    if (lowest > 0.0) {  // certified at once (most cells of a usable lattice)
-      result.cells[std::size_t(flat)] = CellFolding::Positive;
-      continue;
-    }
-    std::vector<double> signedCoefficients(patch.coefficients.data(), patch.coefficients.data() + patch.coefficients.size());
-    for (double& c : signedCoefficients) c *= result.orientation;
-    const Dims d{{patch.degrees[0] + 1, patch.degrees[1] + 1, patch.degrees[2] + 1}};
-    const Verdict v = classify(signedCoefficients, d, Eigen::Vector3d::Zero(), 1.0, 0, options.maxDepth);
-    result.cells[std::size_t(flat)] = v.folding;
-    if (v.folding == CellFolding::Folds)
-      result.witness[std::size_t(flat)] =
-          patch.parameterMin + (patch.parameterMax - patch.parameterMin).cwiseProduct(v.witness);
+    checkRationalFolding(lattice, options, extraction, result);
+  } else {
+    checkPolynomialFolding(lattice, options, extraction, result);
   }
   for (CellFolding c : result.cells) {
     result.positiveCount += c == CellFolding::Positive;

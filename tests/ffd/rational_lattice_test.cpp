@@ -423,19 +423,117 @@ TEST(RationalLattice, DirectManipulationAndControlWeightsUseTheRationalBasis) {
 }
 
 // checkFolding on a rational lattice finds folds by sampling and certifies nothing.
-TEST(RationalLattice, FoldCheckFindsAFoldAndCertifiesNothing) {
+// det of the central-difference Jacobian of the rational map X = sum B w P / sum B w (the
+// long-double reference formula, not the library), lattice-local, at an interior point.
+double referenceDeterminant(const RefAxis (&axes)[3], const Lattice& lattice, const Eigen::Vector3d& uvw) {
+  const double h = 1e-6;
+  Eigen::Matrix3d J;
+  for (int a = 0; a < 3; ++a) {
+    Eigen::Vector3d lo = uvw, hi = uvw;
+    lo[a] = std::max(0.0, uvw[a] - h);
+    hi[a] = std::min(1.0, uvw[a] + h);
+    J.col(a) = (refEvaluate(axes, lattice.controlPoints(), lattice.weights(), hi) -
+                refEvaluate(axes, lattice.controlPoints(), lattice.weights(), lo)) /
+               (hi[a] - lo[a]);
+  }
+  return J.determinant();
+}
+
+// The certified bound of a rational lattice (det J = det[H_u, H_v, H_w, H] / D^4 with H = (w P, w),
+// in Bernstein form) against dense sampling of det J by finite differences of the reference
+// formula: every cell's lowerBound is below every sample of it, Positive cells sample > 0, Folds
+// witnesses sample <= 0.
+void expectBoundAgreesWithSampling(const RefAxis (&axes)[3], const Lattice& lattice, const FoldCheckResult& result) {
+  constexpr int kSamples = 7;
+  for (int cw = 0; cw < result.cellCounts[2]; ++cw)
+    for (int cv = 0; cv < result.cellCounts[1]; ++cv)
+      for (int cu = 0; cu < result.cellCounts[0]; ++cu) {
+        const int cell[3] = {cu, cv, cw};
+        const std::size_t flat = cu + result.cellCounts[0] * (cv + std::size_t(result.cellCounts[1]) * cw);
+        double smallest = std::numeric_limits<double>::infinity();
+        for (int k = 0; k < kSamples; ++k)
+          for (int j = 0; j < kSamples; ++j)
+            for (int i = 0; i < kSamples; ++i) {
+              const int at[3] = {i, j, k};
+              Eigen::Vector3d uvw;
+              for (int a = 0; a < 3; ++a) {
+                const AxisSpline& axis = lattice.axis(a);
+                uvw[a] = axis.cellMin(cell[a]) + (axis.cellMax(cell[a]) - axis.cellMin(cell[a])) * (at[a] + 0.5) / kSamples;
+              }
+              smallest = std::min(smallest, result.orientation * referenceDeterminant(axes, lattice, uvw));
+            }
+        EXPECT_LE(result.lowerBound[flat], smallest + 1e-7 * (1.0 + std::abs(smallest))) << "cell " << flat;
+        if (result.cells[flat] == CellFolding::Positive) EXPECT_GT(smallest, 0.0) << "cell " << flat;
+        if (result.cells[flat] == CellFolding::Folds) {
+          ASSERT_TRUE(result.witness[flat].allFinite());
+          EXPECT_LE(result.orientation * lattice.jacobian(result.witness[flat]).determinant(), 1e-9);
+        }
+      }
+}
+
+TEST(RationalLattice, FoldBoundCertifiesALatticeThatDoesNotFold) {
+  struct Case {
+    Eigen::Vector3i counts;
+    AxisBasis basis;
+    RefAxis ref[3];
+  };
+  const Case cases[] = {
+      {{4, 4, 4}, AxisBasis::bspline(2), {refBSpline(4, 2), refBSpline(4, 2), refBSpline(4, 2)}},
+      {{5, 5, 5}, AxisBasis::bspline(3), {refBSpline(5, 3), refBSpline(5, 3), refBSpline(5, 3)}},
+      // Unequal degrees (3, 1, 2): the general product path.
+      {{4, 2, 3}, AxisBasis::bernstein(), {{true, 4, 3, {}}, {true, 2, 1, {}}, {true, 3, 2, {}}}},
+  };
+  for (const Case& c : cases) {
+    Lattice lattice = boxLattice(c.counts, c.basis);
+    lattice.setControlPoints(jiggled(lattice.controlPoints(), 0.03, 41));
+    lattice.setWeights(randomWeights(lattice.pointCount(), 0.4, 2.5, 42));
+    const FoldCheckResult result = checkFolding(lattice);
+    EXPECT_TRUE(result.certifiedPositive()) << result.foldsCount << " fold, " << result.unknownCount << " unknown";
+    EXPECT_EQ(result.positiveCount, Eigen::Index(result.cells.size()));
+    expectBoundAgreesWithSampling(c.ref, lattice, result);
+  }
+}
+
+TEST(RationalLattice, FoldBoundCatchesALatticeBuiltToFold) {
+  const RefAxis axes[3] = {refBSpline(4, 2), refBSpline(4, 2), refBSpline(4, 2)};
   Lattice lattice = boxLattice({4, 4, 4}, AxisBasis::bspline(2));
   lattice.setWeight(lattice.index(1, 1, 1), 2.0);
-  FoldCheckResult clean = checkFolding(lattice);
-  EXPECT_EQ(clean.foldsCount, 0);
-  EXPECT_EQ(clean.unknownCount, 8);
-  EXPECT_FALSE(clean.certifiedPositive());
-  // Push an inner point through the face opposite: the first cell turns inside out.
+  EXPECT_TRUE(checkFolding(lattice).certifiedPositive());
+  // Push an inner point through the face opposite: the first cell turns inside out; its weight
+  // pulls the map towards it, a heavier weight folds more of the cell.
   lattice.setControlPoint(lattice.index(1, 1, 1), Eigen::Vector3d(-0.6, -0.6, -0.6));
-  FoldCheckResult folded = checkFolding(lattice);
+  lattice.setWeight(lattice.index(1, 1, 1), 5.0);
+  const FoldCheckResult folded = checkFolding(lattice);
   ASSERT_GT(folded.foldsCount, 0);
   EXPECT_EQ(folded.cells[0], CellFolding::Folds);
-  EXPECT_LE(lattice.jacobian(folded.witness[0]).determinant(), 0.0);
+  EXPECT_FALSE(folded.certifiedPositive());
+  expectBoundAgreesWithSampling(axes, lattice, folded);
+  // A cell far from the pushed point stays certified.
+  EXPECT_EQ(folded.cells.back(), CellFolding::Positive);
+}
+
+// Equal weights (any value) give the polynomial map: the rational lattice's check gives the
+// polynomial path's verdicts and bounds (a cell whose window has equal weights takes det J's own
+// bound). One weight changed in a corner: the cells away from it keep their polynomial verdicts.
+TEST(RationalLattice, FoldBoundWithEqualWeightsGivesThePolynomialVerdicts) {
+  for (double push : {0.0, 0.5, 1.5, 3.0}) {
+    Lattice lattice = boxLattice({5, 5, 5}, AxisBasis::bspline(3));
+    Eigen::MatrixX3d p = jiggled(lattice.controlPoints(), 0.02, 43);
+    for (int j = 1; j <= 2; ++j)
+      for (int k = 1; k <= 2; ++k) p(lattice.index(1, j, k), 0) += push;
+    lattice.setControlPoints(p);
+    const FoldCheckResult polynomial = checkFolding(lattice);
+    ASSERT_FALSE(lattice.isRational());
+    lattice.setWeights(Eigen::VectorXd::Constant(lattice.pointCount(), 2.0));
+    ASSERT_TRUE(lattice.isRational());
+    const FoldCheckResult rational = checkFolding(lattice);
+    EXPECT_EQ(rational.cells, polynomial.cells) << "push " << push;
+    EXPECT_EQ(rational.lowerBound, polynomial.lowerBound) << "push " << push;
+    EXPECT_EQ(rational.positiveCount, polynomial.positiveCount);
+    lattice.setWeight(lattice.index(4, 4, 4), 3.0);  // the window of the last cell only
+    const FoldCheckResult corner = checkFolding(lattice);
+    for (std::size_t c = 0; c + 1 < polynomial.cells.size(); ++c) EXPECT_EQ(corner.cells[c], polynomial.cells[c]);
+  }
 }
 
 }  // namespace

@@ -28,7 +28,9 @@ struct JacobianDeterminantPatch {
   double value(const Eigen::Vector3d& uvw) const;
 };
 
-/// The det J patch of cell (cu, cv, cw) (cells per axis: Lattice::axis(a).cellCount()).
+/// The det J patch of cell (cu, cv, cw) (cells per axis: Lattice::axis(a).cellCount()), of the
+/// polynomial map of the control points (a rational lattice's weights are not part of it;
+/// checkFolding bounds a rational lattice's det J).
 /// @throws LatticeError on a cell out of range.
 JacobianDeterminantPatch jacobianDeterminantPatch(const Lattice& lattice, const std::array<int, 3>& cell);
 
@@ -52,7 +54,8 @@ struct FoldCheckResult {
   /// One verdict per cell, flat index cu + cellCounts[0] (cv + cellCounts[1] cw).
   std::vector<CellFolding> cells;
   /// Per cell, the smallest Bernstein coefficient of det J times the rest orientation's sign
-  /// (a lower bound of sign * det J on the cell; > 0 means certified Positive at once).
+  /// (a lower bound of sign * det J on the cell; > 0 means certified Positive at once; for a
+  /// rational lattice's cell with unequal weights, that of G scaled by a weight^-4, see checkFolding).
   std::vector<double> lowerBound;
   /// Per cell, a parameter point where sign * det J <= 0 (Folds cells; NaN otherwise).
   std::vector<Eigen::Vector3d> witness;
@@ -74,10 +77,14 @@ struct FoldCheckResult {
 /// at its midpoints by de Casteljau and each part is checked again, down to options.maxDepth,
 /// and what is still inconclusive is Unknown. Cost: one product of Bernstein nets per cell
 /// (degree (3p-1)^3: 729 coefficients for cubic axes) plus any subdivisions.
-/// Rational lattices (Lamousin & Waggenspack 1994): det J of the ratio sum B w P / sum B w is not
-/// a polynomial, and no bound is computed for it: each cell is sampled on a 5 x 5 x 5 grid of its
-/// closed box (Lattice::jacobian); a sample with det J <= 0 (against the rest orientation) makes it
-/// Folds with that witness, every other cell is Unknown (lowerBound NaN), never certified Positive.
+/// Rational lattices (Lamousin & Waggenspack 1994): with H = (sum B w P, sum B w) = (N, D) the
+/// homogeneous map and X = N / D, det J = det[H_u, H_v, H_w, H] / D^4 (subtract D_a / D times
+/// the column H from each derivative column: H_a - (D_a / D) H = D (X_a, 0)). The weights are > 0,
+/// so D > 0 and det J has the sign of the polynomial G = det[H_u, H_v, H_w, H] of degree
+/// (4p-1, 4q-1, 4r-1) (1331 coefficients for cubic axes), whose Bernstein coefficients are bounded
+/// and subdivided exactly as det J's are; lowerBound is min G / D^4 with D the largest window
+/// weight when min G > 0, the smallest otherwise. A cell whose window has equal weights is a
+/// polynomial map, and takes det J's own bound.
 /// @throws LatticeError on maxDepth outside [0, 10].
 FoldCheckResult checkFolding(const Lattice& lattice, const FoldCheckOptions& options = {});
 
