@@ -7,12 +7,19 @@
 
 #include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <limits>
+#include <new>
+#include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cgnslib.h>
@@ -20,6 +27,17 @@
 #include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/mesh_data.h"
 #include "ffdkit/meshio/read_failures.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define FFDKIT_CGNS_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define FFDKIT_CGNS_ASAN 1
+#endif
+#endif
+#ifndef FFDKIT_CGNS_ASAN
+#define FFDKIT_CGNS_ASAN 0
+#endif
 
 namespace ffdkit::meshio {
 
@@ -65,6 +83,12 @@ class CgnsFile {
   std::string path_;
   int fn_ = -1;
 };
+
+// The name the library gives `value` of an enumeration with `count` values, or the number for a
+// value outside it (a malformed file's).
+std::string enumName(const char* const* names, int value, int count) {
+  return value >= 0 && value < count ? std::string(names[value]) : "number " + std::to_string(value);
+}
 
 // The shape and node count of an element type that is a cell of a mesh of `cellDimension`;
 // false for a lower-dimensional (boundary) element. @throws through `file` for a type ffdkit
@@ -115,7 +139,7 @@ void addElement(const CgnsFile& file, const std::string& where, ElementType_t ty
   } else if (isKnownLowerElement(type)) {
     ++mesh.boundaryElements;
   } else {
-    file.refuse(where + ", element " + std::to_string(id) + ": element type " + ElementTypeName[type] +
+    file.refuse(where + ", element " + std::to_string(id) + ": element type " + enumName(ElementTypeName, int(type), NofValidElementTypes) +
                 " is not read by ffdkit (tetrahedra, pyramids, prisms, hexahedra, their faces and edges)");
   }
 }
@@ -151,10 +175,13 @@ void readSections(const CgnsFile& file, ReadBudget& budget, std::int64_t pointCo
         const cgsize_t first = offsets[std::size_t(e)], last = offsets[std::size_t(e) + 1];
         if (first < 0 || last > dataSize || last - first < 1)
           file.refuse(where + ", element " + std::to_string(start + e) + ": offsets " + std::to_string(first) + ".." + std::to_string(last));
-        const ElementType_t elementType = ElementType_t(nodes[std::size_t(first)]);
+        // The type is checked as a number before it becomes an ElementType_t (a value outside the
+        // enumeration is not one).
+        const cgsize_t rawType = nodes[std::size_t(first)];
+        const bool validType = rawType > cgsize_t(CGNS_ENUMV(ElementTypeUserDefined)) && rawType < cgsize_t(NofValidElementTypes);
+        const ElementType_t elementType = validType ? ElementType_t(rawType) : CGNS_ENUMV(ElementTypeNull);
         int npe = 0;
-        if (elementType <= CGNS_ENUMV(ElementTypeUserDefined) || elementType >= NofValidElementTypes ||
-            cg_npe(elementType, &npe) != CG_OK || npe <= 0 || npe != last - first - 1)
+        if (!validType || cg_npe(elementType, &npe) != CG_OK || npe <= 0 || npe != last - first - 1)
           file.refuse(where + ", element " + std::to_string(start + e) + ": type " + std::to_string(nodes[std::size_t(first)]) +
                       " with " + std::to_string(last - first - 1) + " nodes is not a fixed element type ffdkit reads");
         addElement(file, where, elementType, nodes.data() + first + 1, npe, start + e, pointCount, mesh);
@@ -177,11 +204,195 @@ void readSections(const CgnsFile& file, ReadBudget& budget, std::int64_t pointCo
 
 CgnsMesh readZone(const fs::path& path, const CgnsReadOptions& options, ReadBudget& budget);
 
+// Runs `work` in a child process (fork) with at most `maxSeconds` of CPU time and `maxMemoryBytes`
+// of new address space (0: no limit; none under AddressSanitizer, whose shadow memory needs more);
+// the bytes it
+// appends to its string come back here. A MeshIoError it throws is thrown here with its message.
+// A crash (the CGNS library's ADF reader overflows a buffer on some malformed files), a run past
+// the limit, or any other end of the child is a MeshIoError naming `file`; this process goes on.
+std::string runInChild(const std::string& file, const std::string& doing, double maxSeconds, std::uint64_t maxMemoryBytes,
+                       const std::function<void(std::string&)>& work) {
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0)
+    throw MeshIoError(file + ": cannot start the process " + doing + " it (" + std::strerror(errno) + ")");
+  std::fflush(nullptr);
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw MeshIoError(file + ": cannot start the process " + doing + " it (" + std::strerror(errno) + ")");
+  }
+  if (child == 0) {
+    ::close(fds[0]);
+    if (maxSeconds > 0) {
+      const rlim_t seconds = static_cast<rlim_t>(std::ceil(maxSeconds));
+      const rlimit cpu{seconds, seconds + 1};
+      ::setrlimit(RLIMIT_CPU, &cpu);
+    }
+#if !FFDKIT_CGNS_ASAN
+    // The library allocates what a file's header announces (and exits when calloc fails): the
+    // child may map `maxMemoryBytes` beyond what it inherited.
+    if (maxMemoryBytes > 0) {
+      unsigned long long pages = 0;
+      if (std::FILE* statm = std::fopen("/proc/self/statm", "r")) {
+        if (std::fscanf(statm, "%llu", &pages) != 1) pages = 0;
+        std::fclose(statm);
+      }
+      const rlim_t bytes = rlim_t(pages) * rlim_t(::sysconf(_SC_PAGESIZE)) + rlim_t(maxMemoryBytes);
+      const rlimit memory{bytes, bytes};
+      if (pages > 0) ::setrlimit(RLIMIT_AS, &memory);
+    }
+#endif
+    std::string out;
+    int code = 0;
+    try {
+      work(out);
+    } catch (const MeshIoError& e) {
+      out = e.what();
+      code = 3;
+    } catch (const std::bad_alloc&) {
+      out = file + ": out of memory " + doing + " it";
+      code = 3;
+    } catch (...) {
+      code = 5;
+    }
+    for (std::size_t done = 0; done < out.size();) {
+      const ssize_t n = ::write(fds[1], out.data() + done, out.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) std::_Exit(6);
+      done += std::size_t(n);
+    }
+    std::_Exit(code);  // no destructor or exit handler of this process's copy runs
+  }
+  ::close(fds[1]);
+  std::string text;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    text.append(buffer, std::size_t(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    if (signal == SIGXCPU || signal == SIGKILL)
+      throw MeshIoError(file + ": " + doing + " it took more than " + std::to_string(int(std::ceil(maxSeconds))) +
+                        " s of CPU time (CgnsReadOptions::maxSeconds)");
+    throw MeshIoError(file + ": the CGNS library crashed " + doing + " it (signal " + std::to_string(signal) +
+                      "): the file is malformed");
+  }
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (code == 0) return text;
+  if (code == 3) throw MeshIoError(text);
+  if (code == 5) throw MeshIoError(file + ": an unexpected error " + doing + " it");
+  // Any other status is not one the child chose (under AddressSanitizer a crash ends the process
+  // with ASan's exit code instead of the signal).
+  throw MeshIoError(file + ": the CGNS library crashed " + doing + " it (exit status " + std::to_string(code) +
+                    "): the file is malformed");
+}
+
+// A CgnsMesh as bytes, from the child that read it to this process.
+class MeshWire {
+ public:
+  template <class T>
+  static void put(std::string& out, const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out.append(reinterpret_cast<const char*>(&value), sizeof value);
+  }
+  template <class T>
+  static void putArray(std::string& out, const T* data, std::size_t count) {
+    put(out, std::uint64_t(count));
+    out.append(reinterpret_cast<const char*>(data), count * sizeof(T));
+  }
+  static void putString(std::string& out, const std::string& text) { putArray(out, text.data(), text.size()); }
+
+  static void write(std::string& out, const CgnsMesh& mesh) {
+    put(out, mesh.base), put(out, mesh.zone), put(out, mesh.cellDimension), put(out, mesh.physicalDimension);
+    put(out, mesh.pointCount), put(out, mesh.boundaryElements), put(out, mesh.polyhedralElements);
+    putString(out, mesh.zoneName);
+    for (int axis = 0; axis < 3; ++axis) {
+      putString(out, mesh.coordinateNames[std::size_t(axis)]);
+      put(out, mesh.singlePrecision[std::size_t(axis)]);
+    }
+    putArray(out, mesh.points.data(), std::size_t(mesh.points.size()));
+    putArray(out, mesh.cells.shapes.data(), mesh.cells.shapes.size());
+    putArray(out, mesh.cells.cornerStarts.data(), mesh.cells.cornerStarts.size());
+    putArray(out, mesh.cells.corners.data(), mesh.cells.corners.size());
+    putArray(out, mesh.cells.ids.data(), mesh.cells.ids.size());
+  }
+
+  MeshWire(std::string_view bytes, const std::string& file) : bytes_(bytes), file_(file) {}
+
+  CgnsMesh read() {
+    CgnsMesh mesh;
+    get(mesh.base), get(mesh.zone), get(mesh.cellDimension), get(mesh.physicalDimension);
+    get(mesh.pointCount), get(mesh.boundaryElements), get(mesh.polyhedralElements);
+    getString(mesh.zoneName);
+    for (int axis = 0; axis < 3; ++axis) {
+      getString(mesh.coordinateNames[std::size_t(axis)]);
+      get(mesh.singlePrecision[std::size_t(axis)]);
+    }
+    std::vector<double> points;
+    getVector(points);
+    if (points.size() != 3 * std::size_t(mesh.pointCount)) fail();
+    mesh.points = Eigen::Map<const Eigen::MatrixX3d>(points.data(), Eigen::Index(mesh.pointCount), 3);
+    getVector(mesh.cells.shapes), getVector(mesh.cells.cornerStarts), getVector(mesh.cells.corners), getVector(mesh.cells.ids);
+    if (pos_ != bytes_.size()) fail();
+    return mesh;
+  }
+
+ private:
+  [[noreturn]] void fail() const { throw MeshIoError(file_ + ": the reading process returned a truncated zone"); }
+  template <class T>
+  void get(T& value) {
+    if (bytes_.size() - pos_ < sizeof value) fail();
+    std::memcpy(&value, bytes_.data() + pos_, sizeof value);
+    pos_ += sizeof value;
+  }
+  template <class T>
+  void getVector(std::vector<T>& values) {
+    std::uint64_t count = 0;
+    get(count);
+    if (count > (bytes_.size() - pos_) / sizeof(T)) fail();
+    values.resize(std::size_t(count));
+    std::memcpy(values.data(), bytes_.data() + pos_, std::size_t(count) * sizeof(T));
+    pos_ += std::size_t(count) * sizeof(T);
+  }
+  void getString(std::string& text) {
+    std::vector<char> chars;
+    getVector(chars);
+    text.assign(chars.begin(), chars.end());
+  }
+  std::string_view bytes_;
+  const std::string& file_;
+  std::size_t pos_ = 0;
+};
+
+CgnsMesh readCgnsMeshHere(const fs::path& path, const CgnsReadOptions& options);
+
 }  // namespace
 
 bool cgnsSupported() { return true; }
 
 CgnsMesh readCgnsMesh(const fs::path& path, const CgnsReadOptions& options) {
+  if (!options.isolate) return readCgnsMeshHere(path, options);
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw MeshIoError(file + ": not a regular file");
+  const std::string bytes =
+      runInChild(file, "reading", options.maxSeconds, options.limits.maxMemoryBytes, [&](std::string& out) { MeshWire::write(out, readCgnsMeshHere(path, options)); });
+  CgnsMesh mesh = MeshWire(bytes, file).read();
+  mesh.file = path;
+  return mesh;
+}
+
+namespace {
+
+CgnsMesh readCgnsMeshHere(const fs::path& path, const CgnsReadOptions& options) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw MeshIoError(path.string() + ": not a regular file");
   int fileType = 0;
@@ -191,8 +402,6 @@ CgnsMesh readCgnsMesh(const fs::path& path, const CgnsReadOptions& options) {
   return convertReadFailures<MeshIoError>(path.string(), "the CGNS file", budget,
                                           [&] { return readZone(path, options, budget); });
 }
-
-namespace {
 
 CgnsMesh readZone(const fs::path& path, const CgnsReadOptions& options, ReadBudget& budget) {
   CgnsFile file(path, CG_MODE_READ);
@@ -242,7 +451,8 @@ CgnsMesh readZone(const fs::path& path, const CgnsReadOptions& options, ReadBudg
       file.check(cg_coord_info(fn, mesh.base, mesh.zone, C, &type, name), "cannot read coordinate " + std::to_string(C));
       if (std::strcmp(name, wanted[axis]) != 0) continue;
       if (type != CGNS_ENUMV(RealDouble) && type != CGNS_ENUMV(RealSingle))
-        file.refuse("zone " + mesh.zoneName + ": " + name + " is " + DataTypeName[type] + ", not RealSingle or RealDouble");
+        file.refuse("zone " + mesh.zoneName + ": " + name + " is " + enumName(DataTypeName, int(type), NofValidDataTypes) +
+                    ", not RealSingle or RealDouble");
       found = true;
       mesh.coordinateNames[std::size_t(axis)] = name;
       mesh.singlePrecision[std::size_t(axis)] = type == CGNS_ENUMV(RealSingle);
@@ -285,7 +495,7 @@ void writeCgnsMesh(const CgnsMesh& mesh, const Eigen::MatrixX3d& points, const f
   const fs::path temporary = temporaryPathBeside(output);
   try {
     fs::copy_file(mesh.file, temporary);
-    {
+    const auto overwrite = [&] {
       CgnsFile file(temporary, CG_MODE_MODIFY);
       std::vector<double> doubles(std::size_t(points.rows()));
       std::vector<float> singles;
@@ -305,7 +515,11 @@ void writeCgnsMesh(const CgnsMesh& mesh, const Eigen::MatrixX3d& points, const f
                    "cannot write " + name);
       }
       file.closeChecked();
-    }
+    };
+    if (options.isolate)
+      runInChild(temporary.string(), "writing", 120.0, std::uint64_t(points.rows()) * 64 + (std::uint64_t(1) << 30), [&](std::string&) { overwrite(); });
+    else
+      overwrite();
     if (options.durable) {
       const int fd = ::open(temporary.c_str(), O_RDONLY | O_CLOEXEC);
       if (fd < 0 || ::fsync(fd) != 0) {

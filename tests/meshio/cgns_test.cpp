@@ -263,5 +263,25 @@ TEST_F(Cgns, StructuredZoneIsRefused) {
   EXPECT_NE(message.find("zone Box is structured"), std::string::npos) << message;
 }
 
+// Files fuzz_cgns found (tests/fuzz/regressions/fuzz_cgns). The CGNS library reads each in a child
+// process: one whose header announces more memory than the read may take makes the library exit
+// (its allocator exits when calloc fails), which is an error here, and this process goes on; a
+// MIXED section whose element type is no type of the enumeration is refused by its number.
+TEST(CgnsHostile, ALibraryThatExitsIsAnErrorAndThisProcessGoesOn) {
+  const fs::path dir = fs::path(FFDKIT_SOURCE_DIR) / "tests/fuzz/regressions/fuzz_cgns";
+  for (const char* name : {"oom-52b49a41f98227df8e70652649ab2d1b685f431b", "oom-91352231420bf70e781f927dd802061e10b23568",
+                           "oom-b52f2c00c3287bd6b3840cfa061e691201cef046"}) {
+    const std::string message = testing::meshIoErrorOf([&] { readCgnsMesh(dir / name); });
+    EXPECT_NE(message.find(std::string(name) + ": the CGNS library crashed reading it"), std::string::npos) << message;
+  }
+  const std::pair<const char*, const char*> types[] = {{"crash-3eb08f41dc319ddc026ef8ebf89553996b0ed0a9", "type 16384 "},
+                                                       {"crash-80d8c39fe5c192ec3c21769807a5cc29a46b4c60", "type -500 "}};
+  for (const auto& [name, type] : types) {
+    const std::string message = testing::meshIoErrorOf([&] { readCgnsMesh(dir / name); });
+    EXPECT_NE(message.find(std::string(type) + "with 5 nodes is not a fixed element type ffdkit reads"), std::string::npos)
+        << message;
+  }
+}
+
 }  // namespace
 }  // namespace ffdkit::meshio

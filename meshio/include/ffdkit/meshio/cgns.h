@@ -32,6 +32,12 @@ struct CgnsReadOptions {
   ReadLimits limits;  ///< the read's budget: points and connectivity are charged before they are read
   int base = 1;       ///< the CGNS base (1-based, as the library counts)
   int zone = 1;       ///< the unstructured zone of that base (1-based)
+  /// true: the CGNS library reads the file in a child process (fork), so that a file that makes
+  /// the library crash (its ADF reader overflows a buffer on some malformed files) or run away
+  /// is a MeshIoError, not the end of this process; the zone comes back through a pipe.
+  bool isolate = true;
+  /// With isolate: the child's CPU time limit in seconds (0: none).
+  double maxSeconds = 120.0;
 };
 
 /// A CGNS zone as read.
@@ -65,6 +71,9 @@ CgnsMesh readCgnsMesh(const std::filesystem::path& path, const CgnsReadOptions& 
 /// Options of the CGNS writer.
 struct CgnsWriteOptions {
   bool durable = true;  ///< flush the file to disk before it is renamed into place
+  /// true: the CGNS library opens and rewrites the copy in a child process, as
+  /// CgnsReadOptions::isolate reads; a crash there is a MeshIoError and nothing is written.
+  bool isolate = true;
 };
 
 /// Writes `mesh`'s file with `points` (#P x 3) as the coordinates of its zone: a copy of the file
