@@ -17,6 +17,7 @@
 namespace ffdkit::cad {
 namespace {
 
+using test::cylinderAround;
 using test::deformedLatticeAround;
 using test::ScratchFolder;
 
@@ -194,27 +195,6 @@ TEST(CadApproximation, ExactOnlyRefusesClampEdgeOutsideTheLattice) {
   } catch (const CadError& error) {
     EXPECT_NE(std::string(error.what()).find("ClampEdge"), std::string::npos) << error.what();
   }
-}
-
-/// A cylindrical lattice (3 x 8 x 3 points, quadratic) around the bottle, its rings widened towards
-/// the top and leaning along y (the rest lattice is no identity either: its B-spline rings lie
-/// inside their control points).
-ffd::Lattice cylinderAround(const CadModel& model, double radiusFactor = 0.75) {
-  ffd::CylindricalLatticeOptions cylinder;
-  cylinder.counts = {3, 8, 3};
-  cylinder.bases = {ffd::AxisBasis::bspline(2), ffd::AxisBasis::periodic(2), ffd::AxisBasis::bspline(2)};
-  cylinder.outerRadius = radiusFactor * model.bounds().sizes().head<2>().norm();
-  cylinder.zMin = model.bounds().min().z() - 2.0;
-  cylinder.zMax = model.bounds().max().z() + 2.0;
-  ffd::Lattice lattice = ffd::makeCylindricalLattice(cylinder);
-  Eigen::MatrixX3d points = lattice.restPoints();
-  for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    const double height = (points(i, 2) - cylinder.zMin) / (cylinder.zMax - cylinder.zMin);
-    points(i, 0) *= 1.0 + 0.1 * height;
-    points(i, 1) += 0.05 * points(i, 2);
-  }
-  lattice.setControlPoints(points);
-  return lattice;
 }
 
 TEST(CadApproximation, CylindricalLatticeIsApproximatedWithinTheUsersTolerance) {

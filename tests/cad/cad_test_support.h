@@ -14,6 +14,7 @@
 #include "ffdkit/cad/cad_model.h"
 #include "ffdkit/cad/tessellation.h"
 #include "ffdkit/ffd/box_lattice_options.h"
+#include "ffdkit/ffd/cylindrical_lattice.h"
 #include "ffdkit/ffd/deformer.h"
 #include "ffdkit/ffd/embedding.h"
 #include "ffdkit/ffd/lattice.h"
@@ -44,6 +45,30 @@ inline ffd::Lattice deformedLatticeAround(const Eigen::AlignedBox3d& box, const 
         points(at, 1) += size * (0.5 * std::sin(3.0 * u + 1.0) + (v - 0.5)) * w;
         points(at, 2) += size * 0.4 * (u - 0.5) * (v - 0.5);
       }
+  lattice.setControlPoints(points);
+  return lattice;
+}
+
+/// A cylindrical (EFFD) lattice of 3 x 8 x 3 points with quadratic axes around the model, its axis
+/// along z through the centre of its bounding box, of radius `radiusFactor` x the box's xy
+/// diagonal, 2 beyond its bottom and top; its rings widened towards the top and leaning along y
+/// (the rest lattice is no identity either: its B-spline rings lie inside their control points).
+inline ffd::Lattice cylinderAround(const CadModel& model, double radiusFactor = 0.75) {
+  const Eigen::AlignedBox3d box = model.bounds();
+  ffd::CylindricalLatticeOptions cylinder;
+  cylinder.counts = {3, 8, 3};
+  cylinder.bases = {ffd::AxisBasis::bspline(2), ffd::AxisBasis::periodic(2), ffd::AxisBasis::bspline(2)};
+  cylinder.outerRadius = radiusFactor * box.sizes().head<2>().norm();
+  cylinder.zMin = box.min().z() - 2.0;
+  cylinder.zMax = box.max().z() + 2.0;
+  cylinder.frame = Eigen::Translation3d(box.center().x(), box.center().y(), 0.0);
+  ffd::Lattice lattice = ffd::makeCylindricalLattice(cylinder);
+  Eigen::MatrixX3d points = lattice.restPoints();
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const double height = (points(i, 2) - cylinder.zMin) / (cylinder.zMax - cylinder.zMin);
+    points(i, 0) *= 1.0 + 0.1 * height;
+    points(i, 1) += 0.05 * points(i, 2);
+  }
   lattice.setControlPoints(points);
   return lattice;
 }
