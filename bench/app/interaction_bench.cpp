@@ -101,9 +101,10 @@ void BM_DragStep(benchmark::State& state) {
   state.counters["points"] = double(s.scene.objects().front().mesh.points.rows());
 }
 
-// The first step of a drag: the view computes the normals from the triangles and what the next
-// steps follow them with (the moved control point's weights, W: gesture_normals.h). Press before
-// and release and undo after each step are not timed.
+// The first step of a drag: the deformer's delta step, and the view's weights of the moved control
+// point and W (what the next steps follow the normals with), its normals as the sums it kept from
+// the undo before plus D x W, and its float points (gesture_normals.h). Press before and release
+// and undo after each step are not timed.
 void BM_DragFirstStep(benchmark::State& state) {
   Session& s = session(static_cast<int>(state.range(0)));
   const widgets::Ray grab = s.ray(0.5);
