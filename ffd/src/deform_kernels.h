@@ -109,7 +109,7 @@ void sparseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, 
 inline int rationalSetCount() { return 9; }
 
 /// Rational power-form block (Lamousin & Waggenspack 1994, evaluated in homogeneous form: the
-/// polynomial kernel on (w P, w), then a division; The NURBS Book, sec. 4.2): per point, Horner's
+/// polynomial kernel on (w P, w), then a division; Piegl & Tiller 1997, sec. 4.2): per point, Horner's
 /// rule gives the current (N, D) and the base's (Nb, Db) from the coefficient sets C
 /// (rationalSetCount() sets of (K+1)^3), and d = N / D - Nb / Db (d = N / D - Nb when
 /// baseRational is false: a polynomial rest map, whose Db is 1), one reciprocal per ratio. The base

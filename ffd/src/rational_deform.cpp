@@ -1,7 +1,7 @@
 // The rational half of Deformer: lattices with control-point weights (NURBS-based FFD,
 // Lamousin & Waggenspack 1994), X(u,v,w) = sum B w P / sum B w.
 //
-// Evaluated in homogeneous form (The NURBS Book, sec. 4.2): the numerator N = sum B w F.linear P
+// Evaluated in homogeneous form (Piegl & Tiller 1997, sec. 4.2): the numerator N = sum B w F.linear P
 // and the denominator D = sum B w are tensor-product polynomials like the displacement of a
 // polynomial lattice, so the power-form kernels of deform_kernels.h run on the four components
 // (and on the four of the base the displacement is taken against), and one reciprocal per point
