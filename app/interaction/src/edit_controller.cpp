@@ -540,7 +540,12 @@ void EditController::updateFoldTints() {
       if (old != foldTints_.end()) tints.push_back(*old);
       continue;
     }
-    const ffd::FoldCheckResult result = ffd::checkFolding(m.ffdLattice(id));
+    ffd::FoldCheckResult result;
+    try {
+      result = ffd::checkFolding(m.ffdLattice(id));
+    } catch (const ffd::LatticeError&) {
+      continue;  // a lattice the check cannot bound (an axis of degree over 10): no tint, not a failed edit
+    }
     if (result.certifiedPositive()) continue;
     tints.push_back(FoldTint{id, result.cellCounts, result.cells});
   }

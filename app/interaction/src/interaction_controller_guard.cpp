@@ -120,8 +120,16 @@ void InteractionController::updateFoldTints() {
     const auto now = revisionsOf(m, lattice);
     if (known == now) continue;  // unchanged: its verdicts stand
     known = now;
-    const ffd::FoldCheckResult result = ffd::checkFolding(m.ffdLattice(lattice));
     const auto old = std::find_if(foldTints_.begin(), foldTints_.end(), [&](const FoldTint& f) { return f.lattice == lattice; });
+    ffd::FoldCheckResult result;
+    try {
+      result = ffd::checkFolding(m.ffdLattice(lattice));
+    } catch (const ffd::LatticeError&) {
+      // A lattice the check cannot bound (an axis of degree over 10): no tint. The tint is a hint;
+      // its failure must not fail the edit, drag or undo that changed the lattice.
+      if (old != foldTints_.end()) foldTints_.erase(old);
+      continue;
+    }
     if (result.certifiedPositive()) {
       if (old != foldTints_.end()) foldTints_.erase(old);
       continue;
