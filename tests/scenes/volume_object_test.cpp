@@ -121,6 +121,49 @@ TEST_F(VolumeObject, InvertedCellsRefuseTheWriteUnlessAllowed) {
   EXPECT_EQ(meshio::readVolumeMesh(dir_ / "folded.msh")->check(deformed).badCells, result.quality.badCells);
 }
 
+// Two volume objects written as one batch (writeVolumeObjects): all or nothing.
+TEST_F(VolumeObject, SeveralObjectsAreWrittenAllOrNothing) {
+  Scene scene = readScene(kSample);
+  const SceneObject& duct = scene.objects().front();
+  const Eigen::MatrixX3d rest = duct.mesh.points;
+  scene.widgets.applyVariation(scene.widgets.find("pinch"), 1.5);  // the top pushed through the bottom
+  const Eigen::MatrixX3d folded = deformScene(scene).at("duct");
+  ASSERT_FALSE(meshio::readVolumeMesh(kSample / "duct.msh")->check(folded).ok());
+  const auto listing = [&] {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
+    return names;
+  };
+  // The second folds: the first, whose cells are valid, is not written either.
+  try {
+    writeVolumeObjects({{&duct, &rest, dir_ / "first.msh"}, {&duct, &folded, dir_ / "second.msh"}}, kSample);
+    FAIL() << "no error";
+  } catch (const InvertedCellsError& e) {
+    EXPECT_NE(std::string(e.what()).find("second.msh is unchanged"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(listing().empty());
+  // The second cannot be written (its folder does not exist): the first written is removed.
+  EXPECT_THROW(writeVolumeObjects({{&duct, &rest, dir_ / "first.msh"}, {&duct, &rest, dir_ / "missing" / "second.msh"}}, kSample),
+               meshio::MeshIoError);
+  EXPECT_TRUE(listing().empty());
+  // An existing output stays as it was when the batch fails, and is replaced when it succeeds.
+  std::ofstream(dir_ / "first.msh") << "old";
+  EXPECT_THROW(writeVolumeObjects({{&duct, &folded, dir_ / "first.msh"}, {&duct, &folded, dir_ / "second.msh"}}, kSample),
+               InvertedCellsError);
+  EXPECT_EQ(slurp(dir_ / "first.msh"), "old");
+  VolumeObjectWriteOptions allow;
+  allow.allowInverted = true;
+  const std::vector<VolumeObjectWriteResult> results =
+      writeVolumeObjects({{&duct, &rest, dir_ / "first.msh"}, {&duct, &folded, dir_ / "second.msh"}}, kSample, allow);
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_TRUE(results[0].quality.ok());
+  EXPECT_GT(results[1].quality.badCells, 0);
+  const auto original = meshio::readVolumeMesh(kSample / "duct.msh");
+  EXPECT_EQ(slurp(dir_ / "first.msh"), slurp(kSample / "duct.msh"));
+  EXPECT_EQ(slurp(dir_ / "second.msh"), original->bytesWith(folded));
+  EXPECT_EQ(listing().size(), 2u);  // no temporary left
+}
+
 TEST_F(VolumeObject, AYUpMeshIsTurnedBackAsItIsWritten) {
   fs::copy_file(kSample / "duct.msh", dir_ / "duct.msh");
   SceneObject object;

@@ -354,18 +354,23 @@ void evaluate(scenes::Scene& scene, scenes::SceneDeformer& deformer, Console& co
   console.carve("embed", 1e3 * deformer.lastStats().embedSeconds);
 }
 
-/// Writes the scene's deformed volume meshes by pass-through, each after its cell check (a bad
-/// one refuses with the count and first ids, unless --allow-inverted). They are written before
+/// Writes the scene's deformed volume meshes by pass-through, all or nothing: every one's cells
+/// are checked first (a bad one refuses them all with the count and first ids, unless
+/// --allow-inverted), then all are written (scenes::writeVolumeObjects). They are written before
 /// the other outputs, so that a refused volume mesh leaves the surface outputs unwritten too.
 void writeVolumeOutputs(const std::vector<VolumeOutput>& outputs, const DeformRequest& r, Console& console) {
+  if (outputs.empty()) return;
   scenes::VolumeObjectWriteOptions options;
   options.allowInverted = r.allowInverted;
   options.confinement = r.read.confinement;
   options.limits = r.read.limits;
-  for (const VolumeOutput& output : outputs) {
-    console.begin("write", "checking and writing the volume mesh " + output.object.name + " to " + output.path.string());
-    const scenes::VolumeObjectWriteResult result =
-        scenes::writeVolumeObject(output.object, output.points, r.sceneFolder(), output.path, options);
+  std::vector<scenes::VolumeObjectOutput> batch;
+  for (const VolumeOutput& output : outputs) batch.push_back({&output.object, &output.points, output.path});
+  console.begin("write", "checking and writing " + std::to_string(outputs.size()) + " volume mesh(es)");
+  const std::vector<scenes::VolumeObjectWriteResult> results = scenes::writeVolumeObjects(batch, r.sceneFolder(), options);
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const VolumeOutput& output = outputs[i];
+    const scenes::VolumeObjectWriteResult& result = results[i];
     if (r.quality) console.say("cell check after: " + result.quality.summary);
     if (!result.quality.ok()) console.warn("wrote a mesh with " + result.quality.badText + " (--allow-inverted)");
     console.say("wrote " + output.path.string() + " (" + meshio::volumeMeshFormatName(result.format) + ", " +

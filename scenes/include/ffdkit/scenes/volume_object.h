@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -69,5 +70,23 @@ VolumeObjectWriteResult writeVolumeObject(const SceneObject& object, const Eigen
                                           const std::filesystem::path& baseDirectory,
                                           const std::filesystem::path& output,
                                           const VolumeObjectWriteOptions& options = {});
+
+/// One volume object of a scene to write with its deformed points.
+struct VolumeObjectOutput {
+  const SceneObject* object = nullptr;         ///< a volume-mesh object of the scene
+  const Eigen::MatrixX3d* deformed = nullptr;  ///< its deformed points (#P x 3, world Z-up), as for writeVolumeObject
+  std::filesystem::path path;                  ///< where its mesh goes (named for its format)
+};
+
+/// Writes several volume objects all or nothing: first every object's file is read again and its
+/// cells checked as writeVolumeObject does (a refusal of any leaves every output as it was); then
+/// each mesh is written beside its output (a hidden temporary file or folder) and, once all are
+/// written, each is renamed into place. A failed write removes what this run wrote: no output
+/// changes. Returns the results in the order of `outputs`.
+/// @throws what writeVolumeObject throws, for the first object that fails; meshio::MeshIoError when
+///   a rename into place fails after others succeeded (it names the outputs already in place).
+std::vector<VolumeObjectWriteResult> writeVolumeObjects(const std::vector<VolumeObjectOutput>& outputs,
+                                                        const std::filesystem::path& baseDirectory,
+                                                        const VolumeObjectWriteOptions& options = {});
 
 }  // namespace ffdkit::scenes
