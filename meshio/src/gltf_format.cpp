@@ -382,6 +382,34 @@ bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigne
   return false;
 }
 
+std::uint32_t littleEndian32(std::string_view bytes, std::size_t at) {
+  std::uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(i)]);
+  return v;
+}
+
+// The GLB container (glTF 2.0, sec. "Binary glTF Layout"): a 12-byte header (magic, version,
+// length) and chunks of an 8-byte header (length, type) and their data. Every declared length is
+// checked against the bytes there before tinygltf reads them: its loader copies a BIN chunk by
+// its declared length without that check (a heap over-read, found by fuzz_mesh_glb).
+void checkGlbLayout(std::string_view bytes, const std::string& source) {
+  const auto bad = [&](const std::string& what) { throw MeshIoError(source + ": GLB " + what); };
+  if (bytes.size() < 20) bad("of " + std::to_string(bytes.size()) + " bytes is shorter than its header and first chunk header (20 bytes)");
+  const std::uint64_t length = littleEndian32(bytes, 8);
+  if (length > bytes.size())
+    bad("header declares " + std::to_string(length) + " bytes (byte 8), the file has " + std::to_string(bytes.size()));
+  for (std::uint64_t at = 12, chunk = 0; at < length; ++chunk) {
+    if (length - at < 8)
+      bad("chunk " + std::to_string(chunk) + " at byte " + std::to_string(at) + ": " + std::to_string(length - at) +
+          " bytes left, fewer than a chunk header (8)");
+    const std::uint64_t size = littleEndian32(bytes, static_cast<std::size_t>(at));
+    if (size > length - at - 8)
+      bad("chunk " + std::to_string(chunk) + " at byte " + std::to_string(at) + " declares " + std::to_string(size) +
+          " bytes, " + std::to_string(length - at - 8) + " are left");
+    at += 8 + size;
+  }
+}
+
 std::string firstLine(std::string text) {
   while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
   const std::size_t newline = text.find('\n');
@@ -399,6 +427,7 @@ MeshData readGltf(std::string_view bytes, bool binary, const std::string& source
     files.root = fs::weakly_canonical(fs::absolute(folder->empty() ? fs::path(".") : *folder, ec), ec);
     if (ec) files.root.reset();
   }
+  if (binary) checkGlbLayout(bytes, source);
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skipImage, nullptr);
   loader.SetFsCallbacks({fileExists, expandPath, readWholeFile, refuseWrite, &files});

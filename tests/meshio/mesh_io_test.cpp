@@ -329,5 +329,20 @@ TEST_F(MeshIo, ReadErrorsForMissingFilesAndUnknownFormats) {
   }
 }
 
+// A GLB whose BIN chunk declares 4 bytes more than the file holds (found by fuzz_mesh_glb:
+// tinygltf copied the chunk by its declared length, a heap over-read): a located error.
+TEST(GlbLayout, AChunkPastTheEndOfTheFileIsALocatedError) {
+  std::ifstream in(std::filesystem::path(FFDKIT_SOURCE_DIR) / "tests/fuzz/regressions/fuzz_mesh_glb/bin-chunk-past-the-end.glb",
+                   std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size(), 816u);
+  try {
+    readMeshBytes(bytes, MeshFormat::Glb, "tool.glb");
+    FAIL() << "read";
+  } catch (const MeshIoError& e) {
+    EXPECT_STREQ(e.what(), "tool.glb: GLB chunk 1 at byte 640 declares 172 bytes, 168 are left");
+  }
+}
+
 }  // namespace
 }  // namespace ffdkit::meshio
