@@ -18,24 +18,9 @@ trap 'rm -rf "$work"' EXIT
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
-bashrc=/usr/share/openfoam/etc/bashrc
-if [ ! -f "$bashrc" ] || ! command -v decomposePar > /dev/null; then
-  echo "FAIL: OpenFOAM is not installed (apt-get install openfoam; scripts/setup-deps.sh does)"
-  exit 1
-fi
-foam() { (set +u; . "$bashrc" > /dev/null 2>&1; "$@"); }
-
+source "$(dirname "${BASH_SOURCE[0]}")/openfoam_test_setup.sh" "$data"
 case=$work/case
-mkdir -p "$case"
-cp -r "$data/cube/system" "$case/"
-cat > "$case/system/decomposeParDict" <<'DICT'
-FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }
-numberOfSubdomains 3;
-method simple;
-simpleCoeffs { n (3 1 1); delta 0.001; }
-DICT
-(cd "$case" && foam blockMesh > "$work/log.blockMesh" 2>&1) || { cat "$work/log.blockMesh"; echo "FAIL: blockMesh"; exit 1; }
-(cd "$case" && foam decomposePar > "$work/log.decomposePar" 2>&1) || { cat "$work/log.decomposePar"; echo "FAIL: decomposePar"; exit 1; }
+decomposed_cube "$case" "$work"
 
 # decomposePar's cell count per processor ("Processor 0 / Number of cells = 9"), in order.
 expected=$(awk '/^Processor [0-9]+/ { p = $2 } /Number of cells =/ && p != "" { print "processor" p, $NF; p = "" }' "$work/log.decomposePar")

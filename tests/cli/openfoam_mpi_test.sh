@@ -18,28 +18,12 @@ source "$(dirname "${BASH_SOURCE[0]}")/mpi_test_setup.sh" "$1" "$2" "$data/bulge
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
-bashrc=/usr/share/openfoam/etc/bashrc
-if [ ! -f "$bashrc" ] || ! command -v decomposePar > /dev/null; then
-  echo "FAIL: OpenFOAM is not installed (apt-get install openfoam; scripts/setup-deps.sh does)"
-  exit 1
-fi
-foam() { (set +u; . "$bashrc" > /dev/null 2>&1; "$@"); }
+source "$(dirname "${BASH_SOURCE[0]}")/openfoam_test_setup.sh" "$data"
 
 # The case: blockMesh's cube, points written with 17 digits so that reconstructParMesh's output
 # carries the values exactly, decomposed in x into 3 processor folders.
 case=$work/case
-mkdir -p "$case"
-cp -r "$data/cube/system" "$case/"
-sed -i 's/^writePrecision .*/writePrecision  17;/' "$case/system/controlDict"
-cat > "$case/system/decomposeParDict" <<'DICT'
-FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }
-numberOfSubdomains 3;
-method simple;
-simpleCoeffs { n (3 1 1); delta 0.001; }
-DICT
-(cd "$case" && foam blockMesh > log.blockMesh 2>&1) || { cat "$case/log.blockMesh"; echo "FAIL: blockMesh"; exit 1; }
-(cd "$case" && foam decomposePar > log.decomposePar 2>&1) || { cat "$case/log.decomposePar"; echo "FAIL: decomposePar"; exit 1; }
-rm -f "$case"/log.*
+cube_write_precision=17 decomposed_cube "$case" "$work"
 [ -f "$case/processor2/constant/polyMesh/pointProcAddressing" ] || { echo "FAIL: decomposePar wrote no processor2"; exit 1; }
 
 # The serial reference: the reconstructed case alone (no processor folders), one process.

@@ -14,13 +14,7 @@ trap 'rm -rf "$work"' EXIT
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
-bashrc=/usr/share/openfoam/etc/bashrc
-if [ ! -f "$bashrc" ] || ! command -v checkMesh > /dev/null; then
-  echo "FAIL: OpenFOAM is not installed (apt-get install openfoam; scripts/setup-deps.sh does)"
-  exit 1
-fi
-# OpenFOAM's tools need its environment; its bashrc complains about helper scripts Debian leaves out.
-foam() { (set +u; . "$bashrc" > /dev/null 2>&1; "$@"); }
+source "$(dirname "${BASH_SOURCE[0]}")/openfoam_test_setup.sh" "$data"
 
 # A case folder with only system/ from the test data: OpenFOAM makes the mesh.
 new_case() {  # name [binary]
