@@ -59,9 +59,9 @@ for t in "${targets[@]}"; do
   if [ "$t" = fuzz_scene_file ]; then
     max_len=16384
     # Its 30,000 coverage features make libFuzzer's entropic scheduling a quarter of the time
-    # and ASan's allocation stacks another tenth (perf): without entropic scheduling, replaying
-    # its corpus of 7,237 inputs takes 10 s of CPU instead of 15 s. A campaign runs about 650
-    # inputs per CPU second either way. A crash it finds is replayed with the full options.
+    # and ASan's allocation stacks another tenth (perf): without them, replaying its corpus of
+    # 8,306 inputs takes 10 s of CPU (830 inputs per CPU second; docs/robustness.md says where the
+    # rest goes). A crash it finds is replayed with the full options.
     extra=(-entropic=0)
     target_asan="$ASAN_OPTIONS:malloc_context_size=0"
   fi
