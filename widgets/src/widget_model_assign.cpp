@@ -63,7 +63,9 @@ void WidgetModel::assignData(const WidgetModelData& data) {
       continue;
     }
     after->ownRevision = sameOwnData(*before, *after) ? before->ownRevision : r;
-    after->controlRevision = sameMatrix(before->control, after->control) ? before->controlRevision : r;
+    // Weights count as control data (setWeights stamps controlRevision): an undo of a weight edit re-deforms.
+    const bool sameWeights = before->weights.size() == after->weights.size() && before->weights == after->weights;
+    after->controlRevision = sameMatrix(before->control, after->control) && sameWeights ? before->controlRevision : r;
     after->restRevision = after->type != WidgetType::Lattice || sameRest(*before, *after) ? before->restRevision : r;
     structure = structure || !sameLinks(*before, *after);
   }

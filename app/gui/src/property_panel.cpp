@@ -71,6 +71,9 @@ std::string PropertyPanel::layoutOf(const std::vector<OutlinerEntry>& selection)
     case widgets::WidgetType::Lattice: break;
   }
   const auto& settings = m.latticeSettings(e.widget);
+  // The picked control point's weight row names its point.
+  if (const auto& point = controller_.pickedPoint(); point && point->lattice == e.widget)
+    key += " point " + std::to_string(point->index);
   key += m.parentCell(e.widget) ? " child" : " root";
   key += settings.cylinder ? " cylinder" : " box";
   for (const ffd::AxisBasis& axis : settings.basis)

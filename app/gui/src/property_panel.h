@@ -55,6 +55,10 @@ class PropertyPanel : public QWidget {
   void showAffine(widgets::WidgetId id);
   void showBinding(widgets::BindingId id);
   void showLattice(widgets::WidgetId id);
+  /// The weight of control point `point` of lattice `id` (the picked point): a text field, Enter
+  /// applies (one command); text that is no number, or a weight not finite and > 0, is refused
+  /// with a message under the field.
+  void addWeightRow(widgets::WidgetId id, Eigen::Index point);
   void showCell(widgets::WidgetId id);
   void showObject(const std::string& name);
   /// A row "title: text()" whose text follows the model (a field).

@@ -1,12 +1,17 @@
 // The property panel's rows for a lattice: name, counts, basis per axis, outside policy, the
-// transformer of a root lattice (position and size per axis), cells, parent, what it deforms.
+// picked control point's weight, the transformer of a root lattice (position and size per axis),
+// cells, parent, what it deforms.
+#include <cmath>
+
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QLineEdit>
 #include <QSignalBlocker>
 #include <QSpinBox>
+#include <QVBoxLayout>
 
 #include "ffdkit/interaction/interaction_controller.h"
 #include "lattice_bases.h"
@@ -88,6 +93,7 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
     });
   });
   form_->addRow(tr("Outside points"), outside);
+  if (const auto& picked = controller_.pickedPoint(); picked && picked->lattice == id) addWeightRow(id, picked->index);
   const auto parent = m.parentCell(id);
   if (!parent) {
     // The transformer of a root lattice: position (its lower corner) and size per axis; the
@@ -143,6 +149,57 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
     if (root != id && !objects.isEmpty()) deforms += tr(" (through %1)").arg(qs(model.name(root)));
     return deforms;
   })->setObjectName("deforms");
+}
+
+void PropertyPanel::addWeightRow(widgets::WidgetId id, Eigen::Index point) {
+  // A text field, not a spin box: a weight spans decades (0.01 .. 100), and text that is no weight
+  // is refused with a message rather than clamped.
+  auto* weight = new QLineEdit;
+  weight->setObjectName("pointWeight");
+  weight->setToolTip(tr("Weight of control point %1 (rational FFD): > 0; 1 everywhere is the polynomial lattice; "
+                        "Enter applies")
+                         .arg(point));
+  auto* message = new QLabel;
+  message->setObjectName("pointWeightMessage");
+  message->setWordWrap(true);
+  message->setStyleSheet("color: #c0392b");
+  message->hide();
+  auto modelText = [this, id, point] { return QString::number(scene_.widgets.weights(id)[point], 'g', 17); };
+  weight->setText(modelText());
+  auto showModel = [weight, message, modelText] {
+    weight->setStyleSheet({});
+    message->hide();
+    const QSignalBlocker block(weight);
+    weight->setText(modelText());
+  };
+  fields_.push_back([weight, modelText, showModel] {
+    if (weight->text() == modelText()) return false;
+    showModel();
+    return true;
+  });
+  connect(weight, &QLineEdit::returnPressed, this, [this, id, point, weight, message, showModel] {
+    const QString text = weight->text().trimmed();
+    bool number = false;
+    const double value = text.toDouble(&number);
+    QString why;
+    if (!number) why = tr("'%1' is not a number: a weight is a number > 0, e.g. 2 or 0.5").arg(text);
+    else if (!std::isfinite(value)) why = tr("a weight must be finite");
+    else if (!(value > 0.0)) why = tr("a weight must be > 0 (%1 is not)").arg(text);
+    if (!why.isEmpty()) {
+      // Refused: the text stays for the user to correct; the model is not touched.
+      weight->setStyleSheet("border: 1px solid #c0392b");
+      message->setText(why);
+      message->show();
+      return;
+    }
+    if (guarded([&] { controller_.setWeight(id, point, value); })) showModel();
+  });
+  auto* cell = new QWidget;
+  auto* column = new QVBoxLayout(cell);
+  column->setContentsMargins(0, 0, 0, 0);
+  column->addWidget(weight);
+  column->addWidget(message);
+  form_->addRow(tr("Weight of point %1").arg(point), cell);
 }
 
 }  // namespace ffdkit::app
