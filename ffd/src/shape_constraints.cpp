@@ -64,6 +64,8 @@ Eigen::MatrixX3d adjointDeform(const Lattice& lattice, const Embedding& embeddin
     np[a] = lattice.axis(a).degree() + 1;
     cubic = cubic && detail::CellPolynomials::supports(lattice.axis(a));
   }
+  // The cubic kernel sums the polynomial basis B; a rational lattice's coefficients are R = w B / sum w B.
+  cubic = cubic && !lattice.isRational();
   detail::CellPolynomials poly[3];
   if (cubic)
     for (int a = 0; a < 3; ++a) poly[a] = detail::CellPolynomials(lattice.axis(a));
@@ -257,6 +259,14 @@ void ShapeConstraints::keepVolume(const ClosedSurface& surface, double target, V
   volumeTarget_ = target;
   volumePolynomial_.reset();
   if (evaluation == VolumeEvaluation::PerVertex) return;
+  // The polynomial is built in the displacements P - Pbar, which are the whole map only when the
+  // weights equal the rest weights (see solve()); otherwise the volume is summed per vertex.
+  if (lattice_.weights() != lattice_.restWeights()) {
+    if (evaluation == VolumeEvaluation::Polynomial)
+      throw ConstraintError("keepVolume: the volume polynomial needs the lattice's weights equal to its rest weights; "
+                            "use VolumeEvaluation::PerVertex");
+    return;
+  }
   std::optional<detail::VolumePolynomial> polynomial =
       detail::VolumePolynomial::build(lattice_, deformer_.embedding(), points_, origin_, *volumeSurface_);
   if (polynomial) {
@@ -318,6 +328,22 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
   const bool perVertex = (volumeSurface_ && !volumePolynomial_) || centroidSurface_;
   double lastStepNorm = std::numeric_limits<double>::infinity();
   const Eigen::Matrix3d L = lattice_.frame().linear();
+  // Weights that differ from the rest weights (Lamousin & Waggenspack 1994) make the map
+  // x' = Q + s F (sum R P - Xbar) with sum R Pbar != Xbar: a linear row's a . x' then holds the
+  // constant a . s F (sum R Pbar - Xbar), measured once from the deformed points of `lattice`.
+  std::vector<double> linearOffset(std::size_t(linearCount), 0.0);
+  if (linearCount > 0 && lattice.weights() != lattice.restWeights()) {
+    const Eigen::MatrixX3d& start = deformer_.deform(lattice, points_);
+    deformedStale_ = true;
+    const Eigen::VectorXd flatStart = flatten(Eigen::MatrixX3d(lattice.controlPoints() - lattice.restPoints()));
+    for (Eigen::Index r = 0; r < linearCount; ++r) {
+      const std::size_t ri = std::size_t(r);
+      double value = 0.0;
+      for (Eigen::SparseVector<double>::InnerIterator it(linearA_[ri]); it; ++it)
+        value += it.value() * start(it.index() / 3, it.index() % 3);
+      linearOffset[ri] = value - linearRest_[ri] - linearRows_[ri].dot(flatStart);
+    }
+  }
   for (int iteration = 0;; ++iteration) {
     Eigen::MatrixX3d moved = lattice.controlPoints() + result.change;
     current.setControlPoints(moved);
@@ -336,7 +362,7 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
     for (Eigen::Index r = 0; r < linearCount; ++r) {
       const std::size_t ri = std::size_t(r);
       const Eigen::VectorXd terms = linearRows_[ri].cwiseProduct(flatDisplacement);
-      c[r] = linearRest_[ri] + terms.sum() - linearB_[ri];
+      c[r] = linearRest_[ri] + linearOffset[ri] + terms.sum() - linearB_[ri];
       const double magnitude = linearRestScale_[ri] + terms.cwiseAbs().sum() + std::abs(linearB_[ri]);
       scale[r] = magnitude > 0.0 ? magnitude : 1.0;
       for (Eigen::Index k = 0; k < f; ++k) J(r, k) = linearRows_[ri][freeIndex[std::size_t(k)]];

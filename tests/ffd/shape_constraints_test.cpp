@@ -325,6 +325,40 @@ TEST(ShapeConstraints, CentroidOfTheSolidIsKept) {
   EXPECT_LT((enclosedCentroid(constraints.deformedPoints(), surface) - centroid).norm(), 1e-11);
 }
 
+// A rational lattice whose current weights differ from its rest weights (1): the deformed points
+// are x' = Q + s F (sum R P - Xbar) with R = w B / sum w B, affine in P for the weights held fixed
+// but with a constant s F (sum R Pbar - Xbar) beside R P. Barycentre and volume kept against the
+// reference evaluator (Lattice::evaluate, the weights included); the volume is summed per vertex
+// (Automatic), and the polynomial, built in P - Pbar alone, is refused.
+TEST(ShapeConstraints, HoldOnARationalLatticeWhoseWeightsDifferFromTheRest) {
+  std::mt19937 rng(21);
+  for (VolumeEvaluation evaluation : {VolumeEvaluation::PerVertex, VolumeEvaluation::Automatic}) {
+    VolumeSetup s = volumeSetup(rng, 24, 0.4);
+    Eigen::VectorXd w(s.lattice.pointCount());
+    std::uniform_real_distribution<double> W(0.5, 2.0);
+    for (Eigen::Index i = 0; i < w.size(); ++i) w[i] = W(rng);
+    s.lattice.setWeights(w);
+    ASSERT_TRUE(s.lattice.isRational());
+    ASSERT_FALSE(s.lattice.restIsRational());
+    const ClosedSurface surface(s.mesh.triangles, s.mesh.points.rows());
+    const double rest = enclosedVolume(s.mesh.points, surface);
+    ShapeConstraints constraints(s.lattice, s.mesh.points);
+    EXPECT_THROW(constraints.keepVolume(surface, rest, VolumeEvaluation::Polynomial), ConstraintError);
+    const Eigen::MatrixX3d uvw = constraints.embedding().parameters();
+    const Eigen::Vector3d centre = evaluated(s.lattice, uvw).colwise().mean().transpose() + Eigen::Vector3d(0.02, 0.0, -0.01);
+    constraints.keepVolume(surface, rest, evaluation);
+    EXPECT_FALSE(constraints.volumeIsPolynomial());
+    constraints.keepBarycentre(centre);
+    const ShapeSolveResult result = constraints.solve(s.lattice);
+    Lattice after = s.lattice;
+    after.setControlPoints(s.lattice.controlPoints() + result.change);
+    const Eigen::MatrixX3d x = evaluated(after, uvw);
+    EXPECT_LT(std::abs(enclosedVolume(x, surface) - rest) / rest, 1e-12);
+    EXPECT_LT((x.colwise().mean().transpose() - centre).norm(), 1e-12);
+    EXPECT_LT((constraints.deformedPoints() - x).cwiseAbs().maxCoeff(), 1e-12);
+  }
+}
+
 TEST(ShapeConstraints, RefusesOpenSurfacesAndConstraintsThatCannotBeMet) {
   std::mt19937 rng(13);
   VolumeSetup s = volumeSetup(rng, 8, 0.3);
