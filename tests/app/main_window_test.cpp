@@ -41,52 +41,11 @@
 #include "gui_test_support.h"
 
 using namespace ffdkit;
+using namespace ffdkit::app::testing;
 using app::MainWindow;
 using widgets::WidgetId;
 
 namespace {
-
-void sendMouse(QWidget* widget, QEvent::Type type, QPoint at, Qt::MouseButton button, Qt::MouseButtons buttons,
-               Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
-  QMouseEvent event(type, QPointF(at), widget->mapToGlobal(QPointF(at)), button, buttons, modifiers);
-  QApplication::sendEvent(widget, &event);
-}
-
-// Where the view draws world point p, in the view widget's (logical) coordinates.
-QPoint toWidget(MainWindow& w, const Eigen::Vector3d& p) {
-  const Eigen::Vector2d d = w.sceneView().displayPoint(p);
-  const double ratio = w.view()->devicePixelRatioF();
-  return QPoint(static_cast<int>(std::lround(d.x() / ratio)),
-                static_cast<int>(std::lround((w.view()->height() * ratio - 1.0 - d.y()) / ratio)));
-}
-
-void click(MainWindow& w, QPoint at, Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
-  sendMouse(w.view(), QEvent::MouseButtonPress, at, Qt::LeftButton, Qt::LeftButton, modifiers);
-  sendMouse(w.view(), QEvent::MouseButtonRelease, at, Qt::LeftButton, Qt::NoButton, modifiers);
-}
-
-// Drags the mouse in the view from world point `from` to world point `to` in ten steps.
-void dragWorld(MainWindow& w, const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
-  const QPoint a = toWidget(w, from), b = toWidget(w, to);
-  sendMouse(w.view(), QEvent::MouseButtonPress, a, Qt::LeftButton, Qt::LeftButton);
-  for (int step = 1; step <= 10; ++step)
-    sendMouse(w.view(), QEvent::MouseMove, a + (b - a) * step / 10, Qt::NoButton, Qt::LeftButton);
-  sendMouse(w.view(), QEvent::MouseButtonRelease, b, Qt::LeftButton, Qt::NoButton);
-}
-
-// Drags a translate widget's arrow `distance` world units along its axis.
-void dragArrow(MainWindow& w, WidgetId affine, double distance) {
-  const widgets::WidgetFrame f = w.scene().widgets.affineFrame(affine);
-  const Eigen::Vector3d x = f.frame.linear().col(0);
-  const Eigen::Vector3d grab = f.frame.translation() + 0.6 * f.size * x;
-  dragWorld(w, grab, grab + distance * x);
-}
-
-QAction* action(MainWindow& w, const char* name) {
-  auto* a = w.findChild<QAction*>(name);
-  if (a == nullptr) qFatal("no action %s", name);
-  return a;
-}
 
 // Triggers an action that opens a modal dialog; `fill` sets its fields, then it is accepted.
 void triggerWithDialog(MainWindow& w, const char* name, std::function<void(QDialog*)> fill = {}) {
@@ -109,27 +68,6 @@ void triggerWithFile(MainWindow& w, const char* name, const QString& path) {
     QVERIFY(files != nullptr);
     files->selectFile(path);
   });
-}
-
-// Clicks the outliner row named `text` (with modifiers, e.g. Ctrl to extend the selection).
-void clickRow(MainWindow& w, const QString& text, Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
-  QTreeWidget* tree = w.outliner();
-  const auto items = tree->findItems(text, Qt::MatchExactly | Qt::MatchRecursive);
-  QVERIFY2(!items.isEmpty(), qPrintable("no outliner row " + text));
-  tree->scrollToItem(items.front());
-  QTest::mouseClick(tree->viewport(), Qt::LeftButton, modifiers, tree->visualItemRect(items.front()).center());
-}
-
-// Clicks a lattice's own outliner row (its name also appears under each object it deforms).
-void clickLatticeRow(MainWindow& w, const QString& name) {
-  QTreeWidget* tree = w.outliner();
-  for (QTreeWidgetItem* item : tree->findItems(name, Qt::MatchExactly | Qt::MatchRecursive)) {
-    if (item->text(1) == QObject::tr("deformed by")) continue;
-    tree->scrollToItem(item);
-    QTest::mouseClick(tree->viewport(), Qt::LeftButton, Qt::NoModifier, tree->visualItemRect(item).center());
-    return;
-  }
-  QFAIL(qPrintable("no lattice row " + name));
 }
 
 double maxDifference(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) { return (a - b).cwiseAbs().maxCoeff(); }
@@ -397,7 +335,7 @@ class MainWindowTest : public QObject {
     QVERIFY(maxDifference(deformed, rest) > 0.05);
     const Eigen::MatrixX3d control = m.controlPoints(lattice);
 
-    clickLatticeRow(w, QString::fromStdString(m.name(lattice)));
+    clickRow(w, QString::fromStdString(m.name(lattice)));
     for (const char* name : {"countU", "countV", "countW"}) {
       auto* count = panelControl<QSpinBox>(w, name);
       QVERIFY2(count != nullptr, name);
@@ -426,7 +364,7 @@ class MainWindowTest : public QObject {
     QCOMPARE(created.size(), std::size_t(1));
     const auto& m = w.scene().widgets;
     const WidgetId lattice = m.latticeOf(created.front());
-    clickLatticeRow(w, QString::fromStdString(m.name(lattice)));
+    clickRow(w, QString::fromStdString(m.name(lattice)));
     const widgets::WidgetModelData before = m.toData();
     const QString undoText = action(w, "actionUndo")->text();
 
