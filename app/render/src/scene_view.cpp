@@ -154,9 +154,14 @@ struct SceneView::Impl {
       foldTintShown = highlights.foldTints;
       foldTintRevision = model.revision();
       vtkNew<vtkAppendPolyData> all;
-      for (const FoldTint& tint : foldTintShown)
-        if (model.contains(tint.lattice) && model.type(tint.lattice) == widgets::WidgetType::Lattice)
-          all->AddInputData(foldTintPolyData(model.ffdLattice(tint.lattice), tint.cellCounts, tint.cells));
+      for (const FoldTint& tint : foldTintShown) {
+        if (!model.contains(tint.lattice) || model.type(tint.lattice) != widgets::WidgetType::Lattice) continue;
+        // A tint of another lattice under that id (the scene before an Open) or of its older cells
+        // is not drawn: its verdicts would be indexed past the lattice's cells.
+        const ffd::Lattice lattice = model.ffdLattice(tint.lattice);
+        const std::array<int, 3> cells{lattice.axis(0).cellCount(), lattice.axis(1).cellCount(), lattice.axis(2).cellCount()};
+        if (cells == tint.cellCounts) all->AddInputData(foldTintPolyData(lattice, tint.cellCounts, tint.cells));
+      }
       if (all->GetNumberOfInputConnections(0) > 0) {
         all->Update();
         vtkPolyDataMapper::SafeDownCast(foldTint->GetMapper())->SetInputData(all->GetOutput());
