@@ -104,8 +104,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     // EditController::editing() before anything is drawn.
     if (s.editInput) s.editInput->syncEditToggle();
     if (!s.showingScene) return;
-    s.sceneView->setHighlights(s.edit->highlights(s.controller->highlights()));
-    s.sceneView->refresh(s.scene, s.deformer);
+    // The scene is evaluated and drawn once, at the next frame (drawFrame), for every event
+    // of this event-loop tick.
+    s.frameDue = true;
     if (s.timeline) s.timeline->sync();
     QString dragText;
     if (const auto value = s.controller->handleDragValue()) {
@@ -122,12 +123,12 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
       if (const QString guard = s.editInput->guardText(); !guard.isEmpty())
         dragText += (dragText.isEmpty() ? QString() : QString(" · ")) + guard;
     if (!dragText.isEmpty()) s.status->say(dragText);
-    const auto& stats = s.deformer.lastStats();
-    // An update with nothing to do (a hover, a selection) keeps the last real deform time.
-    if (stats.seconds > 0.0 && stats.deformedPoints > 0 && (stats.seconds >= 1e-5 || stats.reembeddedStages > 0))
-      s.deformStatus->setText(deformStatusText(stats));
     s.view->requestRender();
   };
+  // Evaluation once per event-loop tick: the controllers only ask for a frame; the frame
+  // evaluates what every event before it changed (SceneDeformer::evaluate), then draws.
+  d.controller->requestEvaluation = [this] { impl_->view->requestRender(); };
+  connect(d.view, &VtkViewWidget::aboutToRender, this, [this] { impl_->drawFrame(); });
   d.controller->onStructureChanged = [this, refreshPanel] {
     // A removed object leaves the selection, as its row leaves the outliner's (an undo that
     // brings it back does not select it again).
@@ -215,12 +216,35 @@ void MainWindow::setScene(scenes::Scene scene) {
   d.view->requestRender();
 }
 
+void MainWindow::Impl::drawFrame() {
+  if (!frameDue || !showingScene) return;
+  frameDue = false;
+  try {
+    if (deformer.evaluate(scene)) ++evaluations;
+  } catch (const std::exception& e) {
+    // A drag step or an undo whose result cannot be evaluated: said, and tried again at the
+    // next change (edits are refused at once: InteractionController::edit).
+    sayError(e.what());
+    return;
+  }
+  sceneView->setHighlights(edit->highlights(controller->highlights()));
+  sceneView->refresh(scene, deformer);
+  const auto& stats = deformer.lastStats();
+  // An update with nothing to do (a hover, a selection) keeps the last real deform time.
+  if (stats.seconds > 0.0 && stats.deformedPoints > 0 && (stats.seconds >= 1e-5 || stats.reembeddedStages > 0))
+    deformStatus->setText(deformStatusText(stats));
+}
+
 const scenes::Scene& MainWindow::scene() const { return impl_->scene; }
-const scenes::SceneDeformer& MainWindow::deformer() const { return impl_->deformer; }
+const scenes::SceneDeformer& MainWindow::deformer() const { return impl_->deformed(); }
+std::uint64_t MainWindow::evaluations() const { return impl_->evaluations; }
 scenes::CommandStack& MainWindow::commands() const { return impl_->commands; }
 InteractionController& MainWindow::controller() const { return *impl_->controller; }
 EditController& MainWindow::editController() const { return *impl_->edit; }
-SceneView& MainWindow::sceneView() const { return *impl_->sceneView; }
+SceneView& MainWindow::sceneView() const {
+  impl_->drawFrame();  // the view as the next frame draws it
+  return *impl_->sceneView;
+}
 QTreeWidget* MainWindow::outliner() const { return impl_->outliner; }
 VtkViewWidget* MainWindow::view() const { return impl_->view; }
 

@@ -273,7 +273,7 @@ void MainWindow::importMesh(const std::filesystem::path& path) {
   for (int n = 2; impl_->scene.findObject(object.name) != nullptr; ++n) object.name = base + std::to_string(n);
   const std::string name = object.name;
   impl_->controller->addObject(std::move(object));
-  impl_->navigation->frameBox(selectionBounds(impl_->scene, impl_->deformer, {}, {name}));  // show what came in
+  impl_->navigation->frameBox(selectionBounds(impl_->scene, impl_->deformed(), {}, {name}));  // show what came in
 }
 
 void MainWindow::exportMesh(const std::filesystem::path& path) {
@@ -289,7 +289,7 @@ void MainWindow::exportMesh(const std::filesystem::path& path) {
     scenes::VolumeObjectWriteOptions options;
     options.confinement = pathConfinement();
     options.limits = meshReadOptions().limits;
-    const scenes::VolumeObjectWriteResult result = scenes::writeVolumeObject(object, impl_->deformer.points(name), base, path, options);
+    const scenes::VolumeObjectWriteResult result = scenes::writeVolumeObject(object, impl_->deformed().points(name), base, path, options);
     impl_->status->say(tr("Exported %1 to %2 (%3 mesh, %4 points; %5)")
                            .arg(qs(name), qs(path.string()), QString(meshio::volumeMeshFormatName(result.format)))
                            .arg(result.pointCount)
@@ -298,7 +298,7 @@ void MainWindow::exportMesh(const std::filesystem::path& path) {
     return;
   }
   scenes::MeshData mesh = object.mesh;
-  mesh.points = impl_->deformer.points(name);
+  mesh.points = impl_->deformed().points(name);
   scenes::writeMesh(path, mesh);
   impl_->status->say(tr("Exported %1 to %2").arg(qs(name), qs(path.string())), 5000);
 }

@@ -102,6 +102,20 @@ struct MainWindow::Impl {
   QAction* directManipulation = nullptr;  ///< checked: a drag on an object moves its point
   ViewNavigation* navigation = nullptr;   ///< orbit, framing, axis views (owned by the window)
   bool showingScene = false;
+  /// A change waits for the next frame: drawFrame() evaluates the scene once and redraws.
+  bool frameDue = false;
+  /// Frames that evaluated the scene (MainWindow::evaluations).
+  std::uint64_t evaluations = 0;
+  /// Brings the deformer and the view up to date when a change waits (frameDue): the scene
+  /// evaluated once for every event since the last frame, then highlights, actors and the
+  /// deform status refreshed. The view calls it before each repaint (VtkViewWidget::aboutToRender);
+  /// readers of deformed points call it first (deformed()).
+  void drawFrame();
+  /// The deformer with every change evaluated (drawFrame first): what exports and bounds read.
+  const scenes::SceneDeformer& deformed() {
+    drawFrame();
+    return deformer;
+  }
 
   bool modified() const { return commands.isDirty() || restoredUnsaved; }
 

@@ -337,8 +337,8 @@ QMenu* MainWindow::createViewMenu(QDockWidget* outlinerDock, QDockWidget* proper
   });
   d.navigation = new ViewNavigation(
       d.view, *d.sceneView,
-      [this] { return selectionBounds(impl_->scene, impl_->deformer, impl_->controller->selection(), impl_->selectedObjectNames()); },
-      [this] { return sceneBounds(impl_->scene, impl_->deformer); }, this);
+      [this] { return selectionBounds(impl_->scene, impl_->deformed(), impl_->controller->selection(), impl_->selectedObjectNames()); },
+      [this] { return sceneBounds(impl_->scene, impl_->deformed()); }, this);
   d.navigation->addActions(viewMenu);
   viewMenu->addSeparator();
   // Looks of the selected objects (else of all): reflection lines on surfaces, curvature combs

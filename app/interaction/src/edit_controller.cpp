@@ -658,7 +658,7 @@ ViewHighlights EditController::highlights(ViewHighlights h) const {
 }
 
 void EditController::notify() {
-  deformer_.evaluate(scene_);  // what the step changed, once (SceneDeformer::evaluate)
+  widgets_.evaluateChanges();  // what the step changed, once (at once, or at the window's next frame)
   shapeGuard().prune(scene_);
   updateFoldTints();
   if (onChanged) onChanged();

@@ -297,6 +297,13 @@ void InteractionController::pushState(const std::string& description, const widg
 
 void InteractionController::refresh() { notify(); }
 
+void InteractionController::evaluateChanges() {
+  if (requestEvaluation)
+    requestEvaluation();  // the window evaluates once, at its next frame
+  else
+    deformer_.evaluate(scene_);  // what the edits since the last call changed, once
+}
+
 void InteractionController::notify() {
   if (dragging_) {
     guardStep();  // Keep Volume / Keep Centre: part of the step, before it is evaluated
@@ -304,8 +311,7 @@ void InteractionController::notify() {
   }
   guard_.prune(scene_);
   updateFoldTints();
-  // The one place the app evaluates: what the edits since the last call changed, once.
-  deformer_.evaluate(scene_);
+  evaluateChanges();
   if (onChanged) onChanged();
 }
 

@@ -82,6 +82,9 @@ auto InteractionController::edit(const std::string& description, Change change, 
     const std::string mergeAtFrame = mergeKey.empty() ? mergeKey : mergeKey + "@" + std::to_string(madeAt);
     commands_.push(scenes::Command{description, [apply] { apply(false); }, [apply] { apply(true); }, mergeAtFrame,
                                    delta->bytes() + animated->bytes() + sizeof(*held)});
+    // At once, not at the window's next frame: an edit whose result cannot be evaluated (a
+    // degenerate lattice) is refused and rolled back below.
+    deformer_.evaluate(scene_);
     notify();
     if (onStructureChanged) onStructureChanged();
   };

@@ -14,6 +14,7 @@ using widgets::WidgetId;
 
 std::optional<std::string> InteractionController::pressObject(const widgets::Ray& ray, double tolerance, bool carryPins) {
   if (dragging_) cancel();
+  deformer_.evaluate(scene_);  // the points under the ray as they are now (a change may wait for a frame)
   const Eigen::Vector3d dir = ray.direction.normalized();
   const std::optional<ObjectPoint> best = objectPointAt(ray, tolerance);
   if (!best) return std::nullopt;

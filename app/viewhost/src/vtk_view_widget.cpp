@@ -151,6 +151,7 @@ void VtkViewWidget::resizeGL(int, int) {
 }
 
 void VtkViewWidget::paintGL() {
+  emit aboutToRender();
   auto& d = *impl_;
   // A screen change may have changed the device pixel ratio without a resize.
   const double ratio = devicePixelRatioF();

@@ -83,11 +83,17 @@ class MainWindow : public QMainWindow {
   /// Shows `scene` (replacing the current one; clears undo).
   void setScene(scenes::Scene scene);
   const scenes::Scene& scene() const;
+  /// The deformer, with every change evaluated: the window evaluates once per event-loop tick,
+  /// at its next frame; reading it here evaluates what waits first.
   const scenes::SceneDeformer& deformer() const;
+  /// How many frames evaluated the scene (SceneDeformer::evaluate found a change): one per
+  /// event-loop tick that changed something, however many events the tick held.
+  std::uint64_t evaluations() const;
   scenes::CommandStack& commands() const;
   InteractionController& controller() const;
   /// A lattice's edit mode and group transforms (Tab; edit_mode.h).
   EditController& editController() const;
+  /// The view, brought up to date first (as the next frame draws it).
   SceneView& sceneView() const;
   QTreeWidget* outliner() const;
 

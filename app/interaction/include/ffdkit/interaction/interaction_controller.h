@@ -144,7 +144,10 @@ class InteractionController {
   const ShapeGuard& shapeGuard() const { return guard_; }
   /// ShapeGuard::setKeep with this controller's scene and deformer: keeps `object`'s volume and /
   /// or centre at their values now. @throws std::invalid_argument as ShapeGuard::setKeep.
-  void setKeep(scenes::ObjectId object, ShapeKeep keep) { guard_.setKeep(scene_, deformer_, object, keep); }
+  void setKeep(scenes::ObjectId object, ShapeKeep keep) {
+    deformer_.evaluate(scene_);  // the object as it is shown now (a change may wait for a frame)
+    guard_.setKeep(scene_, deformer_, object, keep);
+  }
   /// What the guard did at the last step of this controller's drag (one entry per kept object of
   /// the lattices the drag moved; empty when nothing is kept or no drag ran since the press).
   const std::vector<ShapeGuardStep>& guardSteps() const { return guardSteps_; }
@@ -235,6 +238,15 @@ class InteractionController {
   std::optional<double> animationAppliedSince(std::uint64_t madeAt) const {
     return animationApplications_ != madeAt ? std::optional(shownSeconds_) : std::nullopt;
   }
+
+  /// Has the changes made since the last evaluation evaluated (SceneDeformer::evaluate): at once
+  /// by default (scripts, tests, the Python Document), or, when requestEvaluation is set, by its
+  /// owner. Every model change of this controller and of the edit mode's comes here.
+  void evaluateChanges();
+  /// Set by an owner that evaluates once per frame (MainWindow: at its next repaint, after the
+  /// last event of the event-loop tick; readers of points evaluate first): evaluateChanges() then
+  /// only calls it. Empty: evaluateChanges() evaluates at once.
+  std::function<void()> requestEvaluation;
 
   /// Called after every change of the scene, the selection or the hover (redraw, refresh panels).
   std::function<void()> onChanged;

@@ -41,6 +41,11 @@ class VtkViewWidget : public QOpenGLWidget {
   /// Schedules a repaint through Qt; safe to call from anywhere on the GUI thread.
   void requestRender();
 
+ signals:
+  /// Emitted at the start of every repaint, before VTK renders: the owner brings the scene up
+  /// to date here (MainWindow evaluates once per frame).
+  void aboutToRender();
+
  protected:
   void initializeGL() override;
   void resizeGL(int width, int height) override;
