@@ -359,7 +359,7 @@ class MeshWire {
     get(count);
     if (count > (bytes_.size() - pos_) / sizeof(T)) fail();
     values.resize(std::size_t(count));
-    std::memcpy(values.data(), bytes_.data() + pos_, std::size_t(count) * sizeof(T));
+    if (count > 0) std::memcpy(values.data(), bytes_.data() + pos_, std::size_t(count) * sizeof(T));  // data() may be null
     pos_ += std::size_t(count) * sizeof(T);
   }
   void getString(std::string& text) {

@@ -272,7 +272,12 @@ TEST(CgnsHostile, ALibraryThatExitsIsAnErrorAndThisProcessGoesOn) {
   for (const char* name : {"oom-52b49a41f98227df8e70652649ab2d1b685f431b", "oom-91352231420bf70e781f927dd802061e10b23568",
                            "oom-b52f2c00c3287bd6b3840cfa061e691201cef046"}) {
     const std::string message = testing::meshIoErrorOf([&] { readCgnsMesh(dir / name); });
+    EXPECT_NE(message.find(name), std::string::npos) << message;
+#if !defined(__SANITIZE_ADDRESS__)
+    // Under AddressSanitizer the child gets no memory limit (ASan reserves its shadow memory up
+    // front), so the library reads on and refuses the file itself: an error as well.
     EXPECT_NE(message.find(std::string(name) + ": the CGNS library crashed reading it"), std::string::npos) << message;
+#endif
   }
   const std::pair<const char*, const char*> types[] = {{"crash-3eb08f41dc319ddc026ef8ebf89553996b0ed0a9", "type 16384 "},
                                                        {"crash-80d8c39fe5c192ec3c21769807a5cc29a46b4c60", "type -500 "}};
