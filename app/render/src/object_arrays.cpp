@@ -64,4 +64,14 @@ vtkSmartPointer<vtkPolyData> objectPolyData(const meshio::MeshData& mesh, const 
   return polyData;
 }
 
+Eigen::MatrixX3d worldPoints(vtkPoints* drawn, const Eigen::Vector3d& origin) {
+  Eigen::MatrixX3d out(drawn->GetNumberOfPoints(), 3);
+  for (Eigen::Index i = 0; i < out.rows(); ++i) {
+    double p[3];
+    drawn->GetPoint(i, p);
+    out.row(i) = Eigen::RowVector3d(p[0], p[1], p[2]) + origin.transpose();
+  }
+  return out;
+}
+
 }  // namespace ffdkit::app::object_arrays

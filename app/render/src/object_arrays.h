@@ -23,6 +23,9 @@ namespace ffdkit::app::object_arrays {
 /// parallel for large meshes.
 void setFloatPoints(vtkPoints* drawn, const Eigen::MatrixX3d& points, const Eigen::Vector3d& origin);
 
+/// The inverse of setFloatPoints: the drawn points plus `origin`, in world coordinates (#points x 3).
+Eigen::MatrixX3d worldPoints(vtkPoints* drawn, const Eigen::Vector3d& origin);
+
 /// The polydata of an object's mesh at `points` (#points x 3) relative to `origin` (as
 /// setFloatPoints): float32 points, its triangles
 /// and its segments (with neither, one vertex cell per point) as cells with 32-bit offsets and

@@ -723,17 +723,8 @@ bool SceneView::showsProxy(const std::string& object) const {
   return false;
 }
 Eigen::MatrixX3d SceneView::objectPoints(const std::string& object) const {
-  for (const auto& entry : impl_->objects) {
-    if (entry.name != object) continue;
-    vtkPoints* points = entry.polyData->GetPoints();
-    Eigen::MatrixX3d out(points->GetNumberOfPoints(), 3);
-    for (Eigen::Index i = 0; i < out.rows(); ++i) {
-      double p[3];
-      points->GetPoint(i, p);
-      out.row(i) = Eigen::RowVector3d(p[0], p[1], p[2]) + entry.origin.transpose();  // float points: relative
-    }
-    return out;
-  }
+  for (const auto& entry : impl_->objects)
+    if (entry.name == object) return object_arrays::worldPoints(entry.polyData->GetPoints(), entry.origin);
   return {};
 }
 // --- end of level of detail
