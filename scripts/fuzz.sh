@@ -17,7 +17,7 @@ jobs="${FFDKIT_JOBS:-$(nproc)}"
 "$root/scripts/setup-deps.sh" --fuzz
 
 all=(fuzz_mesh_ply fuzz_mesh_obj fuzz_mesh_stl fuzz_mesh_xyz fuzz_mesh_npy fuzz_mesh_gltf fuzz_mesh_glb fuzz_mesh_roundtrip
-     fuzz_mesh_vtp fuzz_mesh_vtk fuzz_openfoam fuzz_gmsh fuzz_su2 fuzz_unv fuzz_elmer fuzz_lsdyna fuzz_kratos
+     fuzz_mesh_vtp fuzz_mesh_vtk fuzz_openfoam fuzz_gmsh fuzz_su2 fuzz_unv fuzz_elmer fuzz_lsdyna fuzz_kratos fuzz_cgns
      fuzz_widget_file fuzz_scene_file fuzz_generator)
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then targets=("${all[@]}"); fi
