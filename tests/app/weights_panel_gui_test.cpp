@@ -3,7 +3,9 @@
 // 0, a negative number, nan) is refused with a message under the field and changes nothing; a
 // valid weight is one undo step, the lattice becomes rational, and the object's points equal what
 // ffdkit-cli deform makes of the same points with the widget file the app saved; undo restores
-// the polynomial lattice and the points.
+// the polynomial lattice and the points. In the lattice's edit mode (Tab) the same field sets the
+// weight of every selected point (clicked, Shift+clicked, box-selected): their common weight, or
+// blank when they differ; one undo step per typed weight.
 #include <QLabel>
 #include <QLineEdit>
 #include <QProcess>
@@ -47,6 +49,73 @@ void typeInto(QLineEdit* field, const QString& text) {
   QTest::keyClick(field, Qt::Key_A, Qt::ControlModifier);
   QTest::keyClicks(field, text);
   QTest::keyClick(field, Qt::Key_Return);
+}
+
+// The message label under a weight field (its sibling of that name).
+QLabel* messageOf(MainWindow& w, QLineEdit* field) {
+  for (QLabel* label : w.findChildren<QLabel*>(field->objectName() + "Message"))
+    if (label->parentWidget() == field->parentWidget()) return label;
+  return nullptr;
+}
+
+// The object's points as ffdkit-cli deform --widgets makes them with the widget file the window
+// saves now (empty, with the reason in `failure`, if the CLI failed).
+Eigen::MatrixX3d cliDeformed(MainWindow& w, scenes::ObjectId object, QString* failure) {
+  QTemporaryDir folder;
+  const std::filesystem::path dir = folder.path().toStdString();
+  w.saveWidgetFile(dir / "tool.json");
+  meshio::MeshData points;
+  points.points = w.scene().findObject(object)->mesh.points;
+  meshio::writeMesh(dir / "object.npy", points);
+  QString output;
+  const int code = runCli({"deform", "--widgets", QString::fromStdString((dir / "tool.json").string()),
+                           QString::fromStdString((dir / "object.npy").string()), "-o",
+                           QString::fromStdString((dir / "out.npy").string())},
+                          &output);
+  if (code != 0) {
+    *failure = QString("exit %1: %2").arg(code).arg(output);
+    return {};
+  }
+  return meshio::readMesh(dir / "out.npy").points;
+}
+
+// Where lattice point `index` is drawn in the view.
+QPoint pixelOf(MainWindow& w, WidgetId lattice, Eigen::Index index) {
+  return toWidget(w, w.scene().widgets.worldControlPoints(lattice).row(index).transpose());
+}
+
+// A rectangle of the view (corners `a`, `b`) that holds some points of `lattice` with a 3-pixel
+// margin and has every other point at least 3 pixels outside, holding at least one point with
+// weight `marked` and one without; the points it holds (sorted) in `inside`. False if none is found.
+bool boxWithMixedWeights(MainWindow& w, WidgetId lattice, double marked, QPoint* a, QPoint* b,
+                         std::vector<Eigen::Index>* inside) {
+  const Eigen::VectorXd weights = w.scene().widgets.weights(lattice);
+  const Eigen::Index n = weights.size();
+  std::vector<QPoint> pixels;
+  for (Eigen::Index i = 0; i < n; ++i) pixels.push_back(pixelOf(w, lattice, i));
+  for (Eigen::Index p = 0; p < n; ++p)
+    for (Eigen::Index q = 0; q < n; ++q) {
+      if (weights[p] != marked || weights[q] == marked) continue;
+      const QRect core = QRect(pixels[p], pixels[q]).normalized();
+      const QRect box = core.adjusted(-6, -6, 6, 6);
+      std::vector<Eigen::Index> held;
+      bool clean = true, mixed[2] = {false, false};
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const QPoint x = pixels[i];
+        if (core.adjusted(-3, -3, 3, 3).contains(x)) {
+          held.push_back(i);
+          mixed[weights[i] == marked ? 0 : 1] = true;
+        } else if (box.adjusted(-3, -3, 3, 3).contains(x)) {
+          clean = false;  // too near the rectangle's edge to say
+        }
+      }
+      if (!clean || !mixed[0] || !mixed[1] || held.size() > static_cast<std::size_t>(n / 2)) continue;
+      *a = box.topLeft();
+      *b = box.bottomRight();
+      *inside = held;
+      return true;
+    }
+  return false;
 }
 
 }  // namespace
@@ -132,6 +201,113 @@ class WeightsPanelGuiTest : public QObject {
     QCOMPARE(w.scene().widgets.weights(lattice)[point], 3.0);
     QCoreApplication::processEvents();
     QCOMPARE(shownChild<QLineEdit>(w, "pointWeight")->text(), QString("3"));
+  }
+
+  void inTheEditModeTheSelectedPointsWeightIsTypedForAllOfThem() {
+    MainWindow& w = *window_;
+    triggerWithDialog(w, "actionAddPrimitive");  // sphere1
+    triggerWithDialog(w, "actionNewLattice");
+    action(w, "actionAttach")->trigger();
+    pressKey(w, Qt::Key_Home);
+    const WidgetId lattice = w.scene().widgets.roots().front();
+    const scenes::ObjectId sphere = w.scene().objectId("sphere1");
+    const Eigen::MatrixX3d start = w.deformer().points(sphere);
+    pressKey(w, Qt::Key_Tab);
+    QVERIFY(w.editController().editing());
+    QCoreApplication::processEvents();
+    auto* edited = shownChild<QLabel>(w, "editedPoints");
+    QVERIFY(edited != nullptr);
+    QVERIFY2(edited->text().contains("0 of 27 points"), qPrintable(edited->text()));
+    QVERIFY(shownChild<QLineEdit>(w, "editWeight") == nullptr);  // nothing selected: no weight
+
+    // One point clicked, two more Shift+clicked: their common weight.
+    const std::vector<Eigen::Index> three = {flat(2, 1, 2), flat(0, 1, 2), flat(1, 2, 2)};
+    clickPoint(w, lattice, three[0]);
+    QCoreApplication::processEvents();
+    QVERIFY(shownChild<QLineEdit>(w, "editWeight") != nullptr);
+    QCOMPARE(shownChild<QLineEdit>(w, "editWeight")->text(), QString("1"));
+    clickPoint(w, lattice, three[1], Qt::ShiftModifier);
+    clickPoint(w, lattice, three[2], Qt::ShiftModifier);
+    QCOMPARE(w.editController().points().count(), Eigen::Index(3));
+    QCoreApplication::processEvents();
+    QVERIFY(shownChild<QLabel>(w, "editedPoints")->text().contains("3 of 27 points"));
+    auto* field = shownChild<QLineEdit>(w, "editWeight");
+    QVERIFY(field != nullptr);
+    QCOMPARE(field->text(), QString("1"));
+    QLabel* message = messageOf(w, field);
+    QVERIFY(message != nullptr && !message->isVisible());
+    const std::size_t steps = w.commands().position();
+
+    // Refused as outside the edit mode: nothing changes, the reason under the field.
+    for (const char* bad : {"abc", "0", "-2", "nan", "inf"}) {
+      typeInto(field, bad);
+      QVERIFY2(message->isVisible(), bad);
+      QVERIFY2(message->text().contains("weight"), qPrintable(message->text()));
+      QVERIFY2(!w.scene().widgets.isRational(lattice), bad);
+      QCOMPARE(w.commands().position(), steps);
+    }
+
+    // 2.5 for the three: one undo step; the other points keep 1.
+    typeInto(field, "2.5");
+    QVERIFY(!message->isVisible());
+    QCOMPARE(w.commands().position(), steps + 1);
+    Eigen::VectorXd expected = Eigen::VectorXd::Ones(27);
+    for (Eigen::Index p : three) expected[p] = 2.5;
+    QCOMPARE((w.scene().widgets.weights(lattice) - expected).cwiseAbs().maxCoeff(), 0.0);
+    const Eigen::VectorXd threeWeighted = expected;
+    const Eigen::MatrixX3d threePoints = w.deformer().points(sphere);
+    QVERIFY((threePoints - start).cwiseAbs().maxCoeff() > 1e-3);
+
+    // A box (B, then a drag) over points of both weights: the field is blank, their range shown.
+    QPoint from, to;
+    std::vector<Eigen::Index> boxed;
+    QVERIFY(boxWithMixedWeights(w, lattice, 2.5, &from, &to, &boxed));
+    pressKey(w, Qt::Key_B);
+    dragPixels(w, from, to);
+    QCOMPARE(w.editController().points().indices(), boxed);
+    QCoreApplication::processEvents();
+    field = shownChild<QLineEdit>(w, "editWeight");
+    QVERIFY(field != nullptr);
+    QCOMPARE(field->text(), QString());
+    QVERIFY2(field->placeholderText() == "differ: 1 to 2.5", qPrintable(field->placeholderText()));
+
+    // 4 for all of them: one undo step.
+    typeInto(field, "4");
+    QCOMPARE(w.commands().position(), steps + 2);
+    for (Eigen::Index p : boxed) expected[p] = 4.0;
+    QCOMPARE((w.scene().widgets.weights(lattice) - expected).cwiseAbs().maxCoeff(), 0.0);
+    QCoreApplication::processEvents();
+    QCOMPARE(shownChild<QLineEdit>(w, "editWeight")->text(), QString("4"));
+    const Eigen::MatrixX3d weighted = w.deformer().points(sphere);
+    // ... though no control point moved: the weights alone.
+    QCOMPARE((w.scene().widgets.controlPoints(lattice) - w.scene().widgets.restPoints(lattice)).cwiseAbs().maxCoeff(), 0.0);
+
+    // The CLI deforms the sphere's own points with the widget file the app saves: the same points.
+    QString failure;
+    const Eigen::MatrixX3d cli = cliDeformed(w, sphere, &failure);
+    QVERIFY2(cli.rows() == weighted.rows(), qPrintable(failure));
+    const double worst = (cli - weighted).cwiseAbs().maxCoeff();
+    QVERIFY2(worst <= 1e-12, qPrintable(QString::number(worst)));
+
+    // Undo: the three at 2.5 again, the field blank over the box; again: the polynomial lattice.
+    action(w, "actionUndo")->trigger();
+    QCOMPARE((w.scene().widgets.weights(lattice) - threeWeighted).cwiseAbs().maxCoeff(), 0.0);
+    QVERIFY((w.deformer().points(sphere) - threePoints).cwiseAbs().maxCoeff() <= 1e-12);
+    QCoreApplication::processEvents();
+    QCOMPARE(shownChild<QLineEdit>(w, "editWeight")->text(), QString());
+    action(w, "actionUndo")->trigger();
+    QVERIFY(!w.scene().widgets.isRational(lattice));
+    QVERIFY((w.deformer().points(sphere) - start).cwiseAbs().maxCoeff() <= 1e-12);
+    QCoreApplication::processEvents();
+    QCOMPARE(shownChild<QLineEdit>(w, "editWeight")->text(), QString("1"));
+    // Redo, twice: the weights and the points the CLI made.
+    action(w, "actionRedo")->trigger();
+    action(w, "actionRedo")->trigger();
+    QCOMPARE((w.scene().widgets.weights(lattice) - expected).cwiseAbs().maxCoeff(), 0.0);
+    QVERIFY((w.deformer().points(sphere) - cli).cwiseAbs().maxCoeff() <= 1e-12);
+    QVERIFY(w.editController().editing());
+    QCoreApplication::processEvents();
+    QCOMPARE(shownChild<QLineEdit>(w, "editWeight")->text(), QString("4"));
   }
 
  private:

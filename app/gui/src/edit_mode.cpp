@@ -343,6 +343,7 @@ void EditModeInput::changed() {
     count_->hide();
   }
   syncKeepActions();
+  if (p_.showProperties) p_.showProperties();
   if (p_.edit->transforming()) {
     QString text = qs(p_.edit->describe());
     if (const QString guard = guardText(); !guard.isEmpty()) text += " · " + guard;

@@ -48,6 +48,8 @@ class EditModeInput : public QObject {
     std::function<void()> redraw;                       ///< the window's redraw of the model and highlights
     /// The objects selected in the outliner (Keep Volume / Keep Centre act on them).
     std::function<std::vector<scenes::ObjectId>()> selectedObjects;
+    /// Shows the edit mode's selected points in the property panel (their weight field).
+    std::function<void()> showProperties;
   };
   /// Adds its actions to `widgetsMenu` (Make Cell), a new Select menu and `toolbar`, and filters
   /// the view's events.

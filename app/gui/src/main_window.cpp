@@ -56,7 +56,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   outlinerDock->setObjectName("outlinerDock");
   outlinerDock->setWidget(d.outliner);
   addDockWidget(Qt::LeftDockWidgetArea, outlinerDock);
-  d.properties = new PropertyPanel(*d.controller, d.scene);
+  d.properties = new PropertyPanel(*d.controller, d.scene, d.edit.get());
   auto* scroll = new QScrollArea;
   scroll->setWidgetResizable(true);
   scroll->setWidget(d.properties);

@@ -394,7 +394,8 @@ void MainWindow::createOperationsToolbar(QMenu* widgetsMenu, QMenu* viewMenu) {
   d.editInput = new EditModeInput({this, d.view, d.sceneView.get(), d.status, &d.scene, d.controller.get(), d.edit.get(),
                                    [this](const std::string& m) { impl_->sayError(m); },
                                    [this](const QPoint& p) { return impl_->rayAt(p); }, [this] { return impl_->tolerance(); },
-                                   [this] { impl_->controller->onChanged(); }, [this] { return impl_->selectedObjects; }},
+                                   [this] { impl_->controller->onChanged(); }, [this] { return impl_->selectedObjects; },
+                                   [this] { impl_->properties->showSelection(impl_->entries()); }},
                                   widgetsMenu, toolbar);
   viewMenu->addSeparator();
   addToolbarTextOption(viewMenu, toolbar);

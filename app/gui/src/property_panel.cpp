@@ -16,6 +16,7 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include "ffdkit/interaction/edit_controller.h"
 #include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/parts/parts.h"
 #include "lattice_bases.h"
@@ -23,8 +24,9 @@
 
 namespace ffdkit::app {
 
-PropertyPanel::PropertyPanel(InteractionController& controller, const scenes::Scene& scene, QWidget* parent)
-    : QWidget(parent), controller_(controller), scene_(scene) {
+PropertyPanel::PropertyPanel(InteractionController& controller, const scenes::Scene& scene, const EditController* edit,
+                             QWidget* parent)
+    : QWidget(parent), controller_(controller), scene_(scene), edit_(edit) {
   setObjectName("propertyPanel");
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
@@ -85,7 +87,7 @@ std::string PropertyPanel::layoutOf(const std::vector<OutlinerEntry>& selection)
 void PropertyPanel::showSelection(const std::vector<OutlinerEntry>& selection) {
   const scenes::SceneChanges changes = scenes::changesSince(scene_, mark_);
   mark_ = scenes::markOf(scene_);
-  const std::string shape = layoutOf(selection);
+  const std::string shape = editLayout() + "|" + layoutOf(selection);
   const bool sameRows = !layout_.empty() && shape == layout_ && selection.size() == shown_.size() &&
                         std::equal(selection.begin(), selection.end(), shown_.begin(), [](const auto& a, const auto& b) {
                           return a.kind == b.kind && a.object == b.object && a.widget == b.widget && a.binding == b.binding;
@@ -100,7 +102,10 @@ void PropertyPanel::showSelection(const std::vector<OutlinerEntry>& selection) {
   layout_ = shape;
   ++stats_.rebuilds;
   clearRows();
+  const bool editing = edit_ != nullptr && edit_->editing();
+  if (editing) showEditedPoints();
   if (selection.empty()) {
+    if (editing) return;
     auto* hint = new QLabel(tr("Nothing selected. Click a glyph, a lattice point or a row of the outliner."));
     hint->setWordWrap(true);
     form_->addRow(hint);

@@ -1,7 +1,11 @@
 // The property panel's rows for a lattice: name, counts, basis per axis, outside policy, the
 // picked control point's weight, the transformer of a root lattice (position and size per axis),
-// cells, parent, what it deforms.
+// cells, parent, what it deforms; and the edit mode's selected points with their weight.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <optional>
+#include <utility>
 
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -13,6 +17,7 @@
 #include <QSpinBox>
 #include <QVBoxLayout>
 
+#include "ffdkit/interaction/edit_controller.h"
 #include "ffdkit/interaction/interaction_controller.h"
 #include "lattice_bases.h"
 #include "property_fields.h"
@@ -93,7 +98,8 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
     });
   });
   form_->addRow(tr("Outside points"), outside);
-  if (const auto& picked = controller_.pickedPoint(); picked && picked->lattice == id) addWeightRow(id, picked->index);
+  if (const auto& picked = controller_.pickedPoint(); picked && picked->lattice == id)
+    addWeightRow(id, {picked->index}, "pointWeight");
   const auto parent = m.parentCell(id);
   if (!parent) {
     // The transformer of a root lattice: position (its lower corner) and size per axis; the
@@ -151,55 +157,116 @@ void PropertyPanel::showLattice(widgets::WidgetId id) {
   })->setObjectName("deforms");
 }
 
-void PropertyPanel::addWeightRow(widgets::WidgetId id, Eigen::Index point) {
+namespace {
+
+// The weight `text` asks for, or nullopt with the reason in `why`: the one home of what a weight
+// field accepts (a number, finite and > 0, as WidgetModel::setWeights requires).
+std::optional<double> typedWeight(const QString& typed, QString* why) {
+  const QString text = typed.trimmed();
+  bool number = false;
+  const double value = text.toDouble(&number);
+  if (!number) *why = QObject::tr("'%1' is not a number: a weight is a number > 0, e.g. 2 or 0.5").arg(text);
+  else if (!std::isfinite(value)) *why = QObject::tr("a weight must be finite");
+  else if (!(value > 0.0)) *why = QObject::tr("a weight must be > 0 (%1 is not)").arg(text);
+  else return value;
+  return std::nullopt;
+}
+
+// FNV-1a over the selected indices: the edit mode's layout key changes with the selection
+// without holding every index.
+std::uint64_t selectionHash(const std::vector<Eigen::Index>& indices) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const Eigen::Index i : indices) {
+    auto v = static_cast<std::uint64_t>(i);
+    for (int byte = 0; byte < 8; ++byte, v >>= 8) h = (h ^ (v & 0xffu)) * 1099511628211ull;
+  }
+  return h;
+}
+
+}  // namespace
+
+std::string PropertyPanel::editLayout() const {
+  if (edit_ == nullptr || !edit_->editing()) return {};
+  const PointSelection& selection = edit_->points();
+  const Eigen::Vector3i n = selection.counts();
+  return "edit " + widgets::toString(selection.lattice()) + " " + std::to_string(n[0]) + "x" + std::to_string(n[1]) + "x" +
+         std::to_string(n[2]) + " " + std::to_string(selection.count()) + " " +
+         std::to_string(selectionHash(selection.indices()));
+}
+
+void PropertyPanel::showEditedPoints() {
+  const PointSelection& selection = edit_->points();
+  const widgets::WidgetId id = selection.lattice();
+  const std::vector<Eigen::Index> points = selection.indices();
+  const auto pointCount = selection.pointCount();
+  auto* edited = addLabel(tr("Editing"), [this, id, count = points.size(), pointCount] {
+    return tr("%1: %2 of %3 points selected").arg(qs(scene_.widgets.name(id))).arg(count).arg(pointCount);
+  });
+  edited->setObjectName("editedPoints");
+  if (points.empty()) {
+    auto* hint = new QLabel(tr("Select points (click, Shift+click, drag a box) to set their weight here."));
+    hint->setWordWrap(true);
+    form_->addRow(hint);
+    return;
+  }
+  addWeightRow(id, points, "editWeight");
+}
+
+void PropertyPanel::addWeightRow(widgets::WidgetId id, const std::vector<Eigen::Index>& points, const QString& name) {
   // A text field, not a spin box: a weight spans decades (0.01 .. 100), and text that is no weight
   // is refused with a message rather than clamped.
+  const bool one = points.size() == 1;
   auto* weight = new QLineEdit;
-  weight->setObjectName("pointWeight");
-  weight->setToolTip(tr("Weight of control point %1 (rational FFD): > 0; 1 everywhere is the polynomial lattice; "
-                        "Enter applies")
-                         .arg(point));
+  weight->setObjectName(name);
+  weight->setToolTip((one ? tr("Weight of control point %1").arg(points.front())
+                          : tr("Weight of the %1 selected control points (Enter sets all of them)").arg(points.size())) +
+                     tr(" (rational FFD): > 0; 1 everywhere is the polynomial lattice; Enter applies"));
   auto* message = new QLabel;
-  message->setObjectName("pointWeightMessage");
+  message->setObjectName(name + "Message");
   message->setWordWrap(true);
   message->setStyleSheet("color: #c0392b");
   message->hide();
-  auto modelText = [this, id, point] { return QString::number(scene_.widgets.weights(id)[point], 'g', 17); };
-  weight->setText(modelText());
-  auto showModel = [weight, message, modelText] {
+  // What the field shows: the points' weight, or blank (their range as the placeholder) when
+  // they differ.
+  auto modelView = [this, id, points] {
+    const Eigen::VectorXd all = scene_.widgets.weights(id);
+    double lo = all[points.front()], hi = lo;
+    for (const Eigen::Index p : points) lo = std::min(lo, all[p]), hi = std::max(hi, all[p]);
+    if (lo == hi) return std::pair(QString::number(lo, 'g', 17), QString());
+    return std::pair(QString(), tr("differ: %1 to %2").arg(lo, 0, 'g', 6).arg(hi, 0, 'g', 6));
+  };
+  auto showModel = [weight, message, modelView] {
     weight->setStyleSheet({});
     message->hide();
     const QSignalBlocker block(weight);
-    weight->setText(modelText());
+    const auto [text, placeholder] = modelView();
+    weight->setText(text);
+    weight->setPlaceholderText(placeholder);
   };
-  fields_.push_back([weight, modelText, showModel] {
-    if (weight->text() == modelText()) return false;
+  showModel();
+  fields_.push_back([weight, modelView, showModel] {
+    if (std::pair(weight->text(), weight->placeholderText()) == modelView()) return false;
     showModel();
     return true;
   });
-  connect(weight, &QLineEdit::returnPressed, this, [this, id, point, weight, message, showModel] {
-    const QString text = weight->text().trimmed();
-    bool number = false;
-    const double value = text.toDouble(&number);
+  connect(weight, &QLineEdit::returnPressed, this, [this, id, points, weight, message, showModel] {
     QString why;
-    if (!number) why = tr("'%1' is not a number: a weight is a number > 0, e.g. 2 or 0.5").arg(text);
-    else if (!std::isfinite(value)) why = tr("a weight must be finite");
-    else if (!(value > 0.0)) why = tr("a weight must be > 0 (%1 is not)").arg(text);
-    if (!why.isEmpty()) {
+    const std::optional<double> value = typedWeight(weight->text(), &why);
+    if (!value) {
       // Refused: the text stays for the user to correct; the model is not touched.
       weight->setStyleSheet("border: 1px solid #c0392b");
       message->setText(why);
       message->show();
       return;
     }
-    if (guarded([&] { controller_.setWeight(id, point, value); })) showModel();
+    if (guarded([&] { controller_.setWeight(id, points, *value); })) showModel();
   });
   auto* cell = new QWidget;
   auto* column = new QVBoxLayout(cell);
   column->setContentsMargins(0, 0, 0, 0);
   column->addWidget(weight);
   column->addWidget(message);
-  form_->addRow(tr("Weight of point %1").arg(point), cell);
+  form_->addRow(one ? tr("Weight of point %1").arg(points.front()) : tr("Weight of %1 points").arg(points.size()), cell);
 }
 
 }  // namespace ffdkit::app

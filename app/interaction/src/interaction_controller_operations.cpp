@@ -302,9 +302,13 @@ void InteractionController::setLatticeSettings(WidgetId lattice, const widgets::
        [&] { scene_.widgets.setLatticeSettings(lattice, settings); });
 }
 
-void InteractionController::setWeight(WidgetId lattice, Eigen::Index point, double weight) {
-  edit("Weight of point " + std::to_string(point) + " of " + scene_.widgets.name(lattice),
-       [&] { scene_.widgets.setWeight(lattice, point, weight); });
+void InteractionController::setWeight(WidgetId lattice, const std::vector<Eigen::Index>& points, double weight) {
+  if (points.empty()) throw std::invalid_argument("setWeight: no control points given");
+  const std::string which =
+      points.size() == 1 ? "point " + std::to_string(points.front()) : std::to_string(points.size()) + " points";
+  edit("Weight of " + which + " of " + scene_.widgets.name(lattice), [&] {
+    for (Eigen::Index point : points) scene_.widgets.setWeight(lattice, point, weight);
+  });
 }
 
 void InteractionController::setLatticeFrame(WidgetId lattice, const Eigen::Affine3d& frame) {

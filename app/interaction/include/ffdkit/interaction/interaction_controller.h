@@ -196,10 +196,12 @@ class InteractionController {
   void setLatticeSettings(widgets::WidgetId lattice, const widgets::LatticeSettings& settings);
   /// Changes a lattice's point counts (WidgetModel::setLatticeCounts).
   void setLatticeCounts(widgets::WidgetId lattice, const Eigen::Vector3i& counts);
-  /// Sets the weight of control point `point` (flat index) of `lattice` (rational FFD, Lamousin &
-  /// Waggenspack 1994; weight 1 everywhere is the polynomial lattice): one undoable command.
-  /// @throws what WidgetModel::setWeight throws (a weight not finite and > 0, an unknown point).
-  void setWeight(widgets::WidgetId lattice, Eigen::Index point, double weight);
+  /// Sets the weight of control points `points` (flat indices: the picked point, or the edit
+  /// mode's selected points) of `lattice` to `weight` (rational FFD, Lamousin & Waggenspack 1994;
+  /// weight 1 everywhere is the polynomial lattice): one undoable command.
+  /// @throws std::invalid_argument for no points; what WidgetModel::setWeight throws (a weight not
+  ///   finite and > 0, an unknown point), nothing changed.
+  void setWeight(widgets::WidgetId lattice, const std::vector<Eigen::Index>& points, double weight);
   /// A root lattice's world frame (its placement, orientation and size).
   void setLatticeFrame(widgets::WidgetId lattice, const Eigen::Affine3d& frame);
   void setSiblingPosition(widgets::WidgetId lattice, std::size_t position);
