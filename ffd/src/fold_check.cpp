@@ -7,6 +7,7 @@
 
 #include <Eigen/LU>
 
+#include "fold_lanes.h"
 #include "vector_clones.h"
 
 namespace ffdkit::ffd {
@@ -49,6 +50,14 @@ std::vector<Eigen::MatrixXd> bezierExtraction(const AxisSpline& axis) {
     out[std::size_t(c)] = lu.solve(N).transpose();
   }
   return out;
+}
+
+// The fold-over bound's degree limit (kFoldCheckMaxDegree; the fixed-size rows below hold it).
+void checkDegree(const Lattice& lattice, int axis, const char* what) {
+  if (lattice.axis(axis).degree() > kFoldCheckMaxDegree)
+    throw LatticeError(std::string(what) + ": axis " + std::to_string(axis) + " has degree " +
+                       std::to_string(lattice.axis(axis).degree()) + "; the fold-over bound handles degrees up to " +
+                       std::to_string(kFoldCheckMaxDegree));
 }
 
 // A trivariate array of values indexed i + n0 (j + n1 k), n = degree + 1 per axis.
@@ -115,71 +124,6 @@ Verdict classify(const std::vector<double>& c, const Dims& d, const Eigen::Vecto
   return {unknown ? CellFolding::Unknown : CellFolding::Positive, {}};
 }
 
-// binomial(n, k) for n <= 9 as constants (the fixed-degree products below).
-constexpr double kBinomial[10][10] = {
-    {1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6, 4, 1}, {1, 5, 10, 10, 5, 1}, {1, 6, 15, 20, 15, 6, 1},
-    {1, 7, 21, 35, 35, 21, 7, 1}, {1, 8, 28, 56, 70, 56, 28, 8, 1}, {1, 9, 36, 84, 126, 126, 84, 36, 9, 1}};
-
-// det J's Bernstein coefficients from a cell's Bezier net b ((P+1)^3 points, i fastest) when all
-// three axes have degree P (1..3): the same two products as the general path below, with every
-// size a compile-time constant (arrays on the stack, inner loops unrolled), about 50,000
-// multiply-adds for a cubic cell. `out` gets (3P)^3 coefficients, index i + 3P (j + 3P k).
-template <int P>
-FFDKIT_VECTOR_CLONES void equalDegreeProducts(const Eigen::Vector3d* b, const double width[3], double* out) {
-  constexpr int N = P + 1, M = P;          // a net's and a derivative's points per axis
-  constexpr int C0 = 2 * P + 1, C1 = 2 * P;  // X_v x X_w: (2P+1) x 2P x 2P
-  constexpr int Q = 3 * P;                 // det J: Q^3
-  const auto at = [](int i, int j, int k) { return i + N * (j + N * k); };
-  // Scaled derivative nets (coefficient times the binomials of its degrees), [coordinate][k][j][i].
-  double du[3][N][N][M], dv[3][N][M][N], dw[3][M][N][N];
-  const double su = P / width[0], sv = P / width[1], sw = P / width[2];
-  for (int k = 0; k < N; ++k)
-    for (int j = 0; j < N; ++j)
-      for (int i = 0; i < N; ++i)
-        for (int c = 0; c < 3; ++c) {
-          if (i < M)
-            du[c][k][j][i] = su * kBinomial[M - 1][i] * kBinomial[N - 1][j] * kBinomial[N - 1][k] *
-                             (b[at(i + 1, j, k)][c] - b[at(i, j, k)][c]);
-          if (j < M)
-            dv[c][k][j][i] = sv * kBinomial[N - 1][i] * kBinomial[M - 1][j] * kBinomial[N - 1][k] *
-                             (b[at(i, j + 1, k)][c] - b[at(i, j, k)][c]);
-          if (k < M)
-            dw[c][k][j][i] = sw * kBinomial[N - 1][i] * kBinomial[N - 1][j] * kBinomial[M - 1][k] *
-                             (b[at(i, j, k + 1)][c] - b[at(i, j, k)][c]);
-        }
-  double cross[3][C1][C1][C0] = {};
-  for (int kv = 0; kv < N; ++kv)
-    for (int jv = 0; jv < M; ++jv)
-      for (int kw = 0; kw < M; ++kw)
-        for (int jw = 0; jw < N; ++jw)
-          for (int iv = 0; iv < N; ++iv) {
-            const double vx = dv[0][kv][jv][iv], vy = dv[1][kv][jv][iv], vz = dv[2][kv][jv][iv];
-            for (int iw = 0; iw < N; ++iw) {
-              const double wx = dw[0][kw][jw][iw], wy = dw[1][kw][jw][iw], wz = dw[2][kw][jw][iw];
-              cross[0][kv + kw][jv + jw][iv + iw] += vy * wz - vz * wy;
-              cross[1][kv + kw][jv + jw][iv + iw] += vz * wx - vx * wz;
-              cross[2][kv + kw][jv + jw][iv + iw] += vx * wy - vy * wx;
-            }
-          }
-  double det[Q][Q][Q] = {};
-  for (int ku = 0; ku < N; ++ku)
-    for (int ju = 0; ju < N; ++ju)
-      for (int kc = 0; kc < C1; ++kc)
-        for (int jc = 0; jc < C1; ++jc)
-          for (int iu = 0; iu < M; ++iu) {
-            const double ux = du[0][ku][ju][iu], uy = du[1][ku][ju][iu], uz = du[2][ku][ju][iu];
-            double* __restrict o = det[ku + kc][ju + jc] + iu;
-            const double* __restrict cx = cross[0][kc][jc];
-            const double* __restrict cy = cross[1][kc][jc];
-            const double* __restrict cz = cross[2][kc][jc];
-            for (int ic = 0; ic < C0; ++ic) o[ic] += ux * cx[ic] + uy * cy[ic] + uz * cz[ic];
-          }
-  for (int k = 0; k < Q; ++k)
-    for (int j = 0; j < Q; ++j)
-      for (int i = 0; i < Q; ++i)
-        out[i + Q * (j + Q * k)] = det[k][j][i] / (kBinomial[Q - 1][i] * kBinomial[Q - 1][j] * kBinomial[Q - 1][k]);
-}
-
 // The patch of one cell given the per-axis extraction matrices.
 JacobianDeterminantPatch patchOf(const Lattice& lattice, const std::array<int, 3>& cell,
                                  const std::vector<Eigen::MatrixXd>* extraction) {
@@ -227,15 +171,6 @@ JacobianDeterminantPatch patchOf(const Lattice& lattice, const std::array<int, 3
         for (int r = 0; r <= p[2]; ++r) s += Ew(r, k) * t2[std::size_t(net.at(i, j, r))];
         b[std::size_t(net.at(i, j, k))] = s;
       }
-  if (p[0] == p[1] && p[1] == p[2] && p[0] >= 1 && p[0] <= 3) {
-    const int q = 3 * p[0];
-    patch.coefficients.resize(q * q * q);
-    if (p[0] == 1) equalDegreeProducts<1>(b.data(), width, patch.coefficients.data());
-    if (p[0] == 2) equalDegreeProducts<2>(b.data(), width, patch.coefficients.data());
-    if (p[0] == 3) equalDegreeProducts<3>(b.data(), width, patch.coefficients.data());
-    patch.degrees = {q - 1, q - 1, q - 1};
-    return patch;
-  }
   // Derivative nets in scaled Bernstein form (coefficient times C(d0,i) C(d1,j) C(d2,k)), so
   // that a product is a plain convolution: sum f~_a g~_b lands on f~g~_(a+b).
   Dims dd[3];
@@ -355,9 +290,7 @@ JacobianDeterminantPatch jacobianDeterminantPatch(const Lattice& lattice, const 
                          ", " + std::to_string(cell[2]) + ") out of range, the lattice has (" +
                          std::to_string(lattice.axis(0).cellCount()) + ", " + std::to_string(lattice.axis(1).cellCount()) +
                          ", " + std::to_string(lattice.axis(2).cellCount()) + ") cells");
-    if (lattice.axis(a).degree() > 10)
-      throw LatticeError("jacobianDeterminantPatch: degree " + std::to_string(lattice.axis(a).degree()) +
-                         " on axis " + std::to_string(a) + " above 10");
+    checkDegree(lattice, a, "jacobianDeterminantPatch");
     extraction[a] = bezierExtraction(lattice.axis(a));
   }
   return patchOf(lattice, cell, extraction);
@@ -365,8 +298,23 @@ JacobianDeterminantPatch jacobianDeterminantPatch(const Lattice& lattice, const 
 
 namespace {
 
-// One cell of a polynomial map: det J's Bernstein coefficients certify Positive at once, or
-// subdivision decides.
+// A cell's verdict from det J's coefficients times the orientation (`signedCoefficients`, degree
+// `degree` per axis) whose lowest is not > 0: a corner <= 0 folds, else subdivision decides.
+void classifyCell(const Lattice& lattice, const FoldCheckOptions& options, const std::array<int, 3>& cell,
+                  const std::vector<double>& signedCoefficients, const std::array<int, 3>& degrees, std::size_t flat,
+                  FoldCheckResult& result) {
+  const Dims d{{degrees[0] + 1, degrees[1] + 1, degrees[2] + 1}};
+  const Verdict v = classify(signedCoefficients, d, Eigen::Vector3d::Zero(), 1.0, 0, options.maxDepth);
+  result.cells[flat] = v.folding;
+  if (v.folding != CellFolding::Folds) return;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = lattice.axis(a).cellMin(cell[a]), hi = lattice.axis(a).cellMax(cell[a]);
+    result.witness[flat][a] = lo + (hi - lo) * v.witness[a];
+  }
+}
+
+// One cell of a polynomial map by the general product of nets (any degrees): det J's Bernstein
+// coefficients certify Positive at once, or subdivision decides.
 void checkPolynomialCell(const Lattice& lattice, const FoldCheckOptions& options,
                          const std::vector<Eigen::MatrixXd>* extraction, const std::array<int, 3>& cell,
                          std::size_t flat, FoldCheckResult& result) {
@@ -379,21 +327,55 @@ void checkPolynomialCell(const Lattice& lattice, const FoldCheckOptions& options
   }
   std::vector<double> signedCoefficients(patch.coefficients.data(), patch.coefficients.data() + patch.coefficients.size());
   for (double& c : signedCoefficients) c *= result.orientation;
-  const Dims d{{patch.degrees[0] + 1, patch.degrees[1] + 1, patch.degrees[2] + 1}};
-  const Verdict v = classify(signedCoefficients, d, Eigen::Vector3d::Zero(), 1.0, 0, options.maxDepth);
-  result.cells[flat] = v.folding;
-  if (v.folding == CellFolding::Folds)
-    result.witness[flat] = patch.parameterMin + (patch.parameterMax - patch.parameterMin).cwiseProduct(v.witness);
+  classifyCell(lattice, options, cell, signedCoefficients, patch.degrees, flat, result);
 }
 
-void checkPolynomialFolding(const Lattice& lattice, const FoldCheckOptions& options,
-                            const std::vector<Eigen::MatrixXd>* extraction, FoldCheckResult& result) {
-  const int cu = result.cellCounts[0], cv = result.cellCounts[1], cw = result.cellCounts[2];
-  const std::int64_t cellCount = std::int64_t(cu) * cv * cw;
-#pragma omp parallel for schedule(dynamic, 1) if (cellCount >= 8)
-  for (std::int64_t flat = 0; flat < cellCount; ++flat)
-    checkPolynomialCell(lattice, options, extraction, {int(flat % cu), int(flat / cu % cv), int(flat / cu / cv)},
-                        std::size_t(flat), result);
+std::array<int, 3> cellOf(const FoldCheckResult& result, std::int64_t flat) {
+  const int cu = result.cellCounts[0], cv = result.cellCounts[1];
+  return {int(flat % cu), int(flat / cu % cv), int(flat / cu / cv)};
+}
+
+// The cells `flats` of a polynomial map (or of a rational one's windows with equal weights). Axes
+// of one degree 1..3 (and not options.referenceExpansion): kFoldLanes cells at a time
+// (detail::DeterminantLanes; a cell's coefficients do not depend on the cells beside it in its
+// batch, so the verdicts are the same whatever the thread count); otherwise one cell at a time.
+void checkPolynomialCells(const Lattice& lattice, const FoldCheckOptions& options,
+                          const std::vector<Eigen::MatrixXd>* extraction, const std::vector<std::int64_t>& flats,
+                          FoldCheckResult& result) {
+  const std::int64_t count = std::int64_t(flats.size());
+  if (options.referenceExpansion || !detail::foldLanesSupport(lattice)) {
+#pragma omp parallel for schedule(dynamic, 1) if (count >= 8)
+    for (std::int64_t c = 0; c < count; ++c)
+      checkPolynomialCell(lattice, options, extraction, cellOf(result, flats[std::size_t(c)]),
+                          std::size_t(flats[std::size_t(c)]), result);
+    return;
+  }
+  constexpr int L = detail::kFoldLanes;
+  const std::int64_t batches = (count + L - 1) / L;
+#pragma omp parallel if (batches >= 2)
+  {
+    detail::DeterminantLanes lanes(lattice, extraction);
+    const int d = lanes.degree();
+    std::vector<double> signedCoefficients;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t batch = 0; batch < batches; ++batch) {
+      std::array<int, 3> cells[L];
+      const int n = int(std::min<std::int64_t>(L, count - batch * L));
+      for (int l = 0; l < n; ++l) cells[l] = cellOf(result, flats[std::size_t(batch * L + l)]);
+      lanes.compute(cells, n);
+      for (int l = 0; l < n; ++l) {
+        const std::size_t flat = std::size_t(flats[std::size_t(batch * L + l)]);
+        const double lowest = result.orientation > 0 ? lanes.lowest(l) : -lanes.highest(l);
+        result.lowerBound[flat] = lowest;
+        if (lowest > 0.0) {
+          result.cells[flat] = CellFolding::Positive;
+          continue;
+        }
+        lanes.coefficients(l, result.orientation, signedCoefficients);
+        classifyCell(lattice, options, cells[l], signedCoefficients, {d, d, d}, flat, result);
+      }
+    }
+  }
 }
 
 // ---- rational lattices ---------------------------------------------------------------------------
@@ -625,13 +607,12 @@ RationalPatch rationalPatchOf(const Lattice& lattice, const std::array<int, 3>& 
 // sign * det J = sign * G / D^4 either way, D being in [minWeight, maxWeight]).
 void checkRationalFolding(const Lattice& lattice, const FoldCheckOptions& options,
                           const std::vector<Eigen::MatrixXd>* extraction, FoldCheckResult& result) {
-  const int cu = result.cellCounts[0], cv = result.cellCounts[1], cw = result.cellCounts[2];
-  const std::int64_t cellCount = std::int64_t(cu) * cv * cw;
-#pragma omp parallel for schedule(dynamic, 1) if (cellCount >= 8)
+  const std::int64_t cellCount = std::int64_t(result.cells.size());
+  // Equal weights in a cell's window (every cell away from an edited weight): the map is
+  // polynomial there, and det J's own bound (degree 3p-1 instead of 4p-1) is used.
+  std::vector<std::int64_t> equal, unequal;
   for (std::int64_t flat = 0; flat < cellCount; ++flat) {
-    const std::array<int, 3> cell = {int(flat % cu), int(flat / cu % cv), int(flat / cu / cv)};
-    // Equal weights in the cell's window (every cell away from an edited weight): the map is
-    // polynomial there, and det J's own bound (degree 3p-1 instead of 4p-1) is used.
+    const std::array<int, 3> cell = cellOf(result, flat);
     double lightest = std::numeric_limits<double>::infinity(), heaviest = 0.0;
     for (int k = 0; k <= lattice.axis(2).degree(); ++k)
       for (int j = 0; j <= lattice.axis(1).degree(); ++j)
@@ -642,23 +623,24 @@ void checkRationalFolding(const Lattice& lattice, const FoldCheckOptions& option
           lightest = std::min(lightest, w);
           heaviest = std::max(heaviest, w);
         }
-    if (lightest == heaviest) {
-      checkPolynomialCell(lattice, options, extraction, cell, std::size_t(flat), result);
-      continue;
-    }
+    (lightest == heaviest ? equal : unequal).push_back(flat);
+  }
+  checkPolynomialCells(lattice, options, extraction, equal, result);
+  const std::int64_t count = std::int64_t(unequal.size());
+#pragma omp parallel for schedule(dynamic, 1) if (count >= 8)
+  for (std::int64_t c = 0; c < count; ++c) {
+    const std::size_t flat = std::size_t(unequal[std::size_t(c)]);
+    const std::array<int, 3> cell = cellOf(result, std::int64_t(flat));
     RationalPatch patch = rationalPatchOf(lattice, cell, extraction);
-    for (double& c : patch.coefficients) c *= result.orientation;
+    for (double& x : patch.coefficients) x *= result.orientation;
     const double lowest = *std::min_element(patch.coefficients.begin(), patch.coefficients.end());
-    result.lowerBound[std::size_t(flat)] = lowest / std::pow(lowest > 0.0 ? patch.maxWeight : patch.minWeight, 4);
+    result.lowerBound[flat] = lowest / std::pow(lowest > 0.0 ? patch.maxWeight : patch.minWeight, 4);
     if (lowest > 0.0) {
-      result.cells[std::size_t(flat)] = CellFolding::Positive;
+      result.cells[flat] = CellFolding::Positive;
       continue;
     }
-    const Verdict v = classify(patch.coefficients, patch.d, Eigen::Vector3d::Zero(), 1.0, 0, options.maxDepth);
-    result.cells[std::size_t(flat)] = v.folding;
-    if (v.folding == CellFolding::Folds)
-      result.witness[std::size_t(flat)] =
-          patch.parameterMin + (patch.parameterMax - patch.parameterMin).cwiseProduct(v.witness);
+    classifyCell(lattice, options, cell, patch.coefficients,
+                 {patch.d.n[0] - 1, patch.d.n[1] - 1, patch.d.n[2] - 1}, flat, result);
   }
 }
 
@@ -671,23 +653,22 @@ FoldCheckResult checkFolding(const Lattice& lattice, const FoldCheckOptions& opt
   std::vector<Eigen::MatrixXd> extraction[3];
   FoldCheckResult result;
   for (int a = 0; a < 3; ++a) {
-    if (lattice.axis(a).degree() > 10)
-      throw LatticeError("checkFolding: degree " + std::to_string(lattice.axis(a).degree()) + " on axis " +
-                         std::to_string(a) + " above 10");
+    checkDegree(lattice, a, "checkFolding");
     extraction[a] = bezierExtraction(lattice.axis(a));
     result.cellCounts[std::size_t(a)] = lattice.axis(a).cellCount();
   }
   const Eigen::Vector3d centre = 0.5 * (lattice.parameterMin() + lattice.parameterMax());
   result.orientation = lattice.restJacobian(centre).determinant() < 0.0 ? -1 : 1;
-  const int cu = result.cellCounts[0], cv = result.cellCounts[1], cw = result.cellCounts[2];
-  const std::int64_t cellCount = std::int64_t(cu) * cv * cw;
+  const std::int64_t cellCount = std::int64_t(result.cellCounts[0]) * result.cellCounts[1] * result.cellCounts[2];
   result.cells.assign(std::size_t(cellCount), CellFolding::Unknown);
   result.lowerBound.assign(std::size_t(cellCount), 0.0);
   result.witness.assign(std::size_t(cellCount), Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
   if (lattice.isRational()) {
     checkRationalFolding(lattice, options, extraction, result);
   } else {
-    checkPolynomialFolding(lattice, options, extraction, result);
+    std::vector<std::int64_t> all(static_cast<std::size_t>(cellCount));
+    for (std::int64_t flat = 0; flat < cellCount; ++flat) all[std::size_t(flat)] = flat;
+    checkPolynomialCells(lattice, options, extraction, all, result);
   }
   for (CellFolding c : result.cells) {
     result.positiveCount += c == CellFolding::Positive;

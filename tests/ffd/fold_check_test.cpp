@@ -8,6 +8,7 @@
 
 #include <Eigen/LU>
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "test_lattices.h"
 
@@ -144,6 +145,121 @@ TEST(FoldCheck, SubdivisionCertifiesWhatTheFirstBoundLeavesUnknown) {
   shallow.maxDepth = 11;
   EXPECT_THROW(checkFolding(lattice, shallow), LatticeError);
   EXPECT_THROW(jacobianDeterminantPatch(lattice, {1, 0, 0}), LatticeError);
+}
+
+// A lattice whose three axes share a degree 1..3: random counts, a uniform, non-uniform or
+// Bernstein basis, control points moved by up to `move` control spacings (0.05 certifies; 0.5
+// and more fold some cells and leave others inconclusive), a random frame, mirrored or not.
+Lattice equalDegreeLattice(std::mt19937& rng, double move) {
+  const int degree = std::uniform_int_distribution<int>(1, 3)(rng);
+  const int kind = std::uniform_int_distribution<int>(0, 2)(rng);
+  BoxLatticeOptions options;
+  for (int a = 0; a < 3; ++a) {
+    options.counts[a] = kind == 0 ? degree + 1 : std::uniform_int_distribution<int>(degree + 1, degree + 4)(rng);
+    if (kind == 0) {
+      options.bases[a] = AxisBasis::bernstein();
+    } else if (kind == 1) {
+      options.bases[a] = AxisBasis::bspline(degree);
+    } else {
+      Eigen::VectorXd knots(options.counts[a] + degree + 1);
+      knots.head(degree + 1).setZero();
+      knots.tail(degree + 1).setOnes();
+      for (int i = degree + 1; i < options.counts[a]; ++i)
+        knots[i] = knots[i - 1] + std::uniform_real_distribution<double>(0.3, 1.0)(rng) / (options.counts[a] - degree);
+      options.bases[a] = AxisBasis::bsplineWithKnots(degree, knots);
+    }
+  }
+  options.frame = testing::randomFrame(rng);
+  if (rng() % 2) options.frame = options.frame * Eigen::Scaling(Eigen::Vector3d(1, -1, 1));
+  Lattice lattice = makeBoxLattice(options);
+  Eigen::MatrixX3d p = lattice.controlPoints();
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (Eigen::Index r = 0; r < p.rows(); ++r)
+    for (int c = 0; c < 3; ++c) p(r, c) += move / (options.counts[c] - 1) * U(rng);
+  lattice.setControlPoints(p);
+  return lattice;
+}
+
+// The batched products (several cells per SIMD lane set, compiled for AVX2 / AVX-512 too) against
+// the general product of nets one cell at a time: the same verdict in every cell, and lowest
+// coefficients that agree to 1e-12 of the cell's largest coefficient (jacobianDeterminantPatch).
+TEST(FoldCheck, BatchedProductsAgreeWithTheReferenceExpansion) {
+  std::mt19937 rng(24);
+  Eigen::Index verdicts[3] = {0, 0, 0};
+  for (int trial = 0; trial < 60; ++trial) {
+    const double move = std::array{0.05, 0.5, 1.0, 2.0}[std::size_t(trial % 4)];
+    const Lattice lattice = equalDegreeLattice(rng, move);
+    FoldCheckOptions options;
+    options.maxDepth = std::array{0, 1, 3}[std::size_t(trial % 3)];
+    const FoldCheckResult fast = checkFolding(lattice, options);
+    options.referenceExpansion = true;
+    const FoldCheckResult reference = checkFolding(lattice, options);
+    ASSERT_EQ(fast.cells.size(), reference.cells.size());
+    EXPECT_EQ(fast.orientation, reference.orientation);
+    for (std::size_t flat = 0; flat < fast.cells.size(); ++flat) {
+      const std::array<int, 3> cell = {int(flat % fast.cellCounts[0]), int(flat / fast.cellCounts[0] % fast.cellCounts[1]),
+                                       int(flat / fast.cellCounts[0] / fast.cellCounts[1])};
+      const JacobianDeterminantPatch patch = jacobianDeterminantPatch(lattice, cell);
+      const double scale = patch.coefficients.cwiseAbs().maxCoeff();
+      EXPECT_EQ(fast.cells[flat], reference.cells[flat]) << "trial " << trial << " cell " << flat;
+      EXPECT_NEAR(fast.lowerBound[flat], reference.lowerBound[flat], 1e-12 * scale) << "trial " << trial << " cell " << flat;
+      if (fast.cells[flat] == CellFolding::Folds) {
+        ASSERT_TRUE(fast.witness[flat].allFinite());
+        // det J of the cell's own polynomial there (at a cell's face, Lattice::jacobian of a degree 1
+        // axis takes the neighbour's piece: det J is not continuous across cells of degree 1).
+        EXPECT_LE(fast.orientation * patch.value(fast.witness[flat]), 1e-12 * scale) << "trial " << trial;
+      }
+      ++verdicts[int(fast.cells[flat])];
+    }
+    EXPECT_EQ(fast.positiveCount, reference.positiveCount);
+    EXPECT_EQ(fast.foldsCount, reference.foldsCount);
+  }
+  // The random lattices exercised every verdict.
+  EXPECT_GT(verdicts[int(CellFolding::Positive)], 100);
+  EXPECT_GT(verdicts[int(CellFolding::Folds)], 100);
+  EXPECT_GT(verdicts[int(CellFolding::Unknown)], 10);
+}
+
+// One thread or two: the same verdicts, bounds and witnesses, bit for bit.
+TEST(FoldCheck, VerdictsDoNotDependOnTheThreadCount) {
+  std::mt19937 rng(25);
+  const int before = omp_get_max_threads();
+  for (int trial = 0; trial < 8; ++trial) {
+    const Lattice lattice = equalDegreeLattice(rng, trial % 2 ? 1.0 : 0.1);
+    omp_set_num_threads(1);
+    const FoldCheckResult one = checkFolding(lattice);
+    omp_set_num_threads(2);
+    const FoldCheckResult two = checkFolding(lattice);
+    EXPECT_EQ(one.cells, two.cells);
+    EXPECT_EQ(one.lowerBound, two.lowerBound);
+    for (std::size_t c = 0; c < one.cells.size(); ++c)
+      if (one.cells[c] == CellFolding::Folds) EXPECT_EQ(one.witness[c], two.witness[c]);
+  }
+  omp_set_num_threads(before);
+}
+
+// Degrees above kFoldCheckMaxDegree are refused with the axis and its degree; 10 is bounded.
+TEST(FoldCheck, DegreesAboveTenAreRefusedWithTheAxisAndItsDegree) {
+  BoxLatticeOptions options;
+  options.bases = {AxisBasis::bernstein(), AxisBasis::bernstein(), AxisBasis::bernstein()};
+  options.counts = Eigen::Vector3i(2, 12, 2);  // degree 11 along v
+  const Lattice eleven = makeBoxLattice(options);
+  try {
+    checkFolding(eleven);
+    ADD_FAILURE() << "degree 11 was not refused";
+  } catch (const LatticeError& e) {
+    EXPECT_STREQ(e.what(), "checkFolding: axis 1 has degree 11; the fold-over bound handles degrees up to 10");
+  }
+  try {
+    jacobianDeterminantPatch(eleven, {0, 0, 0});
+    ADD_FAILURE() << "degree 11 was not refused";
+  } catch (const LatticeError& e) {
+    EXPECT_STREQ(e.what(), "jacobianDeterminantPatch: axis 1 has degree 11; the fold-over bound handles degrees up to 10");
+  }
+  options.counts = Eigen::Vector3i(2, 11, 2);  // degree 10: bounded (the identity map is certified)
+  const FoldCheckResult ten = checkFolding(makeBoxLattice(options));
+  EXPECT_TRUE(ten.certifiedPositive());
+  EXPECT_GT(ten.lowerBound[0], 0.0);
 }
 
 }  // namespace

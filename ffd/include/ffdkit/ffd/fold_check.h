@@ -28,10 +28,14 @@ struct JacobianDeterminantPatch {
   double value(const Eigen::Vector3d& uvw) const;
 };
 
+/// The largest axis degree the fold-over bound handles: det J then has degree 29 per axis (27,000
+/// Bernstein coefficients per cell, 64,000 for a rational cell's det[H_u, H_v, H_w, H]).
+constexpr int kFoldCheckMaxDegree = 10;
+
 /// The det J patch of cell (cu, cv, cw) (cells per axis: Lattice::axis(a).cellCount()), of the
 /// polynomial map of the control points (a rational lattice's weights are not part of it;
-/// checkFolding bounds a rational lattice's det J).
-/// @throws LatticeError on a cell out of range.
+/// checkFolding bounds a rational lattice's det J), by the general product of nets.
+/// @throws LatticeError on a cell out of range, or an axis of degree above kFoldCheckMaxDegree.
 JacobianDeterminantPatch jacobianDeterminantPatch(const Lattice& lattice, const std::array<int, 3>& cell);
 
 /// Verdict on one lattice cell.
@@ -46,6 +50,11 @@ struct FoldCheckOptions {
   /// Halvings of each cell (along all three axes at once) where the coefficients' bound is
   /// inconclusive: a cell is split into at most 8^maxDepth boxes.
   int maxDepth = 4;
+  /// Compute every cell's coefficients one cell at a time by the general product of nets (the
+  /// path of any degrees, jacobianDeterminantPatch's) instead of the batched products of lattices
+  /// whose axes share a degree 1 to 3. Slower; the same verdicts, and coefficients equal to
+  /// rounding: the reference the fast path is tested against.
+  bool referenceExpansion = false;
 };
 
 /// The fold-over verdict of every cell of a lattice.
@@ -85,7 +94,12 @@ struct FoldCheckResult {
 /// and subdivided exactly as det J's are; lowerBound is min G / D^4 with D the largest window
 /// weight when min G > 0, the smallest otherwise. A cell whose window has equal weights is a
 /// polynomial map, and takes det J's own bound.
-/// @throws LatticeError on maxDepth outside [0, 10].
+/// Axes of one degree 1 to 3 compute their cells' coefficients several at a time (one SIMD lane
+/// per cell); cells run in parallel (OpenMP), with the same verdicts and bounds whatever the
+/// thread count.
+/// @throws LatticeError on maxDepth outside [0, 10], or an axis of degree above
+///         kFoldCheckMaxDegree (a Bernstein axis of more than 11 control points): "checkFolding:
+///         axis 0 has degree 11; the fold-over bound handles degrees up to 10".
 FoldCheckResult checkFolding(const Lattice& lattice, const FoldCheckOptions& options = {});
 
 }  // namespace ffdkit::ffd

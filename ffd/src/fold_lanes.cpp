@@ -1,0 +1,205 @@
+#include "fold_lanes.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+#include "vector_clones.h"
+
+namespace ffdkit::ffd::detail {
+namespace {
+
+constexpr int L = kFoldLanes;
+typedef double Lanes __attribute__((vector_size(L * sizeof(double))));
+
+// Unaligned loads and stores of one lane vector (the buffers are plain doubles, lane fastest).
+FFDKIT_INLINE Lanes load(const double* p) {
+  Lanes v;
+  std::memcpy(&v, p, sizeof(v));
+  return v;
+}
+FFDKIT_INLINE void store(double* p, const Lanes& v) { std::memcpy(p, &v, sizeof(v)); }
+
+// binomial(n, k) for n <= 8 and their reciprocals (the scaled Bernstein forms below).
+constexpr double kBinomial[9][9] = {{1},
+                                    {1, 1},
+                                    {1, 2, 1},
+                                    {1, 3, 3, 1},
+                                    {1, 4, 6, 4, 1},
+                                    {1, 5, 10, 10, 5, 1},
+                                    {1, 6, 15, 20, 15, 6, 1},
+                                    {1, 7, 21, 35, 35, 21, 7, 1},
+                                    {1, 8, 28, 56, 70, 56, 28, 8, 1}};
+
+// The cells' Bezier nets from their control windows: per lane the window (lane fastest), then
+// the extraction matrices applied one axis at a time (a Bernstein axis's is the identity, exact).
+// net: [N^3][3][L], E: [3][N][N][L] (E[a][r][i]: coefficient of B_i in the r-th function).
+template <int P>
+FFDKIT_VECTOR_CLONES void bezierNets(double* __restrict net, const double* __restrict E) {
+  constexpr int N = P + 1;
+  Lanes a[N * N * N][3], t[N * N * N][3];
+  for (int n = 0; n < N * N * N; ++n)
+    for (int c = 0; c < 3; ++c) a[n][c] = load(net + L * (c + 3 * n));
+  const auto at = [](int i, int j, int k) { return i + N * (j + N * k); };
+  const auto e = [E](int axis, int r, int i) { return load(E + L * (i + N * (r + N * axis))); };
+  for (int axis = 0; axis < 3; ++axis) {
+    Lanes(&from)[N * N * N][3] = axis == 1 ? t : a;
+    Lanes(&to)[N * N * N][3] = axis == 1 ? a : t;
+    for (int k = 0; k < N; ++k)
+      for (int j = 0; j < N; ++j)
+        for (int i = 0; i < N; ++i) {
+          const int out[3] = {i, j, k};
+          Lanes sum[3] = {};
+          for (int r = 0; r < N; ++r) {
+            int in[3] = {i, j, k};
+            in[axis] = r;
+            const Lanes w = e(axis, r, out[axis]);
+            for (int c = 0; c < 3; ++c) sum[c] += w * from[at(in[0], in[1], in[2])][c];
+          }
+          for (int c = 0; c < 3; ++c) to[at(i, j, k)][c] = sum[c];
+        }
+  }
+  for (int n = 0; n < N * N * N; ++n)
+    for (int c = 0; c < 3; ++c) store(net + L * (c + 3 * n), t[n][c]);
+}
+
+// det J's Bernstein coefficients of the L cells whose Bezier nets are `net` ([N^3][3][L], i
+// fastest), `scale` = p / cell width per axis ([3][L]): the derivative nets in scaled Bernstein
+// form (coefficient times the binomials of its degrees, so that a product is a convolution), then
+// C = X_v x X_w and X_u . C, each output row (the innermost index) accumulated in registers over
+// the rows of the factors that reach it. `out` gets (3P)^3 coefficients x L, lane fastest, index
+// i + 3P (j + 3P k); lowest / highest their smallest and largest per lane.
+template <int P>
+FFDKIT_VECTOR_CLONES void determinantLanes(const double* __restrict net, const double* __restrict scale,
+                                           double* __restrict out, double* lowest, double* highest) {
+  constexpr int N = P + 1, M = P;            // a net's and a derivative's points per axis
+  constexpr int C0 = 2 * P + 1, C1 = 2 * P;  // X_v x X_w: (2P+1) x 2P x 2P
+  constexpr int Q = 3 * P;                   // det J: Q^3
+  const auto b = [net](int i, int j, int k, int c) { return load(net + L * (c + 3 * (i + N * (j + N * k)))); };
+  Lanes du[3][N][N][M], dv[3][N][M][N], dw[3][M][N][N];
+  const Lanes su = load(scale), sv = load(scale + L), sw = load(scale + 2 * L);
+  for (int k = 0; k < N; ++k)
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i)
+        for (int c = 0; c < 3; ++c) {
+          if (i < M)
+            du[c][k][j][i] = (kBinomial[M - 1][i] * kBinomial[N - 1][j] * kBinomial[N - 1][k]) * su *
+                             (b(i + 1, j, k, c) - b(i, j, k, c));
+          if (j < M)
+            dv[c][k][j][i] = (kBinomial[N - 1][i] * kBinomial[M - 1][j] * kBinomial[N - 1][k]) * sv *
+                             (b(i, j + 1, k, c) - b(i, j, k, c));
+          if (k < M)
+            dw[c][k][j][i] = (kBinomial[N - 1][i] * kBinomial[N - 1][j] * kBinomial[M - 1][k]) * sw *
+                             (b(i, j, k + 1, c) - b(i, j, k, c));
+        }
+  // C = X_v x X_w: row (kc, jc) gathers the rows (kv, jv) of X_v and (kc - kv, jc - jv) of X_w.
+  Lanes cross[C1][C1][3][C0];
+  for (int kc = 0; kc < C1; ++kc)
+    for (int jc = 0; jc < C1; ++jc) {
+      Lanes acc[3][C0] = {};
+      for (int kv = std::max(0, kc - (M - 1)); kv <= std::min(N - 1, kc); ++kv)
+        for (int jv = std::max(0, jc - (N - 1)); jv <= std::min(M - 1, jc); ++jv) {
+          const int kw = kc - kv, jw = jc - jv;
+#pragma GCC unroll 4
+          for (int iv = 0; iv < N; ++iv) {
+            const Lanes vx = dv[0][kv][jv][iv], vy = dv[1][kv][jv][iv], vz = dv[2][kv][jv][iv];
+#pragma GCC unroll 4
+            for (int iw = 0; iw < N; ++iw) {
+              const Lanes wx = dw[0][kw][jw][iw], wy = dw[1][kw][jw][iw], wz = dw[2][kw][jw][iw];
+              acc[0][iv + iw] += vy * wz - vz * wy;
+              acc[1][iv + iw] += vz * wx - vx * wz;
+              acc[2][iv + iw] += vx * wy - vy * wx;
+            }
+          }
+        }
+      for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < C0; ++i) cross[kc][jc][c][i] = acc[c][i];
+    }
+  // det J = X_u . C: row (K, J) gathers the rows (ku, ju) of X_u and (K - ku, J - ju) of C; back
+  // from the scaled form by the reciprocal binomials of degree Q - 1.
+  double inverse[Q];
+  for (int i = 0; i < Q; ++i) inverse[i] = 1.0 / kBinomial[Q - 1][i];
+  Lanes lo = Lanes{} + std::numeric_limits<double>::infinity(), hi = -lo;
+  for (int K = 0; K < Q; ++K)
+    for (int J = 0; J < Q; ++J) {
+      Lanes acc[Q] = {};
+      for (int ku = std::max(0, K - (C1 - 1)); ku <= std::min(N - 1, K); ++ku)
+        for (int ju = std::max(0, J - (C1 - 1)); ju <= std::min(N - 1, J); ++ju) {
+          const int kc = K - ku, jc = J - ju;
+          Lanes ux[M], uy[M], uz[M];
+          for (int iu = 0; iu < M; ++iu) {
+            ux[iu] = du[0][ku][ju][iu];
+            uy[iu] = du[1][ku][ju][iu];
+            uz[iu] = du[2][ku][ju][iu];
+          }
+#pragma GCC unroll 8
+          for (int ic = 0; ic < C0; ++ic) {
+            const Lanes cx = cross[kc][jc][0][ic], cy = cross[kc][jc][1][ic], cz = cross[kc][jc][2][ic];
+#pragma GCC unroll 4
+            for (int iu = 0; iu < M; ++iu) acc[iu + ic] += ux[iu] * cx + uy[iu] * cy + uz[iu] * cz;
+          }
+        }
+      const double jk = inverse[J] * inverse[K];
+      for (int I = 0; I < Q; ++I) {
+        const Lanes value = acc[I] * (inverse[I] * jk);
+        store(out + L * (I + Q * (J + Q * K)), value);
+        lo = value < lo ? value : lo;
+        hi = value > hi ? value : hi;
+      }
+    }
+  store(lowest, lo);
+  store(highest, hi);
+}
+
+}  // namespace
+
+bool foldLanesSupport(const Lattice& lattice) {
+  const int p = lattice.axis(0).degree();
+  return p >= 1 && p <= 3 && lattice.axis(1).degree() == p && lattice.axis(2).degree() == p;
+}
+
+DeterminantLanes::DeterminantLanes(const Lattice& lattice, const std::vector<Eigen::MatrixXd>* extraction)
+    : lattice_(lattice), extraction_(extraction), degree_(3 * lattice.axis(0).degree() - 1) {
+  coefficients_.resize(std::size_t((degree_ + 1) * (degree_ + 1) * (degree_ + 1) * L));
+}
+
+void DeterminantLanes::compute(const std::array<int, 3>* cells, int count) {
+  const int p = lattice_.axis(0).degree(), n = p + 1;
+  alignas(64) double net[64 * 3 * L], E[3 * 4 * 4 * L], scale[3 * L];
+  const Eigen::MatrixX3d& points = lattice_.controlPoints();
+  for (int lane = 0; lane < L; ++lane) {
+    const std::array<int, 3>& cell = cells[std::min(lane, count - 1)];  // spare lanes repeat the last cell
+    for (int a = 0; a < 3; ++a) {
+      const AxisSpline& axis = lattice_.axis(a);
+      scale[L * a + lane] = p / (axis.cellMax(cell[a]) - axis.cellMin(cell[a]));
+      const Eigen::MatrixXd& e = extraction_[a][std::size_t(cell[a])];
+      for (int r = 0; r < n; ++r)
+        for (int i = 0; i < n; ++i) E[L * (i + n * (r + n * a)) + lane] = e(r, i);
+    }
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const Eigen::Index f = lattice_.index(lattice_.axis(0).controlIndex(cell[0], i),
+                                                lattice_.axis(1).controlIndex(cell[1], j),
+                                                lattice_.axis(2).controlIndex(cell[2], k));
+          for (int c = 0; c < 3; ++c) net[L * (c + 3 * (i + n * (j + n * k))) + lane] = points(f, c);
+        }
+  }
+  if (p == 1) {
+    bezierNets<1>(net, E);
+    determinantLanes<1>(net, scale, coefficients_.data(), lowest_, highest_);
+  } else if (p == 2) {
+    bezierNets<2>(net, E);
+    determinantLanes<2>(net, scale, coefficients_.data(), lowest_, highest_);
+  } else {
+    bezierNets<3>(net, E);
+    determinantLanes<3>(net, scale, coefficients_.data(), lowest_, highest_);
+  }
+}
+
+void DeterminantLanes::coefficients(int lane, double sign, std::vector<double>& out) const {
+  out.resize(coefficients_.size() / L);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = sign * coefficients_[L * i + std::size_t(lane)];
+}
+
+}  // namespace ffdkit::ffd::detail
