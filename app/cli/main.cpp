@@ -3,13 +3,13 @@
 #include <cstdio>
 #include <exception>
 
-#include "src/cad_input.h"
+#include "ffdkit/cad_scene/scene_cad_objects.h"
 #include "src/commands.h"
 #include "src/memory_reuse.h"
 
 int main(int argc, char** argv) {
   ffdkit::cli::keepFreedMemoryForReuse();
-  ffdkit::cli::registerCadSceneReader();  // scenes naming STEP or IGES parts (with the cad module)
+  ffdkit::cad_scene::registerCadObjectReader();  // scenes naming STEP or IGES parts (with the cad module)
   try {
     return ffdkit::cli::runCli(std::vector<std::string>(argv + 1, argv + argc));
   } catch (const std::exception& e) {

@@ -1,8 +1,8 @@
-// ffdkit-cli deform with a STEP or IGES input: the B-rep deformed by the cad module (docs/cad.md).
+// ffdkit-cli deform with a STEP or IGES input, or a scene's CAD object written as STEP or IGES: the
+// B-rep deformed by the cad module (docs/cad.md). Reading scenes' CAD objects is cad_scene's.
 #include "cad_input.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +12,7 @@
 
 #include "commands.h"
 #include "console.h"
+#include "ffdkit/cad_scene/scene_cad_objects.h"
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/cad_objects.h"
 #include "ffdkit/scenes/scene.h"
@@ -23,7 +24,6 @@
 #include "ffdkit/cad/cad_check.h"
 #include "ffdkit/cad/cad_deform.h"
 #include "ffdkit/cad/cad_io.h"
-#include "ffdkit/cad/tessellation.h"
 #endif
 
 namespace ffdkit::cli {
@@ -32,11 +32,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool hasCadExtension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs";
-}
+bool hasCadExtension(const std::string& path) { return scenes::isCadFile(path); }
 
 std::string fixed(double value, int digits) {
   char text[64];
@@ -75,11 +71,6 @@ bool isCadSceneDeform(const Args& args) {
 #if FFDKIT_HAS_CAD
 
 namespace {
-
-// The tessellation of a scene's CAD object, as the app's import makes it by default: within 1e-3
-// of the part's size of its surfaces, no triangle edge longer than 2% of it (planes bend too).
-constexpr double kSceneTessellationTolerance = 1e-3;
-constexpr double kSceneMaxEdgeLength = 0.02;
 
 /// deform's --cad-* options, checked.
 cad::CadDeformOptions cadOptions(const Args& args) {
@@ -151,30 +142,7 @@ int deformAndWrite(const cad::CadModel& model, const ffd::Lattice& lattice, cons
   return measured && !measured->valid ? 1 : 0;
 }
 
-bool isCadObject(const scenes::SceneObject& object) {
-  const auto* file = std::get_if<scenes::MeshFileSource>(&object.source);
-  return file != nullptr && scenes::isCadFile(file->path);
-}
-
 }  // namespace
-
-void registerCadSceneReader() {
-  scenes::setCadMeshReader([](const fs::path& path, meshio::ReadBudget& budget) {
-    const cad::CadModel model = cad::readCad(path);
-    cad::TessellationOptions options;
-    const double size = std::max(model.bounds().diagonal().norm(), 1e-9);
-    options.linearDeflection = kSceneTessellationTolerance * size;
-    options.maxEdgeLength = kSceneMaxEdgeLength * size;
-    const cad::CadTriangles triangles = cad::tessellate(model, options);
-    const std::string what = path.string() + ": the tessellation of its " + std::to_string(model.counts().faces) + " faces";
-    budget.chargePoints(static_cast<std::uint64_t>(triangles.points.rows()), what);
-    budget.chargeBytes(static_cast<std::uint64_t>(triangles.triangles.rows()), 3 * sizeof(int), what);
-    scenes::MeshData mesh;
-    mesh.points = triangles.points;
-    mesh.triangles = triangles.triangles;
-    return mesh;
-  });
-}
 
 int runCadDeform(const Args& args) {
   Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
@@ -227,61 +195,42 @@ int runCadSceneDeform(const Args& args) {
   if (!named.empty()) {
     object = scene.findObject(named.front());
     if (object == nullptr) throw std::runtime_error(sceneFile.string() + ": no object named '" + named.front() + "'");
-    if (!isCadObject(*object))
+    if (!cad_scene::isCadObject(*object))
       throw std::runtime_error(sceneFile.string() + ": object '" + named.front() +
                                "' is not read from a STEP or IGES file; -o " + output + " writes a CAD object");
   } else {
-    int count = 0;
-    for (const scenes::SceneObject& candidate : scene.objects())
-      if (isCadObject(candidate)) object = &candidate, ++count;
-    if (count == 0)
+    const std::vector<const scenes::SceneObject*> found = cad_scene::cadObjects(scene);
+    if (found.empty())
       throw std::runtime_error(sceneFile.string() + ": the scene has no object read from a STEP or IGES file; -o " +
                                output + " writes one (a mesh format writes the deformed meshes)");
-    if (count > 1)
-      throw UsageError(sceneFile.string() + ": the scene has " + std::to_string(count) +
+    if (found.size() > 1)
+      throw UsageError(sceneFile.string() + ": the scene has " + std::to_string(found.size()) +
                        " CAD objects: pick the one to write with --object NAME");
+    object = found.front();
   }
   // The part's file, relative to the scene's folder (or a sample folder given as the scene).
   const fs::path folder = fs::is_directory(sceneFile) ? sceneFile
                           : sceneFile.has_parent_path() ? sceneFile.parent_path()
                                                         : fs::path(".");
-  const fs::path source(std::get<scenes::MeshFileSource>(object->source).path);
-  const fs::path part = source.is_absolute() ? source : folder / source;
-  std::vector<widgets::WidgetId> lattices;
-  for (const scenes::Attachment& attachment : scene.attachments())
-    if (std::find(attachment.objects.begin(), attachment.objects.end(), object->id) != attachment.objects.end())
-      lattices.push_back(attachment.lattice);
-  if (lattices.size() > 1)
-    throw std::runtime_error("'" + object->name + "' is deformed by " + std::to_string(lattices.size()) +
-                             " lattices; a STEP or IGES output composes one lattice");
-  if (!lattices.empty() && scene.widgets.pipelineOrder(lattices.front()).size() > 1)
-    throw std::runtime_error("'" + object->name + "' is deformed by lattice '" + scene.widgets.name(lattices.front()) +
-                             "' and its child lattices; a STEP or IGES output composes one lattice without children");
+  const fs::path part = cad_scene::cadObjectFile(*object, folder);
+  const std::optional<widgets::WidgetId> lattice = cad_scene::cadObjectLattice(scene, *object);
   console.begin("read", "reading " + part.string());
   const cad::CadModel model = cad::readCad(part);
-  if (lattices.empty()) {
+  if (!lattice) {
     console.begin("write", "writing " + output);
     cad::writeCad(model, output);
     console.end();
     console.say("wrote " + output + " as read: no lattice deforms '" + object->name + "'");
     return 0;
   }
-  return deformAndWrite(model, scene.widgets.ffdLattice(lattices.front()), options, output, console);
+  return deformAndWrite(model, scene.widgets.ffdLattice(*lattice), options, output, console);
 }
 
 #else
 
-void registerCadSceneReader() {}  // a scene's STEP or IGES object is then a read error saying so
+int runCadDeform(const Args&) { throw cad_scene::CadUnavailableError("STEP and IGES inputs"); }
 
-int runCadDeform(const Args&) {
-  throw std::runtime_error("this ffdkit-cli was built without OpenCASCADE (FFDKIT_WITH_CAD=OFF), which STEP and IGES "
-                           "inputs need");
-}
-
-int runCadSceneDeform(const Args&) {
-  throw std::runtime_error("this ffdkit-cli was built without OpenCASCADE (FFDKIT_WITH_CAD=OFF), which STEP and IGES "
-                           "outputs need");
-}
+int runCadSceneDeform(const Args&) { throw cad_scene::CadUnavailableError("STEP and IGES outputs"); }
 
 #endif
 

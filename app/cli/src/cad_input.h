@@ -17,13 +17,6 @@ bool isCadDeform(const Args& args);
 /// INPUT) and -o OUTPUT.step (.stp .iges .igs), no widget file.
 bool isCadSceneDeform(const Args& args);
 
-/// Registers the reader of a scene's STEP and IGES objects for this process (scenes/cad_objects.h):
-/// the part read by cad::readCad (in a child, with its limits) and tessellated within 1e-3 of its
-/// size, no triangle edge longer than 2% of it, as the app imports it; deform with a mesh output,
-/// info and validate then read such scenes. Without the cad module it registers nothing, and such
-/// a scene is refused naming the file.
-void registerCadSceneReader();
-
 /// ffdkit-cli deform --widgets TOOL part.step -o out.step: the tool's one lattice composed exactly
 /// with the part's surfaces where it is a polynomial of low enough degree, approximated to a
 /// tolerance elsewhere (or its poles moved, --cad-method poles), written as STEP or IGES

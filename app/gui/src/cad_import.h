@@ -1,7 +1,9 @@
 // STEP and IGES parts in the app (docs/cad.md): File > Import Mesh reads them as objects (their
 // tessellation, deformed live like any mesh), File > Export Deformed CAD Model writes the exact
-// FFD of the B-rep (cad::deformCad). Without the cad module (FFDKIT_WITH_CAD=OFF) both say that
-// the build lacks it.
+// FFD of the B-rep (cad::deformCad). The reading and writing are cad_scene's
+// (ffdkit/cad_scene/scene_cad_objects.h, shared with ffdkit-cli); here the Qt side: the
+// tessellation setting, its dialog, the export's choice of object and its status line. Without
+// the cad module (FFDKIT_WITH_CAD=OFF) both say that the build lacks it.
 #pragma once
 
 #include <filesystem>
@@ -24,13 +26,13 @@ inline constexpr const char* kCadTessellationKey = "cadTessellationTolerance";
 /// Whether this build has the cad module (OpenCASCADE).
 bool hasCadModule();
 
-/// Registers the reader of STEP and IGES objects (scenes::setCadMeshReader): the part read by
-/// cad::readCad (in a child process, with its time and memory limits) and tessellated with the
-/// import tolerance, no triangle edge longer than 2% of the part's size. Without the cad module it registers nothing (such objects are read errors
-/// that say the build lacks CAD).
+/// Registers the reader of STEP and IGES objects (cad_scene::registerCadObjectReader) with the
+/// import tolerance of the moment (cadTessellationTolerance) and cad_scene's other defaults.
+/// Without the cad module it registers nothing (such objects are read errors that say so).
 void registerCadObjectReader();
 
-/// The import tessellation tolerance (relative to the part's size), from QSettings.
+/// The import tessellation tolerance (relative to the part's size), from QSettings; the default
+/// (cad_scene::CadObjectTessellation) when unset or out of range.
 double cadTessellationTolerance();
 
 /// Adds File > CAD Tessellation Tolerance... (actionCadTessellation): asks for the relative
@@ -40,8 +42,9 @@ void addCadTessellationAction(QMenu* file, QWidget* parent);
 
 /// File > Export Deformed CAD Model: the CAD object among `selected` (else the scene's only CAD
 /// object) deformed exactly (cad::CadMethod::Exact) by the one lattice attached to it, written
-/// as STEP or IGES by the extension of `output`; undeformed (no lattice) it is written as read.
-/// `baseDirectory` resolves a relative source path (the scene file's folder).
+/// as STEP or IGES by the extension of `output` (cad_scene::writeDeformedCadObject); undeformed
+/// (no lattice) it is written as read. `baseDirectory` resolves a relative source path (the scene
+/// file's folder).
 /// @return the status line's report. @throws std::runtime_error (cad::CadError, ...) saying what
 ///         stops the export: no CAD object, more than one lattice or a child lattice, a lattice or
 ///         outside policy the exact composition cannot take, a degree over its limit, a build
