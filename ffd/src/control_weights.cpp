@@ -102,11 +102,16 @@ ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& em
 
 namespace {
 
+// 0 for the points of a block outside the control point's support (or left unchanged).
+void zeroBlock(const Embedding::Block& block, const Embedding::IndexVector& order, Eigen::VectorXd& result) {
+  for (std::uint32_t q = block.begin; q < block.end; ++q) result[order.empty() ? q : order[q]] = 0.0;
+}
+
 // controlPointWeights on a rational lattice: s R_f = s w_f B_f / sum w B, from the whole window
 // of each point whose cell holds the control point (detail::windowWeights).
-Eigen::VectorXd rationalControlPointWeights(const Lattice& lattice, const Embedding& embedding, Eigen::Index flat) {
+void rationalControlPointWeights(const Lattice& lattice, const Embedding& embedding, Eigen::Index flat,
+                                 Eigen::VectorXd& result) {
   const Eigen::Index n = embedding.pointCount();
-  Eigen::VectorXd result = Eigen::VectorXd::Zero(n);
   const int np[3] = {lattice.axis(0).degree() + 1, lattice.axis(1).degree() + 1, lattice.axis(2).degree() + 1};
   const std::size_t size = static_cast<std::size_t>(np[0]) * np[1] * np[2];
   const auto& blocks = embedding.blocks();
@@ -119,10 +124,16 @@ Eigen::VectorXd rationalControlPointWeights(const Lattice& lattice, const Embedd
 #pragma omp for schedule(dynamic, 64)
     for (std::int64_t bi = 0; bi < static_cast<std::int64_t>(blocks.size()); ++bi) {
       const Embedding::Block& block = blocks[static_cast<std::size_t>(bi)];
-      if (block.kind == Embedding::BlockKind::Frozen) continue;
+      bool inWindow = block.kind != Embedding::BlockKind::Frozen;
       const std::array<int, 3> cell = embedding.cellOf(block);
-      detail::windowControlIndices(lattice, cell, indices.data());
-      if (std::find(indices.begin(), indices.end(), flat) == indices.end()) continue;
+      if (inWindow) {
+        detail::windowControlIndices(lattice, cell, indices.data());
+        inWindow = std::find(indices.begin(), indices.end(), flat) != indices.end();
+      }
+      if (!inWindow) {
+        zeroBlock(block, order, result);
+        continue;
+      }
       for (std::uint32_t q = block.begin; q < block.end; ++q) {
         const double s = block.kind == Embedding::BlockKind::Blended
                              ? embedding.blendWeight()[block.blendOffset + q - block.begin]
@@ -136,17 +147,25 @@ Eigen::VectorXd rationalControlPointWeights(const Lattice& lattice, const Embedd
       }
     }
   }
-  return result;
 }
 
 }  // namespace
 
 Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& embedding, Eigen::Index flat) {
+  Eigen::VectorXd result;
+  controlPointWeights(lattice, embedding, flat, result);
+  return result;
+}
+
+void controlPointWeights(const Lattice& lattice, const Embedding& embedding, Eigen::Index flat, Eigen::VectorXd& result) {
   embedding.checkLattice(lattice);
   const Eigen::Vector3i g = lattice.gridIndex(flat);  // throws when out of range
-  if (lattice.isRational()) return rationalControlPointWeights(lattice, embedding, flat);
   const Eigen::Index n = embedding.pointCount();
-  Eigen::VectorXd result = Eigen::VectorXd::Zero(n);
+  if (result.size() != n) result.resize(n);  // every point is written below (0 outside the support)
+  if (lattice.isRational()) {
+    rationalControlPointWeights(lattice, embedding, flat, result);
+    return;
+  }
   int np[3], degrees[3];
   for (int a = 0; a < 3; ++a) {
     degrees[a] = lattice.axis(a).degree();
@@ -175,7 +194,10 @@ Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& emb
     for (std::int64_t t = 0; t < tileCount; ++t) {
       for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
         const Embedding::Block& block = blocks[bi];
-        if (block.kind == Embedding::BlockKind::Frozen) continue;
+        if (block.kind == Embedding::BlockKind::Frozen) {
+          zeroBlock(block, order, result);
+          continue;
+        }
         const std::array<int, 3> blockCell = embedding.cellOf(block);
         bool inWindow = true;
         for (int a = 0; a < 3; ++a) {
@@ -192,7 +214,10 @@ Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& emb
             for (int r : at[a]) sum[a][k] += cell[2 + r * (K + 1) + k];
           }
         }
-        if (!inWindow) continue;
+        if (!inWindow) {
+          zeroBlock(block, order, result);
+          continue;
+        }
         const double* params[3] = {embedding.sortedU().data(), embedding.sortedV().data(), embedding.sortedW().data()};
         for (std::uint32_t q = block.begin; q < block.end; ++q) {
           const Eigen::Index p = order.empty() ? q : order[q];
@@ -222,7 +247,6 @@ Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& emb
       }
     }
   }
-  return result;
 }
 
 }  // namespace ffdkit::ffd

@@ -426,12 +426,18 @@ std::optional<GestureMotion> SceneDeformer::gestureMotion(ObjectId object) const
 }
 
 Eigen::VectorXd SceneDeformer::controlWeights(ObjectId object, Eigen::Index controlPoint) const {
+  Eigen::VectorXd weights;
+  controlWeights(object, controlPoint, weights);
+  return weights;
+}
+
+void SceneDeformer::controlWeights(ObjectId object, Eigen::Index controlPoint, Eigen::VectorXd& weights) const {
   const ObjectPipeline& p = pipelineOf(object);
   if (p.stages.empty()) throw std::invalid_argument("SceneDeformer: object " + toString(object) + " has no lattice");
   const ffd::LatticeId last = p.pipeline->order().back();
   const ffd::Embedding* embedding = p.pipeline->embedding(last);
   if (!embedding) throw std::invalid_argument("SceneDeformer: object " + toString(object) + " is not embedded yet");
-  return ffd::controlPointWeights(p.pipeline->lattice(last), *embedding, controlPoint);
+  ffd::controlPointWeights(p.pipeline->lattice(last), *embedding, controlPoint, weights);
 }
 
 std::map<std::string, Eigen::MatrixX3d> deformScene(const Scene& scene) {

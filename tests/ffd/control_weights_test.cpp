@@ -1,5 +1,6 @@
 #include "ffdkit/ffd/control_weights.h"
 
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -141,6 +142,52 @@ TEST(ControlWeights, OneControlPointsWeightIsHowFarItsMoveMovesEachPoint) {
   const Embedding embedding = embed(lattice, Eigen::MatrixX3d::Constant(1, 3, 0.5));
   EXPECT_THROW(controlPointWeights(lattice, embedding, 64), LatticeError);
   EXPECT_THROW(controlPointWeights(lattice, embedding, -1), LatticeError);
+}
+
+TEST(ControlWeights, OneControlPointsWeightsIntoAReusedBufferAreTheSameBits) {
+  // The form the view's drags use (one buffer for every drag's first step) writes every point,
+  // also those outside the support and left unchanged, whatever the buffer held: the bits of the
+  // returning form on every basis and policy, and on a rational lattice.
+  std::mt19937 rng(12);
+  std::vector<Lattice> lattices;
+  for (int t = 0; t < 4; ++t) lattices.push_back(testing::randomLattice(rng, t % 2 ? 0.2 : 0.0));
+  lattices.push_back(makeCylindricalLattice());
+  BoxLatticeOptions falloff;
+  falloff.outsidePolicy = OutsidePolicy::falloff(0.3);
+  lattices.push_back(makeBoxLattice(falloff));
+  BoxLatticeOptions identity;
+  identity.outsidePolicy = OutsidePolicy::identity();
+  lattices.push_back(makeBoxLattice(identity));
+  Lattice rational = makeBoxLattice();
+  Eigen::VectorXd weights = Eigen::VectorXd::Ones(rational.pointCount());
+  weights[21] = 3.0;
+  weights[42] = 0.5;
+  rational.setRestWeights(weights);
+  rational.setWeights(weights);
+  lattices.push_back(rational);
+  for (const Lattice& lattice : lattices) {
+    const Eigen::MatrixX3d Q = pointsAround(lattice, rng);
+    const Embedding embedding = embed(lattice, Q);
+    Eigen::VectorXd reused = Eigen::VectorXd::Constant(Q.rows(), std::numeric_limits<double>::quiet_NaN());
+    const double* memory = reused.data();
+    std::uniform_int_distribution<Eigen::Index> pick(0, lattice.pointCount() - 1);
+    for (int trial = 0; trial < 4; ++trial) {
+      const Eigen::Index f = pick(rng);
+      controlPointWeights(lattice, embedding, f, reused);
+      const Eigen::VectorXd fresh = controlPointWeights(lattice, embedding, f);
+      EXPECT_EQ(reused.data(), memory);  // the buffer's own memory, no new one
+      ASSERT_EQ(reused.size(), fresh.size());
+      for (Eigen::Index p = 0; p < Q.rows(); ++p) EXPECT_EQ(reused[p], fresh[p]) << "point " << p << " of control point " << f;
+    }
+  }
+  // A buffer of another size is resized; a bad control point throws before the buffer is touched.
+  const Lattice lattice = makeBoxLattice();
+  const Embedding embedding = embed(lattice, Eigen::MatrixX3d::Constant(2, 3, 0.5));
+  Eigen::VectorXd other = Eigen::VectorXd::Constant(5, 7.0);
+  EXPECT_THROW(controlPointWeights(lattice, embedding, 64, other), LatticeError);
+  EXPECT_EQ(other, Eigen::VectorXd::Constant(5, 7.0));
+  controlPointWeights(lattice, embedding, 21, other);
+  EXPECT_EQ(other, controlPointWeights(lattice, embedding, 21));
 }
 
 TEST(ControlWeights, RejectsKBelowOneAndAStaleEmbedding) {

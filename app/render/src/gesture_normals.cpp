@@ -57,11 +57,7 @@ void exactNormals(const Eigen::MatrixX3i& triangles, const VertexFaces& vf, cons
   drawn->Modified();
 }
 
-void GestureNormals::stopFollowing() {
-  active_ = false;
-  motion_.resize(0, 3);
-  beta_.resize(0);
-}
+void GestureNormals::stopFollowing() { active_ = false; }
 
 bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::ObjectId object, vtkPoints* points,
                             vtkFloatArray* normals) {
@@ -144,14 +140,15 @@ bool GestureNormals::update(const scenes::SceneDeformer& deformer, scenes::Objec
     sumsValid_ = true;
     startDisplacement_ = now;
   }
-  const Eigen::VectorXd beta = deformer.controlWeights(object, motion->controlPoints[0]);
+  deformer.controlWeights(object, motion->controlPoints[0], weights_);  // into the buffer of the last drag
+  const Eigen::VectorXd& beta = weights_;
   // Per triangle: dbeta1 e2 - dbeta2 e1 (gesture_normals.h).
   scene_view_shapes::perFace(triangles, points, faceScratch,
                              [&](int a, int b, int c, const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) -> Eigen::Vector3d {
                                return (beta[b] - beta[a]) * e2 - (beta[c] - beta[a]) * e1;
                              });
-  motion_.resize(n, 3);
-  beta_.resize(n);
+  if (motion_.rows() != n) motion_.resize(n, 3);  // kept from the last drag: no fresh pages to fault in
+  if (beta_.rows() != n) beta_.resize(n);
   if (fromBase) {
     // One pass per vertex: W_v, beta_v, the normal N_v(base) + D x W_v and the point.
     sizeArrays(n, drawn, normals);

@@ -73,14 +73,17 @@ class GestureNormals {
               const scene_view_shapes::VertexFaces& vf, const Eigen::MatrixX3d& points, const Eigen::Vector3d& origin,
               std::vector<Eigen::Vector3f>& faceScratch, vtkPoints* drawn, vtkFloatArray* normals);
 
-  /// Heap bytes held: the sums of the normals (12 per vertex) and, while a motion is followed,
-  /// beta_v and W_v (16 more).
+  /// Heap bytes held: the sums of the normals (12 per vertex) and, once a drag was followed,
+  /// beta_v and W_v (16 more) and the double weights they were made from (8 more), kept for the
+  /// next drag's first step (fresh buffers of 24 bytes per vertex cost it page faults: 240 MB at
+  /// 10M vertices).
   std::size_t memoryBytes() const {
-    return sizeof(float) * std::size_t(sums_.size() + motion_.size() + beta_.size());
+    return sizeof(float) * std::size_t(sums_.size() + motion_.size() + beta_.size()) +
+           sizeof(double) * std::size_t(weights_.size());
   }
 
  private:
-  // Frees beta_v and W_v: no motion followed.
+  // No motion followed (the buffers stay for the next one).
   void stopFollowing();
 
   bool active_ = false;
@@ -97,6 +100,7 @@ class GestureNormals {
   Eigen::MatrixX3f sums_;    // N_v at sumsRevision_, the unnormalised area-weighted normals
   Eigen::MatrixX3f motion_;  // W_v
   Eigen::VectorXf beta_;     // beta_v, the moved control point's weights
+  Eigen::VectorXd weights_;  // beta_v in double (SceneDeformer::controlWeights), the first step's W_v from them
 };
 
 /// Area-weighted vertex normals of `points` (#points x 3) with triangles `triangles` (vf: the

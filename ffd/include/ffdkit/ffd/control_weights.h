@@ -54,4 +54,11 @@ ControlWeights largestControlWeights(const Lattice& lattice, const Embedding& em
 /// @throws LatticeError if `flat` is out of range or the embedding is stale for `lattice`.
 Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& embedding, Eigen::Index flat);
 
+/// controlPointWeights() into `weights`, resized to the embedding's point count only when its size
+/// differs: a caller that asks again (the first step of every drag) reuses its memory instead of
+/// faulting in 8 fresh bytes per point. Every entry is written (the same bits as the returning form).
+/// @throws LatticeError as controlPointWeights(), before `weights` is touched.
+void controlPointWeights(const Lattice& lattice, const Embedding& embedding, Eigen::Index flat,
+                         Eigen::VectorXd& weights);
+
 }  // namespace ffdkit::ffd

@@ -196,6 +196,10 @@ class SceneDeformer {
   /// @throws std::invalid_argument for an unknown object, one without lattices or not embedded yet;
   ///   ffd::LatticeError for a control point out of range.
   Eigen::VectorXd controlWeights(ObjectId object, Eigen::Index controlPoint) const;
+  /// controlWeights() into `weights`, reusing its memory when it already has one entry per point
+  /// (the view asks at the first step of every drag: no fresh buffer to fault in each time).
+  /// @throws as controlWeights(), before `weights` is touched.
+  void controlWeights(ObjectId object, Eigen::Index controlPoint, Eigen::VectorXd& weights) const;
   /// controlWeights() of the object that had this name at the last update.
   Eigen::VectorXd controlWeights(const std::string& object, Eigen::Index controlPoint) const;
 
