@@ -9,8 +9,12 @@
 //   FFDKIT_MONKEY_ACTIONS  how many actions (default 2000)
 //   FFDKIT_MONKEY_SEGMENTS only these segments of the plan, e.g. "9" or "1,9" (replays one that failed)
 //   FFDKIT_MONKEY_LOG=1    prints every action as it runs (with what it aimed at, then "@frame",
-//                          "playing" while the timeline plays, and "#" the undo stack's position), each undo and
-//                          redo of the walks, and a segment's largest difference from the file
+//                          "playing" while the timeline plays, "#" the undo stack's position and "~" a
+//                          fingerprint of the scene's text), each undo and redo of the walks, and a
+//                          segment's largest difference from the file
+//   FFDKIT_MONKEY_WALL_CLOCK=1  playback follows the wall clock as in the app (by default the
+//                          test steps it: 1 to 3 frames after each action, drawn from the plan, so
+//                          a run replays frame for frame)
 //   monkey_gui_test --replay   prints the plan of the seed and count, runs nothing
 #include <QAbstractButton>
 #include <QAbstractSpinBox>
@@ -75,6 +79,22 @@ constexpr double kFrameMovedTolerance = 1e-3;
 std::uint64_t monkeySeed() { return environmentNumber("FFDKIT_MONKEY_SEED", 1); }
 int monkeyActions() { return static_cast<int>(environmentNumber("FFDKIT_MONKEY_ACTIONS", 2000)); }
 bool monkeyLog() { return qEnvironmentVariableIntValue("FFDKIT_MONKEY_LOG") == 1; }
+bool monkeyWallClock() { return qEnvironmentVariableIntValue("FFDKIT_MONKEY_WALL_CLOCK") == 1; }
+
+/// Frames stepped playback moves on after action `a` while the timeline plays: 1 to 3 (the wall
+/// clock moves about 1.3 frames of the samples' 24 per second in an action, and skips frames
+/// when one is slow). From bits of the action no target choice uses, so the plan stays as it was.
+int playbackFrames(const MonkeyAction& a) { return 1 + static_cast<int>((a.answer >> 24) % 3); }
+
+/// FNV-1a of a scene's text, for the log: two runs of a plan that print the same fingerprints
+/// after every action went through the same scenes.
+std::string fingerprint(const std::string& text) {
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  for (unsigned char c : text) hash = (hash ^ c) * 0x100000001b3ull;
+  char out[20];
+  std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(hash));
+  return out;
+}
 
 /// Whether segment `s` of the plan runs (FFDKIT_MONKEY_SEGMENTS unset: all of them).
 bool segmentChosen(std::size_t s) {
@@ -541,6 +561,9 @@ class MonkeyGuiTest : public QObject {
     Monkey monkey(*w);
     auto* timeline = w->findChild<app::TimelineWidget*>("timeline");
     QVERIFY(timeline);
+    // Playback steps with the actions (a replayable run) unless the wall clock is asked for.
+    const bool wallClock = monkeyWallClock();
+    timeline->setSteppedPlayback(!wallClock);
     const bool log = monkeyLog();
     QElapsedTimer clock;
     clock.start();
@@ -579,11 +602,15 @@ class MonkeyGuiTest : public QObject {
         answers.setAnswer(a.answer);
         const std::string aim = monkey.run(a);
         monkey.settle();
+        if (!wallClock && timeline->timeline().playing()) {
+          timeline->stepPlayback(playbackFrames(a));
+          monkey.settle();
+        }
         const std::string answered = answers.lastAnswers();
         if (log)
           std::cerr << "  " << what << (aim.empty() ? "" : " -> " + aim) << (answered.empty() ? "" : " [" + answered + "]")
                     << " @" << timeline->timeline().frame() << (timeline->timeline().playing() ? " playing" : "") << " #"
-                    << w->commands().position() << std::endl;
+                    << w->commands().position() << " ~" << fingerprint(scenes::sceneFileText(w->scene())) << std::endl;
         if (!answers.unanswered().empty())
           QFAIL((where + ", action " + what + ": a dialog stayed open: " + answers.unanswered().front()).c_str());
         QVERIFY2(w->isVisible(), (where + ", action " + what + ": the window closed").c_str());
@@ -633,20 +660,43 @@ class MonkeyGuiTest : public QObject {
     const std::string end = scenes::sceneFileText(w.scene());
     const std::size_t steps = w.commands().position();
 
+    // The scene at each position of the stack as the first undo walk left it, and the first redo
+    // (of the walk back) that does not give it again: which command's redo misses, for the report.
+    std::vector<std::string> undoneAt(steps + 1);
+    undoneAt[steps] = end;
+    std::string firstMiss;
     // Ctrl+Z (undo) or Ctrl+Shift+Z `limit` times, or until there is nothing left to do.
     auto walk = [&](bool undo, std::size_t limit) -> std::string {
       for (std::size_t n = 0; n < limit && (undo ? w.commands().canUndo() : w.commands().canRedo()); ++n) {
         const std::size_t before = w.commands().position();
-        if (log) std::cerr << "    " << (undo ? "undo '" + w.commands().undoDescription() : "redo '" + w.commands().redoDescription()) << "'" << std::endl;
+        const std::string description = undo ? w.commands().undoDescription() : w.commands().redoDescription();
+        if (log) std::cerr << "    " << (undo ? "undo '" : "redo '") << description << "'" << std::endl;
         if (undo) pressKey(w, Qt::Key_Z, Qt::ControlModifier);
         else pressKey(w, Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);
         if (w.commands().position() == before)
           return std::string(undo ? "Ctrl+Z" : "Ctrl+Shift+Z") + " did nothing at step " + std::to_string(n) + " ('" +
-                 (undo ? w.commands().undoDescription() : w.commands().redoDescription()) + "'; the status line says '" +
-                 w.statusMessage().toStdString() + "')";
+                 description + "'; the status line says '" + w.statusMessage().toStdString() + "')";
+        const std::size_t now = w.commands().position();
+        if (now > steps) continue;
+        const std::string text = scenes::sceneFileText(w.scene());
+        if (undo && undoneAt[now].empty()) {
+          undoneAt[now] = text;
+        } else if (!undo && firstMiss.empty() && !undoneAt[now].empty() && text != undoneAt[now]) {
+          const std::optional<double> difference = largestNumberDifference(text, undoneAt[now]);
+          firstMiss = "; the first redo that missed the scene its undo started from: '" + description + "' (step " +
+                      std::to_string(now) + (difference ? ", largest difference " + std::to_string(*difference) : std::string()) +
+                      ")";
+          if (log) std::cerr << "      missed the scene before its undo" << firstMiss << ": " << firstDifference(text, undoneAt[now]) << std::endl;
+        }
       }
       QApplication::processEvents();
-      if (frame) timeline.goTo(*frame);
+      if (frame) {
+        const std::string walked = scenes::sceneFileText(w.scene());
+        timeline.goTo(*frame);
+        if (log && scenes::sceneFileText(w.scene()) != walked)
+          std::cerr << "    going to frame " << *frame << " after the walk moved the scene: "
+                    << largestNumberDifference(scenes::sceneFileText(w.scene()), walked).value_or(-1) << std::endl;
+      }
       return {};
     };
     const std::size_t all = std::numeric_limits<std::size_t>::max();
@@ -665,8 +715,8 @@ class MonkeyGuiTest : public QObject {
       if (!difference || *difference > tolerance)
         return std::string(name) + " (" + std::to_string(steps) + " steps) does not give the " +
                (want == &start ? "file" : "scene before the undo") +
-               (difference ? " (largest difference " + std::to_string(*difference) + ")" : std::string()) + ": " +
-               firstDifference(got, *want);
+               (difference ? " (largest difference " + std::to_string(*difference) + ")" : std::string()) + firstMiss +
+               ": " + firstDifference(got, *want);
     }
     return {};
   }

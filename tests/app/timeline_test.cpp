@@ -95,6 +95,30 @@ TEST(Timeline, NothingKeyableIsRefusedWithoutACommand) {
   EXPECT_EQ(d.commands.size(), 0u);
 }
 
+TEST(Timeline, SteppedPlaybackMovesByWholeFramesAndLoops) {
+  // The frame-step source a test drives instead of the wall clock: the same frames every run.
+  Document d;
+  const auto pull = d.scene.widgets.find("pull");
+  d.timeline.setFrame(70);
+  EXPECT_FALSE(d.timeline.advanceFrames(1));  // not playing
+  d.timeline.setPlaying(true);
+  EXPECT_FALSE(d.timeline.advanceFrames(0));
+  EXPECT_FALSE(d.timeline.advanceFrames(-3));
+  EXPECT_EQ(d.timeline.frame(), 70);
+  EXPECT_TRUE(d.timeline.advanceFrames(1));
+  EXPECT_EQ(d.timeline.frame(), 71);
+  EXPECT_TRUE(d.timeline.advanceFrames(2));  // 73 is past the range 0..72: frame 0
+  EXPECT_EQ(d.timeline.frame(), 0);
+  EXPECT_EQ(d.scene.widgets.variation(pull), 0.0);
+  for (int step = 0; step < 12; ++step) EXPECT_TRUE(d.timeline.advanceFrames(1));  // no rounding drift
+  EXPECT_EQ(d.timeline.frame(), 12);
+  EXPECT_NEAR(d.scene.widgets.variation(pull), 0.25, 1e-12);  // as advance(0.5) gives
+  EXPECT_FALSE(d.timeline.advanceFrames(3 * 73));  // whole loops come back to the same frame: no change
+  EXPECT_EQ(d.timeline.frame(), 12);
+  EXPECT_TRUE(d.timeline.advanceFrames(73 + 5));
+  EXPECT_EQ(d.timeline.frame(), 17);
+}
+
 TEST(Timeline, PlaybackFollowsWallTimeAndLoops) {
   Document d;
   const auto pull = d.scene.widgets.find("pull");

@@ -186,20 +186,41 @@ void TimelineWidget::togglePlay() {
   play_->setIconText(QString::fromUtf8(timeline_.playing() ? "\u275A\u275A" : "\u25B6"));
   if (timeline_.playing()) {
     playedFrames_ = 0;
-    clock_.start();
-    playTimer_.start(std::max(1, static_cast<int>(std::lround(1000.0 / timeline_.scene().animation().framesPerSecond))));
+    if (!stepped_) startPlayTimer();
   } else {
     playTimer_.stop();
     emit frameChanged();
   }
 }
 
+void TimelineWidget::startPlayTimer() {
+  clock_.start();
+  playTimer_.start(std::max(1, static_cast<int>(std::lround(1000.0 / timeline_.scene().animation().framesPerSecond))));
+}
+
+void TimelineWidget::setSteppedPlayback(bool stepped) {
+  if (stepped == stepped_) return;
+  stepped_ = stepped;
+  if (stepped_) playTimer_.stop();
+  else if (timeline_.playing()) startPlayTimer();
+}
+
+template <class Move>
+bool TimelineWidget::advance(Move move) {
+  bool changed = false;
+  guarded([&] { changed = move(); });
+  if (changed) ++playedFrames_;
+  return changed;
+}
+
+bool TimelineWidget::stepPlayback(int frames) {
+  return advance([&] { return timeline_.advanceFrames(frames); });
+}
+
 void TimelineWidget::tick() {
   const double elapsed = clock_.nsecsElapsed() * 1e-9;
   clock_.restart();
-  guarded([&] {
-    if (timeline_.advance(elapsed)) ++playedFrames_;
-  });
+  advance([&] { return timeline_.advance(elapsed); });
   // A periodic timer at the frame rate: a frame slower than that delays the next tick (Qt does
   // not queue missed ticks) and the wall-time clock makes playback skip frames instead of slowing
   // down. Events are handled between ticks, so the window stays responsive (Pause, scrubbing).

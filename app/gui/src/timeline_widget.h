@@ -37,6 +37,16 @@ class TimelineWidget : public QWidget {
   void sync();
   /// Frames shown by playback since it last started (for measuring playback speed).
   int playedFrames() const { return playedFrames_; }
+  /// Where playback's time comes from. Off (the app): a timer at the scene's frame rate moves
+  /// playback by the wall-clock time since its last tick (Timeline::advance), so which frames a
+  /// run shows depends on how fast the machine is. On: Play starts no timer and playback moves
+  /// only by stepPlayback(), so a scripted run (a test) shows the same frames every time.
+  /// Switching while playing stops or starts the timer.
+  void setSteppedPlayback(bool stepped);
+  bool steppedPlayback() const { return stepped_; }
+  /// Moves playback on by `frames` whole frames (Timeline::advanceFrames) when it is playing
+  /// (stepped or not); nothing otherwise. @return whether the frame changed.
+  bool stepPlayback(int frames = 1);
   QSize minimumSizeHint() const override;
 
  signals:
@@ -48,7 +58,12 @@ class TimelineWidget : public QWidget {
 
  private:
   void togglePlay();
+  void startPlayTimer();
   void tick();
+  /// Runs `move` (a Timeline::advance), saying its errors; counts a frame shown.
+  /// @return whether the frame changed.
+  template <class Move>
+  bool advance(Move move);
   template <class F>
   void guarded(F f);
 
@@ -60,6 +75,7 @@ class TimelineWidget : public QWidget {
   QTimer playTimer_;
   QElapsedTimer clock_;
   int playedFrames_ = 0;
+  bool stepped_ = false;  ///< playback moves by stepPlayback() only (setSteppedPlayback)
 };
 
 /// Puts a timeline in a dock under the 3D view of `window` (between the side docks) and its

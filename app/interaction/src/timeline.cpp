@@ -168,9 +168,18 @@ void Timeline::setPlaying(bool playing) {
 
 bool Timeline::advance(double seconds) {
   if (!playing_ || !(seconds >= 0.0)) return false;
+  return moveClock(seconds * scene_.animation().framesPerSecond);
+}
+
+bool Timeline::advanceFrames(int frames) {
+  if (!playing_ || frames < 1) return false;
+  return moveClock(frames);
+}
+
+bool Timeline::moveClock(double frames) {
   const scenes::Animation& a = scene_.animation();
   const double length = a.lastFrame - a.firstFrame + 1;  // frames shown per loop
-  clock_ += seconds * a.framesPerSecond;
+  clock_ += frames;
   if (clock_ >= a.lastFrame + 1) clock_ = a.firstFrame + std::fmod(clock_ - a.firstFrame, length);
   if (clock_ < a.firstFrame) clock_ = a.firstFrame;
   const int whole = static_cast<int>(std::floor(clock_));

@@ -58,6 +58,11 @@ class Timeline {
   /// one (a slow frame makes playback skip frames, not slow down). During a drag nothing is
   /// applied (the drag owns the model; the clock runs on). @return true if the frame changed.
   bool advance(double seconds);
+  /// Moves the playback clock on by `frames` whole frames, as advance() does for time: a source
+  /// of playback that does not follow the wall clock (a test stepping it), so a run shows the
+  /// same frames every time. Nothing when not playing or `frames` < 1.
+  /// @return true if the frame changed.
+  bool advanceFrames(int frames);
 
   /// Bytes a key command holds for `keys` (CommandStack::bytes).
   static std::size_t bytesOf(const std::vector<scenes::Keyframe>& keys);
@@ -66,6 +71,9 @@ class Timeline {
   struct KeyChange;
   /// Pushes the key changes as one command; `animatedBefore` is scenes::animatedState before them.
   void push(const std::string& description, std::vector<KeyChange> changes, const widgets::WidgetModelState& animatedBefore);
+  /// Moves the playback clock on by `frames` (fractional) and goes to the whole frame it reaches
+  /// (advance, advanceFrames). @return true if the frame changed.
+  bool moveClock(double frames);
 
   scenes::Scene& scene_;
   scenes::CommandStack& commands_;
