@@ -37,30 +37,39 @@ constexpr double kBinomial[9][9] = {{1},
 template <int P>
 FFDKIT_VECTOR_CLONES void bezierNets(double* __restrict net, const double* __restrict E) {
   constexpr int N = P + 1;
-  Lanes a[N * N * N][3], t[N * N * N][3];
-  for (int n = 0; n < N * N * N; ++n)
-    for (int c = 0; c < 3; ++c) a[n][c] = load(net + L * (c + 3 * n));
-  const auto at = [](int i, int j, int k) { return i + N * (j + N * k); };
-  const auto e = [E](int axis, int r, int i) { return load(E + L * (i + N * (r + N * axis))); };
-  for (int axis = 0; axis < 3; ++axis) {
-    Lanes(&from)[N * N * N][3] = axis == 1 ? t : a;
-    Lanes(&to)[N * N * N][3] = axis == 1 ? a : t;
-    for (int k = 0; k < N; ++k)
-      for (int j = 0; j < N; ++j)
-        for (int i = 0; i < N; ++i) {
-          const int out[3] = {i, j, k};
-          Lanes sum[3] = {};
-          for (int r = 0; r < N; ++r) {
-            int in[3] = {i, j, k};
-            in[axis] = r;
-            const Lanes w = e(axis, r, out[axis]);
-            for (int c = 0; c < 3; ++c) sum[c] += w * from[at(in[0], in[1], in[2])][c];
-          }
-          for (int c = 0; c < 3; ++c) to[at(i, j, k)][c] = sum[c];
+  Lanes a[N][N][N][3], t[N][N][N][3], e[3][N][N];  // a[k][j][i][c], e[axis][r][i]
+  for (int k = 0; k < N; ++k)
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i)
+        for (int c = 0; c < 3; ++c) a[k][j][i][c] = load(net + L * (c + 3 * (i + N * (j + N * k))));
+  for (int axis = 0; axis < 3; ++axis)
+    for (int r = 0; r < N; ++r)
+      for (int i = 0; i < N; ++i) e[axis][r][i] = load(E + L * (i + N * (r + N * axis)));
+  // Along u: t[k][j][i] = sum_r e[0][r][i] a[k][j][r]; along v into a; along w into t.
+  for (int k = 0; k < N; ++k)
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i)
+        for (int c = 0; c < 3; ++c) {
+          Lanes sum = e[0][0][i] * a[k][j][0][c];
+          for (int r = 1; r < N; ++r) sum += e[0][r][i] * a[k][j][r][c];
+          t[k][j][i][c] = sum;
         }
-  }
-  for (int n = 0; n < N * N * N; ++n)
-    for (int c = 0; c < 3; ++c) store(net + L * (c + 3 * n), t[n][c]);
+  for (int k = 0; k < N; ++k)
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i)
+        for (int c = 0; c < 3; ++c) {
+          Lanes sum = e[1][0][j] * t[k][0][i][c];
+          for (int r = 1; r < N; ++r) sum += e[1][r][j] * t[k][r][i][c];
+          a[k][j][i][c] = sum;
+        }
+  for (int k = 0; k < N; ++k)
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i)
+        for (int c = 0; c < 3; ++c) {
+          Lanes sum = e[2][0][k] * a[0][j][i][c];
+          for (int r = 1; r < N; ++r) sum += e[2][r][k] * a[r][j][i][c];
+          store(net + L * (c + 3 * (i + N * (j + N * k))), sum);
+        }
 }
 
 // det J's Bernstein coefficients of the L cells whose Bezier nets are `net` ([N^3][3][L], i
@@ -106,9 +115,13 @@ FFDKIT_VECTOR_CLONES void determinantLanes(const double* __restrict net, const d
 #pragma GCC unroll 4
             for (int iw = 0; iw < N; ++iw) {
               const Lanes wx = dw[0][kw][jw][iw], wy = dw[1][kw][jw][iw], wz = dw[2][kw][jw][iw];
-              acc[0][iv + iw] += vy * wz - vz * wy;
-              acc[1][iv + iw] += vz * wx - vx * wz;
-              acc[2][iv + iw] += vx * wy - vy * wx;
+              // One fused multiply-add per product (not a product, a fused difference and an add).
+              acc[0][iv + iw] = acc[0][iv + iw] + vy * wz;
+              acc[0][iv + iw] = acc[0][iv + iw] - vz * wy;
+              acc[1][iv + iw] = acc[1][iv + iw] + vz * wx;
+              acc[1][iv + iw] = acc[1][iv + iw] - vx * wz;
+              acc[2][iv + iw] = acc[2][iv + iw] + vx * wy;
+              acc[2][iv + iw] = acc[2][iv + iw] - vy * wx;
             }
           }
         }
@@ -136,7 +149,11 @@ FFDKIT_VECTOR_CLONES void determinantLanes(const double* __restrict net, const d
           for (int ic = 0; ic < C0; ++ic) {
             const Lanes cx = cross[kc][jc][0][ic], cy = cross[kc][jc][1][ic], cz = cross[kc][jc][2][ic];
 #pragma GCC unroll 4
-            for (int iu = 0; iu < M; ++iu) acc[iu + ic] += ux[iu] * cx + uy[iu] * cy + uz[iu] * cz;
+            for (int iu = 0; iu < M; ++iu) {
+              acc[iu + ic] = acc[iu + ic] + ux[iu] * cx;
+              acc[iu + ic] = acc[iu + ic] + uy[iu] * cy;
+              acc[iu + ic] = acc[iu + ic] + uz[iu] * cz;
+            }
           }
         }
       const double jk = inverse[J] * inverse[K];
