@@ -34,12 +34,6 @@ namespace fs = std::filesystem;
 
 bool hasCadExtension(const std::string& path) { return scenes::isCadFile(path); }
 
-std::string fixed(double value, int digits) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*g", digits, value);
-  return text;
-}
-
 }  // namespace
 
 std::vector<OptionSpec> withCadOptions(std::vector<OptionSpec> options) {
@@ -71,6 +65,12 @@ bool isCadSceneDeform(const Args& args) {
 #if FFDKIT_HAS_CAD
 
 namespace {
+
+std::string fixed(double value, int digits) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", digits, value);
+  return text;
+}
 
 /// deform's --cad-* options, checked.
 cad::CadDeformOptions cadOptions(const Args& args) {
