@@ -233,8 +233,8 @@ CellFaces cellFacesOf(const PolyMeshCells& cells) {
   const std::int32_t* owner = cells.owner.data();
   const std::int32_t* neighbour = cells.neighbour.data();
   CellFaces r;
+  r.faces.resize(std::size_t(faces + internal));  // the larger first (see checkPolyMeshCells)
   r.starts.resize(std::size_t(nCells) + 1);
-  r.faces.resize(std::size_t(faces + internal));
   std::uint32_t* starts = r.starts.data();
   std::uint32_t* list = r.faces.data();
 #pragma omp parallel
@@ -297,14 +297,20 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
   const std::int64_t nCells = cells.cellCount;
   q.cellCount = nCells;
   q.faceCount = faces;
-  std::vector<std::uint8_t> bad(std::size_t(nCells), 0);
-  PointRows centres(Eigen::Index(nCells), 3);
+  std::vector<std::uint8_t> bad;
+  PointRows centres;
 
   // Each cell's volume and centre (OpenFOAM: primitiveMeshCellCentresAndVols.C): the pyramids of
   // its faces about a first estimate, the average of its face centres. A cell adds its faces in
   // face order, as OpenFOAM's loops over owner and neighbour do for each cell.
   {
+    // The arrays from the largest to the smallest: a process that keeps freed memory for reuse
+    // (ffdkit-cli) then fits each into a block freed before (the deformation's input points and
+    // embedding are each about the size of the largest) instead of growing its heap for one that
+    // no longer fits after a smaller one took part of the block.
     const CellFaces cellFaces = cellFacesOf(cells);
+    centres.resize(Eigen::Index(nCells), 3);
+    bad.assign(std::size_t(nCells), 0);
     const std::int64_t blocks = (nCells + kBlock - 1) / kBlock;
     std::vector<VolumeShare> shares(static_cast<std::size_t>(blocks));
 #pragma omp parallel

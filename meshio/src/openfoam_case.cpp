@@ -5,6 +5,7 @@
 #include <climits>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -14,6 +15,7 @@
 #include "ffdkit/meshio/openfoam.h"
 #include "ffdkit/meshio/read_failures.h"
 #include "formats.h"
+#include "mapped_file.h"
 #include "parse_support.h"
 #include "openfoam_files.h"
 
@@ -63,30 +65,38 @@ std::string meshFileBytes(const fs::path& path, const fs::path& root, const Open
   return bytes;
 }
 
-// A file's bytes for one parse (faces, owner, neighbour): read into fresh memory that is neither
-// cleared first nor kept, backed by huge pages where the system allows.
+// A file's bytes for one parse (points, faces, owner, neighbour): the file mapped (no buffer of
+// its size; the parsers give back what they have copied out, mapped_file.h), or a .gz file
+// inflated into memory.
 class ParsedFileBytes {
  public:
   ParsedFileBytes(const fs::path& path, const fs::path& root, const OpenFoamReadOptions& options, ReadBudget& budget) {
     refuseOutside(path, root, options);
-    size_ = detail::readRegularFile(path, [this](std::size_t size) {
-      data_ = std::make_unique_for_overwrite<char[]>(size);
-      detail::adviseHugePages(data_.get(), size);
-      return data_.get();
-    });
     if (path.extension() == ".gz") {
-      inflated_ = gunzipBytes(view(), path.string(), budget);
-      data_.reset();
-      size_ = 0;
+      inflated_ = gunzipBytes(readWholeFile(path), path.string(), budget);
+      return;
     }
+    mapped_.emplace(path);
   }
-  std::string_view view() const { return data_ ? std::string_view(data_.get(), size_) : std::string_view(inflated_); }
+  std::string_view view() const { return mapped_ ? mapped_->view() : std::string_view(inflated_); }
 
  private:
-  std::unique_ptr<char[]> data_;
-  std::size_t size_ = 0;
+  std::optional<detail::MappedFile> mapped_;
   std::string inflated_;
 };
+
+// What the writer keeps of a points file read from `bytes`: all of it (ASCII, whose unchanged
+// values keep their text), or a binary file without its items (the coordinates it replaces).
+void keepPointsFileBytes(std::string_view bytes, FoamPointsFile& file) {
+  if (!file.layout.binary) {
+    file.bytes = std::string(bytes);
+    return;
+  }
+  file.bytes.reserve(file.listBegin + (bytes.size() - file.listEnd));
+  file.bytes.append(bytes.substr(0, file.listBegin)).append(bytes.substr(file.listEnd));
+  file.omittedBytes = file.listEnd - file.listBegin;
+  file.listEnd = file.listBegin;
+}
 
 fs::path requiredFile(const fs::path& polyMesh, const std::string& name) {
   fs::path path = meshFile(polyMesh, name);
@@ -128,9 +138,11 @@ OpenFoamMesh readMeshFolder(const fs::path& folder, const OpenFoamReadOptions& o
   refuseDecomposedCase(folder);
 
   const fs::path pointsPath = requiredFile(mesh.polyMesh, "points");
-  std::string pointsBytes = meshFileBytes(pointsPath, folder, options, budget);
-  mesh.points = readFoamPoints(pointsBytes, pointsPath.string(), budget, &mesh.pointsFile);
-  mesh.pointsFile.bytes = std::move(pointsBytes);
+  {
+    const ParsedFileBytes pointsBytes(pointsPath, folder, options, budget);
+    mesh.points = readFoamPoints(pointsBytes.view(), pointsPath.string(), budget, &mesh.pointsFile);
+    keepPointsFileBytes(pointsBytes.view(), mesh.pointsFile);
+  }
   mesh.pointsFile.gzip = pointsPath.extension() == ".gz";
   mesh.pointsFile.fileName = pointsPath.filename().string();
   if (!options.readCells) return mesh;

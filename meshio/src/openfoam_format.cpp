@@ -12,6 +12,7 @@
 #include "ffdkit/meshio/openfoam.h"
 #include "foam_scanner.h"
 #include "formats.h"
+#include "mapped_file.h"
 #include "parse_support.h"
 
 namespace ffdkit::meshio {
@@ -167,6 +168,21 @@ bool allInRange(const char* at, std::size_t n, std::int32_t lo, std::int32_t hi)
   return true;
 }
 
+// Copies the n native 32-bit labels at `at` to `out` a run at a time, each run checked in `out`
+// (still in the cache) and its source bytes given back (releaseParsedBytes: a mapped file's pages
+// leave the process as they are copied). Whether every label lies in [lo, hi].
+bool copyLabelsInRange(const char* at, std::size_t n, std::int32_t lo, std::int32_t hi, std::int32_t* out) {
+  constexpr std::size_t kRun = std::size_t(1) << 21;  // 8 MiB of labels
+  for (std::size_t first = 0; first < n; first += kRun) {
+    const std::size_t count = std::min(kRun, n - first);
+    const char* from = at + first * sizeof(std::int32_t);
+    std::memcpy(out + first, from, count * sizeof(std::int32_t));
+    if (!allInRange(reinterpret_cast<const char*>(out + first), count, lo, hi)) return false;
+    detail::releaseParsedBytes(from, from + count * sizeof(std::int32_t));
+  }
+  return true;
+}
+
 template <class T>
 T loadBinary(const char* at, bool bigEndian) {
   char raw[sizeof(T)];
@@ -193,9 +209,9 @@ void readLabelList(FoamScanner& s, const FoamFileLayout& layout, const char* wha
     needBinary(s, what, n, std::uint64_t(layout.labelBytes));
     const char* at = s.text().data() + s.pos();
     if (layout.labelBytes == 4 && layout.bigEndian == (std::endian::native == std::endian::big) &&
-        allInRange(at, std::size_t(n), std::int32_t(lo), std::int32_t(std::min<std::int64_t>(hi, kMaxLabel32)))) {
+        copyLabelsInRange(at, std::size_t(n), std::int32_t(lo), std::int32_t(std::min<std::int64_t>(hi, kMaxLabel32)),
+                          out.data())) {
       // The file's own layout: one copy; the item-by-item loop below only finds the bad label.
-      if (n > 0) std::memcpy(out.data(), at, std::size_t(n) * sizeof(std::int32_t));
       s.advance(std::size_t(n) * sizeof(std::int32_t));
       closeList(s, what, layout.binary, n);
       return;
@@ -239,14 +255,19 @@ Eigen::MatrixX3d readFoamPoints(std::string_view bytes, const std::string& sourc
       double* z = points.col(2).data();
       std::uint64_t special = 0;
       constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
-      for (Eigen::Index i = 0; i < n; ++i) {
-        std::uint64_t raw[3];
-        std::memcpy(raw, at + std::size_t(i) * 24, 24);
-        special |= std::uint64_t((raw[0] & kExponent) == kExponent) | std::uint64_t((raw[1] & kExponent) == kExponent) |
-                   std::uint64_t((raw[2] & kExponent) == kExponent);
-        x[i] = std::bit_cast<double>(raw[0]);
-        y[i] = std::bit_cast<double>(raw[1]);
-        z[i] = std::bit_cast<double>(raw[2]);
+      constexpr Eigen::Index kRun = Eigen::Index(1) << 18;  // 6 MiB of the file, given back once copied
+      for (Eigen::Index first = 0; first < n; first += kRun) {
+        const Eigen::Index last = std::min<Eigen::Index>(n, first + kRun);
+        for (Eigen::Index i = first; i < last; ++i) {
+          std::uint64_t raw[3];
+          std::memcpy(raw, at + std::size_t(i) * 24, 24);
+          special |= std::uint64_t((raw[0] & kExponent) == kExponent) | std::uint64_t((raw[1] & kExponent) == kExponent) |
+                     std::uint64_t((raw[2] & kExponent) == kExponent);
+          x[i] = std::bit_cast<double>(raw[0]);
+          y[i] = std::bit_cast<double>(raw[1]);
+          z[i] = std::bit_cast<double>(raw[2]);
+        }
+        detail::releaseParsedBytes(at + std::size_t(first) * 24, at + std::size_t(last) * 24);
       }
       fast = special == 0;
     }
@@ -402,11 +423,12 @@ std::string foamPointsBytes(const FoamPointsFile& original, const Eigen::MatrixX
   const std::string source = original.fileName;
   std::string out;
   if (layout.binary) {
-    const std::int64_t n = std::int64_t(original.listEnd - original.listBegin) / (3 * layout.scalarBytes);
+    const std::int64_t n =
+        std::int64_t(original.listEnd - original.listBegin + original.omittedBytes) / (3 * layout.scalarBytes);
     if (n != points.rows())
       throw MeshIoError(source + ": " + std::to_string(points.rows()) + " points given for a file of " + std::to_string(n));
     if (layout.scalarBytes == 4) detail::requireFloat32Points(points, "a binary OpenFOAM points file of scalar=32");
-    out.reserve(bytes.size());
+    out.reserve(bytes.size() + original.omittedBytes);
     out.append(bytes.substr(0, original.listBegin));
     const std::size_t at = out.size();
     out.resize(at + std::size_t(n) * 3 * std::size_t(layout.scalarBytes));

@@ -6,9 +6,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include <Eigen/LU>
 #include <gtest/gtest.h>
@@ -296,6 +298,95 @@ TEST_F(OpenFoam, DecomposedCaseIsRefused) {
   fs::create_directories(copy / "processor0");
   const std::string message = testing::meshIoErrorOf([&] { readOpenFoamMesh(copy); });
   EXPECT_NE(message.find("a decomposed case (processor0/)"), std::string::npos) << message;
+}
+
+TEST_F(OpenFoam, BinaryPointsFileIsKeptWithoutItsCoordinates) {
+  const OpenFoamMesh mesh = readOpenFoamMesh(kData / "cube-binary");
+  const std::string file = fileText(mesh.polyMesh / "points");
+  // The 343 points' doubles are left out (the writer puts new ones there); the rest is the file's.
+  EXPECT_EQ(mesh.pointsFile.omittedBytes, 343u * 3 * sizeof(double));
+  EXPECT_EQ(mesh.pointsFile.listEnd, mesh.pointsFile.listBegin);
+  EXPECT_EQ(mesh.pointsFile.bytes, file.substr(0, mesh.pointsFile.listBegin) +
+                                       file.substr(mesh.pointsFile.listBegin + mesh.pointsFile.omittedBytes));
+  // An ASCII file is kept whole: its unchanged values keep their text.
+  const OpenFoamMesh ascii = readOpenFoamMesh(kData / "cube");
+  EXPECT_EQ(ascii.pointsFile.omittedBytes, 0u);
+  EXPECT_EQ(ascii.pointsFile.bytes, fileText(ascii.polyMesh / "points"));
+}
+
+// A binary polyMesh of `count` separate tetrahedra (4 points, 4 boundary faces each, one patch):
+// files of several MB, whose lists the reader copies out of the mapped file run by run.
+fs::path writeTetrahedraCase(const fs::path& root, int count) {
+  const fs::path polyMesh = root / "constant" / "polyMesh";
+  fs::create_directories(polyMesh);
+  auto header = [](const char* className, const char* object) {
+    return std::string("FoamFile\n{\n    version     2.0;\n    format      binary;\n    class       ") + className +
+           ";\n    arch        \"LSB;label=32;scalar=64\";\n    object      " + object + ";\n}\n\n";
+  };
+  // N items of `perItem` values each.
+  auto list = [](const auto& values, std::size_t perItem = 1) {
+    std::string out = std::to_string(values.size() / perItem) + "\n(";
+    out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(values[0]));
+    return out + ")\n";
+  };
+  std::vector<double> points;
+  std::vector<std::int32_t> starts{0}, vertices, owner;
+  for (int t = 0; t < count; ++t) {
+    const double x = t % 1000, y = t / 1000;
+    points.insert(points.end(), {x, y, 0, x + 1, y, 0, x, y + 1, 0, x, y, 1});
+    const std::int32_t p = 4 * t;
+    // Outward normals (right-hand rule): bottom, front, left, slanted.
+    for (const auto& face : {std::array{p, p + 2, p + 1}, std::array{p, p + 1, p + 3}, std::array{p, p + 3, p + 2},
+                             std::array{p + 1, p + 2, p + 3}}) {
+      vertices.insert(vertices.end(), face.begin(), face.end());
+      starts.push_back(std::int32_t(vertices.size()));
+      owner.push_back(t);
+    }
+  }
+  writeText(polyMesh / "points", header("vectorField", "points") + list(points, 3));
+  writeText(polyMesh / "faces", header("faceCompactList", "faces") + list(starts) + list(vertices));
+  writeText(polyMesh / "owner", header("labelList", "owner") + list(owner));
+  writeText(polyMesh / "neighbour", header("labelList", "neighbour") + list(std::vector<std::int32_t>{}));
+  writeText(polyMesh / "boundary", "FoamFile { version 2.0; format ascii; class polyBoundaryMesh; object boundary; }\n1\n(\n"
+                                   "tetrahedra { type wall; nFaces " + std::to_string(owner.size()) + "; startFace 0; }\n)\n");
+  return root;
+}
+
+TEST_F(OpenFoam, LargeBinaryFilesReadRunByRunEqualTheirBytesParsedInMemory) {
+  // 300,000 tetrahedra: 1.2M points (29 MB, five runs of the points reader), 3.6M face points
+  // (14 MB, two runs of 8 MiB).
+  const fs::path root = writeTetrahedraCase(dir_ / "tetrahedra", 300'000);
+  const OpenFoamMesh mesh = readOpenFoamMesh(root);
+  const fs::path polyMesh = root / "constant" / "polyMesh";
+  ReadBudget budget;
+  EXPECT_EQ(mesh.points, readFoamPoints(fileText(polyMesh / "points"), "points", budget));
+  PolyMeshCells cells;
+  readFoamFaces(fileText(polyMesh / "faces"), "faces", mesh.points.rows(), budget, cells);
+  EXPECT_EQ(mesh.cells.faceStarts, cells.faceStarts);
+  EXPECT_EQ(mesh.cells.faceVertices, cells.faceVertices);
+  EXPECT_EQ(mesh.cells.owner, readFoamLabels(fileText(polyMesh / "owner"), "owner", 300'000, budget));
+  EXPECT_EQ(mesh.cells.cellCount, 300'000);
+  EXPECT_EQ(mesh.pointsFile.omittedBytes, 1'200'000u * 24);
+  EXPECT_EQ(foamPointsBytes(mesh.pointsFile, mesh.points), fileText(polyMesh / "points"));
+  const CellQuality q = checkPolyMeshCells(mesh.points, mesh.cells);
+  EXPECT_TRUE(q.ok());
+  // Each tetrahedron holds 1/6 (rounding: its points lie up to 1000 from the origin).
+  EXPECT_NEAR(q.minVolume, 1.0 / 6, 1e-12);
+  EXPECT_NEAR(q.maxVolume, 1.0 / 6, 1e-12);
+  EXPECT_NEAR(q.totalVolume, 300'000.0 / 6, 1e-6);
+
+  // A bad point index in the second run (after the first 8 MiB given back) is found and named.
+  const fs::path faces = polyMesh / "faces";
+  std::string text = fileText(faces);
+  const std::size_t data = text.find("3600000\n(") + 9;
+  const std::size_t at = data + 3'000'000 * sizeof(std::int32_t);
+  const std::int32_t bad = 1'200'000;
+  std::memcpy(text.data() + at, &bad, sizeof bad);
+  writeText(faces, text);
+  const std::string message = testing::meshIoErrorOf([&] { readOpenFoamMesh(root); });
+  EXPECT_NE(message.find("face point 3000000 (binary, offset " + std::to_string(at) + "): 1200000 is outside 0..1199999"),
+            std::string::npos)
+      << message;
 }
 
 TEST_F(OpenFoam, HugeListSizeIsRefusedBeforeAllocating) {

@@ -58,10 +58,14 @@ struct FoamFileLayout {
 /// A `points` file as it was read: its (decompressed) bytes and where its list is, so that the
 /// writer can give back the same bytes with other coordinate values.
 struct FoamPointsFile {
-  std::string bytes;            ///< the whole file, decompressed
+  /// The whole file, decompressed; or, when omittedBytes > 0, the file without its binary list's
+  /// items (readOpenFoamMesh keeps a binary file so: the items are the coordinates the writer
+  /// replaces, and keeping them would hold the points twice).
+  std::string bytes;
   FoamFileLayout layout;  ///< how its list is stored
   std::size_t listBegin = 0;    ///< just after the list's '('
-  std::size_t listEnd = 0;      ///< at the list's ')'
+  std::size_t listEnd = 0;      ///< at the list's ')' in `bytes` (listBegin when the items are omitted)
+  std::size_t omittedBytes = 0;  ///< the binary items' bytes left out of `bytes` at listBegin (0: none)
   int listLine = 1;             ///< the line of listBegin (ASCII)
   bool gzip = false;            ///< read from points.gz: written compressed too
   std::string fileName;         ///< "points" or "points.gz"
