@@ -1,6 +1,7 @@
 // ffdkit.widgets: the headless widget model of Kuriyama 1996, ch. 6
 // (widgets/include/ffdkit/widgets). Names mirror the C++ API; lattice points come back as numpy
-// arrays (N x 3).
+// arrays (N x 3). Here the value types and WidgetModel's construction and edits; its queries are
+// in widget_model_query_bindings.cpp, its gestures and drags in widget_model_gesture_bindings.cpp.
 
 #include <string>
 #include <utility>
@@ -10,6 +11,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "widget_model_binding_support.h"
 #include "ffdkit/widgets/widget_model.h"
 #include "numpy_eigen.h"
 
@@ -231,16 +233,14 @@ Edit basis and outside, then pass them to WidgetModel.addLattice or setLatticeSe
       .def_readwrite("outside", &widgets::LatticeSettings::outside);
 }
 
-py::array latticeView(py::object self, const Eigen::MatrixX3d& points) { return viewOf(points, self, false); }
-
 void bindModel(py::module_& m) {
-  py::class_<WidgetModel>(m, "WidgetModel", R"doc(The headless widget model (widgets/widget_model.h; Kuriyama 1996, ch. 6).
+  py::class_<WidgetModel> modelClass(m, "WidgetModel", R"doc(The headless widget model (widgets/widget_model.h; Kuriyama 1996, ch. 6).
 
 Lattice widgets own their control points; cell widgets group them; affine widgets (translate,
 rotate, scale) attached to cells move them; bindings carry one widget's motion to another.
 Every failing call raises ffdkit.WidgetError (a ValueError; .code names the kind) and leaves the
-model unchanged.)doc")
-      .def(py::init<>(), R"doc(An empty model.
+model unchanged.)doc");
+  modelClass.def(py::init<>(), R"doc(An empty model.
 
 Add lattices with addLattice, then cells, affine widgets and bindings.)doc")
       .def("copy", [](const WidgetModel& model) { return WidgetModel(model); }, R"doc(An independent copy of the model (without an active gesture).
@@ -435,357 +435,10 @@ Raises:
 Args:
     lattice: WidgetId.
 Raises:
-    WidgetError: not a lattice.)doc")
-      // queries
-      .def("contains", &WidgetModel::contains, "id"_a, R"doc(True when the model holds the widget.
-
-Args:
-    id: WidgetId.)doc")
-      .def("type", &WidgetModel::type, "id"_a, R"doc(The widget's type.
-
-Args:
-    id: WidgetId.
-Returns:
-    WidgetType.
-Raises:
-    WidgetError: an unknown widget.)doc")
-      .def("name", &WidgetModel::name, "id"_a, R"doc(The widget's name.
-
-Args:
-    id: WidgetId.
-Raises:
-    WidgetError: an unknown widget.)doc")
-      .def("find", &WidgetModel::find, "name"_a, R"doc(The widget of that name.
-
-Args:
-    name: its name.
-Returns:
-    WidgetId.
-Raises:
-    WidgetError: no such widget (the message lists the known names).)doc")
-      .def("widgets", [](const WidgetModel& model, std::optional<widgets::WidgetType> type) {
-        return type ? model.widgets(*type) : model.widgets();
-      }, "type"_a = py::none(), R"doc(The widgets in id order.
-
-Args:
-    type: a WidgetType to keep only that type, or None for all.
-Returns:
-    list of WidgetId.)doc")
-      .def("names", [](const WidgetModel& model, std::optional<widgets::WidgetType> type) {
-        std::vector<std::string> names;
-        for (const WidgetId id : type ? model.widgets(*type) : model.widgets()) names.push_back(model.name(id));
-        return names;
-      }, "type"_a = py::none(), R"doc(The widgets' names in id order.
-
-Args:
-    type: a WidgetType to keep only that type, or None for all.
-Returns:
-    list of str.)doc")
-      .def("bindings", &WidgetModel::bindings, R"doc(Every binding, in id order.
-
-Returns:
-    list of BindingId.)doc")
-      .def("bindingsOf", &WidgetModel::bindingsOf, "id"_a, R"doc(The bindings with the widget at either end, in id order.
-
-Args:
-    id: WidgetId.
-Raises:
-    WidgetError: an unknown widget.)doc")
-      .def("binding", &WidgetModel::binding, "binding"_a, R"doc(A binding's data.
-
-Args:
-    binding: BindingId.
-Returns:
-    Binding.
-Raises:
-    WidgetError: an unknown binding.)doc")
-      .def_property_readonly("revision", &WidgetModel::revision)
-      .def("counts", &WidgetModel::counts, "lattice"_a, R"doc(A lattice's control points per axis.
-
-Args:
-    lattice: WidgetId.
-Returns:
-    (l, m, n).
-Raises:
-    WidgetError: not a lattice.)doc")
-      .def("controlPoints",
-           [](py::object self, WidgetId id) { return latticeView(self, self.cast<const WidgetModel&>().controlPoints(id)); },
-           "lattice"_a, R"doc(A lattice's control points, lattice-local, pointCount x 3.
-
-Args:
-    lattice: WidgetId.
-Returns:
-    A read-only view; the next edit of the model may change it (.copy() to keep).
-Raises:
-    WidgetError: not a lattice.)doc")
-      .def("restPoints",
-           [](py::object self, WidgetId id) { return latticeView(self, self.cast<const WidgetModel&>().restPoints(id)); },
-           "lattice"_a, R"doc(A lattice's rest points, lattice-local, pointCount x 3.
-
-Args:
-    lattice: WidgetId.
-Returns:
-    A read-only view.
-Raises:
-    WidgetError: not a lattice.)doc")
-      .def("worldControlPoints", [](const WidgetModel& model, WidgetId id) { return toArray(model.worldControlPoints(id)); },
-           "lattice"_a, R"doc(A lattice's control points in the world, pointCount x 3.
-
-Args:
-    lattice: WidgetId.
-Returns:
-    A new array.
-Raises:
-    WidgetError: not a lattice.)doc")
-      .def("worldRestPoints", [](const WidgetModel& model, WidgetId id) { return toArray(model.worldRestPoints(id)); },
-           "lattice"_a, R"doc(A lattice's rest points at its current frame, in the world, pointCount x 3.
-
-Args:
-    lattice: WidgetId.
-Raises:
-    WidgetError: not a lattice.)doc")
-      .def("latticeFrame", [](const WidgetModel& model, WidgetId id) { return affineToArray(model.latticeFrame(id)); },
-           "lattice"_a, R"doc(A lattice's world frame (world = frame @ local).
-
-Args:
-    lattice: WidgetId.
-Returns:
-    4 x 4 array (a child lattice: its parent cell's frame times its placement).
-Raises:
-    WidgetError: not a lattice.)doc")
-      .def("latticeSettings", &WidgetModel::latticeSettings, "lattice"_a, R"doc(A lattice's bases and outside policy.
-
-Args:
-    lattice: WidgetId.
-Returns:
-    LatticeSettings.
-Raises:
-    WidgetError: not a lattice.)doc")
-      .def("ffdLattice", &WidgetModel::ffdLattice, "lattice"_a, R"doc(The FFD engine's lattice of a lattice widget, as the deformer uses it (a copy).
-
-Args:
-    lattice: WidgetId.
-Returns:
-    ffd.Lattice with its counts, bases, policy, rest and control points and world frame.
-Raises:
-    WidgetError: not a lattice.)doc")
-      .def("parentCell", &WidgetModel::parentCell, "lattice"_a, R"doc(The cell a child lattice rides on.
-
-Args:
-    lattice: WidgetId.
-Returns:
-    WidgetId, or None for a root.
-Raises:
-    WidgetError: not a lattice.)doc")
-      .def("parentLattice", &WidgetModel::parentLattice, "lattice"_a, R"doc(The lattice of parentCell().
-
-Args:
-    lattice: WidgetId.
-Returns:
-    WidgetId, or None for a root.
-Raises:
-    WidgetError: not a lattice.)doc")
-      .def("children", &WidgetModel::children, "lattice"_a, R"doc(A lattice's child lattices, in sibling order.
-
-Args:
-    lattice: WidgetId.
-Raises:
-    WidgetError: not a lattice.)doc")
-      .def("roots", &WidgetModel::roots, R"doc(The root lattices, in sibling order.
-
-Returns:
-    list of WidgetId.)doc")
-      .def("pipelineOrder",
-           [](const WidgetModel& model, std::optional<WidgetId> root) {
-             return root ? model.pipelineOrder(*root) : model.pipelineOrder();
-           },
-           "root"_a = py::none(), R"doc(The lattices in pre-order: the order in which they deform (Kuriyama 1996, secs. 6.2.3, 6.3.2).
-
-Args:
-    root: a root lattice to list only its tree, or None for every tree.
-Raises:
-    WidgetError: root is not a lattice.)doc")
-      .def("cellsOf", &WidgetModel::cellsOf, "lattice"_a, R"doc(A lattice's cells, in id order.
-
-Args:
-    lattice: WidgetId.
-Raises:
-    WidgetError: not a lattice.)doc")
-      .def("latticeOf", &WidgetModel::latticeOf, "id"_a, R"doc(The lattice of a cell or of an attached affine widget.
-
-Args:
-    id: WidgetId.
-Returns:
-    WidgetId (invalid for a free affine widget).
-Raises:
-    WidgetError: an unknown widget.)doc")
-      .def("cellSpec", &WidgetModel::cellSpec, "cell"_a, R"doc(Which points a cell groups, as given.
-
-Args:
-    cell: WidgetId.
-Returns:
-    CellSpec.
-Raises:
-    WidgetError: not a cell.)doc")
-      .def("cellIndices", &WidgetModel::cellIndices, "cell"_a, R"doc(The flat indices of a cell's points.
-
-Args:
-    cell: WidgetId.
-Returns:
-    list of int.
-Raises:
-    WidgetError: not a cell.)doc")
-      .def("cellWorldPoints", [](const WidgetModel& model, WidgetId id) { return toArray(model.cellWorldPoints(id)); },
-           "cell"_a, R"doc(A cell's points in the world, #points x 3.
-
-Args:
-    cell: WidgetId.
-Raises:
-    WidgetError: not a cell.)doc")
-      .def("affinesOf", &WidgetModel::affinesOf, "cell"_a, R"doc(The affine widgets attached to a cell, in id order.
-
-Args:
-    cell: WidgetId.
-Raises:
-    WidgetError: not a cell.)doc")
-      .def("affineKind", &WidgetModel::affineKind, "affine"_a, R"doc(What an affine widget does.
-
-Args:
-    affine: WidgetId.
-Returns:
-    AffineKind.
-Raises:
-    WidgetError: not an affine widget.)doc")
-      .def("attachedCell", &WidgetModel::attachedCell, "affine"_a, R"doc(The cell an affine widget is attached to.
-
-Args:
-    affine: WidgetId.
-Returns:
-    WidgetId, or None for a free widget.
-Raises:
-    WidgetError: not an affine widget.)doc")
-      .def("placement", [](const WidgetModel& model, WidgetId id) { return affineToArray(model.placement(id)); },
-           "affine"_a, R"doc(An affine widget's placement: relative to its cell's rest frame, or its world frame if free.
-
-Args:
-    affine: WidgetId.
-Returns:
-    4 x 4 array.
-Raises:
-    WidgetError: not an affine widget.)doc")
-      .def("variation", &WidgetModel::variation, "affine"_a, R"doc(An affine widget's accumulated variation: a distance, an angle (rad) or a log scale factor.
-
-Args:
-    affine: WidgetId.
-Raises:
-    WidgetError: not an affine widget.)doc")
-      .def("affineFrame",
-           [](const WidgetModel& model, WidgetId id) {
-             const widgets::WidgetFrame frame = model.affineFrame(id);
-             return py::make_tuple(affineToArray(Eigen::Affine3d(frame.frame.matrix())), frame.size);
-           },
-           "affine"_a, R"doc(An affine widget's rigid world frame and glyph size (Kuriyama 1996, sec. 6.2.1).
-
-Args:
-    affine: WidgetId.
-Returns:
-    (4 x 4 frame, size).
-Raises:
-    WidgetError: not an affine widget.)doc")
-      // gestures
-      .def("beginGesture", &WidgetModel::beginGesture, "id"_a, R"doc(Starts a gesture on a widget: the start state and the order of the bindings to visit are recorded.
-
-Args:
-    id: WidgetId.
-Raises:
-    WidgetError: a gesture is active (GestureState), or an unknown widget.)doc")
-      .def("updateGesture",
-           [](WidgetModel& model, const py::object& change) {
-             if (py::isinstance<py::float_>(change) || py::isinstance<py::int_>(change)) {
-               model.updateGesture(change.cast<double>());
-             } else {
-               model.updateGesture(affineArg(change, "worldMotion"));
-             }
-           },
-           "change"_a, R"doc(Moves the gesture's widget; bindings follow, from the start state (no drift).
-
-Args:
-    change: a number (affine widget: the variation change since the start) or a 4 x 4 matrix
-        (cell or lattice: its world motion since the start).
-Raises:
-    WidgetError: no gesture is active (GestureState). ValueError: a matrix that is not 4 x 4.)doc")
-      .def("endGesture", &WidgetModel::endGesture, R"doc(Ends the gesture; its changes stay.
-
-Raises:
-    WidgetError: no gesture is active (GestureState).)doc")
-      .def("cancelGesture", &WidgetModel::cancelGesture, R"doc(Ends the gesture and restores the state at its start.
-
-Raises:
-    WidgetError: no gesture is active (GestureState).)doc")
-      .def("gestureActive", &WidgetModel::gestureActive, R"doc(True between beginGesture() and endGesture() / cancelGesture().
-
-Returns:
-    bool.)doc")
-      .def("gestureWidget", &WidgetModel::gestureWidget, R"doc(The widget of the active gesture.
-
-Returns:
-    WidgetId, or None when no gesture is active.)doc")
-      .def("gestureVisitOrder", &WidgetModel::gestureVisitOrder, R"doc(The widgets the active gesture moves, in visiting order (for highlighting).
-
-Returns:
-    list of WidgetId (empty when no gesture is active).)doc")
-      .def("pick",
-           [](const WidgetModel& model, const widgets::Ray& ray, double tolerance, bool affines, bool cells,
-              bool lattices) {
-             return model.pick(ray, widgets::PickOptions{tolerance, affines, cells, lattices});
-           },
-           "ray"_a, "tolerance"_a = 0.02, "affines"_a = true, "cells"_a = true, "lattices"_a = false, R"doc(The nearest widget a ray hits: glyphs of affine widgets, cells' points, edges and faces.
-
-Args:
-    ray: Ray in the world.
-    tolerance: how far from a thin glyph the ray may pass (world units).
-    affines, cells, lattices: which kinds to consider (lattices: their bounding boxes).
-Returns:
-    PickResult, or None on a miss.)doc")
-      .def("beginDrag", &WidgetModel::beginDrag, "id"_a, "ray"_a, R"doc(Begins a drag of a widget grabbed by a ray (a gesture driven by rays).
-
-Args:
-    id: WidgetId.
-    ray: the ray through the grab point.
-Raises:
-    WidgetError: a gesture is active, or an unknown widget.)doc")
-      .def("dragTo", &WidgetModel::dragTo, "ray"_a, R"doc(Moves the active drag to a new mouse ray (rays parallel to the drag line keep the last value).
-
-Args:
-    ray: Ray.
-Raises:
-    WidgetError: no drag is active (GestureState).)doc")
-      .def("applyVariation", &WidgetModel::applyVariation, "affine"_a, "delta"_a, R"doc(Changes an affine widget's variation by delta, as one whole gesture (bindings follow).
-
-Args:
-    affine: WidgetId.
-    delta: a distance, an angle (rad) or a log scale factor.
-Raises:
-    WidgetError: not an affine widget, or a gesture is active.)doc")
-      .def("setVariation", &WidgetModel::setVariation, "affine"_a, "value"_a, R"doc(Sets an affine widget's variation to value, as one whole gesture (bindings follow).
-
-Args:
-    affine: WidgetId.
-    value: the new variation.
-Raises:
-    WidgetError: not an affine widget, or a gesture is active.)doc")
-      .def("applyMotion",
-           [](WidgetModel& model, WidgetId id, const py::object& motion) {
-             model.applyMotion(id, affineArg(motion, "worldMotion"));
-           },
-           "id"_a, "worldMotion"_a, R"doc(Moves a cell or lattice by a world motion, as one whole gesture (bindings follow).
-
-Args:
-    id: WidgetId of a cell or lattice.
-    worldMotion: 4 x 4 affine matrix.
-Raises:
-    WidgetError: not a cell or lattice, or a gesture is active.)doc")
-      .def("__repr__", [](const WidgetModel& model) {
+    WidgetError: not a lattice.)doc");
+  bindWidgetModelQueries(modelClass);
+  bindWidgetModelGestures(modelClass);
+  modelClass.def("__repr__", [](const WidgetModel& model) {
         return "<ffdkit.widgets.WidgetModel: " + std::to_string(model.widgets(widgets::WidgetType::Lattice).size()) +
                " lattices, " + std::to_string(model.widgets().size()) + " widgets, " +
                std::to_string(model.bindings().size()) + " bindings>";
