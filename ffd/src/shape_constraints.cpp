@@ -196,7 +196,7 @@ void checkSurface(const ClosedSurface& surface, Eigen::Index points, const char*
 
 ShapeConstraints::ShapeConstraints(const Lattice& lattice, const Eigen::Ref<const Eigen::MatrixX3d>& points,
                                    const EmbedOptions& embedOptions)
-    : lattice_(lattice), points_(points), deformer_(embed(lattice, points, embedOptions)) {
+    : lattice_(lattice), rowWeights_(lattice.weights()), points_(points), deformer_(embed(lattice, points, embedOptions)) {
   free_.setConstant(lattice.pointCount(), 3, true);
   if (points_.rows() > 0) origin_ = points_.colwise().mean().transpose();
 }
@@ -218,16 +218,13 @@ void ShapeConstraints::addLinear(const Eigen::SparseMatrix<double, Eigen::RowMaj
     throw ConstraintError("addLinear: A has " + std::to_string(A.rows()) + " rows but b " + std::to_string(b.size()) +
                           " values");
   if (!b.allFinite()) throw ConstraintError("addLinear: b must be finite");
-  for (Eigen::Index r = 0; r < A.outerSize(); ++r) {
-    Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(n, 3);
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, r); it; ++it) {
+  for (Eigen::Index r = 0; r < A.outerSize(); ++r)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, r); it; ++it)
       if (!std::isfinite(it.value()))
         throw ConstraintError("addLinear: A(" + std::to_string(r) + ", " + std::to_string(it.col()) + ") is not finite");
-      g(it.col() / 3, it.col() % 3) += it.value();
-    }
-    // Rows J = A d x'/d dP: the adjoint of the deformation applied to the row (constant).
-    linearRows_.push_back(flatten(adjointDeform(lattice_, deformer_.embedding(), g)));
+  for (Eigen::Index r = 0; r < A.outerSize(); ++r) {
     linearA_.push_back(A.row(r));
+    linearRows_.push_back(rowOf(linearA_.back()));
     linearB_.push_back(b[r]);
     double rest = 0.0, magnitude = 0.0;
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, r); it; ++it) {
@@ -238,6 +235,38 @@ void ShapeConstraints::addLinear(const Eigen::SparseMatrix<double, Eigen::RowMaj
     linearRest_.push_back(rest);
     linearRestScale_.push_back(magnitude);
   }
+}
+
+Eigen::VectorXd ShapeConstraints::rowOf(const Eigen::SparseVector<double>& a) const {
+  Eigen::MatrixX3d g = Eigen::MatrixX3d::Zero(points_.rows(), 3);
+  for (Eigen::SparseVector<double>::InnerIterator it(a); it; ++it) g(it.index() / 3, it.index() % 3) += it.value();
+  // Rows J = A d x'/d dP: the adjoint of the deformation applied to the row (constant while the
+  // weights are).
+  return flatten(adjointDeform(lattice_, deformer_.embedding(), g));
+}
+
+void ShapeConstraints::adoptWeights(const Lattice& lattice) {
+  const Eigen::VectorXd weights = lattice.weights();
+  if (weights == rowWeights_) return;
+  lattice_.setWeights(weights);
+  rowWeights_ = weights;
+  for (std::size_t r = 0; r < linearRows_.size(); ++r) linearRows_[r] = rowOf(linearA_[r]);
+}
+
+bool ShapeConstraints::polynomialApplies(const Lattice& lattice, const char* what) const {
+  if (!volumePolynomial_) return false;
+  if (!lattice.isRational()) return true;
+  const Eigen::VectorXd weights = lattice.weights(), rest = lattice.restWeights();
+  if (weights == rest) return true;
+  if (volumeEvaluation_ == VolumeEvaluation::Polynomial) {
+    Eigen::Index i = 0;
+    (weights - rest).cwiseAbs().maxCoeff(&i);
+    throw LatticeError(std::string(what) + ": the volume polynomial (VolumeEvaluation::Polynomial) holds while the "
+                       "weights equal the rest weights; control point " + std::to_string(i) + " has weight " +
+                       std::to_string(weights[i]) + ", rest weight " + std::to_string(rest[i]) +
+                       " (keep the volume with Automatic or PerVertex to follow weight edits)");
+  }
+  return false;
 }
 
 void ShapeConstraints::keepBarycentre(const Eigen::Vector3d& target) {
@@ -257,6 +286,7 @@ void ShapeConstraints::keepVolume(const ClosedSurface& surface, double target, V
     throw ConstraintError("keepVolume: the target volume must be finite and non-zero, got " + std::to_string(target));
   volumeSurface_ = std::make_shared<ClosedSurface>(surface);
   volumeTarget_ = target;
+  volumeEvaluation_ = evaluation;
   volumePolynomial_.reset();
   if (evaluation == VolumeEvaluation::PerVertex) return;
   // The polynomial is built in the displacements P - Pbar, which are the whole map only when the
@@ -281,7 +311,7 @@ void ShapeConstraints::keepVolume(const ClosedSurface& surface, double target, V
 double ShapeConstraints::keptVolume(const Lattice& lattice) const {
   if (!volumeSurface_) throw ConstraintError("keptVolume: no volume is kept (keepVolume)");
   deformer_.embedding().checkLattice(lattice);
-  if (volumePolynomial_) {
+  if (polynomialApplies(lattice, "keptVolume")) {
     Eigen::MatrixX3d gradient;
     const Eigen::MatrixX3d world = (lattice.controlPoints() - lattice.restPoints()) * lattice_.frame().linear().transpose();
     return volumePolynomial_->evaluate(world, gradient);
@@ -309,6 +339,9 @@ void ShapeConstraints::keepCentroid(const ClosedSurface& surface, const Eigen::V
 
 ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolveOptions& options) {
   deformer_.embedding().checkLattice(lattice);
+  // Rows built for other weights are rebuilt; the volume polynomial holds at the rest weights only.
+  const bool polynomial = polynomialApplies(lattice, "ShapeConstraints::solve");
+  adoptWeights(lattice);
   const Eigen::Index controls = lattice.pointCount();
   // The free coordinates, in flattened order 3 i + c.
   std::vector<Eigen::Index> freeIndex;
@@ -325,7 +358,7 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
   Lattice current = lattice;
   const double size = lattice.restSize();
   // With the volume polynomial and no centroid, no step visits the points.
-  const bool perVertex = (volumeSurface_ && !volumePolynomial_) || centroidSurface_;
+  const bool perVertex = (volumeSurface_ && !polynomial) || centroidSurface_;
   double lastStepNorm = std::numeric_limits<double>::infinity();
   const Eigen::Matrix3d L = lattice_.frame().linear();
   // Weights that differ from the rest weights (Lamousin & Waggenspack 1994) make the map
@@ -371,7 +404,7 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
     if (volumeSurface_) {
       double volume = 0.0;
       Eigen::VectorXd gradient;
-      if (volumePolynomial_) {
+      if (polynomial) {
         // World displacements D_i = L dP_i (rows: dP L^T); the local gradient is L^T dV/dD.
         Eigen::MatrixX3d worldGradient;
         volume = volumePolynomial_->evaluate(displacement * L.transpose(), worldGradient);

@@ -359,6 +359,96 @@ TEST(ShapeConstraints, HoldOnARationalLatticeWhoseWeightsDifferFromTheRest) {
   }
 }
 
+// The volume a closed triangle mesh bounds, by the divergence theorem (the test's own sum).
+double divergenceVolume(const Eigen::MatrixX3d& x, const TriangleMatrix& triangles) {
+  double sum = 0.0;
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+    const Eigen::Vector3d a = x.row(triangles(t, 0)), b = x.row(triangles(t, 1)), c = x.row(triangles(t, 2));
+    sum += a.dot(b.cross(c));
+  }
+  return sum / 6.0;
+}
+
+// Constraints built before a weight edit follow it: solve() sees that its lattice's weights are
+// not those the rows were built for and rebuilds them (the change equals that of constraints
+// built after the edit), and the volume polynomial, built at the rest weights, gives way to the
+// per-vertex sum while the weights differ. Volume and barycentre against the mesh deformed by
+// Lattice::evaluate (the weights included), the volume by the divergence theorem.
+TEST(ShapeConstraints, FollowAWeightEditMadeAfterTheyWereBuilt) {
+  std::mt19937 rng(22);
+  for (int trial = 0; trial < 3; ++trial) {
+    VolumeSetup s = volumeSetup(rng, 20, 0.3);
+    const ClosedSurface surface(s.mesh.triangles, s.mesh.points.rows());
+    const double rest = divergenceVolume(s.mesh.points, s.mesh.triangles);
+    ShapeConstraints constraints(s.lattice, s.mesh.points);
+    constraints.keepVolume(surface, rest);  // Automatic: the polynomial (64 control points)
+    ASSERT_TRUE(constraints.volumeIsPolynomial());
+    const Eigen::MatrixX3d uvw = constraints.embedding().parameters();
+    const Eigen::Vector3d centre = evaluated(s.lattice, uvw).colwise().mean().transpose() + Eigen::Vector3d(0.01, 0.0, -0.02);
+    constraints.keepBarycentre(centre);
+    (void)constraints.solve(s.lattice);  // a solve before the edit, at weights 1
+    ASSERT_EQ(constraints.rowWeights(), Eigen::VectorXd::Ones(s.lattice.pointCount()));
+
+    // Edit weights after the constraints were built (one, then several).
+    Lattice edited = s.lattice;
+    edited.setWeight(edited.index(1, 2, 1), 2.5);
+    if (trial > 0)
+      for (int i = 0; i < 6; ++i)
+        edited.setWeight(std::uniform_int_distribution<Eigen::Index>(0, edited.pointCount() - 1)(rng),
+                         std::uniform_real_distribution<double>(0.5, 2.0)(rng));
+    // The polynomial would give the volume at the rest weights: keptVolume sums per vertex.
+    EXPECT_NEAR(constraints.keptVolume(edited), divergenceVolume(evaluated(edited, uvw), s.mesh.triangles),
+                1e-12 * rest);
+    const ShapeSolveResult result = constraints.solve(edited);
+    EXPECT_EQ(constraints.rowWeights(), edited.weights());  // detected and rebuilt
+    Lattice after = edited;
+    after.setControlPoints(edited.controlPoints() + result.change);
+    const Eigen::MatrixX3d x = evaluated(after, uvw);
+    EXPECT_LT(std::abs(divergenceVolume(x, s.mesh.triangles) - rest) / rest, 1e-12) << "trial " << trial;
+    EXPECT_LT((x.colwise().mean().transpose() - centre).norm(), 1e-12) << "trial " << trial;
+    // The same least-norm change as constraints built after the edit.
+    ShapeConstraints fresh(edited, s.mesh.points);
+    fresh.keepVolume(surface, rest);
+    fresh.keepBarycentre(centre);
+    const ShapeSolveResult expected = fresh.solve(edited);
+    EXPECT_LT((result.change - expected.change).norm(), 1e-9 * expected.change.norm()) << "trial " << trial;
+
+    // Back at the rest weights, the polynomial holds again.
+    const ShapeSolveResult back = constraints.solve(s.lattice);
+    after = s.lattice;
+    after.setControlPoints(s.lattice.controlPoints() + back.change);
+    EXPECT_LT(std::abs(divergenceVolume(evaluated(after, uvw), s.mesh.triangles) - rest) / rest, 1e-12);
+    EXPECT_NEAR(constraints.keptVolume(after), rest, 1e-12 * rest);
+  }
+}
+
+// With the polynomial asked for explicitly, a lattice whose weights left the rest weights is refused
+// (it would be the per-vertex sum's cost, not the polynomial's), naming the control point.
+TEST(ShapeConstraints, AnExplicitVolumePolynomialRefusesAWeightEdit) {
+  std::mt19937 rng(23);
+  VolumeSetup s = volumeSetup(rng, 16, 0.2);
+  const ClosedSurface surface(s.mesh.triangles, s.mesh.points.rows());
+  const double rest = divergenceVolume(s.mesh.points, s.mesh.triangles);
+  ShapeConstraints constraints(s.lattice, s.mesh.points);
+  constraints.keepVolume(surface, rest, VolumeEvaluation::Polynomial);
+  Lattice edited = s.lattice;
+  edited.setWeight(edited.index(2, 1, 3), 1.5);
+  const std::string expected = "the volume polynomial (VolumeEvaluation::Polynomial) holds while the weights equal the "
+                               "rest weights; control point " + std::to_string(edited.index(2, 1, 3)) +
+                               " has weight 1.500000, rest weight 1.000000";
+  for (int call = 0; call < 2; ++call) {
+    try {
+      if (call == 0) (void)constraints.solve(edited);
+      else (void)constraints.keptVolume(edited);
+      ADD_FAILURE() << "a weight edit was not refused";
+    } catch (const LatticeError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
+  const ShapeSolveResult result = constraints.solve(s.lattice);  // the rest weights: fine
+  EXPECT_LE(result.volumeRelativeError, 1e-12);
+}
+
 TEST(ShapeConstraints, RefusesOpenSurfacesAndConstraintsThatCannotBeMet) {
   std::mt19937 rng(13);
   VolumeSetup s = volumeSetup(rng, 8, 0.3);

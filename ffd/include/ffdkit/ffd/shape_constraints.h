@@ -82,6 +82,15 @@ struct ShapeSolveResult {
 /// whose fixed points are exactly the Lagrange points (dP parallel to the rows of J); linear
 /// constraints hold after the first step, the volume's error falls quadratically.
 ///
+/// Weights (Lamousin & Waggenspack 1994): a linear row's coefficients R = w B / sum w B and the
+/// volume polynomial depend on the lattice's weights. solve() and keptVolume() compare the weights
+/// of the lattice they are given with those the rows were built for: after a weight edit the
+/// rows are rebuilt for the new weights (one adjoint pass per row, at the next solve()), and the
+/// volume polynomial, which holds only while the weights equal the rest weights, is set aside
+/// for the per-vertex sum (used again when the weights return to the rest weights). Asked for
+/// explicitly (VolumeEvaluation::Polynomial), a weight that differs from its rest weight is a
+/// LatticeError instead.
+///
 /// Precompute (constructor, add*, keep*): the embedding, the rows of J of the linear constraints
 /// (constant: a linear row's residual is a . x + J (P + dP - Pbar)), the surface's
 /// vertex-to-triangle table, and (VolumeEvaluation::Polynomial) the volume's coefficients. Each
@@ -121,18 +130,26 @@ class ShapeConstraints {
   void keepVolume(const ClosedSurface& surface, double target,
                   VolumeEvaluation evaluation = VolumeEvaluation::Automatic);
   /// The volume the kept surface encloses once deformed by `lattice`'s current control points
-  /// (world units^3): the precomputed polynomial (O(lattice)) or a deformation and a sum over the
-  /// triangles. A drag's status line (the volume change) costs nothing more than its solve.
-  /// @throws ConstraintError without keepVolume(); LatticeError if `lattice` is not the one embedded.
+  /// and weights (world units^3): the precomputed polynomial (O(lattice)) while the weights equal
+  /// the rest weights, else a deformation and a sum over the triangles. A drag's status line (the
+  /// volume change) costs nothing more than its solve.
+  /// @throws ConstraintError without keepVolume(); LatticeError if `lattice` is not the one
+  ///         embedded, or its weights differ from the rest weights with VolumeEvaluation::Polynomial.
   double keptVolume(const Lattice& lattice) const;
-  /// True when the kept volume is evaluated by its precomputed polynomial (see VolumeEvaluation).
+  /// True when the kept volume has its precomputed polynomial (see VolumeEvaluation); it is
+  /// used while the lattice's weights equal its rest weights.
   bool volumeIsPolynomial() const { return volumePolynomial_ != nullptr; }
+  /// The weights the linear rows are built for (one per control point); solve() rebuilds the
+  /// rows when its lattice's weights differ.
+  const Eigen::VectorXd& rowWeights() const { return rowWeights_; }
   /// Keeps the centroid of the solid the closed surface bounds at `target` (world).
   void keepCentroid(const ClosedSurface& surface, const Eigen::Vector3d& target);
 
   /// The least-norm control change meeting every constraint from `lattice`'s current control
   /// points (the lattice is not changed). Also callable with no constraint (change 0).
-  /// @throws LatticeError if `lattice` is not the one embedded (Embedding::checkLattice).
+  /// @throws LatticeError if `lattice` is not the one embedded (Embedding::checkLattice), or its
+  ///         weights differ from the rest weights while the volume asks for
+  ///         VolumeEvaluation::Polynomial.
   /// @throws ConstraintError when the constraints cannot be met with the free controls (the
   ///         linearised system is inconsistent: e.g. a volume with no free control that changes
   ///         it, two contradicting rows) or Newton has not converged after maxIterations.
@@ -144,7 +161,16 @@ class ShapeConstraints {
   const Eigen::MatrixX3d& deformedPoints() const;
 
  private:
-  Lattice lattice_;  // the embedded lattice (bases, frame; its control points are not used)
+  // The polynomial applies to `lattice` (its weights equal the rest weights); with
+  // VolumeEvaluation::Polynomial asked for, a LatticeError when they do not.
+  bool polynomialApplies(const Lattice& lattice, const char* what) const;
+  // Rebuilds the linear rows when `lattice`'s weights differ from rowWeights_.
+  void adoptWeights(const Lattice& lattice);
+  // A linear row's J row: the adjoint of the deformation applied to the row a (flattened 3 #points).
+  Eigen::VectorXd rowOf(const Eigen::SparseVector<double>& a) const;
+
+  Lattice lattice_;  // the embedded lattice (bases, frame, the rows' weights; its control points are not used)
+  Eigen::VectorXd rowWeights_;  // lattice_'s weights, the linear rows' weights
   Eigen::MatrixX3d points_;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();  // mean of points_: volumes are measured about it
   mutable Deformer deformer_;
@@ -161,6 +187,7 @@ class ShapeConstraints {
   std::shared_ptr<const ClosedSurface> volumeSurface_;
   double volumeTarget_ = 0.0;
   std::shared_ptr<const detail::VolumePolynomial> volumePolynomial_;
+  VolumeEvaluation volumeEvaluation_ = VolumeEvaluation::Automatic;  // as keepVolume() was asked
   std::shared_ptr<const ClosedSurface> centroidSurface_;
   Eigen::Vector3d centroidTarget_ = Eigen::Vector3d::Zero();
   Eigen::MatrixX3d gradientScratch_;  // the per-vertex volume gradient, reused between Newton steps
