@@ -209,6 +209,44 @@ void writeNewFile(const fs::path& path, std::string_view bytes, bool durable) {
     throw MeshIoError(path.string() + ": cannot write (" + std::strerror(errno) + ")");
 }
 
+void writeFoamPointsFile(const fs::path& path, const FoamPointsFile& original, const Eigen::MatrixX3d& points,
+                         bool durable) {
+  if (!original.layout.binary || original.gzip) {
+    std::string bytes = foamPointsBytes(original, points);
+    if (original.gzip) bytes = gzipBytes(bytes, original.fileName);
+    writeNewFile(path, bytes, durable);
+    return;
+  }
+  checkBinaryFoamPoints(original, points);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) throw MeshIoError(path.string() + ": cannot create (" + std::strerror(errno) + ")");
+  auto put = [&](std::string_view bytes) {
+    while (!bytes.empty()) {
+      const ssize_t n = ::write(fd, bytes.data(), bytes.size());
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        const std::string why = std::strerror(errno);
+        ::close(fd);
+        throw MeshIoError(path.string() + ": cannot write (" + why + ")");
+      }
+      bytes.remove_prefix(std::size_t(n));
+    }
+  };
+  const std::string_view kept = original.bytes;
+  put(kept.substr(0, original.listBegin));
+  // 64 Ki points (1.5 MiB of doubles) at a time: the buffer stays in the cache.
+  constexpr Eigen::Index kRun = Eigen::Index(1) << 16;
+  std::vector<char> run(std::size_t(kRun) * 3 * std::size_t(original.layout.scalarBytes));
+  for (Eigen::Index first = 0; first < points.rows(); first += kRun) {
+    const Eigen::Index last = std::min(points.rows(), first + kRun);
+    const char* end = storeFoamPoints(original.layout, points, first, last, run.data());
+    put(std::string_view(run.data(), std::size_t(end - run.data())));
+  }
+  put(kept.substr(original.listEnd));
+  if ((durable && ::fsync(fd) != 0) || ::close(fd) != 0)
+    throw MeshIoError(path.string() + ": cannot write (" + std::strerror(errno) + ")");
+}
+
 void syncPath(const fs::path& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return;
@@ -322,9 +360,16 @@ void writeOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points,
                        const OpenFoamWriteOptions& options) {
   const fs::path output = outputGiven.filename().empty() ? outputGiven.parent_path() : outputGiven;
   detail::checkFolderOutput(mesh.root, output);
-  // The points bytes first: a point count or value the file cannot hold fails before any copy.
-  std::string bytes = foamPointsBytes(mesh.pointsFile, points);
-  if (mesh.pointsFile.gzip) bytes = gzipBytes(bytes, mesh.pointsFile.fileName);
+  // A point count or value the file cannot hold fails before any copy. A binary file is written
+  // from the points (writeFoamPointsFile); the bytes of another are made here.
+  const bool streamed = mesh.pointsFile.layout.binary && !mesh.pointsFile.gzip;
+  std::string bytes;
+  if (streamed) {
+    detail::checkBinaryFoamPoints(mesh.pointsFile, points);
+  } else {
+    bytes = foamPointsBytes(mesh.pointsFile, points);
+    if (mesh.pointsFile.gzip) bytes = gzipBytes(bytes, mesh.pointsFile.fileName);
+  }
 
   const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
   const fs::path temporary = temporaryPathBeside(output);
@@ -338,7 +383,8 @@ void writeOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points,
     // The new points file first, its flush started, then the rest copied and everything flushed:
     // the disk writes while the copies are made.
     fs::create_directories(newPoints.parent_path());
-    detail::writeNewFile(newPoints, bytes, false);
+    if (streamed) detail::writeFoamPointsFile(newPoints, mesh.pointsFile, points, false);
+    else detail::writeNewFile(newPoints, bytes, false);
     if (options.durable) detail::startWriteback(newPoints);
     detail::copyFolder(mesh.root, temporary, mesh.root, [&](const fs::path& p) { return p == pointsPath; },
                        options.durable);

@@ -125,10 +125,8 @@ void writeDecomposedCasePiece(const DecomposedCasePiece& piece, const OpenFoamMe
       writeOpenFoamMesh(mesh, points, staging / piece.relative, options);
       return;
     }
-    std::string bytes = foamPointsBytes(mesh.pointsFile, points);
-    if (mesh.pointsFile.gzip) bytes = gzipBytes(bytes, mesh.pointsFile.fileName);
     const fs::path folder = staging / piece.relative;
-    detail::writeNewFile(folder / mesh.pointsFile.fileName, bytes, options.durable);
+    detail::writeFoamPointsFile(folder / mesh.pointsFile.fileName, mesh.pointsFile, points, options.durable);
     if (options.durable) detail::syncPath(folder);
   } catch (const MeshIoError& e) {
     // The staging folder's name means nothing to the user: name the piece of the case.

@@ -7,7 +7,28 @@
 #include <functional>
 #include <string_view>
 
+#include <Eigen/Core>
+
+#include "ffdkit/meshio/openfoam.h"
+
 namespace ffdkit::meshio::detail {
+
+/// Refuses `points` for the binary points file `original`: another point count, or (scalar=32) a
+/// value a float32 cannot hold. @throws MeshIoError naming the file.
+void checkBinaryFoamPoints(const FoamPointsFile& original, const Eigen::MatrixX3d& points);
+
+/// The binary items of points [first, last) as `layout` stores them (scalar size, byte order), at
+/// `out`; returns the end of what it wrote (3 (last - first) scalarBytes bytes).
+char* storeFoamPoints(const FoamFileLayout& layout, const Eigen::MatrixX3d& points, Eigen::Index first, Eigen::Index last,
+                      char* out);
+
+/// Creates the points file `path` (which must not exist) of `original` with `points`: the bytes
+/// foamPointsBytes gives (compressed again for a .gz file), a binary file written from the points a
+/// run at a time, without the whole file in memory. Flushed to disk when `durable`.
+/// @throws MeshIoError naming the file (check first with foamPointsBytes's rules: the count, a
+/// float32 file's values).
+void writeFoamPointsFile(const std::filesystem::path& path, const FoamPointsFile& original, const Eigen::MatrixX3d& points,
+                         bool durable);
 
 /// Creates `path` (which must not exist) with `bytes`, flushed to disk when `durable`.
 /// @throws MeshIoError naming the path.

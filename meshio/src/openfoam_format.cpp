@@ -13,6 +13,7 @@
 #include "foam_scanner.h"
 #include "formats.h"
 #include "mapped_file.h"
+#include "openfoam_files.h"
 #include "parse_support.h"
 
 namespace ffdkit::meshio {
@@ -417,26 +418,41 @@ std::vector<PolyMeshPatch> readFoamBoundary(std::string_view bytes, const std::s
   return patches;
 }
 
+namespace detail {
+
+void checkBinaryFoamPoints(const FoamPointsFile& original, const Eigen::MatrixX3d& points) {
+  const FoamFileLayout& layout = original.layout;
+  const std::int64_t n =
+      std::int64_t(original.listEnd - original.listBegin + original.omittedBytes) / (3 * layout.scalarBytes);
+  if (n != points.rows())
+    throw MeshIoError(original.fileName + ": " + std::to_string(points.rows()) + " points given for a file of " +
+                      std::to_string(n));
+  if (layout.scalarBytes == 4) requireFloat32Points(points, "a binary OpenFOAM points file of scalar=32");
+}
+
+char* storeFoamPoints(const FoamFileLayout& layout, const Eigen::MatrixX3d& points, Eigen::Index first, Eigen::Index last,
+                      char* out) {
+  for (Eigen::Index i = first; i < last; ++i)
+    for (int c = 0; c < 3; ++c)
+      out = layout.scalarBytes == 8 ? storeBinary(out, points(i, c), layout.bigEndian)
+                                    : storeBinary(out, float(points(i, c)), layout.bigEndian);
+  return out;
+}
+
+}  // namespace detail
+
 std::string foamPointsBytes(const FoamPointsFile& original, const Eigen::MatrixX3d& points) {
   const std::string_view bytes = original.bytes;
   const FoamFileLayout& layout = original.layout;
   const std::string source = original.fileName;
   std::string out;
   if (layout.binary) {
-    const std::int64_t n =
-        std::int64_t(original.listEnd - original.listBegin + original.omittedBytes) / (3 * layout.scalarBytes);
-    if (n != points.rows())
-      throw MeshIoError(source + ": " + std::to_string(points.rows()) + " points given for a file of " + std::to_string(n));
-    if (layout.scalarBytes == 4) detail::requireFloat32Points(points, "a binary OpenFOAM points file of scalar=32");
+    detail::checkBinaryFoamPoints(original, points);
     out.reserve(bytes.size() + original.omittedBytes);
     out.append(bytes.substr(0, original.listBegin));
     const std::size_t at = out.size();
-    out.resize(at + std::size_t(n) * 3 * std::size_t(layout.scalarBytes));
-    char* cursor = out.data() + at;
-    for (Eigen::Index i = 0; i < points.rows(); ++i)
-      for (int c = 0; c < 3; ++c)
-        cursor = layout.scalarBytes == 8 ? detail::storeBinary(cursor, points(i, c), layout.bigEndian)
-                                         : detail::storeBinary(cursor, float(points(i, c)), layout.bigEndian);
+    out.resize(at + std::size_t(points.rows()) * 3 * std::size_t(layout.scalarBytes));
+    detail::storeFoamPoints(layout, points, 0, points.rows(), out.data() + at);
     out.append(bytes.substr(original.listEnd));
     return out;
   }

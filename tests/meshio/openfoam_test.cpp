@@ -375,6 +375,15 @@ TEST_F(OpenFoam, LargeBinaryFilesReadRunByRunEqualTheirBytesParsedInMemory) {
   EXPECT_NEAR(q.maxVolume, 1.0 / 6, 1e-12);
   EXPECT_NEAR(q.totalVolume, 300'000.0 / 6, 1e-6);
 
+  // The written points file (from the points, 64 Ki at a time) is foamPointsBytes's, byte for byte.
+  Eigen::MatrixX3d moved = mesh.points * 1.25;
+  moved(1'199'999, 2) = -0.1;
+  writeOpenFoamMesh(mesh, moved, dir_ / "moved", {.durable = false});
+  const fs::path written = dir_ / "moved" / "constant" / "polyMesh";
+  EXPECT_EQ(fileText(written / "points"), foamPointsBytes(mesh.pointsFile, moved));
+  EXPECT_EQ(readOpenFoamMesh(dir_ / "moved", {.readCells = false}).points, moved);
+  EXPECT_EQ(fileText(written / "faces"), fileText(polyMesh / "faces"));
+
   // A bad point index in the second run (after the first 8 MiB given back) is found and named.
   const fs::path faces = polyMesh / "faces";
   std::string text = fileText(faces);
