@@ -176,6 +176,11 @@ std::vector<ShapeGuardStep> ShapeGuard::correct(scenes::Scene& scene, widgets::W
         for (Eigen::Index i = 0; i < n; ++i) mask.row(i).setConstant(free[static_cast<std::size_t>(i)]);
         p.constraints->setFreeControls(mask);
         p.ffdLattice->setControlPoints(m.controlPoints(lattice));
+        // The weights as they are now (a weight typed since the keep was turned on): the
+        // constraints follow them (ShapeConstraints::solve; the volume polynomial only while they
+        // are the rest weights, else the volume is summed per vertex).
+        if (const Eigen::VectorXd weights = m.weights(lattice); weights != p.ffdLattice->weights())
+          p.ffdLattice->setWeights(weights);
         const ffd::ShapeSolveResult result = p.constraints->solve(*p.ffdLattice);
         step.iterations = result.iterations;
         if (k.keep.volume) step.volumeChange = (result.volume - k.volume) / std::abs(k.volume);

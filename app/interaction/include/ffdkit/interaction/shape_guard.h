@@ -50,8 +50,9 @@ struct ShapeGuardStep {
 ///
 /// Precompute: the object's embedding and, for a volume, its cubic polynomial in the control
 /// points (ffd::VolumeEvaluation::Automatic), built when the keep is turned on and again only
-/// when the object's mesh or the lattice's rest frame changes; a step then costs O(lattice)
-/// (a centroid on a closed surface costs a pass over the vertices per Newton step).
+/// when the object's mesh or the lattice's rest frame changes; a step then costs O(lattice) (a
+/// centroid on a closed surface costs passes over the vertices per Newton step, and so does the
+/// volume while a typed weight makes the lattice's weights differ from its rest weights).
 /// Holds for an object deformed by exactly one lattice.
 class ShapeGuard {
  public:

@@ -1,0 +1,61 @@
+// Keep Volume on a lattice whose weights were typed after the keep was turned on (headless): the
+// shape guard corrects with the lattice's weights as they are now, so each step of a G in the
+// edit mode leaves the volume of the evaluated mesh (summed here by the divergence theorem)
+// within 1e-12 of the kept one; a weight edit itself is no drag and changes the volume.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "edit_test_document.h"
+
+namespace ffdkit::app {
+namespace {
+
+using test::Document;
+using test::f;
+using widgets::WidgetId;
+
+double divergenceVolume(const Eigen::MatrixX3d& p, const Eigen::MatrixX3i& t) {
+  double v = 0.0;
+  for (Eigen::Index i = 0; i < t.rows(); ++i) {
+    const Eigen::Vector3d a = p.row(t(i, 0)), b = p.row(t(i, 1)), c = p.row(t(i, 2));
+    v += a.dot(b.cross(c)) / 6.0;
+  }
+  return v;
+}
+
+TEST(ShapeGuardWeights, KeepVolumeHoldsWithTheWeightsTypedAfterItWasTurnedOn) {
+  Document d;
+  d.controller.addPrimitive({});
+  const WidgetId lattice = d.controller.newLattice({});
+  d.controller.attachLattice(lattice, "sphere1");
+  const scenes::ObjectId sphere = d.scene.objectId("sphere1");
+  const Eigen::MatrixX3i& triangles = d.scene.findObject(sphere)->mesh.triangles;
+  d.controller.setKeep(sphere, {true, false});
+  const double kept = d.controller.shapeGuard().keptVolume(sphere);
+  ASSERT_LE(std::abs(divergenceVolume(d.deformer.points(sphere), triangles) - kept) / kept, 1e-12);
+
+  // Two points of the top layer weighted 3: the lattice is rational, the sphere bulges up.
+  d.controller.setWeight(lattice, {f(1, 1, 2), f(2, 1, 2)}, 3.0);
+  ASSERT_TRUE(d.scene.widgets.isRational(lattice));
+  EXPECT_GT(std::abs(divergenceVolume(d.deformer.points(sphere), triangles) - kept) / kept, 1e-4);
+
+  // G on the top middle point: every step brings the volume back to the kept one.
+  d.edit.enter(lattice);
+  d.edit.pickMany({f(1, 1, 2)}, SelectMode::Replace);
+  const Eigen::Vector3d top = d.scene.widgets.worldControlPoints(lattice).row(f(1, 1, 2)).transpose();
+  d.edit.beginModal(TransformMode::Move, test::downAt(top), test::kView);
+  for (int step = 1; step <= 5; ++step) {
+    d.edit.update(test::downAt(top + Eigen::Vector3d(0.03 * step, 0.02 * step, 0.0)), false);
+    ASSERT_EQ(d.edit.guardSteps().size(), 1u);
+    EXPECT_TRUE(d.edit.guardSteps()[0].problem.empty()) << d.edit.guardSteps()[0].problem;
+    const double v = divergenceVolume(d.deformer.points(sphere), triangles);
+    EXPECT_LE(std::abs(v - kept) / kept, 1e-12) << "step " << step << ": volume " << v << ", kept " << kept;
+  }
+  d.edit.confirm();
+  EXPECT_LE(std::abs(divergenceVolume(d.deformer.points(sphere), triangles) - kept) / kept, 1e-12);
+  EXPECT_EQ(d.scene.widgets.weights(lattice)[f(2, 1, 2)], 3.0);
+}
+
+}  // namespace
+}  // namespace ffdkit::app
