@@ -200,8 +200,7 @@ class BadInputGuiTest : public QObject {
 
  private slots:
   void init() {
-    QSettings().clear();  // the default limits and confinement
-    window_ = openWindow(QSize(1000, 760));
+    window_ = startWindow(QSize(1000, 760), StartSettings::Cleared);  // the default limits and confinement
     QVERIFY(window_ != nullptr);
   }
   void cleanup() {

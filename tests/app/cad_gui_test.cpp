@@ -62,7 +62,7 @@ class CadGuiTest : public QObject {
     cad::writeStep(cad::makeSamplePart(cad::SamplePart::FilletedBox), folder_ / "part.step");
   }
   void init() {
-    window_ = openWindow(QSize(1000, 760));
+    window_ = startWindow();
     QVERIFY(window_ != nullptr);
   }
   void cleanup() {

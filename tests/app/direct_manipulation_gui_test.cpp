@@ -17,7 +17,7 @@ class DirectManipulationGuiTest : public QObject {
 
  private slots:
   void init() {
-    window_ = openWindow(QSize(1000, 760));
+    window_ = startWindow();
     QVERIFY(window_ != nullptr);
   }
   void cleanup() { window_.reset(); }

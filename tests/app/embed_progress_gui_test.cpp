@@ -22,7 +22,7 @@ class EmbedProgressGuiTest : public QObject {
 
  private slots:
   void init() {
-    window_ = openWindow();
+    window_ = startWindow(QSize());
     QVERIFY(window_ != nullptr);
   }
   void cleanup() { window_.reset(); }

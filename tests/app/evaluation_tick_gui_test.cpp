@@ -49,9 +49,8 @@ class EvaluationTickGuiTest : public QObject {
 
  private slots:
   void init() {
-    window_ = openWindow();
+    window_ = startWindow(QSize(), StartSettings::Kept, kExamples / "press");
     QVERIFY(window_ != nullptr);
-    window_->openScene(kExamples / "press");
     window_->view()->grabFramebuffer();
     deliverTick();
   }

@@ -68,9 +68,8 @@ class GltfExportGuiTest : public QObject {
 
  private slots:
   void init() {
-    window_ = openWindow(QSize(1000, 760));
+    window_ = startWindow(QSize(1000, 760), StartSettings::Kept, kExamples / "press");
     QVERIFY(window_ != nullptr);
-    window_->openScene(kExamples / "press");
   }
   void cleanup() { window_.reset(); }
 

@@ -11,6 +11,7 @@
 #include <QMenuBar>
 #include <QMouseEvent>
 #include <QPointer>
+#include <QSettings>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
@@ -150,6 +151,24 @@ inline std::unique_ptr<MainWindow> openWindow(QSize size = QSize()) {
   window->show();
   if (!QTest::qWaitForWindowExposed(window.get())) return nullptr;
   window->view()->grabFramebuffer();
+  return window;
+}
+
+/// Whether a test function starts from the default settings (startWindow).
+enum class StartSettings {
+  Kept,    ///< the settings the previous test function left
+  Cleared  ///< QSettings().clear() first: default limits, layout, recent files
+};
+
+/// The window a test function runs in (its init() slot): the settings cleared first if asked, a
+/// window of `size` opened (openWindow; an invalid size keeps MainWindow's own) and `scene` (a
+/// scene file or sample folder) opened in it unless empty. Null if the window system never
+/// exposed it: `window_ = startWindow(); QVERIFY(window_ != nullptr);`.
+inline std::unique_ptr<MainWindow> startWindow(QSize size = QSize(1000, 760), StartSettings settings = StartSettings::Kept,
+                                               const std::filesystem::path& scene = {}) {
+  if (settings == StartSettings::Cleared) QSettings().clear();
+  auto window = openWindow(size);
+  if (window && !scene.empty()) window->openScene(scene);
   return window;
 }
 

@@ -109,7 +109,7 @@ class DiskFullGuiTest : public QObject {
 
  private slots:
   void init() {
-    window_ = openWindow(QSize(1000, 760));
+    window_ = startWindow();
     QVERIFY(window_ != nullptr);
     dir_ = std::make_unique<QTemporaryDir>();
     QVERIFY(dir_->isValid());

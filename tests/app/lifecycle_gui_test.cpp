@@ -128,8 +128,7 @@ class LifecycleGuiTest : public QObject {
 
  private slots:
   void init() {
-    QSettings().clear();
-    window_ = openWindow(QSize(1000, 760));
+    window_ = startWindow(QSize(1000, 760), StartSettings::Cleared);
     QVERIFY(window_ != nullptr);
   }
   void cleanup() {

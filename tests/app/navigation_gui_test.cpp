@@ -77,8 +77,7 @@ class NavigationGuiTest : public QObject {
 
  private slots:
   void init() {
-    QSettings().clear();
-    window_ = openWindow(QSize(1100, 760));
+    window_ = startWindow(QSize(1100, 760), StartSettings::Cleared);
     QVERIFY(window_ != nullptr);
   }
   void cleanup() { window_.reset(); }

@@ -46,9 +46,8 @@ class PanelUpdatesGuiTest : public QObject {
 
  private slots:
   void init() {
-    window_ = openWindow(QSize(1200, 800));
+    window_ = startWindow(QSize(1200, 800), StartSettings::Kept, kExamples / "default");
     QVERIFY(window_ != nullptr);
-    window_->openScene(kExamples / "default");
   }
   void cleanup() { window_.reset(); }
 

@@ -79,9 +79,8 @@ class UndoAcrossFramesGuiTest : public QObject {
 
  private slots:
   void init() {
-    window_ = openWindow(QSize(1100, 800));
+    window_ = startWindow(QSize(1100, 800), StartSettings::Kept, kDefault);
     QVERIFY(window_ != nullptr);
-    window_->openScene(kDefault);
     bar_ = window_->findChild<QWidget*>("timelineBar");
     timeline_ = window_->findChild<app::TimelineWidget*>("timeline");
     QVERIFY(bar_ && bar_->isVisible() && timeline_);

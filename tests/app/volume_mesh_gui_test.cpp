@@ -43,7 +43,7 @@ class VolumeMeshGuiTest : public QObject {
 
  private slots:
   void init() {
-    window_ = openWindow(QSize(1000, 760));
+    window_ = startWindow();
     QVERIFY(window_ != nullptr);
   }
   void cleanup() { window_.reset(); }
