@@ -1,7 +1,8 @@
-// Keep Volume on a lattice whose weights were typed after the keep was turned on (headless): the
-// shape guard corrects with the lattice's weights as they are now, so each step of a G in the
-// edit mode leaves the volume of the evaluated mesh (summed here by the divergence theorem)
-// within 1e-12 of the kept one; a weight edit itself is no drag and changes the volume.
+// Control-point weights in the interaction layer (headless): InteractionController::setWeight of
+// several points is one undo step, and all or nothing; Keep Volume on a lattice whose weights were
+// typed after the keep was turned on corrects with the weights as they are now, so each step of a
+// G in the edit mode leaves the volume of the evaluated mesh (summed here by the divergence
+// theorem) within 1e-12 of the kept one; a weight edit itself is no drag and changes the volume.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,7 +25,28 @@ double divergenceVolume(const Eigen::MatrixX3d& p, const Eigen::MatrixX3i& t) {
   return v;
 }
 
-TEST(ShapeGuardWeights, KeepVolumeHoldsWithTheWeightsTypedAfterItWasTurnedOn) {
+TEST(ControlPointWeights, SeveralPointsAreOneUndoStepAndAllOrNothing) {
+  Document d;
+  const WidgetId lattice = d.controller.newLattice({});
+  const std::size_t steps = d.commands.position();
+  d.controller.setWeight(lattice, {f(0, 0, 0), f(2, 2, 2), f(1, 1, 1)}, 0.5);
+  EXPECT_EQ(d.commands.position(), steps + 1);
+  Eigen::VectorXd expected = Eigen::VectorXd::Ones(27);
+  expected[f(0, 0, 0)] = expected[f(2, 2, 2)] = expected[f(1, 1, 1)] = 0.5;
+  EXPECT_EQ(d.scene.widgets.weights(lattice), expected);
+  // A point past the end, a weight not > 0, no points: refused, nothing changed, no step.
+  EXPECT_THROW(d.controller.setWeight(lattice, {f(1, 0, 0), 27}, 2.0), std::exception);
+  EXPECT_THROW(d.controller.setWeight(lattice, {f(1, 0, 0)}, 0.0), std::exception);
+  EXPECT_THROW(d.controller.setWeight(lattice, {}, 2.0), std::invalid_argument);
+  EXPECT_EQ(d.scene.widgets.weights(lattice), expected);
+  EXPECT_EQ(d.commands.position(), steps + 1);
+  d.commands.undo();
+  EXPECT_FALSE(d.scene.widgets.isRational(lattice));
+  d.commands.redo();
+  EXPECT_EQ(d.scene.widgets.weights(lattice), expected);
+}
+
+TEST(ControlPointWeights, KeepVolumeHoldsWithTheWeightsTypedAfterItWasTurnedOn) {
   Document d;
   d.controller.addPrimitive({});
   const WidgetId lattice = d.controller.newLattice({});
