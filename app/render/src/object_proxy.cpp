@@ -6,8 +6,9 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
-#include <vtkPolyDataMapper.h>
 #include <vtkRenderer.h>
+
+#include "surface_mapper.h"
 
 namespace ffdkit::app {
 
@@ -30,7 +31,7 @@ ObjectProxy::ObjectProxy(vtkRenderer* renderer, vtkActor* full, const meshio::Me
   normals->SetNumberOfComponents(3);
   normals->SetNumberOfTuples(vertexCount());
   polyData_->GetPointData()->SetNormals(normals);
-  vtkNew<vtkPolyDataMapper> mapper;
+  vtkNew<SurfaceMapper> mapper;
   mapper->SetInputData(polyData_);
   actor_ = vtkSmartPointer<vtkActor>::New();
   actor_->SetMapper(mapper);

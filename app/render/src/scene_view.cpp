@@ -38,6 +38,7 @@
 #include "ffdkit/widgets/widget_model.h"
 #include "ffdkit/widgets/widget_redraw.h"
 #include "scene_view_shapes.h"
+#include "surface_mapper.h"
 
 namespace ffdkit::app {
 namespace {
@@ -305,7 +306,7 @@ struct SceneView::Impl {
       constexpr double kCurveLineWidth = 2.0;  // pixels, DisplaySettings::curveStyle
       const bool curveLine = object.display.curveStyle == scenes::CurveStyle::Line && object.mesh.triangles.rows() == 0 &&
                              object.mesh.segments.rows() > 0;
-      vtkNew<vtkPolyDataMapper> mapper;
+      vtkNew<SurfaceMapper> mapper;  // surface_mapper.h: no index buffer or cell bounds per frame
       if (object.mesh.triangles.rows() > 0) {
         vtkNew<vtkFloatArray> normals;  // smooth shading of the deformed surface
         entry.vertexFaces = vertexFaces(object.mesh.triangles, points.rows());
