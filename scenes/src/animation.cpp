@@ -327,21 +327,16 @@ void restoreAtEditValues(Scene& scene, const widgets::WidgetModelState& editValu
     *last = CarriedStep{std::move(start), std::move(back)};
     return;
   }
-  // The values shown now: those of the channels live now, as they are (the model's, which the
-  // animation set at the last frame change); the animation's at that time for the channels of
-  // widgets the write-back brings back.
-  const widgets::WidgetModelState shown = animatedState(scene);
   applyAnimatedValues(scene, editValues);
   restore();
-  widgets::WidgetModelState values = animationValues(scene, *shownSeconds);
-  const auto keep = [](auto& items, const auto& now) {
-    for (auto& [widget, value] : items)
-      if (const auto* v = findValue(now, widget)) value = *v;
-  };
-  keep(values.latticeFrames, shown.latticeFrames);
-  keep(values.variations, shown.variations);
-  keep(values.controlPoints, shown.controlPoints);
-  applyAnimatedValues(scene, values);
+  // The time shown, as a frame change shows it with the document the write-back made (its keys,
+  // bindings and widgets): a scrub to that time then changes nothing. Setting the channels back
+  // to the values shown before the step instead left a pose no frame change gives where those
+  // values came through a binding (a keyed widget bound to another keyed widget shows the
+  // binding's value, not its key's) or from what the step undid (a key, a binding), and the next
+  // frame change, even to the same frame, moved the scene and made the step's inverse carry
+  // from another state.
+  applyAnimatedValues(scene, animationValues(scene, *shownSeconds));
   if (last != nullptr) *last = CarriedStep{std::move(start), scene.widgets.captureState()};
 }
 

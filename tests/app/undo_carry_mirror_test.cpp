@@ -16,6 +16,7 @@
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
+#include "number_text_difference.h"
 
 namespace ffdkit::app {
 namespace {
@@ -129,6 +130,86 @@ TEST(UndoCarryMirror, TurnsAndBoundWidgetChangesBetweenFrameChangesUndoToTheFile
                                << " at frame " << t.dragFrame << "; then frames " << t.lastFrame << " and 0";
   }
   std::cerr << "largest difference from the file at frame 0: " << worst << "\n";
+}
+
+/// The largest difference of two scenes' texts (numbers relative to 1 + their size); 1 when
+/// more than numbers differ.
+double textDifference(const scenes::Scene& a, const std::string& b) {
+  return testing::largestNumberDifference(scenes::sceneFileText(a), b).value_or(1.0);
+}
+
+TEST(UndoCarryMirror, AKeyedBoundPairUndoneAndRedoneAroundAScrubToTheFrameShownGivesTheSceneBeforeTheUndo) {
+  // The monkey's case (seed 1, 10,000 actions, the mirror segment): push-back, bound two-way to
+  // the keyed push-front, is changed and keyed too; frame changes follow. A frame then winds
+  // push-front to its key and push-back to its own, which takes push-front with it: the model
+  // shows push-front where the binding puts it, not at its key. An undo carried to the frame
+  // shown used to set the channels back to the values shown before it, so the undo of the key
+  // left push-front at the binding's value, a pose no frame change gives: a scrub to the same
+  // frame then moved the scene (0.3 here), and the redo after it, carried from that other state,
+  // missed the scene before the undo. Now a carried undo or redo ends at the animation's pose for
+  // the time shown, as a frame change does: the scrub changes nothing, and redo gives the scene
+  // before the undo.
+  Document d;
+  const WidgetId pushBack = d.scene.widgets.find("push-back");
+  const WidgetId pushFront = d.scene.widgets.find("push-front");
+  const WidgetId lattice = d.scene.widgets.find("lattice");
+  d.timeline.setFrame(0);
+  d.controller.setVariation(pushBack, 0.3);  // push-front follows (variation binding, gain 1)
+  ASSERT_NEAR(d.scene.widgets.variation(pushFront), 0.3, 1e-12);
+  d.controller.setSelection({pushBack});
+  ASSERT_EQ(d.timeline.insertKeys(), 1);
+  // A mirrored turn of two lattice points at frame 36, where the keyed push and pull are set.
+  d.timeline.setFrame(36);
+  d.edit.setMirror(1);
+  d.edit.enter(lattice);
+  d.edit.pickMany({0, 6}, SelectMode::Replace);
+  d.edit.beginModal(TransformMode::Rotate, downAt(*d.edit.pivotPoint()), {0, 0, -1});
+  d.edit.modal()->setConstraint({2, false});
+  for (char c : std::string("25")) d.edit.modal()->typed().type(c);
+  d.edit.update(downAt(*d.edit.pivotPoint()), false);
+  d.edit.confirm();
+  d.edit.exit();
+  d.timeline.setFrame(50);
+  d.timeline.setFrame(0);
+  ASSERT_EQ(d.commands.position(), 3u);
+  const std::string edited = scenes::sceneFileText(d.scene);
+  ASSERT_GT(std::abs(d.scene.widgets.variation(pushFront)), 0.1) << "push-front shows the binding's value, not its key's 0";
+
+  // The monkey's walk: undo all, one scrub to the frame shown, redo all. Every undo leaves a pose
+  // a frame change gives (checked on a copy of the scene, so the walk is not changed by it).
+  std::vector<std::string> before;  // the scene before each undo
+  std::vector<std::string> undone;  // the scene after each undo
+  std::vector<std::string> moved;   // undos whose pose a scrub to the frame shown moves
+  while (d.commands.canUndo()) {
+    before.push_back(scenes::sceneFileText(d.scene));
+    const std::string description = d.commands.undoDescription();
+    d.commands.undo();
+    undone.push_back(scenes::sceneFileText(d.scene));
+    scenes::Scene scrubbed = d.scene;
+    scenes::applyAnimationFrame(scrubbed, 0);
+    if (textDifference(scrubbed, scenes::sceneFileText(d.scene)) > 1e-12) moved.push_back(description);
+  }
+  EXPECT_TRUE(moved.empty()) << "a scrub to frame 0 moves the scene after undoing '" << (moved.empty() ? "" : moved.front()) << "'";
+  d.timeline.setFrame(0);  // the scrub
+  scenes::Scene file = scenes::readScene(kMirror);
+  scenes::applyAnimationFrame(file, 0);
+  EXPECT_LE(textDifference(d.scene, scenes::sceneFileText(file)), kTolerance) << "undo to the start";
+  while (d.commands.canRedo()) {
+    const std::string description = d.commands.redoDescription();
+    d.commands.redo();
+    EXPECT_LE(textDifference(d.scene, before.back()), kTolerance) << "redo of '" << description << "'";
+    before.pop_back();
+  }
+  EXPECT_LE(textDifference(d.scene, edited), kTolerance) << "redo to the end";
+  // A scrub to the frame shown again (it winds push-back's key, which takes push-front with it),
+  // then undo all again: each undo is the inverse of the redo before it (its record) and gives
+  // the scene the first undo gave, exactly.
+  d.timeline.setFrame(0);
+  for (const std::string& want : undone) {
+    const std::string description = d.commands.undoDescription();
+    d.commands.undo();
+    EXPECT_EQ(scenes::sceneFileText(d.scene), want) << "undo again of '" << description << "'";
+  }
 }
 
 }  // namespace

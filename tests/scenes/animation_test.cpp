@@ -385,11 +385,12 @@ struct PressEdit {
     applyAnimation(scene, 3.0);  // frame 72: the screw runs into the clamp
     applyAnimation(scene, 0.5);  // frame 12: shown when the undo runs
   }
-  void undo(std::optional<CarriedStep>* last) {
-    restoreAtEditValues(scene, animatedAfter, 0.5, [&] { scene.widgets.restoreState(before); }, last);
+  // `shown`: the time the model was last set to (frame 12 unless a test changes it).
+  void undo(std::optional<CarriedStep>* last, double shown = 0.5) {
+    restoreAtEditValues(scene, animatedAfter, shown, [&] { scene.widgets.restoreState(before); }, last);
   }
-  void redo(std::optional<CarriedStep>* last) {
-    restoreAtEditValues(scene, animatedBefore, 0.5, [&] { scene.widgets.restoreState(after); }, last);
+  void redo(std::optional<CarriedStep>* last, double shown = 0.5) {
+    restoreAtEditValues(scene, animatedBefore, shown, [&] { scene.widgets.restoreState(after); }, last);
   }
 };
 
@@ -437,7 +438,7 @@ TEST(RestoreAtEditValues, ARecordIsUsedOnlyFromTheStateItsStepLeft) {
   e.undo(&last);
   applyAnimation(e.scene, 0.25);  // a frame change after the undo: the redo carries again
   const double handle = e.scene.widgets.variation(e.scene.widgets.find("handle"));
-  e.redo(&last);
+  e.redo(&last, 0.25);
   EXPECT_NEAR(e.scene.widgets.variation(e.scene.widgets.find("handle")), handle, 1e-12);  // the frame shown stays
   // Without a frame change since the edit, the write-back alone runs and the record is dropped.
   restoreAtEditValues(e.scene, e.animatedAfter, std::nullopt, [&] { e.scene.widgets.restoreState(e.before); }, &last);

@@ -107,9 +107,10 @@ struct CarriedStep {
 ///  1. the animated channels are set to `editValues` (applyAnimatedValues): their values when
 ///     the edit ended, for an undo, or when it started, for a redo (animatedState then);
 ///  2. `restore()`;
-///  3. the animated channels are set back to the values they had before step 1, and those of
-///     widgets the write-back brought back to the animation's at `*shownSeconds` (the time the
-///     model was last set to).
+///  3. the model is set to the animation at `*shownSeconds` (the time the model was last set
+///     to) with the document the write-back made: applyAnimatedValues(animationValues(...)), as a
+///     frame change to that time does, so such a frame change afterwards changes nothing (but
+///     rounding, where a keyed widget is bound to another keyed widget).
 /// `shownSeconds` is given when the animation was applied since the edit (a frame change);
 /// without it only `restore()` runs, and the write-back is exact.
 ///
