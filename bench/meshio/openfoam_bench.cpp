@@ -4,6 +4,7 @@
 //   BM_OpenFoamCheck/cells:64     the cell check (meshio/cell_quality.h)
 //   BM_OpenFoamWrite/cells:64     write the case (points rewritten, the rest copied; durable)
 //   BM_OpenFoamCase/cells:64      all four, as the CLI runs them (also at 215^3 cells, 10M points)
+//   BM_OpenFoamCaseNotFlushed/cells:215  the same with the written files left in the page cache
 // The case is what blockMesh writes for a unit cube of N^3 cells in binary (foamFormatConvert):
 // points x fastest, internal faces in upper-triangular order, one boundary patch; made here so
 // that the benchmark needs no OpenFOAM. Each size is first checked: the cube's cells are valid,
@@ -221,7 +222,8 @@ void BM_OpenFoamWrite(benchmark::State& state) {
   setCounters(state, n);
 }
 
-void BM_OpenFoamCase(benchmark::State& state) {
+// All four steps; the written files flushed to disk (as the CLI does) or left to the page cache.
+void runCase(benchmark::State& state, bool durable) {
   const int n = cellsOf(state);
   const fs::path root = makeCube(n);
   const fs::path out = root.string() + "-out";
@@ -230,11 +232,14 @@ void BM_OpenFoamCase(benchmark::State& state) {
     meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(root);
     const Eigen::MatrixX3d deformed = deform(model, std::move(mesh.points));
     if (!meshio::checkPolyMeshCells(deformed, mesh.cells).ok()) state.SkipWithError("inverted cells");
-    meshio::writeOpenFoamMesh(mesh, deformed, out);
+    meshio::writeOpenFoamMesh(mesh, deformed, out, {.durable = durable});
   }
   fs::remove_all(out);
   setCounters(state, n);
 }
+
+void BM_OpenFoamCase(benchmark::State& state) { runCase(state, true); }
+void BM_OpenFoamCaseNotFlushed(benchmark::State& state) { runCase(state, false); }
 
 // CPU time is the whole process's (the deformation and the cell check run on every core).
 void sizes(benchmark::internal::Benchmark* b) {
@@ -249,6 +254,9 @@ BENCHMARK(BM_OpenFoamWrite)->Apply(sizes);
 BENCHMARK(BM_OpenFoamCase)->Apply(sizes);
 // The 10M-point case (215^3 cells, 10,077,696 points), the whole run only, one pass per repetition.
 BENCHMARK(BM_OpenFoamCase)
+    ->ArgName("cells")->Arg(215)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(1);
+// The same without the flush to disk: what the disk's share of the run is.
+BENCHMARK(BM_OpenFoamCaseNotFlushed)
     ->ArgName("cells")->Arg(215)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(1);
 
 }  // namespace
