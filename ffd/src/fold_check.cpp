@@ -7,6 +7,7 @@
 
 #include <Eigen/LU>
 
+#include "fold_convolve.h"
 #include "fold_lanes.h"
 #include "vector_clones.h"
 
@@ -443,58 +444,12 @@ void expandDeterminant(const ScaledPolynomial (&column)[4][4], ScaledPolynomial&
   }
 }
 
-// out (dims A + B - 1 per axis) += sum_m sign_m a_m (dims A) * b_m (dims B): M products of
-// scaled Bernstein forms summed at once (M multiply-adds per load and store of out), with
-// compile-time sizes so that the inner loop is unrolled and vectorised.
-template <int M, int A0, int A1, int A2, int B0, int B1, int B2>
-FFDKIT_INLINE void convolveSum(const double* const (&a)[M], const double* const (&b)[M], const double (&sign)[M],
-                               double* __restrict out) {
-  constexpr int O0 = A0 + B0 - 1, O1 = A1 + B1 - 1;
-  for (int ka = 0; ka < A2; ++ka)
-    for (int ja = 0; ja < A1; ++ja)
-      for (int kb = 0; kb < B2; ++kb)
-        for (int jb = 0; jb < B1; ++jb) {
-          double* __restrict o = out + O0 * ((ja + jb) + O1 * (ka + kb));
-          const double* y[M];
-          for (int m = 0; m < M; ++m) y[m] = b[m] + B0 * (jb + B1 * kb);
-          for (int ia = 0; ia < A0; ++ia) {
-            double x[M];
-            for (int m = 0; m < M; ++m) x[m] = sign[m] * a[m][ia + A0 * (ja + A1 * ka)];
-            for (int ib = 0; ib < B0; ++ib) {
-              double sum = o[ia + ib];
-              for (int m = 0; m < M; ++m) sum += x[m] * y[m][ib];
-              o[ia + ib] = sum;
-            }
-          }
-        }
-}
-
-// expandDeterminant when all three axes have degree P (1..3): every size a compile-time constant.
-// columns[a][component]: the scaled nets of H_u, H_v, H_w (P on their own axis, P + 1 on the
-// others) and H ((P+1)^3). `out` gets G's (4P)^3 scaled coefficients, index i + 4P (j + 4P k).
+// expandDeterminant when all three axes have degree P (1..3) (detail::rationalDeterminant, every
+// size a compile-time constant).
 template <int P>
 FFDKIT_VECTOR_CLONES void rationalEqualDegree(const double* const (&columns)[4][4], double* out) {
-  constexpr int N = P + 1;
-  constexpr int minor2Size = (2 * P + 1) * (2 * P + 1) * (2 * P);  // [H_w, H], rows r < s
-  constexpr int minor3Size = (3 * P + 1) * (3 * P) * (3 * P);      // [H_v, H_w, H] without row i
-  double minor2[4][4][minor2Size] = {};
-  for (int r = 0; r < 4; ++r)
-    for (int s = r + 1; s < 4; ++s)
-      convolveSum<2, N, N, P, N, N, N>({columns[2][r], columns[2][s]}, {columns[3][s], columns[3][r]}, {1.0, -1.0},
-                                       minor2[r][s]);
-  double minor3[4][minor3Size] = {};
-  for (int i = 0; i < 4; ++i) {
-    int rows[3], n = 0;
-    for (int r = 0; r < 4; ++r)
-      if (r != i) rows[n++] = r;
-    convolveSum<3, N, P, N, 2 * P + 1, 2 * P + 1, 2 * P>(
-        {columns[1][rows[0]], columns[1][rows[1]], columns[1][rows[2]]},
-        {minor2[rows[1]][rows[2]], minor2[rows[0]][rows[2]], minor2[rows[0]][rows[1]]}, {1.0, -1.0, 1.0}, minor3[i]);
-  }
-  std::fill_n(out, (4 * P) * (4 * P) * (4 * P), 0.0);
-  convolveSum<4, P, N, N, 3 * P + 1, 3 * P, 3 * P>({columns[0][0], columns[0][1], columns[0][2], columns[0][3]},
-                                                   {minor3[0], minor3[1], minor3[2], minor3[3]},
-                                                   {1.0, -1.0, 1.0, -1.0}, out);
+  double minor2[6 * detail::rationalMinor2Size(P)], minor3[4 * detail::rationalMinor3Size(P)];
+  detail::rationalDeterminant<double, P>(columns, minor2, minor3, out);
 }
 
 // G = det[H_u, H_v, H_w, H] on one cell in Bernstein form, and the range of the window's weights.
@@ -505,8 +460,9 @@ struct RationalPatch {
   Eigen::Vector3d parameterMin, parameterMax;
 };
 
+// general: by expandDeterminant whatever the degrees (FoldCheckOptions::referenceExpansion).
 RationalPatch rationalPatchOf(const Lattice& lattice, const std::array<int, 3>& cell,
-                              const std::vector<Eigen::MatrixXd>* extraction) {
+                              const std::vector<Eigen::MatrixXd>* extraction, bool general) {
   int p[3];
   double width[3];
   RationalPatch patch;
@@ -573,7 +529,7 @@ RationalPatch rationalPatchOf(const Lattice& lattice, const std::array<int, 3>& 
   }
   // det[H_u, H_v, H_w, H] by products of the nets.
   ScaledPolynomial G;
-  if (p[0] == p[1] && p[1] == p[2] && p[0] >= 1 && p[0] <= 3) {
+  if (!general && p[0] == p[1] && p[1] == p[2] && p[0] >= 1 && p[0] <= 3) {
     const double* columns[4][4];
     for (int a = 0; a < 4; ++a)
       for (int component = 0; component < 4; ++component) columns[a][component] = column[a][component].c.data();
@@ -605,6 +561,40 @@ RationalPatch rationalPatchOf(const Lattice& lattice, const std::array<int, 3>& 
 // polynomial path, find a corner where G (hence det J) is <= 0 or leave the cell Unknown.
 // lowerBound: min G / maxWeight^4 when min G > 0, else min G / minWeight^4 (a lower bound of
 // sign * det J = sign * G / D^4 either way, D being in [minWeight, maxWeight]).
+// The cells `flats` of a rational lattice (unequal window weights) kFoldLanes at a time
+// (detail::RationalLanes), as checkRationalFolding's one-cell path does them.
+void checkRationalLanes(const Lattice& lattice, const FoldCheckOptions& options,
+                        const std::vector<Eigen::MatrixXd>* extraction, const std::vector<std::int64_t>& flats,
+                        FoldCheckResult& result) {
+  constexpr int L = detail::kFoldLanes;
+  const std::int64_t count = std::int64_t(flats.size());
+  const std::int64_t batches = (count + L - 1) / L;
+#pragma omp parallel if (batches >= 2)
+  {
+    detail::RationalLanes lanes(lattice, extraction);
+    const int d = lanes.degree();
+    std::vector<double> signedCoefficients;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t batch = 0; batch < batches; ++batch) {
+      std::array<int, 3> cells[L];
+      const int n = int(std::min<std::int64_t>(L, count - batch * L));
+      for (int l = 0; l < n; ++l) cells[l] = cellOf(result, flats[std::size_t(batch * L + l)]);
+      lanes.compute(cells, n);
+      for (int l = 0; l < n; ++l) {
+        const std::size_t flat = std::size_t(flats[std::size_t(batch * L + l)]);
+        const double lowest = result.orientation > 0 ? lanes.lowest(l) : -lanes.highest(l);
+        result.lowerBound[flat] = lowest / std::pow(lowest > 0.0 ? lanes.maxWeight(l) : lanes.minWeight(l), 4);
+        if (lowest > 0.0) {
+          result.cells[flat] = CellFolding::Positive;
+          continue;
+        }
+        lanes.coefficients(l, result.orientation, signedCoefficients);
+        classifyCell(lattice, options, cells[l], signedCoefficients, {d, d, d}, flat, result);
+      }
+    }
+  }
+}
+
 void checkRationalFolding(const Lattice& lattice, const FoldCheckOptions& options,
                           const std::vector<Eigen::MatrixXd>* extraction, FoldCheckResult& result) {
   const std::int64_t cellCount = std::int64_t(result.cells.size());
@@ -627,11 +617,15 @@ void checkRationalFolding(const Lattice& lattice, const FoldCheckOptions& option
   }
   checkPolynomialCells(lattice, options, extraction, equal, result);
   const std::int64_t count = std::int64_t(unequal.size());
+  if (!options.referenceExpansion && detail::foldLanesSupport(lattice)) {
+    checkRationalLanes(lattice, options, extraction, unequal, result);
+    return;
+  }
 #pragma omp parallel for schedule(dynamic, 1) if (count >= 8)
   for (std::int64_t c = 0; c < count; ++c) {
     const std::size_t flat = std::size_t(unequal[std::size_t(c)]);
     const std::array<int, 3> cell = cellOf(result, std::int64_t(flat));
-    RationalPatch patch = rationalPatchOf(lattice, cell, extraction);
+    RationalPatch patch = rationalPatchOf(lattice, cell, extraction, options.referenceExpansion);
     for (double& x : patch.coefficients) x *= result.orientation;
     const double lowest = *std::min_element(patch.coefficients.begin(), patch.coefficients.end());
     result.lowerBound[flat] = lowest / std::pow(lowest > 0.0 ? patch.maxWeight : patch.minWeight, 4);

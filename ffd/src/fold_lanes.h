@@ -46,4 +46,38 @@ class DeterminantLanes {
   double lowest_[kFoldLanes] = {}, highest_[kFoldLanes] = {};
 };
 
+/// G = det[H_u, H_v, H_w, H] (H = (w P, w), Lamousin & Waggenspack 1994) of up to kFoldLanes
+/// cells of a rational lattice (foldLanesSupport), the polynomial of checkFolding's one-cell
+/// rational path, with one lane per cell; scratch sized once (the minors of the Laplace expansion).
+class RationalLanes {
+ public:
+  /// @param extraction per axis, per cell, the Bezier extraction matrix (fold_check.cpp).
+  RationalLanes(const Lattice& lattice, const std::vector<Eigen::MatrixXd>* extraction);
+
+  /// Computes cells[0 .. count) (count in [1, kFoldLanes]).
+  void compute(const std::array<int, 3>* cells, int count);
+
+  /// G's degree per axis (4p - 1).
+  int degree() const { return degree_; }
+  /// The smallest and the largest coefficient of G in lane `lane` after compute().
+  double lowest(int lane) const { return lowest_[lane]; }
+  double highest(int lane) const { return highest_[lane]; }  ///< see lowest()
+  /// The smallest and the largest weight of lane `lane`'s window.
+  double minWeight(int lane) const { return minWeight_[lane]; }
+  double maxWeight(int lane) const { return maxWeight_[lane]; }  ///< see minWeight()
+  /// Lane `lane`'s (degree + 1)^3 coefficients times `sign`, index i + (d+1) (j + (d+1) k).
+  void coefficients(int lane, double sign, std::vector<double>& out) const;
+
+ private:
+  double* aligned();
+  const double* coefficientData() const;
+
+  const Lattice& lattice_;
+  const std::vector<Eigen::MatrixXd>* extraction_;
+  int degree_ = 0;
+  std::vector<double> storage_;  // columns, minors and G, lane fastest, from a 64-byte boundary
+  double lowest_[kFoldLanes] = {}, highest_[kFoldLanes] = {};
+  double minWeight_[kFoldLanes] = {}, maxWeight_[kFoldLanes] = {};
+};
+
 }  // namespace ffdkit::ffd::detail

@@ -220,12 +220,54 @@ TEST(FoldCheck, BatchedProductsAgreeWithTheReferenceExpansion) {
   EXPECT_GT(verdicts[int(CellFolding::Unknown)], 10);
 }
 
-// One thread or two: the same verdicts, bounds and witnesses, bit for bit.
+// Rational lattices (weights in [0.5, 2] on some or all control points): the batched G =
+// det[H_u, H_v, H_w, H] of cells with unequal window weights against the general Laplace expansion
+// one cell at a time, and equal-weight cells against det J's reference path; the same verdicts,
+// bounds to 1e-12 of the lattice's largest |bound|.
+TEST(FoldCheck, BatchedRationalProductsAgreeWithTheReferenceExpansion) {
+  std::mt19937 rng(26);
+  Eigen::Index verdicts[3] = {0, 0, 0};
+  for (int trial = 0; trial < 40; ++trial) {
+    Lattice lattice = equalDegreeLattice(rng, std::array{0.05, 0.5, 1.0, 2.0}[std::size_t(trial % 4)]);
+    Eigen::VectorXd w = lattice.weights();
+    const bool all = trial % 2 == 0;
+    for (Eigen::Index i = 0; i < w.size(); ++i)
+      if (all || rng() % 4 == 0) w[i] = std::uniform_real_distribution<double>(0.5, 2.0)(rng);
+    lattice.setWeights(w);
+    FoldCheckOptions options;
+    options.maxDepth = std::array{0, 1, 3}[std::size_t(trial % 3)];
+    const FoldCheckResult fast = checkFolding(lattice, options);
+    options.referenceExpansion = true;
+    const FoldCheckResult reference = checkFolding(lattice, options);
+    const double scale = Eigen::Map<const Eigen::VectorXd>(reference.lowerBound.data(), Eigen::Index(reference.lowerBound.size()))
+                             .cwiseAbs()
+                             .maxCoeff();
+    for (std::size_t flat = 0; flat < fast.cells.size(); ++flat) {
+      EXPECT_EQ(fast.cells[flat], reference.cells[flat]) << "trial " << trial << " cell " << flat;
+      EXPECT_NEAR(fast.lowerBound[flat], reference.lowerBound[flat], 1e-12 * scale) << "trial " << trial << " cell " << flat;
+      if (fast.cells[flat] == CellFolding::Folds) {
+        ASSERT_TRUE(fast.witness[flat].allFinite());
+        EXPECT_EQ(fast.witness[flat], reference.witness[flat]) << "trial " << trial << " cell " << flat;
+      }
+      ++verdicts[int(fast.cells[flat])];
+    }
+  }
+  EXPECT_GT(verdicts[int(CellFolding::Positive)], 100);
+  EXPECT_GT(verdicts[int(CellFolding::Folds)], 100);
+  EXPECT_GT(verdicts[int(CellFolding::Unknown)], 3);  // 7 with this seed
+}
+
+// One thread or two: the same verdicts, bounds and witnesses, bit for bit (polynomial and rational).
 TEST(FoldCheck, VerdictsDoNotDependOnTheThreadCount) {
   std::mt19937 rng(25);
   const int before = omp_get_max_threads();
   for (int trial = 0; trial < 8; ++trial) {
-    const Lattice lattice = equalDegreeLattice(rng, trial % 2 ? 1.0 : 0.1);
+    Lattice lattice = equalDegreeLattice(rng, trial % 2 ? 1.0 : 0.1);
+    if (trial >= 4) {  // rational: the batched G of unequal-weight cells
+      Eigen::VectorXd w(lattice.pointCount());
+      for (Eigen::Index i = 0; i < w.size(); ++i) w[i] = std::uniform_real_distribution<double>(0.5, 2.0)(rng);
+      lattice.setWeights(w);
+    }
     omp_set_num_threads(1);
     const FoldCheckResult one = checkFolding(lattice);
     omp_set_num_threads(2);
