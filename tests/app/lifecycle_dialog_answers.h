@@ -12,6 +12,7 @@
 #include <QTimer>
 
 #include <filesystem>
+#include <memory>
 
 #include "gui_test_support.h"
 
@@ -25,6 +26,16 @@ inline ModalAnswers::Handler clickButton(QMessageBox::StandardButton which) {
     QVERIFY2(box->button(which) != nullptr, qPrintable("no such button in: " + box->text()));
     QTest::mouseClick(box->button(which), Qt::LeftButton);
   };
+}
+
+/// Closes a test function's window (its cleanup() slot) as a user would, answering Discard when
+/// it asks about unsaved changes, and destroys it.
+inline void closeDiscardingChanges(std::unique_ptr<MainWindow>& window) {
+  if (window && window->isModified()) {
+    ModalAnswers discard({clickButton(QMessageBox::Discard)});
+    window->close();
+  }
+  window.reset();
 }
 
 /// Reads a message box's title and text into `shown` ("title: text") and clicks OK.

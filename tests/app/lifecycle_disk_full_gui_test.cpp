@@ -118,13 +118,7 @@ class DiskFullGuiTest : public QObject {
     fs::copy_file(kExamples / "default" / "scene.json", doc_);
     window_->openScene(doc_);
   }
-  void cleanup() {
-    if (window_ && window_->isModified()) {
-      ModalAnswers discard({clickButton(QMessageBox::Discard)});
-      window_->close();
-    }
-    window_.reset();
-  }
+  void cleanup() { closeDiscardingChanges(window_); }
 
   void saveOnAFullDiskKeepsTheFileAndTheEdits() {
     MainWindow& w = *window_;

@@ -131,13 +131,7 @@ class LifecycleGuiTest : public QObject {
     window_ = startWindow(QSize(1000, 760), StartSettings::Cleared);
     QVERIFY(window_ != nullptr);
   }
-  void cleanup() {
-    if (window_ && window_->isModified()) {
-      ModalAnswers discard({clickButton(QMessageBox::Discard)});
-      window_->close();
-    }
-    window_.reset();
-  }
+  void cleanup() { closeDiscardingChanges(window_); }
 
   // ---- 1. unsaved changes -----------------------------------------------------------------
 
