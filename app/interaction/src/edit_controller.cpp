@@ -591,9 +591,19 @@ void EditController::confirm() {
     widgets_.refresh();
     notify();
   };
+  try {
+    notify();  // evaluates the result (headless at once; the window at its next frame)
+  } catch (...) {
+    // A result that cannot be evaluated is taken back, with no step: as a refused edit.
+    scene_.widgets.restoreState(live.before);
+    for (const Placed& p : *placed) scene_.widgets.setPlacement(p.id, p.before);
+    widgets_.refresh();
+    throw;
+  }
+  // The step is pushed once the change holds: a throw above leaves no step whose undo would
+  // undo nothing, and keeps the steps that could be redone.
   commands_.push(scenes::Command{live.verb + " " + live.what, [restore] { restore(false); }, [restore] { restore(true); },
                                  "", delta->bytes() + animated->bytes() + placed->size() * sizeof(Placed)});
-  notify();
 }
 
 void EditController::cancel() {

@@ -78,15 +78,17 @@ auto InteractionController::edit(const std::string& description, Change change, 
       refresh();
       if (onStructureChanged) onStructureChanged();
     };
+    // At once, not at the window's next frame: an edit whose result cannot be evaluated (a
+    // degenerate lattice, an embedding cancelled) is refused and rolled back below.
+    deformer_.evaluate(scene_);
+    notify();
+    if (onStructureChanged) onStructureChanged();
+    // The step is pushed last, once the change holds: a throw above leaves no step whose undo
+    // would undo nothing, and keeps the steps that could be redone.
     // Edits merge only within one frame: a merged step's undo writes back the first's values.
     const std::string mergeAtFrame = mergeKey.empty() ? mergeKey : mergeKey + "@" + std::to_string(madeAt);
     commands_.push(scenes::Command{description, [apply] { apply(false); }, [apply] { apply(true); }, mergeAtFrame,
                                    delta->bytes() + animated->bytes() + sizeof(*held)});
-    // At once, not at the window's next frame: an edit whose result cannot be evaluated (a
-    // degenerate lattice) is refused and rolled back below.
-    deformer_.evaluate(scene_);
-    notify();
-    if (onStructureChanged) onStructureChanged();
   };
   try {
     if constexpr (std::is_void_v<decltype(change())>) {
