@@ -1,5 +1,5 @@
 // ffdkit.widgets.WidgetModel, continued: gestures, picks and drags by rays, and whole motions
-// (Kuriyama 1996, sec. 6.2). Names mirror widgets/widget_model.h; see docs/python.md.
+// (Kuriyama 1996, ch. 6). Names mirror widgets/widget_model.h; see docs/python.md.
 
 #include <optional>
 #include <string>
