@@ -10,6 +10,7 @@
 
 #include "bindings.h"
 #include "numpy_eigen.h"
+#include "scene_binding_support.h"
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_changes.h"
@@ -55,15 +56,7 @@ void bindSceneEditing(py::module_& m) {
       .def(
           "addMeshFile",
           [](Scene& s, const std::string& name, const std::string& path, const std::string& up) {
-            if (up != "z" && up != "y") throw py::value_error("up must be 'z' or 'y', got '" + up + "'");
-            scenes::SceneObject object;
-            object.name = name;
-            object.source = scenes::MeshFileSource{path, up == "y" ? scenes::UpAxis::Y : scenes::UpAxis::Z};
-            {
-              py::gil_scoped_release release;
-              object.mesh = scenes::buildObjectMesh(object.source, ".");
-            }
-            s.addObject(std::move(object));
+            s.addObject(meshFileObject(name, path, up));
           },
           "name"_a, "path"_a, "up"_a = "z", R"doc(Adds an object read from a mesh file.
 

@@ -12,6 +12,7 @@
 
 #include "bindings.h"
 #include "numpy_eigen.h"
+#include "scene_binding_support.h"
 #include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/scenes/command_stack.h"
 #include "ffdkit/scenes/scene.h"
@@ -91,12 +92,7 @@ Raises:
       .def(
           "addMeshFile",
           [](Document& d, const std::string& name, const std::string& path, const std::string& up) {
-            if (up != "z" && up != "y") throw py::value_error("up must be 'z' or 'y', got '" + up + "'");
-            scenes::SceneObject object;
-            object.name = name;
-            object.source = scenes::MeshFileSource{path, up == "y" ? scenes::UpAxis::Y : scenes::UpAxis::Z};
-            object.mesh = scenes::buildObjectMesh(object.source, ".");
-            d.controller().addObject(std::move(object));
+            d.controller().addObject(meshFileObject(name, path, up));
           },
           "name"_a, "path"_a, "up"_a = "z", R"doc(Adds an object read from a mesh file (one undo step).
 

@@ -93,6 +93,8 @@ def test_errors_leave_no_trace():
         doc.attachLattice(doc.scene.widgets.find("handle"), "block")  # not a lattice
     with pytest.raises(ValueError):
         doc.removeObjects(["missing"])
+    with pytest.raises(ValueError, match="up must be 'z' or 'y', got 'x'"):
+        doc.addMeshFile("column", str(ROOT / "tests" / "data" / "y_up_column.obj"), up="x")
     with pytest.raises(ValueError, match="nothing to undo"):
         doc.undo()
     assert doc.undoSteps == steps
