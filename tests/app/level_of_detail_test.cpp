@@ -200,17 +200,52 @@ TEST(LevelOfDetail, PlaybackDrawsTheProxyUntilItStops) {
   EXPECT_LT((on.view.objectPoints(on.made.sphere) - on.deformer.points(on.made.sphere)).cwiseAbs().maxCoeff(), 1e-6 * scale);
 }
 
+TEST(LevelOfDetail, TheProxyIsBuiltWithTheSceneSoTheFirstGestureDoesNotBuildIt) {
+  Document d(true);
+  EXPECT_EQ(d.view.stats().proxyBuilds, 1);  // by show(), before anything moved
+  EXPECT_FALSE(d.view.showsProxy(d.made.sphere));
+  ASSERT_EQ(d.controller.press(d.ray(0.5), d.tolerance()), InteractionController::PressResult::Widget);
+  d.controller.drag(d.ray(0.8));
+  EXPECT_TRUE(d.view.showsProxy(d.made.sphere));
+  EXPECT_EQ(d.view.stats().proxyBuilds, 1);
+  EXPECT_GE(d.view.stats().proxyUpdates, 1);
+  d.controller.release();
+  EXPECT_FALSE(d.view.showsProxy(d.made.sphere));
+  // Another size: built again at the next refresh, still before anything moves.
+  LevelOfDetail options = d.view.levelOfDetail();
+  options.proxyVertices = 2 * Document::kProxyVertices;
+  d.view.setLevelOfDetail(options);
+  d.view.refresh(d.scene, d.deformer);
+  EXPECT_EQ(d.view.stats().proxyBuilds, 2);
+  EXPECT_FALSE(d.view.showsProxy(d.made.sphere));
+  ASSERT_EQ(d.controller.press(d.ray(0.8), d.tolerance()), InteractionController::PressResult::Widget);
+  d.controller.drag(d.ray(0.6));
+  EXPECT_TRUE(d.view.showsProxy(d.made.sphere));
+  EXPECT_EQ(d.view.stats().proxyBuilds, 2);
+  d.controller.release();
+  // Turned off: no proxy is kept or drawn.
+  options.enabled = false;
+  d.view.setLevelOfDetail(options);
+  d.view.refresh(d.scene, d.deformer);
+  ASSERT_EQ(d.controller.press(d.ray(0.6), d.tolerance()), InteractionController::PressResult::Widget);
+  d.controller.drag(d.ray(0.9));
+  EXPECT_FALSE(d.view.showsProxy(d.made.sphere));
+  EXPECT_EQ(d.view.stats().proxyBuilds, 2);
+  d.controller.release();
+}
+
 TEST(LevelOfDetail, SmallObjectsAndAViewWithoutItDrawInFull) {
   for (const bool large : {false, true}) {
     Document d(true);
     LevelOfDetail options = d.view.levelOfDetail();
     options.enabled = large;  // off: no proxy at any size
     if (large) options.minVertices = d.mesh().points.rows() + 1;  // on, but the sphere is below it
+    const int builtWithTheScene = d.view.stats().proxyBuilds;  // under the Document's options
     d.view.setLevelOfDetail(options);
     ASSERT_EQ(d.controller.press(d.ray(0.5), d.tolerance()), InteractionController::PressResult::Widget);
     d.controller.drag(d.ray(0.9));
     EXPECT_FALSE(d.view.showsProxy(d.made.sphere));
-    EXPECT_EQ(d.view.stats().proxyBuilds, 0);
+    EXPECT_EQ(d.view.stats().proxyBuilds, builtWithTheScene);
     d.controller.release();
   }
 }

@@ -472,15 +472,17 @@ int main(int argc, char** argv) {
   window.resize(o.width, o.height);
   window.show();
   if (!QTest::qWaitForWindowExposed(&window)) return 1;
+  // The level of detail before the scene, as the window sets it at its start: the scene's proxies
+  // are built with the scene (SceneView::show), not at the first drag.
+  app::LevelOfDetail lod = window.sceneView().levelOfDetail();
+  if (o.lod >= 0) lod.enabled = o.lod == 1;
+  if (o.proxyVertices > 0) lod.proxyVertices = o.proxyVertices;
+  window.sceneView().setLevelOfDetail(lod);
   QElapsedTimer setup;
   setup.start();
   window.setScene(sphereScene(o.resolution, o.mode == "play"));
   std::printf("scene of %lld points set in %.1f s\n",
               static_cast<long long>(window.scene().objects().front().mesh.points.rows()), setup.elapsed() * 1e-3);
-  app::LevelOfDetail lod = window.sceneView().levelOfDetail();
-  if (o.lod >= 0) lod.enabled = o.lod == 1;
-  if (o.proxyVertices > 0) lod.proxyVertices = o.proxyVertices;
-  window.sceneView().setLevelOfDetail(lod);
   const QSize viewSize = window.view()->size() * window.view()->devicePixelRatioF();
   std::printf("level of detail: %s (a proxy of about %lld vertices for objects from %lld vertices); window %dx%d, "
               "view %dx%d pixels\n",

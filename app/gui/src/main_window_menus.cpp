@@ -366,6 +366,8 @@ QMenu* MainWindow::createViewMenu(QDockWidget* outlinerDock, QDockWidget* proper
     LevelOfDetail lod = impl_->sceneView->levelOfDetail();
     lod.enabled = on;
     impl_->sceneView->setLevelOfDetail(lod);
+    impl_->frameDue = true;  // the next frame's refresh builds the proxies, before anything moves
+    impl_->view->requestRender();
   });
   simplify->setCheckable(true);
   simplify->setChecked(QSettings().value(kSimplifyWhileMovingKey, true).toBool());

@@ -254,22 +254,34 @@ struct SceneView::Impl {
   // draws its proxy and its own arrays are left as they are until the motion stops.
   LevelOfDetail lod;
   bool moving = false;  // setMoving (playback)
-  // Draws `entry` as its proxy when things move and it is large enough (building the proxy once);
-  // returns whether it did. Otherwise the object's own actor is shown.
+  // True when `object` (drawn by `entry`) is large enough and drawn in a style that has a proxy.
+  bool hasProxy(const ObjectActor& entry, const scenes::SceneObject* object) const {
+    return lod.enabled && object != nullptr && entry.pointCount >= lod.minVertices && object->mesh.triangles.rows() > 0 &&
+           entry.display.surfaceStyle != scenes::SurfaceStyle::Zebra && object->mesh.points.rows() == entry.pointCount;
+  }
+  // Builds the proxy of a large object (hidden) when it has none for the present level of detail:
+  // when its actor is built and at each refresh, so the first gesture or played frame draws it
+  // without building it first. An object that no longer has one (the level of detail turned off,
+  // a zebra style) lets it go.
+  void prepareProxy(ObjectActor& entry, const scenes::SceneObject* object) {
+    if (!hasProxy(entry, object)) {
+      if (entry.proxy) entry.proxy->show(false);
+      entry.proxy.reset();
+      return;
+    }
+    if (entry.proxy && entry.proxy->targetVertices() == lod.proxyVertices) return;
+    entry.proxy.reset();
+    entry.proxy = std::make_unique<ObjectProxy>(renderer, entry.actor, object->mesh, lod.proxyVertices);
+    ++stats.proxyBuilds;
+  }
+  // Draws `entry` as its proxy when things move and it is large enough; returns whether it did.
+  // Otherwise the object's own actor is shown.
   bool drawProxy(ObjectActor& entry, const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
     const scenes::SceneObject* object = scene.findObject(entry.id);
-    const bool wanted = lod.enabled && (moving || deformed.inGesture()) && object != nullptr &&
-                        entry.pointCount >= lod.minVertices && object->mesh.triangles.rows() > 0 &&
-                        entry.display.surfaceStyle != scenes::SurfaceStyle::Zebra &&
-                        object->mesh.points.rows() == entry.pointCount;
-    if (!wanted) {
+    prepareProxy(entry, object);
+    if (!(moving || deformed.inGesture()) || !entry.proxy) {
       if (entry.proxy && entry.proxy->shown()) entry.proxy->show(false);
       return false;
-    }
-    if (!entry.proxy || entry.proxy->targetVertices() != lod.proxyVertices) {
-      entry.proxy.reset();
-      entry.proxy = std::make_unique<ObjectProxy>(renderer, entry.actor, object->mesh, lod.proxyVertices);
-      ++stats.proxyBuilds;
     }
     entry.proxy->show(true);
     if (entry.proxy->update(deformed, entry.id)) ++stats.proxyUpdates;
@@ -368,6 +380,7 @@ struct SceneView::Impl {
         entry.actor->GetProperty()->SetLineWidth(kCurveLineWidth);
       }
       renderer->AddActor(entry.actor);
+      prepareProxy(entry, &object);  // level of detail: the proxy at load, not at the first gesture
       objects.push_back(std::move(entry));
       ++stats.objectBuilds;
     }

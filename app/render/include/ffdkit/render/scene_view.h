@@ -52,15 +52,18 @@ struct SceneViewStats {
 /// How a SceneView draws large objects while things move (SceneView::setLevelOfDetail), as VTK's
 /// LOD actors and Blender's Simplify do: during a gesture (SceneDeformer::inGesture) and while
 /// SceneView::setMoving(true) (playback), a shaded surface of at least `minVertices` vertices is
-/// drawn as its proxy, a decimation of the mesh built once per object (vertex clustering: the
-/// proxy's vertices are a subset of the mesh's, so its deformed points are the object's deformed
-/// points at those indices and a step costs the proxy's size). The next refresh() after the motion
+/// drawn as its proxy, a decimation of the mesh built once per object when its actor is built
+/// (show(), or the refresh() after the level of detail changed), so the first gesture does not pay
+/// for it (vertex clustering: the proxy's vertices are a subset of the mesh's, so its deformed
+/// points are the object's deformed points at those indices and a step costs the proxy's size). The next refresh() after the motion
 /// draws the full mesh, exact. Widgets, lattices, curves and zebra-striped surfaces are always
 /// drawn in full; what is picked and exported never depends on what is drawn.
 struct LevelOfDetail {
   bool enabled = true;                ///< false: every object is always drawn in full
   Eigen::Index minVertices = 250000;  ///< objects with fewer vertices are always drawn in full
-  Eigen::Index proxyVertices = 20000; ///< about this many vertices in a proxy
+  /// About this many vertices in a proxy: what a frame draws of the object while things move (its
+  /// cost under a software rasteriser grows with it: docs/app.md, "Large meshes: level of detail").
+  Eigen::Index proxyVertices = 10000;
 };
 
 /// What a SceneView holds in memory for the objects it draws (SceneView::objectMemory).
