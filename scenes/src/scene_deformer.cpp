@@ -83,11 +83,6 @@ struct SceneDeformer::ObjectPipeline {
   std::uint64_t baseRevision = 0;
   Eigen::MatrixX3d baseControl;
   bool moved = false;  // a delta step of the last stage ran since the base
-  // The last pipeline run changed the output by a delta step of the last stage only (no stage
-  // approximated or re-embedded): the next step that moves only that stage's control points can
-  // be deferred (deferred: run the pipeline when points() is asked for; see run()).
-  bool deltaOnly = false;
-  bool deferred = false;
 
   // Whether the object still holds the points this pipeline was built from.
   bool holdsSameMesh(const SceneObject& object) const;
@@ -97,10 +92,8 @@ struct SceneDeformer::ObjectPipeline {
   // The scene's lattices synced into the pipeline in place: a stage whose revisions did not move
   // is left alone; new control points are written into its lattice (updated incrementally), a
   // new frame moves it (re-embedding per the throttle); only a new rest shape makes a new
-  // lattice. Clears `onlyLastControl` when anything but the last stage's control points moved,
-  // sets `lastControlMoved` when those did. Returns the lattices built.
-  int syncInPlace(const Scene& scene, const std::vector<Stage>& stages, bool sameModel, bool& onlyLastControl,
-                  bool& lastControlMoved);
+  // lattice. Returns the lattices built.
+  int syncInPlace(const Scene& scene, const std::vector<Stage>& stages, bool sameModel);
   // What the object holds now (no points, when the pipeline took them over), to recognise it next time.
   void remember(const SceneObject& object);
   // After a pipeline run: the revision, and the base of gestureMotion() (see baseRevision).
@@ -135,15 +128,13 @@ int SceneDeformer::ObjectPipeline::rebuild(const Scene& scene, const SceneObject
   return latticesBuilt;
 }
 
-int SceneDeformer::ObjectPipeline::syncInPlace(const Scene& scene, const std::vector<Stage>& current, bool sameModel,
-                                               bool& onlyLastControl, bool& lastControlMoved) {
+int SceneDeformer::ObjectPipeline::syncInPlace(const Scene& scene, const std::vector<Stage>& current, bool sameModel) {
   int latticesBuilt = 0;
   for (const Stage& stage : current) {
     const std::uint64_t frameRevision = scene.widgets.frameRevision(stage.lattice);
     const std::uint64_t controlRevision = scene.widgets.controlRevision(stage.lattice);
     auto& seen = synced[stage.lattice];
     if (sameModel && seen == std::pair(frameRevision, controlRevision)) continue;
-    if (!(stage == current.back()) || seen.first != frameRevision) onlyLastControl = false;
     ffd::Lattice& lattice = pipeline->lattice(ids.at(stage.lattice));
     if (!sameModel || seen.first != frameRevision) {
       if (!sameRestShape(scene.widgets, stage.lattice, lattice)) {
@@ -155,14 +146,9 @@ int SceneDeformer::ObjectPipeline::syncInPlace(const Scene& scene, const std::ve
       }
     }
     const Eigen::MatrixX3d& control = scene.widgets.controlPoints(stage.lattice);
-    if (control != lattice.controlPoints()) {
-      lattice.setControlPoints(control);
-      lastControlMoved = lastControlMoved || stage == current.back();
-    }
-    if (const Eigen::VectorXd weights = scene.widgets.weights(stage.lattice); weights != lattice.weights()) {
+    if (control != lattice.controlPoints()) lattice.setControlPoints(control);
+    if (const Eigen::VectorXd weights = scene.widgets.weights(stage.lattice); weights != lattice.weights())
       lattice.setWeights(weights);
-      lastControlMoved = lastControlMoved || stage == current.back();
-    }
     seen = {frameRevision, controlRevision};
   }
   return latticesBuilt;
@@ -177,10 +163,6 @@ void SceneDeformer::ObjectPipeline::remember(const SceneObject& object) {
 void SceneDeformer::ObjectPipeline::recordRun() {
   const std::vector<ffd::StageReport>& reports = pipeline->lastReport();
   const auto changedOutput = [](const ffd::StageReport& r) { return r.outputChanged; };
-  deltaOnly = !reports.empty() && reports.back().delta &&
-              std::none_of(reports.begin(), reports.end(),
-                           [](const ffd::StageReport& r) { return r.approximate || r.reembedded; }) &&
-              std::none_of(reports.begin(), reports.end() - 1, changedOutput);
   if (!std::any_of(reports.begin(), reports.end(), changedOutput)) return;
   ++revision;
   // Only the last stage changed, by deltas: the output moved linearly in its control points
@@ -247,7 +229,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   const auto start = std::chrono::steady_clock::now();
   // 1. Sync every object's pipeline with the scene, in place (nothing is embedded yet), so that a
   //    throw in step 2 leaves each pipeline whole.
-  std::vector<ObjectPipeline*> toRun, deferred;
+  std::vector<ObjectPipeline*> toRun;
   std::set<ObjectId> present;
   labels_.clear();
   // Revisions compare within one widget model: another instance (a replaced model) syncs in full.
@@ -265,13 +247,10 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
     // compare it then, once, rather than rebuild.
     const bool inputChanged = !p->holdsSameMesh(object) &&
                               (!p->pipeline || p->pipeline->inputPoints().rows() != own.rows() || p->pipeline->inputPoints() != own);
-    bool onlyLastControl = sameModel;  // only the last stage's control points moved (or nothing)
-    bool lastControlMoved = false;
     if (!p->pipeline || inputChanged || stages != p->stages) {
-      onlyLastControl = false;
       latticesBuilt += p->rebuild(scene, object, std::move(stages), takeFrom);
     } else {
-      latticesBuilt += p->syncInPlace(scene, stages, sameModel, onlyLastControl, lastControlMoved);
+      latticesBuilt += p->syncInPlace(scene, stages, sameModel);
     }
     p->remember(object);
     if (!p->stages.empty()) {
@@ -281,13 +260,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       p->pipeline->setActiveLattice(active);
       p->pipeline->setUpdateMode(how == Run::Gesture ? ffd::UpdateMode::Delta : ffd::UpdateMode::Exact);
       p->pipeline->setPrecision(precision_);
-      if (how == Run::Gesture && onlyLastControl && lastControlMoved && p->moved && p->deltaOnly) {
-        // Lazy (issue 16): the pipeline would update the last stage by deltas only; leave that to
-        // points() (one delta from the last evaluated control points) and report the motion.
-        deferred.push_back(p);
-      } else {
-        toRun.push_back(p);
-      }
+      toRun.push_back(p);
     }
     if (added) objects_[object.id] = std::move(added);
   }
@@ -314,20 +287,12 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       stats.failedPoints += first->failedCount();
     }
   };
-  for (ObjectPipeline* p : deferred) {
-    // Reported as the delta step it stands for (SceneDeformStats::deltaStages).
-    p->deferred = true;
-    ++p->revision;
-    ++stats.deltaStages;
-    countPoints(*p);
-  }
   Eigen::Index done = 0;
   for (std::size_t i = 0; i < toRun.size(); ++i) {
     ObjectPipeline& p = *toRun[i];
     ffd::EmbedProgress hook;
     if (progress_ && toEmbed[i] > 0) hook = [&goOn, done](Eigen::Index d, Eigen::Index) { return goOn(done + d); };
     // exact: re-embed every throttled stage too (one pipeline pass, not an update and then another).
-    p.deferred = false;  // this run includes the deferred delta
     if (exact) {
       p.pipeline->reembedAll(hook);
     } else {
@@ -349,6 +314,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   exact_ = how == Run::Finish;
   totals_.reembeddedStages += std::uint64_t(stats.reembeddedStages);
   totals_.latticesBuilt += std::uint64_t(stats.latticesBuilt);
+  ++totals_.evaluations;
   if (progress_ && !progress_(1.0)) throw ffd::Cancelled("scene deformer: cancelled at the end (all work kept)");
 }
 
@@ -377,18 +343,11 @@ Eigen::VectorXd SceneDeformer::controlWeights(const std::string& object, Eigen::
 }
 
 const Eigen::MatrixX3d& SceneDeformer::points(ObjectId object) const {
-  ObjectPipeline& p = pipelineOf(object);
-  if (p.deferred) {
-    // The deferred gesture steps, as one delta step from the last evaluated control points (a
-    // fresh last stage in Delta mode: nothing embeds, nothing is cancelled).
-    p.pipeline->update();
-    p.deferred = false;
-  }
-  return p.pipeline->points();
+  return pipelineOf(object).pipeline->points();
 }
 
 Eigen::MatrixX3d SceneDeformer::takePoints(ObjectId object) {
-  (void)points(object);  // applies the deferred gesture steps (and throws for an unknown object)
+  (void)pipelineOf(object);  // throws for an unknown object
   evaluated_ = nullptr;  // the object is forgotten: the next evaluate() builds its pipeline again
   return objects_.extract(object).mapped()->pipeline->takePoints();
 }

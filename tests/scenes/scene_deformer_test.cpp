@@ -224,12 +224,11 @@ TEST(SceneDeformer, AGestureMotionIsLinearInTheControlPointsTheLastStageMovedByD
   EXPECT_FALSE(deformer.gestureMotion("sphere"));
 }
 
-// The steps after a gesture's first that only move the last stage's control points are deferred
-// (updateGesture records them; points() applies them as one delta step from the last evaluated
-// control points): each is still reported (revision, motion, stats), pointCount() applies
-// nothing, and after several steps that nobody read the points are those of an exact evaluation
-// of the same scene, to the rounding of one delta step; the release is bit for bit exact.
-TEST(SceneDeformer, DeferredGestureStepsAreReportedAndAppliedWhenThePointsAreRead) {
+// Every gesture step is evaluated where it is reported (no step is left for a read of the
+// points to apply): each moves the revision and the motion, points() is a pure read (reading
+// twice moves nothing), and after several steps the points are those of an exact evaluation of
+// the same scene, to the rounding of the delta steps; the release is bit for bit exact.
+TEST(SceneDeformer, EveryGestureStepIsEvaluatedWhereItIsReportedAndPointsIsAPureRead) {
   Scene scene = sphereScene();
   const auto lattice = attachNewLattice(scene, {"sphere"}, withCounts(4, 4, 4));
   SceneDeformer deformer;
@@ -239,6 +238,9 @@ TEST(SceneDeformer, DeferredGestureStepsAreReportedAndAppliedWhenThePointsAreRea
   const Eigen::Index f = 1 + 4 * (2 + 4 * 1);
   std::uint64_t revision = deformer.revision("sphere");
   Eigen::Vector3d moved = Eigen::Vector3d::Zero();
+  // A reader's reference taken before the gesture shows every step without another call (a step
+  // left for points() to apply would leave it behind from the second step on).
+  const Eigen::MatrixX3d& held = deformer.points("sphere");
   for (int step = 1; step <= 6; ++step) {
     const Eigen::Vector3d dP(0.03, -0.02 * step, 0.01);
     moved += dP;
@@ -253,11 +255,17 @@ TEST(SceneDeformer, DeferredGestureStepsAreReportedAndAppliedWhenThePointsAreRea
     ASSERT_EQ(motion->controlPoints.size(), 1u);
     EXPECT_LE((Eigen::Vector3d(motion->displacements.row(0)) - scene.widgets.latticeFrame(lattice).linear() * moved).norm(), 1e-14);
     EXPECT_EQ(deformer.pointCount("sphere"), rows);
+    SceneDeformer exact;
+    exact.update(scene);
+    EXPECT_LE((held - exact.points("sphere")).cwiseAbs().maxCoeff(), 1e-13) << "step " << step;
+    EXPECT_EQ(&deformer.points("sphere"), &held);
   }
   SceneDeformer fresh;
   fresh.update(scene);
-  const Eigen::MatrixX3d read = deformer.points("sphere");  // applies the pending steps
-  EXPECT_EQ(deformer.revision("sphere"), revision);         // reading does not move the points again
+  const std::uint64_t evaluations = deformer.totals().evaluations;
+  const Eigen::MatrixX3d read = deformer.points("sphere");
+  EXPECT_EQ(deformer.revision("sphere"), revision);  // reading does not move the points
+  EXPECT_EQ(deformer.totals().evaluations, evaluations);
   EXPECT_GT((read - scene.objects().front().mesh.points).cwiseAbs().maxCoeff(), 0.01);
   EXPECT_LE((read - fresh.points("sphere")).cwiseAbs().maxCoeff(), 1e-13);
   EXPECT_EQ(deformer.points("sphere"), read);  // a second read applies nothing more

@@ -22,9 +22,9 @@
 // D x (A_f x g_f) = (g_f.D) A_f - g_f (D.A_f) is that cofactor's change applied to A_f, exactly.
 //
 // Cost per step (follow): one cross product and a normalisation per vertex, and the float point
-// moved by beta_v times the step of D: 40 bytes read and 24 written, in one pass, instead of a
-// pass over the triangles, a gather over each vertex's triangles and a copy of the deformer's
-// points (whose delta step the deformer defers: SceneDeformer::points).
+// moved by beta_v times the step of D: 40 bytes read and 24 written, in one pass (four vertices
+// at a time with SSE), instead of a pass over the triangles, a gather over each vertex's
+// triangles and a conversion of the deformer's double points.
 //
 // The first step of a motion: every exact update (update()) keeps the unnormalised sums N_v of
 // the points it drew. When the motion starts from those points (GestureMotion::baseRevision is
@@ -55,8 +55,7 @@ class GestureNormals {
  public:
   /// A later step of the one-control-point motion update() last set up: moves the view's float
   /// points by x_v += beta_v (D(t) - D(t')) (t' the step last shown) and writes the followed
-  /// normals, in one pass over the vertices on both cores, without reading the deformer's points
-  /// (SceneDeformer::points applies deferred gesture steps: the view does not ask for them).
+  /// normals, in one pass over the vertices on both cores, without reading the deformer's points.
   /// Returns false, touching nothing, when the object's motion is not that one or `points` are
   /// not float32 (then call update()).
   bool follow(const scenes::SceneDeformer& deformer, scenes::ObjectId object, vtkPoints* points,

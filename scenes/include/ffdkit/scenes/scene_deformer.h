@@ -143,13 +143,10 @@ class SceneDeformer {
   /// GUI polls and returns !cancelFlag.load().
   void setProgress(SceneProgress progress) { progress_ = std::move(progress); }
 
-  /// Deformed points of an object (its own points if no lattice deforms it), #points x 3.
-  /// Gesture steps that only move the control points of the object's last lattice stage after a
-  /// delta step of it (the steps after a drag's first) are deferred: updateGesture() reports them
-  /// (revision, gestureMotion, lastStats().deltaStages) and this call applies them, as one delta
-  /// step from the last evaluated control points (a consumer that follows gestureMotion(), as the
-  /// view does, reads no points during a drag). Hence not thread-safe against other const calls.
-  /// @throws std::invalid_argument for an object update() has not seen.
+  /// Deformed points of an object (its own points if no lattice deforms it), #points x 3, as the
+  /// last evaluation left them: a pure read (every evaluation, a gesture's steps included, brings
+  /// the points up to date; a consumer that follows gestureMotion(), as the view does, need not
+  /// read them during a drag). @throws std::invalid_argument for an object update() has not seen.
   const Eigen::MatrixX3d& points(ObjectId object) const;
   /// points() of the object that had this name at the last update.
   const Eigen::MatrixX3d& points(const std::string& object) const;
@@ -159,8 +156,7 @@ class SceneDeformer {
   Eigen::MatrixX3d takePoints(ObjectId object);
   /// takePoints() of the object that had this name at the last update.
   Eigen::MatrixX3d takePoints(const std::string& object);
-  /// points(object).rows() without applying deferred gesture steps.
-  /// @throws std::invalid_argument for an object update() has not seen.
+  /// points(object).rows(). @throws std::invalid_argument for an object update() has not seen.
   Eigen::Index pointCount(ObjectId object) const;
   /// pointCount() of the object that had this name at the last update.
   Eigen::Index pointCount(const std::string& object) const;
@@ -178,6 +174,9 @@ class SceneDeformer {
   struct Totals {
     std::uint64_t reembeddedStages = 0;  ///< sum of SceneDeformStats::reembeddedStages
     std::uint64_t latticesBuilt = 0;     ///< sum of SceneDeformStats::latticesBuilt
+    /// Evaluations run (update(), updateGesture(), finishGesture(), and evaluate() when it
+    /// evaluated): how a test sees that the events of one tick cost one evaluation.
+    std::uint64_t evaluations = 0;
   };
   /// The sums since the deformer was made (not reset by reset()).
   const Totals& totals() const { return totals_; }
