@@ -118,8 +118,14 @@ struct FrameClock {
     if (me->finish)
       if (QOpenGLContext* context = QOpenGLContext::currentContext()) context->functions()->glFinish();
     me->renderEnd = me->stamp();
+    me->rendered = true;
   }
+  bool rendered = false;  // VTK rendered since the last composition: the next one displays a new frame
   void onSwapped() {
+    // Qt composes the window for other widgets' repaints too (the timeline, the status bar): only a
+    // composition after a render of the view displays a new frame of it.
+    if (!rendered) return;
+    rendered = false;
     const Stamp shown = stamp();
     ends.push_back(shown.wall);
     prepares.push_back(between(paintAt, preparedAt));
