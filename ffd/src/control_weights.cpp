@@ -151,6 +151,38 @@ void rationalControlPointWeights(const Lattice& lattice, const Embedding& embedd
 
 }  // namespace
 
+namespace {
+
+// One block of controlPointWeights in the power form: per point, Horner's rule on each axis'
+// polynomial of the control point (summed over the window positions that name it) at the local
+// parameter, the product of the three, times the blend weight. K is a template parameter so that
+// the loops unroll; `order` and `blend` are null for the identity order and an Evaluated block.
+struct PowerBlock {
+  const double* const* params;
+  const double* origin;
+  const double* scale;
+  const double (*sum)[detail::kMaxPowerDegree + 1];
+  const std::uint32_t* order;
+  const double* blend;  // the block's blend weights, from its first point
+
+  template <int K>
+  void run(std::uint32_t begin, std::uint32_t end, double* result) const {
+    for (std::uint32_t q = begin; q < end; ++q) {
+      double product = 1.0;
+      for (int a = 0; a < 3; ++a) {
+        const double x = (params[a][q] - origin[a]) * scale[a];
+        double h = sum[a][K];
+        for (int k = K - 1; k >= 0; --k) h = h * x + sum[a][k];
+        product *= h;
+      }
+      const double s = blend ? blend[q - begin] : 1.0;
+      result[order ? order[q] : q] = s * product;
+    }
+  }
+};
+
+}  // namespace
+
 Eigen::VectorXd controlPointWeights(const Lattice& lattice, const Embedding& embedding, Eigen::Index flat) {
   Eigen::VectorXd result;
   controlPointWeights(lattice, embedding, flat, result);
@@ -219,30 +251,32 @@ void controlPointWeights(const Lattice& lattice, const Embedding& embedding, Eig
           continue;
         }
         const double* params[3] = {embedding.sortedU().data(), embedding.sortedV().data(), embedding.sortedW().data()};
+        if (K >= 0) {
+          const double* blend = block.kind == Embedding::BlockKind::Blended
+                                    ? embedding.blendWeight().data() + block.blendOffset
+                                    : nullptr;
+          const PowerBlock power{params, origin, scale, sum, order.empty() ? nullptr : order.data(), blend};
+          switch (K) {
+            case 0: power.run<0>(block.begin, block.end, result.data()); break;
+            case 1: power.run<1>(block.begin, block.end, result.data()); break;
+            case 2: power.run<2>(block.begin, block.end, result.data()); break;
+            default: power.run<3>(block.begin, block.end, result.data()); break;
+          }
+          continue;
+        }
         for (std::uint32_t q = block.begin; q < block.end; ++q) {
           const Eigen::Index p = order.empty() ? q : order[q];
           const double s = block.kind == Embedding::BlockKind::Blended
                                ? embedding.blendWeight()[block.blendOffset + q - block.begin]
                                : 1.0;
-          double product = 1.0;
-          if (K >= 0) {
-            for (int a = 0; a < 3; ++a) {
-              const double x = (params[a][q] - origin[a]) * scale[a];
-              double h = sum[a][K];
-              for (int k = K - 1; k >= 0; --k) h = h * x + sum[a][k];
-              product *= h;
-            }
-          } else {
-            lattice.axis(0).basis(blockCell[0], params[0][q], bu.data());
-            lattice.axis(1).basis(blockCell[1], params[1][q], bv.data());
-            lattice.axis(2).basis(blockCell[2], params[2][q], bw.data());
-            double su = 0.0, sv = 0.0, sw = 0.0;
-            for (int r : at[0]) su += bu[std::size_t(r)];
-            for (int r : at[1]) sv += bv[std::size_t(r)];
-            for (int r : at[2]) sw += bw[std::size_t(r)];
-            product = su * sv * sw;
-          }
-          result[p] = s * product;
+          lattice.axis(0).basis(blockCell[0], params[0][q], bu.data());
+          lattice.axis(1).basis(blockCell[1], params[1][q], bv.data());
+          lattice.axis(2).basis(blockCell[2], params[2][q], bw.data());
+          double su = 0.0, sv = 0.0, sw = 0.0;
+          for (int r : at[0]) su += bu[std::size_t(r)];
+          for (int r : at[1]) sv += bv[std::size_t(r)];
+          for (int r : at[2]) sw += bw[std::size_t(r)];
+          result[p] = s * (su * sv * sw);
         }
       }
     }
