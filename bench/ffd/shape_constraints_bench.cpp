@@ -4,7 +4,9 @@
 // cubic lattice (fold_check.h). BM_KeepVolumeDragStep evaluates the volume by its precomputed
 // polynomial (a step costs O(lattice)); BM_KeepVolumeDragStepPerVertex deforms the points and sums
 // over the triangles in every Newton step (O(vertices)); BM_KeepVolumePrecompute is keepVolume()
-// building the polynomial (one pass over the vertices).
+// building the polynomial (one pass over the vertices). BM_KeepCentreDragStep is the same drag with
+// the centroid of the solid kept instead (keepCentroid: passes over the vertices and triangles in
+// each Newton step, no precompute).
 #include <cmath>
 #include <random>
 
@@ -78,6 +80,33 @@ BENCHMARK(BM_KeepVolumeDragStepPerVertex)
     ->Arg(100000)
     ->Arg(1000000)
     ->Unit(benchmark::kMillisecond);
+
+// The drag of keepVolumeDragStep with the sphere's centroid kept: centroid_error is the largest
+// relative residual |M - t V| / (|V| (size + |t - mean|)) after a step (ShapeSolveOptions::tolerance).
+void BM_KeepCentreDragStep(benchmark::State& state) {
+  Eigen::MatrixX3d points;
+  TriangleMatrix triangles;
+  sphere(state.range(0), points, triangles);
+  Lattice lattice = makeBoxLattice();
+  const ClosedSurface surface(triangles, points.rows());
+  ShapeConstraints constraints(lattice, points);
+  constraints.keepCentroid(surface, enclosedCentroid(points, surface));
+  int step = 0;
+  double iterations = 0, worst = 0;
+  for (auto _ : state) {
+    Eigen::MatrixX3d p = lattice.controlPoints();
+    p.row(lattice.index(2, 1, 2)) += (step++ % 2 ? -0.01 : 0.01) * Eigen::RowVector3d(1.0, 0.5, -0.3);
+    lattice.setControlPoints(p);
+    const ShapeSolveResult result = constraints.solve(lattice);
+    lattice.setControlPoints(lattice.controlPoints() + result.change);
+    iterations += result.iterations;
+    worst = std::max(worst, result.largestRelativeResidual);
+  }
+  state.counters["newton_steps"] = iterations / double(state.iterations());
+  state.counters["centroid_error"] = worst;
+  state.SetItemsProcessed(state.iterations() * points.rows());
+}
+BENCHMARK(BM_KeepCentreDragStep)->ArgName("vertices")->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
 
 void BM_KeepVolumePrecompute(benchmark::State& state) {
   Eigen::MatrixX3d points;

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include <Eigen/QR>
 
 #include "cell_polynomials.h"
+#include "closed_surface_moments.h"
 #include "point_window.h"
 #include "vector_clones.h"
 #include "volume_polynomial.h"
@@ -16,47 +18,62 @@ namespace ffdkit::ffd {
 namespace {
 
 constexpr Eigen::Index kParallelPoints = 16384;
+constexpr int kBatch = 16;       // points whose window weights and gradients are staged at once
+constexpr int kMaxColumns = 12;  // a per-vertex volume's gradient and a centroid's three
 
-// One block of adjointDeform for axes of degree <= 3: the basis from the cells' power form
-// (CellPolynomials, four lanes, zero beyond the degree) and the window accumulated four
-// u-functions at a time, acc[k][c][b] (lane a) for coordinate k. One coordinate per pass keeps its
-// sixteen accumulators in vector registers; compiled for AVX2 / AVX-512 too (Lane4 is one register).
+using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// The 64 window weights of `count` points of one cell for axes of degree <= 3: basis[i][4 c + b],
+// lane a, is s_i Nu_a(u_i) Nv_b(v_i) Nw_c(w_i) (zero beyond the degree; the basis from the cells'
+// power form, CellPolynomials). s: the blend weights, or null for 1.
 FFDKIT_VECTOR_CLONES
-void adjointBlockCubic(const Embedding& embedding, const Embedding::Block& block, const std::array<int, 3>& cell,
-                       const detail::CellPolynomials poly[3], const Eigen::Ref<const Eigen::MatrixX3d>& g,
-                       detail::Lane4 acc[3][4][4]) {
-  const auto& order = embedding.order();
-  for (int k = 0; k < 3; ++k) {
-    detail::Lane4 sum[4][4];
-    for (int c = 0; c < 4; ++c)
-      for (int b = 0; b < 4; ++b) sum[c][b] = detail::Lane4{0, 0, 0, 0};
-    for (std::uint32_t q = block.begin; q < block.end; ++q) {
-      const Eigen::Index p = order.empty() ? q : order[q];
-      const double s = block.kind == Embedding::BlockKind::Blended
-                           ? embedding.blendWeight()[block.blendOffset + q - block.begin]
-                           : 1.0;
-      detail::Lane4 Nu, Nv, Nw, D;
-      poly[0].evaluate(cell[0], embedding.sortedU()[q], Nu, D);
-      poly[1].evaluate(cell[1], embedding.sortedV()[q], Nv, D);
-      poly[2].evaluate(cell[2], embedding.sortedW()[q], Nw, D);
-      const double sg = s * g(p, k);
-      for (int c = 0; c < 4; ++c) {
-        const detail::Lane4 t = (sg * Nw[c]) * Nv;
-        for (int b = 0; b < 4; ++b) sum[c][b] += t[b] * Nu;
-      }
+void cubicWindowBatch(const detail::CellPolynomials poly[3], const std::array<int, 3>& cell, const double* u,
+                      const double* v, const double* w, const double* s, int count, detail::Lane4 (*basis)[16]) {
+  for (int i = 0; i < count; ++i) {
+    detail::Lane4 Nu, Nv, Nw, D;
+    poly[0].evaluate(cell[0], u[i], Nu, D);
+    poly[1].evaluate(cell[1], v[i], Nv, D);
+    poly[2].evaluate(cell[2], w[i], Nw, D);
+    if (s != nullptr) Nv *= s[i];
+    alignas(32) double vw[4][4];  // vw[c][b] = s Nv_b Nw_c
+    for (int c = 0; c < 4; ++c) {
+      const detail::Lane4 row = Nv * Nw[c];
+      for (int b = 0; b < 4; ++b) vw[c][b] = row[b];
     }
     for (int c = 0; c < 4; ++c)
-      for (int b = 0; b < 4; ++b) acc[k][c][b] = sum[c][b];
+      for (int b = 0; b < 4; ++b) basis[i][4 * c + b] = vw[c][b] * Nu;
   }
 }
 
-// The transpose of the deformation's linear part: for a world gradient g (#points x 3) of some
-// function of the deformed points, its gradient with respect to the LOCAL control points,
-//   G_i = F.linear()^T sum_p s_p B_i(u_p, v_p, w_p) g_p   (#controlPoints x 3),
+// window[k][j] += sum_i basis[i][j] g[columns i + k]: one column at a time over the batch, eight
+// accumulators in registers, the gradient's value broadcast from memory (a load, not a shuffle).
+FFDKIT_VECTOR_CLONES
+void accumulateBatch(const detail::Lane4 (*basis)[16], const double* g, int count, int columns,
+                     detail::Lane4 (*window)[16]) {
+  for (int k = 0; k < columns; ++k)
+    for (int half = 0; half < 16; half += 8) {
+      detail::Lane4 acc[8];
+      for (int j = 0; j < 8; ++j) acc[j] = window[k][half + j];
+      for (int i = 0; i < count; ++i) {
+        const double gk = g[columns * i + k];
+        for (int j = 0; j < 8; ++j) acc[j] += basis[i][half + j] * gk;
+      }
+      for (int j = 0; j < 8; ++j) window[k][half + j] = acc[j];
+    }
+}
+
+// The transpose of the deformation's linear part for `columns` world gradients at once (groups
+// of three: x, y, z of one function of the deformed points): for a per-point gradient g, the
+// gradient with respect to the LOCAL control points,
+//   G_i = F.linear()^T sum_p s_p B_i(u_p, v_p, w_p) g_p   (#controlPoints x columns),
 // since x'_p = x_p + F.linear() sum_i s_p B_i (dP_i) (deformer.h). Walks the embedding's blocks
-// like Deformer: per block, the cell's window accumulates sum_p s B g, then scatters.
-Eigen::MatrixX3d adjointDeform(const Lattice& lattice, const Embedding& embedding,
-                               const Eigen::Ref<const Eigen::MatrixX3d>& g) {
+// like Deformer: per block, the cell's window accumulates sum_p s B g over batches of points, then
+// scatters; the basis is evaluated once per point whatever the number of columns.
+// `gradient(points, count, out)` writes the gradients of `count` points (original indices) into
+// out[columns i + k]; it is asked for every point exactly once, in the embedding's order.
+template <class Gradient>
+RowMajorMatrix adjointDeform(const Lattice& lattice, const Embedding& embedding, int columns, const Gradient& gradient) {
+  if (columns < 1 || columns > kMaxColumns) throw std::logic_error("adjointDeform: 1 to 12 columns");
   const Eigen::Index n = embedding.pointCount();
   int np[3];
   bool cubic = true;
@@ -74,42 +91,55 @@ Eigen::MatrixX3d adjointDeform(const Lattice& lattice, const Embedding& embeddin
   const auto& tiles = embedding.tileBlocks();
   const auto& order = embedding.order();
   const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
-  Eigen::MatrixX3d total = Eigen::MatrixX3d::Zero(lattice.pointCount(), 3);
+  RowMajorMatrix total = RowMajorMatrix::Zero(lattice.pointCount(), columns);
 #pragma omp parallel if (n >= kParallelPoints)
   {
-    Eigen::MatrixX3d local = Eigen::MatrixX3d::Zero(lattice.pointCount(), 3);
+    RowMajorMatrix local = RowMajorMatrix::Zero(lattice.pointCount(), columns);
     std::vector<double> bu(static_cast<std::size_t>(np[0])), bv(static_cast<std::size_t>(np[1])),
         bw(static_cast<std::size_t>(np[2]));
-    // acc(a + np0 (b + np1 c), :) = sum over the block's points of s bu[a] bv[b] bw[c] g.
-    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> acc(window, 3);
+    // acc(a + np0 (b + np1 c), k) = sum over the block's points of s bu[a] bv[b] bw[c] g_k.
+    RowMajorMatrix acc(window, columns);
     std::vector<double> weights(static_cast<std::size_t>(window));
     std::vector<Eigen::Index> indices(static_cast<std::size_t>(window));
-    alignas(32) detail::Lane4 acc4[3][4][4];
+    std::vector<double> g(static_cast<std::size_t>(kBatch * columns));
+    alignas(64) detail::Lane4 basis[kBatch][16];
+    alignas(64) detail::Lane4 window4[kMaxColumns][16];
+    Eigen::Index points[kBatch];
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t t = 0; t < tileCount; ++t) {
       for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
         const Embedding::Block& block = blocks[bi];
         if (block.kind == Embedding::BlockKind::Frozen) continue;
         const std::array<int, 3> cell = embedding.cellOf(block);
-        if (cubic) {
-          adjointBlockCubic(embedding, block, cell, poly, g, acc4);
-          for (int c = 0; c < np[2]; ++c)
-            for (int b = 0; b < np[1]; ++b)
-              for (int a = 0; a < np[0]; ++a)
-                acc.row(a + np[0] * (b + np[1] * c)) << acc4[0][c][b][a], acc4[1][c][b][a], acc4[2][c][b][a];
-        } else {
-          acc.setZero();
-          for (std::uint32_t q = block.begin; q < block.end; ++q) {
-            const Eigen::Index p = order.empty() ? q : order[q];
-            const double s = block.kind == Embedding::BlockKind::Blended
-                                 ? embedding.blendWeight()[block.blendOffset + q - block.begin]
-                                 : 1.0;
+        const bool blended = block.kind == Embedding::BlockKind::Blended;
+        if (cubic)
+          for (int k = 0; k < columns; ++k)
+            for (int j = 0; j < 16; ++j) window4[k][j] = detail::Lane4{0, 0, 0, 0};
+        else acc.setZero();
+        for (std::uint32_t q0 = block.begin; q0 < block.end; q0 += kBatch) {
+          const int count = int(std::min<std::uint32_t>(kBatch, block.end - q0));
+          for (int i = 0; i < count; ++i) points[i] = order.empty() ? Eigen::Index(q0) + i : order[q0 + i];
+          gradient(points, count, g.data());
+          const double* s = blended ? embedding.blendWeight().data() + block.blendOffset + (q0 - block.begin) : nullptr;
+          if (cubic) {
+            cubicWindowBatch(poly, cell, embedding.sortedU().data() + q0, embedding.sortedV().data() + q0,
+                             embedding.sortedW().data() + q0, s, count, basis);
+            accumulateBatch(basis, g.data(), count, columns, window4);
+            continue;
+          }
+          for (int i = 0; i < count; ++i) {
+            const std::uint32_t q = q0 + std::uint32_t(i);
             detail::windowWeights(lattice, cell, embedding.sortedU()[q], embedding.sortedV()[q], embedding.sortedW()[q],
-                                  s, bu.data(), bv.data(), bw.data(), weights.data());
-            const Eigen::RowVector3d gp = g.row(p);
+                                  s ? s[i] : 1.0, bu.data(), bv.data(), bw.data(), weights.data());
+            const Eigen::Map<const Eigen::RowVectorXd> gp(g.data() + std::ptrdiff_t(columns) * i, columns);
             for (int wi = 0; wi < window; ++wi) acc.row(wi) += weights[std::size_t(wi)] * gp;
           }
         }
+        if (cubic)
+          for (int c = 0; c < np[2]; ++c)
+            for (int b = 0; b < np[1]; ++b)
+              for (int a = 0; a < np[0]; ++a)
+                for (int k = 0; k < columns; ++k) acc(a + np[0] * (b + np[1] * c), k) = window4[k][4 * c + b][a];
         detail::windowControlIndices(lattice, cell, indices.data());
         for (int wi = 0; wi < window; ++wi) local.row(indices[std::size_t(wi)]) += acc.row(wi);
       }
@@ -117,7 +147,10 @@ Eigen::MatrixX3d adjointDeform(const Lattice& lattice, const Embedding& embeddin
 #pragma omp critical
     total += local;
   }
-  return total * lattice.frame().linear();  // rows: (L^T G_i^T)^T = G_i L
+  // Each group of three columns is a world gradient: rows (L^T G_i^T)^T = G_i L.
+  const Eigen::Matrix3d L = lattice.frame().linear();
+  for (int k = 0; k + 2 < columns; k += 3) total.middleCols(k, 3) = (total.middleCols(k, 3) * L).eval();
+  return total;
 }
 
 // Flattened #controlPoints*3 vector (row-major: 3 i + c) of a #controlPoints x 3 matrix.
@@ -128,62 +161,18 @@ Eigen::VectorXd flatten(const Eigen::MatrixX3d& m) {
   return out;
 }
 
-// Per-vertex volume gradient sum (y_b x y_c) / 6 over the triangles (v, b, c) at v, y = x - origin
-// (the volume does not depend on the origin; measuring about the object keeps digits), into g
-// (#points x 3, reused between steps: no fresh pages per step); `volume` gets
-// sum_v y_v . gradient_v / 3 (each triangle's determinant counted three times).
-void volumeGradient(const Eigen::MatrixX3d& x, const Eigen::Vector3d& origin, const ClosedSurface& surface,
-                    double& volume, Eigen::MatrixX3d& g) {
-  const Eigen::Index n = x.rows();
-  g.resize(n, 3);
-  const auto& offsets = surface.pairOffsets();
-  const auto& pairs = surface.pairs();
-  const Eigen::RowVector3d o = origin.transpose();
-  double sum = 0.0;
-#pragma omp parallel for reduction(+ : sum) schedule(static) if (n >= kParallelPoints)
-  for (Eigen::Index v = 0; v < n; ++v) {
-    Eigen::Vector3d acc = Eigen::Vector3d::Zero();
-    for (int e = offsets[v]; e < offsets[v + 1]; ++e)
-      acc += (x.row(pairs(e, 0)) - o).transpose().cross((x.row(pairs(e, 1)) - o).transpose());
-    acc /= 6.0;
-    g.row(v) = acc.transpose();
-    sum += (x.row(v) - o).dot(acc.transpose());
-  }
-  volume = sum / 3.0;
+// Column group [k, k + 3) of a #controlPoints x columns adjoint result, flattened (3 i + c).
+Eigen::VectorXd flattenColumns(const RowMajorMatrix& m, int k) {
+  Eigen::VectorXd out(m.rows() * 3);
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (int c = 0; c < 3; ++c) out[3 * i + c] = m(i, k + c);
+  return out;
 }
 
-// The centroid's residual M - t V (3 values; M = sum det (a + b + c) / 24, V = sum det / 6) and
-// its per-vertex gradients, one #points x 3 matrix per component.
-void centroidResidual(const Eigen::MatrixX3d& x, const ClosedSurface& surface, const Eigen::Vector3d& target,
-                      Eigen::Vector3d& residual, Eigen::MatrixX3d gradient[3]) {
-  const Eigen::Index n = x.rows();
-  for (int k = 0; k < 3; ++k) gradient[k].setZero(n, 3);
-  const auto& offsets = surface.pairOffsets();
-  const auto& pairs = surface.pairs();
-  double r0 = 0.0, r1 = 0.0, r2 = 0.0;
-#pragma omp parallel for reduction(+ : r0, r1, r2) schedule(static) if (n >= kParallelPoints)
-  for (Eigen::Index v = 0; v < n; ++v) {
-    const Eigen::Vector3d a = x.row(v).transpose();
-    Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();  // column k: gradient of component k at v
-    Eigen::Vector3d value = Eigen::Vector3d::Zero();
-    for (int e = offsets[v]; e < offsets[v + 1]; ++e) {
-      const Eigen::Vector3d b = x.row(pairs(e, 0)).transpose(), c = x.row(pairs(e, 1)).transpose();
-      const Eigen::Vector3d bc = b.cross(c);
-      const double det = a.dot(bc);
-      const Eigen::Vector3d sum = a + b + c;
-      // d/da [det (a+b+c)_k / 24 - t_k det / 6] = bc ((a+b+c)_k / 24 - t_k / 6) + det e_k / 24.
-      for (int k = 0; k < 3; ++k) {
-        grad.col(k) += bc * (sum[k] / 24.0 - target[k] / 6.0);
-        grad(k, k) += det / 24.0;
-      }
-      value += det * (sum / 24.0 - target / 6.0);  // each triangle seen from its 3 vertices
-    }
-    for (int k = 0; k < 3; ++k) gradient[k].row(v) = grad.col(k).transpose();
-    r0 += value[0];
-    r1 += value[1];
-    r2 += value[2];
-  }
-  residual = Eigen::Vector3d(r0, r1, r2) / 3.0;
+// The volume and the centroid kept on the same triangles share them: solve() sums both in one
+// pass over the triangles.
+bool sameSurface(const std::shared_ptr<const ClosedSurface>& kept, const ClosedSurface& surface) {
+  return kept && kept->vertexCount() == surface.vertexCount() && kept->triangles() == surface.triangles();
 }
 
 void checkSurface(const ClosedSurface& surface, Eigen::Index points, const char* what) {
@@ -242,7 +231,11 @@ Eigen::VectorXd ShapeConstraints::rowOf(const Eigen::SparseVector<double>& a) co
   for (Eigen::SparseVector<double>::InnerIterator it(a); it; ++it) g(it.index() / 3, it.index() % 3) += it.value();
   // Rows J = A d x'/d dP: the adjoint of the deformation applied to the row (constant while the
   // weights are).
-  return flatten(adjointDeform(lattice_, deformer_.embedding(), g));
+  const auto rows = [&g](const Eigen::Index* points, int count, double* out) {
+    for (int i = 0; i < count; ++i)
+      for (int c = 0; c < 3; ++c) out[3 * i + c] = g(points[i], c);
+  };
+  return flattenColumns(adjointDeform(lattice_, deformer_.embedding(), 3, rows), 0);
 }
 
 void ShapeConstraints::adoptWeights(const Lattice& lattice) {
@@ -284,7 +277,7 @@ void ShapeConstraints::keepVolume(const ClosedSurface& surface, double target, V
   checkSurface(surface, points_.rows(), "keepVolume");
   if (!std::isfinite(target) || target == 0.0)
     throw ConstraintError("keepVolume: the target volume must be finite and non-zero, got " + std::to_string(target));
-  volumeSurface_ = std::make_shared<ClosedSurface>(surface);
+  volumeSurface_ = sameSurface(centroidSurface_, surface) ? centroidSurface_ : std::make_shared<ClosedSurface>(surface);
   volumeTarget_ = target;
   volumeEvaluation_ = evaluation;
   volumePolynomial_.reset();
@@ -333,7 +326,7 @@ const Eigen::MatrixX3d& ShapeConstraints::deformedPoints() const {
 void ShapeConstraints::keepCentroid(const ClosedSurface& surface, const Eigen::Vector3d& target) {
   checkSurface(surface, points_.rows(), "keepCentroid");
   if (!target.allFinite()) throw ConstraintError("keepCentroid: target must be finite");
-  centroidSurface_ = std::make_shared<ClosedSurface>(surface);
+  centroidSurface_ = sameSurface(volumeSurface_, surface) ? volumeSurface_ : std::make_shared<ClosedSurface>(surface);
   centroidTarget_ = target;
 }
 
@@ -377,20 +370,17 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
       linearOffset[ri] = value - linearRest_[ri] - linearRows_[ri].dot(flatStart);
     }
   }
+  Eigen::MatrixXd J(m, f);
+  for (Eigen::Index r = 0; r < linearCount; ++r)
+    for (Eigen::Index k = 0; k < f; ++k) J(r, k) = linearRows_[std::size_t(r)][freeIndex[std::size_t(k)]];
   for (int iteration = 0;; ++iteration) {
     Eigen::MatrixX3d moved = lattice.controlPoints() + result.change;
     current.setControlPoints(moved);
     const Eigen::MatrixX3d displacement = moved - lattice.restPoints();  // local P + dP - Pbar
-    // Volume and centroid are translation invariant: measured about the object's mean so that
-    // the divergence-theorem sums do not lose digits to the distance from the world origin.
     if (perVertex) deformer_.deform(current, points_);
     const Eigen::MatrixX3d& x = deformer_.points();
-    Eigen::MatrixX3d centred;
-    if (centroidSurface_) centred = x.rowwise() - origin_.transpose();
-    // Residuals c, their scales and the rows of J over the free coordinates. A linear row is
-    // a . x' = a . x + J (P + dP - Pbar) (its J is the adjoint of the deformation, constant).
+    // Residuals c and their scales; the rows of J only once the residuals ask for another step.
     Eigen::VectorXd c(m), scale(m);
-    Eigen::MatrixXd J(m, f);
     const Eigen::VectorXd flatDisplacement = flatten(displacement);
     for (Eigen::Index r = 0; r < linearCount; ++r) {
       const std::size_t ri = std::size_t(r);
@@ -398,42 +388,33 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
       c[r] = linearRest_[ri] + linearOffset[ri] + terms.sum() - linearB_[ri];
       const double magnitude = linearRestScale_[ri] + terms.cwiseAbs().sum() + std::abs(linearB_[ri]);
       scale[r] = magnitude > 0.0 ? magnitude : 1.0;
-      for (Eigen::Index k = 0; k < f; ++k) J(r, k) = linearRows_[ri][freeIndex[std::size_t(k)]];
     }
     Eigen::Index row = linearCount;
+    // Volume and centroid are translation invariant: measured about the object's mean so that
+    // the divergence-theorem sums do not lose digits to the distance from the world origin. One
+    // pass over the triangles gives both when they are kept on the same surface.
+    std::optional<detail::SurfaceSums> volumeSums, centroidSums;
+    if (centroidSurface_) centroidSums = detail::surfaceSums(x, origin_, *centroidSurface_, centroidTarget_);
+    if (volumeSurface_ && !polynomial)
+      volumeSums = centroidSurface_ == volumeSurface_ ? centroidSums
+                                                      : detail::surfaceSums(x, origin_, *volumeSurface_, centroidTarget_);
+    Eigen::MatrixX3d polynomialGradient;  // world dV/dD, with the volume polynomial
     if (volumeSurface_) {
-      double volume = 0.0;
-      Eigen::VectorXd gradient;
-      if (polynomial) {
-        // World displacements D_i = L dP_i (rows: dP L^T); the local gradient is L^T dV/dD.
-        Eigen::MatrixX3d worldGradient;
-        volume = volumePolynomial_->evaluate(displacement * L.transpose(), worldGradient);
-        gradient = flatten(worldGradient * L);
-      } else {
-        Eigen::MatrixX3d& g = gradientScratch_;
-        volumeGradient(x, origin_, *volumeSurface_, volume, g);
-        gradient = flatten(adjointDeform(lattice_, deformer_.embedding(), g));
-      }
+      const double volume = polynomial ? volumePolynomial_->evaluate(displacement * L.transpose(), polynomialGradient)
+                                       : volumeSums->volume;
       c[row] = volume - volumeTarget_;
       scale[row] = std::abs(volumeTarget_);
-      for (Eigen::Index k = 0; k < f; ++k) J(row, k) = gradient[freeIndex[std::size_t(k)]];
       result.volume = volume;
       result.volumeRelativeError = std::abs(c[row]) / scale[row];
       ++row;
     }
     if (centroidSurface_) {
-      Eigen::Vector3d residual;
-      Eigen::MatrixX3d g[3];
-      centroidResidual(centred, *centroidSurface_, centroidTarget_ - origin_, residual, g);
       // Scale: the volume times the surface's size (the units of M - t V).
-      double volume = 0.0;
-      volumeGradient(x, origin_, *centroidSurface_, volume, gradientScratch_);
-      for (int k = 0; k < 3; ++k) {
-        const Eigen::VectorXd gradient = flatten(adjointDeform(lattice_, deformer_.embedding(), g[k]));
-        c[row] = residual[k];
-        scale[row] = std::max(std::abs(volume), 1e-300) * (size + (centroidTarget_ - origin_).norm());
-        for (Eigen::Index j = 0; j < f; ++j) J(row, j) = gradient[freeIndex[std::size_t(j)]];
-        ++row;
+      const double centroidScale =
+          std::max(std::abs(centroidSums->volume), 1e-300) * (size + (centroidTarget_ - origin_).norm());
+      for (int k = 0; k < 3; ++k, ++row) {
+        c[row] = centroidSums->centroidResidual[k];
+        scale[row] = centroidScale;
       }
     }
     result.largestRelativeResidual = m > 0 ? (c.array().abs() / scale.array()).maxCoeff() : 0.0;
@@ -456,6 +437,30 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
       throw ConstraintError("shape constraints not met after " + std::to_string(iteration) +
                             " Newton steps: largest relative residual " + std::to_string(result.largestRelativeResidual) +
                             (volumeSurface_ ? ", volume relative error " + std::to_string(result.volumeRelativeError) : ""));
+    // The rows of J over the free coordinates: a linear row's is constant (filled before the
+    // loop), the polynomial volume's comes with its value, the per-vertex rows from one adjoint
+    // pass (the volume's gradient in columns 0-2, the centroid's three in the next nine).
+    row = linearCount;
+    if (volumeSurface_ && polynomial) {
+      const Eigen::VectorXd gradient = flatten(polynomialGradient * L);  // local: L^T dV/dD
+      for (Eigen::Index k = 0; k < f; ++k) J(row, k) = gradient[freeIndex[std::size_t(k)]];
+      ++row;
+    }
+    if (perVertex) {
+      const bool volumeColumns = volumeSurface_ && !polynomial;
+      const int columns = (volumeColumns ? 3 : 0) + (centroidSurface_ ? 9 : 0);
+      const detail::SurfaceGradients surfaceGradients(x, origin_, centroidTarget_);
+      const auto gradients = [&](const Eigen::Index* points, int count, double* out) {
+        if (volumeColumns) surfaceGradients.volume(*volumeSurface_, points, count, out, columns);
+        if (centroidSurface_)
+          surfaceGradients.centroid(*centroidSurface_, points, count, out + (volumeColumns ? 3 : 0), columns);
+      };
+      const RowMajorMatrix G = adjointDeform(lattice_, deformer_.embedding(), columns, gradients);
+      for (int k = 0; k < columns; k += 3, ++row) {
+        const Eigen::VectorXd gradient = flattenColumns(G, k);
+        for (Eigen::Index j = 0; j < f; ++j) J(row, j) = gradient[freeIndex[std::size_t(j)]];
+      }
+    }
     // Minimum-norm Newton step: delta_new = J^T (J J^T)^+ (J delta - c).
     const Eigen::VectorXd rhs = J * delta - c;
     const Eigen::MatrixXd gram = J * J.transpose();
