@@ -336,15 +336,20 @@ std::array<int, 3> cellOf(const FoldCheckResult& result, std::int64_t flat) {
   return {int(flat % cu), int(flat / cu % cv), int(flat / cu / cv)};
 }
 
+// Fewer cells than this (a lattice of one to three cells, e.g. 4x4x4 cubic) run one cell at a
+// time: a batch of them would compute mostly unused lanes.
+constexpr std::int64_t kFewestForLanes = detail::kFoldLanes / 2;
+
 // The cells `flats` of a polynomial map (or of a rational one's windows with equal weights). Axes
-// of one degree 1..3 (and not options.referenceExpansion): kFoldLanes cells at a time
-// (detail::DeterminantLanes; a cell's coefficients do not depend on the cells beside it in its
-// batch, so the verdicts are the same whatever the thread count); otherwise one cell at a time.
+// of one degree 1..3 (not options.referenceExpansion, at least kFewestForLanes cells): kFoldLanes
+// cells at a time (detail::DeterminantLanes; a cell's coefficients do not depend on the cells
+// beside it in its batch, so the verdicts are the same whatever the thread count); otherwise one
+// cell at a time.
 void checkPolynomialCells(const Lattice& lattice, const FoldCheckOptions& options,
                           const std::vector<Eigen::MatrixXd>* extraction, const std::vector<std::int64_t>& flats,
                           FoldCheckResult& result) {
   const std::int64_t count = std::int64_t(flats.size());
-  if (options.referenceExpansion || !detail::foldLanesSupport(lattice)) {
+  if (options.referenceExpansion || !detail::foldLanesSupport(lattice) || count < kFewestForLanes) {
 #pragma omp parallel for schedule(dynamic, 1) if (count >= 8)
     for (std::int64_t c = 0; c < count; ++c)
       checkPolynomialCell(lattice, options, extraction, cellOf(result, flats[std::size_t(c)]),
@@ -617,7 +622,7 @@ void checkRationalFolding(const Lattice& lattice, const FoldCheckOptions& option
   }
   checkPolynomialCells(lattice, options, extraction, equal, result);
   const std::int64_t count = std::int64_t(unequal.size());
-  if (!options.referenceExpansion && detail::foldLanesSupport(lattice)) {
+  if (!options.referenceExpansion && detail::foldLanesSupport(lattice) && count >= kFewestForLanes) {
     checkRationalLanes(lattice, options, extraction, unequal, result);
     return;
   }

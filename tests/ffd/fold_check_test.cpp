@@ -274,8 +274,11 @@ TEST(FoldCheck, VerdictsDoNotDependOnTheThreadCount) {
     const FoldCheckResult two = checkFolding(lattice);
     EXPECT_EQ(one.cells, two.cells);
     EXPECT_EQ(one.lowerBound, two.lowerBound);
-    for (std::size_t c = 0; c < one.cells.size(); ++c)
-      if (one.cells[c] == CellFolding::Folds) EXPECT_EQ(one.witness[c], two.witness[c]);
+    for (std::size_t c = 0; c < one.cells.size(); ++c) {
+      if (one.cells[c] == CellFolding::Folds) {
+        EXPECT_EQ(one.witness[c], two.witness[c]);
+      }
+    }
   }
   omp_set_num_threads(before);
 }

@@ -52,8 +52,9 @@ struct FoldCheckOptions {
   int maxDepth = 4;
   /// Compute every cell's coefficients one cell at a time by the general product of nets (the
   /// path of any degrees, jacobianDeterminantPatch's) instead of the batched products of lattices
-  /// whose axes share a degree 1 to 3. Slower; the same verdicts, and coefficients equal to
-  /// rounding: the reference the fast path is tested against.
+  /// whose axes share a degree 1 to 3. Slower; the coefficients agree to rounding (so do the
+  /// verdicts, unless a coefficient is within rounding of 0): the reference the fast path is
+  /// tested against.
   bool referenceExpansion = false;
 };
 
