@@ -2,9 +2,31 @@
 
 #include <algorithm>
 
+#include "ffdkit/ffd/embedding.h"
+#include "ffdkit/ffd/lattice.h"
 #include "vector_clones.h"
 
 namespace ffdkit::ffd::detail {
+
+KernelInput kernelInput(const Lattice& lattice, const Embedding& embedding, const std::vector<int> (&spans)[3],
+                        const AxisPolynomials* const (&poly)[3], Eigen::MatrixX3d& out) {
+  KernelInput in{};
+  for (int a = 0; a < 3; ++a) {
+    in.axis[a].knots = lattice.axis(a).knots().data();
+    in.axis[a].degree = lattice.axis(a).degree();
+    in.axis[a].cellSpan = spans[a].data();
+    in.axis[a].poly = poly[a];
+  }
+  in.u = embedding.sortedU().data();
+  in.v = embedding.sortedV().data();
+  in.w = embedding.sortedW().data();
+  in.order = embedding.order().empty() ? nullptr : embedding.order().data();
+  in.ox = out.col(0).data();
+  in.oy = out.col(1).data();
+  in.oz = out.col(2).data();
+  return in;
+}
+
 namespace {
 
 constexpr int kLanes = 8;

@@ -4,7 +4,14 @@
 #include <cstdint>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "ffdkit/ffd/axis_basis.h"
+
+namespace ffdkit::ffd {
+class Lattice;
+class Embedding;
+}  // namespace ffdkit::ffd
 
 namespace ffdkit::ffd::detail {
 
@@ -72,6 +79,14 @@ struct KernelInput {
   std::uint32_t outOffset;   // Displacement: the original row of scratch row 0
   std::uint8_t* evaluated;  // Displacement: per scratch row, 1 once written
 };
+
+/// The input every kernel call of a pass shares, made in one place for the polynomial and the
+/// rational deformers: each axis' knots and degree, its cell spans (spans[a][cell]) and power-form
+/// polynomials (poly[a]; null: Cox-de Boor), the embedding's sorted parameters and point order,
+/// and `out`'s columns as the output. The caller adds what its pass needs (input columns, a
+/// block's blend weights, a tile's scratch).
+KernelInput kernelInput(const Lattice& lattice, const Embedding& embedding, const std::vector<int> (&spans)[3],
+                        const AxisPolynomials* const (&poly)[3], Eigen::MatrixX3d& out);
 
 /// Cox-de Boor block (any degree): d = sum_abc Bu_a Bv_b Bw_c W_abc over the cell window W
 /// (world displacements, or their change), written as `mode` says.

@@ -14,23 +14,6 @@ namespace {
 // Below this many points a parallel region costs more than it saves (thread wake-up, barriers).
 constexpr Eigen::Index kParallelPoints = 16384;
 
-detail::KernelInput makeInput(const Lattice& lattice, const Embedding& e, Eigen::MatrixX3d& out) {
-  detail::KernelInput in{};
-  for (int a = 0; a < 3; ++a) {
-    // cellSpan is stored per cell inside AxisSpline; expose it as a plain array.
-    in.axis[a].knots = lattice.axis(a).knots().data();
-    in.axis[a].degree = lattice.axis(a).degree();
-  }
-  in.u = e.sortedU().data();
-  in.v = e.sortedV().data();
-  in.w = e.sortedW().data();
-  in.order = e.order().empty() ? nullptr : e.order().data();
-  in.ox = out.col(0).data();
-  in.oy = out.col(1).data();
-  in.oz = out.col(2).data();
-  return in;
-}
-
 // Per axis: cell -> knot span, and the control indices of each cell's window.
 struct AxisTables {
   std::vector<int> span[3];
@@ -360,11 +343,8 @@ Eigen::Index Deformer::evaluateBlocks(const Lattice& lattice, const Eigen::Ref<c
   const Eigen::MatrixX3d D = (lattice.controlPoints() - lattice.restPoints()) * lattice.frame().linear().transpose();
   const AxisTables tables = makeTables(lattice);
   CellFields fields(lattice, tables, D, precision_);
-  detail::KernelInput in = makeInput(lattice, embedding_, output_);
-  for (int a = 0; a < 3; ++a) {
-    in.axis[a].cellSpan = tables.span[a].data();
-    in.axis[a].poly = fields.polynomials(a);
-  }
+  const detail::AxisPolynomials* const poly[3] = {fields.polynomials(0), fields.polynomials(1), fields.polynomials(2)};
+  detail::KernelInput in = detail::kernelInput(lattice, embedding_, tables.span, poly, output_);
   in.qx = input.col(0).data();
   in.qy = input.col(1).data();
   in.qz = input.col(2).data();
@@ -491,11 +471,8 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
     }
   }
 
-  detail::KernelInput in = makeInput(lattice, embedding_, output_);
-  for (int a = 0; a < 3; ++a) {
-    in.axis[a].cellSpan = tables.span[a].data();
-    in.axis[a].poly = fields.polynomials(a);
-  }
+  const detail::AxisPolynomials* const poly[3] = {fields.polynomials(0), fields.polynomials(1), fields.polynomials(2)};
+  detail::KernelInput in = detail::kernelInput(lattice, embedding_, tables.span, poly, output_);
   const auto& blocks = embedding_.blocks();
   const auto& tiles = embedding_.tileBlocks();
   const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;

@@ -153,25 +153,6 @@ void rationalSums(const Lattice& lattice, const int cell[3], double u, double v,
     }
 }
 
-detail::KernelInput kernelInput(const Lattice& lattice, const Embedding& e, const RationalCells& cells,
-                                const std::vector<int> spans[3], Eigen::MatrixX3d& out) {
-  detail::KernelInput in{};
-  for (int a = 0; a < 3; ++a) {
-    in.axis[a].knots = lattice.axis(a).knots().data();
-    in.axis[a].degree = lattice.axis(a).degree();
-    in.axis[a].cellSpan = spans[a].data();
-    in.axis[a].poly = cells.polynomials(a);
-  }
-  in.u = e.sortedU().data();
-  in.v = e.sortedV().data();
-  in.w = e.sortedW().data();
-  in.order = e.order().empty() ? nullptr : e.order().data();
-  in.ox = out.col(0).data();
-  in.oy = out.col(1).data();
-  in.oz = out.col(2).data();
-  return in;
-}
-
 void cellSpans(const Lattice& lattice, std::vector<int> spans[3]) {
   for (int a = 0; a < 3; ++a)
     for (int c = 0; c < lattice.axis(a).cellCount(); ++c) spans[a].push_back(lattice.axis(a).cellSpan(c));
@@ -198,7 +179,8 @@ Eigen::Index Deformer::evaluateRational(const Lattice& lattice, const Eigen::Ref
   RationalCells cells(lattice, current, base);
   std::vector<int> spans[3];
   cellSpans(lattice, spans);
-  detail::KernelInput in = kernelInput(lattice, embedding_, cells, spans, output_);
+  const detail::AxisPolynomials* const poly[3] = {cells.polynomials(0), cells.polynomials(1), cells.polynomials(2)};
+  detail::KernelInput in = detail::kernelInput(lattice, embedding_, spans, poly, output_);
   if (input) {
     in.qx = input->col(0).data();
     in.qy = input->col(1).data();
@@ -332,7 +314,8 @@ const Eigen::MatrixX3d& Deformer::updateRational(const Lattice& lattice) {
   RationalCells fields(lattice, none, none);
   std::vector<int> spans[3];
   cellSpans(lattice, spans);
-  const detail::KernelInput in = kernelInput(lattice, embedding_, fields, spans, output_);
+  const detail::AxisPolynomials* const poly[3] = {fields.polynomials(0), fields.polynomials(1), fields.polynomials(2)};
+  const detail::KernelInput in = detail::kernelInput(lattice, embedding_, spans, poly, output_);
   const auto& blocks = embedding_.blocks();
   auto touched = [&](const Embedding::Block& block) {
     return block.kind != Embedding::BlockKind::Frozen && !terms[block.cell].empty();
