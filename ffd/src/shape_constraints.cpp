@@ -353,6 +353,7 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
   // With the volume polynomial and no centroid, no step visits the points.
   const bool perVertex = (volumeSurface_ && !polynomial) || centroidSurface_;
   double lastStepNorm = std::numeric_limits<double>::infinity();
+  double previousResidual = std::numeric_limits<double>::infinity();  // the largest scaled one, the step before
   const Eigen::Matrix3d L = lattice_.frame().linear();
   // Weights that differ from the rest weights (Lamousin & Waggenspack 1994) make the map
   // x' = Q + s F (sum R P - Xbar) with sum R Pbar != Xbar: a linear row's a . x' then holds the
@@ -446,7 +447,13 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
       for (Eigen::Index k = 0; k < f; ++k) J(row, k) = gradient[freeIndex[std::size_t(k)]];
       ++row;
     }
-    if (perVertex) {
+    // JacobianUpdate::FirstStep keeps the per-vertex rows while each step cuts the residual
+    // tenfold (a chord method); a step that does not, and every step of EveryStep, computes them.
+    const bool rowsDue = options.jacobian == JacobianUpdate::EveryStep || result.jacobianPasses == 0 ||
+                         result.largestRelativeResidual > 0.1 * previousResidual;
+    previousResidual = result.largestRelativeResidual;
+    if (perVertex && rowsDue) {
+      ++result.jacobianPasses;
       const bool volumeColumns = volumeSurface_ && !polynomial;
       const int columns = (volumeColumns ? 3 : 0) + (centroidSurface_ ? 9 : 0);
       const detail::SurfaceGradients surfaceGradients(x, origin_, centroidTarget_);

@@ -325,6 +325,65 @@ TEST(ShapeConstraints, CentroidOfTheSolidIsKept) {
   EXPECT_LT((enclosedCentroid(constraints.deformedPoints(), surface) - centroid).norm(), 1e-11);
 }
 
+// The centroid held by the fast passes (one pass over the triangles per Newton step, the three
+// rows' gradients carried to the control points in one adjoint pass, in parallel above 16,384
+// points) against the test's own centroid: the sphere deformed point by point through
+// Lattice::evaluate, then sum det[a, b, c] (a + b + c) / (4 sum det[a, b, c]) over its triangles.
+// A 6x6x6 cubic lattice (27 cells: the adjoint's point order is not the points' order) under a
+// random frame; both Jacobian updates, and the chord's change close to the Lagrange point's.
+TEST(ShapeConstraints, CentroidHeldByTheFastPassesEqualsAPlainPerVertexEvaluation) {
+  std::mt19937 rng(31);
+  BoxLatticeOptions options;
+  options.counts = Eigen::Vector3i::Constant(6);
+  options.boxMin = Eigen::Vector3d::Constant(-1.0);
+  options.boxMax = Eigen::Vector3d::Constant(1.0);
+  options.frame = testing::randomFrame(rng);
+  Lattice lattice = makeBoxLattice(options);
+  testing::TestMesh mesh = testing::sphereMesh({0.1, -0.05, 0.02}, 0.7, 100, 200);  // 19,802 vertices
+  for (Eigen::Index r = 0; r < mesh.points.rows(); ++r)
+    mesh.points.row(r) = (options.frame * mesh.points.row(r).transpose()).transpose();
+  ASSERT_GT(mesh.points.rows(), 16384);
+  const ClosedSurface surface(mesh.triangles, mesh.points.rows());
+  const auto centroidOf = [&mesh](const Eigen::MatrixX3d& x) {
+    double volume6 = 0.0;
+    Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+    for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+      const Eigen::Vector3d a = x.row(mesh.triangles(t, 0)), b = x.row(mesh.triangles(t, 1)),
+                            c = x.row(mesh.triangles(t, 2));
+      const double det = a.dot(b.cross(c));
+      volume6 += det;
+      moment += det * (a + b + c);
+    }
+    return Eigen::Vector3d(moment / (4.0 * volume6));
+  };
+  const Eigen::Vector3d target = centroidOf(mesh.points);
+  Eigen::MatrixX3d p = lattice.controlPoints();
+  p.row(lattice.index(4, 2, 3)) += 0.05 * Eigen::RowVector3d(1.0, 0.4, -0.2);
+  p.row(lattice.index(1, 3, 2)) += 0.03 * Eigen::RowVector3d(-0.5, 0.8, 0.3);
+  lattice.setControlPoints(p);
+  ShapeConstraints constraints(lattice, mesh.points);
+  constraints.keepCentroid(surface, target);
+  const Eigen::MatrixX3d uvw = constraints.embedding().parameters();
+  ASSERT_GT((centroidOf(evaluated(lattice, uvw)) - target).norm(), 1e-4);  // the drag moved it
+  Eigen::MatrixX3d changes[2];
+  for (JacobianUpdate jacobian : {JacobianUpdate::EveryStep, JacobianUpdate::FirstStep}) {
+    ShapeSolveOptions solveOptions;
+    solveOptions.jacobian = jacobian;
+    const ShapeSolveResult result = constraints.solve(lattice, solveOptions);
+    const bool chord = jacobian == JacobianUpdate::FirstStep;
+    EXPECT_LE(result.largestRelativeResidual, 1e-12);
+    EXPECT_EQ(result.jacobianPasses, chord ? 1 : result.iterations);
+    Lattice after = lattice;
+    after.setControlPoints(lattice.controlPoints() + result.change);
+    EXPECT_LT((centroidOf(evaluated(after, uvw)) - target).norm(), 1e-12 * lattice.restSize()) << "chord " << chord;
+    changes[chord ? 1 : 0] = result.change;
+  }
+  // The chord's change is the least-norm one along the gradients at the start: within about
+  // |change|^2 / size of the Lagrange point's.
+  const double norm = changes[0].norm();
+  EXPECT_LT((changes[1] - changes[0]).norm(), 10.0 * norm * norm / lattice.restSize() + 1e-12);
+}
+
 // A rational lattice whose current weights differ from its rest weights (1): the deformed points
 // are x' = Q + s F (sum R P - Xbar) with R = w B / sum w B, affine in P for the weights held fixed
 // but with a constant s F (sum R Pbar - Xbar) beside R P. Barycentre and volume kept against the

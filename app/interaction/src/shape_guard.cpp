@@ -181,7 +181,11 @@ std::vector<ShapeGuardStep> ShapeGuard::correct(scenes::Scene& scene, widgets::W
         // are the rest weights, else the volume is summed per vertex).
         if (const Eigen::VectorXd weights = m.weights(lattice); weights != p.ffdLattice->weights())
           p.ffdLattice->setWeights(weights);
-        const ffd::ShapeSolveResult result = p.constraints->solve(*p.ffdLattice);
+        // A drag step's correction is small: the centroid's Jacobian of the first Newton step is
+        // kept for the later ones (one pass over the vertices' gradients per drag step, not one
+        // per Newton step).
+        const ffd::ShapeSolveResult result =
+            p.constraints->solve(*p.ffdLattice, {.jacobian = ffd::JacobianUpdate::FirstStep});
         step.iterations = result.iterations;
         if (k.keep.volume) step.volumeChange = (result.volume - k.volume) / std::abs(k.volume);
         if (!result.change.isZero(0.0)) m.setControlPoints(lattice, m.controlPoints(lattice) + result.change);

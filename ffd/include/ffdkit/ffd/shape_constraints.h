@@ -38,6 +38,22 @@ enum class VolumeEvaluation {
   PerVertex
 };
 
+/// How often ShapeConstraints::solve computes the rows of its Jacobian that need a pass over the
+/// points (the centroid's, and the volume's when it is summed per vertex; linear rows are
+/// constant and the volume polynomial's gradient comes with its value).
+enum class JacobianUpdate {
+  /// At every Newton step: the solve ends at the Lagrange point, the least-norm change.
+  EveryStep,
+  /// At the first step, then kept (a chord method) while each step cuts the largest scaled
+  /// residual at least tenfold; a step that does not computes them again. Each later step costs
+  /// one deformation of the points and one pass over the triangles instead of also a pass over
+  /// the vertices' gradients and an adjoint pass. The constraints are met to the same tolerance,
+  /// and the change is the least-norm one along the constraints' gradients at the start, which
+  /// differs from the Lagrange point's by about |change|^2 / the lattice's size: for a drag step
+  /// (ShapeGuard's Keep Centre), where the change is small.
+  FirstStep
+};
+
 /// Options of ShapeConstraints::solve.
 struct ShapeSolveOptions {
   /// Stop when every constraint's residual is <= tolerance times its scale: |V - V*| / |V*| for
@@ -51,6 +67,8 @@ struct ShapeSolveOptions {
   /// the control coordinates, e.g. after a drag that barely changed the volume).
   double stationarity = 1e-10;
   int maxIterations = 40;  ///< Newton steps before giving up (ConstraintError).
+  /// When the rows of the Jacobian that need a pass over the points are computed.
+  JacobianUpdate jacobian = JacobianUpdate::EveryStep;
 };
 
 /// What ShapeConstraints::solve did.
@@ -61,6 +79,9 @@ struct ShapeSolveResult {
   double volumeRelativeError = 0.0;  ///< |V - V*| / |V*| after the change (0 without a volume)
   double largestRelativeResidual = 0.0;  ///< the largest scaled residual over all constraints
   double lastStep = 0.0;  ///< |change after the last step - change before it| / |change|
+  /// Passes over the points that computed the Jacobian's per-vertex rows (centroid, volume summed
+  /// per vertex): `iterations` with JacobianUpdate::EveryStep, usually 1 with FirstStep.
+  int jacobianPasses = 0;
 };
 
 /// Constraints on the deformed shape of one set of points embedded in one lattice, and the
@@ -95,8 +116,10 @@ struct ShapeSolveResult {
 /// (constant: a linear row's residual is a . x + J (P + dP - Pbar)), the surface's
 /// vertex-to-triangle table, and (VolumeEvaluation::Polynomial) the volume's coefficients. Each
 /// Newton step: with the volume polynomial and no centroid, O(lattice) work only; otherwise one
-/// deformation of the points, one pass over the triangles for the volume (and centroid) and its
-/// gradient, one adjoint pass (the transpose of the deformation) to carry it to the control points.
+/// deformation of the points and one pass over the triangles for the residuals (volume and
+/// centroid together), and, when another step follows and its rows are due (JacobianUpdate), one
+/// pass over the vertices that carries their gradients to the control points (the transpose of
+/// the deformation, every per-vertex row at once).
 class ShapeConstraints {
  public:
   /// @param lattice the lattice whose control points will change (its rest lattice and frame fix
@@ -190,7 +213,6 @@ class ShapeConstraints {
   VolumeEvaluation volumeEvaluation_ = VolumeEvaluation::Automatic;  // as keepVolume() was asked
   std::shared_ptr<const ClosedSurface> centroidSurface_;
   Eigen::Vector3d centroidTarget_ = Eigen::Vector3d::Zero();
-  Eigen::MatrixX3d gradientScratch_;  // the per-vertex volume gradient, reused between Newton steps
 };
 
 }  // namespace ffdkit::ffd
