@@ -1,7 +1,8 @@
 // The view's level of detail in the window, with real mouse events (View > Simplify While Moving,
 // LevelOfDetail in scene_view.h): a drag draws the sphere's proxy and the release the exact full
-// mesh, and leaves the same document and files as a drag with it off; a widget clicked while
-// playback draws the proxy is picked as without it.
+// mesh, and leaves the same document and files as a drag with it off; the proxy is built with the
+// scene (and when the menu turns the level of detail on), not by the first drag; a widget clicked
+// while playback draws the proxy is picked as without it.
 #include <QAction>
 
 #include <filesystem>
@@ -120,6 +121,42 @@ class LevelOfDetailGuiTest : public QObject {
     QVERIFY(!sceneOn.empty() && meshOn.size() > 100000);
     QVERIFY(sceneOn == slurp(d / "scene-off.json"));
     QVERIFY(meshOn == slurp(d / "sphere-off.ply"));
+  }
+
+  // The proxy is built with the scene, not by the first drag: a drag with real mouse events draws
+  // it without building one, and View > Simplify While Moving turned off and on again (clicked)
+  // builds it at the next frame, before anything moves.
+  void theProxyIsBuiltBeforeTheFirstDrag() {
+    auto window = openWindow(QSize(1000, 700));
+    QVERIFY(window != nullptr);
+    app::MainWindow& w = *window;
+    QAction* simplify = action(w, "actionSimplifyWhileMoving");
+    if (!simplify->isChecked()) clickMenuItem(w, simplify);  // the preference an earlier test left
+    QTRY_VERIFY(simplify->isChecked());
+    smallProxies(w);  // before the scene, as the window's own level of detail is
+    w.setScene(sphereScene(false));
+    QTest::qWait(50);
+    QCOMPARE(w.sceneView().stats().proxyBuilds, 1);
+    QVERIFY(!w.sceneView().showsProxy("sphere"));
+
+    const QPoint from = arrowPixel(w, 0.6);
+    sendMouse(w.view(), QEvent::MouseButtonPress, from, Qt::LeftButton, Qt::LeftButton);
+    for (int step = 1; step <= 4; ++step) {
+      sendMouse(w.view(), QEvent::MouseMove, from + QPoint(10 * step, -6 * step), Qt::NoButton, Qt::LeftButton);
+      QTest::qWait(20);
+      QVERIFY(w.sceneView().showsProxy("sphere"));
+    }
+    QCOMPARE(w.sceneView().stats().proxyBuilds, 1);
+    sendMouse(w.view(), QEvent::MouseButtonRelease, from + QPoint(40, -24), Qt::LeftButton, Qt::NoButton);
+    QVERIFY(!w.sceneView().showsProxy("sphere"));
+
+    clickMenuItem(w, simplify);  // off: the proxy goes at the next frame
+    QTRY_VERIFY(!simplify->isChecked());
+    QTest::qWait(50);  // that frame
+    clickMenuItem(w, simplify);  // on again: built at the next frame
+    QTRY_VERIFY(simplify->isChecked());
+    QTRY_COMPARE(w.sceneView().stats().proxyBuilds, 2);
+    QVERIFY(!w.sceneView().showsProxy("sphere"));
   }
 
   // While playback draws the sphere's proxy, a click on the widget's arrow selects the widget, as
