@@ -2,9 +2,10 @@
 # What a user sees of a large mesh in the application window under Mesa's software GL (Xvfb):
 # drags of a widget on a 1M- and a 10M-vertex sphere and playback of a keyed 1M-vertex sphere, with
 # the level of detail off (every frame the full mesh) and on (View > Simplify While Moving, the
-# default). Each run prints its frames per second, the median and worst frame time and the time
-# from the release to the displayed exact mesh, and writes its per-frame trace (render end time,
-# frame time, in ms) to $FFDKIT_TIMING_DIR (default build/window-timing/).
+# default). Each run prints its frames per second, the median and worst frame time, each frame's
+# stages (wall-clock and CPU ms) and the time from the release to the displayed exact mesh, and
+# writes its per-frame trace (when each frame was displayed, its frame time, its stages and its CPU
+# time, in ms: bench/app/window-timing/README.md) to $FFDKIT_TIMING_DIR (default build/window-timing/).
 #   scripts/window-timing.sh [drag-seconds]     needs build/tests/app/playback_timing
 # Timings on a shared machine are noisy: compare runs made one after the other.
 set -euo pipefail
