@@ -120,4 +120,24 @@ std::size_t ObjectProxy::memoryBytes() const {
          sizeof(double) * std::size_t(base_.size() + weights_.size() + scratch_.size());
 }
 
+bool hasProxy(const LevelOfDetail& lod, const scenes::SceneObject* object, Eigen::Index pointCount,
+              const scenes::DisplaySettings& display) {
+  return lod.enabled && object != nullptr && pointCount >= lod.minVertices && object->mesh.triangles.rows() > 0 &&
+         display.surfaceStyle != scenes::SurfaceStyle::Zebra && object->mesh.points.rows() == pointCount;
+}
+
+bool prepareObjectProxy(std::unique_ptr<ObjectProxy>& proxy, const LevelOfDetail& lod, vtkRenderer* renderer,
+                        vtkActor* full, const scenes::SceneObject* object, Eigen::Index pointCount,
+                        const scenes::DisplaySettings& display) {
+  if (!hasProxy(lod, object, pointCount, display)) {
+    if (proxy) proxy->show(false);
+    proxy.reset();
+    return false;
+  }
+  if (proxy && proxy->targetVertices() == lod.proxyVertices) return false;
+  proxy.reset();
+  proxy = std::make_unique<ObjectProxy>(renderer, full, object->mesh, lod.proxyVertices);
+  return true;
+}
+
 }  // namespace ffdkit::app

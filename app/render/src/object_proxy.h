@@ -13,6 +13,7 @@
 // first step, another motion) the proxy gathers the deformer's points at its vertices.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -21,6 +22,8 @@
 #include <vtkSmartPointer.h>
 
 #include "ffdkit/meshio/mesh_data.h"
+#include "ffdkit/render/scene_view.h"
+#include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "lod_proxy.h"
 
@@ -74,5 +77,19 @@ class ObjectProxy {
   Eigen::MatrixXd weights_;  // #proxy vertices x #control points
   Eigen::MatrixX3d scratch_;
 };
+
+/// True when `object`, drawn with `pointCount` points and `display`, has a proxy under `lod`: the
+/// level of detail on, at least lod.minVertices points, triangles, not zebra-striped, and its own
+/// points as many as drawn.
+bool hasProxy(const LevelOfDetail& lod, const scenes::SceneObject* object, Eigen::Index pointCount,
+              const scenes::DisplaySettings& display);
+
+/// Brings `proxy` to what `lod` asks of the object drawn by `full`: built (hidden) when the object
+/// has a proxy but none of lod.proxyVertices yet, let go when it has none (hasProxy). SceneView
+/// calls it when an object's actor is built and at each refresh, so the first gesture or played
+/// frame draws the proxy without building it. Returns true when it built one.
+bool prepareObjectProxy(std::unique_ptr<ObjectProxy>& proxy, const LevelOfDetail& lod, vtkRenderer* renderer,
+                        vtkActor* full, const scenes::SceneObject* object, Eigen::Index pointCount,
+                        const scenes::DisplaySettings& display);
 
 }  // namespace ffdkit::app

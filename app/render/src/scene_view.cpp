@@ -254,25 +254,10 @@ struct SceneView::Impl {
   // draws its proxy and its own arrays are left as they are until the motion stops.
   LevelOfDetail lod;
   bool moving = false;  // setMoving (playback)
-  // True when `object` (drawn by `entry`) is large enough and drawn in a style that has a proxy.
-  bool hasProxy(const ObjectActor& entry, const scenes::SceneObject* object) const {
-    return lod.enabled && object != nullptr && entry.pointCount >= lod.minVertices && object->mesh.triangles.rows() > 0 &&
-           entry.display.surfaceStyle != scenes::SurfaceStyle::Zebra && object->mesh.points.rows() == entry.pointCount;
-  }
-  // Builds the proxy of a large object (hidden) when it has none for the present level of detail:
-  // when its actor is built and at each refresh, so the first gesture or played frame draws it
-  // without building it first. An object that no longer has one (the level of detail turned off,
-  // a zebra style) lets it go.
+  // The proxy built with the actor and at each refresh, not at the first gesture (object_proxy.h).
   void prepareProxy(ObjectActor& entry, const scenes::SceneObject* object) {
-    if (!hasProxy(entry, object)) {
-      if (entry.proxy) entry.proxy->show(false);
-      entry.proxy.reset();
-      return;
-    }
-    if (entry.proxy && entry.proxy->targetVertices() == lod.proxyVertices) return;
-    entry.proxy.reset();
-    entry.proxy = std::make_unique<ObjectProxy>(renderer, entry.actor, object->mesh, lod.proxyVertices);
-    ++stats.proxyBuilds;
+    if (prepareObjectProxy(entry.proxy, lod, renderer, entry.actor, object, entry.pointCount, entry.display))
+      ++stats.proxyBuilds;
   }
   // Draws `entry` as its proxy when things move and it is large enough; returns whether it did.
   // Otherwise the object's own actor is shown.
