@@ -4,9 +4,10 @@
 // gesture's model step, the guard's correction of the 63 control points the drag leaves free
 // (ShapeGuard::correct: ffd::ShapeConstraints, the volume by its precomputed polynomial, the
 // centroid of the closed surface by passes over the vertices and triangles per Newton step) and
-// the deformer's evaluation, which defers a gesture's delta step to its reader. Readers:
-//   reads:none   the controller's step alone;
-//   reads:points and the deformed points brought up to date (SceneDeformer::points);
+// the deformer's evaluation (the gesture's delta step over every vertex). Readers:
+//   reads:none   the controller's step, its evaluation included;
+//   reads:points and a read of the deformed points (SceneDeformer::points, a pure read: about
+//                the cost of reads:none);
 //   reads:view   and the view's point and normal arrays (SceneView::refresh, level of detail off,
 //                no GL draw), as the window's frame does.
 // Each run checks its result on the evaluated mesh: the volume within 1e-12 of the kept one (Keep

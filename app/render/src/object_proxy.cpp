@@ -59,7 +59,7 @@ bool ObjectProxy::update(const scenes::SceneDeformer& deformer, scenes::ObjectId
   if (drawn_ && revision == drawnRevision_) return false;
   const std::optional<scenes::GestureMotion> motion = deformer.gestureMotion(object);
   if (motion && haveBase_ && motion->baseRevision == baseRevision_) {
-    // Follow the motion at the proxy's vertices only: the full mesh's deferred steps stay deferred.
+    // Follow the motion at the proxy's vertices only, without gathering them from the full mesh.
     if (!(weightsLattice_ == motion->lattice) || weightsFor_ != motion->controlPoints) {
       weightsLattice_ = motion->lattice;
       weightsFor_ = motion->controlPoints;

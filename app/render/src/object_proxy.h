@@ -7,10 +7,11 @@
 //
 // Points during a gesture: when the deformer reports the object's motion as linear in a few
 // control points (scenes::GestureMotion), the proxy follows it as  x_v = x_v(base) +
-// sum_c w_c(v) d_c  for its own vertices only (w_c = SceneDeformer::controlWeights at the proxy's
-// vertices, taken once per motion), so the deformer's deferred steps of the full mesh are not
-// applied (SceneDeformer::points) and a step costs the proxy's size. Otherwise (playback, the
-// first step, another motion) the proxy gathers the deformer's points at its vertices.
+// sum_c w_c(v) d_c  for its own vertices only (w_c: SceneDeformer::controlWeights, taken at the
+// proxy's vertices once per motion), so drawing a step costs the proxy's size; the deformer's
+// evaluation still moves the full mesh, which picking, export and the exact frame at release
+// read. Otherwise (playback, the first step, another motion) the proxy gathers the deformer's
+// points at its vertices.
 
 #include <cstdint>
 #include <memory>
