@@ -161,8 +161,21 @@ void MainWindow::createFileMenu() {
 void MainWindow::createEditMenu() {
   Impl& d = *impl_;
   QMenu* edit = menuBar()->addMenu(tr("&Edit"));
-  d.undo = addMenuAction(edit, tr("&Undo"), "actionUndo", [this] { impl_->commands.undo(); });
-  d.redo = addMenuAction(edit, tr("&Redo"), "actionRedo", [this] { impl_->commands.redo(); });
+  // Undo and redo first abandon a transform or drag in progress (the model back to before it,
+  // nothing pushed): its cancel puts back the state it began from, which after an undo or redo
+  // would be a state no step of the stack stands for.
+  const auto endTransform = [this] {
+    impl_->edit->cancel();
+    impl_->controller->cancel();
+  };
+  d.undo = addMenuAction(edit, tr("&Undo"), "actionUndo", [this, endTransform] {
+    endTransform();
+    impl_->commands.undo();
+  });
+  d.redo = addMenuAction(edit, tr("&Redo"), "actionRedo", [this, endTransform] {
+    endTransform();
+    impl_->commands.redo();
+  });
   d.undo->setEnabled(false);
   d.redo->setEnabled(false);
   edit->addSeparator();
