@@ -1,5 +1,6 @@
-// An undo step is pushed only for a change that holds. An edit (InteractionController::edit) and
-// a transform's confirm (EditController::confirm) evaluate the change first; when that throws
+// An undo step is pushed only for a change that holds. An edit (InteractionController::edit), a
+// transform's confirm (EditController::confirm) and a drag's release
+// (InteractionController::release) evaluate the change first; when that throws
 // (here the deformer's progress hook cancels the evaluation, as Cancel in the embedding's
 // progress dialog does) the change is taken back and the command stack is as it was: no step
 // whose undo would undo nothing, and the steps that could be redone are still there.
@@ -85,6 +86,43 @@ TEST(UndoStepCommit, ATransformWhoseEvaluationThrowsAtConfirmLeavesNoUndoStep) {
   EXPECT_EQ(stackText(d.commands), "2/2 undo 'Move 2 points of lattice' redo ''");
   d.commands.undo();
   EXPECT_TRUE(scenes::sceneFileText(d.scene) == scene) << "undo of the transform";
+}
+
+// A drag of the translate widget `push-front`'s arrow by `shift` glyph sizes along it: press on
+// the arrow's middle, down its frame's z (WidgetModel::pick's shape), two moves.
+void pressAndDragPushFront(Document& d, double shift) {
+  const WidgetId push = d.scene.widgets.find("push-front");
+  ASSERT_EQ(d.scene.widgets.affineKind(push), widgets::AffineKind::Translate);
+  const widgets::WidgetFrame f = d.scene.widgets.affineFrame(push);
+  const auto rayAt = [&](double along) {
+    widgets::Ray ray;
+    ray.origin = f.frame.translation() + f.size * along * f.frame.linear().col(0) + 5.0 * f.frame.linear().col(2);
+    ray.direction = -f.frame.linear().col(2);
+    return ray;
+  };
+  ASSERT_EQ(d.controller.press(rayAt(0.5), 0.05 * f.size), InteractionController::PressResult::Widget);
+  d.controller.drag(rayAt(0.5 + 0.5 * shift));
+  d.controller.drag(rayAt(0.5 + shift));
+}
+
+TEST(UndoStepCommit, ADragWhoseEvaluationThrowsAtReleaseLeavesNoUndoStep) {
+  Document d;
+  twoEditsOneUndone(d);
+  const std::string scene = scenes::sceneFileText(d.scene), stack = stackText(d.commands);
+  pressAndDragPushFront(d, 0.5);
+  ASSERT_TRUE(scenes::sceneFileText(d.scene) != scene) << "the drag moved the widget";
+  d.deformer.setProgress([](double) { return false; });  // Cancel: the release's exact evaluation throws
+  EXPECT_THROW(d.controller.release(), ffd::Cancelled);
+  EXPECT_FALSE(d.controller.dragging());
+  EXPECT_TRUE(scenes::sceneFileText(d.scene) == scene) << "the drag is taken back";
+  EXPECT_EQ(stackText(d.commands), stack) << "no step for it, and the redo kept";
+  d.deformer.setProgress({});
+  // The same drag released without the hook is one step, undone to the scene before it.
+  pressAndDragPushFront(d, 0.5);
+  d.controller.release();
+  EXPECT_EQ(stackText(d.commands), "2/2 undo 'Drag push-front' redo ''");
+  d.commands.undo();
+  EXPECT_TRUE(scenes::sceneFileText(d.scene) == scene) << "undo of the drag";
 }
 
 }  // namespace

@@ -155,11 +155,24 @@ void InteractionController::release() {
   if (!dragging_) return;
   dragging_ = false;
   deformer_.endGesture();  // the next evaluation is exact
+  // The result is evaluated before its step is pushed, as an edit's and a confirm's: a result
+  // that cannot be evaluated (an embedding cancelled) is taken back with no step, so no step's
+  // undo undoes nothing and the steps that could be redone stay.
+  const auto evaluateOrTakeBack = [this](const std::function<void()>& takeBack) {
+    try {
+      notify();
+    } catch (...) {
+      takeBack();
+      refresh();
+      throw;
+    }
+  };
+  const auto restoreStart = [this] { scene_.widgets.restoreState(dragStart_); };
   if (objectGrab_) {
     const std::string description = "Drag point " + std::to_string(objectGrab_->vertex) + " of " + scene_.objectName(objectGrab_->object);
     objectGrab_.reset();
+    evaluateOrTakeBack(restoreStart);
     pushState(description, dragStart_);
-    notify();
     return;
   }
   const std::optional<TransformerHandle> handle =
@@ -167,10 +180,11 @@ void InteractionController::release() {
   handleDrag_.reset();
   if (handleStart_) {
     handleStart_ = false;
-    if (scene_.widgets.placement(handleTarget_).matrix() != placementStart_.matrix()) {
+    const WidgetId target = handleTarget_;
+    const Eigen::Affine3d before = placementStart_, after = scene_.widgets.placement(target);
+    evaluateOrTakeBack([this, target, before] { scene_.widgets.setPlacement(target, before); });
+    if (after.matrix() != before.matrix()) {
       // The placement is not part of the model's state: its change is the command's delta.
-      const WidgetId target = handleTarget_;
-      const Eigen::Affine3d before = placementStart_, after = scene_.widgets.placement(target);
       auto place = [this, target](const Eigen::Affine3d& placement) {
         scene_.widgets.setPlacement(target, placement);
         notify();  // a placement moves no points
@@ -180,15 +194,14 @@ void InteractionController::release() {
                                      [place, before] { place(before); }, [place, after] { place(after); }, "",
                                      2 * sizeof(Eigen::Affine3d)});
     }
-    notify();
     return;
   }
   const WidgetId target = *scene_.widgets.gestureWidget();
   scene_.widgets.endGesture();
+  evaluateOrTakeBack(restoreStart);
   const std::string what = handle ? handleDragDescription(*handle) : std::string("Drag");
   // A click that selected a widget changed nothing: no command.
   pushState(what + " " + scene_.widgets.name(target), dragStart_);
-  notify();
 }
 
 void InteractionController::cancel() {
