@@ -340,6 +340,43 @@ std::array<int, 3> cellOf(const FoldCheckResult& result, std::int64_t flat) {
 // time: a batch of them would compute mostly unused lanes.
 constexpr std::int64_t kFewestForLanes = detail::kFoldLanes / 2;
 
+// The cells `flats` kFoldLanes at a time through `Lanes` (detail::DeterminantLanes for det J,
+// detail::RationalLanes for the rational G): a cell whose signed coefficients are all positive is
+// Positive at once, the others are classified from their coefficients (subdivision, corners).
+// lowerBound(lanes, lane, lowest) turns the lowest signed coefficient into the cell's lowerBound.
+template <class Lanes, class LowerBound>
+void checkCellsInLanes(const Lattice& lattice, const FoldCheckOptions& options,
+                       const std::vector<Eigen::MatrixXd>* extraction, const std::vector<std::int64_t>& flats,
+                       FoldCheckResult& result, LowerBound lowerBound) {
+  constexpr int L = detail::kFoldLanes;
+  const std::int64_t count = std::int64_t(flats.size());
+  const std::int64_t batches = (count + L - 1) / L;
+#pragma omp parallel if (batches >= 2)
+  {
+    Lanes lanes(lattice, extraction);
+    const int d = lanes.degree();
+    std::vector<double> signedCoefficients;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t batch = 0; batch < batches; ++batch) {
+      std::array<int, 3> cells[L];
+      const int n = int(std::min<std::int64_t>(L, count - batch * L));
+      for (int l = 0; l < n; ++l) cells[l] = cellOf(result, flats[std::size_t(batch * L + l)]);
+      lanes.compute(cells, n);
+      for (int l = 0; l < n; ++l) {
+        const std::size_t flat = std::size_t(flats[std::size_t(batch * L + l)]);
+        const double lowest = result.orientation > 0 ? lanes.lowest(l) : -lanes.highest(l);
+        result.lowerBound[flat] = lowerBound(lanes, l, lowest);
+        if (lowest > 0.0) {
+          result.cells[flat] = CellFolding::Positive;
+          continue;
+        }
+        lanes.coefficients(l, result.orientation, signedCoefficients);
+        classifyCell(lattice, options, cells[l], signedCoefficients, {d, d, d}, flat, result);
+      }
+    }
+  }
+}
+
 // The cells `flats` of a polynomial map (or of a rational one's windows with equal weights). Axes
 // of one degree 1..3 (not options.referenceExpansion, at least kFewestForLanes cells): kFoldLanes
 // cells at a time (detail::DeterminantLanes; a cell's coefficients do not depend on the cells
@@ -356,32 +393,9 @@ void checkPolynomialCells(const Lattice& lattice, const FoldCheckOptions& option
                           std::size_t(flats[std::size_t(c)]), result);
     return;
   }
-  constexpr int L = detail::kFoldLanes;
-  const std::int64_t batches = (count + L - 1) / L;
-#pragma omp parallel if (batches >= 2)
-  {
-    detail::DeterminantLanes lanes(lattice, extraction);
-    const int d = lanes.degree();
-    std::vector<double> signedCoefficients;
-#pragma omp for schedule(dynamic, 1)
-    for (std::int64_t batch = 0; batch < batches; ++batch) {
-      std::array<int, 3> cells[L];
-      const int n = int(std::min<std::int64_t>(L, count - batch * L));
-      for (int l = 0; l < n; ++l) cells[l] = cellOf(result, flats[std::size_t(batch * L + l)]);
-      lanes.compute(cells, n);
-      for (int l = 0; l < n; ++l) {
-        const std::size_t flat = std::size_t(flats[std::size_t(batch * L + l)]);
-        const double lowest = result.orientation > 0 ? lanes.lowest(l) : -lanes.highest(l);
-        result.lowerBound[flat] = lowest;
-        if (lowest > 0.0) {
-          result.cells[flat] = CellFolding::Positive;
-          continue;
-        }
-        lanes.coefficients(l, result.orientation, signedCoefficients);
-        classifyCell(lattice, options, cells[l], signedCoefficients, {d, d, d}, flat, result);
-      }
-    }
-  }
+  checkCellsInLanes<detail::DeterminantLanes>(
+      lattice, options, extraction, flats, result,
+      [](const detail::DeterminantLanes&, int, double lowest) { return lowest; });
 }
 
 // ---- rational lattices ---------------------------------------------------------------------------
@@ -571,33 +585,10 @@ RationalPatch rationalPatchOf(const Lattice& lattice, const std::array<int, 3>& 
 void checkRationalLanes(const Lattice& lattice, const FoldCheckOptions& options,
                         const std::vector<Eigen::MatrixXd>* extraction, const std::vector<std::int64_t>& flats,
                         FoldCheckResult& result) {
-  constexpr int L = detail::kFoldLanes;
-  const std::int64_t count = std::int64_t(flats.size());
-  const std::int64_t batches = (count + L - 1) / L;
-#pragma omp parallel if (batches >= 2)
-  {
-    detail::RationalLanes lanes(lattice, extraction);
-    const int d = lanes.degree();
-    std::vector<double> signedCoefficients;
-#pragma omp for schedule(dynamic, 1)
-    for (std::int64_t batch = 0; batch < batches; ++batch) {
-      std::array<int, 3> cells[L];
-      const int n = int(std::min<std::int64_t>(L, count - batch * L));
-      for (int l = 0; l < n; ++l) cells[l] = cellOf(result, flats[std::size_t(batch * L + l)]);
-      lanes.compute(cells, n);
-      for (int l = 0; l < n; ++l) {
-        const std::size_t flat = std::size_t(flats[std::size_t(batch * L + l)]);
-        const double lowest = result.orientation > 0 ? lanes.lowest(l) : -lanes.highest(l);
-        result.lowerBound[flat] = lowest / std::pow(lowest > 0.0 ? lanes.maxWeight(l) : lanes.minWeight(l), 4);
-        if (lowest > 0.0) {
-          result.cells[flat] = CellFolding::Positive;
-          continue;
-        }
-        lanes.coefficients(l, result.orientation, signedCoefficients);
-        classifyCell(lattice, options, cells[l], signedCoefficients, {d, d, d}, flat, result);
-      }
-    }
-  }
+  checkCellsInLanes<detail::RationalLanes>(
+      lattice, options, extraction, flats, result, [](const detail::RationalLanes& lanes, int l, double lowest) {
+        return lowest / std::pow(lowest > 0.0 ? lanes.maxWeight(l) : lanes.minWeight(l), 4);
+      });
 }
 
 void checkRationalFolding(const Lattice& lattice, const FoldCheckOptions& options,
