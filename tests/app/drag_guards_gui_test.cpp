@@ -11,6 +11,7 @@
 
 #include <cmath>
 
+#include "divergence_volume.h"
 #include "fig62_steps.h"
 #include "gui_test_support.h"
 
@@ -24,14 +25,7 @@ namespace {
 const Eigen::Index kSide = flat(2, 1, 1);  // the centre point of the lattice's +x face
 
 // The volume a closed triangle mesh encloses: sum over triangles of a . (b x c) / 6.
-double divergenceVolume(const Eigen::MatrixX3d& p, const Eigen::MatrixX3i& t) {
-  double v = 0.0;
-  for (Eigen::Index i = 0; i < t.rows(); ++i) {
-    const Eigen::Vector3d a = p.row(t(i, 0)), b = p.row(t(i, 1)), c = p.row(t(i, 2));
-    v += a.dot(b.cross(c)) / 6.0;
-  }
-  return v;
-}
+using ffdkit::test::divergenceVolume;
 
 // The centroid of the solid a closed triangle mesh bounds: the tetrahedra (0, a, b, c), each at
 // (a + b + c) / 4 weighted by its signed volume.

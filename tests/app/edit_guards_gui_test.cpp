@@ -14,6 +14,7 @@
 
 #include <cmath>
 
+#include "divergence_volume.h"
 #include "ffdkit/interaction/edit_controller.h"
 #include "fig62_steps.h"
 #include "gui_test_support.h"
@@ -26,14 +27,7 @@ using namespace ffdkit::app::testing;
 namespace {
 
 // The volume a closed triangle mesh encloses: sum over triangles of a . (b x c) / 6.
-double divergenceVolume(const Eigen::MatrixX3d& p, const Eigen::MatrixX3i& t) {
-  double v = 0.0;
-  for (Eigen::Index i = 0; i < t.rows(); ++i) {
-    const Eigen::Vector3d a = p.row(t(i, 0)), b = p.row(t(i, 1)), c = p.row(t(i, 2));
-    v += a.dot(b.cross(c)) / 6.0;
-  }
-  return v;
-}
+using ffdkit::test::divergenceVolume;
 
 // One notch of the wheel over the view (120 eighths of a degree; negative: towards the user).
 void wheel(MainWindow& w, QPoint at, int notches) {

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "divergence_volume.h"
 #include "edit_test_document.h"
 #include "ffdkit/interaction/edit_controller.h"
 #include "ffdkit/scenes/scene_deformer.h"
@@ -23,14 +24,7 @@ using test::kView;
 
 
 // The volume a closed triangle mesh encloses: sum over triangles of a . (b x c) / 6.
-double divergenceVolume(const Eigen::MatrixX3d& p, const Eigen::MatrixX3i& t) {
-  double v = 0.0;
-  for (Eigen::Index i = 0; i < t.rows(); ++i) {
-    const Eigen::Vector3d a = p.row(t(i, 0)), b = p.row(t(i, 1)), c = p.row(t(i, 2));
-    v += a.dot(b.cross(c)) / 6.0;
-  }
-  return v;
-}
+using ffdkit::test::divergenceVolume;
 
 // A G along z of the selected points by a typed amount.
 void moveAlongZ(EditController& edit, const Eigen::Vector3d& pivot, const char* amount) {

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "divergence_volume.h"
 #include "edit_test_document.h"
 
 namespace ffdkit::app {
@@ -16,14 +17,7 @@ using test::Document;
 using test::f;
 using widgets::WidgetId;
 
-double divergenceVolume(const Eigen::MatrixX3d& p, const Eigen::MatrixX3i& t) {
-  double v = 0.0;
-  for (Eigen::Index i = 0; i < t.rows(); ++i) {
-    const Eigen::Vector3d a = p.row(t(i, 0)), b = p.row(t(i, 1)), c = p.row(t(i, 2));
-    v += a.dot(b.cross(c)) / 6.0;
-  }
-  return v;
-}
+using ffdkit::test::divergenceVolume;
 
 TEST(ControlPointWeights, SeveralPointsAreOneUndoStepAndAllOrNothing) {
   Document d;
