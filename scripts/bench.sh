@@ -47,7 +47,7 @@ if [ -n "$(git -C "$root" status --porcelain --untracked-files=no 2>/dev/null)" 
 
 if [ "$do_build" = 1 ]; then
   FFDKIT_BUILD_DIR="$build" "$root/scripts/build.sh" --target bench_ffd --target bench_meshio \
-    --target bench_geometry_quaternion --target bench_interaction --target bench_animation --target bench_exporters \
+    --target bench_geometry_quaternion --target bench_interaction --target bench_guarded_drag --target bench_animation --target bench_exporters \
     --target bench_geometry_cardinal --target bench_geometry_curvenet --target bench_geometry_g3 \
     --target bench_geometry_polyhedron --target ffdkit-cli --target ffdkit_python
 fi
@@ -82,6 +82,7 @@ update='^BM_Update/points:1000000/lattice:8x8x8/basis:bspline3/moved:(corner|int
 embed='^BM_EmbedBox/points:1000000/lattice:4x4x4/basis:bspline3/|^BM_EmbedNewton/points:1000000/lattice:[^/]*/rest:[a-z]*/process_time'
 gbench ffd ffd/bench_ffd "$kernel|$update|$embed"
 gbench interaction app/bench_interaction '^BM_DragStep/points:1M/|^BM_DragFirstStep/points:1M/|^BM_Hover/points:1M/|^BM_UndoDrag/points:10M/'
+gbench guarded app/bench_guarded_drag '^BM_GuardedDragStep/guard:(off|keep-volume|keep-centre)/reads:(none|view)/'
 gbench animation app/bench_animation '^BM_(Animation|Playback)Frame'
 gbench meshio meshio/bench_meshio '^BM_(Read|Write)Mesh/format:[a-z]+/vertices:1000000/'
 gbench quaternion geometry/quaternion/bench_geometry_quaternion '^BM_QiFit_points_164_segments_6$' OMP_NUM_THREADS=1
@@ -184,8 +185,9 @@ def find(runs, pattern):
     return runs[names[0]], names[0]
 
 
-GBENCH = {k: gbench_runs(k) for k in ("ffd", "interaction", "animation", "meshio", "quaternion")}
-PROGRAM = {"ffd": "bench/ffd/bench_ffd", "interaction": "bench/app/bench_interaction", "animation": "bench/app/bench_animation",
+GBENCH = {k: gbench_runs(k) for k in ("ffd", "interaction", "guarded", "animation", "meshio", "quaternion")}
+PROGRAM = {"ffd": "bench/ffd/bench_ffd", "interaction": "bench/app/bench_interaction", "guarded": "bench/app/bench_guarded_drag",
+           "animation": "bench/app/bench_animation",
            "meshio": "bench/meshio/bench_meshio", "quaternion": "bench/geometry/quaternion/bench_geometry_quaternion"}
 
 # CLI: "timings (ms): read 29.7, build scene 0.1, embed 3.7, deform 5.3, write 22.9, total 63.5"
@@ -287,6 +289,11 @@ gb("interaction", "^BM_DragStep/points:1M/", "one drag step of a point widget, 1
 gb("interaction", "^BM_DragFirstStep/points:1M/", "the first step of a drag (starts the gesture)")
 gb("interaction", "^BM_Hover/points:1M/", "hover test over the same scene", "<= 0.05 ms", 0.05)
 gb("interaction", "^BM_UndoDrag/points:10M/", "undo of a drag, 10M points", "<= 50 ms", 50.0, readme="undo of a drag, 10M points")
+G = "^BM_GuardedDragStep/guard:"
+gb("guarded", G + "off/reads:none/", "a glyph drag step without a shape guard, 1M-vertex sphere (model, evaluation; no view)")
+gb("guarded", G + "keep-volume/reads:none/", "the same with Keep Volume (the lattice corrected each step)", "<= 10 ms", 10.0)
+gb("guarded", G + "keep-volume/reads:view/", "the same with the view's points and normals")
+gb("guarded", G + "keep-centre/reads:none/", "the same with Keep Centre")
 gb("animation", "^BM_AnimationFrame", "one animation frame, 1M-vertex sphere (the keyed gesture and the incremental update)")
 gb("animation", "^BM_PlaybackFrame", "one playback frame: the same and the view's points and normals (no GL draw)")
 gb("quaternion", "^BM_QiFit_points_164_segments_6$", "QI fit of a 164-point spiral, 6 segments, one thread", "<= 10 ms", 10.0,
