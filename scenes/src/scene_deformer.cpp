@@ -3,80 +3,35 @@
 #include <algorithm>
 #include <chrono>
 #include <set>
+#include <span>
+#include <string>
 #include <stdexcept>
 
 #include "ffdkit/ffd/control_weights.h"
 #include "ffdkit/ffd/pipeline.h"
+#include "stage_pipeline.h"
 
 namespace ffdkit::scenes {
-namespace {
 
-bool sameBasis(const ffd::AxisBasis& a, const ffd::AxisBasis& b) {
-  return a.kind == b.kind && a.degree == b.degree && a.knots.size() == b.knots.size() && a.knots == b.knots;
-}
-
-// True when the pipeline's `current` lattice has the model lattice's rest shape (counts, rest
-// points, bases, outside policy): then a new frame moves it in place (Lattice::setFrame) and an
-// edit of control points needs no new lattice. Read only after the lattice's frame revision moved.
-bool sameRestShape(const widgets::WidgetModel& model, widgets::WidgetId id, const ffd::Lattice& current) {
-  const widgets::LatticeSettings& settings = model.latticeSettings(id);
-  if (model.counts(id) != current.counts() || !(settings.outside == current.outsidePolicy()) ||
-      model.restPoints(id) != current.restPoints())
-    return false;
-  for (int axis = 0; axis < 3; ++axis)
-    if (!sameBasis(settings.basis[std::size_t(axis)], current.basis(axis))) return false;
-  return true;
-}
-
-ffd::ReembedThrottle throttleFor(const widgets::LatticeSettings& settings) {
-  switch (settings.reembed.kind) {
-    case widgets::ReembedKind::Immediate: return ffd::ReembedThrottle::immediate();
-    case widgets::ReembedKind::EveryN: return ffd::ReembedThrottle::everyN(settings.reembed.everyN);
-    case widgets::ReembedKind::OnRelease: return ffd::ReembedThrottle::onDemand();
-  }
-  return ffd::ReembedThrottle::immediate();
-}
-
-// The lattices deforming one object, in pipeline order, with their parents: the object's
-// attached roots in attachment order, each followed by its subtree in pre-order.
-struct Stage {
-  widgets::WidgetId lattice;
-  std::optional<widgets::WidgetId> parent;
-  int priority = 0;
-  bool operator==(const Stage&) const = default;
-};
-
-std::vector<Stage> stagesFor(const Scene& scene, ObjectId object) {
-  std::vector<Stage> stages;
-  int rootPriority = 0;
-  for (widgets::WidgetId lattice : scene.stagesDeforming(object)) {
-    const std::optional<widgets::WidgetId> parent = scene.widgets.parentLattice(lattice);
-    int priority = rootPriority;
-    if (parent) {
-      const std::vector<widgets::WidgetId> siblings = scene.widgets.children(*parent);
-      priority = static_cast<int>(std::find(siblings.begin(), siblings.end(), lattice) - siblings.begin());
-    } else {
-      ++rootPriority;
-    }
-    stages.push_back({lattice, parent, priority});
-  }
-  return stages;
-}
-
-}  // namespace
+using detail::Stage;
 
 struct SceneDeformer::ObjectPipeline {
-  // The object's own points when the pipeline was built live in pipeline->inputPoints(); these
-  // tell whether the object still holds them without comparing a million points per step.
+  // The object's own points when the pipeline was built live in full.pipeline->inputPoints();
+  // these tell whether the object still holds them without comparing a million points per step.
   const double* meshData = nullptr;
   Eigen::Index meshRows = -1;
   std::uint64_t meshRevision = 0;
-  std::vector<Stage> stages;
-  std::unique_ptr<ffd::Pipeline> pipeline;
-  std::map<widgets::WidgetId, ffd::LatticeId> ids;
-  // Per stage: the model revisions its lattice in the pipeline was last synced to.
-  std::map<widgets::WidgetId, std::pair<std::uint64_t, std::uint64_t>> synced;  // (frame, control)
-  std::uint64_t revision = 0;  // of the output points (SceneDeformer::revision)
+  detail::StagePipeline full;  // over every point of the object
+  // Over the points of a subset a request asked for during a gesture (EvaluationRequest): built
+  // at the first such request and kept while the object's mesh, lattice tree and the subset stay,
+  // so that the next gesture's first step embeds nothing. Null until then.
+  struct Subset {
+    std::vector<Eigen::Index> indices;
+    detail::StagePipeline stages;
+  };
+  std::unique_ptr<Subset> subset;
+  PointCoverage coverage = PointCoverage::Full;  // what the last run evaluated
+  std::uint64_t revision = 0;  // of the evaluated points (SceneDeformer::revision)
   // The base of gestureMotion(): the revision of the output that the last stage's delta steps
   // started from and that stage's (local) control points then; baseControl is empty when the
   // output changed otherwise since (no motion to follow).
@@ -86,71 +41,55 @@ struct SceneDeformer::ObjectPipeline {
 
   // Whether the object still holds the points this pipeline was built from.
   bool holdsSameMesh(const SceneObject& object) const;
-  // A new pipeline for `stages` over the object's points (or the points taken from `takeFrom`):
-  // a new object, new points or a new lattice tree. Returns the lattices built.
+  // A new full pipeline for `stages` over the object's points (or the points taken from
+  // `takeFrom`): a new object, new points or a new lattice tree. Returns the lattices built.
   int rebuild(const Scene& scene, const SceneObject& object, std::vector<Stage> stages, Scene* takeFrom);
-  // The scene's lattices synced into the pipeline in place: a stage whose revisions did not move
-  // is left alone; new control points are written into its lattice (updated incrementally), a
-  // new frame moves it (re-embedding per the throttle); only a new rest shape makes a new
-  // lattice. Returns the lattices built.
-  int syncInPlace(const Scene& scene, const std::vector<Stage>& stages, bool sameModel);
+  // The subset pipeline over `indices` of the full pipeline's input, built when there is none for
+  // them, synced with the scene otherwise. Returns the lattices built.
+  // @throws std::invalid_argument for indices not increasing or out of range.
+  int prepareSubset(const Scene& scene, std::span<const Eigen::Index> indices);
   // What the object holds now (no points, when the pipeline took them over), to recognise it next time.
   void remember(const SceneObject& object);
-  // After a pipeline run: the revision, and the base of gestureMotion() (see baseRevision).
+  // After a run of the full pipeline: the revision, the coverage, and the base of gestureMotion().
   void recordRun();
+  // After a run of the subset pipeline: the revision and the coverage (the full points wait).
+  void recordSubsetRun();
 };
 
 bool SceneDeformer::ObjectPipeline::holdsSameMesh(const SceneObject& object) const {
   const Eigen::MatrixX3d& own = object.mesh.points;
-  return pipeline && object.meshRevision == meshRevision && own.data() == meshData && own.rows() == meshRows;
+  return full.pipeline && object.meshRevision == meshRevision && own.data() == meshData && own.rows() == meshRows;
 }
 
 int SceneDeformer::ObjectPipeline::rebuild(const Scene& scene, const SceneObject& object, std::vector<Stage> newStages,
                                            Scene* takeFrom) {
   auto built = takeFrom ? std::make_unique<ffd::Pipeline>(ffd::Pipeline::adopting(takeFrom->takeObjectPoints(object.name)))
                         : std::make_unique<ffd::Pipeline>(object.mesh.points);
-  std::map<widgets::WidgetId, ffd::LatticeId> newIds;
-  int latticesBuilt = 0;
-  synced.clear();
-  for (const Stage& stage : newStages) {
-    std::optional<ffd::LatticeId> parent;
-    if (stage.parent) parent = newIds.at(*stage.parent);
-    newIds[stage.lattice] = built->addLattice(scene.widgets.ffdLattice(stage.lattice), parent, stage.priority);
-    ++latticesBuilt;
-    synced[stage.lattice] = {scene.widgets.frameRevision(stage.lattice), scene.widgets.controlRevision(stage.lattice)};
-  }
-  stages = std::move(newStages);
-  pipeline = std::move(built);
-  ids = std::move(newIds);
+  const int latticesBuilt = full.build(scene, std::move(built), std::move(newStages));
+  subset.reset();  // it was over the old points or lattice tree
+  coverage = PointCoverage::Full;
   ++revision;
   baseControl.resize(0, 3);  // the next run sets the base (it embeds every stage)
   moved = false;
   return latticesBuilt;
 }
 
-int SceneDeformer::ObjectPipeline::syncInPlace(const Scene& scene, const std::vector<Stage>& current, bool sameModel) {
-  int latticesBuilt = 0;
-  for (const Stage& stage : current) {
-    const std::uint64_t frameRevision = scene.widgets.frameRevision(stage.lattice);
-    const std::uint64_t controlRevision = scene.widgets.controlRevision(stage.lattice);
-    auto& seen = synced[stage.lattice];
-    if (sameModel && seen == std::pair(frameRevision, controlRevision)) continue;
-    ffd::Lattice& lattice = pipeline->lattice(ids.at(stage.lattice));
-    if (!sameModel || seen.first != frameRevision) {
-      if (!sameRestShape(scene.widgets, stage.lattice, lattice)) {
-        lattice = scene.widgets.ffdLattice(stage.lattice);
-        ++latticesBuilt;
-      } else if (const Eigen::Affine3d frame = scene.widgets.latticeFrame(stage.lattice);
-                 frame.matrix() != lattice.frame().matrix()) {
-        lattice.setFrame(frame);
-      }
-    }
-    const Eigen::MatrixX3d& control = scene.widgets.controlPoints(stage.lattice);
-    if (control != lattice.controlPoints()) lattice.setControlPoints(control);
-    if (const Eigen::VectorXd weights = scene.widgets.weights(stage.lattice); weights != lattice.weights())
-      lattice.setWeights(weights);
-    seen = {frameRevision, controlRevision};
+int SceneDeformer::ObjectPipeline::prepareSubset(const Scene& scene, std::span<const Eigen::Index> indices) {
+  if (subset && subset->stages.stages == full.stages && std::ranges::equal(subset->indices, indices))
+    return subset->stages.sync(scene);
+  const Eigen::MatrixX3d& own = full.pipeline->inputPoints();
+  Eigen::MatrixX3d points(static_cast<Eigen::Index>(indices.size()), 3);
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    const Eigen::Index v = indices[i];
+    if (v < 0 || v >= own.rows() || (i > 0 && v <= indices[i - 1]))
+      throw std::invalid_argument("SceneDeformer: a requested subset must hold increasing point indices below " +
+                                  std::to_string(own.rows()) + "; entry " + std::to_string(i) + " is " + std::to_string(v));
+    points.row(static_cast<Eigen::Index>(i)) = own.row(v);
   }
+  auto made = std::make_unique<Subset>();
+  made->indices.assign(indices.begin(), indices.end());
+  const int latticesBuilt = made->stages.build(scene, std::make_unique<ffd::Pipeline>(points), full.stages);
+  subset = std::move(made);
   return latticesBuilt;
 }
 
@@ -161,21 +100,32 @@ void SceneDeformer::ObjectPipeline::remember(const SceneObject& object) {
 }
 
 void SceneDeformer::ObjectPipeline::recordRun() {
-  const std::vector<ffd::StageReport>& reports = pipeline->lastReport();
+  const std::vector<ffd::StageReport>& reports = full.pipeline->lastReport();
   const auto changedOutput = [](const ffd::StageReport& r) { return r.outputChanged; };
-  if (!std::any_of(reports.begin(), reports.end(), changedOutput)) return;
+  const bool wasSubset = coverage == PointCoverage::Subset;
+  coverage = PointCoverage::Full;
+  if (!wasSubset && !std::any_of(reports.begin(), reports.end(), changedOutput)) return;
   ++revision;
   // Only the last stage changed, by deltas: the output moved linearly in its control points
   // since the base. Anything else makes this output the new base.
   const bool lastByDelta = reports.back().delta && std::none_of(reports.begin(), reports.end() - 1, changedOutput);
   if (!lastByDelta || baseControl.size() == 0) {
     baseRevision = revision;
-    baseControl = pipeline->lattice(reports.back().id).controlPoints();
+    baseControl = full.pipeline->lattice(reports.back().id).controlPoints();
     moved = false;
     if (lastByDelta) baseControl.resize(0, 3);  // moved from an unknown base: nothing to follow
   } else {
     moved = true;
   }
+}
+
+void SceneDeformer::ObjectPipeline::recordSubsetRun() {
+  const std::vector<ffd::StageReport>& reports = subset->stages.pipeline->lastReport();
+  const bool changed = std::any_of(reports.begin(), reports.end(), [](const ffd::StageReport& r) { return r.outputChanged; });
+  if (changed || coverage != PointCoverage::Subset) ++revision;
+  coverage = PointCoverage::Subset;
+  baseControl.resize(0, 3);  // the full points' motion is not followed across subset runs
+  moved = false;
 }
 
 SceneDeformer::SceneDeformer() = default;
@@ -198,13 +148,23 @@ void SceneDeformer::endGesture() {
   gestureLattice_.reset();
 }
 
-bool SceneDeformer::evaluate(const Scene& scene) {
-  // Nothing changed since the last run, which already gave what the gesture state asks for.
-  if (&scene == evaluated_ && markOf(scene) == evaluatedMark_ && (gesture_ || exact_)) return false;
+bool SceneDeformer::covers(const EvaluationRequest& request) const {
+  for (const auto& [id, p] : objects_) {
+    if (p->coverage == PointCoverage::Full) continue;
+    const auto asked = request.subsets.find(id);
+    if (!gesture_ || asked == request.subsets.end() || !std::ranges::equal(asked->second, p->subset->indices)) return false;
+  }
+  return true;
+}
+
+bool SceneDeformer::evaluate(const Scene& scene, const EvaluationRequest& request) {
+  // Nothing changed since the last run, which already gave what the gesture state and the
+  // request ask for.
+  if (&scene == evaluated_ && markOf(scene) == evaluatedMark_ && (gesture_ || exact_) && covers(request)) return false;
   if (gesture_) {
-    run(scene, gestureLattice_, Run::Gesture);
+    run(scene, gestureLattice_, Run::Gesture, nullptr, request);
   } else {
-    run(scene, std::nullopt, Run::Finish);
+    run(scene, std::nullopt, Run::Finish);  // exact, in full: a request's subsets wait for gestures
   }
   return true;
 }
@@ -224,16 +184,19 @@ void SceneDeformer::finishGesture(const Scene& scene) { run(scene, std::nullopt,
 void SceneDeformer::finishGestureTakingPoints(Scene& scene) { run(scene, std::nullopt, Run::Finish, &scene); }
 
 void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, Run how,
-                        Scene* takeFrom) {
+                        Scene* takeFrom, const EvaluationRequest& request) {
   const bool exact = how == Run::Finish;
   const auto start = std::chrono::steady_clock::now();
   // 1. Sync every object's pipeline with the scene, in place (nothing is embedded yet), so that a
-  //    throw in step 2 leaves each pipeline whole.
-  std::vector<ObjectPipeline*> toRun;
+  //    throw in step 2 leaves each pipeline whole. An object the request names during a gesture
+  //    syncs and runs its subset pipeline instead, when its full one needs no rebuild.
+  struct Job {
+    ObjectPipeline* object;
+    detail::StagePipeline* stages;  // object->full or object->subset->stages
+  };
+  std::vector<Job> jobs;
   std::set<ObjectId> present;
   labels_.clear();
-  // Revisions compare within one widget model: another instance (a replaced model) syncs in full.
-  const bool sameModel = widgetInstance_ == scene.widgets.instance();
   int latticesBuilt = 0;
   for (const auto& object : scene.objects()) {
     present.insert(object.id);
@@ -241,37 +204,37 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
     auto found = objects_.find(object.id);
     std::unique_ptr<ObjectPipeline> added;  // a new object enters objects_ once it is synced
     ObjectPipeline* p = found != objects_.end() ? found->second.get() : (added = std::make_unique<ObjectPipeline>()).get();
-    std::vector<Stage> stages = stagesFor(scene, object.id);
+    std::vector<Stage> stages = detail::stagesFor(scene, object.id);
     const Eigen::MatrixX3d& own = object.mesh.points;
+    const ffd::Pipeline* built = p->full.pipeline.get();
     // A mesh at another address (a copied scene, an undo of an object edit) may still be the same:
     // compare it then, once, rather than rebuild.
     const bool inputChanged = !p->holdsSameMesh(object) &&
-                              (!p->pipeline || p->pipeline->inputPoints().rows() != own.rows() || p->pipeline->inputPoints() != own);
-    if (!p->pipeline || inputChanged || stages != p->stages) {
-      latticesBuilt += p->rebuild(scene, object, std::move(stages), takeFrom);
+                              (!built || built->inputPoints().rows() != own.rows() || built->inputPoints() != own);
+    const bool rebuild = !built || inputChanged || stages != p->full.stages;
+    const auto asked = how == Run::Gesture ? request.subsets.find(object.id) : request.subsets.end();
+    if (asked != request.subsets.end() && !rebuild && !stages.empty()) {
+      latticesBuilt += p->prepareSubset(scene, asked->second);
+      p->subset->stages.prepareRun(scene, activeLattice, ffd::UpdateMode::Exact, precision_);  // no drift to undo at release
+      jobs.push_back({p, &p->subset->stages});
     } else {
-      latticesBuilt += p->syncInPlace(scene, stages, sameModel);
+      latticesBuilt += rebuild ? p->rebuild(scene, object, std::move(stages), takeFrom) : p->full.sync(scene);
+      if (!p->full.stages.empty()) {
+        p->full.prepareRun(scene, activeLattice, how == Run::Gesture ? ffd::UpdateMode::Delta : ffd::UpdateMode::Exact,
+                           precision_);
+        jobs.push_back({p, &p->full});
+      }
     }
     p->remember(object);
-    if (!p->stages.empty()) {
-      p->pipeline->setThrottle(throttleFor(scene.widgets.latticeSettings(p->stages.front().lattice)));
-      std::optional<ffd::LatticeId> active;
-      if (activeLattice && p->ids.count(*activeLattice)) active = p->ids.at(*activeLattice);
-      p->pipeline->setActiveLattice(active);
-      p->pipeline->setUpdateMode(how == Run::Gesture ? ffd::UpdateMode::Delta : ffd::UpdateMode::Exact);
-      p->pipeline->setPrecision(precision_);
-      toRun.push_back(p);
-    }
     if (added) objects_[object.id] = std::move(added);
   }
   std::erase_if(objects_, [&present](const auto& entry) { return !present.count(entry.first); });
-  widgetInstance_ = scene.widgets.instance();  // every object is synced to it
 
   // 2. Run the pipelines; progress counts the points every one of them embeds.
   std::vector<Eigen::Index> toEmbed;
   Eigen::Index total = 0;
   if (progress_) {
-    for (const ObjectPipeline* p : toRun) total += toEmbed.emplace_back(p->pipeline->pointsToEmbed(exact));
+    for (const Job& job : jobs) total += toEmbed.emplace_back(job.stages->pipeline->pointsToEmbed(exact));
   }
   const auto goOn = [this, total](Eigen::Index done) {
     return progress_(total > 0 ? double(std::min(done, total)) / double(total) : 0.0);
@@ -279,32 +242,36 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   if (progress_ && !goOn(0)) throw ffd::Cancelled("scene deformer: cancelled before any embedding");
   SceneDeformStats stats;
   stats.latticesBuilt = latticesBuilt;
-  // An object's points, and those of them its first stage left outside or failed to embed.
-  const auto countPoints = [&stats](const ObjectPipeline& p) {
-    stats.deformedPoints += p.pipeline->inputPoints().rows();
-    if (const ffd::Embedding* first = p.pipeline->embedding(p.ids.at(p.stages.front().lattice))) {
-      stats.outsidePoints += first->outsideCount();
-      stats.failedPoints += first->failedCount();
-    }
-  };
   Eigen::Index done = 0;
-  for (std::size_t i = 0; i < toRun.size(); ++i) {
-    ObjectPipeline& p = *toRun[i];
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    ObjectPipeline& p = *jobs[i].object;
+    detail::StagePipeline& stages = *jobs[i].stages;
+    const bool atSubset = &stages != &p.full;
     ffd::EmbedProgress hook;
     if (progress_ && toEmbed[i] > 0) hook = [&goOn, done](Eigen::Index d, Eigen::Index) { return goOn(done + d); };
     // exact: re-embed every throttled stage too (one pipeline pass, not an update and then another).
     if (exact) {
-      p.pipeline->reembedAll(hook);
+      stages.pipeline->reembedAll(hook);
     } else {
-      p.pipeline->update(hook);
+      stages.pipeline->update(hook);
     }
     if (progress_) done += toEmbed[i];
-    for (const auto& report : p.pipeline->lastReport()) {
+    for (const auto& report : stages.pipeline->lastReport()) {
       stats.reembeddedStages += report.reembedded ? 1 : 0;
       stats.deltaStages += report.delta ? 1 : 0;
       stats.embedSeconds += report.embedSeconds;
     }
-    countPoints(p);
+    if (atSubset) {
+      stats.subsetPoints += stages.pipeline->inputPoints().rows();
+      p.recordSubsetRun();
+      continue;
+    }
+    // The object's points, and those of them its first stage left outside or failed to embed.
+    stats.deformedPoints += stages.pipeline->inputPoints().rows();
+    if (const ffd::Embedding* first = stages.pipeline->embedding(stages.ids.at(stages.stages.front().lattice))) {
+      stats.outsidePoints += first->outsideCount();
+      stats.failedPoints += first->failedCount();
+    }
     p.recordRun();
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -314,6 +281,8 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   exact_ = how == Run::Finish;
   totals_.reembeddedStages += std::uint64_t(stats.reembeddedStages);
   totals_.latticesBuilt += std::uint64_t(stats.latticesBuilt);
+  totals_.deformedPoints += std::uint64_t(stats.deformedPoints);
+  totals_.subsetPoints += std::uint64_t(stats.subsetPoints);
   ++totals_.evaluations;
   if (progress_ && !progress_(1.0)) throw ffd::Cancelled("scene deformer: cancelled at the end (all work kept)");
 }
@@ -342,18 +311,51 @@ Eigen::VectorXd SceneDeformer::controlWeights(const std::string& object, Eigen::
   return controlWeights(idOf(object), controlPoint);
 }
 
-const Eigen::MatrixX3d& SceneDeformer::points(ObjectId object) const {
-  return pipelineOf(object).pipeline->points();
+std::string SceneDeformer::describe(ObjectId object) const {
+  std::string text = toString(object);
+  for (const auto& [name, id] : labels_)
+    if (id == object) text = std::string("'").append(name).append("' (").append(text).append(")");
+  return text;
+}
+
+const SceneDeformer::ObjectPipeline& SceneDeformer::fullyEvaluated(ObjectId object) const {
+  const ObjectPipeline& p = pipelineOf(object);
+  if (p.coverage == PointCoverage::Subset)
+    throw PointsNotEvaluated("SceneDeformer: object " + describe(object) + " was evaluated at " +
+                             std::to_string(p.subset->indices.size()) +
+                             " of its points only (a subset requested during a gesture); evaluate the scene without a "
+                             "subset for it before reading its full points");
+  return p;
+}
+
+const SceneDeformer::ObjectPipeline& SceneDeformer::atSubset(ObjectId object) const {
+  const ObjectPipeline& p = pipelineOf(object);
+  if (p.coverage != PointCoverage::Subset)
+    throw PointsNotEvaluated("SceneDeformer: object " + describe(object) +
+                             " was evaluated in full, not at a subset; read points()");
+  return p;
+}
+
+const Eigen::MatrixX3d& SceneDeformer::points(ObjectId object) const { return fullyEvaluated(object).full.pipeline->points(); }
+
+PointCoverage SceneDeformer::coverage(ObjectId object) const { return pipelineOf(object).coverage; }
+
+const Eigen::MatrixX3d& SceneDeformer::subsetPoints(ObjectId object) const {
+  return atSubset(object).subset->stages.pipeline->points();
+}
+
+const std::vector<Eigen::Index>& SceneDeformer::subsetIndices(ObjectId object) const {
+  return atSubset(object).subset->indices;
 }
 
 Eigen::MatrixX3d SceneDeformer::takePoints(ObjectId object) {
-  (void)pipelineOf(object);  // throws for an unknown object
+  (void)fullyEvaluated(object);  // throws for an unknown object or one evaluated at a subset
   evaluated_ = nullptr;  // the object is forgotten: the next evaluate() builds its pipeline again
-  return objects_.extract(object).mapped()->pipeline->takePoints();
+  return objects_.extract(object).mapped()->full.pipeline->takePoints();
 }
 
 Eigen::Index SceneDeformer::pointCount(ObjectId object) const {
-  return pipelineOf(object).pipeline->inputPoints().rows();
+  return pipelineOf(object).full.pipeline->inputPoints().rows();
 }
 
 std::uint64_t SceneDeformer::revision(ObjectId object) const {
@@ -364,14 +366,14 @@ std::optional<GestureMotion> SceneDeformer::gestureMotion(ObjectId object) const
   auto it = objects_.find(object);
   if (it == objects_.end()) return std::nullopt;
   const ObjectPipeline& p = *it->second;
-  if (!p.moved || p.baseControl.size() == 0 || p.stages.empty()) return std::nullopt;
-  const ffd::LatticeId last = p.pipeline->order().back();
-  const ffd::Lattice& lattice = p.pipeline->lattice(last);
+  if (!p.moved || p.baseControl.size() == 0 || p.full.stages.empty()) return std::nullopt;
+  const ffd::LatticeId last = p.full.pipeline->order().back();
+  const ffd::Lattice& lattice = p.full.pipeline->lattice(last);
   if (lattice.controlPoints().rows() != p.baseControl.rows()) return std::nullopt;
   if (lattice.isRational()) return std::nullopt;  // with weights the map is a ratio, not linear in the points
   GestureMotion motion;
   motion.baseRevision = p.baseRevision;
-  for (const auto& [widget, id] : p.ids)
+  for (const auto& [widget, id] : p.full.ids)
     if (id == last) motion.lattice = widget;
   std::vector<Eigen::Vector3d> moves;
   for (Eigen::Index f = 0; f < lattice.controlPoints().rows(); ++f) {
@@ -392,11 +394,11 @@ Eigen::VectorXd SceneDeformer::controlWeights(ObjectId object, Eigen::Index cont
 
 void SceneDeformer::controlWeights(ObjectId object, Eigen::Index controlPoint, Eigen::VectorXd& weights) const {
   const ObjectPipeline& p = pipelineOf(object);
-  if (p.stages.empty()) throw std::invalid_argument("SceneDeformer: object " + toString(object) + " has no lattice");
-  const ffd::LatticeId last = p.pipeline->order().back();
-  const ffd::Embedding* embedding = p.pipeline->embedding(last);
+  if (p.full.stages.empty()) throw std::invalid_argument("SceneDeformer: object " + toString(object) + " has no lattice");
+  const ffd::LatticeId last = p.full.pipeline->order().back();
+  const ffd::Embedding* embedding = p.full.pipeline->embedding(last);
   if (!embedding) throw std::invalid_argument("SceneDeformer: object " + toString(object) + " is not embedded yet");
-  ffd::controlPointWeights(p.pipeline->lattice(last), *embedding, controlPoint, weights);
+  ffd::controlPointWeights(p.full.pipeline->lattice(last), *embedding, controlPoint, weights);
 }
 
 std::map<std::string, Eigen::MatrixX3d> deformScene(const Scene& scene) {

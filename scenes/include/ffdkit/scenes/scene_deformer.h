@@ -10,6 +10,7 @@
 
 #include "ffdkit/ffd/cancelled.h"
 #include "ffdkit/ffd/deformer.h"
+#include "ffdkit/scenes/evaluation_request.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_changes.h"
 
@@ -19,7 +20,12 @@ namespace ffdkit::scenes {
 struct SceneDeformStats {
   double seconds = 0.0;           ///< wall time of the update
   int reembeddedStages = 0;       ///< lattice stages that (re)computed their embedding
-  Eigen::Index deformedPoints = 0;  ///< object points deformed
+  /// Points of full meshes deformed (an object evaluated at a requested subset adds nothing here:
+  /// its points count in `subsetPoints`).
+  Eigen::Index deformedPoints = 0;
+  /// Points deformed at requested subsets (EvaluationRequest::subsets, during a gesture) in place
+  /// of their objects' full meshes.
+  Eigen::Index subsetPoints = 0;
   Eigen::Index outsidePoints = 0; ///< object points outside their first lattice
   Eigen::Index failedPoints = 0;  ///< points whose Newton embedding failed (left unchanged)
   double embedSeconds = 0.0;      ///< part of `seconds` spent computing embeddings (the rest: syncing, deforming)
@@ -57,7 +63,12 @@ using SceneProgress = std::function<bool(double fraction)>;
 /// (the app: once per model change it reports, after the last edit; the CLI and scripts: when
 /// they read points): it is the one place that evaluates. It reads what changed since its last
 /// evaluation (SceneMark, scene_changes.h): nothing changed, nothing done; during a gesture
-/// (beginGesture .. endGesture) a step by deltas, otherwise the exact result. update(),
+/// (beginGesture .. endGesture) a step by deltas, otherwise the exact result. The caller says
+/// what it will read (EvaluationRequest): during a gesture an object the request names is
+/// evaluated at the requested points only (a view's level-of-detail proxy) and its full points
+/// wait, marked as such (coverage(), PointCoverage::Subset: points() throws PointsNotEvaluated
+/// rather than hand out stale points), until the gesture ends or a request that does not name it
+/// comes. update(),
 /// updateGesture() and finishGesture() are the steps evaluate() chooses from, public for tests
 /// and the Python module's low-level deformer; application code calls evaluate() (a CTest check,
 /// SingleEvaluationPoint, greps for other calls). It notices new objects and lattices, changed
@@ -90,10 +101,15 @@ class SceneDeformer {
   /// True between beginGesture() and endGesture().
   bool inGesture() const { return gesture_; }
   /// Brings the deformed points up to date with `scene` when it changed since the last
-  /// evaluation (its SceneMark moved, another scene, setPrecision, reset) or a gesture's exact
-  /// result is due: once, by deltas during a gesture and exactly otherwise. Returns whether it
+  /// evaluation (its SceneMark moved, another scene, setPrecision, reset), a gesture's exact
+  /// result is due, or `request` asks for points the last evaluation left out: once, by deltas
+  /// during a gesture and exactly otherwise. The one place that decides what is evaluated: during
+  /// a gesture, each object `request` names (EvaluationRequest::subsets) whose pipeline is built
+  /// and unchanged in structure is evaluated at those points only (its own pipeline over them,
+  /// built at the first such call and kept while the object's mesh, lattice tree and subset stay);
+  /// every other object, and every object outside a gesture, in full. Returns whether it
   /// evaluated. Throws as update(); after a throw the next call evaluates again.
-  bool evaluate(const Scene& scene);
+  bool evaluate(const Scene& scene, const EvaluationRequest& request = {});
   /// evaluate() for a caller done with the objects' own points (the CLI): as
   /// finishGestureTakingPoints(), always exact.
   void evaluateTakingPoints(Scene& scene);
@@ -144,15 +160,17 @@ class SceneDeformer {
   void setProgress(SceneProgress progress) { progress_ = std::move(progress); }
 
   /// Deformed points of an object (its own points if no lattice deforms it), #points x 3, as the
-  /// last evaluation left them: a pure read (every evaluation, a gesture's steps included, brings
-  /// the points up to date; a consumer that follows gestureMotion(), as the view does, need not
-  /// read them during a drag). @throws std::invalid_argument for an object update() has not seen.
+  /// last evaluation left them: a pure read (every evaluation that covers the object in full, a
+  /// gesture's steps included, brings them up to date). @throws std::invalid_argument for an
+  /// object update() has not seen; PointsNotEvaluated when the last evaluation covered only a
+  /// requested subset of its points (coverage() is PointCoverage::Subset).
   const Eigen::MatrixX3d& points(ObjectId object) const;
   /// points() of the object that had this name at the last update.
   const Eigen::MatrixX3d& points(const std::string& object) const;
   /// points(object), handed over without a copy, for a caller done with the deformation (the CLI
   /// writes them, deformScene returns them). The deformer forgets the object: the next run builds
-  /// its pipeline again. @throws std::invalid_argument for an object update() has not seen.
+  /// its pipeline again. @throws std::invalid_argument for an object update() has not seen;
+  /// PointsNotEvaluated as points().
   Eigen::MatrixX3d takePoints(ObjectId object);
   /// takePoints() of the object that had this name at the last update.
   Eigen::MatrixX3d takePoints(const std::string& object);
@@ -160,7 +178,19 @@ class SceneDeformer {
   Eigen::Index pointCount(ObjectId object) const;
   /// pointCount() of the object that had this name at the last update.
   Eigen::Index pointCount(const std::string& object) const;
-  /// Grows whenever points(object) changes (a view updates the object's arrays when it moved).
+  /// What the object's evaluated points cover: Full (points() reads them) or, after an evaluation
+  /// at a requested subset during a gesture, Subset (subsetPoints() reads them).
+  /// @throws std::invalid_argument for an object update() has not seen.
+  PointCoverage coverage(ObjectId object) const;
+  /// The object's deformed points at the subset the last evaluation was asked for,
+  /// #subsetIndices() x 3 (row i: point subsetIndices()[i]), when coverage() is Subset.
+  /// @throws std::invalid_argument for an object update() has not seen; PointsNotEvaluated when
+  ///   coverage() is Full (read points() then: they are up to date).
+  const Eigen::MatrixX3d& subsetPoints(ObjectId object) const;
+  /// The point indices subsetPoints() holds (increasing). @throws as subsetPoints().
+  const std::vector<Eigen::Index>& subsetIndices(ObjectId object) const;
+  /// Grows whenever the object's evaluated points change (points(), or subsetPoints() while the
+  /// coverage is Subset): a view updates the object's arrays when it moved.
   /// @throws std::invalid_argument for an object update() has not seen.
   std::uint64_t revision(ObjectId object) const;
   /// revision() of the object that had this name at the last update.
@@ -177,6 +207,10 @@ class SceneDeformer {
     /// Evaluations run (update(), updateGesture(), finishGesture(), and evaluate() when it
     /// evaluated): how a test sees that the events of one tick cost one evaluation.
     std::uint64_t evaluations = 0;
+    /// Sum of SceneDeformStats::deformedPoints: the points of full meshes deformed.
+    std::uint64_t deformedPoints = 0;
+    /// Sum of SceneDeformStats::subsetPoints: the points deformed at requested subsets.
+    std::uint64_t subsetPoints = 0;
   };
   /// The sums since the deformer was made (not reset by reset()).
   const Totals& totals() const { return totals_; }
@@ -211,20 +245,30 @@ class SceneDeformer {
   // Syncs every object's pipeline with the scene, then runs it: incrementally (throttled stages
   // approximate; fresh ones by deltas for Gesture) or, for Finish, re-embedding every stale stage.
   // takeFrom: the same scene, when a pipeline built anew may take the object's points over.
-  void run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, Run how, Scene* takeFrom = nullptr);
+  // subsets: for Gesture, the objects to evaluate at some points only (evaluate()'s request).
+  void run(const Scene& scene, std::optional<widgets::WidgetId> activeLattice, Run how, Scene* takeFrom = nullptr,
+           const EvaluationRequest& subsets = {});
+  // True when the last run left every object's points as `request` asks (a Subset object named
+  // by it with the same subset, during a gesture; every other object Full).
+  bool covers(const EvaluationRequest& request) const;
 
   struct ObjectPipeline;
   // The object's pipeline. @throws std::invalid_argument for an object update() has not seen.
   ObjectPipeline& pipelineOf(ObjectId object) const;
   // The id of the object that had this name at the last run. @throws std::invalid_argument for none.
   ObjectId idOf(const std::string& object) const;
+  // The object's pipeline when its full points are evaluated. @throws as points().
+  const ObjectPipeline& fullyEvaluated(ObjectId object) const;
+  // The object's pipeline when it was evaluated at a subset. @throws as subsetPoints().
+  const ObjectPipeline& atSubset(ObjectId object) const;
+  // "'name' (o3)", for messages.
+  std::string describe(ObjectId object) const;
   std::map<ObjectId, std::unique_ptr<ObjectPipeline>> objects_;
   std::map<std::string, ObjectId, std::less<>> labels_;  // name -> id at the last run
   SceneDeformStats stats_;
   Totals totals_;
   SceneProgress progress_;
   ffd::Precision precision_ = ffd::Precision::Double;
-  std::uint64_t widgetInstance_ = 0;  // the widget model last synced (WidgetModel::instance)
   // evaluate(): the scene and its mark at the last run, whether that run was exact, the gesture.
   const Scene* evaluated_ = nullptr;
   SceneMark evaluatedMark_;
