@@ -1,6 +1,7 @@
 // The view's level of detail in the window, with real mouse events (View > Simplify While Moving,
-// LevelOfDetail in scene_view.h): a drag draws the sphere's proxy and the release the exact full
-// mesh, and leaves the same document and files as a drag with it off; the proxy is built with the
+// LevelOfDetail in scene_view.h): a drag draws the sphere's proxy, evaluating the proxy's points
+// only, and the release the exact full mesh, and leaves the same document and files as a drag with
+// it off; the proxy is built with the
 // scene (and when the menu turns the level of detail on), not by the first drag; a widget clicked
 // while playback draws the proxy is picked as without it.
 #include <QAction>
@@ -68,8 +69,9 @@ class LevelOfDetailGuiTest : public QObject {
 
  private slots:
   // The same drag with View > Simplify While Moving on and off (unchecked with the mouse): the
-  // proxy during the drag only when on, then the same exact points drawn, and the same scene file
-  // and exported mesh, byte for byte.
+  // proxy during the drag only when on, and the full mesh evaluated then only once, at the release
+  // (counted); then the same exact points drawn, and the same scene file and exported mesh, byte
+  // for byte.
   void aDragWithTheProxyLeavesTheSameDocumentAndFilesAsWithout() {
     QTemporaryDir dir;
     std::map<bool, Eigen::MatrixX3d> drawn;
@@ -94,6 +96,7 @@ class LevelOfDetailGuiTest : public QObject {
       const QPoint to = from + QPoint(40, -25);
       sendMouse(w.view(), QEvent::MouseButtonPress, from, Qt::LeftButton, Qt::LeftButton);
       QVERIFY(w.deformer().inGesture());
+      const scenes::SceneDeformer::Totals pressed = w.deformer().totals();  // every object in full now
       for (int step = 1; step <= 8; ++step) {
         sendMouse(w.view(), QEvent::MouseMove, from + (to - from) * step / 8, Qt::NoButton, Qt::LeftButton);
         QTest::qWait(20);  // the view draws between moves
@@ -102,6 +105,15 @@ class LevelOfDetailGuiTest : public QObject {
       const auto dragged = w.sceneView().stats();
       sendMouse(w.view(), QEvent::MouseButtonRelease, to, Qt::LeftButton, Qt::NoButton);
       QVERIFY(!w.deformer().inGesture());
+      const scenes::SceneDeformer::Totals released = w.deformer().totals();
+      const auto n = std::uint64_t(w.scene().objects().front().mesh.points.rows());
+      if (lod) {
+        QCOMPARE(released.deformedPoints - pressed.deformedPoints, n);  // once, at the release
+        QVERIFY(released.subsetPoints > pressed.subsetPoints);          // the steps: the proxy's points
+      } else {
+        QVERIFY(released.deformedPoints - pressed.deformedPoints >= 2 * n);  // every frame
+        QCOMPARE(released.subsetPoints, pressed.subsetPoints);
+      }
       QVERIFY(!w.sceneView().showsProxy("sphere"));
       if (lod) QCOMPARE(w.sceneView().stats().pointUpdates, dragged.pointUpdates + 1);  // the full mesh at release
       QTest::qWait(50);

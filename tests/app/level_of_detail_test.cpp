@@ -1,11 +1,13 @@
 // The view's level of detail (LevelOfDetail in scene_view.h, app/render/src/lod_proxy.h): the
 // proxy is a vertex clustering whose vertices are some of the mesh's, it is what a drag or
-// playback draws of a large surface, it follows the deformer's motion at its own vertices, and the
-// full mesh drawn after the motion is bit for bit the one a view without level of detail draws.
+// playback draws of a large surface, during a drag the deformer evaluates its vertices only (the
+// view's EvaluationRequest), and the full mesh drawn after the motion is bit for bit the one a view
+// without level of detail draws.
 // No GL draw: the renderers have no window.
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <sstream>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -20,7 +22,9 @@
 
 #include "drag_sphere.h"
 #include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/meshio/mesh_io.h"
 #include "ffdkit/render/scene_view.h"
+#include "ffdkit/scenes/scene_file.h"
 #include "lod_proxy.h"
 
 namespace ffdkit::app {
@@ -88,7 +92,9 @@ TEST(LodProxy, AMeshNoLargerThanTheTargetIsItsOwnProxy) {
 }
 
 // A sphere in a cubic lattice with a translate widget, drawn by a view whose level of detail is
-// on (proxies from 500 vertices) or off.
+// on (proxies from 500 vertices) or off. `perFrame`: evaluation as the window runs it
+// (MainWindow::drawFrame), with the view's request (SceneView::evaluationRequest); otherwise the
+// controller evaluates every object in full at each change.
 struct Document {
   scenes::Scene scene;
   scenes::SceneDeformer deformer;
@@ -99,7 +105,7 @@ struct Document {
   testing::DragSphere made;
   static constexpr Eigen::Index kProxyVertices = 300;
 
-  explicit Document(bool lod) {
+  explicit Document(bool lod, bool perFrame = false) {
     LevelOfDetail options;
     options.enabled = lod;
     options.minVertices = 500;
@@ -108,6 +114,7 @@ struct Document {
     made = testing::addDragSphere(controller, 60);
     view.setHighlights(controller.highlights());
     view.show(scene, deformer);
+    if (perFrame) controller.requestEvaluation = [this] { deformer.evaluate(scene, view.evaluationRequest(scene, deformer)); };
     controller.onChanged = [this] {
       view.setHighlights(controller.highlights());
       view.refresh(scene, deformer);
@@ -122,6 +129,7 @@ struct Document {
   }
   double tolerance() const { return 0.05 * scene.widgets.affineFrame(made.widget).size; }
   const meshio::MeshData& mesh() const { return scene.findObject(made.sphere)->mesh; }
+  scenes::ObjectId sphereId() const { return scene.findObject(made.sphere)->id; }
   // The points of the visible actor drawing `vertices` points (the proxy), #vertices x 3.
   Eigen::MatrixX3d visibleActorPoints(Eigen::Index vertices) {
     vtkActorCollection* actors = renderer->GetActors();
@@ -154,8 +162,8 @@ TEST(LevelOfDetail, ADragDrawsTheProxyFollowingTheMotionAndReleaseTheFullMeshBit
     for (Document* d : {&on, &off}) d->controller.drag(d->ray(0.5 + 0.15 * step));
     EXPECT_TRUE(on.view.showsProxy(on.made.sphere));
     EXPECT_FALSE(off.view.showsProxy(off.made.sphere));
-    // The proxy at the deformer's points of its vertices (the view followed the motion; points()
-    // applies the deferred steps, so it is read after the proxy was drawn).
+    // The proxy at the deformer's points of its vertices (this controller evaluates every object
+    // in full at each change: the proxy gathers them).
     const Eigen::MatrixX3d drawn = on.visibleActorPoints(proxyCount);
     ASSERT_EQ(drawn.rows(), proxyCount);
     const Eigen::MatrixX3d& exact = on.deformer.points(on.made.sphere);
@@ -182,6 +190,80 @@ TEST(LevelOfDetail, ADragDrawsTheProxyFollowingTheMotionAndReleaseTheFullMeshBit
   EXPECT_TRUE(on.view.objectNormals(on.made.sphere) == off.view.objectNormals(off.made.sphere));
   EXPECT_LT((onPoints - on.deformer.points(on.made.sphere)).cwiseAbs().maxCoeff(), 1e-6 * scale);
   EXPECT_GT((onPoints - on.mesh().points).cwiseAbs().maxCoeff(), 1e-3 * scale);  // it did move
+}
+
+// The window's evaluation: during the drag the deformer evaluates the proxy's points only (the full
+// mesh is not touched: counted), what an exact reader asks for is exact, and the release gives
+// the document, the points, the drawn mesh and the files of a run without level of detail, bit
+// for bit.
+TEST(LevelOfDetail, ADragEvaluatesTheProxysPointsOnlyAndLeavesWhatARunWithoutItLeaves) {
+  Document on(true, true), off(false, true);
+  const ProxyMesh proxy = clusterVertices(on.mesh().points, on.mesh().triangles, Document::kProxyVertices);
+  const auto proxyCount = static_cast<Eigen::Index>(proxy.vertices.size());
+  const scenes::ObjectId sphere = on.sphereId();
+  for (Document* d : {&on, &off})
+    ASSERT_EQ(d->controller.press(d->ray(0.5), d->tolerance()), InteractionController::PressResult::Widget);
+  const scenes::SceneDeformer::Totals pressed = on.deformer.totals();
+  const double scale = on.mesh().points.cwiseAbs().maxCoeff();
+  constexpr int kSteps = 6;
+  for (int step = 1; step <= kSteps; ++step) {
+    for (Document* d : {&on, &off}) d->controller.drag(d->ray(0.5 + 0.15 * step));
+    ASSERT_TRUE(on.view.showsProxy(on.made.sphere));
+    ASSERT_EQ(on.deformer.coverage(sphere), scenes::PointCoverage::Subset);
+    EXPECT_EQ(on.deformer.subsetIndices(sphere), proxy.vertices);
+    EXPECT_THROW((void)on.deformer.points(sphere), scenes::PointsNotEvaluated);  // never stale, silently
+    EXPECT_EQ(off.deformer.coverage(off.sphereId()), scenes::PointCoverage::Full);
+    // The proxy drawn at the points a full evaluation gives at its vertices.
+    const Eigen::MatrixX3d drawn = on.visibleActorPoints(proxyCount);
+    ASSERT_EQ(drawn.rows(), proxyCount);
+    const Eigen::MatrixX3d& full = off.deformer.points(off.made.sphere);
+    double worst = 0.0;
+    for (Eigen::Index i = 0; i < proxyCount; ++i)
+      worst = std::max(worst, (drawn.row(i) - full.row(proxy.vertices[static_cast<std::size_t>(i)])).cwiseAbs().maxCoeff());
+    EXPECT_LT(worst, 1e-6 * scale) << "step " << step;  // float storage
+  }
+  EXPECT_EQ(on.deformer.totals().deformedPoints, pressed.deformedPoints);  // the full mesh waited
+  EXPECT_EQ(on.deformer.totals().subsetPoints - pressed.subsetPoints, std::uint64_t(kSteps * proxyCount));
+  EXPECT_EQ(on.deformer.totals().evaluations - pressed.evaluations, std::uint64_t(kSteps));
+
+  // An exact reader during the gesture (an export, a script): the full mesh, now.
+  on.deformer.evaluate(on.scene);
+  ASSERT_EQ(on.deformer.coverage(sphere), scenes::PointCoverage::Full);
+  EXPECT_LT((on.deformer.points(sphere) - off.deformer.points(off.made.sphere)).cwiseAbs().maxCoeff(), 1e-13 * scale);
+  on.controller.drag(on.ray(0.5 + 0.15 * (kSteps + 1)));  // the next frame: the proxy's points again
+  off.controller.drag(off.ray(0.5 + 0.15 * (kSteps + 1)));
+  EXPECT_EQ(on.deformer.coverage(sphere), scenes::PointCoverage::Subset);
+
+  for (Document* d : {&on, &off}) d->controller.release();
+  EXPECT_FALSE(on.view.showsProxy(on.made.sphere));
+  ASSERT_EQ(on.deformer.coverage(sphere), scenes::PointCoverage::Full);
+  // The same document, exact points and drawn mesh, bit for bit.
+  EXPECT_TRUE(on.deformer.points(sphere) == off.deformer.points(off.made.sphere));
+  EXPECT_TRUE(on.view.objectPoints(on.made.sphere) == off.view.objectPoints(off.made.sphere));
+  EXPECT_TRUE(on.view.objectNormals(on.made.sphere) == off.view.objectNormals(off.made.sphere));
+  EXPECT_GT((on.deformer.points(sphere) - on.mesh().points).cwiseAbs().maxCoeff(), 1e-3 * scale);  // it did move
+  // The same files: the saved scene and the exported deformed mesh, byte for byte.
+  EXPECT_EQ(scenes::sceneFileText(on.scene), scenes::sceneFileText(off.scene));
+  std::string exported[2];
+  for (int k = 0; k < 2; ++k) {
+    const Document& d = k == 0 ? on : off;
+    meshio::MeshData mesh = d.mesh();
+    mesh.points = d.deformer.points(d.made.sphere);
+    std::ostringstream out;
+    meshio::writeMesh(out, mesh, meshio::MeshFormat::Ply);
+    exported[k] = out.str();
+  }
+  EXPECT_GT(exported[0].size(), std::size_t(on.mesh().points.rows()) * 24);
+  EXPECT_TRUE(exported[0] == exported[1]);
+  // The proxy, drawn again (playback), is the full mesh at its vertices, bit for bit (as floats).
+  on.view.setMoving(true);
+  on.view.refresh(on.scene, on.deformer);
+  const Eigen::MatrixX3d again = on.visibleActorPoints(proxyCount);
+  ASSERT_EQ(again.rows(), proxyCount);
+  const Eigen::MatrixX3d& full = off.deformer.points(off.made.sphere);
+  for (Eigen::Index i = 0; i < proxyCount; ++i)
+    for (int c = 0; c < 3; ++c)
+      ASSERT_EQ(again(i, c), double(float(full(proxy.vertices[static_cast<std::size_t>(i)], c)))) << i;
 }
 
 TEST(LevelOfDetail, PlaybackDrawsTheProxyUntilItStops) {

@@ -111,9 +111,16 @@ struct MainWindow::Impl {
   /// deform status refreshed. The view calls it before each repaint (VtkViewWidget::aboutToRender);
   /// readers of deformed points call it first (deformed()).
   void drawFrame();
-  /// The deformer with every change evaluated (drawFrame first): what exports and bounds read.
+  /// The deformer with every change evaluated (drawFrame first) and every object in full (a
+  /// gesture's frame may have evaluated a proxied object at its proxy's points only): what
+  /// exports, bounds and scripts read.
   const scenes::SceneDeformer& deformed() {
     drawFrame();
+    try {
+      deformer.evaluate(scene);  // nothing to do unless a frame left an object at a subset
+    } catch (const std::exception& e) {
+      sayError(e.what());
+    }
     return deformer;
   }
 

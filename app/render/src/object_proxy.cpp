@@ -57,30 +57,13 @@ void ObjectProxy::gather(const Eigen::MatrixX3d& points, Eigen::MatrixX3d& out) 
 bool ObjectProxy::update(const scenes::SceneDeformer& deformer, scenes::ObjectId object) {
   const std::uint64_t revision = deformer.revision(object);
   if (drawn_ && revision == drawnRevision_) return false;
-  const std::optional<scenes::GestureMotion> motion = deformer.gestureMotion(object);
-  if (motion && haveBase_ && motion->baseRevision == baseRevision_) {
-    // Follow the motion at the proxy's vertices only, without gathering them from the full mesh.
-    if (!(weightsLattice_ == motion->lattice) || weightsFor_ != motion->controlPoints) {
-      weightsLattice_ = motion->lattice;
-      weightsFor_ = motion->controlPoints;
-      weights_.resize(vertexCount(), static_cast<Eigen::Index>(weightsFor_.size()));
-      for (std::size_t c = 0; c < weightsFor_.size(); ++c) {
-        const Eigen::VectorXd w = deformer.controlWeights(object, weightsFor_[c]);
-        for (Eigen::Index i = 0; i < vertexCount(); ++i)
-          weights_(i, static_cast<Eigen::Index>(c)) = w[mesh_.vertices[static_cast<std::size_t>(i)]];
-      }
-    }
-    scratch_ = base_ + weights_ * motion->displacements;
+  if (deformer.coverage(object) == scenes::PointCoverage::Subset) {
+    if (deformer.subsetIndices(object) != mesh_.vertices) return false;  // evaluated for another view's proxy
+    draw(deformer.subsetPoints(object));
   } else {
     gather(deformer.points(object), scratch_);
-    haveBase_ = !motion.has_value();
-    if (haveBase_) {
-      base_ = scratch_;
-      baseRevision_ = revision;
-      weightsFor_.clear();
-    }
+    draw(scratch_);
   }
-  draw(scratch_);
   drawnRevision_ = revision;
   drawn_ = true;
   return true;
@@ -117,7 +100,7 @@ void ObjectProxy::draw(const Eigen::MatrixX3d& points) {
 
 std::size_t ObjectProxy::memoryBytes() const {
   return std::size_t(polyData_->GetActualMemorySize()) * 1024 + sizeof(Eigen::Index) * mesh_.vertices.capacity() +
-         sizeof(double) * std::size_t(base_.size() + weights_.size() + scratch_.size());
+         sizeof(double) * std::size_t(scratch_.size());
 }
 
 bool hasProxy(const LevelOfDetail& lod, const scenes::SceneObject* object, Eigen::Index pointCount,

@@ -5,13 +5,12 @@
 // decimation at the deformer's points, and sharing the object actor's property (colour, opacity,
 // highlights). SceneView shows one of the two actors at a time.
 //
-// Points during a gesture: when the deformer reports the object's motion as linear in a few
-// control points (scenes::GestureMotion), the proxy follows it as  x_v = x_v(base) +
-// sum_c w_c(v) d_c  for its own vertices only (w_c: SceneDeformer::controlWeights, taken at the
-// proxy's vertices once per motion), so drawing a step costs the proxy's size; the deformer's
-// evaluation still moves the full mesh, which picking, export and the exact frame at release
-// read. Otherwise (playback, the first step, another motion) the proxy gathers the deformer's
-// points at its vertices.
+// Points during a gesture: the view asks the deformer for the object at the proxy's vertices only
+// (SceneView::evaluationRequest, scenes::EvaluationRequest), so the deformer evaluates those
+// points through their own embedding, built once per object, and leaves the full mesh for the
+// gesture's end (scenes::PointCoverage::Subset); the proxy draws SceneDeformer::subsetPoints and a
+// step costs the proxy's size, never the mesh's. When the object is evaluated in full (playback,
+// an exact reader asked during the gesture) the proxy gathers the full points at its vertices.
 
 #include <cstdint>
 #include <memory>
@@ -46,14 +45,19 @@ class ObjectProxy {
   void show(bool proxy);
   /// True while the proxy is drawn.
   bool shown() const { return shown_; }
-  /// Brings the proxy's points and normals to the deformer's present points of `object`.
-  /// Returns false when they already were (the object's revision did not move).
+  /// Brings the proxy's points and normals to the deformer's present points of `object`: its
+  /// subset points when the deformer evaluated the object at this proxy's vertices, the full
+  /// points at them otherwise. Returns false when they already were (the object's revision did
+  /// not move), or when the deformer holds another subset of the object (then nothing is drawn).
   bool update(const scenes::SceneDeformer& deformer, scenes::ObjectId object);
+  /// The mesh's index of each proxy vertex, increasing: what the view asks the deformer for
+  /// during a gesture (EvaluationRequest::subsets).
+  const std::vector<Eigen::Index>& vertices() const { return mesh_.vertices; }
   /// The proxy's vertex count.
   Eigen::Index vertexCount() const { return static_cast<Eigen::Index>(mesh_.vertices.size()); }
   /// The target the proxy was built for (a change of LevelOfDetail::proxyVertices builds it anew).
   Eigen::Index targetVertices() const { return target_; }
-  /// Heap bytes held: the VTK data, the vertex subset and what a followed motion keeps.
+  /// Heap bytes held: the VTK data, the vertex subset and the gathered points.
   std::size_t memoryBytes() const;
 
  private:
@@ -68,15 +72,7 @@ class ObjectProxy {
   bool shown_ = false;
   std::uint64_t drawnRevision_ = 0;
   bool drawn_ = false;
-  // The motion's base: the proxy's points at the deformer's revision `baseRevision_` that was not a
-  // delta step, and the weights of the control points it moves, at the proxy's vertices.
-  bool haveBase_ = false;
-  std::uint64_t baseRevision_ = 0;
-  Eigen::MatrixX3d base_;
-  widgets::WidgetId weightsLattice_;
-  std::vector<Eigen::Index> weightsFor_;
-  Eigen::MatrixXd weights_;  // #proxy vertices x #control points
-  Eigen::MatrixX3d scratch_;
+  Eigen::MatrixX3d scratch_;  // the full points gathered at the proxy's vertices
 };
 
 /// True when `object`, drawn with `pointCount` points and `display`, has a proxy under `lod`: the

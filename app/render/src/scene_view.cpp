@@ -262,8 +262,7 @@ struct SceneView::Impl {
   // Draws `entry` as its proxy when things move and it is large enough; returns whether it did.
   // Otherwise the object's own actor is shown.
   bool drawProxy(ObjectActor& entry, const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
-    const scenes::SceneObject* object = scene.findObject(entry.id);
-    prepareProxy(entry, object);
+    prepareProxy(entry, scene.findObject(entry.id));
     if (!(moving || deformed.inGesture()) || !entry.proxy) {
       if (entry.proxy && entry.proxy->shown()) entry.proxy->show(false);
       return false;
@@ -372,12 +371,12 @@ struct SceneView::Impl {
   }
 
   // True when the drawn objects are the scene's visible objects with the same point counts.
-  bool sameObjects(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) const {
+  bool sameObjects(const scenes::Scene& scene) const {
     std::size_t n = 0;
     for (const auto& object : scene.objects()) {
       if (!object.display.visible) continue;
       if (n >= objects.size() || objects[n].id != object.id ||
-          objects[n].pointCount != deformed.pointCount(object.id) || !(objects[n].display == object.display))
+          objects[n].pointCount != object.mesh.points.rows() || !(objects[n].display == object.display))
         return false;
       ++n;
     }
@@ -612,7 +611,7 @@ void SceneView::show(const scenes::Scene& scene, const scenes::SceneDeformer& de
 }
 
 void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
-  if (impl_->sameObjects(scene, deformed)) {
+  if (impl_->sameObjects(scene)) {
     if (scene.structureRevision() != impl_->namesSeen) {  // a rename: the labels only
       auto entry = impl_->objects.begin();
       for (const auto& object : scene.objects())
@@ -716,6 +715,15 @@ SceneViewMemory SceneView::objectMemory() const {
 void SceneView::setLevelOfDetail(const LevelOfDetail& lod) { impl_->lod = lod; }
 const LevelOfDetail& SceneView::levelOfDetail() const { return impl_->lod; }
 void SceneView::setMoving(bool moving) { impl_->moving = moving; }
+scenes::EvaluationRequest SceneView::evaluationRequest(const scenes::Scene& scene, const scenes::SceneDeformer& deformed) {
+  scenes::EvaluationRequest request;  // during a gesture, the objects drawn as proxies at their vertices only
+  if (!deformed.inGesture() || !impl_->sameObjects(scene)) return request;  // refresh() builds actors from full points
+  for (auto& entry : impl_->objects) {
+    impl_->prepareProxy(entry, scene.findObject(entry.id));
+    if (entry.proxy) request.subsets[entry.id] = entry.proxy->vertices();
+  }
+  return request;
+}
 bool SceneView::showsProxy(const std::string& object) const {
   for (const auto& entry : impl_->objects)
     if (entry.name == object) return entry.proxy && entry.proxy->shown();

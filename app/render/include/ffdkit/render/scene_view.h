@@ -114,6 +114,13 @@ class SceneView {
   /// Marks a stream of changes outside a gesture (playback): until setMoving(false), refresh()
   /// draws large objects as their proxies. The refresh() after setMoving(false) draws them in full.
   void setMoving(bool moving);
+  /// What the next refresh() reads of the deformer, for SceneDeformer::evaluate: during a gesture
+  /// an object drawn as its proxy is read at the proxy's vertices only (EvaluationRequest::subsets),
+  /// so its evaluation costs the proxy's size and its full mesh waits for the gesture's end; every
+  /// other object in full. Builds the proxies the level of detail asks for first (as refresh()
+  /// would). Asks for no subset when the drawn objects changed (refresh() then builds every actor
+  /// from full points). The spans point into the view's proxies: valid until the next refresh().
+  scenes::EvaluationRequest evaluationRequest(const scenes::Scene& scene, const scenes::SceneDeformer& deformed);
   /// True when `object` is drawn as its level-of-detail proxy now.
   bool showsProxy(const std::string& object) const;
   /// The points of `object`'s full mesh as the view holds them, #points x 3 (empty when it is not
