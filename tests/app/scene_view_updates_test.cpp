@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <random>
 
@@ -16,6 +17,9 @@
 #include <vtkMapper.h>
 #include <vtkPolyData.h>
 #include <vtkPoints.h>
+#include <vtkMatrix4x4.h>
+#include <vtkRenderWindow.h>
+#include <vtkRendererCollection.h>
 #include <vtkRenderer.h>
 
 #include "drag_sphere.h"
@@ -489,6 +493,71 @@ TEST(SceneViewUpdates, TheFirstStepOfADragStartsFromTheNormalsDrawnBeforeIt) {
     EXPECT_TRUE((s.view.objectNormals(s.sphere).array() == s.freshNormals().array()).all()) << "drag " << drag;
     if (drag == 1) s.commands.undo();  // the next drag starts from the undone points
   }
+}
+
+
+// The transformer follows the widget it moves at every drag step: its actors are moved, not built
+// again, and stand where the actors of a view that showed the moved transformer from the start do.
+TEST(SceneViewUpdates, AMovedTransformerMovesItsActorsWithoutBuildingThem) {
+  struct Viewed {  // a view in a render window (the transformer's overlay renderer needs one; no GL draw)
+    vtkNew<vtkRenderWindow> window;
+    vtkNew<vtkRenderer> renderer;
+    std::unique_ptr<SceneView> view;
+    scenes::Scene scene;
+    scenes::SceneDeformer deformer;
+    explicit Viewed(const Transformer& t) {
+      window->AddRenderer(renderer);
+      view = std::make_unique<SceneView>(renderer);
+      ViewHighlights h;
+      h.transformer = t;
+      view->setHighlights(h);
+      view->show(scene, deformer);
+    }
+    std::vector<Eigen::Matrix4d> overlayMatrices() const {  // the actors of the layer above, in order
+      std::vector<Eigen::Matrix4d> out;
+      vtkRendererCollection* renderers = window->GetRenderers();
+      renderers->InitTraversal();
+      while (vtkRenderer* r = renderers->GetNextItem()) {
+        if (r == renderer.GetPointer()) continue;
+        vtkActorCollection* actors = r->GetActors();
+        actors->InitTraversal();
+        while (vtkActor* actor = actors->GetNextActor()) {
+          Eigen::Matrix4d m;
+          for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) m(i, j) = actor->GetMatrix()->GetElement(i, j);
+          out.push_back(m);
+        }
+      }
+      return out;
+    }
+  };
+  Transformer start;
+  start.frame = Eigen::Translation3d(0.5, -1.0, 2.0) * Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized());
+  start.size = 1.5;
+  Transformer moved = start;
+  moved.frame = Eigen::Translation3d(-2.0, 0.25, 1.0) * Eigen::AngleAxisd(1.1, Eigen::Vector3d(0, 1, 1).normalized());
+
+  Viewed dragged(start);
+  ASSERT_EQ(dragged.view->stats().overlayBuilds, 1);
+  ASSERT_EQ(dragged.overlayMatrices().size(), 9u);  // three arrows, rings and cubes
+  for (int step = 0; step < 3; ++step) {
+    ViewHighlights h;
+    h.transformer = step % 2 == 0 ? moved : start;
+    dragged.view->setHighlights(h);
+    dragged.view->refresh(dragged.scene, dragged.deformer);
+  }
+  EXPECT_EQ(dragged.view->stats().overlayBuilds, 1) << "moved, not built again";
+  const Viewed fresh(moved);
+  const std::vector<Eigen::Matrix4d> got = dragged.overlayMatrices(), expected = fresh.overlayMatrices();
+  ASSERT_EQ(got.size(), expected.size());
+  for (std::size_t k = 0; k < got.size(); ++k) EXPECT_LT((got[k] - expected[k]).cwiseAbs().maxCoeff(), 1e-12) << k;
+
+  ViewHighlights resized;
+  resized.transformer = moved;
+  resized.transformer->size = 3.0;
+  dragged.view->setHighlights(resized);
+  dragged.view->refresh(dragged.scene, dragged.deformer);
+  EXPECT_EQ(dragged.view->stats().overlayBuilds, 2) << "another size builds the shapes again";
 }
 
 }  // namespace

@@ -103,6 +103,7 @@ struct SceneView::Impl {
   vtkSmartPointer<vtkRenderer> overlay;
   std::vector<vtkSmartPointer<vtkActor>> overlayActors;
   std::vector<TransformerHandle> overlayHandles;  // of overlayActors, in order
+  std::vector<Eigen::Affine3d> overlayPlaces;      // of overlayActors: each shape's place in the frame
   // The transformer's three shapes at size 1 (built once; the actors place them per frame).
   vtkSmartPointer<vtkPolyData> transformerArrow, transformerRing, transformerCube;
   ViewHighlights highlights;
@@ -389,6 +390,7 @@ struct SceneView::Impl {
     overlay = nullptr;
     overlayActors.clear();
     overlayHandles.clear();
+    overlayPlaces.clear();
   }
 
   vtkRenderer* overlayRenderer() {
@@ -408,15 +410,22 @@ struct SceneView::Impl {
 
   // The handles of TransformerLayout, red / green / blue per axis, the hovered or dragged one
   // in the selection colour.
-  static bool sameTransformer(const std::optional<Transformer>& a, const std::optional<Transformer>& b) {
+  static bool sameShapes(const std::optional<Transformer>& a, const std::optional<Transformer>& b) {
     if (a.has_value() != b.has_value()) return false;
-    return !a || (a->frame.matrix() == b->frame.matrix() && a->size == b->size && a->uniformSize == b->uniformSize);
+    return !a || (a->size == b->size && a->uniformSize == b->uniformSize);
   }
 
-  // The overlay actors are placed once per transformer; the hovered or dragged handle recolours.
+  // The overlay actors are built once per transformer's size; a transformer that moved (it
+  // follows a dragged widget every frame) moves them; the hovered or dragged handle recolours.
   void updateTransformer() {
     const bool placed = overlay && overlay->GetRenderWindow() == renderer->GetRenderWindow();
-    if (!placed || !sameTransformer(overlayBuiltFor, highlights.transformer)) buildTransformer();
+    if (!placed || !sameShapes(overlayBuiltFor, highlights.transformer)) {
+      buildTransformer();
+    } else if (highlights.transformer && overlayBuiltFor->frame.matrix() != highlights.transformer->frame.matrix()) {
+      overlayBuiltFor = highlights.transformer;
+      for (std::size_t k = 0; k < overlayActors.size(); ++k)
+        placeOverlayActor(overlayActors[k], Eigen::Affine3d(highlights.transformer->frame) * overlayPlaces[k]);
+    }
     const Eigen::Vector3d axisColour[3] = {{0.95, 0.25, 0.25}, {0.3, 0.9, 0.3}, {0.3, 0.5, 1.0}};
     for (std::size_t k = 0; k < overlayActors.size(); ++k) {
       const TransformerHandle handle = overlayHandles[k];
@@ -426,12 +435,18 @@ struct SceneView::Impl {
     }
   }
 
+  static void placeOverlayActor(vtkActor* actor, const Eigen::Affine3d& place) {
+    const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m = place.matrix();
+    static_cast<vtkTransform*>(actor->GetUserTransform())->SetMatrix(m.data());
+  }
+
   void buildTransformer() {
     if (overlay) {
       for (auto& actor : overlayActors) overlay->RemoveActor(actor);
       overlayActors.clear();
     }
     overlayHandles.clear();
+    overlayPlaces.clear();
     overlayBuiltFor = highlights.transformer;
     if (!highlights.transformer) return;
     ++stats.overlayBuilds;
@@ -446,13 +461,12 @@ struct SceneView::Impl {
       auto actor = vtkSmartPointer<vtkActor>::New();
       actor->SetMapper(mapper);
       actor->GetProperty()->SetAmbient(0.35);  // colours: updateTransformer
-      vtkNew<vtkTransform> transform;
-      const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m = (Eigen::Affine3d(t.frame) * place).matrix();
-      transform->SetMatrix(m.data());
-      actor->SetUserTransform(transform);
+      actor->SetUserTransform(vtkNew<vtkTransform>());
+      placeOverlayActor(actor, Eigen::Affine3d(t.frame) * place);
       target->AddActor(actor);
       overlayActors.push_back(actor);
       overlayHandles.push_back(handle);
+      overlayPlaces.push_back(place);
     };
     const double length = L::moveTip - L::moveFrom;
     if (!transformerArrow) {

@@ -44,7 +44,7 @@ struct SceneViewStats {
   /// of the widgets the change concerns otherwise (widgets::widgetsToRedraw).
   int widgetBuilds = 0;
   int widgetActorBuilds = 0;  ///< widgets whose actors were built, one per widget (a lattice's two count once)
-  int overlayBuilds = 0;  ///< placements of the transformer's actors (another transformer)
+  int overlayBuilds = 0;  ///< builds of the transformer's actors (another size; a moved transformer moves them)
   int proxyBuilds = 0;    ///< level-of-detail proxies built (LevelOfDetail; once per object actor)
   int proxyUpdates = 0;   ///< proxy point arrays rewritten (a gesture step or a played frame)
 };
