@@ -12,6 +12,16 @@ if(FFDKIT_FUZZ)
   endif()
   # Coverage for libFuzzer in every library; the fuzz targets themselves link -fsanitize=fuzzer.
   add_compile_options(-fsanitize=fuzzer-no-link)
+  # ...but not in third-party headers (nlohmann-json, the standard library, Eigen): the list
+  # says why. It is copied under a name carrying its hash, so that a changed list changes every
+  # compile line: ninja then rebuilds, and ccache (which does not hash the list's contents)
+  # cannot return an object compiled with the old one.
+  set(ffdkit_coverage_ignorelist ${PROJECT_SOURCE_DIR}/tests/fuzz/coverage_ignorelist.txt)
+  file(SHA256 ${ffdkit_coverage_ignorelist} ffdkit_coverage_ignorelist_hash)
+  string(SUBSTRING ${ffdkit_coverage_ignorelist_hash} 0 16 ffdkit_coverage_ignorelist_hash)
+  set(ffdkit_coverage_ignorelist_copy ${PROJECT_BINARY_DIR}/coverage_ignorelist-${ffdkit_coverage_ignorelist_hash}.txt)
+  configure_file(${ffdkit_coverage_ignorelist} ${ffdkit_coverage_ignorelist_copy} COPYONLY)
+  add_compile_options(-fsanitize-coverage-ignorelist=${ffdkit_coverage_ignorelist_copy})
 endif()
 
 find_program(FFDKIT_CCACHE ccache)
