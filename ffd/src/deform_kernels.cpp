@@ -316,10 +316,20 @@ FFDKIT_INLINE void rationalPowerBlockT(const KernelInput& in, const int cell[3],
   }
 }
 
-template <int K>
+// The first `count` lanes of a block's weights into keep[q0 ..].
+FFDKIT_INLINE void storeWeights(double* keep, std::uint32_t q0, int count, Lane weight) {
+  if (count == kLanes) {
+    __builtin_memcpy(keep + q0, &weight, sizeof(Lane));
+  } else {
+    for (int l = 0; l < count; ++l) keep[q0 + l] = weight[l];
+  }
+}
+
+// Keep: termCount is 1 and the lanes' weight is written to keep[q] (sparseBlockKeepingWeights).
+template <int K, bool Keep = false>
 FFDKIT_INLINE void sparsePowerT(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end,
                                 bool blended, const SparseTerm* terms, int termCount, Store mode,
-                                const double* denominators) {
+                                const double* denominators, double* keep = nullptr) {
   constexpr int n = K + 1;
   const double* pu = in.axis[0].poly->cell(cell[0]);
   const double* pv = in.axis[1].poly->cell(cell[1]);
@@ -335,6 +345,7 @@ FFDKIT_INLINE void sparsePowerT(const KernelInput& in, const int cell[3], std::u
       // Only the basis functions a term needs: one polynomial per axis.
       const Lane weight = horner<K>(pu + 2 + term.a * n, x) * horner<K>(pv + 2 + term.b * n, y) *
                           horner<K>(pw + 2 + term.c * n, z);
+      if constexpr (Keep) storeWeights(keep, q0, count, weight);
       dx += weight * term.dx;
       dy += weight * term.dy;
       dz += weight * term.dz;
@@ -344,9 +355,10 @@ FFDKIT_INLINE void sparsePowerT(const KernelInput& in, const int cell[3], std::u
   }
 }
 
+template <bool Keep = false>
 FFDKIT_INLINE void sparseCoxDeBoor(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end,
                                    bool blended, const SparseTerm* terms, int termCount, Store mode,
-                                   const double* denominators) {
+                                   const double* denominators, double* keep = nullptr) {
   Lane bu[kMaxBasis], bv[kMaxBasis], bw[kMaxBasis];
   for (std::uint32_t q0 = begin; q0 < end; q0 += kLanes) {
     const int count = static_cast<int>(std::min<std::uint32_t>(kLanes, end - q0));
@@ -357,6 +369,7 @@ FFDKIT_INLINE void sparseCoxDeBoor(const KernelInput& in, const int cell[3], std
     for (int i = 0; i < termCount; ++i) {
       const SparseTerm& term = terms[i];
       const Lane weight = bu[term.a] * bv[term.b] * bw[term.c];
+      if constexpr (Keep) storeWeights(keep, q0, count, weight);
       dx += weight * term.dx;
       dy += weight * term.dy;
       dz += weight * term.dz;
@@ -559,11 +572,38 @@ void powerBlockSingle(const KernelInput& in, const int cell[3], std::uint32_t be
 FFDKIT_VECTOR_CLONES
 void sparseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
                  const SparseTerm* terms, int termCount, Store mode, const double* denominators) {
-  if (!in.axis[0].poly) return sparseCoxDeBoor(in, cell, begin, end, blended, terms, termCount, mode, denominators);
+  if (!in.axis[0].poly) return sparseCoxDeBoor<false>(in, cell, begin, end, blended, terms, termCount, mode, denominators);
   switch (in.axis[0].poly->degree) {
     case 1: return sparsePowerT<1>(in, cell, begin, end, blended, terms, termCount, mode, denominators);
     case 2: return sparsePowerT<2>(in, cell, begin, end, blended, terms, termCount, mode, denominators);
     default: return sparsePowerT<3>(in, cell, begin, end, blended, terms, termCount, mode, denominators);
+  }
+}
+
+FFDKIT_VECTOR_CLONES
+void sparseBlockKeepingWeights(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end,
+                               bool blended, const SparseTerm& term, Store mode, double* weights) {
+  if (!in.axis[0].poly)
+    return sparseCoxDeBoor<true>(in, cell, begin, end, blended, &term, 1, mode, nullptr, weights);
+  switch (in.axis[0].poly->degree) {
+    case 1: return sparsePowerT<1, true>(in, cell, begin, end, blended, &term, 1, mode, nullptr, weights);
+    case 2: return sparsePowerT<2, true>(in, cell, begin, end, blended, &term, 1, mode, nullptr, weights);
+    default: return sparsePowerT<3, true>(in, cell, begin, end, blended, &term, 1, mode, nullptr, weights);
+  }
+}
+
+FFDKIT_VECTOR_CLONES
+void weightedBlock(const KernelInput& in, std::uint32_t begin, std::uint32_t end, bool blended, const double* weights,
+                   const SparseTerm& term, Store mode) {
+  for (std::uint32_t q0 = begin; q0 < end; q0 += kLanes) {
+    const int count = static_cast<int>(std::min<std::uint32_t>(kLanes, end - q0));
+    const Lane weight = loadLanes(weights, q0, count);
+    // As sparseBlock's sum over its one term, from zero (0 + w dP, not w dP: the same zeros' signs).
+    Lane dx = splat(0.0), dy = splat(0.0), dz = splat(0.0);
+    dx += weight * term.dx;
+    dy += weight * term.dy;
+    dz += weight * term.dz;
+    storeLanes(in, q0, count, blended, dx, dy, dz, mode);
   }
 }
 

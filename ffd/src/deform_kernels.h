@@ -118,6 +118,19 @@ struct SparseTerm {
 void sparseBlock(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end, bool blended,
                  const SparseTerm* terms, int termCount, Store mode, const double* denominators = nullptr);
 
+/// sparseBlock for one term (one moved control point) that also keeps each point's weight, the
+/// product Bu_a Bv_b Bw_c of its three basis functions (without the blend weight), in
+/// weights[q] (sorted order): what weightedBlock needs to repeat the step for a new change of the
+/// same control point without the basis.
+void sparseBlockKeepingWeights(const KernelInput& in, const int cell[3], std::uint32_t begin, std::uint32_t end,
+                               bool blended, const SparseTerm& term, Store mode, double* weights);
+
+/// sparseBlock for one term from the weights sparseBlockKeepingWeights kept for its control point
+/// (weights[q], sorted order): d = s (0 + weight dP) per point, the same arithmetic on the same
+/// weight, so the same bits, reading 8 bytes per point instead of the three parameters.
+void weightedBlock(const KernelInput& in, std::uint32_t begin, std::uint32_t end, bool blended, const double* weights,
+                   const SparseTerm& term, Store mode);
+
 /// The coefficient sets of one rational block (rationalPowerBlock): the current homogeneous sums
 /// N = sum B w F.linear P (x, y, z) and D = sum B w, then a base's Nb (x, y, z) and Db, then one
 /// unused set (cellCoefficients fills sets three at a time).

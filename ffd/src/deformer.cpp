@@ -471,6 +471,24 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
     }
   }
 
+  // One control point moved and every cell it touches takes one sparse term (a drag): its weights
+  // at the points are kept by this step, or were kept by the last step of the same control point
+  // and are read instead of evaluating the basis (the same bits).
+  enum class Weights { None, Keep, Read } stepWeights = Weights::None;
+  if (changed.size() == 1 && denseCells.empty() &&
+      std::all_of(terms.begin(), terms.end(), [](const auto& t) { return t.size() <= 1; })) {
+    if (stepWeightsControl_ == changed.front() && stepWeightsRest_ == lattice.restRevision() &&
+        stepWeights_.size() == embedding_.pointCount()) {
+      stepWeights = Weights::Read;
+    } else {
+      stepWeights = Weights::Keep;
+      stepWeightsControl_ = -1;  // valid once every touched point is written
+      if (stepWeights_.size() != embedding_.pointCount()) {
+        stepWeights_.resize(embedding_.pointCount());
+        adviseHugePages(stepWeights_);
+      }
+    }
+  }
   const detail::AxisPolynomials* const poly[3] = {fields.polynomials(0), fields.polynomials(1), fields.polynomials(2)};
   detail::KernelInput in = detail::kernelInput(lattice, embedding_, tables.span, poly, output_);
   const auto& blocks = embedding_.blocks();
@@ -496,6 +514,11 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
       const std::size_t cell = block.cell;
       if (dense[cell]) {
         runBlock(local, reader, fields, embedding_.cellOf(block).data(), block.begin, block.end, blended, mode);
+      } else if (stepWeights == Weights::Read) {
+        detail::weightedBlock(local, block.begin, block.end, blended, stepWeights_.data(), terms[cell].front(), mode);
+      } else if (stepWeights == Weights::Keep) {
+        detail::sparseBlockKeepingWeights(local, embedding_.cellOf(block).data(), block.begin, block.end, blended,
+                                          terms[cell].front(), mode, stepWeights_.data());
       } else {
         detail::sparseBlock(local, embedding_.cellOf(block).data(), block.begin, block.end, blended, terms[cell].data(),
                             static_cast<int>(terms[cell].size()), mode);
@@ -508,6 +531,11 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
     }
   }
   stats_.evaluatedPoints = evaluated;
+  stats_.weightsReused = stepWeights == Weights::Read;
+  if (stepWeights == Weights::Keep) {
+    stepWeightsControl_ = changed.front();
+    stepWeightsRest_ = lattice.restRevision();
+  }
   remember(lattice);
   denominatorsValid_ = false;
   return output_;

@@ -15,6 +15,10 @@ struct DeformStats {
   bool full = false;                 ///< true: deform(); false: update()
   Eigen::Index changedControlPoints = 0;  ///< update(): control points that moved since the last call
   Eigen::Index evaluatedPoints = 0;  ///< points whose output was recomputed
+  /// update(lattice): the step moved the same one control point as the step before it and read
+  /// that control point's weights at the points, kept by that step, instead of evaluating the
+  /// basis (the same bits; 8 bytes per point kept while the deformer lives).
+  bool weightsReused = false;
 };
 
 /// The arithmetic of the deformation's power-form kernels (lattices whose axes all have degree
@@ -147,6 +151,14 @@ class Deformer {
   // every point) when denominatorsValid_.
   std::vector<double> denominators_;
   bool denominatorsValid_ = false;
+  // update(lattice) after one control point moved (a drag's steps): that control point's weight
+  // at each sorted point of the cells its change touched, kept by the step that computed them
+  // (8 bytes per point) so that the next steps of the same control point read it instead of the
+  // parameters (detail::weightedBlock, the same bits). Valid for control point stepWeightsControl_
+  // (-1: none) of the lattice at rest revision stepWeightsRest_ (the embedding's).
+  Eigen::VectorXd stepWeights_;
+  Eigen::Index stepWeightsControl_ = -1;
+  std::uint64_t stepWeightsRest_ = 0;
   bool deformed_ = false;
   bool parallel_ = true;
   Precision precision_ = Precision::Double;
