@@ -277,13 +277,38 @@ struct VolumeShare {
   std::int64_t negative = 0;
 };
 
-// Per block of faces: what the face checks add to the result.
+// Per sweep of cells or block of faces: what the face checks add to the result.
 struct FaceShare {
   double minPyramid = std::numeric_limits<double>::infinity();
   double minCosine = 1.0;
   double sumCosines = 0.0;
   double maxSkewness = 0.0;
   std::int64_t incorrectlyOriented = 0;
+};
+
+// The cells are checked in sweeps: runs of consecutive cells (whole blocks of kBlock, about an
+// eighth of the mesh and at least 65,536 cells, so that the split depends on the mesh alone, not
+// on the number of threads), each visited in order by one thread.
+std::int64_t sweepLength(std::int64_t cellCount) {
+  const std::int64_t blocks = (cellCount + kBlock - 1) / kBlock;
+  return std::max<std::int64_t>(8, (blocks + 7) / 8) * kBlock;
+}
+
+// The geometry of the faces a sweep computed last, by face index modulo kSlots. A sweep computes
+// a face when it meets the first of its cells and reads it here at the second, which in a mesh in
+// OpenFOAM's upper-triangular order comes a few layers of cells later (a 215^3 cube: about 140,000
+// faces later). A face no longer here (another mesh order) is computed again, to the same bits.
+struct FaceCache {
+  static constexpr std::size_t kSlots = std::size_t(1) << 18;  // 13.6 MB per thread
+  static std::size_t slot(std::int64_t f) { return std::size_t(f) & (kSlots - 1); }
+  std::vector<std::int32_t> face = std::vector<std::int32_t>(kSlots, -1);  // faces number below 2^31
+  std::vector<FaceGeometry> geometry = std::vector<FaceGeometry>(kSlots);
+
+  bool holds(std::int64_t f) const { return face[slot(f)] == f; }
+  void store(std::int64_t f, const FaceGeometry& g) {
+    face[slot(f)] = std::int32_t(f);
+    geometry[slot(f)] = g;
+  }
 };
 
 }  // namespace
@@ -297,149 +322,183 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
   const std::int64_t nCells = cells.cellCount;
   q.cellCount = nCells;
   q.faceCount = faces;
-  std::vector<std::uint8_t> bad;
-  PointRows centres;
 
-  // Each cell's volume and centre (OpenFOAM: primitiveMeshCellCentresAndVols.C): the pyramids of
-  // its faces about a first estimate, the average of its face centres. A cell adds its faces in
-  // face order, as OpenFOAM's loops over owner and neighbour do for each cell.
-  {
-    // The arrays from the largest to the smallest: a process that keeps freed memory for reuse
-    // (ffdkit-cli) then fits each into a block freed before (the deformation's input points and
-    // embedding are each about the size of the largest) instead of growing its heap for one that
-    // no longer fits after a smaller one took part of the block.
-    const CellFaces cellFaces = cellFacesOf(cells);
-    centres.resize(Eigen::Index(nCells), 3);
-    bad.assign(std::size_t(nCells), 0);
-    const std::int64_t blocks = (nCells + kBlock - 1) / kBlock;
-    std::vector<VolumeShare> shares(static_cast<std::size_t>(blocks));
-#pragma omp parallel
-    {
-      auto lanes = std::make_unique<FaceLanes>();
-      std::vector<FaceGeometry> local;
-      // One cell's volume and centre from its faces' geometry (face(k): its k-th face, in face order).
-      auto addCell = [&](std::int64_t c, VolumeShare& share, auto&& face) {
-        const std::uint32_t begin = cellFaces.starts[std::size_t(c)], end = cellFaces.starts[std::size_t(c) + 1];
-        Eigen::Vector3d estimate = Eigen::Vector3d::Zero();
-        for (std::uint32_t k = begin; k < end; ++k) estimate += face(k).centre;
-        estimate /= double(std::max<std::uint32_t>(1, end - begin));
-        // 3 x the volume, and the centre weighted by it.
-        Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
-        double volume3 = 0.0;
-        for (std::uint32_t k = begin; k < end; ++k) {
-          const FaceGeometry g = face(k);
-          const double sign = (cellFaces.faces[k] & CellFaces::kNeighbourSide) != 0 ? -1.0 : 1.0;
-          const double pyramid3 = sign * g.area.dot(g.centre - estimate);
-          weighted += pyramid3 * (0.75 * g.centre + 0.25 * estimate);
-          volume3 += pyramid3;
-        }
-        centres.row(Eigen::Index(c)) = (std::abs(volume3) > kVerySmall ? Eigen::Vector3d(weighted / volume3) : estimate).transpose();
-        const double volume = volume3 / 3.0;
-        if (volume < kVerySmall) {
-          ++share.negative;
-          bad[std::size_t(c)] = 1;
-        }
-        share.min = std::min(share.min, volume);
-        share.max = std::max(share.max, volume);
-        share.total += volume;
-      };
-      auto faceOf = [&](std::uint32_t k) { return std::int64_t(cellFaces.faces[k] & ~CellFaces::kNeighbourSide); };
-#pragma omp for schedule(dynamic, 4)
-      for (std::int64_t b = 0; b < blocks; ++b) {
-        VolumeShare& share = shares[std::size_t(b)];
-        const std::int64_t last = std::min(nCells, (b + 1) * kBlock);
-        for (std::int64_t c = b * kBlock; c < last;) {
-          // As many whole cells as fit the lanes; a cell with more faces than lanes on its own.
-          const std::int64_t first = c;
-          lanes->clear();
-          while (c < last && lanes->count + std::int64_t(cellFaces.starts[std::size_t(c) + 1] - cellFaces.starts[std::size_t(c)]) <=
-                                 FaceLanes::kLanes) {
-            for (std::uint32_t k = cellFaces.starts[std::size_t(c)]; k < cellFaces.starts[std::size_t(c) + 1]; ++k)
-              lanes->add(p, cells, faceOf(k));
-            ++c;
-          }
-          if (c == first) {
-            const std::uint32_t begin = cellFaces.starts[std::size_t(c)];
-            local.clear();
-            for (std::uint32_t k = begin; k < cellFaces.starts[std::size_t(c) + 1]; ++k) local.push_back(faceGeometry(p, cells, faceOf(k)));
-            addCell(c, share, [&](std::uint32_t k) { return local[k - begin]; });
-            ++c;
-            continue;
-          }
-          lanes->compute();
-          const std::uint32_t base = cellFaces.starts[std::size_t(first)];
-          for (std::int64_t d = first; d < c; ++d) addCell(d, share, [&](std::uint32_t k) { return (*lanes)[int(k - base)]; });
-        }
-      }
-    }
-    q.minVolume = std::numeric_limits<double>::infinity();
-    q.maxVolume = -std::numeric_limits<double>::infinity();
-    for (const VolumeShare& share : shares) {
-      q.negativeVolumeCells += share.negative;
-      q.minVolume = std::min(q.minVolume, share.min);
-      q.maxVolume = std::max(q.maxVolume, share.max);
-      q.totalVolume += share.total;
-    }
-  }
+  // The arrays from the largest to the smallest: a process that keeps freed memory for reuse
+  // (ffdkit-cli) then fits each into a block freed before instead of growing its heap for one
+  // that no longer fits after a smaller one took part of the block.
+  const CellFaces cellFaces = cellFacesOf(cells);
+  PointRows centres(Eigen::Index(nCells), 3);
+  std::vector<std::uint8_t> bad(std::size_t(nCells), 0);
+  const std::int64_t blocks = (nCells + kBlock - 1) / kBlock;
+  std::vector<VolumeShare> volumeShares(static_cast<std::size_t>(blocks));
+  const std::int64_t sweep = sweepLength(nCells);
+  const std::int64_t sweeps = (nCells + sweep - 1) / sweep;
+  std::vector<FaceShare> sweepShares(static_cast<std::size_t>(sweeps));
+  const std::int32_t* owner = cells.owner.data();
+  const std::int32_t* neighbour = cells.neighbour.data();
+  auto markBad = [&bad](std::int32_t cell) { std::atomic_ref<std::uint8_t>(bad[std::size_t(cell)]).store(1, std::memory_order_relaxed); };
+  auto faceOf = [&](std::uint32_t k) { return std::int64_t(cellFaces.faces[k] & ~CellFaces::kNeighbourSide); };
 
   // Each face's pyramids about the two cell centres, its non-orthogonality and skewness
   // (primitiveMeshCheck.C: checkFacePyramids, checkFaceOrthogonality, checkFaceSkewness).
-  const std::int64_t blocks = (faces + kBlock - 1) / kBlock;
-  std::vector<FaceShare> shares(static_cast<std::size_t>(blocks));
-  auto markBad = [&bad](std::int32_t cell) { std::atomic_ref<std::uint8_t>(bad[std::size_t(cell)]).store(1, std::memory_order_relaxed); };
+  auto checkFace = [&](std::int64_t f, const FaceGeometry& face, FaceShare& share) {
+    const std::int32_t own = owner[f];
+    const Eigen::Vector3d ownCentre = centres.row(Eigen::Index(own)).transpose();
+    const double ownPyramid = face.area.dot(face.centre - ownCentre) / 3.0;
+    share.minPyramid = std::min(share.minPyramid, ownPyramid);
+    if (ownPyramid < -kSmall) {
+      ++share.incorrectlyOriented;
+      markBad(own);
+    }
+    if (f < internal) {
+      const std::int32_t nei = neighbour[f];
+      const Eigen::Vector3d neiCentre = centres.row(Eigen::Index(nei)).transpose();
+      const double neiPyramid = face.area.dot(neiCentre - face.centre) / 3.0;
+      share.minPyramid = std::min(share.minPyramid, neiPyramid);
+      if (neiPyramid < -kSmall) {
+        ++share.incorrectlyOriented;
+        markBad(nei);
+      }
+      const Eigen::Vector3d d = neiCentre - ownCentre;
+      const double cosine = d.dot(face.area) / (d.norm() * face.area.norm() + kRootVerySmall);
+      share.minCosine = std::min(share.minCosine, cosine);
+      share.sumCosines += cosine;
+      share.maxSkewness = std::max(share.maxSkewness, faceSkewness(p, cells, f, face, ownCentre, &neiCentre));
+    } else {
+      share.maxSkewness = std::max(share.maxSkewness, faceSkewness(p, cells, f, face, ownCentre, nullptr));
+    }
+  };
+
+  // One pass over the cells, sweep by sweep (OpenFOAM: primitiveMeshCellCentresAndVols.C, then
+  // the face checks): each cell's volume and centre from the pyramids of its faces about a first
+  // estimate, the average of its face centres, its faces added in face order (as OpenFOAM's loops
+  // over owner and neighbour add them for each cell); then the checks of those of its faces whose
+  // other cell the sweep has done (or that have none). A face between two sweeps is checked
+  // after them all.
 #pragma omp parallel
   {
     auto lanes = std::make_unique<FaceLanes>();
-#pragma omp for schedule(dynamic, 4)
-    for (std::int64_t b = 0; b < blocks; ++b) {
-      FaceShare& share = shares[std::size_t(b)];
-      const std::int64_t last = std::min(faces, (b + 1) * kBlock);
-      for (std::int64_t first = b * kBlock; first < last; first += FaceLanes::kLanes) {
-        const std::int64_t end = std::min(last, first + FaceLanes::kLanes);
+    auto cache = std::make_unique<FaceCache>();
+    std::int64_t laneFace[FaceLanes::kLanes];
+    auto geometry = [&](std::int64_t f) {
+      const std::size_t slot = FaceCache::slot(f);
+      return cache->face[slot] == f ? cache->geometry[slot] : faceGeometry(p, cells, f);
+    };
+    auto addCell = [&](std::int64_t c) {
+      VolumeShare& share = volumeShares[std::size_t(c / kBlock)];
+      const std::uint32_t begin = cellFaces.starts[std::size_t(c)], end = cellFaces.starts[std::size_t(c) + 1];
+      Eigen::Vector3d estimate = Eigen::Vector3d::Zero();
+      for (std::uint32_t k = begin; k < end; ++k) estimate += geometry(faceOf(k)).centre;
+      estimate /= double(std::max<std::uint32_t>(1, end - begin));
+      // 3 x the volume, and the centre weighted by it.
+      Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+      double volume3 = 0.0;
+      for (std::uint32_t k = begin; k < end; ++k) {
+        const FaceGeometry g = geometry(faceOf(k));
+        const double sign = (cellFaces.faces[k] & CellFaces::kNeighbourSide) != 0 ? -1.0 : 1.0;
+        const double pyramid3 = sign * g.area.dot(g.centre - estimate);
+        weighted += pyramid3 * (0.75 * g.centre + 0.25 * estimate);
+        volume3 += pyramid3;
+      }
+      centres.row(Eigen::Index(c)) = (std::abs(volume3) > kVerySmall ? Eigen::Vector3d(weighted / volume3) : estimate).transpose();
+      const double volume = volume3 / 3.0;
+      if (volume < kVerySmall) {
+        ++share.negative;
+        bad[std::size_t(c)] = 1;
+      }
+      share.min = std::min(share.min, volume);
+      share.max = std::max(share.max, volume);
+      share.total += volume;
+    };
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t s = 0; s < sweeps; ++s) {
+      const std::int64_t first = s * sweep, last = std::min(nCells, first + sweep);
+      FaceShare& faceShare = sweepShares[std::size_t(s)];
+      for (std::int64_t c = first; c < last;) {
+        // A batch: as many whole cells as the faces not yet computed of fit the lanes; a cell with
+        // more such faces than lanes on its own, face by face.
+        const std::int64_t batch = c;
         lanes->clear();
-        for (std::int64_t f = first; f < end; ++f) lanes->add(p, cells, f);
-        lanes->compute();
-        for (std::int64_t f = first; f < end; ++f) {
-          const FaceGeometry face = (*lanes)[int(f - first)];
-          const std::int32_t own = cells.owner[std::size_t(f)];
-          const Eigen::Vector3d ownCentre = centres.row(Eigen::Index(own)).transpose();
-          const double ownPyramid = face.area.dot(face.centre - ownCentre) / 3.0;
-          share.minPyramid = std::min(share.minPyramid, ownPyramid);
-          if (ownPyramid < -kSmall) {
-            ++share.incorrectlyOriented;
-            markBad(own);
-          }
-          if (f < internal) {
-            const std::int32_t nei = cells.neighbour[std::size_t(f)];
-            const Eigen::Vector3d neiCentre = centres.row(Eigen::Index(nei)).transpose();
-            const double neiPyramid = face.area.dot(neiCentre - face.centre) / 3.0;
-            share.minPyramid = std::min(share.minPyramid, neiPyramid);
-            if (neiPyramid < -kSmall) {
-              ++share.incorrectlyOriented;
-              markBad(nei);
-            }
-            const Eigen::Vector3d d = neiCentre - ownCentre;
-            const double cosine = d.dot(face.area) / (d.norm() * face.area.norm() + kRootVerySmall);
-            share.minCosine = std::min(share.minCosine, cosine);
-            share.sumCosines += cosine;
-            share.maxSkewness = std::max(share.maxSkewness, faceSkewness(p, cells, f, face, ownCentre, &neiCentre));
+        while (c < last) {
+          const std::uint32_t begin = cellFaces.starts[std::size_t(c)], end = cellFaces.starts[std::size_t(c) + 1];
+          int need = 0;
+          for (std::uint32_t k = begin; k < end; ++k) need += cache->holds(faceOf(k)) ? 0 : 1;
+          if (lanes->count + need > FaceLanes::kLanes) {
+            if (c > batch) break;
+            for (std::uint32_t k = begin; k < end; ++k)
+              if (!cache->holds(faceOf(k))) cache->store(faceOf(k), faceGeometry(p, cells, faceOf(k)));
           } else {
-            share.maxSkewness = std::max(share.maxSkewness, faceSkewness(p, cells, f, face, ownCentre, nullptr));
+            for (std::uint32_t k = begin; k < end; ++k) {
+              const std::int64_t f = faceOf(k);
+              if (cache->holds(f)) continue;
+              laneFace[lanes->count] = f;
+              lanes->add(p, cells, f);
+              cache->face[FaceCache::slot(f)] = std::int32_t(f);  // its lane's result is stored below
+            }
+          }
+          ++c;
+        }
+        lanes->compute();
+        for (int l = 0; l < lanes->count; ++l) cache->store(laneFace[l], (*lanes)[l]);
+        for (std::int64_t d = batch; d < c; ++d) {
+          addCell(d);
+          for (std::uint32_t k = cellFaces.starts[std::size_t(d)]; k < cellFaces.starts[std::size_t(d) + 1]; ++k) {
+            const std::int64_t f = faceOf(k);
+            const std::int64_t other = (cellFaces.faces[k] & CellFaces::kNeighbourSide) != 0 ? owner[f]
+                                       : f < internal                                      ? neighbour[f]
+                                                                                           : -1;
+            if (other < 0 || (other >= first && other < d)) checkFace(f, geometry(f), faceShare);
           }
         }
       }
     }
+  }
+
+  // The faces between two sweeps, in blocks of faces.
+  const std::int64_t faceBlocks = sweeps > 1 ? (internal + kBlock - 1) / kBlock : 0;
+  std::vector<FaceShare> betweenShares(static_cast<std::size_t>(faceBlocks));
+  if (faceBlocks > 0) {
+#pragma omp parallel
+    {
+      auto lanes = std::make_unique<FaceLanes>();
+      std::int64_t laneFace[FaceLanes::kLanes];
+#pragma omp for schedule(dynamic, 4)
+      for (std::int64_t b = 0; b < faceBlocks; ++b) {
+        FaceShare& share = betweenShares[std::size_t(b)];
+        const std::int64_t last = std::min(internal, (b + 1) * kBlock);
+        for (std::int64_t f = b * kBlock; f < last;) {
+          lanes->clear();
+          for (; f < last && lanes->count < FaceLanes::kLanes; ++f) {
+            if (owner[f] / sweep == neighbour[f] / sweep) continue;
+            laneFace[lanes->count] = f;
+            lanes->add(p, cells, f);
+          }
+          lanes->compute();
+          for (int l = 0; l < lanes->count; ++l) checkFace(laneFace[l], (*lanes)[l], share);
+        }
+      }
+    }
+  }
+
+  q.minVolume = std::numeric_limits<double>::infinity();
+  q.maxVolume = -std::numeric_limits<double>::infinity();
+  for (const VolumeShare& share : volumeShares) {
+    q.negativeVolumeCells += share.negative;
+    q.minVolume = std::min(q.minVolume, share.min);
+    q.maxVolume = std::max(q.maxVolume, share.max);
+    q.totalVolume += share.total;
   }
   q.minPyramidVolume = std::numeric_limits<double>::infinity();
   double sumCosines = 0.0;
   double minCosine = 1.0;
-  for (const FaceShare& share : shares) {
-    q.minPyramidVolume = std::min(q.minPyramidVolume, share.minPyramid);
-    q.incorrectlyOrientedFaces += share.incorrectlyOriented;
-    minCosine = std::min(minCosine, share.minCosine);
-    sumCosines += share.sumCosines;
-    q.maxSkewness = std::max(q.maxSkewness, share.maxSkewness);
-  }
+  for (const auto* shares : {&sweepShares, &betweenShares})
+    for (const FaceShare& share : *shares) {
+      q.minPyramidVolume = std::min(q.minPyramidVolume, share.minPyramid);
+      q.incorrectlyOrientedFaces += share.incorrectlyOriented;
+      minCosine = std::min(minCosine, share.minCosine);
+      sumCosines += share.sumCosines;
+      q.maxSkewness = std::max(q.maxSkewness, share.maxSkewness);
+    }
   // The largest angle is the smallest cosine's (acos decreases): one acos, not one per face.
   if (internal > 0) q.maxNonOrthogonality = std::acos(std::clamp(minCosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
   // checkMesh's average: the angle of the mean cosine (not the mean angle).

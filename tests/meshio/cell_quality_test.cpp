@@ -1,0 +1,265 @@
+// checkPolyMeshCells on meshes large enough for several sweeps (over 131,072 cells), against an
+// independent computation written the way OpenFOAM writes it (primitiveMeshFaceCentresAndAreas.C,
+// primitiveMeshCellCentresAndVols.C, primitiveMeshCheck.C): every face's centre and area vector
+// stored, the cell sums by loops over owner and then neighbour, the checks face by face. The sums
+// of a cell add its faces in another order than the check does (owned faces first), so volumes
+// and angles agree to rounding, the counts and ids exactly.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cstring>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include <Eigen/Geometry>
+
+#include "ffdkit/meshio/cell_quality.h"
+
+namespace ffdkit::meshio {
+namespace {
+
+struct Cube {
+  Eigen::MatrixX3d points;
+  PolyMeshCells cells;
+};
+
+// A unit cube of n^3 hexahedra as blockMesh orders it (bench/python/openfoam_cube.py): points x
+// fastest, internal faces by owner then +x, +y, +z, the boundary faces after them.
+Cube cube(int n) {
+  Cube c;
+  const int m = n + 1;
+  c.points.resize(Eigen::Index(m) * m * m, 3);
+  for (int k = 0, p = 0; k < m; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i, ++p) c.points.row(p) << double(i) / n, double(j) / n, double(k) / n;
+  auto point = [m](int i, int j, int k) { return std::int32_t(i + m * (j + m * k)); };
+  auto cell = [n](int i, int j, int k) { return std::int32_t(i + n * (j + n * k)); };
+  PolyMeshCells& cells = c.cells;
+  cells.faceStarts = {0};
+  auto face = [&](std::int32_t a, std::int32_t b, std::int32_t d, std::int32_t e, std::int32_t own) {
+    cells.faceVertices.insert(cells.faceVertices.end(), {a, b, d, e});
+    cells.faceStarts.push_back(std::int32_t(cells.faceVertices.size()));
+    cells.owner.push_back(own);
+  };
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (i + 1 < n) {
+          face(point(i + 1, j, k), point(i + 1, j + 1, k), point(i + 1, j + 1, k + 1), point(i + 1, j, k + 1), cell(i, j, k));
+          cells.neighbour.push_back(cell(i + 1, j, k));
+        }
+        if (j + 1 < n) {
+          face(point(i, j + 1, k), point(i, j + 1, k + 1), point(i + 1, j + 1, k + 1), point(i + 1, j + 1, k), cell(i, j, k));
+          cells.neighbour.push_back(cell(i, j + 1, k));
+        }
+        if (k + 1 < n) {
+          face(point(i, j, k + 1), point(i + 1, j, k + 1), point(i + 1, j + 1, k + 1), point(i, j + 1, k + 1), cell(i, j, k));
+          cells.neighbour.push_back(cell(i, j, k + 1));
+        }
+      }
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      face(point(0, a, b), point(0, a, b + 1), point(0, a + 1, b + 1), point(0, a + 1, b), cell(0, a, b));
+      face(point(n, a, b), point(n, a + 1, b), point(n, a + 1, b + 1), point(n, a, b + 1), cell(n - 1, a, b));
+      face(point(a, 0, b), point(a + 1, 0, b), point(a + 1, 0, b + 1), point(a, 0, b + 1), cell(a, 0, b));
+      face(point(a, n, b), point(a, n, b + 1), point(a + 1, n, b + 1), point(a + 1, n, b), cell(a, n - 1, b));
+      face(point(a, b, 0), point(a, b + 1, 0), point(a + 1, b + 1, 0), point(a + 1, b, 0), cell(a, b, 0));
+      face(point(a, b, n), point(a + 1, b, n), point(a + 1, b + 1, n), point(a, b + 1, n), cell(a, b, n - 1));
+    }
+  cells.cellCount = std::int64_t(n) * n * n;
+  return c;
+}
+
+// Every point moved by up to `amount` in each coordinate.
+Eigen::MatrixX3d jittered(const Eigen::MatrixX3d& points, double amount, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amount, amount);
+  Eigen::MatrixX3d moved = points;
+  for (Eigen::Index r = 0; r < moved.rows(); ++r)
+    for (int c = 0; c < 3; ++c) moved(r, c) += u(rng);
+  return moved;
+}
+
+// OpenFOAM's check, written out plainly.
+CellQuality reference(const Eigen::MatrixX3d& points, const PolyMeshCells& cells) {
+  const std::int64_t nFaces = cells.faceCount(), nInternal = std::int64_t(cells.neighbour.size()), nCells = cells.cellCount;
+  const std::size_t faceTotal = static_cast<std::size_t>(nFaces), cellTotal = static_cast<std::size_t>(nCells);
+  std::vector<Eigen::Vector3d> fCtrs(faceTotal), fAreas(faceTotal);
+  for (std::int64_t f = 0; f < nFaces; ++f) {
+    const std::int32_t begin = cells.faceStarts[std::size_t(f)], n = cells.faceStarts[std::size_t(f) + 1] - begin;
+    auto p = [&](std::int32_t i) -> Eigen::Vector3d { return points.row(cells.faceVertices[std::size_t(begin + i % n)]).transpose(); };
+    Eigen::Vector3d fCentre = Eigen::Vector3d::Zero();
+    for (std::int32_t i = 0; i < n; ++i) fCentre += p(i);
+    fCentre /= n;
+    Eigen::Vector3d sumN = Eigen::Vector3d::Zero(), sumAc = Eigen::Vector3d::Zero();
+    double sumA = 0.0;
+    for (std::int32_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d c = p(i) + p(i + 1) + fCentre, normal = (p(i + 1) - p(i)).cross(fCentre - p(i));
+      sumN += normal;
+      sumA += normal.norm();
+      sumAc += normal.norm() * c;
+    }
+    fCtrs[std::size_t(f)] = sumA < 1e-150 ? fCentre : Eigen::Vector3d(sumAc / (3.0 * sumA));
+    fAreas[std::size_t(f)] = sumA < 1e-150 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.5 * sumN);
+  }
+  std::vector<Eigen::Vector3d> cEst(cellTotal, Eigen::Vector3d::Zero()), cellCtrs(cellTotal, Eigen::Vector3d::Zero());
+  std::vector<double> cellVols(cellTotal, 0.0);
+  std::vector<int> nCellFaces(cellTotal, 0);
+  for (std::int64_t f = 0; f < nFaces; ++f) {
+    cEst[std::size_t(cells.owner[std::size_t(f)])] += fCtrs[std::size_t(f)];
+    ++nCellFaces[std::size_t(cells.owner[std::size_t(f)])];
+  }
+  for (std::int64_t f = 0; f < nInternal; ++f) {
+    cEst[std::size_t(cells.neighbour[std::size_t(f)])] += fCtrs[std::size_t(f)];
+    ++nCellFaces[std::size_t(cells.neighbour[std::size_t(f)])];
+  }
+  for (std::int64_t c = 0; c < nCells; ++c) cEst[std::size_t(c)] /= nCellFaces[std::size_t(c)];
+  auto addPyramid = [&](std::int64_t f, std::int32_t c, double sign) {
+    const double pyr3Vol = sign * fAreas[std::size_t(f)].dot(fCtrs[std::size_t(f)] - cEst[std::size_t(c)]);
+    cellCtrs[std::size_t(c)] += pyr3Vol * (0.75 * fCtrs[std::size_t(f)] + 0.25 * cEst[std::size_t(c)]);
+    cellVols[std::size_t(c)] += pyr3Vol;
+  };
+  for (std::int64_t f = 0; f < nFaces; ++f) addPyramid(f, cells.owner[std::size_t(f)], 1.0);
+  for (std::int64_t f = 0; f < nInternal; ++f) addPyramid(f, cells.neighbour[std::size_t(f)], -1.0);
+  CellQuality q;
+  q.cellCount = nCells;
+  q.faceCount = nFaces;
+  q.minVolume = q.minPyramidVolume = std::numeric_limits<double>::infinity();
+  q.maxVolume = -q.minVolume;
+  std::vector<bool> bad(cellTotal, false);
+  for (std::int64_t c = 0; c < nCells; ++c) {
+    double& v = cellVols[std::size_t(c)];
+    cellCtrs[std::size_t(c)] = std::abs(v) > 1e-300 ? Eigen::Vector3d(cellCtrs[std::size_t(c)] / v) : cEst[std::size_t(c)];
+    v /= 3.0;
+    q.minVolume = std::min(q.minVolume, v);
+    q.maxVolume = std::max(q.maxVolume, v);
+    q.totalVolume += v;
+    if (v < 1e-300) {
+      ++q.negativeVolumeCells;
+      bad[std::size_t(c)] = true;
+    }
+  }
+  double minCosine = 1.0, sumCosines = 0.0;
+  for (std::int64_t f = 0; f < nFaces; ++f) {
+    const Eigen::Vector3d& fc = fCtrs[std::size_t(f)];
+    const Eigen::Vector3d& fa = fAreas[std::size_t(f)];
+    const std::int32_t own = cells.owner[std::size_t(f)];
+    const Eigen::Vector3d& oc = cellCtrs[std::size_t(own)];
+    auto pyramid = [&](double volume, std::int32_t c) {
+      q.minPyramidVolume = std::min(q.minPyramidVolume, volume);
+      if (volume < -1e-15) {
+        ++q.incorrectlyOrientedFaces;
+        bad[std::size_t(c)] = true;
+      }
+    };
+    pyramid(fa.dot(fc - oc) / 3.0, own);
+    const Eigen::Vector3d cpf = fc - oc;
+    Eigen::Vector3d d;
+    double spread = 0.2;
+    if (f < nInternal) {
+      const std::int32_t nei = cells.neighbour[std::size_t(f)];
+      const Eigen::Vector3d& nc = cellCtrs[std::size_t(nei)];
+      pyramid(fa.dot(nc - fc) / 3.0, nei);
+      d = nc - oc;
+      const double cosine = d.dot(fa) / (d.norm() * fa.norm() + 1e-150);
+      minCosine = std::min(minCosine, cosine);
+      sumCosines += cosine;
+    } else {
+      const Eigen::Vector3d normal = fa / (fa.norm() + 1e-150);
+      d = normal * normal.dot(cpf);
+      spread = 0.4;
+    }
+    // primitiveMeshTools.C, faceSkewness / boundaryFaceSkewness.
+    const Eigen::Vector3d sv = cpf - (fa.dot(cpf) / (fa.dot(d) + 1e-150)) * d;
+    const Eigen::Vector3d svHat = sv / (sv.norm() + 1e-150);
+    double fd = spread * d.norm() + 1e-150;
+    for (std::int32_t k = cells.faceStarts[std::size_t(f)]; k < cells.faceStarts[std::size_t(f) + 1]; ++k)
+      fd = std::max(fd, std::abs(svHat.dot(points.row(cells.faceVertices[std::size_t(k)]).transpose() - fc)));
+    q.maxSkewness = std::max(q.maxSkewness, sv.norm() / fd);
+  }
+  q.maxNonOrthogonality = std::acos(std::clamp(minCosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  q.meanNonOrthogonality = std::acos(std::clamp(sumCosines / double(nInternal), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  for (std::int64_t c = 0; c < nCells; ++c)
+    if (bad[std::size_t(c)]) {
+      ++q.badCells;
+      if (q.firstBadCells.size() < 10) q.firstBadCells.push_back(c);
+    }
+  return q;
+}
+
+// Volumes and angles to rounding (a cell's faces summed in another order), counts exactly.
+void expectAgrees(const CellQuality& expected, const CellQuality& got) {
+  const double volumeScale = std::max(std::abs(expected.maxVolume), std::abs(expected.minVolume));
+  EXPECT_NEAR(got.minVolume, expected.minVolume, 1e-12 * volumeScale);
+  EXPECT_NEAR(got.maxVolume, expected.maxVolume, 1e-12 * volumeScale);
+  EXPECT_NEAR(got.totalVolume, expected.totalVolume, 1e-12 * std::abs(expected.totalVolume) + 1e-9 * volumeScale);
+  EXPECT_NEAR(got.minPyramidVolume, expected.minPyramidVolume, 1e-10 * volumeScale);
+  EXPECT_NEAR(got.maxNonOrthogonality, expected.maxNonOrthogonality, 1e-7);
+  EXPECT_NEAR(got.meanNonOrthogonality, expected.meanNonOrthogonality, 1e-7);
+  EXPECT_NEAR(got.maxSkewness, expected.maxSkewness, 1e-7 * std::max(1.0, expected.maxSkewness));
+  EXPECT_EQ(got.negativeVolumeCells, expected.negativeVolumeCells);
+  EXPECT_EQ(got.incorrectlyOrientedFaces, expected.incorrectlyOrientedFaces);
+  EXPECT_EQ(got.badCells, expected.badCells);
+  EXPECT_EQ(got.firstBadCells, expected.firstBadCells);
+}
+
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// 54^3 = 157,464 cells: three sweeps, so that faces between sweeps are checked too.
+constexpr int kCells = 54;
+
+TEST(CellQualitySweeps, JitteredAndFoldedCubesAgreeWithOpenFoamsOwnComputation) {
+  const Cube c = cube(kCells);
+  const Eigen::MatrixX3d mild = jittered(c.points, 0.15 / kCells, 1);
+  const CellQuality good = checkPolyMeshCells(mild, c.cells);
+  EXPECT_TRUE(good.ok());
+  EXPECT_GT(good.maxNonOrthogonality, 5.0);
+  expectAgrees(reference(mild, c.cells), good);
+  // Points moved by up to 0.6 of a cell: cells fold.
+  const Eigen::MatrixX3d wild = jittered(c.points, 0.6 / kCells, 2);
+  const CellQuality folded = checkPolyMeshCells(wild, c.cells);
+  EXPECT_GT(folded.negativeVolumeCells, 0);
+  EXPECT_GT(folded.badCells, folded.negativeVolumeCells);  // inverted face pyramids in cells of positive volume too
+  expectAgrees(reference(wild, c.cells), folded);
+}
+
+TEST(CellQualitySweeps, ResultsDoNotDependOnTheThreadCountOrTheCellNumbering) {
+  Cube c = cube(kCells);
+  const Eigen::MatrixX3d points = jittered(c.points, 0.55 / kCells, 3);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const CellQuality one = checkPolyMeshCells(points, c.cells);
+  omp_set_num_threads(std::max(2, threads));
+  const CellQuality two = checkPolyMeshCells(points, c.cells);
+  omp_set_num_threads(threads);
+  for (auto [a, b] : {std::pair{one.minVolume, two.minVolume}, {one.maxVolume, two.maxVolume}, {one.totalVolume, two.totalVolume},
+                      {one.minPyramidVolume, two.minPyramidVolume}, {one.maxNonOrthogonality, two.maxNonOrthogonality},
+                      {one.meanNonOrthogonality, two.meanNonOrthogonality}, {one.maxSkewness, two.maxSkewness}})
+    EXPECT_TRUE(sameBits(a, b)) << a << " " << b;
+  EXPECT_EQ(one.badCells, two.badCells);
+  EXPECT_EQ(one.firstBadCells, two.firstBadCells);
+  EXPECT_GT(one.badCells, 0);
+
+  // Cells numbered at random: no band, an owner above its neighbour for about half the faces, so
+  // that most faces are computed again at their second cell. The same cells, so the same values.
+  std::vector<std::int32_t> number(static_cast<std::size_t>(c.cells.cellCount));
+  for (std::size_t i = 0; i < number.size(); ++i) number[i] = std::int32_t(i);
+  std::shuffle(number.begin(), number.end(), std::mt19937(4));
+  for (std::int32_t& cell : c.cells.owner) cell = number[std::size_t(cell)];
+  for (std::int32_t& cell : c.cells.neighbour) cell = number[std::size_t(cell)];
+  const CellQuality shuffled = checkPolyMeshCells(points, c.cells);
+  EXPECT_TRUE(sameBits(shuffled.minVolume, one.minVolume));
+  EXPECT_TRUE(sameBits(shuffled.maxVolume, one.maxVolume));
+  EXPECT_TRUE(sameBits(shuffled.minPyramidVolume, one.minPyramidVolume));
+  EXPECT_TRUE(sameBits(shuffled.maxNonOrthogonality, one.maxNonOrthogonality));
+  EXPECT_TRUE(sameBits(shuffled.maxSkewness, one.maxSkewness));
+  EXPECT_EQ(shuffled.negativeVolumeCells, one.negativeVolumeCells);
+  EXPECT_EQ(shuffled.incorrectlyOrientedFaces, one.incorrectlyOrientedFaces);
+  EXPECT_EQ(shuffled.badCells, one.badCells);
+  expectAgrees(reference(points, c.cells), shuffled);
+}
+
+}  // namespace
+}  // namespace ffdkit::meshio
