@@ -1,9 +1,11 @@
 // An OpenFOAM case through what `ffdkit-cli deform` does with it, step by step and whole:
 //   BM_OpenFoamRead/cells:64      read the binary polyMesh of a cube of 64^3 hexahedra
-//   BM_OpenFoamDeform/cells:64    deform its points with tests/data/openfoam/bulge.json
+//   BM_OpenFoamDeform/cells:64    deform its points with tests/data/openfoam/bulge.json (scenes::SceneDeformer)
+//   BM_OpenFoamDeformInPlace/cells:64  the same points in place (ffd::deformInPlace), as the CLI does
 //   BM_OpenFoamCheck/cells:64     the cell check (meshio/cell_quality.h)
 //   BM_OpenFoamWrite/cells:64     write the case (points rewritten, the rest copied; durable)
-//   BM_OpenFoamCase/cells:64      all four, as the CLI runs them (also at 215^3 cells, 10M points)
+//   BM_OpenFoamCase/cells:64      all four, as the CLI runs them, deforming in place (also at 215^3
+//                                 cells, 10M points)
 //   BM_OpenFoamCaseNotFlushed/cells:215  the same with the written files left in the page cache
 // The case is what blockMesh writes for a unit cube of N^3 cells in binary (foamFormatConvert):
 // points x fastest, internal faces in upper-triangular order, one boundary patch; made here so
@@ -21,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "ffdkit/ffd/in_place_deform.h"
 #include "ffdkit/meshio/cell_quality.h"
 #include "ffdkit/meshio/openfoam.h"
 #include "ffdkit/scenes/scene.h"
@@ -159,6 +162,9 @@ Eigen::MatrixX3d deform(const widgets::WidgetModel& model, Eigen::MatrixX3d poin
   return deformer.takePoints(id);
 }
 
+// The tool's one lattice, as the scene deformer builds it.
+ffd::Lattice toolLattice(const widgets::WidgetModel& model) { return model.ffdLattice(model.roots().front()); }
+
 void checkCube(int n) {
   const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(makeCube(n));
   const meshio::CellQuality before = meshio::checkPolyMeshCells(mesh.points, mesh.cells);
@@ -166,6 +172,9 @@ void checkCube(int n) {
     throw std::runtime_error("the generated cube is not valid: " + meshio::cellQualityText(before));
   const Eigen::MatrixX3d deformed = deform(tool(), mesh.points);
   if (!meshio::checkPolyMeshCells(deformed, mesh.cells).ok()) throw std::runtime_error("bulge.json inverted cells");
+  Eigen::MatrixX3d inPlace = mesh.points;
+  ffd::deformInPlace(toolLattice(tool()), inPlace);
+  if (inPlace != deformed) throw std::runtime_error("deformInPlace gives other points than the scene deformer");
   const fs::path out = makeCube(n).string() + "-out";
   meshio::writeOpenFoamMesh(mesh, deformed, out, {.durable = false});
   if (meshio::readOpenFoamMesh(out, {.readCells = false}).points != deformed)
@@ -204,6 +213,21 @@ void BM_OpenFoamDeform(benchmark::State& state) {
   setCounters(state, n);
 }
 
+void BM_OpenFoamDeformInPlace(benchmark::State& state) {
+  const int n = cellsOf(state);
+  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(makeCube(n), {.readCells = false});
+  const ffd::Lattice lattice = toolLattice(tool());
+  Eigen::MatrixX3d points = mesh.points;
+  for (auto _ : state) {
+    state.PauseTiming();
+    points = mesh.points;
+    state.ResumeTiming();
+    ffd::deformInPlace(lattice, points);
+    benchmark::DoNotOptimize(points.data());
+  }
+  setCounters(state, n);
+}
+
 void BM_OpenFoamCheck(benchmark::State& state) {
   const int n = cellsOf(state);
   const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(makeCube(n));
@@ -227,12 +251,12 @@ void runCase(benchmark::State& state, bool durable) {
   const int n = cellsOf(state);
   const fs::path root = makeCube(n);
   const fs::path out = root.string() + "-out";
-  const widgets::WidgetModel model = tool();
+  const ffd::Lattice lattice = toolLattice(tool());
   for (auto _ : state) {
     meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(root);
-    const Eigen::MatrixX3d deformed = deform(model, std::move(mesh.points));
-    if (!meshio::checkPolyMeshCells(deformed, mesh.cells).ok()) state.SkipWithError("inverted cells");
-    meshio::writeOpenFoamMesh(mesh, deformed, out, {.durable = durable});
+    ffd::deformInPlace(lattice, mesh.points);
+    if (!meshio::checkPolyMeshCells(mesh.points, mesh.cells).ok()) state.SkipWithError("inverted cells");
+    meshio::writeOpenFoamMesh(mesh, mesh.points, out, {.durable = durable});
   }
   fs::remove_all(out);
   setCounters(state, n);
@@ -249,6 +273,7 @@ void sizes(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_OpenFoamRead)->Apply(sizes);
 BENCHMARK(BM_OpenFoamDeform)->Apply(sizes);
+BENCHMARK(BM_OpenFoamDeformInPlace)->Apply(sizes);
 BENCHMARK(BM_OpenFoamCheck)->Apply(sizes);
 BENCHMARK(BM_OpenFoamWrite)->Apply(sizes);
 BENCHMARK(BM_OpenFoamCase)->Apply(sizes);

@@ -37,21 +37,32 @@ class Console {
   void end();
   /// Books `ms` of the current step, measured inside it, to `phase` instead (listed before the
   /// step's own phase the first time): one pass that embeds and deforms reports both shares.
-  void carve(const std::string& phase, double ms);
-  /// Prints the split on stdout (with --timings; also with --quiet: it was asked for).
+  /// `cpuMs`, when known (>= 0), is the process's CPU time of that share; else the step keeps it.
+  void carve(const std::string& phase, double ms, double cpuMs = -1.0);
+  /// Prints the split on stdout (with --timings; also with --quiet: it was asked for): a line of
+  /// wall times, "timings (ms): read 29.7, ...", and one of the process's CPU time (every
+  /// thread, user and system), "cpu (ms): read 31.2, ...".
   void printTimings() const;
 
  private:
   using Clock = std::chrono::steady_clock;
-  void book(const std::string& phase, double ms);  ///< adds to the phase's total
+  struct Split {
+    std::string phase;
+    double ms = 0.0;     ///< wall time
+    double cpuMs = 0.0;  ///< the process's CPU time
+  };
+  static double cpuNowMs();  ///< the process's CPU time so far
+  void book(const std::string& phase, double ms, double cpuMs);  ///< adds to the phase's totals
   bool quiet_;
   bool progress_;
   bool timings_;
   Clock::time_point start_;
   std::string phase_;
   Clock::time_point stepStart_;
+  double stepCpuStart_ = 0.0;  ///< cpuNowMs() at the step's start
   double carved_ = 0.0;  ///< milliseconds of the current step booked elsewhere (carve)
-  std::vector<std::pair<std::string, double>> split_;  ///< phase, milliseconds, in first-seen order
+  double carvedCpu_ = 0.0;  ///< CPU milliseconds of the current step booked elsewhere
+  std::vector<Split> split_;  ///< in first-seen order
 };
 
 }  // namespace ffdkit::cli

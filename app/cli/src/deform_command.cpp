@@ -419,6 +419,7 @@ int runDeform(const Args& args) {
   std::vector<std::pair<fs::path, scenes::MeshData>> meshes;
   std::vector<VolumeOutput> volumeOutputs;
   std::map<std::string, scenes::MeshData> restOf;  // the objects whose shape is kept, before deforming
+  InPlaceDeformCounts inPlaceCounts;  // a volume mesh deformed in place (deformVolumeInPlace)
   onEveryRank(ranks, [&] {
     checkFoldsBeforeDeform(scene.widgets, request.guard.foldCheck, console);
     for (const auto* names : {&request.guard.keepVolume, &request.guard.keepCentre})
@@ -427,13 +428,23 @@ int runDeform(const Args& args) {
         if (!object) throw std::runtime_error("--keep-volume/--keep-centre: no object '" + name + "' to deform");
         restOf.emplace(name, object->mesh);
       }
-    evaluate(scene, deformer, console);
+    // A volume mesh under one lattice is deformed in place: the same points as the scene
+    // deformer's, without an embedding or a second copy of a mesh of millions of points.
+    const bool inPlace = volume && targets.size() == 1 && !request.guard.keeps(targets.front().object) &&
+                         deformsByOneLattice(scene, targets.front().object);
+    Eigen::MatrixX3d deformedInPlace;
+    if (inPlace) {
+      deformedInPlace = scene.takeObjectPoints(targets.front().object);
+      inPlaceCounts = deformVolumeInPlace(scene, targets.front().object, deformedInPlace, request.precision, console);
+    } else {
+      evaluate(scene, deformer, console);
+    }
     for (const auto& target : targets) {
       // Both are done with the object: take its mesh (its points are in the deformer) and its
       // deformed points (no copies).
       scenes::SceneObject taken = scene.takeObject(target.object);
       scenes::MeshData mesh = std::move(taken.mesh);
-      mesh.points = deformer.takePoints(target.object);
+      mesh.points = inPlace ? std::move(deformedInPlace) : deformer.takePoints(target.object);
       if (request.guard.keeps(target.object)) {
         const auto& keep = request.guard;
         restoreShape(target.object, restOf.at(target.object), mesh.points,
@@ -486,8 +497,8 @@ int runDeform(const Args& args) {
   }
   if (ranks.size() > 1 && !split && !decomposed) console.say("mpirun batch: " + std::to_string(ranks.size()) + " processes wrote " +
                                     std::to_string(ranks.sum(static_cast<std::int64_t>(meshes.size()))) + " file(s)");
-  const std::int64_t failed = ranks.sum(stats.failedPoints);
-  const std::int64_t outside = ranks.sum(stats.outsidePoints);
+  const std::int64_t failed = ranks.sum(stats.failedPoints + inPlaceCounts.failedPoints);
+  const std::int64_t outside = ranks.sum(stats.outsidePoints + inPlaceCounts.outsidePoints);
   if (failed > 0) console.warn(std::to_string(failed) + " points failed to embed and were left unchanged");
   if (outside > 0)
     console.say(std::to_string(outside) + " points lie outside their lattice (outside policy applied)");

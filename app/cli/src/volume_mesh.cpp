@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "args.h"
+#include "ffdkit/ffd/in_place_deform.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
 
@@ -72,6 +73,24 @@ void VolumeMeshInput::write(const Eigen::MatrixX3d& deformed, const meshio::Volu
     console.warn("writing a mesh with " + quality.badText + " (--allow-inverted)");
   }
   mesh_->write(deformed, output);
+}
+
+bool deformsByOneLattice(const scenes::Scene& scene, const std::string& object) {
+  const std::vector<widgets::WidgetId> stages = scene.stagesDeforming(object);
+  return stages.size() == 1 && !scene.widgets.parentLattice(stages.front()) && scene.widgets.children(stages.front()).empty();
+}
+
+InPlaceDeformCounts deformVolumeInPlace(const scenes::Scene& scene, const std::string& object, Eigen::MatrixX3d& points,
+                                        ffd::Precision precision, Console& console) {
+  console.begin("deform", "embedding and deforming " + std::to_string(points.rows()) + " points in place");
+  // The lattice as scenes::SceneDeformer's pipeline builds it for its one stage.
+  const ffd::Lattice lattice = scene.widgets.ffdLattice(scene.stagesDeforming(object).front());
+  ffd::InPlaceDeformOptions options;
+  options.precision = precision;
+  const ffd::InPlaceDeformResult result = ffd::deformInPlace(lattice, points, options);
+  console.carve("embed", 1e3 * result.embedSeconds, 1e3 * result.embedCpuSeconds);
+  console.end();
+  return {result.outsidePoints, result.failedPoints};
 }
 
 void infoVolumeMesh(const fs::path& path, const ReadSettings& read, bool quality, const fs::path* tool) {

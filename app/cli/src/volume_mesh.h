@@ -13,7 +13,9 @@
 #include <Eigen/Core>
 
 #include "console.h"
+#include "ffdkit/ffd/deformer.h"
 #include "ffdkit/meshio/volume_mesh.h"
+#include "ffdkit/scenes/scene.h"
 #include "read_options.h"
 
 namespace ffdkit::cli {
@@ -53,6 +55,22 @@ class VolumeMeshInput {
  private:
   std::unique_ptr<meshio::VolumeMesh> mesh_;
 };
+
+/// What deformVolumeInPlace did: the points its lattice left outside, or failed to embed.
+struct InPlaceDeformCounts {
+  Eigen::Index outsidePoints = 0;  ///< outside the lattice (its outside policy applied)
+  Eigen::Index failedPoints = 0;   ///< not embedded, left unchanged
+};
+
+/// Whether `object` of `scene` is deformed by one lattice alone (a root lattice without child
+/// lattices): then deformVolumeInPlace gives, bit for bit, the points scenes::SceneDeformer gives.
+bool deformsByOneLattice(const scenes::Scene& scene, const std::string& object);
+
+/// Deforms `points` (the object's, #P x 3) in place by its one lattice (deformsByOneLattice) with
+/// ffd::deformInPlace: no embedding or second copy of a mesh of millions of points. Books the
+/// console's "embed" and "deform" steps (wall and CPU time).
+InPlaceDeformCounts deformVolumeInPlace(const scenes::Scene& scene, const std::string& object, Eigen::MatrixX3d& points,
+                                        ffd::Precision precision, Console& console);
 
 /// `info` of a volume mesh: what it holds, and with `quality` the cell check; with a `tool` (a
 /// widget file) also the check after the tool deforms the mesh.
