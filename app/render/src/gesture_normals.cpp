@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -34,6 +35,226 @@ void sizeArrays(Eigen::Index n, vtkPoints* drawn, vtkFloatArray* normals) {
   normals->SetNumberOfTuples(n);
 }
 
+// One followed step over the vertices (GestureNormals::follow): the sums N, the motion W (columns),
+// beta, the float points (interleaved, updated in place) and the normals (interleaved, written),
+// with D - D(t0) = (dx, dy, dz) and the step of D since the points shown (sx, sy, sz).
+struct FollowPass {
+  const float *nx, *ny, *nz, *wx, *wy, *wz, *beta;
+  float* xyz;
+  float* out;
+  float dx, dy, dz, sx, sy, sz;
+
+  // Vertex i: N + d x W normalised, x += beta s. The arithmetic every vector form below repeats
+  // lane by lane, in the same order and without fused multiply-adds, so every vertex gets these bits.
+  void scalar(Eigen::Index i) const {
+    const float x = nx[i] + (dy * wz[i] - dz * wy[i]);
+    const float y = ny[i] + (dz * wx[i] - dx * wz[i]);
+    const float z = nz[i] + (dx * wy[i] - dy * wx[i]);
+    const float w = beta[i];
+    xyz[3 * i] += w * sx;
+    xyz[3 * i + 1] += w * sy;
+    xyz[3 * i + 2] += w * sz;
+    writeNormal(out + 3 * i, x, y, z);
+  }
+};
+
+#if defined(__SSE2__)
+// Four vertices' normals (x, y, z: one coordinate of four vertices each) as three interleaved
+// vectors (x0 y0 z0 x1) (y1 z1 x2 y2) (z2 x3 y3 z3), stored at o: with streaming stores when o is
+// 16-byte aligned (the normals are only written: no read of their old lines), else plain ones.
+inline void storeInterleaved(float* o, __m128 x, __m128 y, __m128 z, bool stream) {
+  const __m128 xy01 = _mm_unpacklo_ps(x, y);  // x0 y0 x1 y1
+  const __m128 xy23 = _mm_unpackhi_ps(x, y);  // x2 y2 x3 y3
+  const __m128 v0 = _mm_shuffle_ps(xy01, _mm_shuffle_ps(z, x, _MM_SHUFFLE(1, 1, 0, 0)), _MM_SHUFFLE(2, 0, 1, 0));
+  const __m128 v1 = _mm_shuffle_ps(_mm_shuffle_ps(y, z, _MM_SHUFFLE(1, 1, 1, 1)), xy23, _MM_SHUFFLE(1, 0, 2, 0));
+  const __m128 v2 = _mm_shuffle_ps(_mm_shuffle_ps(z, xy23, _MM_SHUFFLE(2, 2, 2, 2)),
+                                   _mm_shuffle_ps(xy23, z, _MM_SHUFFLE(3, 3, 3, 2)), _MM_SHUFFLE(2, 1, 2, 0));
+  if (stream) {
+    _mm_stream_ps(o, v0);
+    _mm_stream_ps(o + 4, v1);
+    _mm_stream_ps(o + 8, v2);
+  } else {
+    _mm_storeu_ps(o, v0);
+    _mm_storeu_ps(o + 4, v1);
+    _mm_storeu_ps(o + 8, v2);
+  }
+}
+
+// Vertices [4 q0, 4 q1), four at a time with SSE.
+void followQuads(const FollowPass& f, Eigen::Index q0, Eigen::Index q1, bool stream) {
+  const __m128 vdx = _mm_set1_ps(f.dx), vdy = _mm_set1_ps(f.dy), vdz = _mm_set1_ps(f.dz);
+  // The step in the pattern of four interleaved points: (x y z x) (y z x y) (z x y z).
+  const __m128 s0 = _mm_setr_ps(f.sx, f.sy, f.sz, f.sx), s1 = _mm_setr_ps(f.sy, f.sz, f.sx, f.sy),
+               s2 = _mm_setr_ps(f.sz, f.sx, f.sy, f.sz);
+  const __m128 infinity = _mm_set1_ps(std::numeric_limits<float>::infinity()), one = _mm_set1_ps(1.0f);
+  for (Eigen::Index q = q0; q < q1; ++q) {
+    const Eigen::Index i = 4 * q;
+    const __m128 ax = _mm_loadu_ps(f.wx + i), ay = _mm_loadu_ps(f.wy + i), az = _mm_loadu_ps(f.wz + i);
+    const __m128 x = _mm_add_ps(_mm_loadu_ps(f.nx + i), _mm_sub_ps(_mm_mul_ps(vdy, az), _mm_mul_ps(vdz, ay)));
+    const __m128 y = _mm_add_ps(_mm_loadu_ps(f.ny + i), _mm_sub_ps(_mm_mul_ps(vdz, ax), _mm_mul_ps(vdx, az)));
+    const __m128 z = _mm_add_ps(_mm_loadu_ps(f.nz + i), _mm_sub_ps(_mm_mul_ps(vdx, ay), _mm_mul_ps(vdy, ax)));
+    const __m128 length = _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z)));
+    const __m128 inverse = _mm_div_ps(one, length);
+    const __m128 some = _mm_cmplt_ps(inverse, infinity);
+    storeInterleaved(f.out + 3 * i, _mm_and_ps(some, _mm_mul_ps(x, inverse)), _mm_and_ps(some, _mm_mul_ps(y, inverse)),
+                     _mm_or_ps(_mm_and_ps(some, _mm_mul_ps(z, inverse)), _mm_andnot_ps(some, one)), stream);
+    const __m128 b = _mm_loadu_ps(f.beta + i);
+    float* p = f.xyz + 3 * i;
+    _mm_storeu_ps(p, _mm_add_ps(_mm_loadu_ps(p), _mm_mul_ps(_mm_shuffle_ps(b, b, _MM_SHUFFLE(1, 0, 0, 0)), s0)));
+    _mm_storeu_ps(p + 4, _mm_add_ps(_mm_loadu_ps(p + 4), _mm_mul_ps(_mm_shuffle_ps(b, b, _MM_SHUFFLE(2, 2, 1, 1)), s1)));
+    _mm_storeu_ps(p + 8, _mm_add_ps(_mm_loadu_ps(p + 8), _mm_mul_ps(_mm_shuffle_ps(b, b, _MM_SHUFFLE(3, 3, 3, 2)), s2)));
+  }
+}
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define FFDKIT_FOLLOW_AVX2 1
+// Vertices [8 o0, 8 o1), eight at a time with AVX2 (no FMA: the bits of the SSE and scalar forms;
+// the square root and the division are a third of the pass, and AVX2 does eight for the price of
+// four).
+__attribute__((target("avx2"))) void followOctets(const FollowPass& f, Eigen::Index o0, Eigen::Index o1, bool stream) {
+  const __m256 vdx = _mm256_set1_ps(f.dx), vdy = _mm256_set1_ps(f.dy), vdz = _mm256_set1_ps(f.dz);
+  // The step in the pattern of eight interleaved points, and the lanes of beta each float takes.
+  const __m256 s0 = _mm256_setr_ps(f.sx, f.sy, f.sz, f.sx, f.sy, f.sz, f.sx, f.sy);
+  const __m256 s1 = _mm256_setr_ps(f.sz, f.sx, f.sy, f.sz, f.sx, f.sy, f.sz, f.sx);
+  const __m256 s2 = _mm256_setr_ps(f.sy, f.sz, f.sx, f.sy, f.sz, f.sx, f.sy, f.sz);
+  const __m256i b0 = _mm256_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2), b1 = _mm256_setr_epi32(2, 3, 3, 3, 4, 4, 4, 5),
+                b2 = _mm256_setr_epi32(5, 5, 6, 6, 6, 7, 7, 7);
+  const __m256 infinity = _mm256_set1_ps(std::numeric_limits<float>::infinity()), one = _mm256_set1_ps(1.0f);
+  for (Eigen::Index o = o0; o < o1; ++o) {
+    const Eigen::Index i = 8 * o;
+    const __m256 ax = _mm256_loadu_ps(f.wx + i), ay = _mm256_loadu_ps(f.wy + i), az = _mm256_loadu_ps(f.wz + i);
+    const __m256 x =
+        _mm256_add_ps(_mm256_loadu_ps(f.nx + i), _mm256_sub_ps(_mm256_mul_ps(vdy, az), _mm256_mul_ps(vdz, ay)));
+    const __m256 y =
+        _mm256_add_ps(_mm256_loadu_ps(f.ny + i), _mm256_sub_ps(_mm256_mul_ps(vdz, ax), _mm256_mul_ps(vdx, az)));
+    const __m256 z =
+        _mm256_add_ps(_mm256_loadu_ps(f.nz + i), _mm256_sub_ps(_mm256_mul_ps(vdx, ay), _mm256_mul_ps(vdy, ax)));
+    const __m256 length =
+        _mm256_sqrt_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(x, x), _mm256_mul_ps(y, y)), _mm256_mul_ps(z, z)));
+    const __m256 inverse = _mm256_div_ps(one, length);
+    const __m256 some = _mm256_cmp_ps(inverse, infinity, _CMP_LT_OQ);
+    const __m256 ox = _mm256_and_ps(some, _mm256_mul_ps(x, inverse));
+    const __m256 oy = _mm256_and_ps(some, _mm256_mul_ps(y, inverse));
+    const __m256 oz = _mm256_or_ps(_mm256_and_ps(some, _mm256_mul_ps(z, inverse)), _mm256_andnot_ps(some, one));
+    storeInterleaved(f.out + 3 * i, _mm256_castps256_ps128(ox), _mm256_castps256_ps128(oy), _mm256_castps256_ps128(oz),
+                     stream);
+    storeInterleaved(f.out + 3 * i + 12, _mm256_extractf128_ps(ox, 1), _mm256_extractf128_ps(oy, 1),
+                     _mm256_extractf128_ps(oz, 1), stream);
+    const __m256 b = _mm256_loadu_ps(f.beta + i);
+    float* p = f.xyz + 3 * i;
+    _mm256_storeu_ps(p, _mm256_add_ps(_mm256_loadu_ps(p), _mm256_mul_ps(_mm256_permutevar8x32_ps(b, b0), s0)));
+    _mm256_storeu_ps(p + 8, _mm256_add_ps(_mm256_loadu_ps(p + 8), _mm256_mul_ps(_mm256_permutevar8x32_ps(b, b1), s1)));
+    _mm256_storeu_ps(p + 16, _mm256_add_ps(_mm256_loadu_ps(p + 16), _mm256_mul_ps(_mm256_permutevar8x32_ps(b, b2), s2)));
+  }
+}
+#endif
+#endif
+
+// Every vertex of a followed step, in one pass on both cores: eight vertices at a time where the
+// processor has AVX2, four with SSE, the last few one by one (the same bits either way).
+void followVertices(const FollowPass& f, Eigen::Index n) {
+#if defined(__SSE2__)
+#if defined(FFDKIT_FOLLOW_AVX2)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+#else
+  constexpr bool avx2 = false;
+#endif
+  const Eigen::Index width = avx2 ? 8 : 4;
+  const Eigen::Index groups = n / width;
+  const bool stream = reinterpret_cast<std::uintptr_t>(f.out) % 16 == 0;
+#pragma omp parallel if (n >= 16384)
+  {
+    // Static halves of the groups, in chunks of 1024 vertices.
+#pragma omp for schedule(static) nowait
+    for (Eigen::Index c = 0; c < (groups + 127) / 128; ++c) {
+      const Eigen::Index g0 = 128 * c, g1 = std::min(groups, g0 + 128);
+#if defined(FFDKIT_FOLLOW_AVX2)
+      if (avx2) {
+        followOctets(f, g0, g1, stream);
+        continue;
+      }
+#endif
+      followQuads(f, g0, g1, stream);
+    }
+    if (stream) _mm_sfence();  // the streamed normals visible before the threads join
+  }
+  for (Eigen::Index i = width * groups; i < n; ++i) f.scalar(i);
+#else
+#pragma omp parallel for schedule(static) if (n >= 16384)
+  for (Eigen::Index i = 0; i < n; ++i) f.scalar(i);
+#endif
+}
+
+// Vertices are gathered (the sums over their triangles) a chunk at a time into columns, then
+// normalised together: the square root and the division, a third of a scalar pass, run four or
+// eight at a time.
+constexpr Eigen::Index kChunk = 256;
+
+#if defined(FFDKIT_FOLLOW_AVX2)
+__attribute__((target("avx2"))) void normaliseOctets(float* out, const float* x, const float* y, const float* z,
+                                                     Eigen::Index octets) {
+  const __m256 infinity = _mm256_set1_ps(std::numeric_limits<float>::infinity()), one = _mm256_set1_ps(1.0f);
+  for (Eigen::Index o = 0; o < octets; ++o) {
+    const Eigen::Index i = 8 * o;
+    const __m256 vx = _mm256_loadu_ps(x + i), vy = _mm256_loadu_ps(y + i), vz = _mm256_loadu_ps(z + i);
+    const __m256 length = _mm256_sqrt_ps(
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(vx, vx), _mm256_mul_ps(vy, vy)), _mm256_mul_ps(vz, vz)));
+    const __m256 inverse = _mm256_div_ps(one, length);
+    const __m256 some = _mm256_cmp_ps(inverse, infinity, _CMP_LT_OQ);
+    const __m256 ox = _mm256_and_ps(some, _mm256_mul_ps(vx, inverse));
+    const __m256 oy = _mm256_and_ps(some, _mm256_mul_ps(vy, inverse));
+    const __m256 oz = _mm256_or_ps(_mm256_and_ps(some, _mm256_mul_ps(vz, inverse)), _mm256_andnot_ps(some, one));
+    storeInterleaved(out + 3 * i, _mm256_castps256_ps128(ox), _mm256_castps256_ps128(oy), _mm256_castps256_ps128(oz),
+                     false);
+    storeInterleaved(out + 3 * i + 12, _mm256_extractf128_ps(ox, 1), _mm256_extractf128_ps(oy, 1),
+                     _mm256_extractf128_ps(oz, 1), false);
+  }
+}
+#endif
+
+// The normals of `count` vertices (columns x, y, z of their sums) into out (interleaved):
+// writeNormal's arithmetic on every one, eight or four at a time.
+void normaliseChunk(float* out, const float* x, const float* y, const float* z, Eigen::Index count) {
+  Eigen::Index done = 0;
+#if defined(__SSE2__)
+#if defined(FFDKIT_FOLLOW_AVX2)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) {
+    normaliseOctets(out, x, y, z, count / 8);
+    done = count / 8 * 8;
+  }
+#endif
+  const __m128 infinity = _mm_set1_ps(std::numeric_limits<float>::infinity()), one = _mm_set1_ps(1.0f);
+  for (; done + 4 <= count; done += 4) {
+    const __m128 vx = _mm_loadu_ps(x + done), vy = _mm_loadu_ps(y + done), vz = _mm_loadu_ps(z + done);
+    const __m128 length = _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(vx, vx), _mm_mul_ps(vy, vy)), _mm_mul_ps(vz, vz)));
+    const __m128 inverse = _mm_div_ps(one, length);
+    const __m128 some = _mm_cmplt_ps(inverse, infinity);
+    storeInterleaved(out + 3 * done, _mm_and_ps(some, _mm_mul_ps(vx, inverse)), _mm_and_ps(some, _mm_mul_ps(vy, inverse)),
+                     _mm_or_ps(_mm_and_ps(some, _mm_mul_ps(vz, inverse)), _mm_andnot_ps(some, one)), false);
+  }
+#endif
+  for (; done < count; ++done) writeNormal(out + 3 * done, x[done], y[done], z[done]);
+}
+
+// For each chunk of kChunk vertices [i0, i1), on both cores: gather(i, sum) for each vertex of it
+// (its sum into `sum`), then their normals into out[3 i0 ..] (normaliseChunk).
+template <class Gather>
+void chunkedNormals(Eigen::Index n, float* out, const Gather& gather) {
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index c = 0; c < (n + kChunk - 1) / kChunk; ++c) {
+    const Eigen::Index i0 = c * kChunk, count = std::min(kChunk, n - i0);
+    float x[kChunk], y[kChunk], z[kChunk];
+    for (Eigen::Index k = 0; k < count; ++k) {
+      const Eigen::Vector3f sum = gather(i0 + k);
+      x[k] = sum.x();
+      y[k] = sum.y();
+      z[k] = sum.z();
+    }
+    normaliseChunk(out + 3 * i0, x, y, z, count);
+  }
+}
+
 }  // namespace
 
 void exactNormals(const Eigen::MatrixX3i& triangles, const VertexFaces& vf, const Eigen::MatrixX3d& points,
@@ -47,16 +268,15 @@ void exactNormals(const Eigen::MatrixX3i& triangles, const VertexFaces& vf, cons
   float* xyz = static_cast<float*>(drawn->GetVoidPointer(0));
   const double *x = points.data(), *y = x + n, *z = y + n;  // column-major
   const double ox = origin.x(), oy = origin.y(), oz = origin.z();
-  // One pass per vertex: the gather of its triangles' area vectors, its normal and its point.
-#pragma omp parallel for schedule(static)
-  for (Eigen::Index i = 0; i < n; ++i) {
+  // One pass per vertex: the gather of its triangles' area vectors, its point, and its normal.
+  chunkedNormals(n, out, [&](Eigen::Index i) {
     const Eigen::Vector3f sum = scene_view_shapes::vertexSum(vf, faceScratch, i);
     sums.row(i) = sum.transpose();
-    writeNormal(out + 3 * i, sum.x(), sum.y(), sum.z());
     xyz[3 * i] = static_cast<float>(x[i] - ox);
     xyz[3 * i + 1] = static_cast<float>(y[i] - oy);
     xyz[3 * i + 2] = static_cast<float>(z[i] - oz);
-  }
+    return sum;
+  });
   normals->Modified();
   drawn->Modified();
 }
@@ -77,66 +297,13 @@ bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::Objec
   const Eigen::Vector3d now = motion->displacements.row(0).transpose();
   // The points: x_v(t) = x_v(t') + beta_v (D(t) - D(t')) (gesture_normals.h: x_v(t) = x_v(0) + beta_v D(t)).
   const Eigen::Vector3f step = (now - shownDisplacement_).cast<float>();
-  const float sx = step.x(), sy = step.y(), sz = step.z();
   // The normals: N_v(t) = N_v(t0) + (D(t) - D(t0)) x W_v, normalised (+z for a zero sum, as exactNormals).
   const Eigen::Vector3f d = (now - startDisplacement_).cast<float>();
-  const float dx = d.x(), dy = d.y(), dz = d.z();
-  float* xyz = static_cast<float*>(points->GetVoidPointer(0));
-  float* out = normals->GetPointer(0);
-  // One pass per vertex on both cores, four vertices at a time where SSE is there (the sqrt and the
-  // division of the normals are a third of a scalar loop's time; the stores stay interleaved as
-  // VTK wants them). The same arithmetic, so the same bits, as the scalar loop that ends it.
-  const float *nx = sums_.col(0).data(), *ny = sums_.col(1).data(), *nz = sums_.col(2).data();
-  const float *wx = motion_.col(0).data(), *wy = motion_.col(1).data(), *wz = motion_.col(2).data();
-  const float* beta = beta_.data();
-  const auto scalar = [&](Eigen::Index i) {
-    const float x = nx[i] + (dy * wz[i] - dz * wy[i]);
-    const float y = ny[i] + (dz * wx[i] - dx * wz[i]);
-    const float z = nz[i] + (dx * wy[i] - dy * wx[i]);
-    const float w = beta[i];
-    xyz[3 * i] += w * sx;
-    xyz[3 * i + 1] += w * sy;
-    xyz[3 * i + 2] += w * sz;
-    writeNormal(out + 3 * i, x, y, z);
-  };
-#if defined(__SSE2__)
-  const Eigen::Index quads = n / 4;
-  const __m128 vdx = _mm_set1_ps(dx), vdy = _mm_set1_ps(dy), vdz = _mm_set1_ps(dz);
-  // The step in the pattern of four interleaved points: (x y z x) (y z x y) (z x y z).
-  const __m128 s0 = _mm_setr_ps(sx, sy, sz, sx), s1 = _mm_setr_ps(sy, sz, sx, sy), s2 = _mm_setr_ps(sz, sx, sy, sz);
-  const __m128 infinity = _mm_set1_ps(std::numeric_limits<float>::infinity()), one = _mm_set1_ps(1.0f);
-#pragma omp parallel for schedule(static)
-  for (Eigen::Index q = 0; q < quads; ++q) {
-    const Eigen::Index i = 4 * q;
-    const __m128 ax = _mm_loadu_ps(wx + i), ay = _mm_loadu_ps(wy + i), az = _mm_loadu_ps(wz + i);
-    const __m128 x = _mm_add_ps(_mm_loadu_ps(nx + i), _mm_sub_ps(_mm_mul_ps(vdy, az), _mm_mul_ps(vdz, ay)));
-    const __m128 y = _mm_add_ps(_mm_loadu_ps(ny + i), _mm_sub_ps(_mm_mul_ps(vdz, ax), _mm_mul_ps(vdx, az)));
-    const __m128 z = _mm_add_ps(_mm_loadu_ps(nz + i), _mm_sub_ps(_mm_mul_ps(vdx, ay), _mm_mul_ps(vdy, ax)));
-    const __m128 length =
-        _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z)));
-    const __m128 inverse = _mm_div_ps(one, length);
-    const __m128 some = _mm_cmplt_ps(inverse, infinity);
-    alignas(16) float ox[4], oy[4], oz[4];
-    _mm_store_ps(ox, _mm_and_ps(some, _mm_mul_ps(x, inverse)));
-    _mm_store_ps(oy, _mm_and_ps(some, _mm_mul_ps(y, inverse)));
-    _mm_store_ps(oz, _mm_or_ps(_mm_and_ps(some, _mm_mul_ps(z, inverse)), _mm_andnot_ps(some, one)));
-    float* o = out + 3 * i;
-    for (int k = 0; k < 4; ++k) {
-      o[3 * k] = ox[k];
-      o[3 * k + 1] = oy[k];
-      o[3 * k + 2] = oz[k];
-    }
-    const __m128 b = _mm_loadu_ps(beta + i);
-    float* p = xyz + 3 * i;
-    _mm_storeu_ps(p, _mm_add_ps(_mm_loadu_ps(p), _mm_mul_ps(_mm_shuffle_ps(b, b, _MM_SHUFFLE(1, 0, 0, 0)), s0)));
-    _mm_storeu_ps(p + 4, _mm_add_ps(_mm_loadu_ps(p + 4), _mm_mul_ps(_mm_shuffle_ps(b, b, _MM_SHUFFLE(2, 2, 1, 1)), s1)));
-    _mm_storeu_ps(p + 8, _mm_add_ps(_mm_loadu_ps(p + 8), _mm_mul_ps(_mm_shuffle_ps(b, b, _MM_SHUFFLE(3, 3, 3, 2)), s2)));
-  }
-  for (Eigen::Index i = 4 * quads; i < n; ++i) scalar(i);
-#else
-#pragma omp parallel for schedule(static)
-  for (Eigen::Index i = 0; i < n; ++i) scalar(i);
-#endif
+  const FollowPass pass{sums_.col(0).data(), sums_.col(1).data(), sums_.col(2).data(), motion_.col(0).data(),
+                        motion_.col(1).data(), motion_.col(2).data(), beta_.data(),
+                        static_cast<float*>(points->GetVoidPointer(0)), normals->GetPointer(0),
+                        d.x(), d.y(), d.z(), step.x(), step.y(), step.z()};
+  followVertices(pass, n);
   shownDisplacement_ = now;
   points->Modified();
   normals->Modified();
@@ -185,17 +352,15 @@ bool GestureNormals::update(const scenes::SceneDeformer& deformer, scenes::Objec
     const double *x = points.data(), *y = x + n, *z = y + n;  // column-major
     const double ox = origin.x(), oy = origin.y(), oz = origin.z();
     const Eigen::Vector3f d = now.cast<float>();
-#pragma omp parallel for schedule(static)
-    for (Eigen::Index i = 0; i < n; ++i) {
+    chunkedNormals(n, out, [&](Eigen::Index i) {
       const Eigen::Vector3f w = scene_view_shapes::vertexSum(vf, faceScratch, i);
       motion_.row(i) = w.transpose();
       beta_[i] = static_cast<float>(beta[i]);
-      const Eigen::Vector3f sum = Eigen::Vector3f(sums_.row(i).transpose()) + d.cross(w);
-      writeNormal(out + 3 * i, sum.x(), sum.y(), sum.z());
       xyz[3 * i] = static_cast<float>(x[i] - ox);
       xyz[3 * i + 1] = static_cast<float>(y[i] - oy);
       xyz[3 * i + 2] = static_cast<float>(z[i] - oz);
-    }
+      return Eigen::Vector3f(Eigen::Vector3f(sums_.row(i).transpose()) + d.cross(w));
+    });
     normals->Modified();
     drawn->Modified();
   } else {

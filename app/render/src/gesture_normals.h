@@ -22,9 +22,12 @@
 // D x (A_f x g_f) = (g_f.D) A_f - g_f (D.A_f) is that cofactor's change applied to A_f, exactly.
 //
 // Cost per step (follow): one cross product and a normalisation per vertex, and the float point
-// moved by beta_v times the step of D: 40 bytes read and 24 written, in one pass (four vertices
-// at a time with SSE), instead of a pass over the triangles, a gather over each vertex's
-// triangles and a conversion of the deformer's double points.
+// moved by beta_v times the step of D: 40 bytes read and 24 written, in one pass (eight vertices
+// at a time with AVX2, four with SSE; the normals with streaming stores, which do not read the
+// lines they overwrite), instead of a pass over the triangles, a gather over each vertex's
+// triangles and a conversion of the deformer's double points. The passes that gather over the
+// triangles (exactNormals, the first step) normalise a chunk of gathered sums at a time the same
+// way; every form has the scalar arithmetic's bits.
 //
 // The first step of a motion: every exact update (update()) keeps the unnormalised sums N_v of
 // the points it drew. When the motion starts from those points (GestureMotion::baseRevision is
