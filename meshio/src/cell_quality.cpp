@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -294,21 +295,25 @@ std::int64_t sweepLength(std::int64_t cellCount) {
   return std::max<std::int64_t>(8, (blocks + 7) / 8) * kBlock;
 }
 
-// The geometry of the faces a sweep computed last, by face index modulo kSlots. A sweep computes
+// The geometry of the faces a sweep computed last, by face index modulo the window's size. A sweep computes
 // a face when it meets the first of its cells and reads it here at the second, which in a mesh in
 // OpenFOAM's upper-triangular order comes a few layers of cells later (a 215^3 cube: about 140,000
 // faces later). A face no longer here (another mesh order) is computed again, to the same bits.
 struct FaceCache {
-  static constexpr std::size_t kSlots = std::size_t(1) << 18;  // 13.6 MB per thread
-  static std::size_t slot(std::int64_t f) { return std::size_t(f) & (kSlots - 1); }
-  std::vector<std::int32_t> face = std::vector<std::int32_t>(kSlots, -1);  // faces number below 2^31
-  std::vector<FaceGeometry> geometry = std::vector<FaceGeometry>(kSlots);
-
+  static constexpr std::size_t kMostSlots = std::size_t(1) << 18;  // 13.6 MB per thread
+  // No more slots than the mesh has faces (a small mesh's check allocates little).
+  explicit FaceCache(std::int64_t faces)
+      : mask(std::bit_ceil(std::clamp<std::size_t>(std::size_t(faces), 1, kMostSlots)) - 1),
+        face(mask + 1, -1), geometry(mask + 1) {}
+  std::size_t slot(std::int64_t f) const { return std::size_t(f) & mask; }
   bool holds(std::int64_t f) const { return face[slot(f)] == f; }
   void store(std::int64_t f, const FaceGeometry& g) {
     face[slot(f)] = std::int32_t(f);
     geometry[slot(f)] = g;
   }
+  std::size_t mask;
+  std::vector<std::int32_t> face;  // the face in each slot, -1 for none (faces number below 2^31)
+  std::vector<FaceGeometry> geometry;
 };
 
 }  // namespace
@@ -378,10 +383,10 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
 #pragma omp parallel
   {
     auto lanes = std::make_unique<FaceLanes>();
-    auto cache = std::make_unique<FaceCache>();
+    auto cache = std::make_unique<FaceCache>(faces);
     std::int64_t laneFace[FaceLanes::kLanes];
     auto geometry = [&](std::int64_t f) {
-      const std::size_t slot = FaceCache::slot(f);
+      const std::size_t slot = cache->slot(f);
       return cache->face[slot] == f ? cache->geometry[slot] : faceGeometry(p, cells, f);
     };
     auto addCell = [&](std::int64_t c) {
@@ -433,7 +438,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
               if (cache->holds(f)) continue;
               laneFace[lanes->count] = f;
               lanes->add(p, cells, f);
-              cache->face[FaceCache::slot(f)] = std::int32_t(f);  // its lane's result is stored below
+              cache->face[cache->slot(f)] = std::int32_t(f);  // its lane's result is stored below
             }
           }
           ++c;
