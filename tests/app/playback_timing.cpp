@@ -347,6 +347,7 @@ int drag(app::MainWindow& window, const Options& o, FrameClock& frames) {
   frames.clear();
   const double start = frames.now();
   sendMouse(view, QEvent::MouseButtonPress, press, Qt::LeftButton, Qt::LeftButton);
+  const auto pressed = window.sceneView().stats();
   if (window.sceneView().stats().pointUpdates < 0 || !window.deformer().inGesture())
     std::printf("warning: the press did not start a gesture (missed the arrow at %.0f, %.0f)\n", press.x(), press.y());
   // The pointer moves 40 px out and back along the arrow, a move every 16 ms (QTimer events, so
@@ -395,6 +396,8 @@ int drag(app::MainWindow& window, const Options& o, FrameClock& frames) {
               during / dragSeconds, spanSeconds > 0 ? (during - 1) / spanSeconds : 0.0, median(frameTimes),
               frameTimes.empty() ? 0.0 : *std::max_element(frameTimes.begin(), frameTimes.end()));
   printStages(frames, 0, during);
+  std::printf("  actors built during the drag: the transformer's %d times, widgets' %d times\n",
+              before.overlayBuilds - pressed.overlayBuilds, before.widgetActorBuilds - pressed.widgetActorBuilds);
   std::printf("  a move's handling median %.1f ms, worst %.1f ms\n", median(handling),
               handling.empty() ? 0.0 : *std::max_element(handling.begin(), handling.end()));
   const std::size_t last = frames.ends.size() - 1;
