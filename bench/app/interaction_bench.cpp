@@ -52,16 +52,10 @@ struct Session {
       view->refresh(scene, deformer);
     };
   }
-  // A ray down the widget's frame z through its arrow at `along` glyph sizes, shifted sideways.
   widgets::Ray ray(double along, double shift = 0.0) const {
-    const widgets::WidgetFrame f = scene.widgets.affineFrame(widget);
-    widgets::Ray r;
-    r.origin = f.frame.translation() + f.size * (along * f.frame.linear().col(0) + shift * f.frame.linear().col(1)) +
-               5.0 * f.frame.linear().col(2);
-    r.direction = -f.frame.linear().col(2);
-    return r;
+    return bench::rayAlongArrow(scene.widgets, widget, along, shift);
   }
-  double tolerance() const { return 0.05 * scene.widgets.affineFrame(widget).size; }
+  double tolerance() const { return bench::pickTolerance(scene.widgets, widget); }
 };
 
 Session& session(int resolution) {

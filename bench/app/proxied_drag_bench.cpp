@@ -47,14 +47,8 @@ struct Session {
       view->refresh(scene, deformer);
     };
   }
-  widgets::Ray ray(double along) const {
-    const widgets::WidgetFrame f = scene.widgets.affineFrame(widget);
-    widgets::Ray r;
-    r.origin = f.frame.translation() + f.size * along * f.frame.linear().col(0) + 5.0 * f.frame.linear().col(2);
-    r.direction = -f.frame.linear().col(2);
-    return r;
-  }
-  double tolerance() const { return 0.05 * scene.widgets.affineFrame(widget).size; }
+  widgets::Ray ray(double along) const { return bench::rayAlongArrow(scene.widgets, widget, along); }
+  double tolerance() const { return bench::pickTolerance(scene.widgets, widget); }
 };
 
 Session& session(int resolution) {

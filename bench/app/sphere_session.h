@@ -41,4 +41,21 @@ inline SphereWidget addSphereInCubicLattice(app::InteractionController& controll
   return out;
 }
 
+/// A ray down `widget`'s frame z through its arrow at `along` glyph sizes, `shift` glyph sizes
+/// sideways (the frame's y): what a press, a drag step or a hover over the arrow casts.
+inline widgets::Ray rayAlongArrow(const widgets::WidgetModel& model, widgets::WidgetId widget, double along,
+                                  double shift = 0.0) {
+  const widgets::WidgetFrame f = model.affineFrame(widget);
+  widgets::Ray r;
+  r.origin = f.frame.translation() + f.size * (along * f.frame.linear().col(0) + shift * f.frame.linear().col(1)) +
+             5.0 * f.frame.linear().col(2);
+  r.direction = -f.frame.linear().col(2);
+  return r;
+}
+
+/// The pick tolerance the benchmarks press and hover with: 5 % of `widget`'s glyph size.
+inline double pickTolerance(const widgets::WidgetModel& model, widgets::WidgetId widget) {
+  return 0.05 * model.affineFrame(widget).size;
+}
+
 }  // namespace ffdkit::bench
