@@ -25,7 +25,7 @@
 #include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/render/scene_view.h"
 #include "ffdkit/scenes/scene_deformer.h"
-#include "sphere_session.h"
+#include "viewed_sphere.h"
 
 namespace {
 
@@ -36,34 +36,19 @@ void require(bool ok, const char* what) { bench::require(ok, "bench_guarded_drag
 enum class Reader { None, Points, View };
 
 // The sphere, its lattice, widget and view, made once for every benchmark of the run (a keep's
-// precompute is made again only when a benchmark keeps something else).
-struct Session {
-  scenes::Scene scene;
-  scenes::SceneDeformer deformer;
-  scenes::CommandStack commands;
-  app::InteractionController controller{scene, deformer, commands};
-  vtkNew<vtkRenderer> renderer;
-  std::unique_ptr<app::SceneView> view;
-  widgets::WidgetId widget;
-  scenes::ObjectId sphere;
+// precompute is made again only when a benchmark keeps something else); the whole mesh follows
+// every step (level of detail off).
+struct Session : bench::ViewedSphere {
   std::unique_ptr<ffd::ClosedSurface> surface;
   double volume = 0.0;                                 // at rest
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // at rest
 
-  explicit Session(int resolution) {
-    widget = bench::addSphereInCubicLattice(controller, resolution).widget;
-    sphere = scene.objects().front().id;
+  explicit Session(int resolution) : ViewedSphere(resolution, app::LevelOfDetail{.enabled = false}) {
     const scenes::MeshData& mesh = scene.objects().front().mesh;
     surface = std::make_unique<ffd::ClosedSurface>(ffd::TriangleMatrix(mesh.triangles), mesh.points.rows());
     volume = ffd::enclosedVolume(deformer.points(sphere), *surface);
     centroid = ffd::enclosedCentroid(deformer.points(sphere), *surface);
-    view = std::make_unique<app::SceneView>(renderer);
-    view->setLevelOfDetail(app::LevelOfDetail{.enabled = false});  // the whole mesh follows every step
-    view->setHighlights(controller.highlights());
-    view->show(scene, deformer);
   }
-  widgets::Ray ray(double along) const { return bench::rayAlongArrow(scene.widgets, widget, along); }
-  double tolerance() const { return bench::pickTolerance(scene.widgets, widget); }
 };
 
 Session& session(int resolution) {

@@ -18,7 +18,7 @@
 
 #include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/render/scene_view.h"
-#include "sphere_session.h"
+#include "viewed_sphere.h"
 
 using namespace ffdkit;
 
@@ -26,36 +26,12 @@ namespace {
 
 void require(bool ok, const char* what) { bench::require(ok, "bench_interaction", what); }
 
-// A sphere of about resolution^2 / 2 vertices in a 4x4x4 cubic lattice, a translate widget on an
-// inner point of the top layer, and a view of it all.
-struct Session {
-  scenes::Scene scene;
-  scenes::SceneDeformer deformer;
-  scenes::CommandStack commands;
-  app::InteractionController controller{scene, deformer, commands};
-  vtkNew<vtkRenderer> renderer;
-  std::unique_ptr<app::SceneView> view;
-  widgets::WidgetId lattice, widget;
-
-  explicit Session(int resolution) {
-    const bench::SphereWidget made = bench::addSphereInCubicLattice(controller, resolution);
-    lattice = made.lattice;
-    widget = made.widget;
-    view = std::make_unique<app::SceneView>(renderer);
-    // The full-resolution data path: the view follows the whole mesh at every step (a level-of-
-    // detail proxy would draw a decimated copy during the gesture and leave the mesh's arrays).
-    view->setLevelOfDetail(app::LevelOfDetail{.enabled = false});
-    view->setHighlights(controller.highlights());
-    view->show(scene, deformer);
-    controller.onChanged = [this] {
-      view->setHighlights(controller.highlights());
-      view->refresh(scene, deformer);
-    };
+// The full-resolution data path: the view follows the whole mesh at every step (a level-of-
+// detail proxy would draw a decimated copy during the gesture and leave the mesh's arrays).
+struct Session : bench::ViewedSphere {
+  explicit Session(int resolution) : ViewedSphere(resolution, app::LevelOfDetail{.enabled = false}) {
+    refreshViewOnEveryChange();
   }
-  widgets::Ray ray(double along, double shift = 0.0) const {
-    return bench::rayAlongArrow(scene.widgets, widget, along, shift);
-  }
-  double tolerance() const { return bench::pickTolerance(scene.widgets, widget); }
 };
 
 Session& session(int resolution) {

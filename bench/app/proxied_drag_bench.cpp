@@ -16,7 +16,7 @@
 
 #include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/render/scene_view.h"
-#include "sphere_session.h"
+#include "viewed_sphere.h"
 
 using namespace ffdkit;
 
@@ -24,31 +24,13 @@ namespace {
 
 void require(bool ok, const char* what) { bench::require(ok, "bench_proxied_drag", what); }
 
-struct Session {
-  scenes::Scene scene;
-  scenes::SceneDeformer deformer;
-  scenes::CommandStack commands;
-  app::InteractionController controller{scene, deformer, commands};
-  vtkNew<vtkRenderer> renderer;
-  std::unique_ptr<app::SceneView> view;
-  widgets::WidgetId widget;
-  scenes::ObjectId sphere;
-
-  explicit Session(int resolution) {
-    widget = bench::addSphereInCubicLattice(controller, resolution).widget;
-    sphere = scene.objects().front().id;
-    view = std::make_unique<app::SceneView>(renderer);  // the default level of detail: on
-    view->setHighlights(controller.highlights());
-    view->show(scene, deformer);
+// The view's default level of detail: on.
+struct Session : bench::ViewedSphere {
+  explicit Session(int resolution) : ViewedSphere(resolution, app::LevelOfDetail{}) {
     // As MainWindow::drawFrame: one evaluation per change with the view's request, then a refresh.
     controller.requestEvaluation = [this] { deformer.evaluate(scene, view->evaluationRequest(scene, deformer)); };
-    controller.onChanged = [this] {
-      view->setHighlights(controller.highlights());
-      view->refresh(scene, deformer);
-    };
+    refreshViewOnEveryChange();
   }
-  widgets::Ray ray(double along) const { return bench::rayAlongArrow(scene.widgets, widget, along); }
-  double tolerance() const { return bench::pickTolerance(scene.widgets, widget); }
 };
 
 Session& session(int resolution) {
