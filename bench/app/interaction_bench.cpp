@@ -34,12 +34,7 @@ struct Session : bench::ViewedSphere {
   }
 };
 
-Session& session(int resolution) {
-  static std::map<int, std::unique_ptr<Session>> sessions;
-  auto& s = sessions[resolution];
-  if (!s) s = std::make_unique<Session>(resolution);
-  return *s;
-}
+Session& session(int resolution) { return bench::sessionAt<Session>(resolution); }
 
 void BM_DragStep(benchmark::State& state) {
   Session& s = session(static_cast<int>(state.range(0)));

@@ -33,12 +33,7 @@ struct Session : bench::ViewedSphere {
   }
 };
 
-Session& session(int resolution) {
-  static std::map<int, std::unique_ptr<Session>> sessions;
-  auto& s = sessions[resolution];
-  if (!s) s = std::make_unique<Session>(resolution);
-  return *s;
-}
+Session& session(int resolution) { return bench::sessionAt<Session>(resolution); }
 
 // A step after the first: the proxy's points evaluated and drawn.
 void BM_ProxiedDragStep(benchmark::State& state) {

@@ -2,6 +2,7 @@
 // of addSphereInCubicLattice, its deformer, undo stack and controller, and a SceneView.
 #pragma once
 
+#include <map>
 #include <memory>
 
 #include <vtkNew.h>
@@ -52,5 +53,15 @@ struct ViewedSphere {
   /// pickTolerance of the widget.
   double tolerance() const { return pickTolerance(scene.widgets, widget); }
 };
+
+/// The one `Session` per resolution of a benchmark run, made at its first use and kept (its
+/// setup is not what a benchmark times).
+template <class Session>
+Session& sessionAt(int resolution) {
+  static std::map<int, std::unique_ptr<Session>> sessions;
+  auto& s = sessions[resolution];
+  if (!s) s = std::make_unique<Session>(resolution);
+  return *s;
+}
 
 }  // namespace ffdkit::bench
