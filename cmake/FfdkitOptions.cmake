@@ -61,3 +61,34 @@ function(ffdkit_add_module_library module)
   ffdkit_target_defaults(ffdkit_${module})
   ffdkit_install_library(ffdkit_${module} ${module} HEADERS "${CMAKE_CURRENT_SOURCE_DIR}/include")
 endfunction()
+
+# ffdkit_relocatable_vtk_autoinit(): vtk_module_autoinit() hands its generated header to the
+# compiler as a define holding the header's full path in the build folder
+# (-DvtkRenderingCore_AUTOINIT_INCLUDE="<build>/CMakeFiles/vtkModuleAutoInit_<hash>.h"). ccache
+# makes paths in include options relative to the build folder (CCACHE_BASEDIR, scripts/build.sh),
+# but not paths inside a define: in another build folder (the no-app stage after the main build,
+# the sanitizer app stage after the sanitizer stage) every source of those targets missed ccache's
+# direct mode and was preprocessed again (about 1 s each) before its preprocessor-mode hit. Here
+# the define names the header alone and its folder is an include directory of the target, so
+# those compiles are direct hits. Call once, after every target is defined.
+function(ffdkit_relocatable_vtk_autoinit)
+  set(autoinit_dir "${CMAKE_BINARY_DIR}/CMakeFiles")
+  set(dirs "${PROJECT_SOURCE_DIR}")
+  while(dirs)
+    list(POP_FRONT dirs dir)
+    get_property(subdirs DIRECTORY "${dir}" PROPERTY SUBDIRECTORIES)
+    list(APPEND dirs ${subdirs})
+    get_property(targets DIRECTORY "${dir}" PROPERTY BUILDSYSTEM_TARGETS)
+    foreach(target IN LISTS targets)
+      get_target_property(definitions ${target} COMPILE_DEFINITIONS)
+      if(NOT definitions)
+        continue()
+      endif()
+      string(REPLACE "_AUTOINIT_INCLUDE=\"${autoinit_dir}/" "_AUTOINIT_INCLUDE=\"" relocated "${definitions}")
+      if(NOT relocated STREQUAL definitions)
+        set_property(TARGET ${target} PROPERTY COMPILE_DEFINITIONS "${relocated}")
+        target_include_directories(${target} PRIVATE "${autoinit_dir}")
+      endif()
+    endforeach()
+  endwhile()
+endfunction()
