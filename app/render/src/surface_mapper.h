@@ -12,6 +12,7 @@
 //    points, from the point array's cached range, instead of a pass over every cell
 //    (vtkPolyData::GetCellsBounds): a box containing the cells' bounds, which is all the culler and
 //    the clipping range need.
+// It also counts its builds (what the level of detail's release uploads: level_of_detail_render_test).
 
 #include <vtkOpenGLPolyDataMapper.h>
 
@@ -22,15 +23,22 @@ class SurfaceMapper : public vtkOpenGLPolyDataMapper {
   static SurfaceMapper* New();
   vtkTypeMacro(SurfaceMapper, vtkOpenGLPolyDataMapper)
 
+  /// Renders that built the buffer objects (uploaded the arrays that changed since the last build).
+  int bufferBuilds() const { return bufferBuilds_; }
+  /// Renders that built the triangles' index buffer again (its cache key changed).
+  int indexBuilds() const { return indexBuilds_; }
+
  protected:
   SurfaceMapper() = default;
   ~SurfaceMapper() override = default;
+  void BuildBufferObjects(vtkRenderer* renderer, vtkActor* actor) override;
   void BuildIBO(vtkRenderer* renderer, vtkActor* actor, vtkPolyData* poly) override;
   void ComputeBounds() override;
 
  private:
   SurfaceMapper(const SurfaceMapper&) = delete;
   void operator=(const SurfaceMapper&) = delete;
+  int bufferBuilds_ = 0, indexBuilds_ = 0;
 };
 
 }  // namespace ffdkit::app

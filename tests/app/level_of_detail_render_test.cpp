@@ -1,0 +1,142 @@
+// The level of detail's release as VTK draws it, off screen (Mesa's GL under Xvfb): the full mesh's
+// actor and its GPU buffers stay alive, hidden, while a drag draws the proxy, so the release
+// uploads the full mesh's moved points and normals in one build and keeps its triangles' index
+// buffer (surface_mapper.h); the proxy's buffers are built once and refreshed at each step; and
+// the released frame is pixel for pixel the frame of the same drag without the level of detail.
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <vtkActor.h>
+#include <vtkActorCollection.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkUnsignedCharArray.h>
+
+#include "drag_sphere.h"
+#include "ffdkit/interaction/interaction_controller.h"
+#include "ffdkit/render/scene_view.h"
+#include "surface_mapper.h"
+
+namespace ffdkit::app {
+namespace {
+
+// A sphere in a cubic lattice with a translate widget, in an off-screen window of 200 x 160
+// pixels, drawn a frame at a time as the window draws it (MainWindow::drawFrame): the changes of
+// the events before it evaluated once, with the view's request, then the view refreshed and
+// rendered.
+struct RenderedDocument {
+  static constexpr int kWidth = 200, kHeight = 160;
+  scenes::Scene scene;
+  scenes::SceneDeformer deformer;
+  scenes::CommandStack commands;
+  InteractionController controller{scene, deformer, commands};
+  vtkNew<vtkRenderWindow> window;
+  vtkNew<vtkRenderer> renderer;
+  SceneView view{renderer};
+  testing::DragSphere made;
+  bool frameDue = false;
+
+  explicit RenderedDocument(bool lod) {
+    window->SetOffScreenRendering(true);
+    window->SetSize(kWidth, kHeight);
+    window->AddRenderer(renderer);
+    LevelOfDetail options;
+    options.enabled = lod;
+    options.minVertices = 500;
+    options.proxyVertices = 300;
+    view.setLevelOfDetail(options);
+    made = testing::addDragSphere(controller, 60);
+    controller.requestEvaluation = [this] { frameDue = true; };
+    controller.onChanged = [this] { frameDue = true; };
+    view.setHighlights(controller.highlights());
+    view.show(scene, deformer);
+    renderer->ResetCamera();
+    frame();
+  }
+  void frame() {
+    deformer.evaluate(scene, view.evaluationRequest(scene, deformer));
+    view.setHighlights(controller.highlights());
+    view.refresh(scene, deformer);
+    window->Render();
+    frameDue = false;
+  }
+  widgets::Ray ray(double along) const {
+    const widgets::WidgetFrame f = scene.widgets.affineFrame(made.widget);
+    widgets::Ray r;
+    r.origin = f.frame.translation() + f.size * along * f.frame.linear().col(0) + 5.0 * f.frame.linear().col(2);
+    r.direction = -f.frame.linear().col(2);
+    return r;
+  }
+  double tolerance() const { return 0.05 * scene.widgets.affineFrame(made.widget).size; }
+  // The surface mapper (the objects' and their proxies') drawing `vertices` points, or with
+  // `fewer`, fewer than that: the sphere's, or its proxy's; null when there is none.
+  SurfaceMapper* mapperOf(vtkIdType vertices, bool fewer = false) {
+    vtkActorCollection* actors = renderer->GetActors();
+    actors->InitTraversal();
+    while (vtkActor* actor = actors->GetNextActor()) {
+      auto* mapper = SurfaceMapper::SafeDownCast(actor->GetMapper());
+      auto* data = mapper != nullptr ? vtkPolyData::SafeDownCast(mapper->GetInput()) : nullptr;
+      if (data == nullptr) continue;
+      if (fewer ? data->GetNumberOfPoints() < vertices : data->GetNumberOfPoints() == vertices) return mapper;
+    }
+    return nullptr;
+  }
+  std::vector<unsigned char> pixels() {
+    vtkNew<vtkUnsignedCharArray> rgb;
+    window->GetPixelData(0, 0, kWidth - 1, kHeight - 1, 0, rgb);
+    return {rgb->GetPointer(0), rgb->GetPointer(0) + rgb->GetNumberOfValues()};
+  }
+};
+
+TEST(LevelOfDetailRender, TheReleaseUploadsTheFullMeshsPointsOnceAndKeepsItsIndexBuffer) {
+  RenderedDocument on(true), off(false);
+  const vtkIdType n = on.scene.findObject(on.made.sphere)->mesh.points.rows();
+  SurfaceMapper* full = on.mapperOf(n);
+  ASSERT_NE(full, nullptr);
+  ASSERT_EQ(full->bufferBuilds(), 1);  // the first frame drew the full mesh
+  ASSERT_EQ(full->indexBuilds(), 1);
+  for (RenderedDocument* d : {&on, &off})
+    ASSERT_EQ(d->controller.press(d->ray(0.5), d->tolerance()), InteractionController::PressResult::Widget);
+  constexpr int kSteps = 6;
+  SurfaceMapper* proxy = on.mapperOf(n, true);  // built with the scene, not drawn yet
+  ASSERT_NE(proxy, nullptr);
+  EXPECT_EQ(proxy->bufferBuilds(), 0);
+  for (int step = 1; step <= kSteps; ++step) {
+    for (RenderedDocument* d : {&on, &off}) {
+      d->controller.drag(d->ray(0.5 + 0.15 * step));
+      ASSERT_TRUE(d->frameDue);
+      d->frame();
+    }
+    ASSERT_TRUE(on.view.showsProxy(on.made.sphere));
+  }
+  EXPECT_EQ(on.mapperOf(n, true), proxy);
+  EXPECT_EQ(proxy->bufferBuilds(), kSteps);  // its points and normals at each step
+  EXPECT_EQ(proxy->indexBuilds(), 1);        // its triangles once
+  // The full mesh, hidden during the drag, built nothing.
+  EXPECT_EQ(full->bufferBuilds(), 1);
+  EXPECT_EQ(full->indexBuilds(), 1);
+
+  for (RenderedDocument* d : {&on, &off}) {
+    d->controller.release();
+    ASSERT_TRUE(d->frameDue);
+    d->frame();
+  }
+  EXPECT_FALSE(on.view.showsProxy(on.made.sphere));
+  EXPECT_EQ(on.mapperOf(n), full);     // the same mapper, kept through the gesture
+  EXPECT_EQ(full->bufferBuilds(), 2);  // the moved points and normals, once
+  EXPECT_EQ(full->indexBuilds(), 1);   // the triangles did not change: not built again
+  EXPECT_EQ(proxy->bufferBuilds(), kSteps);  // hidden again: nothing more
+  // What the release draws is what the same drag draws without the level of detail.
+  const std::vector<unsigned char> released = on.pixels(), reference = off.pixels();
+  ASSERT_EQ(released.size(), std::size_t(3 * RenderedDocument::kWidth * RenderedDocument::kHeight));
+  EXPECT_TRUE(released == reference);
+  // And the drag moved the sphere on screen: the first frame's pixels differ.
+  RenderedDocument still(true);
+  EXPECT_FALSE(still.pixels() == released);
+}
+
+}  // namespace
+}  // namespace ffdkit::app
