@@ -8,7 +8,9 @@
 //     A sphere in a 4x4x4 cubic B-spline lattice with a translate widget on its top: the widget's
 //     arrow is pressed, dragged back and forth by synthesised mouse moves every 16 ms (a pointer
 //     at 60 Hz) for `seconds`, and released. Prints each displayed frame's time, the displayed
-//     frames per second, and the time from the release to the displayed full-resolution exact mesh.
+//     frames per second, and the time from the release to the displayed full-resolution exact mesh
+//     (wall clock; the CPU of all threads and of the main thread, which a busy machine changes
+//     less; how many times VTK rendered the view for it and after it).
 //   playback_timing play <sphere-resolution> [seconds] [--lod on|off] [--proxy N] [--trace file]
 //   playback_timing <sphere-resolution> [seconds]          (play, as before)
 //   playback_timing still <sphere-resolution> [seconds] [--proxy-shown] [--actors all|none|objects|widgets]
@@ -119,8 +121,10 @@ struct FrameClock {
       if (QOpenGLContext* context = QOpenGLContext::currentContext()) context->functions()->glFinish();
     me->renderEnd = me->stamp();
     me->rendered = true;
+    ++me->renderCount;
   }
   bool rendered = false;  // VTK rendered since the last composition: the next one displays a new frame
+  int renderCount = 0;    // VTK's renders of the view
   void onSwapped() {
     // Qt composes the window for other widgets' repaints too (the timeline, the status bar): only a
     // composition after a render of the view displays a new frame of it.
@@ -189,6 +193,14 @@ QPointF toWidget(app::MainWindow& w, const Eigen::Vector3d& p) {
   const Eigen::Vector2d d = w.sceneView().displayPoint(p);
   const double ratio = w.view()->devicePixelRatioF();
   return {d.x() / ratio, (w.view()->height() * ratio - 1.0 - d.y()) / ratio};
+}
+
+// CPU ms of the calling thread (the main thread: the evaluation, VTK, and Mesa's vertex processing
+// and triangle setup, which its rasteriser threads wait for).
+double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
 }
 
 double median(std::vector<double> v) {
@@ -370,8 +382,11 @@ int drag(app::MainWindow& window, const Options& o, FrameClock& frames) {
   QTest::qWait(static_cast<int>(o.seconds * 1000));
   mover.stop();
   const double releaseAt = frames.now();
+  const FrameClock::Stamp releaseStamp = frames.stamp();
+  const double releaseThreadCpu = threadCpuMs();
   const std::size_t during = frames.ends.size();
   const auto before = window.sceneView().stats();
+  const int rendersBefore = frames.renderCount;
   sendMouse(view, QEvent::MouseButtonRelease, press, Qt::LeftButton, Qt::NoButton);
   const double handled = frames.now();
   // The first frame displayed after the release was handled shows the exact mesh (the release ends
@@ -383,8 +398,13 @@ int drag(app::MainWindow& window, const Options& o, FrameClock& frames) {
     if (wait.elapsed() > 20000) break;
   }
   const double exactShown = frames.ends.empty() ? 0.0 : frames.ends.back();
+  const double exactCpu = frames.ends.size() > during ? frames.lastShown.cpu - releaseStamp.cpu : 0.0;
+  const double exactThreadCpu = threadCpuMs() - releaseThreadCpu;
+  const int rendersToExact = frames.renderCount - rendersBefore;
   const auto after = window.sceneView().stats();
   capture("lod-drag-released");
+  QTest::qWait(300);  // renders the release asks for after the exact frame
+  const int rendersAfterExact = frames.renderCount - rendersBefore - rendersToExact;
 
   std::vector<double> frameTimes;
   for (std::size_t i = 1; i < during; ++i) frameTimes.push_back(frames.ends[i] - frames.ends[i - 1]);
@@ -407,6 +427,9 @@ int drag(app::MainWindow& window, const Options& o, FrameClock& frames) {
               handled - releaseAt, exactShown - releaseAt, after.pointUpdates - before.pointUpdates,
               window.deformer().inGesture() ? "still open" : "ended", frames.prepares[last].wall,
               frames.renders[last].wall, frames.composites[last].wall);
+  std::printf("  release to the exact mesh displayed: %.0f ms of CPU (all threads), %.0f ms of the main thread's; "
+              "VTK renders: %d to the exact mesh, %d in the 300 ms after it\n",
+              exactCpu, exactThreadCpu, rendersToExact, rendersAfterExact);
   writeTrace(o.trace, frames, during, start);
   return 0;
 }
