@@ -504,7 +504,9 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
   auto touched = [&](const Embedding::Block& block) {
     return block.kind != Embedding::BlockKind::Frozen && !terms[block.cell].empty();
   };
-  const bool parallel = parallel_ && work >= kParallelPoints;
+  // An observer converts every row, touched or not: both cores then.
+  const bool parallel =
+      parallel_ && (work >= kParallelPoints || (observer_ && embedding_.pointCount() >= kParallelPoints));
 #pragma omp parallel if (parallel) reduction(+ : evaluated)
   {
     fields.fillTable();
@@ -524,10 +526,17 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
                             static_cast<int>(terms[cell].size()), mode);
       }
     };
+    const Eigen::Index n = embedding_.pointCount();
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t t = 0; t < tileCount; ++t) {
       evaluated += runTile(in, embedding_, tiles[t], tiles[t + 1], detail::Store::Accumulate, scratch, touched, run,
                            [](const Embedding::Block&) {});
+      // The tile's rows (kTileSize consecutive points, original order) are final: hand them over
+      // while they are in this core's cache.
+      if (observer_) {
+        const Eigen::Index begin = t * Eigen::Index(Embedding::kTileSize);
+        observer_->rowsDone(begin, std::min(n, begin + Eigen::Index(Embedding::kTileSize)), output_);
+      }
     }
   }
   stats_.evaluatedPoints = evaluated;
@@ -539,6 +548,49 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
   remember(lattice);
   denominatorsValid_ = false;
   return output_;
+}
+
+bool Deformer::keptControlWeights(const Lattice& lattice, Eigen::Index flat, Eigen::VectorXd& weights) const {
+  const Eigen::Index n = embedding_.pointCount();
+  if (stepWeightsControl_ < 0 || stepWeightsControl_ != flat || stepWeightsRest_ != lattice.restRevision() ||
+      lattice.isRational() || lattice.counts() != embedding_.latticeCounts() || stepWeights_.size() != n)
+    return false;
+  // The cells whose window holds the control point, per axis: those update(lattice) gave its term
+  // and whose points' weights it kept (a wrapped window gives two terms and keeps none).
+  const Eigen::Vector3i g = lattice.gridIndex(flat);
+  std::vector<char> holds[3];
+  for (int a = 0; a < 3; ++a) {
+    const AxisSpline& axis = lattice.axis(a);
+    holds[a].assign(static_cast<std::size_t>(axis.cellCount()), 0);
+    for (int c = 0; c < axis.cellCount(); ++c)
+      for (int r = 0; r <= axis.degree(); ++r)
+        if (axis.controlIndex(c, r) == g[a]) holds[a][static_cast<std::size_t>(c)] = 1;
+  }
+  if (weights.size() != n) weights.resize(n);
+  const auto& blocks = embedding_.blocks();
+  const auto& tiles = embedding_.tileBlocks();
+  const std::uint32_t* order = embedding_.order().empty() ? nullptr : embedding_.order().data();
+  const double* kept = stepWeights_.data();
+  double* out = weights.data();
+  const std::int64_t tileCount = static_cast<std::int64_t>(tiles.size()) - 1;
+#pragma omp parallel for schedule(static) if (parallel_ && n >= kParallelPoints)
+  for (std::int64_t t = 0; t < tileCount; ++t) {
+    for (std::uint32_t bi = tiles[t]; bi < tiles[t + 1]; ++bi) {
+      const Embedding::Block& block = blocks[bi];
+      const std::array<int, 3> cell = embedding_.cellOf(block);
+      const bool inWindow = block.kind != Embedding::BlockKind::Frozen && holds[0][std::size_t(cell[0])] &&
+                            holds[1][std::size_t(cell[1])] && holds[2][std::size_t(cell[2])];
+      const double* blend = block.kind == Embedding::BlockKind::Blended
+                                ? embedding_.blendWeight().data() + block.blendOffset - block.begin
+                                : nullptr;
+      for (std::uint32_t q = block.begin; q < block.end; ++q) {
+        // s * B as controlPointWeights multiplies them (s = 1 needs no product).
+        const double w = !inWindow ? 0.0 : blend ? blend[q] * kept[q] : kept[q];
+        out[order ? order[q] : q] = w;
+      }
+    }
+  }
+  return true;
 }
 
 }  // namespace ffdkit::ffd

@@ -1,10 +1,13 @@
 // Tests that a drag's steps of one control point, which read the weights the deformer kept at the
 // step before (DeformStats::weightsReused), give the bits the basis gives, and stay with the full
 // evaluation.
+#include <atomic>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "ffdkit/ffd/control_weights.h"
 #include "ffdkit/ffd/deformer.h"
 #include "test_lattices.h"
 
@@ -108,6 +111,77 @@ TEST(DeformerStepWeights, KeptWeightsSurviveAnExactEvaluationAndServeTheNextDrag
   Deformer full(embed(c.lattice, c.Q));
   const Eigen::MatrixX3d reference = full.deform(c.lattice, c.Q);
   EXPECT_LT((deformer.points() - reference).cwiseAbs().maxCoeff(), 1e-13 * (1.0 + reference.cwiseAbs().maxCoeff()));
+}
+
+TEST(DeformerStepWeights, TheKeptWeightsAreTheControlPointsWeightsAtEveryPoint) {
+  // What a drag's first step kept, in original point order with the blend weights applied, is
+  // controlPointWeights evaluated independently (a scalar loop over the basis polynomials): equal
+  // to the rounding of fused multiply-adds (a weight 0 on a knot plane may come out as 1e-19),
+  // and exactly 0 outside the control point's support.
+  std::mt19937 rng(41);
+  DragCase c = dragCase(rng);
+  Deformer deformer(embed(c.lattice, c.Q));
+  deformer.deform(c.lattice, c.Q);
+  Eigen::VectorXd kept;
+  Eigen::Index blended = 0;
+  for (const Eigen::Index moved : {c.lattice.index(2, 2, 3), c.lattice.index(0, 1, 2)}) {
+    EXPECT_FALSE(deformer.keptControlWeights(c.lattice, moved, kept)) << "before a step of " << moved;
+    c.lattice.setControlPoint(moved, c.lattice.controlPoints().row(moved).transpose() + Eigen::Vector3d(0.02, -0.01, 0.03));
+    deformer.update(c.lattice);
+    ASSERT_TRUE(deformer.keptControlWeights(c.lattice, moved, kept)) << moved;
+    const Eigen::VectorXd reference = controlPointWeights(c.lattice, deformer.embedding(), moved);
+    ASSERT_EQ(kept.size(), reference.size());
+    Eigen::Index zeros = 0;
+    for (Eigen::Index p = 0; p < kept.size(); ++p) {
+      zeros += kept[p] == 0.0 && reference[p] == 0.0;
+      blended += reference[p] != 0.0 && p % 10 == 0;  // dragCase pushes every tenth point outside
+    }
+    EXPECT_LT((kept - reference).cwiseAbs().maxCoeff(), 1e-15) << moved;
+    EXPECT_GT(zeros, 1000) << moved;  // points outside the support
+    EXPECT_FALSE(deformer.keptControlWeights(c.lattice, c.lattice.index(3, 3, 3), kept)) << "another control point";
+  }
+  EXPECT_GT(blended, 100);  // the second control point's: outside the box, blended
+}
+
+// Records each row the deformer hands over: how often, and its coordinates then.
+struct RowRecorder final : StepObserver {
+  std::vector<std::atomic<int>> times;
+  Eigen::MatrixX3d seen;
+  explicit RowRecorder(Eigen::Index n) : times(static_cast<std::size_t>(n)), seen(n, 3) {}
+  void rowsDone(Eigen::Index begin, Eigen::Index end, const Eigen::MatrixX3d& points) override {
+    for (Eigen::Index p = begin; p < end; ++p) {
+      times[static_cast<std::size_t>(p)].fetch_add(1);
+      seen.row(p) = points.row(p);
+    }
+  }
+  void clear() {
+    for (auto& t : times) t.store(0);
+  }
+};
+
+TEST(DeformerStepWeights, AStepObserverGetsEveryRowOnceWithItsFinalPoints) {
+  // Points in random order inside their tiles (an 8x8x8 lattice), some of them untouched by the
+  // moved control point: every row arrives once per delta step, holding the step's output.
+  std::mt19937 rng(42);
+  DragCase c = dragCase(rng);
+  Deformer deformer(embed(c.lattice, c.Q));
+  ASSERT_FALSE(deformer.embedding().order().empty());
+  deformer.deform(c.lattice, c.Q);
+  RowRecorder rows(c.Q.rows());
+  deformer.setStepObserver(&rows);
+  const Eigen::Index moved = c.lattice.index(2, 2, 3);
+  for (int step = 1; step <= 3; ++step) {
+    rows.clear();
+    c.lattice.setControlPoint(moved, c.lattice.controlPoints().row(moved).transpose() + Eigen::Vector3d(0.01, 0.02, -0.01));
+    deformer.update(c.lattice);
+    EXPECT_LT(deformer.lastStats().evaluatedPoints, c.Q.rows());
+    for (const auto& t : rows.times) ASSERT_EQ(t.load(), 1) << "step " << step;
+    EXPECT_TRUE((rows.seen.array() == deformer.points().array()).all()) << "step " << step;
+  }
+  // An exact evaluation is no delta step: nothing arrives.
+  rows.clear();
+  deformer.deform(c.lattice, c.Q);
+  for (const auto& t : rows.times) ASSERT_EQ(t.load(), 0);
 }
 
 }  // namespace

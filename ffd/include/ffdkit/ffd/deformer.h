@@ -38,6 +38,20 @@ enum class Precision {
   Single
 };
 
+/// Receives the output of Deformer::update(lattice) a tile of consecutive points at a time, right
+/// after the deformer wrote it, while its rows are still in cache: a consumer of every step's
+/// points (the view's float points and normals during a drag) converts them there instead of in a
+/// second pass over memory.
+class StepObserver {
+ public:
+  virtual ~StepObserver() = default;
+  /// Rows [begin, end) of `points` (#points x 3, world) hold this step's output. Every row is
+  /// delivered exactly once per update(lattice) that changed something (rows the step left
+  /// unchanged too), in runs of at most Embedding::kTileSize rows, from the deformer's OpenMP
+  /// threads: disjoint runs may be delivered concurrently.
+  virtual void rowsDone(Eigen::Index begin, Eigen::Index end, const Eigen::MatrixX3d& points) = 0;
+};
+
 /// The per-frame half of FFD (the mapping of Kuriyama 1996, sec. 6.3.2, eq. (6.1)): given an
 /// Embedding, maps the embedded points through the lattice's current control points.
 ///
@@ -97,6 +111,18 @@ class Deformer {
   /// @throws LatticeError if the embedding is stale, or deform() was never called.
   const Eigen::MatrixX3d& update(const Lattice& lattice);
 
+  /// The weight of control point `flat` at every embedded point, as the delta steps of
+  /// update(lattice) that moved that control point alone evaluated and kept it (the weight each
+  /// such step moved the points by): s * B_i(u) B_j(v) B_k(w) for the points whose cell's window
+  /// holds the control point, 0 for the others and for points left unchanged, in original point
+  /// order (#points). These are controlPointWeights()'s values computed by the deformer's SIMD
+  /// kernels, which may round differently (fused multiply-adds: ~1e-16 relative). A consumer that
+  /// follows a drag (the first step of the view's normals) reads them instead of evaluating the
+  /// basis a second time. `weights` is resized only when its size differs.
+  /// @return false, leaving `weights` untouched, when no kept weights of that control point match
+  ///   `lattice` (another control point, another rest revision, a rational lattice).
+  bool keptControlWeights(const Lattice& lattice, Eigen::Index flat, Eigen::VectorXd& weights) const;
+
   /// The last deformed points, #points x 3, world.
   const Eigen::MatrixX3d& points() const { return output_; }
   /// points(), handed over without a copy; the deformer keeps its embedding but no output (call
@@ -116,6 +142,10 @@ class Deformer {
     return deformed_ && lastControl_.rows() == lattice.pointCount() && lastControl_ == lattice.controlPoints() &&
            lastWeights_ == lattice.weights();
   }
+
+  /// The observer update(lattice) delivers its output to, tile by tile (null: none; not owned).
+  /// Only the polynomial delta path of update(lattice) delivers; the other calls do not.
+  void setStepObserver(StepObserver* observer) { observer_ = observer; }
 
   /// Run on all OpenMP threads (default) or on the calling thread only.
   void setParallel(bool parallel) { parallel_ = parallel; }
@@ -159,6 +189,7 @@ class Deformer {
   Eigen::VectorXd stepWeights_;
   Eigen::Index stepWeightsControl_ = -1;
   std::uint64_t stepWeightsRest_ = 0;
+  StepObserver* observer_ = nullptr;
   bool deformed_ = false;
   bool parallel_ = true;
   Precision precision_ = Precision::Double;
