@@ -1,5 +1,8 @@
 #include "json_text.h"
 
+#include <exception>
+#include <utility>
+
 namespace ffdkit::scenes::detail {
 namespace {
 
@@ -68,46 +71,102 @@ std::string canonicalJsonText(const Json& value) {
 
 namespace {
 
-// Counts what nlohmann's document of a text holds, without building it (json::sax_parse).
+// Counts what nlohmann's document of a text holds: an upper bound of its bytes, event by event
+// (json::sax_parse's events).
 class DocumentSize {
  public:
   std::uint64_t bytes() const { return bytes_; }
 
-  bool null() { return value(); }
-  bool boolean(bool) { return value(); }
-  bool number_integer(Json::number_integer_t) { return value(); }
-  bool number_unsigned(Json::number_unsigned_t) { return value(); }
-  bool number_float(Json::number_float_t, const Json::string_t&) { return value(); }
-  bool string(Json::string_t& s) { return value() && text(s.size()); }
-  bool binary(Json::binary_t& b) { return value() && text(b.size()); }
-  bool start_object(std::size_t) { return value() && container(); }
-  bool end_object() { return true; }
-  bool start_array(std::size_t) { return value() && container(); }
-  bool end_array() { return true; }
+  void value() { add(2 * sizeof(Json)); }  // a value's slot in its container, twice over for a vector's growth slack
+  void container() { add(64); }            // a container's own allocation (its vector and the allocator's header)
+  void text(std::size_t size) { add(size < 16 ? 0 : size + 1 + 16); }  // heap text beyond the small-string buffer
   // An ordered_json member is a (key, value) pair in a vector: the key's string beside the value.
-  bool key(Json::string_t& k) { return add(2 * sizeof(Json::string_t)) && text(k.size()); }
-  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) { return false; }
+  void key(std::size_t size) {
+    add(2 * sizeof(Json::string_t));
+    text(size);
+  }
 
  private:
-  // A value's slot in its container, twice over for a vector's growth slack.
-  bool value() { return add(2 * sizeof(Json)); }
-  // A container's own allocation (its vector and the allocator's header).
-  bool container() { return add(64); }
-  // Heap text beyond the small-string buffer.
-  bool text(std::size_t size) { return add(size < 16 ? 0 : size + 1 + 16); }
-  bool add(std::uint64_t bytes) {
-    bytes_ += bytes;
-    return true;
-  }
+  void add(std::uint64_t bytes) { bytes_ += bytes; }
   std::uint64_t bytes_ = 0;
+};
+
+// Builds the document with nlohmann's own DOM builder, counting each event's bytes before the
+// builder allocates them. Past `allowed` bytes the document is freed and the rest only counted.
+class ChargedDocument {
+ public:
+  explicit ChargedDocument(std::uint64_t allowed) : allowed_(allowed) {}
+
+  Json& document() { return root_; }
+  std::uint64_t bytes() const { return size_.bytes(); }
+  // The parse error nlohmann reported (a parse_error or an out_of_range), or null.
+  const std::exception_ptr& error() const { return error_; }
+
+  bool null() { return value([&] { return dom_.null(); }); }
+  bool boolean(bool v) { return value([&] { return dom_.boolean(v); }); }
+  bool number_integer(Json::number_integer_t v) { return value([&] { return dom_.number_integer(v); }); }
+  bool number_unsigned(Json::number_unsigned_t v) { return value([&] { return dom_.number_unsigned(v); }); }
+  bool number_float(Json::number_float_t v, const Json::string_t& s) { return value([&] { return dom_.number_float(v, s); }); }
+  bool string(Json::string_t& s) {
+    size_.text(s.size());
+    return value([&] { return dom_.string(s); });
+  }
+  bool binary(Json::binary_t& b) {
+    size_.text(b.size());
+    return value([&] { return dom_.binary(b); });
+  }
+  bool start_object(std::size_t n) {
+    size_.container();
+    return value([&] { return dom_.start_object(n); });
+  }
+  bool end_object() { return building_ ? dom_.end_object() : true; }
+  bool start_array(std::size_t n) {
+    size_.container();
+    return value([&] { return dom_.start_array(n); });
+  }
+  bool end_array() { return building_ ? dom_.end_array() : true; }
+  bool key(Json::string_t& k) {
+    size_.key(k.size());
+    return build([&] { return dom_.key(k); });
+  }
+  template <class Exception>
+  bool parse_error(std::size_t, const std::string&, const Exception& e) {
+    error_ = std::make_exception_ptr(e);
+    return false;
+  }
+
+ private:
+  template <class Add>
+  bool value(Add add) {
+    size_.value();
+    return build(add);
+  }
+  template <class Add>
+  bool build(Add add) {
+    if (building_ && size_.bytes() > allowed_) {
+      building_ = false;
+      root_ = Json();  // the builder's pointers into it are never used again
+    }
+    return building_ ? add() : true;
+  }
+
+  std::uint64_t allowed_;
+  DocumentSize size_;
+  Json root_;
+  nlohmann::detail::json_sax_dom_parser<Json> dom_{root_, true};
+  bool building_ = true;
+  std::exception_ptr error_;
 };
 
 }  // namespace
 
-std::uint64_t parsedJsonBytes(const std::string& content) {
-  DocumentSize size;
-  Json::sax_parse(content, &size, nlohmann::detail::input_format_t::json, false);
-  return size.bytes();
+Json parseChargedJson(const std::string& content, meshio::ReadBudget& budget, std::string_view what) {
+  const std::uint64_t limit = budget.limits().maxMemoryBytes;
+  ChargedDocument document(limit > budget.bytesCharged() ? limit - budget.bytesCharged() : 0);
+  Json::sax_parse(content, &document);
+  budget.chargeBytes(1, document.bytes(), what);
+  if (document.error()) std::rethrow_exception(document.error());
+  return std::move(document.document());
 }
 
 std::string integerProblem(const Json& value, std::int64_t lo, std::int64_t hi) {

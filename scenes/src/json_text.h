@@ -25,26 +25,26 @@ std::string canonicalJsonText(const Json& value);
 /// "line:column" (1-based) of byte offset `byte` in `text`, for parse-error messages.
 std::string lineColumn(const std::string& text, std::size_t byte);
 
-/// An upper bound of the bytes nlohmann's document of `content` takes (values, containers with
-/// their growth slack, object keys, long strings), counted by a parse that builds nothing. A
-/// compact file ("[0,0,0,...]") makes a document about ten times its size: a read charges this
-/// before it builds the document. Malformed text is counted up to the error (the real parse
-/// then reports it).
-std::uint64_t parsedJsonBytes(const std::string& content);
+/// Parses `content` into nlohmann's document in one pass, charging the document's bytes to
+/// `budget` as it is built: an upper bound of what each value, container (with its growth slack),
+/// object key and long string takes, charged before it is added. A compact file ("[0,0,0,...]")
+/// makes a document about ten times its size. Once the document would pass what the budget has
+/// left, it is freed and the rest is only counted; then the whole count is charged, so the
+/// budget's error gives the document's full size. Malformed text is counted up to the error.
+/// @throws meshio::ReadLimitError over the budget (`what` names the document in its message);
+///   otherwise Json::parse_error or Json::out_of_range as Json::parse throws them.
+Json parseChargedJson(const std::string& content, meshio::ReadBudget& budget, std::string_view what);
 
-/// Parses `content` after charging its document (parsedJsonBytes) to `budget`; a syntax error
+/// Parses `content` while charging its document (parseChargedJson) to `budget`; a syntax error
 /// becomes `Error("<source>:<line>:<column>: syntax error ...")`, a budget overrun
 /// `Error("<source>: the parsed JSON of ...")`. Messages never quote the text (nlohmann's
 /// "last read: '...'" is dropped): the position is enough, and the text may be another file's.
 template <class Error>
 Json parseJson(const std::string& content, const std::string& sourceName, meshio::ReadBudget& budget) {
   try {
-    budget.chargeBytes(1, parsedJsonBytes(content), "the parsed JSON of " + std::to_string(content.size()) + " bytes");
+    return parseChargedJson(content, budget, "the parsed JSON of " + std::to_string(content.size()) + " bytes");
   } catch (const meshio::ReadLimitError& e) {
     throw Error(sourceName + ": " + e.what());
-  }
-  try {
-    return Json::parse(content);
   } catch (const Json::parse_error& e) {
     // nlohmann's message starts "[json.exception.parse_error.101] parse error at line ..."; keep its tail.
     std::string message = e.what();

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <new>
 #include <optional>
@@ -571,6 +570,15 @@ Json sceneJson(const Scene& scene) {
 
 namespace {
 
+// The rest of `in`, a block at a time (a string built from istreambuf_iterator grows a character
+// at a time: 3 % of a release build's time over the scene fuzz target's corpus).
+std::string streamText(std::istream& in) {
+  std::string content;
+  char block[16384];
+  while (in.read(block, sizeof block) || in.gcount() > 0) content.append(block, static_cast<std::size_t>(in.gcount()));
+  return content;
+}
+
 // Reads the text of a scene from `in` after charging `knownSize` bytes (the file's size, when
 // known) or, for a stream of unknown size, what it held; then the whole scene against the same
 // budget. The one place that turns a failed allocation, or a budget overrun that escaped a located
@@ -580,7 +588,7 @@ Scene readSceneStream(std::istream& in, std::optional<std::uint64_t> knownSize, 
   meshio::ReadBudget budget(options.limits);
   return meshio::convertReadFailures<SceneFileError>(sourceName, "the scene", budget, [&] {
     if (knownSize) budget.chargeBytes(*knownSize, 1, "the text of the scene file");
-    const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string content = streamText(in);
     if (!knownSize) budget.chargeBytes(content.size(), 1, "the text of the scene file");
     return readSceneJson(detail::parseJson<SceneFileError>(content, sourceName, budget), sourceName, options, budget);
   });
@@ -605,7 +613,7 @@ Scene readScene(const std::filesystem::path& path, SceneReadOptions options) {
 Scene readScene(const std::filesystem::path& path) { return readScene(path, SceneReadOptions{}); }
 
 GeneratorParameters readGeneratorParameters(std::istream& in, const std::string& sourceName) {
-  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string content = streamText(in);
   const Json root = detail::parseJson<SceneFileError>(content, sourceName);
   const Location at{&sourceName, ""};
   detail::checkObject(root, at);

@@ -130,6 +130,70 @@ TEST(HostileWidgetFile, ACompactDocumentIsChargedBeforeItIsParsed) {
   EXPECT_TRUE(contains(e, "(--max-memory)")) << e;
 }
 
+// The parsed-JSON charge a refusal names: "... bytes: 1 items of N bytes need ...".
+std::string chargedDocumentBytes(const std::string& error) {
+  const std::string marker = "1 items of ";
+  const std::size_t at = error.find(marker);
+  if (at == std::string::npos) return "";
+  return error.substr(at + marker.size(), error.find(' ', at + marker.size()) - at - marker.size());
+}
+
+TEST(HostileWidgetFile, ADocumentOverTheLimitIsRefusedWithItsWholeSizeHoweverEarlyTheBuildStops) {
+  // The document is charged as it is built: past the limit the build stops and the rest of the
+  // text is only counted, so the refusal names the same size whether the limit is just under it
+  // or a small fraction of it.
+  std::string many = "[";
+  for (int i = 0; i < 20000; ++i) many += i ? ",[0.5,1]" : "[0.5,1]";
+  many += "]";
+  const std::string tool = R"({"format": "ffdkit-widgets", "version": 1, "lattices": [], "cells": )" + many + "}";
+  WidgetReadOptions options;
+  options.limits.maxMemoryBytes = tool.size() + 1000;  // the text is charged first, then its document
+  const std::string early = widgetError(tool, options);
+  const std::string size = chargedDocumentBytes(early);
+  ASSERT_FALSE(size.empty()) << early;
+  // Each pair is a value and a container with two values: 20,000 x (32 + 64 + 2 x 32) bytes at least.
+  EXPECT_GT(std::stoull(size), 20000ull * 160ull) << early;
+  options.limits.maxMemoryBytes = tool.size() + std::stoull(size) - 1;
+  const std::string late = widgetError(tool, options);
+  EXPECT_EQ(chargedDocumentBytes(late), size) << late;
+  EXPECT_TRUE(contains(late, "tool.json: the parsed JSON of " + std::to_string(tool.size()) + " bytes")) << late;
+}
+
+TEST(HostileWidgetFile, ADocumentExactlyAtTheLimitReadsAndOneByteLessIsRefused) {
+  const std::string tool =
+      R"({"format": "ffdkit-widgets", "version": 1, "lattices": [], "cells": [], "affines": [], "rootOrder": []})";
+  WidgetReadOptions options;
+  meshio::ReadBudget budget(options.limits);
+  options.budget = &budget;
+  std::istringstream in(tool);
+  ASSERT_NO_THROW(readWidgetFile(in, "tool.json", options));
+  // Nothing else in this file is charged: the text and its document are the whole read.
+  const std::uint64_t charged = budget.bytesCharged();
+  options.budget = nullptr;
+  options.limits.maxMemoryBytes = charged;
+  EXPECT_EQ(widgetError(tool, options), "");
+  options.limits.maxMemoryBytes = charged - 1;
+  const std::string e = widgetError(tool, options);
+  EXPECT_TRUE(contains(e, "tool.json: the parsed JSON of " + std::to_string(tool.size()) + " bytes: 1 items of " +
+                              std::to_string(charged - tool.size()) + " bytes"))
+      << e;
+}
+
+TEST(HostileWidgetFile, ASyntaxErrorAfterTheLimitIsTheLimitAndOneWithinItIsTheSyntaxError) {
+  // The document up to the error is what the read would have built: over the limit, the limit is
+  // the error; within it, the syntax error at its line and column.
+  std::string many = "[";
+  for (int i = 0; i < 5000; ++i) many += i ? ",0" : "0";
+  const std::string tool = R"({"format": "ffdkit-widgets", "version": 1, "lattices": [], "cells": )" + many + ",}";
+  WidgetReadOptions options;
+  options.limits.maxMemoryBytes = 2 * tool.size();
+  const std::string over = widgetError(tool, options);
+  EXPECT_TRUE(contains(over, "tool.json: the parsed JSON of " + std::to_string(tool.size()) + " bytes")) << over;
+  EXPECT_FALSE(contains(over, "syntax error")) << over;
+  const std::string within = widgetError(tool, {});
+  EXPECT_TRUE(contains(within, "tool.json:1:" + std::to_string(tool.size()) + ": syntax error")) << within;
+}
+
 TEST(HostileScene, EightMaximumResolutionSpheresFailAtTheObjectThatCrossesTheLimit) {
   // Each sphere at resolution 4096 is charged 4097 x 2049 vertices (its grid before the poles
   // and the seam are welded): five fit in the default 50M points, the sixth does not. The

@@ -38,6 +38,30 @@ TEST(SceneFile, EverySampleRoundTripsByteForByte) {
   }
 }
 
+TEST(SceneFile, AStreamIsReadWholeHoweverLongAndWhereverItEnds) {
+  // The reader takes a stream in blocks of 16 KiB: a scene several blocks long (a long
+  // description) reads whole, as does one that ends exactly at a block's end or a byte after it.
+  const std::string sample = fileText(kExamples / "press" / "scene.json");
+  const Scene expected = readScene(kExamples / "press");
+  const std::string key = "\"description\": \"";
+  const std::size_t from = sample.find(key) + key.size();
+  const std::size_t to = sample.find('"', from);
+  ASSERT_LT(to, sample.size());
+  for (const std::size_t length : {std::size_t(1), std::size_t(70000)}) {
+    const std::string description(length, 'd');
+    const std::string text = sample.substr(0, from) + description + sample.substr(to);
+    for (const std::size_t padding : {std::size_t(0), std::size_t(1), 16384 - text.size() % 16384}) {
+      SCOPED_TRACE(std::to_string(length) + " + " + std::to_string(padding));
+      const std::string padded = text + std::string(padding, ' ');
+      std::istringstream in(padded);
+      const Scene scene = readScene(in, "scene.json");
+      EXPECT_EQ(scene.description, description);
+      ASSERT_EQ(scene.objects().size(), expected.objects().size());
+      EXPECT_EQ(scene.objects()[0].mesh.points, expected.objects()[0].mesh.points);
+    }
+  }
+}
+
 TEST(SceneFile, LoadingReproducesControlPointsAndObjects) {
   for (const char* name : kSamples) {
     SCOPED_TRACE(name);
