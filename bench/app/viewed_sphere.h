@@ -34,7 +34,6 @@ struct ViewedSphere {
     view->setLevelOfDetail(levelOfDetail);
     view->setHighlights(controller.highlights());
     view->show(scene, deformer);
-    view->followGestures(deformer);  // as the window does: a drag's steps reach the view as they are computed
   }
   ViewedSphere(const ViewedSphere&) = delete;
   ViewedSphere& operator=(const ViewedSphere&) = delete;

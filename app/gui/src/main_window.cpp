@@ -47,7 +47,6 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
   d.view->installEventFilter(this);
   setCentralWidget(d.view);
   d.sceneView = std::make_unique<SceneView>(d.view->renderer());
-  d.sceneView->followGestures(d.deformer);  // a drag's full-mesh steps reach the view as they are computed
   d.controller = std::make_unique<InteractionController>(d.scene, d.deformer, d.commands);
   d.edit = std::make_unique<EditController>(d.scene, d.deformer, d.commands, *d.controller);
 
