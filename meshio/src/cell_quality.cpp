@@ -219,11 +219,19 @@ constexpr std::int64_t kBlock = std::int64_t(1) << 13;
 // face index with kNeighbourSide set when the cell is the face's neighbour. 4 bytes per cell and
 // per (cell, face) pair: an owner list has at most INT32_MAX faces and a neighbour list fewer, so
 // the pairs number below 2^32.
+// Both arrays are left unwritten when allocated: the threads that fill them write each page
+// first, on both cores, with no zero fill before.
 struct CellFaces {
   static constexpr std::uint32_t kNeighbourSide = std::uint32_t(1) << 31;
-  std::vector<std::uint32_t> starts;
-  std::vector<std::uint32_t> faces;
+  std::unique_ptr<std::uint32_t[]> starts;  // #cells + 1
+  std::unique_ptr<std::uint32_t[]> faces;   // #faces + #internal faces
 };
+
+// `count` items, not written (no zero fill: the memory is first written by the threads that fill it).
+template <class T>
+std::unique_ptr<T[]> unwrittenArray(std::size_t count) {
+  return std::make_unique_for_overwrite<T[]>(count);
+}
 
 // Built in parallel: each thread takes a range of cells and walks every face for those of its
 // range, so that each cell's faces come in face order without a sort.
@@ -234,10 +242,10 @@ CellFaces cellFacesOf(const PolyMeshCells& cells) {
   const std::int32_t* owner = cells.owner.data();
   const std::int32_t* neighbour = cells.neighbour.data();
   CellFaces r;
-  r.faces.resize(std::size_t(faces + internal));  // the larger first (see checkPolyMeshCells)
-  r.starts.resize(std::size_t(nCells) + 1);
-  std::uint32_t* starts = r.starts.data();
-  std::uint32_t* list = r.faces.data();
+  r.faces = unwrittenArray<std::uint32_t>(std::size_t(faces + internal));  // the larger first (see checkPolyMeshCells)
+  r.starts = unwrittenArray<std::uint32_t>(std::size_t(nCells) + 1);
+  std::uint32_t* starts = r.starts.get();
+  std::uint32_t* list = r.faces.get();
 #pragma omp parallel
   {
     int threads = 1, thread = 0;
@@ -332,7 +340,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
   // (ffdkit-cli) then fits each into a block freed before instead of growing its heap for one
   // that no longer fits after a smaller one took part of the block.
   const CellFaces cellFaces = cellFacesOf(cells);
-  PointRows centres(Eigen::Index(nCells), 3);
+  PointRows centres(Eigen::Index(nCells), 3);  // written first by the sweeps, on every core
   std::vector<std::uint8_t> bad(std::size_t(nCells), 0);
   const std::int64_t blocks = (nCells + kBlock - 1) / kBlock;
   std::vector<VolumeShare> volumeShares(static_cast<std::size_t>(blocks));
@@ -389,17 +397,24 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
       const std::size_t slot = cache->slot(f);
       return cache->face[slot] == f ? cache->geometry[slot] : faceGeometry(p, cells, f);
     };
+    // The geometry of the faces of the cell addCell did last, in its face order: fetched from the
+    // window once, read by the cell's two sums and by its face checks.
+    std::vector<FaceGeometry> cellGeometry;
     auto addCell = [&](std::int64_t c) {
       VolumeShare& share = volumeShares[std::size_t(c / kBlock)];
       const std::uint32_t begin = cellFaces.starts[std::size_t(c)], end = cellFaces.starts[std::size_t(c) + 1];
+      if (cellGeometry.size() < end - begin) cellGeometry.resize(end - begin);
       Eigen::Vector3d estimate = Eigen::Vector3d::Zero();
-      for (std::uint32_t k = begin; k < end; ++k) estimate += geometry(faceOf(k)).centre;
+      for (std::uint32_t k = begin; k < end; ++k) {
+        cellGeometry[k - begin] = geometry(faceOf(k));
+        estimate += cellGeometry[k - begin].centre;
+      }
       estimate /= double(std::max<std::uint32_t>(1, end - begin));
       // 3 x the volume, and the centre weighted by it.
       Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
       double volume3 = 0.0;
       for (std::uint32_t k = begin; k < end; ++k) {
-        const FaceGeometry g = geometry(faceOf(k));
+        const FaceGeometry& g = cellGeometry[k - begin];
         const double sign = (cellFaces.faces[k] & CellFaces::kNeighbourSide) != 0 ? -1.0 : 1.0;
         const double pyramid3 = sign * g.area.dot(g.centre - estimate);
         weighted += pyramid3 * (0.75 * g.centre + 0.25 * estimate);
@@ -447,12 +462,13 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
         for (int l = 0; l < lanes->count; ++l) cache->store(laneFace[l], (*lanes)[l]);
         for (std::int64_t d = batch; d < c; ++d) {
           addCell(d);
-          for (std::uint32_t k = cellFaces.starts[std::size_t(d)]; k < cellFaces.starts[std::size_t(d) + 1]; ++k) {
+          const std::uint32_t begin = cellFaces.starts[std::size_t(d)];
+          for (std::uint32_t k = begin; k < cellFaces.starts[std::size_t(d) + 1]; ++k) {
             const std::int64_t f = faceOf(k);
             const std::int64_t other = (cellFaces.faces[k] & CellFaces::kNeighbourSide) != 0 ? owner[f]
                                        : f < internal                                      ? neighbour[f]
                                                                                            : -1;
-            if (other < 0 || (other >= first && other < d)) checkFace(f, geometry(f), faceShare);
+            if (other < 0 || (other >= first && other < d)) checkFace(f, cellGeometry[k - begin], faceShare);
           }
         }
       }

@@ -169,17 +169,24 @@ bool allInRange(const char* at, std::size_t n, std::int32_t lo, std::int32_t hi)
   return true;
 }
 
-// Copies the n native 32-bit labels at `at` to `out` a run at a time, each run checked in `out`
-// (still in the cache) and its source bytes given back (releaseParsedBytes: a mapped file's pages
-// leave the process as they are copied). Whether every label lies in [lo, hi].
-bool copyLabelsInRange(const char* at, std::size_t n, std::int32_t lo, std::int32_t hi, std::int32_t* out) {
-  constexpr std::size_t kRun = std::size_t(1) << 21;  // 8 MiB of labels
+// Appends the n native 32-bit labels at `at` to `out` (empty, with room for them reserved) a run
+// at a time, each run checked in `out` and its source bytes given back (releaseParsedBytes: a
+// mapped file's pages leave the process as they are copied). A run is small enough to stay in
+// the cache between its zero fill (resize), its copy and its check, so the fresh memory is
+// written from the cache. Whether every label lies in [lo, hi].
+bool appendLabelsInRange(const char* at, std::size_t n, std::int32_t lo, std::int32_t hi, std::vector<std::int32_t>& out) {
+  constexpr std::size_t kRun = std::size_t(1) << 16;  // 256 KiB of labels
+  constexpr std::size_t kRelease = std::size_t(1) << 21;  // madvise 8 MiB of the file at a time
+  std::size_t released = 0;
   for (std::size_t first = 0; first < n; first += kRun) {
     const std::size_t count = std::min(kRun, n - first);
-    const char* from = at + first * sizeof(std::int32_t);
-    std::memcpy(out + first, from, count * sizeof(std::int32_t));
-    if (!allInRange(reinterpret_cast<const char*>(out + first), count, lo, hi)) return false;
-    detail::releaseParsedBytes(from, from + count * sizeof(std::int32_t));
+    out.resize(first + count);  // within the reserved capacity: no reallocation
+    std::memcpy(out.data() + first, at + first * sizeof(std::int32_t), count * sizeof(std::int32_t));
+    if (!allInRange(reinterpret_cast<const char*>(out.data() + first), count, lo, hi)) return false;
+    if (first + count - released >= kRelease || first + count == n) {
+      detail::releaseParsedBytes(at + released * sizeof(std::int32_t), at + (first + count) * sizeof(std::int32_t));
+      released = first + count;
+    }
   }
   return true;
 }
@@ -205,18 +212,20 @@ void readLabelList(FoamScanner& s, const FoamFileLayout& layout, const char* wha
                    ReadBudget& budget, std::vector<std::int32_t>& out, std::int64_t maxSize = kMaxLabel32) {
   const std::int64_t n = openList(s, what, maxSize, layout.binary ? std::uint64_t(layout.labelBytes) : 2);
   budget.chargeBytes(std::uint64_t(n), sizeof(std::int32_t), std::string(what) + " labels");
-  out.resize(std::size_t(n));
   if (layout.binary) {
     needBinary(s, what, n, std::uint64_t(layout.labelBytes));
     const char* at = s.text().data() + s.pos();
+    out.clear();
+    out.reserve(std::size_t(n));
     if (layout.labelBytes == 4 && layout.bigEndian == (std::endian::native == std::endian::big) &&
-        copyLabelsInRange(at, std::size_t(n), std::int32_t(lo), std::int32_t(std::min<std::int64_t>(hi, kMaxLabel32)),
-                          out.data())) {
+        appendLabelsInRange(at, std::size_t(n), std::int32_t(lo), std::int32_t(std::min<std::int64_t>(hi, kMaxLabel32)),
+                            out)) {
       // The file's own layout: one copy; the item-by-item loop below only finds the bad label.
       s.advance(std::size_t(n) * sizeof(std::int32_t));
       closeList(s, what, layout.binary, n);
       return;
     }
+    out.resize(std::size_t(n));
     for (std::int64_t i = 0; i < n; ++i, at += layout.labelBytes) {
       const std::int64_t value = binaryLabel(at, layout);
       if (value < lo || value > hi)
@@ -226,6 +235,7 @@ void readLabelList(FoamScanner& s, const FoamFileLayout& layout, const char* wha
     }
     s.advance(std::size_t(n) * std::size_t(layout.labelBytes));
   } else {
+    out.resize(std::size_t(n));
     for (std::int64_t i = 0; i < n; ++i) out[std::size_t(i)] = std::int32_t(s.label(Where{what, i}, lo, hi));
   }
   closeList(s, what, layout.binary, n);
