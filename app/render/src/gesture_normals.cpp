@@ -35,26 +35,38 @@ void sizeArrays(Eigen::Index n, vtkPoints* drawn, vtkFloatArray* normals) {
   normals->SetNumberOfTuples(n);
 }
 
-// One followed step over the vertices (GestureNormals::follow): the sums N, the motion W (columns),
-// beta, the float points (interleaved, updated in place) and the normals (interleaved, written),
-// with D - D(t0) = (dx, dy, dz) and the step of D since the points shown (sx, sy, sz).
-struct FollowPass {
-  const float *nx, *ny, *nz, *wx, *wy, *wz, *beta;
-  float* xyz;
+// The followed normals of a step: N + d x W normalised, from the sums N and the motion W (columns)
+// with D - D(t0) = d = (dx, dy, dz), written interleaved to out. Both passes below compute them.
+struct FollowedNormals {
+  const float *nx, *ny, *nz, *wx, *wy, *wz;
   float* out;
-  float dx, dy, dz, sx, sy, sz;
+  float dx, dy, dz;
 
-  // Vertex i: N + d x W normalised, x += beta s. The arithmetic every vector form below repeats
-  // lane by lane, in the same order and without fused multiply-adds, so every vertex gets these bits.
+  // Vertex i. The arithmetic every vector form below repeats lane by lane, in the same order and
+  // without fused multiply-adds, so every vertex gets these bits.
   void scalar(Eigen::Index i) const {
     const float x = nx[i] + (dy * wz[i] - dz * wy[i]);
     const float y = ny[i] + (dz * wx[i] - dx * wz[i]);
     const float z = nz[i] + (dx * wy[i] - dy * wx[i]);
+    writeNormal(out + 3 * i, x, y, z);
+  }
+};
+
+// One followed step over the vertices (GestureNormals::follow): the normals, beta, and the float
+// points (interleaved, updated in place) with the step of D since the points shown (sx, sy, sz).
+struct FollowPass {
+  FollowedNormals normals;
+  const float* beta;
+  float* xyz;
+  float sx, sy, sz;
+
+  // Vertex i: its normal, and x += beta s.
+  void scalar(Eigen::Index i) const {
     const float w = beta[i];
     xyz[3 * i] += w * sx;
     xyz[3 * i + 1] += w * sy;
     xyz[3 * i + 2] += w * sz;
-    writeNormal(out + 3 * i, x, y, z);
+    normals.scalar(i);
   }
 };
 
@@ -80,24 +92,36 @@ inline void storeInterleaved(float* o, __m128 x, __m128 y, __m128 z, bool stream
   }
 }
 
+// Four sums (x, y, z: one coordinate of four vertices each) normalised as writeNormal does, lane by
+// lane, and stored interleaved at o.
+inline void storeNormalised(float* o, __m128 x, __m128 y, __m128 z, bool stream) {
+  const __m128 infinity = _mm_set1_ps(std::numeric_limits<float>::infinity()), one = _mm_set1_ps(1.0f);
+  const __m128 length = _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z)));
+  const __m128 inverse = _mm_div_ps(one, length);
+  const __m128 some = _mm_cmplt_ps(inverse, infinity);
+  storeInterleaved(o, _mm_and_ps(some, _mm_mul_ps(x, inverse)), _mm_and_ps(some, _mm_mul_ps(y, inverse)),
+                   _mm_or_ps(_mm_and_ps(some, _mm_mul_ps(z, inverse)), _mm_andnot_ps(some, one)), stream);
+}
+
+// Vertices i..i+3's followed normals (FollowedNormals::scalar, four lanes), with (vdx, vdy, vdz)
+// the broadcast d, stored interleaved at f.out + 3 i.
+inline void storeNormalQuad(const FollowedNormals& f, Eigen::Index i, __m128 vdx, __m128 vdy, __m128 vdz, bool stream) {
+  const __m128 ax = _mm_loadu_ps(f.wx + i), ay = _mm_loadu_ps(f.wy + i), az = _mm_loadu_ps(f.wz + i);
+  const __m128 x = _mm_add_ps(_mm_loadu_ps(f.nx + i), _mm_sub_ps(_mm_mul_ps(vdy, az), _mm_mul_ps(vdz, ay)));
+  const __m128 y = _mm_add_ps(_mm_loadu_ps(f.ny + i), _mm_sub_ps(_mm_mul_ps(vdz, ax), _mm_mul_ps(vdx, az)));
+  const __m128 z = _mm_add_ps(_mm_loadu_ps(f.nz + i), _mm_sub_ps(_mm_mul_ps(vdx, ay), _mm_mul_ps(vdy, ax)));
+  storeNormalised(f.out + 3 * i, x, y, z, stream);
+}
+
 // Vertices [4 q0, 4 q1), four at a time with SSE.
 void followQuads(const FollowPass& f, Eigen::Index q0, Eigen::Index q1, bool stream) {
-  const __m128 vdx = _mm_set1_ps(f.dx), vdy = _mm_set1_ps(f.dy), vdz = _mm_set1_ps(f.dz);
+  const __m128 vdx = _mm_set1_ps(f.normals.dx), vdy = _mm_set1_ps(f.normals.dy), vdz = _mm_set1_ps(f.normals.dz);
   // The step in the pattern of four interleaved points: (x y z x) (y z x y) (z x y z).
   const __m128 s0 = _mm_setr_ps(f.sx, f.sy, f.sz, f.sx), s1 = _mm_setr_ps(f.sy, f.sz, f.sx, f.sy),
                s2 = _mm_setr_ps(f.sz, f.sx, f.sy, f.sz);
-  const __m128 infinity = _mm_set1_ps(std::numeric_limits<float>::infinity()), one = _mm_set1_ps(1.0f);
   for (Eigen::Index q = q0; q < q1; ++q) {
     const Eigen::Index i = 4 * q;
-    const __m128 ax = _mm_loadu_ps(f.wx + i), ay = _mm_loadu_ps(f.wy + i), az = _mm_loadu_ps(f.wz + i);
-    const __m128 x = _mm_add_ps(_mm_loadu_ps(f.nx + i), _mm_sub_ps(_mm_mul_ps(vdy, az), _mm_mul_ps(vdz, ay)));
-    const __m128 y = _mm_add_ps(_mm_loadu_ps(f.ny + i), _mm_sub_ps(_mm_mul_ps(vdz, ax), _mm_mul_ps(vdx, az)));
-    const __m128 z = _mm_add_ps(_mm_loadu_ps(f.nz + i), _mm_sub_ps(_mm_mul_ps(vdx, ay), _mm_mul_ps(vdy, ax)));
-    const __m128 length = _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z)));
-    const __m128 inverse = _mm_div_ps(one, length);
-    const __m128 some = _mm_cmplt_ps(inverse, infinity);
-    storeInterleaved(f.out + 3 * i, _mm_and_ps(some, _mm_mul_ps(x, inverse)), _mm_and_ps(some, _mm_mul_ps(y, inverse)),
-                     _mm_or_ps(_mm_and_ps(some, _mm_mul_ps(z, inverse)), _mm_andnot_ps(some, one)), stream);
+    storeNormalQuad(f.normals, i, vdx, vdy, vdz, stream);
     const __m128 b = _mm_loadu_ps(f.beta + i);
     float* p = f.xyz + 3 * i;
     _mm_storeu_ps(p, _mm_add_ps(_mm_loadu_ps(p), _mm_mul_ps(_mm_shuffle_ps(b, b, _MM_SHUFFLE(1, 0, 0, 0)), s0)));
@@ -108,38 +132,51 @@ void followQuads(const FollowPass& f, Eigen::Index q0, Eigen::Index q1, bool str
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define FFDKIT_FOLLOW_AVX2 1
+// Eight sums normalised as writeNormal does, lane by lane, and stored interleaved at o.
+__attribute__((target("avx2"), always_inline)) inline void storeNormalised(float* o, __m256 x, __m256 y, __m256 z,
+                                                                           bool stream) {
+  const __m256 infinity = _mm256_set1_ps(std::numeric_limits<float>::infinity()), one = _mm256_set1_ps(1.0f);
+  const __m256 length =
+      _mm256_sqrt_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(x, x), _mm256_mul_ps(y, y)), _mm256_mul_ps(z, z)));
+  const __m256 inverse = _mm256_div_ps(one, length);
+  const __m256 some = _mm256_cmp_ps(inverse, infinity, _CMP_LT_OQ);
+  const __m256 ox = _mm256_and_ps(some, _mm256_mul_ps(x, inverse));
+  const __m256 oy = _mm256_and_ps(some, _mm256_mul_ps(y, inverse));
+  const __m256 oz = _mm256_or_ps(_mm256_and_ps(some, _mm256_mul_ps(z, inverse)), _mm256_andnot_ps(some, one));
+  storeInterleaved(o, _mm256_castps256_ps128(ox), _mm256_castps256_ps128(oy), _mm256_castps256_ps128(oz), stream);
+  storeInterleaved(o + 12, _mm256_extractf128_ps(ox, 1), _mm256_extractf128_ps(oy, 1), _mm256_extractf128_ps(oz, 1),
+                   stream);
+}
+
+// Vertices i..i+7's followed normals (FollowedNormals::scalar, eight lanes), with (vdx, vdy, vdz)
+// the broadcast d, stored interleaved at f.out + 3 i.
+__attribute__((target("avx2"), always_inline)) inline void storeNormalOctet(const FollowedNormals& f, Eigen::Index i,
+                                                                            __m256 vdx, __m256 vdy, __m256 vdz,
+                                                                            bool stream) {
+  const __m256 ax = _mm256_loadu_ps(f.wx + i), ay = _mm256_loadu_ps(f.wy + i), az = _mm256_loadu_ps(f.wz + i);
+  const __m256 x =
+      _mm256_add_ps(_mm256_loadu_ps(f.nx + i), _mm256_sub_ps(_mm256_mul_ps(vdy, az), _mm256_mul_ps(vdz, ay)));
+  const __m256 y =
+      _mm256_add_ps(_mm256_loadu_ps(f.ny + i), _mm256_sub_ps(_mm256_mul_ps(vdz, ax), _mm256_mul_ps(vdx, az)));
+  const __m256 z =
+      _mm256_add_ps(_mm256_loadu_ps(f.nz + i), _mm256_sub_ps(_mm256_mul_ps(vdx, ay), _mm256_mul_ps(vdy, ax)));
+  storeNormalised(f.out + 3 * i, x, y, z, stream);
+}
+
 // Vertices [8 o0, 8 o1), eight at a time with AVX2 (no FMA: the bits of the SSE and scalar forms;
 // the square root and the division are a third of the pass, and AVX2 does eight for the price of
 // four).
 __attribute__((target("avx2"))) void followOctets(const FollowPass& f, Eigen::Index o0, Eigen::Index o1, bool stream) {
-  const __m256 vdx = _mm256_set1_ps(f.dx), vdy = _mm256_set1_ps(f.dy), vdz = _mm256_set1_ps(f.dz);
+  const __m256 vdx = _mm256_set1_ps(f.normals.dx), vdy = _mm256_set1_ps(f.normals.dy), vdz = _mm256_set1_ps(f.normals.dz);
   // The step in the pattern of eight interleaved points, and the lanes of beta each float takes.
   const __m256 s0 = _mm256_setr_ps(f.sx, f.sy, f.sz, f.sx, f.sy, f.sz, f.sx, f.sy);
   const __m256 s1 = _mm256_setr_ps(f.sz, f.sx, f.sy, f.sz, f.sx, f.sy, f.sz, f.sx);
   const __m256 s2 = _mm256_setr_ps(f.sy, f.sz, f.sx, f.sy, f.sz, f.sx, f.sy, f.sz);
   const __m256i b0 = _mm256_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2), b1 = _mm256_setr_epi32(2, 3, 3, 3, 4, 4, 4, 5),
                 b2 = _mm256_setr_epi32(5, 5, 6, 6, 6, 7, 7, 7);
-  const __m256 infinity = _mm256_set1_ps(std::numeric_limits<float>::infinity()), one = _mm256_set1_ps(1.0f);
   for (Eigen::Index o = o0; o < o1; ++o) {
     const Eigen::Index i = 8 * o;
-    const __m256 ax = _mm256_loadu_ps(f.wx + i), ay = _mm256_loadu_ps(f.wy + i), az = _mm256_loadu_ps(f.wz + i);
-    const __m256 x =
-        _mm256_add_ps(_mm256_loadu_ps(f.nx + i), _mm256_sub_ps(_mm256_mul_ps(vdy, az), _mm256_mul_ps(vdz, ay)));
-    const __m256 y =
-        _mm256_add_ps(_mm256_loadu_ps(f.ny + i), _mm256_sub_ps(_mm256_mul_ps(vdz, ax), _mm256_mul_ps(vdx, az)));
-    const __m256 z =
-        _mm256_add_ps(_mm256_loadu_ps(f.nz + i), _mm256_sub_ps(_mm256_mul_ps(vdx, ay), _mm256_mul_ps(vdy, ax)));
-    const __m256 length =
-        _mm256_sqrt_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(x, x), _mm256_mul_ps(y, y)), _mm256_mul_ps(z, z)));
-    const __m256 inverse = _mm256_div_ps(one, length);
-    const __m256 some = _mm256_cmp_ps(inverse, infinity, _CMP_LT_OQ);
-    const __m256 ox = _mm256_and_ps(some, _mm256_mul_ps(x, inverse));
-    const __m256 oy = _mm256_and_ps(some, _mm256_mul_ps(y, inverse));
-    const __m256 oz = _mm256_or_ps(_mm256_and_ps(some, _mm256_mul_ps(z, inverse)), _mm256_andnot_ps(some, one));
-    storeInterleaved(f.out + 3 * i, _mm256_castps256_ps128(ox), _mm256_castps256_ps128(oy), _mm256_castps256_ps128(oz),
-                     stream);
-    storeInterleaved(f.out + 3 * i + 12, _mm256_extractf128_ps(ox, 1), _mm256_extractf128_ps(oy, 1),
-                     _mm256_extractf128_ps(oz, 1), stream);
+    storeNormalOctet(f.normals, i, vdx, vdy, vdz, stream);
     const __m256 b = _mm256_loadu_ps(f.beta + i);
     float* p = f.xyz + 3 * i;
     _mm256_storeu_ps(p, _mm256_add_ps(_mm256_loadu_ps(p), _mm256_mul_ps(_mm256_permutevar8x32_ps(b, b0), s0)));
@@ -161,7 +198,7 @@ void followVertices(const FollowPass& f, Eigen::Index n) {
 #endif
   const Eigen::Index width = avx2 ? 8 : 4;
   const Eigen::Index groups = n / width;
-  const bool stream = reinterpret_cast<std::uintptr_t>(f.out) % 16 == 0;
+  const bool stream = reinterpret_cast<std::uintptr_t>(f.normals.out) % 16 == 0;
 #pragma omp parallel if (n >= 16384)
   {
     // Static halves of the groups, in chunks of 1024 vertices.
@@ -186,45 +223,30 @@ void followVertices(const FollowPass& f, Eigen::Index n) {
 }
 
 // The rows of one delta step as the deformer hands them over (GestureNormals::stepRows): the
-// followed normals (FollowPass's arithmetic) and the float points float(x - o) from the step's
+// followed normals (FollowedNormals) and the float points float(x - o) from the step's
 // double points, still in cache, with streaming stores for both (neither array is read).
 struct StepPass {
-  const float *nx, *ny, *nz, *wx, *wy, *wz;
+  FollowedNormals normals;
   float* xyz;
-  float* out;
-  float dx, dy, dz;
   double ox, oy, oz;
 
   void scalar(const double* x, const double* y, const double* z, Eigen::Index i) const {
-    const float nxi = nx[i] + (dy * wz[i] - dz * wy[i]);
-    const float nyi = ny[i] + (dz * wx[i] - dx * wz[i]);
-    const float nzi = nz[i] + (dx * wy[i] - dy * wx[i]);
     xyz[3 * i] = static_cast<float>(x[i] - ox);
     xyz[3 * i + 1] = static_cast<float>(y[i] - oy);
     xyz[3 * i + 2] = static_cast<float>(z[i] - oz);
-    writeNormal(out + 3 * i, nxi, nyi, nzi);
+    normals.scalar(i);
   }
 };
 
 #if defined(__SSE2__)
-// Vertices [i0, i0 + 4 quads), four at a time: FollowPass's normals, the points converted.
+// Vertices [i0, i0 + 4 quads), four at a time: the followed normals, the points converted.
 void stepQuads(const StepPass& f, const double* x, const double* y, const double* z, Eigen::Index i0,
                Eigen::Index quads, bool stream) {
-  const __m128 vdx = _mm_set1_ps(f.dx), vdy = _mm_set1_ps(f.dy), vdz = _mm_set1_ps(f.dz);
+  const __m128 vdx = _mm_set1_ps(f.normals.dx), vdy = _mm_set1_ps(f.normals.dy), vdz = _mm_set1_ps(f.normals.dz);
   const __m128d vox = _mm_set1_pd(f.ox), voy = _mm_set1_pd(f.oy), voz = _mm_set1_pd(f.oz);
-  const __m128 infinity = _mm_set1_ps(std::numeric_limits<float>::infinity()), one = _mm_set1_ps(1.0f);
   for (Eigen::Index q = 0; q < quads; ++q) {
     const Eigen::Index i = i0 + 4 * q;
-    const __m128 ax = _mm_loadu_ps(f.wx + i), ay = _mm_loadu_ps(f.wy + i), az = _mm_loadu_ps(f.wz + i);
-    const __m128 nx = _mm_add_ps(_mm_loadu_ps(f.nx + i), _mm_sub_ps(_mm_mul_ps(vdy, az), _mm_mul_ps(vdz, ay)));
-    const __m128 ny = _mm_add_ps(_mm_loadu_ps(f.ny + i), _mm_sub_ps(_mm_mul_ps(vdz, ax), _mm_mul_ps(vdx, az)));
-    const __m128 nz = _mm_add_ps(_mm_loadu_ps(f.nz + i), _mm_sub_ps(_mm_mul_ps(vdx, ay), _mm_mul_ps(vdy, ax)));
-    const __m128 length =
-        _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, nx), _mm_mul_ps(ny, ny)), _mm_mul_ps(nz, nz)));
-    const __m128 inverse = _mm_div_ps(one, length);
-    const __m128 some = _mm_cmplt_ps(inverse, infinity);
-    storeInterleaved(f.out + 3 * i, _mm_and_ps(some, _mm_mul_ps(nx, inverse)), _mm_and_ps(some, _mm_mul_ps(ny, inverse)),
-                     _mm_or_ps(_mm_and_ps(some, _mm_mul_ps(nz, inverse)), _mm_andnot_ps(some, one)), stream);
+    storeNormalQuad(f.normals, i, vdx, vdy, vdz, stream);
     // float(x - o): the difference in double, rounded once (as static_cast<float>).
     const auto lanes = [](const double* c, Eigen::Index k, __m128d o) {
       return _mm_movelh_ps(_mm_cvtpd_ps(_mm_sub_pd(_mm_loadu_pd(c + k), o)),
@@ -238,29 +260,11 @@ void stepQuads(const StepPass& f, const double* x, const double* y, const double
 // Vertices [i0, i0 + 8 octets), eight at a time with AVX2 (followOctets' normals).
 __attribute__((target("avx2"))) void stepOctets(const StepPass& f, const double* x, const double* y, const double* z,
                                                 Eigen::Index i0, Eigen::Index octets, bool stream) {
-  const __m256 vdx = _mm256_set1_ps(f.dx), vdy = _mm256_set1_ps(f.dy), vdz = _mm256_set1_ps(f.dz);
+  const __m256 vdx = _mm256_set1_ps(f.normals.dx), vdy = _mm256_set1_ps(f.normals.dy), vdz = _mm256_set1_ps(f.normals.dz);
   const __m256d vox = _mm256_set1_pd(f.ox), voy = _mm256_set1_pd(f.oy), voz = _mm256_set1_pd(f.oz);
-  const __m256 infinity = _mm256_set1_ps(std::numeric_limits<float>::infinity()), one = _mm256_set1_ps(1.0f);
   for (Eigen::Index o = 0; o < octets; ++o) {
     const Eigen::Index i = i0 + 8 * o;
-    const __m256 ax = _mm256_loadu_ps(f.wx + i), ay = _mm256_loadu_ps(f.wy + i), az = _mm256_loadu_ps(f.wz + i);
-    const __m256 nx =
-        _mm256_add_ps(_mm256_loadu_ps(f.nx + i), _mm256_sub_ps(_mm256_mul_ps(vdy, az), _mm256_mul_ps(vdz, ay)));
-    const __m256 ny =
-        _mm256_add_ps(_mm256_loadu_ps(f.ny + i), _mm256_sub_ps(_mm256_mul_ps(vdz, ax), _mm256_mul_ps(vdx, az)));
-    const __m256 nz =
-        _mm256_add_ps(_mm256_loadu_ps(f.nz + i), _mm256_sub_ps(_mm256_mul_ps(vdx, ay), _mm256_mul_ps(vdy, ax)));
-    const __m256 length = _mm256_sqrt_ps(
-        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(nx, nx), _mm256_mul_ps(ny, ny)), _mm256_mul_ps(nz, nz)));
-    const __m256 inverse = _mm256_div_ps(one, length);
-    const __m256 some = _mm256_cmp_ps(inverse, infinity, _CMP_LT_OQ);
-    const __m256 ox = _mm256_and_ps(some, _mm256_mul_ps(nx, inverse));
-    const __m256 oy = _mm256_and_ps(some, _mm256_mul_ps(ny, inverse));
-    const __m256 oz = _mm256_or_ps(_mm256_and_ps(some, _mm256_mul_ps(nz, inverse)), _mm256_andnot_ps(some, one));
-    storeInterleaved(f.out + 3 * i, _mm256_castps256_ps128(ox), _mm256_castps256_ps128(oy), _mm256_castps256_ps128(oz),
-                     stream);
-    storeInterleaved(f.out + 3 * i + 12, _mm256_extractf128_ps(ox, 1), _mm256_extractf128_ps(oy, 1),
-                     _mm256_extractf128_ps(oz, 1), stream);
+    storeNormalOctet(f.normals, i, vdx, vdy, vdz, stream);
     const __m128 px0 = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_loadu_pd(x + i), vox));
     const __m128 py0 = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_loadu_pd(y + i), voy));
     const __m128 pz0 = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_loadu_pd(z + i), voz));
@@ -282,7 +286,8 @@ void stepVertices(const StepPass& f, const Eigen::MatrixX3d& points, Eigen::Inde
   Eigen::Index i = begin;
 #if defined(__SSE2__)
   // 3 i floats from a 16-byte aligned base are aligned when i is a multiple of 4.
-  const bool aligned = reinterpret_cast<std::uintptr_t>(f.out) % 16 == 0 && reinterpret_cast<std::uintptr_t>(f.xyz) % 16 == 0;
+  const bool aligned =
+      reinterpret_cast<std::uintptr_t>(f.normals.out) % 16 == 0 && reinterpret_cast<std::uintptr_t>(f.xyz) % 16 == 0;
   for (; i < end && i % 4 != 0; ++i) f.scalar(x, y, z, i);
 #if defined(FFDKIT_FOLLOW_AVX2)
   static const bool avx2 = __builtin_cpu_supports("avx2");
@@ -308,21 +313,9 @@ constexpr Eigen::Index kChunk = 256;
 #if defined(FFDKIT_FOLLOW_AVX2)
 __attribute__((target("avx2"))) void normaliseOctets(float* out, const float* x, const float* y, const float* z,
                                                      Eigen::Index octets) {
-  const __m256 infinity = _mm256_set1_ps(std::numeric_limits<float>::infinity()), one = _mm256_set1_ps(1.0f);
   for (Eigen::Index o = 0; o < octets; ++o) {
     const Eigen::Index i = 8 * o;
-    const __m256 vx = _mm256_loadu_ps(x + i), vy = _mm256_loadu_ps(y + i), vz = _mm256_loadu_ps(z + i);
-    const __m256 length = _mm256_sqrt_ps(
-        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(vx, vx), _mm256_mul_ps(vy, vy)), _mm256_mul_ps(vz, vz)));
-    const __m256 inverse = _mm256_div_ps(one, length);
-    const __m256 some = _mm256_cmp_ps(inverse, infinity, _CMP_LT_OQ);
-    const __m256 ox = _mm256_and_ps(some, _mm256_mul_ps(vx, inverse));
-    const __m256 oy = _mm256_and_ps(some, _mm256_mul_ps(vy, inverse));
-    const __m256 oz = _mm256_or_ps(_mm256_and_ps(some, _mm256_mul_ps(vz, inverse)), _mm256_andnot_ps(some, one));
-    storeInterleaved(out + 3 * i, _mm256_castps256_ps128(ox), _mm256_castps256_ps128(oy), _mm256_castps256_ps128(oz),
-                     false);
-    storeInterleaved(out + 3 * i + 12, _mm256_extractf128_ps(ox, 1), _mm256_extractf128_ps(oy, 1),
-                     _mm256_extractf128_ps(oz, 1), false);
+    storeNormalised(out + 3 * i, _mm256_loadu_ps(x + i), _mm256_loadu_ps(y + i), _mm256_loadu_ps(z + i), false);
   }
 }
 #endif
@@ -339,15 +332,8 @@ void normaliseChunk(float* out, const float* x, const float* y, const float* z, 
     done = count / 8 * 8;
   }
 #endif
-  const __m128 infinity = _mm_set1_ps(std::numeric_limits<float>::infinity()), one = _mm_set1_ps(1.0f);
-  for (; done + 4 <= count; done += 4) {
-    const __m128 vx = _mm_loadu_ps(x + done), vy = _mm_loadu_ps(y + done), vz = _mm_loadu_ps(z + done);
-    const __m128 length = _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(vx, vx), _mm_mul_ps(vy, vy)), _mm_mul_ps(vz, vz)));
-    const __m128 inverse = _mm_div_ps(one, length);
-    const __m128 some = _mm_cmplt_ps(inverse, infinity);
-    storeInterleaved(out + 3 * done, _mm_and_ps(some, _mm_mul_ps(vx, inverse)), _mm_and_ps(some, _mm_mul_ps(vy, inverse)),
-                     _mm_or_ps(_mm_and_ps(some, _mm_mul_ps(vz, inverse)), _mm_andnot_ps(some, one)), false);
-  }
+  for (; done + 4 <= count; done += 4)
+    storeNormalised(out + 3 * done, _mm_loadu_ps(x + done), _mm_loadu_ps(y + done), _mm_loadu_ps(z + done), false);
 #endif
   for (; done < count; ++done) writeNormal(out + 3 * done, x[done], y[done], z[done]);
 }
@@ -425,8 +411,11 @@ bool GestureNormals::beginStep(const scenes::GestureMotion& motion, vtkPoints* p
 
 void GestureNormals::stepRows(Eigen::Index begin, Eigen::Index end, const Eigen::MatrixX3d& points) const {
   if (!stepping_ || points.rows() != sums_.rows()) return;  // endStep then reports the rows as not followed
-  const StepPass pass{step_.nx, step_.ny, step_.nz, step_.wx, step_.wy, step_.wz, step_.xyz, step_.out,
-                      step_.d.x(), step_.d.y(), step_.d.z(), step_.origin.x(), step_.origin.y(), step_.origin.z()};
+  const StepPass pass{{step_.nx, step_.ny, step_.nz, step_.wx, step_.wy, step_.wz, step_.out, step_.d.x(), step_.d.y(), step_.d.z()},
+                      step_.xyz,
+                      step_.origin.x(),
+                      step_.origin.y(),
+                      step_.origin.z()};
   stepVertices(pass, points, begin, end);
 }
 
@@ -467,10 +456,11 @@ bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::Objec
   const Eigen::Vector3f step = (now - shownDisplacement_).cast<float>();
   // The normals: N_v(t) = N_v(t0) + (D(t) - D(t0)) x W_v, normalised (+z for a zero sum, as exactNormals).
   const Eigen::Vector3f d = (now - startDisplacement_).cast<float>();
-  const FollowPass pass{sums_.col(0).data(), sums_.col(1).data(), sums_.col(2).data(), motion_.col(0).data(),
-                        motion_.col(1).data(), motion_.col(2).data(), beta_.data(),
-                        static_cast<float*>(points->GetVoidPointer(0)), normals->GetPointer(0),
-                        d.x(), d.y(), d.z(), step.x(), step.y(), step.z()};
+  const FollowedNormals followed{sums_.col(0).data(),   sums_.col(1).data(),   sums_.col(2).data(),
+                                 motion_.col(0).data(), motion_.col(1).data(), motion_.col(2).data(),
+                                 normals->GetPointer(0), d.x(),                 d.y(),
+                                 d.z()};
+  const FollowPass pass{followed, beta_.data(), static_cast<float*>(points->GetVoidPointer(0)), step.x(), step.y(), step.z()};
   followVertices(pass, n);
   shownDisplacement_ = now;
   points->Modified();
