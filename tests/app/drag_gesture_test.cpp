@@ -5,6 +5,7 @@
 // evaluation; undo and redo are exact and embed nothing.
 #include <gtest/gtest.h>
 
+#include "arrow_ray.h"
 #include "drag_sphere.h"
 #include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/scenes/scene_deformer.h"
@@ -36,13 +37,7 @@ struct Document {
     return (corners.colwise().maxCoeff() - corners.colwise().minCoeff()).norm();
   }
   // A ray down the widget's frame z through its arrow at `along` glyph sizes.
-  widgets::Ray arrowRay(double along) const {
-    const widgets::WidgetFrame f = scene.widgets.affineFrame(push);
-    widgets::Ray r;
-    r.origin = f.frame.translation() + f.size * along * f.frame.linear().col(0) + 5.0 * f.frame.linear().col(2);
-    r.direction = -f.frame.linear().col(2);
-    return r;
-  }
+  widgets::Ray arrowRay(double along) const { return test::arrowRay(scene.widgets, push, along); }
   // The difference from a fresh exact evaluation of the scene as it is now.
   double errorFromExact() const {
     return (deformer.points(ball) - scenes::deformScene(scene).at(ball)).cwiseAbs().maxCoeff();

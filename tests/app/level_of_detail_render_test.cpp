@@ -15,6 +15,7 @@
 #include <vtkRenderer.h>
 #include <vtkUnsignedCharArray.h>
 
+#include "arrow_ray.h"
 #include "drag_sphere.h"
 #include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/render/scene_view.h"
@@ -63,14 +64,8 @@ struct RenderedDocument {
     window->Render();
     frameDue = false;
   }
-  widgets::Ray ray(double along) const {
-    const widgets::WidgetFrame f = scene.widgets.affineFrame(made.widget);
-    widgets::Ray r;
-    r.origin = f.frame.translation() + f.size * along * f.frame.linear().col(0) + 5.0 * f.frame.linear().col(2);
-    r.direction = -f.frame.linear().col(2);
-    return r;
-  }
-  double tolerance() const { return 0.05 * scene.widgets.affineFrame(made.widget).size; }
+  widgets::Ray ray(double along) const { return test::arrowRay(scene.widgets, made.widget, along); }
+  double tolerance() const { return test::arrowTolerance(scene.widgets, made.widget); }
   // The surface mapper (the objects' and their proxies') drawing `vertices` points, or with
   // `fewer`, fewer than that: the sphere's, or its proxy's; null when there is none.
   SurfaceMapper* mapperOf(vtkIdType vertices, bool fewer = false) {

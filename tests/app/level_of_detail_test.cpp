@@ -20,6 +20,7 @@
 #include <vtkPolyData.h>
 #include <vtkRenderer.h>
 
+#include "arrow_ray.h"
 #include "drag_sphere.h"
 #include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/meshio/mesh_io.h"
@@ -120,14 +121,8 @@ struct Document {
       view.refresh(scene, deformer);
     };
   }
-  widgets::Ray ray(double along) const {
-    const widgets::WidgetFrame f = scene.widgets.affineFrame(made.widget);
-    widgets::Ray r;
-    r.origin = f.frame.translation() + f.size * along * f.frame.linear().col(0) + 5.0 * f.frame.linear().col(2);
-    r.direction = -f.frame.linear().col(2);
-    return r;
-  }
-  double tolerance() const { return 0.05 * scene.widgets.affineFrame(made.widget).size; }
+  widgets::Ray ray(double along) const { return test::arrowRay(scene.widgets, made.widget, along); }
+  double tolerance() const { return test::arrowTolerance(scene.widgets, made.widget); }
   const meshio::MeshData& mesh() const { return scene.findObject(made.sphere)->mesh; }
   scenes::ObjectId sphereId() const { return scene.findObject(made.sphere)->id; }
   // The points of the visible actor drawing `vertices` points (the proxy), #vertices x 3.

@@ -22,6 +22,7 @@
 #include <vtkRendererCollection.h>
 #include <vtkRenderer.h>
 
+#include "arrow_ray.h"
 #include "drag_sphere.h"
 #include "ffdkit/interaction/interaction_controller.h"
 #include "ffdkit/render/scene_view.h"
@@ -274,14 +275,8 @@ struct DragSession : ViewedDocument {
     view.show(scene, deformer);
     controller.onChanged = [this] { view.refresh(scene, deformer); };
   }
-  widgets::Ray ray(double along) const {
-    const widgets::WidgetFrame f = scene.widgets.affineFrame(widget);
-    widgets::Ray r;
-    r.origin = f.frame.translation() + f.size * along * f.frame.linear().col(0) + 5.0 * f.frame.linear().col(2);
-    r.direction = -f.frame.linear().col(2);
-    return r;
-  }
-  double tolerance() const { return 0.05 * scene.widgets.affineFrame(widget).size; }
+  widgets::Ray ray(double along) const { return test::arrowRay(scene.widgets, widget, along); }
+  double tolerance() const { return test::arrowTolerance(scene.widgets, widget); }
   const Eigen::MatrixX3i& triangles() const { return scene.findObject(sphere)->mesh.triangles; }
   // What a view built from scratch on the present state draws.
   Eigen::MatrixX3f freshNormals() const {

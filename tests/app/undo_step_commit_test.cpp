@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "arrow_ray.h"
 #include "ffdkit/ffd/cancelled.h"
 #include "ffdkit/interaction/edit_controller.h"
 #include "ffdkit/interaction/interaction_controller.h"
@@ -93,14 +94,8 @@ TEST(UndoStepCommit, ATransformWhoseEvaluationThrowsAtConfirmLeavesNoUndoStep) {
 void pressAndDragPushFront(Document& d, double shift) {
   const WidgetId push = d.scene.widgets.find("push-front");
   ASSERT_EQ(d.scene.widgets.affineKind(push), widgets::AffineKind::Translate);
-  const widgets::WidgetFrame f = d.scene.widgets.affineFrame(push);
-  const auto rayAt = [&](double along) {
-    widgets::Ray ray;
-    ray.origin = f.frame.translation() + f.size * along * f.frame.linear().col(0) + 5.0 * f.frame.linear().col(2);
-    ray.direction = -f.frame.linear().col(2);
-    return ray;
-  };
-  ASSERT_EQ(d.controller.press(rayAt(0.5), 0.05 * f.size), InteractionController::PressResult::Widget);
+  const auto rayAt = [&](double along) { return test::arrowRay(d.scene.widgets, push, along); };
+  ASSERT_EQ(d.controller.press(rayAt(0.5), test::arrowTolerance(d.scene.widgets, push)), InteractionController::PressResult::Widget);
   d.controller.drag(rayAt(0.5 + 0.5 * shift));
   d.controller.drag(rayAt(0.5 + shift));
 }
