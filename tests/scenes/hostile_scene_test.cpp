@@ -49,6 +49,18 @@ std::string widgetError(const std::string& text, const WidgetReadOptions& option
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
+// `count` copies of `item`, comma-separated: the elements of a big JSON array.
+std::string commaSeparated(int count, const std::string& item) {
+  std::string text;
+  for (int i = 0; i < count; ++i) text += i ? "," + item : item;
+  return text;
+}
+
+// A widget file with no lattices whose "cells" member is `cells`, followed by `end`.
+std::string toolWithCells(const std::string& cells, const std::string& end = "}") {
+  return R"({"format": "ffdkit-widgets", "version": 1, "lattices": [], "cells": )" + cells + end;
+}
+
 // A scene of the given objects (JSON object texts), version 2.
 std::string sceneOf(const std::vector<std::string>& objects, const std::string& extra = "") {
   std::string list;
@@ -119,10 +131,7 @@ TEST(HostileWidgetFile, ALatticeExactlyAtThePointLimitReadsAndOneOverIsRefused) 
 
 TEST(HostileWidgetFile, ACompactDocumentIsChargedBeforeItIsParsed) {
   // "[0,0,0,...]" makes a document about ten times its text: the read charges it first.
-  std::string many = "[";
-  for (int i = 0; i < 100000; ++i) many += i ? ",0" : "0";
-  many += "]";
-  const std::string tool = R"({"format": "ffdkit-widgets", "version": 1, "lattices": [], "cells": )" + many + "}";
+  const std::string tool = toolWithCells("[" + commaSeparated(100000, "0") + "]");
   WidgetReadOptions options;
   options.limits.maxMemoryBytes = 10 * tool.size();
   const std::string e = widgetError(tool, options);
@@ -142,10 +151,7 @@ TEST(HostileWidgetFile, ADocumentOverTheLimitIsRefusedWithItsWholeSizeHoweverEar
   // The document is charged as it is built: past the limit the build stops and the rest of the
   // text is only counted, so the refusal names the same size whether the limit is just under it
   // or a small fraction of it.
-  std::string many = "[";
-  for (int i = 0; i < 20000; ++i) many += i ? ",[0.5,1]" : "[0.5,1]";
-  many += "]";
-  const std::string tool = R"({"format": "ffdkit-widgets", "version": 1, "lattices": [], "cells": )" + many + "}";
+  const std::string tool = toolWithCells("[" + commaSeparated(20000, "[0.5,1]") + "]");
   WidgetReadOptions options;
   options.limits.maxMemoryBytes = tool.size() + 1000;  // the text is charged first, then its document
   const std::string early = widgetError(tool, options);
@@ -182,9 +188,7 @@ TEST(HostileWidgetFile, ADocumentExactlyAtTheLimitReadsAndOneByteLessIsRefused) 
 TEST(HostileWidgetFile, ASyntaxErrorAfterTheLimitIsTheLimitAndOneWithinItIsTheSyntaxError) {
   // The document up to the error is what the read would have built: over the limit, the limit is
   // the error; within it, the syntax error at its line and column.
-  std::string many = "[";
-  for (int i = 0; i < 5000; ++i) many += i ? ",0" : "0";
-  const std::string tool = R"({"format": "ffdkit-widgets", "version": 1, "lattices": [], "cells": )" + many + ",}";
+  const std::string tool = toolWithCells("[" + commaSeparated(5000, "0"), ",}");  // an unfinished array
   WidgetReadOptions options;
   options.limits.maxMemoryBytes = 2 * tool.size();
   const std::string over = widgetError(tool, options);
