@@ -81,6 +81,48 @@ class UndoDuringTransformGuiTest : public QObject {
     QVERIFY(!w.editController().transforming());
   }
 
+  // Ctrl+Shift+Z (the redo key) during a move: the move is abandoned, the undone step redone,
+  // and the typed value of the abandoned move is gone (the next move starts from nothing typed).
+  void ctrlShiftZDuringAMoveAbandonsItAndRedoesTheUndoneStep() {
+    MainWindow& w = *window_;
+    const WidgetId lattice = newLatticeInEditMode(w);
+    clickPoint(w, lattice, flat(1, 1, 2));
+    const Eigen::MatrixX3d start = w.scene().widgets.worldControlPoints(lattice);
+    const std::size_t steps = w.commands().position();
+    hover(w, toWidget(w, Eigen::Vector3d(0.5, 0.5, 1.0)));
+    pressKey(w, Qt::Key_G);
+    pressKey(w, Qt::Key_Z);
+    typeKeys(w, "0.5");
+    pressKey(w, Qt::Key_Return);
+    const Eigen::MatrixX3d moved = w.scene().widgets.worldControlPoints(lattice);
+    QCOMPARE(moved(flat(1, 1, 2), 2), start(flat(1, 1, 2), 2) + 0.5);
+    pressKey(w, Qt::Key_Z, Qt::ControlModifier);
+    QCOMPARE(w.commands().position(), steps);
+    QCOMPARE(largestDifference(w.scene().widgets.worldControlPoints(lattice), start), 0.0);
+
+    // A second G along z with "0.2" typed, then the redo key while it runs.
+    const QPoint from = toWidget(w, start.row(flat(1, 1, 2)).transpose());
+    hover(w, from);
+    pressKey(w, Qt::Key_G);
+    pressKey(w, Qt::Key_Z);
+    typeKeys(w, "0.2");
+    QVERIFY(w.editController().transforming());
+    QVERIFY(largestDifference(w.scene().widgets.worldControlPoints(lattice), start) > 0.1);
+    pressKey(w, Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);
+    QVERIFY(!w.editController().transforming());
+    QCOMPARE(w.commands().position(), steps + 1);
+    QCOMPARE(largestDifference(w.scene().widgets.worldControlPoints(lattice), moved), 0.0);
+
+    // The next move starts with nothing typed: "3" moves by 3, not by 0.23.
+    hover(w, toWidget(w, moved.row(flat(1, 1, 2)).transpose()));
+    pressKey(w, Qt::Key_G);
+    pressKey(w, Qt::Key_Z);
+    typeKeys(w, "3");
+    pressKey(w, Qt::Key_Return);
+    QCOMPARE(w.commands().position(), steps + 2);
+    QCOMPARE(w.scene().widgets.worldControlPoints(lattice)(flat(1, 1, 2), 2), moved(flat(1, 1, 2), 2) + 3.0);
+  }
+
  private:
   std::unique_ptr<MainWindow> window_;
 };
