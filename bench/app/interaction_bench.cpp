@@ -38,12 +38,6 @@ struct Session : bench::ViewedSphere {
 
 Session& session(int resolution) { return bench::sessionAt<Session>(resolution); }
 
-// The same, with the view following the deformer's steps as they are computed
-// (SceneView::followGestures): each tile of new points converted while it is in cache.
-struct FollowingSession : Session {
-  explicit FollowingSession(int resolution) : Session(resolution) { view->followGestures(deformer); }
-};
-
 void dragStep(benchmark::State& state, Session& s) {
   const widgets::Ray grab = s.ray(0.5);
   require(s.controller.press(grab, s.tolerance()) == app::InteractionController::PressResult::Widget,
@@ -74,10 +68,6 @@ void dragStep(benchmark::State& state, Session& s) {
 }
 
 void BM_DragStep(benchmark::State& state) { dragStep(state, session(static_cast<int>(state.range(0)))); }
-
-void BM_DragStepFollowedByTheView(benchmark::State& state) {
-  dragStep(state, bench::sessionAt<FollowingSession>(static_cast<int>(state.range(0))));
-}
 
 // The first step of a drag: the deformer's delta step, and the view's weights of the moved control
 // point and W (what the next steps follow the normals with), its normals as the sums it kept from
@@ -190,9 +180,6 @@ BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:10M/lattice:4x4x4-cubic")->Arg(
 BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:100K/lattice:4x4x4-cubic")->Arg(447)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 BENCHMARK(BM_DragStep)->Name("BM_DragStep/points:10K/lattice:4x4x4-cubic")->Arg(141)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
-// The view converting each tile of the deformer's step while it is in cache (followGestures).
-BENCHMARK(BM_DragStepFollowedByTheView)->Name("BM_DragStepFollowedByTheView/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
-BENCHMARK(BM_DragStepFollowedByTheView)->Name("BM_DragStepFollowedByTheView/points:10M/lattice:4x4x4-cubic")->Arg(4472)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 BENCHMARK(BM_DragFirstStep)->Name("BM_DragFirstStep/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 BENCHMARK(BM_DragFirstStep)->Name("BM_DragFirstStep/points:10M/lattice:4x4x4-cubic")->Arg(4472)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 BENCHMARK(BM_Hover)->Name("BM_Hover/points:1M/lattice:4x4x4-cubic")->Arg(1414)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();

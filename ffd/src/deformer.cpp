@@ -504,9 +504,7 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
   auto touched = [&](const Embedding::Block& block) {
     return block.kind != Embedding::BlockKind::Frozen && !terms[block.cell].empty();
   };
-  // An observer converts every row, touched or not: both cores then.
-  const bool parallel =
-      parallel_ && (work >= kParallelPoints || (observer_ && embedding_.pointCount() >= kParallelPoints));
+  const bool parallel = parallel_ && work >= kParallelPoints;
 #pragma omp parallel if (parallel) reduction(+ : evaluated)
   {
     fields.fillTable();
@@ -526,17 +524,10 @@ const Eigen::MatrixX3d& Deformer::update(const Lattice& lattice) {
                             static_cast<int>(terms[cell].size()), mode);
       }
     };
-    const Eigen::Index n = embedding_.pointCount();
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t t = 0; t < tileCount; ++t) {
       evaluated += runTile(in, embedding_, tiles[t], tiles[t + 1], detail::Store::Accumulate, scratch, touched, run,
                            [](const Embedding::Block&) {});
-      // The tile's rows (kTileSize consecutive points, original order) are final: hand them over
-      // while they are in this core's cache.
-      if (observer_) {
-        const Eigen::Index begin = t * Eigen::Index(Embedding::kTileSize);
-        observer_->rowsDone(begin, std::min(n, begin + Eigen::Index(Embedding::kTileSize)), output_);
-      }
     }
   }
   stats_.evaluatedPoints = evaluated;

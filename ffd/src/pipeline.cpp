@@ -180,7 +180,6 @@ const Embedding* Pipeline::embedding(LatticeId id) const {
 }
 
 const Deformer* Pipeline::deformer(LatticeId id) const { return node(id).deformer.get(); }
-Deformer* Pipeline::deformer(LatticeId id) { return node(id).deformer.get(); }
 
 Pipeline::Action Pipeline::decide(LatticeId id, const Node& n, std::uint64_t inputVersion, bool forceEmbed) const {
   const bool fresh = n.deformer && n.embeddedRest == n.lattice.restRevision() && n.embeddedInput == inputVersion;

@@ -1,7 +1,6 @@
 #include "ffdkit/scenes/scene_deformer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <set>
 #include <span>
@@ -56,29 +55,9 @@ struct SceneDeformer::ObjectPipeline {
   // After a run of the subset pipeline: the revision and the coverage (the full points wait).
   void recordSubsetRun();
   // The motion of the last stage's control points since the base (gestureMotion() without
-  // asking whether a delta step ran since): before a step, the motion it is to give.
+  // asking whether a delta step ran since).
   std::optional<GestureMotion> motionSinceBase() const;
 };
-
-namespace {
-
-// Hands a stage deformer's rows over to the gesture follower, counting them.
-struct RowRelay final : ffd::StepObserver {
-  GestureFollower* follower = nullptr;
-  ObjectId object;
-  std::atomic<Eigen::Index> rows{0};
-  void rowsDone(Eigen::Index begin, Eigen::Index end, const Eigen::MatrixX3d& points) override {
-    follower->stepRows(object, begin, end, points);
-    rows.fetch_add(end - begin, std::memory_order_relaxed);
-  }
-};
-
-bool sameMotion(const GestureMotion& a, const GestureMotion& b) {
-  return a.baseRevision == b.baseRevision && a.lattice == b.lattice && a.controlPoints == b.controlPoints &&
-         a.displacements == b.displacements;
-}
-
-}  // namespace
 
 bool SceneDeformer::ObjectPipeline::holdsSameMesh(const SceneObject& object) const {
   const Eigen::MatrixX3d& own = object.mesh.points;
@@ -215,7 +194,6 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   //    throw in step 2 leaves each pipeline whole. An object the request names during a gesture
   //    syncs and runs its subset pipeline instead, when its full one needs no rebuild.
   struct Job {
-    ObjectId id;
     ObjectPipeline* object;
     detail::StagePipeline* stages;  // object->full or object->subset->stages
   };
@@ -241,13 +219,13 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
     if (asked != request.subsets.end() && !rebuild && !stages.empty()) {
       latticesBuilt += p->prepareSubset(scene, asked->second);
       p->subset->stages.prepareRun(scene, activeLattice, ffd::UpdateMode::Exact, precision_);  // no drift to undo at release
-      jobs.push_back({object.id, p, &p->subset->stages});
+      jobs.push_back({p, &p->subset->stages});
     } else {
       latticesBuilt += rebuild ? p->rebuild(scene, object, std::move(stages), takeFrom) : p->full.sync(scene);
       if (!p->full.stages.empty()) {
         p->full.prepareRun(scene, activeLattice, how == Run::Gesture ? ffd::UpdateMode::Delta : ffd::UpdateMode::Exact,
                            precision_);
-        jobs.push_back({object.id, p, &p->full});
+        jobs.push_back({p, &p->full});
       }
     }
     p->remember(object);
@@ -274,35 +252,6 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
     const bool atSubset = &stages != &p.full;
     ffd::EmbedProgress hook;
     if (progress_ && toEmbed[i] > 0) hook = [&goOn, done](Eigen::Index d, Eigen::Index) { return goOn(done + d); };
-    // A one-control-point delta step of the full points: the follower converts its rows as the
-    // last stage's deformer writes them.
-    std::optional<GestureMotion> announced;
-    RowRelay relay;
-    const ffd::LatticeId lastStage = stages.pipeline->order().back();
-    const std::shared_ptr<GestureFollower> follower = how == Run::Gesture && !atSubset ? follower_.lock() : nullptr;
-    if (follower) {
-      announced = p.motionSinceBase();
-      ffd::Deformer* last = stages.pipeline->deformer(lastStage);
-      if (announced && announced->controlPoints.size() == 1 && last && follower->beginStep(jobs[i].id, *announced)) {
-        relay.follower = follower.get();
-        relay.object = jobs[i].id;
-        last->setStepObserver(&relay);
-      } else {
-        announced.reset();
-      }
-    }
-    // The observer off again however the run ends (a re-embedded stage has a new deformer without one).
-    struct Detach {
-      ffd::Pipeline& pipeline;
-      ffd::LatticeId last;
-      GestureFollower* follower;  // null: nothing announced or the step already ended
-      ObjectId id;
-      ~Detach() {
-        if (!follower) return;
-        if (ffd::Deformer* d = pipeline.deformer(last)) d->setStepObserver(nullptr);  // the stage is still there
-        follower->endStep(id, false, 0);
-      }
-    } detach{*stages.pipeline, lastStage, announced ? follower.get() : nullptr, jobs[i].id};
     // exact: re-embed every throttled stage too (one pipeline pass, not an update and then another).
     if (exact) {
       stages.pipeline->reembedAll(hook);
@@ -327,14 +276,6 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       stats.failedPoints += first->failedCount();
     }
     p.recordRun();
-    if (announced) {
-      const std::optional<GestureMotion> moved = gestureMotion(jobs[i].id);
-      const bool followed = relay.rows.load() == stages.pipeline->inputPoints().rows() && moved &&
-                            sameMotion(*moved, *announced);
-      if (ffd::Deformer* d = stages.pipeline->deformer(lastStage)) d->setStepObserver(nullptr);
-      detach.follower = nullptr;
-      follower->endStep(jobs[i].id, followed, p.revision);
-    }
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats_ = stats;

@@ -490,40 +490,6 @@ TEST(SceneViewUpdates, TheFirstStepOfADragStartsFromTheNormalsDrawnBeforeIt) {
   }
 }
 
-
-TEST(SceneViewUpdates, ADragFollowedAsTheDeformerComputesItDrawsItsExactPointsAndTheSameNormals) {
-  // A view that follows the deformer's steps (followGestures) writes each step's float points
-  // from the deformer's double points as they are computed, float(x - o) bit for bit at every
-  // step (a view that adds beta times the step to its float points drifts from them by rounding),
-  // and the same followed normals, bit for bit, as the view that follows in a pass of its own.
-  // ~20k points: several tiles on both threads, and a tail below eight vertices.
-  DragSession fused(200), plain(200);
-  fused.view.followGestures(fused.deformer);
-  const Eigen::Index n = fused.deformer.pointCount(fused.sphere);
-  ASSERT_GT(n, 16384);
-  ASSERT_NE(n % 8, 0);
-  double drift = 0.0;
-  for (int drag = 0; drag < 2; ++drag) {
-    for (DragSession* s : {&fused, &plain})
-      ASSERT_EQ(s->controller.press(s->ray(0.5), s->tolerance()), InteractionController::PressResult::Widget);
-    for (int step = 1; step <= 10; ++step) {
-      const SceneViewStats before = fused.view.stats();
-      for (DragSession* s : {&fused, &plain}) s->controller.drag(s->ray(0.5 + 0.13 * step + 0.05 * drag));
-      ASSERT_TRUE((fused.deformer.points(fused.sphere).array() == plain.deformer.points(plain.sphere).array()).all())
-          << "the deformer's points do not depend on who follows them; step " << step;
-      EXPECT_EQ(largestDifference(drawnPoints(fused.renderer, n), fused.deformer.points(fused.sphere)), 0.0)
-          << "drag " << drag << " step " << step;
-      drift = std::max(drift, largestDifference(drawnPoints(plain.renderer, n), plain.deformer.points(plain.sphere)));
-      EXPECT_TRUE((fused.view.objectNormals(fused.sphere).array() == plain.view.objectNormals(plain.sphere).array()).all())
-          << "drag " << drag << " step " << step;
-      EXPECT_EQ(fused.view.stats().followedNormals, before.followedNormals + (step > 1 ? 1 : 0)) << "step " << step;
-    }
-    for (DragSession* s : {&fused, &plain}) s->controller.release();
-    EXPECT_TRUE((fused.view.objectNormals(fused.sphere).array() == fused.freshNormals().array()).all());
-  }
-  EXPECT_GT(drift, 0.0);  // the steps did move the points by amounts that round
-}
-
 // The transformer follows the widget it moves at every drag step: its actors are moved, not built
 // again, and stand where the actors of a view that showed the moved transformer from the start do.
 TEST(SceneViewUpdates, AMovedTransformerMovesItsActorsWithoutBuildingThem) {

@@ -1,7 +1,6 @@
 // Tests that a drag's steps of one control point, which read the weights the deformer kept at the
 // step before (DeformStats::weightsReused), give the bits the basis gives, and stay with the full
 // evaluation.
-#include <atomic>
 #include <random>
 #include <vector>
 
@@ -141,47 +140,6 @@ TEST(DeformerStepWeights, TheKeptWeightsAreTheControlPointsWeightsAtEveryPoint) 
     EXPECT_FALSE(deformer.keptControlWeights(c.lattice, c.lattice.index(3, 3, 3), kept)) << "another control point";
   }
   EXPECT_GT(blended, 100);  // the second control point's: outside the box, blended
-}
-
-// Records each row the deformer hands over: how often, and its coordinates then.
-struct RowRecorder final : StepObserver {
-  std::vector<std::atomic<int>> times;
-  Eigen::MatrixX3d seen;
-  explicit RowRecorder(Eigen::Index n) : times(static_cast<std::size_t>(n)), seen(n, 3) {}
-  void rowsDone(Eigen::Index begin, Eigen::Index end, const Eigen::MatrixX3d& points) override {
-    for (Eigen::Index p = begin; p < end; ++p) {
-      times[static_cast<std::size_t>(p)].fetch_add(1);
-      seen.row(p) = points.row(p);
-    }
-  }
-  void clear() {
-    for (auto& t : times) t.store(0);
-  }
-};
-
-TEST(DeformerStepWeights, AStepObserverGetsEveryRowOnceWithItsFinalPoints) {
-  // Points in random order inside their tiles (an 8x8x8 lattice), some of them untouched by the
-  // moved control point: every row arrives once per delta step, holding the step's output.
-  std::mt19937 rng(42);
-  DragCase c = dragCase(rng);
-  Deformer deformer(embed(c.lattice, c.Q));
-  ASSERT_FALSE(deformer.embedding().order().empty());
-  deformer.deform(c.lattice, c.Q);
-  RowRecorder rows(c.Q.rows());
-  deformer.setStepObserver(&rows);
-  const Eigen::Index moved = c.lattice.index(2, 2, 3);
-  for (int step = 1; step <= 3; ++step) {
-    rows.clear();
-    c.lattice.setControlPoint(moved, c.lattice.controlPoints().row(moved).transpose() + Eigen::Vector3d(0.01, 0.02, -0.01));
-    deformer.update(c.lattice);
-    EXPECT_LT(deformer.lastStats().evaluatedPoints, c.Q.rows());
-    for (const auto& t : rows.times) ASSERT_EQ(t.load(), 1) << "step " << step;
-    EXPECT_TRUE((rows.seen.array() == deformer.points().array()).all()) << "step " << step;
-  }
-  // An exact evaluation is no delta step: nothing arrives.
-  rows.clear();
-  deformer.deform(c.lattice, c.Q);
-  for (const auto& t : rows.times) ASSERT_EQ(t.load(), 0);
 }
 
 }  // namespace

@@ -1,9 +1,7 @@
 #include "ffdkit/scenes/scene_deformer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <memory>
 #include <numbers>
 #include <random>
 #include <thread>
@@ -224,96 +222,6 @@ TEST(SceneDeformer, AGestureMotionIsLinearInTheControlPointsTheLastStageMovedByD
   scene.widgets.setControlPoints(lattice, control);
   deformer.update(scene, lattice);  // an exact update is a base too
   EXPECT_FALSE(deformer.gestureMotion("sphere"));
-}
-
-// Records what a SceneDeformer hands its gesture follower.
-struct RecordingFollower final : GestureFollower {
-  bool accept = true;
-  int begun = 0, ended = 0;
-  GestureMotion announced;
-  bool followed = false;
-  std::uint64_t revision = 0;
-  std::vector<std::atomic<int>> times;
-  Eigen::MatrixX3d seen;
-  explicit RecordingFollower(Eigen::Index n) : times(static_cast<std::size_t>(n)), seen(n, 3) {}
-  bool beginStep(ObjectId, const GestureMotion& motion) override {
-    ++begun;
-    announced = motion;
-    for (auto& t : times) t.store(0);
-    return accept;
-  }
-  void stepRows(ObjectId, Eigen::Index begin, Eigen::Index end, const Eigen::MatrixX3d& points) override {
-    for (Eigen::Index p = begin; p < end; ++p) {
-      times[static_cast<std::size_t>(p)].fetch_add(1);
-      seen.row(p) = points.row(p);
-    }
-  }
-  void endStep(ObjectId, bool ok, std::uint64_t at) override {
-    ++ended;
-    followed = ok;
-    revision = at;
-  }
-  bool everyRowOnce() const {
-    return std::all_of(times.begin(), times.end(), [](const std::atomic<int>& t) { return t.load() == 1; });
-  }
-};
-
-TEST(SceneDeformer, AGestureFollowerGetsEveryRowOfAOneControlPointStepAsItIsComputed) {
-  Scene scene;
-  SceneObject sphere;
-  sphere.name = "sphere";
-  sphere.source = PrimitiveOptions{.kind = PrimitiveKind::Sphere, .resolution = 160};  // several tiles of points
-  sphere.mesh = buildObjectMesh(sphere.source, ".");
-  scene.addObject(sphere);
-  const auto lattice = attachNewLattice(scene, {"sphere"}, withCounts(5, 5, 5));
-  SceneDeformer deformer;
-  deformer.update(scene);
-  const Eigen::Index n = deformer.pointCount("sphere");
-  ASSERT_GT(n, 3 * Eigen::Index(ffd::Embedding::kTileSize));
-  auto follower = std::make_shared<RecordingFollower>(n);
-  deformer.setGestureFollower(follower);
-  Eigen::MatrixX3d control = scene.widgets.controlPoints(lattice);
-  const Eigen::Index f = 1 + 5 * (2 + 5 * 3), g = 3 + 5 * (1 + 5 * 2);
-  for (int step = 1; step <= 3; ++step) {
-    control.row(f) += Eigen::RowVector3d(0.02, -0.01, 0.03);
-    scene.widgets.setControlPoints(lattice, control);
-    deformer.updateGesture(scene, lattice);
-    ASSERT_EQ(follower->begun, step);
-    ASSERT_EQ(follower->ended, step);
-    EXPECT_TRUE(follower->followed) << "step " << step;
-    EXPECT_EQ(follower->revision, deformer.revision("sphere"));
-    EXPECT_TRUE(follower->everyRowOnce()) << "step " << step;
-    // The rows as they arrived are the step's points, and the announced motion the one it gave.
-    EXPECT_TRUE((follower->seen.array() == deformer.points("sphere").array()).all()) << "step " << step;
-    const std::optional<GestureMotion> motion = deformer.gestureMotion("sphere");
-    ASSERT_TRUE(motion);
-    EXPECT_EQ(follower->announced.controlPoints, motion->controlPoints);
-    EXPECT_EQ(follower->announced.baseRevision, motion->baseRevision);
-    EXPECT_TRUE(follower->announced.displacements == motion->displacements);
-  }
-  // A second control point: no longer one control point's motion, nothing announced.
-  control(g, 2) += 0.1;
-  scene.widgets.setControlPoints(lattice, control);
-  deformer.updateGesture(scene, lattice);
-  EXPECT_EQ(follower->begun, 3);
-  deformer.finishGesture(scene);  // the release: exact, a new base
-  EXPECT_EQ(follower->begun, 3);
-  // A follower that declines gets no rows; one that is gone is not called.
-  follower->accept = false;
-  for (int step = 1; step <= 2; ++step) {
-    control.row(f) += Eigen::RowVector3d(0.01, 0.0, 0.0);
-    scene.widgets.setControlPoints(lattice, control);
-    deformer.updateGesture(scene, lattice);
-  }
-  EXPECT_EQ(follower->begun, 5);
-  EXPECT_EQ(follower->ended, 3);
-  EXPECT_TRUE(std::all_of(follower->times.begin(), follower->times.end(), [](const std::atomic<int>& t) { return t.load() == 0; }));
-  const Eigen::MatrixX3d before = deformer.points("sphere");
-  follower.reset();
-  control.row(f) += Eigen::RowVector3d(0.01, 0.0, 0.0);
-  scene.widgets.setControlPoints(lattice, control);
-  deformer.updateGesture(scene, lattice);
-  EXPECT_GT((deformer.points("sphere") - before).cwiseAbs().maxCoeff(), 0.0);
 }
 
 // Every gesture step is evaluated where it is reported (no step is left for a read of the

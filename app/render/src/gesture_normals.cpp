@@ -36,7 +36,7 @@ void sizeArrays(Eigen::Index n, vtkPoints* drawn, vtkFloatArray* normals) {
 }
 
 // The followed normals of a step: N + d x W normalised, from the sums N and the motion W (columns)
-// with D - D(t0) = d = (dx, dy, dz), written interleaved to out. Both passes below compute them.
+// with D - D(t0) = d = (dx, dy, dz), written interleaved to out (FollowPass).
 struct FollowedNormals {
   const float *nx, *ny, *nz, *wx, *wy, *wz;
   float* out;
@@ -222,89 +222,6 @@ void followVertices(const FollowPass& f, Eigen::Index n) {
 #endif
 }
 
-// The rows of one delta step as the deformer hands them over (GestureNormals::stepRows): the
-// followed normals (FollowedNormals) and the float points float(x - o) from the step's
-// double points, still in cache, with streaming stores for both (neither array is read).
-struct StepPass {
-  FollowedNormals normals;
-  float* xyz;
-  double ox, oy, oz;
-
-  void scalar(const double* x, const double* y, const double* z, Eigen::Index i) const {
-    xyz[3 * i] = static_cast<float>(x[i] - ox);
-    xyz[3 * i + 1] = static_cast<float>(y[i] - oy);
-    xyz[3 * i + 2] = static_cast<float>(z[i] - oz);
-    normals.scalar(i);
-  }
-};
-
-#if defined(__SSE2__)
-// Vertices [i0, i0 + 4 quads), four at a time: the followed normals, the points converted.
-void stepQuads(const StepPass& f, const double* x, const double* y, const double* z, Eigen::Index i0,
-               Eigen::Index quads, bool stream) {
-  const __m128 vdx = _mm_set1_ps(f.normals.dx), vdy = _mm_set1_ps(f.normals.dy), vdz = _mm_set1_ps(f.normals.dz);
-  const __m128d vox = _mm_set1_pd(f.ox), voy = _mm_set1_pd(f.oy), voz = _mm_set1_pd(f.oz);
-  for (Eigen::Index q = 0; q < quads; ++q) {
-    const Eigen::Index i = i0 + 4 * q;
-    storeNormalQuad(f.normals, i, vdx, vdy, vdz, stream);
-    // float(x - o): the difference in double, rounded once (as static_cast<float>).
-    const auto lanes = [](const double* c, Eigen::Index k, __m128d o) {
-      return _mm_movelh_ps(_mm_cvtpd_ps(_mm_sub_pd(_mm_loadu_pd(c + k), o)),
-                           _mm_cvtpd_ps(_mm_sub_pd(_mm_loadu_pd(c + k + 2), o)));
-    };
-    storeInterleaved(f.xyz + 3 * i, lanes(x, i, vox), lanes(y, i, voy), lanes(z, i, voz), stream);
-  }
-}
-
-#if defined(FFDKIT_FOLLOW_AVX2)
-// Vertices [i0, i0 + 8 octets), eight at a time with AVX2 (followOctets' normals).
-__attribute__((target("avx2"))) void stepOctets(const StepPass& f, const double* x, const double* y, const double* z,
-                                                Eigen::Index i0, Eigen::Index octets, bool stream) {
-  const __m256 vdx = _mm256_set1_ps(f.normals.dx), vdy = _mm256_set1_ps(f.normals.dy), vdz = _mm256_set1_ps(f.normals.dz);
-  const __m256d vox = _mm256_set1_pd(f.ox), voy = _mm256_set1_pd(f.oy), voz = _mm256_set1_pd(f.oz);
-  for (Eigen::Index o = 0; o < octets; ++o) {
-    const Eigen::Index i = i0 + 8 * o;
-    storeNormalOctet(f.normals, i, vdx, vdy, vdz, stream);
-    const __m128 px0 = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_loadu_pd(x + i), vox));
-    const __m128 py0 = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_loadu_pd(y + i), voy));
-    const __m128 pz0 = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_loadu_pd(z + i), voz));
-    const __m128 px1 = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_loadu_pd(x + i + 4), vox));
-    const __m128 py1 = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_loadu_pd(y + i + 4), voy));
-    const __m128 pz1 = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_loadu_pd(z + i + 4), voz));
-    storeInterleaved(f.xyz + 3 * i, px0, py0, pz0, stream);
-    storeInterleaved(f.xyz + 3 * i + 12, px1, py1, pz1, stream);
-  }
-}
-#endif
-#endif
-
-// Vertices [begin, end) of a step on the calling thread: eight (AVX2) or four (SSE) at a time
-// from the first vertex whose arrays are 16-byte aligned for streaming stores, the rest one by one.
-void stepVertices(const StepPass& f, const Eigen::MatrixX3d& points, Eigen::Index begin, Eigen::Index end) {
-  const Eigen::Index n = points.rows();
-  const double *x = points.data(), *y = x + n, *z = y + n;  // column-major
-  Eigen::Index i = begin;
-#if defined(__SSE2__)
-  // 3 i floats from a 16-byte aligned base are aligned when i is a multiple of 4.
-  const bool aligned =
-      reinterpret_cast<std::uintptr_t>(f.normals.out) % 16 == 0 && reinterpret_cast<std::uintptr_t>(f.xyz) % 16 == 0;
-  for (; i < end && i % 4 != 0; ++i) f.scalar(x, y, z, i);
-#if defined(FFDKIT_FOLLOW_AVX2)
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) {
-    const Eigen::Index octets = (end - i) / 8;
-    stepOctets(f, x, y, z, i, octets, aligned);
-    i += 8 * octets;
-  }
-#endif
-  const Eigen::Index quads = (end - i) / 4;
-  stepQuads(f, x, y, z, i, quads, aligned);
-  i += 4 * quads;
-  if (aligned) _mm_sfence();  // the streamed rows visible before the deformer's threads join
-#endif
-  for (; i < end; ++i) f.scalar(x, y, z, i);
-}
-
 // Vertices are gathered (the sums over their triangles) a chunk at a time into columns, then
 // normalised together: the square root and the division, a third of a scalar pass, run four or
 // eight at a time.
@@ -382,54 +299,7 @@ void exactNormals(const Eigen::MatrixX3i& triangles, const VertexFaces& vf, cons
   drawn->Modified();
 }
 
-void GestureNormals::stopFollowing() {
-  active_ = false;
-  stepping_ = false;
-  stepped_ = false;
-}
-
-bool GestureNormals::beginStep(const scenes::GestureMotion& motion, vtkPoints* points, vtkFloatArray* normals,
-                               const Eigen::Vector3d& origin) {
-  stepping_ = false;
-  stepped_ = false;
-  const Eigen::Index n = sums_.rows();
-  if (!active_ || points->GetDataType() != VTK_FLOAT || points->GetNumberOfPoints() != n ||
-      normals->GetNumberOfTuples() != n || normals->GetNumberOfComponents() != 3 || beta_.rows() != n ||
-      motion_.rows() != n || motion.controlPoints.size() != 1 || motion.baseRevision != baseRevision_ ||
-      motion.lattice != lattice_ || motion.controlPoints[0] != controlPoint_)
-    return false;
-  stepDisplacement_ = motion.displacements.row(0).transpose();
-  const Eigen::Vector3f d = (stepDisplacement_ - startDisplacement_).cast<float>();
-  step_ = StepArrays{sums_.col(0).data(), sums_.col(1).data(), sums_.col(2).data(), motion_.col(0).data(),
-                     motion_.col(1).data(), motion_.col(2).data(), static_cast<float*>(points->GetVoidPointer(0)),
-                     normals->GetPointer(0), d, origin};
-  stepPoints_ = points;
-  stepNormals_ = normals;
-  stepping_ = true;
-  return true;
-}
-
-void GestureNormals::stepRows(Eigen::Index begin, Eigen::Index end, const Eigen::MatrixX3d& points) const {
-  if (!stepping_ || points.rows() != sums_.rows()) return;  // endStep then reports the rows as not followed
-  const StepPass pass{{step_.nx, step_.ny, step_.nz, step_.wx, step_.wy, step_.wz, step_.out, step_.d.x(), step_.d.y(), step_.d.z()},
-                      step_.xyz,
-                      step_.origin.x(),
-                      step_.origin.y(),
-                      step_.origin.z()};
-  stepVertices(pass, points, begin, end);
-}
-
-void GestureNormals::endStep(bool followed, std::uint64_t revision) {
-  if (!stepping_) return;
-  stepping_ = false;
-  if (!followed) {
-    stopFollowing();  // the arrays hold part of a step: the next refresh writes them in full (update())
-    return;
-  }
-  stepped_ = true;
-  steppedRevision_ = revision;
-  shownDisplacement_ = stepDisplacement_;  // what the arrays hold now
-}
+void GestureNormals::stopFollowing() { active_ = false; }
 
 bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::ObjectId object, vtkPoints* points,
                             vtkFloatArray* normals) {
@@ -443,15 +313,6 @@ bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::Objec
       motion->lattice != lattice_ || motion->controlPoints[0] != controlPoint_)
     return false;
   const Eigen::Vector3d now = motion->displacements.row(0).transpose();
-  // The deformer's step wrote them already, row by row (beginStep .. endStep).
-  if (stepped_ && steppedRevision_ == deformer.revision(object) && stepPoints_ == points && stepNormals_ == normals &&
-      now == shownDisplacement_) {
-    stepped_ = false;
-    points->Modified();
-    normals->Modified();
-    return true;
-  }
-  stepped_ = false;
   // The points: x_v(t) = x_v(t') + beta_v (D(t) - D(t')) (gesture_normals.h: x_v(t) = x_v(0) + beta_v D(t)).
   const Eigen::Vector3f step = (now - shownDisplacement_).cast<float>();
   // The normals: N_v(t) = N_v(t0) + (D(t) - D(t0)) x W_v, normalised (+z for a zero sum, as exactNormals).
@@ -475,8 +336,6 @@ bool GestureNormals::update(const scenes::SceneDeformer& deformer, scenes::Objec
   const Eigen::Index n = points.rows();
   const std::uint64_t revision = deformer.revision(object);
   const std::optional<scenes::GestureMotion> motion = deformer.gestureMotion(object);
-  stepping_ = false;
-  stepped_ = false;
   if (!motion || motion->controlPoints.size() != 1) {
     stopFollowing();
     exactNormals(triangles, vf, points, origin, faceScratch, sums_, drawn, normals);

@@ -39,12 +39,6 @@
 // Motions of several control points (the general form has pairwise D_c x D_c' terms) and every
 // other change are recomputed exactly.
 //
-// When the view follows the deformer's steps (SceneView::followGestures), a later step is
-// written while the deformer computes it (beginStep, stepRows, endStep): each run of new double
-// points, still in cache, gives the float points float(x_v - o) and the followed normals, both
-// with streaming stores, so neither the float points nor beta are read and the step costs no
-// pass of its own; follow() then only marks the arrays modified.
-//
 // Points are drawn as float32 relative to an origin o of the object (object_arrays.h): follow()
 // adds beta_v (D(t) - D(t')) to the float point, so the drawn points drift from float(x_v(t) - o)
 // by float rounding, about one unit in the last place per step; every update() writes
@@ -82,20 +76,6 @@ class GestureNormals {
               const scene_view_shapes::VertexFaces& vf, const Eigen::MatrixX3d& points, const Eigen::Vector3d& origin,
               std::vector<Eigen::Vector3f>& faceScratch, vtkPoints* drawn, vtkFloatArray* normals);
 
-  /// Before a delta step the deformer announces (scenes::GestureFollower::beginStep): true when
-  /// its motion is the one-control-point motion update() set up and `points` (float32) and
-  /// `normals` have one entry per vertex; then stepRows() writes the step's rows into them.
-  bool beginStep(const scenes::GestureMotion& motion, vtkPoints* points, vtkFloatArray* normals,
-                 const Eigen::Vector3d& origin);
-  /// Rows [begin, end) of the step's points (#points x 3, world, as the deformer just wrote them):
-  /// the float points float(x - origin) (the bits update() writes, no drift) and the followed
-  /// normals (follow()'s bits), with streaming stores. Concurrent calls write disjoint rows.
-  void stepRows(Eigen::Index begin, Eigen::Index end, const Eigen::MatrixX3d& points) const;
-  /// After the step: `followed` (every row delivered, the announced motion) means the arrays hold
-  /// the points of `revision`, and the next follow() of that revision only marks them modified;
-  /// otherwise the next refresh writes them in full (update()).
-  void endStep(bool followed, std::uint64_t revision);
-
   /// Heap bytes held: the sums of the normals (12 per vertex) and, once a drag was followed,
   /// beta_v and W_v (16 more) and the double weights they were made from (8 more), kept for the
   /// next drag's first step (fresh buffers of 24 bytes per vertex cost it page faults: 240 MB at
@@ -108,22 +88,6 @@ class GestureNormals {
  private:
   // No motion followed (the buffers stay for the next one).
   void stopFollowing();
-
-  // What stepRows() writes with (beginStep).
-  struct StepArrays {
-    const float *nx = nullptr, *ny = nullptr, *nz = nullptr, *wx = nullptr, *wy = nullptr, *wz = nullptr;
-    float* xyz = nullptr;
-    float* out = nullptr;
-    Eigen::Vector3f d = Eigen::Vector3f::Zero();  // D - D(t0)
-    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  };
-  StepArrays step_;
-  bool stepping_ = false;  // between beginStep() and endStep()
-  bool stepped_ = false;   // the arrays hold the points of steppedRevision_
-  std::uint64_t steppedRevision_ = 0;
-  Eigen::Vector3d stepDisplacement_ = Eigen::Vector3d::Zero();
-  const vtkPoints* stepPoints_ = nullptr;
-  const vtkFloatArray* stepNormals_ = nullptr;
 
   bool active_ = false;
   std::uint64_t baseRevision_ = 0;

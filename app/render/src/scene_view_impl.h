@@ -107,18 +107,6 @@ struct SceneView::Impl {
   LevelOfDetail lod;
   bool moving = false;  // setMoving (playback)
 
-  // Hands a drag's delta steps to the objects' GestureNormals while the deformer computes them
-  // (SceneView::followGestures).
-  struct StepFollower final : scenes::GestureFollower {
-    explicit StepFollower(Impl* owner) : impl(owner) {}
-    bool beginStep(scenes::ObjectId object, const scenes::GestureMotion& motion) override;
-    void stepRows(scenes::ObjectId object, Eigen::Index begin, Eigen::Index end, const Eigen::MatrixX3d& points) override;
-    void endStep(scenes::ObjectId object, bool followed, std::uint64_t revision) override;
-    Impl* impl;
-    ObjectActor* stepping = nullptr;  // the object between beginStep and endStep
-  };
-  std::shared_ptr<StepFollower> stepFollower = std::make_shared<StepFollower>(this);  // deformers hold it weakly
-
   // The object actors (scene_view_objects.cpp).
   void clearObjects();
   void buildObjects(const scenes::Scene& scene, const scenes::SceneDeformer& deformed);

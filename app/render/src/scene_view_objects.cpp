@@ -147,30 +147,6 @@ Eigen::MatrixX3f SceneView::objectNormals(const std::string& object) const {
   return {};
 }
 
-void SceneView::followGestures(scenes::SceneDeformer& deformer) { deformer.setGestureFollower(impl_->stepFollower); }
-
-bool SceneView::Impl::StepFollower::beginStep(scenes::ObjectId object, const scenes::GestureMotion& motion) {
-  stepping = nullptr;
-  for (auto& entry : impl->objects) {
-    if (entry.id != object) continue;
-    auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals());
-    if (normals && entry.gestureNormals.beginStep(motion, entry.polyData->GetPoints(), normals, entry.origin))
-      stepping = &entry;
-    break;
-  }
-  return stepping != nullptr;
-}
-
-void SceneView::Impl::StepFollower::stepRows(scenes::ObjectId object, Eigen::Index begin, Eigen::Index end,
-                                             const Eigen::MatrixX3d& points) {
-  if (stepping && stepping->id == object) stepping->gestureNormals.stepRows(begin, end, points);
-}
-
-void SceneView::Impl::StepFollower::endStep(scenes::ObjectId object, bool followed, std::uint64_t revision) {
-  if (stepping && stepping->id == object) stepping->gestureNormals.endStep(followed, revision);
-  stepping = nullptr;
-}
-
 SceneViewMemory SceneView::objectMemory() const {
   SceneViewMemory memory;
   for (const auto& entry : impl_->objects) {

@@ -38,20 +38,6 @@ enum class Precision {
   Single
 };
 
-/// Receives the output of Deformer::update(lattice) a tile of consecutive points at a time, right
-/// after the deformer wrote it, while its rows are still in cache: a consumer of every step's
-/// points (the view's float points and normals during a drag) converts them there instead of in a
-/// second pass over memory.
-class StepObserver {
- public:
-  virtual ~StepObserver() = default;
-  /// Rows [begin, end) of `points` (#points x 3, world) hold this step's output. Every row is
-  /// delivered exactly once per update(lattice) that changed something (rows the step left
-  /// unchanged too), in runs of at most Embedding::kTileSize rows, from the deformer's OpenMP
-  /// threads: disjoint runs may be delivered concurrently.
-  virtual void rowsDone(Eigen::Index begin, Eigen::Index end, const Eigen::MatrixX3d& points) = 0;
-};
-
 /// The per-frame half of FFD (the mapping of Kuriyama 1996, sec. 6.3.2, eq. (6.1)): given an
 /// Embedding, maps the embedded points through the lattice's current control points.
 ///
@@ -143,10 +129,6 @@ class Deformer {
            lastWeights_ == lattice.weights();
   }
 
-  /// The observer update(lattice) delivers its output to, tile by tile (null: none; not owned).
-  /// Only the polynomial delta path of update(lattice) delivers; the other calls do not.
-  void setStepObserver(StepObserver* observer) { observer_ = observer; }
-
   /// Run on all OpenMP threads (default) or on the calling thread only.
   void setParallel(bool parallel) { parallel_ = parallel; }
   /// The precision of the following calls (default Double). An exact update() is bit-identical
@@ -189,7 +171,6 @@ class Deformer {
   Eigen::VectorXd stepWeights_;
   Eigen::Index stepWeightsControl_ = -1;
   std::uint64_t stepWeightsRest_ = 0;
-  StepObserver* observer_ = nullptr;
   bool deformed_ = false;
   bool parallel_ = true;
   Precision precision_ = Precision::Double;

@@ -157,8 +157,6 @@ class Pipeline {
   /// The deformer of a lattice's stage (null before its first update): what it kept of its last
   /// steps (Deformer::keptControlWeights). @throws LatticeError on an unknown id.
   const Deformer* deformer(LatticeId id) const;
-  /// deformer(), to set what it reports to (Deformer::setStepObserver). @throws LatticeError on an unknown id.
-  Deformer* deformer(LatticeId id);
   /// What each stage did in the last run (after a cancelled run: the stages finished before the cancel).
   const std::vector<StageReport>& lastReport() const { return report_; }
 

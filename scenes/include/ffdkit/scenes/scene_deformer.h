@@ -48,26 +48,6 @@ struct GestureMotion {
   Eigen::MatrixX3d displacements;  ///< their WORLD displacements since the base (frame.linear() * dP), a row each
 };
 
-/// Follows an object's points through a gesture's delta steps while the deformer computes them
-/// (SceneDeformer::setGestureFollower): when a step moves one control point of the object's last
-/// lattice stage, the follower receives the new points a run of rows at a time, as the stage's
-/// deformer writes them (ffd::StepObserver), and converts them while they are in cache (the
-/// view's float points and normals) instead of reading them again after the step.
-class GestureFollower {
- public:
-  virtual ~GestureFollower() = default;
-  /// Before such a step of `object`: the motion the step is to give (what gestureMotion() reports
-  /// after it when the step runs as a delta step). Return true to receive its rows.
-  virtual bool beginStep(ObjectId object, const GestureMotion& motion) = 0;
-  /// Rows [begin, end) of the object's new points (#points x 3, world) are final. Called from the
-  /// deformer's threads: disjoint runs may arrive concurrently.
-  virtual void stepRows(ObjectId object, Eigen::Index begin, Eigen::Index end, const Eigen::MatrixX3d& points) = 0;
-  /// After a step beginStep() accepted: `followed` is true when every row was delivered and the
-  /// step gave the announced motion, then `revision` is the points' new revision
-  /// (SceneDeformer::revision); false when what was made of the rows must not be used.
-  virtual void endStep(ObjectId object, bool followed, std::uint64_t revision) = 0;
-};
-
 /// Progress of SceneDeformer::update() / finishGesture(): the fraction in [0, 1] of the points the
 /// call embeds (over all its objects and lattice stages), non-decreasing, 0.0 first and 1.0 once
 /// the call is complete (only these two when nothing needs embedding). Called on the thread that
@@ -178,9 +158,6 @@ class SceneDeformer {
   /// A worker thread typically passes a lambda that stores the fraction in an std::atomic the
   /// GUI polls and returns !cancelFlag.load().
   void setProgress(SceneProgress progress) { progress_ = std::move(progress); }
-  /// The follower of the following gestures' one-control-point delta steps (empty: none). Held
-  /// weakly: a follower that is gone is no longer called.
-  void setGestureFollower(std::weak_ptr<GestureFollower> follower) { follower_ = std::move(follower); }
 
   /// Deformed points of an object (its own points if no lattice deforms it), #points x 3, as the
   /// last evaluation left them: a pure read (every evaluation that covers the object in full, a
@@ -299,7 +276,6 @@ class SceneDeformer {
   SceneDeformStats stats_;
   Totals totals_;
   SceneProgress progress_;
-  std::weak_ptr<GestureFollower> follower_;
   ffd::Precision precision_ = ffd::Precision::Double;
   // evaluate(): the scene and its mark at the last run, whether that run was exact, the gesture.
   const Scene* evaluated_ = nullptr;

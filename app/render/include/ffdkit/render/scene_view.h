@@ -103,13 +103,6 @@ class SceneView {
   /// points are replaced (a drag step).
   void refresh(const scenes::Scene& scene, const scenes::SceneDeformer& deformed);
 
-  /// Lets `deformer` hand the view a drag's delta steps while it computes them
-  /// (SceneDeformer::setGestureFollower): during a drag of one control point the view writes its
-  /// float points and followed normals from each run of new points while they are in cache, and
-  /// refresh() only marks them modified, instead of a pass of its own over the mesh. The
-  /// deformer holds the view's follower weakly: either may go first.
-  void followGestures(scenes::SceneDeformer& deformer);
-
   /// Highlights used by the next show() / refresh().
   void setHighlights(const ViewHighlights& highlights);
 
