@@ -20,6 +20,23 @@ namespace ffdkit::meshio {
 namespace detail {
 void quadGeometryLanes(const double* x, const double* y, const double* z, int stride, int count, double* cx, double* cy,
                        double* cz, double* ax, double* ay, double* az);
+
+// Faces to check, one per lane: each face's centre and area vector, its two cells' centres and,
+// for a quadrilateral, its four points in; its two pyramids, the cosine of its non-orthogonality
+// and (an internal quadrilateral's) skewness out (faceCheckLanes).
+struct FaceCheckLanes {
+  static constexpr int kLanes = 64;  // a few KiB per array: the lanes stay in the L1 cache while they fill
+  double fcx[kLanes], fcy[kLanes], fcz[kLanes];  // the face's centre
+  double fax[kLanes], fay[kLanes], faz[kLanes];  // its area vector
+  double ocx[kLanes], ocy[kLanes], ocz[kLanes];  // its owner's centre
+  double ncx[kLanes], ncy[kLanes], ncz[kLanes];  // its neighbour's centre (a boundary face: the owner's)
+  double px[4][kLanes], py[4][kLanes], pz[4][kLanes];  // a quadrilateral's points (another face: its centre)
+  double ownPyramid[kLanes], neiPyramid[kLanes], cosine[kLanes], skewness[kLanes];
+  std::int64_t face[kLanes];
+  bool quadInside[kLanes];  // an internal quadrilateral: `skewness` is its skewness
+  int count = 0;
+};
+void faceCheckLanes(FaceCheckLanes& lanes);
 }  // namespace detail
 
 namespace {
@@ -122,6 +139,31 @@ struct FaceLanes {
   }
 };
 
+// Puts face f, of geometry `g`, in the next lane of `lanes` (which has room) with its owner's
+// centre and, for an internal face, its neighbour's (3 doubles each).
+void addFaceCheck(detail::FaceCheckLanes& lanes, const PointColumns& p, const PolyMeshCells& cells, std::int64_t f,
+                  const FaceGeometry& g, const double* own, const double* nei) {
+  const int l = lanes.count++;
+  lanes.face[l] = f;
+  lanes.fcx[l] = g.centre.x(), lanes.fcy[l] = g.centre.y(), lanes.fcz[l] = g.centre.z();
+  lanes.fax[l] = g.area.x(), lanes.fay[l] = g.area.y(), lanes.faz[l] = g.area.z();
+  lanes.ocx[l] = own[0], lanes.ocy[l] = own[1], lanes.ocz[l] = own[2];
+  if (nei == nullptr) nei = own;
+  lanes.ncx[l] = nei[0], lanes.ncy[l] = nei[1], lanes.ncz[l] = nei[2];
+  const std::int32_t begin = cells.faceStarts[std::size_t(f)];
+  lanes.quadInside[l] = nei != own && cells.faceStarts[std::size_t(f) + 1] - begin == 4;
+  if (lanes.quadInside[l]) {
+    const std::int32_t* v = cells.faceVertices.data() + begin;
+    for (int k = 0; k < 4; ++k) {
+      lanes.px[k][l] = p.x[v[k]];
+      lanes.py[k][l] = p.y[v[k]];
+      lanes.pz[k][l] = p.z[v[k]];
+    }
+  } else {
+    for (int k = 0; k < 4; ++k) lanes.px[k][l] = g.centre.x(), lanes.py[k][l] = g.centre.y(), lanes.pz[k][l] = g.centre.z();
+  }
+}
+
 // checkMesh's skewness of a face (OpenFOAM source, primitiveMeshTools.C, faceSkewness and
 // boundaryFaceSkewness): the distance of the face centre from where the line between the cell
 // centres (or, at the boundary, the face normal through the cell centre) crosses the face,
@@ -205,6 +247,46 @@ __attribute__((target_clones("avx2", "default"))) void quadGeometryLanes(
   }
 }
 
+// checkMesh's face checks of `lanes.count` faces, one face per lane: the pyramids and the cosine
+// as OpenFOAM computes them (primitiveMeshCheck.C), an internal face's skewness as faceSkewness
+// does, in the same operations and order as the Eigen expressions they were written with before
+// (a dot product and a squared norm add their terms from the first): each lane's results are bit
+// for bit those. A boundary face's cosine and skewness, and the skewness of a face that is not a
+// quadrilateral, are computed but not used (faceSkewness gives them). Compiled as
+// quadGeometryLanes is, for the compiler to vectorise across lanes.
+__attribute__((target_clones("avx2", "default"))) void faceCheckLanes(FaceCheckLanes& lanes) {
+  FaceCheckLanes& __restrict L = lanes;
+  const int count = L.count;
+  for (int l = 0; l < count; ++l) {
+    const double fcx = L.fcx[l], fcy = L.fcy[l], fcz = L.fcz[l];
+    const double fax = L.fax[l], fay = L.fay[l], faz = L.faz[l];
+    const double ocx = L.ocx[l], ocy = L.ocy[l], ocz = L.ocz[l];
+    const double ncx = L.ncx[l], ncy = L.ncy[l], ncz = L.ncz[l];
+    const double cx = fcx - ocx, cy = fcy - ocy, cz = fcz - ocz;  // face centre - owner's centre (cpf)
+    const double areaDotC = fax * cx + fay * cy + faz * cz;
+    L.ownPyramid[l] = areaDotC / 3.0;
+    const double nx = ncx - fcx, ny = ncy - fcy, nz = ncz - fcz;
+    L.neiPyramid[l] = (fax * nx + fay * ny + faz * nz) / 3.0;
+    const double dx = ncx - ocx, dy = ncy - ocy, dz = ncz - ocz;
+    const double dNorm = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double areaNorm = std::sqrt(fax * fax + fay * fay + faz * faz);
+    L.cosine[l] = (dx * fax + dy * fay + dz * faz) / (dNorm * areaNorm + kRootVerySmall);
+    // faceSkewness of an internal face.
+    const double t = areaDotC / (fax * dx + fay * dy + faz * dz + kRootVerySmall);
+    const double sx = cx - t * dx, sy = cy - t * dy, sz = cz - t * dz;
+    const double svNorm = std::sqrt(sx * sx + sy * sy + sz * sz);
+    const double svScale = svNorm + kRootVerySmall;
+    const double hx = sx / svScale, hy = sy / svScale, hz = sz / svScale;
+    double fd = 0.2 * dNorm + kRootVerySmall;
+#pragma GCC unroll 4
+    for (int k = 0; k < 4; ++k) {
+      const double qx = L.px[k][l] - fcx, qy = L.py[k][l] - fcy, qz = L.pz[k][l] - fcz;
+      fd = std::max(fd, std::abs(hx * qx + hy * qy + hz * qz));
+    }
+    L.skewness[l] = svNorm / fd;
+  }
+}
+
 }  // namespace detail
 
 
@@ -213,7 +295,8 @@ namespace {
 // Cells and faces are visited in blocks of this many, in parallel; each block's share of a sum,
 // minimum or count is kept apart and the shares are combined in block order, so that every
 // result is the same whatever the number of threads.
-constexpr std::int64_t kBlock = std::int64_t(1) << 13;
+constexpr int kBlockBits = 13;
+constexpr std::int64_t kBlock = std::int64_t(1) << kBlockBits;
 
 // The faces of each cell, in increasing face order: faces[starts[c] .. starts[c + 1]), each a
 // face index with kNeighbourSide set when the cell is the face's neighbour. 4 bytes per cell and
@@ -353,33 +436,45 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
   auto faceOf = [&](std::uint32_t k) { return std::int64_t(cellFaces.faces[k] & ~CellFaces::kNeighbourSide); };
 
   // Each face's pyramids about the two cell centres, its non-orthogonality and skewness
-  // (primitiveMeshCheck.C: checkFacePyramids, checkFaceOrthogonality, checkFaceSkewness).
-  auto checkFace = [&](std::int64_t f, const FaceGeometry& face, FaceShare& share) {
-    const std::int32_t own = owner[f];
-    const Eigen::Vector3d ownCentre = centres.row(Eigen::Index(own)).transpose();
-    const double ownPyramid = face.area.dot(face.centre - ownCentre) / 3.0;
-    share.minPyramid = std::min(share.minPyramid, ownPyramid);
-    if (ownPyramid < -kSmall) {
-      ++share.incorrectlyOriented;
-      markBad(own);
-    }
-    if (f < internal) {
-      const std::int32_t nei = neighbour[f];
-      const Eigen::Vector3d neiCentre = centres.row(Eigen::Index(nei)).transpose();
-      const double neiPyramid = face.area.dot(neiCentre - face.centre) / 3.0;
-      share.minPyramid = std::min(share.minPyramid, neiPyramid);
-      if (neiPyramid < -kSmall) {
+  // (primitiveMeshCheck.C: checkFacePyramids, checkFaceOrthogonality, checkFaceSkewness): the faces
+  // put in `lanes` computed together (faceCheckLanes), then added to `share` in lane order, so
+  // every sum and count is what checking them one by one in that order gives.
+  auto checkFaces = [&](detail::FaceCheckLanes& lanes, FaceShare& share) {
+    detail::faceCheckLanes(lanes);
+    for (int l = 0; l < lanes.count; ++l) {
+      const std::int64_t f = lanes.face[l];
+      const double ownPyramid = lanes.ownPyramid[l];
+      share.minPyramid = std::min(share.minPyramid, ownPyramid);
+      if (ownPyramid < -kSmall) {
         ++share.incorrectlyOriented;
-        markBad(nei);
+        markBad(owner[f]);
       }
-      const Eigen::Vector3d d = neiCentre - ownCentre;
-      const double cosine = d.dot(face.area) / (d.norm() * face.area.norm() + kRootVerySmall);
-      share.minCosine = std::min(share.minCosine, cosine);
-      share.sumCosines += cosine;
-      share.maxSkewness = std::max(share.maxSkewness, faceSkewness(p, cells, f, face, ownCentre, &neiCentre));
-    } else {
-      share.maxSkewness = std::max(share.maxSkewness, faceSkewness(p, cells, f, face, ownCentre, nullptr));
+      if (f < internal) {
+        const double neiPyramid = lanes.neiPyramid[l];
+        share.minPyramid = std::min(share.minPyramid, neiPyramid);
+        if (neiPyramid < -kSmall) {
+          ++share.incorrectlyOriented;
+          markBad(neighbour[f]);
+        }
+        share.minCosine = std::min(share.minCosine, lanes.cosine[l]);
+        share.sumCosines += lanes.cosine[l];
+      }
+      double skewness = lanes.skewness[l];
+      if (!lanes.quadInside[l]) {
+        const Eigen::Vector3d ownCentre(lanes.ocx[l], lanes.ocy[l], lanes.ocz[l]);
+        const Eigen::Vector3d neiCentre(lanes.ncx[l], lanes.ncy[l], lanes.ncz[l]);
+        skewness = faceSkewness(p, cells, f, {{lanes.fcx[l], lanes.fcy[l], lanes.fcz[l]}, {lanes.fax[l], lanes.fay[l], lanes.faz[l]}},
+                                ownCentre, f < internal ? &neiCentre : nullptr);
+      }
+      share.maxSkewness = std::max(share.maxSkewness, skewness);
     }
+    lanes.count = 0;
+  };
+  // Face f, of geometry `g`, to check with the next faces (its cells' centres are known).
+  auto checkFace = [&](detail::FaceCheckLanes& lanes, std::int64_t f, const FaceGeometry& g, FaceShare& share) {
+    if (lanes.count == detail::FaceCheckLanes::kLanes) checkFaces(lanes, share);
+    addFaceCheck(lanes, p, cells, f, g, centres.row(Eigen::Index(owner[f])).data(),
+                 f < internal ? centres.row(Eigen::Index(neighbour[f])).data() : nullptr);
   };
 
   // One pass over the cells, sweep by sweep (OpenFOAM: primitiveMeshCellCentresAndVols.C, then
@@ -391,12 +486,9 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
 #pragma omp parallel
   {
     auto lanes = std::make_unique<FaceLanes>();
+    auto checks = std::make_unique<detail::FaceCheckLanes>();
     auto cache = std::make_unique<FaceCache>(faces);
     std::int64_t laneFace[FaceLanes::kLanes];
-    auto geometry = [&](std::int64_t f) {
-      const std::size_t slot = cache->slot(f);
-      return cache->face[slot] == f ? cache->geometry[slot] : faceGeometry(p, cells, f);
-    };
     // The geometry of the faces of the cell addCell did last, in its face order: fetched from the
     // window once, read by the cell's two sums and by its face checks.
     std::vector<FaceGeometry> cellGeometry;
@@ -406,8 +498,12 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
       if (cellGeometry.size() < end - begin) cellGeometry.resize(end - begin);
       Eigen::Vector3d estimate = Eigen::Vector3d::Zero();
       for (std::uint32_t k = begin; k < end; ++k) {
-        cellGeometry[k - begin] = geometry(faceOf(k));
-        estimate += cellGeometry[k - begin].centre;
+        const std::int64_t f = faceOf(k);
+        const std::size_t slot = cache->slot(f);
+        FaceGeometry& g = cellGeometry[k - begin];
+        if (cache->face[slot] == f) g = cache->geometry[slot];
+        else g = faceGeometry(p, cells, f);
+        estimate += g.centre;
       }
       estimate /= double(std::max<std::uint32_t>(1, end - begin));
       // 3 x the volume, and the centre weighted by it.
@@ -468,20 +564,26 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
             const std::int64_t other = (cellFaces.faces[k] & CellFaces::kNeighbourSide) != 0 ? owner[f]
                                        : f < internal                                      ? neighbour[f]
                                                                                            : -1;
-            if (other < 0 || (other >= first && other < d)) checkFace(f, cellGeometry[k - begin], faceShare);
+            if (other < 0 || (other >= first && other < d)) checkFace(*checks, f, cellGeometry[k - begin], faceShare);
           }
         }
       }
+      checkFaces(*checks, faceShare);
     }
   }
 
-  // The faces between two sweeps, in blocks of faces.
+  // The faces between two sweeps, in blocks of faces. A cell's sweep by a table of its block's
+  // (a sweep is whole blocks of kBlock cells, a power of 2): no division per face.
   const std::int64_t faceBlocks = sweeps > 1 ? (internal + kBlock - 1) / kBlock : 0;
+  std::vector<std::int32_t> sweepOfBlock(static_cast<std::size_t>(blocks));
+  for (std::int64_t b = 0; b < blocks; ++b) sweepOfBlock[std::size_t(b)] = std::int32_t(b * kBlock / sweep);
+  auto sweepOf = [&](std::int32_t cell) { return sweepOfBlock[std::size_t(cell) >> kBlockBits]; };
   std::vector<FaceShare> betweenShares(static_cast<std::size_t>(faceBlocks));
   if (faceBlocks > 0) {
 #pragma omp parallel
     {
       auto lanes = std::make_unique<FaceLanes>();
+      auto checks = std::make_unique<detail::FaceCheckLanes>();
       std::int64_t laneFace[FaceLanes::kLanes];
 #pragma omp for schedule(dynamic, 4)
       for (std::int64_t b = 0; b < faceBlocks; ++b) {
@@ -490,13 +592,14 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
         for (std::int64_t f = b * kBlock; f < last;) {
           lanes->clear();
           for (; f < last && lanes->count < FaceLanes::kLanes; ++f) {
-            if (owner[f] / sweep == neighbour[f] / sweep) continue;
+            if (sweepOf(owner[f]) == sweepOf(neighbour[f])) continue;
             laneFace[lanes->count] = f;
             lanes->add(p, cells, f);
           }
           lanes->compute();
-          for (int l = 0; l < lanes->count; ++l) checkFace(laneFace[l], (*lanes)[l], share);
+          for (int l = 0; l < lanes->count; ++l) checkFace(*checks, laneFace[l], (*lanes)[l], share);
         }
+        checkFaces(*checks, share);
       }
     }
   }

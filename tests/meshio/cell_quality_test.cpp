@@ -82,6 +82,41 @@ Eigen::MatrixX3d jittered(const Eigen::MatrixX3d& points, double amount, unsigne
   return moved;
 }
 
+// The same cells with every k-th face given other polygons (the order of the faces kept): a
+// quadrilateral split in two triangles (f % k == 0), or given a fifth point, the middle of its
+// first edge (f % k == 1). The cells' shapes do not change; their faces are no longer all
+// quadrilaterals, which the check computes another way.
+Cube withOtherPolygons(const Cube& c, int k) {
+  Cube r;
+  std::int64_t pentagons = 0;
+  for (std::int64_t f = 1; f < c.cells.faceCount(); f += k) ++pentagons;
+  r.points.resize(c.points.rows() + pentagons, 3);
+  r.points.topRows(c.points.rows()) = c.points;
+  Eigen::Index middle = c.points.rows();
+  r.cells.cellCount = c.cells.cellCount;
+  r.cells.faceStarts = {0};
+  const std::int64_t internal = std::int64_t(c.cells.neighbour.size());
+  for (std::int64_t f = 0; f < c.cells.faceCount(); ++f) {
+    auto put = [&](std::initializer_list<std::int32_t> vertices) {
+      r.cells.faceVertices.insert(r.cells.faceVertices.end(), vertices);
+      r.cells.faceStarts.push_back(std::int32_t(r.cells.faceVertices.size()));
+      r.cells.owner.push_back(c.cells.owner[std::size_t(f)]);
+      if (f < internal) r.cells.neighbour.push_back(c.cells.neighbour[std::size_t(f)]);
+    };
+    const std::int32_t* v = c.cells.faceVertices.data() + c.cells.faceStarts[std::size_t(f)];
+    if (f % k == 0) {
+      put({v[0], v[1], v[2]});
+      put({v[0], v[2], v[3]});
+    } else if (f % k == 1) {
+      r.points.row(middle) = 0.5 * (c.points.row(v[0]) + c.points.row(v[1]));
+      put({v[0], std::int32_t(middle++), v[1], v[2], v[3]});
+    } else {
+      put({v[0], v[1], v[2], v[3]});
+    }
+  }
+  return r;
+}
+
 // OpenFOAM's check, written out plainly.
 CellQuality reference(const Eigen::MatrixX3d& points, const PolyMeshCells& cells) {
   const std::int64_t nFaces = cells.faceCount(), nInternal = std::int64_t(cells.neighbour.size()), nCells = cells.cellCount;
@@ -222,6 +257,20 @@ TEST(CellQualitySweeps, JitteredAndFoldedCubesAgreeWithOpenFoamsOwnComputation) 
   const CellQuality folded = checkPolyMeshCells(wild, c.cells);
   EXPECT_GT(folded.negativeVolumeCells, 0);
   EXPECT_GT(folded.badCells, folded.negativeVolumeCells);  // inverted face pyramids in cells of positive volume too
+  expectAgrees(reference(wild, c.cells), folded);
+}
+
+TEST(CellQualitySweeps, TrianglesAndPentagonsAgreeWithOpenFoamsOwnComputation) {
+  // Every 7th face a pair of triangles or a pentagon, internal and boundary.
+  const Cube c = withOtherPolygons(cube(kCells), 7);
+  ASSERT_GT(c.cells.faceCount(), cube(kCells).cells.faceCount());
+  const Eigen::MatrixX3d mild = jittered(c.points, 0.15 / kCells, 5);
+  const CellQuality good = checkPolyMeshCells(mild, c.cells);
+  EXPECT_TRUE(good.ok());
+  expectAgrees(reference(mild, c.cells), good);
+  const Eigen::MatrixX3d wild = jittered(c.points, 0.6 / kCells, 6);
+  const CellQuality folded = checkPolyMeshCells(wild, c.cells);
+  EXPECT_GT(folded.badCells, 0);
   expectAgrees(reference(wild, c.cells), folded);
 }
 
