@@ -133,5 +133,34 @@ TEST(LevelOfDetailRender, TheReleaseUploadsTheFullMeshsPointsOnceAndKeepsItsInde
   EXPECT_FALSE(still.pixels() == released);
 }
 
+TEST(LevelOfDetailRender, TheClosedSphereIsDrawnWithItsBackFacesCulledUnlessALatticeMayFold) {
+  // The sphere is closed and faces out, the camera outside it: its full mesh is drawn with its
+  // back faces culled (surface_mapper.h), its proxy (not known to be closed) never.
+  RenderedDocument doc(true);
+  const vtkIdType n = doc.scene.findObject(doc.made.sphere)->mesh.points.rows();
+  SurfaceMapper* full = doc.mapperOf(n);
+  ASSERT_NE(full, nullptr);
+  EXPECT_EQ(full->culledDraws(), 1);
+  ASSERT_EQ(doc.controller.press(doc.ray(0.5), doc.tolerance()), InteractionController::PressResult::Widget);
+  doc.controller.drag(doc.ray(0.8));
+  doc.frame();
+  SurfaceMapper* proxy = doc.mapperOf(n, true);
+  ASSERT_NE(proxy, nullptr);
+  EXPECT_EQ(proxy->bufferBuilds(), 1);  // drawn
+  EXPECT_EQ(proxy->culledDraws(), 0);
+  doc.controller.release();
+  doc.frame();
+  EXPECT_EQ(full->culledDraws(), 2);
+  // A lattice whose cells may fold (the fold-over tint): no culling until it is certified again.
+  ViewHighlights folding = doc.controller.highlights();
+  folding.foldTints.push_back({doc.made.lattice, {1, 1, 1}, {ffd::CellFolding::Folds}});
+  doc.view.setHighlights(folding);
+  doc.window->Render();
+  EXPECT_EQ(full->culledDraws(), 2);
+  doc.view.setHighlights(doc.controller.highlights());
+  doc.window->Render();
+  EXPECT_EQ(full->culledDraws(), 3);
+}
+
 }  // namespace
 }  // namespace ffdkit::app

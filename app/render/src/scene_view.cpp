@@ -109,7 +109,10 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
   }
 }
 
-void SceneView::setHighlights(const ViewHighlights& highlights) { impl_->highlights = highlights; }
+void SceneView::setHighlights(const ViewHighlights& highlights) {
+  impl_->highlights = highlights;
+  impl_->updateFoldFree();
+}
 
 const SceneViewStats& SceneView::stats() const { return impl_->stats; }
 

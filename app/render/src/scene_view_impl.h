@@ -111,6 +111,9 @@ struct SceneView::Impl {
   void clearObjects();
   void buildObjects(const scenes::Scene& scene, const scenes::SceneDeformer& deformed);
   bool sameObjects(const scenes::Scene& scene) const;
+  // Tells the objects' mappers whether a lattice may fold (SurfaceMapper::setFoldFree): no back
+  // faces culled while the highlights tint a lattice's cells as folding or unknown.
+  void updateFoldFree();
 
   // Level of detail (scene_view_level_of_detail.cpp).
   void prepareProxy(ObjectActor& entry, const scenes::SceneObject* object);

@@ -12,6 +12,7 @@
 #include <vtkProperty.h>
 #include <vtkTubeFilter.h>
 
+#include "closed_surface.h"
 #include "ffdkit/render/curvature_comb.h"
 #include "object_arrays.h"
 #include "surface_mapper.h"
@@ -57,6 +58,7 @@ void SceneView::Impl::buildObjects(const scenes::Scene& scene, const scenes::Sce
     if (object.mesh.triangles.rows() > 0) {
       vtkNew<vtkFloatArray> normals;  // smooth shading of the deformed surface
       entry.vertexFaces = vertexFaces(object.mesh.triangles, points.rows());
+      mapper->setClosedSurface(closedOutwardSurface(points, object.mesh.triangles, entry.vertexFaces));
       entry.gestureNormals.update(deformed, object.id, object.mesh.triangles, entry.vertexFaces, points, entry.origin,
                                   entry.faceNormals, entry.polyData->GetPoints(), normals);
       entry.polyData->GetPointData()->SetNormals(normals);
@@ -119,6 +121,13 @@ void SceneView::Impl::buildObjects(const scenes::Scene& scene, const scenes::Sce
     objects.push_back(std::move(entry));
     ++stats.objectBuilds;
   }
+  updateFoldFree();
+}
+
+void SceneView::Impl::updateFoldFree() {
+  for (auto& entry : objects)
+    if (auto* mapper = SurfaceMapper::SafeDownCast(entry.actor->GetMapper()))
+      mapper->setFoldFree(highlights.foldTints.empty());
 }
 
 // True when the drawn objects are the scene's visible objects with the same point counts.
