@@ -8,8 +8,8 @@
 //                                 cells, 10M points)
 //   BM_OpenFoamCaseNotFlushed/cells:215  the same with the written files left in the page cache
 // The case is what blockMesh writes for a unit cube of N^3 cells in binary (foamFormatConvert):
-// points x fastest, internal faces in upper-triangular order, one boundary patch; made here so
-// that the benchmark needs no OpenFOAM. Each size is first checked: the cube's cells are valid,
+// points x fastest, internal faces in upper-triangular order, one boundary patch; made here from
+// the cell-check tests' cube (tests/meshio/polymesh_cube.h), so that the benchmark needs no OpenFOAM. Each size is first checked: the cube's cells are valid,
 // their volumes add up to 1, and the written case reads back with the deformed points.
 #include <benchmark/benchmark.h>
 
@@ -29,6 +29,7 @@
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/widget_file.h"
+#include "polymesh_cube.h"
 
 namespace {
 
@@ -73,73 +74,28 @@ fs::path makeCube(int n) {
   fs::create_directories(polyMesh);
   fs::create_directories(root / "system");
   writeFile(root / "system" / "controlDict", "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n");
-  const int m = n + 1;
-  auto point = [m](int i, int j, int k) { return std::int32_t(i + m * (j + m * k)); };
-  auto cell = [n](int i, int j, int k) { return std::int32_t(i + n * (j + n * k)); };
-
-  std::vector<double> coordinates;
-  coordinates.reserve(std::size_t(m) * m * m * 3);
-  for (int k = 0; k < m; ++k)
-    for (int j = 0; j < m; ++j)
-      for (int i = 0; i < m; ++i) {
-        coordinates.push_back(double(i) / n);
-        coordinates.push_back(double(j) / n);
-        coordinates.push_back(double(k) / n);
-      }
-  std::vector<std::int32_t> starts{0}, vertices, owner, neighbour;
-  auto face = [&](std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t d, std::int32_t own) {
-    vertices.insert(vertices.end(), {a, b, c, d});
-    starts.push_back(std::int32_t(vertices.size()));
-    owner.push_back(own);
-  };
-  // Internal faces, upper-triangular: by owner, then by neighbour (+x, +y, +z); normals point
-  // from owner to neighbour (right-hand rule).
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const std::int32_t c = cell(i, j, k);
-        if (i + 1 < n) {
-          face(point(i + 1, j, k), point(i + 1, j + 1, k), point(i + 1, j + 1, k + 1), point(i + 1, j, k + 1), c);
-          neighbour.push_back(cell(i + 1, j, k));
-        }
-        if (j + 1 < n) {
-          face(point(i, j + 1, k), point(i, j + 1, k + 1), point(i + 1, j + 1, k + 1), point(i + 1, j + 1, k), c);
-          neighbour.push_back(cell(i, j + 1, k));
-        }
-        if (k + 1 < n) {
-          face(point(i, j, k + 1), point(i + 1, j, k + 1), point(i + 1, j + 1, k + 1), point(i, j + 1, k + 1), c);
-          neighbour.push_back(cell(i, j, k + 1));
-        }
-      }
-  // Boundary faces, pointing out of the cube.
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b) {
-      face(point(0, a, b), point(0, a, b + 1), point(0, a + 1, b + 1), point(0, a + 1, b), cell(0, a, b));
-      face(point(n, a, b), point(n, a + 1, b), point(n, a + 1, b + 1), point(n, a, b + 1), cell(n - 1, a, b));
-      face(point(a, 0, b), point(a + 1, 0, b), point(a + 1, 0, b + 1), point(a, 0, b + 1), cell(a, 0, b));
-      face(point(a, n, b), point(a, n, b + 1), point(a + 1, n, b + 1), point(a + 1, n, b), cell(a, n - 1, b));
-      face(point(a, b, 0), point(a, b + 1, 0), point(a + 1, b + 1, 0), point(a + 1, b, 0), cell(a, b, 0));
-      face(point(a, b, n), point(a + 1, b, n), point(a + 1, b + 1, n), point(a, b + 1, n), cell(a, b, n - 1));
-    }
+  const meshio::test::PolyMeshCube cube = meshio::test::polyMeshCube(n);
+  const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> coordinates = cube.points;  // x y z of each point in turn
+  const meshio::PolyMeshCells& cells = cube.cells;
   std::string bytes = header("vectorField", "points");
-  bytes += std::to_string(coordinates.size() / 3) + "\n(";
-  bytes.append(reinterpret_cast<const char*>(coordinates.data()), coordinates.size() * sizeof(double));
+  bytes += std::to_string(coordinates.rows()) + "\n(";
+  bytes.append(reinterpret_cast<const char*>(coordinates.data()), std::size_t(coordinates.size()) * sizeof(double));
   bytes += ")\n";
   writeFile(polyMesh / "points", bytes);
   bytes = header("faceCompactList", "faces");
-  appendList(bytes, starts);
-  appendList(bytes, vertices);
+  appendList(bytes, cells.faceStarts);
+  appendList(bytes, cells.faceVertices);
   writeFile(polyMesh / "faces", bytes);
   bytes = header("labelList", "owner");
-  appendList(bytes, owner);
+  appendList(bytes, cells.owner);
   writeFile(polyMesh / "owner", bytes);
   bytes = header("labelList", "neighbour");
-  appendList(bytes, neighbour);
+  appendList(bytes, cells.neighbour);
   writeFile(polyMesh / "neighbour", bytes);
   writeFile(polyMesh / "boundary",
             "FoamFile { version 2.0; format ascii; class polyBoundaryMesh; object boundary; }\n1\n(\n    walls\n    {\n"
             "        type wall;\n        nFaces " + std::to_string(6 * n * n) + ";\n        startFace " +
-            std::to_string(neighbour.size()) + ";\n    }\n)\n");
+            std::to_string(cells.neighbour.size()) + ";\n    }\n)\n");
   return root;
 }
 

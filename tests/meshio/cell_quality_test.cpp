@@ -16,61 +16,15 @@
 #include <Eigen/Geometry>
 
 #include "ffdkit/meshio/cell_quality.h"
+#include "polymesh_cube.h"
 
 namespace ffdkit::meshio {
 namespace {
 
-struct Cube {
-  Eigen::MatrixX3d points;
-  PolyMeshCells cells;
-};
+using Cube = test::PolyMeshCube;
 
-// A unit cube of n^3 hexahedra as blockMesh orders it (bench/python/openfoam_cube.py): points x
-// fastest, internal faces by owner then +x, +y, +z, the boundary faces after them.
-Cube cube(int n) {
-  Cube c;
-  const int m = n + 1;
-  c.points.resize(Eigen::Index(m) * m * m, 3);
-  for (int k = 0, p = 0; k < m; ++k)
-    for (int j = 0; j < m; ++j)
-      for (int i = 0; i < m; ++i, ++p) c.points.row(p) << double(i) / n, double(j) / n, double(k) / n;
-  auto point = [m](int i, int j, int k) { return std::int32_t(i + m * (j + m * k)); };
-  auto cell = [n](int i, int j, int k) { return std::int32_t(i + n * (j + n * k)); };
-  PolyMeshCells& cells = c.cells;
-  cells.faceStarts = {0};
-  auto face = [&](std::int32_t a, std::int32_t b, std::int32_t d, std::int32_t e, std::int32_t own) {
-    cells.faceVertices.insert(cells.faceVertices.end(), {a, b, d, e});
-    cells.faceStarts.push_back(std::int32_t(cells.faceVertices.size()));
-    cells.owner.push_back(own);
-  };
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        if (i + 1 < n) {
-          face(point(i + 1, j, k), point(i + 1, j + 1, k), point(i + 1, j + 1, k + 1), point(i + 1, j, k + 1), cell(i, j, k));
-          cells.neighbour.push_back(cell(i + 1, j, k));
-        }
-        if (j + 1 < n) {
-          face(point(i, j + 1, k), point(i, j + 1, k + 1), point(i + 1, j + 1, k + 1), point(i + 1, j + 1, k), cell(i, j, k));
-          cells.neighbour.push_back(cell(i, j + 1, k));
-        }
-        if (k + 1 < n) {
-          face(point(i, j, k + 1), point(i + 1, j, k + 1), point(i + 1, j + 1, k + 1), point(i, j + 1, k + 1), cell(i, j, k));
-          cells.neighbour.push_back(cell(i, j, k + 1));
-        }
-      }
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b) {
-      face(point(0, a, b), point(0, a, b + 1), point(0, a + 1, b + 1), point(0, a + 1, b), cell(0, a, b));
-      face(point(n, a, b), point(n, a + 1, b), point(n, a + 1, b + 1), point(n, a, b + 1), cell(n - 1, a, b));
-      face(point(a, 0, b), point(a + 1, 0, b), point(a + 1, 0, b + 1), point(a, 0, b + 1), cell(a, 0, b));
-      face(point(a, n, b), point(a, n, b + 1), point(a + 1, n, b + 1), point(a + 1, n, b), cell(a, n - 1, b));
-      face(point(a, b, 0), point(a, b + 1, 0), point(a + 1, b + 1, 0), point(a + 1, b, 0), cell(a, b, 0));
-      face(point(a, b, n), point(a + 1, b, n), point(a + 1, b + 1, n), point(a, b + 1, n), cell(a, b, n - 1));
-    }
-  cells.cellCount = std::int64_t(n) * n * n;
-  return c;
-}
+// A unit cube of n^3 hexahedra as blockMesh orders it.
+Cube cube(int n) { return test::polyMeshCube(n); }
 
 // Every point moved by up to `amount` in each coordinate.
 Eigen::MatrixX3d jittered(const Eigen::MatrixX3d& points, double amount, unsigned seed) {
