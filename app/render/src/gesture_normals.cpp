@@ -114,7 +114,8 @@ inline void storeNormalQuad(const FollowedNormals& f, Eigen::Index i, __m128 vdx
 }
 
 // Vertices [4 q0, 4 q1), four at a time with SSE.
-void followQuads(const FollowPass& f, Eigen::Index q0, Eigen::Index q1, bool stream) {
+void followQuads(const FollowPass& pass, Eigen::Index q0, Eigen::Index q1, bool stream) {
+  const FollowPass f = pass;  // a local copy: the stores below cannot change its pointers, kept in registers
   const __m128 vdx = _mm_set1_ps(f.normals.dx), vdy = _mm_set1_ps(f.normals.dy), vdz = _mm_set1_ps(f.normals.dz);
   // The step in the pattern of four interleaved points: (x y z x) (y z x y) (z x y z).
   const __m128 s0 = _mm_setr_ps(f.sx, f.sy, f.sz, f.sx), s1 = _mm_setr_ps(f.sy, f.sz, f.sx, f.sy),
@@ -166,7 +167,8 @@ __attribute__((target("avx2"), always_inline)) inline void storeNormalOctet(cons
 // Vertices [8 o0, 8 o1), eight at a time with AVX2 (no FMA: the bits of the SSE and scalar forms;
 // the square root and the division are a third of the pass, and AVX2 does eight for the price of
 // four).
-__attribute__((target("avx2"))) void followOctets(const FollowPass& f, Eigen::Index o0, Eigen::Index o1, bool stream) {
+__attribute__((target("avx2"))) void followOctets(const FollowPass& pass, Eigen::Index o0, Eigen::Index o1, bool stream) {
+  const FollowPass f = pass;  // a local copy: the stores below cannot change its pointers, kept in registers
   const __m256 vdx = _mm256_set1_ps(f.normals.dx), vdy = _mm256_set1_ps(f.normals.dy), vdz = _mm256_set1_ps(f.normals.dz);
   // The step in the pattern of eight interleaved points, and the lanes of beta each float takes.
   const __m256 s0 = _mm256_setr_ps(f.sx, f.sy, f.sz, f.sx, f.sy, f.sz, f.sx, f.sy);
