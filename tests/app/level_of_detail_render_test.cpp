@@ -162,5 +162,47 @@ TEST(LevelOfDetailRender, TheClosedSphereIsDrawnWithItsBackFacesCulledUnlessALat
   EXPECT_EQ(full->culledDraws(), 3);
 }
 
+TEST(LevelOfDetailRender, ASurfaceIsNotCulledWhileALatticeFoldsItWithoutATintOrTearsItAcrossItsBoundary) {
+  // Changes no drag made, so no fold-over tint: control points set in the model (as a scene read
+  // from a file, a playback key or a script sets them) and a lattice moved across the sphere.
+  RenderedDocument doc(true);
+  const vtkIdType n = doc.scene.findObject(doc.made.sphere)->mesh.points.rows();
+  SurfaceMapper* full = doc.mapperOf(n);
+  ASSERT_NE(full, nullptr);
+  EXPECT_EQ(full->culledDraws(), 1);
+  auto& model = doc.scene.widgets;
+  const widgets::WidgetId lattice = doc.made.lattice;
+  const Eigen::MatrixX3d rest = model.restPoints(lattice);
+
+  // Mirrored through the lattice's centre along x: det J < 0 everywhere, every face of the sphere
+  // turned inward; what is seen is its inside, which culling would hide.
+  Eigen::MatrixX3d mirrored = rest;
+  const double centreX = 0.5 * (rest.col(0).minCoeff() + rest.col(0).maxCoeff());
+  mirrored.col(0) = (2.0 * centreX) - rest.col(0).array();
+  model.setControlPoints(lattice, mirrored);
+  doc.frame();
+  EXPECT_TRUE(doc.controller.highlights().foldTints.empty());  // no drag: nothing tinted
+  EXPECT_EQ(full->culledDraws(), 1);
+  model.setControlPoints(lattice, rest);
+  doc.frame();
+  EXPECT_EQ(full->culledDraws(), 2);
+
+  // The lattice moved half its width along x, one control point of the half inside the sphere
+  // pulled: the points inside move and the others stay (OutsidePolicy::Identity), so the surface
+  // is torn open where it crosses the lattice's face. Not culled; moved wholly off the sphere,
+  // culled again (the lattice leaves it alone).
+  const double width = rest.col(0).maxCoeff() - rest.col(0).minCoeff();
+  const Eigen::Affine3d frame = model.latticeFrame(lattice);
+  model.setLatticeFrame(lattice, Eigen::Translation3d(0.5 * width, 0.0, 0.0) * frame);
+  Eigen::MatrixX3d pulled = rest;
+  pulled(0, 2) -= 0.3 * width;
+  model.setControlPoints(lattice, pulled);
+  doc.frame();
+  EXPECT_EQ(full->culledDraws(), 2);
+  model.setLatticeFrame(lattice, Eigen::Translation3d(3.0 * width, 0.0, 0.0) * frame);
+  doc.frame();
+  EXPECT_EQ(full->culledDraws(), 3);
+}
+
 }  // namespace
 }  // namespace ffdkit::app

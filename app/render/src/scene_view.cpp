@@ -47,6 +47,7 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
     }
     for (auto& entry : impl_->objects) {
       if (impl_->drawProxy(entry, scene, deformed)) continue;  // level of detail: the proxy only
+      impl_->updateKeepsOutward(entry, scene.widgets);
       // Only objects whose deformed points moved: their point array, normals and comb, in place.
       const std::uint64_t revision = deformed.revision(entry.id);
       if (revision == entry.pointsRevision) continue;

@@ -29,6 +29,7 @@
 #include "ffdkit/widgets/widget_model.h"
 #include "gesture_normals.h"
 #include "object_proxy.h"
+#include "outward_faces.h"
 #include "scene_view_shapes.h"
 
 namespace ffdkit::app {
@@ -52,6 +53,7 @@ struct SceneView::Impl {
     vtkSmartPointer<vtkActor> comb;           ///< the curvature comb, or null
     scene_view_shapes::VertexFaces vertexFaces;  ///< of the triangles, for the normals
     Eigen::Vector3d restLo, restHi;           ///< bounding box of the object's own points
+    bool keepsOutward = false;                ///< the lattices keep its faces outward (outward_faces.h)
     Eigen::Vector3d origin;                   ///< the float points are relative to it (object_arrays.h)
     std::vector<Eigen::Vector3f> faceNormals; ///< scratch
     GestureNormals gestureNormals;            ///< the normals followed along a drag
@@ -111,9 +113,14 @@ struct SceneView::Impl {
   void clearObjects();
   void buildObjects(const scenes::Scene& scene, const scenes::SceneDeformer& deformed);
   bool sameObjects(const scenes::Scene& scene) const;
-  // Tells the objects' mappers whether a lattice may fold (SurfaceMapper::setFoldFree): no back
-  // faces culled while the highlights tint a lattice's cells as folding or unknown.
+  // Tells the objects' mappers whether a lattice may fold or tear them (SurfaceMapper::setFoldFree):
+  // no back faces culled while the highlights tint a lattice's cells as folding or unknown, nor
+  // unless the lattices keep the object's faces outward (ObjectActor::keepsOutward).
   void updateFoldFree();
+  // Asks the lattices again whether they keep a closed surface's faces outward (when its full mesh
+  // is drawn: a proxy is never culled), then tells its mapper.
+  void updateKeepsOutward(ObjectActor& entry, const widgets::WidgetModel& model);
+  OutwardFacesGuard outwardFaces;
 
   // Level of detail (scene_view_level_of_detail.cpp).
   void prepareProxy(ObjectActor& entry, const scenes::SceneObject* object);

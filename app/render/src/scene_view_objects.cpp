@@ -58,7 +58,8 @@ void SceneView::Impl::buildObjects(const scenes::Scene& scene, const scenes::Sce
     if (object.mesh.triangles.rows() > 0) {
       vtkNew<vtkFloatArray> normals;  // smooth shading of the deformed surface
       entry.vertexFaces = vertexFaces(object.mesh.triangles, points.rows());
-      mapper->setClosedSurface(closedOutwardSurface(points, object.mesh.triangles, entry.vertexFaces));
+      // Of the rest points: the lattices' verdicts (outward_faces.h) say whether the deformation keeps it.
+      mapper->setClosedSurface(closedOutwardSurface(object.mesh.points, object.mesh.triangles, entry.vertexFaces));
       entry.gestureNormals.update(deformed, object.id, object.mesh.triangles, entry.vertexFaces, points, entry.origin,
                                   entry.faceNormals, entry.polyData->GetPoints(), normals);
       entry.polyData->GetPointData()->SetNormals(normals);
@@ -118,6 +119,7 @@ void SceneView::Impl::buildObjects(const scenes::Scene& scene, const scenes::Sce
     }
     renderer->AddActor(entry.actor);
     prepareProxy(entry, &object);  // level of detail: the proxy at load, not at the first gesture
+    updateKeepsOutward(entry, scene.widgets);
     objects.push_back(std::move(entry));
     ++stats.objectBuilds;
   }
@@ -127,7 +129,14 @@ void SceneView::Impl::buildObjects(const scenes::Scene& scene, const scenes::Sce
 void SceneView::Impl::updateFoldFree() {
   for (auto& entry : objects)
     if (auto* mapper = SurfaceMapper::SafeDownCast(entry.actor->GetMapper()))
-      mapper->setFoldFree(highlights.foldTints.empty());
+      mapper->setFoldFree(highlights.foldTints.empty() && entry.keepsOutward);
+}
+
+void SceneView::Impl::updateKeepsOutward(ObjectActor& entry, const widgets::WidgetModel& model) {
+  auto* mapper = SurfaceMapper::SafeDownCast(entry.actor->GetMapper());
+  if (mapper == nullptr || !mapper->closedSurface()) return;  // never culled: nothing to ask
+  entry.keepsOutward = outwardFaces.keepsOutward(model, entry.restLo, entry.restHi);
+  mapper->setFoldFree(highlights.foldTints.empty() && entry.keepsOutward);
 }
 
 // True when the drawn objects are the scene's visible objects with the same point counts.

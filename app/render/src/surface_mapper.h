@@ -42,10 +42,12 @@ class SurfaceMapper : public vtkOpenGLPolyDataMapper {
   /// positive (closedOutwardSurface in closed_surface.h). Computed once per topology by the
   /// caller; false (the default) never culls.
   void setClosedSurface(bool closed) { closedSurface_ = closed; }
-  /// Declares whether the points may have been moved by a map that folds space (a lattice with a
-  /// cell that folds or whose fold-over verdict is unknown): a fold can turn part of a closed
-  /// surface inside out through the rest, so that a back face is the nearest. True by default;
-  /// false never culls.
+  /// What setClosedSurface declared.
+  bool closedSurface() const { return closedSurface_; }
+  /// Declares whether the points may have been moved by a map that folds space or tears the
+  /// surface (SceneView asks OutwardFacesGuard, outward_faces.h, and the fold-over tints): a fold
+  /// can turn part of a closed surface inside out through the rest, so that a back face is the
+  /// nearest. True by default; false never culls.
   void setFoldFree(bool foldFree) { foldFree_ = foldFree; }
   /// True when the surface is drawn now with its back faces culled: a closed surface
   /// (setClosedSurface) not folded (setFoldFree), opaque, drawn as a surface (not wireframe,
