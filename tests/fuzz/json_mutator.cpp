@@ -1,5 +1,7 @@
 #include "json_mutator.h"
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -299,7 +301,135 @@ std::optional<Json> parse(std::string_view text) {
   return document;
 }
 
+std::string compactText(const Json& document) { return document.dump(-1, ' ', false, Json::error_handler_t::replace); }
+
+// The size of a scalar's compact JSON text, near enough to plan cuts (a string's escapes are not
+// counted; shrinkJson checks the text it writes).
+std::size_t scalarBytes(const Json& value) {
+  char digits[32];
+  if (value.is_number_integer() || value.is_number_unsigned()) {
+    const auto end = value.is_number_unsigned() ? std::to_chars(digits, digits + 32, value.get<std::uint64_t>()).ptr
+                                                : std::to_chars(digits, digits + 32, value.get<std::int64_t>()).ptr;
+    return std::size_t(end - digits);
+  }
+  if (value.is_number_float()) return std::size_t(std::to_chars(digits, digits + 32, value.get<double>()).ptr - digits);
+  if (value.is_string()) return value.get_ref<const std::string&>().size() + 2;
+  if (value.is_boolean()) return value.get<bool>() ? 4 : 5;
+  return 4;  // null, binary
+}
+
+// An object or array of the document, with the size of each of its members or elements (key and
+// separator included), and where it sits: what shrinkJson drops from.
+struct Container {
+  Json* value;
+  std::size_t parent;  // index of the container holding it; itself for the root
+  std::size_t index;   // its position there
+  std::vector<std::string> keys;  // when an object
+  std::vector<std::size_t> bytes;
+  std::vector<bool> dropped;
+};
+
+// The size of `value`'s compact text, adding it (when an object or array) and every container below
+// it to `out` (parents before their children); nullopt when deeper than kMaxDepth.
+std::optional<std::size_t> measure(Json& value, std::size_t parent, std::size_t index, int depth,
+                                   std::vector<Container>& out) {
+  if (depth > kMaxDepth) return std::nullopt;
+  if (!value.is_object() && !value.is_array()) return scalarBytes(value);
+  const std::size_t at = out.size();
+  out.push_back({&value, at == 0 ? 0 : parent, index, {}, {}, {}});
+  std::size_t total = 2 + (value.empty() ? 0 : value.size() - 1);  // brackets and commas
+  std::size_t i = 0;
+  for (auto it = value.begin(); it != value.end(); ++it, ++i) {
+    const std::size_t keyBytes = value.is_object() ? it.key().size() + 3 : 0;  // "key":
+    const std::optional<std::size_t> child = measure(it.value(), at, i, depth + 1, out);
+    if (!child) return std::nullopt;
+    if (value.is_object()) out[at].keys.push_back(it.key());
+    out[at].bytes.push_back(keyBytes + *child + 1);
+    total += keyBytes + *child;
+  }
+  out[at].dropped.assign(out[at].bytes.size(), false);
+  return total;
+}
+
+bool insideDropped(const std::vector<Container>& containers, std::size_t c) {
+  for (; c != 0; c = containers[c].parent)
+    if (containers[containers[c].parent].dropped[containers[c].index]) return true;
+  return false;
+}
+
+// Marks a run of at least `least` bytes of consecutive members or elements of one container that
+// are not dropped yet, starting at one chosen by `rng` among the starts that can reach `least`;
+// returns the bytes marked, 0 when no run can reach `least`. Seven times in eight the run is one of
+// several values smaller than `least` (points of a list, keys of a channel), so that most of the
+// document stays; otherwise any, a whole section too.
+std::size_t markRun(std::vector<Container>& containers, std::size_t least, std::mt19937_64& rng) {
+  std::vector<std::pair<std::size_t, std::size_t>> fine, any;
+  for (std::size_t c = 0; c < containers.size(); ++c) {
+    if (insideDropped(containers, c)) continue;
+    std::size_t suffix = 0;
+    for (std::size_t i = containers[c].bytes.size(); i-- > 0;) {
+      if (containers[c].dropped[i]) continue;
+      suffix += containers[c].bytes[i];
+      if (suffix < least) continue;
+      any.emplace_back(c, i);
+      if (containers[c].bytes[i] < least) fine.emplace_back(c, i);
+    }
+  }
+  const auto& starts = !fine.empty() && rng() % 8 != 0 ? fine : any;
+  if (starts.empty()) return 0;
+  const auto [c, first] = starts[rng() % starts.size()];
+  Container& container = containers[c];
+  std::size_t marked = 0;
+  for (std::size_t i = first; i < container.bytes.size() && marked < least; ++i)
+    if (!container.dropped[i]) {
+      container.dropped[i] = true;
+      marked += container.bytes[i];
+    }
+  return marked;
+}
+
+// Erases what markRun marked: children before their parents, the last element first.
+void eraseMarked(std::vector<Container>& containers) {
+  for (std::size_t c = containers.size(); c-- > 0;) {
+    Container& container = containers[c];
+    for (std::size_t i = container.bytes.size(); i-- > 0;) {
+      if (!container.dropped[i]) continue;
+      if (container.value->is_object())
+        container.value->erase(container.keys[i]);
+      else
+        container.value->erase(container.value->begin() + std::ptrdiff_t(i));
+    }
+  }
+}
+
 }  // namespace
+
+std::optional<std::string> shrinkJson(std::string_view text, std::uint64_t seed, std::size_t maxSize) {
+  std::optional<Json> document = parse(text);
+  if (!document) return std::nullopt;
+  std::mt19937_64 rng(seed);
+  bool cut = false;
+  // Runs of at least an eighth of the excess each, planned on one measurement of the document; the
+  // text written is checked again (the sizes do not count escapes).
+  for (int pass = 0; pass < 8; ++pass) {
+    std::string result = compactText(*document);
+    if (result.size() <= maxSize) return cut ? std::optional<std::string>(std::move(result)) : std::nullopt;
+    std::vector<Container> containers;
+    if (!measure(*document, 0, 0, 0, containers)) return std::nullopt;
+    const std::size_t excess = result.size() - maxSize;
+    const std::size_t least = std::max<std::size_t>(1, excess / 8);
+    std::size_t marked = 0;
+    while (marked < excess) {
+      const std::size_t run = markRun(containers, least, rng);
+      if (run == 0) break;
+      marked += run;
+    }
+    if (marked == 0) return std::nullopt;
+    eraseMarked(containers);
+    cut = true;
+  }
+  return std::nullopt;
+}
 
 std::optional<std::string> mutateJson(std::string_view text, std::uint64_t seed, std::size_t maxSize) {
   const std::optional<Json> original = parse(text);

@@ -128,5 +128,70 @@ TEST(JsonMutator, CrossOverGraftsAValueOfTheSecondDocument) {
   EXPECT_FALSE(crossOverJson(first, second, 1, 5));
 }
 
+// kScene with a lattice of 64 points: 1.3 KB of compact JSON.
+std::string longScene() {
+  Json document = Json::parse(kScene);
+  Json points = Json::array();
+  for (int i = 0; i < 64; ++i) points.push_back(Json::array({i * 0.125, 1.0 - i * 0.25, 3.5}));
+  document["widgets"]["lattices"][0]["points"] = points;
+  return document.dump();
+}
+
+// Whether every object member and array element of `part` is in `whole` (elements in their order,
+// some left out), so `part` is `whole` with values dropped.
+bool isCutFrom(const Json& part, const Json& whole) {
+  if (part.is_object()) {
+    if (!whole.is_object()) return false;
+    for (auto it = part.begin(); it != part.end(); ++it)
+      if (!whole.contains(it.key()) || !isCutFrom(it.value(), whole[it.key()])) return false;
+    return true;
+  }
+  if (part.is_array()) {
+    if (!whole.is_array()) return false;
+    std::size_t next = 0;
+    for (const Json& element : part) {
+      while (next < whole.size() && !isCutFrom(element, whole[next])) ++next;
+      if (next == whole.size()) return false;
+      ++next;
+    }
+    return true;
+  }
+  return part == whole;
+}
+
+TEST(JsonMutator, ShrinkCutsALongDocumentToFitByDroppingValues) {
+  const std::string text = longScene();
+  const Json whole = Json::parse(text);
+  ASSERT_GT(text.size(), 1200u);
+  for (std::size_t maxSize : {800u, 300u, 100u}) {
+    std::set<std::string> texts;
+    for (std::uint64_t seed = 0; seed < 100; ++seed) {
+      const auto shrunk = shrinkJson(text, seed, maxSize);
+      ASSERT_TRUE(shrunk) << "seed " << seed << ", " << maxSize << " bytes";
+      EXPECT_EQ(shrunk, shrinkJson(text, seed, maxSize)) << "deterministic per seed";
+      EXPECT_LE(shrunk->size(), maxSize);
+      const Json part = Json::parse(*shrunk, nullptr, false);
+      ASSERT_FALSE(part.is_discarded()) << *shrunk;
+      EXPECT_TRUE(isCutFrom(part, whole)) << *shrunk;
+      texts.insert(*shrunk);
+    }
+    if (maxSize == 800) {
+      EXPECT_GT(texts.size(), 20u) << "the seed chooses what is dropped";
+    }
+  }
+  // A cut of 100 bytes mostly drops a few points, not the widgets.
+  int keptMost = 0;
+  for (std::uint64_t seed = 0; seed < 100; ++seed)
+    if (shrinkJson(text, seed, text.size() - 100)->size() > text.size() / 2) ++keptMost;
+  EXPECT_GT(keptMost, 80);
+}
+
+TEST(JsonMutator, ShrinkLeavesWhatFitsOrCannotBeCut) {
+  EXPECT_FALSE(shrinkJson(kScene, 1, 1000)) << "fits already";
+  EXPECT_FALSE(shrinkJson("{\"a\": [1, 2", 1, 5)) << "not JSON";
+  EXPECT_FALSE(shrinkJson("\"" + std::string(100, 'x') + "\"", 1, 50)) << "a root string";
+  EXPECT_EQ(shrinkJson(R"({"a":[1,2,3],"b":"long text"})", 1, 2), "{}");
+}
+
 }  // namespace
 }  // namespace ffdkit::fuzz
