@@ -52,7 +52,10 @@ for t in "${targets[@]}"; do
   # reader checks a count against the bytes there, and charges its read budget, first).
   malloc_limit=1024
   # Inputs up to 64 KiB; the scene target's up to 16 KiB (every sample scene fits): parsing 64 KiB
-  # of JSON under ASan and coverage costs more than reading and animating a small scene.
+  # of JSON under ASan and coverage costs more than reading and animating a small scene. Its
+  # mutator makes inputs of at most 4 KiB (JSON_MAX_SIZE in tests/fuzz/CMakeLists.txt) and cuts
+  # longer ones to fit, so a corpus of longer inputs still loads whole (-max_len would truncate
+  # them to JSON that no longer parses).
   max_len=65536
   extra=()
   target_asan="$ASAN_OPTIONS"
