@@ -24,18 +24,20 @@ namespace ffdkit::fuzz {
 /// One to four structural mutations of the JSON document `text`, written back as compact JSON
 /// (with, at times, a number replaced by text that is not JSON). nullopt when `text` does not
 /// parse as JSON or no mutation fits in `maxSize` bytes.
-FFDKIT_FUZZ_JSON_API std::optional<std::string> mutateJson(std::string_view text, std::uint64_t seed, std::size_t maxSize);
+FFDKIT_FUZZ_JSON_API std::optional<std::string> mutateJson(std::string_view text, std::uint64_t seed,
+                                                           std::size_t maxSize);
 
 /// `text` cut down to at most `maxSize` bytes of compact JSON by dropping runs of consecutive
 /// members or elements (each run at least an eighth of the excess; where, `seed` chooses) until it
 /// fits: how a fuzz target whose inputs cost more the longer they are keeps long documents (sample
 /// files, an earlier campaign's corpus) as parents of short mutants. nullopt when `text` does not
 /// parse, fits already, or cannot be cut to fit (a root string that is too long).
-FFDKIT_FUZZ_JSON_API std::optional<std::string> shrinkJson(std::string_view text, std::uint64_t seed, std::size_t maxSize);
+FFDKIT_FUZZ_JSON_API std::optional<std::string> shrinkJson(std::string_view text, std::uint64_t seed,
+                                                           std::size_t maxSize);
 
 /// `first` with one of its values replaced by a value of `second` (one with the same key when
 /// there is one). nullopt when either does not parse or the result exceeds `maxSize` bytes.
-FFDKIT_FUZZ_JSON_API std::optional<std::string> crossOverJson(std::string_view first, std::string_view second, std::uint64_t seed,
-                                         std::size_t maxSize);
+FFDKIT_FUZZ_JSON_API std::optional<std::string> crossOverJson(std::string_view first, std::string_view second,
+                                                              std::uint64_t seed, std::size_t maxSize);
 
 }  // namespace ffdkit::fuzz
