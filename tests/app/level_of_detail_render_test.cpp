@@ -79,6 +79,10 @@ struct RenderedDocument {
     }
     return nullptr;
   }
+  // The sphere's surface mapper, or with `proxy`, its proxy's; null when there is none.
+  SurfaceMapper* sphereMapper(bool proxy = false) {
+    return mapperOf(scene.findObject(made.sphere)->mesh.points.rows(), proxy);
+  }
   std::vector<unsigned char> pixels() {
     vtkNew<vtkUnsignedCharArray> rgb;
     window->GetPixelData(0, 0, kWidth - 1, kHeight - 1, 0, rgb);
@@ -137,14 +141,13 @@ TEST(LevelOfDetailRender, TheClosedSphereIsDrawnWithItsBackFacesCulledUnlessALat
   // The sphere is closed and faces out, the camera outside it: its full mesh is drawn with its
   // back faces culled (surface_mapper.h), its proxy (not known to be closed) never.
   RenderedDocument doc(true);
-  const vtkIdType n = doc.scene.findObject(doc.made.sphere)->mesh.points.rows();
-  SurfaceMapper* full = doc.mapperOf(n);
+  SurfaceMapper* full = doc.sphereMapper();
   ASSERT_NE(full, nullptr);
   EXPECT_EQ(full->culledDraws(), 1);
   ASSERT_EQ(doc.controller.press(doc.ray(0.5), doc.tolerance()), InteractionController::PressResult::Widget);
   doc.controller.drag(doc.ray(0.8));
   doc.frame();
-  SurfaceMapper* proxy = doc.mapperOf(n, true);
+  SurfaceMapper* proxy = doc.sphereMapper(true);
   ASSERT_NE(proxy, nullptr);
   EXPECT_EQ(proxy->bufferBuilds(), 1);  // drawn
   EXPECT_EQ(proxy->culledDraws(), 0);
@@ -166,8 +169,7 @@ TEST(LevelOfDetailRender, ASurfaceIsNotCulledWhileALatticeFoldsItWithoutATintOrT
   // Changes no drag made, so no fold-over tint: control points set in the model (as a scene read
   // from a file, a playback key or a script sets them) and a lattice moved across the sphere.
   RenderedDocument doc(true);
-  const vtkIdType n = doc.scene.findObject(doc.made.sphere)->mesh.points.rows();
-  SurfaceMapper* full = doc.mapperOf(n);
+  SurfaceMapper* full = doc.sphereMapper();
   ASSERT_NE(full, nullptr);
   EXPECT_EQ(full->culledDraws(), 1);
   auto& model = doc.scene.widgets;

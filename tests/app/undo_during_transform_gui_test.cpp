@@ -25,6 +25,28 @@ void rightClick(MainWindow& w, QPoint at) {
   sendMouse(w.view(), QEvent::MouseButtonRelease, at, Qt::RightButton, Qt::NoButton);
 }
 
+// A new lattice in edit mode with its point (1, 1, 2) selected, moved along z by a typed 0.5: one
+// step on the stack.
+struct MovedPoint {
+  WidgetId lattice;
+  Eigen::MatrixX3d start, moved;  ///< the lattice's world control points before and after the step
+  std::size_t steps = 0;          ///< the stack's position before it
+};
+MovedPoint movePointByTypedHalf(MainWindow& w) {
+  MovedPoint m;
+  m.lattice = newLatticeInEditMode(w);
+  clickPoint(w, m.lattice, flat(1, 1, 2));
+  m.start = w.scene().widgets.worldControlPoints(m.lattice);
+  m.steps = w.commands().position();
+  hover(w, toWidget(w, Eigen::Vector3d(0.5, 0.5, 1.0)));
+  pressKey(w, Qt::Key_G);
+  pressKey(w, Qt::Key_Z);
+  typeKeys(w, "0.5");
+  pressKey(w, Qt::Key_Return);
+  m.moved = w.scene().widgets.worldControlPoints(m.lattice);
+  return m;
+}
+
 }  // namespace
 
 class UndoDuringTransformGuiTest : public QObject {
@@ -39,17 +61,7 @@ class UndoDuringTransformGuiTest : public QObject {
 
   void ctrlZDuringAMoveAbandonsItAndUndoesTheLastStep() {
     MainWindow& w = *window_;
-    const WidgetId lattice = newLatticeInEditMode(w);
-    clickPoint(w, lattice, flat(1, 1, 2));
-    const Eigen::MatrixX3d start = w.scene().widgets.worldControlPoints(lattice);
-    const std::size_t steps = w.commands().position();
-    // One step: G along z by a typed 0.5.
-    hover(w, toWidget(w, Eigen::Vector3d(0.5, 0.5, 1.0)));
-    pressKey(w, Qt::Key_G);
-    pressKey(w, Qt::Key_Z);
-    typeKeys(w, "0.5");
-    pressKey(w, Qt::Key_Return);
-    const Eigen::MatrixX3d moved = w.scene().widgets.worldControlPoints(lattice);
+    const auto [lattice, start, moved, steps] = movePointByTypedHalf(w);
     QCOMPARE(moved(flat(1, 1, 2), 2), start(flat(1, 1, 2), 2) + 0.5);
     QCOMPARE(w.commands().position(), steps + 1);
 
@@ -85,16 +97,7 @@ class UndoDuringTransformGuiTest : public QObject {
   // and the typed value of the abandoned move is gone (the next move starts from nothing typed).
   void ctrlShiftZDuringAMoveAbandonsItAndRedoesTheUndoneStep() {
     MainWindow& w = *window_;
-    const WidgetId lattice = newLatticeInEditMode(w);
-    clickPoint(w, lattice, flat(1, 1, 2));
-    const Eigen::MatrixX3d start = w.scene().widgets.worldControlPoints(lattice);
-    const std::size_t steps = w.commands().position();
-    hover(w, toWidget(w, Eigen::Vector3d(0.5, 0.5, 1.0)));
-    pressKey(w, Qt::Key_G);
-    pressKey(w, Qt::Key_Z);
-    typeKeys(w, "0.5");
-    pressKey(w, Qt::Key_Return);
-    const Eigen::MatrixX3d moved = w.scene().widgets.worldControlPoints(lattice);
+    const auto [lattice, start, moved, steps] = movePointByTypedHalf(w);
     QCOMPARE(moved(flat(1, 1, 2), 2), start(flat(1, 1, 2), 2) + 0.5);
     pressKey(w, Qt::Key_Z, Qt::ControlModifier);
     QCOMPARE(w.commands().position(), steps);
