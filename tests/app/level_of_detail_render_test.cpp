@@ -206,5 +206,27 @@ TEST(LevelOfDetailRender, ASurfaceIsNotCulledWhileALatticeFoldsItWithoutATintOrT
   EXPECT_EQ(full->culledDraws(), 3);
 }
 
+TEST(LevelOfDetailRender, ADragsLatticeIsCheckedForFoldsOnceAStepByTheControllerNotAgainByTheView) {
+  // Without the level of detail every step of a drag draws the full mesh, culled only over
+  // lattices certified free of fold-over. The controller checks the lattice the drag moves at every
+  // step (its fold-over tint) and hands its verdicts on (ViewHighlights::certified): the view culls
+  // on them without a check of its own.
+  RenderedDocument doc(false);
+  SurfaceMapper* full = doc.sphereMapper();
+  ASSERT_NE(full, nullptr);
+  EXPECT_EQ(doc.view.stats().foldChecks, 1);  // the lattice at rest, when the actor was built
+  EXPECT_EQ(full->culledDraws(), 1);
+  ASSERT_EQ(doc.controller.press(doc.ray(0.5), doc.tolerance()), InteractionController::PressResult::Widget);
+  for (double along : {0.6, 0.7, 0.8}) {
+    doc.controller.drag(doc.ray(along));
+    doc.frame();
+    EXPECT_FALSE(doc.controller.highlights().certified.empty());
+  }
+  doc.controller.release();
+  doc.frame();
+  EXPECT_EQ(doc.view.stats().foldChecks, 1);
+  EXPECT_EQ(full->culledDraws(), 5);  // every frame, the drag's three and the release's too
+}
+
 }  // namespace
 }  // namespace ffdkit::app

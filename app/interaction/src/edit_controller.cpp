@@ -529,6 +529,7 @@ void EditController::updateFoldTints() {
       if (t.kind != Target::Kind::Placement && std::find(lattices.begin(), lattices.end(), t.id) == lattices.end())
         lattices.push_back(t.id);
   std::vector<FoldTint> tints;
+  std::vector<CertifiedLattice> certified;
   std::map<widgets::WidgetId, std::pair<std::uint64_t, std::uint64_t>> revisions;
   for (widgets::WidgetId id : lattices) {
     if (!m.contains(id) || m.type(id) != WidgetType::Lattice) continue;
@@ -538,6 +539,8 @@ void EditController::updateFoldTints() {
     const auto old = std::find_if(foldTints_.begin(), foldTints_.end(), [&](const FoldTint& f) { return f.lattice == id; });
     if (known != foldRevisions_.end() && known->second == now) {  // unchanged: the verdicts stand
       if (old != foldTints_.end()) tints.push_back(*old);
+      for (const CertifiedLattice& c : certified_)
+        if (c.lattice == id) certified.push_back(c);
       continue;
     }
     ffd::FoldCheckResult result;
@@ -546,10 +549,14 @@ void EditController::updateFoldTints() {
     } catch (const ffd::LatticeError&) {
       continue;  // a lattice the check cannot bound (an axis of degree over 10): no tint, not a failed edit
     }
-    if (result.certifiedPositive()) continue;
+    if (result.certifiedPositive()) {
+      certified.push_back({id, now.first, now.second});
+      continue;
+    }
     tints.push_back(FoldTint{id, result.cellCounts, result.cells});
   }
   foldTints_ = std::move(tints);
+  certified_ = std::move(certified);
   foldRevisions_ = std::move(revisions);
 }
 
@@ -654,6 +661,8 @@ ViewHighlights EditController::highlights(ViewHighlights h) const {
   for (const FoldTint& tint : foldTints_)
     if (std::none_of(h.foldTints.begin(), h.foldTints.end(), [&](const FoldTint& f) { return f.lattice == tint.lattice; }))
       h.foldTints.push_back(tint);
+  for (const CertifiedLattice& c : certified_)
+    if (std::find(h.certified.begin(), h.certified.end(), c) == h.certified.end()) h.certified.push_back(c);
   if (live_ && editing() && soft_.enabled) h.softRadius = SoftRadius{live_->pivot, soft_.radius};
   if (editing() && scene_.widgets.contains(lattice()))
     for (Eigen::Index i : selection_->indices()) h.selectedPoints.push_back({lattice(), i});

@@ -268,6 +268,7 @@ ViewHighlights InteractionController::highlights() const {
   h.transformer = transformer();
   h.transformerHandle = transformerHandle();
   h.foldTints = foldTints_;
+  h.certified = certified_;
   for (const ObjectPoint& pin : pins_)
     if (const scenes::SceneObject* o = scene_.findObject(pin.object); o && pin.vertex < o->mesh.points.rows())
       h.pins.push_back(deformer_.points(pin.object).row(pin.vertex).transpose());

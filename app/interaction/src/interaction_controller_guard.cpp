@@ -116,10 +116,12 @@ void InteractionController::updateFoldTints() {
   const auto& m = scene_.widgets;
   std::erase_if(foldWatch_, [&](const auto& entry) { return !m.contains(entry.first) || m.type(entry.first) != WidgetType::Lattice; });
   std::erase_if(foldTints_, [&](const FoldTint& tint) { return !foldWatch_.contains(tint.lattice); });
+  std::erase_if(certified_, [&](const CertifiedLattice& c) { return !foldWatch_.contains(c.lattice); });
   for (auto& [lattice, known] : foldWatch_) {
     const auto now = revisionsOf(m, lattice);
     if (known == now) continue;  // unchanged: its verdicts stand
     known = now;
+    std::erase_if(certified_, [&](const CertifiedLattice& c) { return c.lattice == lattice; });
     const auto old = std::find_if(foldTints_.begin(), foldTints_.end(), [&](const FoldTint& f) { return f.lattice == lattice; });
     ffd::FoldCheckResult result;
     try {
@@ -132,6 +134,7 @@ void InteractionController::updateFoldTints() {
     }
     if (result.certifiedPositive()) {
       if (old != foldTints_.end()) foldTints_.erase(old);
+      certified_.push_back({lattice, now.first, now.second});
       continue;
     }
     FoldTint tint{lattice, result.cellCounts, result.cells};

@@ -9,7 +9,8 @@
 namespace ffdkit::app {
 
 const OutwardFacesGuard::LatticeVerdict& OutwardFacesGuard::verdict(const widgets::WidgetModel& model,
-                                                                    widgets::WidgetId lattice) {
+                                                                    widgets::WidgetId lattice,
+                                                                    const std::vector<CertifiedLattice>& certified) {
   const std::uint64_t control = model.controlRevision(lattice), frame = model.frameRevision(lattice);
   auto [at, added] = verdicts_.try_emplace(lattice);
   LatticeVerdict& v = at->second;
@@ -30,6 +31,10 @@ const OutwardFacesGuard::LatticeVerdict& OutwardFacesGuard::verdict(const widget
     v.parameterMin = l.parameterMin();
     v.parameterMax = l.parameterMax();
     v.affineRoot = true;
+    if (std::find(certified.begin(), certified.end(), CertifiedLattice{lattice, control, frame}) != certified.end()) {
+      v.certified = true;  // a controller's check of these very revisions
+      return v;
+    }
     ++checks_;
     v.certified = ffd::checkFolding(l).certifiedPositive();
   } catch (const std::exception&) {
@@ -39,7 +44,7 @@ const OutwardFacesGuard::LatticeVerdict& OutwardFacesGuard::verdict(const widget
 }
 
 bool OutwardFacesGuard::keepsOutward(const widgets::WidgetModel& model, const Eigen::Vector3d& lo,
-                                     const Eigen::Vector3d& hi) {
+                                     const Eigen::Vector3d& hi, const std::vector<CertifiedLattice>& certified) {
   if (model.instance() != instance_) {  // another model: its ids name other lattices
     verdicts_.clear();
     instance_ = model.instance();
@@ -47,7 +52,7 @@ bool OutwardFacesGuard::keepsOutward(const widgets::WidgetModel& model, const Ei
   const std::vector<widgets::WidgetId> lattices = model.widgets(widgets::WidgetType::Lattice);
   std::erase_if(verdicts_, [&](const auto& entry) { return !model.contains(entry.first); });
   for (widgets::WidgetId lattice : lattices) {
-    const LatticeVerdict& v = verdict(model, lattice);
+    const LatticeVerdict& v = verdict(model, lattice, certified);
     if (!v.affineRoot) return false;
     // The box's corners in the lattice's parameters: the box is their convex hull, and so is its
     // image under the affine rest map's inverse, so the corners decide inside and outside.

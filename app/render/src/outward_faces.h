@@ -8,10 +8,12 @@
 
 #include <cstdint>
 #include <map>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "ffdkit/interaction/view_highlights.h"
 #include "ffdkit/widgets/widget_model.h"
 
 namespace ffdkit::app {
@@ -30,9 +32,12 @@ class OutwardFacesGuard {
   /// Anything else is false: a lattice across the box, another outside policy, a rest lattice that
   /// is not an affine image of its parameter box (the box test would not be exact), a child lattice
   /// (it deforms its parent's deformed space), a lattice the check cannot bound.
-  bool keepsOutward(const widgets::WidgetModel& model, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+  /// `certified` are verdicts already made (the controllers' during a drag or transform,
+  /// ViewHighlights::certified): a lattice among them at its current revisions is not checked again.
+  bool keepsOutward(const widgets::WidgetModel& model, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                    const std::vector<CertifiedLattice>& certified);
 
-  /// Fold-over checks run so far (one per lattice and change of it), for tests.
+  /// Fold-over checks run so far (one per lattice and change of it no verdict given covered).
   int checks() const { return checks_; }
 
  private:
@@ -44,7 +49,8 @@ class OutwardFacesGuard {
     Eigen::Affine3d worldToParameters = Eigen::Affine3d::Identity();  ///< the rest map's inverse
     Eigen::Vector3d parameterMin = Eigen::Vector3d::Zero(), parameterMax = Eigen::Vector3d::Zero();
   };
-  const LatticeVerdict& verdict(const widgets::WidgetModel& model, widgets::WidgetId lattice);
+  const LatticeVerdict& verdict(const widgets::WidgetModel& model, widgets::WidgetId lattice,
+                                const std::vector<CertifiedLattice>& certified);
 
   std::uint64_t instance_ = 0;
   std::map<widgets::WidgetId, LatticeVerdict> verdicts_;

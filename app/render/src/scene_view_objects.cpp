@@ -135,7 +135,8 @@ void SceneView::Impl::updateFoldFree() {
 void SceneView::Impl::updateKeepsOutward(ObjectActor& entry, const widgets::WidgetModel& model) {
   auto* mapper = SurfaceMapper::SafeDownCast(entry.actor->GetMapper());
   if (mapper == nullptr || !mapper->closedSurface()) return;  // never culled: nothing to ask
-  entry.keepsOutward = outwardFaces.keepsOutward(model, entry.restLo, entry.restHi);
+  entry.keepsOutward = outwardFaces.keepsOutward(model, entry.restLo, entry.restHi, highlights.certified);
+  stats.foldChecks = outwardFaces.checks();
   mapper->setFoldFree(highlights.foldTints.empty() && entry.keepsOutward);
 }
 

@@ -219,6 +219,7 @@ class EditController {
   SoftSelection soft_;
   std::vector<ShapeGuardStep> guardSteps_;
   std::vector<FoldTint> foldTints_;
+  std::vector<CertifiedLattice> certified_;  ///< the checked lattices the check certified, at their revisions
   /// Per tinted lattice, the (controlRevision, frameRevision) its verdicts were computed for.
   std::map<widgets::WidgetId, std::pair<std::uint64_t, std::uint64_t>> foldRevisions_;
 };

@@ -335,6 +335,7 @@ class InteractionController {
   /// revisions the verdicts in foldTints_ were computed for.
   std::map<widgets::WidgetId, std::pair<std::uint64_t, std::uint64_t>> foldWatch_;
   std::vector<FoldTint> foldTints_;
+  std::vector<CertifiedLattice> certified_;  ///< the watched lattices the check certified, at their revisions
 };
 
 }  // namespace ffdkit::app

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -29,6 +30,16 @@ struct FoldTint {
   friend bool operator==(const FoldTint&, const FoldTint&) = default;  ///< equal when every field is
 };
 
+/// A lattice whose every cell ffd::checkFolding certified free of fold-over, with the revisions of
+/// the lattice the verdict is for (WidgetModel::controlRevision, frameRevision): the view may rely
+/// on it instead of checking the lattice again (SceneView culls back faces only over such lattices).
+struct CertifiedLattice {
+  widgets::WidgetId lattice;          ///< the lattice
+  std::uint64_t controlRevision = 0;  ///< its control points' revision the check saw
+  std::uint64_t frameRevision = 0;    ///< its rest lattice's revision the check saw
+  friend bool operator==(const CertifiedLattice&, const CertifiedLattice&) = default;  ///< equal when every field is
+};
+
 /// The soft selection's reach, drawn as a sphere round the pivot during a transform.
 struct SoftRadius {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< world
@@ -47,6 +58,7 @@ struct ViewHighlights {
   std::optional<TransformerHandle> transformerHandle;  ///< its hovered or dragged handle
   std::vector<Eigen::Vector3d> pins;  ///< pinned object points (direct manipulation), where they are drawn
   std::vector<FoldTint> foldTints;    ///< lattices whose cells are not all certified free of fold-over
+  std::vector<CertifiedLattice> certified;  ///< lattices checked and certified free of fold-over (no tint)
   std::optional<SoftRadius> softRadius;  ///< the soft selection's radius during a transform
 };
 

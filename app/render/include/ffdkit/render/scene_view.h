@@ -47,6 +47,10 @@ struct SceneViewStats {
   int overlayBuilds = 0;  ///< builds of the transformer's actors (another size; a moved transformer moves them)
   int proxyBuilds = 0;    ///< level-of-detail proxies built (LevelOfDetail; once per object actor)
   int proxyUpdates = 0;   ///< proxy point arrays rewritten (a gesture step or a played frame)
+  /// Fold-over checks the view made itself to decide whether a closed surface's back faces may be
+  /// culled (app/render/src/outward_faces.h): one per lattice and change of it that no controller's
+  /// verdict (ViewHighlights::certified) already covered.
+  int foldChecks = 0;
 };
 
 /// How a SceneView draws large objects while things move (SceneView::setLevelOfDetail), as VTK's
