@@ -64,9 +64,10 @@ bool OutwardFacesGuard::keepsOutward(const widgets::WidgetModel& model, const Ei
       const Eigen::Vector3d uvw = v.worldToParameters * p;
       for (int a = 0; a < 3; ++a) {
         const bool below = uvw[a] < v.parameterMin[a] - slack[a], above = uvw[a] > v.parameterMax[a] + slack[a];
-        if (below || above) allInside = false;
-        if (!(uvw[a] < v.parameterMin[a] - slack[a])) allBeyond[2 * a] = false;
-        if (!(uvw[a] > v.parameterMax[a] + slack[a])) allBeyond[2 * a + 1] = false;
+        if (!(uvw[a] >= v.parameterMin[a] - slack[a] && uvw[a] <= v.parameterMax[a] + slack[a]))
+          allInside = false;  // written so that a NaN is neither inside nor beyond
+        if (!below) allBeyond[2 * a] = false;
+        if (!above) allBeyond[2 * a + 1] = false;
       }
     }
     const bool outside = std::find(allBeyond.begin(), allBeyond.end(), true) != allBeyond.end();
