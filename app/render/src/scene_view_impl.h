@@ -117,6 +117,7 @@ struct SceneView::Impl {
   // no back faces culled while the highlights tint a lattice's cells as folding or unknown, nor
   // unless the lattices keep the object's faces outward (ObjectActor::keepsOutward).
   void updateFoldFree();
+  void updateFoldFree(ObjectActor& entry);  // ... of one object
   // Asks the lattices again whether they keep a closed surface's faces outward (when its full mesh
   // is drawn: a proxy is never culled), then tells its mapper.
   void updateKeepsOutward(ObjectActor& entry, const widgets::WidgetModel& model);

@@ -127,9 +127,12 @@ void SceneView::Impl::buildObjects(const scenes::Scene& scene, const scenes::Sce
 }
 
 void SceneView::Impl::updateFoldFree() {
-  for (auto& entry : objects)
-    if (auto* mapper = SurfaceMapper::SafeDownCast(entry.actor->GetMapper()))
-      mapper->setFoldFree(highlights.foldTints.empty() && entry.keepsOutward);
+  for (auto& entry : objects) updateFoldFree(entry);
+}
+
+void SceneView::Impl::updateFoldFree(ObjectActor& entry) {
+  if (auto* mapper = SurfaceMapper::SafeDownCast(entry.actor->GetMapper()))
+    mapper->setFoldFree(highlights.foldTints.empty() && entry.keepsOutward);
 }
 
 void SceneView::Impl::updateKeepsOutward(ObjectActor& entry, const widgets::WidgetModel& model) {
@@ -137,7 +140,7 @@ void SceneView::Impl::updateKeepsOutward(ObjectActor& entry, const widgets::Widg
   if (mapper == nullptr || !mapper->closedSurface()) return;  // never culled: nothing to ask
   entry.keepsOutward = outwardFaces.keepsOutward(model, entry.restLo, entry.restHi, highlights.certified);
   stats.foldChecks = outwardFaces.checks();
-  mapper->setFoldFree(highlights.foldTints.empty() && entry.keepsOutward);
+  updateFoldFree(entry);
 }
 
 // True when the drawn objects are the scene's visible objects with the same point counts.
