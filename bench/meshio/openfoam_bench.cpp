@@ -49,6 +49,12 @@ void appendList(std::string& out, const std::vector<T>& values) {
   out += ")\n";
 }
 
+void appendList(std::string& out, const meshio::LabelList& labels) {
+  out += std::to_string(labels.size()) + "\n(";
+  out.append(labels.bytes(), labels.size() * sizeof(std::int32_t));
+  out += ")\n";
+}
+
 void writeFile(const fs::path& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);
   out.write(bytes.data(), std::streamsize(bytes.size()));

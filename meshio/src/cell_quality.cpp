@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -60,6 +61,29 @@ struct PointColumns {
   const double* z;
 };
 
+// A label list as the check reads it: loads that take any alignment (a list read in place from a
+// mapped file starts at any byte offset of it, LabelList).
+struct Labels {
+  explicit Labels(const char* at) : bytes(at) {}
+  std::int32_t operator[](std::int64_t i) const {
+    std::int32_t label;
+    std::memcpy(&label, bytes + i * std::int64_t(sizeof label), sizeof label);
+    return label;
+  }
+  Labels operator+(std::int64_t i) const { return Labels(bytes + i * std::int64_t(sizeof(std::int32_t))); }
+  const char* bytes;
+};
+
+// The mesh's lists (PolyMeshCells) as the check reads them.
+struct MeshLabels {
+  explicit MeshLabels(const PolyMeshCells& cells)
+      : starts(cells.faceStarts.bytes()), vertices(cells.faceVertices.bytes()), owner(cells.owner.bytes()),
+        neighbour(cells.neighbour.bytes()) {}
+  Labels pointsOf(std::int64_t f) const { return vertices + starts[f]; }  // face f's point indices
+  std::int64_t sizeOf(std::int64_t f) const { return std::int64_t(starts[f + 1]) - starts[f]; }  // its number of points
+  Labels starts, vertices, owner, neighbour;
+};
+
 struct FaceGeometry {
   Eigen::Vector3d centre;
   Eigen::Vector3d area;  ///< area vector: right-hand rule over the face's points, length = area
@@ -68,9 +92,9 @@ struct FaceGeometry {
 // A face's centre and area vector as OpenFOAM computes them (face::areaAndCentre): a triangle
 // directly; a polygon from the triangles between each edge and the point average, the centre
 // weighted by the triangles' areas.
-FaceGeometry faceGeometry(const PointColumns& p, const PolyMeshCells& cells, std::int64_t f) {
-  const std::int32_t* v = cells.faceVertices.data() + cells.faceStarts[std::size_t(f)];
-  const std::int64_t n = cells.faceStarts[std::size_t(f) + 1] - cells.faceStarts[std::size_t(f)];
+FaceGeometry faceGeometry(const PointColumns& p, const MeshLabels& m, std::int64_t f) {
+  const Labels v = m.pointsOf(f);
+  const std::int64_t n = m.sizeOf(f);
   auto point = [&](std::int64_t i) -> Eigen::Vector3d { return p[v[i]]; };
   if (n == 3) {
     const Eigen::Vector3d a = point(0), b = point(1), c = point(2);
@@ -111,11 +135,10 @@ struct FaceLanes {
     others.clear();
   }
   // Puts face f in the next lane.
-  void add(const PointColumns& p, const PolyMeshCells& cells, std::int64_t f) {
-    const std::int32_t begin = cells.faceStarts[std::size_t(f)];
+  void add(const PointColumns& p, const MeshLabels& m, std::int64_t f) {
     const int lane = count++;
-    if (cells.faceStarts[std::size_t(f) + 1] - begin == 4) {
-      const std::int32_t* v = cells.faceVertices.data() + begin;
+    if (m.sizeOf(f) == 4) {
+      const Labels v = m.pointsOf(f);
       for (int k = 0; k < 4; ++k) {
         x[k][lane] = p.x[v[k]];
         y[k][lane] = p.y[v[k]];
@@ -123,7 +146,7 @@ struct FaceLanes {
       }
     } else {
       for (int k = 0; k < 4; ++k) x[k][lane] = y[k][lane] = z[k][lane] = 0.0;
-      others.emplace_back(lane, faceGeometry(p, cells, f));
+      others.emplace_back(lane, faceGeometry(p, m, f));
     }
   }
   // Computes every lane's geometry.
@@ -141,7 +164,7 @@ struct FaceLanes {
 
 // Puts face f, of geometry `g`, in the next lane of `lanes` (which has room) with its owner's
 // centre and, for an internal face, its neighbour's (3 doubles each).
-void addFaceCheck(detail::FaceCheckLanes& lanes, const PointColumns& p, const PolyMeshCells& cells, std::int64_t f,
+void addFaceCheck(detail::FaceCheckLanes& lanes, const PointColumns& p, const MeshLabels& m, std::int64_t f,
                   const FaceGeometry& g, const double* own, const double* nei) {
   const int l = lanes.count++;
   lanes.face[l] = f;
@@ -150,10 +173,9 @@ void addFaceCheck(detail::FaceCheckLanes& lanes, const PointColumns& p, const Po
   lanes.ocx[l] = own[0], lanes.ocy[l] = own[1], lanes.ocz[l] = own[2];
   if (nei == nullptr) nei = own;
   lanes.ncx[l] = nei[0], lanes.ncy[l] = nei[1], lanes.ncz[l] = nei[2];
-  const std::int32_t begin = cells.faceStarts[std::size_t(f)];
-  lanes.quadInside[l] = nei != own && cells.faceStarts[std::size_t(f) + 1] - begin == 4;
+  lanes.quadInside[l] = nei != own && m.sizeOf(f) == 4;
   if (lanes.quadInside[l]) {
-    const std::int32_t* v = cells.faceVertices.data() + begin;
+    const Labels v = m.pointsOf(f);
     for (int k = 0; k < 4; ++k) {
       lanes.px[k][l] = p.x[v[k]];
       lanes.py[k][l] = p.y[v[k]];
@@ -168,7 +190,7 @@ void addFaceCheck(detail::FaceCheckLanes& lanes, const PointColumns& p, const Po
 // boundaryFaceSkewness): the distance of the face centre from where the line between the cell
 // centres (or, at the boundary, the face normal through the cell centre) crosses the face,
 // over an estimate of the face's extent in that direction.
-double faceSkewness(const PointColumns& p, const PolyMeshCells& cells, std::int64_t f, const FaceGeometry& face,
+double faceSkewness(const PointColumns& p, const MeshLabels& m, std::int64_t f, const FaceGeometry& face,
                     const Eigen::Vector3d& ownCentre, const Eigen::Vector3d* neiCentre) {
   const Eigen::Vector3d cpf = face.centre - ownCentre;
   Eigen::Vector3d d;
@@ -183,8 +205,8 @@ double faceSkewness(const PointColumns& p, const PolyMeshCells& cells, std::int6
   const Eigen::Vector3d sv = cpf - (face.area.dot(cpf) / (face.area.dot(d) + kRootVerySmall)) * d;
   const Eigen::Vector3d svHat = sv / (sv.norm() + kRootVerySmall);
   double fd = spread * d.norm() + kRootVerySmall;
-  for (std::int64_t k = cells.faceStarts[std::size_t(f)]; k < cells.faceStarts[std::size_t(f) + 1]; ++k)
-    fd = std::max(fd, std::abs(svHat.dot(p[cells.faceVertices[std::size_t(k)]] - face.centre)));
+  const Labels v = m.pointsOf(f);
+  for (std::int64_t k = 0, n = m.sizeOf(f); k < n; ++k) fd = std::max(fd, std::abs(svHat.dot(p[v[k]] - face.centre)));
   return sv.norm() / fd;
 }
 
@@ -322,8 +344,7 @@ CellFaces cellFacesOf(const PolyMeshCells& cells) {
   const std::int64_t nCells = cells.cellCount;
   const std::int64_t faces = cells.faceCount();
   const std::int64_t internal = std::int64_t(cells.neighbour.size());
-  const std::int32_t* owner = cells.owner.data();
-  const std::int32_t* neighbour = cells.neighbour.data();
+  const Labels owner(cells.owner.bytes()), neighbour(cells.neighbour.bytes());
   CellFaces r;
   r.faces = unwrittenArray<std::uint32_t>(std::size_t(faces + internal));  // the larger first (see checkPolyMeshCells)
   r.starts = unwrittenArray<std::uint32_t>(std::size_t(nCells) + 1);
@@ -430,8 +451,8 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
   const std::int64_t sweep = sweepLength(nCells);
   const std::int64_t sweeps = (nCells + sweep - 1) / sweep;
   std::vector<FaceShare> sweepShares(static_cast<std::size_t>(sweeps));
-  const std::int32_t* owner = cells.owner.data();
-  const std::int32_t* neighbour = cells.neighbour.data();
+  const MeshLabels m(cells);
+  const Labels owner = m.owner, neighbour = m.neighbour;
   auto markBad = [&bad](std::int32_t cell) { std::atomic_ref<std::uint8_t>(bad[std::size_t(cell)]).store(1, std::memory_order_relaxed); };
   auto faceOf = [&](std::uint32_t k) { return std::int64_t(cellFaces.faces[k] & ~CellFaces::kNeighbourSide); };
 
@@ -463,7 +484,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
       if (!lanes.quadInside[l]) {
         const Eigen::Vector3d ownCentre(lanes.ocx[l], lanes.ocy[l], lanes.ocz[l]);
         const Eigen::Vector3d neiCentre(lanes.ncx[l], lanes.ncy[l], lanes.ncz[l]);
-        skewness = faceSkewness(p, cells, f, {{lanes.fcx[l], lanes.fcy[l], lanes.fcz[l]}, {lanes.fax[l], lanes.fay[l], lanes.faz[l]}},
+        skewness = faceSkewness(p, m, f, {{lanes.fcx[l], lanes.fcy[l], lanes.fcz[l]}, {lanes.fax[l], lanes.fay[l], lanes.faz[l]}},
                                 ownCentre, f < internal ? &neiCentre : nullptr);
       }
       share.maxSkewness = std::max(share.maxSkewness, skewness);
@@ -473,7 +494,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
   // Face f, of geometry `g`, to check with the next faces (its cells' centres are known).
   auto checkFace = [&](detail::FaceCheckLanes& lanes, std::int64_t f, const FaceGeometry& g, FaceShare& share) {
     if (lanes.count == detail::FaceCheckLanes::kLanes) checkFaces(lanes, share);
-    addFaceCheck(lanes, p, cells, f, g, centres.row(Eigen::Index(owner[f])).data(),
+    addFaceCheck(lanes, p, m, f, g, centres.row(Eigen::Index(owner[f])).data(),
                  f < internal ? centres.row(Eigen::Index(neighbour[f])).data() : nullptr);
   };
 
@@ -502,7 +523,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
         const std::size_t slot = cache->slot(f);
         FaceGeometry& g = cellGeometry[k - begin];
         if (cache->face[slot] == f) g = cache->geometry[slot];
-        else g = faceGeometry(p, cells, f);
+        else g = faceGeometry(p, m, f);
         estimate += g.centre;
       }
       estimate /= double(std::max<std::uint32_t>(1, end - begin));
@@ -542,13 +563,13 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
           if (lanes->count + need > FaceLanes::kLanes) {
             if (c > batch) break;
             for (std::uint32_t k = begin; k < end; ++k)
-              if (!cache->holds(faceOf(k))) cache->store(faceOf(k), faceGeometry(p, cells, faceOf(k)));
+              if (!cache->holds(faceOf(k))) cache->store(faceOf(k), faceGeometry(p, m, faceOf(k)));
           } else {
             for (std::uint32_t k = begin; k < end; ++k) {
               const std::int64_t f = faceOf(k);
               if (cache->holds(f)) continue;
               laneFace[lanes->count] = f;
-              lanes->add(p, cells, f);
+              lanes->add(p, m, f);
               cache->face[cache->slot(f)] = std::int32_t(f);  // its lane's result is stored below
             }
           }
@@ -594,7 +615,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
           for (; f < last && lanes->count < FaceLanes::kLanes; ++f) {
             if (sweepOf(owner[f]) == sweepOf(neighbour[f])) continue;
             laneFace[lanes->count] = f;
-            lanes->add(p, cells, f);
+            lanes->add(p, m, f);
           }
           lanes->compute();
           for (int l = 0; l < lanes->count; ++l) checkFace(*checks, laneFace[l], (*lanes)[l], share);

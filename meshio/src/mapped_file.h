@@ -1,12 +1,16 @@
 #pragma once
-// A file's bytes mapped read-only for one parse: the page cache's own pages, so that reading a
-// large polyMesh file (a 600 MB `faces`) neither allocates nor clears a buffer of its size, and
-// the parts a parser has copied out are given back as it goes (releaseParsedBytes), so that the
-// file never stays resident whole beside the arrays made from it. Private to meshio.
+// A file's bytes mapped read-only: the page cache's own pages, so that reading a large polyMesh
+// file (a 600 MB `faces`) neither allocates nor clears a buffer of its size. The label lists of
+// `faces`, `owner` and `neighbour` are read where they lie in the mapping (LabelList::inPlace,
+// which keeps the mapping for as long as the lists live); a parser that copies a file's items out
+// (the points) gives back the pages it has copied as it goes (releaseParsedBytes, while a
+// GiveBackParsedPages of the file lives), so that the file never stays resident whole beside the
+// arrays made from it. Private to meshio.
 //
 // A file that another process truncates while it is mapped ends the reading process (SIGBUS) where
-// read() would have seen a short file: the files mapped are a case's own polyMesh files, read
-// once, which nothing else writes while a deformation reads them.
+// read() would have seen a short file, and one that another process rewrites in place changes
+// under the lists read from it: the files mapped are a case's own polyMesh files, which nothing
+// else writes while a deformation reads and checks them.
 
 #include <cstddef>
 #include <cstdint>
@@ -24,8 +28,7 @@
 
 namespace ffdkit::meshio::detail {
 
-/// A regular file mapped read-only (MAP_PRIVATE) for as long as the object lives. While it lives it
-/// is the mapping releaseParsedBytes knows on this thread (nested mappings stack).
+/// A regular file mapped read-only (MAP_PRIVATE) for as long as the object lives.
 class MappedFile {
  public:
   /// Maps `path`. @throws MeshIoError naming it when it cannot be opened, is not a regular file,
@@ -51,11 +54,8 @@ class MappedFile {
       (void)::madvise(data, size_, MADV_SEQUENTIAL);
     }
     ::close(fd);
-    previous_ = active();
-    active() = this;
   }
   ~MappedFile() {
-    active() = previous_;
     if (data_ != nullptr) ::munmap(const_cast<char*>(data_), size_);
   }
   MappedFile(const MappedFile&) = delete;
@@ -64,31 +64,55 @@ class MappedFile {
   /// The file's bytes.
   std::string_view view() const { return {data_ == nullptr ? "" : data_, size_}; }
 
-  /// Drops the whole pages inside [begin, end) when they lie in a mapping of this thread: the
-  /// process no longer holds them (touched again, they are mapped again from the page cache).
-  static void release(const char* begin, const char* end) {
-    for (const MappedFile* m = active(); m != nullptr; m = m->previous_) {
-      if (m->data_ == nullptr || begin < m->data_ || end > m->data_ + m->size_) continue;
-      const std::uintptr_t page = std::uintptr_t(::sysconf(_SC_PAGESIZE));
-      const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) & ~(page - 1);
-      const std::uintptr_t last = reinterpret_cast<std::uintptr_t>(end) & ~(page - 1);
-      if (last > first) (void)::madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
-      return;
-    }
+  /// Whether [begin, end) lies in the mapping.
+  bool holds(const char* begin, const char* end) const {
+    return data_ != nullptr && begin >= data_ && end <= data_ + size_;
+  }
+
+  /// Drops the whole pages inside [begin, end), which lie in the mapping: the process no longer
+  /// holds them (touched again, they are mapped again from the page cache).
+  static void dropPages(const char* begin, const char* end) {
+    const std::uintptr_t page = std::uintptr_t(::sysconf(_SC_PAGESIZE));
+    const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) & ~(page - 1);
+    const std::uintptr_t last = reinterpret_cast<std::uintptr_t>(end) & ~(page - 1);
+    if (last > first) (void)::madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
   }
 
  private:
-  static const MappedFile*& active() {
-    static thread_local const MappedFile* mapping = nullptr;
-    return mapping;
-  }
   const char* data_ = nullptr;
   std::size_t size_ = 0;
-  const MappedFile* previous_ = nullptr;
+};
+
+/// While it lives, releaseParsedBytes on this thread gives back the pages of `file` that a parser
+/// is done with. Scopes nest (one per parse, on the parsing thread's stack); the file outlives it.
+class GiveBackParsedPages {
+ public:
+  explicit GiveBackParsedPages(const MappedFile* file) : file_(file), previous_(active()) { active() = this; }
+  ~GiveBackParsedPages() { active() = previous_; }
+  GiveBackParsedPages(const GiveBackParsedPages&) = delete;
+  GiveBackParsedPages& operator=(const GiveBackParsedPages&) = delete;
+
+  /// Drops the pages of [begin, end) when they lie in a file of a scope of this thread.
+  static void release(const char* begin, const char* end) {
+    for (const GiveBackParsedPages* s = active(); s != nullptr; s = s->previous_)
+      if (s->file_ != nullptr && s->file_->holds(begin, end)) {
+        MappedFile::dropPages(begin, end);
+        return;
+      }
+  }
+
+ private:
+  static const GiveBackParsedPages*& active() {
+    static thread_local const GiveBackParsedPages* scope = nullptr;
+    return scope;
+  }
+  const MappedFile* file_;
+  const GiveBackParsedPages* previous_;
 };
 
 /// A parser is done with the bytes [begin, end) of its input: given back when the input is a
-/// MappedFile (its pages leave the process), nothing otherwise (a buffer in memory stays as it is).
-inline void releaseParsedBytes(const char* begin, const char* end) { MappedFile::release(begin, end); }
+/// MappedFile of a live GiveBackParsedPages (its pages leave the process), nothing otherwise (a
+/// buffer in memory, a file read in place, stays as it is).
+inline void releaseParsedBytes(const char* begin, const char* end) { GiveBackParsedPages::release(begin, end); }
 
 }  // namespace ffdkit::meshio::detail

@@ -5,6 +5,8 @@
 #include <climits>
 #include <cstdio>
 #include <cstring>
+#include <exception>
+#include <memory>
 #include <optional>
 
 #include <fcntl.h>
@@ -65,9 +67,9 @@ std::string meshFileBytes(const fs::path& path, const fs::path& root, const Open
   return bytes;
 }
 
-// A file's bytes for one parse (points, faces, owner, neighbour): the file mapped (no buffer of
-// its size; the parsers give back what they have copied out, mapped_file.h), or a .gz file
-// inflated into memory.
+// A file's bytes (points, faces, owner, neighbour): the file mapped (no buffer of its size,
+// mapped_file.h), or a .gz file inflated into memory. The label lists of faces, owner and
+// neighbour are read where they lie in these bytes, which live as long as the lists (shared).
 class ParsedFileBytes {
  public:
   ParsedFileBytes(const fs::path& path, const fs::path& root, const OpenFoamReadOptions& options, ReadBudget& budget) {
@@ -79,6 +81,8 @@ class ParsedFileBytes {
     mapped_.emplace(path);
   }
   std::string_view view() const { return mapped_ ? mapped_->view() : std::string_view(inflated_); }
+  /// The mapping, null for an inflated file.
+  const detail::MappedFile* mapping() const { return mapped_ ? &*mapped_ : nullptr; }
 
  private:
   std::optional<detail::MappedFile> mapped_;
@@ -117,6 +121,46 @@ void refuseDecomposedCase(const fs::path& root) {
   }
 }
 
+// The largest label of `list` (-1 for none), on every core.
+std::int32_t largestLabel(const LabelList& list) {
+  const char* bytes = list.bytes();
+  const std::int64_t n = std::int64_t(list.size());
+  std::int32_t largest = -1;
+#pragma omp parallel for schedule(static) reduction(max : largest) if (n > (1 << 20))
+  for (std::int64_t i = 0; i < n; ++i) {
+    std::int32_t label;
+    std::memcpy(&label, bytes + i * std::int64_t(sizeof label), sizeof label);
+    largest = std::max(largest, label);
+  }
+  return largest;
+}
+
+// The first internal face with the same cell as owner and neighbour, -1 for none; on every core.
+std::int64_t firstFaceInOneCell(const PolyMeshCells& cells) {
+  const char* owner = cells.owner.bytes();
+  const char* neighbour = cells.neighbour.bytes();
+  const std::int64_t n = std::int64_t(std::min(cells.owner.size(), cells.neighbour.size()));
+  constexpr std::int64_t kRun = std::int64_t(1) << 16;
+  std::int64_t first = n;
+#pragma omp parallel for schedule(static) reduction(min : first) if (n > (1 << 20))
+  for (std::int64_t run = 0; run < (n + kRun - 1) / kRun; ++run) {
+    const std::int64_t begin = run * kRun, end = std::min(n, begin + kRun);
+    bool same = false;  // one branch-free pass over the run; the loop below finds the face
+    for (std::int64_t f = begin; f < end; ++f) {
+      std::int32_t a, b;
+      std::memcpy(&a, owner + f * 4, 4);
+      std::memcpy(&b, neighbour + f * 4, 4);
+      same |= a == b;
+    }
+    for (std::int64_t f = begin; same && f < end; ++f)
+      if (std::memcmp(owner + f * 4, neighbour + f * 4, 4) == 0) {
+        first = std::min(first, f);
+        break;
+      }
+  }
+  return first < n ? first : -1;
+}
+
 // Every cell owns or neighbours at least 4 faces (a tetrahedron has 4).
 void checkCellFaces(const PolyMeshCells& cells, const fs::path& owner, ReadBudget& budget) {
   budget.chargeBytes(std::uint64_t(cells.cellCount), sizeof(std::int32_t), "cells: face counts");
@@ -140,6 +184,8 @@ OpenFoamMesh readMeshFolder(const fs::path& folder, const OpenFoamReadOptions& o
   const fs::path pointsPath = requiredFile(mesh.polyMesh, "points");
   {
     const ParsedFileBytes pointsBytes(pointsPath, folder, options, budget);
+    // The points are copied out (the deformation moves them): their pages go back as they are.
+    const detail::GiveBackParsedPages giveBack(pointsBytes.mapping());
     mesh.points = readFoamPoints(pointsBytes.view(), pointsPath.string(), budget, &mesh.pointsFile);
     keepPointsFileBytes(pointsBytes.view(), mesh.pointsFile);
   }
@@ -147,34 +193,39 @@ OpenFoamMesh readMeshFolder(const fs::path& folder, const OpenFoamReadOptions& o
   mesh.pointsFile.fileName = pointsPath.filename().string();
   if (!options.readCells) return mesh;
 
+  // Read in place: the bytes stay (mapped) for as long as the lists read from them.
+  auto fileBytes = [&](const fs::path& path) { return std::make_shared<const ParsedFileBytes>(path, folder, options, budget); };
   const fs::path facesPath = requiredFile(mesh.polyMesh, "faces");
-  readFoamFaces(ParsedFileBytes(facesPath, folder, options, budget).view(), facesPath.string(), mesh.points.rows(), budget,
-                mesh.cells);
+  {
+    const auto bytes = fileBytes(facesPath);
+    detail::readFoamFacesInPlace(bytes->view(), facesPath.string(), mesh.points.rows(), budget, mesh.cells, bytes);
+  }
   const std::int64_t faceCount = std::int64_t(mesh.cells.faceStarts.size()) - 1;
 
   const fs::path ownerPath = requiredFile(mesh.polyMesh, "owner");
-  mesh.cells.owner =
-      readFoamLabels(ParsedFileBytes(ownerPath, folder, options, budget).view(), ownerPath.string(), INT32_MAX - 1, budget);
+  {
+    const auto bytes = fileBytes(ownerPath);
+    mesh.cells.owner = detail::readFoamLabelsInPlace(bytes->view(), ownerPath.string(), INT32_MAX - 1, budget, bytes);
+  }
   if (std::int64_t(mesh.cells.owner.size()) != faceCount)
     throw MeshIoError(ownerPath.string() + ": " + std::to_string(mesh.cells.owner.size()) + " owner cells for the " +
                       std::to_string(faceCount) + " faces of " + facesPath.filename().string() + " (one per face)");
 
   const fs::path neighbourPath = requiredFile(mesh.polyMesh, "neighbour");
-  mesh.cells.neighbour =
-      readFoamLabels(ParsedFileBytes(neighbourPath, folder, options, budget).view(), neighbourPath.string(), INT32_MAX - 1, budget);
+  {
+    const auto bytes = fileBytes(neighbourPath);
+    mesh.cells.neighbour = detail::readFoamLabelsInPlace(bytes->view(), neighbourPath.string(), INT32_MAX - 1, budget, bytes);
+  }
   if (std::int64_t(mesh.cells.neighbour.size()) > faceCount)
     throw MeshIoError(neighbourPath.string() + ": " + std::to_string(mesh.cells.neighbour.size()) +
                       " neighbour cells for " + std::to_string(faceCount) + " faces (at most one per face)");
 
-  std::int32_t lastCell = -1;
-  for (std::int32_t c : mesh.cells.owner) lastCell = std::max(lastCell, c);
-  for (std::int32_t c : mesh.cells.neighbour) lastCell = std::max(lastCell, c);
+  const std::int32_t lastCell = std::max(largestLabel(mesh.cells.owner), largestLabel(mesh.cells.neighbour));
   mesh.cells.cellCount = std::int64_t(lastCell) + 1;
   if (mesh.cells.cellCount == 0) throw MeshIoError(ownerPath.string() + ": the mesh has no cells");
-  for (std::size_t f = 0; f < mesh.cells.neighbour.size(); ++f)
-    if (mesh.cells.neighbour[f] == mesh.cells.owner[f])
-      throw MeshIoError(neighbourPath.string() + ": face " + std::to_string(f) + " has cell " +
-                        std::to_string(mesh.cells.owner[f]) + " on both sides");
+  if (const std::int64_t f = firstFaceInOneCell(mesh.cells); f >= 0)
+    throw MeshIoError(neighbourPath.string() + ": face " + std::to_string(f) + " has cell " +
+                      std::to_string(mesh.cells.owner[std::size_t(f)]) + " on both sides");
   checkCellFaces(mesh.cells, ownerPath, budget);
   // What the cell check allocates (meshio/cell_quality.h): each cell's faces (4 bytes per cell
   // and per cell-face pair), then its centre and a flag.
@@ -263,9 +314,15 @@ void startWriteback(const fs::path& path) {
 
 namespace {
 
-// copyFolder's walk; `copied` receives every file and folder made, to be flushed at the end.
+// A file copyFolder copies: from, to, and its size (the larger are copied first).
+struct FileCopy {
+  fs::path from, to;
+  std::uintmax_t bytes = 0;
+};
+
+// copyFolder's walk: makes the folders (`folders` receives them) and lists the files to copy.
 void copyInto(const fs::path& from, const fs::path& to, const fs::path& root,
-              const std::function<bool(const fs::path&)>& skip, bool durable, std::vector<fs::path>& copied) {
+              const std::function<bool(const fs::path&)>& skip, std::vector<FileCopy>& files, std::vector<fs::path>& folders) {
   for (const fs::directory_entry& entry : fs::directory_iterator(from)) {
     const fs::path target = to / entry.path().filename();
     if (skip(entry.path())) continue;
@@ -279,27 +336,48 @@ void copyInto(const fs::path& from, const fs::path& to, const fs::path& root,
     }
     if (fs::is_directory(entry.status())) {
       fs::create_directory(target);
-      copyInto(entry.path(), target, root, skip, durable, copied);
+      copyInto(entry.path(), target, root, skip, files, folders);
     } else if (fs::is_regular_file(entry.status())) {
-      fs::copy_file(entry.path(), target);
-      // The disk starts on this file while the next ones are copied; the flush at the end waits.
-      if (durable) startWriteback(target);
-      copied.push_back(target);
+      files.push_back({entry.path(), target, fs::file_size(entry.path())});
     } else {
       throw MeshIoError(entry.path().string() + ": neither a file nor a folder (not copied)");
     }
   }
-  copied.push_back(to);
+  folders.push_back(to);
 }
 
 }  // namespace
 
 void copyFolder(const fs::path& from, const fs::path& to, const fs::path& root,
-                const std::function<bool(const fs::path&)>& skip, bool durable) {
-  std::vector<fs::path> copied;
-  copyInto(from, to, root, skip, durable, copied);
-  if (durable)
-    for (const fs::path& path : copied) syncPath(path);
+                const std::function<bool(const fs::path&)>& skip, bool durable, const std::function<void()>& alongside) {
+  std::vector<FileCopy> files;
+  std::vector<fs::path> folders;
+  copyInto(from, to, root, skip, files, folders);
+  // The copies (the kernel's: copy_file) and `alongside` shared by the cores, the largest first:
+  // job 0 is `alongside`, job j > 0 copies files[j - 1].
+  std::stable_sort(files.begin(), files.end(), [](const FileCopy& a, const FileCopy& b) { return a.bytes > b.bytes; });
+  const std::int64_t jobs = std::int64_t(files.size()) + 1;
+  std::exception_ptr failure;
+#pragma omp parallel for schedule(dynamic, 1) if (jobs > 2)
+  for (std::int64_t j = 0; j < jobs; ++j) {
+    try {
+      if (j == 0) {
+        if (alongside) alongside();
+        continue;
+      }
+      const FileCopy& file = files[std::size_t(j - 1)];
+      fs::copy_file(file.from, file.to);
+      // The disk starts on this file while the next ones are copied; the flush at the end waits.
+      if (durable) startWriteback(file.to);
+    } catch (...) {
+#pragma omp critical(ffdkit_copy_folder_failure)
+      if (!failure) failure = std::current_exception();
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  if (!durable) return;
+  for (const FileCopy& file : files) syncPath(file.to);
+  for (const fs::path& folder : folders) syncPath(folder);
 }
 
 void checkFolderOutput(const fs::path& rootGiven, const fs::path& output) {
@@ -380,14 +458,16 @@ void writeOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points,
     const fs::path pointsPath = mesh.polyMesh / mesh.pointsFile.fileName;
     const fs::path relativePolyMesh = fs::relative(mesh.polyMesh, mesh.root);
     const fs::path newPoints = temporary / relativePolyMesh / mesh.pointsFile.fileName;
-    // The new points file first, its flush started, then the rest copied and everything flushed:
-    // the disk writes while the copies are made.
+    // The new points file written beside the copies of the rest (on another core), its flush
+    // started, then everything flushed: the disk writes while the copies are made.
     fs::create_directories(newPoints.parent_path());
-    if (streamed) detail::writeFoamPointsFile(newPoints, mesh.pointsFile, points, false);
-    else detail::writeNewFile(newPoints, bytes, false);
-    if (options.durable) detail::startWriteback(newPoints);
+    auto writePoints = [&] {
+      if (streamed) detail::writeFoamPointsFile(newPoints, mesh.pointsFile, points, false);
+      else detail::writeNewFile(newPoints, bytes, false);
+      if (options.durable) detail::startWriteback(newPoints);
+    };
     detail::copyFolder(mesh.root, temporary, mesh.root, [&](const fs::path& p) { return p == pointsPath; },
-                       options.durable);
+                       options.durable, writePoints);
     if (options.durable) detail::syncPath(newPoints);
     detail::renameFolderIntoPlace(temporary, output, options.durable);
   } catch (const fs::filesystem_error& e) {

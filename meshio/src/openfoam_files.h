@@ -1,10 +1,11 @@
 #pragma once
-// File steps shared by the OpenFOAM writers (a case folder, a decomposed case): copying a folder
-// under the confinement rule, writing a new file, flushing, and putting a finished hidden folder in
-// place. Private to meshio.
+// File steps shared by the OpenFOAM readers and writers (a case folder, a decomposed case): the
+// label lists read in place; copying a folder under the confinement rule, writing a new file,
+// flushing, and putting a finished hidden folder in place. Private to meshio.
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string_view>
 
 #include <Eigen/Core>
@@ -12,6 +13,16 @@
 #include "ffdkit/meshio/openfoam.h"
 
 namespace ffdkit::meshio::detail {
+
+/// readFoamFaces, with the binary lists of the machine's own layout (label=32, its byte order)
+/// read where they lie in `bytes`, which `keeper` keeps readable for as long as a copy of the lists
+/// lives (LabelList::inPlace), each label checked first as readFoamFaces checks it; other lists,
+/// and every list when `keeper` is null, are read into memory. @throws MeshIoError as readFoamFaces.
+void readFoamFacesInPlace(std::string_view bytes, const std::string& source, std::int64_t pointCount, ReadBudget& budget,
+                          PolyMeshCells& cells, const std::shared_ptr<const void>& keeper);
+/// readFoamLabels, read in place as readFoamFacesInPlace reads its lists.
+LabelList readFoamLabelsInPlace(std::string_view bytes, const std::string& source, std::int64_t maxLabel, ReadBudget& budget,
+                                const std::shared_ptr<const void>& keeper);
 
 /// Refuses `points` for the binary points file `original`: another point count, or (scalar=32) a
 /// value a float32 cannot hold. @throws MeshIoError naming the file.
@@ -42,13 +53,17 @@ void syncPath(const std::filesystem::path& path);
 void startWriteback(const std::filesystem::path& path);
 
 /// Copies the folder `from` into `to` (which exists), but the entries `skip` says true for; a
-/// symbolic link is copied as the file it leads to, which must be inside `root`. When `durable`,
-/// every file copied and every folder is flushed to disk before it returns (each file's writing
-/// to disk is started as soon as it is copied, so the disk works while the next is copied).
+/// symbolic link is copied as the file it leads to, which must be inside `root`. The files are
+/// copied on every core, the largest first, and `alongside` (when given: writing a new file into
+/// `to`) runs beside them. When `durable`, every file copied and every folder is flushed to disk
+/// before it returns (each file's writing to disk is started as soon as it is copied, so the disk
+/// works while the next is copied).
 /// @throws MeshIoError for a link outside `root`, a link to a folder, or what is neither a file
-/// nor a folder; std::filesystem::filesystem_error for a failed copy.
+/// nor a folder (before anything is copied); std::filesystem::filesystem_error for a failed copy;
+/// what `alongside` throws.
 void copyFolder(const std::filesystem::path& from, const std::filesystem::path& to, const std::filesystem::path& root,
-                const std::function<bool(const std::filesystem::path&)>& skip, bool durable);
+                const std::function<bool(const std::filesystem::path&)>& skip, bool durable,
+                const std::function<void()>& alongside = {});
 
 /// Refuses an `output` inside `root` (other than root itself) and an `output` that exists and is
 /// not a folder. @throws MeshIoError.

@@ -169,6 +169,19 @@ bool allInRange(const char* at, std::size_t n, std::int32_t lo, std::int32_t hi)
   return true;
 }
 
+// allInRange on every core, in runs of 1 Mi labels (a list read in place is checked where it lies).
+bool allInRangeOnEveryCore(const char* at, std::size_t n, std::int32_t lo, std::int32_t hi) {
+  constexpr std::size_t kRun = std::size_t(1) << 20;
+  const std::int64_t runs = std::int64_t((n + kRun - 1) / kRun);
+  bool inRange = true;
+#pragma omp parallel for schedule(dynamic, 8) reduction(&& : inRange) if (runs > 4)
+  for (std::int64_t r = 0; r < runs; ++r) {
+    const std::size_t first = std::size_t(r) * kRun;
+    inRange = allInRange(at + first * sizeof(std::int32_t), std::min(kRun, n - first), lo, hi) && inRange;
+  }
+  return inRange;
+}
+
 // Appends the n native 32-bit labels at `at` to `out` (empty, with room for them reserved) a run
 // at a time, each run checked in `out` and its source bytes given back (releaseParsedBytes: a
 // mapped file's pages leave the process as they are copied). A run is small enough to stay in
@@ -207,38 +220,70 @@ std::int64_t binaryLabel(const char* at, const FoamFileLayout& layout) {
 }
 
 // One label list (`N (l l l ...)` or binary) into `out`, each label in [lo, hi]; `what` names
-// an item ("owner" -> "owner 12"). Charged before it is allocated.
+// an item ("owner" -> "owner 12"). Charged before it is allocated (also when it is read in
+// place: the budget's rule does not depend on how the file is read). With a `keeper`, a binary
+// list in the machine's own layout is read where it lies in the scanner's bytes (which `keeper`
+// keeps readable), once every label is checked; others are copied into memory.
 void readLabelList(FoamScanner& s, const FoamFileLayout& layout, const char* what, std::int64_t lo, std::int64_t hi,
-                   ReadBudget& budget, std::vector<std::int32_t>& out, std::int64_t maxSize = kMaxLabel32) {
+                   ReadBudget& budget, LabelList& out, const std::shared_ptr<const void>& keeper,
+                   std::int64_t maxSize = kMaxLabel32) {
   const std::int64_t n = openList(s, what, maxSize, layout.binary ? std::uint64_t(layout.labelBytes) : 2);
   budget.chargeBytes(std::uint64_t(n), sizeof(std::int32_t), std::string(what) + " labels");
+  std::vector<std::int32_t> labels;
   if (layout.binary) {
     needBinary(s, what, n, std::uint64_t(layout.labelBytes));
     const char* at = s.text().data() + s.pos();
-    out.clear();
-    out.reserve(std::size_t(n));
-    if (layout.labelBytes == 4 && layout.bigEndian == (std::endian::native == std::endian::big) &&
-        appendLabelsInRange(at, std::size_t(n), std::int32_t(lo), std::int32_t(std::min<std::int64_t>(hi, kMaxLabel32)),
-                            out)) {
-      // The file's own layout: one copy; the item-by-item loop below only finds the bad label.
+    const bool native = layout.labelBytes == 4 && layout.bigEndian == (std::endian::native == std::endian::big);
+    const std::int32_t lo32 = std::int32_t(lo), hi32 = std::int32_t(std::min<std::int64_t>(hi, kMaxLabel32));
+    if (native && keeper != nullptr && allInRangeOnEveryCore(at, std::size_t(n), lo32, hi32)) {
+      out = LabelList::inPlace(keeper, at, std::size_t(n));
       s.advance(std::size_t(n) * sizeof(std::int32_t));
       closeList(s, what, layout.binary, n);
       return;
     }
-    out.resize(std::size_t(n));
+    labels.reserve(std::size_t(n));
+    if (native && keeper == nullptr && appendLabelsInRange(at, std::size_t(n), lo32, hi32, labels)) {
+      // The file's own layout: one copy; the item-by-item loop below only finds the bad label.
+      out = std::move(labels);
+      s.advance(std::size_t(n) * sizeof(std::int32_t));
+      closeList(s, what, layout.binary, n);
+      return;
+    }
+    labels.resize(std::size_t(n));
     for (std::int64_t i = 0; i < n; ++i, at += layout.labelBytes) {
       const std::int64_t value = binaryLabel(at, layout);
       if (value < lo || value > hi)
         s.fail(Where{what, i}.text() + " (binary, offset " + std::to_string(s.pos() + std::size_t(i) * std::size_t(layout.labelBytes)) +
                "): " + std::to_string(value) + " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
-      out[std::size_t(i)] = std::int32_t(value);
+      labels[std::size_t(i)] = std::int32_t(value);
     }
     s.advance(std::size_t(n) * std::size_t(layout.labelBytes));
   } else {
-    out.resize(std::size_t(n));
-    for (std::int64_t i = 0; i < n; ++i) out[std::size_t(i)] = std::int32_t(s.label(Where{what, i}, lo, hi));
+    labels.resize(std::size_t(n));
+    for (std::int64_t i = 0; i < n; ++i) labels[std::size_t(i)] = std::int32_t(s.label(Where{what, i}, lo, hi));
   }
+  out = std::move(labels);
   closeList(s, what, layout.binary, n);
+}
+
+// Whether some face of the offsets at `starts` (n + 1 of them) has fewer than 3 points: one
+// branch-free pass on every core.
+bool anyShortFace(const char* starts, std::size_t n) {
+  constexpr std::size_t kRun = std::size_t(1) << 20;
+  const std::int64_t runs = std::int64_t((n + kRun - 1) / kRun);
+  bool short_ = false;
+#pragma omp parallel for schedule(dynamic, 8) reduction(|| : short_) if (runs > 4)
+  for (std::int64_t r = 0; r < runs; ++r) {
+    const std::size_t first = std::size_t(r) * kRun, last = std::min(n, first + kRun);
+    bool any = false;
+    for (std::size_t f = first; f < last; ++f) {
+      std::int32_t pair[2];
+      std::memcpy(pair, starts + f * sizeof(std::int32_t), sizeof pair);
+      any |= pair[1] - pair[0] < 3;
+    }
+    short_ = short_ || any;
+  }
+  return short_;
 }
 
 }  // namespace
@@ -312,25 +357,27 @@ Eigen::MatrixX3d readFoamPoints(std::string_view bytes, const std::string& sourc
   return points;
 }
 
-void readFoamFaces(std::string_view bytes, const std::string& source, std::int64_t pointCount, ReadBudget& budget,
-                   PolyMeshCells& cells) {
+namespace detail {
+
+void readFoamFacesInPlace(std::string_view bytes, const std::string& source, std::int64_t pointCount, ReadBudget& budget,
+                          PolyMeshCells& cells, const std::shared_ptr<const void>& keeper) {
   FoamScanner s(bytes, source);
   const FoamFileLayout layout = readHeader(s, {"faceList", "faceCompactList"});
   const std::int64_t lastPoint = pointCount - 1;
   if (layout.className == "faceCompactList") {
     // Two lists: the #F + 1 offsets of each face's points, then the points.
-    std::vector<std::int32_t>& starts = cells.faceStarts;
-    readLabelList(s, layout, "face offset", 0, kMaxLabel32, budget, starts, kMaxLabel32);
+    const LabelList& starts = cells.faceStarts;
+    readLabelList(s, layout, "face offset", 0, kMaxLabel32, budget, cells.faceStarts, keeper, kMaxLabel32);
     if (starts.empty()) s.fail("face offset: the list is empty (it needs the number of faces + 1 offsets)");
     if (starts.front() != 0) s.fail("face offset 0: " + std::to_string(starts.front()) + ", expected 0");
-    bool short_ = false;  // one branch-free pass; the loop below names the first short face
-    for (std::size_t f = 0; f + 1 < starts.size(); ++f) short_ |= starts[f + 1] - starts[f] < 3;
+    // One branch-free pass; the loop below names the first short face.
+    const bool short_ = anyShortFace(starts.bytes(), starts.size() - 1);
     for (std::size_t f = 0; short_ && f + 1 < starts.size(); ++f)
       if (starts[f + 1] - starts[f] < 3)
         s.fail(Where{"face", std::int64_t(f)}.text() + ": " + std::to_string(starts[f + 1] - starts[f]) +
                " points (offsets " + std::to_string(starts[f]) + ".." + std::to_string(starts[f + 1]) +
                "); a face needs at least 3 and the offsets must increase");
-    readLabelList(s, layout, "face point", 0, lastPoint, budget, cells.faceVertices);
+    readLabelList(s, layout, "face point", 0, lastPoint, budget, cells.faceVertices, keeper);
     if (std::int64_t(cells.faceVertices.size()) != cells.faceStarts.back())
       s.fail("faces: the offsets end at " + std::to_string(cells.faceStarts.back()) + " but the point list has " +
              std::to_string(cells.faceVertices.size()) + " entries");
@@ -340,40 +387,54 @@ void readFoamFaces(std::string_view bytes, const std::string& source, std::int64
   if (layout.binary) s.fail("faces: a binary faceList is not supported (OpenFOAM writes binary faces as faceCompactList)");
   const std::int64_t n = openList(s, "face", kMaxLabel32, 8);  // "3(0 0 0)"
   budget.chargeBytes(std::uint64_t(n) + 1, sizeof(std::int32_t), "faces: offsets");
-  cells.faceStarts.resize(std::size_t(n) + 1);
-  cells.faceStarts[0] = 0;
+  std::vector<std::int32_t> starts(std::size_t(n) + 1);
+  std::vector<std::int32_t> vertices;
+  starts[0] = 0;
   // At most one point per two bytes left: the vertex list never grows past what the file holds.
   const std::size_t most = s.bytesLeft() / 2;
-  cells.faceVertices.clear();
   std::size_t charged = 0;
   for (std::int64_t f = 0; f < n; ++f) {
     const Where where{"face", f};
     const std::int64_t k = s.label(where, 3, std::int64_t(std::min<std::size_t>(most, kMaxLabel32)));
-    if (std::int64_t(cells.faceVertices.size()) + k > kMaxLabel32)
+    if (std::int64_t(vertices.size()) + k > kMaxLabel32)
       s.fail(where.text() + ": the faces hold more than " + std::to_string(kMaxLabel32) + " points in all (more than a polyMesh of label=32 holds)");
-    if (cells.faceVertices.size() + std::size_t(k) > charged) {
-      const std::size_t want = std::min(most, std::max<std::size_t>({64, 2 * charged, cells.faceVertices.size() + std::size_t(k)}));
+    if (vertices.size() + std::size_t(k) > charged) {
+      const std::size_t want = std::min(most, std::max<std::size_t>({64, 2 * charged, vertices.size() + std::size_t(k)}));
       budget.chargeBytes(want - charged, sizeof(std::int32_t), "faces: point indices");
-      cells.faceVertices.reserve(want);
+      vertices.reserve(want);
       charged = want;
     }
     s.expect('(', where);
-    for (std::int64_t j = 0; j < k; ++j) cells.faceVertices.push_back(std::int32_t(s.label(where, 0, lastPoint)));
+    for (std::int64_t j = 0; j < k; ++j) vertices.push_back(std::int32_t(s.label(where, 0, lastPoint)));
     s.expect(')', where);
-    cells.faceStarts[std::size_t(f) + 1] = std::int32_t(cells.faceVertices.size());
+    starts[std::size_t(f) + 1] = std::int32_t(vertices.size());
   }
   closeList(s, "face", false, n);
   expectEnd(s);
+  cells.faceStarts = std::move(starts);
+  cells.faceVertices = std::move(vertices);
+}
+
+LabelList readFoamLabelsInPlace(std::string_view bytes, const std::string& source, std::int64_t maxLabel, ReadBudget& budget,
+                                const std::shared_ptr<const void>& keeper) {
+  FoamScanner s(bytes, source);
+  const FoamFileLayout layout = readHeader(s, {"labelList"});
+  LabelList labels;
+  readLabelList(s, layout, "label", 0, std::min(maxLabel, kMaxLabel32), budget, labels, keeper);
+  expectEnd(s);
+  return labels;
+}
+
+}  // namespace detail
+
+void readFoamFaces(std::string_view bytes, const std::string& source, std::int64_t pointCount, ReadBudget& budget,
+                   PolyMeshCells& cells) {
+  detail::readFoamFacesInPlace(bytes, source, pointCount, budget, cells, nullptr);
 }
 
 std::vector<std::int32_t> readFoamLabels(std::string_view bytes, const std::string& source, std::int64_t maxLabel,
                                          ReadBudget& budget) {
-  FoamScanner s(bytes, source);
-  const FoamFileLayout layout = readHeader(s, {"labelList"});
-  std::vector<std::int32_t> labels;
-  readLabelList(s, layout, "label", 0, std::min(maxLabel, kMaxLabel32), budget, labels);
-  expectEnd(s);
-  return labels;
+  return std::move(detail::readFoamLabelsInPlace(bytes, source, maxLabel, budget, nullptr).held());
 }
 
 std::vector<PolyMeshPatch> readFoamBoundary(std::string_view bytes, const std::string& source,

@@ -94,9 +94,11 @@ Eigen::MatrixX3i boundaryTriangles(const ElementCells& cells) {
 
 Eigen::MatrixX3i boundaryTriangles(const PolyMeshCells& cells) {
   std::vector<std::array<int, 3>> triangles;
+  std::vector<std::int32_t> face;  // the face's points (a list read in place has no aligned pointer)
   for (std::int64_t f = std::int64_t(cells.neighbour.size()); f < cells.faceCount(); ++f) {
-    const std::int64_t begin = cells.faceStarts[std::size_t(f)];
-    appendFan(triangles, cells.faceVertices.data() + begin, cells.faceStarts[std::size_t(f) + 1] - begin);
+    const auto first = cells.faceVertices.begin() + cells.faceStarts[std::size_t(f)];
+    face.assign(first, cells.faceVertices.begin() + cells.faceStarts[std::size_t(f) + 1]);
+    appendFan(triangles, face.data(), std::int64_t(face.size()));
   }
   return toMatrix(triangles);
 }

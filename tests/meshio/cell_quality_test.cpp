@@ -52,12 +52,12 @@ Cube withOtherPolygons(const Cube& c, int k) {
   const std::int64_t internal = std::int64_t(c.cells.neighbour.size());
   for (std::int64_t f = 0; f < c.cells.faceCount(); ++f) {
     auto put = [&](std::initializer_list<std::int32_t> vertices) {
-      r.cells.faceVertices.insert(r.cells.faceVertices.end(), vertices);
+      r.cells.faceVertices.held().insert(r.cells.faceVertices.held().end(), vertices);
       r.cells.faceStarts.push_back(std::int32_t(r.cells.faceVertices.size()));
       r.cells.owner.push_back(c.cells.owner[std::size_t(f)]);
       if (f < internal) r.cells.neighbour.push_back(c.cells.neighbour[std::size_t(f)]);
     };
-    const std::int32_t* v = c.cells.faceVertices.data() + c.cells.faceStarts[std::size_t(f)];
+    const LabelList::const_iterator v = c.cells.faceVertices.begin() + c.cells.faceStarts[std::size_t(f)];
     if (f % k == 0) {
       put({v[0], v[1], v[2]});
       put({v[0], v[2], v[3]});
@@ -250,8 +250,8 @@ TEST(CellQualitySweeps, ResultsDoNotDependOnTheThreadCountOrTheCellNumbering) {
   std::vector<std::int32_t> number(static_cast<std::size_t>(c.cells.cellCount));
   for (std::size_t i = 0; i < number.size(); ++i) number[i] = std::int32_t(i);
   std::shuffle(number.begin(), number.end(), std::mt19937(4));
-  for (std::int32_t& cell : c.cells.owner) cell = number[std::size_t(cell)];
-  for (std::int32_t& cell : c.cells.neighbour) cell = number[std::size_t(cell)];
+  for (std::int32_t& cell : c.cells.owner.held()) cell = number[std::size_t(cell)];
+  for (std::int32_t& cell : c.cells.neighbour.held()) cell = number[std::size_t(cell)];
   const CellQuality shuffled = checkPolyMeshCells(points, c.cells);
   EXPECT_TRUE(sameBits(shuffled.minVolume, one.minVolume));
   EXPECT_TRUE(sameBits(shuffled.maxVolume, one.maxVolume));

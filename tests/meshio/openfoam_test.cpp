@@ -9,6 +9,7 @@
 #include <array>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -85,6 +86,59 @@ TEST_F(OpenFoam, BinaryCaseHoldsTheSameMesh) {
   EXPECT_EQ(ascii.cells.faceVertices, binary.cells.faceVertices);
   EXPECT_EQ(ascii.cells.owner, binary.cells.owner);
   EXPECT_EQ(ascii.cells.neighbour, binary.cells.neighbour);
+}
+
+TEST_F(OpenFoam, BinaryListsAreReadInPlaceAndKeptReadableByTheirCopies) {
+  const OpenFoamMesh ascii = readOpenFoamMesh(kData / "cube");
+  EXPECT_FALSE(ascii.cells.owner.readInPlace());
+  PolyMeshCells kept;
+  {
+    const OpenFoamMesh binary = readOpenFoamMesh(kData / "cube-binary");
+    for (const LabelList* list : {&binary.cells.faceStarts, &binary.cells.faceVertices, &binary.cells.owner, &binary.cells.neighbour})
+      EXPECT_TRUE(list->readInPlace());
+    kept = binary.cells;
+  }
+  // The mesh and its files' mappings are gone but for what the copy keeps: the lists still read
+  // as the ASCII case's, and the check gives the same cells.
+  EXPECT_EQ(kept.faceStarts, ascii.cells.faceStarts);
+  EXPECT_EQ(kept.faceVertices, ascii.cells.faceVertices);
+  EXPECT_EQ(kept.owner, ascii.cells.owner);
+  EXPECT_EQ(kept.neighbour, ascii.cells.neighbour);
+  const CellQuality fromKept = checkPolyMeshCells(ascii.points, kept);
+  const CellQuality fromAscii = checkPolyMeshCells(ascii.points, ascii.cells);
+  EXPECT_EQ(fromKept.totalVolume, fromAscii.totalVolume);
+  EXPECT_EQ(fromKept.minPyramidVolume, fromAscii.minPyramidVolume);
+  EXPECT_EQ(fromKept.maxSkewness, fromAscii.maxSkewness);
+  // Changing a copy takes the labels into memory first; the list read in place is unchanged.
+  PolyMeshCells changed = kept;
+  changed.owner.held()[0] = 7;
+  EXPECT_FALSE(changed.owner.readInPlace());
+  EXPECT_EQ(changed.owner[0], 7);
+  EXPECT_EQ(kept.owner[0], ascii.cells.owner[0]);
+  EXPECT_EQ(changed.owner.size(), kept.owner.size());
+}
+
+TEST(LabelList, ReadsLabelsInPlaceAtAnyByteOffset) {
+  // Labels 5, -2, 70000 stored from byte 1 of a buffer (as a binary list after "3(" lies).
+  const std::vector<std::int32_t> values{5, -2, 70000};
+  auto buffer = std::make_shared<std::vector<char>>(1 + values.size() * sizeof(std::int32_t) + 1, 'x');
+  std::memcpy(buffer->data() + 1, values.data(), values.size() * sizeof(std::int32_t));
+  const LabelList list = LabelList::inPlace(buffer, buffer->data() + 1, values.size());
+  ASSERT_EQ(list.size(), 3u);
+  EXPECT_EQ(list[0], 5);
+  EXPECT_EQ(list[1], -2);
+  EXPECT_EQ(list.back(), 70000);
+  EXPECT_EQ(std::vector<std::int32_t>(list.begin(), list.end()), values);
+  EXPECT_EQ(list, LabelList(values));
+  EXPECT_FALSE(list == LabelList({5, -2}));
+  EXPECT_FALSE(list == LabelList({5, -2, 70001}));
+  // The buffer stays as long as a list reads it.
+  std::weak_ptr<std::vector<char>> watch = buffer;
+  buffer.reset();
+  EXPECT_FALSE(watch.expired());
+  LabelList copy = list;
+  EXPECT_EQ(copy.held(), values);
+  EXPECT_EQ(list[2], 70000);
 }
 
 TEST_F(OpenFoam, PointsBytesAreTheFileWhenNothingMoved) {

@@ -38,7 +38,7 @@ inline PolyMeshCube polyMeshCube(int n) {
   cells.faceStarts = {0};
   // Normals point from owner to neighbour (right-hand rule).
   auto face = [&](std::int32_t a, std::int32_t b, std::int32_t d, std::int32_t e, std::int32_t own) {
-    cells.faceVertices.insert(cells.faceVertices.end(), {a, b, d, e});
+    cells.faceVertices.held().insert(cells.faceVertices.held().end(), {a, b, d, e});
     cells.faceStarts.push_back(std::int32_t(cells.faceVertices.size()));
     cells.owner.push_back(own);
   };

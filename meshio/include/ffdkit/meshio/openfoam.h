@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include "ffdkit/meshio/label_list.h"
 #include "ffdkit/meshio/mesh_data.h"
 #include "ffdkit/meshio/path_confinement.h"
 #include "ffdkit/meshio/read_limits.h"
@@ -24,14 +25,16 @@ namespace ffdkit::meshio {
 /// The cells of a polyMesh as OpenFOAM describes them, by their faces: face f has the points
 /// faceVertices[faceStarts[f] .. faceStarts[f + 1]) in order; its area vector (right-hand rule)
 /// points out of cell owner[f]; the first neighbour.size() faces are internal and point into
-/// cell neighbour[f], the others are boundary faces.
+/// cell neighbour[f], the others are boundary faces. readOpenFoamMesh reads the lists of a binary
+/// file in the machine's own layout in place (LabelList::readInPlace: the file stays mapped for as
+/// long as a copy of the list lives), the others into memory.
 struct PolyMeshCells {
   /// #F + 1 offsets into faceVertices, faceStarts[0] = 0 (32 bits, as OpenFOAM's faceCompactList
   /// of label=32 stores them: a polyMesh holds fewer than 2^31 face points).
-  std::vector<std::int32_t> faceStarts;
-  std::vector<std::int32_t> faceVertices;  ///< point indices, >= 3 per face
-  std::vector<std::int32_t> owner;         ///< #F cell indices
-  std::vector<std::int32_t> neighbour;     ///< #internal faces cell indices
+  LabelList faceStarts;
+  LabelList faceVertices;  ///< point indices, >= 3 per face
+  LabelList owner;         ///< #F cell indices
+  LabelList neighbour;     ///< #internal faces cell indices
   std::int64_t cellCount = 0;              ///< 1 + the largest cell index in owner and neighbour
 
   /// Number of faces, #F.
