@@ -158,13 +158,18 @@ void needBinary(const FoamScanner& s, const char* what, std::int64_t count, std:
 // label (the compiler vectorises it).
 bool allInRange(const char* at, std::size_t n, std::int32_t lo, std::int32_t hi) {
   constexpr std::size_t kRun = 4096;
-  std::int32_t run[kRun];
+  // label - lo as unsigned: above hi - lo exactly when the label is outside [lo, hi].
+  const std::uint32_t span = std::uint32_t(hi) - std::uint32_t(lo);
   for (std::size_t first = 0; first < n; first += kRun) {
     const std::size_t count = std::min(kRun, n - first);
-    std::memcpy(run, at + first * sizeof(std::int32_t), count * sizeof(std::int32_t));
-    bool outside = false;
-    for (std::size_t i = 0; i < count; ++i) outside |= (run[i] < lo) | (run[i] > hi);
-    if (outside) return false;
+    const char* run = at + first * sizeof(std::int32_t);
+    std::uint32_t outside = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      std::uint32_t label;
+      std::memcpy(&label, run + i * sizeof label, sizeof label);  // any alignment (a list read in place)
+      outside |= std::uint32_t(label - std::uint32_t(lo) > span);
+    }
+    if (outside != 0) return false;
   }
   return true;
 }
@@ -311,19 +316,27 @@ Eigen::MatrixX3d readFoamPoints(std::string_view bytes, const std::string& sourc
       double* z = points.col(2).data();
       std::uint64_t special = 0;
       constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
-      constexpr Eigen::Index kRun = Eigen::Index(1) << 18;  // 6 MiB of the file, given back once copied
-      for (Eigen::Index first = 0; first < n; first += kRun) {
-        const Eigen::Index last = std::min<Eigen::Index>(n, first + kRun);
-        for (Eigen::Index i = first; i < last; ++i) {
-          std::uint64_t raw[3];
-          std::memcpy(raw, at + std::size_t(i) * 24, 24);
-          special |= std::uint64_t((raw[0] & kExponent) == kExponent) | std::uint64_t((raw[1] & kExponent) == kExponent) |
-                     std::uint64_t((raw[2] & kExponent) == kExponent);
-          x[i] = std::bit_cast<double>(raw[0]);
-          y[i] = std::bit_cast<double>(raw[1]);
-          z[i] = std::bit_cast<double>(raw[2]);
+      // Runs of 6 MiB of the file, one per core at a time; the thread that read the file gives
+      // the runs' pages back once they are copied (releaseParsedBytes knows the mapping there).
+      constexpr Eigen::Index kRun = Eigen::Index(1) << 18;
+      constexpr Eigen::Index kRound = 2 * kRun;
+#pragma omp parallel if (n > kRound)
+      for (Eigen::Index round = 0; round < n; round += kRound) {
+#pragma omp for schedule(static, 1) reduction(| : special)
+        for (Eigen::Index first = round; first < std::min<Eigen::Index>(n, round + kRound); first += kRun) {
+          const Eigen::Index last = std::min<Eigen::Index>(n, first + kRun);
+          for (Eigen::Index i = first; i < last; ++i) {
+            std::uint64_t raw[3];
+            std::memcpy(raw, at + std::size_t(i) * 24, 24);
+            special |= std::uint64_t((raw[0] & kExponent) == kExponent) |
+                       std::uint64_t((raw[1] & kExponent) == kExponent) | std::uint64_t((raw[2] & kExponent) == kExponent);
+            x[i] = std::bit_cast<double>(raw[0]);
+            y[i] = std::bit_cast<double>(raw[1]);
+            z[i] = std::bit_cast<double>(raw[2]);
+          }
         }
-        detail::releaseParsedBytes(at + std::size_t(first) * 24, at + std::size_t(last) * 24);
+#pragma omp master
+        detail::releaseParsedBytes(at + std::size_t(round) * 24, at + std::size_t(std::min<Eigen::Index>(n, round + kRound)) * 24);
       }
       fast = special == 0;
     }
