@@ -67,18 +67,15 @@ extern "C" std::size_t LLVMFuzzerCustomCrossOver(const std::uint8_t* first, std:
                                                  const std::uint8_t* second, std::size_t secondSize,
                                                  std::uint8_t* out, std::size_t maxOutSize, unsigned int seed) {
   maxOutSize = capped(maxOutSize);
-  // An input over the cap is not parsed whole for a graft (cross-over parses both inputs: a quarter
-  // of a capped scene campaign's time, perf): the first is cut to fit, or, when only the second is
-  // over, mutated instead.
-  if (firstSize > maxOutSize || secondSize > maxOutSize) {
+  // The cross-over splices the texts (neither is parsed), so a second input of any size gives a
+  // graft that fits; a first one over the cap is cut to fit instead (a sample file, a corpus input
+  // read whole up to -max_len).
+  if (firstSize > maxOutSize) {
     if (firstSize > kPrefix && maxOutSize > kPrefix) {
-      const std::string_view json = jsonPart(first, firstSize);
-      auto result = firstSize > maxOutSize ? ffdkit::fuzz::shrinkJson(json, seed, maxOutSize - kPrefix)
-                                           : ffdkit::fuzz::mutateJson(json, seed, maxOutSize - kPrefix);
-      if (result) {
+      if (auto shrunk = ffdkit::fuzz::shrinkJson(jsonPart(first, firstSize), seed, maxOutSize - kPrefix)) {
         std::memcpy(out, first, kPrefix);
-        std::memcpy(out + kPrefix, result->data(), result->size());
-        return kPrefix + result->size();
+        std::memcpy(out + kPrefix, shrunk->data(), shrunk->size());
+        return kPrefix + shrunk->size();
       }
     }
   } else if (firstSize > kPrefix && secondSize > kPrefix && maxOutSize > kPrefix) {

@@ -11,11 +11,20 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_mutator_arena.h"
+#include "json_value_spans.h"
+
 namespace ffdkit::fuzz {
 
 namespace {
 
-using Json = nlohmann::ordered_json;
+// Everything a call builds lives in the arena of that call (json_mutator_arena.h); the result is
+// copied out as a std::string.
+using String = std::basic_string<char, std::char_traits<char>, ArenaAllocator<char>>;
+template <class T>
+using Vector = std::vector<T, ArenaAllocator<T>>;
+using Json = nlohmann::basic_json<nlohmann::ordered_map, std::vector, String, bool, std::int64_t, std::uint64_t, double,
+                                  ArenaAllocator>;
 
 // Deeper documents are left to byte mutation: writing them back (recursive) could overflow the stack.
 constexpr int kMaxDepth = 128;
@@ -24,11 +33,11 @@ constexpr int kMaxDepth = 128;
 struct Node {
   Json* value;
   Json* parent;     // null for the root
-  std::string key;  // its name, when the parent is an object
+  String key;       // its name, when the parent is an object
   int depth;
 };
 
-bool collect(Json& value, Json* parent, std::string key, int depth, std::vector<Node>& out) {
+bool collect(Json& value, Json* parent, String key, int depth, Vector<Node>& out) {
   if (depth > kMaxDepth) return false;
   out.push_back({&value, parent, std::move(key), depth});
   if (value.is_object()) {
@@ -41,7 +50,8 @@ bool collect(Json& value, Json* parent, std::string key, int depth, std::vector<
   return true;
 }
 
-// Numbers at the edges of what a reader converts: counts, indices, sizes, coordinates.
+// Numbers at the edges of what a reader converts: counts, indices, sizes, coordinates. (Numbers
+// allocate nothing, so these outlive the arena's calls.)
 const std::vector<Json>& boundaryNumbers() {
   static const std::vector<Json> numbers = {
       Json(0), Json(-1), Json(1), Json(2), Json(3), Json(4), Json(7), Json(8), Json(16), Json(255), Json(256),
@@ -122,10 +132,10 @@ class Mutation {
   }
 
   // The document as text, with the raw number texts in place of their placeholders.
-  std::string text() const {
-    std::string text = document_.dump(-1, ' ', false, Json::error_handler_t::replace);
+  String text() const {
+    String text = document_.dump(-1, ' ', false, Json::error_handler_t::replace);
     for (std::size_t i = 0; i < raw_.size(); ++i) {
-      std::string placeholder(1, '"');
+      String placeholder(1, '"');
       placeholder.append(placeholder_(i)).push_back('"');
       const std::size_t at = text.find(placeholder);
       if (at != std::string::npos) text.replace(at, placeholder.size(), raw_[i]);
@@ -134,17 +144,21 @@ class Mutation {
   }
 
  private:
-  static std::string placeholder_(std::size_t i) { return std::string("ffdkit-fuzz-raw-").append(std::to_string(i)); }
+  static String placeholder_(std::size_t i) {
+    char digits[24];
+    char* const end = std::to_chars(digits, digits + sizeof digits, i).ptr;
+    return String("ffdkit-fuzz-raw-").append(digits, end);
+  }
 
   std::size_t below(std::size_t n) { return n == 0 ? 0 : std::size_t(rng_() % n); }
   template <class T, std::size_t N>
   const T& pick(const T (&items)[N]) { return items[below(N)]; }
-  template <class T>
-  const T& pick(const std::vector<T>& items) { return items[below(items.size())]; }
+  template <class T, class Allocator>
+  const T& pick(const std::vector<T, Allocator>& items) { return items[below(items.size())]; }
 
   template <class Predicate>
   Node* someNode(Predicate predicate) {
-    std::vector<Node*> matches;
+    Vector<Node*> matches;
     for (Node& node : nodes_)
       if (predicate(node)) matches.push_back(&node);
     return matches.empty() ? nullptr : matches[below(matches.size())];
@@ -232,7 +246,11 @@ class Mutation {
     Json& s = *node->value;
     switch (below(4)) {
       case 0:
-      case 1: s = pick(interestingStrings()); break;
+      case 1: {
+        const std::string& string = pick(interestingStrings());
+        s = String(string.data(), string.size());
+        break;
+      }
       case 2: {  // a name from elsewhere: references to the wrong widget, lattice or object
         Node* other = someNode([](const Node& n) { return n.value->is_string(); });
         s = *other->value;
@@ -240,7 +258,7 @@ class Mutation {
       }
       default: {
         static const char* const kSuffixes[] = {"1", "x", "/..", ".json", "\n", " "};
-        s = s.get<std::string>() + pick(kSuffixes);
+        s = s.get_ref<const String&>() + pick(kSuffixes);
         break;
       }
     }
@@ -258,7 +276,7 @@ class Mutation {
       case 1: {  // rename it: to a key used elsewhere, or to a near miss
         Node* other = someNode([](const Node& n) { return n.parent && n.parent->is_object(); });
         static const char* const kNearMisses[] = {"s", "_", "X", " "};
-        std::string name = below(2) ? other->key : member->key + pick(kNearMisses);
+        String name = below(2) ? other->key : member->key + pick(kNearMisses);
         if (object.contains(name)) return false;
         Json value = std::move(*member->value);
         object.erase(member->key);
@@ -281,18 +299,31 @@ class Mutation {
       Json copy = *pick(nodes_).value;
       *node->value = std::move(copy);
     } else {
-      static const Json kinds[] = {Json(nullptr), Json(true), Json(false), Json::object(), Json::array(),
-                                   Json(""),      Json(0),    Json("x"),   Json::array({Json::array()}),
-                                   Json::array({0, 0, 0})};
-      *node->value = pick(kinds);
+      *node->value = otherKind(below(10));
     }
     return true;
   }
 
+  // A value of one of ten kinds (made per call: strings, arrays and objects live in the arena).
+  static Json otherKind(std::size_t i) {
+    switch (i) {
+      case 0: return Json(nullptr);
+      case 1: return Json(true);
+      case 2: return Json(false);
+      case 3: return Json::object();
+      case 4: return Json::array();
+      case 5: return Json("");
+      case 6: return Json(0);
+      case 7: return Json("x");
+      case 8: return Json::array({Json::array()});
+      default: return Json::array({0, 0, 0});
+    }
+  }
+
   Json& document_;
   std::mt19937_64 rng_;
-  std::vector<Node> nodes_;
-  std::vector<std::string> raw_;
+  Vector<Node> nodes_;
+  Vector<std::string_view> raw_;
 };
 
 std::optional<Json> parse(std::string_view text) {
@@ -301,7 +332,7 @@ std::optional<Json> parse(std::string_view text) {
   return document;
 }
 
-std::string compactText(const Json& document) { return document.dump(-1, ' ', false, Json::error_handler_t::replace); }
+String compactText(const Json& document) { return document.dump(-1, ' ', false, Json::error_handler_t::replace); }
 
 // The size of a scalar's compact JSON text, near enough to plan cuts (a string's escapes are not
 // counted; shrinkJson checks the text it writes).
@@ -313,7 +344,7 @@ std::size_t scalarBytes(const Json& value) {
     return std::size_t(end - digits);
   }
   if (value.is_number_float()) return std::size_t(std::to_chars(digits, digits + 32, value.get<double>()).ptr - digits);
-  if (value.is_string()) return value.get_ref<const std::string&>().size() + 2;
+  if (value.is_string()) return value.get_ref<const String&>().size() + 2;
   if (value.is_boolean()) return value.get<bool>() ? 4 : 5;
   return 4;  // null, binary
 }
@@ -324,15 +355,15 @@ struct Container {
   Json* value;
   std::size_t parent;  // index of the container holding it; itself for the root
   std::size_t index;   // its position there
-  std::vector<std::string> keys;  // when an object
-  std::vector<std::size_t> bytes;
-  std::vector<bool> dropped;
+  Vector<String> keys;  // when an object
+  Vector<std::size_t> bytes;
+  Vector<bool> dropped;
 };
 
 // The size of `value`'s compact text, adding it (when an object or array) and every container below
 // it to `out` (parents before their children); nullopt when deeper than kMaxDepth.
 std::optional<std::size_t> measure(Json& value, std::size_t parent, std::size_t index, int depth,
-                                   std::vector<Container>& out) {
+                                   Vector<Container>& out) {
   if (depth > kMaxDepth) return std::nullopt;
   if (!value.is_object() && !value.is_array()) return scalarBytes(value);
   const std::size_t at = out.size();
@@ -351,7 +382,7 @@ std::optional<std::size_t> measure(Json& value, std::size_t parent, std::size_t 
   return total;
 }
 
-bool insideDropped(const std::vector<Container>& containers, std::size_t c) {
+bool insideDropped(const Vector<Container>& containers, std::size_t c) {
   for (; c != 0; c = containers[c].parent)
     if (containers[containers[c].parent].dropped[containers[c].index]) return true;
   return false;
@@ -362,8 +393,8 @@ bool insideDropped(const std::vector<Container>& containers, std::size_t c) {
 // returns the bytes marked, 0 when no run can reach `least`. Seven times in eight the run is one of
 // several values smaller than `least` (points of a list, keys of a channel), so that most of the
 // document stays; otherwise any, a whole section too.
-std::size_t markRun(std::vector<Container>& containers, std::size_t least, std::mt19937_64& rng) {
-  std::vector<std::pair<std::size_t, std::size_t>> fine, any;
+std::size_t markRun(Vector<Container>& containers, std::size_t least, std::mt19937_64& rng) {
+  Vector<std::pair<std::size_t, std::size_t>> fine, any;
   for (std::size_t c = 0; c < containers.size(); ++c) {
     if (insideDropped(containers, c)) continue;
     std::size_t suffix = 0;
@@ -389,7 +420,7 @@ std::size_t markRun(std::vector<Container>& containers, std::size_t least, std::
 }
 
 // Erases what markRun marked: children before their parents, the last element first.
-void eraseMarked(std::vector<Container>& containers) {
+void eraseMarked(Vector<Container>& containers) {
   for (std::size_t c = containers.size(); c-- > 0;) {
     Container& container = containers[c];
     for (std::size_t i = container.bytes.size(); i-- > 0;) {
@@ -405,6 +436,7 @@ void eraseMarked(std::vector<Container>& containers) {
 }  // namespace
 
 std::optional<std::string> shrinkJson(std::string_view text, std::uint64_t seed, std::size_t maxSize) {
+  const Arena::Scope call;
   std::optional<Json> document = parse(text);
   if (!document) return std::nullopt;
   std::mt19937_64 rng(seed);
@@ -412,9 +444,9 @@ std::optional<std::string> shrinkJson(std::string_view text, std::uint64_t seed,
   // Runs of at least an eighth of the excess each, planned on one measurement of the document; the
   // text written is checked again (the sizes do not count escapes).
   for (int pass = 0; pass < 8; ++pass) {
-    std::string result = compactText(*document);
-    if (result.size() <= maxSize) return cut ? std::optional<std::string>(std::move(result)) : std::nullopt;
-    std::vector<Container> containers;
+    const String result = compactText(*document);
+    if (result.size() <= maxSize) return cut ? std::optional<std::string>(result) : std::nullopt;
+    Vector<Container> containers;
     if (!measure(*document, 0, 0, 0, containers)) return std::nullopt;
     const std::size_t excess = result.size() - maxSize;
     const std::size_t least = std::max<std::size_t>(1, excess / 8);
@@ -432,9 +464,10 @@ std::optional<std::string> shrinkJson(std::string_view text, std::uint64_t seed,
 }
 
 std::optional<std::string> mutateJson(std::string_view text, std::uint64_t seed, std::size_t maxSize) {
+  const Arena::Scope call;
   const std::optional<Json> original = parse(text);
   if (!original) return std::nullopt;
-  const std::string unchanged = original->dump(-1, ' ', false, Json::error_handler_t::replace);
+  const String unchanged = compactText(*original);
   std::mt19937_64 rng(seed);
   for (int attempt = 0; attempt < 4; ++attempt) {
     Json document = *original;
@@ -442,29 +475,28 @@ std::optional<std::string> mutateJson(std::string_view text, std::uint64_t seed,
     bool changed = false;
     for (std::size_t k = 1 + rng() % 4; k > 0; --k) changed = mutation.once() || changed;
     if (!changed) continue;
-    std::string result = mutation.text();
-    if (result != unchanged && result.size() <= maxSize) return result;
+    const String result = mutation.text();
+    if (result != unchanged && result.size() <= maxSize) return std::string(result);
   }
   return std::nullopt;
 }
 
 std::optional<std::string> crossOverJson(std::string_view first, std::string_view second, std::uint64_t seed,
                                          std::size_t maxSize) {
-  std::optional<Json> a = parse(first);
-  std::optional<Json> b = parse(second);
-  if (!a || !b) return std::nullopt;
-  std::vector<Node> into, from;
-  if (!collect(*a, nullptr, {}, 0, into) || !collect(*b, nullptr, {}, 0, from)) return std::nullopt;
+  const Arena::Scope call;
+  const auto into = valueSpans(first, std::size_t(kMaxDepth));
+  const auto from = valueSpans(second, std::size_t(kMaxDepth));
+  if (!into || !from) return std::nullopt;
   std::mt19937_64 rng(seed);
-  Node& target = into[rng() % into.size()];
-  std::vector<const Node*> sameKey;
-  for (const Node& node : from)
-    if (!target.key.empty() && node.key == target.key) sameKey.push_back(&node);
-  const Node& source = sameKey.empty() ? from[rng() % from.size()] : *sameKey[rng() % sameKey.size()];
-  Json copy = *source.value;
-  *target.value = std::move(copy);
-  std::string result = a->dump(-1, ' ', false, Json::error_handler_t::replace);
-  if (result.size() > maxSize) return std::nullopt;
+  const ValueSpan& target = (*into)[rng() % into->size()];
+  Vector<const ValueSpan*> sameKey;
+  for (const ValueSpan& span : *from)
+    if (!target.key.empty() && span.key == target.key) sameKey.push_back(&span);
+  const ValueSpan& source = sameKey.empty() ? (*from)[rng() % from->size()] : *sameKey[rng() % sameKey.size()];
+  const std::string_view graft = second.substr(source.begin, source.end - source.begin);
+  if (first.size() - (target.end - target.begin) + graft.size() > maxSize) return std::nullopt;
+  std::string result(first.substr(0, target.begin));
+  result.append(graft).append(first.substr(target.end));
   return result;
 }
 

@@ -36,7 +36,10 @@ FFDKIT_FUZZ_JSON_API std::optional<std::string> shrinkJson(std::string_view text
                                                            std::size_t maxSize);
 
 /// `first` with one of its values replaced by a value of `second` (one with the same key when
-/// there is one). nullopt when either does not parse or the result exceeds `maxSize` bytes.
+/// there is one), by splicing the texts: neither is parsed, so the rest of `first` keeps its bytes
+/// (spaces, number text that is not JSON) and the graft is the bytes of `second`'s value. nullopt
+/// when the brackets, strings and separators of either are not JSON's (json_value_spans.h) or the
+/// result exceeds `maxSize` bytes.
 FFDKIT_FUZZ_JSON_API std::optional<std::string> crossOverJson(std::string_view first, std::string_view second,
                                                               std::uint64_t seed, std::size_t maxSize);
 

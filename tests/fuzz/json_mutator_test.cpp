@@ -1,8 +1,14 @@
 #include "json_mutator.h"
 
+#include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <set>
+#include <stdexcept>
 #include <string>
+#include <vector>
+
+#include "json_mutator_arena.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -128,6 +134,30 @@ TEST(JsonMutator, CrossOverGraftsAValueOfTheSecondDocument) {
   EXPECT_FALSE(crossOverJson(first, second, 1, 5));
 }
 
+TEST(JsonMutator, CrossOverSplicesTheTextsAndKeepsTheRestOfTheFirst) {
+  // Spaces and a number that is not JSON stay as they were around the graft.
+  const std::string first = "{ \"a\": NaN,\n  \"b\": [1, 2] }";
+  const std::string second = R"({"b":{"x":"}]"},"c":[true,null]})";
+  std::set<std::string> texts;
+  for (std::uint64_t seed = 0; seed < 200; ++seed)
+    if (auto text = crossOverJson(first, second, seed, 1000)) texts.insert(*text);
+  EXPECT_TRUE(texts.count("{ \"a\": NaN,\n  \"b\": {\"x\":\"}]\"} }")) << "the value with the same key";
+  EXPECT_TRUE(texts.count("{ \"a\": NaN,\n  \"b\": [1, [true,null]] }")) << "an element replaced";
+  EXPECT_TRUE(texts.count(R"({"x":"}]"})")) << "the root replaced";
+  for (const std::string& text : texts) EXPECT_EQ(Json::accept(text), text.find("NaN") == std::string::npos) << text;
+}
+
+TEST(JsonMutator, CrossOverLeavesTextsWhoseStructureIsNotJsonToByteCrossOver) {
+  for (const char* broken : {"", "[1,", "[1}", "{\"a\" 1}", "{\"a\":1,}", "[1,]", "{\"a\":1} x", "\"open", "{1:2}",
+                             "[1 2]", "{\"a\":[}"})
+    for (std::uint64_t seed = 0; seed < 20; ++seed) {
+      EXPECT_FALSE(crossOverJson(broken, "[1]", seed, 1000)) << broken;
+      EXPECT_FALSE(crossOverJson("[1]", broken, seed, 1000)) << broken;
+    }
+  EXPECT_TRUE(crossOverJson(std::string(100, '[') + std::string(100, ']'), "[1]", 1, 1000));
+  EXPECT_FALSE(crossOverJson(std::string(200, '[') + std::string(200, ']'), "[1]", 1, 1000)) << "left to bytes, as mutation";
+}
+
 // kScene with a lattice of 64 points: 1.3 KB of compact JSON.
 std::string longScene() {
   Json document = Json::parse(kScene);
@@ -191,6 +221,44 @@ TEST(JsonMutator, ShrinkLeavesWhatFitsOrCannotBeCut) {
   EXPECT_FALSE(shrinkJson("{\"a\": [1, 2", 1, 5)) << "not JSON";
   EXPECT_FALSE(shrinkJson("\"" + std::string(100, 'x') + "\"", 1, 50)) << "a root string";
   EXPECT_EQ(shrinkJson(R"({"a":[1,2,3],"b":"long text"})", 1, 2), "{}");
+}
+
+TEST(JsonMutatorArena, AllocatesOnlyInsideACall) {
+  EXPECT_THROW(Arena::current(), std::logic_error);
+  {
+    const Arena::Scope call;
+    std::vector<int, ArenaAllocator<int>> numbers(1000, 7);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(numbers.data()) % alignof(int), 0u);
+    {
+      const Arena::Scope inner;  // a nested scope does not empty the arena
+    }
+    std::vector<int, ArenaAllocator<int>> more(1000, 8);
+    EXPECT_TRUE(std::all_of(numbers.begin(), numbers.end(), [](int n) { return n == 7; }));
+    EXPECT_TRUE(more.data() >= numbers.data() + numbers.size() || more.data() + more.size() <= numbers.data());
+  }
+  EXPECT_THROW(Arena::current(), std::logic_error);
+}
+
+TEST(JsonMutatorArena, ReusesItsMemoryFromCallToCallAndGrowsForLargeValues) {
+  void* first = nullptr;
+  {
+    const Arena::Scope call;
+    first = Arena::current().allocate(100, 8);
+  }
+  {
+    const Arena::Scope call;
+    EXPECT_EQ(Arena::current().allocate(100, 8), first) << "emptied when the call returned";
+    // More than the first block holds, in pieces and at once; every byte writable and kept.
+    std::vector<char*> pieces;
+    for (int i = 0; i < 64; ++i) {
+      pieces.push_back(static_cast<char*>(Arena::current().allocate(64 << 10, 1)));
+      std::memset(pieces.back(), i, 64 << 10);
+    }
+    auto* large = static_cast<char*>(Arena::current().allocate(8 << 20, 16));
+    std::memset(large, 0x5a, 8 << 20);
+    for (int i = 0; i < 64; ++i) EXPECT_EQ(pieces[std::size_t(i)][(64 << 10) - 1], char(i));
+    EXPECT_EQ(large[(8 << 20) - 1], char(0x5a));
+  }
 }
 
 }  // namespace
