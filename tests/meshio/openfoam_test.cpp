@@ -118,6 +118,25 @@ TEST_F(OpenFoam, BinaryListsAreReadInPlaceAndKeptReadableByTheirCopies) {
   EXPECT_EQ(changed.owner.size(), kept.owner.size());
 }
 
+TEST_F(OpenFoam, ACellWithFewerThanFourFacesIsNamed) {
+  // Cell 0 (a corner of the cube) keeps its 3 internal faces; its 3 boundary faces go to cell 1.
+  const fs::path copy = copyCase("cube");
+  const OpenFoamMesh mesh = readOpenFoamMesh(copy);
+  std::string owner = "FoamFile { version 2.0; format ascii; class labelList; object owner; }\n" +
+                      std::to_string(mesh.cells.owner.size()) + "\n(\n";
+  int moved = 0;
+  for (std::size_t f = 0; f < mesh.cells.owner.size(); ++f) {
+    const bool boundary = f >= mesh.cells.neighbour.size();
+    moved += boundary && mesh.cells.owner[f] == 0 ? 1 : 0;
+    owner += std::to_string(boundary && mesh.cells.owner[f] == 0 ? 1 : mesh.cells.owner[f]) + "\n";
+  }
+  ASSERT_EQ(moved, 3);
+  writeText(copy / "constant" / "polyMesh" / "owner", owner + ")\n");
+  const std::string message = testing::meshIoErrorOf([&] { readOpenFoamMesh(copy); });
+  EXPECT_NE(message.find("owner: cell 0 has 3 face(s) in owner and neighbour; a cell needs at least 4"), std::string::npos)
+      << message;
+}
+
 TEST(LabelList, ReadsLabelsInPlaceAtAnyByteOffset) {
   // Labels 5, -2, 70000 stored from byte 1 of a buffer (as a binary list after "3(" lies).
   const std::vector<std::int32_t> values{5, -2, 70000};
