@@ -204,6 +204,27 @@ Pipeline::Action Pipeline::decide(LatticeId id, const Node& n, std::uint64_t inp
   return kept ? Action::Keep : Action::Stale;
 }
 
+bool Pipeline::onlyLastStageMovesByDeltas() const {
+  if (mode_ != UpdateMode::Delta || !output_) return false;
+  const std::vector<LatticeId> stages = order();
+  std::uint64_t inputVersion = inputVersion_;
+  for (std::size_t k = 0; k < stages.size(); ++k) {
+    const Node& n = nodes_.at(stages[k]);
+    // decide() as run() would: Update means a fresh embedding of this input.
+    if (!n.deformer || n.outputVersion == 0 || decide(stages[k], n, inputVersion, false) != Action::Update) return false;
+    if (k + 1 < stages.size()) {
+      if (!n.deformer->isCurrentFor(n.lattice)) return false;  // its output would change too
+      inputVersion = n.outputVersion;
+      continue;
+    }
+    const Deformer& last = *n.deformer;
+    return output_ == &last.points() && !n.lattice.isRational() && last.lastWeights().size() == n.lattice.weights().size() &&
+           last.lastWeights() == n.lattice.weights() &&
+           last.lastControlPoints().rows() == n.lattice.pointCount();
+  }
+  return false;
+}
+
 Eigen::Index Pipeline::pointsToEmbed(bool reembedAll) const {
   // Replays run()'s decisions without running: a stage whose output changes gives it a version no
   // stage has seen, so the next stage is not fresh; a fresh stage's output changes iff one of its

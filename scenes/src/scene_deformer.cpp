@@ -38,6 +38,10 @@ struct SceneDeformer::ObjectPipeline {
   std::uint64_t baseRevision = 0;
   Eigen::MatrixX3d baseControl;
   bool moved = false;  // a delta step of the last stage ran since the base
+  // While moved: the one control point the motion since the base moved (-1: several or none) and
+  // its displacement at the last step recorded (evaluated or waiting: PointCoverage::Motion).
+  Eigen::Index movedControl = -1;
+  Eigen::Vector3d movedBy = Eigen::Vector3d::Zero();
 
   // Whether the object still holds the points this pipeline was built from.
   bool holdsSameMesh(const SceneObject& object) const;
@@ -54,6 +58,16 @@ struct SceneDeformer::ObjectPipeline {
   void recordRun();
   // After a run of the subset pipeline: the revision and the coverage (the full points wait).
   void recordSubsetRun();
+  // Whether a gesture step of the full pipeline (synced, prepared by deltas) may wait for an
+  // object its caller follows (EvaluationRequest::followed): the step moves only the last stage,
+  // by deltas, and the motion since the base is still the one control point it was at the last
+  // step. Then recordWaitingStep() records it instead of a run.
+  bool mayWait() const;
+  // A step that waits: the revision (when the control point moved since the last step) and the
+  // coverage (PointCoverage::Motion); the base and the motion stay.
+  void recordWaitingStep();
+  // movedControl and movedBy from the motion since the base.
+  void recordMotion();
   // The motion of the last stage's control points since the base (gestureMotion() without
   // asking whether a delta step ran since).
   std::optional<GestureMotion> motionSinceBase() const;
@@ -105,13 +119,18 @@ void SceneDeformer::ObjectPipeline::remember(const SceneObject& object) {
 void SceneDeformer::ObjectPipeline::recordRun() {
   const std::vector<ffd::StageReport>& reports = full.pipeline->lastReport();
   const auto changedOutput = [](const ffd::StageReport& r) { return r.outputChanged; };
-  const bool wasSubset = coverage == PointCoverage::Subset;
+  // Points that waited (a subset's, a followed motion's) are new to whoever read the last revision.
+  const bool waited = coverage != PointCoverage::Full;
+  const bool motionWaited = coverage == PointCoverage::Motion;
   coverage = PointCoverage::Full;
-  if (!wasSubset && !std::any_of(reports.begin(), reports.end(), changedOutput)) return;
+  const bool changed = std::any_of(reports.begin(), reports.end(), changedOutput);
+  if (!waited && !changed) return;
   ++revision;
-  // Only the last stage changed, by deltas: the output moved linearly in its control points
-  // since the base. Anything else makes this output the new base.
-  const bool lastByDelta = reports.back().delta && std::none_of(reports.begin(), reports.end() - 1, changedOutput);
+  // Only the last stage changed, by deltas (or nothing changed since the steps that waited, which
+  // were such steps: the motion is back where the last pass left the points): the output moved
+  // linearly in its control points since the base. Anything else makes this output the new base.
+  const bool lastByDelta = (reports.back().delta || (motionWaited && !changed)) &&
+                           std::none_of(reports.begin(), reports.end() - 1, changedOutput);
   if (!lastByDelta || baseControl.size() == 0) {
     baseRevision = revision;
     baseControl = full.pipeline->lattice(reports.back().id).controlPoints();
@@ -120,6 +139,30 @@ void SceneDeformer::ObjectPipeline::recordRun() {
   } else {
     moved = true;
   }
+  recordMotion();
+}
+
+void SceneDeformer::ObjectPipeline::recordMotion() {
+  movedControl = -1;
+  if (!moved) return;
+  const std::optional<GestureMotion> motion = motionSinceBase();
+  if (!motion || motion->controlPoints.size() != 1) return;
+  movedControl = motion->controlPoints.front();
+  movedBy = motion->displacements.row(0).transpose();
+}
+
+bool SceneDeformer::ObjectPipeline::mayWait() const {
+  if (!moved || movedControl < 0 || coverage == PointCoverage::Subset || !full.pipeline->onlyLastStageMovesByDeltas())
+    return false;
+  const std::optional<GestureMotion> motion = motionSinceBase();
+  return motion && motion->controlPoints.size() == 1 && motion->controlPoints.front() == movedControl;
+}
+
+void SceneDeformer::ObjectPipeline::recordWaitingStep() {
+  const Eigen::Vector3d before = movedBy;
+  recordMotion();
+  if (movedBy != before || coverage != PointCoverage::Motion) ++revision;
+  coverage = PointCoverage::Motion;
 }
 
 void SceneDeformer::ObjectPipeline::recordSubsetRun() {
@@ -129,6 +172,7 @@ void SceneDeformer::ObjectPipeline::recordSubsetRun() {
   coverage = PointCoverage::Subset;
   baseControl.resize(0, 3);  // the full points' motion is not followed across subset runs
   moved = false;
+  movedControl = -1;
 }
 
 SceneDeformer::SceneDeformer() = default;
@@ -154,8 +198,13 @@ void SceneDeformer::endGesture() {
 bool SceneDeformer::covers(const EvaluationRequest& request) const {
   for (const auto& [id, p] : objects_) {
     if (p->coverage == PointCoverage::Full) continue;
+    if (!gesture_) return false;
+    if (p->coverage == PointCoverage::Motion) {
+      if (!request.followed.count(id) || request.subsets.count(id)) return false;
+      continue;
+    }
     const auto asked = request.subsets.find(id);
-    if (!gesture_ || asked == request.subsets.end() || !std::ranges::equal(asked->second, p->subset->indices)) return false;
+    if (asked == request.subsets.end() || !std::ranges::equal(asked->second, p->subset->indices)) return false;
   }
   return true;
 }
@@ -198,6 +247,7 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
     detail::StagePipeline* stages;  // object->full or object->subset->stages
   };
   std::vector<Job> jobs;
+  std::vector<ObjectPipeline*> waiting;  // followed objects whose step waits (EvaluationRequest::followed)
   std::set<ObjectId> present;
   labels_.clear();
   int latticesBuilt = 0;
@@ -225,7 +275,10 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
       if (!p->full.stages.empty()) {
         p->full.prepareRun(scene, activeLattice, how == Run::Gesture ? ffd::UpdateMode::Delta : ffd::UpdateMode::Exact,
                            precision_);
-        jobs.push_back({p, &p->full});
+        if (how == Run::Gesture && !rebuild && request.followed.count(object.id) && p->mayWait())
+          waiting.push_back(p);  // its caller follows the motion: the delta pass waits
+        else
+          jobs.push_back({p, &p->full});
       }
     }
     p->remember(object);
@@ -245,6 +298,8 @@ void SceneDeformer::run(const Scene& scene, std::optional<widgets::WidgetId> act
   if (progress_ && !goOn(0)) throw ffd::Cancelled("scene deformer: cancelled before any embedding");
   SceneDeformStats stats;
   stats.latticesBuilt = latticesBuilt;
+  for (ObjectPipeline* p : waiting) p->recordWaitingStep();  // nothing of it can throw
+  stats.waitingObjects = static_cast<int>(waiting.size());
   Eigen::Index done = 0;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     ObjectPipeline& p = *jobs[i].object;
@@ -323,6 +378,10 @@ std::string SceneDeformer::describe(ObjectId object) const {
 
 const SceneDeformer::ObjectPipeline& SceneDeformer::fullyEvaluated(ObjectId object) const {
   const ObjectPipeline& p = pipelineOf(object);
+  if (p.coverage == PointCoverage::Motion)
+    throw PointsNotEvaluated("SceneDeformer: the last steps of the gesture moving object " + describe(object) +
+                             " were recorded without deforming its points (its motion is followed: "
+                             "EvaluationRequest::followed); evaluate the scene without naming it before reading its points");
   if (p.coverage == PointCoverage::Subset)
     throw PointsNotEvaluated("SceneDeformer: object " + describe(object) + " was evaluated at " +
                              std::to_string(p.subset->indices.size()) +
@@ -334,8 +393,8 @@ const SceneDeformer::ObjectPipeline& SceneDeformer::fullyEvaluated(ObjectId obje
 const SceneDeformer::ObjectPipeline& SceneDeformer::atSubset(ObjectId object) const {
   const ObjectPipeline& p = pipelineOf(object);
   if (p.coverage != PointCoverage::Subset)
-    throw PointsNotEvaluated("SceneDeformer: object " + describe(object) +
-                             " was evaluated in full, not at a subset; read points()");
+    throw PointsNotEvaluated("SceneDeformer: object " + describe(object) + " was not evaluated at a subset; " +
+                             (p.coverage == PointCoverage::Full ? "read points()" : "its motion is followed"));
   return p;
 }
 

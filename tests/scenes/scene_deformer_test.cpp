@@ -300,6 +300,185 @@ TEST(SceneDeformer, AGestureMotionIsOnlyFollowedThroughTheLastStage) {
   EXPECT_FALSE(deformer.gestureMotion(object));
 }
 
+// A caller that follows a one-control-point motion itself (EvaluationRequest::followed: the view's
+// normals and points) lets the delta passes of the steps after the first wait: each such step
+// moves the revision and the motion (what the follower reads) but not the points, which say so
+// (PointCoverage::Motion, points() throws); an exact reader gets them at once (all the waiting
+// steps in one delta pass), any step that moves another control point evaluates, and the end of
+// the gesture is bit for bit that of a deformer that evaluated every step.
+TEST(SceneDeformer, AFollowedMotionOfOneControlPointLeavesItsDeltaPassesWaitingUntilThePointsAreRead) {
+  Scene scene = sphereScene();
+  const auto lattice = attachNewLattice(scene, {"sphere"}, withCounts(4, 4, 4));
+  const ObjectId sphere = scene.objects().front().id;
+  SceneDeformer follower, plain;  // `plain` is never asked to let a step wait
+  follower.evaluate(scene);
+  plain.evaluate(scene);
+  const Eigen::Index n = follower.pointCount(sphere);
+  EvaluationRequest request;
+  request.followed.insert(sphere);
+  follower.beginGesture(lattice);
+  plain.beginGesture(lattice);
+  Eigen::MatrixX3d control = scene.widgets.controlPoints(lattice);
+  const Eigen::Index f = 1 + 4 * (2 + 4 * 1), g = 2 + 4 * (1 + 4 * 2);
+  const Eigen::Matrix3d linear = scene.widgets.latticeFrame(lattice).linear();
+  Eigen::Vector3d moved = Eigen::Vector3d::Zero();
+  // The exact points of the scene as it is now, from a deformer of their own.
+  const auto exactNow = [&scene] { return deformScene(scene).at("sphere"); };
+  const auto step = [&](const Eigen::Vector3d& dP) {
+    moved += dP;
+    control.row(f) += dP.transpose();
+    scene.widgets.setControlPoints(lattice, control);
+    EXPECT_TRUE(plain.evaluate(scene));
+  };
+  for (int k = 1; k <= 5; ++k) {
+    step(Eigen::Vector3d(0.02, -0.01 * k, 0.015));
+    const std::uint64_t revision = follower.revision(sphere);
+    const std::uint64_t deformed = follower.totals().deformedPoints;
+    EXPECT_TRUE(follower.evaluate(scene, request));
+    EXPECT_GT(follower.revision(sphere), revision) << "step " << k;
+    const std::optional<GestureMotion> motion = follower.gestureMotion(sphere);
+    ASSERT_TRUE(motion) << "step " << k;
+    ASSERT_EQ(motion->controlPoints, std::vector<Eigen::Index>{f});
+    EXPECT_LE((Eigen::Vector3d(motion->displacements.row(0)) - linear * moved).norm(), 1e-15) << "step " << k;
+    if (k == 1) {  // the first step of the motion evaluates: nothing to follow from yet
+      EXPECT_EQ(follower.lastStats().deltaStages, 1);
+      EXPECT_EQ(follower.lastStats().waitingObjects, 0);
+      EXPECT_EQ(follower.coverage(sphere), PointCoverage::Full);
+      continue;
+    }
+    EXPECT_EQ(follower.lastStats().deltaStages, 0) << "step " << k;
+    EXPECT_EQ(follower.lastStats().waitingObjects, 1) << "step " << k;
+    EXPECT_EQ(follower.totals().deformedPoints, deformed) << "step " << k;
+    ASSERT_EQ(follower.coverage(sphere), PointCoverage::Motion);
+    EXPECT_THROW((void)follower.points(sphere), PointsNotEvaluated);
+    EXPECT_THROW((void)follower.takePoints(sphere), PointsNotEvaluated);
+    EXPECT_THROW((void)follower.subsetPoints(sphere), PointsNotEvaluated);
+    Eigen::VectorXd weights;
+    EXPECT_TRUE(follower.gestureWeights(sphere, f, weights));  // kept by the first step's delta pass
+    EXPECT_FALSE(follower.evaluate(scene, request)) << "step " << k;  // nothing changed, the same request
+  }
+  // An exact reader during the gesture: the waiting steps in one delta pass, now.
+  const std::uint64_t revision = follower.revision(sphere);
+  EXPECT_TRUE(follower.evaluate(scene));
+  EXPECT_EQ(follower.lastStats().deltaStages, 1);
+  EXPECT_EQ(follower.lastStats().deformedPoints, n);
+  EXPECT_EQ(follower.coverage(sphere), PointCoverage::Full);
+  EXPECT_GT(follower.revision(sphere), revision);
+  EXPECT_LE((follower.points(sphere) - exactNow()).cwiseAbs().maxCoeff(), 1e-13);
+  EXPECT_FALSE(follower.evaluate(scene, request));  // the full points cover a follower's request too
+  ASSERT_TRUE(follower.gestureMotion(sphere));  // the motion goes on from the same base
+  step(Eigen::Vector3d(0.01, 0.01, -0.02));
+  EXPECT_TRUE(follower.evaluate(scene, request));
+  EXPECT_EQ(follower.lastStats().waitingObjects, 1);
+  EXPECT_EQ(follower.coverage(sphere), PointCoverage::Motion);
+  // A second control point joins: the motion is no longer one control point's; evaluated.
+  control(g, 2) += 0.05;
+  step(Eigen::Vector3d(0.0, 0.02, 0.0));
+  EXPECT_TRUE(follower.evaluate(scene, request));
+  EXPECT_EQ(follower.lastStats().waitingObjects, 0);
+  EXPECT_EQ(follower.lastStats().deltaStages, 1);
+  EXPECT_EQ(follower.coverage(sphere), PointCoverage::Full);
+  ASSERT_TRUE(follower.gestureMotion(sphere));
+  EXPECT_EQ(follower.gestureMotion(sphere)->controlPoints.size(), 2u);
+  EXPECT_LE((follower.points(sphere) - exactNow()).cwiseAbs().maxCoeff(), 1e-13);
+  step(Eigen::Vector3d(0.0, 0.0, 0.01));
+  EXPECT_TRUE(follower.evaluate(scene, request));
+  EXPECT_EQ(follower.lastStats().waitingObjects, 0);
+  // The end of the gesture: exact, bit for bit what the deformer that evaluated every step gives.
+  follower.endGesture();
+  plain.endGesture();
+  EXPECT_TRUE(follower.evaluate(scene, request));
+  EXPECT_TRUE(plain.evaluate(scene));
+  EXPECT_EQ(follower.coverage(sphere), PointCoverage::Full);
+  EXPECT_TRUE(follower.points(sphere) == plain.points(sphere));
+  EXPECT_TRUE(follower.points(sphere) == exactNow());
+}
+
+// A followed motion that comes back to where the deformer last evaluated it (a drag that returns
+// to the position of its first step) is still that motion: a step there waits too (its delta pass
+// is empty), and a reader then finds the points of that first step, still following.
+TEST(SceneDeformer, AFollowedMotionBackAtItsLastEvaluatedPositionIsStillFollowed) {
+  Scene scene = sphereScene();
+  const auto lattice = attachNewLattice(scene, {"sphere"}, withCounts(4, 4, 4));
+  const ObjectId sphere = scene.objects().front().id;
+  SceneDeformer follower;
+  follower.evaluate(scene);
+  EvaluationRequest request;
+  request.followed.insert(sphere);
+  follower.beginGesture(lattice);
+  const Eigen::Index f = 2 + 4 * (1 + 4 * 2);
+  const Eigen::MatrixX3d rest = scene.widgets.controlPoints(lattice);
+  const auto moveTo = [&](double x) {
+    Eigen::MatrixX3d control = rest;
+    control(f, 0) += x;
+    scene.widgets.setControlPoints(lattice, control);
+    return follower.evaluate(scene, request);
+  };
+  EXPECT_TRUE(moveTo(0.1));  // the first step: evaluated
+  EXPECT_EQ(follower.lastStats().deltaStages, 1);
+  const Eigen::MatrixX3d first = follower.points(sphere);
+  for (const double x : {0.2, 0.1, 0.3, 0.1}) {
+    const std::uint64_t revision = follower.revision(sphere);
+    EXPECT_TRUE(moveTo(x));
+    EXPECT_EQ(follower.lastStats().waitingObjects, 1) << "at " << x;
+    EXPECT_GT(follower.revision(sphere), revision) << "at " << x;
+    ASSERT_TRUE(follower.gestureMotion(sphere));
+    EXPECT_EQ(follower.gestureMotion(sphere)->controlPoints, std::vector<Eigen::Index>{f});
+  }
+  const std::uint64_t revision = follower.revision(sphere);
+  EXPECT_TRUE(follower.evaluate(scene));  // a reader, with the motion back at the first step's position
+  EXPECT_GT(follower.revision(sphere), revision);  // the follower showed other positions since
+  EXPECT_TRUE(follower.points(sphere) == first);
+  ASSERT_TRUE(follower.gestureMotion(sphere));  // the same motion, from the same base
+  EXPECT_EQ(follower.gestureMotion(sphere)->controlPoints, std::vector<Eigen::Index>{f});
+  EXPECT_TRUE(moveTo(0.25));
+  EXPECT_EQ(follower.lastStats().waitingObjects, 1);
+  follower.endGesture();
+  EXPECT_TRUE(follower.evaluate(scene));
+  EXPECT_TRUE(follower.points(sphere) == deformScene(scene).at("sphere"));
+}
+
+// The end of a gesture whose last steps waited is exact too, and a followed object that moves
+// through another stage than its last (a parent lattice) is evaluated, not left waiting.
+TEST(SceneDeformer, AFollowedMotionWaitsOnlyForItsLastStageAndItsReleaseIsExact) {
+  Scene scene = readScene(kExamples / "hierarchy");
+  const SceneObject& object = scene.objects().at(0);
+  const ObjectId id = object.id;
+  const std::string name = object.name;
+  const auto parent = scene.widgets.find("parent");
+  const auto child = scene.widgets.find("child");
+  EvaluationRequest request;
+  request.followed.insert(id);
+  SceneDeformer follower;
+  follower.evaluate(scene);
+  follower.beginGesture(child);
+  Eigen::MatrixX3d control = scene.widgets.controlPoints(child);
+  for (int k = 1; k <= 3; ++k) {
+    control(0, 0) -= 0.05;
+    scene.widgets.setControlPoints(child, control);
+    EXPECT_TRUE(follower.evaluate(scene, request));
+    EXPECT_EQ(follower.lastStats().waitingObjects, k == 1 ? 0 : 1) << "step " << k;
+  }
+  follower.endGesture();
+  EXPECT_TRUE(follower.evaluate(scene, request));
+  EXPECT_EQ(follower.coverage(id), PointCoverage::Full);
+  EXPECT_TRUE(follower.points(id) == deformScene(scene).at(name));
+  // The parent moves during a gesture on the child: the child's input moved, no motion to follow.
+  follower.beginGesture(parent);
+  Eigen::MatrixX3d top = scene.widgets.controlPoints(parent);
+  for (int k = 1; k <= 2; ++k) {
+    top(top.rows() - 1, 2) += 0.05;
+    scene.widgets.setControlPoints(parent, top);
+    EXPECT_TRUE(follower.evaluate(scene, request));
+    EXPECT_EQ(follower.lastStats().waitingObjects, 0) << "step " << k;
+    EXPECT_EQ(follower.coverage(id), PointCoverage::Full);
+    EXPECT_LE((follower.points(id) - deformScene(scene).at(name)).cwiseAbs().maxCoeff(), 1e-12);
+  }
+  follower.endGesture();
+  EXPECT_TRUE(follower.evaluate(scene));
+  EXPECT_TRUE(follower.points(id) == deformScene(scene).at(name));
+}
+
 TEST(SceneDeformer, CylindricalLatticeEmbedsTheWholeCylinderIncludingItsAxis) {
   // EFFD (Fig. 6-11): the cylinder lies inside its cylindrical lattice, caps and axis included.
   const Scene scene = readScene(kExamples / "cylinder-twist");

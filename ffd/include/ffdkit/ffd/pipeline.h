@@ -145,6 +145,15 @@ class Pipeline {
   /// `total` of their progress; for a caller summing work over several pipelines.
   Eigen::Index pointsToEmbed(bool reembedAll = false) const;
 
+  /// True when the next update() would change no output but the last stage's, and that one by
+  /// deltas or not at all: the update mode is Delta, every stage's embedding is fresh for its
+  /// input, every stage but the last is current for its lattice (Deformer::isCurrentFor), the
+  /// last one is polynomial with the weights it last ran with (only control points may have
+  /// moved) and its output is points(). A caller that follows such
+  /// a motion itself (SceneDeformer, for a view that draws it without reading the points) may
+  /// leave the run for later: a later update() adds the deltas of every move since the last run at
+  /// once (Deformer::update(lattice) compares against the control points it last ran with).
+  bool onlyLastStageMovesByDeltas() const;
   /// Output of the last update() (the object points before the first update()).
   const Eigen::MatrixX3d& points() const;
   /// points(), handed over without a copy (for a caller done with the deformation). The pipeline

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <span>
 #include <stdexcept>
 
@@ -24,18 +25,32 @@ struct EvaluationRequest {
   /// object is evaluated in full and exactly); an object whose pipeline is new or changed
   /// (another mesh, another lattice tree) is evaluated in full whatever the request says.
   std::map<ObjectId, std::span<const Eigen::Index>> subsets;
+  /// Objects whose full points the caller does not read while a gesture moves them by one control
+  /// point of their last lattice stage: it follows that motion itself (SceneDeformer::gestureMotion
+  /// and gestureWeights; the view's normals and points, app/render/src/gesture_normals.h). During a
+  /// gesture, a step of such an object that moves the same one control point as its last
+  /// evaluated step did, and nothing else of it, is recorded without deforming its points (their
+  /// delta pass waits: PointCoverage::Motion); the first step of a motion, any other change and
+  /// every request that does not name the object evaluate its points (all the steps that waited
+  /// in one delta pass), and the gesture's end evaluates them exactly. An object also in `subsets`
+  /// is evaluated at its subset.
+  std::set<ObjectId> followed = {};
 };
 
 /// What an object's evaluated points cover after the last SceneDeformer evaluation.
 enum class PointCoverage {
   Full,   ///< every point: SceneDeformer::points() reads them
-  Subset  ///< only the points of a request's subset: SceneDeformer::subsetPoints() reads them
+  Subset,  ///< only the points of a request's subset: SceneDeformer::subsetPoints() reads them
+  /// only the motion of the points since their last evaluation, one control point's
+  /// (EvaluationRequest::followed): SceneDeformer::gestureMotion() reads it, the points wait
+  Motion
 };
 
 /// Thrown by SceneDeformer::points() (and takePoints()) for an object whose last evaluation
-/// covered only a requested subset of its points (PointCoverage::Subset): its full points are
-/// not up to date, so handing them out would be handing out stale data. Evaluate with a request
-/// that does not name the object (SceneDeformer::evaluate(scene)) before reading them.
+/// covered only a requested subset of its points (PointCoverage::Subset) or only their motion
+/// (PointCoverage::Motion): its full points are not up to date, so handing them out would be
+/// handing out stale data. Evaluate with a request that does not name the object
+/// (SceneDeformer::evaluate(scene)) before reading them.
 class PointsNotEvaluated : public std::logic_error {
  public:
   /// The error with `what`: the object and what to evaluate.

@@ -35,6 +35,9 @@ struct SceneDeformStats {
   /// Lattice stages updated by deltas (updateGesture): their points are exact to rounding only
   /// until finishGesture() or update() evaluates them in full.
   int deltaStages = 0;
+  /// Objects whose gesture step was recorded without deforming their points: their caller follows
+  /// the motion (EvaluationRequest::followed; coverage() is PointCoverage::Motion).
+  int waitingObjects = 0;
 };
 
 /// How an object's points moved during a gesture, when that motion is linear in a few control
@@ -68,7 +71,11 @@ using SceneProgress = std::function<bool(double fraction)>;
 /// evaluated at the requested points only (a view's level-of-detail proxy) and its full points
 /// wait, marked as such (coverage(), PointCoverage::Subset: points() throws PointsNotEvaluated
 /// rather than hand out stale points), until the gesture ends or a request that does not name it
-/// comes. update(),
+/// comes. An object the request says its caller follows (EvaluationRequest::followed: a view that
+/// moves its own copy of the points and normals along gestureMotion()) keeps its delta passes
+/// waiting while the gesture moves one control point of its last stage (PointCoverage::Motion:
+/// points() throws likewise); the next evaluation that reads its points adds them in one pass,
+/// and the gesture's end evaluates them exactly, as always. update(),
 /// updateGesture() and finishGesture() are the steps evaluate() chooses from, public for tests
 /// and the Python module's low-level deformer; application code calls evaluate() (a CTest check,
 /// SingleEvaluationPoint, greps for other calls). It notices new objects and lattices, changed
@@ -107,6 +114,10 @@ class SceneDeformer {
   /// a gesture, each object `request` names (EvaluationRequest::subsets) whose pipeline is built
   /// and unchanged in structure is evaluated at those points only (its own pipeline over them,
   /// built at the first such call and kept while the object's mesh, lattice tree and subset stay);
+  /// each object it names as followed (EvaluationRequest::followed) whose step moves only the one
+  /// control point of its last stage that its last evaluated step moved is not deformed: the step
+  /// is recorded (revision(), gestureMotion(); coverage() is PointCoverage::Motion) and its delta
+  /// pass waits for the next evaluation that reads the points;
   /// every other object, and every object outside a gesture, in full. Returns whether it
   /// evaluated. Throws as update(); after a throw the next call evaluates again.
   bool evaluate(const Scene& scene, const EvaluationRequest& request = {});
@@ -163,7 +174,8 @@ class SceneDeformer {
   /// last evaluation left them: a pure read (every evaluation that covers the object in full, a
   /// gesture's steps included, brings them up to date). @throws std::invalid_argument for an
   /// object update() has not seen; PointsNotEvaluated when the last evaluation covered only a
-  /// requested subset of its points (coverage() is PointCoverage::Subset).
+  /// requested subset of its points (coverage() is PointCoverage::Subset) or only their motion
+  /// (PointCoverage::Motion).
   const Eigen::MatrixX3d& points(ObjectId object) const;
   /// points() of the object that had this name at the last update.
   const Eigen::MatrixX3d& points(const std::string& object) const;
@@ -178,8 +190,9 @@ class SceneDeformer {
   Eigen::Index pointCount(ObjectId object) const;
   /// pointCount() of the object that had this name at the last update.
   Eigen::Index pointCount(const std::string& object) const;
-  /// What the object's evaluated points cover: Full (points() reads them) or, after an evaluation
-  /// at a requested subset during a gesture, Subset (subsetPoints() reads them).
+  /// What the object's evaluated points cover: Full (points() reads them), after an evaluation
+  /// at a requested subset during a gesture Subset (subsetPoints() reads them), or after a step
+  /// recorded for a caller that follows the motion, Motion (gestureMotion() reads it).
   /// @throws std::invalid_argument for an object update() has not seen.
   PointCoverage coverage(ObjectId object) const;
   /// The object's deformed points at the subset the last evaluation was asked for,
@@ -189,8 +202,9 @@ class SceneDeformer {
   const Eigen::MatrixX3d& subsetPoints(ObjectId object) const;
   /// The point indices subsetPoints() holds (increasing). @throws as subsetPoints().
   const std::vector<Eigen::Index>& subsetIndices(ObjectId object) const;
-  /// Grows whenever the object's evaluated points change (points(), or subsetPoints() while the
-  /// coverage is Subset): a view updates the object's arrays when it moved.
+  /// Grows whenever the object's evaluated points change (points(), subsetPoints() while the
+  /// coverage is Subset, the motion while it is Motion): a view updates the object's arrays when
+  /// it moved.
   /// @throws std::invalid_argument for an object update() has not seen.
   std::uint64_t revision(ObjectId object) const;
   /// revision() of the object that had this name at the last update.
@@ -219,8 +233,10 @@ class SceneDeformer {
   /// its last lattice stage (updateGesture), when they moved since by such steps only: then the
   /// motion is linear in the control points that moved (ffd::controlPointWeights) and a consumer
   /// can follow it (the view's vertex normals: one cross product per vertex instead of a pass over
-  /// the triangles). nullopt when the points are at their base (update(), finishGesture(), a
-  /// re-embedding, a change of another stage) or the object is unknown.
+  /// the triangles). Also the steps recorded without deforming the points (PointCoverage::Motion)
+  /// are such steps: the motion is the model's, however many of their delta passes wait.
+  /// nullopt when the points are at their base (update(), finishGesture(), a re-embedding, a
+  /// change of another stage) or the object is unknown.
   std::optional<GestureMotion> gestureMotion(ObjectId object) const;
   /// gestureMotion() of the object that had this name at the last update (nullopt for none).
   std::optional<GestureMotion> gestureMotion(const std::string& object) const;
