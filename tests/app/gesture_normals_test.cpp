@@ -1,6 +1,9 @@
 // The view's normal passes (app/render/src/gesture_normals.h) give the bits of their scalar
 // arithmetic in every vector form: exactNormals normalises a chunk of gathered sums four or eight
 // at a time, and its normals must be, bit for bit, the sums' normalised one by one as written here.
+// And a view that follows a drag asks the deformer to let its delta passes wait
+// (SceneView::evaluationRequest, EvaluationRequest::followed) and draws what it draws when the
+// deformer evaluates every step.
 #include <cmath>
 #include <limits>
 #include <random>
@@ -10,7 +13,10 @@
 #include <vtkFloatArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
+#include <vtkRenderer.h>
 
+#include "ffdkit/render/scene_view.h"
+#include "ffdkit/scenes/scene_deformer.h"
 #include "gesture_normals.h"
 #include "scene_view_shapes.h"
 
@@ -70,6 +76,83 @@ TEST(GestureNormals, ExactNormalsAreTheScalarNormalisationOfTheirSumsBitForBit) 
       EXPECT_LT((sums.row(i).cast<double>() - reference.row(i)).norm(), 1e-5 * size + 1e-30) << "vertex " << i;
     }
   }
+}
+
+// A sphere in a 4x4x4 lattice drawn in full by a view (no level of detail), its deformer
+// evaluated once per step: with the view's request (`follows`), or every object in full.
+struct ViewedDrag {
+  scenes::Scene scene;
+  scenes::SceneDeformer deformer;
+  vtkNew<vtkRenderer> renderer;
+  SceneView view{renderer};
+  widgets::WidgetId lattice;
+  scenes::ObjectId sphere;
+  bool follows;
+
+  explicit ViewedDrag(bool follows) : follows(follows) {
+    scenes::SceneObject object;
+    object.name = "sphere";
+    object.source = scenes::PrimitiveOptions{.kind = scenes::PrimitiveKind::Sphere, .resolution = 40};
+    object.mesh = scenes::buildObjectMesh(object.source, ".");
+    sphere = scene.addObject(std::move(object));
+    scenes::AttachOptions options;
+    options.counts = {4, 4, 4};
+    lattice = scenes::attachNewLattice(scene, {"sphere"}, options);
+    view.setLevelOfDetail(LevelOfDetail{.enabled = false});
+    deformer.evaluate(scene);
+    view.show(scene, deformer);
+  }
+  // One change evaluated and drawn, as the window's frame does.
+  void frame() {
+    deformer.evaluate(scene, follows ? view.evaluationRequest(scene, deformer) : scenes::EvaluationRequest{});
+    view.refresh(scene, deformer);
+  }
+  void moveControlPoint(Eigen::Index f, const Eigen::Vector3d& by) {
+    Eigen::MatrixX3d control = scene.widgets.controlPoints(lattice);
+    control.row(f) += by.transpose();
+    scene.widgets.setControlPoints(lattice, control);
+  }
+};
+
+TEST(GestureNormals, AFollowingViewLetsTheDeformersDeltaPassesWaitAndDrawsWhatAFullEvaluationDraws) {
+  ViewedDrag follower(true), plain(false);
+  const Eigen::Index f = 1 + 4 * (2 + 4 * 3), g = 2 + 4 * (1 + 4 * 3);
+  for (ViewedDrag* d : {&follower, &plain}) d->deformer.beginGesture(d->lattice);
+  const SceneViewStats before = follower.view.stats();
+  const auto sameDrawing = [&] {
+    return follower.view.objectPoints("sphere") == plain.view.objectPoints("sphere") &&
+           follower.view.objectNormals("sphere") == plain.view.objectNormals("sphere");
+  };
+  for (int step = 1; step <= 6; ++step) {
+    for (ViewedDrag* d : {&follower, &plain}) {
+      d->moveControlPoint(f, Eigen::Vector3d(0.03, -0.02, 0.04 * step));
+      d->frame();
+    }
+    // The first step reads the deformer's points (what the next ones follow from); the next ones
+    // the motion only, and the deformer leaves its delta pass for later.
+    EXPECT_EQ(follower.deformer.lastStats().waitingObjects, step == 1 ? 0 : 1) << "step " << step;
+    EXPECT_EQ(follower.deformer.coverage(follower.sphere),
+              step == 1 ? scenes::PointCoverage::Full : scenes::PointCoverage::Motion);
+    EXPECT_EQ(plain.deformer.lastStats().waitingObjects, 0);
+    EXPECT_EQ(follower.view.stats().followedNormals, before.followedNormals + step - 1) << "step " << step;
+    // Both views follow the same motion from the same first step: the same bits.
+    EXPECT_TRUE(sameDrawing()) << "step " << step;
+  }
+  // A second control point: the view recomputes from the deformer's points, which are evaluated.
+  for (ViewedDrag* d : {&follower, &plain}) {
+    d->moveControlPoint(g, Eigen::Vector3d(0.0, 0.05, 0.0));
+    d->frame();
+  }
+  EXPECT_EQ(follower.deformer.lastStats().waitingObjects, 0);
+  EXPECT_EQ(follower.deformer.coverage(follower.sphere), scenes::PointCoverage::Full);
+  EXPECT_LT((follower.deformer.points(follower.sphere) - plain.deformer.points(plain.sphere)).cwiseAbs().maxCoeff(), 1e-13);
+  // The release: exact, and drawn bit for bit as the view of the deformer that evaluated every step.
+  for (ViewedDrag* d : {&follower, &plain}) {
+    d->deformer.endGesture();
+    d->frame();
+  }
+  EXPECT_TRUE(follower.deformer.points(follower.sphere) == plain.deformer.points(plain.sphere));
+  EXPECT_TRUE(sameDrawing());
 }
 
 }  // namespace

@@ -223,7 +223,10 @@ void MainWindow::Impl::drawFrame() {
     // During a gesture the objects drawn as proxies at their proxies' points only (pinned objects
     // in full: their pins are drawn from the full mesh).
     scenes::EvaluationRequest request = sceneView->evaluationRequest(scene, deformer);
-    for (const ObjectPoint& pin : controller->pins()) request.subsets.erase(pin.object);
+    for (const ObjectPoint& pin : controller->pins()) {
+      request.subsets.erase(pin.object);
+      request.followed.erase(pin.object);
+    }
     if (deformer.evaluate(scene, request)) ++evaluations;
   } catch (const std::exception& e) {
     // A drag step or an undo whose result cannot be evaluated: said, and tried again at the

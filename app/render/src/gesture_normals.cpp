@@ -303,18 +303,23 @@ void exactNormals(const Eigen::MatrixX3i& triangles, const VertexFaces& vf, cons
 
 void GestureNormals::stopFollowing() { active_ = false; }
 
-bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::ObjectId object, vtkPoints* points,
-                            vtkFloatArray* normals) {
+bool GestureNormals::follows(const scenes::SceneDeformer& deformer, scenes::ObjectId object, vtkPoints* points,
+                             vtkFloatArray* normals) const {
   const Eigen::Index n = sums_.rows();
   if (!active_ || points->GetDataType() != VTK_FLOAT || points->GetNumberOfPoints() != n ||
       normals->GetNumberOfTuples() != n || normals->GetNumberOfComponents() != 3 || beta_.rows() != n ||
       motion_.rows() != n)
     return false;
   const std::optional<scenes::GestureMotion> motion = deformer.gestureMotion(object);
-  if (!motion || motion->controlPoints.size() != 1 || motion->baseRevision != baseRevision_ ||
-      motion->lattice != lattice_ || motion->controlPoints[0] != controlPoint_)
-    return false;
-  const Eigen::Vector3d now = motion->displacements.row(0).transpose();
+  return motion && motion->controlPoints.size() == 1 && motion->baseRevision == baseRevision_ &&
+         motion->lattice == lattice_ && motion->controlPoints[0] == controlPoint_;
+}
+
+bool GestureNormals::follow(const scenes::SceneDeformer& deformer, scenes::ObjectId object, vtkPoints* points,
+                            vtkFloatArray* normals) {
+  if (!follows(deformer, object, points, normals)) return false;
+  const Eigen::Index n = sums_.rows();
+  const Eigen::Vector3d now = deformer.gestureMotion(object)->displacements.row(0).transpose();
   // The points: x_v(t) = x_v(t') + beta_v (D(t) - D(t')) (gesture_normals.h: x_v(t) = x_v(0) + beta_v D(t)).
   const Eigen::Vector3f step = (now - shownDisplacement_).cast<float>();
   // The normals: N_v(t) = N_v(t0) + (D(t) - D(t0)) x W_v, normalised (+z for a zero sum, as exactNormals).

@@ -25,7 +25,11 @@
 // moved by beta_v times the step of D: 40 bytes read and 24 written, in one pass (eight vertices
 // at a time with AVX2, four with SSE; the normals with streaming stores, which do not read the
 // lines they overwrite), instead of a pass over the triangles, a gather over each vertex's
-// triangles and a conversion of the deformer's double points. The passes that gather over the
+// triangles and a conversion of the deformer's double points. Nor does the deformer move its own
+// double points at such a step: follows() tells SceneView::evaluationRequest that the view reads
+// only the motion, which names the object in scenes::EvaluationRequest::followed, and the
+// deformer's delta pass waits for a reader of the points (the release evaluates them exactly).
+// The passes that gather over the
 // triangles (exactNormals, the first step) normalise a chunk of gathered sums at a time the same
 // way; every form has the scalar arithmetic's bits.
 //
@@ -64,6 +68,13 @@ class GestureNormals {
   /// not float32 (then call update()).
   bool follow(const scenes::SceneDeformer& deformer, scenes::ObjectId object, vtkPoints* points,
               vtkFloatArray* normals);
+
+  /// Whether follow() would take the object's present motion (the one-control-point motion
+  /// update() last set up, `points` float32 and both arrays of its size): then the view does not
+  /// read the deformer's points at the next steps of that motion, and asks it to let their delta
+  /// passes wait (scenes::EvaluationRequest::followed).
+  bool follows(const scenes::SceneDeformer& deformer, scenes::ObjectId object, vtkPoints* points,
+               vtkFloatArray* normals) const;
 
   /// Writes `points` (the deformer's present points of `object`, #points x 3, whose triangles are
   /// `triangles`) into `drawn` as float32 relative to `origin` (object_arrays::setFloatPoints) and

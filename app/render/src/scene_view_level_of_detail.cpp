@@ -3,6 +3,9 @@
 
 #include "scene_view_impl.h"
 
+#include <vtkFloatArray.h>
+#include <vtkPointData.h>
+
 #include "object_arrays.h"
 
 namespace ffdkit::app {
@@ -33,7 +36,15 @@ scenes::EvaluationRequest SceneView::evaluationRequest(const scenes::Scene& scen
   if (!deformed.inGesture() || !impl_->sameObjects(scene)) return request;  // refresh() builds actors from full points
   for (auto& entry : impl_->objects) {
     impl_->prepareProxy(entry, scene.findObject(entry.id));
-    if (entry.proxy) request.subsets[entry.id] = entry.proxy->vertices();
+    if (entry.proxy) {
+      request.subsets[entry.id] = entry.proxy->vertices();
+      continue;
+    }
+    // Drawn in full and following a one-control-point drag (gesture_normals.h): the next steps
+    // read the motion only, and the deformer's delta passes over the full points may wait.
+    auto* normals = vtkFloatArray::SafeDownCast(entry.polyData->GetPointData()->GetNormals());
+    if (normals && !entry.comb && entry.gestureNormals.follows(deformed, entry.id, entry.polyData->GetPoints(), normals))
+      request.followed.insert(entry.id);
   }
   return request;
 }

@@ -120,8 +120,10 @@ class SceneView {
   void setMoving(bool moving);
   /// What the next refresh() reads of the deformer, for SceneDeformer::evaluate: during a gesture
   /// an object drawn as its proxy is read at the proxy's vertices only (EvaluationRequest::subsets),
-  /// so its evaluation costs the proxy's size and its full mesh waits for the gesture's end; every
-  /// other object in full. Builds the proxies the level of detail asks for first (as refresh()
+  /// so its evaluation costs the proxy's size and its full mesh waits for the gesture's end; an
+  /// object drawn in full whose normals follow a one-control-point drag (the steps after its
+  /// first) is named as followed (EvaluationRequest::followed: the view reads its motion only, and
+  /// the deformer's delta passes over its points wait); every other object in full. Builds the proxies the level of detail asks for first (as refresh()
   /// would). Asks for no subset when the drawn objects changed (refresh() then builds every actor
   /// from full points). The spans point into the view's proxies: valid until the next refresh().
   scenes::EvaluationRequest evaluationRequest(const scenes::Scene& scene, const scenes::SceneDeformer& deformed);
