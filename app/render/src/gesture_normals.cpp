@@ -71,6 +71,12 @@ struct FollowPass {
 };
 
 #if defined(__SSE2__)
+// How far ahead of the vertex it moves a follow pass asks for the float points it will read and
+// write: the processor's own prefetch follows the seven streams the pass only reads, not this
+// one it reads and writes back (a quarter of the pass's time at 1M vertices without the hint,
+// BM_DragStep). 256 vertices = 3 KB ahead, about a microsecond of the pass.
+constexpr Eigen::Index kPointsAhead = 256;
+
 // Four vertices' normals (x, y, z: one coordinate of four vertices each) as three interleaved
 // vectors (x0 y0 z0 x1) (y1 z1 x2 y2) (z2 x3 y3 z3), stored at o: with streaming stores when o is
 // 16-byte aligned (the normals are only written: no read of their old lines), else plain ones.
@@ -125,6 +131,7 @@ void followQuads(const FollowPass& pass, Eigen::Index q0, Eigen::Index q1, bool 
     storeNormalQuad(f.normals, i, vdx, vdy, vdz, stream);
     const __m128 b = _mm_loadu_ps(f.beta + i);
     float* p = f.xyz + 3 * i;
+    _mm_prefetch(reinterpret_cast<const char*>(p + 3 * kPointsAhead), _MM_HINT_T0);  // never faults, also past the end
     _mm_storeu_ps(p, _mm_add_ps(_mm_loadu_ps(p), _mm_mul_ps(_mm_shuffle_ps(b, b, _MM_SHUFFLE(1, 0, 0, 0)), s0)));
     _mm_storeu_ps(p + 4, _mm_add_ps(_mm_loadu_ps(p + 4), _mm_mul_ps(_mm_shuffle_ps(b, b, _MM_SHUFFLE(2, 2, 1, 1)), s1)));
     _mm_storeu_ps(p + 8, _mm_add_ps(_mm_loadu_ps(p + 8), _mm_mul_ps(_mm_shuffle_ps(b, b, _MM_SHUFFLE(3, 3, 3, 2)), s2)));
@@ -181,6 +188,7 @@ __attribute__((target("avx2"))) void followOctets(const FollowPass& pass, Eigen:
     storeNormalOctet(f.normals, i, vdx, vdy, vdz, stream);
     const __m256 b = _mm256_loadu_ps(f.beta + i);
     float* p = f.xyz + 3 * i;
+    _mm_prefetch(reinterpret_cast<const char*>(p + 3 * kPointsAhead), _MM_HINT_T0);  // never faults, also past the end
     _mm256_storeu_ps(p, _mm256_add_ps(_mm256_loadu_ps(p), _mm256_mul_ps(_mm256_permutevar8x32_ps(b, b0), s0)));
     _mm256_storeu_ps(p + 8, _mm256_add_ps(_mm256_loadu_ps(p + 8), _mm256_mul_ps(_mm256_permutevar8x32_ps(b, b1), s1)));
     _mm256_storeu_ps(p + 16, _mm256_add_ps(_mm256_loadu_ps(p + 16), _mm256_mul_ps(_mm256_permutevar8x32_ps(b, b2), s2)));
