@@ -16,7 +16,9 @@ namespace ffdkit::scenes {
 /// export, save, the CLI, Python). A view that draws a level-of-detail proxy of a large object
 /// while a gesture runs asks for that object at the proxy's points only, so that a drag step
 /// costs the proxy's size rather than the mesh's; the full mesh is evaluated once, exactly, when
-/// the gesture ends or when a request that does not name the object comes.
+/// the gesture ends or when a request that does not name the object comes. A view that follows a
+/// drag of one control point with its own copy of an object's points and normals names the object
+/// as followed, so that the deformer's delta passes over its full points wait the same way.
 struct EvaluationRequest {
   /// Objects read only at some of their points while a gesture runs (between
   /// SceneDeformer::beginGesture and endGesture), each with those points' indices: increasing,
@@ -39,7 +41,7 @@ struct EvaluationRequest {
 
 /// What an object's evaluated points cover after the last SceneDeformer evaluation.
 enum class PointCoverage {
-  Full,   ///< every point: SceneDeformer::points() reads them
+  Full,    ///< every point: SceneDeformer::points() reads them
   Subset,  ///< only the points of a request's subset: SceneDeformer::subsetPoints() reads them
   /// only the motion of the points since their last evaluation, one control point's
   /// (EvaluationRequest::followed): SceneDeformer::gestureMotion() reads it, the points wait
