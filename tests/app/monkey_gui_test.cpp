@@ -163,6 +163,16 @@ std::string firstDifference(const std::string& got, const std::string& want) {
   }
 }
 
+/// Whether the window shows every toolbar button and every menu title (none in an overflow).
+bool everyToolbarButtonAndMenuShown(MainWindow& w) {
+  for (QToolBar* bar : w.findChildren<QToolBar*>())
+    for (QAction* a : bar->actions())
+      if (QWidget* b = bar->widgetForAction(a); bar->isVisible() && a->isVisible() && (b == nullptr || !b->isVisible())) return false;
+  for (QAction* a : w.menuBar()->actions())
+    if (!w.menuBar()->rect().contains(w.menuBar()->actionGeometry(a))) return false;
+  return true;
+}
+
 /// Runs plan actions on a window with real events. `run` returns what the action aimed at
 /// ("glyph 'pull' axis 1 at (312, 240)") for the log.
 class Monkey {
@@ -555,8 +565,12 @@ class MonkeyGuiTest : public QObject {
     std::ofstream(files / "broken.obj") << "v 1 2\nf 1 2 9\n";
     std::ofstream(files / "broken.json") << "{\"format\": \"ffdkit-widgets\", \"widgets\": [";
 
-    auto w = openWindow(QSize(960, 720));
+    // A small window: under Xvfb every frame is drawn by Mesa's software renderer, the window's
+    // composition included, and its time goes with the pixels (960 x 720 took twice as long).
+    // The monkey still reaches everything: every toolbar button and menu title is shown.
+    auto w = openWindow(QSize(640, 480));
     QVERIFY(w);
+    QVERIFY2(everyToolbarButtonAndMenuShown(*w), "the monkey's window hides toolbar buttons or menu titles");
     DialogAnswerer answers(files, widgetFiles, meshFiles);
     Monkey monkey(*w);
     auto* timeline = w->findChild<app::TimelineWidget*>("timeline");
@@ -567,6 +581,10 @@ class MonkeyGuiTest : public QObject {
     const bool log = monkeyLog();
     QElapsedTimer clock;
     clock.start();
+    // Where the time goes, for the summary: the actions, the undo / redo walks, the view's renders.
+    qint64 walkMs = 0;
+    int renders = 0, walkRenders = 0;
+    connect(w->view(), &app::VtkViewWidget::aboutToRender, this, [&renders] { ++renders; });
 
     int index = 0, exact = 0, framesMoved = 0;
     double largestAfterFrames = 0.0;
@@ -625,9 +643,14 @@ class MonkeyGuiTest : public QObject {
       // starts from (scenes::applyAnimation): bound keyed widgets, turns that do not commute.
       const double tolerance = frameMoved ? kFrameMovedTolerance : 0.0;
       double largest = 0.0;
+      QElapsedTimer walkClock;
+      walkClock.start();
+      const int rendersBefore = renders;
       const std::string problem = undoRedoRoundTrip(*w, monkey, *timeline, frameMoved ? std::optional(startFrame) : std::nullopt,
                                                     frameMoved ? startAtFrame : start, tolerance, largest, log);
       (frameMoved ? framesMoved : exact) += 1;
+      walkMs += walkClock.elapsed();
+      walkRenders += renders - rendersBefore;
       if (problem.empty()) largestAfterFrames = std::max(largestAfterFrames, largest);
       if (log && frameMoved) std::cerr << "  largest difference from the file at its first frame: " << largest << std::endl;
       const std::string report = where + " (after action " + std::to_string(index - 1) + "): " + problem +
@@ -638,7 +661,8 @@ class MonkeyGuiTest : public QObject {
     std::cerr << "monkey: seed " << seed << ", " << count << " actions on " << plan.size() << " scene segments in "
               << clock.elapsed() / 1000.0 << " s; undo gave the file byte for byte after " << exact
               << " segments, and after " << framesMoved << " with frame changes the file at its first frame within "
-              << largestAfterFrames << " (relative)" << std::endl;
+              << largestAfterFrames << " (relative); undo / redo walks " << walkMs / 1000.0 << " s, "
+              << renders << " renders of the view (" << walkRenders << " in the walks)" << std::endl;
     w->close();
   }
 
