@@ -3,6 +3,7 @@
 //   BM_OpenFoamDeform/cells:64    deform its points with tests/data/openfoam/bulge.json (scenes::SceneDeformer)
 //   BM_OpenFoamDeformInPlace/cells:64  the same points in place (ffd::deformInPlace), as the CLI does
 //   BM_OpenFoamCheck/cells:64     the cell check (meshio/cell_quality.h)
+//   BM_OpenFoamCheckDeformed/cells:64  the cell check of the deformed points, as the CLI runs it
 //   BM_OpenFoamWrite/cells:64     write the case (points rewritten, the rest copied; durable)
 //   BM_OpenFoamCase/cells:64      all four, as the CLI runs them, deforming in place (also at 215^3
 //                                 cells, 10M points)
@@ -197,6 +198,15 @@ void BM_OpenFoamCheck(benchmark::State& state) {
   setCounters(state, n);
 }
 
+void BM_OpenFoamCheckDeformed(benchmark::State& state) {
+  const int n = cellsOf(state);
+  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(makeCube(n));
+  Eigen::MatrixX3d points = mesh.points;
+  ffd::deformInPlace(toolLattice(tool()), points);
+  for (auto _ : state) benchmark::DoNotOptimize(meshio::checkPolyMeshCells(points, mesh.cells).minVolume);
+  setCounters(state, n);
+}
+
 void BM_OpenFoamWrite(benchmark::State& state) {
   const int n = cellsOf(state);
   const fs::path root = makeCube(n);
@@ -237,6 +247,7 @@ BENCHMARK(BM_OpenFoamRead)->Apply(sizes);
 BENCHMARK(BM_OpenFoamDeform)->Apply(sizes);
 BENCHMARK(BM_OpenFoamDeformInPlace)->Apply(sizes);
 BENCHMARK(BM_OpenFoamCheck)->Apply(sizes);
+BENCHMARK(BM_OpenFoamCheckDeformed)->Apply(sizes);
 BENCHMARK(BM_OpenFoamWrite)->Apply(sizes);
 BENCHMARK(BM_OpenFoamCase)->Apply(sizes);
 // The 10M-point case (215^3 cells, 10,077,696 points), the whole run only, one pass per repetition.

@@ -22,19 +22,22 @@ namespace detail {
 void quadGeometryLanes(const double* x, const double* y, const double* z, int stride, int count, double* cx, double* cy,
                        double* cz, double* ax, double* ay, double* az);
 
-// Faces to check, one per lane: each face's centre and area vector, its two cells' centres and,
-// for a quadrilateral, its four points in; its two pyramids, the cosine of its non-orthogonality
-// and (an internal quadrilateral's) skewness out (faceCheckLanes).
+// Faces to check, one per lane: each face's centre and area vector and its two cells' centres in;
+// its two pyramids, the cosine of its non-orthogonality and what its skewness needs besides its
+// points out (faceCheckLanes).
 struct FaceCheckLanes {
   static constexpr int kLanes = 64;  // a few KiB per array: the lanes stay in the L1 cache while they fill
   double fcx[kLanes], fcy[kLanes], fcz[kLanes];  // the face's centre
   double fax[kLanes], fay[kLanes], faz[kLanes];  // its area vector
   double ocx[kLanes], ocy[kLanes], ocz[kLanes];  // its owner's centre
   double ncx[kLanes], ncy[kLanes], ncz[kLanes];  // its neighbour's centre (a boundary face: the owner's)
-  double px[4][kLanes], py[4][kLanes], pz[4][kLanes];  // a quadrilateral's points (another face: its centre)
-  double ownPyramid[kLanes], neiPyramid[kLanes], cosine[kLanes], skewness[kLanes];
+  double ownPyramid[kLanes], neiPyramid[kLanes], cosine[kLanes];
+  // An internal face's skewness is svNorm / max(spread, |svHat . (point - centre)| over its points),
+  // at most skewnessBound = svNorm / spread.
+  double hx[kLanes], hy[kLanes], hz[kLanes];  // svHat
+  double svNorm[kLanes], spread[kLanes], skewnessBound[kLanes];
   std::int64_t face[kLanes];
-  bool quadInside[kLanes];  // an internal quadrilateral: `skewness` is its skewness
+  bool quadInside[kLanes];  // an internal quadrilateral: the fields above give its skewness
   int count = 0;
 };
 void faceCheckLanes(FaceCheckLanes& lanes);
@@ -164,8 +167,8 @@ struct FaceLanes {
 
 // Puts face f, of geometry `g`, in the next lane of `lanes` (which has room) with its owner's
 // centre and, for an internal face, its neighbour's (3 doubles each).
-void addFaceCheck(detail::FaceCheckLanes& lanes, const PointColumns& p, const MeshLabels& m, std::int64_t f,
-                  const FaceGeometry& g, const double* own, const double* nei) {
+void addFaceCheck(detail::FaceCheckLanes& lanes, const MeshLabels& m, std::int64_t f, const FaceGeometry& g,
+                  const double* own, const double* nei) {
   const int l = lanes.count++;
   lanes.face[l] = f;
   lanes.fcx[l] = g.centre.x(), lanes.fcy[l] = g.centre.y(), lanes.fcz[l] = g.centre.z();
@@ -174,16 +177,20 @@ void addFaceCheck(detail::FaceCheckLanes& lanes, const PointColumns& p, const Me
   if (nei == nullptr) nei = own;
   lanes.ncx[l] = nei[0], lanes.ncy[l] = nei[1], lanes.ncz[l] = nei[2];
   lanes.quadInside[l] = nei != own && m.sizeOf(f) == 4;
-  if (lanes.quadInside[l]) {
-    const Labels v = m.pointsOf(f);
-    for (int k = 0; k < 4; ++k) {
-      lanes.px[k][l] = p.x[v[k]];
-      lanes.py[k][l] = p.y[v[k]];
-      lanes.pz[k][l] = p.z[v[k]];
-    }
-  } else {
-    for (int k = 0; k < 4; ++k) lanes.px[k][l] = g.centre.x(), lanes.py[k][l] = g.centre.y(), lanes.pz[k][l] = g.centre.z();
+}
+
+// The skewness of the internal quadrilateral f in lane l, from the kernel's part and the face's
+// points: the last step of faceSkewness, in its operations and order.
+double quadSkewness(const detail::FaceCheckLanes& L, int l, const PointColumns& p, const MeshLabels& m,
+                    std::int64_t f) {
+  const Labels v = m.pointsOf(f);
+  double fd = L.spread[l];
+  for (int k = 0; k < 4; ++k) {
+    const std::int32_t i = v[k];
+    const double qx = p.x[i] - L.fcx[l], qy = p.y[i] - L.fcy[l], qz = p.z[i] - L.fcz[l];
+    fd = std::max(fd, std::abs(L.hx[l] * qx + L.hy[l] * qy + L.hz[l] * qz));
   }
+  return L.svNorm[l] / fd;
 }
 
 // checkMesh's skewness of a face (OpenFOAM source, primitiveMeshTools.C, faceSkewness and
@@ -270,12 +277,14 @@ __attribute__((target_clones("avx2", "default"))) void quadGeometryLanes(
 }
 
 // checkMesh's face checks of `lanes.count` faces, one face per lane: the pyramids and the cosine
-// as OpenFOAM computes them (primitiveMeshCheck.C), an internal face's skewness as faceSkewness
-// does, in the same operations and order as the Eigen expressions they were written with before
-// (a dot product and a squared norm add their terms from the first): each lane's results are bit
-// for bit those. A boundary face's cosine and skewness, and the skewness of a face that is not a
-// quadrilateral, are computed but not used (faceSkewness gives them). Compiled as
-// quadGeometryLanes is, for the compiler to vectorise across lanes.
+// as OpenFOAM computes them (primitiveMeshCheck.C), and of an internal face's skewness all that
+// faceSkewness computes before it reads the face's points (svHat, |sv|, the spread term) and the
+// bound that those give, in the same operations and order as the Eigen expressions they were
+// written with before (a dot product and a squared norm add their terms from the first): each
+// lane's results are bit for bit those, and quadSkewness ends the skewness as faceSkewness does.
+// A boundary face's cosine and skewness terms, and those of a face that is not a quadrilateral,
+// are computed but not used (faceSkewness gives them). Compiled as quadGeometryLanes is, for the
+// compiler to vectorise across lanes.
 __attribute__((target_clones("avx2", "default"))) void faceCheckLanes(FaceCheckLanes& lanes) {
   FaceCheckLanes& __restrict L = lanes;
   const int count = L.count;
@@ -298,14 +307,13 @@ __attribute__((target_clones("avx2", "default"))) void faceCheckLanes(FaceCheckL
     const double sx = cx - t * dx, sy = cy - t * dy, sz = cz - t * dz;
     const double svNorm = std::sqrt(sx * sx + sy * sy + sz * sz);
     const double svScale = svNorm + kRootVerySmall;
-    const double hx = sx / svScale, hy = sy / svScale, hz = sz / svScale;
-    double fd = 0.2 * dNorm + kRootVerySmall;
-#pragma GCC unroll 4
-    for (int k = 0; k < 4; ++k) {
-      const double qx = L.px[k][l] - fcx, qy = L.py[k][l] - fcy, qz = L.pz[k][l] - fcz;
-      fd = std::max(fd, std::abs(hx * qx + hy * qy + hz * qz));
-    }
-    L.skewness[l] = svNorm / fd;
+    L.hx[l] = sx / svScale, L.hy[l] = sy / svScale, L.hz[l] = sz / svScale;
+    const double spread = 0.2 * dNorm + kRootVerySmall;
+    L.svNorm[l] = svNorm;
+    L.spread[l] = spread;
+    // max() of the spread and more is at least the spread, and a division by a larger positive
+    // number rounds to no more: the skewness is at most this.
+    L.skewnessBound[l] = svNorm / spread;
   }
 }
 
@@ -480,8 +488,12 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
         share.minCosine = std::min(share.minCosine, lanes.cosine[l]);
         share.sumCosines += lanes.cosine[l];
       }
-      double skewness = lanes.skewness[l];
-      if (!lanes.quadInside[l]) {
+      // The largest skewness is all the result keeps of them: a face whose bound is no more than
+      // the largest so far cannot change it, and its points are not read again.
+      double skewness = 0.0;
+      if (lanes.quadInside[l]) {
+        if (!(lanes.skewnessBound[l] <= share.maxSkewness)) skewness = quadSkewness(lanes, l, p, m, f);
+      } else {
         const Eigen::Vector3d ownCentre(lanes.ocx[l], lanes.ocy[l], lanes.ocz[l]);
         const Eigen::Vector3d neiCentre(lanes.ncx[l], lanes.ncy[l], lanes.ncz[l]);
         skewness = faceSkewness(p, m, f, {{lanes.fcx[l], lanes.fcy[l], lanes.fcz[l]}, {lanes.fax[l], lanes.fay[l], lanes.faz[l]}},
@@ -494,7 +506,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
   // Face f, of geometry `g`, to check with the next faces (its cells' centres are known).
   auto checkFace = [&](detail::FaceCheckLanes& lanes, std::int64_t f, const FaceGeometry& g, FaceShare& share) {
     if (lanes.count == detail::FaceCheckLanes::kLanes) checkFaces(lanes, share);
-    addFaceCheck(lanes, p, m, f, g, centres.row(Eigen::Index(owner[f])).data(),
+    addFaceCheck(lanes, m, f, g, centres.row(Eigen::Index(owner[f])).data(),
                  f < internal ? centres.row(Eigen::Index(neighbour[f])).data() : nullptr);
   };
 

@@ -228,6 +228,26 @@ TEST(CellQualitySweeps, TrianglesAndPentagonsAgreeWithOpenFoamsOwnComputation) {
   expectAgrees(reference(wild, c.cells), folded);
 }
 
+// The check reads a face's points again for its skewness only where the skewness could exceed the
+// largest so far: one point moved in a regular cube, far into the last sweep, makes the few faces
+// around it the most skewed, and the largest skewness is still theirs.
+TEST(CellQualitySweeps, OneMovedPointInARegularCubeGivesTheLargestSkewness) {
+  const Cube c = cube(kCells);
+  const CellQuality regular = checkPolyMeshCells(c.points, c.cells);
+  EXPECT_LT(regular.maxSkewness, 1e-12);
+  Eigen::MatrixX3d moved = c.points;
+  const int m = kCells + 1, i = kCells - 3, j = kCells - 4, k = kCells - 5;
+  moved.row(i + m * (j + m * k)) += Eigen::RowVector3d(0.3, 0.2, -0.1) / kCells;
+  const CellQuality one = checkPolyMeshCells(moved, c.cells);
+  EXPECT_GT(one.maxSkewness, 0.05);
+  EXPECT_TRUE(one.ok());
+  // (expectAgrees would also compare the total volume, whose 157,464 equal terms the reference
+  // adds in another order: about 1e-12 apart here.)
+  const CellQuality expected = reference(moved, c.cells);
+  EXPECT_NEAR(one.maxSkewness, expected.maxSkewness, 1e-7 * expected.maxSkewness);
+  EXPECT_NEAR(one.maxNonOrthogonality, expected.maxNonOrthogonality, 1e-7);
+}
+
 TEST(CellQualitySweeps, ResultsDoNotDependOnTheThreadCountOrTheCellNumbering) {
   Cube c = cube(kCells);
   const Eigen::MatrixX3d points = jittered(c.points, 0.55 / kCells, 3);
