@@ -4,17 +4,17 @@
 #include <gtest/gtest.h>
 
 #include "ffdkit/interaction/cell_from_selection.h"
+#include "edit_test_document.h"
 
 namespace ffdkit::app {
 namespace {
+using test::f;
 
 using widgets::CellKind;
 using widgets::CellSpec;
 using Indices = std::vector<Eigen::Index>;
 
 const Eigen::Vector3i n333(3, 3, 3);
-// Flat index of (i, j, k) in a 3x3x3 lattice.
-Eigen::Index f(int i, int j, int k) { return i + 3 * (j + 3 * k); }
 
 TEST(CellFromSelection, EachKindFromItsPoints) {
   EXPECT_EQ(classifySelection(n333, {f(2, 2, 0)}), CellSpec::point(2, 2, 0));

@@ -5,9 +5,11 @@
 #include <numbers>
 
 #include "ffdkit/interaction/modal_transform.h"
+#include "edit_test_document.h"
 
 namespace ffdkit::app {
 namespace {
+using test::kView;
 
 using std::numbers::pi;
 
@@ -18,8 +20,6 @@ widgets::Ray down(double x, double y) {
   r.direction = {0.0, 0.0, -1.0};
   return r;
 }
-const Eigen::Vector3d kView(0.0, 0.0, -1.0);
-
 TEST(ModalTransform, FreeMoveFollowsThePointerInTheViewPlane) {
   ModalTransform t(TransformMode::Move, {1, 1, 0}, down(1.2, 1.0), kView);
   const Eigen::Affine3d m = t.motion(down(1.5, 0.7), false);

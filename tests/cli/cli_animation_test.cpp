@@ -13,10 +13,6 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kDefault = fs::path(FFDKIT_SOURCE_DIR) / "scenes" / "examples" / "default";
 
-double maxDifference(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) {
-  return a.rows() == b.rows() ? (a - b).cwiseAbs().maxCoeff() : 1e300;
-}
-
 TEST(CliAnimation, DeformAtAFrameWritesTheAnimatedPoints) {
   TempDir dir;
   const fs::path out = dir / "mesh.vtp";

@@ -17,7 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kSource = FFDKIT_SOURCE_DIR;
 const fs::path kTool = kSource / "widgets" / "examples" / "fig6-8.json";
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }

@@ -11,8 +11,6 @@ namespace ffdkit::cli::test {
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kSource = FFDKIT_SOURCE_DIR;
-
 TEST(CliRender, WritesAPngWithTheObjectsPixels) {
   TempDir dir;
   const fs::path scene = kSource / "scenes" / "examples" / "default";
@@ -70,15 +68,6 @@ TEST(CliPlot, ANonCurveObjectOrUnknownGeneratorIsAClearError) {
   EXPECT_EQ(malformed.exitCode, 1) << describe(malformed);
   EXPECT_NE(malformed.err.find("bad.json:2:"), std::string::npos) << malformed.err;
   EXPECT_FALSE(fs::exists(dir / "p.png"));
-}
-
-bool orange(const Eigen::Vector3i& c) { return c.x() > 180 && c.y() > 60 && c.y() < 160 && c.z() < 90; }
-bool blue(const Eigen::Vector3i& c) { return c.z() > 170 && c.x() < 100 && c.y() < 150; }
-int countPixels(const PngImage& image, bool (*match)(const Eigen::Vector3i&)) {
-  int n = 0;
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) n += match(image.rgb(x, y)) ? 1 : 0;
-  return n;
 }
 
 TEST(CliPlot, PlotsEveryGeneratedCurveOfTheSampleScenesAndRefusesSurfaces) {

@@ -9,9 +9,12 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 namespace ffdkit::cli::test {
 
@@ -20,6 +23,16 @@ struct CliResult {
   std::string out;  ///< stdout
   std::string err;  ///< stderr
 };
+
+/// The source tree and its sample widget files.
+inline const std::filesystem::path kSource = FFDKIT_SOURCE_DIR;
+inline const std::filesystem::path kWidgetExamples = kSource / "widgets" / "examples";
+
+/// The largest coordinate difference of two point sets (infinity when their counts differ).
+inline double maxDifference(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) {
+  if (a.rows() != b.rows()) return std::numeric_limits<double>::infinity();
+  return (a - b).cwiseAbs().maxCoeff();
+}
 
 inline std::string readText(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -17,7 +17,6 @@ namespace {
 namespace fs = std::filesystem;
 using scenes::MeshData;
 
-const fs::path kWidgetExamples = fs::path(FFDKIT_SOURCE_DIR) / "widgets" / "examples";
 const fs::path kSceneExamples = fs::path(FFDKIT_SOURCE_DIR) / "scenes" / "examples";
 
 /// A closed UV sphere of radius 1 about the origin (rings x 2 rings quads), outward triangles.

@@ -19,9 +19,6 @@ namespace {
 namespace fs = std::filesystem;
 using scenes::MeshData;
 
-const fs::path kSource = FFDKIT_SOURCE_DIR;
-const fs::path kWidgetExamples = kSource / "widgets" / "examples";
-
 /// A sphere of `resolution` inside the unit box (where the example tools' lattices lie).
 MeshData sphere(int resolution = 16, bool normals = false) {
   scenes::PrimitiveOptions options;
@@ -46,11 +43,6 @@ Eigen::MatrixX3d libraryDeform(const widgets::WidgetModel& model, const MeshData
   scene.addObject(object);
   for (auto root : model.roots()) scene.attach(root, "input");
   return scenes::deformScene(scene).at("input");
-}
-
-double maxDifference(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) {
-  if (a.rows() != b.rows()) return std::numeric_limits<double>::infinity();
-  return (a - b).cwiseAbs().maxCoeff();
 }
 
 TEST(Cli, HelpListsEveryCommandAndEachCommandHasHelp) {

@@ -12,6 +12,9 @@ namespace {
 
 using cli::test::PngImage;
 using cli::test::TempDir;
+using cli::test::blue;
+using cli::test::countPixels;
+using cli::test::orange;
 
 /// A helix of radius r and pitch 2 pi c: curvature r / (r^2 + c^2), torsion c / (r^2 + c^2).
 scenes::CurvatureProfile helix(double r, double c, int samples) {
@@ -37,16 +40,6 @@ scenes::CurvatureProfile clothoid(int samples) {
   p.curvature = 1.5 * p.arcLength;
   return p;
 }
-
-int countPixels(const PngImage& image, bool (*match)(const Eigen::Vector3i&)) {
-  int n = 0;
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) n += match(image.rgb(x, y)) ? 1 : 0;
-  return n;
-}
-
-bool orange(const Eigen::Vector3i& c) { return c.x() > 180 && c.y() > 60 && c.y() < 160 && c.z() < 90; }
-bool blue(const Eigen::Vector3i& c) { return c.z() > 170 && c.x() < 100 && c.y() < 150; }
 
 TEST(CurvePlot, DrawsCurvatureAndTorsionOfASpaceCurve) {
   TempDir dir;

@@ -22,8 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-const fs::path kSource = FFDKIT_SOURCE_DIR;
-
 // A sheet of side x side points (two triangles per square) inside fig6-8's unit box.
 meshio::MeshData sheet(int side) {
   meshio::MeshData mesh;

@@ -35,4 +35,16 @@ inline PngImage readPng(const std::filesystem::path& path) {
   return image;
 }
 
+/// The sample scenes' orange (objects) and blue (widgets) as the renderer draws them.
+inline bool orange(const Eigen::Vector3i& c) { return c.x() > 180 && c.y() > 60 && c.y() < 160 && c.z() < 90; }
+inline bool blue(const Eigen::Vector3i& c) { return c.z() > 170 && c.x() < 100 && c.y() < 150; }
+
+/// How many pixels of `image` `match` accepts.
+inline int countPixels(const PngImage& image, bool (*match)(const Eigen::Vector3i&)) {
+  int n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) n += match(image.rgb(x, y)) ? 1 : 0;
+  return n;
+}
+
 }  // namespace ffdkit::cli::test

@@ -34,7 +34,7 @@ struct RefAxis {
   std::vector<Real> knots;  // B-spline: clamped uniform on [0, 1]
 };
 
-Real binomial(int n, int k) {
+Real referenceBinomial(int n, int k) {
   Real c = 1;
   for (int i = 1; i <= k; ++i) c = c * (n - k + i) / i;
   return c;
@@ -52,7 +52,7 @@ Real coxDeBoor(const std::vector<Real>& t, int i, int p, Real u) {
 }
 
 Real refBasis(const RefAxis& a, int i, Real u) {
-  if (a.bernstein) return binomial(a.count - 1, i) * std::pow(u, Real(i)) * std::pow(1 - u, Real(a.count - 1 - i));
+  if (a.bernstein) return referenceBinomial(a.count - 1, i) * std::pow(u, Real(i)) * std::pow(1 - u, Real(a.count - 1 - i));
   return coxDeBoor(a.knots, i, a.degree, u);
 }
 

@@ -34,14 +34,14 @@ const char* const kTwoTets =
     "$EndElements\n"
     "$NodeData\n1\n\"t\"\n0\n3\n0\n1\n5\n10 1\n11 2\n12 3\n13 4\n14 5\n$EndNodeData\n";
 
-GmshMesh read(std::string bytes, ReadLimits limits = {}) {
+GmshMesh readTwoTets(std::string bytes, ReadLimits limits = {}) {
   ReadBudget budget(limits);
   return readGmsh(std::move(bytes), "two.msh", budget);
 }
 
-std::string errorOf(const std::string& bytes) {
+std::string gmshErrorOf(const std::string& bytes) {
   try {
-    read(bytes);
+    readTwoTets(bytes);
   } catch (const MeshIoError& e) {
     return e.what();
   }
@@ -74,7 +74,7 @@ std::string binaryTwoTets() {
 }
 
 TEST(Gmsh, ReadsNodesElementsAndTags) {
-  const GmshMesh mesh = read(kTwoTets);
+  const GmshMesh mesh = readTwoTets(kTwoTets);
   ASSERT_EQ(mesh.points.rows(), 5);
   EXPECT_EQ(mesh.nodeTags, (std::vector<std::int64_t>{10, 11, 12, 13, 14}));
   EXPECT_EQ(mesh.points.row(3), Eigen::RowVector3d(0, 0, 1));  // parametric u, v not taken as coordinates
@@ -92,9 +92,9 @@ TEST(Gmsh, ReadsNodesElementsAndTags) {
 }
 
 TEST(Gmsh, PassThroughGivesBackEveryByte) {
-  const GmshMesh mesh = read(kTwoTets);
+  const GmshMesh mesh = readTwoTets(kTwoTets);
   EXPECT_EQ(gmshBytes(mesh.file, mesh.points), kTwoTets);
-  const GmshMesh binary = read(binaryTwoTets());
+  const GmshMesh binary = readTwoTets(binaryTwoTets());
   EXPECT_TRUE(binary.file.binary);
   EXPECT_EQ(binary.points, mesh.points);
   EXPECT_EQ(binary.cells.corners, mesh.cells.corners);
@@ -103,12 +103,12 @@ TEST(Gmsh, PassThroughGivesBackEveryByte) {
 
 TEST(Gmsh, MovedNodesReadBackAndNothingElseChanges) {
   for (const std::string& original : {std::string(kTwoTets), binaryTwoTets()}) {
-    const GmshMesh mesh = read(original);
+    const GmshMesh mesh = readTwoTets(original);
     Eigen::MatrixX3d moved = mesh.points;
     moved.row(4) << 1.25, 0.1 / 3.0, -2e-300;
     moved(0, 0) = -0.5;
     const std::string written = gmshBytes(mesh.file, moved);
-    const GmshMesh again = read(written);
+    const GmshMesh again = readTwoTets(written);
     EXPECT_EQ(again.points, moved);
     EXPECT_EQ(again.cells.corners, mesh.cells.corners);
     EXPECT_EQ(again.elementsByType, mesh.elementsByType);
@@ -120,7 +120,7 @@ TEST(Gmsh, MovedNodesReadBackAndNothingElseChanges) {
 }
 
 TEST(Gmsh, ParametricCoordinatesStayAsTheyWere) {
-  const GmshMesh mesh = read(kTwoTets);
+  const GmshMesh mesh = readTwoTets(kTwoTets);
   Eigen::MatrixX3d moved = mesh.points;
   moved.row(2) << 7, 8, 9;
   const std::string written = gmshBytes(mesh.file, moved);
@@ -134,29 +134,29 @@ TEST(Gmsh, BadFilesGiveClearMessages) {
     return text.replace(at, from.size(), to);
   };
   const std::string good = kTwoTets;
-  EXPECT_NE(errorOf(replaced(good, "4.1 0 8", "2.2 0 8")).find("two.msh:2: $MeshFormat: version '2.2' is not supported"),
+  EXPECT_NE(gmshErrorOf(replaced(good, "4.1 0 8", "2.2 0 8")).find("two.msh:2: $MeshFormat: version '2.2' is not supported"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced(good, "2 5 10 14", "2 5000000000 10 14")).find("5000000000 nodes need at least"),
+  EXPECT_NE(gmshErrorOf(replaced(good, "2 5 10 14", "2 5000000000 10 14")).find("5000000000 nodes need at least"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced(good, "5 11 14 12 13", "5 11 99 12 13")).find("element 5: node 99 is not in $Nodes"),
+  EXPECT_NE(gmshErrorOf(replaced(good, "5 11 14 12 13", "5 11 99 12 13")).find("element 5: node 99 is not in $Nodes"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced(good, "1 1 1 1 1\n", "1 nan 1 1 1\n")).find("two.msh:27: $Nodes: node coordinates: non-finite"),
+  EXPECT_NE(gmshErrorOf(replaced(good, "1 1 1 1 1\n", "1 nan 1 1 1\n")).find("two.msh:27: $Nodes: node coordinates: non-finite"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced(good, "\n13\n14\n", "\n13\n13\n")).find("node tag 13 appears twice"), std::string::npos);
-  EXPECT_NE(errorOf(replaced(good, "3 1 4 2", "2 1 4 2")).find("element type 4 has dimension 3, its entity 2"),
+  EXPECT_NE(gmshErrorOf(replaced(good, "\n13\n14\n", "\n13\n13\n")).find("node tag 13 appears twice"), std::string::npos);
+  EXPECT_NE(gmshErrorOf(replaced(good, "3 1 4 2", "2 1 4 2")).find("element type 4 has dimension 3, its entity 2"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced(good, "3 1 4 2", "3 1 77 2")).find("element type 77 is not one this reader knows"),
+  EXPECT_NE(gmshErrorOf(replaced(good, "3 1 4 2", "3 1 77 2")).find("element type 77 is not one this reader knows"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced(good, "$EndElements", "$EndElement")).find("expected $EndElements"), std::string::npos);
-  EXPECT_NE(errorOf(good.substr(0, good.find("$Elements"))).find("no $Elements section"), std::string::npos);
-  EXPECT_NE(errorOf("ply\n").find("must start with $MeshFormat"), std::string::npos);
+  EXPECT_NE(gmshErrorOf(replaced(good, "$EndElements", "$EndElement")).find("expected $EndElements"), std::string::npos);
+  EXPECT_NE(gmshErrorOf(good.substr(0, good.find("$Elements"))).find("no $Elements section"), std::string::npos);
+  EXPECT_NE(gmshErrorOf("ply\n").find("must start with $MeshFormat"), std::string::npos);
   const std::string binary = binaryTwoTets();
   for (std::size_t cut : {std::size_t(30), binary.find("$Nodes") + 20, binary.find("$Nodes") + 100, binary.find("$Elements") + 60})
-    EXPECT_NE(errorOf(binary.substr(0, cut)).find("two.msh"), std::string::npos) << cut;
-  EXPECT_NE(errorOf(binary.substr(0, binary.find("$Nodes") + 100)).find("$Nodes: 5 nodes need at least 32 bytes"),
+    EXPECT_NE(gmshErrorOf(binary.substr(0, cut)).find("two.msh"), std::string::npos) << cut;
+  EXPECT_NE(gmshErrorOf(binary.substr(0, binary.find("$Nodes") + 100)).find("$Nodes: 5 nodes need at least 32 bytes"),
             std::string::npos);
   // A binary file's messages name byte offsets, not lines.
-  EXPECT_NE(errorOf(binary.substr(0, binary.find("$Nodes") + 100)).find("two.msh: byte offset "), std::string::npos);
+  EXPECT_NE(gmshErrorOf(binary.substr(0, binary.find("$Nodes") + 100)).find("two.msh: byte offset "), std::string::npos);
 }
 
 // A binary file of `n` nodes (tags 1..n at (i, i^2 mod 7, -i)) and n - 3 tetrahedra on nodes
@@ -189,7 +189,7 @@ void poke(std::string& bytes, std::size_t offset, auto value) { std::memcpy(byte
 TEST(Gmsh, LargeBinaryBlocksReadInEitherByteOrderAndNameTheFirstBadRecord) {
   const std::uint64_t n = 100'000;
   for (bool big : {false, true}) {
-    const GmshMesh mesh = read(binaryChain(n, big));
+    const GmshMesh mesh = readTwoTets(binaryChain(n, big));
     ASSERT_EQ(mesh.points.rows(), Eigen::Index(n));
     ASSERT_EQ(mesh.cells.cellCount(), std::int64_t(n - 3));
     bool same = true;
@@ -208,30 +208,30 @@ TEST(Gmsh, LargeBinaryBlocksReadInEitherByteOrderAndNameTheFirstBadRecord) {
   std::string bad = good;
   poke(bad, elements + 40 * 70'000 + 16, std::uint64_t(n + 5));
   poke(bad, elements + 40 * 20'000 + 24, std::uint64_t(n + 9));
-  EXPECT_NE(errorOf(bad).find("element 20001: node 100009 is not in $Nodes (byte offset " +
+  EXPECT_NE(gmshErrorOf(bad).find("element 20001: node 100009 is not in $Nodes (byte offset " +
                               std::to_string(elements + 40 * 20'000 + 24) + ")"),
             std::string::npos)
-      << errorOf(bad);
+      << gmshErrorOf(bad);
   // A non-finite coordinate after a tag outside the header's range: the tag is named.
   bad = good;
   poke(bad, xyz + 24 * 80'000 + 8, std::numeric_limits<double>::quiet_NaN());
   poke(bad, tags + 8 * 60'000, std::uint64_t(n + 1));
-  EXPECT_NE(errorOf(bad).find("node tag 100001 is outside the header's range 1..100000"), std::string::npos) << errorOf(bad);
+  EXPECT_NE(gmshErrorOf(bad).find("node tag 100001 is outside the header's range 1..100000"), std::string::npos) << gmshErrorOf(bad);
   bad = good;
   poke(bad, xyz + 24 * 80'000 + 8, std::numeric_limits<double>::infinity());
   poke(bad, xyz + 24 * 90'000, std::numeric_limits<double>::quiet_NaN());
-  EXPECT_NE(errorOf(bad).find("node 80001: non-finite coordinate"), std::string::npos) << errorOf(bad);
+  EXPECT_NE(gmshErrorOf(bad).find("node 80001: non-finite coordinate"), std::string::npos) << gmshErrorOf(bad);
   // Finite coordinates whose sum would overflow are finite.
   bad = good;
   poke(bad, xyz + 24 * 50'000, 1e308), poke(bad, xyz + 24 * 50'000 + 8, 1e308);
-  EXPECT_EQ(errorOf(bad), "no error");
+  EXPECT_EQ(gmshErrorOf(bad), "no error");
 }
 
 TEST(Gmsh, ChargesTheBudgetBeforeAllocating) {
   ReadLimits limits;
   limits.maxPoints = 4;
   try {
-    read(kTwoTets, limits);
+    readTwoTets(kTwoTets, limits);
     FAIL() << "no error";
   } catch (const ReadLimitError& e) {
     EXPECT_NE(std::string(e.what()).find("--max-points"), std::string::npos) << e.what();

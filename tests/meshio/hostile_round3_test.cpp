@@ -28,7 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::appendLittleEndian;
 
-std::string errorOf(const std::string& bytes, MeshFormat format, const MeshReadOptions& options = {}) {
+std::string hostileErrorOf(const std::string& bytes, MeshFormat format, const MeshReadOptions& options = {}) {
   try {
     readMeshBytes(bytes, format, "test", options);
   } catch (const MeshIoError& e) {
@@ -62,12 +62,12 @@ class TempFolder {
 // --- 1. A column left to whatever memory held ---------------------------------------------
 
 TEST(HostileRound3, APlyVertexWithXTwiceAndNoZIsRefusedAtItsHeaderLine) {
-  const std::string error = errorOf(test::duplicateCoordinatePly(), MeshFormat::Ply);
+  const std::string error = hostileErrorOf(test::duplicateCoordinatePly(), MeshFormat::Ply);
   EXPECT_CONTAINS(error, "test:3: element 'vertex': property 'x' is declared twice");
   // Any property named twice, not just coordinates; and each of x, y, z missing on its own.
-  EXPECT_CONTAINS(errorOf(test::plyWithVertexProperties({"x", "y", "z", "red", "red"}), MeshFormat::Ply),
+  EXPECT_CONTAINS(hostileErrorOf(test::plyWithVertexProperties({"x", "y", "z", "red", "red"}), MeshFormat::Ply),
                   "property 'red' is declared twice");
-  EXPECT_CONTAINS(errorOf(test::plyWithVertexProperties({"x", "y", "w"}), MeshFormat::Ply), "needs the properties x, y and z");
+  EXPECT_CONTAINS(hostileErrorOf(test::plyWithVertexProperties({"x", "y", "w"}), MeshFormat::Ply), "needs the properties x, y and z");
   // The same file with z declared reads the values of its records.
   const MeshData m = readMeshBytes(test::plyWithVertexProperties({"x", "y", "z"}), MeshFormat::Ply, "test");
   ASSERT_EQ(m.points.rows(), 3);
@@ -77,7 +77,7 @@ TEST(HostileRound3, APlyVertexWithXTwiceAndNoZIsRefusedAtItsHeaderLine) {
 // --- 5. Silent drops: every declared element and property is accounted for ------------------
 
 TEST(HostileRound3, APlyWithTwoFaceElementsIsRefusedNotHalfRead) {
-  EXPECT_CONTAINS(errorOf(test::twoFaceElementsPly(), MeshFormat::Ply),
+  EXPECT_CONTAINS(hostileErrorOf(test::twoFaceElementsPly(), MeshFormat::Ply),
                   "test:9: element 'face': declared a second time (the first is on line 7)");
   // One face element with both triangles reads both.
   const std::string one = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
@@ -87,7 +87,7 @@ TEST(HostileRound3, APlyWithTwoFaceElementsIsRefusedNotHalfRead) {
 }
 
 TEST(HostileRound3, APlyEdgeWithoutVertex2IsRefused) {
-  EXPECT_CONTAINS(errorOf(test::edgeWithoutVertex2Ply(), MeshFormat::Ply),
+  EXPECT_CONTAINS(hostileErrorOf(test::edgeWithoutVertex2Ply(), MeshFormat::Ply),
                   "test:7: element 'edge': needs the properties vertex1 and vertex2 (vertex2 missing)");
   std::string both = test::edgeWithoutVertex2Ply();
   both.replace(both.find("property uchar red"), 18, "property int vertex2");
@@ -99,27 +99,27 @@ TEST(HostileRound3, APlyEdgeWithoutVertex2IsRefused) {
 
 TEST(HostileRound3, APlyFaceWithoutIndicesOrWithStripsIsRefused) {
   const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
-  EXPECT_CONTAINS(errorOf(head + "element face 1\nproperty uchar red\nend_header\n0 0 0\n1 0 0\n0 1 0\n7\n", MeshFormat::Ply),
+  EXPECT_CONTAINS(hostileErrorOf(head + "element face 1\nproperty uchar red\nend_header\n0 0 0\n1 0 0\n0 1 0\n7\n", MeshFormat::Ply),
                   "test:7: element 'face': needs a 'vertex_indices' list");
-  EXPECT_CONTAINS(errorOf(head + "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar int vertex_index\n"
+  EXPECT_CONTAINS(hostileErrorOf(head + "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar int vertex_index\n"
                                  "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 3 0 1 2\n",
                           MeshFormat::Ply),
                   "has both 'vertex_indices' and 'vertex_index'");
-  EXPECT_CONTAINS(errorOf(head + "element tristrips 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+  EXPECT_CONTAINS(hostileErrorOf(head + "element tristrips 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
                                  "3 0 1 2\n",
                           MeshFormat::Ply),
                   "element 'tristrips': triangle strips are not read");
-  EXPECT_CONTAINS(errorOf(head + "element vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n",
+  EXPECT_CONTAINS(hostileErrorOf(head + "element vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n",
                           MeshFormat::Ply),
                   "element 'vertex': declared a second time");
 }
 
 TEST(HostileRound3, LegacyVtkRepeatedSectionsAndShortCellsAreRefused) {
   const std::string head = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n";
-  EXPECT_CONTAINS(errorOf(head + "POLYGONS 1 4\n3 0 1 2\nPOLYGONS 1 4\n3 0 2 1\n", MeshFormat::Vtk), "a second POLYGONS section");
-  EXPECT_CONTAINS(errorOf(head + "POINTS 3 float\n0 0 0 1 0 0 0 1 0\n", MeshFormat::Vtk), "a second POINTS section");
-  EXPECT_CONTAINS(errorOf(head + "POLYGONS 2 7\n3 0 1 2\n2 0 1\n", MeshFormat::Vtk), "polygon 1: needs at least 3 points, it has 2");
-  EXPECT_CONTAINS(errorOf(head + "LINES 1 2\n1 0\n", MeshFormat::Vtk), "line 0: needs at least 2 points, it has 1");
+  EXPECT_CONTAINS(hostileErrorOf(head + "POLYGONS 1 4\n3 0 1 2\nPOLYGONS 1 4\n3 0 2 1\n", MeshFormat::Vtk), "a second POLYGONS section");
+  EXPECT_CONTAINS(hostileErrorOf(head + "POINTS 3 float\n0 0 0 1 0 0 0 1 0\n", MeshFormat::Vtk), "a second POINTS section");
+  EXPECT_CONTAINS(hostileErrorOf(head + "POLYGONS 2 7\n3 0 1 2\n2 0 1\n", MeshFormat::Vtk), "polygon 1: needs at least 3 points, it has 2");
+  EXPECT_CONTAINS(hostileErrorOf(head + "LINES 1 2\n1 0\n", MeshFormat::Vtk), "line 0: needs at least 2 points, it has 1");
   // POLYGONS and LINES once each read both.
   const MeshData m = readMeshBytes(head + "POLYGONS 1 4\n3 0 1 2\nLINES 1 3\n2 0 1\n", MeshFormat::Vtk, "test");
   EXPECT_EQ(m.triangles.rows(), 1);
@@ -140,15 +140,15 @@ std::string vtpPolys(const std::string& connectivity, const std::string& offsets
 
 TEST(HostileRound3, VtpRepeatedElementsAndShortCellsAreRefused) {
   EXPECT_EQ(readMeshBytes(vtpPiece(kVtpPoints + vtpPolys("0 1 2", "3")), MeshFormat::Vtp, "test").triangles.rows(), 1);
-  EXPECT_CONTAINS(errorOf(vtpPiece(kVtpPoints + kVtpPoints + vtpPolys("0 1 2", "3")), MeshFormat::Vtp),
+  EXPECT_CONTAINS(hostileErrorOf(vtpPiece(kVtpPoints + kVtpPoints + vtpPolys("0 1 2", "3")), MeshFormat::Vtp),
                   "test:6: Piece: a second <Points> (one is read)");
-  EXPECT_CONTAINS(errorOf(vtpPiece(kVtpPoints + vtpPolys("0 1 2", "3") + vtpPolys("0 2 1", "3")), MeshFormat::Vtp),
+  EXPECT_CONTAINS(hostileErrorOf(vtpPiece(kVtpPoints + vtpPolys("0 1 2", "3") + vtpPolys("0 2 1", "3")), MeshFormat::Vtp),
                   "Piece: a second <Polys>");
   std::string twoArrays = kVtpPoints;
   twoArrays.insert(twoArrays.find("</Points>"), "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">"
                                                 "5 5 5 6 6 6 7 7 7</DataArray>");
-  EXPECT_CONTAINS(errorOf(vtpPiece(twoArrays + vtpPolys("0 1 2", "3")), MeshFormat::Vtp), "Points: a second DataArray");
-  EXPECT_CONTAINS(errorOf(vtpPiece(kVtpPoints + vtpPolys("0 1", "2")), MeshFormat::Vtp),
+  EXPECT_CONTAINS(hostileErrorOf(vtpPiece(twoArrays + vtpPolys("0 1 2", "3")), MeshFormat::Vtp), "Points: a second DataArray");
+  EXPECT_CONTAINS(hostileErrorOf(vtpPiece(kVtpPoints + vtpPolys("0 1", "2")), MeshFormat::Vtp),
                   "polygon 0: needs at least 3 points, it has 2");
 }
 
@@ -156,12 +156,12 @@ TEST(HostileRound3, GltfRequiredExtensionsAndMorphWeightsAreRefused) {
   std::string gltf = test::instancedGltf(3, 1, 1);
   std::string required = gltf;
   required.insert(1, R"("extensionsRequired": ["KHR_draco_mesh_compression"], )");
-  EXPECT_CONTAINS(errorOf(required, MeshFormat::Gltf), "requires the extension 'KHR_draco_mesh_compression'");
+  EXPECT_CONTAINS(hostileErrorOf(required, MeshFormat::Gltf), "requires the extension 'KHR_draco_mesh_compression'");
   std::string morphed = gltf;
   morphed.replace(morphed.find("\"mode\":0}"), 9, "\"mode\":0,\"targets\":[{\"POSITION\":0}]}");
   EXPECT_EQ(readMeshBytes(morphed, MeshFormat::Gltf, "test").points.rows(), 3);  // no weights: the base positions
   morphed.replace(morphed.find("\"primitives\""), 0, "\"weights\": [0.5], ");
-  EXPECT_CONTAINS(errorOf(morphed, MeshFormat::Gltf), "mesh 0: morph target weights would move its points");
+  EXPECT_CONTAINS(hostileErrorOf(morphed, MeshFormat::Gltf), "mesh 0: morph target weights would move its points");
 }
 
 TEST(HostileRound3, NpyKeysGivenTwiceAreRefused) {
@@ -171,7 +171,7 @@ TEST(HostileRound3, NpyKeysGivenTwiceAreRefused) {
   appendLittleEndian(b, std::uint16_t(dict.size()));
   b += dict;
   for (double v : {1.0, 2.0, 3.0, 4.0, 5.0, 6.0}) appendLittleEndian(b, v);
-  EXPECT_CONTAINS(errorOf(b, MeshFormat::Npy), "header: 'shape' is given twice");
+  EXPECT_CONTAINS(hostileErrorOf(b, MeshFormat::Npy), "header: 'shape' is given twice");
 }
 
 // --- 2. Writers refuse what their format cannot hold ----------------------------------------
@@ -245,7 +245,7 @@ TEST(HostileRound3, AnInstancedGltfOfAbout50KBAnnouncing100MPointsIsRefusedQuick
   const std::string gltf = test::instancedGltf(1000, 500, 200);
   EXPECT_LT(gltf.size(), 55'000u);
   const auto start = std::chrono::steady_clock::now();
-  const std::string error = errorOf(gltf, MeshFormat::Gltf);
+  const std::string error = hostileErrorOf(gltf, MeshFormat::Gltf);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_CONTAINS(error, "test: the scene's nodes instantiate 100000000 points; the most: mesh 0 (500 primitives, 500000 points) "
                          "instanced by 200 nodes: 100000000 points over the read limit of 50000000 points (--max-points)");
@@ -258,10 +258,10 @@ TEST(HostileRound3, ASmallLimitRefusesASmallerInstancedGltfThatTheDefaultReads) 
   ASSERT_EQ(m.points.rows(), 200'000);
   // Node n's instances of point k are at (k + n, 0, 0): the last point is node 199's point 99.
   EXPECT_EQ(m.points.row(m.points.rows() - 1), Eigen::RowVector3d(99 + 199, 0, 0));
-  EXPECT_CONTAINS(errorOf(gltf, MeshFormat::Gltf, limitedTo(100'000)),
+  EXPECT_CONTAINS(hostileErrorOf(gltf, MeshFormat::Gltf, limitedTo(100'000)),
                   "instanced by 200 nodes: 200000 points over the read limit of 100000 points (--max-points)");
   EXPECT_EQ(readMeshBytes(gltf, MeshFormat::Gltf, "test", limitedTo(200'000)).points.rows(), 200'000);
-  EXPECT_CONTAINS(errorOf(gltf, MeshFormat::Gltf, limitedTo(199'999)), "over the read limit of 199999 points");
+  EXPECT_CONTAINS(hostileErrorOf(gltf, MeshFormat::Gltf, limitedTo(199'999)), "over the read limit of 199999 points");
 }
 
 // One compressed block of `ids` zero Int64 ids, as VTK's zlib compressor lays it out.
@@ -288,7 +288,7 @@ TEST(HostileRound3, VtpPiecesAliasingOneCompressedBlockEachCountInFull) {
   EXPECT_LT(three.size(), 80'000u);
   EXPECT_EQ(readMeshBytes(three, MeshFormat::Vtp, "test", limited).points.rows(), 9);
   // A fourth piece decodes the same block again: 256 MiB decoded in this read.
-  const std::string error = errorOf(test::aliasedBlockVtp(4, block, ids), MeshFormat::Vtp, limited);
+  const std::string error = hostileErrorOf(test::aliasedBlockVtp(4, block, ids), MeshFormat::Vtp, limited);
   EXPECT_CONTAINS(error, "test:");
   EXPECT_CONTAINS(error, ": DataArray \"connectivity\": decoded data (every piece's arrays count, also where they share a block): "
                          "67108864 items of 1 bytes need 64.0 MiB; with what this read holds already (192.0 MiB) that is over the "
@@ -305,19 +305,19 @@ TEST(HostileRound3, TheBudgetAtExactlyTheLimitPassesAndOneOverFails) {
   for (const auto& [bytes, format] : {std::pair{ply, MeshFormat::Ply}, std::pair{obj, MeshFormat::Obj}}) {
     SCOPED_TRACE(meshFormatExtension(format));
     EXPECT_EQ(readMeshBytes(bytes, format, "test", limitedTo(3, 84)).triangles.rows(), 1);
-    EXPECT_CONTAINS(errorOf(bytes, format, limitedTo(2, 84)), "over the read limit of 2 points (--max-points)");
-    EXPECT_CONTAINS(errorOf(bytes, format, limitedTo(3, 83)), "over the read limit of 83 bytes (--max-memory)");
+    EXPECT_CONTAINS(hostileErrorOf(bytes, format, limitedTo(2, 84)), "over the read limit of 2 points (--max-points)");
+    EXPECT_CONTAINS(hostileErrorOf(bytes, format, limitedTo(3, 83)), "over the read limit of 83 bytes (--max-memory)");
   }
   // Text formats name the line of the element over the budget.
-  EXPECT_CONTAINS(errorOf(obj, MeshFormat::Obj, limitedTo(2)), "test:3: OBJ vertices: 1 points; with the 2 this read holds");
-  EXPECT_CONTAINS(errorOf("0 0 0\n1 1 1\n# c\n2 2 2\n", MeshFormat::Xyz, limitedTo(2)), "test:4: xyz points");
+  EXPECT_CONTAINS(hostileErrorOf(obj, MeshFormat::Obj, limitedTo(2)), "test:3: OBJ vertices: 1 points; with the 2 this read holds");
+  EXPECT_CONTAINS(hostileErrorOf("0 0 0\n1 1 1\n# c\n2 2 2\n", MeshFormat::Xyz, limitedTo(2)), "test:4: xyz points");
   // Every reader charges its points: each format's file of 3 points over a limit of 2.
   const MeshData mesh = triangleAt(1.0);
   for (MeshFormat format : {MeshFormat::Ply, MeshFormat::Stl, MeshFormat::Xyz, MeshFormat::Npy, MeshFormat::Vtp, MeshFormat::Vtk}) {
     SCOPED_TRACE(meshFormatExtension(format));
     const std::string bytes = meshFileBytes(mesh, format);
     EXPECT_EQ(readMeshBytes(bytes, format, "test", limitedTo(3)).points.rows(), 3);
-    EXPECT_CONTAINS(errorOf(bytes, format, limitedTo(2)), "over the read limit of 2 points (--max-points)");
+    EXPECT_CONTAINS(hostileErrorOf(bytes, format, limitedTo(2)), "over the read limit of 2 points (--max-points)");
   }
 }
 
@@ -329,7 +329,7 @@ TEST(HostileRound3, AReadSharesTheBudgetItIsGiven) {
   EXPECT_EQ(readMeshBytes(xyz, MeshFormat::Xyz, "a.xyz", options).points.rows(), 3);
   EXPECT_EQ(shared.pointsCharged(), 3u);
   // The second read's first guess takes the 2 points left; its third point is one too many.
-  const std::string error = errorOf(xyz, MeshFormat::Xyz, options);
+  const std::string error = hostileErrorOf(xyz, MeshFormat::Xyz, options);
   EXPECT_CONTAINS(error, "test:3: xyz points: 1 points; with the 5 this read holds already that is over the read limit of 5 points");
 }
 

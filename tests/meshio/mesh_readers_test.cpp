@@ -15,9 +15,9 @@
 namespace ffdkit::meshio {
 namespace {
 
-MeshData read(const std::string& bytes, MeshFormat format) { return readMeshBytes(bytes, format, "test"); }
+MeshData readBytes(const std::string& bytes, MeshFormat format) { return readMeshBytes(bytes, format, "test"); }
 
-std::string errorOf(const std::string& bytes, MeshFormat format, const std::string& name = "test") {
+std::string readerErrorOf(const std::string& bytes, MeshFormat format, const std::string& name = "test") {
   try {
     readMeshBytes(bytes, format, name);
   } catch (const MeshIoError& e) {
@@ -26,10 +26,10 @@ std::string errorOf(const std::string& bytes, MeshFormat format, const std::stri
   return "(no error)";
 }
 
-#define EXPECT_ERROR(bytes, format, part) EXPECT_NE(errorOf(bytes, format).find(part), std::string::npos) << errorOf(bytes, format)
+#define EXPECT_ERROR(bytes, format, part) EXPECT_NE(readerErrorOf(bytes, format).find(part), std::string::npos) << readerErrorOf(bytes, format)
 
 TEST(PlyReader, ReadsAnAsciiQuadAsTwoFanTriangles) {
-  const MeshData m = read(
+  const MeshData m = readBytes(
       "ply\r\nformat ascii 1.0\r\ncomment a square\r\nelement vertex 4\r\nproperty float x\r\nproperty float y\r\n"
       "property float z\r\nproperty uchar red\r\nelement face 1\r\nproperty list uchar int vertex_indices\r\n"
       "end_header\r\n0 0 0 255\r\n1 0 0 255\r\n1 1 0 255\r\n0 1 0.5 255\r\n4 0 1 2 3\r\n",
@@ -61,7 +61,7 @@ TEST(PlyReader, ReadsBigEndianDoublesAndSkipsOtherElements) {
   }
   b += char(3);
   for (std::uint32_t i : {2u, 1u, 0u}) putBig(i);
-  const MeshData m = read(b, MeshFormat::Ply);
+  const MeshData m = readBytes(b, MeshFormat::Ply);
   EXPECT_EQ(m.points.row(1), Eigen::RowVector3d(4, 5, 6));
   EXPECT_EQ(m.triangles.row(0), Eigen::RowVector3i(2, 1, 0));
   EXPECT_TRUE(m.hasNormals);
@@ -86,7 +86,7 @@ TEST(PlyReader, RejectsBadHeadersCountsAndValues) {
                MeshFormat::Ply, "test:9: data after the last element");
   // Over-long binary data and a binary NaN.
   std::string b = test::plyHeader("3", "0") + test::threeVertices();
-  EXPECT_EQ(read(b, MeshFormat::Ply).points.rows(), 3);
+  EXPECT_EQ(readBytes(b, MeshFormat::Ply).points.rows(), 3);
   EXPECT_ERROR(b + "x", MeshFormat::Ply, "1 bytes after the last element");
   b.replace(b.size() - 4, 4, std::string("\x00\x00\xc0\x7f", 4));
   EXPECT_ERROR(b, MeshFormat::Ply, "vertex 2 (z): non-finite number");
@@ -116,7 +116,7 @@ TEST(PlyReader, BinaryTriangleRunsMixedWithPolygonsAndBadFacesAnywhere) {
   std::vector<std::array<int, 3>> expected;
   for (const auto& face : faces)
     for (std::size_t k = 1; k + 1 < face.size(); ++k) expected.push_back({face[0], face[k], face[k + 1]});
-  const MeshData mesh = read(file(faces), MeshFormat::Ply);
+  const MeshData mesh = readBytes(file(faces), MeshFormat::Ply);
   ASSERT_EQ(mesh.triangles.rows(), Eigen::Index(expected.size()));
   for (std::size_t t = 0; t < expected.size(); ++t)
     ASSERT_TRUE(mesh.triangles(Eigen::Index(t), 0) == expected[t][0] && mesh.triangles(Eigen::Index(t), 1) == expected[t][1] &&
@@ -137,7 +137,7 @@ TEST(PlyReader, BinaryTriangleRunsMixedWithPolygonsAndBadFacesAnywhere) {
 }
 
 TEST(ObjReader, ReadsRelativeAndSlashedReferencesAndLines) {
-  const MeshData m = read(
+  const MeshData m = readBytes(
       "# a quad and a line\nmtllib x.mtl\no quad\nv 0 0 0\nv 1 0 0 1.0\nv 1 1 0 0.5 0.5 0.5\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
       "usemtl red\ns off\nf 1/1/1 2//1 -2 -1/1\nl 1 3 4\n",
       MeshFormat::Obj);
@@ -163,7 +163,7 @@ TEST(ObjReader, RejectsBadStatementsAndReferences) {
 }
 
 TEST(StlReader, MergesSharedCornersOfAnAsciiFile) {
-  const MeshData m = read(
+  const MeshData m = readBytes(
       "solid square\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 1 1 0\n  endloop\n endfacet\n"
       " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 1 0\n   vertex 0 1 0\n  endloop\n endfacet\nendsolid square\n",
       MeshFormat::Stl);
@@ -181,12 +181,12 @@ TEST(StlReader, RejectsTruncatedAndMalformedFiles) {
   std::string b(80, ' ');
   test::appendLittleEndian(b, std::uint32_t(1));
   b.append(50, '\0');
-  EXPECT_EQ(read(b, MeshFormat::Stl).triangles.rows(), 1);
+  EXPECT_EQ(readBytes(b, MeshFormat::Stl).triangles.rows(), 1);
   EXPECT_ERROR(b + "xx", MeshFormat::Stl, "announces 1 triangles (134 bytes), the file has 136 bytes");
 }
 
 TEST(XyzReader, ReadsPointsWithCommentsAndRejectsBadLines) {
-  const MeshData m = read("# cloud\n1 2 3\n\n  -4.5e2\t+5 6 # trailing\r\n", MeshFormat::Xyz);
+  const MeshData m = readBytes("# cloud\n1 2 3\n\n  -4.5e2\t+5 6 # trailing\r\n", MeshFormat::Xyz);
   ASSERT_EQ(m.points.rows(), 2);
   EXPECT_EQ(m.points.row(1), Eigen::RowVector3d(-450, 5, 6));
   EXPECT_ERROR("1 2 3\n4 five 6\n", MeshFormat::Xyz, "test:2: point 1: expected a number, got 'five'");
@@ -207,9 +207,9 @@ std::string npy(const std::string& dict, const std::string& data) {
 TEST(NpyReader, ReadsCAndFortranOrderAndRejectsBadShapes) {
   std::string data;
   for (float v : {1.f, 2.f, 3.f, 4.f, 5.f, 6.f}) test::appendLittleEndian(data, v);
-  const MeshData c = read(npy("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }", data), MeshFormat::Npy);
+  const MeshData c = readBytes(npy("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }", data), MeshFormat::Npy);
   EXPECT_EQ(c.points.row(1), Eigen::RowVector3d(4, 5, 6));
-  const MeshData f = read(npy("{'fortran_order': True, 'descr': '<f4', 'shape': (2, 3)}", data), MeshFormat::Npy);
+  const MeshData f = readBytes(npy("{'fortran_order': True, 'descr': '<f4', 'shape': (2, 3)}", data), MeshFormat::Npy);
   EXPECT_EQ(f.points.row(1), Eigen::RowVector3d(2, 4, 6));  // column by column
   EXPECT_ERROR(npy("{'descr': '<f4', 'fortran_order': False, 'shape': (3, 3), }", data), MeshFormat::Npy,
                "shape (3, 3) needs 36 bytes of data, the file has 24");
@@ -228,7 +228,7 @@ TEST(GltfReader, AppliesNodeTransformsAndReadsIndices) {
                   {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
     "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
     "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}]})";
-  const MeshData m = read(gltf, MeshFormat::Gltf);
+  const MeshData m = readBytes(gltf, MeshFormat::Gltf);
   ASSERT_EQ(m.points.rows(), 3);
   EXPECT_EQ(m.points.row(1), Eigen::RowVector3d(12, 0, 0));  // translate(scale(1, 0, 0))
   EXPECT_EQ(m.points.row(2), Eigen::RowVector3d(10, 2, 0));
@@ -257,7 +257,7 @@ TEST(LegacyVtkReader, ReadsAndChecksCellsPointsAndCounts) {
   EXPECT_ERROR(legacy, MeshFormat::Vtk, "polygon 0: point id 7 is outside 0..2");
   std::string good = legacy;
   good.replace(good.find("3 0 1 7"), 7, "3 0 1 2");
-  EXPECT_EQ(read(good, MeshFormat::Vtk).triangles.row(0), Eigen::RowVector3i(0, 1, 2));
+  EXPECT_EQ(readBytes(good, MeshFormat::Vtk).triangles.row(0), Eigen::RowVector3i(0, 1, 2));
   std::string nan = good;
   nan.replace(nan.find("0 1 0\n"), 6, "0 nan 0\n");
   EXPECT_ERROR(nan, MeshFormat::Vtk, "test:6: point 2: non-finite number 'nan'");
@@ -284,7 +284,7 @@ TEST(HostileFiles, EveryFileOfTheIssueTableGetsItsError) {
     SCOPED_TRACE(file.name);
     const auto format = meshFormatOf(file.name);
     ASSERT_TRUE(format.has_value());
-    const std::string error = errorOf(file.bytes, *format, file.name);
+    const std::string error = readerErrorOf(file.bytes, *format, file.name);
     EXPECT_NE(error.find(file.name), std::string::npos) << error;
     EXPECT_NE(error.find(file.expected), std::string::npos) << error;
   }

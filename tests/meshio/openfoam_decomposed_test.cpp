@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 const fs::path kCube = fs::path(FFDKIT_SOURCE_DIR) / "tests" / "data" / "openfoam" / "cube";
 
-std::string fileText(const fs::path& path) {
+std::string decomposedFileText(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream s;
   s << in.rdbuf();
@@ -111,7 +111,7 @@ TEST_F(DecomposedOpenFoam, PiecesWrittenIntoTheStagingFolderMakeTheWholeCase) {
     const fs::path relative = fs::relative(entry.path(), case_);
     ASSERT_TRUE(fs::exists(out / relative)) << relative;
     if (relative.filename() != "points") {
-      EXPECT_EQ(fileText(out / relative), fileText(entry.path())) << relative;
+      EXPECT_EQ(decomposedFileText(out / relative), decomposedFileText(entry.path())) << relative;
     }
   }
   std::size_t written = 0;
@@ -136,7 +136,7 @@ TEST_F(DecomposedOpenFoam, AFailedPieceLeavesTheOutputAsItWas) {
   EXPECT_NE(message.find("10 points given for a file with more"), std::string::npos) << message;
   fs::remove_all(staging);  // what the batch does when a piece fails
   expectNoTemporaries();
-  EXPECT_EQ(fileText(out / "old"), "the previous output");
+  EXPECT_EQ(decomposedFileText(out / "old"), "the previous output");
 }
 
 TEST_F(DecomposedOpenFoam, RefusesAnOutputInsideTheCaseBeforeCopying) {

@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 const fs::path kPygem = fs::path(FFDKIT_SOURCE_DIR) / "tests/data/pygem";
 
-std::string fileText(const fs::path& path) {
+std::string volumeFileText(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream s;
   s << in.rdbuf();
@@ -37,7 +37,7 @@ std::unique_ptr<VolumeMesh> fromBytes(const std::string& bytes, VolumeMeshFormat
   return readVolumeMeshBytes(bytes, format, "mesh", budget);
 }
 
-std::string errorOf(const std::string& bytes, VolumeMeshFormat format) {
+std::string volumeErrorOf(const std::string& bytes, VolumeMeshFormat format) {
   try {
     fromBytes(bytes, format);
   } catch (const MeshIoError& e) {
@@ -102,7 +102,7 @@ TEST(VolumeMesh, PygemDataSetsComeBackByteForByte) {
   for (const auto& c : pygemCases()) {
     SCOPED_TRACE(c.file);
     const auto mesh = readVolumeMesh(kPygem / c.file);
-    EXPECT_EQ(mesh->bytesWith(mesh->points()), fileText(kPygem / c.file));
+    EXPECT_EQ(mesh->bytesWith(mesh->points()), volumeFileText(kPygem / c.file));
   }
 }
 
@@ -126,7 +126,7 @@ TEST(VolumeMesh, PygemChangesGiveThePointsOfPygemsWriterAndKeepEveryOtherLine) {
     ASSERT_EQ(pygems->points().rows(), changed.rows());
     EXPECT_LT((pygems->points() - changed).cwiseAbs().maxCoeff(), 1e-9);
     // Lines: as many as before, and only the changed points' lines differ.
-    const auto before = linesOf(fileText(kPygem / c.file)), after = linesOf(written);
+    const auto before = linesOf(volumeFileText(kPygem / c.file)), after = linesOf(written);
     ASSERT_EQ(before.size(), after.size());
     std::size_t differing = 0;
     for (std::size_t k = 0; k < before.size(); ++k) differing += before[k] != after[k];
@@ -195,19 +195,19 @@ TEST(VolumeMesh, CommaSeparatedLsDynaNodes) {
 }
 
 TEST(VolumeMesh, BadTextFilesNameTheLine) {
-  EXPECT_NE(errorOf("*NODE\n       1    0.0000000000    x.0000000000    0.0000000000\n", VolumeMeshFormat::LsDyna)
+  EXPECT_NE(volumeErrorOf("*NODE\n       1    0.0000000000    x.0000000000    0.0000000000\n", VolumeMeshFormat::LsDyna)
                 .find("mesh:2: *NODE 1: expected a finite number, got 'x.0000000000'"),
             std::string::npos);
-  EXPECT_NE(errorOf("*NODE\n       1    0.0\n", VolumeMeshFormat::LsDyna).find("mesh:2: *NODE: a fixed-column node line needs 56"),
+  EXPECT_NE(volumeErrorOf("*NODE\n       1    0.0\n", VolumeMeshFormat::LsDyna).find("mesh:2: *NODE: a fixed-column node line needs 56"),
             std::string::npos);
-  EXPECT_NE(errorOf("1 -1 0 1\n", VolumeMeshFormat::Elmer).find("mesh:1: expected 'node partition x y z'"), std::string::npos);
-  EXPECT_NE(errorOf("1 -1 0 inf 0\n", VolumeMeshFormat::Elmer).find("mesh:1: node 1: expected a finite number"), std::string::npos);
-  EXPECT_NE(errorOf("Begin Nodes\n 1 0 0 0\n", VolumeMeshFormat::Kratos).find("mesh:1: 'Begin Nodes' is not closed"),
+  EXPECT_NE(volumeErrorOf("1 -1 0 1\n", VolumeMeshFormat::Elmer).find("mesh:1: expected 'node partition x y z'"), std::string::npos);
+  EXPECT_NE(volumeErrorOf("1 -1 0 inf 0\n", VolumeMeshFormat::Elmer).find("mesh:1: node 1: expected a finite number"), std::string::npos);
+  EXPECT_NE(volumeErrorOf("Begin Nodes\n 1 0 0 0\n", VolumeMeshFormat::Kratos).find("mesh:1: 'Begin Nodes' is not closed"),
             std::string::npos);
-  EXPECT_NE(errorOf("    -1\n  2411\n         1         1         1        11\n   1.0D+00   2.0D+00\n    -1\n",
+  EXPECT_NE(volumeErrorOf("    -1\n  2411\n         1         1         1        11\n   1.0D+00   2.0D+00\n    -1\n",
                     VolumeMeshFormat::Unv).find("mesh:4: dataset 2411: node 1: expected 3 coordinates, got 2"),
             std::string::npos);
-  EXPECT_NE(errorOf("    -1\n  2411\n", VolumeMeshFormat::Unv).find("dataset 2411 is not closed"), std::string::npos);
+  EXPECT_NE(volumeErrorOf("    -1\n  2411\n", VolumeMeshFormat::Unv).find("dataset 2411 is not closed"), std::string::npos);
 }
 
 TEST(VolumeMesh, UnvReadsFortranExponents) {
@@ -264,7 +264,7 @@ TEST(VolumeMesh, Su2LastRecordWithoutALineEndIsNotTruncated) {
   const Eigen::MatrixX3d moved = mesh->points() * 0.5;
   EXPECT_EQ(mesh->bytesWith(moved), "NDIME= 2\nNPOIN= 1\n0 1");
   EXPECT_EQ(fromBytes(mesh->bytesWith(moved), VolumeMeshFormat::Su2)->points(), moved);
-  EXPECT_NE(errorOf("NDIME= 2\nNPOIN= 2\n0 1", VolumeMeshFormat::Su2).find("NPOIN: 2 points need"), std::string::npos);
+  EXPECT_NE(volumeErrorOf("NDIME= 2\nNPOIN= 2\n0 1", VolumeMeshFormat::Su2).find("NPOIN: 2 points need"), std::string::npos);
 }
 
 TEST(VolumeMesh, BadSu2FilesNameTheLine) {
@@ -272,16 +272,16 @@ TEST(VolumeMesh, BadSu2FilesNameTheLine) {
     return text.replace(text.find(from), from.size(), to);
   };
   const std::string good = kSu2Prisms;
-  EXPECT_NE(errorOf(replaced(good, "13 1 2 3 5 6 7 1", "13 1 2 3 5 6 8 1"), VolumeMeshFormat::Su2)
+  EXPECT_NE(volumeErrorOf(replaced(good, "13 1 2 3 5 6 7 1", "13 1 2 3 5 6 8 1"), VolumeMeshFormat::Su2)
                 .find("mesh:5: point index 8 is not one of the 8 points"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced(good, "NPOIN= 8", "NPOIN= 80000000"), VolumeMeshFormat::Su2).find("NPOIN: 80000000 points need"),
+  EXPECT_NE(volumeErrorOf(replaced(good, "NPOIN= 8", "NPOIN= 80000000"), VolumeMeshFormat::Su2).find("NPOIN: 80000000 points need"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced(good, "13 0 2 1", "11 0 2 1"), VolumeMeshFormat::Su2).find("VTK type 11 is not one SU2 uses"),
+  EXPECT_NE(volumeErrorOf(replaced(good, "13 0 2 1", "11 0 2 1"), VolumeMeshFormat::Su2).find("VTK type 11 is not one SU2 uses"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced(good, "1 1 1 7", "1 nan 1 7"), VolumeMeshFormat::Su2).find("mesh:14: point 7: non-finite"),
+  EXPECT_NE(volumeErrorOf(replaced(good, "1 1 1 7", "1 nan 1 7"), VolumeMeshFormat::Su2).find("mesh:14: point 7: non-finite"),
             std::string::npos);
-  EXPECT_NE(errorOf("NELEM= 1\n", VolumeMeshFormat::Su2).find("NELEM before NDIME"), std::string::npos);
+  EXPECT_NE(volumeErrorOf("NELEM= 1\n", VolumeMeshFormat::Su2).find("NELEM before NDIME"), std::string::npos);
 }
 
 TEST(VolumeMesh, OpenFoamThroughTheSameInterface) {

@@ -23,7 +23,7 @@
 namespace ffdkit::meshio {
 namespace {
 
-std::string errorOf(const std::string& bytes) {
+std::string vtpErrorOf(const std::string& bytes) {
   try {
     readMeshBytes(bytes, MeshFormat::Vtp, "test");
   } catch (const MeshIoError& e) {
@@ -32,7 +32,7 @@ std::string errorOf(const std::string& bytes) {
   return "(no error)";
 }
 
-#define EXPECT_VTP_ERROR(bytes, part) EXPECT_NE(errorOf(bytes).find(part), std::string::npos) << errorOf(bytes)
+#define EXPECT_VTP_ERROR(bytes, part) EXPECT_NE(vtpErrorOf(bytes).find(part), std::string::npos) << vtpErrorOf(bytes)
 
 // Points, and cells of every kind with what ffdkit makes of them, written out by hand.
 struct Sample {
@@ -252,7 +252,7 @@ TEST(VtpReader, RefusesBlocksThatDoNotDecompressToTheirSize) {
   // The same file cut inside its appended data.
   std::string cut = writeWithVtk(sample.poly, Layout{2, 2, false, false});
   cut.erase(cut.find("\n   _") + 300, cut.rfind("\n  </AppendedData>") - cut.find("\n   _") - 300);
-  EXPECT_NE(errorOf(cut).find("test:"), std::string::npos) << errorOf(cut);
+  EXPECT_NE(vtpErrorOf(cut).find("test:"), std::string::npos) << vtpErrorOf(cut);
 }
 
 TEST(VtpReader, ChecksCellsAndPoints) {
@@ -342,7 +342,7 @@ TEST(VtpReader, TheFuzzFindingsThatBrokeVtksReaderAreErrorsOrCheckedMeshes) {
   std::ifstream in(dir / "crash-a9eb95eb5d405c888c4370041e6143e8c156488b", std::ios::binary);
   std::stringstream overflow;
   overflow << in.rdbuf();
-  EXPECT_NE(errorOf(overflow.str()), "(no error)");
+  EXPECT_NE(vtpErrorOf(overflow.str()), "(no error)");
 }
 
 }  // namespace

@@ -10,16 +10,16 @@
 #include "ffdkit/scenes/scene_changes.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/widgets/thesis_examples.h"
+#include "scenes_test_support.h"
 
 namespace ffdkit::scenes {
 namespace {
+using test_support::kExamples;
 
 using widgets::WidgetId;
 
-const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
-
 // A sample scene without the keys it ships with.
-Scene sample(const char* name) {
+Scene sampleScene(const char* name) {
   Scene scene = readScene(kExamples / name);
   Animation unkeyed = scene.animation();
   unkeyed.channels.clear();
@@ -108,7 +108,7 @@ TEST(Animation, PointsInterpolatePerCoordinate) {
 // Keying one widget of a bound pair and evaluating gives what the same drag gives (the model's
 // own propagation), independent of the times evaluated before.
 TEST(Animation, EvaluationPropagatesBindingsAsADragDoes) {
-  Scene scene = sample("mirror");
+  Scene scene = sampleScene("mirror");
   const WidgetId a = scene.widgets.find("push-front");
   const Scene start = scene;
   Keyframe k0 = currentKey(scene, a, ChannelKind::Variation, 0.0);
@@ -135,7 +135,7 @@ TEST(Animation, EvaluationPropagatesBindingsAsADragDoes) {
 }
 
 TEST(Animation, AChannelAlreadyAtItsValueIsNotTouched) {
-  Scene scene = sample("default");
+  Scene scene = sampleScene("default");
   const WidgetId pull = scene.widgets.find("pull");
   setKey(scene, pull, ChannelKind::Variation, currentKey(scene, pull, ChannelKind::Variation, 0.0));
   const std::uint64_t revision = scene.widgets.revision();
@@ -144,7 +144,7 @@ TEST(Animation, AChannelAlreadyAtItsValueIsNotTouched) {
 }
 
 TEST(Animation, LatticeFramesAndControlPointsAreApplied) {
-  Scene scene = sample("default");
+  Scene scene = sampleScene("default");
   const WidgetId lattice = scene.widgets.find("lattice");
   const Eigen::Affine3d frame0 = scene.widgets.latticeFrame(lattice);
   Keyframe f0 = currentKey(scene, lattice, ChannelKind::LatticeFrame, 0.0, Interpolation::Linear);
@@ -170,7 +170,7 @@ TEST(Animation, LatticeFramesAndControlPointsAreApplied) {
 }
 
 TEST(Animation, KeyTimesAreSortedAndUnique) {
-  Scene scene = sample("mirror");
+  Scene scene = sampleScene("mirror");
   const WidgetId a = scene.widgets.find("push-front");
   const WidgetId e = scene.widgets.find("pull-front");
   for (double t : {2.0, 0.5, 1.0}) setKey(scene, a, ChannelKind::Variation, currentKey(scene, a, ChannelKind::Variation, t));
@@ -180,7 +180,7 @@ TEST(Animation, KeyTimesAreSortedAndUnique) {
 }
 
 TEST(Animation, SetKeyReplacesAtTheSameTimeAndRemoveKeyDropsEmptyChannels) {
-  Scene scene = sample("default");
+  Scene scene = sampleScene("default");
   const WidgetId pull = scene.widgets.find("pull");
   const SceneMark mark = markOf(scene);
   EXPECT_FALSE(setKey(scene, pull, ChannelKind::Variation, scalarKey(1.0, 0.1, Interpolation::Linear)));
@@ -196,7 +196,7 @@ TEST(Animation, SetKeyReplacesAtTheSameTimeAndRemoveKeyDropsEmptyChannels) {
 }
 
 TEST(Animation, RefusesBadKeysWithClearErrors) {
-  Scene scene = sample("default");
+  Scene scene = sampleScene("default");
   const WidgetId pull = scene.widgets.find("pull");
   const WidgetId lattice = scene.widgets.find("lattice");
   const auto message = [&](auto f) {
@@ -226,7 +226,7 @@ TEST(Animation, RefusesBadKeysWithClearErrors) {
 }
 
 TEST(Animation, AChildLatticeThatMovesItsParentCellCannotKeyItsFrame) {
-  Scene scene = sample("hierarchy");
+  Scene scene = sampleScene("hierarchy");
   for (WidgetId lattice : scene.widgets.widgets(widgets::WidgetType::Lattice)) {
     const auto kinds = keyableKinds(scene.widgets, lattice);
     const bool twoWayChild = scene.widgets.parentCell(lattice) && kinds.size() == 1;
@@ -238,7 +238,7 @@ TEST(Animation, AChildLatticeThatMovesItsParentCellCannotKeyItsFrame) {
 // ---- scene files ------------------------------------------------------------------------------
 
 Scene animatedDefault() {
-  Scene scene = sample("default");
+  Scene scene = sampleScene("default");
   const WidgetId pull = scene.widgets.find("pull");
   const WidgetId lattice = scene.widgets.find("lattice");
   scene.setFrameRate(30.0);
@@ -272,7 +272,7 @@ TEST(AnimationFile, KeysRoundTripByteForByte) {
   EXPECT_EQ(again.animation().lastFrame, 90);
 }
 
-std::string errorOf(const std::string& text) {
+std::string animationErrorOf(const std::string& text) {
   std::istringstream in(text);
   try {
     readScene(in, "scene.json", {.baseDirectory = kExamples / "default"});
@@ -291,9 +291,9 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 
 TEST(AnimationFile, ParseErrorsSayWhatAndWhere) {
   const std::string good = sceneFileText(animatedDefault());
-  ASSERT_EQ(errorOf(good), "");
+  ASSERT_EQ(animationErrorOf(good), "");
   const auto expectError = [&](const std::string& text, const std::string& part) {
-    const std::string e = errorOf(text);
+    const std::string e = animationErrorOf(text);
     EXPECT_NE(e.find(part), std::string::npos) << "got: " << e;
   };
   expectError(replaced(good, "\"time\": 0.0,", "\"time\": \"soon\","), "/animation/channels/0/keys/0/time: expected a number");
@@ -324,7 +324,7 @@ TEST(AnimationFile, HugeCountsAreRefused) {
   }
   const std::string good = sceneFileText(animatedDefault());
   const std::string text = replaced(good, "\"channels\": [", "\"channels\": [{\"widget\": \"pull\", \"property\": \"variation\", \"keys\": [" + keys + "]},");
-  EXPECT_NE(errorOf(text).find("at most 100000 keys per channel"), std::string::npos);
+  EXPECT_NE(animationErrorOf(text).find("at most 100000 keys per channel"), std::string::npos);
 }
 
 // Every older file still loads: the version-1 copies of the sample scenes kept as fuzz seeds.

@@ -16,11 +16,12 @@
 #include "ffdkit/geometry/quaternion/curve_generators.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
+#include "scenes_test_support.h"
 
 namespace ffdkit::scenes {
 namespace {
-
-const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
+using test_support::kExamples;
+using test_support::fileText;
 
 // Sample scene folder -> its one generated object's generator (one sample per generator).
 const std::vector<std::pair<std::string, std::string>> kGeneratedSamples = {
@@ -38,11 +39,6 @@ const std::vector<std::pair<std::string, std::string>> kGeneratedSamples = {
 };
 
 bool isCurve(const std::string& generator) { return static_cast<bool>(builtinGenerators().get(generator).profile); }
-
-std::string fileText(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // The generated source of a sample scene's only object.
 GeneratedSource sampleSource(const std::string& folder) {

@@ -18,13 +18,14 @@
 #include "ffdkit/scenes/primitive.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/scenes/widget_file.h"
+#include "scenes_test_support.h"
 
 namespace ffdkit::scenes {
 namespace {
+using test_support::kExamples;
+using test_support::contains;
 
 namespace fs = std::filesystem;
-
-const fs::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
 
 // The what() of the SceneFileError reading `text` raises ("" when it reads).
 std::string sceneError(const std::string& text, const SceneReadOptions& options = {}) {
@@ -47,8 +48,6 @@ std::string widgetError(const std::string& text, const WidgetReadOptions& option
   return "";
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
 // `count` copies of `item`, comma-separated: the elements of a big JSON array.
 std::string commaSeparated(int count, const std::string& item) {
   std::string text;
@@ -68,19 +67,19 @@ std::string sceneOf(const std::vector<std::string>& objects, const std::string& 
   return R"({"format": "ffdkit-scene", "version": 2, "objects": [)" + list + "]" + extra + "}";
 }
 
-std::string sphere(const std::string& name, int resolution) {
+std::string sphereJson(const std::string& name, int resolution) {
   return R"({"name": ")" + name + R"(", "primitive": {"kind": "sphere", "resolution": )" + std::to_string(resolution) + "}}";
 }
 
 // A folder of its own under the temporary directory, removed at the end of the test.
-struct TempFolder {
+struct HostileFolder {
   fs::path root;
-  explicit TempFolder(const std::string& name)
+  explicit HostileFolder(const std::string& name)
       : root(fs::temp_directory_path() / ("ffdkit-hostile-" + name + "-" + std::to_string(::getpid()))) {
     fs::remove_all(root);
     fs::create_directories(root);
   }
-  ~TempFolder() { fs::remove_all(root); }
+  ~HostileFolder() { fs::remove_all(root); }
   void write(const fs::path& relative, const std::string& text) const {
     fs::create_directories((root / relative).parent_path());
     std::ofstream(root / relative, std::ios::binary) << text;
@@ -205,7 +204,7 @@ TEST(HostileScene, EightMaximumResolutionSpheresFailAtTheObjectThatCrossesTheLim
   const std::uint64_t each = 4097ull * 2049ull;
   ASSERT_EQ(primitiveSize({.kind = PrimitiveKind::Sphere, .resolution = 4096}).vertices, each);
   std::vector<std::string> spheres;
-  for (int i = 0; i < 8; ++i) spheres.push_back(sphere("s" + std::to_string(i), 4096));
+  for (int i = 0; i < 8; ++i) spheres.push_back(sphereJson("s" + std::to_string(i), 4096));
   const auto start = std::chrono::steady_clock::now();
   const std::string e = sceneError(sceneOf(spheres));
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
@@ -218,7 +217,7 @@ TEST(HostileScene, PrimitivesAreCountedBeforeAnyIsBuiltAndAgainAsTheyAreBuilt) {
   // sixth; with a mesh-free scene under the limit everything reads and the points add up.
   const std::uint64_t small = primitiveSize({.kind = PrimitiveKind::Sphere, .resolution = 16}).vertices;
   std::vector<std::string> spheres;
-  for (int i = 0; i < 6; ++i) spheres.push_back(sphere("s" + std::to_string(i), 16));
+  for (int i = 0; i < 6; ++i) spheres.push_back(sphereJson("s" + std::to_string(i), 16));
   SceneReadOptions options;
   options.limits.maxPoints = 5 * small + small / 2;
   const std::string e = sceneError(sceneOf(spheres), options);
@@ -315,7 +314,7 @@ TEST(HostileScene, AFailedAllocationBecomesASceneFileError) {
 // ---- confinement --------------------------------------------------------------------------
 
 TEST(HostileScene, AWidgetFileOutsideTheScenesFolderIsRefusedWithoutQuotingIt) {
-  const TempFolder folder("widget-path");
+  const HostileFolder folder("widget-path");
   const std::string marker = "PRIVATE-MARKER-5c1e";
   // A valid widget file outside, whose lattice name is the marker, and an invalid one that holds
   // the marker where a syntax error would quote it.
@@ -367,7 +366,7 @@ TEST(HostileScene, AWidgetFileOutsideTheScenesFolderIsRefusedWithoutQuotingIt) {
 }
 
 TEST(HostileScene, AMeshOutsideTheScenesFolderIsRefusedWithoutQuotingIt) {
-  const TempFolder folder("mesh-path");
+  const HostileFolder folder("mesh-path");
   const std::string marker = "PRIVATE-MARKER-9d2b";
   folder.write("private/points.xyz", "0 0 0 " + marker + "\n");
   folder.write("shared/scene.json", sceneOf({R"({"name": "m", "mesh": {"path": "../private/points.xyz"}})"}));

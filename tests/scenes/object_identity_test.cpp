@@ -10,24 +10,17 @@
 #include "ffdkit/scenes/scene_changes.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
+#include "scenes_test_support.h"
 
 namespace ffdkit::scenes {
 namespace {
-
-const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
-
-SceneObject sphere(const std::string& name, int resolution = 12) {
-  SceneObject object;
-  object.name = name;
-  object.source = PrimitiveOptions{.kind = PrimitiveKind::Sphere, .resolution = resolution};
-  object.mesh = buildObjectMesh(object.source, ".");
-  return object;
-}
+using test_support::kExamples;
+using test_support::sphereObject;
 
 TEST(ObjectIdentity, TheSceneGivesEachObjectAnIdThatARenameKeeps) {
   Scene scene;
-  const ObjectId a = scene.addObject(sphere("a"));
-  const ObjectId b = scene.addObject(sphere("b"));
+  const ObjectId a = scene.addObject(sphereObject("a"));
+  const ObjectId b = scene.addObject(sphereObject("b"));
   EXPECT_TRUE(a.valid());
   EXPECT_NE(a, b);
   EXPECT_EQ(scene.objectId("a"), a);
@@ -44,12 +37,12 @@ TEST(ObjectIdentity, TheSceneGivesEachObjectAnIdThatARenameKeeps) {
 
 TEST(ObjectIdentity, AnObjectTakenOutAndPutBackKeepsItsIdAndANewObjectGetsAFreshOne) {
   Scene scene;
-  const ObjectId a = scene.addObject(sphere("a"));
-  const ObjectId b = scene.addObject(sphere("b"));
+  const ObjectId a = scene.addObject(sphereObject("a"));
+  const ObjectId b = scene.addObject(sphereObject("b"));
   SceneObject taken = scene.takeObject(a);
   EXPECT_EQ(taken.id, a);
   EXPECT_EQ(scene.insertObject(0, std::move(taken)), a);  // an undo puts the same object back
-  const ObjectId c = scene.addObject(sphere("c"));
+  const ObjectId c = scene.addObject(sphereObject("c"));
   EXPECT_NE(c, a);
   EXPECT_NE(c, b);
   SceneObject copy = *scene.findObject(b);
@@ -60,10 +53,10 @@ TEST(ObjectIdentity, AnObjectTakenOutAndPutBackKeepsItsIdAndANewObjectGetsAFresh
 
 TEST(ObjectIdentity, TheChangeSetNamesObjectsById) {
   Scene scene;
-  const ObjectId a = scene.addObject(sphere("a"));
+  const ObjectId a = scene.addObject(sphereObject("a"));
   const SceneMark mark = markOf(scene);
   scene.renameObject(a, "b");
-  scene.setObjectMesh("b", sphere("b", 8).mesh);
+  scene.setObjectMesh("b", sphereObject("b", 8).mesh);
   const SceneChanges changes = changesSince(scene, mark);
   EXPECT_TRUE(changes.structure);  // the outliner shows the new name
   EXPECT_EQ(changes.meshes, std::vector<ObjectId>{a});
@@ -74,8 +67,8 @@ TEST(ObjectIdentity, TheChangeSetNamesObjectsById) {
 // of a scene evaluated from scratch under the new name.
 TEST(ObjectIdentity, ARenameDuringAGestureEmbedsNothingAndBuildsNoLattice) {
   Scene scene;
-  scene.addObject(sphere("ball", 24));
-  scene.addObject(sphere("moon", 8));
+  scene.addObject(sphereObject("ball", 24));
+  scene.addObject(sphereObject("moon", 8));
   AttachOptions options;
   options.counts = {4, 4, 4};
   const widgets::WidgetId lattice = attachNewLattice(scene, {"ball", "moon"}, options);
@@ -114,8 +107,8 @@ TEST(ObjectIdentity, ARenameDuringAGestureEmbedsNothingAndBuildsNoLattice) {
 
 TEST(ObjectIdentity, ARenamedSceneRoundTripsThroughItsFileByteForByte) {
   Scene scene;
-  scene.addObject(sphere("a"));
-  scene.addObject(sphere("b"));
+  scene.addObject(sphereObject("a"));
+  scene.addObject(sphereObject("b"));
   attachNewLattice(scene, {"a", "b"});
   attachNewLattice(scene, {"b"});
   scene.renameObject("a", "renamed");
@@ -150,8 +143,8 @@ TEST(ObjectIdentity, SampleScenesReadWithIdsInFileOrderAndRoundTrip) {
 
 TEST(ObjectIdentity, AFileAttachingAnUnknownObjectNamesItsPlace) {
   Scene scene;
-  scene.addObject(sphere("ball", 6));
-  scene.addObject(sphere("moon", 6));
+  scene.addObject(sphereObject("ball", 6));
+  scene.addObject(sphereObject("moon", 6));
   attachNewLattice(scene, {"ball", "moon"});
   // The object is renamed in the file but not in its attachment.
   std::string text = sceneFileText(scene);

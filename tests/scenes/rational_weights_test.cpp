@@ -14,6 +14,7 @@
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/scene_file.h"
 #include "ffdkit/scenes/widget_file.h"
+#include "scenes_test_support.h"
 
 namespace ffdkit::scenes {
 namespace {
@@ -24,7 +25,7 @@ using widgets::WidgetModel;
 
 const std::filesystem::path kSource = FFDKIT_SOURCE_DIR;
 
-std::string errorOf(const std::string& text) {
+std::string weightsErrorOf(const std::string& text) {
   std::istringstream in(text);
   try {
     readWidgetFile(in, "tool.json");
@@ -125,18 +126,18 @@ TEST(RationalWeights, EverySampleToolIsWrittenAsItWasRead) {
 }
 
 TEST(RationalWeights, BadWeightsAreErrorsAtTheirPointer) {
-  EXPECT_NE(errorOf(toolText("[1, 1, 1, 1, 1, 1, 1, 2]", 2)).find("no error"), std::string::npos);
-  EXPECT_NE(errorOf(toolText("[1, 1, 1, 1, 1, 1, 1, 2]", 1)).find("/lattices/0/weights: 'weights' needs widget file version 2"),
+  EXPECT_NE(weightsErrorOf(toolText("[1, 1, 1, 1, 1, 1, 1, 2]", 2)).find("no error"), std::string::npos);
+  EXPECT_NE(weightsErrorOf(toolText("[1, 1, 1, 1, 1, 1, 1, 2]", 1)).find("/lattices/0/weights: 'weights' needs widget file version 2"),
             std::string::npos);
-  EXPECT_NE(errorOf(toolText("[1, 1, 1, 0, 1, 1, 1, 1]", 2)).find("/lattices/0/weights/3: a weight must be > 0, got 0"),
+  EXPECT_NE(weightsErrorOf(toolText("[1, 1, 1, 0, 1, 1, 1, 1]", 2)).find("/lattices/0/weights/3: a weight must be > 0, got 0"),
             std::string::npos);
-  EXPECT_NE(errorOf(toolText("[1, 1, 1, -2.5, 1, 1, 1, 1]", 2)).find("/lattices/0/weights/3"), std::string::npos);
-  EXPECT_NE(errorOf(toolText("[1, 1, 1]", 2)).find("/lattices/0/weights: expected 8 weights (one per control point), got 3"),
+  EXPECT_NE(weightsErrorOf(toolText("[1, 1, 1, -2.5, 1, 1, 1, 1]", 2)).find("/lattices/0/weights/3"), std::string::npos);
+  EXPECT_NE(weightsErrorOf(toolText("[1, 1, 1]", 2)).find("/lattices/0/weights: expected 8 weights (one per control point), got 3"),
             std::string::npos);
-  EXPECT_NE(errorOf(toolText("[1, 1, 1, \"x\", 1, 1, 1, 1]", 2)).find("/lattices/0/weights/3: expected a number"),
+  EXPECT_NE(weightsErrorOf(toolText("[1, 1, 1, \"x\", 1, 1, 1, 1]", 2)).find("/lattices/0/weights/3: expected a number"),
             std::string::npos);
-  EXPECT_NE(errorOf(toolText("2", 2)).find("/lattices/0/weights"), std::string::npos);
-  EXPECT_NE(errorOf(toolText("[1, 1, 1, 1, 1, 1, 1, 1]", 3)).find("newer than this build reads (2)"), std::string::npos);
+  EXPECT_NE(weightsErrorOf(toolText("2", 2)).find("/lattices/0/weights"), std::string::npos);
+  EXPECT_NE(weightsErrorOf(toolText("[1, 1, 1, 1, 1, 1, 1, 1]", 3)).find("newer than this build reads (2)"), std::string::npos);
 }
 
 TEST(RationalWeights, ScenesRoundTripAndDeformWithWeights) {

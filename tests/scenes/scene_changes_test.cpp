@@ -12,29 +12,23 @@
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/lattice_fit.h"
 #include "ffdkit/scenes/scene_deformer.h"
+#include "scenes_test_support.h"
 
 namespace ffdkit::scenes {
 namespace {
-
-SceneObject sphere(const std::string& name, int resolution = 12) {
-  SceneObject object;
-  object.name = name;
-  object.source = PrimitiveOptions{.kind = PrimitiveKind::Sphere, .resolution = resolution};
-  object.mesh = buildObjectMesh(object.source, ".");
-  return object;
-}
+using test_support::sphereObject;
 
 TEST(SceneChanges, EachEditReportsWhatItChanged) {
   Scene scene;
   SceneMark mark = markOf(scene);
-  scene.addObject(sphere("a"));
+  scene.addObject(sphereObject("a"));
   SceneChanges c = changesSince(scene, mark);
   EXPECT_TRUE(c.structure);
   EXPECT_EQ(c.meshes, std::vector<ObjectId>{scene.objectId("a")});
   EXPECT_EQ(c.looks, std::vector<ObjectId>{scene.objectId("a")});
   EXPECT_FALSE(c.camera);
   EXPECT_TRUE(c.widgets.empty());
-  scene.addObject(sphere("b"));
+  scene.addObject(sphereObject("b"));
 
   mark = markOf(scene);
   DisplaySettings look;
@@ -55,7 +49,7 @@ TEST(SceneChanges, EachEditReportsWhatItChanged) {
   EXPECT_TRUE(c.looks.empty() && c.meshes.empty() && !c.structure && c.widgets.empty());
 
   mark = markOf(scene);
-  scene.setObjectMesh("a", sphere("a", 8).mesh);
+  scene.setObjectMesh("a", sphereObject("a", 8).mesh);
   c = changesSince(scene, mark);
   EXPECT_EQ(c.meshes, std::vector<ObjectId>{scene.objectId("a")});
   EXPECT_TRUE(c.looks.empty() && !c.structure && !c.camera);
@@ -114,9 +108,9 @@ using Stamps = std::set<std::string>;
 
 TEST(SceneRevisions, EachEditBumpsExactlyTheRevisionsItShould) {
   Scene scene;
-  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.addObject(sphere("a")); }), (Stamps{"structure", "mesh:a", "look:a"}));
-  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.addObject(sphere("b")); }), (Stamps{"structure", "mesh:b", "look:b"}));
-  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setObjectMesh("a", sphere("a", 6).mesh); }), Stamps{"mesh:a"});
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.addObject(sphereObject("a")); }), (Stamps{"structure", "mesh:a", "look:a"}));
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.addObject(sphereObject("b")); }), (Stamps{"structure", "mesh:b", "look:b"}));
+  EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setObjectMesh("a", sphereObject("a", 6).mesh); }), Stamps{"mesh:a"});
   const PrimitiveOptions cube{.kind = PrimitiveKind::Cube};
   EXPECT_EQ(stampsMovedBy(scene, [&] { scene.setObjectMesh("b", buildObjectMesh(cube, "."), cube); }), Stamps{"mesh:b"});
   EXPECT_EQ(std::get<PrimitiveOptions>(scene.findObject("b")->source).kind, PrimitiveKind::Cube);
@@ -164,7 +158,7 @@ TEST(SceneRevisions, EachEditBumpsExactlyTheRevisionsItShould) {
 
   // Refused edits change nothing.
   EXPECT_EQ(stampsMovedBy(scene, [&] { EXPECT_THROW(scene.renameObject("b", ""), std::invalid_argument); }), Stamps{});
-  scene.addObject(sphere("d"));
+  scene.addObject(sphereObject("d"));
   EXPECT_EQ(stampsMovedBy(scene, [&] { EXPECT_THROW(scene.renameObject("b", "d"), std::invalid_argument); }), Stamps{});
   EXPECT_EQ(stampsMovedBy(scene, [&] { EXPECT_THROW(scene.detach(lattice, "b"), std::invalid_argument); }), Stamps{});
   EXPECT_EQ(stampsMovedBy(scene, [&] { EXPECT_THROW(scene.setObjectMesh("x", {}), std::invalid_argument); }), Stamps{});
@@ -172,8 +166,8 @@ TEST(SceneRevisions, EachEditBumpsExactlyTheRevisionsItShould) {
 
 TEST(SceneChanges, EditsRefuseUnknownAndDuplicateObjects) {
   Scene scene;
-  scene.addObject(sphere("a"));
-  EXPECT_THROW(scene.addObject(sphere("a")), std::invalid_argument);
+  scene.addObject(sphereObject("a"));
+  EXPECT_THROW(scene.addObject(sphereObject("a")), std::invalid_argument);
   EXPECT_THROW(scene.setObjectDisplay("nope", {}), std::invalid_argument);
   EXPECT_THROW(scene.removeObject("nope"), std::invalid_argument);
   EXPECT_THROW(scene.setObjectMesh("nope", {}), std::invalid_argument);
@@ -197,8 +191,8 @@ TEST(LatticeFit, PadsByTheDiagonalAndGivesFlatBoxesTheMinimumThickness) {
 
 TEST(SceneDeformer, ADragStepWritesControlPointsInPlaceAndBuildsNoLattice) {
   Scene scene;
-  scene.addObject(sphere("a"));
-  scene.addObject(sphere("b"));
+  scene.addObject(sphereObject("a"));
+  scene.addObject(sphereObject("b"));
   AttachOptions options;
   options.counts = {4, 4, 4};
   const widgets::WidgetId lattice = attachNewLattice(scene, {"a"}, options);
@@ -244,7 +238,7 @@ TEST(SceneDeformer, ADragStepWritesControlPointsInPlaceAndBuildsNoLattice) {
   EXPECT_EQ(deformer.revision("a"), a0 + 4);
 
   // A new mesh is noticed through its revision.
-  scene.setObjectMesh("a", sphere("a", 6).mesh);
+  scene.setObjectMesh("a", sphereObject("a", 6).mesh);
   deformer.update(scene);
   EXPECT_EQ(deformer.points("a").rows(), scene.findObject("a")->mesh.points.rows());
   EXPECT_EQ(deformer.lastStats().latticesBuilt, 1);
@@ -252,7 +246,7 @@ TEST(SceneDeformer, ADragStepWritesControlPointsInPlaceAndBuildsNoLattice) {
 
 TEST(SceneDeformer, GestureStepsUpdateByDeltasAndAnExactUpdateRestoresTheExactResult) {
   Scene scene;
-  scene.addObject(sphere("a", 24));
+  scene.addObject(sphereObject("a", 24));
   AttachOptions options;
   options.counts = {4, 4, 4};
   const widgets::WidgetId lattice = attachNewLattice(scene, {"a"}, options);

@@ -12,11 +12,11 @@
 #include "ffdkit/ffd/embedding.h"
 #include "ffdkit/scenes/animation.h"
 #include "ffdkit/scenes/scene_file.h"
+#include "scenes_test_support.h"
 
 namespace ffdkit::scenes {
 namespace {
-
-const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
+using test_support::kExamples;
 
 AttachOptions withCounts(int l, int m, int n) {
   AttachOptions options;

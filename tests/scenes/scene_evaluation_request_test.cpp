@@ -8,16 +8,17 @@
 #include <gtest/gtest.h>
 
 #include "ffdkit/scenes/scene_deformer.h"
+#include "scenes_test_support.h"
 
 namespace ffdkit::scenes {
 namespace {
 
-struct Fixture {
+struct RequestFixture {
   Scene scene;
   ObjectId ball;
   widgets::WidgetId lattice;
   std::vector<Eigen::Index> subset;  // every third point
-  Fixture() {
+  RequestFixture() {
     SceneObject object;
     object.name = "ball";
     object.source = PrimitiveOptions{.kind = PrimitiveKind::Sphere, .resolution = 24};
@@ -46,7 +47,7 @@ struct Fixture {
 };
 
 TEST(EvaluationRequest, AGestureEvaluatesARequestedSubsetOnlyAndItsEndTheFullMeshBitForBit) {
-  Fixture f;
+  RequestFixture f;
   SceneDeformer lod, plain;  // `plain` never gets a request: every step in full
   lod.evaluate(f.scene);
   plain.evaluate(f.scene);
@@ -86,7 +87,7 @@ TEST(EvaluationRequest, AGestureEvaluatesARequestedSubsetOnlyAndItsEndTheFullMes
 }
 
 TEST(EvaluationRequest, AnExactReaderDuringAGestureGetsTheFullMeshNow) {
-  Fixture f;
+  RequestFixture f;
   SceneDeformer deformer;
   deformer.evaluate(f.scene);
   deformer.beginGesture(f.lattice);
@@ -108,7 +109,7 @@ TEST(EvaluationRequest, AnExactReaderDuringAGestureGetsTheFullMeshNow) {
 }
 
 TEST(EvaluationRequest, ASubsetIsEmbeddedOnceAndKeptAcrossGestures) {
-  Fixture f;
+  RequestFixture f;
   SceneDeformer deformer;
   deformer.evaluate(f.scene);
   for (int gesture = 0; gesture < 2; ++gesture) {
@@ -127,7 +128,7 @@ TEST(EvaluationRequest, ASubsetIsEmbeddedOnceAndKeptAcrossGestures) {
 }
 
 TEST(EvaluationRequest, ALatticeMovedDuringAGestureReembedsTheSubsetOnlyUntilTheEnd) {
-  Fixture f;
+  RequestFixture f;
   SceneDeformer lod, plain;
   lod.evaluate(f.scene);
   plain.evaluate(f.scene);
@@ -152,7 +153,7 @@ TEST(EvaluationRequest, ALatticeMovedDuringAGestureReembedsTheSubsetOnlyUntilThe
 }
 
 TEST(EvaluationRequest, OutsideAGestureEveryObjectIsEvaluatedInFull) {
-  Fixture f;
+  RequestFixture f;
   SceneDeformer deformer;
   f.moveCorner(0.1);
   EXPECT_TRUE(deformer.evaluate(f.scene, f.request()));
@@ -162,7 +163,7 @@ TEST(EvaluationRequest, OutsideAGestureEveryObjectIsEvaluatedInFull) {
 }
 
 TEST(EvaluationRequest, ASubsetThatIsNotIncreasingOrOutOfRangeIsRefusedWithItsEntry) {
-  Fixture f;
+  RequestFixture f;
   SceneDeformer deformer;
   deformer.evaluate(f.scene);
   deformer.beginGesture(f.lattice);

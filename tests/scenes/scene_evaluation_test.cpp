@@ -4,14 +4,15 @@
 #include <gtest/gtest.h>
 
 #include "ffdkit/scenes/scene_deformer.h"
+#include "scenes_test_support.h"
 
 namespace ffdkit::scenes {
 namespace {
 
-struct Fixture {
+struct EvaluationFixture {
   Scene scene;
   widgets::WidgetId lattice;
-  Fixture() {
+  EvaluationFixture() {
     SceneObject ball;
     ball.name = "ball";
     ball.source = PrimitiveOptions{.kind = PrimitiveKind::Sphere, .resolution = 16};
@@ -29,7 +30,7 @@ struct Fixture {
 };
 
 TEST(SceneEvaluation, EvaluatesOncePerChangeAndNotWithoutOne) {
-  Fixture f;
+  EvaluationFixture f;
   SceneDeformer deformer;
   EXPECT_TRUE(deformer.evaluate(f.scene));
   EXPECT_GT(deformer.lastStats().reembeddedStages, 0);
@@ -53,7 +54,7 @@ TEST(SceneEvaluation, EvaluatesOncePerChangeAndNotWithoutOne) {
 }
 
 TEST(SceneEvaluation, AGestureStepsByDeltasAndItsEndIsExact) {
-  Fixture f;
+  EvaluationFixture f;
   SceneDeformer deformer;
   deformer.evaluate(f.scene);
   deformer.beginGesture(f.lattice);
@@ -75,7 +76,7 @@ TEST(SceneEvaluation, AGestureStepsByDeltasAndItsEndIsExact) {
 }
 
 TEST(SceneEvaluation, AFailedEvaluationIsTriedAgain) {
-  Fixture f;
+  EvaluationFixture f;
   SceneDeformer deformer;
   deformer.evaluate(f.scene);
   deformer.setProgress([](double fraction) { return fraction < 1.0; });  // cancels at the end

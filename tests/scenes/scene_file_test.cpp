@@ -1,4 +1,5 @@
 #include "ffdkit/scenes/scene_file.h"
+#include "scenes_test_support.h"
 
 #include <fstream>
 #include <sstream>
@@ -9,17 +10,13 @@
 
 namespace ffdkit::scenes {
 namespace {
+using test_support::kExamples;
+using test_support::fileText;
 
-const std::filesystem::path kExamples = FFDKIT_SOURCE_DIR "/scenes/examples";
 constexpr const char* kSamples[] = {"default", "press", "vise", "mirror", "hierarchy", "cylinder-twist"};
 
-std::string fileText(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // Message of the SceneFileError that reading `text` raises ("" if none).
-std::string errorOf(const std::string& text) {
+std::string sceneErrorOf(const std::string& text) {
   std::istringstream in(text);
   try {
     readScene(in, "scene.json");
@@ -151,25 +148,25 @@ TEST(SceneFile, BadInputGetsLocatedErrors) {
     EXPECT_NE(at, std::string::npos) << from;
     return text.replace(at, from.size(), to);
   };
-  EXPECT_NE(errorOf("{\n  \"format\": \"ffdkit-scene\",\n  \"version\": 1,,\n}").find("scene.json:3:"), std::string::npos);
-  EXPECT_NE(errorOf(replaced("\"version\": 2", "\"version\": 7")).find("/version: format version 7 is not supported"),
+  EXPECT_NE(sceneErrorOf("{\n  \"format\": \"ffdkit-scene\",\n  \"version\": 1,,\n}").find("scene.json:3:"), std::string::npos);
+  EXPECT_NE(sceneErrorOf(replaced("\"version\": 2", "\"version\": 7")).find("/version: format version 7 is not supported"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced("\"kind\": \"sphere\"", "\"kind\": \"teapot\"")).find("/objects/0/primitive/kind: unknown primitive 'teapot'"),
+  EXPECT_NE(sceneErrorOf(replaced("\"kind\": \"sphere\"", "\"kind\": \"teapot\"")).find("/objects/0/primitive/kind: unknown primitive 'teapot'"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced("\"resolution\": 48", "\"resolution\": 100000")).find("/objects/0/primitive/resolution"),
+  EXPECT_NE(sceneErrorOf(replaced("\"resolution\": 48", "\"resolution\": 100000")).find("/objects/0/primitive/resolution"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced("\"size\": 1.0", "\"size\": 1.0, \"colour\": 3")).find("unknown key 'colour'"), std::string::npos);
+  EXPECT_NE(sceneErrorOf(replaced("\"size\": 1.0", "\"size\": 1.0, \"colour\": 3")).find("unknown key 'colour'"), std::string::npos);
   // The file names the lattice; an unknown name is an error at its key (the scene holds ids).
-  EXPECT_NE(errorOf(replaced("\"lattice\": \"lattice\"", "\"lattice\": \"nope\"")).find("/attachments/0/lattice: attachment of 'nope'"),
+  EXPECT_NE(sceneErrorOf(replaced("\"lattice\": \"lattice\"", "\"lattice\": \"nope\"")).find("/attachments/0/lattice: attachment of 'nope'"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced("\"lattice\": \"lattice\"", "\"lattice\": \"top\"")).find("/attachments: scene: attachment names 'top', which is not a lattice widget"),
+  EXPECT_NE(sceneErrorOf(replaced("\"lattice\": \"lattice\"", "\"lattice\": \"top\"")).find("/attachments: scene: attachment names 'top', which is not a lattice widget"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced("\"objects\": [\"sphere\"]", "\"objects\": [\"moon\"]")).find("unknown object 'moon'"),
+  EXPECT_NE(sceneErrorOf(replaced("\"objects\": [\"sphere\"]", "\"objects\": [\"moon\"]")).find("unknown object 'moon'"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced("\"primitive\": {", "\"generator\": {\"name\": \"nope\"}, \"primitive\": {")).find("exactly one"),
+  EXPECT_NE(sceneErrorOf(replaced("\"primitive\": {", "\"generator\": {\"name\": \"nope\"}, \"primitive\": {")).find("exactly one"),
             std::string::npos);
-  EXPECT_NE(errorOf(replaced("\"counts\": [3, 3, 3]", "\"counts\": [1, 3, 3]")).find("/widgets"), std::string::npos);
-  EXPECT_NE(errorOf(replaced("\"position\": [3.0, -3.8, 2.7]", "\"position\": [0.0, 0.0, 0.3]")).find("/camera"),
+  EXPECT_NE(sceneErrorOf(replaced("\"counts\": [3, 3, 3]", "\"counts\": [1, 3, 3]")).find("/widgets"), std::string::npos);
+  EXPECT_NE(sceneErrorOf(replaced("\"position\": [3.0, -3.8, 2.7]", "\"position\": [0.0, 0.0, 0.3]")).find("/camera"),
             std::string::npos);
 }
 
@@ -207,12 +204,12 @@ TEST(SceneFile, AnUnknownCurveStyleIsRefusedWithItsPlaceAndTheKnownStyles) {
     EXPECT_NE(at, std::string::npos);
     return text.replace(at, anchor.size(), anchor + ", " + extra);
   };
-  const std::string message = errorOf(with("\"curveStyle\": \"ribbon\""));
+  const std::string message = sceneErrorOf(with("\"curveStyle\": \"ribbon\""));
   EXPECT_NE(message.find("scene.json /objects/0/display/curveStyle: unknown curve style 'ribbon' (known: tube, line)"),
             std::string::npos)
       << message;
-  EXPECT_NE(errorOf(with("\"curveStyle\": 1")).find("/objects/0/display/curveStyle"), std::string::npos);
-  EXPECT_EQ(errorOf(with("\"curveStyle\": \"line\"")), "");  // the splice itself is fine
+  EXPECT_NE(sceneErrorOf(with("\"curveStyle\": 1")).find("/objects/0/display/curveStyle"), std::string::npos);
+  EXPECT_EQ(sceneErrorOf(with("\"curveStyle\": \"line\"")), "");  // the splice itself is fine
 }
 
 TEST(SceneFile, AFailedWriteLeavesTheOldFile) {

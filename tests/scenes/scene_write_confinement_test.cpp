@@ -11,26 +11,25 @@
 #include <unistd.h>
 
 #include "ffdkit/scenes/scene_file.h"
+#include "scenes_test_support.h"
 
 namespace ffdkit::scenes {
 namespace {
+using test_support::kExamples;
+using test_support::contains;
 
 namespace fs = std::filesystem;
 
-const fs::path kExamples = fs::path(FFDKIT_SOURCE_DIR) / "scenes" / "examples";
-
 // A folder of its own under the temporary directory, removed at the end of the test.
-struct TempFolder {
+struct ConfinementFolder {
   fs::path root;
-  explicit TempFolder(const std::string& name)
+  explicit ConfinementFolder(const std::string& name)
       : root(fs::temp_directory_path() / ("ffdkit-write-confinement-" + name + "-" + std::to_string(::getpid()))) {
     fs::remove_all(root);
     fs::create_directories(root);
   }
-  ~TempFolder() { fs::remove_all(root); }
+  ~ConfinementFolder() { fs::remove_all(root); }
 };
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // The default sample with a point cloud read from `meshPath` (relative to `folder`, or absolute)
 // added as its second object, 'cloud'.
@@ -54,7 +53,7 @@ std::string writeError(const fs::path& path, const Scene& scene, const SceneWrit
 }
 
 TEST(SceneWriteConfinement, AMeshPathOutsideTheFolderIsRefusedNamingTheObjectAndNothingIsWritten) {
-  TempFolder dir("mesh");
+  ConfinementFolder dir("mesh");
   fs::create_directories(dir.root / "shared" / "out");
   fs::create_directories(dir.root / "private");
   std::ofstream(dir.root / "private" / "cloud.xyz") << "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
@@ -73,7 +72,7 @@ TEST(SceneWriteConfinement, AMeshPathOutsideTheFolderIsRefusedNamingTheObjectAnd
 }
 
 TEST(SceneWriteConfinement, AWidgetFileOutsideTheFolderIsNeverWritten) {
-  TempFolder dir("widgets");
+  ConfinementFolder dir("widgets");
   fs::create_directories(dir.root / "out");
   Scene scene = readScene(kExamples / "default");
   scene.widgetFile = "../tool.json";
@@ -85,7 +84,7 @@ TEST(SceneWriteConfinement, AWidgetFileOutsideTheFolderIsNeverWritten) {
 }
 
 TEST(SceneWriteConfinement, PathsInsideTheFolderAreWrittenAndReadBack) {
-  TempFolder dir("inside");
+  ConfinementFolder dir("inside");
   fs::create_directories(dir.root / "meshes");
   std::ofstream(dir.root / "meshes" / "cloud.xyz") << "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
   for (const std::string& named : {std::string("meshes/cloud.xyz"), std::string("meshes/../meshes/cloud.xyz"),
@@ -102,7 +101,7 @@ TEST(SceneWriteConfinement, PathsInsideTheFolderAreWrittenAndReadBack) {
 }
 
 TEST(SceneWriteConfinement, AllowOutsideWritesWhatTheReaderReadsWithTheSameOptOut) {
-  TempFolder dir("allowed");
+  ConfinementFolder dir("allowed");
   fs::create_directories(dir.root / "out");
   std::ofstream(dir.root / "cloud.xyz") << "0 0 0\n1 0 0\n0 1 0\n";
   const Scene scene = withCloud(dir.root / "out", "../cloud.xyz");

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "ffdkit/widgets/thesis_examples.h"
+#include "scenes_test_support.h"
 
 namespace ffdkit::scenes {
 namespace {
@@ -18,9 +19,9 @@ using namespace ffdkit::widgets;
 namespace fs = std::filesystem;
 
 // From the source root the build defines: __FILE__ is relative when ccache rewrites paths.
-const fs::path kExamples = fs::path(FFDKIT_SOURCE_DIR) / "widgets" / "examples";
+const fs::path kWidgetExamples = fs::path(FFDKIT_SOURCE_DIR) / "widgets" / "examples";
 
-std::string slurp(const fs::path& path) {
+std::string fileBytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();
@@ -32,7 +33,7 @@ WidgetModel fromText(const std::string& text, const std::string& name = "tool.js
   return readWidgetFile(in, name);
 }
 
-std::string errorOf(const std::string& text) {
+std::string widgetErrorOf(const std::string& text) {
   try {
     fromText(text);
   } catch (const WidgetFileError& e) {
@@ -58,17 +59,17 @@ std::vector<std::pair<std::string, WidgetModel>> examples() {
 TEST(WidgetFile, ExamplesAreTheCanonicalTextOfTheThesisTools) {
   const bool regenerate = std::getenv("FFDKIT_WRITE_WIDGET_EXAMPLES") != nullptr;
   for (const auto& [file, model] : examples()) {
-    if (regenerate) writeWidgetFile(kExamples / file, model);
-    EXPECT_EQ(slurp(kExamples / file), widgetFileText(model)) << file;
+    if (regenerate) writeWidgetFile(kWidgetExamples / file, model);
+    EXPECT_EQ(fileBytes(kWidgetExamples / file), widgetFileText(model)) << file;
   }
 }
 
 TEST(WidgetFile, EverySampleRoundTripsToTheSameBytesAndControlPoints) {
   std::size_t count = 0;
-  for (const auto& entry : fs::directory_iterator(kExamples)) {
+  for (const auto& entry : fs::directory_iterator(kWidgetExamples)) {
     if (entry.path().extension() != ".json") continue;
     ++count;
-    const std::string bytes = slurp(entry.path());
+    const std::string bytes = fileBytes(entry.path());
     const WidgetModel model = readWidgetFile(entry.path());
     EXPECT_EQ(widgetFileText(model), bytes) << entry.path();
     const WidgetModel again = fromText(widgetFileText(model));
@@ -79,7 +80,7 @@ TEST(WidgetFile, EverySampleRoundTripsToTheSameBytesAndControlPoints) {
 
 TEST(WidgetFile, LoadingReproducesTheControlPointsAndTheTool) {
   for (const auto& [file, built] : examples()) {
-    const WidgetModel loaded = readWidgetFile(kExamples / file);
+    const WidgetModel loaded = readWidgetFile(kWidgetExamples / file);
     for (WidgetId l : built.widgets(WidgetType::Lattice)) {
       EXPECT_EQ(loaded.controlPoints(l), built.controlPoints(l)) << file;
       EXPECT_TRUE(loaded.latticeFrame(l).isApprox(built.latticeFrame(l), 0.0)) << file;
@@ -87,7 +88,7 @@ TEST(WidgetFile, LoadingReproducesTheControlPointsAndTheTool) {
     for (WidgetId a : built.widgets(WidgetType::Affine)) EXPECT_EQ(loaded.variation(a), built.variation(a)) << file;
   }
   // The loaded press works like the built one: one turn, then the clamp.
-  WidgetModel press = readWidgetFile(kExamples / "fig6-10-press.json");
+  WidgetModel press = readWidgetFile(kWidgetExamples / "fig6-10-press.json");
   press.applyVariation(press.find("handle"), 2.0 * std::numbers::pi);
   EXPECT_NEAR(press.variation(press.find("press")), 0.1, 1e-15);
   press.applyVariation(press.find("handle"), 4.0 * std::numbers::pi);
@@ -111,7 +112,7 @@ TEST(WidgetFile, PathOverloadsWriteAtomically) {
   fs::create_directories(dir);
   const Fig610 fig = buildFig610();
   writeWidgetFile(dir / "press.json", fig.model);
-  EXPECT_EQ(slurp(dir / "press.json"), widgetFileText(fig.model));
+  EXPECT_EQ(fileBytes(dir / "press.json"), widgetFileText(fig.model));
   std::size_t files = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++files;
   EXPECT_EQ(files, 1u);  // no temporary left behind
@@ -121,17 +122,17 @@ TEST(WidgetFile, PathOverloadsWriteAtomically) {
 }
 
 TEST(WidgetFile, MalformedAndFutureFilesGiveLocatedErrors) {
-  std::string e = errorOf("{\n  \"format\": \"ffdkit-widgets\",\n  \"version\": 1,\n  \"lattices\": [,]\n}\n");
+  std::string e = widgetErrorOf("{\n  \"format\": \"ffdkit-widgets\",\n  \"version\": 1,\n  \"lattices\": [,]\n}\n");
   EXPECT_NE(e.find("tool.json:4:16: syntax error"), std::string::npos) << e;
-  e = errorOf(R"({"format": "ffdkit-widgets", "version": 3})");
+  e = widgetErrorOf(R"({"format": "ffdkit-widgets", "version": 3})");
   EXPECT_NE(e.find("tool.json /version: widget file version 3 is newer"), std::string::npos) << e;
-  e = errorOf(R"({"format": "ffdkit-widgets"})");
+  e = widgetErrorOf(R"({"format": "ffdkit-widgets"})");
   EXPECT_NE(e.find("/: missing key 'version'"), std::string::npos) << e;
-  e = errorOf(R"({"format": "something", "version": 1})");
+  e = widgetErrorOf(R"({"format": "something", "version": 1})");
   EXPECT_NE(e.find("/format: expected 'ffdkit-widgets'"), std::string::npos) << e;
-  e = errorOf(R"({"format": "ffdkit-widgets", "version": 1, "lattices": [{"id": "w0", "name": "a", "counts": [2, 2, 2], "colour": 1}]})");
+  e = widgetErrorOf(R"({"format": "ffdkit-widgets", "version": 1, "lattices": [{"id": "w0", "name": "a", "counts": [2, 2, 2], "colour": 1}]})");
   EXPECT_NE(e.find("/lattices/0/colour: unknown key 'colour'"), std::string::npos) << e;
-  e = errorOf(R"({"format": "ffdkit-widgets", "version": 1, "lattices": [{"id": "w0", "name": "a", "counts": [1, 2, 2]}]})");
+  e = widgetErrorOf(R"({"format": "ffdkit-widgets", "version": 1, "lattices": [{"id": "w0", "name": "a", "counts": [1, 2, 2]}]})");
   EXPECT_NE(e.find("/lattices/0/counts"), std::string::npos) << e;
 }
 
@@ -143,7 +144,7 @@ TEST(WidgetFile, BadReferencesRulesAndLoopsAreRefused) {
     "affines": [{"id": "w3", "name": "a", "kind": "translate"}, {"id": "w4", "name": "b", "kind": "translate"},
                 {"id": "w5", "name": "c", "kind": "rotate"}],
     "bindings": [)";
-  auto with = [&](const std::string& bindings) { return errorOf(head + bindings + "]}"); };
+  auto with = [&](const std::string& bindings) { return widgetErrorOf(head + bindings + "]}"); };
   std::string e = with(R"({"id": "b0", "kind": "attachment", "from": "w1", "to": "w9", "mask": "TR"})");
   EXPECT_NE(e.find("/bindings/0/to: unknown widget 'w9' (known: w0, w1, w2, w3, w4, w5)"), std::string::npos) << e;
   e = with(R"({"id": "b0", "kind": "variation", "from": "w3", "to": "w4", "gain": 0})");
