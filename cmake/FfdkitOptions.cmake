@@ -24,6 +24,18 @@ if(FFDKIT_FUZZ)
   add_compile_options(-fsanitize-coverage-ignorelist=${ffdkit_coverage_ignorelist_copy})
 endif()
 
+# The linker: LLVM's lld where the compiler can use it (scripts/setup-deps.sh installs it). The
+# test programs link VTK and Qt; lld links each about ten times quicker than the default ld.bfd
+# (monkey_gui_test: 0.16 s of CPU against 1.7 s), and a build links about 200 programs.
+option(FFDKIT_USE_LLD "Link with lld when the compiler accepts -fuse-ld=lld" ON)
+if(FFDKIT_USE_LLD)
+  include(CheckLinkerFlag)
+  check_linker_flag(CXX "-fuse-ld=lld" FFDKIT_LINKER_ACCEPTS_LLD)
+  if(FFDKIT_LINKER_ACCEPTS_LLD)
+    add_link_options(-fuse-ld=lld)
+  endif()
+endif()
+
 find_program(FFDKIT_CCACHE ccache)
 if(FFDKIT_CCACHE)
   set(CMAKE_C_COMPILER_LAUNCHER "${FFDKIT_CCACHE}")
