@@ -15,9 +15,52 @@
 
 namespace ffdkit::meshio {
 
+namespace detail {
+
+// LabelList's iterator: the labels at 4-byte steps from `at`, each loaded with memcpy.
+class LabelIterator {
+ public:
+  using iterator_category = std::random_access_iterator_tag;
+  using value_type = std::int32_t;
+  using difference_type = std::ptrdiff_t;
+  using pointer = void;
+  using reference = std::int32_t;
+  LabelIterator() = default;
+  LabelIterator(const char* at) : at_(at) {}  // NOLINT
+  std::int32_t operator*() const {
+    std::int32_t label;
+    std::memcpy(&label, at_, sizeof label);
+    return label;
+  }
+  std::int32_t operator[](difference_type i) const { return *(*this + i); }
+  LabelIterator& operator++() { return at_ += sizeof(std::int32_t), *this; }
+  LabelIterator operator++(int) { LabelIterator old = *this; ++*this; return old; }
+  LabelIterator& operator--() { return at_ -= sizeof(std::int32_t), *this; }
+  LabelIterator operator--(int) { LabelIterator old = *this; --*this; return old; }
+  LabelIterator& operator+=(difference_type n) { return at_ += n * difference_type(sizeof(std::int32_t)), *this; }
+  LabelIterator& operator-=(difference_type n) { return *this += -n; }
+  friend LabelIterator operator+(LabelIterator i, difference_type n) { return i += n; }
+  friend LabelIterator operator+(difference_type n, LabelIterator i) { return i += n; }
+  friend LabelIterator operator-(LabelIterator i, difference_type n) { return i -= n; }
+  friend difference_type operator-(LabelIterator a, LabelIterator b) {
+    return (a.at_ - b.at_) / difference_type(sizeof(std::int32_t));
+  }
+  friend bool operator==(LabelIterator a, LabelIterator b) { return a.at_ == b.at_; }
+  friend auto operator<=>(LabelIterator a, LabelIterator b) { return a.at_ <=> b.at_; }
+
+ private:
+  const char* at_ = nullptr;
+};
+
+}  // namespace detail
+
+/// The labels of one polyMesh list (faces, owner, neighbour, ...), held in memory or read where
+/// they lie in a file's bytes.
 class LabelList {
  public:
+  /// An empty list.
   LabelList() = default;
+  /// The labels given, held in memory.
   LabelList(std::initializer_list<std::int32_t> labels) : held_(labels) {}
   /// The labels of `labels`, held in memory.
   LabelList(std::vector<std::int32_t> labels) : held_(std::move(labels)) {}  // NOLINT: implicit, as a vector
@@ -31,7 +74,9 @@ class LabelList {
     return list;
   }
 
+  /// How many labels.
   std::size_t size() const { return keeper_ ? count_ : held_.size(); }
+  /// Whether there are none.
   bool empty() const { return size() == 0; }
   /// Label i (i < size()).
   std::int32_t operator[](std::size_t i) const {
@@ -39,7 +84,9 @@ class LabelList {
     std::memcpy(&label, bytes() + i * sizeof(std::int32_t), sizeof label);
     return label;
   }
+  /// The first label (the list not empty).
   std::int32_t front() const { return (*this)[0]; }
+  /// The last label (the list not empty).
   std::int32_t back() const { return (*this)[size() - 1]; }
   /// The labels' bytes: 4 per label, native byte order, any alignment (load them with memcpy).
   const char* bytes() const { return keeper_ ? bytes_ : reinterpret_cast<const char*>(held_.data()); }
@@ -56,47 +103,22 @@ class LabelList {
     }
     return held_;
   }
+  /// Room for `count` labels in memory (held in memory first).
   void reserve(std::size_t count) { held().reserve(count); }
+  /// Appends `label` (held in memory first).
   void push_back(std::int32_t label) { held().push_back(label); }
 
-  /// Reads the labels in order (as values).
-  class const_iterator {
-   public:
-    using iterator_category = std::random_access_iterator_tag;
-    using value_type = std::int32_t;
-    using difference_type = std::ptrdiff_t;
-    using pointer = void;
-    using reference = std::int32_t;
-    const_iterator() = default;
-    const_iterator(const char* at) : at_(at) {}  // NOLINT
-    std::int32_t operator*() const {
-      std::int32_t label;
-      std::memcpy(&label, at_, sizeof label);
-      return label;
-    }
-    std::int32_t operator[](difference_type i) const { return *(*this + i); }
-    const_iterator& operator++() { return at_ += sizeof(std::int32_t), *this; }
-    const_iterator operator++(int) { const_iterator old = *this; ++*this; return old; }
-    const_iterator& operator--() { return at_ -= sizeof(std::int32_t), *this; }
-    const_iterator operator--(int) { const_iterator old = *this; --*this; return old; }
-    const_iterator& operator+=(difference_type n) { return at_ += n * difference_type(sizeof(std::int32_t)), *this; }
-    const_iterator& operator-=(difference_type n) { return *this += -n; }
-    friend const_iterator operator+(const_iterator i, difference_type n) { return i += n; }
-    friend const_iterator operator+(difference_type n, const_iterator i) { return i += n; }
-    friend const_iterator operator-(const_iterator i, difference_type n) { return i -= n; }
-    friend difference_type operator-(const_iterator a, const_iterator b) {
-      return (a.at_ - b.at_) / difference_type(sizeof(std::int32_t));
-    }
-    friend bool operator==(const_iterator a, const_iterator b) { return a.at_ == b.at_; }
-    friend auto operator<=>(const_iterator a, const_iterator b) { return a.at_ <=> b.at_; }
-
-   private:
-    const char* at_ = nullptr;
-  };
+  /// Reads the labels in order, as values: a random-access iterator.
+  using const_iterator = detail::LabelIterator;
+  /// The iterator (read only, as the labels are values).
   using iterator = const_iterator;
+  /// A label.
   using value_type = std::int32_t;
+  /// A count of labels.
   using size_type = std::size_t;
+  /// At the first label.
   const_iterator begin() const { return bytes(); }
+  /// Past the last label.
   const_iterator end() const { return bytes() + size() * sizeof(std::int32_t); }
   /// Inserts [first, last) before `at` (held in memory first).
   template <class InputIt>
@@ -105,6 +127,7 @@ class LabelList {
     std::vector<std::int32_t>& labels = held();
     labels.insert(labels.begin() + index, first, last);
   }
+  /// Inserts `labels` before `at` (held in memory first).
   void insert(const_iterator at, std::initializer_list<std::int32_t> labels) { insert(at, labels.begin(), labels.end()); }
 
   /// The same labels in the same order.
