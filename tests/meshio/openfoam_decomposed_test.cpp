@@ -12,20 +12,15 @@
 #include <gtest/gtest.h>
 
 #include "scratch_folder.h"
+#include "meshio_test_support.h"
 
 namespace ffdkit::meshio {
 namespace {
+using test_support::fileText;
 
 namespace fs = std::filesystem;
 
 const fs::path kCube = fs::path(FFDKIT_SOURCE_DIR) / "tests" / "data" / "openfoam" / "cube";
-
-std::string decomposedFileText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 class DecomposedOpenFoam : public testing::ScratchFolderTest {
  protected:
@@ -111,7 +106,7 @@ TEST_F(DecomposedOpenFoam, PiecesWrittenIntoTheStagingFolderMakeTheWholeCase) {
     const fs::path relative = fs::relative(entry.path(), case_);
     ASSERT_TRUE(fs::exists(out / relative)) << relative;
     if (relative.filename() != "points") {
-      EXPECT_EQ(decomposedFileText(out / relative), decomposedFileText(entry.path())) << relative;
+      EXPECT_EQ(fileText(out / relative), fileText(entry.path())) << relative;
     }
   }
   std::size_t written = 0;
@@ -136,7 +131,7 @@ TEST_F(DecomposedOpenFoam, AFailedPieceLeavesTheOutputAsItWas) {
   EXPECT_NE(message.find("10 points given for a file with more"), std::string::npos) << message;
   fs::remove_all(staging);  // what the batch does when a piece fails
   expectNoTemporaries();
-  EXPECT_EQ(decomposedFileText(out / "old"), "the previous output");
+  EXPECT_EQ(fileText(out / "old"), "the previous output");
 }
 
 TEST_F(DecomposedOpenFoam, RefusesAnOutputInsideTheCaseBeforeCopying) {

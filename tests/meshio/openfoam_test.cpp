@@ -19,20 +19,15 @@
 #include "scratch_folder.h"
 
 #include "ffdkit/meshio/cell_quality.h"
+#include "meshio_test_support.h"
 
 namespace ffdkit::meshio {
 namespace {
+using test_support::fileText;
 
 namespace fs = std::filesystem;
 
 const fs::path kData = fs::path(FFDKIT_SOURCE_DIR) / "tests" / "data" / "openfoam";
-
-std::string fileText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 void writeText(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);

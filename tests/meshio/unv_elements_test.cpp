@@ -12,21 +12,15 @@
 #include "ffdkit/meshio/element_cells.h"
 #include "ffdkit/meshio/volume_mesh.h"
 #include "scratch_folder.h"
+#include "meshio_test_support.h"
 
 namespace ffdkit::meshio {
 namespace {
+using test_support::fileText;
+using test_support::kPygem;
 
 namespace fs = std::filesystem;
 using testing::meshIoErrorOf;
-
-const fs::path kPygemData = fs::path(FFDKIT_SOURCE_DIR) / "tests/data/pygem";
-
-std::string unvFileText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::unique_ptr<VolumeMesh> unv(const std::string& bytes) {
   ReadBudget budget;
@@ -89,7 +83,7 @@ std::string mixedFile(bool invertHex = false) {
 }
 
 TEST(UnvElements, PygemsSquareKeepsItsBeamsAndShellsAndHasNoSolids) {
-  const std::string bytes = unvFileText(kPygemData / "test_square.unv");
+  const std::string bytes = fileText(kPygem / "test_square.unv");
   const auto mesh = unv(bytes);
   // Salome's square: 60 beams (type 11, with their second record) on its edges, 225 shells (44).
   EXPECT_NE(mesh->summary().find("285 elements (dataset 2412): 60 of type 11 (beam), 225 of type 44 (shell); 0 solid cells"),

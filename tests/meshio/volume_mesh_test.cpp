@@ -10,20 +10,14 @@
 
 #include "ffdkit/meshio/mesh_data.h"
 #include "ffdkit/meshio/openfoam.h"
+#include "meshio_test_support.h"
 
 namespace ffdkit::meshio {
 namespace {
+using test_support::fileText;
+using test_support::kPygem;
 
 namespace fs = std::filesystem;
-
-const fs::path kPygem = fs::path(FFDKIT_SOURCE_DIR) / "tests/data/pygem";
-
-std::string volumeFileText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::vector<std::string> linesOf(const std::string& text) {
   std::vector<std::string> lines;
@@ -102,7 +96,7 @@ TEST(VolumeMesh, PygemDataSetsComeBackByteForByte) {
   for (const auto& c : pygemCases()) {
     SCOPED_TRACE(c.file);
     const auto mesh = readVolumeMesh(kPygem / c.file);
-    EXPECT_EQ(mesh->bytesWith(mesh->points()), volumeFileText(kPygem / c.file));
+    EXPECT_EQ(mesh->bytesWith(mesh->points()), fileText(kPygem / c.file));
   }
 }
 
@@ -126,7 +120,7 @@ TEST(VolumeMesh, PygemChangesGiveThePointsOfPygemsWriterAndKeepEveryOtherLine) {
     ASSERT_EQ(pygems->points().rows(), changed.rows());
     EXPECT_LT((pygems->points() - changed).cwiseAbs().maxCoeff(), 1e-9);
     // Lines: as many as before, and only the changed points' lines differ.
-    const auto before = linesOf(volumeFileText(kPygem / c.file)), after = linesOf(written);
+    const auto before = linesOf(fileText(kPygem / c.file)), after = linesOf(written);
     ASSERT_EQ(before.size(), after.size());
     std::size_t differing = 0;
     for (std::size_t k = 0; k < before.size(); ++k) differing += before[k] != after[k];
