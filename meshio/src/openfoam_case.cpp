@@ -8,6 +8,7 @@
 #include <exception>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -368,7 +369,8 @@ void copyInto(const fs::path& from, const fs::path& to, const fs::path& root,
 }  // namespace
 
 void copyFolder(const fs::path& from, const fs::path& to, const fs::path& root,
-                const std::function<bool(const fs::path&)>& skip, bool durable, const std::function<void()>& alongside) {
+                const std::function<bool(const fs::path&)>& skip, bool durable, const std::function<void()>& alongside,
+                bool everyCore) {
   std::vector<FileCopy> files;
   std::vector<fs::path> folders;
   copyInto(from, to, root, skip, files, folders);
@@ -377,7 +379,7 @@ void copyFolder(const fs::path& from, const fs::path& to, const fs::path& root,
   std::stable_sort(files.begin(), files.end(), [](const FileCopy& a, const FileCopy& b) { return a.bytes > b.bytes; });
   const std::int64_t jobs = std::int64_t(files.size()) + 1;
   std::exception_ptr failure;
-#pragma omp parallel for schedule(dynamic, 1) if (jobs > 2)
+#pragma omp parallel for schedule(dynamic, 1) if (everyCore && jobs > 2)
   for (std::int64_t j = 0; j < jobs; ++j) {
     try {
       if (j == 0) {
@@ -453,8 +455,25 @@ OpenFoamMesh readOpenFoamMesh(const fs::path& folder, const OpenFoamReadOptions&
   }
 }
 
-void writeOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points, const fs::path& outputGiven,
-                       const OpenFoamWriteOptions& options) {
+StagedOpenFoamMesh::~StagedOpenFoamMesh() {
+  if (temporary_.empty()) return;
+  std::error_code ignored;
+  fs::remove_all(temporary_, ignored);
+}
+
+StagedOpenFoamMesh::StagedOpenFoamMesh(StagedOpenFoamMesh&& other) noexcept
+    : temporary_(std::move(other.temporary_)), output_(std::move(other.output_)), durable_(other.durable_) {
+  other.temporary_.clear();
+}
+
+void StagedOpenFoamMesh::commit() {
+  if (temporary_.empty()) throw std::logic_error(output_.string() + ": staged case committed twice");
+  detail::renameFolderIntoPlace(temporary_, output_, durable_);
+  temporary_.clear();
+}
+
+StagedOpenFoamMesh stageOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points, const fs::path& outputGiven,
+                                     const OpenFoamWriteOptions& options) {
   const fs::path output = outputGiven.filename().empty() ? outputGiven.parent_path() : outputGiven;
   detail::checkFolderOutput(mesh.root, output);
   // A point count or value the file cannot hold fails before any copy. A binary file is written
@@ -469,11 +488,18 @@ void writeOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points,
   }
 
   const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
-  const fs::path temporary = temporaryPathBeside(output);
+  fs::path temporary = temporaryPathBeside(output);
   std::error_code ec;
   try {
     fs::create_directories(parent);
     fs::create_directory(temporary);
+  } catch (const fs::filesystem_error& e) {
+    fs::remove_all(temporary, ec);
+    throw MeshIoError(output.string() + ": cannot write the case (" + e.what() + ")");
+  }
+  // From here the staged folder removes the hidden one if anything throws.
+  StagedOpenFoamMesh staged(temporary, output, options.durable);
+  try {
     const fs::path pointsPath = mesh.polyMesh / mesh.pointsFile.fileName;
     const fs::path relativePolyMesh = fs::relative(mesh.polyMesh, mesh.root);
     const fs::path newPoints = temporary / relativePolyMesh / mesh.pointsFile.fileName;
@@ -486,16 +512,17 @@ void writeOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points,
       if (options.durable) detail::startWriteback(newPoints);
     };
     detail::copyFolder(mesh.root, temporary, mesh.root, [&](const fs::path& p) { return p == pointsPath; },
-                       options.durable, writePoints);
+                       options.durable, writePoints, options.everyCore);
     if (options.durable) detail::syncPath(newPoints);
-    detail::renameFolderIntoPlace(temporary, output, options.durable);
   } catch (const fs::filesystem_error& e) {
-    fs::remove_all(temporary, ec);
     throw MeshIoError(output.string() + ": cannot write the case (" + e.what() + ")");
-  } catch (...) {
-    fs::remove_all(temporary, ec);
-    throw;
   }
+  return staged;
+}
+
+void writeOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points, const fs::path& output,
+                       const OpenFoamWriteOptions& options) {
+  stageOpenFoamMesh(mesh, points, output, options).commit();
 }
 
 }  // namespace ffdkit::meshio

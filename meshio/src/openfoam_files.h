@@ -57,13 +57,14 @@ void startWriteback(const std::filesystem::path& path);
 /// copied on every core, the largest first, and `alongside` (when given: writing a new file into
 /// `to`) runs beside them. When `durable`, every file copied and every folder is flushed to disk
 /// before it returns (each file's writing to disk is started as soon as it is copied, so the disk
-/// works while the next is copied).
+/// works while the next is copied). `everyCore` false: the copies and `alongside` one after
+/// another on the calling thread.
 /// @throws MeshIoError for a link outside `root`, a link to a folder, or what is neither a file
 /// nor a folder (before anything is copied); std::filesystem::filesystem_error for a failed copy;
 /// what `alongside` throws.
 void copyFolder(const std::filesystem::path& from, const std::filesystem::path& to, const std::filesystem::path& root,
                 const std::function<bool(const std::filesystem::path&)>& skip, bool durable,
-                const std::function<void()>& alongside = {});
+                const std::function<void()>& alongside = {}, bool everyCore = true);
 
 /// Refuses an `output` inside `root` (other than root itself) and an `output` that exists and is
 /// not a folder. @throws MeshIoError.

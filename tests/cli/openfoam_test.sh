@@ -71,6 +71,19 @@ for kind in ascii binary gzip; do
   grep -q "cells inverted or of zero volume" "$work/refusal" || { fail "$kind: refusal does not name the cells"; cat "$work/refusal"; }
   [ ! -e "$folded" ] || fail "$kind: $folded written although refused"
   [ -z "$(ls -A "$work" | grep '^\.')" ] || fail "$kind: a temporary was left in $work"
+  # The case is written beside the cell check (to a hidden folder, renamed once the check passes):
+  # a refusal leaves an existing output folder as it was, and no temporary.
+  mkdir -p "$folded/old" && echo kept > "$folded/old/file"
+  "$cli" deform -q -w "$data/fold.json" "$work/$kind" -o "$folded" --timings > "$work/timings" 2> "$work/refusal" &&
+    fail "$kind: a folding tool was not refused over an existing output"
+  [ "$(ls -A "$folded")" = old ] && [ "$(cat "$folded/old/file")" = kept ] || fail "$kind: the existing $folded changed"
+  [ -z "$(ls -A "$work" | grep '^\.')" ] || fail "$kind: a temporary was left in $work after the refusal"
+  rm -r "$folded"
+  # --timings says that the write overlapped the check.
+  "$cli" deform -q -w "$data/bulge.json" "$work/$kind" -o "$out" --timings > "$work/timings" || fail "$kind: deform --timings failed"
+  grep -q "^timings (ms):.* check + write (overlapped) [0-9.]*, write (after the check) [0-9.]*," "$work/timings" ||
+    { fail "$kind: --timings does not show the overlapped write"; cat "$work/timings"; }
+  same_but_points "$work/$kind" "$out"
 
   # --allow-inverted writes it; checkMesh counts what ffdkit counted.
   "$cli" deform -w "$data/fold.json" "$work/$kind" -o "$folded" --allow-inverted > /dev/null 2> "$work/warning" ||

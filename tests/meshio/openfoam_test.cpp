@@ -259,6 +259,42 @@ TEST_F(OpenFoam, AnExistingOutputIsReplacedWhole) {
   EXPECT_EQ(entries, 1u);  // the old folder went with the exchange
 }
 
+// The write split in two (what ffdkit-cli deform does beside the cell check): the staged case is
+// complete in a hidden folder and invisible until committed; dropped, it leaves nothing behind.
+TEST_F(OpenFoam, AStagedCaseIsInPlaceOnlyWhenCommitted) {
+  const OpenFoamMesh mesh = readOpenFoamMesh(kData / "cube-binary");
+  const Eigen::MatrixX3d moved = mesh.points * 3.0;
+  const fs::path out = dir_ / "out";
+  fs::create_directories(out / "old");
+  writeText(out / "old" / "file", "old");
+  auto entriesOf = [](const fs::path& folder) {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(folder)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  const OpenFoamWriteOptions oneThread{.durable = false, .everyCore = false};
+  {
+    StagedOpenFoamMesh staged = stageOpenFoamMesh(mesh, moved, out, oneThread);
+    // Written in full beside the output, which is untouched.
+    EXPECT_EQ(readOpenFoamMesh(staged.temporary()).points, moved);
+    EXPECT_EQ(entriesOf(dir_), (std::vector<std::string>{staged.temporary().filename().string(), "out"}));
+    EXPECT_EQ(entriesOf(out), std::vector<std::string>{"old"});
+  }
+  EXPECT_EQ(entriesOf(dir_), std::vector<std::string>{"out"});  // dropped: the hidden folder removed
+  EXPECT_EQ(fileText(out / "old" / "file"), "old");
+
+  StagedOpenFoamMesh staged = stageOpenFoamMesh(mesh, moved, out, oneThread);
+  StagedOpenFoamMesh taken = std::move(staged);  // the moved-from one removes nothing
+  EXPECT_TRUE(staged.temporary().empty());
+  taken.commit();
+  EXPECT_EQ(entriesOf(dir_), std::vector<std::string>{"out"});
+  EXPECT_FALSE(fs::exists(out / "old"));
+  EXPECT_EQ(readOpenFoamMesh(out).points, moved);
+  for (const char* name : {"faces", "owner", "neighbour", "boundary"})
+    EXPECT_EQ(fileText(out / "constant" / "polyMesh" / name), fileText(mesh.polyMesh / name)) << name;
+}
+
 TEST_F(OpenFoam, RefusesAnOutputInsideTheCase) {
   const fs::path copy = copyCase("cube");
   const OpenFoamMesh mesh = readOpenFoamMesh(copy);

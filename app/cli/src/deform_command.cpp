@@ -474,11 +474,8 @@ int runDeform(const Args& args) {
                 "decomposed case, " + std::to_string(ranks.size()) + " process(es))");
   } else if (volume) {
     const auto& [path, mesh] = meshes.front();
-    console.begin("check", "checking " + std::to_string(volume->cellCount()) + " cells");
-    const meshio::VolumeMeshQuality quality = volume->check(mesh.points);
-    if (request.quality) console.say("cell check after: " + quality.summary);
-    console.begin("write", "writing " + path.string());
-    volume->write(mesh.points, quality, path, request.allowInverted, console);
+    const meshio::VolumeMeshQuality quality =
+        volume->checkAndWrite(mesh.points, path, request.allowInverted, request.quality, console);
     console.end();
     console.say("wrote " + path.string() + " (" + std::to_string(mesh.points.rows()) + " points, " +
                 std::to_string(quality.cellCount) + " cells" + (quality.ok() ? ", all valid)" : ")"));

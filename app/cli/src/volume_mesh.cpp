@@ -1,11 +1,13 @@
 #include "volume_mesh.h"
 
 #include <cstdio>
+#include <future>
 #include <stdexcept>
 #include <type_traits>
 
 #include "args.h"
 #include "ffdkit/ffd/in_place_deform.h"
+#include "ffdkit/meshio/openfoam.h"
 #include "ffdkit/scenes/scene.h"
 #include "ffdkit/scenes/scene_deformer.h"
 
@@ -64,15 +66,62 @@ bool VolumeMeshInput::applies(const std::vector<std::string>& inputs) {
 VolumeMeshInput::VolumeMeshInput(const fs::path& path, const ReadSettings& read)
     : mesh_(meshio::readVolumeMesh(path, readOptionsOf(read))) {}
 
+namespace {
+
+// Refuses a mesh whose check found bad cells, unless allowInverted (then says so).
+void refuseBadCells(const meshio::VolumeMeshQuality& quality, const fs::path& output, bool allowInverted,
+                    const Console& console) {
+  if (quality.ok()) return;
+  if (!allowInverted)
+    throw std::runtime_error("the deformed mesh has " + quality.badText + "; nothing written (" + output.string() +
+                             " is unchanged; --allow-inverted writes it anyway)");
+  console.warn("writing a mesh with " + quality.badText + " (--allow-inverted)");
+}
+
+}  // namespace
+
 void VolumeMeshInput::write(const Eigen::MatrixX3d& deformed, const meshio::VolumeMeshQuality& quality,
                             const fs::path& output, bool allowInverted, const Console& console) const {
-  if (!quality.ok()) {
-    if (!allowInverted)
-      throw std::runtime_error("the deformed mesh has " + quality.badText + "; nothing written (" + output.string() +
-                               " is unchanged; --allow-inverted writes it anyway)");
-    console.warn("writing a mesh with " + quality.badText + " (--allow-inverted)");
-  }
+  refuseBadCells(quality, output, allowInverted, console);
   mesh_->write(deformed, output);
+}
+
+meshio::VolumeMeshQuality VolumeMeshInput::checkAndWrite(const Eigen::MatrixX3d& deformed, const fs::path& output,
+                                                         bool allowInverted, bool sayQuality, Console& console) const {
+  const std::string cells = std::to_string(cellCount()) + " cells";
+  const meshio::OpenFoamMesh* foam = mesh_->openFoam();
+  if (foam == nullptr) {
+    console.begin("check", "checking " + cells);
+    const meshio::VolumeMeshQuality quality = check(deformed);
+    if (sayQuality) console.say("cell check after: " + quality.summary);
+    console.begin("write", "writing " + output.string());
+    write(deformed, quality, output, allowInverted, console);
+    return quality;
+  }
+  // The write needs the cores little (the kernel copies the case's other files, the disk flushes
+  // them): it runs on its own thread, one file after another, while the check takes the cores.
+  console.begin("check + write (overlapped)", "checking " + cells + " and writing " + output.string() + " beside them");
+  meshio::OpenFoamWriteOptions options;
+  options.everyCore = false;
+  // If the check throws, the future's destructor waits for the staging, and the staged folder it
+  // returns is removed.
+  std::future<meshio::StagedOpenFoamMesh> staging =
+      std::async(std::launch::async, [&] { return meshio::stageOpenFoamMesh(*foam, deformed, output, options); });
+  const meshio::VolumeMeshQuality quality = check(deformed);
+  if (sayQuality) console.say("cell check after: " + quality.summary);
+  if (!quality.ok() && !allowInverted) {
+    // Refused: the staged folder (or the staging's own failure) is dropped, nothing is written.
+    try {
+      staging.get();
+    } catch (const std::exception&) {
+    }
+    refuseBadCells(quality, output, allowInverted, console);
+  }
+  console.begin("write (after the check)", "writing " + output.string());
+  meshio::StagedOpenFoamMesh staged = staging.get();
+  refuseBadCells(quality, output, allowInverted, console);
+  staged.commit();
+  return quality;
 }
 
 bool deformsByOneLattice(const scenes::Scene& scene, const std::string& object) {

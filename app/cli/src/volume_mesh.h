@@ -50,6 +50,16 @@ class VolumeMeshInput {
   void write(const Eigen::MatrixX3d& deformed, const meshio::VolumeMeshQuality& quality, const std::filesystem::path& output,
              bool allowInverted, const Console& console) const;
 
+  /// check() of `deformed`, then write() to `output`, with the steps' times booked on `console`
+  /// (`sayQuality`: the check's summary said first). An OpenFOAM case is written beside the
+  /// check: to a hidden folder next to `output`, on a thread of its own while the check takes the
+  /// cores, and renamed onto `output` only once the check has passed (or allowInverted); a refusal
+  /// or a failure removes it, so nothing is written. --timings then books "check + write
+  /// (overlapped)" and "write (after the check)" (the part of the write the check did not hide).
+  /// @throws as write().
+  meshio::VolumeMeshQuality checkAndWrite(const Eigen::MatrixX3d& deformed, const std::filesystem::path& output,
+                                          bool allowInverted, bool sayQuality, Console& console) const;
+
   const meshio::VolumeMesh& mesh() const { return *mesh_; }
 
  private:

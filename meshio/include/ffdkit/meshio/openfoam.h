@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -142,7 +143,44 @@ std::string foamPointsBytes(const FoamPointsFile& original, const Eigen::MatrixX
 struct OpenFoamWriteOptions {
   /// Flush the new files to disk before the folder is renamed into place.
   bool durable = true;
+  /// Copy the folder's files on every core (OpenMP), the points file written beside them; false:
+  /// everything one after another on the calling thread (a write staged beside a cell check that
+  /// keeps the cores busy: stageOpenFoamMesh).
+  bool everyCore = true;
 };
+
+/// An OpenFOAM folder written in full to a hidden folder beside its output (stageOpenFoamMesh) and
+/// not yet in place: commit() renames it onto the output (an existing output folder is exchanged
+/// with it atomically and then removed). Destroyed uncommitted, the hidden folder is removed, so
+/// nothing is written.
+class StagedOpenFoamMesh {
+ public:
+  StagedOpenFoamMesh(std::filesystem::path temporary, std::filesystem::path output, bool durable)
+      : temporary_(std::move(temporary)), output_(std::move(output)), durable_(durable) {}
+  ~StagedOpenFoamMesh();
+  StagedOpenFoamMesh(StagedOpenFoamMesh&& other) noexcept;
+  StagedOpenFoamMesh& operator=(StagedOpenFoamMesh&&) = delete;
+  StagedOpenFoamMesh(const StagedOpenFoamMesh&) = delete;
+  StagedOpenFoamMesh& operator=(const StagedOpenFoamMesh&) = delete;
+
+  /// Puts the folder in place. @throws MeshIoError naming the output (the hidden folder is then
+  /// removed when this object is).
+  void commit();
+  /// The hidden folder (empty once committed or moved from).
+  const std::filesystem::path& temporary() const { return temporary_; }
+
+ private:
+  std::filesystem::path temporary_;
+  std::filesystem::path output_;
+  bool durable_ = true;
+};
+
+/// writeOpenFoamMesh up to the last step: the whole new folder written (and flushed, when durable)
+/// to a hidden folder beside `output`, which the result puts in place or removes. The checks of
+/// writeOpenFoamMesh (the point count and values, the output's place) come first.
+/// @throws MeshIoError as writeOpenFoamMesh (the hidden folder removed).
+StagedOpenFoamMesh stageOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::MatrixX3d& points,
+                                     const std::filesystem::path& output, const OpenFoamWriteOptions& options = {});
 
 /// Writes `mesh`'s folder (mesh.root: a whole case or a polyMesh folder) to `output` with
 /// `points` as the coordinates: every file copied unchanged but the points file, which is
