@@ -126,7 +126,6 @@ MeshData readGltf(std::string_view bytes, bool binary, const std::string& source
 
 MeshData readLegacyVtk(std::string_view bytes, const std::string& source, ReadBudget& budget);
 MeshData readVtp(std::string_view bytes, const std::string& source, ReadBudget& budget);
-std::string writeVtk(const MeshData& mesh, bool xml);
 
 /// The largest magnitude a double may have and still round to a finite float32 (FLT_MAX plus
 /// half its last place: 2^128 - 2^103; a tie rounds to even, which is infinity).

@@ -20,6 +20,7 @@
 
 #include "ffdkit/meshio/atomic_write.h"
 #include "ffdkit/meshio/read_failures.h"
+#include "ffdkit/meshio/vtk_writer.h"
 #include "formats.h"
 #include "parse_support.h"
 
@@ -228,8 +229,8 @@ void writeMeshBytes(ByteSink& out, const MeshData& mesh, MeshFormat format, cons
     case MeshFormat::Npy: return detail::writeNpy(out, mesh);
     case MeshFormat::Obj: return detail::writeObj(out, mesh);
     case MeshFormat::Xyz: return detail::writeXyz(out, mesh);
-    case MeshFormat::Vtp: return out.write(detail::writeVtk(mesh, true));
-    case MeshFormat::Vtk: return out.write(detail::writeVtk(mesh, false));
+    case MeshFormat::Vtp: return out.write(vtkPolyDataBytes(mesh, true));
+    case MeshFormat::Vtk: return out.write(vtkPolyDataBytes(mesh, false));
     case MeshFormat::Gltf:
     case MeshFormat::Glb: break;
   }

@@ -1,6 +1,8 @@
 // VTK XML poly data (.vtp) and legacy poly data (.vtk), written through VTK: the one place VTK
 // is used in meshio. ffdkit reads both itself (vtp_format.cpp, legacy_vtk_format.cpp): VTK's
-// readers trust what a file announces.
+// readers trust what a file announces. This file defines vtkPolyDataBytes and nothing else the
+// rest of meshio calls, so a program that defines it itself leaves this file, and VTK, out of its
+// link (ffdkit/meshio/vtk_writer.h).
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
@@ -13,10 +15,11 @@
 #include <vtkPolyDataWriter.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include "ffdkit/meshio/vtk_writer.h"
 #include "formats.h"
 #include "parse_support.h"
 
-namespace ffdkit::meshio::detail {
+namespace ffdkit::meshio {
 namespace {
 
 // Collects the errors a VTK algorithm raises instead of letting them go to stderr.
@@ -56,7 +59,7 @@ vtkSmartPointer<vtkCellArray> cellArray(const auto& indices) {
 
 }  // namespace
 
-std::string writeVtk(const MeshData& mesh, bool xml) {
+std::string vtkPolyDataBytes(const MeshData& mesh, bool xml) {
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
   coordinates->SetNumberOfTuples(mesh.points.rows());
@@ -103,4 +106,4 @@ std::string writeVtk(const MeshData& mesh, bool xml) {
   return writer->GetOutputStdString();
 }
 
-}  // namespace ffdkit::meshio::detail
+}  // namespace ffdkit::meshio
