@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -334,6 +335,90 @@ void startWriteback(const fs::path& path) {
 
 namespace {
 
+// A file descriptor closed when it goes.
+struct OpenFile {
+  explicit OpenFile(int descriptor) : fd(descriptor) {}
+  ~OpenFile() {
+    if (fd >= 0) ::close(fd);
+  }
+  OpenFile(const OpenFile&) = delete;
+  OpenFile& operator=(const OpenFile&) = delete;
+  int fd;
+};
+
+// Files from this size on are copied by direct I/O when they are flushed anyway (copyFileDirectly);
+// smaller ones by the kernel's copy.
+constexpr std::uintmax_t kDirectCopyFrom = std::uintmax_t(4) << 20;
+// The source is mapped this much at a time (a multiple of the page size).
+constexpr std::size_t kDirectCopyWindow = std::size_t(64) << 20;
+// Direct I/O writes whole blocks of this many bytes (a multiple of every device's logical block);
+// the file's last bytes, after its last whole block, are written through the page cache.
+constexpr std::size_t kDirectBlock = 4096;
+
+[[noreturn]] void failCopy(const fs::path& to, const std::string& step) {
+  throw MeshIoError(to.string() + ": cannot write (" + step + ": " + std::strerror(errno) + ")");
+}
+
+}  // namespace
+
+bool copyFileDirectly(const fs::path& from, const fs::path& to) {
+  const OpenFile in(::open(from.c_str(), O_RDONLY | O_CLOEXEC));
+  struct stat source {};
+  if (in.fd < 0 || ::fstat(in.fd, &source) != 0 || !S_ISREG(source.st_mode)) return false;  // copy_file says why
+  OpenFile out(::open(to.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_DIRECT, S_IWUSR));
+  if (out.fd < 0) {
+    if (errno == EINVAL) return false;  // no direct I/O on this file system
+    failCopy(to, "create");
+  }
+  // Taken back where the file system refuses direct I/O at the first write.
+  auto giveUp = [&] {
+    ::close(out.fd);
+    out.fd = -1;
+    std::error_code ignored;
+    fs::remove(to, ignored);
+    return false;
+  };
+  if (::fchmod(out.fd, source.st_mode & 07777) != 0) failCopy(to, "set its permissions");
+  const std::size_t size = std::size_t(source.st_size);
+  const std::size_t whole = size - size % kDirectBlock;
+  for (std::size_t at = 0; at < whole; at += kDirectCopyWindow) {
+    const std::size_t length = std::min(kDirectCopyWindow, whole - at);
+    void* window = ::mmap(nullptr, length, PROT_READ, MAP_SHARED | MAP_POPULATE, in.fd, off_t(at));
+    if (window == MAP_FAILED) failCopy(to, "map " + from.string());
+    for (std::size_t done = 0; done < length;) {
+      const ssize_t n = ::pwrite(out.fd, static_cast<const char*>(window) + done, length - done, off_t(at + done));
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0 && errno == EINVAL && at + done == 0) {
+        ::munmap(window, length);
+        return giveUp();
+      }
+      if (n <= 0) {
+        const int error = errno;
+        ::munmap(window, length);
+        errno = n == 0 ? EIO : error;
+        failCopy(to, "write");
+      }
+      done += std::size_t(n);
+    }
+    ::munmap(window, length);
+  }
+  if (size > whole) {
+    char tail[kDirectBlock];
+    const std::size_t count = size - whole;
+    if (::pread(in.fd, tail, count, off_t(whole)) != ssize_t(count)) failCopy(to, "read " + from.string());
+    if (::fcntl(out.fd, F_SETFL, ::fcntl(out.fd, F_GETFL) & ~O_DIRECT) != 0) failCopy(to, "write");
+    if (::pwrite(out.fd, tail, count, off_t(whole)) != ssize_t(count)) failCopy(to, "write");
+  }
+  if (::close(out.fd) != 0) {
+    out.fd = -1;
+    failCopy(to, "close");
+  }
+  out.fd = -1;
+  return true;
+}
+
+namespace {
+
 // A file copyFolder copies: from, to, and its size (the larger are copied first).
 struct FileCopy {
   fs::path from, to;
@@ -387,6 +472,8 @@ void copyFolder(const fs::path& from, const fs::path& to, const fs::path& root,
         continue;
       }
       const FileCopy& file = files[std::size_t(j - 1)];
+      // A large file that is flushed anyway goes to the disk from the source's cached pages.
+      if (durable && file.bytes >= kDirectCopyFrom && copyFileDirectly(file.from, file.to)) continue;
       fs::copy_file(file.from, file.to);
       // The disk starts on this file while the next ones are copied; the flush at the end waits.
       if (durable) startWriteback(file.to);

@@ -52,13 +52,23 @@ void syncPath(const std::filesystem::path& path);
 /// only for what is left. A best effort, as syncPath.
 void startWriteback(const std::filesystem::path& path);
 
+/// Copies the file `from` to the new file `to` (with its permissions) by direct I/O (O_DIRECT):
+/// the disk takes the bytes from the source's pages in the page cache (mapped a window at a
+/// time), with no copy into fresh cache pages, so the CPU does a fraction of a copy's work; the
+/// bytes are on the disk when it returns (the file's metadata wait for a flush, syncPath). The
+/// file's last partial block goes through the page cache. Returns false, with nothing left at
+/// `to`, when `from` cannot be opened as a regular file or the file system takes no direct I/O:
+/// copy it otherwise. @throws MeshIoError naming `to` when a write fails (e.g. the disk is full).
+bool copyFileDirectly(const std::filesystem::path& from, const std::filesystem::path& to);
+
 /// Copies the folder `from` into `to` (which exists), but the entries `skip` says true for; a
 /// symbolic link is copied as the file it leads to, which must be inside `root`. The files are
 /// copied on every core, the largest first, and `alongside` (when given: writing a new file into
 /// `to`) runs beside them. When `durable`, every file copied and every folder is flushed to disk
 /// before it returns (each file's writing to disk is started as soon as it is copied, so the disk
 /// works while the next is copied). `everyCore` false: the copies and `alongside` one after
-/// another on the calling thread.
+/// another on the calling thread. Files of 4 MiB or more are copied by copyFileDirectly when
+/// `durable`.
 /// @throws MeshIoError for a link outside `root`, a link to a folder, or what is neither a file
 /// nor a folder (before anything is copied); std::filesystem::filesystem_error for a failed copy;
 /// what `alongside` throws.

@@ -295,6 +295,26 @@ TEST_F(OpenFoam, AStagedCaseIsInPlaceOnlyWhenCommitted) {
     EXPECT_EQ(fileText(out / "constant" / "polyMesh" / name), fileText(mesh.polyMesh / name)) << name;
 }
 
+// A flushed write copies its large files by direct I/O (from 4 MiB on), the last partial block
+// through the page cache: the bytes and the permissions are the source's.
+TEST_F(OpenFoam, LargeFilesOfAFlushedWriteAreCopiedWhole) {
+  const fs::path copy = copyCase("cube-binary");
+  std::string bytes(std::size_t(9) << 20 | 123, '\0');
+  std::uint32_t state = 12345;
+  for (char& b : bytes) b = char((state = state * 1664525u + 1013904223u) >> 24);
+  writeText(copy / "constant" / "polyMesh" / "large", bytes);
+  writeText(copy / "system" / "whole-blocks", bytes.substr(0, std::size_t(5) << 20));
+  fs::permissions(copy / "constant" / "polyMesh" / "large", fs::perms::owner_read | fs::perms::group_read);
+  const OpenFoamMesh mesh = readOpenFoamMesh(copy);
+  const fs::path out = dir_ / "out";
+  writeOpenFoamMesh(mesh, mesh.points * 2.0, out);
+  EXPECT_EQ(fileText(out / "constant" / "polyMesh" / "large"), bytes);
+  EXPECT_EQ(fileText(out / "system" / "whole-blocks"), bytes.substr(0, std::size_t(5) << 20));
+  EXPECT_EQ(fs::status(out / "constant" / "polyMesh" / "large").permissions(), fs::perms::owner_read | fs::perms::group_read);
+  EXPECT_EQ(fileText(out / "constant" / "polyMesh" / "faces"), fileText(copy / "constant" / "polyMesh" / "faces"));
+  EXPECT_EQ(readOpenFoamMesh(out).points, mesh.points * 2.0);
+}
+
 TEST_F(OpenFoam, RefusesAnOutputInsideTheCase) {
   const fs::path copy = copyCase("cube");
   const OpenFoamMesh mesh = readOpenFoamMesh(copy);
