@@ -1,5 +1,7 @@
 // ffdkit-cli plot: curvature (and torsion) of a generated curve against arc length, as a PNG.
+// Built into the VTK module (modules.h); the command and its options are vtk_commands.cpp.
 #include "commands.h"
+#include "module_functions.h"
 #include "console.h"
 #include "ffdkit/render/curve_plot.h"
 #include "ffdkit/scenes/generator.h"
@@ -30,6 +32,8 @@ scenes::CurvatureProfile boundedProfile(const scenes::GeneratorRegistry& registr
   }
   return registry.profile(name, parameters, density);
 }
+
+}  // namespace
 
 int runPlot(const Args& args) {
   Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
@@ -83,27 +87,6 @@ int runPlot(const Args& args) {
               (profile.torsion.size() != 0 ? ", curvature and torsion)" : ", curvature)"));
   console.printTimings();
   return 0;
-}
-
-}  // namespace
-
-Command plotCommand() {
-  return {"plot",
-          "plot curvature (and torsion) against arc length of a generated curve to PNG",
-          "ffdkit-cli plot SCENE --object NAME -o PLOT.png [options]\n"
-          "       ffdkit-cli plot --generator NAME PARAMETERS.json -o PLOT.png [options]",
-          "The curve comes from a generated object of a scene (its generator, parameters and\n"
-          "density) or from a generator name and a JSON object of its parameters (as written in\n"
-          "a scene file's \"parameters\"). Curvature is orange; torsion, for space curves, blue.\n"
-          "ffdkit-cli info --generators lists the curve generators. Needs an X display (xvfb-run).\n",
-          withReadOptions({{"object", '\0', "NAME", "the generated curve object of SCENE"},
-           {"generator", 'g', "NAME", "a curve generator of the registry"},
-           {"output", 'o', "PLOT.png", "the PNG to write"},
-           {"density", '\0', "D", "sampling relative to the generator's default, (0, 64] (the object's, or 1)"},
-           {"size", '\0', "WxH", "image size in pixels (900x520)"},
-           {"title", '\0', "TEXT", "chart title (the object or generator name)"},
-           quietOption(), progressOption(), timingsOption()}),
-          runPlot};
 }
 
 }  // namespace ffdkit::cli

@@ -1,9 +1,11 @@
-// ffdkit-cli render: a scene to PNG, off screen.
+// ffdkit-cli render: a scene to PNG, off screen. Built into the VTK module (modules.h); the
+// command and its options are vtk_commands.cpp.
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
 #include "commands.h"
+#include "module_functions.h"
 #include "console.h"
 #include "ffdkit/render/offscreen_render.h"
 #include "ffdkit/scenes/animation.h"
@@ -54,6 +56,8 @@ scenes::Camera presetCamera(const scenes::Scene& scene, const std::string& prese
   return camera;
 }
 
+}  // namespace
+
 int runRender(const Args& args) {
   Console console(args.flag("quiet"), args.flag("progress"), args.flag("timings"));
   const auto output = args.value("output");
@@ -99,30 +103,6 @@ int runRender(const Args& args) {
   }
   console.printTimings();
   return 0;
-}
-
-}  // namespace
-
-Command renderCommand() {
-  return {"render",
-          "render a scene to PNG off screen",
-          "ffdkit-cli render SCENE OUTPUT.png [--frame T] [--size WxH] [--camera PRESET] [--set NAME=VALUE]...\n"
-          "       ffdkit-cli render SCENE --frames A:B -o out_%04d.png [options]",
-          "Draws the scene's objects at their deformed points and its lattices, as the app shows\n"
-          "them, into an off-screen window (needs an X display; use xvfb-run on a server).\n"
-          "Camera presets: scene (the scene's own camera), front (from -y), side (from +x),\n"
-          "top (from +z), iso (from (1,-1,1)); presets frame the deformed objects.\n"
-          "Animation (docs/animation.md): --frame T renders the scene at frame T; --frames A:B renders\n"
-          "every frame from A to B into -o PATTERN, whose one %0Nd becomes the frame number\n"
-          "(out_%04d.png -> out_0007.png). Frames must lie in the scene's frame range. --set values\n"
-          "are applied after the animation at every frame.\n",
-          withReadOptions({{"size", '\0', "WxH", "image size in pixels (1024x768)"},
-           {"output", 'o', "PATH", "the PNG (instead of OUTPUT.png), or with --frames a pattern with one %0Nd"},
-           {"frame", '\0', "T", "render the animation at frame T (the scene's frame range)"},
-           {"frames", '\0', "A:B", "render frames A..B into -o PATTERN (one PNG per frame)"},
-           {"camera", '\0', "PRESET", "scene, front, top, side or iso (scene)"},
-           setOption(), quietOption(), progressOption(), timingsOption()}),
-          runRender};
 }
 
 }  // namespace ffdkit::cli
