@@ -4,9 +4,11 @@
 #include <cerrno>
 #include <climits>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <new>
 #include <optional>
 #include <stdexcept>
 
@@ -281,58 +283,6 @@ void writeNewFile(const fs::path& path, std::string_view bytes, bool durable) {
     throw MeshIoError(path.string() + ": cannot write (" + std::strerror(errno) + ")");
 }
 
-void writeFoamPointsFile(const fs::path& path, const FoamPointsFile& original, const Eigen::MatrixX3d& points,
-                         bool durable) {
-  if (!original.layout.binary || original.gzip) {
-    std::string bytes = foamPointsBytes(original, points);
-    if (original.gzip) bytes = gzipBytes(bytes, original.fileName);
-    writeNewFile(path, bytes, durable);
-    return;
-  }
-  checkBinaryFoamPoints(original, points);
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) throw MeshIoError(path.string() + ": cannot create (" + std::strerror(errno) + ")");
-  auto put = [&](std::string_view bytes) {
-    while (!bytes.empty()) {
-      const ssize_t n = ::write(fd, bytes.data(), bytes.size());
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) {
-        const std::string why = std::strerror(errno);
-        ::close(fd);
-        throw MeshIoError(path.string() + ": cannot write (" + why + ")");
-      }
-      bytes.remove_prefix(std::size_t(n));
-    }
-  };
-  const std::string_view kept = original.bytes;
-  put(kept.substr(0, original.listBegin));
-  // 64 Ki points (1.5 MiB of doubles) at a time: the buffer stays in the cache.
-  constexpr Eigen::Index kRun = Eigen::Index(1) << 16;
-  std::vector<char> run(std::size_t(kRun) * 3 * std::size_t(original.layout.scalarBytes));
-  for (Eigen::Index first = 0; first < points.rows(); first += kRun) {
-    const Eigen::Index last = std::min(points.rows(), first + kRun);
-    const char* end = storeFoamPoints(original.layout, points, first, last, run.data());
-    put(std::string_view(run.data(), std::size_t(end - run.data())));
-  }
-  put(kept.substr(original.listEnd));
-  if ((durable && ::fsync(fd) != 0) || ::close(fd) != 0)
-    throw MeshIoError(path.string() + ": cannot write (" + std::strerror(errno) + ")");
-}
-
-void syncPath(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
-}
-
-void startWriteback(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::sync_file_range(fd, 0, 0, SYNC_FILE_RANGE_WRITE);
-  ::close(fd);
-}
-
 namespace {
 
 // A file descriptor closed when it goes.
@@ -359,7 +309,130 @@ constexpr std::size_t kDirectBlock = 4096;
   throw MeshIoError(to.string() + ": cannot write (" + step + ": " + std::strerror(errno) + ")");
 }
 
+// A new file written from a buffer that the caller fills piece by piece: through the page cache,
+// or by direct I/O (O_DIRECT: whole blocks go to the disk from the buffer, aligned to a block,
+// as it fills; the last partial block through the page cache; buffered writes where the file
+// system takes no direct I/O).
+class NewFileWriter {
+ public:
+  static constexpr std::size_t kCapacity = std::size_t(8) << 20;
+
+  NewFileWriter(const fs::path& path, bool direct)
+      : path_(path), file_(::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | (direct ? O_DIRECT : 0), 0644)),
+        direct_(direct) {
+    if (file_.fd < 0 && direct && errno == EINVAL) {
+      file_.fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+      direct_ = false;
+    }
+    if (file_.fd < 0) throw MeshIoError(path.string() + ": cannot create (" + std::strerror(errno) + ")");
+    void* buffer = nullptr;
+    if (::posix_memalign(&buffer, kDirectBlock, kCapacity) != 0) throw std::bad_alloc();
+    buffer_.reset(static_cast<char*>(buffer));
+  }
+
+  /// Room for `bytes` (at most kCapacity - kDirectBlock) at the end of the buffer, valid until
+  /// the next call; advance() then takes what was written there.
+  char* space(std::size_t bytes) {
+    if (fill_ + bytes > kCapacity) writeBlocks();
+    return buffer_.get() + fill_;
+  }
+  void advance(std::size_t bytes) { fill_ += bytes; }
+  void append(std::string_view bytes) {
+    while (!bytes.empty()) {
+      const std::size_t n = std::min(bytes.size(), kCapacity - kDirectBlock);
+      std::memcpy(space(n), bytes.data(), n);
+      advance(n);
+      bytes.remove_prefix(n);
+    }
+  }
+  /// Writes what is left and closes the file, flushed to disk first when `durable`.
+  void finish(bool durable) {
+    writeBlocks();
+    if (fill_ > 0) {
+      if (direct_ && ::fcntl(file_.fd, F_SETFL, ::fcntl(file_.fd, F_GETFL) & ~O_DIRECT) != 0) fail();
+      direct_ = false;
+      writeBlocks();
+    }
+    if (durable && ::fsync(file_.fd) != 0) fail();
+    const int fd = file_.fd;
+    file_.fd = -1;
+    if (::close(fd) != 0) fail();
+  }
+
+ private:
+  [[noreturn]] void fail() const { throw MeshIoError(path_.string() + ": cannot write (" + std::strerror(errno) + ")"); }
+  // Writes the buffer's whole blocks (direct I/O; all of it otherwise) and keeps the rest at its start.
+  void writeBlocks() {
+    const std::size_t length = direct_ ? fill_ - fill_ % kDirectBlock : fill_;
+    for (std::size_t done = 0; done < length;) {
+      const ssize_t n = ::pwrite(file_.fd, buffer_.get() + done, length - done, off_t(offset_ + done));
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0 && errno == EINVAL && direct_ && offset_ + done == 0) {  // no direct I/O here after all
+        if (::fcntl(file_.fd, F_SETFL, ::fcntl(file_.fd, F_GETFL) & ~O_DIRECT) != 0) fail();
+        direct_ = false;
+        continue;
+      }
+      if (n <= 0) {
+        if (n == 0) errno = EIO;
+        fail();
+      }
+      done += std::size_t(n);
+    }
+    std::memmove(buffer_.get(), buffer_.get() + length, fill_ - length);
+    offset_ += length;
+    fill_ -= length;
+  }
+
+  struct Free {
+    void operator()(char* p) const { std::free(p); }
+  };
+  const fs::path& path_;
+  OpenFile file_;
+  bool direct_;
+  std::unique_ptr<char, Free> buffer_;
+  std::size_t fill_ = 0;    // bytes in the buffer
+  std::uint64_t offset_ = 0;  // where the buffer's first byte goes in the file
+};
+
 }  // namespace
+
+void writeFoamPointsFile(const fs::path& path, const FoamPointsFile& original, const Eigen::MatrixX3d& points,
+                         bool durable, bool direct) {
+  if (!original.layout.binary || original.gzip) {
+    std::string bytes = foamPointsBytes(original, points);
+    if (original.gzip) bytes = gzipBytes(bytes, original.fileName);
+    writeNewFile(path, bytes, durable);
+    return;
+  }
+  checkBinaryFoamPoints(original, points);
+  NewFileWriter file(path, direct);
+  const std::string_view kept = original.bytes;
+  file.append(kept.substr(0, original.listBegin));
+  // 64 Ki points (1.5 MiB of doubles) at a time, formatted into the writer's buffer.
+  constexpr Eigen::Index kRun = Eigen::Index(1) << 16;
+  const std::size_t runBytes = std::size_t(kRun) * 3 * std::size_t(original.layout.scalarBytes);
+  for (Eigen::Index first = 0; first < points.rows(); first += kRun) {
+    const Eigen::Index last = std::min(points.rows(), first + kRun);
+    char* run = file.space(runBytes);
+    file.advance(std::size_t(storeFoamPoints(original.layout, points, first, last, run) - run));
+  }
+  file.append(kept.substr(original.listEnd));
+  file.finish(durable);
+}
+
+void syncPath(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+void startWriteback(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::sync_file_range(fd, 0, 0, SYNC_FILE_RANGE_WRITE);
+  ::close(fd);
+}
 
 bool copyFileDirectly(const fs::path& from, const fs::path& to) {
   const OpenFile in(::open(from.c_str(), O_RDONLY | O_CLOEXEC));
@@ -594,7 +667,8 @@ StagedOpenFoamMesh stageOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::Matr
     // started, then everything flushed: the disk writes while the copies are made.
     fs::create_directories(newPoints.parent_path());
     auto writePoints = [&] {
-      if (streamed) detail::writeFoamPointsFile(newPoints, mesh.pointsFile, points, false);
+      // Flushed anyway: by direct I/O, from the buffer the points are formatted into.
+      if (streamed) detail::writeFoamPointsFile(newPoints, mesh.pointsFile, points, false, options.durable);
       else detail::writeNewFile(newPoints, bytes, false);
       if (options.durable) detail::startWriteback(newPoints);
     };

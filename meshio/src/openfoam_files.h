@@ -37,9 +37,11 @@ char* storeFoamPoints(const FoamFileLayout& layout, const Eigen::MatrixX3d& poin
 /// foamPointsBytes gives (compressed again for a .gz file), a binary file written from the points a
 /// run at a time, without the whole file in memory. Flushed to disk when `durable`.
 /// @throws MeshIoError naming the file (check first with foamPointsBytes's rules: the count, a
-/// float32 file's values).
+/// float32 file's values). `direct`: a binary file goes to the disk by direct I/O (O_DIRECT, where
+/// the file system takes it) from the buffer its points are formatted into, not through the page
+/// cache.
 void writeFoamPointsFile(const std::filesystem::path& path, const FoamPointsFile& original, const Eigen::MatrixX3d& points,
-                         bool durable);
+                         bool durable, bool direct = false);
 
 /// Creates `path` (which must not exist) with `bytes`, flushed to disk when `durable`.
 /// @throws MeshIoError naming the path.
