@@ -33,4 +33,8 @@ std::string ffdkit::meshio::vtkPolyDataBytes(const MeshData& mesh, bool xml) {
   return programVtkWriter(mesh, xml);
 }
 
-FFDKIT_CLI_MODULE_ENTRY(ffdkit_cli_cad_module, ffdkit::cli::CadModule, fillCadModule)
+// The entry point (modules.h): the one symbol the module exports.
+extern "C" __attribute__((visibility("default"))) int ffdkit_cli_cad_module(int version, std::size_t tableSize,
+                                                                            const ffdkit::cli::ModuleHost* host, void* table) {
+  return ffdkit::cli::fillModuleTable<ffdkit::cli::CadModule>(version, tableSize, host, table, fillCadModule);
+}

@@ -17,4 +17,8 @@ void fillVtkModule(const ffdkit::cli::ModuleHost& host, ffdkit::cli::VtkModule& 
 
 }  // namespace
 
-FFDKIT_CLI_MODULE_ENTRY(ffdkit_cli_vtk_module, ffdkit::cli::VtkModule, fillVtkModule)
+// The entry point (modules.h): the one symbol the module exports.
+extern "C" __attribute__((visibility("default"))) int ffdkit_cli_vtk_module(int version, std::size_t tableSize,
+                                                                            const ffdkit::cli::ModuleHost* host, void* table) {
+  return ffdkit::cli::fillModuleTable<ffdkit::cli::VtkModule>(version, tableSize, host, table, fillVtkModule);
+}

@@ -57,15 +57,13 @@ inline constexpr const char* kCadModuleEntry = "ffdkit_cli_cad_module";
 inline constexpr const char* kVtkModuleFile = "ffdkit-cli-vtk.so";
 inline constexpr const char* kCadModuleFile = "ffdkit-cli-cad.so";
 
-}  // namespace ffdkit::cli
+/// What a module's entry point does: checks the program's `version` and `tableSize` against
+/// this build's, then has `fill` fill `*table` for `host`. Returns 0, or 1 (nothing filled).
+template <class Table, class Fill>
+int fillModuleTable(int version, std::size_t tableSize, const ModuleHost* host, void* table, Fill fill) {
+  if (version != kModuleInterfaceVersion || tableSize != sizeof(Table) || host == nullptr || table == nullptr) return 1;
+  fill(*host, *static_cast<Table*>(table));
+  return 0;
+}
 
-/// Defines a module's entry point `name` for the table type `Table`, filled by `fill(host, table)`.
-#define FFDKIT_CLI_MODULE_ENTRY(name, Table, fill)                                                            \
-  extern "C" __attribute__((visibility("default"))) int name(int version, std::size_t tableSize,               \
-                                                              const ffdkit::cli::ModuleHost* host, void* table) { \
-    if (version != ffdkit::cli::kModuleInterfaceVersion || tableSize != sizeof(Table) || table == nullptr ||    \
-        host == nullptr)                                                                                         \
-      return 1;                                                                                                  \
-    fill(*host, *static_cast<Table*>(table));                                                                    \
-    return 0;                                                                                                    \
-  }
+}  // namespace ffdkit::cli
