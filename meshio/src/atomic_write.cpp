@@ -51,8 +51,10 @@ int removeStaleTemporaries(const std::filesystem::path& path) {
     if (error != std::errc() || next == last || *next != '-' || pid <= 0) continue;
     if (pid == ::getpid()) continue;
     if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
+    // A file, or a folder a killed writer was filling (an OpenFOAM case): removed whole (a
+    // symbolic link itself, not what it leads to).
     std::error_code ignored;
-    if (std::filesystem::remove(it->path(), ignored)) ++removed;
+    if (std::filesystem::remove_all(it->path(), ignored) > 0) ++removed;
   }
   return removed;
 }

@@ -649,6 +649,7 @@ StagedOpenFoamMesh stageOpenFoamMesh(const OpenFoamMesh& mesh, const Eigen::Matr
 
   const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
   fs::path temporary = temporaryPathBeside(output);
+  removeStaleTemporaries(output);  // hidden folders of writers that were killed
   std::error_code ec;
   try {
     fs::create_directories(parent);

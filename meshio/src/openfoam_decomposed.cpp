@@ -100,6 +100,7 @@ fs::path stageDecomposedCase(const DecomposedCase& decomposed, const fs::path& o
   }
   const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
   const fs::path staging = temporaryPathBeside(output);
+  removeStaleTemporaries(output);  // hidden folders of writers that were killed
   std::error_code ec;
   try {
     fs::create_directories(parent);

@@ -3,6 +3,7 @@
 // and the cell check against exact volumes of affine maps of the cube.
 #include "ffdkit/meshio/openfoam.h"
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -314,6 +315,31 @@ TEST_F(OpenFoam, LargeFilesOfAFlushedWriteAreCopiedWhole) {
   EXPECT_EQ(fileText(out / "constant" / "polyMesh" / "faces"), fileText(copy / "constant" / "polyMesh" / "faces"));
   EXPECT_EQ(readOpenFoamMesh(out).points, mesh.points * 2.0);
   EXPECT_EQ(fileText(out / "constant" / "polyMesh" / "points"), foamPointsBytes(mesh.pointsFile, mesh.points * 2.0));
+}
+
+// A writer killed while its case was staged leaves a hidden folder; the next write removes it.
+TEST_F(OpenFoam, TheHiddenFolderOfAKilledWriterIsRemovedByTheNextWrite) {
+  const OpenFoamMesh mesh = readOpenFoamMesh(kData / "cube");
+  const fs::path out = dir_ / "out";
+  const pid_t child = ::fork();
+  if (child == 0) {
+    // On this thread alone: OpenMP's threads do not survive a fork.
+    auto* leaked = new StagedOpenFoamMesh(stageOpenFoamMesh(mesh, mesh.points, out, {.durable = false, .everyCore = false}));
+    (void)leaked;
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
+  ASSERT_EQ(names.size(), 1u);
+  EXPECT_EQ(names[0].rfind(".out.tmp-" + std::to_string(child) + "-", 0), 0u) << names[0];
+  EXPECT_TRUE(fs::exists(dir_ / names[0] / "constant" / "polyMesh" / "points"));
+  writeOpenFoamMesh(mesh, mesh.points * 2.0, out, {.durable = false});
+  names.clear();
+  for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
+  EXPECT_EQ(names, std::vector<std::string>{"out"});
+  EXPECT_EQ(readOpenFoamMesh(out).points, mesh.points * 2.0);
 }
 
 TEST_F(OpenFoam, RefusesAnOutputInsideTheCase) {

@@ -76,8 +76,8 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view con
 /// `.<name>.tmp-<pid>-<n>` (the whole file name kept, so the owner of a temporary is clear).
 std::filesystem::path temporaryPathBeside(const std::filesystem::path& path);
 
-/// Removes temporaries of `path` (see temporaryPathBeside) whose writing process no longer
-/// exists. Returns how many were removed.
+/// Removes temporaries of `path` (see temporaryPathBeside: files, or folders with what they hold)
+/// whose writing process no longer exists. Returns how many were removed.
 int removeStaleTemporaries(const std::filesystem::path& path);
 
 }  // namespace ffdkit::meshio
