@@ -155,9 +155,12 @@ struct OpenFoamWriteOptions {
 /// nothing is written.
 class StagedOpenFoamMesh {
  public:
+  /// Takes charge of the written hidden folder `temporary`, to be renamed onto `output` (and the
+  /// rename flushed to disk when `durable`).
   StagedOpenFoamMesh(std::filesystem::path temporary, std::filesystem::path output, bool durable)
       : temporary_(std::move(temporary)), output_(std::move(output)), durable_(durable) {}
   ~StagedOpenFoamMesh();
+  /// Takes `other`'s hidden folder; `other` then has none (and removes nothing).
   StagedOpenFoamMesh(StagedOpenFoamMesh&& other) noexcept;
   StagedOpenFoamMesh& operator=(StagedOpenFoamMesh&&) = delete;
   StagedOpenFoamMesh(const StagedOpenFoamMesh&) = delete;
