@@ -46,14 +46,15 @@
 #include "cad_model_data.h"
 #include "ffd_map.h"
 #include "geometry_fit.h"
+#include "occt_points.h"
 #include "piecewise_composition.h"
 
 namespace ffdkit::cad {
 
 namespace {
 
-Eigen::Vector3d toEigen(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
-gp_Pnt toPnt(const Eigen::Vector3d& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
+using detail::toEigen;
+using detail::toPnt;
 
 Handle(Geom_BSplineSurface) asBSpline(const Handle(Geom_Surface)& surface, const std::string& where) {
   if (auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(surface)) return asBSpline(trimmed->BasisSurface(), where);

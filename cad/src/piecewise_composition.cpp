@@ -15,12 +15,14 @@
 
 #include "ffdkit/cad/bernstein_composition.h"
 
+#include "occt_points.h"
+
 namespace ffdkit::cad {
 
 namespace {
 
-Eigen::Vector3d toEigen(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
-gp_Pnt toPnt(const Eigen::Vector3d& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
+using detail::toEigen;
+using detail::toPnt;
 
 const char* const kAxisNames[3] = {"u", "v", "w"};
 

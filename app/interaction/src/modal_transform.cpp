@@ -5,16 +5,13 @@
 #include <cstdlib>
 #include <numbers>
 
+#include "wrap_angle.h"
+
 namespace ffdkit::app {
 
 namespace {
 
-double wrapAngle(double a) {
-  constexpr double twoPi = 2.0 * std::numbers::pi;
-  a = std::fmod(a + std::numbers::pi, twoPi);
-  if (a < 0.0) a += twoPi;
-  return a - std::numbers::pi;
-}
+using detail::wrapAngle;
 
 double roundTo(double value, double step) { return step > 0.0 ? std::round(value / step) * step : value; }
 

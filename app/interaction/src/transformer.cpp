@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include "wrap_angle.h"
+
 namespace ffdkit::app {
 namespace {
 
@@ -29,12 +31,7 @@ TransformerHandle handleOf(Group g, int axis) {
   return static_cast<TransformerHandle>(base + axis);
 }
 
-double wrapAngle(double a) {
-  constexpr double twoPi = 2.0 * std::numbers::pi;
-  a = std::fmod(a + std::numbers::pi, twoPi);
-  if (a < 0.0) a += twoPi;
-  return a - std::numbers::pi;
-}
+using detail::wrapAngle;
 
 // Samples per ring when picking: the chord sagitta of a 64-gon is 0.12 % of the radius.
 constexpr int kRingSegments = 64;

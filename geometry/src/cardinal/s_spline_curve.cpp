@@ -6,12 +6,10 @@
 
 #include "ffdkit/geometry/cardinal/cardinal_error.h"
 
+#include "floor_mod.h"
+
 namespace ffdkit::geometry::cardinal {
-namespace {
-
-int floorMod(int a, int m) { return ((a % m) + m) % m; }
-
-}  // namespace
+using detail::floorMod;
 
 SSplineCurve::SSplineCurve(const Eigen::MatrixX3d& points, const SSplineCurveOptions& options)
     : points_(points), options_(options), basis_(options.beta2, options.halfWidth, options.degree, options.clipped) {

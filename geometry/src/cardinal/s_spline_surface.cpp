@@ -7,10 +7,12 @@
 
 #include "ffdkit/geometry/cardinal/cardinal_error.h"
 
+#include "floor_mod.h"
+
 namespace ffdkit::geometry::cardinal {
 namespace {
 
-int floorMod(int a, int m) { return ((a % m) + m) % m; }
+using detail::floorMod;
 
 // Source index of extended index i under the open (repeat) or closed (wrap) end rule.
 int sourceIndex(int i, int span, bool closed) {

@@ -8,10 +8,12 @@
 
 #include "ffdkit/geometry/cardinal/cardinal_error.h"
 
+#include "floor_mod.h"
+
 namespace ffdkit::geometry::cardinal {
 namespace {
 
-int floorMod(int a, int m) { return ((a % m) + m) % m; }
+using detail::floorMod;
 
 void checkPointCount(const SigmaKnots& knots, Eigen::Index rows, const char* where) {
   if (rows != knots.pointCount()) {

@@ -6,12 +6,10 @@
 
 #include "ffdkit/geometry/cardinal/cardinal_error.h"
 
+#include "floor_mod.h"
+
 namespace ffdkit::geometry::cardinal {
-namespace {
-
-int floorMod(int a, int m) { return ((a % m) + m) % m; }
-
-}  // namespace
+using detail::floorMod;
 
 QuarticBezier sigmaIntervalBezier(const SigmaKnots& knots, int i, const Eigen::Vector3d& p0,
                                   const Eigen::Vector3d& p1, const Eigen::Vector3d& shapePrev,

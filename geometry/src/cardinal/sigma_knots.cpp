@@ -6,12 +6,10 @@
 
 #include "ffdkit/geometry/cardinal/cardinal_error.h"
 
+#include "floor_mod.h"
+
 namespace ffdkit::geometry::cardinal {
-namespace {
-
-int floorMod(int a, int m) { return ((a % m) + m) % m; }
-
-}  // namespace
+using detail::floorMod;
 
 SigmaKnots::SigmaKnots(const Eigen::VectorXd& knots, const Eigen::VectorXd& beta2,
                        const SigmaKnotsOptions& options)

@@ -6,10 +6,12 @@
 #include "ffdkit/geometry/cardinal/cardinal_error.h"
 #include "ffdkit/geometry/cardinal/sigma_curve.h"
 
+#include "floor_mod.h"
+
 namespace ffdkit::geometry::cardinal {
 namespace {
 
-int floorMod(int a, int m) { return ((a % m) + m) % m; }
+using detail::floorMod;
 
 // Grid row/column of knot index i and of shape index i along one direction.
 int pointSlot(const SigmaKnots& k, int i) { return k.closed() ? floorMod(i, k.last()) : i; }

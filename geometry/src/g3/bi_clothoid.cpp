@@ -11,8 +11,6 @@
 namespace ffdkit::geometry::g3 {
 namespace {
 
-constexpr double kMaxTurnPerPanel = 1.0;
-
 // Quadratic Bezier ordinates c_0..c_4 of the two arcs' tangent angle (Kuroda et al. 1997, sec. 6).
 struct Ordinates {
   double c[5];
@@ -31,7 +29,7 @@ Ordinates ordinates(const BiClothoidEnds& e, double s0, double s1) {
 // I = int_0^1 (cos, sin) psi(u) du and moments int B^2_k (cos, sin) psi for the quadratic piece.
 using QuadMoments = Eigen::Matrix<double, 8, 1>;
 QuadMoments quadraticMoments(double c0, double c1, double c2) {
-  const int panels = detail::panelCount(std::abs(c1 - c0) + std::abs(c2 - c1), kMaxTurnPerPanel);
+  const int panels = detail::panelCount(std::abs(c1 - c0) + std::abs(c2 - c1), detail::kMaxTurnPerPanel);
   const auto& rule = detail::defaultRule();
   QuadMoments sum = QuadMoments::Zero();
   for (int p = 0; p < panels; ++p) {
@@ -59,7 +57,7 @@ void validateEnds(const BiClothoidEnds& e) {
 
 Eigen::Vector2d ClothoidArc::position(double sigma) const {
   const double turning = std::abs(startCurvature) * std::abs(sigma) + 0.5 * std::abs(sharpness) * sigma * sigma;
-  const int panels = detail::panelCount(turning, kMaxTurnPerPanel);
+  const int panels = detail::panelCount(turning, detail::kMaxTurnPerPanel);
   return start + detail::integrateTangent(detail::defaultRule(), [&](double t) { return angle(t); }, 0.0, sigma, panels);
 }
 

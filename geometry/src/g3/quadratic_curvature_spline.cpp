@@ -11,10 +11,6 @@
 namespace ffdkit::geometry::g3 {
 namespace {
 
-// One panel per radian of turning: 16 nodes then reproduce every reference value of the
-// tests to ~1e-15.
-constexpr double kMaxTurnPerPanel = 1.0;
-
 void validate(const Eigen::Ref<const Eigen::VectorXd>& spanLengths,
               const Eigen::Ref<const Eigen::VectorXd>& deBoor) {
   const Eigen::Index n = spanLengths.size();
@@ -158,7 +154,7 @@ Eigen::Vector2d QuadraticCurvatureSpline::position(double s) const {
   int span = 0;
   const double t = localT(s, span);
   const Eigen::Vector4d b = bezier_.segment<4>(3 * span);
-  const int panels = detail::panelCount(detail::controlPolygonTurning(b) * t, kMaxTurnPerPanel);
+  const int panels = detail::panelCount(detail::controlPolygonTurning(b) * t, detail::kMaxTurnPerPanel);
   const Eigen::Vector2d start = spanStarts_.row(span).transpose();
   return start + spanLengths_[span] *
                      detail::integrateTangent(detail::defaultRule(), [&](double u) { return detail::cubicBezier(b, u); },
@@ -169,7 +165,7 @@ Eigen::Vector2d QuadraticCurvatureSpline::spanDisplacement(int span, int panelMu
   const double ds = spanLength(span);
   if (panelMultiplier < 1) throw G3InputError("panelMultiplier must be >= 1");
   const Eigen::Vector4d b = bezier_.segment<4>(3 * span);
-  const int panels = panelMultiplier * detail::panelCount(detail::controlPolygonTurning(b), kMaxTurnPerPanel);
+  const int panels = panelMultiplier * detail::panelCount(detail::controlPolygonTurning(b), detail::kMaxTurnPerPanel);
   return ds * detail::integrateTangent(detail::defaultRule(), [&](double u) { return detail::cubicBezier(b, u); },
                                        0.0, 1.0, panels);
 }
@@ -194,7 +190,7 @@ CurveSamples QuadraticCurvatureSpline::sample(int perSpan) const {
     const Eigen::Vector4d b = bezier_.segment<4>(3 * i);
     const double ds = spanLengths_[i];
     const Eigen::Vector3d c = curvatureQuadratic(i);
-    const int panels = detail::panelCount(detail::controlPolygonTurning(b) / perSpan, kMaxTurnPerPanel);
+    const int panels = detail::panelCount(detail::controlPolygonTurning(b) / perSpan, detail::kMaxTurnPerPanel);
     Eigen::Vector2d p = spanStarts_.row(i).transpose();
     for (int j = 0; j < perSpan; ++j, ++k) {
       const double t = static_cast<double>(j) / perSpan;

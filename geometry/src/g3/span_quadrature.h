@@ -15,6 +15,10 @@ namespace ffdkit::geometry::g3::detail {
 /// The default 16-point rule, built once.
 const GaussLegendreRule& defaultRule();
 
+/// One panel per radian of turning: 16 nodes then reproduce every reference value of the
+/// tests to ~1e-15.
+constexpr double kMaxTurnPerPanel = 1.0;
+
 /// Panel count P = max(1, ceil(V / maxTurn)), V bounding the total turning from the control
 /// polygon of psi.
 inline int panelCount(double totalTurningBound, double maxTurnPerPanel) {

@@ -75,7 +75,7 @@ int pitch(const GeneratorParameters& p, double density) { return scaledCount(p.i
 /// pointBound: the network is built (cheap beside its tessellation); a face of N sides is an
 /// N-gon lattice of 1 + N P (P + 1) / 2 points at pitch P, plus at most N P points where a
 /// T-junction splits a side at its neighbour's samples.
-std::uint64_t pointBound(const GeneratorParameters& p, double density) {
+std::uint64_t networkPointBound(const GeneratorParameters& p, double density) {
   const cn::CurveNetworkSurfaceParams params = surfaceParams(p);
   const std::uint64_t P = std::uint64_t(pitch(p, density));
   const cn::CurveNetwork network = cn::buildCurveNetwork(params.network, params.networkOptions);
@@ -102,7 +102,7 @@ void addCurvenetGenerators(GeneratorRegistry& registry) {
             return triangleMesh(cn::generateCurveNetworkSurface(surfaceParams(p), pitch(p, density)));
           },
       .profile = {},
-      .pointBound = pointBound,
+      .pointBound = networkPointBound,
   });
 }
 

@@ -60,15 +60,15 @@ g3::G3CurveParams curveParams(const GeneratorParameters& p) {
   return params;
 }
 
-g3::G3CurveSampling sampling(const GeneratorParameters& p, double density) {
+g3::G3CurveSampling g3Sampling(const GeneratorParameters& p, double density) {
   return {scaledCount(p.integer("samples-per-span", g3::G3CurveSampling{}.samplesPerSpan, 1, kMaxSamples), density, 2)};
 }
 
 /// pointBound: at most one span per point, samples-per-span each; the clothoid output has 2^k
 /// arcs per span of max(2, samples-per-span / 2^k) samples each.
-std::uint64_t pointBound(const GeneratorParameters& p, double density) {
+std::uint64_t g3PointBound(const GeneratorParameters& p, double density) {
   const std::uint64_t spans = std::uint64_t(p.rows("points", 2).rows());
-  const int perSpan = sampling(p, density).samplesPerSpan;
+  const int perSpan = g3Sampling(p, density).samplesPerSpan;
   const int levels = p.integer("clothoid-levels", g3::G3CurveParams{}.clothoidLevels, 0, 8);
   if (levels == 0) return samplesAlong(spans, perSpan);
   return samplesAlong(boundProduct(spans, std::uint64_t(1) << levels), std::max(2, perSpan >> levels));
@@ -77,7 +77,7 @@ std::uint64_t pointBound(const GeneratorParameters& p, double density) {
 /// Planar profile: signed curvature, no torsion, normal (-sin psi, cos psi) in the plane z.
 CurvatureProfile profile(const GeneratorParameters& p, double density) {
   const g3::G3CurveParams params = curveParams(p);
-  const g3::CurveSamples samples = g3::sampleG3Curve(params, sampling(p, density));
+  const g3::CurveSamples samples = g3::sampleG3Curve(params, g3Sampling(p, density));
   const Eigen::Index n = samples.arcLength.size();
   CurvatureProfile result;
   result.arcLength = samples.arcLength;
@@ -101,9 +101,9 @@ void addG3Generators(GeneratorRegistry& registry) {
                          "circular-arc-spans", "total-length", "span-lengths", "clothoid-levels", "z",
                          "allow-overdetermined", "max-iterations", "samples-per-span"},
       .generate = [](const GeneratorParameters& p,
-                     double density) { return polylineMesh(g3::generateG3Curve(curveParams(p), sampling(p, density))); },
+                     double density) { return polylineMesh(g3::generateG3Curve(curveParams(p), g3Sampling(p, density))); },
       .profile = profile,
-      .pointBound = pointBound,
+      .pointBound = g3PointBound,
   });
 }
 

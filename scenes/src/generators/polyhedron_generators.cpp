@@ -101,7 +101,7 @@ int samplesPerPatchSide(const GeneratorParameters& p, double density) {
 /// pointBound: one patch per corner of every face (a face of m sides splits into m triangles),
 /// each sampled at (n + 1)(n + 2) / 2 points; a parametric sphere or torus is bounded from its
 /// resolution before its polyhedron is built (a x b faces of at most 4 sides).
-std::uint64_t pointBound(const GeneratorParameters& p, double density) {
+std::uint64_t patchPointBound(const GeneratorParameters& p, double density) {
   const bool explicitPolyhedron = p.has("vertices") || p.has("faces");
   const std::string builtin = p.text("builtin-mesh", ph::PolyhedronSurfaceParams{}.builtinMesh);
   std::uint64_t patches = 0;
@@ -129,7 +129,7 @@ void addPolyhedronGenerators(GeneratorRegistry& registry) {
             return triangleMesh(ph::generatePolyhedronSurface(surfaceParams(p), {samplesPerPatchSide(p, density)}));
           },
       .profile = {},
-      .pointBound = pointBound,
+      .pointBound = patchPointBound,
   });
 }
 

@@ -36,12 +36,12 @@ const std::vector<std::pair<std::string, q::ProductForm>> kForms = {
     {"local", q::ProductForm::Local},
 };
 
-q::CurveSampling sampling(const GeneratorParameters& p, double density) {
+q::CurveSampling quaternionSampling(const GeneratorParameters& p, double density) {
   return {scaledCount(p.integer("samples", q::CurveSampling{}.samples, 2, kMaxSamples), density, 2)};
 }
 
 // pointBound: the curve is sampled at exactly `samples` points (scaled by density).
-std::uint64_t samplesBound(const GeneratorParameters& p, double density) { return std::uint64_t(sampling(p, density).samples); }
+std::uint64_t samplesBound(const GeneratorParameters& p, double density) { return std::uint64_t(quaternionSampling(p, density).samples); }
 
 CurvatureProfile toProfile(const q::CurveProfile& profile) {
   return {profile.arcLength, profile.curvature, profile.torsion, profile.points, profile.normals};
@@ -105,9 +105,9 @@ void addQuaternionGenerators(GeneratorRegistry& registry) {
       .summary = "G2 curve through points by quadratic quaternion-integral segments (Miura 1998)",
       .parameterNames = {"points", "end-rule", "start-tangent", "end-tangent", "stop-mode", "max-iterations", "samples"},
       .generate = [](const GeneratorParameters& p,
-                     double density) { return polylineMesh(q::generateQiInterpolate(interpolateParams(p), sampling(p, density))); },
+                     double density) { return polylineMesh(q::generateQiInterpolate(interpolateParams(p), quaternionSampling(p, density))); },
       .profile = [](const GeneratorParameters& p,
-                    double density) { return toProfile(q::profileQiInterpolate(interpolateParams(p), sampling(p, density))); },
+                    double density) { return toProfile(q::profileQiInterpolate(interpolateParams(p), quaternionSampling(p, density))); },
       .pointBound = samplesBound,
   });
   registry.add({
@@ -116,9 +116,9 @@ void addQuaternionGenerators(GeneratorRegistry& registry) {
       .parameterNames = {"points", "breaks", "degree", "dimension", "form", "start-tangent-mode", "start-tangent",
                          "initial-curve", "max-iterations", "samples"},
       .generate = [](const GeneratorParameters& p,
-                     double density) { return polylineMesh(q::generateQiFit(fitParams(p), sampling(p, density))); },
+                     double density) { return polylineMesh(q::generateQiFit(fitParams(p), quaternionSampling(p, density))); },
       .profile = [](const GeneratorParameters& p,
-                    double density) { return toProfile(q::profileQiFit(fitParams(p), sampling(p, density))); },
+                    double density) { return toProfile(q::profileQiFit(fitParams(p), quaternionSampling(p, density))); },
       .pointBound = samplesBound,
   });
   registry.add({
@@ -127,9 +127,9 @@ void addQuaternionGenerators(GeneratorRegistry& registry) {
       .parameterNames = {"start-point", "start-tangent", "end-point", "end-tangent", "degree", "second-control",
                          "multi-starts", "samples"},
       .generate = [](const GeneratorParameters& p,
-                     double density) { return polylineMesh(q::generateSphereTangent(sphereTangentParams(p), sampling(p, density))); },
+                     double density) { return polylineMesh(q::generateSphereTangent(sphereTangentParams(p), quaternionSampling(p, density))); },
       .profile = [](const GeneratorParameters& p,
-                    double density) { return toProfile(q::profileSphereTangent(sphereTangentParams(p), sampling(p, density))); },
+                    double density) { return toProfile(q::profileSphereTangent(sphereTangentParams(p), quaternionSampling(p, density))); },
       .pointBound = samplesBound,
   });
 }
