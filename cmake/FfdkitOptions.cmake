@@ -51,6 +51,21 @@ function(ffdkit_target_defaults target)
                          -Wno-unused-parameter)
 endfunction()
 
+# Libraries and programs are unity builds (FFDKIT_UNITY_LIBS, default ON): up to
+# FFDKIT_UNITY_BATCH of a target's source files compiled as one translation unit, so that the
+# headers they share (Eigen, the standard library, VTK, Qt) are parsed, and the templates they
+# share (Eigen's decompositions and products) instantiated and optimized, once per batch instead
+# of once per file. A name a file defines for itself (anonymous namespace, static) must therefore
+# differ from the names of the other files of its target. OFF compiles each file alone (one entry
+# per file in compile_commands.json, for tools that read it; quicker after an edit of one file).
+option(FFDKIT_UNITY_LIBS "Compile each library's and program's files in unity batches" ON)
+set(FFDKIT_UNITY_BATCH 8 CACHE STRING "Source files per unity batch of a library or program")
+function(ffdkit_unity_library target)
+  if(FFDKIT_UNITY_LIBS)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${FFDKIT_UNITY_BATCH})
+  endif()
+endfunction()
+
 # ffdkit_add_module_library(module SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...]
 #   [HEADER_ONLY_DEPS ...]): one library target per module, ffdkit_<module> with the alias
 # ffdkit::<module>, public headers under <module>/include/ffdkit/<module>/; installed with its
@@ -71,6 +86,7 @@ function(ffdkit_add_module_library module)
   # and into shared libraries of projects that use the installed package.
   set_target_properties(ffdkit_${module} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   ffdkit_target_defaults(ffdkit_${module})
+  ffdkit_unity_library(ffdkit_${module})
   ffdkit_install_library(ffdkit_${module} ${module} HEADERS "${CMAKE_CURRENT_SOURCE_DIR}/include")
 endfunction()
 
