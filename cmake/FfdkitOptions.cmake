@@ -51,15 +51,15 @@ function(ffdkit_target_defaults target)
                          -Wno-unused-parameter)
 endfunction()
 
-# Libraries and programs are unity builds (FFDKIT_UNITY_LIBS, default ON): up to
+# Libraries and the Python module are unity builds (FFDKIT_UNITY_LIBS, default ON): up to
 # FFDKIT_UNITY_BATCH of a target's source files compiled as one translation unit, so that the
 # headers they share (Eigen, the standard library, VTK, Qt) are parsed, and the templates they
 # share (Eigen's decompositions and products) instantiated and optimized, once per batch instead
 # of once per file. A name a file defines for itself (anonymous namespace, static) must therefore
 # differ from the names of the other files of its target. OFF compiles each file alone (one entry
 # per file in compile_commands.json, for tools that read it; quicker after an edit of one file).
-option(FFDKIT_UNITY_LIBS "Compile each library's and program's files in unity batches" ON)
-set(FFDKIT_UNITY_BATCH 8 CACHE STRING "Source files per unity batch of a library or program")
+option(FFDKIT_UNITY_LIBS "Compile each library's files in unity batches" ON)
+set(FFDKIT_UNITY_BATCH 8 CACHE STRING "Source files per unity batch of a library")
 function(ffdkit_unity_library target)
   if(FFDKIT_UNITY_LIBS)
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${FFDKIT_UNITY_BATCH})
