@@ -1,4 +1,5 @@
-// Helpers shared by the ffdkit.ffd binding files (ffd_bindings.cpp, ffd_pipeline_bindings.cpp).
+// Helpers shared by the ffdkit.ffd binding files (ffd_bindings.cpp, ffd_pipeline_bindings.cpp,
+// shape_constraints_bindings.cpp).
 #pragma once
 
 #include <Eigen/Core>

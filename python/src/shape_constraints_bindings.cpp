@@ -11,6 +11,7 @@
 #include "ffdkit/ffd/closed_surface.h"
 #include "ffdkit/ffd/fold_check.h"
 #include "ffdkit/ffd/shape_constraints.h"
+#include "ffd_binding_support.h"
 #include "numpy_eigen.h"
 
 namespace ffdkit::python {
@@ -18,13 +19,6 @@ namespace ffdkit::python {
 using namespace pybind11::literals;
 
 namespace {
-
-// The control points of a Python-side lattice are a writable numpy view (see ffd_bindings.cpp):
-// validate them and bump the revision before reading.
-const ffd::Lattice& synced(ffd::Lattice& lattice) {
-  lattice.setControlPoints(Eigen::MatrixX3d(lattice.controlPoints()));
-  return lattice;
-}
 
 ffd::ClosedSurface surfaceArg(const py::handle& triangles, Eigen::Index vertices) {
   const Eigen::MatrixX3i rows = intRows3(triangles, "triangles");
