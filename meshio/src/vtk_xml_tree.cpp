@@ -18,8 +18,9 @@ std::string concat(const Pieces&... pieces) {
   return text;
 }
 
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
-bool isNameChar(char c) { return !isSpace(c) && c != '/' && c != '>' && c != '=' && c != '<' && c != '"' && c != '\''; }
+// XML white space (the XML 1.0 S production).
+bool isXmlSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+bool isNameChar(char c) { return !isXmlSpace(c) && c != '/' && c != '>' && c != '=' && c != '<' && c != '"' && c != '\''; }
 
 class Parser {
  public:
@@ -74,7 +75,7 @@ class Parser {
   bool startsWith(std::string_view prefix) const { return bytes_.substr(pos_, prefix.size()) == prefix; }
 
   void skipSpaces() {
-    while (pos_ < bytes_.size() && isSpace(bytes_[pos_])) ++pos_;
+    while (pos_ < bytes_.size() && isXmlSpace(bytes_[pos_])) ++pos_;
   }
 
   void skipPast(std::string_view end, const char* what) {
