@@ -1,6 +1,7 @@
 #include "ffdkit/ffd/pipeline.h"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <random>
 #include <thread>
@@ -127,9 +128,10 @@ TEST(Pipeline, PrecisionReachesEveryStageAndAChangeEvaluatesThemInFull) {
   EXPECT_TRUE(pipeline.lastReport()[0].outputChanged);
   EXPECT_TRUE(pipeline.lastReport()[1].reembedded);  // its input moved
   // By hand: each stage a single-precision Deformer on the previous stage's output.
-  auto singleByHand = [&] {
+  // The stages by value: clang before 16 cannot capture a structured binding.
+  auto singleByHand = [&, stages = std::array{parent, child}] {
     Eigen::MatrixX3d points = Q;
-    for (LatticeId id : {parent, child}) {
+    for (LatticeId id : stages) {
       Deformer deformer(embed(pipeline.lattice(id), points));
       deformer.setPrecision(Precision::Single);
       points = deformer.deform(pipeline.lattice(id), points);

@@ -117,7 +117,11 @@ void InteractionController::updateFoldTints() {
   std::erase_if(foldWatch_, [&](const auto& entry) { return !m.contains(entry.first) || m.type(entry.first) != WidgetType::Lattice; });
   std::erase_if(foldTints_, [&](const FoldTint& tint) { return !foldWatch_.contains(tint.lattice); });
   std::erase_if(certified_, [&](const CertifiedLattice& c) { return !foldWatch_.contains(c.lattice); });
-  for (auto& [lattice, known] : foldWatch_) {
+  for (auto& watched : foldWatch_) {
+    // Named copies, not a structured binding: the lambdas below capture the lattice, and clang
+    // before 16 (the sanitizer stages' compiler) cannot capture a structured binding.
+    const WidgetId lattice = watched.first;
+    auto& known = watched.second;
     const auto now = revisionsOf(m, lattice);
     if (known == now) continue;  // unchanged: its verdicts stand
     known = now;

@@ -332,7 +332,9 @@ void InteractionController::replaceWidgets(widgets::WidgetModel model, const std
     std::vector<scenes::Attachment> attachments;
     const std::vector<WidgetId> roots = scene_.widgets.roots();
     for (auto& [name, objects] : named) {
-      const auto root = std::find_if(roots.begin(), roots.end(), [&](WidgetId r) { return scene_.widgets.name(r) == name; });
+      // Compared by a plain reference: clang before 16 cannot capture a structured binding.
+      const std::string& latticeName = name;
+      const auto root = std::find_if(roots.begin(), roots.end(), [&](WidgetId r) { return scene_.widgets.name(r) == latticeName; });
       if (root != roots.end()) attachments.push_back({*root, std::move(objects)});
     }
     scene_.setAttachments(std::move(attachments));
