@@ -490,8 +490,8 @@ TEST(G3CurveSolver, AlignsTangentTargetsToTheNearestBranch) {
 TEST(G3CurveSolver, AcceptsACustomCondition) {
   // d_0 - d_{-1} = 0 and d_{n+1} - d_n = 0 written by hand, plus psi(0) = 0.45 (T3 in linear form).
   const Eigen::MatrixX2d p = testdata::figure2Points();
-  const int n = 7;
-  auto startFlat = [n](const Eigen::VectorXd& v, Eigen::Ref<Eigen::RowVectorXd> g) {
+  constexpr int n = 7;
+  auto startFlat = [](const Eigen::VectorXd& v, Eigen::Ref<Eigen::RowVectorXd> g) {
     g[n] = -1.0;
     g[n + 1] = 1.0;
     return v[n + 1] - v[n];
