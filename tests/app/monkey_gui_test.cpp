@@ -43,7 +43,7 @@
 
 #include <unistd.h>
 
-#if defined(__SANITIZE_ADDRESS__)
+#ifdef FFDKIT_ASAN
 #include <sanitizer/common_interface_defs.h>
 #endif
 
@@ -139,7 +139,7 @@ void installCrashReport() {
     sigemptyset(&action.sa_mask);
     sigaction(signal, &action, &gPrevious[signal]);
   }
-#if defined(__SANITIZE_ADDRESS__)
+#ifdef FFDKIT_ASAN
   __sanitizer_set_death_callback(printRunning);
 #endif
 }

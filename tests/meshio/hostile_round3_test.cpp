@@ -352,7 +352,7 @@ TEST(HostileRound3, SlicesReadAgainstTheReadersLimits) {
 // address-space limit a little above what it uses, and a read whose budget allows far more:
 // the instanced glTF's 100M points (2.4 GB) cannot be allocated.
 TEST(HostileRound3, AFailedAllocationIsAMeshIoError) {
-#if defined(__SANITIZE_ADDRESS__)
+#ifdef FFDKIT_ASAN
   GTEST_SKIP() << "AddressSanitizer reserves its shadow memory up front and reports a failed allocation itself";
 #endif
   const std::string gltf = test::instancedGltf(1000, 500, 200);

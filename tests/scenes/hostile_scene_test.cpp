@@ -295,7 +295,7 @@ TEST(HostileScene, EveryGeneratorsBoundHoldsEveryGeneratedSampleAtSeveralDensiti
 }
 
 TEST(HostileScene, AFailedAllocationBecomesASceneFileError) {
-#if defined(__SANITIZE_ADDRESS__)
+#ifdef FFDKIT_ASAN
   GTEST_SKIP() << "AddressSanitizer reports an allocation this large itself instead of failing it";
 #endif
   // With the limits lifted, a sigma-spline surface sampled 10^8 x 10^8 per span asks Eigen for
