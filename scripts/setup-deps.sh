@@ -2,7 +2,7 @@
 # Installs every Debian 12 package that ffdkit's build, tests and app need.
 # Idempotent: installs only what is missing, and runs `apt-get update` once, only then.
 #   scripts/setup-deps.sh           the build, tests and app
-#   scripts/setup-deps.sh --fuzz    also clang and libFuzzer (scripts/fuzz.sh)
+#   scripts/setup-deps.sh --fuzz    also libFuzzer (scripts/fuzz.sh)
 #   scripts/setup-deps.sh --cost    print what the install costs (packages and disk, with their
 #                                   dependencies, beyond Debian's required and important ones)
 set -euo pipefail
@@ -10,6 +10,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build ccache pkg-config git
   lld  # the linker (cmake/FfdkitOptions.cmake): links the test programs about ten times quicker than ld.bfd
+  clang libomp-14-dev libclang-rt-14-dev  # scripts/test.sh's sanitizer stages: clang compiles ASan + UBSan builds about three times quicker than GCC; its OpenMP and sanitizer runtimes
   libeigen3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
@@ -38,7 +39,7 @@ for arg in "$@"; do
   esac
 done
 if [ "$fuzz" = 1 ]; then
-  packages+=(clang libfuzzer-14-dev libclang-rt-14-dev)
+  packages+=(libfuzzer-14-dev)
 fi
 
 if [ "$cost" = 1 ]; then
