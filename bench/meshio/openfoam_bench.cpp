@@ -211,7 +211,9 @@ void BM_OpenFoamCheckDeformed(benchmark::State& state) {
 void BM_OpenFoamWrite(benchmark::State& state) {
   const int n = cellsOf(state);
   const fs::path root = makeCube(n);
-  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(root, {.readCells = false});
+  meshio::OpenFoamReadOptions pointsOnly;
+  pointsOnly.readCells = false;
+  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(root, pointsOnly);
   const Eigen::MatrixX3d moved = mesh.points * 1.01;
   const fs::path out = root.string() + "-out";
   for (auto _ : state) meshio::writeOpenFoamMesh(mesh, moved, out);
