@@ -38,6 +38,13 @@ namespace {
 using namespace ffdkit;
 namespace fs = std::filesystem;
 
+// Read options for the points alone (no faces, owner, neighbour or boundary).
+meshio::OpenFoamReadOptions pointsOnly() {
+  meshio::OpenFoamReadOptions options;
+  options.readCells = false;
+  return options;
+}
+
 std::string header(const char* className, const char* object) {
   return std::string("FoamFile\n{\n    version     2.0;\n    format      binary;\n    class       ") + className +
          ";\n    arch        \"LSB;label=32;scalar=64\";\n    location    \"constant/polyMesh\";\n    object      " +
@@ -141,7 +148,7 @@ void checkCube(int n) {
   if (inPlace != deformed) throw std::runtime_error("deformInPlace gives other points than the scene deformer");
   const fs::path out = makeCube(n).string() + "-out";
   meshio::writeOpenFoamMesh(mesh, deformed, out, {.durable = false});
-  if (meshio::readOpenFoamMesh(out, {.readCells = false}).points != deformed)
+  if (meshio::readOpenFoamMesh(out, pointsOnly()).points != deformed)
     throw std::runtime_error("the written case reads back other points");
   fs::remove_all(out);
 }
@@ -171,7 +178,7 @@ void BM_OpenFoamRead(benchmark::State& state) {
 
 void BM_OpenFoamDeform(benchmark::State& state) {
   const int n = cellsOf(state);
-  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(makeCube(n), {.readCells = false});
+  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(makeCube(n), pointsOnly());
   const widgets::WidgetModel model = tool();
   for (auto _ : state) benchmark::DoNotOptimize(deform(model, mesh.points).data());
   setCounters(state, n);
@@ -179,7 +186,7 @@ void BM_OpenFoamDeform(benchmark::State& state) {
 
 void BM_OpenFoamDeformInPlace(benchmark::State& state) {
   const int n = cellsOf(state);
-  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(makeCube(n), {.readCells = false});
+  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(makeCube(n), pointsOnly());
   const ffd::Lattice lattice = toolLattice(tool());
   Eigen::MatrixX3d points = mesh.points;
   for (auto _ : state) {
@@ -211,9 +218,7 @@ void BM_OpenFoamCheckDeformed(benchmark::State& state) {
 void BM_OpenFoamWrite(benchmark::State& state) {
   const int n = cellsOf(state);
   const fs::path root = makeCube(n);
-  meshio::OpenFoamReadOptions pointsOnly;
-  pointsOnly.readCells = false;
-  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(root, pointsOnly);
+  const meshio::OpenFoamMesh mesh = meshio::readOpenFoamMesh(root, pointsOnly());
   const Eigen::MatrixX3d moved = mesh.points * 1.01;
   const fs::path out = root.string() + "-out";
   for (auto _ : state) meshio::writeOpenFoamMesh(mesh, moved, out);
