@@ -62,6 +62,14 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 load_before="$(cut -d' ' -f1-3 /proc/loadavg)"
 echo "bench.sh: $reps repetitions; load average before: $load_before"
+# Whether other work ran beside the benchmarks: the machine's busy CPU time (/proc/stat) less this
+# script's own and its children's (/proc/$$/stat), over the run. (The load average cannot tell:
+# the benchmarks' own threads raise it.)
+machine_cpu() { awk '/^cpu / { print $2 + $3 + $4 + $7 + $8 + $9 }' /proc/stat; }
+own_cpu() { awk '{ print $14 + $15 + $16 + $17 }' "/proc/$$/stat"; }
+machine_before="$(machine_cpu)"
+own_before="$(own_cpu)"
+start_ns="$(date +%s%N)"
 
 # ---- Google Benchmark programs -------------------------------------------------------------
 # gbench NAME BINARY FILTER [ENV...]: runs BINARY with FILTER, all repetitions kept, into NAME.json.
@@ -143,7 +151,10 @@ if command -v blender >/dev/null 2>&1 && [ -x "$build/bench/ffd/bench_ffd" ]; th
 fi
 
 load_after="$(cut -d' ' -f1-3 /proc/loadavg)"
-echo "bench.sh: load average after: $load_after"
+other_cores="$(awk -v m="$(( $(machine_cpu) - machine_before ))" -v o="$(( $(own_cpu) - own_before ))" \
+  -v hz="$(getconf CLK_TCK)" -v ns="$(( $(date +%s%N) - start_ns ))" \
+  'BEGIN { v = (m - o) / hz / (ns / 1e9); printf "%.2f", v < 0 ? 0 : v }')"
+echo "bench.sh: load average after: $load_after; other work beside the benchmarks: $other_cores cores on average"
 
 # ---- The page ---------------------------------------------------------------------------------
 cpu="$(lscpu 2>/dev/null | sed -n 's/^Model name:[[:space:]]*//p' | head -1)"
@@ -152,7 +163,7 @@ FFDKIT_BENCH_WORK="$work" FFDKIT_BENCH_BUILD="$build" FFDKIT_BENCH_REPS="$reps" 
 FFDKIT_BENCH_CPU="${cpu:-unknown}" FFDKIT_BENCH_CORES="$(nproc)" FFDKIT_BENCH_MEMORY="$memory" \
 FFDKIT_BENCH_COMMIT="$commit" FFDKIT_BENCH_DATE="$(date -u +%Y-%m-%d)" FFDKIT_BENCH_OS="$(uname -sr)" \
 FFDKIT_BENCH_CLI="$cli_command" FFDKIT_BENCH_PYTHON="$python_command" FFDKIT_BENCH_BLENDER="$blender_command" \
-FFDKIT_BENCH_LOAD_BEFORE="$load_before" FFDKIT_BENCH_LOAD_AFTER="$load_after" \
+FFDKIT_BENCH_LOAD_BEFORE="$load_before" FFDKIT_BENCH_LOAD_AFTER="$load_after" FFDKIT_BENCH_OTHER_CORES="$other_cores" \
 FFDKIT_BENCH_ROOT="$root" python3 - "$out" "$readme" <<'PY'
 import json, os, re, statistics, sys
 
@@ -348,9 +359,11 @@ w("| date | %s |" % env["FFDKIT_BENCH_DATE"])
 w("| commit | %s |" % env["FFDKIT_BENCH_COMMIT"])
 w("| repetitions | %d per row (Python: %d calls) |" % (reps, 2 * reps + 1))
 cores = int(env["FFDKIT_BENCH_CORES"])
-busy = max(float(env["FFDKIT_BENCH_LOAD_BEFORE"].split()[0]), float(env["FFDKIT_BENCH_LOAD_AFTER"].split()[0])) > 0.5 * cores
-w("| conditions | %s |" % ("busy: other work ran beside the benchmarks (more than half the cores' worth), so these are slower and spread more than on an idle machine" if busy
-                          else "quiet: little else ran beside the benchmarks"))
+other_cores = float(env["FFDKIT_BENCH_OTHER_CORES"])
+busy = other_cores > 0.5 * cores
+w("| conditions | %s (other work used %.2f cores on average beside the benchmarks) |" % (
+    "busy: more than half the cores' worth of other work ran beside the benchmarks, so these are slower and spread more than on an idle machine" if busy
+    else "quiet: little else ran beside the benchmarks", other_cores))
 w("")
 w("| # | what | median | range | goal | | peer |")
 w("|---|---|---|---|---|---|---|")
