@@ -309,6 +309,26 @@ constexpr std::size_t kDirectBlock = 4096;
   throw MeshIoError(to.string() + ": cannot write (" + step + ": " + std::strerror(errno) + ")");
 }
 
+// How writeFully ended.
+enum class FullWrite { Written, DirectRefused, Failed };
+
+// Writes all `length` bytes of `data` at `offset` of `fd`, again after EINTR and short writes.
+// DirectRefused: the file system refused direct I/O (`direct`) at the file's first byte (EINVAL
+// there; nothing written). Failed: errno says why (EIO for a write of nothing).
+FullWrite writeFully(int fd, const char* data, std::size_t length, std::uint64_t offset, bool direct) {
+  for (std::size_t done = 0; done < length;) {
+    const ssize_t n = ::pwrite(fd, data + done, length - done, off_t(offset + done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && errno == EINVAL && direct && offset + done == 0) return FullWrite::DirectRefused;
+    if (n <= 0) {
+      if (n == 0) errno = EIO;
+      return FullWrite::Failed;
+    }
+    done += std::size_t(n);
+  }
+  return FullWrite::Written;
+}
+
 // A new file written from a buffer that the caller fills piece by piece: through the page cache,
 // or by direct I/O (O_DIRECT: whole blocks go to the disk from the buffer, aligned to a block,
 // as it fills; the last partial block through the page cache; buffered writes where the file
@@ -364,20 +384,13 @@ class NewFileWriter {
   // Writes the buffer's whole blocks (direct I/O; all of it otherwise) and keeps the rest at its start.
   void writeBlocks() {
     const std::size_t length = direct_ ? fill_ - fill_ % kDirectBlock : fill_;
-    for (std::size_t done = 0; done < length;) {
-      const ssize_t n = ::pwrite(file_.fd, buffer_.get() + done, length - done, off_t(offset_ + done));
-      if (n < 0 && errno == EINTR) continue;
-      if (n < 0 && errno == EINVAL && direct_ && offset_ + done == 0) {  // no direct I/O here after all
-        if (::fcntl(file_.fd, F_SETFL, ::fcntl(file_.fd, F_GETFL) & ~O_DIRECT) != 0) fail();
-        direct_ = false;
-        continue;
-      }
-      if (n <= 0) {
-        if (n == 0) errno = EIO;
-        fail();
-      }
-      done += std::size_t(n);
+    FullWrite result = writeFully(file_.fd, buffer_.get(), length, offset_, direct_);
+    if (result == FullWrite::DirectRefused) {  // no direct I/O here after all
+      if (::fcntl(file_.fd, F_SETFL, ::fcntl(file_.fd, F_GETFL) & ~O_DIRECT) != 0) fail();
+      direct_ = false;
+      result = writeFully(file_.fd, buffer_.get(), length, offset_, false);
     }
+    if (result != FullWrite::Written) fail();
     std::memmove(buffer_.get(), buffer_.get() + length, fill_ - length);
     offset_ += length;
     fill_ -= length;
@@ -458,22 +471,14 @@ bool copyFileDirectly(const fs::path& from, const fs::path& to) {
     const std::size_t length = std::min(kDirectCopyWindow, whole - at);
     void* window = ::mmap(nullptr, length, PROT_READ, MAP_SHARED | MAP_POPULATE, in.fd, off_t(at));
     if (window == MAP_FAILED) failCopy(to, "map " + from.string());
-    for (std::size_t done = 0; done < length;) {
-      const ssize_t n = ::pwrite(out.fd, static_cast<const char*>(window) + done, length - done, off_t(at + done));
-      if (n < 0 && errno == EINTR) continue;
-      if (n < 0 && errno == EINVAL && at + done == 0) {
-        ::munmap(window, length);
-        return giveUp();
-      }
-      if (n <= 0) {
-        const int error = errno;
-        ::munmap(window, length);
-        errno = n == 0 ? EIO : error;
-        failCopy(to, "write");
-      }
-      done += std::size_t(n);
-    }
+    const FullWrite result = writeFully(out.fd, static_cast<const char*>(window), length, at, true);
+    const int error = errno;
     ::munmap(window, length);
+    if (result == FullWrite::DirectRefused) return giveUp();
+    if (result == FullWrite::Failed) {
+      errno = error;
+      failCopy(to, "write");
+    }
   }
   if (size > whole) {
     char tail[kDirectBlock];
