@@ -6,6 +6,7 @@
 #include <QTest>
 
 #include <cmath>
+#include <cstdint>
 
 #include <vtkCamera.h>
 #include <vtkRenderer.h>
@@ -99,6 +100,49 @@ class VtkViewWidgetTest : public QObject {
     // And the new view is what gets drawn: the frame after the drag differs from a fresh one.
     const QImage dragged = window.view()->grabFramebuffer();
     QVERIFY(!dragged.isNull());
+  }
+
+  // A repaint nothing asked for (Qt repaints the view when its window is activated or
+  // deactivated, and again after the frame its resize event drew) shows VTK's last frame again
+  // instead of rendering the same pixels anew; requestRender() and a new size render a frame.
+  void aRepaintNothingAskedForShowsTheLastFrame() {
+    QWidget window;
+    window.resize(400, 300);
+    auto* view = new ffdkit::app::VtkViewWidget(&window);
+    view->setGeometry(0, 0, 300, 200);
+    view->renderer()->SetBackground(0.2, 0.4, 0.6);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    const QImage first = view->grabFramebuffer();
+    QApplication::processEvents();
+    const std::uint64_t rendered = view->renders();
+    QVERIFY(rendered >= 1);
+    QVERIFY(first.size() == view->size() * view->devicePixelRatio());
+    const QVector3D blue = meanColour(first, QPoint(first.width() / 2, first.height() / 2), 2);
+    QVERIFY2((blue - QVector3D(51, 102, 153)).length() < 3.0f,
+             qPrintable(QString("not the background: %1 %2 %3").arg(blue.x()).arg(blue.y()).arg(blue.z())));
+
+    view->update();
+    QApplication::processEvents();
+    QCOMPARE(view->grabFramebuffer(), first);  // grabFramebuffer repaints: the same pixels
+    QCOMPARE(view->renders(), rendered);
+
+    view->renderer()->SetBackground(0.6, 0.4, 0.2);
+    view->requestRender();
+    const QImage changed = view->grabFramebuffer();
+    QCOMPARE(view->renders(), rendered + 1);
+    const QVector3D orange = meanColour(changed, QPoint(changed.width() / 2, changed.height() / 2), 2);
+    QVERIFY2((orange - QVector3D(153, 102, 51)).length() < 3.0f,
+             qPrintable(QString("not the new background: %1 %2 %3").arg(orange.x()).arg(orange.y()).arg(orange.z())));
+
+    // A new size: one frame, drawn in Qt's resize event; the update after it shows that frame.
+    view->resize(320, 240);
+    QApplication::processEvents();
+    QCOMPARE(view->renders(), rendered + 2);
+    const QImage resized = view->grabFramebuffer();
+    QCOMPARE(view->renders(), rendered + 2);
+    QCOMPARE(resized.size(), view->size() * view->devicePixelRatio());
+    QVERIFY((meanColour(resized, QPoint(resized.width() - 5, resized.height() - 5), 2) - orange).length() < 3.0f);
   }
 };
 

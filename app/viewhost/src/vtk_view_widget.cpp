@@ -57,6 +57,11 @@ struct VtkViewWidget::Impl {
   vtkNew<vtkCallbackCommand> isCurrent;
   vtkNew<vtkCallbackCommand> renderRequest;
   bool initialized = false;
+  /// Whether something asked for a frame (requestRender) since VTK last rendered one.
+  bool frameDue = true;
+  /// The size (device pixels) of the frame VTK last rendered; empty before the first.
+  QSize frameSize;
+  std::uint64_t renders = 0;
 };
 
 VtkViewWidget::VtkViewWidget(QWidget* parent) : QOpenGLWidget(parent), impl_(std::make_unique<Impl>()) {
@@ -127,7 +132,12 @@ vtkGenericOpenGLRenderWindow* VtkViewWidget::renderWindow() const { return impl_
 vtkRenderWindowInteractor* VtkViewWidget::interactor() const { return impl_->interactor; }
 vtkRenderer* VtkViewWidget::renderer() const { return impl_->renderer; }
 
-void VtkViewWidget::requestRender() { update(); }
+void VtkViewWidget::requestRender() {
+  impl_->frameDue = true;
+  update();
+}
+
+std::uint64_t VtkViewWidget::renders() const { return impl_->renders; }
 
 void VtkViewWidget::initializeGL() {
   auto& d = *impl_;
@@ -138,6 +148,7 @@ void VtkViewWidget::initializeGL() {
   d.window->OpenGLInitContext();
   d.interactor->Initialize();
   d.initialized = true;
+  d.frameDue = true;  // a new context: nothing of VTK's last frame can be shown
 }
 
 void VtkViewWidget::resizeGL(int, int) {
@@ -175,9 +186,19 @@ void VtkViewWidget::paintGL() {
   state->ResetGLCullFaceState();
   for (unsigned int capability : {GL_BLEND, GL_DEPTH_TEST, GL_SCISSOR_TEST, GL_CULL_FACE})
     state->ResetEnumState(capability);
-  d.window->SetReadyForRendering(true);
-  d.window->Render();
-  d.window->SetReadyForRendering(false);
+  // A repaint that nothing asked for (the window was activated or deactivated, or Qt repaints
+  // after the frame its resize event drew) at the size of the last frame shows that frame again:
+  // VTK keeps it in its display framebuffer. Rendering it again would give the same pixels.
+  if (d.frameDue || d.frameSize != QSize(w, h)) {
+    d.frameDue = false;  // a request while VTK renders asks for the next frame
+    d.frameSize = QSize(w, h);
+    ++d.renders;
+    d.window->SetReadyForRendering(true);
+    d.window->Render();
+    d.window->SetReadyForRendering(false);
+  } else {
+    d.window->BlitDisplayFramebuffer();
+  }
 
   // VTK leaves alpha < 1 where the background shows; Qt would then blend the view with what
   // lies behind the window (Mesa), and screenshots come out transparent. Force alpha to 1.

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <memory>
 
 #include <QOpenGLWidget>
@@ -38,12 +39,17 @@ class VtkViewWidget : public QOpenGLWidget {
   /// The one renderer the widget creates (background and camera of the 3D view).
   vtkRenderer* renderer() const;
 
-  /// Schedules a repaint through Qt; safe to call from anywhere on the GUI thread.
+  /// Schedules a repaint through Qt that renders a new frame; safe to call from anywhere on the
+  /// GUI thread. Whatever changes what the view shows calls it (the interactor's render
+  /// requests do): a repaint Qt makes on its own (the window activated, a resize's second
+  /// paint) at the last frame's size shows that frame again instead of rendering it anew.
   void requestRender();
+  /// Frames VTK rendered (repaints that showed the last frame again are not counted).
+  std::uint64_t renders() const;
 
  signals:
-  /// Emitted at the start of every repaint, before VTK renders: the owner brings the scene up
-  /// to date here (MainWindow evaluates once per frame).
+  /// Emitted at the start of every repaint, before VTK renders (or shows its last frame again):
+  /// the owner brings the scene up to date here (MainWindow evaluates once per frame).
   void aboutToRender();
 
  protected:
