@@ -581,7 +581,8 @@ class MonkeyGuiTest : public QObject {
     const bool log = monkeyLog();
     QElapsedTimer clock;
     clock.start();
-    // Where the time goes, for the summary: the actions, the undo / redo walks, the view's renders.
+    // Where the time goes, for the summary: the actions, the undo / redo walks, the view's repaints
+    // (and how many rendered a frame; the others showed the last one again).
     qint64 walkMs = 0;
     int renders = 0, walkRenders = 0;
     connect(w->view(), &app::VtkViewWidget::aboutToRender, this, [&renders] { ++renders; });
@@ -662,7 +663,8 @@ class MonkeyGuiTest : public QObject {
               << clock.elapsed() / 1000.0 << " s; undo gave the file byte for byte after " << exact
               << " segments, and after " << framesMoved << " with frame changes the file at its first frame within "
               << largestAfterFrames << " (relative); undo / redo walks " << walkMs / 1000.0 << " s, "
-              << renders << " renders of the view (" << walkRenders << " in the walks)" << std::endl;
+              << renders << " repaints of the view (" << walkRenders << " in the walks), " << w->view()->renders()
+              << " of them rendered" << std::endl;
     w->close();
   }
 
