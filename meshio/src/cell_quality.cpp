@@ -50,9 +50,6 @@ constexpr double kSmall = 1.0e-15;
 constexpr double kVerySmall = 1.0e-300;
 constexpr double kRootVerySmall = 1.0e-150;
 
-// Cell centres one per row in memory: a face reads its two cells' centres.
-using PointRows = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
-
 // The points as they are given (#P x 3, column-major), read in place: a copy one per row would
 // cost 24 bytes per point for little gain, since neighbouring faces share their points' lines.
 struct PointColumns {
@@ -390,6 +387,99 @@ CellFaces cellFacesOf(const PolyMeshCells& cells) {
   return r;
 }
 
+// How the mesh numbers its cells: the largest |neighbour - owner| of an internal face, and whether
+// the internal faces come in the order of their owners (as OpenFOAM orders them).
+struct MeshOrder {
+  std::int64_t bandwidth = 0;
+  bool ownersInOrder = true;
+};
+
+MeshOrder meshOrderOf(const PolyMeshCells& cells) {
+  const std::int64_t internal = std::int64_t(cells.neighbour.size());
+  const Labels owner(cells.owner.bytes()), neighbour(cells.neighbour.bytes());
+  std::int64_t bandwidth = 0, outOfOrder = 0;
+#pragma omp parallel for reduction(max : bandwidth) reduction(+ : outOfOrder) schedule(static)
+  for (std::int64_t f = 0; f < internal; ++f) {
+    const std::int32_t own = owner[f];
+    bandwidth = std::max(bandwidth, std::abs(std::int64_t(neighbour[f]) - own));
+    outOfOrder += f + 1 < internal && owner[f + 1] < own ? 1 : 0;
+  }
+  return {bandwidth, outOfOrder == 0};
+}
+
+// The faces of the cells of one sweep, as CellFaces holds them for the whole mesh (each cell's in
+// increasing face order, kNeighbourSide marking the neighbour's side), made for the sweep alone
+// where the internal faces come in their owners' order: a cell's faces are then among the internal
+// faces whose owners lie within the bandwidth of the sweep's cells, found by bisection, and the
+// boundary faces. Made by the thread that checks the sweep, in memory it keeps for its next
+// sweep: about 28 bytes per cell of one sweep, where CellFaces takes 28 per cell of the mesh.
+class SweepFaces {
+ public:
+  // The lists of the whole mesh (a mesh whose internal faces are not in their owners' order).
+  explicit SweepFaces(const CellFaces* all) : all_(all) {
+    if (all_ != nullptr) starts_ = all_->starts.get(), faces_ = all_->faces.get();
+  }
+  // Makes the lists of cells [first, last) (nothing to make when they are the whole mesh's).
+  void make(const PolyMeshCells& cells, std::int64_t bandwidth, std::int64_t first, std::int64_t last);
+  std::uint32_t start(std::int64_t c) const { return starts_[c - first_]; }  // cell c's first in faces()
+  std::uint32_t end(std::int64_t c) const { return starts_[c - first_ + 1]; }
+  std::uint32_t operator[](std::uint32_t k) const { return faces_[k]; }
+
+ private:
+  template <class T>
+  static T* atLeast(std::unique_ptr<T[]>& buffer, std::size_t& size, std::size_t needed) {
+    if (size < needed) buffer = std::make_unique_for_overwrite<T[]>(size = needed);
+    return buffer.get();
+  }
+  const CellFaces* all_;
+  const std::uint32_t* starts_ = nullptr;
+  const std::uint32_t* faces_ = nullptr;
+  std::int64_t first_ = 0;
+  std::unique_ptr<std::uint32_t[]> ownStarts_, ownFaces_, cursor_;
+  std::size_t startsSize_ = 0, facesSize_ = 0, cursorSize_ = 0;
+};
+
+void SweepFaces::make(const PolyMeshCells& cells, std::int64_t bandwidth, std::int64_t first, std::int64_t last) {
+  if (all_ != nullptr) return;
+  const std::int64_t internal = std::int64_t(cells.neighbour.size()), faces = cells.faceCount();
+  const Labels owner(cells.owner.bytes()), neighbour(cells.neighbour.bytes());
+  const std::uint32_t span = std::uint32_t(last - first);
+  // The internal faces owned by cells [first - bandwidth, last + bandwidth): every internal face of
+  // a cell of the sweep is among them.
+  auto ownedFrom = [&](std::int64_t cell) {
+    std::int64_t lo = 0, hi = internal;  // the first internal face owned by `cell` or a later cell
+    while (lo < hi) {
+      const std::int64_t mid = lo + (hi - lo) / 2;
+      if (owner[mid] < cell) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo;
+  };
+  const std::int64_t from = ownedFrom(first - bandwidth), to = ownedFrom(last + bandwidth);
+  std::uint32_t* starts = atLeast(ownStarts_, startsSize_, std::size_t(span) + 1);
+  std::fill(starts, starts + span + 1, 0u);
+  for (std::int64_t f = from; f < to; ++f) {
+    if (std::uint32_t(owner[f] - first) < span) ++starts[owner[f] - first + 1];
+    if (std::uint32_t(neighbour[f] - first) < span) ++starts[neighbour[f] - first + 1];
+  }
+  for (std::int64_t f = internal; f < faces; ++f)
+    if (std::uint32_t(owner[f] - first) < span) ++starts[owner[f] - first + 1];
+  for (std::uint32_t c = 0; c < span; ++c) starts[c + 1] += starts[c];
+  std::uint32_t* cursor = atLeast(cursor_, cursorSize_, std::size_t(span));
+  std::copy(starts, starts + span, cursor);
+  std::uint32_t* list = atLeast(ownFaces_, facesSize_, std::max<std::size_t>(1, starts[span]));
+  for (std::int64_t f = from; f < to; ++f) {
+    if (std::uint32_t(owner[f] - first) < span) list[cursor[owner[f] - first]++] = std::uint32_t(f);
+    if (std::uint32_t(neighbour[f] - first) < span)
+      list[cursor[neighbour[f] - first]++] = std::uint32_t(f) | CellFaces::kNeighbourSide;
+  }
+  for (std::int64_t f = internal; f < faces; ++f)
+    if (std::uint32_t(owner[f] - first) < span) list[cursor[owner[f] - first]++] = std::uint32_t(f);
+  starts_ = starts;
+  faces_ = list;
+  first_ = first;
+}
+
 // Per block of cells: what the volumes add to the result.
 struct VolumeShare {
   double min = std::numeric_limits<double>::infinity();
@@ -436,6 +526,59 @@ struct FaceCache {
   std::vector<FaceGeometry> geometry;
 };
 
+// Where the check keeps the cell centres. A face is checked at the later of its two cells in a
+// sweep, so a sweep needs back no centre further than the mesh's bandwidth (the largest
+// |neighbour - owner|): where that is small beside the mesh (OpenFOAM numbers its cells so, a
+// 215^3 cube's bandwidth is 46,225 cells), each sweep keeps the centres of its last cells in a
+// window of its own (kept by cell index modulo its size, larger than the bandwidth and a batch of
+// cells), and the centres of its first and last `bandwidth` cells, the only ones a face between
+// two sweeps can have, for the check of those faces; 24 bytes per cell of the mesh are then
+// never written. Else (a mesh numbered otherwise) one row per cell.
+class CentreStore {
+ public:
+  CentreStore(std::int64_t cellCount, std::int64_t bandwidth, std::int64_t sweep, std::int64_t sweeps, std::int64_t batch) {
+    const std::int64_t needed = bandwidth + batch + 1;
+    window_ = std::bit_ceil(std::uint64_t(std::max<std::int64_t>(needed, 1)));
+    windowed_ = needed <= kMostWindow && std::int64_t(window_) * 8 <= cellCount;
+    if (!windowed_) {
+      all_ = std::make_unique_for_overwrite<double[]>(std::size_t(cellCount) * 3);
+      return;
+    }
+    border_ = std::max<std::int64_t>(bandwidth, 1);
+    sweep_ = sweep;
+    cellCount_ = cellCount;
+    borders_ = std::make_unique_for_overwrite<double[]>(std::size_t(sweeps * 2 * border_ * 3));
+  }
+  bool windowed() const { return windowed_; }
+  std::size_t windowCells() const { return window_; }
+  // Where the sweep running on a thread with `window` (windowCells() x 3 doubles) keeps cell c's centre.
+  double* inSweep(double* window, std::int64_t c) const {
+    return windowed_ ? window + (std::uint64_t(c) & (window_ - 1)) * 3 : all_.get() + c * 3;
+  }
+  // After a sweep computed cell c's centre (at inSweep): kept for the faces between sweeps too.
+  void keep(std::int64_t c, const double* centre) {
+    if (!windowed_) return;
+    if (double* at = border(c)) std::memcpy(at, centre, 3 * sizeof(double));
+  }
+  // Cell c's centre for a face between two sweeps (c is then within the bandwidth of its sweep's ends).
+  const double* betweenSweeps(std::int64_t c) const { return windowed_ ? border(c) : all_.get() + c * 3; }
+
+ private:
+  static constexpr std::int64_t kMostWindow = std::int64_t(1) << 20;  // 24 MiB per thread
+  // Cell c's row among its sweep's first and last `border_` cells, null for another cell.
+  double* border(std::int64_t c) const {
+    const std::int64_t s = c / sweep_, first = s * sweep_, last = std::min(cellCount_, first + sweep_);
+    if (c < first + border_) return borders_.get() + ((s * 2) * border_ + (c - first)) * 3;
+    if (c >= last - border_) return borders_.get() + ((s * 2 + 1) * border_ + (c - (last - border_))) * 3;
+    return nullptr;
+  }
+  bool windowed_ = false;
+  std::uint64_t window_ = 1;
+  std::int64_t border_ = 0, sweep_ = 1, cellCount_ = 0;
+  std::unique_ptr<double[]> all_;      // one row per cell, when not windowed
+  std::unique_ptr<double[]> borders_;  // per sweep: its first border_ cells' centres, then its last border_ cells'
+};
+
 }  // namespace
 
 CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCells& cells,
@@ -451,18 +594,22 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
   // The arrays from the largest to the smallest: a process that keeps freed memory for reuse
   // (ffdkit-cli) then fits each into a block freed before instead of growing its heap for one
   // that no longer fits after a smaller one took part of the block.
-  const CellFaces cellFaces = cellFacesOf(cells);
-  PointRows centres(Eigen::Index(nCells), 3);  // written first by the sweeps, on every core
+  const MeshOrder order = meshOrderOf(cells);
+  // Each cell's faces: the whole mesh's lists where its internal faces are not in their owners'
+  // order, else made sweep by sweep (SweepFaces).
+  const CellFaces allCellFaces = order.ownersInOrder ? CellFaces{} : cellFacesOf(cells);
+  const std::int64_t sweep = sweepLength(nCells);
+  const std::int64_t sweeps = (nCells + sweep - 1) / sweep;
+  // The cells' centres, written first by the sweeps, on every core. A sweep computes a batch of
+  // cells (at most FaceLanes::kLanes) before it checks their faces.
+  CentreStore centres(nCells, order.bandwidth, sweep, sweeps, FaceLanes::kLanes);
   std::vector<std::uint8_t> bad(std::size_t(nCells), 0);
   const std::int64_t blocks = (nCells + kBlock - 1) / kBlock;
   std::vector<VolumeShare> volumeShares(static_cast<std::size_t>(blocks));
-  const std::int64_t sweep = sweepLength(nCells);
-  const std::int64_t sweeps = (nCells + sweep - 1) / sweep;
   std::vector<FaceShare> sweepShares(static_cast<std::size_t>(sweeps));
   const MeshLabels m(cells);
   const Labels owner = m.owner, neighbour = m.neighbour;
   auto markBad = [&bad](std::int32_t cell) { std::atomic_ref<std::uint8_t>(bad[std::size_t(cell)]).store(1, std::memory_order_relaxed); };
-  auto faceOf = [&](std::uint32_t k) { return std::int64_t(cellFaces.faces[k] & ~CellFaces::kNeighbourSide); };
 
   // Each face's pyramids about the two cell centres, its non-orthogonality and skewness
   // (primitiveMeshCheck.C: checkFacePyramids, checkFaceOrthogonality, checkFaceSkewness): the faces
@@ -503,11 +650,12 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
     }
     lanes.count = 0;
   };
-  // Face f, of geometry `g`, to check with the next faces (its cells' centres are known).
-  auto checkFace = [&](detail::FaceCheckLanes& lanes, std::int64_t f, const FaceGeometry& g, FaceShare& share) {
+  // Face f, of geometry `g`, to check with the next faces (its cells' centres are known:
+  // centreOf(cell) gives them).
+  auto checkFace = [&](detail::FaceCheckLanes& lanes, std::int64_t f, const FaceGeometry& g, FaceShare& share,
+                       const auto& centreOf) {
     if (lanes.count == detail::FaceCheckLanes::kLanes) checkFaces(lanes, share);
-    addFaceCheck(lanes, m, f, g, centres.row(Eigen::Index(owner[f])).data(),
-                 f < internal ? centres.row(Eigen::Index(neighbour[f])).data() : nullptr);
+    addFaceCheck(lanes, m, f, g, centreOf(owner[f]), f < internal ? centreOf(neighbour[f]) : nullptr);
   };
 
   // One pass over the cells, sweep by sweep (OpenFOAM: primitiveMeshCellCentresAndVols.C, then
@@ -521,13 +669,18 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
     auto lanes = std::make_unique<FaceLanes>();
     auto checks = std::make_unique<detail::FaceCheckLanes>();
     auto cache = std::make_unique<FaceCache>(faces);
+    // This thread's window of centres (CentreStore), not written before the sweep writes it.
+    const auto window = std::make_unique_for_overwrite<double[]>(centres.windowed() ? centres.windowCells() * 3 : 0);
+    auto centreOf = [&](std::int64_t cell) -> const double* { return centres.inSweep(window.get(), cell); };
+    SweepFaces cellFaces(order.ownersInOrder ? nullptr : &allCellFaces);
+    auto faceOf = [&](std::uint32_t k) { return std::int64_t(cellFaces[k] & ~CellFaces::kNeighbourSide); };
     std::int64_t laneFace[FaceLanes::kLanes];
     // The geometry of the faces of the cell addCell did last, in its face order: fetched from the
     // window once, read by the cell's two sums and by its face checks.
     std::vector<FaceGeometry> cellGeometry;
     auto addCell = [&](std::int64_t c) {
       VolumeShare& share = volumeShares[std::size_t(c / kBlock)];
-      const std::uint32_t begin = cellFaces.starts[std::size_t(c)], end = cellFaces.starts[std::size_t(c) + 1];
+      const std::uint32_t begin = cellFaces.start(c), end = cellFaces.end(c);
       if (cellGeometry.size() < end - begin) cellGeometry.resize(end - begin);
       Eigen::Vector3d estimate = Eigen::Vector3d::Zero();
       for (std::uint32_t k = begin; k < end; ++k) {
@@ -544,12 +697,14 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
       double volume3 = 0.0;
       for (std::uint32_t k = begin; k < end; ++k) {
         const FaceGeometry& g = cellGeometry[k - begin];
-        const double sign = (cellFaces.faces[k] & CellFaces::kNeighbourSide) != 0 ? -1.0 : 1.0;
+        const double sign = (cellFaces[k] & CellFaces::kNeighbourSide) != 0 ? -1.0 : 1.0;
         const double pyramid3 = sign * g.area.dot(g.centre - estimate);
         weighted += pyramid3 * (0.75 * g.centre + 0.25 * estimate);
         volume3 += pyramid3;
       }
-      centres.row(Eigen::Index(c)) = (std::abs(volume3) > kVerySmall ? Eigen::Vector3d(weighted / volume3) : estimate).transpose();
+      double* centre = centres.inSweep(window.get(), c);
+      Eigen::Map<Eigen::Vector3d>{centre} = std::abs(volume3) > kVerySmall ? Eigen::Vector3d(weighted / volume3) : estimate;
+      centres.keep(c, centre);
       const double volume = volume3 / 3.0;
       if (volume < kVerySmall) {
         ++share.negative;
@@ -563,13 +718,14 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
     for (std::int64_t s = 0; s < sweeps; ++s) {
       const std::int64_t first = s * sweep, last = std::min(nCells, first + sweep);
       FaceShare& faceShare = sweepShares[std::size_t(s)];
+      cellFaces.make(cells, order.bandwidth, first, last);
       for (std::int64_t c = first; c < last;) {
-        // A batch: as many whole cells as the faces not yet computed of fit the lanes; a cell with
-        // more such faces than lanes on its own, face by face.
+        // A batch: as many whole cells (up to FaceLanes::kLanes) as the faces not yet computed of
+        // fit the lanes; a cell with more such faces than lanes on its own, face by face.
         const std::int64_t batch = c;
         lanes->clear();
-        while (c < last) {
-          const std::uint32_t begin = cellFaces.starts[std::size_t(c)], end = cellFaces.starts[std::size_t(c) + 1];
+        while (c < last && c - batch < FaceLanes::kLanes) {
+          const std::uint32_t begin = cellFaces.start(c), end = cellFaces.end(c);
           int need = 0;
           for (std::uint32_t k = begin; k < end; ++k) need += cache->holds(faceOf(k)) ? 0 : 1;
           if (lanes->count + need > FaceLanes::kLanes) {
@@ -591,13 +747,13 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
         for (int l = 0; l < lanes->count; ++l) cache->store(laneFace[l], (*lanes)[l]);
         for (std::int64_t d = batch; d < c; ++d) {
           addCell(d);
-          const std::uint32_t begin = cellFaces.starts[std::size_t(d)];
-          for (std::uint32_t k = begin; k < cellFaces.starts[std::size_t(d) + 1]; ++k) {
+          const std::uint32_t begin = cellFaces.start(d);
+          for (std::uint32_t k = begin; k < cellFaces.end(d); ++k) {
             const std::int64_t f = faceOf(k);
-            const std::int64_t other = (cellFaces.faces[k] & CellFaces::kNeighbourSide) != 0 ? owner[f]
+            const std::int64_t other = (cellFaces[k] & CellFaces::kNeighbourSide) != 0 ? owner[f]
                                        : f < internal                                      ? neighbour[f]
                                                                                            : -1;
-            if (other < 0 || (other >= first && other < d)) checkFace(*checks, f, cellGeometry[k - begin], faceShare);
+            if (other < 0 || (other >= first && other < d)) checkFace(*checks, f, cellGeometry[k - begin], faceShare, centreOf);
           }
         }
       }
@@ -612,6 +768,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
   for (std::int64_t b = 0; b < blocks; ++b) sweepOfBlock[std::size_t(b)] = std::int32_t(b * kBlock / sweep);
   auto sweepOf = [&](std::int32_t cell) { return sweepOfBlock[std::size_t(cell) >> kBlockBits]; };
   std::vector<FaceShare> betweenShares(static_cast<std::size_t>(faceBlocks));
+  auto betweenCentreOf = [&](std::int64_t cell) { return centres.betweenSweeps(cell); };
   if (faceBlocks > 0) {
 #pragma omp parallel
     {
@@ -630,7 +787,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
             lanes->add(p, m, f);
           }
           lanes->compute();
-          for (int l = 0; l < lanes->count; ++l) checkFace(*checks, laneFace[l], (*lanes)[l], share);
+          for (int l = 0; l < lanes->count; ++l) checkFace(*checks, laneFace[l], (*lanes)[l], share, betweenCentreOf);
         }
         checkFaces(*checks, share);
       }

@@ -53,8 +53,13 @@ struct CellQuality {
 /// in sweeps of consecutive cells, and each face's centre and area vector are computed once where
 /// they can be (kept in a window of the last 2^18 faces computed, 13 MB per thread, until the
 /// face's second cell is reached: in OpenFOAM's upper-triangular face order, every face but those
-/// between two sweeps). Memory: 4 bytes per cell and per cell-face pair, 3 doubles and a byte per
-/// cell, and the windows.
+/// between two sweeps). Memory, for a mesh whose internal faces come in their owners' order and
+/// whose bandwidth (the largest |neighbour - owner|) is small beside its cell count, as OpenFOAM
+/// numbers them: a byte per cell; per thread, the cell-to-face lists of one sweep (4 bytes per
+/// cell and per cell-face pair of the sweep), the centres of its last cells (3 doubles per cell of
+/// a window larger than the bandwidth) and the face window; the centres of the cells within the
+/// bandwidth of each sweep's ends. Any other mesh: 4 bytes per cell and per cell-face pair, 3
+/// doubles and a byte per cell of the mesh, and the face windows.
 CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCells& cells,
                                const CellQualityOptions& options = {});
 
