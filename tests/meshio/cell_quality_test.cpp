@@ -284,5 +284,63 @@ TEST(CellQualitySweeps, ResultsDoNotDependOnTheThreadCountOrTheCellNumbering) {
   expectAgrees(reference(points, c.cells), shuffled);
 }
 
+// The same cells numbered anew by `number`, their faces kept in order, or with the internal faces
+// sorted by their new owners (`ownersInOrder`, stable: as OpenFOAM orders a mesh's faces, with the
+// neighbours on either side of their owners).
+Cube renumbered(const Cube& c, const std::vector<std::int32_t>& number, bool ownersInOrder) {
+  Cube r;
+  r.points = c.points;
+  r.cells.cellCount = c.cells.cellCount;
+  const std::int64_t internal = std::int64_t(c.cells.neighbour.size());
+  std::vector<std::int64_t> order(static_cast<std::size_t>(c.cells.faceCount()));
+  for (std::size_t f = 0; f < order.size(); ++f) order[f] = std::int64_t(f);
+  auto ownerOf = [&](std::int64_t f) { return number[std::size_t(c.cells.owner[std::size_t(f)])]; };
+  if (ownersInOrder)
+    std::stable_sort(order.begin(), order.begin() + internal, [&](std::int64_t a, std::int64_t b) { return ownerOf(a) < ownerOf(b); });
+  r.cells.faceStarts = {0};
+  for (std::int64_t f : order) {
+    for (std::int32_t k = c.cells.faceStarts[std::size_t(f)]; k < c.cells.faceStarts[std::size_t(f) + 1]; ++k)
+      r.cells.faceVertices.push_back(c.cells.faceVertices[std::size_t(k)]);
+    r.cells.faceStarts.push_back(std::int32_t(r.cells.faceVertices.size()));
+    r.cells.owner.push_back(ownerOf(f));
+    if (f < internal) r.cells.neighbour.push_back(number[std::size_t(c.cells.neighbour[std::size_t(f)])]);
+  }
+  return r;
+}
+
+// The check keeps its cell-to-face lists and cell centres per sweep where the internal faces come
+// in their owners' order and the cells' numbering has a small bandwidth, for the whole mesh
+// otherwise: cells renumbered within runs of 300 (a small bandwidth, neighbours on either side),
+// with the faces in their old order or sorted by owner, and renumbered at random with the faces
+// sorted by owner (a bandwidth of about the mesh), each agree with OpenFOAM's computation, and on
+// one thread and on two bit for bit.
+TEST(CellQualitySweeps, EveryCellNumberingAndFaceOrderAgreesWithOpenFoamsOwnComputation) {
+  const Cube c = cube(kCells);
+  std::vector<std::int32_t> local(static_cast<std::size_t>(c.cells.cellCount)), random;
+  for (std::size_t i = 0; i < local.size(); ++i) local[i] = std::int32_t(i);
+  random = local;
+  std::mt19937 rng(8);
+  for (std::size_t i = 0; i < local.size(); i += 300) std::shuffle(local.begin() + std::ptrdiff_t(i), local.begin() + std::ptrdiff_t(std::min(local.size(), i + 300)), rng);
+  std::shuffle(random.begin(), random.end(), rng);
+  const Eigen::MatrixX3d points = jittered(c.points, 0.55 / kCells, 9);
+  const int threads = omp_get_max_threads();
+  for (const auto& [number, ownersInOrder] : {std::pair{&local, false}, {&local, true}, {&random, true}}) {
+    const Cube r = renumbered(c, *number, ownersInOrder);
+    omp_set_num_threads(1);
+    const CellQuality one = checkPolyMeshCells(points, r.cells);
+    omp_set_num_threads(std::max(2, threads));
+    const CellQuality two = checkPolyMeshCells(points, r.cells);
+    omp_set_num_threads(threads);
+    EXPECT_GT(one.badCells, 0);
+    expectAgrees(reference(points, r.cells), two);
+    for (auto [a, b] : {std::pair{one.minVolume, two.minVolume}, {one.maxVolume, two.maxVolume}, {one.totalVolume, two.totalVolume},
+                        {one.minPyramidVolume, two.minPyramidVolume}, {one.maxNonOrthogonality, two.maxNonOrthogonality},
+                        {one.meanNonOrthogonality, two.meanNonOrthogonality}, {one.maxSkewness, two.maxSkewness}})
+      EXPECT_TRUE(sameBits(a, b)) << a << " " << b;
+    EXPECT_EQ(one.incorrectlyOrientedFaces, two.incorrectlyOrientedFaces);
+    EXPECT_EQ(one.firstBadCells, two.firstBadCells);
+  }
+}
+
 }  // namespace
 }  // namespace ffdkit::meshio
