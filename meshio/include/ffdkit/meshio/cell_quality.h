@@ -55,8 +55,8 @@ struct CellQuality {
 /// face's second cell is reached: in OpenFOAM's upper-triangular face order, every face but those
 /// between two sweeps). Memory, for a mesh whose internal faces come in their owners' order and
 /// whose bandwidth (the largest |neighbour - owner|) is small beside its cell count, as OpenFOAM
-/// numbers them: a byte per cell; per thread, the cell-to-face lists of one sweep (4 bytes per
-/// cell and per cell-face pair of the sweep), the centres of its last cells (3 doubles per cell of
+/// numbers them: a byte per cell; per thread, the cell-to-face lists of one sweep (8 bytes per
+/// cell and 4 per cell-face pair of the sweep), the centres of its last cells (3 doubles per cell of
 /// a window larger than the bandwidth) and the face window; the centres of the cells within the
 /// bandwidth of each sweep's ends. Any other mesh: 4 bytes per cell and per cell-face pair, 3
 /// doubles and a byte per cell of the mesh, and the face windows.
