@@ -595,11 +595,13 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
   // (ffdkit-cli) then fits each into a block freed before instead of growing its heap for one
   // that no longer fits after a smaller one took part of the block.
   const MeshOrder order = meshOrderOf(cells);
-  // Each cell's faces: the whole mesh's lists where its internal faces are not in their owners'
-  // order, else made sweep by sweep (SweepFaces).
-  const CellFaces allCellFaces = order.ownersInOrder ? CellFaces{} : cellFacesOf(cells);
   const std::int64_t sweep = sweepLength(nCells);
   const std::int64_t sweeps = (nCells + sweep - 1) / sweep;
+  // Each cell's faces: made sweep by sweep (SweepFaces) where the internal faces are in their
+  // owners' order and the bandwidth is small beside a sweep (each sweep then reads the owner and
+  // neighbour lists of little more than its own cells), else the whole mesh's lists.
+  const bool bySweep = order.ownersInOrder && order.bandwidth <= sweep / 4;
+  const CellFaces allCellFaces = bySweep ? CellFaces{} : cellFacesOf(cells);
   // The cells' centres, written first by the sweeps, on every core. A sweep computes a batch of
   // cells (at most FaceLanes::kLanes) before it checks their faces.
   CentreStore centres(nCells, order.bandwidth, sweep, sweeps, FaceLanes::kLanes);
@@ -672,7 +674,7 @@ CellQuality checkPolyMeshCells(const Eigen::MatrixX3d& points, const PolyMeshCel
     // This thread's window of centres (CentreStore), not written before the sweep writes it.
     const auto window = std::make_unique_for_overwrite<double[]>(centres.windowed() ? centres.windowCells() * 3 : 0);
     auto centreOf = [&](std::int64_t cell) -> const double* { return centres.inSweep(window.get(), cell); };
-    SweepFaces cellFaces(order.ownersInOrder ? nullptr : &allCellFaces);
+    SweepFaces cellFaces(bySweep ? nullptr : &allCellFaces);
     auto faceOf = [&](std::uint32_t k) { return std::int64_t(cellFaces[k] & ~CellFaces::kNeighbourSide); };
     std::int64_t laneFace[FaceLanes::kLanes];
     // The geometry of the faces of the cell addCell did last, in its face order: fetched from the

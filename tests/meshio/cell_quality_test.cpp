@@ -308,12 +308,13 @@ Cube renumbered(const Cube& c, const std::vector<std::int32_t>& number, bool own
   return r;
 }
 
-// The check keeps its cell-to-face lists and cell centres per sweep where the internal faces come
-// in their owners' order and the cells' numbering has a small bandwidth, for the whole mesh
-// otherwise: cells renumbered within runs of 300 (a small bandwidth, neighbours on either side),
-// with the faces in their old order or sorted by owner, and renumbered at random with the faces
-// sorted by owner (a bandwidth of about the mesh), each agree with OpenFOAM's computation, and on
-// one thread and on two bit for bit.
+// The check makes its cell-to-face lists sweep by sweep where the internal faces come in their
+// owners' order and the bandwidth is small, and keeps a window of cell centres where the bandwidth
+// is small, else each for the whole mesh: cells renumbered within runs of 300 (a small bandwidth,
+// neighbours on either side) with the faces in their old order (whole-mesh lists, a window of
+// centres) or sorted by owner (lists by sweep, a window), and renumbered at random with the faces
+// sorted by owner (a bandwidth of about the mesh: whole-mesh lists and centres), each agree with
+// OpenFOAM's computation, and on one thread and on two bit for bit.
 TEST(CellQualitySweeps, EveryCellNumberingAndFaceOrderAgreesWithOpenFoamsOwnComputation) {
   const Cube c = cube(kCells);
   std::vector<std::int32_t> local(static_cast<std::size_t>(c.cells.cellCount)), random;
