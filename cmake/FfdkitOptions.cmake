@@ -65,15 +65,13 @@ function(ffdkit_precompile_headers target mode what)
   else()
     target_precompile_headers(${target} PRIVATE ${what})
   endif()
-  # ccache caches a compile that uses a precompiled header only with -fpch-preprocess and with
-  # sloppiness pch_defines,time_macros (its manual, "Precompiled headers"): set here, for these
-  # targets, so that a fresh machine without a ccache configuration of its own gets cache hits.
-  # A precompiled header is a few hundred MB, which ccache hashes for every compile that uses it:
-  # its inode cache remembers the hash, so that is done once per build.
+  # ccache caches a compile that uses a precompiled header only with -fpch-preprocess and with the
+  # settings cmake/ccache-pch.sh gives it (set here, for these targets, so that a fresh machine
+  # without a ccache configuration of its own gets cache hits).
   target_compile_options(${target} PRIVATE -fpch-preprocess)
   if(FFDKIT_CCACHE)
     set_target_properties(${target} PROPERTIES CXX_COMPILER_LAUNCHER
-      "${CMAKE_COMMAND};-E;env;CCACHE_SLOPPINESS=pch_defines,time_macros;CCACHE_INODECACHE=true;${FFDKIT_CCACHE}")
+      "${PROJECT_SOURCE_DIR}/cmake/ccache-pch.sh;${FFDKIT_CCACHE}")
   endif()
 endfunction()
 
