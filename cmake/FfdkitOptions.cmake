@@ -10,6 +10,31 @@ if(FFDKIT_SANITIZE OR FFDKIT_FUZZ)
   # compiler) does not: it answers __has_feature(address_sanitizer), as the sources ask it.
   add_compile_definitions(FFDKIT_ASAN)
 endif()
+if(FFDKIT_SANITIZE)
+  # Optimization in the sanitizer stages: scripts/test.sh compiles them at -O0
+  # (CMAKE_CXX_FLAGS_RELEASE), and the targets below at -O1. ASan and UBSan check the same at both
+  # levels; -O0 compiles in about 40 % of the CPU time of -O1, but code that computes through
+  # Eigen runs three to twenty times slower. At -O1: the libraries and test programs whose core
+  # tests are that kind of code (ffd, geometry, cad: Newton embeddings, fold checks, fits, CAD
+  # approximation; scenes_tests' brute-force nearest-point checks). At -O0: the rest (widgets,
+  # meshio, scenes, exporters, the CLI, the window's libraries, the other test programs and the
+  # fuzz targets), whose tests run about as long either way.
+  # Measured per target (compile CPU from a cold build, test CPU per test): docs/robustness.md.
+  set(ffdkit_sanitize_o1_targets
+      ffdkit_ffd ffdkit_geometry_core ffdkit_geometry_quaternion ffdkit_geometry_g3
+      ffdkit_geometry_cardinal ffdkit_geometry_polyhedron ffdkit_geometry_curvenet ffdkit_cad
+      ffd_tests geometry_quaternion_tests geometry_polyhedron_tests geometry_curvenet_tests cad_tests
+      scenes_tests)
+  function(ffdkit_sanitize_o1_targets)
+    foreach(target IN LISTS ffdkit_sanitize_o1_targets)
+      if(TARGET ${target})
+        target_compile_options(${target} PRIVATE -O1)
+      endif()
+    endforeach()
+  endfunction()
+  # Called once every target is defined: at the end of the top directory's CMakeLists.txt.
+  cmake_language(DEFER DIRECTORY ${PROJECT_SOURCE_DIR} CALL ffdkit_sanitize_o1_targets)
+endif()
 if(FFDKIT_FUZZ)
   if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
     message(FATAL_ERROR "FFDKIT_FUZZ needs clang (libFuzzer): configure with -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang")
