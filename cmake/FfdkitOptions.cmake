@@ -16,13 +16,15 @@ if(FFDKIT_SANITIZE)
   # levels; -O0 compiles in about 40 % of the CPU time of -O1, but code that computes through
   # Eigen runs three to twenty times slower. At -O1: the libraries and test programs whose core
   # tests are that kind of code (ffd, geometry, cad: Newton embeddings, fold checks, fits, CAD
-  # approximation; scenes_tests' brute-force nearest-point checks). At -O0: the rest (widgets,
-  # meshio, scenes, exporters, the CLI, the window's libraries, the other test programs and the
-  # fuzz targets), whose tests run about as long either way.
+  # approximation; meshio's cell-quality sweeps, the exporters' skin fits, scenes_tests'
+  # brute-force nearest-point checks). At -O0: the rest (widgets, scenes, the CLI, the window's
+  # libraries, the other test programs and the fuzz targets), whose tests run about as long
+  # either way.
   # Measured per target (compile CPU from a cold build, test CPU per test): docs/robustness.md.
   set(ffdkit_sanitize_o1_targets
       ffdkit_ffd ffdkit_geometry_core ffdkit_geometry_quaternion ffdkit_geometry_g3
       ffdkit_geometry_cardinal ffdkit_geometry_polyhedron ffdkit_geometry_curvenet ffdkit_cad
+      ffdkit_meshio ffdkit_exporters
       ffd_tests geometry_quaternion_tests geometry_polyhedron_tests geometry_curvenet_tests cad_tests
       scenes_tests)
   function(ffdkit_sanitize_o1_targets)
