@@ -16,7 +16,8 @@ if(FFDKIT_SANITIZE)
   # levels; -O0 compiles in about 40 % of the CPU time of -O1, but code that computes through
   # Eigen runs three to twenty times slower. At -O1: the libraries and test programs whose core
   # tests are that kind of code (ffd, geometry, cad: Newton embeddings, fold checks, fits, CAD
-  # approximation; meshio's cell-quality sweeps, the exporters' skin fits, scenes_tests'
+  # approximation; meshio's cell-quality sweeps and their reference in meshio_tests, the
+  # exporters' skin fits, scenes_tests'
   # brute-force nearest-point checks). At -O0: the rest (widgets, scenes, the CLI, the window's
   # libraries, the other test programs and the fuzz targets), whose tests run about as long
   # either way.
@@ -26,7 +27,7 @@ if(FFDKIT_SANITIZE)
       ffdkit_geometry_cardinal ffdkit_geometry_polyhedron ffdkit_geometry_curvenet ffdkit_cad
       ffdkit_meshio ffdkit_exporters
       ffd_tests geometry_quaternion_tests geometry_polyhedron_tests geometry_curvenet_tests cad_tests
-      scenes_tests)
+      scenes_tests meshio_tests)
   function(ffdkit_sanitize_o1_targets)
     foreach(target IN LISTS ffdkit_sanitize_o1_targets)
       if(TARGET ${target})
