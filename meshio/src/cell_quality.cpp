@@ -343,6 +343,22 @@ std::unique_ptr<T[]> unwrittenArray(std::size_t count) {
   return std::make_unique_for_overwrite<T[]>(count);
 }
 
+// Calls visit(c - first, entry) for each (cell, face) pair of the cells [first, first + span), in
+// face order: the internal faces [from, to) (entry f, or f | kNeighbourSide on the neighbour's
+// side), then every boundary face. The one walk behind both ways of making the lists (the whole
+// mesh's, the sweep's), once to count each cell's faces and once to list them.
+template <class Visit>
+void forEachFaceOfCells(const Labels& owner, const Labels& neighbour, std::int64_t internal, std::int64_t faces,
+                        std::int64_t from, std::int64_t to, std::int64_t first, std::uint32_t span, Visit&& visit) {
+  for (std::int64_t f = from; f < to; ++f) {
+    if (std::uint32_t(owner[f] - first) < span) visit(owner[f] - first, std::uint32_t(f));
+    if (std::uint32_t(neighbour[f] - first) < span)
+      visit(neighbour[f] - first, std::uint32_t(f) | CellFaces::kNeighbourSide);
+  }
+  for (std::int64_t f = internal; f < faces; ++f)
+    if (std::uint32_t(owner[f] - first) < span) visit(owner[f] - first, std::uint32_t(f));
+}
+
 // Built in parallel: each thread takes a range of cells and walks every face for those of its
 // range, so that each cell's faces come in face order without a sort.
 CellFaces cellFacesOf(const PolyMeshCells& cells) {
@@ -366,10 +382,8 @@ CellFaces cellFacesOf(const PolyMeshCells& cells) {
     const std::int32_t last = std::int32_t(nCells * (thread + 1) / threads);
     const std::uint32_t span = std::uint32_t(last - first);
     for (std::int32_t c = first; c < last; ++c) starts[c + 1] = 0;
-    for (std::int64_t f = 0; f < faces; ++f) {
-      if (std::uint32_t(owner[f] - first) < span) ++starts[owner[f] + 1];
-      if (f < internal && std::uint32_t(neighbour[f] - first) < span) ++starts[neighbour[f] + 1];
-    }
+    forEachFaceOfCells(owner, neighbour, internal, faces, 0, internal, first, span,
+                       [&](std::int64_t c, std::uint32_t) { ++starts[first + c + 1]; });
 #pragma omp barrier
 #pragma omp single
     {
@@ -378,11 +392,8 @@ CellFaces cellFacesOf(const PolyMeshCells& cells) {
     }
     // starts[c] is the cursor of cell c while the list fills (it ends at starts[c + 1]'s old value).
     std::vector<std::uint32_t> cursor(starts + first, starts + last);
-    for (std::int64_t f = 0; f < faces; ++f) {
-      if (std::uint32_t(owner[f] - first) < span) list[cursor[std::size_t(owner[f] - first)]++] = std::uint32_t(f);
-      if (f < internal && std::uint32_t(neighbour[f] - first) < span)
-        list[cursor[std::size_t(neighbour[f] - first)]++] = std::uint32_t(f) | CellFaces::kNeighbourSide;
-    }
+    forEachFaceOfCells(owner, neighbour, internal, faces, 0, internal, first, span,
+                       [&](std::int64_t c, std::uint32_t entry) { list[cursor[std::size_t(c)]++] = entry; });
   }
   return r;
 }
@@ -458,23 +469,14 @@ void SweepFaces::make(const PolyMeshCells& cells, std::int64_t bandwidth, std::i
   const std::int64_t from = ownedFrom(first - bandwidth), to = ownedFrom(last + bandwidth);
   std::uint32_t* starts = atLeast(ownStarts_, startsSize_, std::size_t(span) + 1);
   std::fill(starts, starts + span + 1, 0u);
-  for (std::int64_t f = from; f < to; ++f) {
-    if (std::uint32_t(owner[f] - first) < span) ++starts[owner[f] - first + 1];
-    if (std::uint32_t(neighbour[f] - first) < span) ++starts[neighbour[f] - first + 1];
-  }
-  for (std::int64_t f = internal; f < faces; ++f)
-    if (std::uint32_t(owner[f] - first) < span) ++starts[owner[f] - first + 1];
+  forEachFaceOfCells(owner, neighbour, internal, faces, from, to, first, span,
+                     [&](std::int64_t c, std::uint32_t) { ++starts[c + 1]; });
   for (std::uint32_t c = 0; c < span; ++c) starts[c + 1] += starts[c];
   std::uint32_t* cursor = atLeast(cursor_, cursorSize_, std::size_t(span));
   std::copy(starts, starts + span, cursor);
   std::uint32_t* list = atLeast(ownFaces_, facesSize_, std::max<std::size_t>(1, starts[span]));
-  for (std::int64_t f = from; f < to; ++f) {
-    if (std::uint32_t(owner[f] - first) < span) list[cursor[owner[f] - first]++] = std::uint32_t(f);
-    if (std::uint32_t(neighbour[f] - first) < span)
-      list[cursor[neighbour[f] - first]++] = std::uint32_t(f) | CellFaces::kNeighbourSide;
-  }
-  for (std::int64_t f = internal; f < faces; ++f)
-    if (std::uint32_t(owner[f] - first) < span) list[cursor[owner[f] - first]++] = std::uint32_t(f);
+  forEachFaceOfCells(owner, neighbour, internal, faces, from, to, first, span,
+                     [&](std::int64_t c, std::uint32_t entry) { list[cursor[c]++] = entry; });
   starts_ = starts;
   faces_ = list;
   first_ = first;
