@@ -199,6 +199,25 @@ bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 // 54^3 = 157,464 cells: three sweeps, so that faces between sweeps are checked too.
 constexpr int kCells = 54;
 
+// The check of `cells` on one thread, after expecting the same bits of every number and the same
+// counts and first bad cells on two threads.
+CellQuality checkedOnOneAndTwoThreads(const Eigen::MatrixX3d& points, const PolyMeshCells& cells) {
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const CellQuality one = checkPolyMeshCells(points, cells);
+  omp_set_num_threads(std::max(2, threads));
+  const CellQuality two = checkPolyMeshCells(points, cells);
+  omp_set_num_threads(threads);
+  for (auto [a, b] : {std::pair{one.minVolume, two.minVolume}, {one.maxVolume, two.maxVolume}, {one.totalVolume, two.totalVolume},
+                      {one.minPyramidVolume, two.minPyramidVolume}, {one.maxNonOrthogonality, two.maxNonOrthogonality},
+                      {one.meanNonOrthogonality, two.meanNonOrthogonality}, {one.maxSkewness, two.maxSkewness}})
+    EXPECT_TRUE(sameBits(a, b)) << a << " " << b;
+  EXPECT_EQ(one.badCells, two.badCells);
+  EXPECT_EQ(one.incorrectlyOrientedFaces, two.incorrectlyOrientedFaces);
+  EXPECT_EQ(one.firstBadCells, two.firstBadCells);
+  return one;
+}
+
 TEST(CellQualitySweeps, JitteredAndFoldedCubesAgreeWithOpenFoamsOwnComputation) {
   const Cube c = cube(kCells);
   const Eigen::MatrixX3d mild = jittered(c.points, 0.15 / kCells, 1);
@@ -251,18 +270,7 @@ TEST(CellQualitySweeps, OneMovedPointInARegularCubeGivesTheLargestSkewness) {
 TEST(CellQualitySweeps, ResultsDoNotDependOnTheThreadCountOrTheCellNumbering) {
   Cube c = cube(kCells);
   const Eigen::MatrixX3d points = jittered(c.points, 0.55 / kCells, 3);
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  const CellQuality one = checkPolyMeshCells(points, c.cells);
-  omp_set_num_threads(std::max(2, threads));
-  const CellQuality two = checkPolyMeshCells(points, c.cells);
-  omp_set_num_threads(threads);
-  for (auto [a, b] : {std::pair{one.minVolume, two.minVolume}, {one.maxVolume, two.maxVolume}, {one.totalVolume, two.totalVolume},
-                      {one.minPyramidVolume, two.minPyramidVolume}, {one.maxNonOrthogonality, two.maxNonOrthogonality},
-                      {one.meanNonOrthogonality, two.meanNonOrthogonality}, {one.maxSkewness, two.maxSkewness}})
-    EXPECT_TRUE(sameBits(a, b)) << a << " " << b;
-  EXPECT_EQ(one.badCells, two.badCells);
-  EXPECT_EQ(one.firstBadCells, two.firstBadCells);
+  const CellQuality one = checkedOnOneAndTwoThreads(points, c.cells);
   EXPECT_GT(one.badCells, 0);
 
   // Cells numbered at random: no band, an owner above its neighbour for about half the faces, so
@@ -324,22 +332,11 @@ TEST(CellQualitySweeps, EveryCellNumberingAndFaceOrderAgreesWithOpenFoamsOwnComp
   for (std::size_t i = 0; i < local.size(); i += 300) std::shuffle(local.begin() + std::ptrdiff_t(i), local.begin() + std::ptrdiff_t(std::min(local.size(), i + 300)), rng);
   std::shuffle(random.begin(), random.end(), rng);
   const Eigen::MatrixX3d points = jittered(c.points, 0.55 / kCells, 9);
-  const int threads = omp_get_max_threads();
   for (const auto& [number, ownersInOrder] : {std::pair{&local, false}, {&local, true}, {&random, true}}) {
     const Cube r = renumbered(c, *number, ownersInOrder);
-    omp_set_num_threads(1);
-    const CellQuality one = checkPolyMeshCells(points, r.cells);
-    omp_set_num_threads(std::max(2, threads));
-    const CellQuality two = checkPolyMeshCells(points, r.cells);
-    omp_set_num_threads(threads);
+    const CellQuality one = checkedOnOneAndTwoThreads(points, r.cells);
     EXPECT_GT(one.badCells, 0);
-    expectAgrees(reference(points, r.cells), two);
-    for (auto [a, b] : {std::pair{one.minVolume, two.minVolume}, {one.maxVolume, two.maxVolume}, {one.totalVolume, two.totalVolume},
-                        {one.minPyramidVolume, two.minPyramidVolume}, {one.maxNonOrthogonality, two.maxNonOrthogonality},
-                        {one.meanNonOrthogonality, two.meanNonOrthogonality}, {one.maxSkewness, two.maxSkewness}})
-      EXPECT_TRUE(sameBits(a, b)) << a << " " << b;
-    EXPECT_EQ(one.incorrectlyOrientedFaces, two.incorrectlyOrientedFaces);
-    EXPECT_EQ(one.firstBadCells, two.firstBadCells);
+    expectAgrees(reference(points, r.cells), one);
   }
 }
 
