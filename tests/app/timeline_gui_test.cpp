@@ -116,6 +116,35 @@ class TimelineGuiTest : public QObject {
     QCOMPARE(scenes::keyTimes(scene), (std::vector<double>{0.0, 1.0, 2.0, 3.0}));
   }
 
+  // Playback draws a frame only where a key moves something: over a scene without keys the
+  // timeline's frame moves on and the view keeps showing its last frame (nothing it draws
+  // changed); over the default scene, whose key moves 'pull' at every frame, each step draws one.
+  void playbackDrawsOnlyTheFramesAKeyMovesSomethingAt() {
+    auto w = openWindow(QSize(640, 480));
+    QVERIFY(w);
+    auto* timeline = w->findChild<app::TimelineWidget*>("timeline");
+    QVERIFY(timeline);
+    timeline->setSteppedPlayback(true);
+    for (const char* scene : {"cylinder-twist", "default"}) {
+      w->openScene(kExamples / scene);
+      const bool keyed = !scenes::keyTimes(w->scene()).empty();
+      QCOMPARE(keyed, std::string(scene) == "default");
+      pressKey(*w, Qt::Key_Space);
+      QVERIFY(timeline->timeline().playing());
+      QApplication::processEvents();
+      const std::uint64_t rendered = w->view()->renders();
+      const int frame = timeline->timeline().frame();
+      for (int step = 1; step <= 5; ++step) {
+        QVERIFY(timeline->stepPlayback(1));
+        QApplication::processEvents();
+        QCOMPARE(timeline->timeline().frame(), frame + step);
+        QCOMPARE(w->view()->renders(), rendered + (keyed ? std::uint64_t(step) : 0));
+      }
+      pressKey(*w, Qt::Key_Space);
+      QVERIFY(!timeline->timeline().playing());
+    }
+  }
+
   void insertKeyWithNothingKeyableSaysWhy() {
     auto w = openWindow(QSize(1280, 800));
     QVERIFY(w);

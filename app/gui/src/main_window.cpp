@@ -105,8 +105,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
     if (s.editInput) s.editInput->syncEditToggle();
     if (!s.showingScene) return;
     // The scene is evaluated and drawn once, at the next frame (drawFrame), for every event
-    // of this event-loop tick.
-    s.frameDue = true;
+    // of this event-loop tick; a change that draws nothing new asks for no frame (requestFrame).
+    s.requestFrame();
     if (s.timeline) s.timeline->sync();
     QString dragText;
     if (const auto value = s.controller->handleDragValue()) {
@@ -123,11 +123,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), impl_(std::make_u
       if (const QString guard = s.editInput->guardText(); !guard.isEmpty())
         dragText += (dragText.isEmpty() ? QString() : QString(" · ")) + guard;
     if (!dragText.isEmpty()) s.status->say(dragText);
-    s.view->requestRender();
   };
   // Evaluation once per event-loop tick: the controllers only ask for a frame; the frame
   // evaluates what every event before it changed (SceneDeformer::evaluate), then draws.
-  d.controller->requestEvaluation = [this] { impl_->view->requestRender(); };
+  d.controller->requestEvaluation = [this] { impl_->requestFrame(); };
   connect(d.view, &VtkViewWidget::aboutToRender, this, [this] { impl_->drawFrame(); });
   d.controller->onStructureChanged = [this, refreshPanel] {
     // A removed object leaves the selection, as its row leaves the outliner's (an undo that
@@ -205,6 +204,7 @@ void MainWindow::setScene(scenes::Scene scene) {
   d.deformStatus->setText(deformStatusText(d.deformer.lastStats()));
   d.sceneView->setHighlights(d.controller->highlights());
   d.sceneView->show(d.scene, d.deformer);
+  d.askedInputs.reset();  // a new scene: its first change asks for a frame
   d.showingScene = true;
   d.outliner->rebuild(d.scene);
   d.properties->showSelection({});

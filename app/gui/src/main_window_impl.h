@@ -106,6 +106,35 @@ struct MainWindow::Impl {
   bool frameDue = false;
   /// Frames that evaluated the scene (MainWindow::evaluations).
   std::uint64_t evaluations = 0;
+  /// What a frame draws of the document and the controllers (the view's own looks and camera ask
+  /// for their frames themselves): the scene and its widget model by revision, whether a gesture
+  /// runs (its objects drawn as proxies) and the highlights.
+  struct FrameInputs {
+    std::uint64_t sceneRevision = 0;
+    std::uint64_t widgetsInstance = 0;
+    std::uint64_t widgetsRevision = 0;
+    bool gesture = false;
+    ViewHighlights highlights;
+    friend bool operator==(const FrameInputs&, const FrameInputs&) = default;
+  };
+  FrameInputs frameInputs() const {
+    return {scene.revision(), scene.widgets.instance(), scene.widgets.revision(), deformer.inGesture(),
+            edit->highlights(controller->highlights())};
+  }
+  /// The inputs of the frame a change asked for last (none: the next change asks for one).
+  std::optional<FrameInputs> askedInputs;
+  /// A change of the model or of a controller's state (onChanged, requestEvaluation) asks for a
+  /// frame, which evaluates the scene and draws it (drawFrame), unless it left everything a
+  /// frame draws as the frame asked for last: a frame of the timeline that no key moves anything
+  /// at, a selection made again, a hover over what was hovered. The view shows that frame already.
+  void requestFrame() {
+    if (!showingScene) return;
+    FrameInputs inputs = frameInputs();
+    if (askedInputs == inputs) return;
+    askedInputs = std::move(inputs);
+    frameDue = true;
+    view->requestRender();
+  }
   /// Brings the deformer and the view up to date when a change waits (frameDue): the scene
   /// evaluated once for every event since the last frame, then highlights, actors and the
   /// deform status refreshed. The view calls it before each repaint (VtkViewWidget::aboutToRender);

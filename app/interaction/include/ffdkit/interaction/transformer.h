@@ -26,6 +26,10 @@ struct Transformer {
   Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
   double size = 1.0;
   bool uniformSize = false;  ///< every size handle scales all three axes alike (affine widgets)
+  /// Equal when frame, size and uniformSize are (a transformer drawn the same).
+  friend bool operator==(const Transformer& a, const Transformer& b) {
+    return a.frame.matrix() == b.frame.matrix() && a.size == b.size && a.uniformSize == b.uniformSize;
+  }
 };
 
 /// The shape of a transformer, in units of Transformer::size, in its frame. No two handles meet

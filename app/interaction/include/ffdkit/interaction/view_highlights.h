@@ -60,6 +60,7 @@ struct ViewHighlights {
   std::vector<FoldTint> foldTints;    ///< lattices whose cells are not all certified free of fold-over
   std::vector<CertifiedLattice> certified;  ///< lattices checked and certified free of fold-over (no tint)
   std::optional<SoftRadius> softRadius;  ///< the soft selection's radius during a transform
+  friend bool operator==(const ViewHighlights&, const ViewHighlights&) = default;  ///< equal when every field is
 };
 
 }  // namespace ffdkit::app
