@@ -105,6 +105,39 @@ class VtkViewWidgetTest : public QObject {
   // A repaint nothing asked for (Qt repaints the view when its window is activated or
   // deactivated, and again after the frame its resize event drew) shows VTK's last frame again
   // instead of rendering the same pixels anew; requestRender() and a new size render a frame.
+  // VTK's interactor style asks for a frame when a right (dolly) or middle (pan) gesture ends,
+  // whether or not it moved the camera: a click that moved nothing draws no frame, a drag that
+  // moved the camera draws one.
+  void aClickThatMovesNoCameraDrawsNoFrame() {
+    QWidget window;
+    window.resize(400, 300);
+    auto* view = new ffdkit::app::VtkViewWidget(&window);
+    view->setGeometry(0, 0, 300, 200);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    view->grabFramebuffer();
+    QApplication::processEvents();
+    const std::uint64_t rendered = view->renders();
+    const QPoint at(150, 100);
+    for (Qt::MouseButton button : {Qt::RightButton, Qt::MiddleButton}) {
+      sendMouse(view, QEvent::MouseButtonPress, at, button, button);
+      sendMouse(view, QEvent::MouseButtonRelease, at, button, Qt::NoButton);
+      QApplication::processEvents();
+      QCOMPARE(view->renders(), rendered);
+    }
+    vtkCamera* camera = view->renderer()->GetActiveCamera();
+    double before[3];
+    camera->GetPosition(before);
+    sendMouse(view, QEvent::MouseButtonPress, at, Qt::RightButton, Qt::RightButton);
+    for (int step = 1; step <= 5; ++step) sendMouse(view, QEvent::MouseMove, at + QPoint(0, 8 * step), Qt::NoButton, Qt::RightButton);
+    sendMouse(view, QEvent::MouseButtonRelease, at + QPoint(0, 40), Qt::RightButton, Qt::NoButton);
+    QApplication::processEvents();
+    double after[3];
+    camera->GetPosition(after);
+    QVERIFY(before[0] != after[0] || before[1] != after[1] || before[2] != after[2]);
+    QCOMPARE(view->renders(), rendered + 1);
+  }
+
   void aRepaintNothingAskedForShowsTheLastFrame() {
     QWidget window;
     window.resize(400, 300);

@@ -7,6 +7,7 @@
 #include <QWheelEvent>
 
 #include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
 #include <vtkCommand.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkGenericRenderWindowInteractor.h>
@@ -62,6 +63,8 @@ struct VtkViewWidget::Impl {
   /// The size (device pixels) of the frame VTK last rendered; empty before the first.
   QSize frameSize;
   std::uint64_t renders = 0;
+  /// The camera's modification time when VTK last rendered a frame (vtkCamera::GetMTime).
+  vtkMTimeType cameraDrawn = 0;
 };
 
 VtkViewWidget::VtkViewWidget(QWidget* parent) : QOpenGLWidget(parent), impl_(std::make_unique<Impl>()) {
@@ -98,7 +101,11 @@ VtkViewWidget::VtkViewWidget(QWidget* parent) : QOpenGLWidget(parent), impl_(std
 
   d.renderRequest->SetClientData(this);
   d.renderRequest->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
-    static_cast<VtkViewWidget*>(self)->requestRender();
+    // The interactor style asks for a frame when it moved the camera, and again when its gesture
+    // ends (a right or middle click with no motion too): only a camera moved since the last frame
+    // draws something new.
+    auto* widget = static_cast<VtkViewWidget*>(self);
+    if (widget->impl_->renderer->GetActiveCamera()->GetMTime() != widget->impl_->cameraDrawn) widget->requestRender();
   });
   d.interactor->AddObserver(vtkCommand::RenderEvent, d.renderRequest);
 }
@@ -196,6 +203,7 @@ void VtkViewWidget::paintGL() {
     d.window->SetReadyForRendering(true);
     d.window->Render();
     d.window->SetReadyForRendering(false);
+    d.cameraDrawn = d.renderer->GetActiveCamera()->GetMTime();
   } else {
     d.window->BlitDisplayFramebuffer();
   }
