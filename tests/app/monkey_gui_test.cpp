@@ -9,9 +9,11 @@
 //   FFDKIT_MONKEY_ACTIONS  how many actions (default 2000)
 //   FFDKIT_MONKEY_SEGMENTS only these segments of the plan, e.g. "9" or "1,9" (replays one that failed)
 //   FFDKIT_MONKEY_LOG=1    prints every action as it runs (with what it aimed at, then "@frame",
-//                          "playing" while the timeline plays, "#" the undo stack's position and "~" a
-//                          fingerprint of the scene's text), each undo and redo of the walks, and a
-//                          segment's largest difference from the file
+//                          "playing" while the timeline plays, "#" the undo stack's position, "~" a
+//                          fingerprint of the scene's text, "^" the frames the view rendered for the
+//                          action and "[view w x h]" the view's new size when the action resized it),
+//                          each undo and redo of the walks, and a segment's largest difference from
+//                          the file
 //   FFDKIT_MONKEY_WALL_CLOCK=1  playback follows the wall clock as in the app (by default the
 //                          test steps it: 1 to 3 frames after each action, drawn from the plan, so
 //                          a run replays frame for frame)
@@ -617,6 +619,8 @@ class MonkeyGuiTest : public QObject {
 
       for (const MonkeyAction& a : segment.actions) {
         const std::string what = std::to_string(index) + " " + describe(a);
+        const std::uint64_t rendersBefore = w->view()->renders();
+        const QSize viewBefore = w->view()->size();
         std::snprintf(gRunning, sizeof gRunning, "%s, action %s", where.c_str(), what.c_str());
         answers.setAnswer(a.answer);
         const std::string aim = monkey.run(a);
@@ -629,7 +633,12 @@ class MonkeyGuiTest : public QObject {
         if (log)
           std::cerr << "  " << what << (aim.empty() ? "" : " -> " + aim) << (answered.empty() ? "" : " [" + answered + "]")
                     << " @" << timeline->timeline().frame() << (timeline->timeline().playing() ? " playing" : "") << " #"
-                    << w->commands().position() << " ~" << fingerprint(scenes::sceneFileText(w->scene())) << std::endl;
+                    << w->commands().position() << " ~" << fingerprint(scenes::sceneFileText(w->scene())) << " ^"
+                    << w->view()->renders() - rendersBefore
+                    << (w->view()->size() == viewBefore ? std::string()
+                                                         : " [view " + std::to_string(w->view()->width()) + " x " +
+                                                               std::to_string(w->view()->height()) + "]")
+                    << std::endl;
         if (!answers.unanswered().empty())
           QFAIL((where + ", action " + what + ": a dialog stayed open: " + answers.unanswered().front()).c_str());
         QVERIFY2(w->isVisible(), (where + ", action " + what + ": the window closed").c_str());
