@@ -145,6 +145,39 @@ class TimelineGuiTest : public QObject {
     }
   }
 
+  // The ruler repaints only when what it draws changes: a hover over a widget's glyph changes
+  // the view's highlight, not the frame, the range or the keys shown; a frame step moves it.
+  void theRulerRepaintsOnlyWhenItsContentChanges() {
+    auto w = openWindow(QSize(1280, 800));
+    QVERIFY(w);
+    w->openScene(kExamples / "default");
+    QWidget* bar = w->findChild<QWidget*>("timelineBar");
+    QVERIFY(bar && bar->isVisible());
+    struct PaintCounter : QObject {
+      int paints = 0;
+      bool eventFilter(QObject*, QEvent* event) override {
+        if (event->type() == QEvent::Paint) ++paints;
+        return false;
+      }
+    } counter;
+    QApplication::processEvents();
+    bar->installEventFilter(&counter);
+    const widgets::WidgetModel& m = w->scene().widgets;
+    const widgets::WidgetId pull = m.find("pull");
+    const widgets::WidgetFrame f = m.affineFrame(pull);
+    for (int axis = 0; axis < 3 && w->controller().highlights().hovered != pull; ++axis)
+      for (double along = 0.3; along < 1.0 && w->controller().highlights().hovered != pull; along += 0.1)
+        hover(*w, toWidget(*w, f.frame.translation() + along * f.size * f.frame.linear().col(axis)));
+    QVERIFY(w->controller().highlights().hovered == pull);
+    QApplication::processEvents();
+    QCOMPARE(counter.paints, 0);
+    auto* timeline = w->findChild<app::TimelineWidget*>("timeline");
+    timeline->goTo(timeline->timeline().frame() + 1);
+    QApplication::processEvents();
+    QCOMPARE(counter.paints, 1);
+    bar->removeEventFilter(&counter);
+  }
+
   void insertKeyWithNothingKeyableSaysWhy() {
     auto w = openWindow(QSize(1280, 800));
     QVERIFY(w);

@@ -177,6 +177,9 @@ void TimelineWidget::sync() {
                       .arg(a.firstFrame)
                       .arg(a.lastFrame)
                       .arg(a.framesPerSecond, 0, 'g', 4));
+  BarContent content{a.firstFrame, a.lastFrame, timeline_.frame(), timeline_.keyFrames()};
+  if (content == barShown_) return;
+  barShown_ = std::move(content);
   bar_->update();
 }
 

@@ -4,6 +4,9 @@
 // app::Timeline (the headless logic, app/interaction).
 #pragma once
 
+#include <optional>
+#include <vector>
+
 #include <QElapsedTimer>
 #include <QTimer>
 #include <QWidget>
@@ -69,6 +72,17 @@ class TimelineWidget : public QWidget {
 
   Timeline timeline_;
   TimelineBar* bar_ = nullptr;
+  /// What the bar draws of the document: the frame range, the frame and the selection's keys.
+  struct BarContent {
+    int firstFrame = 0;
+    int lastFrame = 0;
+    int frame = 0;
+    std::vector<double> keyFrames;
+    friend bool operator==(const BarContent&, const BarContent&) = default;
+  };
+  /// The bar's content as sync() last had it drawn: a change that leaves it (a hover, a drag of a
+  /// widget without keys) repaints nothing of the timeline.
+  std::optional<BarContent> barShown_;
   QLabel* label_ = nullptr;
   QMenu* menu_ = nullptr;
   QAction* play_ = nullptr;
