@@ -26,9 +26,11 @@ void bindAnimationTypes(py::module_& module);
 void bindSceneEditing(py::module_& module);
 /// ffdkit.app: the Document (scene, deformer, undo stack, interaction controller).
 void bindApp(py::module_& module);
-/// ffdkit.cad's C++ half (cad_bindings.cpp, with the cad module only); CadError derives from
-/// `baseError` (ffdkit.Error) and RuntimeError.
-void bindCad(py::module_& module, py::handle baseError);
+/// ffdkit.cad's C++ half, the submodule _cad of `module` (cad_bindings.cpp, with the cad module);
+/// CadError derives from `baseError` (ffdkit.Error) and RuntimeError. Without the cad module
+/// (FFDKIT_WITH_CAD off: cad_unavailable.cpp) it adds nothing, and importing ffdkit.cad raises
+/// ImportError saying so.
+void addCadModule(py::module_& module, const py::handle& baseError);
 /// ffdkit.io's C++ half: volume meshes read and written back by pass-through (io_bindings.cpp).
 void bindIo(py::module_& module);
 

@@ -1,6 +1,6 @@
 // ffdkit.cad's C++ half (ffdkit._ffdkit._cad): STEP and IGES parts (cad/), their exact FFD, their
-// tessellation and their check. Built only with the cad module (FFDKIT_WITH_CAD);
-// python/ffdkit/cad.py gives the functions their Python names and docstrings.
+// tessellation and their check. Built only with the cad module (FFDKIT_WITH_CAD; without it
+// cad_unavailable.cpp); python/ffdkit/cad.py gives the functions their Python names and docstrings.
 #include <optional>
 #include <string>
 
@@ -42,7 +42,9 @@ PyObject* cadErrorClass = nullptr;
 
 }  // namespace
 
-void bindCad(py::module_& module, py::handle baseError) {
+void addCadModule(py::module_& parent, const py::handle& baseError) {
+  py::module_ module =
+      parent.def_submodule("_cad", "STEP and IGES parts and their exact FFD (ffdkit::cad); see ffdkit.cad.");
   cadErrorClass = PyErr_NewExceptionWithDoc("ffdkit.CadError",
                                             "A CAD file that cannot be read or written, or a deformation the cad module "
                                             "cannot make exactly; also a RuntimeError.\n\nThe message names the file "

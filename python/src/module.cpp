@@ -148,8 +148,5 @@ animation applied during a gesture.)doc");
   py::module_ ioModule =
       module.def_submodule("_io", "Volume meshes read and written back by pass-through (ffdkit::meshio); see ffdkit.io.");
   python::bindIo(ioModule);
-#if FFDKIT_HAS_CAD
-  py::module_ cadModule = module.def_submodule("_cad", "STEP and IGES parts and their exact FFD (ffdkit::cad); see ffdkit.cad.");
-  python::bindCad(cadModule, base);
-#endif
+  python::addCadModule(module, base);
 }
