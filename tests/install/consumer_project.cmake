@@ -1,11 +1,13 @@
 # cmake -DPREFIX -DSOURCE -DBINARY -DGENERATOR [-DRUN_ARGS=a|b] [-DDISABLE=P1|P2]
-#       [-DEXPECT_ERROR=regex] -P consumer_project.cmake:
+#       [-DEXPECT_ERROR=regex] [-DLAUNCHER=ccache] -P consumer_project.cmake:
 # configures SOURCE (a project outside ffdkit, tests/install/consumers/<component>/) against the
 # ffdkit package installed in PREFIX, builds it and runs it with RUN_ARGS. No package of DISABLE
 # may be looked for, checked twice: each is made unfindable (CMAKE_DISABLE_FIND_PACKAGE_<name>:
 # a REQUIRED lookup of it fails), and CMake's trace of the configure step must hold no
 # find_package of it (which also catches a QUIET lookup). With EXPECT_ERROR the configure step
-# must fail with output matching it.
+# must fail with output matching it. LAUNCHER (ccache) compiles the project through the compiler
+# cache, with BINARY's parent folder as its base folder (paths below it hashed relative to the
+# build folder: tests/install/CMakeLists.txt puts BINARY beside PREFIX).
 cmake_minimum_required(VERSION 3.25)  # IN_LIST and the other policies of a project
 file(REMOVE_RECURSE "${BINARY}")
 file(MAKE_DIRECTORY "${BINARY}")
@@ -15,6 +17,11 @@ set(options "")
 foreach(package IN LISTS disable)
   list(APPEND options "-DCMAKE_DISABLE_FIND_PACKAGE_${package}=ON")
 endforeach()
+if(LAUNCHER)
+  list(APPEND options "-DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
+  cmake_path(GET BINARY PARENT_PATH base)
+  set(ENV{CCACHE_BASEDIR} "${base}")
+endif()
 set(trace "${BINARY}/configure-trace.json")
 execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE}" -B "${BINARY}" -G "${GENERATOR}"
                         -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${PREFIX}" ${options}
