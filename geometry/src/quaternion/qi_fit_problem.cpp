@@ -441,7 +441,9 @@ void QiFitProblem::segmentNormalSumsOfDegree(const Eigen::VectorXd& x, const QiF
       s66.bottomRightCorner<3, 3>() += gl.transpose() * gl;
       c6.topRows<3>() += own;
       c6.bottomRows<3>() += gl.transpose() * own;
-      oo.noalias() += own.transpose().lazyProduct(own);  // small: a plain loop beats GEMM here
+      // Symmetric: its upper triangle is all that analyticNormalEquations reads (a is mirrored at its
+      // end). Small: a plain loop beats GEMM here.
+      oo.triangularView<Eigen::Upper>() += own.transpose().lazyProduct(own);
       b6.head<3>() += r;
       b6.tail<3>() += gl.transpose() * r;
       gOwn += own.transpose() * r;
@@ -493,11 +495,13 @@ void QiFitProblem::analyticNormalEquations(const Eigen::VectorXd& x, const QiFit
     if (off > 0) {
       const auto du = d.leftCols(off);
       const Eigen::Matrix<double, 6, Eigen::Dynamic> sdu = s.s66.lazyProduct(du);
-      a.topLeftCorner(off, off).noalias() += du.transpose().lazyProduct(sdu);
+      // Only the upper triangle: a is symmetric and mirrored at the end. The segments' blocks are
+      // most of the work here (each is off x off, off growing to the number of variables).
+      a.topLeftCorner(off, off).triangularView<Eigen::Upper>() += du.transpose().lazyProduct(sdu);
       a.block(0, off, off, sv).noalias() += du.transpose().lazyProduct(s.c6);
       g.head(off).noalias() += du.transpose() * s.b6;
     }
-    a.block(off, off, sv, sv) += s.oo;
+    a.block(off, off, sv, sv) += s.oo;  // its upper triangle counts (oo holds only that)
     g.segment(off, sv) += s.gOwn;
     dp.leftCols(off) += s.gl * dphi.leftCols(off);
     dp.middleCols(off, sv) = s.own;
