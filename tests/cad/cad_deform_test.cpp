@@ -62,11 +62,8 @@ TEST_P(ExactDeformation, WritesTheFfdOfTheSurfacesAsAValidWatertightSolid) {
   // tessellation (deflection 3e-5 x size) is refined to triangles shorter than h before the map
   // (planar faces have large triangles that the map bends); the error left is estimated from
   // h = 2% and 1% of the size (chord error ~ h^2: e(h/2) ~ |V(h) - V(h/2)| / 3).
-  const auto [finer, tessellationError, area] = test::deformedTessellationVolume(model, [&](const Eigen::MatrixX3d& points) {
-    Eigen::MatrixX3d moved(points.rows(), 3);
-    for (Eigen::Index i = 0; i < points.rows(); ++i) moved.row(i) = ffdOf(lattice, points.row(i).transpose()).transpose();
-    return moved;
-  });
+  const auto [finer, tessellationError, area] = test::deformedTessellationVolume(
+      model, [&](const Eigen::MatrixX3d& points) { return test::ffdOfRows(lattice, points); });
   EXPECT_NEAR(check.volume, finer, 3.0 * tessellationError);
   EXPECT_GT(std::abs(check.volume - checkModel(model).volume), 10.0 * tessellationError);
 

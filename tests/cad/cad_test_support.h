@@ -81,6 +81,20 @@ inline Eigen::Vector3d ffdOf(const ffd::Lattice& lattice, const Eigen::Vector3d&
   return lattice.frame() * lattice.evaluate(uvw);
 }
 
+/// ffdOf of every row of `world` (the same numbers), the frame's and the rest map's inverses
+/// computed once rather than once per point.
+inline Eigen::MatrixX3d ffdOfRows(const ffd::Lattice& lattice, const Eigen::MatrixX3d& world) {
+  const auto toLocal = lattice.frame().inverse();
+  const Eigen::Matrix3d toParameters = lattice.restAffineLinear().inverse();
+  Eigen::MatrixX3d moved(world.rows(), 3);
+  for (Eigen::Index i = 0; i < world.rows(); ++i) {
+    const Eigen::Vector3d local = toLocal * Eigen::Vector3d(world.row(i).transpose());
+    const Eigen::Vector3d uvw = toParameters * (local - lattice.restAffineOffset());
+    moved.row(i) = (lattice.frame() * lattice.evaluate(uvw)).transpose();
+  }
+  return moved;
+}
+
 /// The FFD of world points as the engine deforms a mesh (embed, then Deformer::deform), the
 /// lattice's outside policy applied: what ClampEdge and Falloff do outside the lattice.
 inline Eigen::MatrixX3d engineFfd(const ffd::Lattice& lattice, const Eigen::MatrixX3d& world) {
