@@ -17,7 +17,8 @@ if(FFDKIT_SANITIZE)
   # Eigen runs three to twenty times slower. At -O1: the libraries and test programs whose core
   # tests are that kind of code (ffd, geometry, cad: Newton embeddings, fold checks, fits, CAD
   # approximation; meshio's cell-quality sweeps and their reference in meshio_tests, the
-  # exporters' skin fits, scenes_tests'
+  # exporters' skin fits and exporters_tests' skinned positions recomputed from the written
+  # files (its tests 9 s of CPU instead of 18, its one compile 10 s instead of 5), scenes_tests'
   # brute-force nearest-point checks). At -O0: the rest (widgets, scenes, the CLI, the window's
   # libraries, the other test programs and the fuzz targets), whose tests run about as long
   # either way.
@@ -27,7 +28,7 @@ if(FFDKIT_SANITIZE)
       ffdkit_geometry_cardinal ffdkit_geometry_polyhedron ffdkit_geometry_curvenet ffdkit_cad
       ffdkit_meshio ffdkit_exporters
       ffd_tests geometry_quaternion_tests geometry_polyhedron_tests geometry_curvenet_tests cad_tests
-      scenes_tests meshio_tests)
+      scenes_tests meshio_tests exporters_tests)
   function(ffdkit_sanitize_o1_targets)
     foreach(target IN LISTS ffdkit_sanitize_o1_targets)
       if(TARGET ${target})
