@@ -16,6 +16,7 @@
 
 #include <sys/resource.h>
 
+#include "../cli/ffdkit_cli_path.h"
 #include "ffdkit/gui/recovery_file.h"
 #include "ffdkit/meshio/mesh_io.h"
 #include "ffdkit/scenes/scene_file.h"
@@ -96,7 +97,7 @@ int runCli(const QStringList& arguments, bool full, QString* errors) {
       limit.rlim_cur = kFullAfterBytes;
       ::setrlimit(RLIMIT_FSIZE, &limit);
     });
-  cli.start(FFDKIT_CLI, arguments);
+  cli.start(QString::fromStdString(ffdkit::test::ffdkitCli()), arguments);
   if (!cli.waitForFinished(120000)) return -1;
   *errors = QString::fromLocal8Bit(cli.readAllStandardError());
   return cli.exitStatus() == QProcess::NormalExit ? cli.exitCode() : -1;

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "../cli/ffdkit_cli_path.h"
 #include "ffdkit/meshio/volume_mesh.h"
 #include "ffdkit/scenes/scene_deformer.h"
 #include "gui_test_support.h"
@@ -30,7 +31,7 @@ const fs::path kDuct = kExamples / "volume-duct";
 // ffdkit-cli with `arguments`; its exit code (-1 when it did not run).
 int runCli(const QStringList& arguments, QString* errors) {
   QProcess cli;
-  cli.start(FFDKIT_CLI, arguments);
+  cli.start(QString::fromStdString(ffdkit::test::ffdkitCli()), arguments);
   if (!cli.waitForFinished(120000)) return -1;
   *errors = QString::fromLocal8Bit(cli.readAllStandardError());
   return cli.exitStatus() == QProcess::NormalExit ? cli.exitCode() : -1;

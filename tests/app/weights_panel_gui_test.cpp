@@ -14,6 +14,7 @@
 
 #include <filesystem>
 
+#include "../cli/ffdkit_cli_path.h"
 #include "ffdkit/meshio/mesh_io.h"
 #include "fig62_steps.h"
 #include "gui_test_support.h"
@@ -29,7 +30,7 @@ namespace {
 int runCli(const QStringList& arguments, QString* output) {
   QProcess cli;
   cli.setProcessChannelMode(QProcess::MergedChannels);
-  cli.start(FFDKIT_CLI, arguments);
+  cli.start(QString::fromStdString(ffdkit::test::ffdkitCli()), arguments);
   if (!cli.waitForFinished(60000)) return -1;
   *output = QString::fromLocal8Bit(cli.readAll());
   return cli.exitStatus() == QProcess::NormalExit ? cli.exitCode() : -1;

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "cad_test_support.h"
+#include "../cli/ffdkit_cli_path.h"
 #include "ffdkit/cad/cad_check.h"
 #include "ffdkit/cad/cad_deform.h"
 #include "ffdkit/cad/cad_io.h"
@@ -50,7 +51,7 @@ struct CliRun {
 };
 
 CliRun runCli(const std::string& arguments, const std::filesystem::path& log) {
-  const std::string command = std::string(FFDKIT_CLI) + " " + arguments + " > " + log.string() + " 2>&1";
+  const std::string command = ffdkit::test::ffdkitCli() + " " + arguments + " > " + log.string() + " 2>&1";
   CliRun run;
   const int raw = std::system(command.c_str());
   run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;

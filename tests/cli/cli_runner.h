@@ -1,5 +1,5 @@
 #pragma once
-// Runs the ffdkit-cli binary (path from the build: FFDKIT_CLI) and captures what it did.
+// Runs the ffdkit-cli binary (the build's, found by ffdkit_cli_path.h) and captures what it did.
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +15,8 @@
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "ffdkit_cli_path.h"
 
 namespace ffdkit::cli::test {
 
@@ -80,7 +82,7 @@ inline CliResult runCli(const std::vector<std::string>& args) {
   const std::string stem = "ffdkit-cli-run-" + std::to_string(::getpid());
   const auto outPath = scratch / (stem + ".out");
   const auto errPath = scratch / (stem + ".err");
-  std::string command = shellQuote(FFDKIT_CLI);
+  std::string command = shellQuote(ffdkit::test::ffdkitCli());
   // Appended piece by piece: GCC 12 warns (-Wrestrict, falsely) on "literal" + std::string&&.
   for (const auto& arg : args) command.append(" ").append(shellQuote(arg));
   command.append(" >").append(shellQuote(outPath.string()));

@@ -282,7 +282,7 @@ TEST(CliDeform, ShowsProgressWhenStderrIsATerminalUnlessQuiet) {
   TempDir dir;
   scenes::writeMesh(dir / "s.vtp", sphere(8));
   const auto onTerminal = [&](const std::string& extra) {
-    std::string cli = shellQuote(FFDKIT_CLI);
+    std::string cli = shellQuote(ffdkit::test::ffdkitCli());
     for (const std::string& arg : {std::string("deform"), std::string("-w"), (kWidgetExamples / "fig6-8.json").string(),
                                   (dir / "s.vtp").string(), std::string("-o"), (dir / "o.vtp").string()})
       cli.append(" ").append(shellQuote(arg));

@@ -40,10 +40,10 @@ meshio::MeshData sheet(int side) {
 }
 
 pid_t spawn(const std::vector<std::string>& args) {
+  std::string program = ffdkit::test::ffdkitCli();  // resolved before fork: the child only execs
   const pid_t pid = ::fork();
   if (pid == 0) {
     std::vector<char*> argv;
-    std::string program = FFDKIT_CLI;
     argv.push_back(program.data());
     std::vector<std::string> copy = args;
     for (auto& a : copy) argv.push_back(a.data());
@@ -51,7 +51,7 @@ pid_t spawn(const std::vector<std::string>& args) {
     const int null = ::open("/dev/null", O_WRONLY);
     ::dup2(null, STDOUT_FILENO);
     ::dup2(null, STDERR_FILENO);
-    ::execv(FFDKIT_CLI, argv.data());
+    ::execv(program.c_str(), argv.data());
     ::_exit(127);
   }
   return pid;
