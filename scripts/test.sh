@@ -17,6 +17,11 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/build.sh"
 build="${FFDKIT_BUILD_DIR:-$root/build}"
 jobs="${FFDKIT_JOBS:-$(nproc)}"
+# Tests at once: one more than the cores (FFDKIT_TEST_JOBS). Many tests spend part of their time
+# waiting (a window's timers, a child process, mpirun's start-up, Xvfb), and with one test per
+# core a core stood idle for about a sixth of the main build's test run (/usr/bin/time of its ctest:
+# 439 s of CPU in 266 s on 2 cores); a third test fills those gaps.
+test_jobs="${FFDKIT_TEST_JOBS:-$((jobs + 1))}"
 
 # GUI and render tests need a display: run the whole suite inside one Xvfb server (Mesa's
 # software GL). XDG_RUNTIME_DIR keeps Qt from warning on every start. -noreset: an X server
@@ -29,7 +34,7 @@ export QT_QPA_PLATFORM=xcb
 # OpenMP threads that spin while idle would starve the other tests running beside them.
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
-  ctest --test-dir "$build" --output-on-failure --parallel "$jobs" --timeout 600 "$@"
+  ctest --test-dir "$build" --output-on-failure --parallel "$test_jobs" --timeout 600 "$@"
 
 # Cost (docs/robustness.md): a build of ~300 steps (from a warm compiler cache a few minutes) and
 # ~80 s of tests on 2 cores.
@@ -56,7 +61,7 @@ if [ "${FFDKIT_NOAPP_STAGE:-1}" = "1" ]; then
   noapp_tests=(-R "install_|deb_|^[Cc]li|python|Docs\\.")
   if [ "${FFDKIT_NOAPP_ALL_TESTS:-0}" = "1" ]; then noapp_tests=(); fi
   xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
-    ctest --test-dir "$noapp" --output-on-failure --parallel "$jobs" --timeout 600 "${noapp_tests[@]}" "$@"
+    ctest --test-dir "$noapp" --output-on-failure --parallel "$test_jobs" --timeout 600 "${noapp_tests[@]}" "$@"
   tested=$(date +%s)
   # The same without VTK and OpenCASCADE (-DFFDKIT_WITH_VTK=OFF -DFFDKIT_WITH_CAD=OFF, build-novtk/):
   # neither is looked for, ffdkit-cli refuses STEP and IGES inputs, meshio
@@ -69,7 +74,7 @@ if [ "${FFDKIT_NOAPP_STAGE:-1}" = "1" ]; then
     echo "no-app stage: the configuration without VTK looked for Qt or VTK ($novtk/CMakeCache.txt)" >&2
     exit 1
   fi
-  ctest --test-dir "$novtk" --output-on-failure --parallel "$jobs" --timeout 600 "$@"
+  ctest --test-dir "$novtk" --output-on-failure --parallel "$test_jobs" --timeout 600 "$@"
   echo "no-app stage: with VTK build $((built - stage_start)) s, tests $((tested - built)) s;" \
        "without VTK build and tests $(($(date +%s) - tested)) s"
 fi
@@ -120,7 +125,7 @@ if [ "${FFDKIT_SANITIZE_STAGE:-1}" = "1" ]; then
   # their own options, see tests/fuzz/CMakeLists.txt.)
   ASAN_OPTIONS="halt_on_error=1:detect_leaks=0" \
   UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1" \
-    ctest --test-dir "$sanitize" --output-on-failure --parallel "$jobs" --timeout 900 -L core
+    ctest --test-dir "$sanitize" --output-on-failure --parallel "$test_jobs" --timeout 900 -L core
   echo "sanitizer stage: build $((built - stage_start)) s, tests $(($(date +%s) - built)) s"
 fi
 
