@@ -25,9 +25,20 @@ esac
 # the files the compiler's .d file names, with the build folder's path left out) instead of the
 # header itself, so those compiles are shared with the other build folders. include_file_mtime,
 # include_file_ctime: the header is made moments before the compiles that use it.
+# CMake names the header it includes first by its full path after -Xclang, which ccache does not
+# make relative to CCACHE_BASEDIR: paths in the build folder are handed to the compiler relative
+# to it (the folder the compiler runs in), so that the key is the same in every build folder.
 export CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime
 export CCACHE_PCH_EXTSUM=true
+here="$(pwd)"
 if [ -z "$header" ]; then
+  for arg do
+    shift
+    case "$arg" in
+      "$here"/*) arg="${arg#"$here"/}" ;;
+    esac
+    set -- "$@" "$arg"
+  done
   exec "$@"
 fi
 output="" depfile="" previous=""
@@ -39,7 +50,6 @@ for arg in "$@"; do
   previous="$arg"
 done
 CCACHE_BASEDIR="" "$@" || exit
-here="$(pwd)"
 {
   printf '%s\n' "$@" | sed "s|$here|.|g"
   sed -e 's/\\$//' -e 's/^[^ ]*: *//' "$depfile" | tr ' ' '\n' | sed '/^$/d' | sort -u |
