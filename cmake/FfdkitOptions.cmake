@@ -75,44 +75,18 @@ if(FFDKIT_CCACHE)
   set(CMAKE_CXX_COMPILER_LAUNCHER "${FFDKIT_CCACHE}")
 endif()
 
-# Precompiled headers (FFDKIT_PCH, default ON): headers that many files of a target include (Qt,
-# Qt Test, VTK, Eigen, GoogleTest, the standard library) are compiled once into a precompiled
-# header, which targets with the same compile flags share (REUSE_FROM); parsing them was most of a
-# window test's compile time (its batch: 3.8 s of 5.4 s of CPU). GCC builds precompile the window's
-# headers; clang builds (the sanitizer and fuzz stages) also the libraries' and test programs'.
-option(FFDKIT_PCH "Precompile the headers that many files of a target include" ON)
+# Precompiled headers (FFDKIT_PCH, default ON; GCC builds): the window's library and test
+# programs include the same Qt, Qt Test, VTK and Eigen headers, and parsing them was most of each
+# file's compile time (a window test's batch: 3.8 s of its 5.4 s of CPU). A target's common
+# headers are compiled once into a precompiled header, which programs with the same flags share
+# (REUSE_FROM). Clang builds (sanitizer and fuzz stages) do not use them.
+option(FFDKIT_PCH "Precompile the common headers of the window's library and test programs" ON)
 
-# ffdkit_precompile_headers(target HEADER header.h [COMPILERS id...]) compiles header.h for target;
-# ffdkit_precompile_headers(target REUSE_FROM other [COMPILERS id...]) uses other's. COMPILERS
-# (default GNU Clang): the compilers (CMAKE_CXX_COMPILER_ID) that use it; a precompiled header only
-# some builds use is listed for Clang alone.
-# A precompiled header is used only with the options it was compiled with: GCC ignores one compiled
-# with other options (-Winvalid-pch says so); clang refuses it (an -O0 and an -O1 target differ in
-# __OPTIMIZE__, a library and a program in -fPIC, and a definition on the command line becomes part
-# of it). Under GCC, REUSE_FROM is taken as written. Under clang, ffdkit_share_clang_pchs groups
-# the targets by header and by compile flags once every target is defined (after the sanitizer
-# build's -O1 list): the first target of a group compiles the header, the others reuse it.
+# ffdkit_precompile_headers(target HEADER header.h) compiles header.h for target;
+# ffdkit_precompile_headers(target REUSE_FROM other) uses other's (same compile flags needed: GCC
+# ignores a precompiled header compiled with other options, -Winvalid-pch says so).
 function(ffdkit_precompile_headers target mode what)
-  cmake_parse_arguments(ARG "" "" "COMPILERS" ${ARGN})
-  if(NOT ARG_COMPILERS)
-    set(ARG_COMPILERS GNU Clang)
-  endif()
-  if(NOT FFDKIT_PCH OR NOT CMAKE_CXX_COMPILER_ID IN_LIST ARG_COMPILERS)
-    return()
-  endif()
-  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
-    if(mode STREQUAL "REUSE_FROM")
-      get_target_property(what ${what} FFDKIT_PCH_HEADER)
-    endif()
-    # A later call for the same target (a test program's own header) replaces the earlier one.
-    get_target_property(registered ${target} FFDKIT_PCH_HEADER)
-    set_property(TARGET ${target} PROPERTY FFDKIT_PCH_HEADER "${what}")
-    if(NOT registered)
-      set_property(GLOBAL APPEND PROPERTY ffdkit_clang_pch_targets ${target})
-    endif()
-    return()
-  endif()
-  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  if(NOT FFDKIT_PCH OR NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
     return()
   endif()
   if(mode STREQUAL "REUSE_FROM")
@@ -124,140 +98,11 @@ function(ffdkit_precompile_headers target mode what)
   # settings cmake/ccache-pch.sh gives it (set here, for these targets, so that a fresh machine
   # without a ccache configuration of its own gets cache hits).
   target_compile_options(${target} PRIVATE -fpch-preprocess)
-  ffdkit_pch_launcher(${target})
-endfunction()
-
-function(ffdkit_pch_launcher target)
   if(FFDKIT_CCACHE)
     set_target_properties(${target} PROPERTIES CXX_COMPILER_LAUNCHER
       "${PROJECT_SOURCE_DIR}/cmake/ccache-pch.sh;${FFDKIT_CCACHE}")
   endif()
 endfunction()
-
-# ffdkit_pch_flags(target out): what decides whether clang accepts a precompiled header, as one
-# string: the target's compile options and definitions with those of every target it links (their
-# usage requirements; warnings left out), position independence and visibility. Two targets share
-# a group only if all of these are the same.
-function(ffdkit_pch_flags target out)
-  set(flags "")
-  set(queue ${target})
-  set(seen "")
-  while(queue)
-    list(POP_FRONT queue current)
-    if(current IN_LIST seen)
-      continue()
-    endif()
-    list(APPEND seen ${current})
-    set(prefix INTERFACE_)
-    if(current STREQUAL target)
-      set(prefix "")
-    endif()
-    foreach(property COMPILE_OPTIONS COMPILE_DEFINITIONS)
-      get_target_property(values ${current} ${prefix}${property})
-      foreach(value IN LISTS values)
-        if(value AND NOT value MATCHES "^-W")
-          list(APPEND flags "${value}")
-        endif()
-      endforeach()
-    endforeach()
-    get_target_property(libraries ${current} ${prefix}LINK_LIBRARIES)
-    foreach(library IN LISTS libraries)
-      string(REGEX REPLACE "^\\$<BUILD_INTERFACE:(.*)>$" "\\1" library "${library}")
-      if(TARGET "${library}")
-        list(APPEND queue "${library}")
-      elseif(library AND NOT library MATCHES "^\\$<LINK_ONLY:")
-        # Not a target here (an imported target found in another folder, such as
-        # OpenMP::OpenMP_CXX): its name stands for the options it brings.
-        list(APPEND flags "${library}")
-      endif()
-    endforeach()
-  endwhile()
-  # Definitions of the target's folder (add_compile_definitions there) are not target properties.
-  get_target_property(source_dir ${target} SOURCE_DIR)
-  get_property(definitions DIRECTORY "${source_dir}" PROPERTY COMPILE_DEFINITIONS)
-  list(APPEND flags ${definitions})
-  list(REMOVE_DUPLICATES flags)
-  list(SORT flags)
-  get_target_property(type ${target} TYPE)
-  get_target_property(pic ${target} POSITION_INDEPENDENT_CODE)
-  if(type MATCHES "SHARED_LIBRARY|MODULE_LIBRARY")
-    set(pic ON)
-  endif()
-  get_target_property(visibility ${target} CXX_VISIBILITY_PRESET)
-  get_target_property(inlines ${target} VISIBILITY_INLINES_HIDDEN)
-  set(${out} "${flags}|pic=${pic}|visibility=${visibility},${inlines}" PARENT_SCOPE)
-endfunction()
-
-# ffdkit_pch_units(target out): how many translation units the target compiles (unity batches
-# count once) and may share a precompiled header: the target's C++ files, less those with
-# options or definitions of their own, which compile without one (clang would refuse it).
-function(ffdkit_pch_units target out)
-  get_target_property(sources ${target} SOURCES)
-  get_target_property(source_dir ${target} SOURCE_DIR)
-  set(units 0)
-  foreach(source IN LISTS sources)
-    if(source MATCHES "^\\$<" OR NOT source MATCHES "\\.(cpp|cxx|cc)$")
-      continue()
-    endif()
-    cmake_path(ABSOLUTE_PATH source BASE_DIRECTORY "${source_dir}")
-    get_property(options SOURCE ${source} TARGET_DIRECTORY ${target} PROPERTY COMPILE_OPTIONS)
-    get_property(definitions SOURCE ${source} TARGET_DIRECTORY ${target} PROPERTY COMPILE_DEFINITIONS)
-    if(options OR definitions)
-      set_property(SOURCE ${source} TARGET_DIRECTORY ${target} PROPERTY SKIP_PRECOMPILE_HEADERS ON)
-    else()
-      math(EXPR units "${units} + 1")
-    endif()
-  endforeach()
-  get_target_property(unity ${target} UNITY_BUILD)
-  get_target_property(batch ${target} UNITY_BUILD_BATCH_SIZE)
-  if(unity AND batch GREATER 0)
-    math(EXPR units "(${units} + ${batch} - 1) / ${batch}")
-  endif()
-  set(${out} ${units} PARENT_SCOPE)
-endfunction()
-
-# Clang: the targets of ffdkit_precompile_headers grouped by header and flags (called once every
-# target is defined). Compiling a precompiled header costs about what parsing its headers costs
-# each translation unit that uses it: a group of fewer than three units compiles without one.
-function(ffdkit_share_clang_pchs)
-  get_property(targets GLOBAL PROPERTY ffdkit_clang_pch_targets)
-  set(groups "")
-  foreach(target IN LISTS targets)
-    get_target_property(header ${target} FFDKIT_PCH_HEADER)
-    ffdkit_pch_flags(${target} flags)
-    string(SHA1 group "${header}|${flags}")
-    set_property(TARGET ${target} PROPERTY FFDKIT_PCH_GROUP ${group})
-    ffdkit_pch_units(${target} units)
-    get_property(group_units GLOBAL PROPERTY ffdkit_clang_pch_units_${group})
-    if(NOT group_units)
-      set(group_units 0)
-    endif()
-    math(EXPR group_units "${group_units} + ${units}")
-    set_property(GLOBAL PROPERTY ffdkit_clang_pch_units_${group} ${group_units})
-  endforeach()
-  foreach(target IN LISTS targets)
-    get_target_property(header ${target} FFDKIT_PCH_HEADER)
-    get_target_property(group ${target} FFDKIT_PCH_GROUP)
-    get_property(group_units GLOBAL PROPERTY ffdkit_clang_pch_units_${group})
-    if(group_units LESS 3)
-      continue()
-    endif()
-    get_property(donor GLOBAL PROPERTY ffdkit_clang_pch_donor_${group})
-    if(donor)
-      target_precompile_headers(${target} REUSE_FROM ${donor})
-    else()
-      target_precompile_headers(${target} PRIVATE ${header})
-      set_property(GLOBAL PROPERTY ffdkit_clang_pch_donor_${group} ${target})
-    endif()
-    # ccache: a precompiled header without a timestamp (cmake/ccache-pch.sh has the rest).
-    target_compile_options(${target} PRIVATE "SHELL:-Xclang -fno-pch-timestamp")
-    ffdkit_pch_launcher(${target})
-  endforeach()
-endfunction()
-if(FFDKIT_PCH AND CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
-  # After ffdkit_sanitize_o1_targets, deferred above: -O1 is one of the flags.
-  cmake_language(DEFER DIRECTORY ${PROJECT_SOURCE_DIR} CALL ffdkit_share_clang_pchs)
-endif()
 
 include(FfdkitInstall)
 
@@ -304,7 +149,6 @@ function(ffdkit_add_module_library module)
   set_target_properties(ffdkit_${module} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   ffdkit_target_defaults(ffdkit_${module})
   ffdkit_unity_library(ffdkit_${module})
-  ffdkit_precompile_headers(ffdkit_${module} HEADER "${PROJECT_SOURCE_DIR}/cmake/pch/library_pch.h" COMPILERS Clang)
   ffdkit_install_library(ffdkit_${module} ${module} HEADERS "${CMAKE_CURRENT_SOURCE_DIR}/include")
 endfunction()
 
