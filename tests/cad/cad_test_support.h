@@ -73,16 +73,9 @@ inline ffd::Lattice cylinderAround(const CadModel& model, double radiusFactor = 
   return lattice;
 }
 
-/// The lattice's FFD of a world point through the engine's own evaluation (Lattice::evaluate on the
-/// affine rest map's parameters), independent of the composition code.
-inline Eigen::Vector3d ffdOf(const ffd::Lattice& lattice, const Eigen::Vector3d& world) {
-  const Eigen::Vector3d local = lattice.frame().inverse() * world;
-  const Eigen::Vector3d uvw = lattice.restAffineLinear().inverse() * (local - lattice.restAffineOffset());
-  return lattice.frame() * lattice.evaluate(uvw);
-}
-
-/// ffdOf of every row of `world` (the same numbers), the frame's and the rest map's inverses
-/// computed once rather than once per point.
+/// The lattice's FFD of world points (rows) through the engine's own evaluation (Lattice::evaluate
+/// on the affine rest map's parameters), independent of the composition code; the frame's and the
+/// rest map's inverses computed once for all points.
 inline Eigen::MatrixX3d ffdOfRows(const ffd::Lattice& lattice, const Eigen::MatrixX3d& world) {
   const auto toLocal = lattice.frame().inverse();
   const Eigen::Matrix3d toParameters = lattice.restAffineLinear().inverse();
@@ -93,6 +86,11 @@ inline Eigen::MatrixX3d ffdOfRows(const ffd::Lattice& lattice, const Eigen::Matr
     moved.row(i) = (lattice.frame() * lattice.evaluate(uvw)).transpose();
   }
   return moved;
+}
+
+/// ffdOfRows of one point.
+inline Eigen::Vector3d ffdOf(const ffd::Lattice& lattice, const Eigen::Vector3d& world) {
+  return ffdOfRows(lattice, world.transpose()).row(0).transpose();
 }
 
 /// The FFD of world points as the engine deforms a mesh (embed, then Deformer::deform), the
