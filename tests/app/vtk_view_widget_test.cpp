@@ -102,9 +102,6 @@ class VtkViewWidgetTest : public QObject {
     QVERIFY(!dragged.isNull());
   }
 
-  // A repaint nothing asked for (Qt repaints the view when its window is activated or
-  // deactivated, and again after the frame its resize event drew) shows VTK's last frame again
-  // instead of rendering the same pixels anew; requestRender() and a new size render a frame.
   // VTK's interactor style asks for a frame when a right (dolly) or middle (pan) gesture ends,
   // whether or not it moved the camera: a click that moved nothing draws no frame, a drag that
   // moved the camera draws one.
@@ -138,6 +135,9 @@ class VtkViewWidgetTest : public QObject {
     QCOMPARE(view->renders(), rendered + 1);
   }
 
+  // A repaint nothing asked for (Qt repaints the view when its window is activated or
+  // deactivated, and again after the frame its resize event drew) shows VTK's last frame again
+  // instead of rendering the same pixels anew; requestRender() and a new size render a frame.
   void aRepaintNothingAskedForShowsTheLastFrame() {
     QWidget window;
     window.resize(400, 300);
