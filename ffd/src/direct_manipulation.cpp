@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include <Eigen/QR>
+#include "minimum_norm.h"
 
 namespace ffdkit::ffd {
 
@@ -69,7 +69,7 @@ Eigen::MatrixX3d leastNormControlChange(const Lattice& lattice, const Eigen::Ref
   }
   // Y = (B B^T)^+ D; the complete orthogonal decomposition gives the minimum-norm solution when
   // constraints are dependent (HHK 1992 use the pseudo-inverse for the same reason).
-  const Eigen::MatrixX3d y = gram.completeOrthogonalDecomposition().solve(Eigen::MatrixXd(displacements));
+  const Eigen::MatrixX3d y = detail::minimumNormSolve(gram, Eigen::MatrixXd(displacements));
   for (Eigen::Index r = 0; r < k; ++r)
     for (const BasisWeight& w : rows[static_cast<std::size_t>(r)]) change.row(w.point) += w.weight * y.row(r);
   return change;

@@ -6,10 +6,9 @@
 #include <stdexcept>
 #include <string>
 
-#include <Eigen/QR>
-
 #include "cell_polynomials.h"
 #include "closed_surface_moments.h"
+#include "minimum_norm.h"
 #include "point_window.h"
 #include "vector_clones.h"
 #include "volume_polynomial.h"
@@ -471,8 +470,7 @@ ShapeSolveResult ShapeConstraints::solve(const Lattice& lattice, const ShapeSolv
     // Minimum-norm Newton step: delta_new = J^T (J J^T)^+ (J delta - c).
     const Eigen::VectorXd rhs = J * delta - c;
     const Eigen::MatrixXd gram = J * J.transpose();
-    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(gram);
-    const Eigen::VectorXd y = cod.solve(rhs);
+    const Eigen::VectorXd y = detail::minimumNormSolve(gram, rhs);
     // Inconsistent rows (no free control moves a constrained quantity, or rows that contradict
     // each other) leave a residual the pseudo-inverse cannot remove.
     const double miss = (gram * y - rhs).norm();
