@@ -122,7 +122,10 @@ TEST(ShapeConstraints, BarycentreIsMovedExactlyToItsTarget) {
   const Eigen::MatrixXd M = deformationMatrix(s.lattice, s.uvw);
   Eigen::MatrixXd R = Eigen::MatrixXd::Zero(3, M.cols());
   for (Eigen::Index p = 0; p < s.points.rows(); ++p) R += M.middleRows(3 * p, 3) / double(s.points.rows());
-  const Eigen::VectorXd projected = R.transpose() * R.transpose().jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(flat(result.change));
+  // Rt as a column-major matrix, so that the SVD is the one the test above instantiates (the
+  // transpose's own plain type is row-major: a second JacobiSVD to compile).
+  const Eigen::MatrixXd Rt = R.transpose();
+  const Eigen::VectorXd projected = Rt * Rt.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(flat(result.change));
   EXPECT_LT((projected - flat(result.change)).norm(), 1e-10 * flat(result.change).norm());
 }
 
