@@ -455,83 +455,110 @@ void QiFitProblem::segmentNormalSumsOfDegree(const Eigen::VectorXd& x, const QiF
   }
 }
 
-void QiFitProblem::analyticNormalEquations(const Eigen::VectorXd& x, const QiFitEvaluation& ev, Eigen::MatrixXd& a,
-                                           Eigen::VectorXd& g) const {
-  const int nv = size();
+void QiFitProblem::segmentTransfer(const Eigen::VectorXd& x, const QiFitEvaluation& ev, int seg,
+                                   const SegmentNormalSums& sums, SegmentTransfer& out) const {
   const int k = layout_.degree;
   const bool planar = layout_.planar;
   const int sv = layout_.segmentVars();
+  const std::vector<Eigen::Vector3d> w = omegas(x, seg);
+  out.columns.setZero(6, sv);
+  out.columns.topRows<3>() = sums.own;
+  auto dphi = out.columns.bottomRows<3>();
+  const auto setOwnRotationColumns = [&](int j, const Eigen::Matrix3d& dj) {
+    if (planar) {
+      dphi.col(j) = dj.col(2);
+    } else {
+      dphi.middleCols<3>(3 * j) = dj;
+    }
+  };
+  // End orientation: q(1) = E_k(1)..E_1(1) q0 (A), whose left perturbations of q0 turn with the
+  // segment's rotation F(1), or q0 E_1(1)..E_k(1) (B), whose left perturbations of q0 stay as they are.
+  if (form_ == ProductForm::Global) {
+    Eigen::Quaterniond f1 = Eigen::Quaterniond::Identity();
+    for (int j = 0; j < k; ++j) f1 = quaternionExp(w[j]) * f1;
+    out.rotation = f1.normalized().toRotationMatrix();
+    Eigen::Quaterniond suffix = Eigen::Quaterniond::Identity();
+    for (int j = k - 1; j >= 0; --j) {
+      setOwnRotationColumns(j, suffix.normalized().toRotationMatrix() * leftJacobian(2.0 * w[j]) * 2.0);
+      suffix = suffix * quaternionExp(w[j]);
+    }
+  } else {
+    out.rotation.setIdentity();
+    Eigen::Quaterniond prefix = ev.q[seg];
+    for (int j = 0; j < k; ++j) {
+      setOwnRotationColumns(j, prefix.normalized().toRotationMatrix() * leftJacobian(2.0 * w[j]) * 2.0);
+      prefix = prefix * quaternionExp(w[j]);
+    }
+  }
+  out.a.setIdentity();
+  out.a.topRightCorner<3, 3>() = sums.gl;
+  out.a.bottomRightCorner<3, 3>() = out.rotation;
+}
+
+void QiFitProblem::analyticNormalEquations(const Eigen::VectorXd& x, const QiFitEvaluation& ev, Eigen::MatrixXd& a,
+                                           Eigen::VectorXd& g) const {
+  const int nv = size();
+  const int sv = layout_.segmentVars();
+  const int segments = layout_.segments;
   a.setZero(nv, nv);
   g.setZero(nv);
   // The node sweeps of the segments are independent (each needs only its start orientation and its
   // residuals); the chain below combines their sums in segment order, whatever the thread count.
-  std::vector<SegmentNormalSums> sums(layout_.segments);
-  const bool eligible = parallel_ && layout_.segments > 1 && nodes_ >= kParallelNodes;
+  std::vector<SegmentNormalSums> sums(segments);
+  const bool eligible = parallel_ && segments > 1 && nodes_ >= kParallelNodes;
   const bool threaded = eligible && normalGovernor_.threaded();
   const auto begin = std::chrono::steady_clock::now();
 #pragma omp parallel for schedule(static) if (threaded)
-  for (int seg = 0; seg < layout_.segments; ++seg) segmentNormalSums(x, ev, seg, sums[seg]);
+  for (int seg = 0; seg < segments; ++seg) segmentNormalSums(x, ev, seg, sums[seg]);
   if (eligible) {
     normalGovernor_.record(threaded, std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
+  }
+  std::vector<SegmentTransfer> transfers(segments);
+  for (int seg = 0; seg < segments; ++seg) segmentTransfer(x, ev, seg, sums[seg], transfers[seg]);
+  // later[s] = sum over the points of segments >= s of (d rows / d state_s)^T (d rows / d state_s),
+  // state_s the start point and orientation of segment s: the rows of segment s' > s depend on
+  // state_s through A_{s'-1}..A_s, so later[s] = S_s + A_s^T later[s + 1] A_s (6 x 6 each).
+  std::vector<Eigen::Matrix<double, 6, 6>> later(segments + 1);
+  later[segments].setZero();
+  for (int seg = segments - 1; seg >= 0; --seg) {
+    const Eigen::Matrix<double, 6, 6>& t = transfers[seg].a;
+    later[seg] = sums[seg].s66 + t.transpose() * later[seg + 1] * t;
   }
   // dp, dphi: derivatives of the current segment's start point and start orientation (rotation
   // vector of a left perturbation, world frame) with respect to all variables, stacked as D (6 x nv).
   Eigen::Matrix<double, 6, Eigen::Dynamic> d = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, nv);
   auto dp = d.topRows<3>();
   auto dphi = d.bottomRows<3>();
-  if (layout_.startVars > 0) {
-    const Eigen::Vector3d eta = layout_.startVars == 1 ? Eigen::Vector3d(x[0] * freeAxis1_)
-                                                       : Eigen::Vector3d(x[0] * freeAxis1_ + x[1] * freeAxis2_);
+  const int startVars = layout_.startVars;
+  if (startVars > 0) {
+    const Eigen::Vector3d eta = startVars == 1 ? Eigen::Vector3d(x[0] * freeAxis1_)
+                                               : Eigen::Vector3d(x[0] * freeAxis1_ + x[1] * freeAxis2_);
     const Eigen::Matrix3d jl = leftJacobian(2.0 * eta);
     dphi.col(0) = 2.0 * jl * freeAxis1_;
-    if (layout_.startVars == 2) dphi.col(1) = 2.0 * jl * freeAxis2_;
+    if (startVars == 2) dphi.col(1) = 2.0 * jl * freeAxis2_;
+    const auto x0 = d.leftCols(startVars);
+    a.topLeftCorner(startVars, startVars).noalias() = x0.transpose() * later[0] * x0;
   }
-  for (int seg = 0; seg < layout_.segments; ++seg) {
+  for (int seg = 0; seg < segments; ++seg) {
     const SegmentNormalSums& s = sums[seg];
-    const std::vector<Eigen::Vector3d> w = omegas(x, seg);
-    const Eigen::Quaterniond q0 = ev.q[seg];
+    const SegmentTransfer& t = transfers[seg];
     const int off = layout_.offset(seg);
-    // The segment's rows enter the normal equations through D; then D moves on to its end.
+    // Block (earlier variables, this segment's): through D from this segment's rows (c6) and, carried
+    // by A, from the later segments' rows. Its own block: its rows (oo, upper triangle) and the later ones.
+    const Eigen::Matrix<double, 6, Eigen::Dynamic> laterOwn = later[seg + 1] * t.columns;
     if (off > 0) {
       const auto du = d.leftCols(off);
-      const Eigen::Matrix<double, 6, Eigen::Dynamic> sdu = s.s66.lazyProduct(du);
-      // Only the upper triangle: a is symmetric and mirrored at the end. The segments' blocks are
-      // most of the work here (each is off x off, off growing to the number of variables).
-      a.topLeftCorner(off, off).triangularView<Eigen::Upper>() += du.transpose().lazyProduct(sdu);
-      a.block(0, off, off, sv).noalias() += du.transpose().lazyProduct(s.c6);
+      const Eigen::Matrix<double, 6, Eigen::Dynamic> cross = s.c6 + t.a.transpose() * laterOwn;
+      a.block(0, off, off, sv).noalias() += du.transpose() * cross;
       g.head(off).noalias() += du.transpose() * s.b6;
     }
-    a.block(off, off, sv, sv) += s.oo;  // its upper triangle counts (oo holds only that)
+    a.block(off, off, sv, sv) += s.oo;
+    a.block(off, off, sv, sv).noalias() += t.columns.transpose() * laterOwn;
     g.segment(off, sv) += s.gOwn;
+    // D moves on to the segment's end: D <- A D on the earlier columns, then its own columns.
     dp.leftCols(off) += s.gl * dphi.leftCols(off);
-    dp.middleCols(off, sv) = s.own;
-    // Start orientation of the next segment: q(1) = E_k(1)..E_1(1) q0 (A) or q0 E_1(1)..E_k(1) (B).
-    if (form_ == ProductForm::Global) {
-      Eigen::Quaterniond f1 = Eigen::Quaterniond::Identity();
-      for (int j = 0; j < k; ++j) f1 = quaternionExp(w[j]) * f1;
-      dphi.leftCols(off) = f1.normalized().toRotationMatrix() * dphi.leftCols(off);
-      Eigen::Quaterniond suffix = Eigen::Quaterniond::Identity();
-      for (int j = k - 1; j >= 0; --j) {
-        const Eigen::Matrix3d dj = suffix.normalized().toRotationMatrix() * leftJacobian(2.0 * w[j]) * 2.0;
-        if (planar) {
-          dphi.col(off + j) = dj.col(2);
-        } else {
-          dphi.middleCols<3>(off + 3 * j) = dj;
-        }
-        suffix = suffix * quaternionExp(w[j]);
-      }
-    } else {
-      Eigen::Quaterniond prefix = q0;
-      for (int j = 0; j < k; ++j) {
-        const Eigen::Matrix3d dj = prefix.normalized().toRotationMatrix() * leftJacobian(2.0 * w[j]) * 2.0;
-        if (planar) {
-          dphi.col(off + j) = dj.col(2);
-        } else {
-          dphi.middleCols<3>(off + 3 * j) = dj;
-        }
-        prefix = prefix * quaternionExp(w[j]);
-      }
-    }
+    if (form_ == ProductForm::Global) dphi.leftCols(off) = t.rotation * dphi.leftCols(off);
+    d.middleCols(off, sv) = t.columns;
   }
   a.triangularView<Eigen::StrictlyLower>() = a.transpose();
 }

@@ -61,8 +61,12 @@ class QiFitProblem {
   /// a = J^T J (size x size), g = J^T r. J follows by the chain rule through the frame rotations (left
   /// Jacobians of SO(3)) and is never formed: the rows of a point i of segment s are [M_i D_s | O_i],
   /// with D_s the derivative of the segment's start point and orientation (6 x the variables of
-  /// earlier segments), M_i = [I | G_i] (3 x 6) and O_i the segment's own columns, so the upstream
-  /// block of J^T J is D_s^T (sum_i M_i^T M_i) D_s, a 6 x 6 sum per segment.
+  /// earlier segments), M_i = [I | G_i] (3 x 6) and O_i the segment's own columns. D moves from
+  /// segment to segment by a 6 x 6 map A_s, so the rows of all later segments reach a segment's
+  /// variables through one 6 x 6 matrix, summed from the last segment back (later[s] = S_s +
+  /// A_s^T later[s + 1] A_s, S_s = sum_i M_i^T M_i); each block of J^T J is then one product with
+  /// the columns of D: about 3 size^2 multiply-adds for a (D_s^T S_s D_s per segment took about
+  /// size^2 times the number of segments).
   void analyticNormalEquations(const Eigen::VectorXd& x, const QiFitEvaluation& ev, Eigen::MatrixXd& a,
                                Eigen::VectorXd& g) const;
   /// Forward differences, sqrt(eps) relative steps; a column of segment s recomputes segments >= s
@@ -122,6 +126,16 @@ class QiFitProblem {
   /// positions relative to the segment's start point (residual rows l int t, end point in ev.p[seg + 1]).
   void sweepSegment(const Eigen::VectorXd& x, int seg, QiFitEvaluation& ev) const;
   void segmentNormalSums(const Eigen::VectorXd& x, const QiFitEvaluation& ev, int seg, SegmentNormalSums& out) const;
+  /// How a segment carries D (derivatives of its start point and orientation, 6 x variables) to its
+  /// end: the columns of earlier variables become a D (a = [I G; 0 R], G of the end point, R the
+  /// segment's rotation in form A, I in form B), its own variables enter as `columns` (6 x sv).
+  struct SegmentTransfer {
+    Eigen::Matrix<double, 6, 6> a;
+    Eigen::Matrix3d rotation;
+    Eigen::Matrix<double, 6, Eigen::Dynamic> columns;
+  };
+  void segmentTransfer(const Eigen::VectorXd& x, const QiFitEvaluation& ev, int seg, const SegmentNormalSums& sums,
+                       SegmentTransfer& out) const;
   /// The same with the degree fixed at compile time (K = 2, 3) or read from the layout (K = 0).
   template <int K>
   void sweepSegmentOfDegree(const Eigen::VectorXd& x, int seg, QiFitEvaluation& ev) const;
