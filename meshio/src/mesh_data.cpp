@@ -1,20 +1,42 @@
 #include "ffdkit/meshio/mesh_data.h"
 
+#include <cmath>
+
 #include <Eigen/Geometry>
 
 namespace ffdkit::meshio {
 
+namespace {
+
+// Whole-matrix checks as plain loops over the coefficients: Eigen's reductions (allFinite,
+// minCoeff) are left as a call per coefficient by clang under UBSan, and a mesh has millions.
+bool coordinatesFinite(const Eigen::MatrixX3d& points) {
+  const double* v = points.data();
+  for (Eigen::Index i = 0; i < points.size(); ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+
+template <class Cells>
+bool indicesInRange(const Cells& cells, Eigen::Index n) {
+  const int* v = cells.data();
+  for (Eigen::Index i = 0; i < cells.size(); ++i)
+    if (v[i] < 0 || v[i] >= n) return false;
+  return true;
+}
+
+}  // namespace
+
 void validateMesh(const MeshData& mesh, const std::string& what) {
   const Eigen::Index n = mesh.points.rows();
   if (n == 0) throw MeshIoError(what + ": the mesh has no points");
-  // Whole-matrix checks first (contiguous, vectorised); the offending row is looked for only
-  // when one fails.
-  if (!mesh.points.allFinite())
+  // Whole-matrix checks first; the offending row is looked for only when one fails.
+  if (!coordinatesFinite(mesh.points))
     for (Eigen::Index i = 0; i < n; ++i)
       if (!mesh.points.row(i).allFinite())
         throw MeshIoError(what + ": point " + std::to_string(i) + " has a non-finite coordinate");
   auto checkIndices = [&](const auto& cells, const char* kind) {
-    if (cells.size() == 0 || (cells.minCoeff() >= 0 && cells.maxCoeff() < n)) return;
+    if (indicesInRange(cells, n)) return;
     for (Eigen::Index t = 0; t < cells.rows(); ++t)
       if (cells.row(t).minCoeff() < 0 || cells.row(t).maxCoeff() >= n)
         throw MeshIoError(what + ": " + kind + " " + std::to_string(t) + " uses a point index outside 0.." +

@@ -205,8 +205,13 @@ class RowSink {
   template <class... Values>
   void add(Values... values) {
     if (rows_ == matrix_.rows()) grow();
+    // Column-major: coefficient (r, c) at data()[c * rows + r]. Plain stores: clang under UBSan
+    // leaves Eigen's element access as a call per value, and a file has millions.
+    static_assert(!Matrix::IsRowMajor);
+    typename Matrix::Scalar* const row = matrix_.data() + rows_;
+    const Eigen::Index stride = matrix_.rows();
     Eigen::Index c = 0;
-    ((matrix_(rows_, c++) = values), ...);
+    ((row[stride * c++] = values), ...);
     ++rows_;
   }
   Eigen::Index rows() const { return rows_; }

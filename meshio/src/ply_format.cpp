@@ -338,6 +338,10 @@ void decodeVertices(const Element& e, bool big, const char* at, long long first,
   auto fail = [&](long long i, std::size_t k) {
     errors.fail(Where{"vertex", first + i, e.properties[k].name}.text() + ": non-finite number");
   };
+  // Coordinate c of vertex i at out[c * rows + i] (column-major): plain stores, as clang under
+  // UBSan leaves Eigen's element access as a call per value.
+  double* const out = points.data();
+  const Eigen::Index rows = points.rows();
   if (allFloat) {
     for (long long i = 0; i < count; ++i, at += stride)
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
@@ -345,7 +349,7 @@ void decodeVertices(const Element& e, bool big, const char* at, long long first,
         std::memcpy(&w, at + 4 * k, 4);
         const float v = std::bit_cast<float>(swap ? __builtin_bswap32(w) : w);  // std::byteswap is C++23
         if (!std::isfinite(v)) fail(i, k);
-        if (column[k] >= 0) points(i, column[k]) = v;
+        if (column[k] >= 0) out[column[k] * rows + i] = v;
       }
     return;
   }
@@ -353,7 +357,7 @@ void decodeVertices(const Element& e, bool big, const char* at, long long first,
     for (std::size_t k = 0; k < e.properties.size(); ++k) {
       const double v = loadValue(e.properties[k].type, at + offset[k], swap);
       if (!std::isfinite(v)) fail(i, k);
-      if (column[k] >= 0) points(i, column[k]) = v;
+      if (column[k] >= 0) out[column[k] * rows + i] = v;
     }
 }
 
