@@ -9,6 +9,12 @@ jobs="${FFDKIT_JOBS:-$(nproc)}"
 # ccache: paths below the checkout are hashed relative to the build folder, so a second build
 # folder or another clone of the same sources (CI's) reuses what this one compiled.
 export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$root}"
+# ccache's depend mode: on a miss it does not run the preprocessor to compute the key, it compiles
+# and keys the result by the headers the compiler's .d file names (ninja and CMake pass -MD).
+# A first build from an empty cache misses on every compile, and the preprocessor's run was about
+# 0.1 s of CPU per compile on top of the compile (cli's info_command.cpp: 3.22 s against 3.12 s
+# without ccache; depend mode 3.06-3.23 s). Hits in another build folder or clone work as before.
+export CCACHE_DEPEND="${CCACHE_DEPEND:-true}"
 
 targets=()
 options=()
