@@ -6,10 +6,10 @@
 # (FFDKIT_SANITIZE_STAGE=0 skips it): the core libraries and the CLI built again with ASan +
 # UBSan at -O0 and -O1 (build-sanitize/, no Qt window, no Python module, no benchmarks) and every `core`
 # test run under them: unit, CLI and file tests, and every fuzz target over its corpus and saved
-# crash inputs. Then the app's sanitizer stage
-# (FFDKIT_SANITIZE_APP_STAGE=0 skips it): the window built with ASan + UBSan (build-sanitize-app/)
-# and the monkey test's random GUI actions run under them. Prints CTest's summaries; exits
-# non-zero on any failure or sanitizer report.
+# crash inputs. And the app's sanitizer stage (FFDKIT_SANITIZE_APP_STAGE=0 skips it): the window
+# built with ASan + UBSan (build-sanitize-app/) and the monkey test's random GUI actions run under
+# them, beside the sanitizer stage's tests. Prints CTest's summaries; exits non-zero on any
+# failure or sanitizer report.
 #   scripts/test.sh [extra ctest arguments, e.g. -L core]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -113,37 +113,71 @@ sanitizer_build() {
     "-DCMAKE_C_COMPILER=$cc" "-DCMAKE_CXX_COMPILER=$cxx" "-DCMAKE_CXX_FLAGS_RELEASE=-O0 -DNDEBUG"
 }
 
-if [ "${FFDKIT_SANITIZE_STAGE:-1}" = "1" ]; then
-  sanitize="${FFDKIT_SANITIZE_BUILD_DIR:-$root/build-sanitize}"
+# The sanitizer stage (FFDKIT_SANITIZE_STAGE=0 skips it) and the window's sanitizer stage
+# (FFDKIT_SANITIZE_APP_STAGE=0 skips it) are built one after the other (the second takes the core
+# libraries from the compiler cache the first filled), then their tests run side by side: the
+# monkey test is one process that keeps about one core busy, and beside CTest's tests it fills
+# what the cores would leave idle. Its output is kept in build-sanitize-app/monkey.log and printed
+# once it ends.
+sanitize="${FFDKIT_SANITIZE_BUILD_DIR:-$root/build-sanitize}"
+sanitize_app="${FFDKIT_SANITIZE_APP_BUILD_DIR:-$root/build-sanitize-app}"
+run_sanitize="${FFDKIT_SANITIZE_STAGE:-1}"
+run_sanitize_app="${FFDKIT_SANITIZE_APP_STAGE:-1}"
+# halt_on_error: the first report fails the test. Leaks are not checked: Qt, VTK, Mesa and tinygltf
+# keep process-lifetime singletons that LeakSanitizer would report. (The fuzz corpus tests set
+# their own options, see tests/fuzz/CMakeLists.txt.)
+sanitizer_env=(env "ASAN_OPTIONS=halt_on_error=1:detect_leaks=0" "UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1")
+
+if [ "$run_sanitize" = "1" ]; then
   stage_start=$(date +%s)
   # -O0, and -O1 for the targets whose tests compute through Eigen (cmake/FfdkitOptions.cmake):
   # the sanitizers check the same at either level, and -O0 compiles in less than half the time.
   sanitizer_build "$sanitize" -DFFDKIT_BUILD_APP=OFF
-  built=$(date +%s)
-  # halt_on_error: the first report fails the test. Leaks are not checked: VTK and tinygltf keep
-  # process-lifetime singletons that LeakSanitizer would report. (The fuzz corpus tests set
-  # their own options, see tests/fuzz/CMakeLists.txt.)
-  ASAN_OPTIONS="halt_on_error=1:detect_leaks=0" \
-  UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1" \
-    ctest --test-dir "$sanitize" --output-on-failure --parallel "$test_jobs" --timeout 900 -L core
-  echo "sanitizer stage: build $((built - stage_start)) s, tests $(($(date +%s) - built)) s"
+  echo "sanitizer stage: build $(($(date +%s) - stage_start)) s"
 fi
 
-# The window under the sanitizers (FFDKIT_SANITIZE_APP_STAGE=0 skips it): the app's libraries and
-# the monkey test built with ASan + UBSan at -O0 (the core libraries as in
-# the sanitizer stage) in build-sanitize-app/, then
+# The window under the sanitizers: the app's libraries and the monkey test built with ASan +
+# UBSan at -O0 (the core libraries as in the sanitizer stage) in build-sanitize-app/, then
 # FFDKIT_SANITIZE_MONKEY_ACTIONS (default 1000) seeded random GUI actions with real events under
-# Xvfb (tests/app/monkey_gui_test.cpp). Leaks are not checked (Qt, VTK and Mesa keep
-# process-lifetime singletons); any ASan error or UBSan report fails. Cost: docs/robustness.md.
-if [ "${FFDKIT_SANITIZE_APP_STAGE:-1}" = "1" ]; then
-  sanitize_app="${FFDKIT_SANITIZE_APP_BUILD_DIR:-$root/build-sanitize-app}"
+# Xvfb (tests/app/monkey_gui_test.cpp); any ASan error or UBSan report fails. Cost:
+# docs/robustness.md.
+monkey_pid=""
+if [ "$run_sanitize_app" = "1" ]; then
   stage_start=$(date +%s)
   sanitizer_build "$sanitize_app" --target monkey_gui_test -DFFDKIT_BUILD_PYTHON=OFF
-  built=$(date +%s)
+  echo "sanitizer app stage: build $(($(date +%s) - stage_start)) s"
   # The binary itself, not through CTest: its 300 s test timeout is the release build's.
-  ASAN_OPTIONS="halt_on_error=1:detect_leaks=0" \
-  UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1" \
-  FFDKIT_MONKEY_ACTIONS="${FFDKIT_SANITIZE_MONKEY_ACTIONS:-1000}" \
-    xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$sanitize_app/tests/app/monkey_gui_test"
-  echo "sanitizer app stage: build $((built - stage_start)) s, monkey test $(($(date +%s) - built)) s"
+  monkey_start=$(date +%s)
+  "${sanitizer_env[@]}" FFDKIT_MONKEY_ACTIONS="${FFDKIT_SANITIZE_MONKEY_ACTIONS:-1000}" \
+    xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$sanitize_app/tests/app/monkey_gui_test" \
+    > "$sanitize_app/monkey.log" 2>&1 &
+  monkey_pid=$!
+  # A failure or an interrupt before it ends does not leave it running.
+  trap 'kill "$monkey_pid" 2>/dev/null || true' EXIT
+fi
+
+ctest_status=0
+if [ "$run_sanitize" = "1" ]; then
+  tests_start=$(date +%s)
+  "${sanitizer_env[@]}" \
+    ctest --test-dir "$sanitize" --output-on-failure --parallel "$test_jobs" --timeout 900 -L core \
+    || ctest_status=$?
+  echo "sanitizer stage: tests $(($(date +%s) - tests_start)) s"
+fi
+
+monkey_status=0
+if [ -n "$monkey_pid" ]; then
+  wait "$monkey_pid" || monkey_status=$?
+  trap - EXIT
+  cat "$sanitize_app/monkey.log"
+  echo "sanitizer app stage: monkey test $(($(date +%s) - monkey_start)) s, exit status $monkey_status"
+fi
+if [ "$ctest_status" != 0 ]; then
+  echo "test.sh: the sanitizer stage's tests failed (CTest's summary above)" >&2
+fi
+if [ "$monkey_status" != 0 ]; then
+  echo "test.sh: the monkey test under the sanitizers failed ($sanitize_app/monkey.log, printed above)" >&2
+fi
+if [ "$ctest_status" != 0 ] || [ "$monkey_status" != 0 ]; then
+  exit 1
 fi
