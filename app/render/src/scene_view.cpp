@@ -77,6 +77,13 @@ void SceneView::refresh(const scenes::Scene& scene, const scenes::SceneDeformer&
     }
   } else {
     impl_->buildObjects(scene, deformed);
+    // Drawn in the order a freshly shown scene draws them, the objects before the widgets: where
+    // an object's edge and a widget's line meet at one depth, the one drawn first wins the pixel,
+    // so an undo that rebuilds the objects gives back the picture as it was.
+    for (auto& actor : impl_->widgetActors) {
+      impl_->renderer->RemoveActor(actor);
+      impl_->renderer->AddActor(actor);
+    }
   }
   impl_->namesSeen = scene.structureRevision();
   impl_->updateWidgets(scene.widgets);
