@@ -1,6 +1,6 @@
 // The details a new user meets first, under a real window and real events (Xvfb): no VTK
 // default key reaches the view; Undo / Redo keep their width; status messages go when they stop
-// being true; refusals name widgets and wrap; the dock layout is remembered; the press's crank
+// being true; refusals name widgets and fit one line; the dock layout is remembered; the press's crank
 // turns as it is dragged; a child lattice lists what it deforms.
 #include <QAction>
 #include <QDockWidget>
@@ -8,6 +8,7 @@
 #include <QMenu>
 #include <QRegularExpression>
 #include <QSettings>
+#include <QStatusBar>
 #include <QToolBar>
 #include <QToolButton>
 #include <QTreeWidget>
@@ -199,27 +200,89 @@ class ChromeGuiTest : public QObject {
   }
 
   // Binding two widgets that are already bound is refused; the message names them (no "w7",
-  // no "b0") and is shown whole, wrapped, in a narrow window.
-  void aRefusalNamesWidgetsByNameAndWraps() {
+  // no "b0"). In a narrow window it is cut to one line with an ellipsis, read whole in the
+  // line's tooltip, and neither the status bar nor the 3D view changes height for it.
+  void aRefusalNamesWidgetsByNameOnOneLine() {
     MainWindow& w = *window_;
     w.resize(640, 700);
     w.openScene(kExamples / "mirror");
     clickRow(w, "push-front");
     clickRow(w, "push-back", Qt::ControlModifier);
     QCOMPARE(w.controller().selection().size(), std::size_t(2));
+    for (int round = 0; round < 3; ++round) QApplication::processEvents();  // layouts settle
+    const QSize view = w.view()->size();
+    auto* line = w.findChild<QLabel*>("statusMessage");
+    QVERIFY(line != nullptr);
+    const int lineHeight = line->height();
     action(w, "actionBind")->trigger();
     const QString message = w.statusMessage();
     QVERIFY2(message.contains("'push-front'") && message.contains("'push-back'") && message.contains("already bound"),
              qPrintable(message));
     QVERIFY2(!QRegularExpression(R"(\b[wb][0-9]+\b)").match(message).hasMatch(), qPrintable(message));
-    auto* line = w.findChild<QLabel*>("statusMessage");
-    QVERIFY(line != nullptr && line->wordWrap());
-    QApplication::processEvents();
-    const QRect needed =
-        line->fontMetrics().boundingRect(QRect(0, 0, line->contentsRect().width(), 10000), Qt::TextWordWrap, message);
-    QVERIFY2(needed.height() > line->fontMetrics().height(), "the message should need more than one line here");
-    QTRY_VERIFY2(line->contentsRect().height() >= needed.height(),
-                 qPrintable(QString("shown %1 px of %2").arg(line->contentsRect().height()).arg(needed.height())));
+    for (int round = 0; round < 3; ++round) QApplication::processEvents();
+    QVERIFY2(line->fontMetrics().horizontalAdvance(message) > line->contentsRect().width(),
+             "the message should not fit on the line here");
+    QCOMPARE(line->toolTip(), message);
+    QVERIFY2(line->text().endsWith(QChar(0x2026)) && message.startsWith(line->text().chopped(1)), qPrintable(line->text()));
+    QVERIFY2(line->fontMetrics().horizontalAdvance(line->text()) <= line->contentsRect().width(), qPrintable(line->text()));
+    QCOMPARE(line->height(), lineHeight);
+    QCOMPARE(w.view()->size(), view);
+  }
+
+  // The 3D view changes size only when the user resizes something: messages in the status line
+  // (a long refusal, a count, none) and the panels showing other things (an object, a lattice,
+  // an arrow, two widgets) leave the view, the status bar and the docks as they were.
+  void theViewKeepsItsSizeWhileMessagesAndPanelsChange() {
+    MainWindow& w = *window_;
+    w.resize(640, 480);
+    w.openScene(kExamples / "mirror");
+    auto settle = [] {
+      for (int round = 0; round < 3; ++round) QApplication::processEvents();  // layouts settle
+    };
+    settle();
+    auto* outliner = w.findChild<QDockWidget*>("outlinerDock");
+    auto* properties = w.findChild<QDockWidget*>("propertiesDock");
+    QVERIFY(outliner != nullptr && properties != nullptr && outliner->isVisible() && properties->isVisible());
+    const QSize view = w.view()->size(), bar = w.statusBar()->size();
+    const int outlinerWidth = outliner->width(), propertiesWidth = properties->width();
+    QStringList said;
+    // What changed size after `step`, or nothing.
+    auto changed = [&](const char* step) -> QString {
+      settle();
+      said << w.statusMessage();
+      const QString where = QString("after %1 (status '%2')").arg(step, w.statusMessage());
+      if (w.view()->size() != view)
+        return where + QString(": view %1 x %2, was %3 x %4").arg(w.view()->width()).arg(w.view()->height()).arg(view.width()).arg(view.height());
+      if (w.statusBar()->size() != bar) return where + ": the status bar";
+      if (outliner->width() != outlinerWidth || properties->width() != propertiesWidth)
+        return where + QString(": docks %1 and %2 wide, were %3 and %4")
+                           .arg(outliner->width()).arg(properties->width()).arg(outlinerWidth).arg(propertiesWidth);
+      return {};
+    };
+#define FFDKIT_UNCHANGED(step)                 \
+  do {                                         \
+    const QString problem = changed(step);     \
+    QVERIFY2(problem.isEmpty(), qPrintable(problem)); \
+  } while (false)
+    clickRow(w, "torus");
+    FFDKIT_UNCHANGED("selecting the object");
+    clickRow(w, "lattice");
+    FFDKIT_UNCHANGED("selecting the lattice");
+    clickRow(w, "push-front");
+    FFDKIT_UNCHANGED("selecting an arrow");
+    clickRow(w, "push-back", Qt::ControlModifier);
+    FFDKIT_UNCHANGED("selecting two arrows");
+    clickMenuItem(w, action(w, "actionBind"));
+    FFDKIT_UNCHANGED("a refused binding");
+    pressKey(w, Qt::Key_Escape);
+    FFDKIT_UNCHANGED("Esc");
+    clickRow(w, "face-front");
+    FFDKIT_UNCHANGED("selecting a cell");
+#undef FFDKIT_UNCHANGED
+    // The refusal was said (on one line, too long for it), and then cleared.
+    QVERIFY2(std::any_of(said.begin(), said.end(), [](const QString& m) { return m.contains("already bound"); }),
+             qPrintable(said.join(" | ")));
+    QVERIFY2(said.contains(QString()), qPrintable(said.join(" | ")));
   }
 
   // Docks are resized with the mouse; the layout and the window size come back next time.

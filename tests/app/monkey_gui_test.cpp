@@ -11,7 +11,8 @@
 //   FFDKIT_MONKEY_LOG=1    prints every action as it runs (with what it aimed at, then "@frame",
 //                          "playing" while the timeline plays, "#" the undo stack's position, "~" a
 //                          fingerprint of the scene's text, "^" the frames the view rendered for the
-//                          action and "[view w x h]" the view's new size when the action resized it),
+//                          action and "[view w x h]" the view's new size when the action resized it,
+//                          then the heights of the bars and bottom docks and the side docks' widths),
 //                          each undo and redo of the walks, and a segment's largest difference from
 //                          the file
 //   FFDKIT_MONKEY_WALL_CLOCK=1  playback follows the wall clock as in the app (by default the
@@ -22,10 +23,13 @@
 #include <QAbstractSpinBox>
 #include <QComboBox>
 #include <QDialog>
+#include <QDockWidget>
 #include <QElapsedTimer>
 #include <QLineEdit>
 #include <QMenu>
+#include <QMainWindow>
 #include <QMenuBar>
+#include <QStatusBar>
 #include <QPointer>
 #include <QToolBar>
 #include <QToolButton>
@@ -77,6 +81,22 @@ std::uint64_t environmentNumber(const char* name, std::uint64_t fallback) {
 /// widgets or turns that do not commute are involved (scenes::applyAnimation); a frame change
 /// is not an undo step.
 constexpr double kFrameMovedTolerance = 1e-3;
+
+/// The window's parts around the view, for the log of an action that resized it: the height of
+/// the menu bar, the toolbars, the status bar and the bottom docks, the width of the side docks.
+std::string layoutText(QMainWindow& w) {
+  std::string text;
+  auto add = [&text](const QString& name, int size) { text += " " + name.toStdString() + "=" + std::to_string(size); };
+  add("menu", w.menuBar()->height());
+  for (auto* bar : w.findChildren<QToolBar*>()) if (bar->isVisible()) add(bar->objectName(), bar->height());
+  add("status", w.statusBar()->height());
+  for (auto* dock : w.findChildren<QDockWidget*>()) {
+    if (!dock->isVisible()) continue;
+    const bool side = w.dockWidgetArea(dock) == Qt::LeftDockWidgetArea || w.dockWidgetArea(dock) == Qt::RightDockWidgetArea;
+    add(dock->objectName(), side ? dock->width() : dock->height());
+  }
+  return text;
+}
 
 std::uint64_t monkeySeed() { return environmentNumber("FFDKIT_MONKEY_SEED", 1); }
 int monkeyActions() { return static_cast<int>(environmentNumber("FFDKIT_MONKEY_ACTIONS", 2000)); }
@@ -637,7 +657,8 @@ class MonkeyGuiTest : public QObject {
                     << w->view()->renders() - rendersBefore
                     << (w->view()->size() == viewBefore ? std::string()
                                                          : " [view " + std::to_string(w->view()->width()) + " x " +
-                                                               std::to_string(w->view()->height()) + "]")
+                                                               std::to_string(w->view()->height()) + "]" +
+                                                               layoutText(*w))
                     << std::endl;
         if (!answers.unanswered().empty())
           QFAIL((where + ", action " + what + ": a dialog stayed open: " + answers.unanswered().front()).c_str());

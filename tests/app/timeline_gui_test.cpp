@@ -3,7 +3,6 @@
 // jump between keys, Alt+I deletes the key and Ctrl+Z brings it back.
 #include <QAction>
 #include <QDoubleSpinBox>
-#include <QLabel>
 
 #include <cmath>
 #include <filesystem>
@@ -186,9 +185,7 @@ class TimelineGuiTest : public QObject {
     const std::size_t steps = w->commands().position();
     pressKey(*w, Qt::Key_I);
     QCOMPARE(w->commands().position(), steps);
-    auto* status = w->findChild<QLabel*>("statusMessage");
-    QVERIFY(status);
-    QVERIFY2(status->text().contains("Insert Key"), qPrintable(status->text()));
+    QVERIFY2(w->statusMessage().contains("Insert Key"), qPrintable(w->statusMessage()));
   }
 };
 

@@ -75,7 +75,7 @@ void MainWindow::newScene() {
 
 bool MainWindow::isModified() const { return impl_->modified(); }
 std::filesystem::path MainWindow::documentPath() const { return impl_->scenePath; }
-QString MainWindow::statusMessage() const { return impl_->status->text(); }
+QString MainWindow::statusMessage() const { return impl_->status->message(); }
 
 void MainWindow::setDocumentPath(const std::filesystem::path& path) {
   Impl& d = *impl_;

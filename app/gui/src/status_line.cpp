@@ -11,17 +11,17 @@ namespace ffdkit::app {
 
 StatusLine::StatusLine(QWidget* parent) : QLabel(parent) {
   setObjectName("statusMessage");
-  setWordWrap(true);
+  setTextFormat(Qt::PlainText);
+  setWordWrap(false);
   setTextInteractionFlags(Qt::TextSelectableByMouse);
-  setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);  // wraps instead of widening the window
+  // Neither a long message widens the window nor a wrapped one heightens the status bar.
+  setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
   expiry_.setSingleShot(true);
-  connect(&expiry_, &QTimer::timeout, this, &QLabel::clear);
+  connect(&expiry_, &QTimer::timeout, this, [this] { setMessage({}); });
 }
 
 void StatusLine::say(const QString& text, int timeoutMs) {
-  setText(text);
-  setToolTip(text);
-  fitHeight();
+  setMessage(text);
   if (timeoutMs > 0) {
     expiry_.start(timeoutMs);
   } else {
@@ -31,33 +31,33 @@ void StatusLine::say(const QString& text, int timeoutMs) {
 
 void StatusLine::clearStale() {
   expiry_.stop();
-  clear();
-  setToolTip({});
-  fitHeight();
+  setMessage({});
+}
+
+void StatusLine::setMessage(const QString& text) {
+  message_ = text;
+  setToolTip(text);
+  showFitting();
 }
 
 void StatusLine::resizeEvent(QResizeEvent* event) {
   QLabel::resizeEvent(event);
-  fitHeight();
+  showFitting();
 }
 
-void StatusLine::fitHeight() {
-  // One rule for every text, the empty one measured as one line: the status bar (and so the
-  // 3D view above it) changes height only when a message needs more lines. (QLabel's own size
-  // hint wraps at a width of its choosing, not the one it has.)
+void StatusLine::showFitting() {
+  QString line = message_;
+  line.replace(QChar('\n'), QChar(' '));
+  const QString fitting = fontMetrics().elidedText(line, Qt::ElideRight, std::max(0, contentsRect().width()));
+  if (fitting != text()) setText(fitting);
+}
+
+QSize StatusLine::sizeHint() const {
   const QMargins margins = contentsMargins();
-  const int width = std::max(1, contentsRect().width());
-  const QString measured = text().isEmpty() ? QStringLiteral("X") : text();
-  const int height = fontMetrics().boundingRect(QRect(0, 0, width, 1 << 20), Qt::TextWordWrap, measured).height() +
-                     margins.top() + margins.bottom();
-  if (height != fittedHeight_) {
-    fittedHeight_ = height;
-    updateGeometry();
-  }
+  return {fontMetrics().horizontalAdvance(message_) + margins.left() + margins.right(),
+          fontMetrics().height() + margins.top() + margins.bottom()};
 }
-
-QSize StatusLine::sizeHint() const { return {QLabel::sizeHint().width(), fittedHeight_}; }
-QSize StatusLine::minimumSizeHint() const { return {0, fittedHeight_}; }
+QSize StatusLine::minimumSizeHint() const { return {0, sizeHint().height()}; }
 
 std::string readableMessage(const widgets::WidgetModel& model, const std::string& message) {
   auto widgetName = [&](std::uint32_t value) -> std::optional<std::string> {

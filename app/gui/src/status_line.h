@@ -9,10 +9,11 @@
 
 namespace ffdkit::app {
 
-/// The status bar's message line: a word-wrapping label, so a long refusal is read whole
-/// instead of cut off, holding a message only while it is true. A message goes at the next
-/// change of the document or of the selection (clearStale(), called by the window), or when
-/// its timeout (if any) runs out, whichever comes first.
+/// The status bar's message line: one line, always, so that a message never changes the height
+/// of the status bar (and with it the 3D view above). A message too long for the line is cut
+/// with an ellipsis; the whole of it is the line's tooltip. A message is held only while it is
+/// true: it goes at the next change of the document or of the selection (clearStale(), called
+/// by the window), or when its timeout (if any) runs out, whichever comes first.
 class StatusLine : public QLabel {
   Q_OBJECT
 
@@ -22,21 +23,23 @@ class StatusLine : public QLabel {
   void say(const QString& text, int timeoutMs = 0);
   /// The document or the selection changed: what was said no longer holds.
   void clearStale();
+  /// The whole message (text() is what fits on the line).
+  const QString& message() const { return message_; }
 
-  /// As tall as the text wrapped at the current width: the status bar's layout asks these.
+  /// One line of text tall, whatever the message; as wide as the status bar gives.
   QSize sizeHint() const override;
   QSize minimumSizeHint() const override;
-  bool hasHeightForWidth() const override { return false; }  ///< the hints above already are
 
  protected:
   void resizeEvent(QResizeEvent* event) override;
 
  private:
-  /// As tall as the wrapped text at the current width (the status bar grows with it).
-  void fitHeight();
+  void setMessage(const QString& text);
+  /// The message on one line (line breaks as spaces), cut to the line's width.
+  void showFitting();
 
   QTimer expiry_;
-  int fittedHeight_ = 0;
+  QString message_;
 };
 
 /// A model message as a user reads it: widgets named by their names only ("'knob' (w7)" ->

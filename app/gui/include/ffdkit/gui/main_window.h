@@ -69,7 +69,8 @@ class MainWindow : public QMainWindow {
   bool isModified() const;
   /// The document's file; empty for a scene never saved.
   std::filesystem::path documentPath() const;
-  /// The status line's message (it wraps; it is cleared when it stops being true).
+  /// The status line's whole message (the line shows what fits, its tooltip all of it; it is
+  /// cleared when it stops being true).
   QString statusMessage() const;
   /// After a crash: offers to restore the newest recovery file another ffdkit process left
   /// (Restore / Discard) and removes those files. main() calls it at start.
