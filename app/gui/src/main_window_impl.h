@@ -155,7 +155,8 @@ struct MainWindow::Impl {
 
   bool modified() const { return commands.isDirty() || restoredUnsaved; }
 
-  // A refusal or error as the user reads it: widgets by name, the whole text (it wraps).
+  // A refusal or error as the user reads it: widgets by name, the whole text (on one line, whole
+  // in its tooltip).
   void sayError(const std::string& what) { status->say(window_detail::qs(readableMessage(scene.widgets, what))); }
 
   // The open document to the recovery file when it has unsaved changes; none when it has not.
