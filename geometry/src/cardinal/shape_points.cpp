@@ -8,6 +8,7 @@
 
 #include "ffdkit/geometry/cardinal/cardinal_error.h"
 
+#include "../eigen_sparse_lu_instance.h"
 #include "floor_mod.h"
 
 namespace ffdkit::geometry::cardinal {

@@ -8,6 +8,8 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
+#include "../eigen_sparse_lu_instance.h"
+
 namespace ffdkit::geometry::curvenet {
 namespace {
 
