@@ -13,7 +13,9 @@ export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$root}"
 # and keys the result by the headers the compiler's .d file names (ninja and CMake pass -MD).
 # A first build from an empty cache misses on every compile, and the preprocessor's run was about
 # 0.1 s of CPU per compile on top of the compile (cli's info_command.cpp: 3.22 s against 3.12 s
-# without ccache; depend mode 3.06-3.23 s). Hits in another build folder or clone work as before.
+# without ccache; depend mode 3.06-3.23 s). Hits in another build folder or clone work as before
+# for the same command line; a compile whose only difference is a define the file never reads
+# (the no-VTK build's) misses, where the preprocessor mode's key, the preprocessed source, hit.
 export CCACHE_DEPEND="${CCACHE_DEPEND:-true}"
 
 targets=()
