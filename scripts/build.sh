@@ -15,7 +15,10 @@ export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$root}"
 # 0.1 s of CPU per compile on top of the compile (cli's info_command.cpp: 3.22 s against 3.12 s
 # without ccache; depend mode 3.06-3.23 s). Hits in another build folder or clone work as before
 # for the same command line; a compile whose only difference is a define the file never reads
-# (the no-VTK build's) misses, where the preprocessor mode's key, the preprocessed source, hit.
+# misses, where the preprocessor mode's key, the preprocessed source, hit. So what a build option
+# changes is compiled into the files that need it only (meshio's VTK writer, ffdkit-cli's
+# module_loader.cpp): the build without VTK and OpenCASCADE compiles those and takes the rest
+# from the cache.
 export CCACHE_DEPEND="${CCACHE_DEPEND:-true}"
 
 targets=()

@@ -3,17 +3,13 @@
 #include <cstdio>
 #include <exception>
 
-#include "ffdkit/scenes/cad_objects.h"
 #include "src/commands.h"
 #include "src/memory_reuse.h"
 #include "src/module_loader.h"
 
 int main(int argc, char** argv) {
   ffdkit::cli::keepFreedMemoryForReuse();
-#if FFDKIT_HAS_CAD
-  // Scenes naming STEP or IGES parts: read through the OpenCASCADE module, loaded at the first one.
-  ffdkit::scenes::setCadMeshReader(ffdkit::cli::readCadObjectThroughModule);
-#endif
+  ffdkit::cli::installCadMeshReader();  // scenes naming STEP or IGES parts, with OpenCASCADE
   try {
     return ffdkit::cli::runCli(std::vector<std::string>(argv + 1, argv + argc));
   } catch (const std::exception& e) {

@@ -15,7 +15,7 @@ namespace ffdkit::cli {
 namespace {
 
 /// What a build without OpenCASCADE says (as cad_scene::CadUnavailableError).
-[[maybe_unused]] constexpr const char* kWithoutCad =
+constexpr const char* kWithoutCad =
     "this program was built without OpenCASCADE (FFDKIT_WITH_CAD=OFF), which ";
 
 bool hasCadExtension(const std::string& path) { return scenes::isCadFile(path); }
@@ -49,19 +49,13 @@ bool isCadSceneDeform(const Args& args) {
 }
 
 int runCadDeform(const Args& args) {
-#if FFDKIT_HAS_CAD
+  if (!cadModuleBuilt()) throw std::runtime_error(kWithoutCad + std::string("STEP and IGES inputs need"));
   return cadModule("deform with a STEP or IGES input").deformCadInput(args);
-#else
-  throw std::runtime_error(kWithoutCad + std::string("STEP and IGES inputs need"));
-#endif
 }
 
 int runCadSceneDeform(const Args& args) {
-#if FFDKIT_HAS_CAD
+  if (!cadModuleBuilt()) throw std::runtime_error(kWithoutCad + std::string("STEP and IGES outputs need"));
   return cadModule("deform writing STEP or IGES").deformSceneCadObject(args);
-#else
-  throw std::runtime_error(kWithoutCad + std::string("STEP and IGES outputs need"));
-#endif
 }
 
 }  // namespace ffdkit::cli

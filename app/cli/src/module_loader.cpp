@@ -5,12 +5,16 @@
 #include <dlfcn.h>
 
 #include "ffdkit/meshio/vtk_writer.h"
+#include "ffdkit/scenes/cad_objects.h"
 
 #include <mutex>
 #include <system_error>
 
 #ifndef FFDKIT_CLI_MODULE_DIR
 #define FFDKIT_CLI_MODULE_DIR "../lib/ffdkit"
+#endif
+#ifndef FFDKIT_HAS_CAD
+#error "FFDKIT_HAS_CAD (0 or 1) comes from app/cli/CMakeLists.txt"
 #endif
 
 namespace ffdkit::cli {
@@ -91,9 +95,7 @@ std::vector<fs::path> moduleCandidates(const std::string& file) {
 
 const VtkModule& vtkModule(const std::string& need) {
   ModuleHost host;
-#if FFDKIT_HAS_CAD
-  host.readCadObject = readCadObjectThroughModule;  // scenes with STEP or IGES parts, rendered
-#endif
+  if (cadModuleBuilt()) host.readCadObject = readCadObjectThroughModule;  // scenes with STEP or IGES parts, rendered
   return loadedTable<VtkModule>("VTK", kVtkModuleFile, kVtkModuleEntry, need, host);
 }
 
@@ -111,6 +113,12 @@ meshio::MeshData readCadObjectThroughModule(const fs::path& path, meshio::ReadBu
     throw meshio::MeshIoError(e.what());
   }
   return read(path, budget);
+}
+
+bool cadModuleBuilt() { return FFDKIT_HAS_CAD != 0; }
+
+void installCadMeshReader() {
+  if (cadModuleBuilt()) scenes::setCadMeshReader(readCadObjectThroughModule);
 }
 
 }  // namespace ffdkit::cli

@@ -31,6 +31,17 @@ const VtkModule& vtkModule(const std::string& need);
 /// The OpenCASCADE module's table, as vtkModule.
 const CadModule& cadModule(const std::string& need);
 
+/// Whether this build has the OpenCASCADE module (FFDKIT_WITH_CAD). The one place the program
+/// asks: only this file is compiled with the answer (FFDKIT_HAS_CAD), so that the program's other
+/// files compile the same with and without OpenCASCADE (and the no-VTK build takes them from
+/// the compiler cache).
+bool cadModuleBuilt();
+
+/// With the OpenCASCADE module: scenes naming STEP or IGES parts read them through it
+/// (scenes::setCadMeshReader with readCadObjectThroughModule), loaded at the first one.
+/// Without it: nothing, and the scenes refuse such parts.
+void installCadMeshReader();
+
 /// Reads a scene's STEP or IGES object through the OpenCASCADE module (loaded at the first one);
 /// a ModuleLoadError then becomes a meshio::MeshIoError naming the file.
 meshio::MeshData readCadObjectThroughModule(const std::filesystem::path& path, meshio::ReadBudget& budget);
