@@ -37,7 +37,6 @@
 #include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QOpenGLFunctions>
-#include <QOpenGLWidget>
 #include <QSurfaceFormat>
 #include <QTest>
 #include <QTimer>
@@ -78,7 +77,7 @@ namespace {
 // Each frame the view displayed, timed at its stages: the view's paint event, the end of
 // MainWindow's frame work (the evaluation and the view's arrays, VtkViewWidget::aboutToRender),
 // VTK's render (the render window's StartEvent and EndEvent) and Qt's composition of the window
-// with the view's image (QOpenGLWidget::frameSwapped: the frame is on the screen). Each stage in
+// with the view's image (VtkViewWidget::frameSwapped: the frame is on the screen). Each stage in
 // wall-clock ms and in the process's CPU ms (all threads: Mesa's rasteriser threads too), which a
 // busy machine changes less than the wall clock.
 struct FrameClock {
@@ -476,7 +475,7 @@ int still(app::MainWindow& window, const Options& o, FrameClock& frames) {
       if (vtkDataArray* normals = input->GetPointData()->GetNormals()) normals->Modified();
       input->Modified();
     }
-    window.view()->update();
+    window.view()->requestRender();
   });
   frames.clear();
   const double start = frames.now();
@@ -530,7 +529,7 @@ int main(int argc, char** argv) {
   window.view()->installEventFilter(&paints);
   // After MainWindow's own handler (connected first): the frame's evaluation and arrays are done.
   QObject::connect(window.view(), &app::VtkViewWidget::aboutToRender, [&] { frames.preparedAt = frames.stamp(); });
-  QObject::connect(window.view(), &QOpenGLWidget::frameSwapped, [&] { frames.onSwapped(); });
+  QObject::connect(window.view(), &app::VtkViewWidget::frameSwapped, [&] { frames.onSwapped(); });
   vtkNew<vtkCallbackCommand> onEnd;
   onEnd->SetCallback(&FrameClock::onEnd);
   onEnd->SetClientData(&frames);

@@ -163,6 +163,11 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
   count_->hide();
   p_.window->statusBar()->addPermanentWidget(count_);
   band_ = new QRubberBand(QRubberBand::Rectangle, p_.view);
+  // The view shows its frames in a native child window, which covers plain child widgets: the
+  // band is a native window of its own, stacked above it (raised when shown), and leaves the
+  // view's ancestors as they are.
+  band_->setAttribute(Qt::WA_DontCreateNativeAncestors);
+  band_->setAttribute(Qt::WA_NativeWindow);
   p_.view->installEventFilter(this);  // after the window's filter: this one sees events first
 }
 

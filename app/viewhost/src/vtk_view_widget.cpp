@@ -1,10 +1,18 @@
 #include "ffdkit/viewhost/vtk_view_widget.h"
 
+#include <QBackingStore>
+#include <QCoreApplication>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
-#include <QOpenGLFunctions>
+#include <QPaintEngine>
+#include <QPainter>
 #include <QWheelEvent>
+#include <QWindow>
+
+#include <cstring>
+#include <functional>
+#include <utility>
 
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
@@ -13,7 +21,6 @@
 #include <vtkGenericRenderWindowInteractor.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
-#include <vtkOpenGLState.h>
 #include <vtkRenderer.h>
 
 namespace ffdkit::app {
@@ -47,9 +54,49 @@ const char* keySymbol(int key) {
   }
 }
 
+/// The event that draws the frames asked for since the last one (posted once per pass).
+const QEvent::Type kFrameEvent = static_cast<QEvent::Type>(QEvent::registerEventType());
+
+/// The native window VTK renders into: transparent for input (the view widget gets every
+/// event), never focused; it reports when the window system shows it.
+class ViewSurface : public QWindow {
+ public:
+  explicit ViewSurface(std::function<void()> exposed) : exposed_(std::move(exposed)) {
+    setSurfaceType(QSurface::OpenGLSurface);
+    setFlags(Qt::WindowTransparentForInput | Qt::WindowDoesNotAcceptFocus);
+    // No alpha in the window: a compositing desktop would blend the view with what lies behind
+    // it where VTK leaves the background's alpha below 1.
+    QSurfaceFormat format = VtkViewWidget::defaultFormat();
+    format.setAlphaBufferSize(0);
+    setFormat(format);
+  }
+
+ protected:
+  void exposeEvent(QExposeEvent*) override {
+    if (isExposed()) exposed_();
+  }
+
+ private:
+  std::function<void()> exposed_;
+};
+
+/// A paint that goes to an image of the widget (QWidget::grab, QWidget::render) rather than to
+/// its window's backing store, on which the native child window lies.
+bool paintsAnImage(const QWidget& widget, QPainter& painter) {
+  const QPaintDevice* target = painter.paintEngine() != nullptr ? painter.paintEngine()->paintDevice() : nullptr;
+  QBackingStore* store = widget.backingStore();
+  return target != nullptr && (store == nullptr || target != store->paintDevice());
+}
+
 }  // namespace
 
 struct VtkViewWidget::Impl {
+  explicit Impl(VtkViewWidget& owner) : widget(owner) {}
+
+  VtkViewWidget& widget;
+  /// Made on the first frame; declared before VTK's objects, which release their resources in it.
+  std::unique_ptr<QOpenGLContext> context;
+  bool contextFailed = false;
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   vtkNew<vtkGenericRenderWindowInteractor> interactor;
   vtkNew<vtkRenderer> renderer;
@@ -57,45 +104,142 @@ struct VtkViewWidget::Impl {
   vtkNew<vtkCallbackCommand> makeCurrent;
   vtkNew<vtkCallbackCommand> isCurrent;
   vtkNew<vtkCallbackCommand> renderRequest;
-  bool initialized = false;
+  ViewSurface* surface = nullptr;  // owned by the container
+  QWidget* container = nullptr;    // a child of the widget
   /// Whether something asked for a frame (requestRender) since VTK last rendered one.
   bool frameDue = true;
+  /// Whether the window system showed the window since it last got a frame.
+  bool presentDue = false;
+  /// Whether a frame event is on its way.
+  bool framePosted = false;
   /// The size (device pixels) of the frame VTK last rendered; empty before the first.
   QSize frameSize;
   std::uint64_t renders = 0;
   /// The camera's modification time when VTK last rendered a frame (vtkCamera::GetMTime).
   vtkMTimeType cameraDrawn = 0;
+
+  QSize deviceSize() const {
+    const double ratio = widget.devicePixelRatioF();
+    return QSize(static_cast<int>(widget.width() * ratio + 0.5), static_cast<int>(widget.height() * ratio + 0.5));
+  }
+
+  void postFrame() {
+    if (framePosted) return;
+    framePosted = true;
+    // As QWidget::update does: low priority, after the input events already queued.
+    QCoreApplication::postEvent(&widget, new QEvent(kFrameEvent), Qt::LowEventPriority);
+  }
+
+  /// The OpenGL context on the native window, VTK set up in it; false if none can be made.
+  bool ensureContext() {
+    if (context) return true;
+    if (contextFailed) return false;
+    surface->create();
+    auto made = std::make_unique<QOpenGLContext>();
+    made->setFormat(surface->requestedFormat());
+    if (!made->create() || !made->makeCurrent(surface)) {
+      contextFailed = true;
+      qWarning("VtkViewWidget: no OpenGL context for the 3D view");
+      return false;
+    }
+    context = std::move(made);
+    window->SetOwnContext(false);
+    window->SetFrameBlitModeToBlitToCurrent();  // to the window's framebuffer, the one bound
+    window->SetIsCurrent(true);
+    window->OpenGLInitContext();
+    interactor->Initialize();
+    return true;
+  }
+
+  /// One pass: the owner brings the scene up to date (aboutToRender), VTK renders if a frame is
+  /// due or the size changed, and the window shows the new frame (or the last one again, if it
+  /// was exposed since). False if there is no context.
+  bool drawFrame() {
+    framePosted = false;
+    emit widget.aboutToRender();
+    if (!ensureContext()) return false;
+    context->makeCurrent(surface);
+    const QSize size = deviceSize();
+    if (window->GetSize()[0] != size.width() || window->GetSize()[1] != size.height()) {
+      window->SetSize(size.width(), size.height());
+      interactor->UpdateSize(size.width(), size.height());
+      interactor->InvokeEvent(vtkCommand::ConfigureEvent, nullptr);
+    }
+    const bool exposed = surface->isExposed();
+    if (frameDue || frameSize != size) {
+      frameDue = false;  // a request while VTK renders asks for the next frame
+      frameSize = size;
+      ++renders;
+      window->SetReadyForRendering(true);
+      window->Render();  // and blits the frame to the window's back buffer
+      window->SetReadyForRendering(false);
+      cameraDrawn = renderer->GetActiveCamera()->GetMTime();
+      presentDue = !exposed;
+    } else if (presentDue && exposed) {
+      window->BlitDisplayFramebuffer();  // VTK keeps its last frame in its display framebuffer
+      presentDue = false;
+    } else {
+      return true;
+    }
+    if (exposed) {
+      context->swapBuffers(surface);
+      emit widget.frameSwapped();
+    }
+    return true;
+  }
+
+  /// VTK's last frame, read from its display framebuffer (the context current), opaque.
+  QImage lastFrame() {
+    const int w = window->GetSize()[0];
+    const int h = window->GetSize()[1];
+    if (w <= 0 || h <= 0) return {};
+    QImage image(w, h, QImage::Format_RGB888);
+    window->SetReadyForRendering(true);
+    unsigned char* pixels = window->GetPixelData(0, 0, w - 1, h - 1, 1, 0);
+    window->SetReadyForRendering(false);
+    // OpenGL's rows go bottom up.
+    for (int y = 0; y < h; ++y) std::memcpy(image.scanLine(h - 1 - y), pixels + static_cast<std::size_t>(y) * w * 3, w * 3);
+    delete[] pixels;
+    return image.convertToFormat(QImage::Format_RGB32);
+  }
 };
 
-VtkViewWidget::VtkViewWidget(QWidget* parent) : QOpenGLWidget(parent), impl_(std::make_unique<Impl>()) {
+VtkViewWidget::VtkViewWidget(QWidget* parent) : QWidget(parent), impl_(std::make_unique<Impl>(*this)) {
   setFocusPolicy(Qt::StrongFocus);
   setMouseTracking(true);  // VTK styles hover-highlight on plain moves
-  setUpdateBehavior(QOpenGLWidget::NoPartialUpdate);
+  setAttribute(Qt::WA_OpaquePaintEvent);  // the native window covers the widget
 
   auto& d = *impl_;
+  d.surface = new ViewSurface([this] {
+    impl_->presentDue = true;
+    if (isVisible()) impl_->postFrame();
+  });
+  d.container = QWidget::createWindowContainer(d.surface, this);
+  // Input goes to this widget: the container lets mouse events through, and never takes focus
+  // (it would hand it to the native window).
+  d.container->setAttribute(Qt::WA_TransparentForMouseEvents);
+  d.container->setFocusPolicy(Qt::NoFocus);
+  d.container->setGeometry(rect());
+
   d.window->AddRenderer(d.renderer);
-  d.window->SetMultiSamples(0);  // Qt owns the framebuffer format
+  d.window->SetMultiSamples(0);
   d.window->SetReadyForRendering(false);
   d.interactor->SetRenderWindow(d.window);
   d.interactor->SetInteractorStyle(d.style);
-  // The interactor asks for renders while handling events; route them through Qt's paint cycle.
+  // The interactor asks for renders while handling events; route them through the event loop.
   d.interactor->EnableRenderOff();
 
-  d.makeCurrent->SetClientData(this);
-  // QOpenGLContext::makeCurrent, not QOpenGLWidget::makeCurrent: the widget's version also
-  // binds its framebuffer, behind the back of VTK's GL state cache, and VTK calls MakeCurrent
-  // in the middle of setting up its own framebuffers.
-  d.makeCurrent->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
-    QOpenGLContext* context = static_cast<VtkViewWidget*>(self)->context();
-    if (context != nullptr && QOpenGLContext::currentContext() != context) context->makeCurrent(context->surface());
+  d.makeCurrent->SetClientData(&d);
+  d.makeCurrent->SetCallback([](vtkObject*, unsigned long, void* impl, void*) {
+    auto& self = *static_cast<Impl*>(impl);
+    if (self.context && QOpenGLContext::currentContext() != self.context.get()) self.context->makeCurrent(self.surface);
   });
   d.window->AddObserver(vtkCommand::WindowMakeCurrentEvent, d.makeCurrent);
 
-  d.isCurrent->SetClientData(this);
-  d.isCurrent->SetCallback([](vtkObject*, unsigned long, void* self, void* callData) {
-    auto* widget = static_cast<VtkViewWidget*>(self);
-    *static_cast<bool*>(callData) =
-        widget->context() != nullptr && QOpenGLContext::currentContext() == widget->context();
+  d.isCurrent->SetClientData(&d);
+  d.isCurrent->SetCallback([](vtkObject*, unsigned long, void* impl, void* callData) {
+    auto& self = *static_cast<Impl*>(impl);
+    *static_cast<bool*>(callData) = self.context && QOpenGLContext::currentContext() == self.context.get();
   });
   d.window->AddObserver(vtkCommand::WindowIsCurrentEvent, d.isCurrent);
 
@@ -112,11 +256,13 @@ VtkViewWidget::VtkViewWidget(QWidget* parent) : QOpenGLWidget(parent), impl_(std
 
 VtkViewWidget::~VtkViewWidget() {
   // Release VTK's GPU resources while our context still exists.
-  if (impl_->initialized && context() != nullptr) {
-    makeCurrent();
-    impl_->window->Finalize();
-    doneCurrent();
+  auto& d = *impl_;
+  if (d.context && d.context->makeCurrent(d.surface)) {
+    d.window->Finalize();
+    d.context->doneCurrent();
   }
+  d.window->RemoveObserver(d.makeCurrent);
+  d.window->RemoveObserver(d.isCurrent);
 }
 
 QSurfaceFormat VtkViewWidget::defaultFormat() {
@@ -141,85 +287,39 @@ vtkRenderer* VtkViewWidget::renderer() const { return impl_->renderer; }
 
 void VtkViewWidget::requestRender() {
   impl_->frameDue = true;
-  update();
+  if (isVisible()) impl_->postFrame();  // a hidden view draws when it is shown
 }
 
 std::uint64_t VtkViewWidget::renders() const { return impl_->renders; }
 
-void VtkViewWidget::initializeGL() {
-  auto& d = *impl_;
-  // Qt created the context and made it current: VTK must use it, not make its own.
-  d.window->SetOwnContext(false);
-  d.window->SetFrameBlitModeToBlitToCurrent();
-  d.window->SetIsCurrent(true);
-  d.window->OpenGLInitContext();
-  d.interactor->Initialize();
-  d.initialized = true;
-  d.frameDue = true;  // a new context: nothing of VTK's last frame can be shown
+QImage VtkViewWidget::grabFramebuffer() {
+  if (!impl_->drawFrame()) return {};
+  return impl_->lastFrame();
 }
 
-void VtkViewWidget::resizeGL(int, int) {
-  // Qt gives logical pixels; VTK works in device pixels.
-  const double ratio = devicePixelRatioF();
-  const int w = static_cast<int>(width() * ratio + 0.5);
-  const int h = static_cast<int>(height() * ratio + 0.5);
-  impl_->window->SetSize(w, h);
-  impl_->interactor->UpdateSize(w, h);
-  impl_->interactor->InvokeEvent(vtkCommand::ConfigureEvent, nullptr);
-}
-
-void VtkViewWidget::paintGL() {
-  emit aboutToRender();
-  auto& d = *impl_;
-  // A screen change may have changed the device pixel ratio without a resize.
-  const double ratio = devicePixelRatioF();
-  const int w = static_cast<int>(width() * ratio + 0.5);
-  const int h = static_cast<int>(height() * ratio + 0.5);
-  if (d.window->GetSize()[0] != w || d.window->GetSize()[1] != h) resizeGL(width(), height());
-
-  // Qt bound its own framebuffer and may have changed other GL state since the last frame:
-  // VTK caches GL state, so let it read the real state before rendering, so that it blits
-  // its image into the framebuffer Qt has bound (BlitToCurrent).
-  vtkOpenGLState* state = d.window->GetState();
-  state->ResetFramebufferBindings();
-  state->ResetGLViewportState();
-  state->ResetGLScissorState();
-  state->ResetGLClearColorState();
-  state->ResetGLDepthFuncState();
-  state->ResetGLDepthMaskState();
-  state->ResetGLColorMaskState();
-  state->ResetGLBlendFuncState();
-  state->ResetGLBlendEquationState();
-  state->ResetGLCullFaceState();
-  for (unsigned int capability : {GL_BLEND, GL_DEPTH_TEST, GL_SCISSOR_TEST, GL_CULL_FACE})
-    state->ResetEnumState(capability);
-  // A repaint that nothing asked for (the window was activated or deactivated, or Qt repaints
-  // after the frame its resize event drew) at the size of the last frame shows that frame again:
-  // VTK keeps it in its display framebuffer. Rendering it again would give the same pixels.
-  if (d.frameDue || d.frameSize != QSize(w, h)) {
-    d.frameDue = false;  // a request while VTK renders asks for the next frame
-    d.frameSize = QSize(w, h);
-    ++d.renders;
-    d.window->SetReadyForRendering(true);
-    d.window->Render();
-    d.window->SetReadyForRendering(false);
-    d.cameraDrawn = d.renderer->GetActiveCamera()->GetMTime();
-  } else {
-    d.window->BlitDisplayFramebuffer();
+bool VtkViewWidget::event(QEvent* event) {
+  if (event->type() == kFrameEvent) {
+    if (impl_->framePosted && isVisible()) impl_->drawFrame();
+    impl_->framePosted = false;
+    return true;
   }
+  if (event->type() == QEvent::Show && (impl_->frameDue || impl_->presentDue)) impl_->postFrame();
+  return QWidget::event(event);
+}
 
-  // VTK leaves alpha < 1 where the background shows; Qt would then blend the view with what
-  // lies behind the window (Mesa), and screenshots come out transparent. Force alpha to 1.
-  QOpenGLFunctions* gl = context()->functions();
-  GLboolean colourMask[4];
-  gl->glGetBooleanv(GL_COLOR_WRITEMASK, colourMask);
-  GLfloat clearColour[4];
-  gl->glGetFloatv(GL_COLOR_CLEAR_VALUE, clearColour);
-  gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
-  gl->glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-  gl->glClear(GL_COLOR_BUFFER_BIT);
-  gl->glColorMask(colourMask[0], colourMask[1], colourMask[2], colourMask[3]);
-  gl->glClearColor(clearColour[0], clearColour[1], clearColour[2], clearColour[3]);
+void VtkViewWidget::resizeEvent(QResizeEvent* event) {
+  impl_->container->setGeometry(rect());
+  if (isVisible() && impl_->deviceSize() != impl_->frameSize) impl_->postFrame();
+  QWidget::resizeEvent(event);
+}
+
+void VtkViewWidget::paintEvent(QPaintEvent*) {
+  QPainter painter(this);
+  // On the screen the native window shows the frame; a grab of the window gets it painted.
+  if (!paintsAnImage(*this, painter)) return;
+  const QImage frame = grabFramebuffer();
+  if (frame.isNull()) painter.fillRect(rect(), Qt::black);
+  else painter.drawImage(rect(), frame);
 }
 
 namespace {

@@ -3,8 +3,9 @@
 #include <cstdint>
 #include <memory>
 
-#include <QOpenGLWidget>
+#include <QImage>
 #include <QSurfaceFormat>
+#include <QWidget>
 
 class vtkGenericOpenGLRenderWindow;
 class vtkRenderWindowInteractor;
@@ -14,15 +15,17 @@ namespace ffdkit::app {
 
 /// A Qt 6 widget that hosts a VTK render window.
 ///
-/// Debian 12's QVTKOpenGLNativeWidget is built against Qt 5, so this is our own adapter:
-/// a QOpenGLWidget owns a vtkGenericOpenGLRenderWindow that renders into the widget's
-/// framebuffer (VTK blits to the framebuffer Qt has bound in paintGL), and every Qt input
-/// event is translated into the matching VTK interactor event, so interactor styles and
-/// picking behave as in a native VTK window.
+/// Debian 12's QVTKOpenGLNativeWidget is built against Qt 5, so this is our own adapter: VTK
+/// renders with a vtkGenericOpenGLRenderWindow into a native child window of the widget (a
+/// QWindow with an OpenGL context of its own, in a window container), which shows each frame by
+/// swapping its own buffers: the rest of the main window stays raster-painted and is not
+/// composed through OpenGL on every frame. The child window is transparent for input: every Qt
+/// input event reaches this widget, which translates it into the matching VTK interactor event,
+/// so interactor styles and picking behave as in a native VTK window.
 ///
-/// Rendering is always done by Qt's paint cycle: the interactor's render requests and
-/// requestRender() schedule a repaint instead of rendering immediately.
-class VtkViewWidget : public QOpenGLWidget {
+/// Rendering is always deferred to the event loop: the interactor's render requests and
+/// requestRender() schedule one frame for the next pass of the event loop.
+class VtkViewWidget : public QWidget {
   Q_OBJECT
 
  public:
@@ -39,23 +42,30 @@ class VtkViewWidget : public QOpenGLWidget {
   /// The one renderer the widget creates (background and camera of the 3D view).
   vtkRenderer* renderer() const;
 
-  /// Schedules a repaint through Qt that renders a new frame; safe to call from anywhere on the
-  /// GUI thread. Whatever changes what the view shows calls it (the interactor's render
-  /// requests do): a repaint Qt makes on its own (the window activated, a resize's second
-  /// paint) at the last frame's size shows that frame again instead of rendering it anew.
+  /// Schedules a new frame for the next pass of the event loop (one frame however many asked);
+  /// safe to call from anywhere on the GUI thread. Whatever changes what the view shows calls it
+  /// (the interactor's render requests do): when the window system shows the view again (it was
+  /// uncovered, or resized to the last frame's size) it shows the last frame instead of
+  /// rendering it anew.
   void requestRender();
-  /// Frames VTK rendered (repaints that showed the last frame again are not counted).
+  /// Frames VTK rendered (showing the last frame again is not counted).
   std::uint64_t renders() const;
+
+  /// The view's current image (device pixels, opaque): renders first if a frame is due, as the
+  /// next pass of the event loop would. Null if no OpenGL context could be made.
+  QImage grabFramebuffer();
 
  signals:
   /// Emitted at the start of every repaint, before VTK renders (or shows its last frame again):
   /// the owner brings the scene up to date here (MainWindow evaluates once per frame).
   void aboutToRender();
+  /// A frame was handed to the window system (the child window's buffers swapped).
+  void frameSwapped();
 
  protected:
-  void initializeGL() override;
-  void resizeGL(int width, int height) override;
-  void paintGL() override;
+  bool event(QEvent* event) override;
+  void resizeEvent(QResizeEvent* event) override;
+  void paintEvent(QPaintEvent* event) override;
 
   void mousePressEvent(QMouseEvent* event) override;
   void mouseMoveEvent(QMouseEvent* event) override;
