@@ -1,8 +1,7 @@
 // What a user sees of a large mesh in the application window (issues 22 and 39): the real window,
 // real mouse events through the event loop, and the time of each frame the view displayed (when Qt
-// has composed the window with the view's image and swapped it to the screen, not the event that
-// asked for it), with its stages: the evaluation and the view's arrays, VTK's render, and the rest
-// (Qt's composition of the window and the swap).
+// has swapped the view's native window to the screen, not the event that asked for it), with its
+// stages: the evaluation and the view's arrays, VTK's render, and the rest (the swap).
 //
 //   playback_timing drag <sphere-resolution> [seconds] [--lod on|off] [--proxy N] [--trace file]
 //     A sphere in a 4x4x4 cubic B-spline lattice with a translate widget on its top: the widget's
@@ -74,10 +73,10 @@ using namespace ffdkit;
 
 namespace {
 
-// Each frame the view displayed, timed at its stages: the view's paint event, the end of
+// Each frame the view displayed, timed at its stages: the view's frame event, the end of
 // MainWindow's frame work (the evaluation and the view's arrays, VtkViewWidget::aboutToRender),
-// VTK's render (the render window's StartEvent and EndEvent) and Qt's composition of the window
-// with the view's image (VtkViewWidget::frameSwapped: the frame is on the screen). Each stage in
+// VTK's render (the render window's StartEvent and EndEvent) and the swap of the view's window
+// (VtkViewWidget::frameSwapped: the frame is on the screen). Each stage in
 // wall-clock ms and in the process's CPU ms (all threads: Mesa's rasteriser threads too), which a
 // busy machine changes less than the wall clock.
 struct FrameClock {
@@ -122,11 +121,11 @@ struct FrameClock {
     me->rendered = true;
     ++me->renderCount;
   }
-  bool rendered = false;  // VTK rendered since the last composition: the next one displays a new frame
+  bool rendered = false;  // VTK rendered since the last swap: the next one displays a new frame
   int renderCount = 0;    // VTK's renders of the view
   void onSwapped() {
-    // Qt composes the window for other widgets' repaints too (the timeline, the status bar): only a
-    // composition after a render of the view displays a new frame of it.
+    // The view's window is swapped when it was exposed again too (its last frame shown again): only
+    // a swap after a render of the view displays a new frame of it.
     if (!rendered) return;
     rendered = false;
     const Stamp shown = stamp();
@@ -139,13 +138,14 @@ struct FrameClock {
   }
 };
 
-// The view's paint events (each one a frame) on the frame clock, and how many there were.
+// The view's frame events (VtkViewWidget::frameEventType, each one a frame pass) on the frame
+// clock, and how many there were.
 class PaintCounter : public QObject {
  public:
   explicit PaintCounter(FrameClock& frames) : frames_(frames) {}
   int paints = 0;
   bool eventFilter(QObject*, QEvent* event) override {
-    if (event->type() == QEvent::Paint) {
+    if (event->type() == app::VtkViewWidget::frameEventType()) {
       ++paints;
       frames_.paintAt = frames_.stamp();
     }
@@ -435,8 +435,8 @@ int drag(app::MainWindow& window, const Options& o, FrameClock& frames) {
 
 // The view repainted as fast as it can with nothing changing (the scene evaluated once): the cost of
 // a frame itself. --proxy-shown draws the large objects' proxies (SceneView::setMoving), --actors
-// none hides every actor of the view (the fixed cost of a frame: clearing, VTK's copies, Qt's
-// composition and the swap), objects hides the widgets', widgets the objects'.
+// none hides every actor of the view (the fixed cost of a frame: clearing, VTK's copies and the
+// swap), objects hides the widgets', widgets the objects'.
 int still(app::MainWindow& window, const Options& o, FrameClock& frames) {
   app::SceneView& view = window.sceneView();
   if (o.proxyShown) {

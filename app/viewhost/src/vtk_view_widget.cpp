@@ -292,6 +292,8 @@ void VtkViewWidget::requestRender() {
 
 std::uint64_t VtkViewWidget::renders() const { return impl_->renders; }
 
+QEvent::Type VtkViewWidget::frameEventType() { return kFrameEvent; }
+
 QImage VtkViewWidget::grabFramebuffer() {
   if (!impl_->drawFrame()) return {};
   return impl_->lastFrame();

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <memory>
 
+#include <QEvent>
 #include <QImage>
 #include <QSurfaceFormat>
 #include <QWidget>
@@ -50,6 +51,9 @@ class VtkViewWidget : public QWidget {
   void requestRender();
   /// Frames VTK rendered (showing the last frame again is not counted).
   std::uint64_t renders() const;
+  /// The type of the event the widget posts to itself for a frame (the pass that emits
+  /// aboutToRender): what a tool that times frames watches for, as it would a paint event.
+  static QEvent::Type frameEventType();
 
   /// The view's current image (device pixels, opaque): renders first if a frame is due, as the
   /// next pass of the event loop would. Null if no OpenGL context could be made.
