@@ -19,6 +19,15 @@ namespace ffdkit::app {
 
 namespace {
 
+/// Places the box selection's band. It is a native window above the view's (VtkViewWidget), which
+/// it cannot show through: a mask keeps only its outline.
+void placeBand(QRubberBand* band, const QRect& box) {
+  band->setGeometry(box);
+  constexpr int kOutline = 2;
+  const QRect inside = QRect(QPoint(), box.size()).adjusted(kOutline, kOutline, -kOutline, -kOutline);
+  band->setMask(inside.isEmpty() ? QRegion(QRect(QPoint(), box.size())) : QRegion(QRect(QPoint(), box.size())) - inside);
+}
+
 QString qs(const std::string& s) { return QString::fromStdString(s); }
 
 // The axis constraint an X / Y / Z key (Shift: excluded) sets while transforming, or nullopt
@@ -165,7 +174,7 @@ EditModeInput::EditModeInput(Parts parts, QMenu* widgetsMenu, QToolBar* toolbar)
   band_ = new QRubberBand(QRubberBand::Rectangle, p_.view);
   // The view shows its frames in a native child window, which covers plain child widgets: the
   // band is a native window of its own, stacked above it (raised when shown), and leaves the
-  // view's ancestors as they are.
+  // view's ancestors as they are (placeBand).
   band_->setAttribute(Qt::WA_DontCreateNativeAncestors);
   band_->setAttribute(Qt::WA_NativeWindow);
   p_.view->installEventFilter(this);  // after the window's filter: this one sees events first
@@ -464,7 +473,7 @@ bool EditModeInput::eventFilter(QObject* watched, QEvent* event) {
         }
         if (p_.controller->dragging() && !dragTyped_.empty()) return true;  // the typed value rules
         if (boxFrom_) {
-          band_->setGeometry(QRect(*boxFrom_, lastPos_).normalized());
+          placeBand(band_, QRect(*boxFrom_, lastPos_).normalized());
           return true;
         }
         if (e->buttons() == Qt::NoButton) edit.hover(p_.rayAt(lastPos_), p_.tolerance());
@@ -502,7 +511,7 @@ bool EditModeInput::eventFilter(QObject* watched, QEvent* event) {
           if (edit.pressHandle(ray, p_.tolerance())) return true;
         }
         boxFrom_ = at;
-        band_->setGeometry(QRect(at, QSize()));
+        placeBand(band_, QRect(at, QSize()));
         band_->show();
         return true;
       }
