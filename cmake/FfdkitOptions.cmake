@@ -75,29 +75,71 @@ if(FFDKIT_CCACHE)
   set(CMAKE_CXX_COMPILER_LAUNCHER "${FFDKIT_CCACHE}")
 endif()
 
-# Precompiled headers (FFDKIT_PCH, default ON; GCC builds): the window's library and test
-# programs include the same Qt, Qt Test, VTK and Eigen headers, and parsing them was most of each
-# file's compile time (a window test's batch: 3.8 s of its 5.4 s of CPU). A target's common
-# headers are compiled once into a precompiled header, which programs with the same flags share
-# (REUSE_FROM). Clang builds (sanitizer and fuzz stages) do not use them.
-option(FFDKIT_PCH "Precompile the common headers of the window's library and test programs" ON)
+# Precompiled headers (FFDKIT_PCH, default ON): a target's common headers are compiled once into
+# a precompiled header instead of being parsed again for each file (or unity batch).
+# GCC builds: the window's library and test programs include the same Qt, Qt Test, VTK and Eigen
+# headers, and parsing them was most of each file's compile time (a window test's batch: 3.8 s of
+# its 5.4 s of CPU); programs with the same compile flags share one (REUSE_FROM).
+# Clang sanitizer builds (scripts/test.sh's sanitizer stages): the core libraries and their test
+# programs share a few precompiled headers of the standard library, Eigen and GoogleTest
+# (cmake/pch/, mode SHARED). The fuzz build (FFDKIT_FUZZ) uses none.
+option(FFDKIT_PCH "Precompile the common headers of the window's, the libraries' and the tests' files" ON)
 
-# ffdkit_precompile_headers(target HEADER header.h) compiles header.h for target;
-# ffdkit_precompile_headers(target REUSE_FROM other) uses other's (same compile flags needed: GCC
-# ignores a precompiled header compiled with other options, -Winvalid-pch says so).
+# ffdkit_precompile_headers(target HEADER header.h) compiles header.h for target (GCC builds);
+# ffdkit_precompile_headers(target REUSE_FROM other) uses other's (GCC builds; same compile flags
+# needed: GCC ignores a precompiled header compiled with other options, -Winvalid-pch says so);
+# ffdkit_precompile_headers(target SHARED header.h) (clang sanitizer builds) compiles header.h once
+# per group of targets whose compile flags it needs to be the same: clang refuses a precompiled
+# header compiled at another optimization level, with another -fPIC/-fPIE or without -fopenmp.
+# The group's first target compiles it, the others reuse it. Call it once the target's libraries
+# (OpenMP) and its files' own compile options are set.
 function(ffdkit_precompile_headers target mode what)
-  if(NOT FFDKIT_PCH OR NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  if(NOT FFDKIT_PCH OR FFDKIT_FUZZ)
     return()
   endif()
-  if(mode STREQUAL "REUSE_FROM")
-    target_precompile_headers(${target} REUSE_FROM ${what})
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND NOT mode STREQUAL "SHARED")
+    if(mode STREQUAL "REUSE_FROM")
+      target_precompile_headers(${target} REUSE_FROM ${what})
+    else()
+      target_precompile_headers(${target} PRIVATE ${what})
+    endif()
+    # ccache caches a compile that uses a precompiled header only with -fpch-preprocess and with the
+    # settings cmake/ccache-pch.sh gives it (set here, for these targets, so that a fresh machine
+    # without a ccache configuration of its own gets cache hits).
+    target_compile_options(${target} PRIVATE -fpch-preprocess)
+  elseif(CMAKE_CXX_COMPILER_ID STREQUAL "Clang" AND FFDKIT_SANITIZE AND mode STREQUAL "SHARED")
+    get_target_property(pic ${target} POSITION_INDEPENDENT_CODE)
+    get_target_property(libraries ${target} LINK_LIBRARIES)
+    set(group "${what}|pic=${pic}")
+    if(target IN_LIST ffdkit_sanitize_o1_targets)
+      string(APPEND group "|O1")
+    endif()
+    if("OpenMP::OpenMP_CXX" IN_LIST libraries)
+      string(APPEND group "|openmp")
+    endif()
+    string(MAKE_C_IDENTIFIER "${group}" group)
+    get_property(donor GLOBAL PROPERTY ffdkit_pch_${group})
+    if(donor)
+      target_precompile_headers(${target} REUSE_FROM ${donor})
+    else()
+      target_precompile_headers(${target} PRIVATE ${what})
+      set_property(GLOBAL PROPERTY ffdkit_pch_${group} ${target})
+    endif()
+    # A file with compile options of its own (meshio's cell_quality.cpp: -fno-math-errno) compiles
+    # without it: clang would refuse it.
+    get_target_property(sources ${target} SOURCES)
+    foreach(source IN LISTS sources)
+      get_source_file_property(options ${source} COMPILE_OPTIONS)
+      if(options)
+        set_source_files_properties(${source} PROPERTIES SKIP_PRECOMPILE_HEADERS ON)
+      endif()
+    endforeach()
+    # ccache caches a precompiled header clang compiled without its timestamp only (and the
+    # compiles that use it with the settings cmake/ccache-pch.sh gives it).
+    target_compile_options(${target} PRIVATE "SHELL:-Xclang -fno-pch-timestamp")
   else()
-    target_precompile_headers(${target} PRIVATE ${what})
+    return()
   endif()
-  # ccache caches a compile that uses a precompiled header only with -fpch-preprocess and with the
-  # settings cmake/ccache-pch.sh gives it (set here, for these targets, so that a fresh machine
-  # without a ccache configuration of its own gets cache hits).
-  target_compile_options(${target} PRIVATE -fpch-preprocess)
   if(FFDKIT_CCACHE)
     set_target_properties(${target} PROPERTIES CXX_COMPILER_LAUNCHER
       "${PROJECT_SOURCE_DIR}/cmake/ccache-pch.sh;${FFDKIT_CCACHE}")
