@@ -26,11 +26,11 @@
 #include <QDockWidget>
 #include <QElapsedTimer>
 #include <QLineEdit>
-#include <QMenu>
 #include <QMainWindow>
+#include <QMenu>
 #include <QMenuBar>
-#include <QStatusBar>
 #include <QPointer>
+#include <QStatusBar>
 #include <QToolBar>
 #include <QToolButton>
 #include <QTreeWidgetItemIterator>

@@ -24,8 +24,9 @@ namespace {
 void placeBand(QRubberBand* band, const QRect& box) {
   band->setGeometry(box);
   constexpr int kOutline = 2;
-  const QRect inside = QRect(QPoint(), box.size()).adjusted(kOutline, kOutline, -kOutline, -kOutline);
-  band->setMask(inside.isEmpty() ? QRegion(QRect(QPoint(), box.size())) : QRegion(QRect(QPoint(), box.size())) - inside);
+  const QRect whole(QPoint(), box.size());
+  const QRect inside = whole.adjusted(kOutline, kOutline, -kOutline, -kOutline);
+  band->setMask(inside.isEmpty() ? QRegion(whole) : QRegion(whole) - inside);
 }
 
 QString qs(const std::string& s) { return QString::fromStdString(s); }
