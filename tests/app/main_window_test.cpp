@@ -39,6 +39,7 @@
 #include "ffdkit/scenes/scene_deformer.h"
 #include "ffdkit/scenes/widget_file.h"
 #include "gui_test_support.h"
+#include "lifecycle_dialog_answers.h"
 
 using namespace ffdkit;
 using namespace ffdkit::app::testing;
@@ -47,7 +48,8 @@ using widgets::WidgetId;
 
 namespace {
 
-// Triggers an action that opens a modal dialog; `fill` sets its fields, then it is accepted.
+// Triggers an action that opens a modal dialog; `fill` sets its fields (or answers it), then it is
+// accepted if still open.
 void triggerWithDialog(MainWindow& w, const char* name, std::function<void(QDialog*)> fill = {}) {
   bool seen = false;
   QTimer::singleShot(0, [&] {
@@ -55,7 +57,7 @@ void triggerWithDialog(MainWindow& w, const char* name, std::function<void(QDial
     if (dialog == nullptr) return;
     seen = true;
     if (fill) fill(dialog);
-    dialog->accept();
+    if (dialog->isVisible()) dialog->accept();
   });
   action(w, name)->trigger();
   QVERIFY2(seen, name);
@@ -66,7 +68,8 @@ void triggerWithFile(MainWindow& w, const char* name, const QString& path) {
   triggerWithDialog(w, name, [&](QDialog* dialog) {
     auto* files = qobject_cast<QFileDialog*>(dialog);
     QVERIFY(files != nullptr);
-    files->selectFile(path);
+    const QString failure = chooseFilePath(files, path.toStdString());
+    QVERIFY2(failure.isEmpty(), qPrintable(failure));
   });
 }
 

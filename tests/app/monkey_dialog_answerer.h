@@ -26,12 +26,15 @@
 #include <string>
 #include <vector>
 
+#include "lifecycle_dialog_answers.h"
+
 namespace ffdkit::app::testing {
 
 /// Answers every modal dialog the actions open, from the running action's `answer` number:
 /// message boxes by one of their buttons, file dialogs with a file of a fitting kind (or a broken
 /// one, or Cancel), the rename dialog with a name, form dialogs with small values, then OK or
-/// Cancel. A dialog still open after 10 s is closed and reported (`unanswered`).
+/// Cancel. A dialog still open after 10 s, or a file dialog that did not take its answer, is
+/// closed and reported (`unanswered`).
 class DialogAnswerer : public QObject {
  public:
   DialogAnswerer(std::filesystem::path files, std::vector<std::filesystem::path> widgetFiles, std::vector<std::filesystem::path> meshFiles)
@@ -121,8 +124,12 @@ class DialogAnswerer : public QObject {
       path = candidates[next() % candidates.size()];
     }
     note("file dialog: " + path.string());
-    dialog->selectFile(QString::fromStdString(path.string()));
-    static_cast<QDialog*>(dialog)->accept();  // public through QDialog, virtual: QFileDialog::accept
+    // Not a bare selectFile(): once the dialog's name field has the focus it ignores it, and the
+    // dialog stayed open, at random, when the window system gave the focus before this answer.
+    const QString failure = chooseFilePath(dialog, path);
+    if (failure.isEmpty()) return;
+    unanswered_.push_back("QFileDialog '" + dialog->windowTitle().toStdString() + "': " + failure.toStdString());
+    dialog->reject();
   }
 
   void answerForm(QDialog* dialog) {
