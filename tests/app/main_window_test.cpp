@@ -780,12 +780,6 @@ class MainWindowTest : public QObject {
   std::unique_ptr<MainWindow> window_;
 };
 
-int main(int argc, char** argv) {
-  static ffdkit::app::testing::TemporaryUserFolders folders;  // recent files and layout: a temporary folder
-  QSurfaceFormat::setDefaultFormat(ffdkit::app::VtkViewWidget::defaultFormat());
-  QApplication app(argc, argv);
-  MainWindowTest test;
-  return QTest::qExec(&test, argc, argv);
-}
+int main(int argc, char** argv) { return runGuiTest<MainWindowTest>(argc, argv); }
 
 #include "main_window_test.moc"

@@ -181,5 +181,5 @@ class ObjectEditsGuiTest : public QObject {
   }
 };
 
-QTEST_MAIN(ObjectEditsGuiTest)
+int main(int argc, char** argv) { return runGuiTest<ObjectEditsGuiTest>(argc, argv); }
 #include "object_edits_gui_test.moc"

@@ -130,5 +130,5 @@ class UndoDuringTransformGuiTest : public QObject {
   std::unique_ptr<MainWindow> window_;
 };
 
-QTEST_MAIN(UndoDuringTransformGuiTest)
+int main(int argc, char** argv) { return runGuiTest<UndoDuringTransformGuiTest>(argc, argv); }
 #include "undo_during_transform_gui_test.moc"

@@ -13,6 +13,7 @@
 
 #include "ffdkit/gui/main_window.h"
 #include "ffdkit/viewhost/vtk_view_widget.h"
+#include "gui_test_support.h"
 
 using ffdkit::app::MainWindow;
 
@@ -179,11 +180,6 @@ class VtkViewWidgetTest : public QObject {
   }
 };
 
-int main(int argc, char** argv) {
-  QSurfaceFormat::setDefaultFormat(ffdkit::app::VtkViewWidget::defaultFormat());
-  QApplication app(argc, argv);
-  VtkViewWidgetTest test;
-  return QTest::qExec(&test, argc, argv);
-}
+int main(int argc, char** argv) { return ffdkit::app::testing::runGuiTest<VtkViewWidgetTest>(argc, argv); }
 
 #include "vtk_view_widget_test.moc"
