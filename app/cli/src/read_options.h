@@ -22,8 +22,8 @@ std::vector<OptionSpec> withReadOptions(std::vector<OptionSpec> options);
 
 /// What the read options of a command line say: each read's limits and the confinement rule.
 struct ReadSettings {
-  meshio::ReadLimits limits;            ///< the defaults unless --max-memory / --max-points
-  meshio::PathConfinement confinement;  ///< allowOutside with --allow-outside(-meshes)
+  meshio::ReadLimits limits{};            ///< the defaults unless --max-memory / --max-points
+  meshio::PathConfinement confinement{};  ///< allowOutside with --allow-outside(-meshes)
 };
 
 /// @throws UsageError naming the option for a malformed --max-memory or --max-points value.

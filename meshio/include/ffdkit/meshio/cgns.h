@@ -29,9 +29,9 @@ bool isCgnsPath(const std::filesystem::path& path);
 
 /// How a CGNS file is read.
 struct CgnsReadOptions {
-  ReadLimits limits;  ///< the read's budget: points and connectivity are charged before they are read
-  int base = 1;       ///< the CGNS base (1-based, as the library counts)
-  int zone = 1;       ///< the unstructured zone of that base (1-based)
+  ReadLimits limits{};  ///< the read's budget: points and connectivity are charged before they are read
+  int base = 1;         ///< the CGNS base (1-based, as the library counts)
+  int zone = 1;         ///< the unstructured zone of that base (1-based)
   /// true: the CGNS library reads the file in a child process (fork), so that a file that makes
   /// the library crash (its ADF reader overflows a buffer on some malformed files) or run away
   /// is a MeshIoError, not the end of this process; the zone comes back through a pipe.

@@ -26,9 +26,9 @@ struct MeshWriteOptions {
 
 /// How a mesh file is read: its resource budget and the rule for the files it names.
 struct MeshReadOptions {
-  ReadLimits limits;             ///< the read's limits when `budget` is null
-  ReadBudget* budget = nullptr;  ///< a budget shared with an enclosing read (a scene's), or null
-  PathConfinement confinement;   ///< external files a mesh file names (glTF buffers)
+  ReadLimits limits{};            ///< the read's limits when `budget` is null
+  ReadBudget* budget = nullptr;   ///< a budget shared with an enclosing read (a scene's), or null
+  PathConfinement confinement{};  ///< external files a mesh file names (glTF buffers)
 };
 
 /// Reads a mesh or point file; the format comes from the extension (see MeshFormat).

@@ -77,11 +77,11 @@ struct FoamPointsFile {
 
 /// How a polyMesh is read: the read budget and the rule for symbolic links in the folder.
 struct OpenFoamReadOptions {
-  ReadLimits limits;             ///< the read's limits when `budget` is null
+  ReadLimits limits{};           ///< the read's limits when `budget` is null
   ReadBudget* budget = nullptr;  ///< a budget shared with an enclosing read, or null
   /// A file of the polyMesh that is a symbolic link leading outside the folder given is refused
   /// unless allowOutside.
-  PathConfinement confinement;
+  PathConfinement confinement{};
   /// Read faces, owner, neighbour and boundary (false: the points only, e.g. to copy them).
   bool readCells = true;
 };

@@ -54,10 +54,10 @@ struct VolumeMeshQuality {
 
 /// How a volume mesh is read.
 struct VolumeMeshReadOptions {
-  ReadLimits limits;  ///< the read's budget
+  ReadLimits limits{};  ///< the read's budget
   /// An OpenFOAM case's files that are symbolic links leading outside its folder are refused
   /// unless allowOutside.
-  PathConfinement confinement;
+  PathConfinement confinement{};
 };
 
 /// How a volume mesh is written.
