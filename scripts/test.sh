@@ -36,8 +36,8 @@ export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
   ctest --test-dir "$build" --output-on-failure --parallel "$test_jobs" --timeout 600 "$@"
 
-# Cost (docs/robustness.md): a build of ~300 steps (from a warm compiler cache a few minutes) and
-# ~80 s of tests on 2 cores.
+# What the whole command and each stage cost from a fresh clone: docs/architecture.md, "Building
+# and testing"; each stage below prints its own times.
 
 # The library without the window (FFDKIT_NOAPP_STAGE=0 skips it): configured with
 # -DFFDKIT_BUILD_APP=OFF in build-noapp/ (no Qt looked for or linked; no benchmarks), built (the

@@ -552,9 +552,9 @@ Json sceneJson(const Scene& scene) {
     if (!scene.widgets.contains(a.lattice))
       throw std::invalid_argument("scene: an attachment holds lattice " + widgets::toString(a.lattice) +
                                   ", which the widget model does not have");
-    Json objects = Json::array();
-    for (const ObjectId object : a.objects) objects.push_back(scene.objectName(object));
-    attachments.push_back({{"lattice", scene.widgets.name(a.lattice)}, {"objects", std::move(objects)}});
+    Json objectNames = Json::array();
+    for (const ObjectId object : a.objects) objectNames.push_back(scene.objectName(object));
+    attachments.push_back({{"lattice", scene.widgets.name(a.lattice)}, {"objects", std::move(objectNames)}});
   }
   root["attachments"] = std::move(attachments);
   root["camera"] = {{"position", array3(scene.camera().position)},

@@ -327,8 +327,8 @@ class InteractionControllerTest : public QObject {
     f.controller.drag(looking(t2.frame.translation() + 1.5 * at * y2, t2.frame.linear().col(2)));
     f.controller.release();
     // The lattice's extent along y2 grew by 1.5 about the centre: its rest points' spread.
-    auto spread = [&](const Eigen::Vector3d& axis) {
-      const Eigen::VectorXd d = f.scene.widgets.worldRestPoints(f.lattice) * axis;
+    auto spread = [&widgets = f.scene.widgets, lattice = f.lattice](const Eigen::Vector3d& axis) {
+      const Eigen::VectorXd d = widgets.worldRestPoints(lattice) * axis;
       return d.maxCoeff() - d.minCoeff();
     };
     f.commands.undo();

@@ -108,8 +108,8 @@ TEST_P(BSplineLatticeParts, EveryPartFollowsTheFfdWithinTheTolerance) {
 INSTANTIATE_TEST_SUITE_P(SampleParts, BSplineLatticeParts,
                          ::testing::Values(SamplePart::FilletedBox, SamplePart::Blade, SamplePart::BentPipe,
                                            SamplePart::Bottle, SamplePart::TwoPartAssembly),
-                         [](const auto& info) {
-                           std::string name = samplePartName(info.param);
+                         [](const auto& part) {
+                           std::string name = samplePartName(part.param);
                            for (char& c : name)
                              if (c == '-') c = '_';
                            return name;

@@ -78,8 +78,8 @@ TEST_P(ExactDeformation, WritesTheFfdOfTheSurfacesAsAValidWatertightSolid) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SampleParts, ExactDeformation, ::testing::ValuesIn(allSampleParts()),
-                         [](const auto& info) {
-                           std::string name = samplePartName(info.param);
+                         [](const auto& part) {
+                           std::string name = samplePartName(part.param);
                            for (char& c : name)
                              if (c == '-') c = '_';
                            return name;

@@ -463,7 +463,9 @@ void expectBoundAgreesWithSampling(const RefAxis (&axes)[3], const Lattice& latt
               smallest = std::min(smallest, result.orientation * referenceDeterminant(axes, lattice, uvw));
             }
         EXPECT_LE(result.lowerBound[flat], smallest + 1e-7 * (1.0 + std::abs(smallest))) << "cell " << flat;
-        if (result.cells[flat] == CellFolding::Positive) EXPECT_GT(smallest, 0.0) << "cell " << flat;
+        if (result.cells[flat] == CellFolding::Positive) {
+          EXPECT_GT(smallest, 0.0) << "cell " << flat;
+        }
         if (result.cells[flat] == CellFolding::Folds) {
           ASSERT_TRUE(result.witness[flat].allFinite());
           EXPECT_LE(result.orientation * lattice.jacobian(result.witness[flat]).determinant(), 1e-9);
