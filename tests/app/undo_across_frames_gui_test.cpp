@@ -26,7 +26,7 @@ using app::MainWindow;
 
 namespace {
 
-const std::filesystem::path kDefault = kExamples / "default";
+const std::filesystem::path kDefault = FFDKIT_SOURCE_DIR "/scenes/examples/default";
 
 // Relative to max(1, |x|): rounding of a few gestures (frame-0 points written back at frame 24 are 0.43 off).
 constexpr double kRounding = 1e-12;

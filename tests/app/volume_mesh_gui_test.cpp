@@ -26,7 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kDuct = kExamples / "volume-duct";
+const fs::path kDuct = FFDKIT_SOURCE_DIR "/scenes/examples/volume-duct";
 
 // ffdkit-cli with `arguments`; its exit code (-1 when it did not run).
 int runCli(const QStringList& arguments, QString* errors) {

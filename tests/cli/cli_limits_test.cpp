@@ -17,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kTool = kSource / "widgets" / "examples" / "fig6-8.json";
+const fs::path kTool = FFDKIT_SOURCE_DIR "/widgets/examples/fig6-8.json";
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 

@@ -26,9 +26,11 @@ struct CliResult {
   std::string err;  ///< stderr
 };
 
-/// The source tree and its sample widget files.
+/// The source tree and its sample widget files. Each global path here and in the tests is built
+/// from FFDKIT_SOURCE_DIR alone, never from another global: the order in which globals of
+/// different files are initialized is not one a test may rely on.
 inline const std::filesystem::path kSource = FFDKIT_SOURCE_DIR;
-inline const std::filesystem::path kWidgetExamples = kSource / "widgets" / "examples";
+inline const std::filesystem::path kWidgetExamples = FFDKIT_SOURCE_DIR "/widgets/examples";
 
 /// The largest coordinate difference of two point sets (infinity when their counts differ).
 inline double maxDifference(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) {
