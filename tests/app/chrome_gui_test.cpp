@@ -41,6 +41,11 @@ using widgets::WidgetId;
 
 namespace {
 
+// Lets the layouts settle: the events a resize or a new message posts, and those they post.
+void settleLayouts() {
+  for (int round = 0; round < 3; ++round) QApplication::processEvents();
+}
+
 // Everything a VTK default key would change, read from the view.
 struct ViewState {
   Eigen::Vector3d position, focal, up;
@@ -51,7 +56,7 @@ struct ViewState {
   QImage image;
 
   static ViewState of(MainWindow& w) {
-    for (int round = 0; round < 3; ++round) QApplication::processEvents();  // layouts settle
+    settleLayouts();
     ViewState s;
     vtkCamera* camera = w.view()->renderer()->GetActiveCamera();
     camera->GetPosition(s.position.data());
@@ -209,7 +214,7 @@ class ChromeGuiTest : public QObject {
     clickRow(w, "push-front");
     clickRow(w, "push-back", Qt::ControlModifier);
     QCOMPARE(w.controller().selection().size(), std::size_t(2));
-    for (int round = 0; round < 3; ++round) QApplication::processEvents();  // layouts settle
+    settleLayouts();
     const QSize view = w.view()->size();
     auto* line = w.findChild<QLabel*>("statusMessage");
     QVERIFY(line != nullptr);
@@ -219,7 +224,7 @@ class ChromeGuiTest : public QObject {
     QVERIFY2(message.contains("'push-front'") && message.contains("'push-back'") && message.contains("already bound"),
              qPrintable(message));
     QVERIFY2(!QRegularExpression(R"(\b[wb][0-9]+\b)").match(message).hasMatch(), qPrintable(message));
-    for (int round = 0; round < 3; ++round) QApplication::processEvents();
+    settleLayouts();
     QVERIFY2(line->fontMetrics().horizontalAdvance(message) > line->contentsRect().width(),
              "the message should not fit on the line here");
     QCOMPARE(line->toolTip(), message);
@@ -236,10 +241,7 @@ class ChromeGuiTest : public QObject {
     MainWindow& w = *window_;
     w.resize(640, 480);
     w.openScene(kExamples / "mirror");
-    auto settle = [] {
-      for (int round = 0; round < 3; ++round) QApplication::processEvents();  // layouts settle
-    };
-    settle();
+    settleLayouts();
     auto* outliner = w.findChild<QDockWidget*>("outlinerDock");
     auto* properties = w.findChild<QDockWidget*>("propertiesDock");
     QVERIFY(outliner != nullptr && properties != nullptr && outliner->isVisible() && properties->isVisible());
@@ -248,7 +250,7 @@ class ChromeGuiTest : public QObject {
     QStringList said;
     // What changed size after `step`, or nothing.
     auto changed = [&](const char* step) -> QString {
-      settle();
+      settleLayouts();
       said << w.statusMessage();
       const QString where = QString("after %1 (status '%2')").arg(step, w.statusMessage());
       if (w.view()->size() != view)

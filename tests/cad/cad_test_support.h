@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -100,13 +101,18 @@ inline Eigen::MatrixX3d engineFfd(const ffd::Lattice& lattice, const Eigen::Matr
   return deformer.deform(lattice, world);
 }
 
+/// Triangle t's corners a, b, c.
+inline std::array<Eigen::Vector3d, 3> triangleCorners(const CadTriangles& mesh, Eigen::Index t) {
+  return {mesh.points.row(mesh.triangles(t, 0)).transpose(), mesh.points.row(mesh.triangles(t, 1)).transpose(),
+          mesh.points.row(mesh.triangles(t, 2)).transpose()};
+}
+
 /// The sides n = 2^k of each triangle's split into 4^k flat triangles at h: k = log2 of its longest
 /// edge / h, at most 6.
 inline std::vector<int> splitSides(const CadTriangles& mesh, double h) {
   std::vector<int> sides;
   for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
-    const Eigen::Vector3d a = mesh.points.row(mesh.triangles(t, 0)), b = mesh.points.row(mesh.triangles(t, 1)),
-                          c = mesh.points.row(mesh.triangles(t, 2));
+    const auto [a, b, c] = triangleCorners(mesh, t);
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     sides.push_back(1 << std::clamp(static_cast<int>(std::ceil(std::log2(std::max(longest / h, 1.0)))), 0, 6));
   }
@@ -118,8 +124,7 @@ inline std::vector<int> splitSides(const CadTriangles& mesh, double h) {
 inline Eigen::MatrixX3d splitCorners(const CadTriangles& mesh, const std::vector<int>& sides) {
   std::vector<Eigen::Vector3d> corners;
   for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
-    const Eigen::Vector3d a = mesh.points.row(mesh.triangles(t, 0)), b = mesh.points.row(mesh.triangles(t, 1)),
-                          c = mesh.points.row(mesh.triangles(t, 2));
+    const auto [a, b, c] = triangleCorners(mesh, t);
     const int n = sides[static_cast<std::size_t>(t)];
     for (int i = 0; i <= n; ++i)
       for (int j = 0; i + j <= n; ++j) corners.push_back(a + (b - a) * double(i) / n + (c - a) * double(j) / n);
