@@ -29,7 +29,9 @@ enum class PointClass : std::uint8_t { Evaluated = 0, Blended = 1, Frozen = 2 };
 struct TileScratch {
   double *pu = nullptr, *pv = nullptr, *pw = nullptr;
   std::array<double, kTile> u, v, w, weight;
-  std::array<std::uint32_t, kTile> key, order;
+  std::array<std::uint32_t, kTile> key;
+  // + 1: the partition's stores one past a class's last point (sortTileByKey).
+  std::array<std::uint32_t, kTile + 1> order, blended, frozen;
   std::array<std::uint8_t, kTile> flagged;
   std::vector<std::uint32_t> start;  // counting-sort buckets
 };
@@ -258,7 +260,7 @@ class EmbedRun {
                   std::uint32_t runIndex = 0);
   void solveAffineTile(Eigen::Index begin, std::uint32_t m, TileScratch& t);
   void solveNewtonTile(Eigen::Index begin, Eigen::Index end, TileScratch& t, FirstSteps* first);
-  void sortTileByKey(std::uint32_t m, TileScratch& t) const;
+  bool sortTileByKey(std::uint32_t m, TileScratch& t) const;
   void groupTile(std::int64_t tile, TileScratch& t);
   std::uint32_t cellKey(double pu, double pv, double pw) const;
   void callHook(Eigen::Index done);
@@ -431,13 +433,24 @@ void EmbedRun::solveAffineTile(Eigen::Index begin, std::uint32_t m, TileScratch&
   t.pu = u.data() + begin;
   t.pv = v.data() + begin;
   t.pw = w.data() + begin;
-  if (affineTile(points_.col(0).data() + begin, points_.col(1).data() + begin, points_.col(2).data() + begin, m,
-                 affineCoef_, t.pu, t.pv, t.pw, t.flagged.data())) {
-    nonFinite_.store(true, std::memory_order_relaxed);
-  }
+  const bool anyNonFinite = affineTile(points_.col(0).data() + begin, points_.col(1).data() + begin,
+                                       points_.col(2).data() + begin, m, affineCoef_, t.pu, t.pv, t.pw, t.flagged.data());
+  if (anyNonFinite) nonFinite_.store(true, std::memory_order_relaxed);
   PointStatus* tileStatus = status.data() + begin;
+  std::fill_n(t.weight.data(), m, 1.0);
+  if (outsideKeepsParameters_ && !anyNonFinite) {
+    // Every point is finite and keeps its parameters, so flagged means outside: status and key
+    // are computed from the flag, not branched on (outside points come in any order, and a
+    // branch on them was one of the hot spots of a box embedding with outside points).
+    const std::uint32_t outsideBase = static_cast<std::uint32_t>(outsideClass_ * cellTotal_);
+    for (std::uint32_t i = 0; i < m; ++i) {
+      const std::uint32_t outside = t.flagged[i];  // 0 or 1
+      tileStatus[i] = outside ? PointStatus::Outside : PointStatus::Inside;
+      t.key[i] = outside * outsideBase + cellKey(t.pu[i], t.pv[i], t.pw[i]);
+    }
+    return;
+  }
   for (std::uint32_t i = 0; i < m; ++i) {
-    t.weight[i] = 1.0;
     if (!t.flagged[i]) {
       tileStatus[i] = PointStatus::Inside;
       t.key[i] = cellKey(t.pu[i], t.pv[i], t.pw[i]);
@@ -468,15 +481,37 @@ void EmbedRun::solveNewtonTile(Eigen::Index begin, Eigen::Index end, TileScratch
   }
 }
 
-// t.order = the tile's m points sorted by key, stably: the original order when every key is
-// equal, a counting sort when the keys are few, else a stable sort.
-void EmbedRun::sortTileByKey(std::uint32_t m, TileScratch& t) const {
+// t.order = the tile's m points sorted by key, stably: the original order when the keys are in
+// order already (then returns true: a stable sort is the identity exactly then), a stable
+// partition when the key is the class alone, a counting sort when the keys are few, else a
+// stable sort.
+bool EmbedRun::sortTileByKey(std::uint32_t m, TileScratch& t) const {
   std::uint32_t* sorted = t.order.data();
   const std::uint32_t* key = t.key.data();
-  bool uniform = true;
-  for (std::uint32_t i = 1; i < m; ++i) uniform &= key[i] == key[0];
-  if (uniform) {
+  std::uint32_t descents = 0;  // counted, not searched for: the loop vectorises
+  for (std::uint32_t i = 1; i < m; ++i) descents += key[i] < key[i - 1];
+  if (descents == 0) {
     for (std::uint32_t i = 0; i < m; ++i) sorted[i] = i;
+    return true;
+  } else if (keyCount_ == 3) {
+    // One cell, so the key is the class: a stable partition. Each point's index is stored into
+    // the list of every class and only its own class's cursor moves, so no branch depends on
+    // the class (outside points come in random order) and the cursors stay in registers (the
+    // counting sort's counters live in memory, and each point waited for the previous one's
+    // store to the same counter). The lists are then joined.
+    std::uint32_t* blended = t.blended.data();
+    std::uint32_t* frozen = t.frozen.data();
+    std::uint32_t evaluatedEnd = 0, blendedEnd = 0, frozenEnd = 0;
+    for (std::uint32_t i = 0; i < m; ++i) {
+      sorted[evaluatedEnd] = i;
+      blended[blendedEnd] = i;
+      frozen[frozenEnd] = i;
+      evaluatedEnd += key[i] == 0;
+      blendedEnd += key[i] == 1;
+      frozenEnd += key[i] == 2;
+    }
+    std::copy_n(blended, blendedEnd, sorted + evaluatedEnd);
+    std::copy_n(frozen, frozenEnd, sorted + evaluatedEnd + blendedEnd);
   } else if (counting_) {
     t.start.assign(keyCount_ + 1, 0u);
     for (std::uint32_t i = 0; i < m; ++i) ++t.start[key[i] + 1];
@@ -486,20 +521,20 @@ void EmbedRun::sortTileByKey(std::uint32_t m, TileScratch& t) const {
     for (std::uint32_t i = 0; i < m; ++i) sorted[i] = i;
     std::stable_sort(sorted, sorted + m, [key](std::uint32_t lhs, std::uint32_t rhs) { return key[lhs] < key[rhs]; });
   }
+  return false;
 }
 
 // Sorts a solved tile by (class, cell), stably, and writes its parameters, order and blocks:
 // a block streams one cell's control points over its points in Deformer, while reads and
-// writes in original order stay within the tile (cache-local). A tile of one key (any
-// single-cell lattice with every point inside) keeps the original order.
+// writes in original order stay within the tile (cache-local). A tile whose keys are in order
+// already (any single-cell lattice with every point inside) keeps the original order.
 void EmbedRun::groupTile(std::int64_t tile, TileScratch& t) {
   const Eigen::Index begin = tile * kTile;
   const std::uint32_t m = static_cast<std::uint32_t>(std::min<Eigen::Index>(n_ - begin, kTile));
   TileGroups& g = groups_[static_cast<std::size_t>(tile)];
-  sortTileByKey(m, t);
+  g.identity = sortTileByKey(m, t);
   const std::uint32_t* sorted = t.order.data();
   const std::uint32_t* key = t.key.data();
-  for (std::uint32_t i = 0; i < m; ++i) g.identity &= sorted[i] == i;
   double* tu = u.data() + begin;
   double* tv = v.data() + begin;
   double* tw = w.data() + begin;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <mutex>
 #include <random>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -451,6 +452,203 @@ TEST(Embedding, BoxEmbeddingOverManyTilesGivesEachPointItsParametersAndStatus) {
     EXPECT_EQ(e.insideCount(), inside);
     EXPECT_EQ(e.outsideCount(), n - inside);
     EXPECT_GT(n - inside, n / 5);
+  }
+}
+
+// The layout Deformer reads, checked point by point: each tile's blocks cover its sorted
+// positions in increasing (kind, cell), a point's block has the kind its status and the outside
+// policy give and the cell of its parameters, points of a block keep their original order, and
+// the sorted parameters are those of the point the order names (the generating ones, clamped
+// for ClampEdge / Falloff; a Falloff weight is the smoothstep of the distance to the clamped
+// rest point). Returns the number of tiles whose order was kept.
+int expectTilesSortedByKindAndCell(const Lattice& lattice, const Embedding& e, const Eigen::MatrixX3d& Q,
+                                   const Eigen::MatrixX3d* generating, const std::string& what) {
+  const Eigen::Index n = e.pointCount();
+  const OutsidePolicy policy = lattice.outsidePolicy();
+  const Eigen::MatrixX3d got = e.parameters();
+  const Eigen::Vector3d lo = lattice.parameterMin(), hi = lattice.parameterMax();
+  const auto& blocks = e.blocks();
+  const auto& tileBlocks = e.tileBlocks();
+  const Eigen::Index tiles = (n + Embedding::kTileSize - 1) / Embedding::kTileSize;
+  EXPECT_EQ(static_cast<Eigen::Index>(tileBlocks.size()), tiles + 1) << what;
+  int kept = 0;
+  for (Eigen::Index tile = 0; tile < tiles; ++tile) {
+    const std::uint32_t tileBegin = static_cast<std::uint32_t>(tile * Embedding::kTileSize);
+    const std::uint32_t tileEnd = static_cast<std::uint32_t>(std::min<Eigen::Index>(n, tileBegin + Embedding::kTileSize));
+    std::uint32_t at = tileBegin;
+    std::int64_t lastKey = -1;
+    bool identity = true;
+    for (std::uint32_t b = tileBlocks[tile]; b < tileBlocks[tile + 1]; ++b) {
+      const Embedding::Block& block = blocks[b];
+      EXPECT_EQ(block.begin, at) << what << " tile " << tile;
+      EXPECT_LT(block.begin, block.end) << what << " tile " << tile;
+      const std::int64_t key = std::int64_t(block.kind) * (1ll << 32) + block.cell;
+      EXPECT_GT(key, lastKey) << what << " tile " << tile << ": blocks out of (kind, cell) order";
+      lastKey = key;
+      std::int64_t lastPoint = -1;
+      for (std::uint32_t q = block.begin; q < block.end; ++q) {
+        const Eigen::Index p = e.order().empty() ? q : e.order()[q];
+        if (p < tileBegin || p >= tileEnd) {
+          ADD_FAILURE() << what << ": sorted position " << q << " names point " << p << " of another tile";
+          return kept;
+        }
+        identity &= p == q;
+        EXPECT_GT(p, lastPoint) << what << ": a block's points out of their original order";
+        lastPoint = p;
+        EXPECT_EQ(e.sortedU()[q], got(p, 0)) << what;
+        EXPECT_EQ(e.sortedV()[q], got(p, 1)) << what;
+        EXPECT_EQ(e.sortedW()[q], got(p, 2)) << what;
+        const Eigen::Vector3d uvw = got.row(p).transpose();
+        const std::array<int, 3> cell = e.cellOf(block);
+        for (int a = 0; a < 3; ++a) EXPECT_EQ(cell[a], lattice.axis(a).cellOf(uvw[a])) << what << " point " << p;
+        const PointStatus status = e.status(p);
+        const bool clamped = status == PointStatus::Outside && (policy.kind == OutsidePolicy::Kind::ClampEdge ||
+                                                                policy.kind == OutsidePolicy::Kind::Falloff);
+        if (generating) {
+          const Eigen::Vector3d t = generating->row(p).transpose();
+          const Eigen::Vector3d expected = clamped ? Eigen::Vector3d(t.cwiseMax(lo).cwiseMin(hi)) : t;
+          EXPECT_LT((uvw - expected).norm(), 1e-9 * (1.0 + t.norm())) << what << " point " << p;
+        }
+        using Kind = Embedding::BlockKind;
+        Kind kind = Kind::Evaluated;
+        double weight = 1.0;
+        bool eitherWay = false;  // a Falloff point within rounding of the distance
+        if (status == PointStatus::Failed || (status == PointStatus::Outside && policy.kind == OutsidePolicy::Kind::Identity)) {
+          kind = Kind::Frozen;
+        } else if (status == PointStatus::Outside && policy.kind == OutsidePolicy::Kind::Extrapolate &&
+                   block.kind == Kind::Blended) {
+          // Newton found no preimage (the polynomial extension does not reach the point): the
+          // closest parameters in the box, kept at their offset like ClampEdge.
+          kind = Kind::Blended;
+          EXPECT_TRUE(((uvw - lo).array() >= -1e-12).all() && ((hi - uvw).array() >= -1e-12).all()) << what << " point " << p;
+        } else if (clamped) {
+          kind = Kind::Blended;
+          if (policy.kind == OutsidePolicy::Kind::Falloff) {
+            const Eigen::Vector3d local = lattice.frame().inverse() * Q.row(p).transpose();
+            const double x = (lattice.evaluateRest(uvw) - local).norm() / policy.distance;
+            eitherWay = std::abs(x - 1.0) < 1e-9;
+            if (x >= 1.0) kind = Kind::Frozen;
+            else weight = 1.0 - x * x * (3.0 - 2.0 * x);
+          }
+        }
+        if (!eitherWay) {
+          EXPECT_EQ(block.kind, kind) << what << " point " << p;
+        }
+        if (block.kind == Kind::Blended && kind == Kind::Blended) {
+          EXPECT_NEAR(e.blendWeight()[block.blendOffset + q - block.begin], weight, 1e-9) << what << " point " << p;
+        }
+      }
+      at = block.end;
+    }
+    EXPECT_EQ(at, tileEnd) << what << " tile " << tile;
+    kept += identity;
+  }
+  return kept;
+}
+
+// Box embedding with points on the boundary, inside and outside the epsilon band of a face,
+// and far outside, over many tiles: the layout, parameters and statuses point by point (see
+// expectTilesSortedByKindAndCell), for every outside policy and one- and many-cell lattices.
+TEST(Embedding, BoxEmbeddingSortsEveryTileByKindAndCellAcrossTheBoundary) {
+  std::mt19937 rng(17);
+  const OutsidePolicy policies[] = {OutsidePolicy::identity(), OutsidePolicy::extrapolate(), OutsidePolicy::clampEdge(),
+                                    OutsidePolicy::falloff(0.4)};
+  for (int trial = 0; trial < 16; ++trial) {
+    BoxLatticeOptions options;
+    const int count = trial % 2 ? 4 : 2 + trial % 5 * 2;  // one cell (4x4x4 cubic) or several
+    options.counts = {count, count == 4 ? 4 : count + trial % 3, count};
+    options.frame = testing::randomFrame(rng);
+    Lattice lattice = makeBoxLattice(options);
+    lattice.setOutsidePolicy(policies[trial % 4]);
+    const Eigen::Index n = 3 * Embedding::kTileSize + 1000;
+    const Eigen::Vector3d lo = lattice.parameterMin(), hi = lattice.parameterMax();
+    std::uniform_int_distribution<int> pick(0, 9);
+    std::uniform_real_distribution<double> unit(0.0, 1.0), beyond(1.0, 1e3);
+    const double outsideShare = trial / 4 == 0 ? 0.0 : 0.1 * (trial / 4);  // per coordinate
+    Eigen::MatrixX3d uvw(n, 3);
+    Eigen::Index expectedInside = 0;
+    for (Eigen::Index r = 0; r < n; ++r) {
+      bool in = true;
+      for (int a = 0; a < 3; ++a) {
+        double t = unit(rng);
+        const int k = pick(rng);
+        if (k == 0) t = 0.0;                   // on a face
+        if (k == 1) t = 1.0 + 1e-12;           // within the epsilon band: inside
+        if (unit(rng) < outsideShare) {
+          in = false;
+          if (k < 4) t = -1e-6;                // just outside the band
+          else if (k < 7) t = 1.0 + 1e-6;
+          else t = k == 7 ? -beyond(rng) : beyond(rng);  // far outside
+        }
+        uvw(r, a) = lo[a] + (hi[a] - lo[a]) * t;
+      }
+      expectedInside += in;
+    }
+    // The rest map is affine: its image of far parameters from the images of four corners
+    // (Xbar's polynomial pieces evaluated far out lose all digits to cancellation).
+    Eigen::MatrixX3d corners = lo.transpose().replicate(4, 1);
+    for (int a = 0; a < 3; ++a) corners(a + 1, a) = hi[a];
+    const Eigen::MatrixX3d images = testing::restImages(lattice, corners);
+    Eigen::Matrix3d J;
+    for (int a = 0; a < 3; ++a) J.col(a) = (images.row(a + 1) - images.row(0)).transpose() / (hi[a] - lo[a]);
+    const Eigen::MatrixX3d Q = ((uvw.rowwise() - lo.transpose()) * J.transpose()).rowwise() + images.row(0);
+    const Embedding e = embed(lattice, Q);
+    const std::string what = "trial " + std::to_string(trial);
+    const int kept = expectTilesSortedByKindAndCell(lattice, e, Q, &uvw, what);
+    EXPECT_EQ(e.insideCount(), expectedInside) << what;
+    EXPECT_EQ(e.outsideCount(), n - expectedInside) << what;
+    if (count == 4 && outsideShare == 0.0) {
+      EXPECT_EQ(kept, 4) << what << ": a single cell, all inside, keeps the order";
+    }
+    if (outsideShare > 0.0 && policies[trial % 4].kind != OutsidePolicy::Kind::Extrapolate && count == 4) {
+      EXPECT_EQ(kept, 0) << what << ": outside points in random order move to the end of their tile";
+    }
+    // Sequential and parallel embedding agree bit for bit.
+    EmbedOptions serial;
+    serial.parallel = false;
+    EXPECT_TRUE(sameEmbedding(e, embed(lattice, Q, serial))) << what;
+  }
+}
+
+// The same layout for Newton embedding of single-cell lattices, whose tiles mix all three
+// kinds under Falloff (inside, blended, beyond the distance) and two under the other policies.
+TEST(Embedding, NewtonEmbeddingSortsEveryTileByKindStably) {
+  std::mt19937 rng(23);
+  const OutsidePolicy policies[] = {OutsidePolicy::identity(), OutsidePolicy::extrapolate(), OutsidePolicy::clampEdge(),
+                                    OutsidePolicy::falloff(0.05)};
+  for (int trial = 0; trial < 4; ++trial) {
+    Lattice lattice = userShapedUnitLattice();
+    lattice.setOutsidePolicy(policies[trial]);
+    const Eigen::MatrixX3d Q = (testing::uniformPointsInUnitBox(2 * Embedding::kTileSize + 300, 40 + trial).array() * 1.3 - 0.15).matrix();
+    const Embedding e = embed(lattice, Q);
+    ASSERT_GT(e.outsideCount(), Q.rows() / 4);
+    expectTilesSortedByKindAndCell(lattice, e, Q, nullptr, "policy " + std::to_string(trial));
+    if (policies[trial].kind == OutsidePolicy::Kind::Falloff) {
+      EXPECT_EQ(e.tileBlocks()[1], 3u) << "the first tile holds inside, blended and frozen points";
+    }
+  }
+}
+
+// Points whose coordinates are finite but whose sum overflows are embedded (outside), not
+// rejected; a NaN or an infinity among outside points is rejected naming its row.
+TEST(Embedding, BoxEmbeddingTellsHugeFromNonFiniteCoordinatesAmongOutsidePoints) {
+  const Lattice lattice = makeBoxLattice();
+  Eigen::MatrixX3d Q = (testing::uniformPointsInUnitBox(2 * Embedding::kTileSize, 31).array() * 1.1 - 0.05).matrix();
+  Q.row(100) << 1e308, 1e308, 0.5;
+  const Embedding e = embed(lattice, Q);
+  EXPECT_EQ(e.status(100), PointStatus::Outside);
+  EXPECT_EQ(e.insideCount() + e.outsideCount(), Q.rows());
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::infinity()}) {
+    Eigen::MatrixX3d B = Q;
+    B(Embedding::kTileSize + 5, 1) = bad;
+    try {
+      embed(lattice, B);
+      ADD_FAILURE() << "expected LatticeError for " << bad;
+    } catch (const LatticeError& error) {
+      EXPECT_NE(std::string(error.what()).find("point " + std::to_string(Embedding::kTileSize + 5) + " is not finite"),
+                std::string::npos)
+          << error.what();
+    }
   }
 }
 
