@@ -524,6 +524,25 @@ bool EmbedRun::sortTileByKey(std::uint32_t m, TileScratch& t) const {
   return false;
 }
 
+// The end of the run of equal keys that starts at sorted position i of m: the keys in sorted
+// order never decrease, so a search that doubles its step and then halves it finds the end in
+// about 2 log2(run length) probes (a single-cell tile is one or two runs of thousands of points,
+// a many-cell tile in random order runs of a few).
+std::uint32_t endOfRun(const std::uint32_t* key, const std::uint32_t* sorted, std::uint32_t m, std::uint32_t i) {
+  const std::uint32_t k = key[sorted[i]];
+  std::uint32_t in = i, step = 1;  // key[sorted[in]] == k
+  while (in + step < m && key[sorted[in + step]] == k) {
+    in += step;
+    step *= 2;
+  }
+  std::uint32_t out = std::min(in + step, m);  // out == m or key[sorted[out]] > k
+  while (out - in > 1) {
+    const std::uint32_t mid = in + (out - in) / 2;
+    (key[sorted[mid]] == k ? in : out) = mid;
+  }
+  return out;
+}
+
 // Sorts a solved tile by (class, cell), stably, and writes its parameters, order and blocks:
 // a block streams one cell's control points over its points in Deformer, while reads and
 // writes in original order stay within the tile (cache-local). A tile whose keys are in order
@@ -561,8 +580,7 @@ void EmbedRun::groupTile(std::int64_t tile, TileScratch& t) {
   // Runs of equal key become blocks.
   for (std::uint32_t i = 0; i < m;) {
     const std::uint32_t k = key[sorted[i]];
-    std::uint32_t runEnd = i + 1;
-    while (runEnd < m && key[sorted[runEnd]] == k) ++runEnd;
+    const std::uint32_t runEnd = endOfRun(key, sorted, m, i);
     Embedding::Block block{};
     block.cell = static_cast<std::uint32_t>(k % cellTotal_);  // < 1e8 cells (Lattice's limit on control points)
     block.begin = static_cast<std::uint32_t>(begin + i);
