@@ -395,7 +395,21 @@ void mergeTile(const KernelInput& in, std::uint32_t begin, std::uint32_t end, co
   const double* bz = accumulate ? in.oz : in.qz;
   constexpr std::uint64_t kAll = 0x0101010101010101ull;
   std::uint32_t p = begin;
+  // The rows' six streams (base and output columns) restart at every tile, 32 kB each, too short
+  // for the hardware prefetcher to run far ahead: ask for their lines eight lines ahead (4 % off
+  // an exact update of 1M points on 8x8x8 on one thread; sixteen lines ahead measured the same).
+  constexpr std::uint32_t kAhead = 8 * kLanes;
   for (; p + kLanes <= end; p += kLanes) {
+    if (p + kAhead < end) {
+      __builtin_prefetch(bx + p + kAhead);
+      __builtin_prefetch(by + p + kAhead);
+      __builtin_prefetch(bz + p + kAhead);
+      if (!accumulate) {  // else the base is the output
+        __builtin_prefetch(in.ox + p + kAhead, 1);
+        __builtin_prefetch(in.oy + p + kAhead, 1);
+        __builtin_prefetch(in.oz + p + kAhead, 1);
+      }
+    }
     std::uint64_t flags;
     __builtin_memcpy(&flags, evaluated + (p - begin), sizeof(flags));
     if (flags == 0) continue;

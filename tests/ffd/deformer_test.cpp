@@ -243,6 +243,34 @@ TEST(Deformer, IncrementalUpdateTouchesOnlyInfluencedPoints) {
   EXPECT_EQ(deformer.lastStats().evaluatedPoints, 0);
 }
 
+// The shape of the benchmark's exact update (docs/benchmarks.md): an interior control point of an
+// 8x8x8 cubic lattice, points in random order over many tiles, so that the cells the update runs
+// are short blocks separated by the cells it skips in every tile.
+TEST(Deformer, ExactUpdateOfAnInteriorControlPointRunsItsSupportAcrossManyTiles) {
+  BoxLatticeOptions options;
+  options.counts = {8, 8, 8};
+  Lattice lattice = makeBoxLattice(options);
+  std::mt19937 rng(12);
+  const Eigen::MatrixX3d uvw = testing::randomParameters(lattice, 60000, rng);
+  const Eigen::MatrixX3d Q = testing::restImages(lattice, uvw);
+  Deformer exact(embed(lattice, Q));
+  exact.deform(lattice, Q);
+  // Control index 3 lies in the windows of cells 0..3 of the 5 per axis (cubic: cell c holds c..c+3).
+  Eigen::Index support = 0;
+  for (Eigen::Index r = 0; r < uvw.rows(); ++r) {
+    support += (uvw.row(r).array() * 5.0 < 4.0).all() ? 1 : 0;
+  }
+  const Eigen::Index flat = lattice.index(3, 3, 3);
+  for (int step = 1; step <= 3; ++step) {
+    lattice.setControlPoint(flat, lattice.restPoints().row(flat).transpose() + Eigen::Vector3d(0.05, -0.03, 0.02) * step);
+    exact.update(lattice, Q);
+    // Points on a cell boundary may be sorted into either cell: a few either way.
+    EXPECT_NEAR(double(exact.lastStats().evaluatedPoints), double(support), 10.0) << "step " << step;
+    Deformer full(embed(lattice, Q));
+    EXPECT_EQ(maxRowError(exact.points(), full.deform(lattice, Q)), 0.0) << "step " << step;
+  }
+}
+
 TEST(Deformer, ExactUpdatesDoNotDriftOverManySteps) {
   BoxLatticeOptions options;
   options.counts = {6, 6, 6};
