@@ -7,6 +7,7 @@
 #include <exception>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <string>
 
 #include <omp.h>
@@ -29,9 +30,7 @@ enum class PointClass : std::uint8_t { Evaluated = 0, Blended = 1, Frozen = 2 };
 struct TileScratch {
   double *pu = nullptr, *pv = nullptr, *pw = nullptr;
   std::array<double, kTile> u, v, w, weight;
-  std::array<std::uint32_t, kTile> key;
-  // + 1: the partition's stores one past a class's last point (sortTileByKey).
-  std::array<std::uint32_t, kTile + 1> order, blended, frozen;
+  std::array<std::uint32_t, kTile> key, order;
   std::array<std::uint8_t, kTile> flagged;
   std::vector<std::uint32_t> start;  // counting-sort buckets
 };
@@ -260,7 +259,9 @@ class EmbedRun {
                   std::uint32_t runIndex = 0);
   void solveAffineTile(Eigen::Index begin, std::uint32_t m, TileScratch& t);
   void solveNewtonTile(Eigen::Index begin, Eigen::Index end, TileScratch& t, FirstSteps* first);
-  bool sortTileByKey(std::uint32_t m, TileScratch& t) const;
+  void sortTileByKey(std::uint32_t m, TileScratch& t) const;
+  void permuteTile(Eigen::Index begin, std::uint32_t m, const TileScratch& t);
+  void partitionTileByClass(Eigen::Index begin, std::uint32_t m, TileScratch& t);
   void groupTile(std::int64_t tile, TileScratch& t);
   std::uint32_t cellKey(double pu, double pv, double pw) const;
   void callHook(Eigen::Index done);
@@ -481,38 +482,20 @@ void EmbedRun::solveNewtonTile(Eigen::Index begin, Eigen::Index end, TileScratch
   }
 }
 
-// t.order = the tile's m points sorted by key, stably: the original order when the keys are in
-// order already (then returns true: a stable sort is the identity exactly then), a stable
-// partition when the key is the class alone, a counting sort when the keys are few, else a
-// stable sort.
-bool EmbedRun::sortTileByKey(std::uint32_t m, TileScratch& t) const {
+// Whether the tile's m keys never decrease, so that sorting by key keeps the original order (a
+// stable sort is the identity exactly then). Counted, not searched for: the loop vectorises.
+bool keysInOrder(const std::uint32_t* key, std::uint32_t m) {
+  std::uint32_t descents = 0;
+  for (std::uint32_t i = 1; i < m; ++i) descents += key[i] < key[i - 1];
+  return descents == 0;
+}
+
+// t.order = the tile's m points sorted by key, stably: a counting sort when the keys are few,
+// else a stable sort.
+void EmbedRun::sortTileByKey(std::uint32_t m, TileScratch& t) const {
   std::uint32_t* sorted = t.order.data();
   const std::uint32_t* key = t.key.data();
-  std::uint32_t descents = 0;  // counted, not searched for: the loop vectorises
-  for (std::uint32_t i = 1; i < m; ++i) descents += key[i] < key[i - 1];
-  if (descents == 0) {
-    for (std::uint32_t i = 0; i < m; ++i) sorted[i] = i;
-    return true;
-  } else if (keyCount_ == 3) {
-    // One cell, so the key is the class: a stable partition. Each point's index is stored into
-    // the list of every class and only its own class's cursor moves, so no branch depends on
-    // the class (outside points come in random order) and the cursors stay in registers (the
-    // counting sort's counters live in memory, and each point waited for the previous one's
-    // store to the same counter). The lists are then joined.
-    std::uint32_t* blended = t.blended.data();
-    std::uint32_t* frozen = t.frozen.data();
-    std::uint32_t evaluatedEnd = 0, blendedEnd = 0, frozenEnd = 0;
-    for (std::uint32_t i = 0; i < m; ++i) {
-      sorted[evaluatedEnd] = i;
-      blended[blendedEnd] = i;
-      frozen[frozenEnd] = i;
-      evaluatedEnd += key[i] == 0;
-      blendedEnd += key[i] == 1;
-      frozenEnd += key[i] == 2;
-    }
-    std::copy_n(blended, blendedEnd, sorted + evaluatedEnd);
-    std::copy_n(frozen, frozenEnd, sorted + evaluatedEnd + blendedEnd);
-  } else if (counting_) {
+  if (counting_) {
     t.start.assign(keyCount_ + 1, 0u);
     for (std::uint32_t i = 0; i < m; ++i) ++t.start[key[i] + 1];
     for (std::size_t k = 0; k < keyCount_; ++k) t.start[k + 1] += t.start[k];
@@ -521,7 +504,55 @@ bool EmbedRun::sortTileByKey(std::uint32_t m, TileScratch& t) const {
     for (std::uint32_t i = 0; i < m; ++i) sorted[i] = i;
     std::stable_sort(sorted, sorted + m, [key](std::uint32_t lhs, std::uint32_t rhs) { return key[lhs] < key[rhs]; });
   }
-  return false;
+}
+
+// The tile's parameters (from the scratch copy) and order in key order t.order.
+void EmbedRun::permuteTile(Eigen::Index begin, std::uint32_t m, const TileScratch& t) {
+  const std::uint32_t* sorted = t.order.data();
+  double* tu = u.data() + begin;
+  double* tv = v.data() + begin;
+  double* tw = w.data() + begin;
+  std::uint32_t* globalOrder = order.data() + begin;
+  for (std::uint32_t i = 0; i < m; ++i) {
+    tu[i] = t.u[sorted[i]];
+    tv[i] = t.v[sorted[i]];
+    tw[i] = t.w[sorted[i]];
+    globalOrder[i] = static_cast<std::uint32_t>(begin) + sorted[i];
+  }
+}
+
+// permuteTile(sortTileByKey()) for a single-cell lattice, where the key is the class (0, 1, 2),
+// in one pass: a stable partition that moves each point to the cursor of its class as it goes.
+// The cursor is selected by masks, not by a branch (outside points come in any order) or by
+// indexing an array of counters in memory (each point then waited for the previous one's
+// store to the same counter).
+void EmbedRun::partitionTileByClass(Eigen::Index begin, std::uint32_t m, TileScratch& t) {
+  const std::uint32_t* key = t.key.data();
+  std::uint32_t blended = 0, frozen = 0;
+  for (std::uint32_t i = 0; i < m; ++i) {
+    blended += key[i] == 1;
+    frozen += key[i] == 2;
+  }
+  std::uint32_t atEvaluated = 0, atBlended = m - blended - frozen, atFrozen = m - frozen;
+  std::uint32_t* sorted = t.order.data();
+  double* tu = u.data() + begin;
+  double* tv = v.data() + begin;
+  double* tw = w.data() + begin;
+  std::uint32_t* globalOrder = order.data() + begin;
+  for (std::uint32_t i = 0; i < m; ++i) {
+    const std::uint32_t isBlended = key[i] == 1, isFrozen = key[i] == 2;
+    const std::uint32_t isEvaluated = 1 - isBlended - isFrozen;
+    const std::uint32_t at =
+        (atEvaluated & (0u - isEvaluated)) | (atBlended & (0u - isBlended)) | (atFrozen & (0u - isFrozen));
+    tu[at] = t.u[i];
+    tv[at] = t.v[i];
+    tw[at] = t.w[i];
+    globalOrder[at] = static_cast<std::uint32_t>(begin) + i;
+    sorted[at] = i;
+    atEvaluated += isEvaluated;
+    atBlended += isBlended;
+    atFrozen += isFrozen;
+  }
 }
 
 // The end of the run of equal keys that starts at sorted position i of m: the keys in sorted
@@ -551,13 +582,14 @@ void EmbedRun::groupTile(std::int64_t tile, TileScratch& t) {
   const Eigen::Index begin = tile * kTile;
   const std::uint32_t m = static_cast<std::uint32_t>(std::min<Eigen::Index>(n_ - begin, kTile));
   TileGroups& g = groups_[static_cast<std::size_t>(tile)];
-  g.identity = sortTileByKey(m, t);
   const std::uint32_t* sorted = t.order.data();
   const std::uint32_t* key = t.key.data();
   double* tu = u.data() + begin;
   double* tv = v.data() + begin;
   double* tw = w.data() + begin;
+  g.identity = keysInOrder(key, m);
   if (g.identity) {
+    std::iota(t.order.begin(), t.order.begin() + m, 0u);
     if (t.pu != tu) {
       std::copy_n(t.pu, m, tu);
       std::copy_n(t.pv, m, tv);
@@ -569,12 +601,11 @@ void EmbedRun::groupTile(std::int64_t tile, TileScratch& t) {
       std::copy_n(tv, m, t.v.data());
       std::copy_n(tw, m, t.w.data());
     }
-    std::uint32_t* globalOrder = order.data() + begin;
-    for (std::uint32_t i = 0; i < m; ++i) {
-      tu[i] = t.u[sorted[i]];
-      tv[i] = t.v[sorted[i]];
-      tw[i] = t.w[sorted[i]];
-      globalOrder[i] = static_cast<std::uint32_t>(begin) + sorted[i];
+    if (keyCount_ == 3) {
+      partitionTileByClass(begin, m, t);
+    } else {
+      sortTileByKey(m, t);
+      permuteTile(begin, m, t);
     }
   }
   // Runs of equal key become blocks.
