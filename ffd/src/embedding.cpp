@@ -601,7 +601,7 @@ void EmbedRun::groupTile(std::int64_t tile, TileScratch& t) {
       std::copy_n(tv, m, t.v.data());
       std::copy_n(tw, m, t.w.data());
     }
-    if (keyCount_ == 3) {
+    if (cellTotal_ == 1) {  // the key is the class
       partitionTileByClass(begin, m, t);
     } else {
       sortTileByKey(m, t);
