@@ -200,16 +200,20 @@ void prefetchLines(const T* data, std::uint32_t begin, std::uint32_t end) {
 }
 
 // What the kernels read of a block in sorted order: its parameters (u, v, w; or the kept weights
-// of a drag's control point, detail::weightedBlock) and its point order.
+// of a drag's control point, detail::weightedBlock) and its point order. Only the block's first
+// points: the hardware prefetcher follows a long block once it has started (points in a mesh's
+// spatial order make blocks of hundreds of points, where asking for all of them cost time).
 void prefetchBlock(const detail::KernelInput& in, const Embedding::Block& block, const double* weights = nullptr) {
+  constexpr std::uint32_t kHead = 64;
+  const std::uint32_t end = std::min(block.end, block.begin + kHead);
   if (weights) {
-    prefetchLines(weights, block.begin, block.end);
+    prefetchLines(weights, block.begin, end);
   } else {
-    prefetchLines(in.u, block.begin, block.end);
-    prefetchLines(in.v, block.begin, block.end);
-    prefetchLines(in.w, block.begin, block.end);
+    prefetchLines(in.u, block.begin, end);
+    prefetchLines(in.v, block.begin, end);
+    prefetchLines(in.w, block.begin, end);
   }
-  if (in.order) prefetchLines(in.order, block.begin, block.end);
+  if (in.order) prefetchLines(in.order, block.begin, end);
 }
 
 // Evaluates the blocks [first, last) of one tile that `selected` picks: run(kernelInput, block,
