@@ -439,11 +439,11 @@ void EmbedRun::solveAffineTile(Eigen::Index begin, std::uint32_t m, TileScratch&
   if (anyNonFinite) nonFinite_.store(true, std::memory_order_relaxed);
   PointStatus* tileStatus = status.data() + begin;
   std::fill_n(t.weight.data(), m, 1.0);
+  const std::uint32_t outsideBase = static_cast<std::uint32_t>(outsideClass_ * cellTotal_);  // an outside point's key offset
   if (outsideKeepsParameters_ && !anyNonFinite) {
     // Every point is finite and keeps its parameters, so flagged means outside: status and key
     // are computed from the flag, not branched on (outside points come in any order, and a
     // branch on them was one of the hot spots of a box embedding with outside points).
-    const std::uint32_t outsideBase = static_cast<std::uint32_t>(outsideClass_ * cellTotal_);
     for (std::uint32_t i = 0; i < m; ++i) {
       const std::uint32_t outside = t.flagged[i];  // 0 or 1
       tileStatus[i] = outside ? PointStatus::Outside : PointStatus::Inside;
@@ -457,7 +457,7 @@ void EmbedRun::solveAffineTile(Eigen::Index begin, std::uint32_t m, TileScratch&
       t.key[i] = cellKey(t.pu[i], t.pv[i], t.pw[i]);
     } else if (outsideKeepsParameters_ && points_.row(begin + i).allFinite()) {
       tileStatus[i] = PointStatus::Outside;
-      t.key[i] = static_cast<std::uint32_t>(outsideClass_ * cellTotal_) + cellKey(t.pu[i], t.pv[i], t.pw[i]);
+      t.key[i] = outsideBase + cellKey(t.pu[i], t.pv[i], t.pw[i]);
     } else {
       solvePoint(begin + i, i, t);
     }
